@@ -1,0 +1,123 @@
+//! Neural controllers: the [`Controller`] trait and the paper's logistic MLP.
+
+use serde::{Deserialize, Serialize};
+
+/// Number of network inputs (the eight IR sensors).
+pub const INPUTS: usize = 8;
+/// Number of network outputs (left and right motor).
+pub const OUTPUTS: usize = 2;
+
+/// Maps normalised sensor readings (each in [0, 1]) to motor outputs `mL, mR` in [0, 1].
+pub trait Controller {
+    /// One network step.
+    fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS];
+}
+
+/// The shape of the MLP: 8 inputs → `hidden` logistic units → 2 logistic outputs, with biases.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct MlpShape {
+    /// Inputs (8).
+    pub inputs: usize,
+    /// Hidden units (default 6).
+    pub hidden: usize,
+    /// Outputs (2).
+    pub outputs: usize,
+}
+
+impl MlpShape {
+    /// The shape with `hidden` hidden units.
+    pub fn with_hidden(hidden: usize) -> Self {
+        Self { inputs: INPUTS, hidden, outputs: OUTPUTS }
+    }
+
+    /// Genome length: per hidden unit `[bias, 8 weights]`, then per output `[bias, hidden
+    /// weights]`. 68 for the paper's 8-6-2.
+    ///
+    /// ```
+    /// assert_eq!(fuzzymotiv::controller::MlpShape::with_hidden(6).genome_len(), 68);
+    /// ```
+    pub fn genome_len(&self) -> usize {
+        self.hidden * (self.inputs + 1) + self.outputs * (self.hidden + 1)
+    }
+}
+
+/// Logistic function 1 / (1 + e^(−x)).
+#[inline]
+pub fn logistic(x: f64) -> f64 {
+    1.0 / (1.0 + (-x).exp())
+}
+
+/// The feed-forward logistic MLP whose weights are the genome.
+#[derive(Debug, Clone)]
+pub struct Mlp {
+    shape: MlpShape,
+    weights: Vec<f64>,
+    hidden: Vec<f64>,
+}
+
+impl Mlp {
+    /// A network from a genome laid out as [`MlpShape::genome_len`] describes; `None` when the
+    /// length does not match.
+    pub fn from_genome(shape: MlpShape, genome: &[f64]) -> Option<Self> {
+        (genome.len() == shape.genome_len() && shape.inputs == INPUTS && shape.outputs == OUTPUTS)
+            .then(|| Self { shape, weights: genome.to_vec(), hidden: vec![0.0; shape.hidden] })
+    }
+
+    /// The network's shape.
+    pub fn shape(&self) -> MlpShape {
+        self.shape
+    }
+}
+
+impl Controller for Mlp {
+    #[inline]
+    fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
+        let (hidden_w, out_w) = self.weights.split_at(self.shape.hidden * (INPUTS + 1));
+        for (h, w) in self.hidden.iter_mut().zip(hidden_w.chunks_exact(INPUTS + 1)) {
+            let mut s = w[0];
+            for k in 0..INPUTS {
+                s += w[k + 1] * inputs[k];
+            }
+            *h = logistic(s);
+        }
+        let mut out = [0.0; OUTPUTS];
+        for (o, w) in out.iter_mut().zip(out_w.chunks_exact(self.shape.hidden + 1)) {
+            let mut s = w[0];
+            for (wk, h) in w[1..].iter().zip(&self.hidden) {
+                s += wk * h;
+            }
+            *o = logistic(s);
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn zero_genome_outputs_half() {
+        let shape = MlpShape::with_hidden(6);
+        let mut m = Mlp::from_genome(shape, &vec![0.0; 68]).unwrap();
+        assert_eq!(m.step(&[1.0; 8]), [0.5, 0.5]);
+        assert!(Mlp::from_genome(shape, &[0.0; 67]).is_none());
+    }
+
+    #[test]
+    fn hand_computed_output() {
+        // One hidden unit: bias 0, weight 1 on input 0 → logistic(1). Output 0: bias -1, w 2.
+        let shape = MlpShape::with_hidden(1);
+        let mut g = vec![0.0; shape.genome_len()];
+        g[1] = 1.0; // hidden unit, input 0
+        g[9] = -1.0; // output 0 bias
+        g[10] = 2.0; // output 0 weight on hidden 0
+        let mut m = Mlp::from_genome(shape, &g).unwrap();
+        let mut x = [0.0; 8];
+        x[0] = 1.0;
+        let o = m.step(&x);
+        let h = logistic(1.0);
+        assert_eq!(o[0], logistic(-1.0 + 2.0 * h));
+        assert_eq!(o[1], 0.5);
+    }
+}

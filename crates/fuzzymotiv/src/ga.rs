@@ -1,0 +1,177 @@
+//! The genetic algorithm of SPEC §8. It knows genomes (weight vectors) and fitness values only
+//! — higher fitness is better — and never sees robots, rooms or fuzzy logic.
+
+use serde::{Deserialize, Serialize};
+
+use crate::rng::{Rng, index, standard_normal, uniform, uniform01};
+
+/// A genome: the controller's weights.
+pub type Genome = Vec<f64>;
+
+/// GA parameters (SPEC §8 defaults).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GaParams {
+    /// Population size; default 200.
+    pub population: usize,
+    /// Generations; default 200.
+    pub generations: usize,
+    /// Best individuals copied unchanged into the next generation; default 2.
+    pub elite: usize,
+    /// Parents are drawn uniformly from this best fraction; default 0.2.
+    pub parent_fraction: f64,
+    /// Probability of one-point crossover per child; default 0.5.
+    pub crossover: f64,
+    /// Per-gene mutation probability; default 0.01.
+    pub mutation_rate: f64,
+    /// Standard deviation of the Gaussian mutation; default 0.5.
+    pub mutation_sigma: f64,
+    /// Genes are clamped to [−limit, limit]; default 5.
+    pub weight_limit: f64,
+    /// Initial genes are drawn from U(−init_range, init_range); default 1.
+    pub init_range: f64,
+}
+
+impl Default for GaParams {
+    fn default() -> Self {
+        Self {
+            population: 200,
+            generations: 200,
+            elite: 2,
+            parent_fraction: 0.2,
+            crossover: 0.5,
+            mutation_rate: 0.01,
+            mutation_sigma: 0.5,
+            weight_limit: 5.0,
+            init_range: 1.0,
+        }
+    }
+}
+
+/// A random initial population of `params.population` genomes of length `len`.
+pub fn initial_population<R: Rng + ?Sized>(params: &GaParams, len: usize, rng: &mut R) -> Vec<Genome> {
+    (0..params.population)
+        .map(|_| (0..len).map(|_| uniform(rng, -params.init_range, params.init_range)).collect())
+        .collect()
+}
+
+/// Indices sorted best first (ties broken by index, so the order is total and deterministic).
+pub fn ranking(fitness: &[f64]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..fitness.len()).collect();
+    order.sort_by(|&a, &b| fitness[b].total_cmp(&fitness[a]).then(a.cmp(&b)));
+    order
+}
+
+/// The next generation: the `elite` best unchanged, the rest bred from parents drawn uniformly
+/// from the best `parent_fraction` by one-point crossover (probability `crossover`, otherwise a
+/// copy of the first parent) and per-gene Gaussian mutation.
+pub fn next_generation<R: Rng + ?Sized>(
+    population: &[Genome],
+    fitness: &[f64],
+    params: &GaParams,
+    rng: &mut R,
+) -> Vec<Genome> {
+    assert_eq!(population.len(), fitness.len(), "one fitness per genome");
+    let order = ranking(fitness);
+    let n = params.population;
+    let parents = ((params.parent_fraction * population.len() as f64).ceil() as usize).clamp(1, population.len());
+    let mut next: Vec<Genome> = order.iter().take(params.elite.min(n)).map(|&i| population[i].clone()).collect();
+    while next.len() < n {
+        let a = &population[order[index(rng, parents)]];
+        let b = &population[order[index(rng, parents)]];
+        let mut child = a.clone();
+        if uniform01(rng) < params.crossover && a.len() > 1 {
+            let cut = 1 + index(rng, a.len() - 1);
+            child[cut..].copy_from_slice(&b[cut..]);
+        }
+        mutate(&mut child, params, rng);
+        next.push(child);
+    }
+    next
+}
+
+/// Per-gene mutation: with probability `mutation_rate` add N(0, σ), then clamp.
+pub fn mutate<R: Rng + ?Sized>(genome: &mut [f64], params: &GaParams, rng: &mut R) {
+    for g in genome.iter_mut() {
+        if uniform01(rng) < params.mutation_rate {
+            *g = (*g + params.mutation_sigma * standard_normal(rng)).clamp(-params.weight_limit, params.weight_limit);
+        }
+    }
+}
+
+/// Summary of one generation's fitness values.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct Stats {
+    /// Highest.
+    pub best: f64,
+    /// Mean.
+    pub mean: f64,
+    /// Population standard deviation.
+    pub std: f64,
+    /// Lowest.
+    pub min: f64,
+    /// Highest (same as `best`).
+    pub max: f64,
+}
+
+impl Stats {
+    /// Statistics of `values`, summed in index order.
+    pub fn of(values: &[f64]) -> Stats {
+        if values.is_empty() {
+            return Stats::default();
+        }
+        let n = values.len() as f64;
+        let mean = values.iter().sum::<f64>() / n;
+        let var = values.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
+        let min = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        Stats { best: max, mean, std: var.sqrt(), min, max }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::rng_from_seed;
+
+    #[test]
+    fn elites_survive_and_sizes_hold() {
+        let p = GaParams { population: 10, ..GaParams::default() };
+        let mut rng = rng_from_seed(5);
+        let pop = initial_population(&p, 4, &mut rng);
+        let fit: Vec<f64> = (0..10).map(|i| i as f64).collect();
+        let next = next_generation(&pop, &fit, &p, &mut rng);
+        assert_eq!(next.len(), 10);
+        assert_eq!(next[0], pop[9]);
+        assert_eq!(next[1], pop[8]);
+        assert!(next.iter().flatten().all(|g| g.abs() <= 5.0));
+    }
+
+    #[test]
+    fn ranking_breaks_ties_by_index() {
+        assert_eq!(ranking(&[1.0, 3.0, 3.0, 0.5]), vec![1, 2, 0, 3]);
+    }
+
+    #[test]
+    fn ga_climbs_a_simple_function() {
+        // Maximise −Σ(g − 1)²: the GA must get closer to all-ones.
+        let p = GaParams { population: 30, ..GaParams::default() };
+        let f = |g: &Genome| -g.iter().map(|x| (x - 1.0) * (x - 1.0)).sum::<f64>();
+        let mut rng = rng_from_seed(11);
+        let mut pop = initial_population(&p, 5, &mut rng);
+        let first = Stats::of(&pop.iter().map(f).collect::<Vec<_>>()).best;
+        for _ in 0..40 {
+            let fit: Vec<f64> = pop.iter().map(f).collect();
+            pop = next_generation(&pop, &fit, &p, &mut rng);
+        }
+        let last = Stats::of(&pop.iter().map(f).collect::<Vec<_>>()).best;
+        assert!(last > first, "{first} -> {last}");
+    }
+
+    #[test]
+    fn stats_by_hand() {
+        let s = Stats::of(&[1.0, 2.0, 3.0, 4.0]);
+        assert_eq!((s.best, s.mean, s.min, s.max), (4.0, 2.5, 1.0, 4.0));
+        assert!((s.std - 1.25f64.sqrt()).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,300 @@
+//! Plane geometry in millimetres: points, wall segments, rays and polygons.
+//!
+//! ```
+//! use fuzzymotiv::geom::{Segment, Vec2};
+//! // A wall from (10, -5) to (10, 5); a ray from the origin along +x hits it at t = 10.
+//! let wall = Segment::new(Vec2::new(10.0, -5.0), Vec2::new(10.0, 5.0));
+//! assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0)), Some(10.0));
+//! ```
+
+use serde::{Deserialize, Serialize};
+
+/// A point or vector in the plane (mm).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Vec2 {
+    /// x coordinate (mm).
+    pub x: f64,
+    /// y coordinate (mm).
+    pub y: f64,
+}
+
+impl Vec2 {
+    /// The point (x, y).
+    pub const fn new(x: f64, y: f64) -> Self {
+        Self { x, y }
+    }
+    /// The unit vector at angle `theta` (rad) from +x.
+    #[inline]
+    pub fn from_angle(theta: f64) -> Self {
+        let (s, c) = theta.sin_cos();
+        Self::new(c, s)
+    }
+    /// Dot product.
+    #[inline]
+    pub fn dot(self, o: Self) -> f64 {
+        self.x * o.x + self.y * o.y
+    }
+    /// z component of the cross product.
+    #[inline]
+    pub fn cross(self, o: Self) -> f64 {
+        self.x * o.y - self.y * o.x
+    }
+    /// Euclidean length.
+    #[inline]
+    pub fn norm(self) -> f64 {
+        self.x.hypot(self.y)
+    }
+    /// Distance to another point.
+    #[inline]
+    pub fn dist(self, o: Self) -> f64 {
+        (self - o).norm()
+    }
+    /// This vector rotated by `theta` (rad), counter-clockwise.
+    #[inline]
+    pub fn rotate(self, theta: f64) -> Self {
+        let (s, c) = theta.sin_cos();
+        Self::new(c * self.x - s * self.y, s * self.x + c * self.y)
+    }
+    /// Whether both coordinates are finite.
+    pub fn is_finite(self) -> bool {
+        self.x.is_finite() && self.y.is_finite()
+    }
+}
+
+impl std::ops::Add for Vec2 {
+    type Output = Vec2;
+    #[inline]
+    fn add(self, o: Vec2) -> Vec2 {
+        Vec2::new(self.x + o.x, self.y + o.y)
+    }
+}
+impl std::ops::Sub for Vec2 {
+    type Output = Vec2;
+    #[inline]
+    fn sub(self, o: Vec2) -> Vec2 {
+        Vec2::new(self.x - o.x, self.y - o.y)
+    }
+}
+impl std::ops::Mul<f64> for Vec2 {
+    type Output = Vec2;
+    #[inline]
+    fn mul(self, k: f64) -> Vec2 {
+        Vec2::new(self.x * k, self.y * k)
+    }
+}
+
+/// A wall: the straight segment from `a` to `b` (mm).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Segment {
+    /// Start point.
+    pub a: Vec2,
+    /// End point.
+    pub b: Vec2,
+}
+
+impl Segment {
+    /// The segment from `a` to `b`.
+    pub const fn new(a: Vec2, b: Vec2) -> Self {
+        Self { a, b }
+    }
+
+    /// Length (mm).
+    pub fn length(&self) -> f64 {
+        self.a.dist(self.b)
+    }
+
+    /// Squared distance from `p` to the nearest point of the segment.
+    ///
+    /// ```
+    /// use fuzzymotiv::geom::{Segment, Vec2};
+    /// let s = Segment::new(Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0));
+    /// assert_eq!(s.dist2_to(Vec2::new(5.0, 3.0)), 9.0);   // above the middle
+    /// assert_eq!(s.dist2_to(Vec2::new(13.0, 4.0)), 25.0); // beyond the end: 3-4-5
+    /// ```
+    #[inline]
+    pub fn dist2_to(&self, p: Vec2) -> f64 {
+        let d = self.b - self.a;
+        let len2 = d.dot(d);
+        let t = if len2 > 0.0 {
+            ((p - self.a).dot(d) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = self.a + d * t;
+        let e = p - q;
+        e.dot(e)
+    }
+
+    /// Distance from `p` to the segment.
+    pub fn dist_to(&self, p: Vec2) -> f64 {
+        self.dist2_to(p).sqrt()
+    }
+
+    /// Distance `t >= 0` along the ray `origin + t·dir` (`dir` a unit vector) to this segment,
+    /// or `None` when the ray misses it (parallel rays never hit).
+    #[inline]
+    pub fn ray_hit(&self, origin: Vec2, dir: Vec2) -> Option<f64> {
+        let e = self.b - self.a;
+        let denom = dir.cross(e);
+        if denom == 0.0 {
+            return None;
+        }
+        let w = self.a - origin;
+        let t = w.cross(e) / denom;
+        let u = w.cross(dir) / denom;
+        if t >= 0.0 && (0.0..=1.0).contains(&u) {
+            Some(t)
+        } else {
+            None
+        }
+    }
+
+    /// Whether this segment properly or improperly intersects `other`.
+    pub fn intersects(&self, other: &Segment) -> bool {
+        let o1 = orient(self.a, self.b, other.a);
+        let o2 = orient(self.a, self.b, other.b);
+        let o3 = orient(other.a, other.b, self.a);
+        let o4 = orient(other.a, other.b, self.b);
+        if o1 * o2 < 0.0 && o3 * o4 < 0.0 {
+            return true;
+        }
+        (o1 == 0.0 && on_segment(self.a, self.b, other.a))
+            || (o2 == 0.0 && on_segment(self.a, self.b, other.b))
+            || (o3 == 0.0 && on_segment(other.a, other.b, self.a))
+            || (o4 == 0.0 && on_segment(other.a, other.b, self.b))
+    }
+
+    /// Axis-aligned bounding box `(min, max)`.
+    pub fn bounds(&self) -> (Vec2, Vec2) {
+        (
+            Vec2::new(self.a.x.min(self.b.x), self.a.y.min(self.b.y)),
+            Vec2::new(self.a.x.max(self.b.x), self.a.y.max(self.b.y)),
+        )
+    }
+}
+
+fn orient(a: Vec2, b: Vec2, c: Vec2) -> f64 {
+    (b - a).cross(c - a)
+}
+
+fn on_segment(a: Vec2, b: Vec2, p: Vec2) -> bool {
+    p.x >= a.x.min(b.x) && p.x <= a.x.max(b.x) && p.y >= a.y.min(b.y) && p.y <= a.y.max(b.y)
+}
+
+/// Signed area of a closed polygon (mm²): positive when counter-clockwise.
+///
+/// ```
+/// use fuzzymotiv::geom::{signed_area, Vec2};
+/// let square = [Vec2::new(0.0, 0.0), Vec2::new(2.0, 0.0), Vec2::new(2.0, 2.0), Vec2::new(0.0, 2.0)];
+/// assert_eq!(signed_area(&square), 4.0);
+/// ```
+pub fn signed_area(poly: &[Vec2]) -> f64 {
+    let n = poly.len();
+    (0..n)
+        .map(|i| poly[i].cross(poly[(i + 1) % n]))
+        .sum::<f64>()
+        / 2.0
+}
+
+/// Perimeter of a closed polygon (mm).
+pub fn perimeter(poly: &[Vec2]) -> f64 {
+    let n = poly.len();
+    (0..n).map(|i| poly[i].dist(poly[(i + 1) % n])).sum()
+}
+
+/// The edges of a closed polygon, last point joined to the first.
+pub fn edges(poly: &[Vec2]) -> impl Iterator<Item = Segment> + '_ {
+    let n = poly.len();
+    (0..n).map(move |i| Segment::new(poly[i], poly[(i + 1) % n]))
+}
+
+/// Whether `p` lies strictly inside the closed polygon (even–odd rule; points on an edge may go
+/// either way).
+pub fn point_in_polygon(poly: &[Vec2], p: Vec2) -> bool {
+    let n = poly.len();
+    let mut inside = false;
+    let mut j = n.wrapping_sub(1);
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[j]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
+            inside = !inside;
+        }
+        j = i;
+    }
+    inside
+}
+
+/// The first pair of non-adjacent edges (by index) that intersect, if the polygon is not simple.
+pub fn self_intersection(poly: &[Vec2]) -> Option<(usize, usize)> {
+    let n = poly.len();
+    let segs: Vec<Segment> = edges(poly).collect();
+    for i in 0..n {
+        for j in (i + 1)..n {
+            let adjacent = j == i + 1 || (i == 0 && j == n - 1);
+            if adjacent {
+                // Adjacent edges share a vertex; they only "intersect" if they fold back.
+                let (s, t) = (segs[i], segs[j]);
+                let shared = if j == i + 1 { s.b } else { s.a };
+                let (p, q) = if j == i + 1 { (s.a, t.b) } else { (s.b, t.a) };
+                let folded = orient(p, shared, q) == 0.0 && (p - shared).dot(q - shared) > 0.0;
+                if folded && n > 3 {
+                    return Some((i, j));
+                }
+                continue;
+            }
+            if segs[i].intersects(&segs[j]) {
+                return Some((i, j));
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ray_hits_wall_at_hand_computed_distances() {
+        let wall = Segment::new(Vec2::new(10.0, -5.0), Vec2::new(10.0, 5.0));
+        assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0)), Some(10.0));
+        // 45° ray from origin hits x = 10 at y = 10: outside the wall (|y| <= 5).
+        let d = Vec2::from_angle(std::f64::consts::FRAC_PI_4);
+        assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), d), None);
+        // From (0, 0) at 26.565° (slope 1/2) it hits at (10, 5): t = sqrt(125).
+        let d = Vec2::new(2.0, 1.0) * (1.0 / 5f64.sqrt());
+        let t = wall.ray_hit(Vec2::new(0.0, 0.0), d).unwrap();
+        assert!((t - 125f64.sqrt()).abs() < 1e-12);
+        // Pointing away or parallel: no hit.
+        assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(-1.0, 0.0)), None);
+        assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(0.0, 1.0)), None);
+    }
+
+    #[test]
+    fn distance_to_segment() {
+        let s = Segment::new(Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0));
+        assert_eq!(s.dist_to(Vec2::new(-3.0, -4.0)), 5.0);
+        assert_eq!(s.dist_to(Vec2::new(7.0, -2.0)), 2.0);
+        let degenerate = Segment::new(Vec2::new(1.0, 1.0), Vec2::new(1.0, 1.0));
+        assert_eq!(degenerate.dist_to(Vec2::new(4.0, 5.0)), 5.0);
+    }
+
+    #[test]
+    fn polygons() {
+        let l = [(0., 0.), (800., 0.), (800., 300.), (300., 300.), (300., 800.), (0., 800.)]
+            .map(|(x, y)| Vec2::new(x, y));
+        assert_eq!(signed_area(&l), 800.0 * 300.0 + 300.0 * 500.0);
+        assert_eq!(perimeter(&l), 3200.0);
+        assert!(point_in_polygon(&l, Vec2::new(100.0, 700.0)));
+        assert!(!point_in_polygon(&l, Vec2::new(500.0, 500.0)));
+        assert_eq!(self_intersection(&l), None);
+        let bowtie = [(0., 0.), (10., 10.), (10., 0.), (0., 10.)].map(|(x, y)| Vec2::new(x, y));
+        assert!(self_intersection(&bowtie).is_some());
+    }
+
+    #[test]
+    fn rotation() {
+        let v = Vec2::new(1.0, 0.0).rotate(std::f64::consts::FRAC_PI_2);
+        assert!(v.x.abs() < 1e-15 && (v.y - 1.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,33 @@
+//! The one place values are perturbed: the paper's "6 %" multiplicative noise (SPEC §5).
+
+use crate::rng::{Rng, uniform};
+
+/// Multiplies `value` by a draw from U(1 − level, 1 + level). With `level == 0` nothing is
+/// drawn and the value is returned unchanged, so noise-free trials are exactly repeatable.
+///
+/// ```
+/// use fuzzymotiv::{noise::perturb, rng::rng_from_seed};
+/// let mut rng = rng_from_seed(1);
+/// assert_eq!(perturb(100.0, 0.0, &mut rng), 100.0);
+/// let v = perturb(100.0, 0.06, &mut rng);
+/// assert!((94.0..106.0).contains(&v));
+/// ```
+#[inline]
+pub fn perturb<R: Rng + ?Sized>(value: f64, level: f64, rng: &mut R) -> f64 {
+    if level == 0.0 {
+        value
+    } else {
+        value * uniform(rng, 1.0 - level, 1.0 + level)
+    }
+}
+
+/// Sensor noise: perturbs each reading and clamps to [0, `max`].
+#[inline]
+pub fn perturb_sensors<R: Rng + ?Sized>(values: &mut [f64; 8], level: f64, max: f64, rng: &mut R) {
+    if level == 0.0 {
+        return;
+    }
+    for v in values.iter_mut() {
+        *v = perturb(*v, level, rng).clamp(0.0, max);
+    }
+}

@@ -1,0 +1,394 @@
+//! Rooms: walls as polygons, the home pose, the five built-in rooms (SPEC §6) and room files.
+//!
+//! ```
+//! use fuzzymotiv::room::Room;
+//! let h = Room::builtin("H").unwrap();
+//! assert_eq!(h.area(), 900.0 * 800.0 - 2.0 * 500.0 * 300.0);
+//! assert_eq!(h.walls().len(), 12);
+//! ```
+
+use serde::{Deserialize, Serialize};
+
+use crate::geom::{Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area};
+use crate::robot::{KHEPERA_RADIUS, Pose};
+
+/// Names of the built-in rooms, in the order of the paper's tables.
+pub const BUILTIN_ROOMS: [&str; 5] = ["H", "T", "L", "square", "rectangle"];
+
+/// A room: an outer wall polygon, optional interior obstacles and the home pose.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Room {
+    /// Unique name, used in tables.
+    pub name: String,
+    /// Outer wall, counter-clockwise (mm), closed implicitly.
+    pub outline: Vec<Vec2>,
+    /// Interior obstacles, each a closed polygon (mm).
+    pub obstacles: Vec<Vec<Vec2>>,
+    /// Start pose of every trial.
+    pub home: Pose,
+}
+
+/// A room that cannot be used, with the file (or built-in name), the field and the reason.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{source_name}: field `{field}`: {reason}")]
+pub struct RoomError {
+    /// The file the room came from.
+    pub source_name: String,
+    /// The offending field, e.g. `outline` or `home.x`.
+    pub field: String,
+    /// What is wrong and what would be right.
+    pub reason: String,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRoom {
+    name: String,
+    outline: Vec<[f64; 2]>,
+    home: RawHome,
+    #[serde(default)]
+    obstacles: Vec<RawObstacle>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawHome {
+    x: f64,
+    y: f64,
+    heading_deg: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawObstacle {
+    outline: Vec<[f64; 2]>,
+}
+
+fn pts(v: &[(f64, f64)]) -> Vec<Vec2> {
+    v.iter().map(|&(x, y)| Vec2::new(x, y)).collect()
+}
+
+impl Room {
+    /// One of the five built-in rooms by name (`H`, `T`, `L`, `square`, `rectangle`).
+    pub fn builtin(name: &str) -> Option<Room> {
+        let deg = std::f64::consts::PI / 180.0;
+        let (outline, home) = match name {
+            "square" => (
+                pts(&[(0., 0.), (600., 0.), (600., 600.), (0., 600.)]),
+                (150., 150., 0.),
+            ),
+            "rectangle" => (
+                pts(&[(0., 0.), (900., 0.), (900., 400.), (0., 400.)]),
+                (150., 150., 0.),
+            ),
+            "L" => (
+                pts(&[
+                    (0., 0.),
+                    (800., 0.),
+                    (800., 300.),
+                    (300., 300.),
+                    (300., 800.),
+                    (0., 800.),
+                ]),
+                (150., 150., 0.),
+            ),
+            "T" => (
+                pts(&[
+                    (325., 0.),
+                    (575., 0.),
+                    (575., 550.),
+                    (900., 550.),
+                    (900., 800.),
+                    (0., 800.),
+                    (0., 550.),
+                    (325., 550.),
+                ]),
+                (450., 150., 90.),
+            ),
+            "H" => (
+                pts(&[
+                    (0., 0.),
+                    (200., 0.),
+                    (200., 300.),
+                    (700., 300.),
+                    (700., 0.),
+                    (900., 0.),
+                    (900., 800.),
+                    (700., 800.),
+                    (700., 500.),
+                    (200., 500.),
+                    (200., 800.),
+                    (0., 800.),
+                ]),
+                (100., 150., 90.),
+            ),
+            _ => return None,
+        };
+        Some(Room {
+            name: name.to_string(),
+            outline,
+            obstacles: Vec::new(),
+            home: Pose::new(home.0, home.1, home.2 * deg),
+        })
+    }
+
+    /// Parses and validates a room file (SPEC §6). `source_name` (usually the path) is used in
+    /// error messages.
+    pub fn from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
+        let err = |field: &str, reason: String| RoomError {
+            source_name: source_name.to_string(),
+            field: field.to_string(),
+            reason,
+        };
+        let raw: RawRoom = toml::from_str(text).map_err(|e| {
+            let msg = e.message().to_string();
+            let field = field_from_toml_message(&msg, text, e.span());
+            err(&field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional [[obstacles]] outline)"))
+        })?;
+        for (i, p) in raw.outline.iter().enumerate() {
+            if !p[0].is_finite() || !p[1].is_finite() {
+                return Err(err(
+                    &format!("outline[{i}]"),
+                    format!("coordinates must be finite numbers (mm), got [{}, {}]", p[0], p[1]),
+                ));
+            }
+        }
+        for (k, o) in raw.obstacles.iter().enumerate() {
+            for (i, p) in o.outline.iter().enumerate() {
+                if !p[0].is_finite() || !p[1].is_finite() {
+                    return Err(err(
+                        &format!("obstacles[{k}].outline[{i}]"),
+                        format!("coordinates must be finite numbers (mm), got [{}, {}]", p[0], p[1]),
+                    ));
+                }
+            }
+        }
+        for (name, v) in [("home.x", raw.home.x), ("home.y", raw.home.y), ("home.heading_deg", raw.home.heading_deg)] {
+            if !v.is_finite() {
+                return Err(err(name, format!("must be a finite number, got {v}")));
+            }
+        }
+        let to_vec = |v: &[[f64; 2]]| v.iter().map(|p| Vec2::new(p[0], p[1])).collect::<Vec<_>>();
+        let room = Room {
+            name: raw.name,
+            outline: to_vec(&raw.outline),
+            obstacles: raw.obstacles.iter().map(|o| to_vec(&o.outline)).collect(),
+            home: Pose::new(raw.home.x, raw.home.y, raw.home.heading_deg.to_radians()),
+        };
+        room.validated(source_name)
+    }
+
+    /// Checks the geometry (SPEC §6) and normalises the outline to counter-clockwise order.
+    pub fn validated(mut self, source_name: &str) -> Result<Room, RoomError> {
+        let err = |field: &str, reason: String| RoomError {
+            source_name: source_name.to_string(),
+            field: field.to_string(),
+            reason,
+        };
+        if self.name.trim().is_empty() {
+            return Err(err("name", "must be a non-empty name, e.g. name = \"U\"".into()));
+        }
+        check_polygon(&self.outline, "outline").map_err(|(f, r)| err(&f, r))?;
+        if signed_area(&self.outline) < 0.0 {
+            self.outline.reverse();
+        }
+        for (k, obstacle) in self.obstacles.iter().enumerate() {
+            let field = format!("obstacles[{k}].outline");
+            check_polygon(obstacle, &field).map_err(|(f, r)| err(&f, r))?;
+            if let Some(p) = obstacle.iter().find(|p| !point_in_polygon(&self.outline, **p)) {
+                return Err(err(
+                    &field,
+                    format!("obstacle point ({}, {}) lies outside the room outline; obstacles must be inside the room", p.x, p.y),
+                ));
+            }
+            if edges(obstacle).any(|e| edges(&self.outline).any(|w| w.intersects(&e))) {
+                return Err(err(&field, "obstacle crosses or touches the room outline; it must lie strictly inside".into()));
+            }
+        }
+        let home = self.home.position();
+        let inside = point_in_polygon(&self.outline, home)
+            && !self.obstacles.iter().any(|o| point_in_polygon(o, home));
+        if !inside {
+            return Err(err(
+                "home",
+                format!("home ({}, {}) is outside the room (or inside an obstacle); put it inside the outline", home.x, home.y),
+            ));
+        }
+        let clearance = self
+            .walls()
+            .iter()
+            .map(|w| w.dist_to(home))
+            .fold(f64::INFINITY, f64::min);
+        if clearance < KHEPERA_RADIUS {
+            return Err(err(
+                "home",
+                format!(
+                    "home ({}, {}) is {clearance:.1} mm from a wall; it must be at least the body radius ({KHEPERA_RADIUS} mm) away",
+                    home.x, home.y
+                ),
+            ));
+        }
+        Ok(self)
+    }
+
+    /// All wall segments: the outline's edges, then each obstacle's.
+    pub fn walls(&self) -> Vec<Segment> {
+        let mut w: Vec<Segment> = edges(&self.outline).collect();
+        for o in &self.obstacles {
+            w.extend(edges(o));
+        }
+        w
+    }
+
+    /// Free floor area (mm²): outline minus obstacles.
+    pub fn area(&self) -> f64 {
+        signed_area(&self.outline).abs()
+            - self.obstacles.iter().map(|o| signed_area(o).abs()).sum::<f64>()
+    }
+
+    /// Length of the outer wall (mm).
+    pub fn perimeter(&self) -> f64 {
+        perimeter(&self.outline)
+    }
+
+    /// Axis-aligned bounding box of the outline `(min, max)`.
+    pub fn bounds(&self) -> (Vec2, Vec2) {
+        let mut lo = Vec2::new(f64::INFINITY, f64::INFINITY);
+        let mut hi = Vec2::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
+        for p in &self.outline {
+            lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+        }
+        (lo, hi)
+    }
+
+    /// Whether a point is on the floor: inside the outline and outside every obstacle.
+    pub fn contains(&self, p: Vec2) -> bool {
+        point_in_polygon(&self.outline, p) && !self.obstacles.iter().any(|o| point_in_polygon(o, p))
+    }
+
+    /// Largest distance from home to any outline vertex (mm): `d_max` of the homing term.
+    pub fn max_home_distance(&self) -> f64 {
+        let h = self.home.position();
+        self.outline.iter().map(|p| p.dist(h)).fold(0.0, f64::max)
+    }
+}
+
+fn check_polygon(poly: &[Vec2], field: &str) -> Result<(), (String, String)> {
+    if poly.len() < 3 {
+        return Err((
+            field.to_string(),
+            format!("needs at least 3 points [x, y] (mm), got {}", poly.len()),
+        ));
+    }
+    if let Some((i, j)) = self_intersection(poly) {
+        return Err((
+            field.to_string(),
+            format!("the polygon intersects itself (edges {i} and {j} cross); list the corners in order around the room"),
+        ));
+    }
+    if signed_area(poly).abs() < 1e-9 {
+        return Err((field.to_string(), "the polygon has zero area".to_string()));
+    }
+    Ok(())
+}
+
+/// Best guess at the key a TOML error refers to: the key on the line of the error span.
+pub(crate) fn field_from_toml_message(msg: &str, text: &str, span: Option<std::ops::Range<usize>>) -> String {
+    let from_message = || {
+        let start = msg.find("field `")?;
+        let rest = &msg[start + 7..];
+        rest.find('`').map(|end| rest[..end].to_string())
+    };
+    if msg.contains("missing field") {
+        if let Some(f) = from_message() {
+            return f;
+        }
+    }
+    if let Some(span) = span {
+        let start = span.start.min(text.len());
+        let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+        let line = &text[line_start..line_end];
+        if let Some(eq) = line.find('=') {
+            let key = line[..eq].trim();
+            if !key.is_empty() && !key.starts_with('[') {
+                // Prefix with the enclosing table, if any.
+                let table = text[..line_start]
+                    .lines()
+                    .rev()
+                    .find(|l| l.trim_start().starts_with('['))
+                    .map(|l| l.trim().trim_matches(|c| c == '[' || c == ']').to_string());
+                return match table {
+                    Some(t) if !t.is_empty() => format!("{t}.{key}"),
+                    _ => key.to_string(),
+                };
+            }
+        }
+        if line.trim_start().starts_with('[') {
+            return line.trim().trim_matches(|c| c == '[' || c == ']').to_string();
+        }
+    }
+    from_message().unwrap_or_else(|| "(document)".to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_rooms_are_valid() {
+        for name in BUILTIN_ROOMS {
+            let r = Room::builtin(name).unwrap();
+            r.clone().validated(name).unwrap();
+            assert!(signed_area(&r.outline) > 0.0, "{name} not CCW");
+        }
+        assert_eq!(Room::builtin("square").unwrap().area(), 360_000.0);
+        assert_eq!(Room::builtin("L").unwrap().perimeter(), 3200.0);
+        assert!(Room::builtin("nope").is_none());
+    }
+
+    #[test]
+    fn room_file_round_trip_and_clockwise_normalised() {
+        let text = r#"
+name = "U"
+outline = [[0,0],[0,800],[250,800],[250,250],[650,250],[650,800],[900,800],[900,0]]
+home = { x = 125, y = 600, heading_deg = -90 }
+[[obstacles]]
+outline = [[400,100],[500,100],[500,200],[400,200]]
+"#;
+        let r = Room::from_toml_str(text, "u.toml").unwrap();
+        assert!(signed_area(&r.outline) > 0.0);
+        assert_eq!(r.walls().len(), 12);
+        assert!((r.home.heading + std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+    }
+
+    fn bad(text: &str) -> RoomError {
+        Room::from_toml_str(text, "bad.toml").unwrap_err()
+    }
+
+    #[test]
+    fn bad_room_files_name_the_field() {
+        let e = bad("name='x'\noutline=[[0,0],[1,1]]\nhome={x=0,y=0,heading_deg=0}");
+        assert_eq!(e.field, "outline");
+        assert!(e.reason.contains("at least 3"));
+        let e = bad("name='x'\noutline=[[0,0],[100,100],[100,0],[0,100]]\nhome={x=50,y=20,heading_deg=0}");
+        assert_eq!(e.field, "outline");
+        assert!(e.reason.contains("intersects"), "{e}");
+        let e = bad("name='x'\noutline=[[0,0],[100,0],[200,0]]\nhome={x=50,y=20,heading_deg=0}");
+        assert_eq!(e.field, "outline");
+        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=10,y=150,heading_deg=0}");
+        assert_eq!(e.field, "home");
+        assert!(e.reason.contains("body radius"), "{e}");
+        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=500,y=150,heading_deg=0}");
+        assert_eq!(e.field, "home");
+        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=150,y=150,heading_deg=0}\n[[obstacles]]\noutline=[[200,200],[400,200],[400,250]]");
+        assert_eq!(e.field, "obstacles[0].outline");
+        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=150,y=150,heading_deg=0}\ncolour='red'");
+        assert_eq!(e.field, "colour");
+        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,nan],[0,300]]\nhome={x=150,y=150,heading_deg=0}");
+        assert_eq!(e.field, "outline[2]");
+        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x='a',y=150,heading_deg=0}");
+        assert!(e.field.starts_with("home"), "{e}");
+    }
+}

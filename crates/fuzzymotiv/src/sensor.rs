@@ -1,0 +1,175 @@
+//! The eight infrared proximity sensors: their layout (a named table) and response models.
+
+use serde::{Deserialize, Serialize};
+
+use crate::geom::Vec2;
+
+/// Where one sensor sits on the body, in the robot frame (x forward, y left).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SensorMount {
+    /// Forward offset from the centre (mm).
+    pub x: f64,
+    /// Leftward offset from the centre (mm).
+    pub y: f64,
+    /// Direction the sensor faces, degrees counter-clockwise from forward.
+    pub facing_deg: f64,
+}
+
+/// The classic Khepera simulator layout (SPEC §4), sensors 0–7.
+pub const SENSOR_LAYOUT: [SensorMount; 8] = [
+    SensorMount { x: 9.5, y: 23.0, facing_deg: 90.0 },
+    SensorMount { x: 18.0, y: 17.5, facing_deg: 45.0 },
+    SensorMount { x: 24.5, y: 5.5, facing_deg: 0.0 },
+    SensorMount { x: 24.5, y: -5.5, facing_deg: 0.0 },
+    SensorMount { x: 18.0, y: -17.5, facing_deg: -45.0 },
+    SensorMount { x: 9.5, y: -23.0, facing_deg: -90.0 },
+    SensorMount { x: -23.0, y: -9.5, facing_deg: 180.0 },
+    SensorMount { x: -23.0, y: 9.5, facing_deg: 180.0 },
+];
+
+/// Largest raw sensor value.
+pub const SENSOR_MAX: f64 = 1023.0;
+
+/// Angle between a side ray and the sensor axis in the `sampled` model (degrees).
+pub const SIDE_RAY_DEG: f64 = 24.2;
+/// Sample distances along the axis ray (mm) and their values.
+pub const AXIS_SAMPLES: [(f64, f64); 5] =
+    [(12.0, 900.0), (20.0, 750.0), (32.0, 650.0), (44.0, 160.0), (58.0, 40.0)];
+/// Sample distances along each side ray (mm) and their values.
+pub const SIDE_SAMPLES: [(f64, f64); 5] =
+    [(5.7, 1023.0), (11.3, 800.0), (18.9, 600.0), (29.5, 400.0), (43.9, 60.0)];
+/// Range of the `linear` model (mm).
+pub const LINEAR_RANGE: f64 = 50.0;
+
+/// How a sensor turns wall distances into a value in [0, 1023].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SensorModel {
+    /// Three rays (axis, ±24.2°) read through the classic simulator's sample tables (default).
+    #[default]
+    Sampled,
+    /// One axis ray, `1023·(1 − d/50)` below 50 mm.
+    Linear,
+}
+
+/// One ray of one sensor in the robot frame, with its response table.
+#[derive(Debug, Clone, Copy)]
+pub struct RayMount {
+    /// Origin (robot frame, mm).
+    pub origin: Vec2,
+    /// Direction angle in the robot frame (rad).
+    pub angle: f64,
+    /// Which table reads the hit distance: 0 axis, 1 side, 2 linear.
+    kind: u8,
+}
+
+impl RayMount {
+    /// Longest distance at which this ray can read a non-zero value (mm).
+    pub fn range(&self) -> f64 {
+        match self.kind {
+            0 => AXIS_SAMPLES[4].0,
+            1 => SIDE_SAMPLES[4].0,
+            _ => LINEAR_RANGE,
+        }
+    }
+
+    /// The ray's value for a wall at distance `d` along it (`f64::INFINITY` for none).
+    ///
+    /// ```
+    /// use fuzzymotiv::sensor::{SensorModel, rays};
+    /// let axis = rays(SensorModel::Sampled)[2][0];
+    /// assert_eq!(axis.value(15.0), 750.0); // first sample at or beyond 15 mm is 20 mm
+    /// assert_eq!(axis.value(58.0), 40.0);
+    /// assert_eq!(axis.value(60.0), 0.0);
+    /// ```
+    #[inline]
+    pub fn value(&self, d: f64) -> f64 {
+        let table = match self.kind {
+            0 => &AXIS_SAMPLES,
+            1 => &SIDE_SAMPLES,
+            _ => {
+                return if d < LINEAR_RANGE {
+                    SENSOR_MAX * (1.0 - d / LINEAR_RANGE)
+                } else {
+                    0.0
+                };
+            }
+        };
+        for &(s, v) in table {
+            if s >= d {
+                return v;
+            }
+        }
+        0.0
+    }
+}
+
+/// The rays of every sensor for a model: `rays(model)[sensor]` lists up to 3 rays (unused
+/// entries have `angle = NaN` and are skipped via [`ray_count`]).
+pub fn rays(model: SensorModel) -> [[RayMount; 3]; 8] {
+    let side = SIDE_RAY_DEG.to_radians();
+    let mut out = [[RayMount { origin: Vec2::new(0.0, 0.0), angle: f64::NAN, kind: 2 }; 3]; 8];
+    for (s, m) in SENSOR_LAYOUT.iter().enumerate() {
+        let origin = Vec2::new(m.x, m.y);
+        let axis = m.facing_deg.to_radians();
+        match model {
+            SensorModel::Sampled => {
+                out[s] = [
+                    RayMount { origin, angle: axis, kind: 0 },
+                    RayMount { origin, angle: axis + side, kind: 1 },
+                    RayMount { origin, angle: axis - side, kind: 1 },
+                ];
+            }
+            SensorModel::Linear => out[s][0] = RayMount { origin, angle: axis, kind: 2 },
+        }
+    }
+    out
+}
+
+/// Rays per sensor in a model.
+pub fn ray_count(model: SensorModel) -> usize {
+    match model {
+        SensorModel::Sampled => 3,
+        SensorModel::Linear => 1,
+    }
+}
+
+/// Farthest distance from the robot's centre at which any ray of the model can see a wall (mm).
+pub fn sensing_reach(model: SensorModel) -> f64 {
+    let rays = rays(model);
+    let n = ray_count(model);
+    rays.iter()
+        .flat_map(|r| r[..n].iter())
+        .map(|r| r.origin.norm() + r.range())
+        .fold(0.0, f64::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn side_ray_table() {
+        let side = rays(SensorModel::Sampled)[0][1];
+        assert_eq!(side.value(0.0), 1023.0);
+        assert_eq!(side.value(5.7), 1023.0);
+        assert_eq!(side.value(5.8), 800.0);
+        assert_eq!(side.value(43.9), 60.0);
+        assert_eq!(side.value(44.0), 0.0);
+    }
+
+    #[test]
+    fn linear_model() {
+        let r = rays(SensorModel::Linear)[2][0];
+        assert_eq!(r.value(0.0), 1023.0);
+        assert_eq!(r.value(25.0), 511.5);
+        assert_eq!(r.value(50.0), 0.0);
+    }
+
+    #[test]
+    fn reach_covers_front_sensor() {
+        let reach = sensing_reach(SensorModel::Sampled);
+        // Front sensors 2, 3 sit at |(24.5, 5.5)| = 25.11 mm from the centre; plus 58 mm axis range.
+        assert!((reach - (24.5f64.hypot(5.5) + 58.0)).abs() < 1e-9, "{reach}");
+    }
+}

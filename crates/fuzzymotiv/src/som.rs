@@ -1,0 +1,510 @@
+//! A one-dimensional self-organising map (SOM) for environment vectors (SPEC §11).
+//!
+//! Nodes lie on a line; the winner is the node with the smallest Euclidean distance (ties →
+//! lowest index) and the neighbourhood is Gaussian in node index. Width and learning rate decay
+//! geometrically over the epochs. Training is deterministic for a given generator state.
+
+use crate::rng::{Rng, shuffle, uniform};
+
+/// Training parameters of the SOM. Defaults: 128 nodes, 1000 epochs, σ 32 → 1, α 0.5 → 0.01.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SomParams {
+    /// Number of nodes on the line (default 128); must be ≥ 1.
+    pub nodes: usize,
+    /// Number of epochs; each presents every training vector once (default 1000); must be ≥ 1.
+    pub epochs: usize,
+    /// Neighbourhood width σ at the first epoch, in node-index units (default 32); > 0, finite.
+    pub sigma_start: f64,
+    /// Neighbourhood width σ at the last epoch, in node-index units (default 1); > 0, finite.
+    pub sigma_end: f64,
+    /// Learning rate α at the first epoch (default 0.5); > 0, finite.
+    pub rate_start: f64,
+    /// Learning rate α at the last epoch (default 0.01); > 0, finite.
+    pub rate_end: f64,
+}
+
+impl Default for SomParams {
+    fn default() -> Self {
+        SomParams {
+            nodes: 128,
+            epochs: 1000,
+            sigma_start: 32.0,
+            sigma_end: 1.0,
+            rate_start: 0.5,
+            rate_end: 0.01,
+        }
+    }
+}
+
+impl SomParams {
+    /// Checks the parameters: `nodes ≥ 1`, `epochs ≥ 1`, all widths and rates finite and > 0.
+    pub fn validate(&self) -> Result<(), SomError> {
+        if self.nodes == 0 {
+            return Err(SomError::InvalidParams("nodes must be at least 1".into()));
+        }
+        if self.epochs == 0 {
+            return Err(SomError::InvalidParams("epochs must be at least 1".into()));
+        }
+        for (name, v) in [
+            ("sigma_start", self.sigma_start),
+            ("sigma_end", self.sigma_end),
+            ("rate_start", self.rate_start),
+            ("rate_end", self.rate_end),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(SomError::InvalidParams(format!(
+                    "{name} must be finite and > 0, got {v}"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// The geometric schedule value at epoch `e`: `start·(end/start)^(e/(epochs−1))`
+    /// (`start` when `epochs ≤ 1`).
+    pub fn schedule(start: f64, end: f64, epoch: usize, epochs: usize) -> f64 {
+        if epochs <= 1 {
+            start
+        } else {
+            start * (end / start).powf(epoch as f64 / (epochs - 1) as f64)
+        }
+    }
+}
+
+/// Errors from SOM training, winner search and recognition.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SomError {
+    /// No vectors were given (training set or reference set is empty).
+    #[error("empty data: at least one vector is required")]
+    EmptyData,
+    /// Vectors have zero elements.
+    #[error("vectors must have at least one element")]
+    ZeroDimension,
+    /// A vector's length differs from the expected dimension.
+    #[error("dimension mismatch: expected length {expected}, found {found}")]
+    DimensionMismatch {
+        /// The expected length (the first vector's, or the map's dimension).
+        expected: usize,
+        /// The offending vector's length.
+        found: usize,
+    },
+    /// A training value is NaN or infinite.
+    #[error("non-finite value in vector {vector} at element {element}")]
+    NonFinite {
+        /// Index of the vector in the training set.
+        vector: usize,
+        /// Index of the element within the vector.
+        element: usize,
+    },
+    /// Invalid training parameters (see [`SomParams::validate`]).
+    #[error("invalid SOM parameters: {0}")]
+    InvalidParams(String),
+    /// A map whose stored weights do not match its node count and dimension (e.g. a
+    /// hand-edited deserialised model).
+    #[error("inconsistent SOM: {nodes} nodes × {dim} dims but {len} weights")]
+    Inconsistent {
+        /// Stored node count.
+        nodes: usize,
+        /// Stored dimension.
+        dim: usize,
+        /// Stored number of weights.
+        len: usize,
+    },
+}
+
+/// A trained one-dimensional SOM: `nodes` weight vectors of length `dim`, stored flat,
+/// node-major (node `j` occupies `weights[j·dim .. (j+1)·dim]`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Som {
+    nodes: usize,
+    dim: usize,
+    weights: Vec<f64>,
+}
+
+/// Squared Euclidean distance of equal-length slices (four partial sums, fixed order, so the
+/// result is deterministic and the loop vectorises).
+#[inline]
+pub(crate) fn sq_dist(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0f64; 4];
+    let ca = a.chunks_exact(4);
+    let cb = b.chunks_exact(4);
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            let d = x[k] - y[k];
+            acc[k] += d * d;
+        }
+    }
+    let mut tail = 0.0;
+    for (x, y) in ra.iter().zip(rb) {
+        let d = x - y;
+        tail += d * d;
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// Index of the row of `weights` (flat, rows of length `dim > 0`) nearest to `v`; ties → lowest.
+#[inline]
+fn winner_flat(weights: &[f64], dim: usize, v: &[f64]) -> usize {
+    let mut best = 0;
+    let mut best_d = f64::INFINITY;
+    for (j, w) in weights.chunks_exact(dim).enumerate() {
+        let d = sq_dist(w, v);
+        if d < best_d {
+            best_d = d;
+            best = j;
+        }
+    }
+    best
+}
+
+impl Som {
+    /// Trains a map on `data` (all vectors of equal, non-zero length, finite values).
+    ///
+    /// Weights start uniform in the data's per-dimension range `U(min_d, max_d)` (drawn node by
+    /// node, dimension by dimension). Each epoch `e` uses σ(e) and α(e) from the geometric
+    /// schedule ([`SomParams::schedule`]), presents every vector once in an order shuffled with
+    /// `rng`, and updates every node `w_j += α·h_j·(x − w_j)` with
+    /// `h_j = exp(−(j − winner)²/(2σ²))`. Errors: empty data, zero or mismatched lengths,
+    /// non-finite values, invalid parameters.
+    pub fn train<R: Rng + ?Sized>(
+        data: &[Vec<f64>],
+        params: &SomParams,
+        rng: &mut R,
+    ) -> Result<Som, SomError> {
+        params.validate()?;
+        let first = data.first().ok_or(SomError::EmptyData)?;
+        let dim = first.len();
+        if dim == 0 {
+            return Err(SomError::ZeroDimension);
+        }
+        for (i, v) in data.iter().enumerate() {
+            if v.len() != dim {
+                return Err(SomError::DimensionMismatch {
+                    expected: dim,
+                    found: v.len(),
+                });
+            }
+            if let Some(e) = v.iter().position(|x| !x.is_finite()) {
+                return Err(SomError::NonFinite {
+                    vector: i,
+                    element: e,
+                });
+            }
+        }
+        let nodes = params.nodes;
+        let len = nodes.checked_mul(dim).ok_or_else(|| {
+            SomError::InvalidParams(format!("{nodes} nodes × {dim} dims overflows"))
+        })?;
+
+        // Per-dimension range of the data.
+        let mut lo = first.clone();
+        let mut hi = first.clone();
+        for v in &data[1..] {
+            for ((l, h), &x) in lo.iter_mut().zip(hi.iter_mut()).zip(v) {
+                *l = l.min(x);
+                *h = h.max(x);
+            }
+        }
+        let mut weights = Vec::with_capacity(len);
+        for _ in 0..nodes {
+            for d in 0..dim {
+                weights.push(uniform(rng, lo[d], hi[d]));
+            }
+        }
+
+        let mut order: Vec<usize> = (0..data.len()).collect();
+        // h by index distance |j − winner|, recomputed per epoch.
+        let mut h_by_dist = vec![0.0f64; nodes];
+        for epoch in 0..params.epochs {
+            let sigma =
+                SomParams::schedule(params.sigma_start, params.sigma_end, epoch, params.epochs);
+            let rate =
+                SomParams::schedule(params.rate_start, params.rate_end, epoch, params.epochs);
+            let inv = 1.0 / (2.0 * sigma * sigma);
+            for (d, h) in h_by_dist.iter_mut().enumerate() {
+                let df = d as f64;
+                *h = (-df * df * inv).exp();
+            }
+            for (i, o) in order.iter_mut().enumerate() {
+                *o = i;
+            }
+            shuffle(rng, &mut order);
+            for &i in &order {
+                let x = data[i].as_slice();
+                let win = winner_flat(&weights, dim, x);
+                for (j, w) in weights.chunks_exact_mut(dim).enumerate() {
+                    let step = rate * h_by_dist[j.abs_diff(win)];
+                    for (wk, &xk) in w.iter_mut().zip(x) {
+                        *wk += step * (xk - *wk);
+                    }
+                }
+            }
+        }
+        Ok(Som {
+            nodes,
+            dim,
+            weights,
+        })
+    }
+
+    /// A map from explicit weights (flat, node-major, `nodes × dim` values), e.g. for tests or
+    /// a stored model. Errors if `nodes` or `dim` is zero or the length does not match.
+    pub fn from_weights(nodes: usize, dim: usize, weights: Vec<f64>) -> Result<Som, SomError> {
+        let som = Som {
+            nodes,
+            dim,
+            weights,
+        };
+        som.check()?;
+        Ok(som)
+    }
+
+    /// The winning node for `v`: smallest Euclidean distance, ties → lowest index.
+    /// Errors if `v.len() != self.dim()` or the map is inconsistent. NaN distances never win.
+    pub fn winner(&self, v: &[f64]) -> Result<usize, SomError> {
+        self.check()?;
+        if v.len() != self.dim {
+            return Err(SomError::DimensionMismatch {
+                expected: self.dim,
+                found: v.len(),
+            });
+        }
+        Ok(winner_flat(&self.weights, self.dim, v))
+    }
+
+    /// Number of nodes.
+    pub fn nodes(&self) -> usize {
+        self.nodes
+    }
+
+    /// Length of the weight (and input) vectors.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// The weight vector of `node` (length `dim`); an empty slice if `node` is out of range.
+    pub fn weights(&self, node: usize) -> &[f64] {
+        node.checked_mul(self.dim)
+            .and_then(|s| self.weights.get(s..s.checked_add(self.dim)?))
+            .unwrap_or(&[])
+    }
+
+    /// Checks that the stored weights match `nodes × dim` with both non-zero.
+    fn check(&self) -> Result<(), SomError> {
+        if self.nodes == 0
+            || self.dim == 0
+            || Some(self.weights.len()) != self.nodes.checked_mul(self.dim)
+        {
+            return Err(SomError::Inconsistent {
+                nodes: self.nodes,
+                dim: self.dim,
+                len: self.weights.len(),
+            });
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::{rng_from_seed, uniform};
+
+    fn clusters(seed: u64) -> (Vec<Vec<f64>>, Vec<usize>) {
+        let centres = [
+            [0.0, 0.0, 0.0],
+            [10.0, 0.0, 0.0],
+            [0.0, 10.0, 0.0],
+            [0.0, 0.0, 10.0],
+        ];
+        let mut rng = rng_from_seed(seed);
+        let mut data = Vec::new();
+        let mut labels = Vec::new();
+        for (c, centre) in centres.iter().enumerate() {
+            for _ in 0..5 {
+                data.push(
+                    centre
+                        .iter()
+                        .map(|&x| x + uniform(&mut rng, -0.5, 0.5))
+                        .collect(),
+                );
+                labels.push(c);
+            }
+        }
+        (data, labels)
+    }
+
+    fn small_params() -> SomParams {
+        SomParams {
+            nodes: 20,
+            epochs: 200,
+            sigma_start: 5.0,
+            ..SomParams::default()
+        }
+    }
+
+    #[test]
+    fn separable_clusters_get_distinct_winners() {
+        let (data, labels) = clusters(1);
+        let som = Som::train(&data, &small_params(), &mut rng_from_seed(7)).unwrap();
+        let winners: Vec<usize> = data.iter().map(|v| som.winner(v).unwrap()).collect();
+        for i in 0..data.len() {
+            for j in 0..data.len() {
+                if labels[i] != labels[j] {
+                    assert_ne!(
+                        winners[i], winners[j],
+                        "clusters {} and {}",
+                        labels[i], labels[j]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn deterministic_for_seed() {
+        let (data, _) = clusters(2);
+        let a = Som::train(&data, &small_params(), &mut rng_from_seed(3)).unwrap();
+        let b = Som::train(&data, &small_params(), &mut rng_from_seed(3)).unwrap();
+        let c = Som::train(&data, &small_params(), &mut rng_from_seed(4)).unwrap();
+        let bits = |s: &Som| s.weights.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&a), bits(&b));
+        assert_ne!(bits(&a), bits(&c));
+    }
+
+    #[test]
+    fn init_within_range_and_constant_dims() {
+        let data = vec![vec![1.0, 5.0, 2.0], vec![3.0, 5.0, 4.0]];
+        let p = SomParams {
+            nodes: 8,
+            epochs: 1,
+            rate_start: 1e-300,
+            rate_end: 1e-300,
+            ..SomParams::default()
+        };
+        let som = Som::train(&data, &p, &mut rng_from_seed(0)).unwrap();
+        for j in 0..8 {
+            let w = som.weights(j);
+            assert!((1.0..=3.0).contains(&w[0]));
+            assert_eq!(w[1], 5.0);
+            assert!((2.0..=4.0).contains(&w[2]));
+        }
+        assert!(som.weights(8).is_empty());
+        assert!(som.weights(usize::MAX).is_empty());
+        assert_eq!((som.nodes(), som.dim()), (8, 3));
+    }
+
+    #[test]
+    fn schedule_endpoints() {
+        assert_eq!(SomParams::schedule(32.0, 1.0, 0, 1000), 32.0);
+        assert!((SomParams::schedule(32.0, 1.0, 999, 1000) - 1.0).abs() < 1e-12);
+        assert!((SomParams::schedule(0.5, 0.01, 999, 1000) - 0.01).abs() < 1e-12);
+        assert_eq!(SomParams::schedule(0.5, 0.01, 0, 1), 0.5);
+    }
+
+    #[test]
+    fn single_node_and_ties() {
+        let data = vec![vec![1.0, 2.0]];
+        let p = SomParams {
+            nodes: 1,
+            epochs: 1,
+            ..SomParams::default()
+        };
+        let som = Som::train(&data, &p, &mut rng_from_seed(0)).unwrap();
+        assert_eq!(som.winner(&[100.0, -3.0]).unwrap(), 0);
+        // Identical nodes: tie → lowest index.
+        let som = Som {
+            nodes: 3,
+            dim: 1,
+            weights: vec![1.0, 0.0, 0.0],
+        };
+        assert_eq!(som.winner(&[0.0]).unwrap(), 1);
+        assert_eq!(som.winner(&[f64::NAN]).unwrap(), 0);
+    }
+
+    #[test]
+    fn errors() {
+        let p = SomParams::default();
+        let mut rng = rng_from_seed(0);
+        assert_eq!(Som::train(&[], &p, &mut rng), Err(SomError::EmptyData));
+        assert_eq!(
+            Som::train(&[vec![], vec![]], &p, &mut rng),
+            Err(SomError::ZeroDimension)
+        );
+        assert_eq!(
+            Som::train(&[vec![1.0, 2.0], vec![1.0]], &p, &mut rng),
+            Err(SomError::DimensionMismatch {
+                expected: 2,
+                found: 1
+            })
+        );
+        assert_eq!(
+            Som::train(&[vec![1.0, f64::NAN]], &p, &mut rng),
+            Err(SomError::NonFinite {
+                vector: 0,
+                element: 1
+            })
+        );
+        for bad in [
+            SomParams {
+                nodes: 0,
+                ..p.clone()
+            },
+            SomParams {
+                epochs: 0,
+                ..p.clone()
+            },
+            SomParams {
+                sigma_end: 0.0,
+                ..p.clone()
+            },
+            SomParams {
+                rate_start: f64::NAN,
+                ..p.clone()
+            },
+            SomParams {
+                rate_end: -0.1,
+                ..p.clone()
+            },
+        ] {
+            assert!(matches!(
+                Som::train(&[vec![1.0]], &bad, &mut rng),
+                Err(SomError::InvalidParams(_))
+            ));
+        }
+        let small = SomParams {
+            nodes: 4,
+            epochs: 2,
+            ..p.clone()
+        };
+        let som = Som::train(&[vec![1.0, 2.0]], &small, &mut rng).unwrap();
+        assert_eq!(
+            som.winner(&[1.0]),
+            Err(SomError::DimensionMismatch {
+                expected: 2,
+                found: 1
+            })
+        );
+        let broken = Som {
+            nodes: 2,
+            dim: 3,
+            weights: vec![0.0; 5],
+        };
+        assert!(matches!(
+            broken.winner(&[0.0; 3]),
+            Err(SomError::Inconsistent { .. })
+        ));
+        let zero = Som {
+            nodes: 0,
+            dim: 0,
+            weights: vec![],
+        };
+        assert!(matches!(
+            zero.winner(&[]),
+            Err(SomError::Inconsistent { .. })
+        ));
+    }
+}

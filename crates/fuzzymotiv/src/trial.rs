@@ -1,0 +1,442 @@
+//! One trial: a robot with a controller runs `T` steps from home in a room.
+//!
+//! [`Arena`] precomputes everything per room that the hot loop needs (walls culled to a grid
+//! of 50 mm cells, the reachable cells of the exploration grid); [`simulate`] is the
+//! allocation-free step loop, reporting each step to a [`StepObserver`]; [`run_trial`] records a
+//! whole [`Trajectory`].
+
+use serde::{Deserialize, Serialize};
+
+use crate::controller::{Controller, INPUTS};
+use crate::geom::{Segment, Vec2};
+use crate::noise::{perturb, perturb_sensors};
+use crate::rng::Rng;
+use crate::robot::{Khepera, Pose, drive};
+use crate::room::Room;
+use crate::sensor::{SENSOR_MAX, SensorModel, ray_count, rays, sensing_reach};
+
+/// Side of a grid cell (mm): the exploration grid of SPEC §9 and the wall-culling grid.
+pub const CELL: f64 = 50.0;
+
+/// Parameters of a trial (SPEC §3–§5).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct TrialParams {
+    /// Steps per trial `T`; default 400.
+    pub steps: usize,
+    /// Control step (s); default 0.1.
+    pub dt: f64,
+    /// Multiplicative noise level on sensors and wheels; default 0.06; 0 disables it.
+    pub noise: f64,
+    /// IR response model; default `sampled`.
+    pub sensor_model: SensorModel,
+    /// The robot's body.
+    pub robot: Khepera,
+}
+
+impl Default for TrialParams {
+    fn default() -> Self {
+        Self {
+            steps: 400,
+            dt: 0.1,
+            noise: 0.06,
+            sensor_model: SensorModel::Sampled,
+            robot: Khepera::default(),
+        }
+    }
+}
+
+impl TrialParams {
+    /// Longest distance the centre can move in one step (mm), noise included.
+    pub fn max_step(&self) -> f64 {
+        self.robot.v_max * self.dt * (1.0 + self.noise)
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Ray {
+    origin: Vec2,
+    dir: Vec2,
+    table: crate::sensor::RayMount,
+}
+
+/// A room prepared for fast trials.
+#[derive(Debug, Clone)]
+pub struct Arena {
+    room: Room,
+    walls: Vec<Segment>,
+    origin: Vec2,
+    cols: usize,
+    rows: usize,
+    cell_start: Vec<u32>,
+    cell_walls: Vec<u32>,
+    reachable: Vec<bool>,
+    reachable_count: usize,
+    d_max: f64,
+    rays: Vec<[Ray; 3]>,
+    rays_per_sensor: usize,
+    radius: f64,
+}
+
+impl Arena {
+    /// Prepares `room` for trials with `params` (sensor model and body decide the culling reach).
+    pub fn new(room: Room, params: &TrialParams) -> Arena {
+        let walls = room.walls();
+        let (lo, hi) = room.bounds();
+        let cols = (((hi.x - lo.x) / CELL).ceil() as usize).max(1);
+        let rows = (((hi.y - lo.y) / CELL).ceil() as usize).max(1);
+        let radius = params.robot.radius;
+        let reach = sensing_reach(params.sensor_model).max(radius + params.max_step())
+            + CELL * std::f64::consts::SQRT_2 / 2.0
+            + 1e-6;
+        let mut cell_start = Vec::with_capacity(cols * rows + 1);
+        let mut cell_walls = Vec::new();
+        let mut reachable_cell = vec![false; cols * rows];
+        for j in 0..rows {
+            for i in 0..cols {
+                cell_start.push(cell_walls.len() as u32);
+                let c = Vec2::new(lo.x + (i as f64 + 0.5) * CELL, lo.y + (j as f64 + 0.5) * CELL);
+                for (k, w) in walls.iter().enumerate() {
+                    if w.dist_to(c) <= reach {
+                        cell_walls.push(k as u32);
+                    }
+                }
+                reachable_cell[j * cols + i] =
+                    room.contains(c) && walls.iter().all(|w| w.dist2_to(c) >= radius * radius);
+            }
+        }
+        cell_start.push(cell_walls.len() as u32);
+        // Flood fill (4-neighbours) from the valid cell nearest to home. Two valid centres 50 mm
+        // apart cannot have a wall between them: it would be < 25 mm from one of them.
+        let home = room.home.position();
+        let start = (0..cols * rows).filter(|&k| reachable_cell[k]).min_by(|&a, &b| {
+            let ca = Vec2::new(lo.x + ((a % cols) as f64 + 0.5) * CELL, lo.y + ((a / cols) as f64 + 0.5) * CELL);
+            let cb = Vec2::new(lo.x + ((b % cols) as f64 + 0.5) * CELL, lo.y + ((b / cols) as f64 + 0.5) * CELL);
+            ca.dist(home).total_cmp(&cb.dist(home)).then(a.cmp(&b))
+        });
+        let mut reachable = vec![false; cols * rows];
+        if let Some(s) = start {
+            let mut stack = vec![s];
+            reachable[s] = true;
+            while let Some(k) = stack.pop() {
+                let (i, j) = (k % cols, k / cols);
+                let mut push = |n: usize| {
+                    if reachable_cell[n] && !reachable[n] {
+                        reachable[n] = true;
+                        stack.push(n);
+                    }
+                };
+                if i > 0 {
+                    push(k - 1);
+                }
+                if i + 1 < cols {
+                    push(k + 1);
+                }
+                if j > 0 {
+                    push(k - cols);
+                }
+                if j + 1 < rows {
+                    push(k + cols);
+                }
+            }
+        }
+        let reachable_count = reachable.iter().filter(|&&r| r).count();
+        let model_rays = rays(params.sensor_model);
+        let ray_list = model_rays
+            .iter()
+            .map(|sensor| {
+                sensor.map(|m| Ray { origin: m.origin, dir: Vec2::from_angle(m.angle), table: m })
+            })
+            .collect();
+        let d_max = room.max_home_distance();
+        Arena {
+            room,
+            walls,
+            origin: lo,
+            cols,
+            rows,
+            cell_start,
+            cell_walls,
+            reachable,
+            reachable_count,
+            d_max,
+            rays: ray_list,
+            rays_per_sensor: ray_count(params.sensor_model),
+            radius,
+        }
+    }
+
+    /// The room.
+    pub fn room(&self) -> &Room {
+        &self.room
+    }
+
+    /// All walls.
+    pub fn walls(&self) -> &[Segment] {
+        &self.walls
+    }
+
+    /// Number of cells of the exploration grid.
+    pub fn cell_count(&self) -> usize {
+        self.cols * self.rows
+    }
+
+    /// Grid size `(columns, rows)`.
+    pub fn grid(&self) -> (usize, usize) {
+        (self.cols, self.rows)
+    }
+
+    /// The grid cell containing `p` (clamped to the grid).
+    #[inline]
+    pub fn cell_of(&self, p: Vec2) -> usize {
+        let i = ((p.x - self.origin.x) / CELL).floor().clamp(0.0, (self.cols - 1) as f64) as usize;
+        let j = ((p.y - self.origin.y) / CELL).floor().clamp(0.0, (self.rows - 1) as f64) as usize;
+        j * self.cols + i
+    }
+
+    /// Cells whose centre the robot's centre can occupy, connected to home (SPEC §9).
+    pub fn reachable_cells(&self) -> usize {
+        self.reachable_count
+    }
+
+    /// Whether cell `k` is reachable.
+    pub fn is_reachable(&self, k: usize) -> bool {
+        self.reachable[k]
+    }
+
+    /// `d_max` of the homing term: farthest outline vertex from home (mm).
+    pub fn d_max(&self) -> f64 {
+        self.d_max
+    }
+
+    /// The walls that can matter to a robot whose centre is in `cell`.
+    #[inline]
+    fn nearby(&self, cell: usize) -> impl Iterator<Item = &Segment> + '_ {
+        let (a, b) = (self.cell_start[cell] as usize, self.cell_start[cell + 1] as usize);
+        self.cell_walls[a..b].iter().map(|&k| &self.walls[k as usize])
+    }
+
+    /// Whether a body of the arena's radius centred at `p` overlaps a wall.
+    #[inline]
+    pub fn overlaps(&self, p: Vec2) -> bool {
+        let r2 = self.radius * self.radius;
+        self.nearby(self.cell_of(p)).any(|w| w.dist2_to(p) < r2)
+    }
+
+    /// Noise-free sensor values (0–1023) at `pose`.
+    pub fn read_sensors(&self, pose: &Pose) -> [f64; INPUTS] {
+        let (s, c) = pose.heading.sin_cos();
+        let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
+        let pos = pose.position();
+        let cell = self.cell_of(pos);
+        let mut out = [0.0; INPUTS];
+        for (o, sensor) in out.iter_mut().zip(&self.rays) {
+            let mut total = 0.0;
+            for ray in &sensor[..self.rays_per_sensor] {
+                let origin = pos + rot(ray.origin);
+                let dir = rot(ray.dir);
+                let mut nearest = f64::INFINITY;
+                for w in self.nearby(cell) {
+                    if let Some(t) = w.ray_hit(origin, dir) {
+                        nearest = nearest.min(t);
+                    }
+                }
+                total += ray.table.value(nearest);
+            }
+            *o = total.min(SENSOR_MAX);
+        }
+        out
+    }
+}
+
+/// What happened in one step, as reported to a [`StepObserver`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Step {
+    /// Step index, 0-based.
+    pub t: usize,
+    /// Sensor values (0–1023, noise included) read at the start of the step.
+    pub sensors: [f64; INPUTS],
+    /// Motor outputs `mL, mR` ∈ [0, 1].
+    pub motors: [f64; 2],
+    /// Commanded wheel speeds `sL, sR` (mm/s, before noise).
+    pub speeds: [f64; 2],
+    /// Pose at the end of the step.
+    pub pose: Pose,
+    /// Whether the candidate move hit a wall (the robot kept its position).
+    pub collided: bool,
+}
+
+/// Receives every step of a trial.
+pub trait StepObserver {
+    /// Called once per step, in order.
+    fn observe(&mut self, step: &Step);
+}
+
+impl StepObserver for () {
+    fn observe(&mut self, _: &Step) {}
+}
+
+impl<A: StepObserver, B: StepObserver> StepObserver for (A, B) {
+    fn observe(&mut self, step: &Step) {
+        self.0.observe(step);
+        self.1.observe(step);
+    }
+}
+
+/// Runs one trial from the room's home pose, reporting each step to `observer`. Returns the final
+/// pose. Per step: read sensors, add sensor noise, run the network, add wheel noise, move, and
+/// undo the move (keeping the heading change) if the body would overlap a wall.
+pub fn simulate<C, R, O>(arena: &Arena, controller: &mut C, params: &TrialParams, rng: &mut R, observer: &mut O) -> Pose
+where
+    C: Controller + ?Sized,
+    R: Rng + ?Sized,
+    O: StepObserver + ?Sized,
+{
+    let mut pose = arena.room.home;
+    let v_max = params.robot.v_max;
+    for t in 0..params.steps {
+        let mut sensors = arena.read_sensors(&pose);
+        perturb_sensors(&mut sensors, params.noise, SENSOR_MAX, rng);
+        let inputs = sensors.map(|v| v / SENSOR_MAX);
+        let motors = controller.step(&inputs);
+        let speeds = motors.map(|m| (2.0 * m - 1.0) * v_max);
+        let s_left = perturb(speeds[0], params.noise, rng);
+        let s_right = perturb(speeds[1], params.noise, rng);
+        let candidate = drive(pose, s_left, s_right, params.robot.wheel_base, params.dt);
+        let collided = arena.overlaps(candidate.position());
+        pose = if collided { Pose { heading: candidate.heading, ..pose } } else { candidate };
+        observer.observe(&Step { t, sensors, motors, speeds, pose, collided });
+    }
+    pose
+}
+
+/// Everything recorded in a trial. `poses[0]` is home; `poses[t + 1]` the pose after step `t`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Trajectory {
+    /// Poses, `steps + 1` of them.
+    pub poses: Vec<Pose>,
+    /// Sensor values per step (noise included).
+    pub sensors: Vec<[f64; INPUTS]>,
+    /// Motor outputs per step.
+    pub motors: Vec<[f64; 2]>,
+    /// Commanded wheel speeds per step (mm/s).
+    pub speeds: Vec<[f64; 2]>,
+    /// Whether each step collided.
+    pub collisions: Vec<bool>,
+}
+
+impl Trajectory {
+    /// Number of steps.
+    pub fn len(&self) -> usize {
+        self.motors.len()
+    }
+
+    /// Whether no step was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.motors.is_empty()
+    }
+
+    /// The step records, in order (for replaying into observers).
+    pub fn steps(&self) -> impl Iterator<Item = Step> + '_ {
+        (0..self.len()).map(|t| Step {
+            t,
+            sensors: self.sensors[t],
+            motors: self.motors[t],
+            speeds: self.speeds[t],
+            pose: self.poses[t + 1],
+            collided: self.collisions[t],
+        })
+    }
+}
+
+impl StepObserver for Trajectory {
+    fn observe(&mut self, s: &Step) {
+        self.sensors.push(s.sensors);
+        self.motors.push(s.motors);
+        self.speeds.push(s.speeds);
+        self.poses.push(s.pose);
+        self.collisions.push(s.collided);
+    }
+}
+
+/// Runs a trial and records its whole trajectory.
+pub fn run_trial<C, R>(arena: &Arena, controller: &mut C, params: &TrialParams, rng: &mut R) -> Trajectory
+where
+    C: Controller + ?Sized,
+    R: Rng + ?Sized,
+{
+    let mut tr = Trajectory {
+        poses: Vec::with_capacity(params.steps + 1),
+        sensors: Vec::with_capacity(params.steps),
+        motors: Vec::with_capacity(params.steps),
+        speeds: Vec::with_capacity(params.steps),
+        collisions: Vec::with_capacity(params.steps),
+    };
+    tr.poses.push(arena.room.home);
+    simulate(arena, controller, params, rng, &mut tr);
+    tr
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::rng_from_seed;
+
+    struct Fixed([f64; 2]);
+    impl Controller for Fixed {
+        fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
+            self.0
+        }
+    }
+
+    fn square() -> Arena {
+        Arena::new(Room::builtin("square").unwrap(), &TrialParams::default())
+    }
+
+    #[test]
+    fn sensors_at_known_distances() {
+        let a = square();
+        // Facing the x = 600 wall from 30 mm away (centre): front sensors 2, 3 are at x + 24.5,
+        // so the wall is 5.5 mm along their axis → first axis sample 12 mm → 900.
+        let p = Pose::new(570.0, 300.0, 0.0);
+        let s = a.read_sensors(&p);
+        // Side rays at ±24.2° hit at 5.5 / cos(24.2°) = 6.03 mm → 800 each; 900 + 1600 capped.
+        assert_eq!(s[2], 1023.0);
+        assert_eq!(s[3], 1023.0);
+        // Rear sensors face away into 570 mm of empty room.
+        assert_eq!(s[6], 0.0);
+        assert_eq!(s[7], 0.0);
+        // In the middle of the room nothing is seen.
+        assert_eq!(a.read_sensors(&Pose::new(300.0, 300.0, 0.3)), [0.0; 8]);
+        // 40 mm from the sensor face: axis hits at 40 → 44 mm sample → 160; sides at
+        // 40 / cos 24.2° = 43.86 → 43.9 mm sample → 60 each.
+        let s = a.read_sensors(&Pose::new(600.0 - 24.5 - 40.0, 300.0, 0.0));
+        assert_eq!(s[2], 160.0 + 60.0 + 60.0);
+    }
+
+    #[test]
+    fn linear_sensor_at_known_distance() {
+        let params = TrialParams { sensor_model: SensorModel::Linear, ..TrialParams::default() };
+        let a = Arena::new(Room::builtin("square").unwrap(), &params);
+        let s = a.read_sensors(&Pose::new(600.0 - 24.5 - 25.0, 300.0, 0.0));
+        assert!((s[2] - 511.5).abs() < 1e-9, "{}", s[2]);
+    }
+
+    #[test]
+    fn reachable_cells_of_the_square() {
+        // Cells of 50 mm in a 600 mm square: centres at 25, 75, …, 575; those ≥ 27.5 mm from the
+        // walls are 75 … 525, i.e. 10 × 10.
+        assert_eq!(square().reachable_cells(), 100);
+    }
+
+    #[test]
+    fn driving_into_a_wall_stops_at_it() {
+        let a = square();
+        let params = TrialParams { noise: 0.0, ..TrialParams::default() };
+        let tr = run_trial(&a, &mut Fixed([1.0, 1.0]), &params, &mut rng_from_seed(1));
+        // 400 steps × 8 mm would be 3.2 m; the wall stops the robot short of x = 572.5.
+        let last = tr.poses.last().unwrap();
+        assert!(last.x <= 600.0 - 27.5 && last.x > 560.0, "{last:?}");
+        assert!(tr.collisions.iter().filter(|&&c| c).count() > 300);
+        assert_eq!(tr.poses.len(), 401);
+    }
+}
