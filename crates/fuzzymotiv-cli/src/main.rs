@@ -1,1 +1,147 @@
-fn main() {}
+//! `fuzzymotiv`: evolve Khepera controllers under fuzzy motivations, from the command line.
+
+mod bench;
+mod error;
+mod files;
+mod inputs;
+mod reproduce;
+mod run;
+mod svg;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use error::CliError;
+
+/// Evolutionary behaviour learning for a simulated Khepera robot under fuzzy motivations.
+#[derive(Parser)]
+#[command(name = "fuzzymotiv", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Evolve controllers as a config file says and write a run directory.
+    Run(run::RunArgs),
+    /// Run the paper's whole study (both motivation settings, five rooms) and write its tables
+    /// and figures.
+    Reproduce(reproduce::ReproduceArgs),
+    /// Evaluate the TSK fuzzy fitness F for motivations X and fitness values Y.
+    Fuzzy(FuzzyArgs),
+    /// List the built-in rooms and validate room files.
+    Rooms(RoomsArgs),
+    /// Measure simulation speed (robot-steps per second).
+    Bench(bench::BenchArgs),
+}
+
+#[derive(clap::Args)]
+struct FuzzyArgs {
+    /// Motivations C,H,O,E (each in [0, 1], summing to 1), e.g. 0.8,0.1,0,0.1.
+    #[arg(long, value_name = "C,H,O,E")]
+    motivations: String,
+    /// Fitness values a,g,l,b (each clamped to [0, 1]), e.g. 0.95,0.5,0,0.79.
+    #[arg(long, value_name = "a,g,l,b")]
+    fitness: String,
+    /// Also list the firing rules with their labels, weights and outputs.
+    #[arg(long)]
+    explain: bool,
+}
+
+#[derive(clap::Args)]
+struct RoomsArgs {
+    /// Room files to validate (TOML, SPEC §6 format); may be repeated.
+    #[arg(long = "check", value_name = "FILE")]
+    check: Vec<PathBuf>,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run(args) => run::run(args),
+        Command::Reproduce(args) => reproduce::reproduce(args),
+        Command::Fuzzy(args) => fuzzy(args),
+        Command::Rooms(args) => rooms(args),
+        Command::Bench(args) => bench::bench(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}
+
+fn parse_four(text: &str, option: &str, names: [&str; 4]) -> Result<[f64; 4], CliError> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let usage = || format!("expected four comma-separated numbers {}, e.g. {option} 0.8,0.1,0,0.1", names.join(","));
+    if parts.len() != 4 {
+        return Err(CliError::input(format!("{option}: got {} values; {}", parts.len(), usage())));
+    }
+    let mut out = [0.0; 4];
+    for (k, p) in parts.iter().enumerate() {
+        out[k] = p
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| CliError::input(format!("{option}: `{p}` ({}) is not a finite number; {}", names[k], usage())))?;
+    }
+    Ok(out)
+}
+
+fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
+    use fuzzymotiv::fuzzy::{Motivations, TskFitness};
+    let x = parse_four(&args.motivations, "--motivations", ["C", "H", "O", "E"])?;
+    let y = parse_four(&args.fitness, "--fitness", ["a", "g", "l", "b"])?;
+    let m = Motivations::new(x[0], x[1], x[2], x[3]).map_err(|e| CliError::input(format!("--motivations: {e}")))?;
+    let tsk = TskFitness::paper();
+    let f = tsk.evaluate(&m, y);
+    println!("{f:.12}");
+    if args.explain {
+        print!("{}", tsk.explain(&m, y));
+    }
+    Ok(())
+}
+
+fn rooms(args: RoomsArgs) -> Result<(), CliError> {
+    use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+    if args.check.is_empty() {
+        println!("{:<10} {:>10} {:>10}  home (x mm, y mm, heading °)", "room", "area m²", "perim. m");
+        for name in BUILTIN_ROOMS {
+            let r = Room::builtin(name).expect("built-in");
+            print_room(&r);
+        }
+        return Ok(());
+    }
+    let mut failures = Vec::new();
+    for path in &args.check {
+        match inputs::load_room_file(path) {
+            Ok(r) => {
+                print!("ok  {}: ", path.display());
+                print_room(&r);
+            }
+            Err(e) => failures.push(e.to_string()),
+        }
+    }
+    if failures.is_empty() {
+        Ok(())
+    } else {
+        Err(CliError::input(failures.join("\n")))
+    }
+}
+
+fn print_room(r: &fuzzymotiv::room::Room) {
+    println!(
+        "{:<10} {:>10.3} {:>10.3}  ({}, {}, {})",
+        r.name,
+        r.area() / 1e6,
+        r.perimeter() / 1e3,
+        r.home.x,
+        r.home.y,
+        r.home.heading.to_degrees().round()
+    );
+}

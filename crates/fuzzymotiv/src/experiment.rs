@@ -365,56 +365,70 @@ impl Experiment {
     }
 
     /// Action-based environment modelling with one robot: an instance run per room, SOM
-    /// training, then `test_runs` recognition tests per room (SPEC §11–§12).
+    /// training, then `test_runs` recognition tests per room (SPEC §11–§12). With AEM disabled
+    /// the test runs still measure exploration, homing and battery, and nothing is recognised.
     pub fn environment_modelling(&self, genome: &[f64], run: &Run) -> Result<AemReport, SomError> {
         let rooms = self.arenas.len();
-        let vectors: Vec<Vec<f64>> = (0..rooms)
-            .into_par_iter()
-            .map(|r| {
-                let seed = derive(self.seed, &[purpose::AEM_INSTANCE, run.tag, self.room_key(r)]);
-                environment_vector(&self.trial(genome, r, seed).1, self.aem.encoder)
-            })
-            .collect();
-        let mut som_rng = rng_from_seed(derive(self.seed, &[purpose::SOM, run.tag]));
-        let recognizer = Recognizer::train(&vectors, &self.aem.som, self.aem.threshold, &mut som_rng)?;
-        let tests: Vec<(usize, usize, FitnessTerms, Option<usize>, usize)> = (0..rooms)
+        let recognizer = if self.aem.enabled {
+            let vectors: Vec<Vec<f64>> = (0..rooms)
+                .into_par_iter()
+                .map(|r| {
+                    let seed = derive(self.seed, &[purpose::AEM_INSTANCE, run.tag, self.room_key(r)]);
+                    environment_vector(&self.trial(genome, r, seed).1, self.aem.encoder)
+                })
+                .collect();
+            let mut som_rng = rng_from_seed(derive(self.seed, &[purpose::SOM, run.tag]));
+            Some(Recognizer::train(&vectors, &self.aem.som, self.aem.threshold, &mut som_rng)?)
+        } else {
+            None
+        };
+        let tests: Vec<(usize, AemTest)> = (0..rooms)
             .flat_map(|r| (0..self.aem.test_runs).map(move |t| (r, t)))
             .collect::<Vec<_>>()
             .into_par_iter()
             .map(|(r, t)| {
                 let seed = derive(self.seed, &[purpose::AEM_TEST, run.tag, self.room_key(r), t as u64]);
                 let (terms, actions) = self.trial(genome, r, seed);
-                let v = environment_vector(&actions, self.aem.encoder);
-                let winner = recognizer.som.winner(&v)?;
-                Ok((r, t, terms, recognizer.recognise(&v)?, winner))
+                let (answer, winner) = match &recognizer {
+                    Some(rec) => {
+                        let v = environment_vector(&actions, self.aem.encoder);
+                        (rec.recognise(&v)?, Some(rec.som.winner(&v)?))
+                    }
+                    None => (None, None),
+                };
+                Ok((r, AemTest { terms, answer, winner }))
             })
             .collect::<Result<_, SomError>>()?;
         let mut confusion = Confusion::new(rooms);
         let mut per_room: Vec<AemRoom> = (0..rooms)
             .map(|r| AemRoom {
                 room: self.arenas[r].room().name.clone(),
-                r_node: recognizer.instances[r].r_node,
+                r_node: recognizer.as_ref().map(|rec| rec.instances[r].r_node),
                 tests: Vec::new(),
                 correct: 0,
-                recognition_pct: 0.0,
+                recognition_pct: None,
                 exploration_pct: 0.0,
                 battery_pct: 0.0,
                 homing_pct: 0.0,
             })
             .collect();
-        for (r, _, terms, answer, winner) in tests {
-            confusion.record(r, answer);
-            per_room[r].tests.push(AemTest { terms, answer, winner });
+        for (r, test) in tests {
+            confusion.record(r, test.answer);
+            per_room[r].tests.push(test);
         }
         for (r, row) in per_room.iter_mut().enumerate() {
             let n = row.tests.len() as f64;
             row.correct = confusion.correct(r) as usize;
-            row.recognition_pct = confusion.percent(r);
+            row.recognition_pct = recognizer.is_some().then(|| confusion.percent(r));
             row.exploration_pct = row.tests.iter().map(|t| 100.0 * t.terms.a).sum::<f64>() / n;
             row.battery_pct = row.tests.iter().map(|t| 100.0 * t.terms.b).sum::<f64>() / n;
             row.homing_pct = row.tests.iter().map(|t| 100.0 * t.terms.g).sum::<f64>() / n;
         }
-        Ok(AemReport { rooms: per_room, confusion, som_nodes: recognizer.som.nodes() })
+        Ok(AemReport {
+            rooms: per_room,
+            confusion,
+            som_nodes: recognizer.as_ref().map_or(0, |rec| rec.som.nodes()),
+        })
     }
 }
 
@@ -502,8 +516,8 @@ pub struct AemTest {
     pub terms: FitnessTerms,
     /// The recognised room, if any.
     pub answer: Option<usize>,
-    /// The SOM winner of the test vector.
-    pub winner: usize,
+    /// The SOM winner of the test vector (none with AEM disabled).
+    pub winner: Option<usize>,
 }
 
 /// AEM results for one room.
@@ -511,14 +525,14 @@ pub struct AemTest {
 pub struct AemRoom {
     /// Room name.
     pub room: String,
-    /// The instance's r-node.
-    pub r_node: usize,
+    /// The instance's r-node (none with AEM disabled).
+    pub r_node: Option<usize>,
     /// The test runs.
     pub tests: Vec<AemTest>,
     /// Correct recognitions.
     pub correct: usize,
-    /// % recognition.
-    pub recognition_pct: f64,
+    /// % recognition (none with AEM disabled).
+    pub recognition_pct: Option<f64>,
     /// Mean 100·a over the tests.
     pub exploration_pct: f64,
     /// Mean 100·b over the tests.

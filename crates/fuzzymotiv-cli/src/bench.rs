@@ -1,0 +1,117 @@
+//! `fuzzymotiv bench`: robot-steps per second on the hot path.
+
+use std::time::Instant;
+
+use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::room::Room;
+
+use crate::error::CliError;
+use crate::inputs::{load_config, resolve};
+
+/// Arguments of `fuzzymotiv bench`.
+#[derive(clap::Args)]
+pub struct BenchArgs {
+    /// Room: a built-in name or a room file.
+    #[arg(long, default_value = "H")]
+    pub room: String,
+    /// Robot-steps of the single-robot measurement.
+    #[arg(long, default_value_t = 2_000_000)]
+    pub steps: usize,
+    /// Threads for the population measurement [default: all cores].
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Population size of the population measurement (each runs one 400-step trial).
+    #[arg(long, default_value_t = 200)]
+    pub population: usize,
+    /// Repetitions; the median is reported.
+    #[arg(long, default_value_t = 5)]
+    pub repeat: usize,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Entry point of `fuzzymotiv bench`.
+pub fn bench(args: BenchArgs) -> Result<(), CliError> {
+    crate::run::set_threads(args.threads)?;
+    if args.steps == 0 || args.repeat == 0 || args.population < 2 {
+        return Err(CliError::input("--steps and --repeat must be ≥ 1 and --population ≥ 2"));
+    }
+    let sets = vec![
+        format!("rooms=[{:?}]", args.room),
+        format!("ga.population={}", args.population),
+        "aem.enabled=false".to_string(),
+    ];
+    let loaded = if Room::builtin(&args.room).is_some() {
+        load_config(None, &sets, None)?
+    } else {
+        let raw = fuzzymotiv::config::RawConfig::parse("", "bench", &sets)?;
+        resolve(raw, std::path::Path::new("."), "--room")?
+    };
+    let exp: Experiment = loaded.experiment;
+    let run = &exp.runs()[0];
+    let population = exp.initial_population(run);
+    let trial_steps = exp.trial.steps;
+    // Single robot, single thread: whole trials of the paper's length until `steps` are done.
+    let trials = args.steps.div_ceil(trial_steps);
+    let mut single = Vec::new();
+    let mut sink = 0.0;
+    for rep in 0..args.repeat {
+        let t0 = Instant::now();
+        for k in 0..trials {
+            let e = exp.evaluate(&population[k % population.len()], run, rep, k);
+            sink += e.fitness;
+        }
+        single.push(t0.elapsed().as_secs_f64());
+    }
+    let mut pop = Vec::new();
+    for rep in 0..args.repeat {
+        let t0 = Instant::now();
+        let evals = exp.evaluate_population(&population, run, rep);
+        sink += evals[0].fitness;
+        pop.push(t0.elapsed().as_secs_f64());
+    }
+    let robot_steps = trials * trial_steps;
+    let seconds = median(single);
+    let pop_seconds = median(pop);
+    let pop_steps = population.len() * trial_steps;
+    let threads = rayon::current_num_threads();
+    std::hint::black_box(sink);
+    if args.json {
+        let doc = serde_json::json!({
+            "room": exp.arenas[0].room().name,
+            "robot_steps": robot_steps,
+            "seconds": seconds,
+            "robot_steps_per_sec": robot_steps as f64 / seconds,
+            "population": population.len(),
+            "population_robot_steps": pop_steps,
+            "population_seconds": pop_seconds,
+            "population_robot_steps_per_sec": pop_steps as f64 / pop_seconds,
+            "threads": threads,
+            "repeat": args.repeat,
+            "statistic": "median",
+            "version": fuzzymotiv::VERSION,
+        });
+        println!("{}", serde_json::to_string_pretty(&doc).expect("serialisable"));
+    } else {
+        println!(
+            "room {}: single robot, 1 thread: {:.3} M robot-steps/s ({robot_steps} steps, median {:.3} s of {})",
+            exp.arenas[0].room().name,
+            robot_steps as f64 / seconds / 1e6,
+            seconds,
+            args.repeat
+        );
+        println!(
+            "population {} x {trial_steps} steps, {threads} threads: {:.3} M robot-steps/s (median {:.4} s)",
+            population.len(),
+            pop_steps as f64 / pop_seconds / 1e6,
+            pop_seconds
+        );
+    }
+    Ok(())
+}

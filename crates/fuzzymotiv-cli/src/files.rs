@@ -1,0 +1,67 @@
+//! Writing outputs without half-written files: everything goes to a temporary name first.
+
+use std::path::{Path, PathBuf};
+
+use crate::error::CliError;
+
+/// Writes `contents` to `path` via a temporary file in the same directory and a rename.
+pub fn write_atomic(path: &Path, contents: impl AsRef<[u8]>) -> Result<(), CliError> {
+    let tmp = path.with_extension(format!(
+        "{}.tmp",
+        path.extension().and_then(|e| e.to_str()).unwrap_or("")
+    ));
+    std::fs::write(&tmp, contents).map_err(|e| io_err(&tmp, e))?;
+    std::fs::rename(&tmp, path).map_err(|e| io_err(path, e))
+}
+
+/// An I/O failure naming the path.
+pub fn io_err(path: &Path, e: std::io::Error) -> CliError {
+    CliError::runtime(format!("{}: {e}", path.display()))
+}
+
+/// A run directory being written: files go into `<dir>.partial/`, which is renamed to `<dir>`
+/// by [`StagedDir::commit`] (replacing an older `<dir>`), so `<dir>` is never half-written.
+pub struct StagedDir {
+    /// Final location.
+    pub dir: PathBuf,
+    /// Where files are written until commit.
+    pub staging: PathBuf,
+}
+
+impl StagedDir {
+    /// Starts a fresh staging directory for `dir`.
+    pub fn new(dir: &Path) -> Result<Self, CliError> {
+        let mut name = dir.file_name().map(|n| n.to_os_string()).unwrap_or_else(|| "run".into());
+        name.push(".partial");
+        let staging = dir.with_file_name(name);
+        if staging.exists() {
+            std::fs::remove_dir_all(&staging).map_err(|e| io_err(&staging, e))?;
+        }
+        std::fs::create_dir_all(&staging).map_err(|e| io_err(&staging, e))?;
+        Ok(Self { dir: dir.to_path_buf(), staging })
+    }
+
+    /// Path of a file inside the staging directory.
+    pub fn path(&self, name: &str) -> PathBuf {
+        self.staging.join(name)
+    }
+
+    /// Writes a file into the staging directory.
+    pub fn write(&self, name: &str, contents: impl AsRef<[u8]>) -> Result<(), CliError> {
+        write_atomic(&self.path(name), contents)
+    }
+
+    /// Moves the finished directory into place.
+    pub fn commit(self) -> Result<PathBuf, CliError> {
+        if self.dir.exists() {
+            std::fs::remove_dir_all(&self.dir).map_err(|e| io_err(&self.dir, e))?;
+        }
+        std::fs::rename(&self.staging, &self.dir).map_err(|e| io_err(&self.dir, e))?;
+        Ok(self.dir)
+    }
+}
+
+/// Formats a float for CSV with fixed precision (stable across runs and platforms).
+pub fn num(v: f64) -> String {
+    format!("{v:.9}")
+}

@@ -1,0 +1,72 @@
+//! Reading user input: config files with `--set` overrides, and room files.
+
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::config::{ConfigError, RawConfig};
+use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+
+use crate::error::CliError;
+
+/// Reads and validates a room file.
+pub fn load_room_file(path: &Path) -> Result<Room, CliError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::input(format!("{}: cannot read room file: {e}", path.display())))?;
+    Ok(Room::from_toml_str(&text, &path.display().to_string())?)
+}
+
+/// A config ready to run: the raw document (room paths made absolute) and the experiment.
+pub struct Loaded {
+    /// The resolved document, as written to `config.resolved.toml`.
+    pub raw: RawConfig,
+    /// The validated experiment.
+    pub experiment: Experiment,
+}
+
+/// Loads rooms named in `raw.rooms`: built-in names, or room files relative to `base_dir`.
+pub fn resolve(mut raw: RawConfig, base_dir: &Path, source: &str) -> Result<Loaded, CliError> {
+    let mut rooms = Vec::with_capacity(raw.rooms.len());
+    for (i, entry) in raw.rooms.clone().iter().enumerate() {
+        if let Some(r) = Room::builtin(entry) {
+            rooms.push(r);
+            continue;
+        }
+        let path = base_dir.join(entry);
+        if !path.is_file() {
+            return Err(ConfigError {
+                source_name: source.to_string(),
+                field: format!("rooms[{i}]"),
+                reason: format!(
+                    "\"{entry}\" is neither a built-in room ({}) nor a room file (looked for {})",
+                    BUILTIN_ROOMS.join(", "),
+                    path.display()
+                ),
+            }
+            .into());
+        }
+        rooms.push(load_room_file(&path)?);
+        let abs: PathBuf = path.canonicalize().unwrap_or(path);
+        raw.rooms[i] = abs.display().to_string();
+    }
+    let experiment = Experiment::new(&raw, rooms, source)?;
+    Ok(Loaded { raw, experiment })
+}
+
+/// Reads a config file (or the built-in defaults for `None`) with overrides.
+pub fn load_config(path: Option<&Path>, sets: &[String], seed: Option<u64>) -> Result<Loaded, CliError> {
+    let mut sets = sets.to_vec();
+    if let Some(s) = seed {
+        sets.push(format!("seed={s}"));
+    }
+    let (text, source, base) = match path {
+        Some(p) => {
+            let text = std::fs::read_to_string(p)
+                .map_err(|e| CliError::input(format!("{}: cannot read config file: {e}", p.display())))?;
+            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
+            (text, p.display().to_string(), base)
+        }
+        None => (String::new(), "(built-in defaults)".to_string(), PathBuf::from(".")),
+    };
+    let raw = RawConfig::parse(&text, &source, &sets)?;
+    resolve(raw, &base, &source)
+}
