@@ -40,7 +40,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     crate::run::set_threads(args.threads)?;
     if args.steps == 0 || args.repeat == 0 || args.population < 2 {
-        return Err(CliError::input("--steps and --repeat must be ≥ 1 and --population ≥ 2"));
+        return Err(CliError::input(
+            "--steps and --repeat must be ≥ 1 and --population ≥ 2",
+        ));
     }
     let sets = vec![
         format!("rooms=[{:?}]", args.room),
@@ -97,7 +99,10 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
             "statistic": "median",
             "version": fuzzymotiv::VERSION,
         });
-        println!("{}", serde_json::to_string_pretty(&doc).expect("serialisable"));
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).expect("serialisable")
+        );
     } else {
         println!(
             "room {}: single robot, 1 thread: {:.3} M robot-steps/s ({robot_steps} steps, median {:.3} s of {})",

@@ -12,12 +12,18 @@ pub struct CliError {
 impl CliError {
     /// Bad input from the user: exit code 2.
     pub fn input(message: impl Into<String>) -> Self {
-        Self { message: message.into(), input: true }
+        Self {
+            message: message.into(),
+            input: true,
+        }
     }
 
     /// A failure while running (I/O and the like): exit code 1.
     pub fn runtime(message: impl Into<String>) -> Self {
-        Self { message: message.into(), input: false }
+        Self {
+            message: message.into(),
+            input: false,
+        }
     }
 
     /// The process exit code.

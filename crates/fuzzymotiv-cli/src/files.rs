@@ -31,14 +31,20 @@ pub struct StagedDir {
 impl StagedDir {
     /// Starts a fresh staging directory for `dir`.
     pub fn new(dir: &Path) -> Result<Self, CliError> {
-        let mut name = dir.file_name().map(|n| n.to_os_string()).unwrap_or_else(|| "run".into());
+        let mut name = dir
+            .file_name()
+            .map(|n| n.to_os_string())
+            .unwrap_or_else(|| "run".into());
         name.push(".partial");
         let staging = dir.with_file_name(name);
         if staging.exists() {
             std::fs::remove_dir_all(&staging).map_err(|e| io_err(&staging, e))?;
         }
         std::fs::create_dir_all(&staging).map_err(|e| io_err(&staging, e))?;
-        Ok(Self { dir: dir.to_path_buf(), staging })
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            staging,
+        })
     }
 
     /// Path of a file inside the staging directory.

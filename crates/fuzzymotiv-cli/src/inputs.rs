@@ -53,19 +53,28 @@ pub fn resolve(mut raw: RawConfig, base_dir: &Path, source: &str) -> Result<Load
 }
 
 /// Reads a config file (or the built-in defaults for `None`) with overrides.
-pub fn load_config(path: Option<&Path>, sets: &[String], seed: Option<u64>) -> Result<Loaded, CliError> {
+pub fn load_config(
+    path: Option<&Path>,
+    sets: &[String],
+    seed: Option<u64>,
+) -> Result<Loaded, CliError> {
     let mut sets = sets.to_vec();
     if let Some(s) = seed {
         sets.push(format!("seed={s}"));
     }
     let (text, source, base) = match path {
         Some(p) => {
-            let text = std::fs::read_to_string(p)
-                .map_err(|e| CliError::input(format!("{}: cannot read config file: {e}", p.display())))?;
+            let text = std::fs::read_to_string(p).map_err(|e| {
+                CliError::input(format!("{}: cannot read config file: {e}", p.display()))
+            })?;
             let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
             (text, p.display().to_string(), base)
         }
-        None => (String::new(), "(built-in defaults)".to_string(), PathBuf::from(".")),
+        None => (
+            String::new(),
+            "(built-in defaults)".to_string(),
+            PathBuf::from("."),
+        ),
     };
     let raw = RawConfig::parse(&text, &source, &sets)?;
     resolve(raw, &base, &source)

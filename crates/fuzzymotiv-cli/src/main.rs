@@ -78,9 +78,18 @@ fn main() -> ExitCode {
 
 fn parse_four(text: &str, option: &str, names: [&str; 4]) -> Result<[f64; 4], CliError> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    let usage = || format!("expected four comma-separated numbers {}, e.g. {option} 0.8,0.1,0,0.1", names.join(","));
+    let usage = || {
+        format!(
+            "expected four comma-separated numbers {}, e.g. {option} 0.8,0.1,0,0.1",
+            names.join(",")
+        )
+    };
     if parts.len() != 4 {
-        return Err(CliError::input(format!("{option}: got {} values; {}", parts.len(), usage())));
+        return Err(CliError::input(format!(
+            "{option}: got {} values; {}",
+            parts.len(),
+            usage()
+        )));
     }
     let mut out = [0.0; 4];
     for (k, p) in parts.iter().enumerate() {
@@ -88,7 +97,13 @@ fn parse_four(text: &str, option: &str, names: [&str; 4]) -> Result<[f64; 4], Cl
             .parse::<f64>()
             .ok()
             .filter(|v| v.is_finite())
-            .ok_or_else(|| CliError::input(format!("{option}: `{p}` ({}) is not a finite number; {}", names[k], usage())))?;
+            .ok_or_else(|| {
+                CliError::input(format!(
+                    "{option}: `{p}` ({}) is not a finite number; {}",
+                    names[k],
+                    usage()
+                ))
+            })?;
     }
     Ok(out)
 }
@@ -97,7 +112,8 @@ fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
     use fuzzymotiv::fuzzy::{Motivations, TskFitness};
     let x = parse_four(&args.motivations, "--motivations", ["C", "H", "O", "E"])?;
     let y = parse_four(&args.fitness, "--fitness", ["a", "g", "l", "b"])?;
-    let m = Motivations::new(x[0], x[1], x[2], x[3]).map_err(|e| CliError::input(format!("--motivations: {e}")))?;
+    let m = Motivations::new(x[0], x[1], x[2], x[3])
+        .map_err(|e| CliError::input(format!("--motivations: {e}")))?;
     let tsk = TskFitness::paper();
     let f = tsk.evaluate(&m, y);
     println!("{f:.12}");
@@ -110,7 +126,10 @@ fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
 fn rooms(args: RoomsArgs) -> Result<(), CliError> {
     use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
     if args.check.is_empty() {
-        println!("{:<10} {:>10} {:>10}  home (x mm, y mm, heading °)", "room", "area m²", "perim. m");
+        println!(
+            "{:<10} {:>10} {:>10}  home (x mm, y mm, heading °)",
+            "room", "area m²", "perim. m"
+        );
         for name in BUILTIN_ROOMS {
             let r = Room::builtin(name).expect("built-in");
             print_room(&r);

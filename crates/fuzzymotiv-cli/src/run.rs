@@ -19,7 +19,7 @@ use crate::inputs::{Loaded, load_config};
 pub struct RunArgs {
     /// Experiment config (TOML); every key is optional (SPEC defaults).
     pub config: PathBuf,
-    /// Output directory [default: runs/<name>].
+    /// Output directory [default: runs/NAME].
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Base seed (overrides `seed` in the config).
@@ -40,7 +40,9 @@ pub fn set_threads(threads: Option<usize>) -> Result<(), CliError> {
             return Err(CliError::input("--threads must be at least 1"));
         }
         // A second call (e.g. in-process tests) keeps the first pool; results do not depend on it.
-        let _ = rayon::ThreadPoolBuilder::new().num_threads(n).build_global();
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global();
     }
     Ok(())
 }
@@ -49,7 +51,9 @@ pub fn set_threads(threads: Option<usize>) -> Result<(), CliError> {
 pub fn run(args: RunArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
     let loaded = load_config(Some(&args.config), &args.sets, args.seed)?;
-    let out = args.out.unwrap_or_else(|| Path::new("runs").join(&loaded.raw.name));
+    let out = args
+        .out
+        .unwrap_or_else(|| Path::new("runs").join(&loaded.raw.name));
     let progress = progress_bar(&loaded.experiment, 1, "");
     let done = execute(&loaded, &out, &progress)?;
     progress.finish_and_clear();
@@ -67,8 +71,10 @@ pub fn progress_bar(exp: &Experiment, settings: usize, prefix: &str) -> Progress
     }
     let bar = ProgressBar::new(total);
     bar.set_style(
-        ProgressStyle::with_template("{prefix} [{elapsed_precise}] {wide_bar} gen {pos}/{len} {msg} (eta {eta})")
-            .expect("valid template"),
+        ProgressStyle::with_template(
+            "{prefix} [{elapsed_precise}] {wide_bar} gen {pos}/{len} {msg} (eta {eta})",
+        )
+        .expect("valid template"),
     );
     bar.set_prefix(prefix.to_string());
     bar
@@ -151,9 +157,17 @@ pub fn execute(loaded: &Loaded, out: &Path, progress: &ProgressBar) -> Result<Fi
     staged.write("table.md", table_markdown(&rows))?;
     let wall_seconds = start.elapsed().as_secs_f64();
     let summary = summary_json(exp, &evolutions, &rows, wall_seconds);
-    staged.write("summary.json", serde_json::to_string_pretty(&summary).expect("serialisable") + "\n")?;
+    staged.write(
+        "summary.json",
+        serde_json::to_string_pretty(&summary).expect("serialisable") + "\n",
+    )?;
     staged.commit()?;
-    Ok(Finished { evolutions, aem, rows, wall_seconds })
+    Ok(Finished {
+        evolutions,
+        aem,
+        rows,
+        wall_seconds,
+    })
 }
 
 /// The resolved config with the program version on top.
@@ -247,7 +261,8 @@ fn recognition_csv(exp: &Experiment, aem: &[AemReport], rows: &[RoomRow]) -> Str
             row.room,
             total,
             rep.confusion.correct(r),
-            row.recognition_pct.map_or(String::new(), |p| format!("{p:.1}"))
+            row.recognition_pct
+                .map_or(String::new(), |p| format!("{p:.1}"))
         );
         for c in counts {
             let _ = write!(s, ",{c}");
@@ -259,7 +274,9 @@ fn recognition_csv(exp: &Experiment, aem: &[AemReport], rows: &[RoomRow]) -> Str
 
 /// The per-room table as Markdown.
 pub fn table_markdown(rows: &[RoomRow]) -> String {
-    let mut s = String::from("| room | average fitness | % optimal exploration | % recognition | % battery usage | % homing |\n|---|---|---|---|---|---|\n");
+    let mut s = String::from(
+        "| room | average fitness | % optimal exploration | % recognition | % battery usage | % homing |\n|---|---|---|---|---|---|\n",
+    );
     for r in rows {
         let _ = writeln!(
             s,
@@ -267,7 +284,8 @@ pub fn table_markdown(rows: &[RoomRow]) -> String {
             r.room,
             r.average_fitness,
             r.exploration_pct,
-            r.recognition_pct.map_or("n/a".to_string(), |p| format!("{p:.0}")),
+            r.recognition_pct
+                .map_or("n/a".to_string(), |p| format!("{p:.0}")),
             r.battery_pct,
             r.homing
         );
@@ -275,7 +293,12 @@ pub fn table_markdown(rows: &[RoomRow]) -> String {
     s
 }
 
-fn summary_json(exp: &Experiment, evolutions: &[Evolution], rows: &[RoomRow], wall_seconds: f64) -> serde_json::Value {
+fn summary_json(
+    exp: &Experiment,
+    evolutions: &[Evolution],
+    rows: &[RoomRow],
+    wall_seconds: f64,
+) -> serde_json::Value {
     let runs: Vec<serde_json::Value> = evolutions
         .iter()
         .map(|evo| {

@@ -78,7 +78,12 @@ pub struct RawMotivations {
 
 impl Default for RawMotivations {
     fn default() -> Self {
-        Self { curiosity: 0.8, homing: 0.1, orientation: 0.0, energy: 0.1 }
+        Self {
+            curiosity: 0.8,
+            homing: 0.1,
+            orientation: 0.0,
+            energy: 0.1,
+        }
     }
 }
 
@@ -98,7 +103,12 @@ pub struct RawTrial {
 
 impl Default for RawTrial {
     fn default() -> Self {
-        Self { steps: 400, dt: 0.1, noise: 0.06, sensor_model: SensorModel::Sampled }
+        Self {
+            steps: 400,
+            dt: 0.1,
+            noise: 0.06,
+            sensor_model: SensorModel::Sampled,
+        }
     }
 }
 
@@ -138,7 +148,10 @@ pub struct RawFuzzy {
 
 impl Default for RawFuzzy {
     fn default() -> Self {
-        Self { peaks: PAPER_PEAKS.to_vec(), coefficients: Coefficients::Scheme(CoefficientScheme::Linear) }
+        Self {
+            peaks: PAPER_PEAKS.to_vec(),
+            coefficients: Coefficients::Scheme(CoefficientScheme::Linear),
+        }
     }
 }
 
@@ -258,7 +271,10 @@ impl RawConfig {
         };
         let mut table: toml::Table = toml::from_str(text).map_err(|e| {
             let msg = e.message().trim().to_string();
-            err(&field_from_toml_message(&msg, text, e.span()), format!("not valid TOML: {msg}"))
+            err(
+                &field_from_toml_message(&msg, text, e.span()),
+                format!("not valid TOML: {msg}"),
+            )
         })?;
         if sets.is_empty() {
             return Self::from_text(text, source_name);
@@ -274,7 +290,9 @@ impl RawConfig {
             let key = key.trim();
             let value = value.trim();
             let parsed: toml::Value = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
-                Ok(mut t) => t.remove("v").unwrap_or(toml::Value::String(value.to_string())),
+                Ok(mut t) => t
+                    .remove("v")
+                    .unwrap_or(toml::Value::String(value.to_string())),
                 Err(_) => toml::Value::String(value.to_string()),
             };
             let parts: Vec<&str> = key.split('.').collect();
@@ -287,7 +305,9 @@ impl RawConfig {
             }
             let mut t = &mut table;
             for part in &parts[..parts.len() - 1] {
-                let entry = t.entry(part.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                let entry = t
+                    .entry(part.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
                 t = match entry {
                     toml::Value::Table(inner) => inner,
                     _ => {
@@ -340,7 +360,11 @@ mod tests {
         let raw = RawConfig::parse(
             "[ga]\npopulation = 50\n",
             "x",
-            &["ga.population=20".into(), "rooms=[\"H\",\"T\"]".into(), "name=hello world".into()],
+            &[
+                "ga.population=20".into(),
+                "rooms=[\"H\",\"T\"]".into(),
+                "name=hello world".into(),
+            ],
         )
         .unwrap();
         assert_eq!(raw.ga.population, 20);

@@ -27,7 +27,11 @@ pub struct MlpShape {
 impl MlpShape {
     /// The shape with `hidden` hidden units.
     pub fn with_hidden(hidden: usize) -> Self {
-        Self { inputs: INPUTS, hidden, outputs: OUTPUTS }
+        Self {
+            inputs: INPUTS,
+            hidden,
+            outputs: OUTPUTS,
+        }
     }
 
     /// Genome length: per hidden unit `[bias, 8 weights]`, then per output `[bias, hidden
@@ -60,7 +64,11 @@ impl Mlp {
     /// length does not match.
     pub fn from_genome(shape: MlpShape, genome: &[f64]) -> Option<Self> {
         (genome.len() == shape.genome_len() && shape.inputs == INPUTS && shape.outputs == OUTPUTS)
-            .then(|| Self { shape, weights: genome.to_vec(), hidden: vec![0.0; shape.hidden] })
+            .then(|| Self {
+                shape,
+                weights: genome.to_vec(),
+                hidden: vec![0.0; shape.hidden],
+            })
     }
 
     /// The network's shape.
@@ -73,7 +81,11 @@ impl Controller for Mlp {
     #[inline]
     fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
         let (hidden_w, out_w) = self.weights.split_at(self.shape.hidden * (INPUTS + 1));
-        for (h, w) in self.hidden.iter_mut().zip(hidden_w.chunks_exact(INPUTS + 1)) {
+        for (h, w) in self
+            .hidden
+            .iter_mut()
+            .zip(hidden_w.chunks_exact(INPUTS + 1))
+        {
             let mut s = w[0];
             for k in 0..INPUTS {
                 s += w[k + 1] * inputs[k];
@@ -81,7 +93,10 @@ impl Controller for Mlp {
             *h = logistic(s);
         }
         let mut out = [0.0; OUTPUTS];
-        for (o, w) in out.iter_mut().zip(out_w.chunks_exact(self.shape.hidden + 1)) {
+        for (o, w) in out
+            .iter_mut()
+            .zip(out_w.chunks_exact(self.shape.hidden + 1))
+        {
             let mut s = w[0];
             for (wk, h) in w[1..].iter().zip(&self.hidden) {
                 s += wk * h;

@@ -66,7 +66,11 @@ pub struct Experiment {
 }
 
 fn check(ok: bool, field: &str, reason: impl FnOnce() -> String) -> Result<(), (String, String)> {
-    if ok { Ok(()) } else { Err((field.to_string(), reason())) }
+    if ok {
+        Ok(())
+    } else {
+        Err((field.to_string(), reason()))
+    }
 }
 
 fn unit(v: f64) -> bool {
@@ -75,7 +79,11 @@ fn unit(v: f64) -> bool {
 
 impl Experiment {
     /// Validates `raw` with its rooms already loaded (`rooms[i]` for `raw.rooms[i]`).
-    pub fn new(raw: &RawConfig, rooms: Vec<Room>, source_name: &str) -> Result<Experiment, ConfigError> {
+    pub fn new(
+        raw: &RawConfig,
+        rooms: Vec<Room>,
+        source_name: &str,
+    ) -> Result<Experiment, ConfigError> {
         Self::build(raw, rooms).map_err(|(field, reason)| ConfigError {
             source_name: source_name.to_string(),
             field,
@@ -85,42 +93,116 @@ impl Experiment {
 
     fn build(raw: &RawConfig, rooms: Vec<Room>) -> Result<Experiment, (String, String)> {
         const BIG: usize = 1_000_000;
-        check(!raw.name.trim().is_empty(), "name", || "must not be empty".into())?;
+        check(!raw.name.trim().is_empty(), "name", || {
+            "must not be empty".into()
+        })?;
         check(!rooms.is_empty(), "rooms", || {
-            "needs at least one room, e.g. rooms = [\"H\", \"T\", \"L\", \"square\", \"rectangle\"]".into()
+            "needs at least one room, e.g. rooms = [\"H\", \"T\", \"L\", \"square\", \"rectangle\"]"
+                .into()
         })?;
         for (i, r) in rooms.iter().enumerate() {
             if let Some(j) = rooms[..i].iter().position(|o| o.name == r.name) {
-                return Err((format!("rooms[{i}]"), format!("room name \"{}\" is used twice (also rooms[{j}]); names must be unique", r.name)));
+                return Err((
+                    format!("rooms[{i}]"),
+                    format!(
+                        "room name \"{}\" is used twice (also rooms[{j}]); names must be unique",
+                        r.name
+                    ),
+                ));
             }
         }
         let m = &raw.motivations;
-        let motivations = Motivations::new(m.curiosity, m.homing, m.orientation, m.energy).map_err(|e| {
-            let field = match &e {
-                FuzzyError::MotivationOutOfRange { name, .. } => format!("motivations.{name}"),
-                _ => "motivations".to_string(),
-            };
-            (field, e.to_string())
-        })?;
+        let motivations = Motivations::new(m.curiosity, m.homing, m.orientation, m.energy)
+            .map_err(|e| {
+                let field = match &e {
+                    FuzzyError::MotivationOutOfRange { name, .. } => format!("motivations.{name}"),
+                    _ => "motivations".to_string(),
+                };
+                (field, e.to_string())
+            })?;
         let ga = raw.ga;
-        check((2..=BIG).contains(&ga.population), "ga.population", || format!("must be an integer in 2..={BIG}, got {}", ga.population))?;
-        check((1..=BIG).contains(&ga.generations), "ga.generations", || format!("must be an integer in 1..={BIG}, got {}", ga.generations))?;
-        check(ga.elite < ga.population, "ga.elite", || format!("must be smaller than ga.population ({}), got {}", ga.population, ga.elite))?;
-        check(ga.parent_fraction.is_finite() && ga.parent_fraction > 0.0 && ga.parent_fraction <= 1.0, "ga.parent_fraction", || format!("must be in (0, 1], got {}", ga.parent_fraction))?;
-        check(unit(ga.crossover), "ga.crossover", || format!("must be a probability in [0, 1], got {}", ga.crossover))?;
-        check(unit(ga.mutation_rate), "ga.mutation_rate", || format!("must be a probability in [0, 1], got {}", ga.mutation_rate))?;
-        check(ga.mutation_sigma.is_finite() && ga.mutation_sigma >= 0.0, "ga.mutation_sigma", || format!("must be a finite number ≥ 0, got {}", ga.mutation_sigma))?;
-        check(ga.weight_limit.is_finite() && ga.weight_limit > 0.0 && ga.weight_limit <= 1e6, "ga.weight_limit", || format!("must be in (0, 1e6], got {}", ga.weight_limit))?;
-        check(ga.init_range.is_finite() && ga.init_range >= 0.0 && ga.init_range <= ga.weight_limit, "ga.init_range", || format!("must be in [0, ga.weight_limit], got {}", ga.init_range))?;
+        check((2..=BIG).contains(&ga.population), "ga.population", || {
+            format!("must be an integer in 2..={BIG}, got {}", ga.population)
+        })?;
+        check(
+            (1..=BIG).contains(&ga.generations),
+            "ga.generations",
+            || format!("must be an integer in 1..={BIG}, got {}", ga.generations),
+        )?;
+        check(ga.elite < ga.population, "ga.elite", || {
+            format!(
+                "must be smaller than ga.population ({}), got {}",
+                ga.population, ga.elite
+            )
+        })?;
+        check(
+            ga.parent_fraction.is_finite() && ga.parent_fraction > 0.0 && ga.parent_fraction <= 1.0,
+            "ga.parent_fraction",
+            || format!("must be in (0, 1], got {}", ga.parent_fraction),
+        )?;
+        check(unit(ga.crossover), "ga.crossover", || {
+            format!("must be a probability in [0, 1], got {}", ga.crossover)
+        })?;
+        check(unit(ga.mutation_rate), "ga.mutation_rate", || {
+            format!("must be a probability in [0, 1], got {}", ga.mutation_rate)
+        })?;
+        check(
+            ga.mutation_sigma.is_finite() && ga.mutation_sigma >= 0.0,
+            "ga.mutation_sigma",
+            || format!("must be a finite number ≥ 0, got {}", ga.mutation_sigma),
+        )?;
+        check(
+            ga.weight_limit.is_finite() && ga.weight_limit > 0.0 && ga.weight_limit <= 1e6,
+            "ga.weight_limit",
+            || format!("must be in (0, 1e6], got {}", ga.weight_limit),
+        )?;
+        check(
+            ga.init_range.is_finite() && ga.init_range >= 0.0 && ga.init_range <= ga.weight_limit,
+            "ga.init_range",
+            || format!("must be in [0, ga.weight_limit], got {}", ga.init_range),
+        )?;
         let t = &raw.trial;
-        check((1..=10 * BIG).contains(&t.steps), "trial.steps", || format!("must be an integer in 1..={}, got {}", 10 * BIG, t.steps))?;
-        check(t.dt.is_finite() && t.dt > 0.0 && t.dt <= 10.0, "trial.dt", || format!("must be a time step in (0, 10] seconds, got {}", t.dt))?;
-        check(t.noise.is_finite() && (0.0..=0.5).contains(&t.noise), "trial.noise", || format!("must be a noise level in [0, 0.5] (0.06 is the paper's 6 %), got {}", t.noise))?;
+        check((1..=10 * BIG).contains(&t.steps), "trial.steps", || {
+            format!("must be an integer in 1..={}, got {}", 10 * BIG, t.steps)
+        })?;
+        check(
+            t.dt.is_finite() && t.dt > 0.0 && t.dt <= 10.0,
+            "trial.dt",
+            || format!("must be a time step in (0, 10] seconds, got {}", t.dt),
+        )?;
+        check(
+            t.noise.is_finite() && (0.0..=0.5).contains(&t.noise),
+            "trial.noise",
+            || {
+                format!(
+                    "must be a noise level in [0, 0.5] (0.06 is the paper's 6 %), got {}",
+                    t.noise
+                )
+            },
+        )?;
         let robot: Khepera = raw.robot;
-        check(robot.v_max.is_finite() && robot.v_max > 0.0, "robot.v_max", || format!("must be a speed > 0 (mm/s), got {}", robot.v_max))?;
-        check(robot.radius.is_finite() && robot.radius > 0.0 && robot.radius <= 1000.0, "robot.radius", || format!("must be in (0, 1000] mm, got {}", robot.radius))?;
-        check(robot.wheel_base.is_finite() && robot.wheel_base > 0.0 && robot.wheel_base <= 1000.0, "robot.wheel_base", || format!("must be in (0, 1000] mm, got {}", robot.wheel_base))?;
-        let trial = TrialParams { steps: t.steps, dt: t.dt, noise: t.noise, sensor_model: t.sensor_model, robot };
+        check(
+            robot.v_max.is_finite() && robot.v_max > 0.0,
+            "robot.v_max",
+            || format!("must be a speed > 0 (mm/s), got {}", robot.v_max),
+        )?;
+        check(
+            robot.radius.is_finite() && robot.radius > 0.0 && robot.radius <= 1000.0,
+            "robot.radius",
+            || format!("must be in (0, 1000] mm, got {}", robot.radius),
+        )?;
+        check(
+            robot.wheel_base.is_finite() && robot.wheel_base > 0.0 && robot.wheel_base <= 1000.0,
+            "robot.wheel_base",
+            || format!("must be in (0, 1000] mm, got {}", robot.wheel_base),
+        )?;
+        let trial = TrialParams {
+            steps: t.steps,
+            dt: t.dt,
+            noise: t.noise,
+            sensor_model: t.sensor_model,
+            robot,
+        };
         check(trial.max_step() < robot.radius, "trial.dt", || {
             format!(
                 "one step may move the robot {:.1} mm (robot.v_max × trial.dt × (1 + trial.noise)), which must stay below the body radius {} mm so it cannot pass through walls; use a smaller dt or v_max",
@@ -128,7 +210,11 @@ impl Experiment {
                 robot.radius
             )
         })?;
-        check((1..=1024).contains(&raw.network.hidden), "network.hidden", || format!("must be in 1..=1024, got {}", raw.network.hidden))?;
+        check(
+            (1..=1024).contains(&raw.network.hidden),
+            "network.hidden",
+            || format!("must be in 1..=1024, got {}", raw.network.hidden),
+        )?;
         let shape = MlpShape::with_hidden(raw.network.hidden);
         let fuzzy = match &raw.fuzzy.coefficients {
             Coefficients::Scheme(s) => TskFitness::with_scheme(raw.fuzzy.peaks.clone(), *s),
@@ -136,7 +222,9 @@ impl Experiment {
         }
         .map_err(|e| {
             let field = match e {
-                FuzzyError::CoefficientCount { .. } | FuzzyError::InvalidCoefficient { .. } => "fuzzy.coefficients",
+                FuzzyError::CoefficientCount { .. } | FuzzyError::InvalidCoefficient { .. } => {
+                    "fuzzy.coefficients"
+                }
                 _ => "fuzzy.peaks",
             };
             (field.to_string(), e.to_string())
@@ -150,27 +238,65 @@ impl Experiment {
             rate_start: a.rate_start,
             rate_end: a.rate_end,
         };
-        check((1..=100_000).contains(&a.som_nodes), "aem.som_nodes", || format!("must be in 1..=100000, got {}", a.som_nodes))?;
-        check((1..=BIG).contains(&a.epochs), "aem.epochs", || format!("must be in 1..={BIG}, got {}", a.epochs))?;
-        check((1..=100_000).contains(&a.test_runs), "aem.test_runs", || format!("must be in 1..=100000, got {}", a.test_runs))?;
-        check(a.action_tolerance.is_finite() && (0.0..=2.0).contains(&a.action_tolerance), "aem.action_tolerance", || format!("must be in [0, 2] (signed-speed units), got {}", a.action_tolerance))?;
-        for (name, v) in [("aem.sigma_start", a.sigma_start), ("aem.sigma_end", a.sigma_end), ("aem.rate_start", a.rate_start), ("aem.rate_end", a.rate_end)] {
-            check(v.is_finite() && v > 0.0, name, || format!("must be a finite number > 0, got {v}"))?;
+        check(
+            (1..=100_000).contains(&a.som_nodes),
+            "aem.som_nodes",
+            || format!("must be in 1..=100000, got {}", a.som_nodes),
+        )?;
+        check((1..=BIG).contains(&a.epochs), "aem.epochs", || {
+            format!("must be in 1..={BIG}, got {}", a.epochs)
+        })?;
+        check(
+            (1..=100_000).contains(&a.test_runs),
+            "aem.test_runs",
+            || format!("must be in 1..=100000, got {}", a.test_runs),
+        )?;
+        check(
+            a.action_tolerance.is_finite() && (0.0..=2.0).contains(&a.action_tolerance),
+            "aem.action_tolerance",
+            || {
+                format!(
+                    "must be in [0, 2] (signed-speed units), got {}",
+                    a.action_tolerance
+                )
+            },
+        )?;
+        for (name, v) in [
+            ("aem.sigma_start", a.sigma_start),
+            ("aem.sigma_end", a.sigma_end),
+            ("aem.rate_start", a.rate_start),
+            ("aem.rate_end", a.rate_end),
+        ] {
+            check(v.is_finite() && v > 0.0, name, || {
+                format!("must be a finite number > 0, got {v}")
+            })?;
         }
         check(!a.enabled || rooms.len() >= 2, "aem.enabled", || {
-            format!("room recognition needs at least 2 rooms, got {}; add rooms or set aem.enabled = false", rooms.len())
+            format!(
+                "room recognition needs at least 2 rooms, got {}; add rooms or set aem.enabled = false",
+                rooms.len()
+            )
         })?;
         let online = raw.fitness.orientation == OrientationMode::Online;
-        check(!online || (rooms.len() >= 2 && raw.training == Training::AllRooms), "fitness.orientation", || {
-            "\"online\" needs training = \"all-rooms\" with at least 2 rooms".into()
-        })?;
+        check(
+            !online || (rooms.len() >= 2 && raw.training == Training::AllRooms),
+            "fitness.orientation",
+            || "\"online\" needs training = \"all-rooms\" with at least 2 rooms".into(),
+        )?;
         // Room files are validated against the Khepera; a bigger body needs its own check.
         if robot.radius > KHEPERA_RADIUS {
             for (i, r) in rooms.iter().enumerate() {
                 let home = r.home.position();
-                let clearance = r.walls().iter().map(|w| w.dist_to(home)).fold(f64::INFINITY, f64::min);
+                let clearance = r
+                    .walls()
+                    .iter()
+                    .map(|w| w.dist_to(home))
+                    .fold(f64::INFINITY, f64::min);
                 check(clearance >= robot.radius, &format!("rooms[{i}]"), || {
-                    format!("home of room \"{}\" is {clearance:.1} mm from a wall, closer than robot.radius {}", r.name, robot.radius)
+                    format!(
+                        "home of room \"{}\" is {clearance:.1} mm from a wall, closer than robot.radius {}",
+                        r.name, robot.radius
+                    )
                 })?;
             }
         }
@@ -206,12 +332,20 @@ impl Experiment {
     /// The evolutions the protocol asks for: one over all rooms, or one per room.
     pub fn runs(&self) -> Vec<Run> {
         match self.training {
-            Training::AllRooms => vec![Run { label: "all".into(), tag: 0, rooms: (0..self.arenas.len()).collect() }],
+            Training::AllRooms => vec![Run {
+                label: "all".into(),
+                tag: 0,
+                rooms: (0..self.arenas.len()).collect(),
+            }],
             Training::PerRoom => self
                 .arenas
                 .iter()
                 .enumerate()
-                .map(|(i, a)| Run { label: a.room().name.clone(), tag: hash_str(&a.room().name), rooms: vec![i] })
+                .map(|(i, a)| Run {
+                    label: a.room().name.clone(),
+                    tag: hash_str(&a.room().name),
+                    rooms: vec![i],
+                })
                 .collect(),
         }
     }
@@ -222,7 +356,8 @@ impl Experiment {
 
     /// F for fitness terms under this experiment's motivations (battery direction applied).
     pub fn fuzzy_fitness(&self, terms: &FitnessTerms) -> f64 {
-        self.fuzzy.evaluate(&self.motivations, self.fuzzy_inputs(terms))
+        self.fuzzy
+            .evaluate(&self.motivations, self.fuzzy_inputs(terms))
     }
 
     /// The fuzzy inputs Y for fitness terms (with `energy = "conserve"`, Y₄ = 1 − b).
@@ -243,26 +378,79 @@ impl Experiment {
     pub fn trial(&self, genome: &[f64], room: usize, seed: u64) -> (FitnessTerms, Vec<Action>) {
         let arena = &self.arenas[room];
         let mut rng = rng_from_seed(seed);
-        let mut obs = (TermsRecorder::new(arena, &self.trial), ActionRecorder::new(self.aem.action_tolerance, self.trial.steps));
-        simulate(arena, &mut self.controller(genome), &self.trial, &mut rng, &mut obs);
+        let mut obs = (
+            TermsRecorder::new(arena, &self.trial),
+            ActionRecorder::new(self.aem.action_tolerance, self.trial.steps),
+        );
+        simulate(
+            arena,
+            &mut self.controller(genome),
+            &self.trial,
+            &mut rng,
+            &mut obs,
+        );
         (obs.0.finish(), obs.1.actions)
     }
 
+    /// The full trajectory of `genome` in `room` on the AEM instance stream of `run` (the very
+    /// run whose actions became the room's stored instance): for figures and replays.
+    pub fn instance_trajectory(
+        &self,
+        genome: &[f64],
+        run: &Run,
+        room: usize,
+    ) -> crate::trial::Trajectory {
+        let seed = derive(
+            self.seed,
+            &[purpose::AEM_INSTANCE, run.tag, self.room_key(room)],
+        );
+        let mut rng = rng_from_seed(seed);
+        crate::trial::run_trial(
+            &self.arenas[room],
+            &mut self.controller(genome),
+            &self.trial,
+            &mut rng,
+        )
+    }
+
     /// Evaluates one individual of generation `generation` in the rooms of `run`.
-    pub fn evaluate(&self, genome: &[f64], run: &Run, generation: usize, individual: usize) -> Evaluation {
-        let online = self.orientation == OrientationMode::Online && self.motivations.orientation > 0.0;
+    pub fn evaluate(
+        &self,
+        genome: &[f64],
+        run: &Run,
+        generation: usize,
+        individual: usize,
+    ) -> Evaluation {
+        let online =
+            self.orientation == OrientationMode::Online && self.motivations.orientation > 0.0;
         let mut rng_buf: Option<Rng64> = None;
         let mut per_room = Vec::with_capacity(run.rooms.len());
         let mut first_vectors = Vec::new();
         for &r in &run.rooms {
-            let seed = derive(self.seed, &[purpose::EVAL, run.tag, generation as u64, individual as u64, self.room_key(r), 0]);
+            let seed = derive(
+                self.seed,
+                &[
+                    purpose::EVAL,
+                    run.tag,
+                    generation as u64,
+                    individual as u64,
+                    self.room_key(r),
+                    0,
+                ],
+            );
             let (terms, actions) = if online {
                 self.trial(genome, r, seed)
             } else {
                 let arena = &self.arenas[r];
                 let rng = rng_buf.insert(rng_from_seed(seed));
                 let mut rec = TermsRecorder::new(arena, &self.trial);
-                simulate(arena, &mut self.controller(genome), &self.trial, rng, &mut rec);
+                simulate(
+                    arena,
+                    &mut self.controller(genome),
+                    &self.trial,
+                    rng,
+                    &mut rec,
+                );
                 (rec.finish(), Vec::new())
             };
             if online {
@@ -274,7 +462,17 @@ impl Experiment {
             // SPEC §13: a second run per room, classified by 1-NN against the first runs.
             let mut correct = 0;
             for (k, &r) in run.rooms.iter().enumerate() {
-                let seed = derive(self.seed, &[purpose::ONLINE, run.tag, generation as u64, individual as u64, self.room_key(r), 1]);
+                let seed = derive(
+                    self.seed,
+                    &[
+                        purpose::ONLINE,
+                        run.tag,
+                        generation as u64,
+                        individual as u64,
+                        self.room_key(r),
+                        1,
+                    ],
+                );
                 let (_, actions) = self.trial(genome, r, seed);
                 let v = environment_vector(&actions, self.aem.encoder);
                 if nearest(&first_vectors, &v).ok() == Some(k) {
@@ -300,7 +498,12 @@ impl Experiment {
     }
 
     /// Evaluates a population in parallel (results in index order, independent of threads).
-    pub fn evaluate_population(&self, population: &[Genome], run: &Run, generation: usize) -> Vec<Evaluation> {
+    pub fn evaluate_population(
+        &self,
+        population: &[Genome],
+        run: &Run,
+        generation: usize,
+    ) -> Vec<Evaluation> {
         population
             .par_iter()
             .enumerate()
@@ -322,14 +525,28 @@ impl Experiment {
         GenerationRecord {
             generation,
             stats: Stats::of(&fitness),
-            terms: FitnessTerms { a: mean[0], g: mean[1], l: mean[2], b: mean[3] },
+            terms: FitnessTerms {
+                a: mean[0],
+                g: mean[1],
+                l: mean[2],
+                b: mean[3],
+            },
         }
     }
 
     /// Breeds generation `generation + 1` from an evaluated generation.
-    pub fn breed(&self, population: &[Genome], evals: &[Evaluation], run: &Run, generation: usize) -> Vec<Genome> {
+    pub fn breed(
+        &self,
+        population: &[Genome],
+        evals: &[Evaluation],
+        run: &Run,
+        generation: usize,
+    ) -> Vec<Genome> {
         let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
-        let mut rng = rng_from_seed(derive(self.seed, &[purpose::BREED, run.tag, generation as u64]));
+        let mut rng = rng_from_seed(derive(
+            self.seed,
+            &[purpose::BREED, run.tag, generation as u64],
+        ));
         next_generation(population, &fitness, &self.ga, &mut rng)
     }
 
@@ -356,8 +573,15 @@ impl Experiment {
             on_generation(&record);
             history.push(record);
             if g + 1 >= self.ga.generations {
-                let best = crate::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
-                return Evolution { run: run.clone(), history, population, evaluations: evals, best };
+                let best =
+                    crate::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
+                return Evolution {
+                    run: run.clone(),
+                    history,
+                    population,
+                    evaluations: evals,
+                    best,
+                };
             }
             population = self.breed(&population, &evals, run, g);
             g += 1;
@@ -373,12 +597,20 @@ impl Experiment {
             let vectors: Vec<Vec<f64>> = (0..rooms)
                 .into_par_iter()
                 .map(|r| {
-                    let seed = derive(self.seed, &[purpose::AEM_INSTANCE, run.tag, self.room_key(r)]);
+                    let seed = derive(
+                        self.seed,
+                        &[purpose::AEM_INSTANCE, run.tag, self.room_key(r)],
+                    );
                     environment_vector(&self.trial(genome, r, seed).1, self.aem.encoder)
                 })
                 .collect();
             let mut som_rng = rng_from_seed(derive(self.seed, &[purpose::SOM, run.tag]));
-            Some(Recognizer::train(&vectors, &self.aem.som, self.aem.threshold, &mut som_rng)?)
+            Some(Recognizer::train(
+                &vectors,
+                &self.aem.som,
+                self.aem.threshold,
+                &mut som_rng,
+            )?)
         } else {
             None
         };
@@ -387,7 +619,10 @@ impl Experiment {
             .collect::<Vec<_>>()
             .into_par_iter()
             .map(|(r, t)| {
-                let seed = derive(self.seed, &[purpose::AEM_TEST, run.tag, self.room_key(r), t as u64]);
+                let seed = derive(
+                    self.seed,
+                    &[purpose::AEM_TEST, run.tag, self.room_key(r), t as u64],
+                );
                 let (terms, actions) = self.trial(genome, r, seed);
                 let (answer, winner) = match &recognizer {
                     Some(rec) => {
@@ -396,7 +631,14 @@ impl Experiment {
                     }
                     None => (None, None),
                 };
-                Ok((r, AemTest { terms, answer, winner }))
+                Ok((
+                    r,
+                    AemTest {
+                        terms,
+                        answer,
+                        winner,
+                    },
+                ))
             })
             .collect::<Result<_, SomError>>()?;
         let mut confusion = Confusion::new(rooms);
@@ -505,7 +747,11 @@ pub struct Evolution {
 impl Evolution {
     /// Mean F of the final population in room position `k` of the run.
     pub fn mean_room_fitness(&self, k: usize) -> f64 {
-        self.evaluations.iter().map(|e| e.per_room[k].f).sum::<f64>() / self.evaluations.len() as f64
+        self.evaluations
+            .iter()
+            .map(|e| e.per_room[k].f)
+            .sum::<f64>()
+            / self.evaluations.len() as f64
     }
 }
 
@@ -563,12 +809,19 @@ pub struct ActionRecorder {
 impl ActionRecorder {
     /// An empty recorder.
     pub fn new(tolerance: f64, capacity: usize) -> Self {
-        Self { tolerance, actions: Vec::with_capacity(capacity) }
+        Self {
+            tolerance,
+            actions: Vec::with_capacity(capacity),
+        }
     }
 }
 
 impl StepObserver for ActionRecorder {
     fn observe(&mut self, s: &Step) {
-        self.actions.push(Action::from_motors(s.motors[0], s.motors[1], self.tolerance));
+        self.actions.push(Action::from_motors(
+            s.motors[0],
+            s.motors[1],
+            self.tolerance,
+        ));
     }
 }

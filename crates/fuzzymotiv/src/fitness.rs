@@ -37,7 +37,8 @@ impl FitnessTerms {
 /// `optimum = min(reachable, floor(T·v_max·dt / 50) + 1)`: the cells a full-speed robot that
 /// never revisits a cell could enter.
 pub fn exploration_optimum(arena: &Arena, params: &TrialParams) -> usize {
-    let by_speed = (params.steps as f64 * params.robot.v_max * params.dt / CELL).floor() as usize + 1;
+    let by_speed =
+        (params.steps as f64 * params.robot.v_max * params.dt / CELL).floor() as usize + 1;
     arena.reachable_cells().min(by_speed).max(1)
 }
 
@@ -82,7 +83,11 @@ impl<'a> TermsRecorder<'a> {
         let a = (self.visited_count as f64 / self.optimum as f64).clamp(0.0, 1.0);
         let home = self.arena.room().home.position();
         let g = (1.0 - self.last.position().dist(home) / self.arena.d_max()).clamp(0.0, 1.0);
-        let b = if self.steps == 0 { 0.0 } else { (self.battery / self.steps as f64).clamp(0.0, 1.0) };
+        let b = if self.steps == 0 {
+            0.0
+        } else {
+            (self.battery / self.steps as f64).clamp(0.0, 1.0)
+        };
         FitnessTerms { a, g, l: 0.0, b }
     }
 }
@@ -117,7 +122,11 @@ mod tests {
     }
 
     fn terms(room: &str, motors: [f64; 2], steps: usize) -> FitnessTerms {
-        let params = TrialParams { noise: 0.0, steps, ..TrialParams::default() };
+        let params = TrialParams {
+            noise: 0.0,
+            steps,
+            ..TrialParams::default()
+        };
         let arena = Arena::new(Room::builtin(room).unwrap(), &params);
         let tr = run_trial(&arena, &mut Fixed(motors), &params, &mut rng_from_seed(3));
         FitnessTerms::measure(&arena, &params, &tr)
@@ -150,9 +159,20 @@ mod tests {
     fn recorder_and_trajectory_agree() {
         let params = TrialParams::default();
         let arena = Arena::new(Room::builtin("H").unwrap(), &params);
-        let tr = run_trial(&arena, &mut Fixed([0.9, 0.7]), &params, &mut rng_from_seed(9));
+        let tr = run_trial(
+            &arena,
+            &mut Fixed([0.9, 0.7]),
+            &params,
+            &mut rng_from_seed(9),
+        );
         let mut rec = TermsRecorder::new(&arena, &params);
-        crate::trial::simulate(&arena, &mut Fixed([0.9, 0.7]), &params, &mut rng_from_seed(9), &mut rec);
+        crate::trial::simulate(
+            &arena,
+            &mut Fixed([0.9, 0.7]),
+            &params,
+            &mut rng_from_seed(9),
+            &mut rec,
+        );
         assert_eq!(rec.finish(), FitnessTerms::measure(&arena, &params, &tr));
     }
 }

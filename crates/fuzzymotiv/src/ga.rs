@@ -49,9 +49,17 @@ impl Default for GaParams {
 }
 
 /// A random initial population of `params.population` genomes of length `len`.
-pub fn initial_population<R: Rng + ?Sized>(params: &GaParams, len: usize, rng: &mut R) -> Vec<Genome> {
+pub fn initial_population<R: Rng + ?Sized>(
+    params: &GaParams,
+    len: usize,
+    rng: &mut R,
+) -> Vec<Genome> {
     (0..params.population)
-        .map(|_| (0..len).map(|_| uniform(rng, -params.init_range, params.init_range)).collect())
+        .map(|_| {
+            (0..len)
+                .map(|_| uniform(rng, -params.init_range, params.init_range))
+                .collect()
+        })
         .collect()
 }
 
@@ -74,8 +82,13 @@ pub fn next_generation<R: Rng + ?Sized>(
     assert_eq!(population.len(), fitness.len(), "one fitness per genome");
     let order = ranking(fitness);
     let n = params.population;
-    let parents = ((params.parent_fraction * population.len() as f64).ceil() as usize).clamp(1, population.len());
-    let mut next: Vec<Genome> = order.iter().take(params.elite.min(n)).map(|&i| population[i].clone()).collect();
+    let parents = ((params.parent_fraction * population.len() as f64).ceil() as usize)
+        .clamp(1, population.len());
+    let mut next: Vec<Genome> = order
+        .iter()
+        .take(params.elite.min(n))
+        .map(|&i| population[i].clone())
+        .collect();
     while next.len() < n {
         let a = &population[order[index(rng, parents)]];
         let b = &population[order[index(rng, parents)]];
@@ -94,7 +107,8 @@ pub fn next_generation<R: Rng + ?Sized>(
 pub fn mutate<R: Rng + ?Sized>(genome: &mut [f64], params: &GaParams, rng: &mut R) {
     for g in genome.iter_mut() {
         if uniform01(rng) < params.mutation_rate {
-            *g = (*g + params.mutation_sigma * standard_normal(rng)).clamp(-params.weight_limit, params.weight_limit);
+            *g = (*g + params.mutation_sigma * standard_normal(rng))
+                .clamp(-params.weight_limit, params.weight_limit);
         }
     }
 }
@@ -125,7 +139,13 @@ impl Stats {
         let var = values.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
         let min = values.iter().copied().fold(f64::INFINITY, f64::min);
         let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        Stats { best: max, mean, std: var.sqrt(), min, max }
+        Stats {
+            best: max,
+            mean,
+            std: var.sqrt(),
+            min,
+            max,
+        }
     }
 }
 
@@ -136,7 +156,10 @@ mod tests {
 
     #[test]
     fn elites_survive_and_sizes_hold() {
-        let p = GaParams { population: 10, ..GaParams::default() };
+        let p = GaParams {
+            population: 10,
+            ..GaParams::default()
+        };
         let mut rng = rng_from_seed(5);
         let pop = initial_population(&p, 4, &mut rng);
         let fit: Vec<f64> = (0..10).map(|i| i as f64).collect();
@@ -155,7 +178,10 @@ mod tests {
     #[test]
     fn ga_climbs_a_simple_function() {
         // Maximise −Σ(g − 1)²: the GA must get closer to all-ones.
-        let p = GaParams { population: 30, ..GaParams::default() };
+        let p = GaParams {
+            population: 30,
+            ..GaParams::default()
+        };
         let f = |g: &Genome| -g.iter().map(|x| (x - 1.0) * (x - 1.0)).sum::<f64>();
         let mut rng = rng_from_seed(11);
         let mut pop = initial_population(&p, 5, &mut rng);

@@ -257,7 +257,10 @@ mod tests {
     #[test]
     fn ray_hits_wall_at_hand_computed_distances() {
         let wall = Segment::new(Vec2::new(10.0, -5.0), Vec2::new(10.0, 5.0));
-        assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0)), Some(10.0));
+        assert_eq!(
+            wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0)),
+            Some(10.0)
+        );
         // 45° ray from origin hits x = 10 at y = 10: outside the wall (|y| <= 5).
         let d = Vec2::from_angle(std::f64::consts::FRAC_PI_4);
         assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), d), None);
@@ -266,7 +269,10 @@ mod tests {
         let t = wall.ray_hit(Vec2::new(0.0, 0.0), d).unwrap();
         assert!((t - 125f64.sqrt()).abs() < 1e-12);
         // Pointing away or parallel: no hit.
-        assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(-1.0, 0.0)), None);
+        assert_eq!(
+            wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(-1.0, 0.0)),
+            None
+        );
         assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(0.0, 1.0)), None);
     }
 
@@ -281,8 +287,15 @@ mod tests {
 
     #[test]
     fn polygons() {
-        let l = [(0., 0.), (800., 0.), (800., 300.), (300., 300.), (300., 800.), (0., 800.)]
-            .map(|(x, y)| Vec2::new(x, y));
+        let l = [
+            (0., 0.),
+            (800., 0.),
+            (800., 300.),
+            (300., 300.),
+            (300., 800.),
+            (0., 800.),
+        ]
+        .map(|(x, y)| Vec2::new(x, y));
         assert_eq!(signed_area(&l), 800.0 * 300.0 + 300.0 * 500.0);
         assert_eq!(perimeter(&l), 3200.0);
         assert!(point_in_polygon(&l, Vec2::new(100.0, 700.0)));

@@ -9,7 +9,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::geom::{Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area};
+use crate::geom::{
+    Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area,
+};
 use crate::robot::{KHEPERA_RADIUS, Pose};
 
 /// Names of the built-in rooms, in the order of the paper's tables.
@@ -149,7 +151,10 @@ impl Room {
             if !p[0].is_finite() || !p[1].is_finite() {
                 return Err(err(
                     &format!("outline[{i}]"),
-                    format!("coordinates must be finite numbers (mm), got [{}, {}]", p[0], p[1]),
+                    format!(
+                        "coordinates must be finite numbers (mm), got [{}, {}]",
+                        p[0], p[1]
+                    ),
                 ));
             }
         }
@@ -158,12 +163,19 @@ impl Room {
                 if !p[0].is_finite() || !p[1].is_finite() {
                     return Err(err(
                         &format!("obstacles[{k}].outline[{i}]"),
-                        format!("coordinates must be finite numbers (mm), got [{}, {}]", p[0], p[1]),
+                        format!(
+                            "coordinates must be finite numbers (mm), got [{}, {}]",
+                            p[0], p[1]
+                        ),
                     ));
                 }
             }
         }
-        for (name, v) in [("home.x", raw.home.x), ("home.y", raw.home.y), ("home.heading_deg", raw.home.heading_deg)] {
+        for (name, v) in [
+            ("home.x", raw.home.x),
+            ("home.y", raw.home.y),
+            ("home.heading_deg", raw.home.heading_deg),
+        ] {
             if !v.is_finite() {
                 return Err(err(name, format!("must be a finite number, got {v}")));
             }
@@ -186,7 +198,10 @@ impl Room {
             reason,
         };
         if self.name.trim().is_empty() {
-            return Err(err("name", "must be a non-empty name, e.g. name = \"U\"".into()));
+            return Err(err(
+                "name",
+                "must be a non-empty name, e.g. name = \"U\"".into(),
+            ));
         }
         check_polygon(&self.outline, "outline").map_err(|(f, r)| err(&f, r))?;
         if signed_area(&self.outline) < 0.0 {
@@ -195,14 +210,24 @@ impl Room {
         for (k, obstacle) in self.obstacles.iter().enumerate() {
             let field = format!("obstacles[{k}].outline");
             check_polygon(obstacle, &field).map_err(|(f, r)| err(&f, r))?;
-            if let Some(p) = obstacle.iter().find(|p| !point_in_polygon(&self.outline, **p)) {
+            if let Some(p) = obstacle
+                .iter()
+                .find(|p| !point_in_polygon(&self.outline, **p))
+            {
                 return Err(err(
                     &field,
-                    format!("obstacle point ({}, {}) lies outside the room outline; obstacles must be inside the room", p.x, p.y),
+                    format!(
+                        "obstacle point ({}, {}) lies outside the room outline; obstacles must be inside the room",
+                        p.x, p.y
+                    ),
                 ));
             }
             if edges(obstacle).any(|e| edges(&self.outline).any(|w| w.intersects(&e))) {
-                return Err(err(&field, "obstacle crosses or touches the room outline; it must lie strictly inside".into()));
+                return Err(err(
+                    &field,
+                    "obstacle crosses or touches the room outline; it must lie strictly inside"
+                        .into(),
+                ));
             }
         }
         let home = self.home.position();
@@ -211,7 +236,10 @@ impl Room {
         if !inside {
             return Err(err(
                 "home",
-                format!("home ({}, {}) is outside the room (or inside an obstacle); put it inside the outline", home.x, home.y),
+                format!(
+                    "home ({}, {}) is outside the room (or inside an obstacle); put it inside the outline",
+                    home.x, home.y
+                ),
             ));
         }
         let clearance = self
@@ -243,7 +271,11 @@ impl Room {
     /// Free floor area (mm²): outline minus obstacles.
     pub fn area(&self) -> f64 {
         signed_area(&self.outline).abs()
-            - self.obstacles.iter().map(|o| signed_area(o).abs()).sum::<f64>()
+            - self
+                .obstacles
+                .iter()
+                .map(|o| signed_area(o).abs())
+                .sum::<f64>()
     }
 
     /// Length of the outer wall (mm).
@@ -284,7 +316,9 @@ fn check_polygon(poly: &[Vec2], field: &str) -> Result<(), (String, String)> {
     if let Some((i, j)) = self_intersection(poly) {
         return Err((
             field.to_string(),
-            format!("the polygon intersects itself (edges {i} and {j} cross); list the corners in order around the room"),
+            format!(
+                "the polygon intersects itself (edges {i} and {j} cross); list the corners in order around the room"
+            ),
         ));
     }
     if signed_area(poly).abs() < 1e-9 {
@@ -294,7 +328,11 @@ fn check_polygon(poly: &[Vec2], field: &str) -> Result<(), (String, String)> {
 }
 
 /// Best guess at the key a TOML error refers to: the key on the line of the error span.
-pub(crate) fn field_from_toml_message(msg: &str, text: &str, span: Option<std::ops::Range<usize>>) -> String {
+pub(crate) fn field_from_toml_message(
+    msg: &str,
+    text: &str,
+    span: Option<std::ops::Range<usize>>,
+) -> String {
     let from_message = || {
         let start = msg.find("field `")?;
         let rest = &msg[start + 7..];
@@ -326,7 +364,10 @@ pub(crate) fn field_from_toml_message(msg: &str, text: &str, span: Option<std::o
             }
         }
         if line.trim_start().starts_with('[') {
-            return line.trim().trim_matches(|c| c == '[' || c == ']').to_string();
+            return line
+                .trim()
+                .trim_matches(|c| c == '[' || c == ']')
+                .to_string();
         }
     }
     from_message().unwrap_or_else(|| "(document)".to_string())
@@ -372,23 +413,37 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
         let e = bad("name='x'\noutline=[[0,0],[1,1]]\nhome={x=0,y=0,heading_deg=0}");
         assert_eq!(e.field, "outline");
         assert!(e.reason.contains("at least 3"));
-        let e = bad("name='x'\noutline=[[0,0],[100,100],[100,0],[0,100]]\nhome={x=50,y=20,heading_deg=0}");
+        let e = bad(
+            "name='x'\noutline=[[0,0],[100,100],[100,0],[0,100]]\nhome={x=50,y=20,heading_deg=0}",
+        );
         assert_eq!(e.field, "outline");
         assert!(e.reason.contains("intersects"), "{e}");
         let e = bad("name='x'\noutline=[[0,0],[100,0],[200,0]]\nhome={x=50,y=20,heading_deg=0}");
         assert_eq!(e.field, "outline");
-        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=10,y=150,heading_deg=0}");
+        let e = bad(
+            "name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=10,y=150,heading_deg=0}",
+        );
         assert_eq!(e.field, "home");
         assert!(e.reason.contains("body radius"), "{e}");
-        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=500,y=150,heading_deg=0}");
+        let e = bad(
+            "name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=500,y=150,heading_deg=0}",
+        );
         assert_eq!(e.field, "home");
-        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=150,y=150,heading_deg=0}\n[[obstacles]]\noutline=[[200,200],[400,200],[400,250]]");
+        let e = bad(
+            "name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=150,y=150,heading_deg=0}\n[[obstacles]]\noutline=[[200,200],[400,200],[400,250]]",
+        );
         assert_eq!(e.field, "obstacles[0].outline");
-        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=150,y=150,heading_deg=0}\ncolour='red'");
+        let e = bad(
+            "name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=150,y=150,heading_deg=0}\ncolour='red'",
+        );
         assert_eq!(e.field, "colour");
-        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,nan],[0,300]]\nhome={x=150,y=150,heading_deg=0}");
+        let e = bad(
+            "name='x'\noutline=[[0,0],[300,0],[300,nan],[0,300]]\nhome={x=150,y=150,heading_deg=0}",
+        );
         assert_eq!(e.field, "outline[2]");
-        let e = bad("name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x='a',y=150,heading_deg=0}");
+        let e = bad(
+            "name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x='a',y=150,heading_deg=0}",
+        );
         assert!(e.field.starts_with("home"), "{e}");
     }
 }

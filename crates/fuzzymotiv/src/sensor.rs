@@ -17,14 +17,46 @@ pub struct SensorMount {
 
 /// The classic Khepera simulator layout (SPEC §4), sensors 0–7.
 pub const SENSOR_LAYOUT: [SensorMount; 8] = [
-    SensorMount { x: 9.5, y: 23.0, facing_deg: 90.0 },
-    SensorMount { x: 18.0, y: 17.5, facing_deg: 45.0 },
-    SensorMount { x: 24.5, y: 5.5, facing_deg: 0.0 },
-    SensorMount { x: 24.5, y: -5.5, facing_deg: 0.0 },
-    SensorMount { x: 18.0, y: -17.5, facing_deg: -45.0 },
-    SensorMount { x: 9.5, y: -23.0, facing_deg: -90.0 },
-    SensorMount { x: -23.0, y: -9.5, facing_deg: 180.0 },
-    SensorMount { x: -23.0, y: 9.5, facing_deg: 180.0 },
+    SensorMount {
+        x: 9.5,
+        y: 23.0,
+        facing_deg: 90.0,
+    },
+    SensorMount {
+        x: 18.0,
+        y: 17.5,
+        facing_deg: 45.0,
+    },
+    SensorMount {
+        x: 24.5,
+        y: 5.5,
+        facing_deg: 0.0,
+    },
+    SensorMount {
+        x: 24.5,
+        y: -5.5,
+        facing_deg: 0.0,
+    },
+    SensorMount {
+        x: 18.0,
+        y: -17.5,
+        facing_deg: -45.0,
+    },
+    SensorMount {
+        x: 9.5,
+        y: -23.0,
+        facing_deg: -90.0,
+    },
+    SensorMount {
+        x: -23.0,
+        y: -9.5,
+        facing_deg: 180.0,
+    },
+    SensorMount {
+        x: -23.0,
+        y: 9.5,
+        facing_deg: 180.0,
+    },
 ];
 
 /// Largest raw sensor value.
@@ -33,11 +65,21 @@ pub const SENSOR_MAX: f64 = 1023.0;
 /// Angle between a side ray and the sensor axis in the `sampled` model (degrees).
 pub const SIDE_RAY_DEG: f64 = 24.2;
 /// Sample distances along the axis ray (mm) and their values.
-pub const AXIS_SAMPLES: [(f64, f64); 5] =
-    [(12.0, 900.0), (20.0, 750.0), (32.0, 650.0), (44.0, 160.0), (58.0, 40.0)];
+pub const AXIS_SAMPLES: [(f64, f64); 5] = [
+    (12.0, 900.0),
+    (20.0, 750.0),
+    (32.0, 650.0),
+    (44.0, 160.0),
+    (58.0, 40.0),
+];
 /// Sample distances along each side ray (mm) and their values.
-pub const SIDE_SAMPLES: [(f64, f64); 5] =
-    [(5.7, 1023.0), (11.3, 800.0), (18.9, 600.0), (29.5, 400.0), (43.9, 60.0)];
+pub const SIDE_SAMPLES: [(f64, f64); 5] = [
+    (5.7, 1023.0),
+    (11.3, 800.0),
+    (18.9, 600.0),
+    (29.5, 400.0),
+    (43.9, 60.0),
+];
 /// Range of the `linear` model (mm).
 pub const LINEAR_RANGE: f64 = 50.0;
 
@@ -108,19 +150,41 @@ impl RayMount {
 /// entries have `angle = NaN` and are skipped via [`ray_count`]).
 pub fn rays(model: SensorModel) -> [[RayMount; 3]; 8] {
     let side = SIDE_RAY_DEG.to_radians();
-    let mut out = [[RayMount { origin: Vec2::new(0.0, 0.0), angle: f64::NAN, kind: 2 }; 3]; 8];
+    let mut out = [[RayMount {
+        origin: Vec2::new(0.0, 0.0),
+        angle: f64::NAN,
+        kind: 2,
+    }; 3]; 8];
     for (s, m) in SENSOR_LAYOUT.iter().enumerate() {
         let origin = Vec2::new(m.x, m.y);
         let axis = m.facing_deg.to_radians();
         match model {
             SensorModel::Sampled => {
                 out[s] = [
-                    RayMount { origin, angle: axis, kind: 0 },
-                    RayMount { origin, angle: axis + side, kind: 1 },
-                    RayMount { origin, angle: axis - side, kind: 1 },
+                    RayMount {
+                        origin,
+                        angle: axis,
+                        kind: 0,
+                    },
+                    RayMount {
+                        origin,
+                        angle: axis + side,
+                        kind: 1,
+                    },
+                    RayMount {
+                        origin,
+                        angle: axis - side,
+                        kind: 1,
+                    },
                 ];
             }
-            SensorModel::Linear => out[s][0] = RayMount { origin, angle: axis, kind: 2 },
+            SensorModel::Linear => {
+                out[s][0] = RayMount {
+                    origin,
+                    angle: axis,
+                    kind: 2,
+                }
+            }
         }
     }
     out
@@ -170,6 +234,9 @@ mod tests {
     fn reach_covers_front_sensor() {
         let reach = sensing_reach(SensorModel::Sampled);
         // Front sensors 2, 3 sit at |(24.5, 5.5)| = 25.11 mm from the centre; plus 58 mm axis range.
-        assert!((reach - (24.5f64.hypot(5.5) + 58.0)).abs() < 1e-9, "{reach}");
+        assert!(
+            (reach - (24.5f64.hypot(5.5) + 58.0)).abs() < 1e-9,
+            "{reach}"
+        );
     }
 }

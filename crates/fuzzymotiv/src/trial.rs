@@ -94,7 +94,10 @@ impl Arena {
         for j in 0..rows {
             for i in 0..cols {
                 cell_start.push(cell_walls.len() as u32);
-                let c = Vec2::new(lo.x + (i as f64 + 0.5) * CELL, lo.y + (j as f64 + 0.5) * CELL);
+                let c = Vec2::new(
+                    lo.x + (i as f64 + 0.5) * CELL,
+                    lo.y + (j as f64 + 0.5) * CELL,
+                );
                 for (k, w) in walls.iter().enumerate() {
                     if w.dist_to(c) <= reach {
                         cell_walls.push(k as u32);
@@ -108,11 +111,19 @@ impl Arena {
         // Flood fill (4-neighbours) from the valid cell nearest to home. Two valid centres 50 mm
         // apart cannot have a wall between them: it would be < 25 mm from one of them.
         let home = room.home.position();
-        let start = (0..cols * rows).filter(|&k| reachable_cell[k]).min_by(|&a, &b| {
-            let ca = Vec2::new(lo.x + ((a % cols) as f64 + 0.5) * CELL, lo.y + ((a / cols) as f64 + 0.5) * CELL);
-            let cb = Vec2::new(lo.x + ((b % cols) as f64 + 0.5) * CELL, lo.y + ((b / cols) as f64 + 0.5) * CELL);
-            ca.dist(home).total_cmp(&cb.dist(home)).then(a.cmp(&b))
-        });
+        let start = (0..cols * rows)
+            .filter(|&k| reachable_cell[k])
+            .min_by(|&a, &b| {
+                let ca = Vec2::new(
+                    lo.x + ((a % cols) as f64 + 0.5) * CELL,
+                    lo.y + ((a / cols) as f64 + 0.5) * CELL,
+                );
+                let cb = Vec2::new(
+                    lo.x + ((b % cols) as f64 + 0.5) * CELL,
+                    lo.y + ((b / cols) as f64 + 0.5) * CELL,
+                );
+                ca.dist(home).total_cmp(&cb.dist(home)).then(a.cmp(&b))
+            });
         let mut reachable = vec![false; cols * rows];
         if let Some(s) = start {
             let mut stack = vec![s];
@@ -144,7 +155,11 @@ impl Arena {
         let ray_list = model_rays
             .iter()
             .map(|sensor| {
-                sensor.map(|m| Ray { origin: m.origin, dir: Vec2::from_angle(m.angle), table: m })
+                sensor.map(|m| Ray {
+                    origin: m.origin,
+                    dir: Vec2::from_angle(m.angle),
+                    table: m,
+                })
             })
             .collect();
         let d_max = room.max_home_distance();
@@ -188,8 +203,12 @@ impl Arena {
     /// The grid cell containing `p` (clamped to the grid).
     #[inline]
     pub fn cell_of(&self, p: Vec2) -> usize {
-        let i = ((p.x - self.origin.x) / CELL).floor().clamp(0.0, (self.cols - 1) as f64) as usize;
-        let j = ((p.y - self.origin.y) / CELL).floor().clamp(0.0, (self.rows - 1) as f64) as usize;
+        let i = ((p.x - self.origin.x) / CELL)
+            .floor()
+            .clamp(0.0, (self.cols - 1) as f64) as usize;
+        let j = ((p.y - self.origin.y) / CELL)
+            .floor()
+            .clamp(0.0, (self.rows - 1) as f64) as usize;
         j * self.cols + i
     }
 
@@ -211,8 +230,13 @@ impl Arena {
     /// The walls that can matter to a robot whose centre is in `cell`.
     #[inline]
     fn nearby(&self, cell: usize) -> impl Iterator<Item = &Segment> + '_ {
-        let (a, b) = (self.cell_start[cell] as usize, self.cell_start[cell + 1] as usize);
-        self.cell_walls[a..b].iter().map(|&k| &self.walls[k as usize])
+        let (a, b) = (
+            self.cell_start[cell] as usize,
+            self.cell_start[cell + 1] as usize,
+        );
+        self.cell_walls[a..b]
+            .iter()
+            .map(|&k| &self.walls[k as usize])
     }
 
     /// Whether a body of the arena's radius centred at `p` overlaps a wall.
@@ -285,7 +309,13 @@ impl<A: StepObserver, B: StepObserver> StepObserver for (A, B) {
 /// Runs one trial from the room's home pose, reporting each step to `observer`. Returns the final
 /// pose. Per step: read sensors, add sensor noise, run the network, add wheel noise, move, and
 /// undo the move (keeping the heading change) if the body would overlap a wall.
-pub fn simulate<C, R, O>(arena: &Arena, controller: &mut C, params: &TrialParams, rng: &mut R, observer: &mut O) -> Pose
+pub fn simulate<C, R, O>(
+    arena: &Arena,
+    controller: &mut C,
+    params: &TrialParams,
+    rng: &mut R,
+    observer: &mut O,
+) -> Pose
 where
     C: Controller + ?Sized,
     R: Rng + ?Sized,
@@ -303,8 +333,22 @@ where
         let s_right = perturb(speeds[1], params.noise, rng);
         let candidate = drive(pose, s_left, s_right, params.robot.wheel_base, params.dt);
         let collided = arena.overlaps(candidate.position());
-        pose = if collided { Pose { heading: candidate.heading, ..pose } } else { candidate };
-        observer.observe(&Step { t, sensors, motors, speeds, pose, collided });
+        pose = if collided {
+            Pose {
+                heading: candidate.heading,
+                ..pose
+            }
+        } else {
+            candidate
+        };
+        observer.observe(&Step {
+            t,
+            sensors,
+            motors,
+            speeds,
+            pose,
+            collided,
+        });
     }
     pose
 }
@@ -359,7 +403,12 @@ impl StepObserver for Trajectory {
 }
 
 /// Runs a trial and records its whole trajectory.
-pub fn run_trial<C, R>(arena: &Arena, controller: &mut C, params: &TrialParams, rng: &mut R) -> Trajectory
+pub fn run_trial<C, R>(
+    arena: &Arena,
+    controller: &mut C,
+    params: &TrialParams,
+    rng: &mut R,
+) -> Trajectory
 where
     C: Controller + ?Sized,
     R: Rng + ?Sized,
@@ -415,7 +464,10 @@ mod tests {
 
     #[test]
     fn linear_sensor_at_known_distance() {
-        let params = TrialParams { sensor_model: SensorModel::Linear, ..TrialParams::default() };
+        let params = TrialParams {
+            sensor_model: SensorModel::Linear,
+            ..TrialParams::default()
+        };
         let a = Arena::new(Room::builtin("square").unwrap(), &params);
         let s = a.read_sensors(&Pose::new(600.0 - 24.5 - 25.0, 300.0, 0.0));
         assert!((s[2] - 511.5).abs() < 1e-9, "{}", s[2]);
@@ -431,7 +483,10 @@ mod tests {
     #[test]
     fn driving_into_a_wall_stops_at_it() {
         let a = square();
-        let params = TrialParams { noise: 0.0, ..TrialParams::default() };
+        let params = TrialParams {
+            noise: 0.0,
+            ..TrialParams::default()
+        };
         let tr = run_trial(&a, &mut Fixed([1.0, 1.0]), &params, &mut rng_from_seed(1));
         // 400 steps × 8 mm would be 3.2 m; the wall stops the robot short of x = 572.5.
         let last = tr.poses.last().unwrap();

@@ -1,0 +1,388 @@
+//! End-to-end tests of the `fuzzymotiv` binary: real code paths, small sizes.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_fuzzymotiv"))
+}
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn run(args: &[&str]) -> Output {
+    bin().args(args).output().expect("binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+#[test]
+fn fuzzy_prints_the_spec_worked_values() {
+    for (x, y, f) in [
+        (".8,.1,0,.1", ".95,.5,0,.79", 0.797220),
+        (".5,.3,0,.2", ".55,.3,0,.58", 0.263309),
+        (".25,.25,.25,.25", "1,1,1,1", 1.0),
+    ] {
+        let o = run(&["fuzzy", "--motivations", x, "--fitness", y]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let first = stdout(&o).lines().next().unwrap().to_string();
+        let digits = first.trim_start_matches("0.").trim_start_matches('0').len();
+        assert!(digits >= 9, "needs 9 significant digits: {first}");
+        let v: f64 = first.parse().unwrap();
+        assert!((v - f).abs() < 5e-7, "{x} {y}: {v} != {f}");
+    }
+    let o = run(&[
+        "fuzzy",
+        "--motivations",
+        ".8,.1,0,.1",
+        "--fitness",
+        ".95,.5,0,.79",
+        "--explain",
+    ]);
+    assert!(stdout(&o).contains("if a is"), "{}", stdout(&o));
+}
+
+#[test]
+fn fuzzy_rejects_bad_motivations_with_exit_2() {
+    let o = run(&[
+        "fuzzy",
+        "--motivations",
+        ".5,.3,0,.1",
+        "--fitness",
+        ".5,.5,.5,.5",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("sum to 1"), "{}", stderr(&o));
+    let o = run(&[
+        "fuzzy",
+        "--motivations",
+        ".5,.3,0",
+        "--fitness",
+        ".5,.5,.5,.5",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!stderr(&o).contains("panicked"));
+}
+
+#[test]
+fn rooms_lists_builtins_and_checks_files() {
+    let o = run(&["rooms"]);
+    assert!(o.status.success());
+    for name in ["H", "T", "L", "square", "rectangle"] {
+        assert!(stdout(&o).lines().any(|l| l.starts_with(name)), "{name}");
+    }
+    let u = repo().join("rooms/U.toml");
+    let o = run(&["rooms", "--check", u.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(
+        &bad,
+        "name='x'\noutline=[[0,0],[100,100],[100,0],[0,100]]\nhome={x=50,y=20,heading_deg=0}",
+    )
+    .unwrap();
+    let o = run(&["rooms", "--check", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(
+        e.contains("bad.toml") && e.contains("outline") && e.contains("intersects"),
+        "{e}"
+    );
+}
+
+/// A config run with small sizes; returns the run directory.
+fn small_run(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
+    let cfg = dir.join(format!("{name}.toml"));
+    std::fs::write(&cfg, format!("name = \"{name}\"\nseed = 3\nrooms = [\"H\", \"square\"]\n[ga]\npopulation = 20\ngenerations = 10\n[trial]\nsteps = 150\n[aem]\nepochs = 50\ntest_runs = 3\n")).unwrap();
+    let out = dir.join(name);
+    let mut args = vec!["run", cfg.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let o = run(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    out
+}
+
+fn column(csv: &str, name: &str) -> Vec<f64> {
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let k = header.iter().position(|h| *h == name).unwrap();
+    lines
+        .map(|l| l.split(',').nth(k).unwrap().parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn small_evolution_writes_every_file_and_improves() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = small_run(dir.path(), "small", &[]);
+    for f in [
+        "config.resolved.toml",
+        "generations.csv",
+        "best_genome.json",
+        "summary.json",
+        "recognition.csv",
+        "table.md",
+    ] {
+        assert!(out.join(f).is_file(), "missing {f}");
+    }
+    let csv = std::fs::read_to_string(out.join("generations.csv")).unwrap();
+    assert!(csv.starts_with("generation,best,mean,std,min,max,a,g,l,b"));
+    assert_eq!(csv.lines().count(), 11);
+    let best = column(&csv, "best");
+    let mean = column(&csv, "mean");
+    assert!(best[9] > best[0], "best did not rise: {best:?}");
+    assert!(mean[9] > mean[0], "mean did not rise: {mean:?}");
+    let genome: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("best_genome.json")).unwrap())
+            .unwrap();
+    assert_eq!(genome["weights"].as_array().unwrap().len(), 68);
+    assert_eq!(genome["shape"]["hidden"], 6);
+    let resolved = std::fs::read_to_string(out.join("config.resolved.toml")).unwrap();
+    assert!(resolved.contains("seed = 3") && resolved.contains(env!("CARGO_PKG_VERSION")));
+    // The resolved config runs again as is.
+    let again = dir.path().join("again");
+    let o = run(&[
+        "run",
+        out.join("config.resolved.toml").to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read(again.join("generations.csv")).unwrap(),
+        csv.as_bytes()
+    );
+    assert!(!dir.path().join("small.partial").exists());
+}
+
+fn without_wall_time(summary: &str) -> serde_json::Value {
+    let mut v: serde_json::Value = serde_json::from_str(summary).unwrap();
+    v.as_object_mut().unwrap().remove("wall_seconds");
+    v
+}
+
+#[test]
+fn results_do_not_depend_on_thread_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let one = small_run(dir.path(), "one", &["--threads", "1"]);
+    let two = small_run(dir.path(), "two", &["--threads", "2"]);
+    for f in [
+        "generations.csv",
+        "best_genome.json",
+        "recognition.csv",
+        "table.md",
+    ] {
+        assert_eq!(
+            std::fs::read(one.join(f)).unwrap(),
+            std::fs::read(two.join(f)).unwrap(),
+            "{f} differs"
+        );
+    }
+    let s1 = without_wall_time(&std::fs::read_to_string(one.join("summary.json")).unwrap());
+    let s2 = without_wall_time(&std::fs::read_to_string(two.join("summary.json")).unwrap());
+    assert_eq!(s1["rooms"], s2["rooms"]);
+    assert_eq!(s1["runs"], s2["runs"]);
+}
+
+#[test]
+fn per_room_training_writes_one_block_per_room() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = small_run(
+        dir.path(),
+        "per",
+        &["--set", "training=per-room", "--set", "ga.generations=3"],
+    );
+    let csv = std::fs::read_to_string(out.join("generations.csv")).unwrap();
+    assert_eq!(csv.lines().filter(|l| l.ends_with(",H")).count(), 3);
+    assert_eq!(csv.lines().filter(|l| l.ends_with(",square")).count(), 3);
+}
+
+/// Bad configs: exit code 2, a message naming the file and the field, no run directory.
+#[test]
+fn bad_configs_exit_2_and_name_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: &[(&str, &[&str], &str)] = &[
+        ("[ga]\npopulaton = 5\n", &[], "ga.populaton"),
+        ("[ga]\npopulation = 0\n", &[], "ga.population"),
+        ("[ga]\npopulation = -4\n", &[], "ga.population"),
+        ("[trial]\nsteps = \"many\"\n", &[], "trial.steps"),
+        ("[trial]\ndt = nan\n", &[], "trial.dt"),
+        ("[trial]\ndt = 1.0\n", &[], "trial.dt"),
+        (
+            "[motivations]\ncuriosity = 0.5\nhoming = 0.3\norientation = 0\nenergy = 0.1\n",
+            &[],
+            "motivations",
+        ),
+        ("rooms = []\n", &[], "rooms"),
+        ("rooms = [\"H\", \"nowhere.toml\"]\n", &[], "rooms[1]"),
+        ("rooms = [\"H\", \"H\"]\n", &[], "rooms[1]"),
+        ("rooms = [\"H\"]\n", &[], "aem.enabled"),
+        ("[fuzzy]\npeaks = [0, 0.5, 0.4]\n", &[], "fuzzy.peaks"),
+        ("[fitness]\nenergy = \"save\"\n", &[], "fitness.energy"),
+        ("", &["--set", "ga.mutation_rate=2"], "ga.mutation_rate"),
+        ("", &["--set", "ga=3"], "ga"),
+        ("seed = [1", &[], "seed"),
+    ];
+    for (k, (text, extra, field)) in cases.iter().enumerate() {
+        let cfg = dir.path().join(format!("bad{k}.toml"));
+        std::fs::write(&cfg, text).unwrap();
+        let out = dir.path().join(format!("out{k}"));
+        let mut args = vec!["run", cfg.to_str().unwrap(), "--out", out.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let o = run(&args);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "case {k} ({text:?}): {e}");
+        assert!(
+            e.contains(&format!("`{field}`")),
+            "case {k}: message should name `{field}`: {e}"
+        );
+        assert!(
+            e.contains(&format!("bad{k}.toml")),
+            "case {k}: message should name the file: {e}"
+        );
+        assert!(!e.contains("panicked"), "case {k}: {e}");
+        assert!(
+            !out.exists() && !dir.path().join(format!("out{k}.partial")).exists(),
+            "case {k}: wrote output"
+        );
+    }
+    let o = run(&["run", dir.path().join("missing.toml").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn bad_room_file_in_config_exits_2() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("r.toml"),
+        "name='r'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=10,y=150,heading_deg=0}",
+    )
+    .unwrap();
+    let cfg = dir.path().join("c.toml");
+    std::fs::write(&cfg, "rooms = [\"H\", \"r.toml\"]\n").unwrap();
+    let o = run(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        dir.path().join("o").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("r.toml") && e.contains("`home`"), "{e}");
+}
+
+#[test]
+fn user_room_takes_part_in_recognition() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("tiny");
+    let cfg = repo().join("configs/tiny.toml");
+    let o = run(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "ga.generations=3",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rec = std::fs::read_to_string(out.join("recognition.csv")).unwrap();
+    assert!(
+        rec.starts_with(
+            "room,test_runs,correct,recognition_pct,as_H,as_square,as_U,not_recognised"
+        ),
+        "{rec}"
+    );
+    assert!(rec.lines().any(|l| l.starts_with("U,4,")), "{rec}");
+}
+
+#[test]
+fn bench_json_has_the_documented_keys() {
+    let o = run(&[
+        "bench",
+        "--steps",
+        "4000",
+        "--population",
+        "10",
+        "--repeat",
+        "1",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    for k in ["robot_steps", "seconds", "robot_steps_per_sec"] {
+        assert!(v[k].as_f64().unwrap() > 0.0, "{k}");
+    }
+}
+
+#[test]
+fn reproduce_quick_writes_every_documented_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("results");
+    let o = run(&[
+        "reproduce",
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+        "--seed",
+        "5",
+        "--set",
+        "ga.population=10",
+        "--set",
+        "ga.generations=3",
+        "--set",
+        "trial.steps=100",
+        "--set",
+        "aem.epochs=20",
+        "--set",
+        "aem.test_runs=2",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for f in [
+        "table1.md",
+        "table1.csv",
+        "table2.md",
+        "table2.csv",
+        "summary.json",
+        "fitness.svg",
+        "trajectories_high_curiosity.svg",
+        "trajectories_low_curiosity.svg",
+        "high-curiosity/generations.csv",
+        "low-curiosity/best_genome.json",
+    ] {
+        assert!(out.join(f).is_file(), "missing {f}");
+    }
+    let t1 = std::fs::read_to_string(out.join("table1.csv")).unwrap();
+    assert!(t1.starts_with("room,average_fitness,paper_average_fitness,exploration_pct,paper_exploration_pct,recognition_pct,paper_recognition_pct,battery_pct,paper_battery_pct"), "{t1}");
+    assert_eq!(t1.lines().count(), 6);
+    assert!(
+        t1.lines().nth(1).unwrap().starts_with("H,") && t1.contains(",0.6421,"),
+        "{t1}"
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["seed"], 5);
+    assert!(s["wall_seconds"].as_f64().unwrap() > 0.0);
+    let settings = s["settings"].as_array().unwrap();
+    assert_eq!(settings.len(), 2);
+    assert_eq!(settings[1]["motivations"]["homing"], 0.3);
+    let row = &settings[0]["rows"][0];
+    for k in [
+        "room",
+        "average_fitness",
+        "exploration_pct",
+        "recognition_pct",
+        "battery_pct",
+        "homing",
+    ] {
+        assert!(!row[k].is_null(), "row lacks {k}");
+    }
+    let svg = std::fs::read_to_string(out.join("trajectories_high_curiosity.svg")).unwrap();
+    assert_eq!(svg.matches("<polyline").count(), 5, "one path per room");
+}
