@@ -47,6 +47,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     let sets = vec![
         format!("rooms=[{:?}]", args.room),
         format!("ga.population={}", args.population),
+        format!("ga.elite={}", args.population.min(3) - 1),
         "aem.enabled=false".to_string(),
     ];
     let loaded = if Room::builtin(&args.room).is_some() {

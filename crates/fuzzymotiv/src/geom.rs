@@ -140,13 +140,15 @@ impl Segment {
             return None;
         }
         let w = self.a - origin;
-        let t = w.cross(e) / denom;
-        let u = w.cross(dir) / denom;
-        if t >= 0.0 && (0.0..=1.0).contains(&u) {
-            Some(t)
+        let t_num = w.cross(e);
+        let u_num = w.cross(dir);
+        // t = t_num / denom ≥ 0 and u = u_num / denom ∈ [0, 1], tested without dividing.
+        let hit = if denom > 0.0 {
+            t_num >= 0.0 && u_num >= 0.0 && u_num <= denom
         } else {
-            None
-        }
+            t_num <= 0.0 && u_num <= 0.0 && u_num >= denom
+        };
+        if hit { Some(t_num / denom) } else { None }
     }
 
     /// Whether this segment properly or improperly intersects `other`.

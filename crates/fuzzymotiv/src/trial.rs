@@ -75,6 +75,7 @@ pub struct Arena {
     rays: Vec<[Ray; 3]>,
     rays_per_sensor: usize,
     radius: f64,
+    near_reach: f64,
 }
 
 impl Arena {
@@ -177,6 +178,7 @@ impl Arena {
             rays: ray_list,
             rays_per_sensor: ray_count(params.sensor_model),
             radius,
+            near_reach: sensing_reach(params.sensor_model).max(radius + params.max_step()) + 1e-6,
         }
     }
 
@@ -203,12 +205,9 @@ impl Arena {
     /// The grid cell containing `p` (clamped to the grid).
     #[inline]
     pub fn cell_of(&self, p: Vec2) -> usize {
-        let i = ((p.x - self.origin.x) / CELL)
-            .floor()
-            .clamp(0.0, (self.cols - 1) as f64) as usize;
-        let j = ((p.y - self.origin.y) / CELL)
-            .floor()
-            .clamp(0.0, (self.rows - 1) as f64) as usize;
+        // Clamped to ≥ 0 first, so truncation equals floor.
+        let i = ((p.x - self.origin.x) / CELL).clamp(0.0, (self.cols - 1) as f64) as usize;
+        let j = ((p.y - self.origin.y) / CELL).clamp(0.0, (self.rows - 1) as f64) as usize;
         j * self.cols + i
     }
 
@@ -248,18 +247,76 @@ impl Arena {
 
     /// Noise-free sensor values (0–1023) at `pose`.
     pub fn read_sensors(&self, pose: &Pose) -> [f64; INPUTS] {
+        let near = self.near_walls(pose.position());
+        self.read_sensors_near(pose, &near)
+    }
+
+    /// The walls that can be seen by a sensor or touched within one step from a robot centred
+    /// at `p`: those of `p`'s cell closer than [`Arena::near_reach`]. Usually none in open floor,
+    /// which skips ray casting altogether.
+    #[inline]
+    pub fn near_walls(&self, p: Vec2) -> NearWalls {
+        let mut near = NearWalls {
+            len: 0,
+            overflow: false,
+            cell: 0,
+            walls: [0; NEAR_CAP],
+        };
+        let r2 = self.near_reach * self.near_reach;
+        let cell = self.cell_of(p);
+        let (a, b) = (
+            self.cell_start[cell] as usize,
+            self.cell_start[cell + 1] as usize,
+        );
+        for &k in &self.cell_walls[a..b] {
+            if self.walls[k as usize].dist2_to(p) <= r2 {
+                if near.len == NEAR_CAP {
+                    near.overflow = true;
+                    break;
+                }
+                near.walls[near.len] = k;
+                near.len += 1;
+            }
+        }
+        if near.overflow {
+            // More walls than fit: fall back to every wall of the cell (same results, slower).
+            near.len = 0;
+        }
+        near.cell = cell;
+        near
+    }
+
+    #[inline]
+    fn near_iter<'a>(&'a self, near: &'a NearWalls) -> impl Iterator<Item = &'a Segment> + 'a {
+        let list: &[u32] = if near.overflow {
+            let (a, b) = (
+                self.cell_start[near.cell] as usize,
+                self.cell_start[near.cell + 1] as usize,
+            );
+            &self.cell_walls[a..b]
+        } else {
+            &near.walls[..near.len]
+        };
+        list.iter().map(|&k| &self.walls[k as usize])
+    }
+
+    /// Sensor values at `pose` given its [`Arena::near_walls`].
+    #[inline]
+    pub fn read_sensors_near(&self, pose: &Pose, near: &NearWalls) -> [f64; INPUTS] {
+        let mut out = [0.0; INPUTS];
+        if near.len == 0 && !near.overflow {
+            return out;
+        }
         let (s, c) = pose.heading.sin_cos();
         let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
         let pos = pose.position();
-        let cell = self.cell_of(pos);
-        let mut out = [0.0; INPUTS];
         for (o, sensor) in out.iter_mut().zip(&self.rays) {
             let mut total = 0.0;
             for ray in &sensor[..self.rays_per_sensor] {
                 let origin = pos + rot(ray.origin);
                 let dir = rot(ray.dir);
                 let mut nearest = f64::INFINITY;
-                for w in self.nearby(cell) {
+                for w in self.near_iter(near) {
                     if let Some(t) = w.ray_hit(origin, dir) {
                         nearest = nearest.min(t);
                     }
@@ -269,6 +326,38 @@ impl Arena {
             *o = total.min(SENSOR_MAX);
         }
         out
+    }
+
+    /// Whether a body centred at `p` overlaps one of the `near` walls (computed for a point
+    /// at most one step away).
+    #[inline]
+    pub fn overlaps_near(&self, p: Vec2, near: &NearWalls) -> bool {
+        let r2 = self.radius * self.radius;
+        self.near_iter(near).any(|w| w.dist2_to(p) < r2)
+    }
+}
+
+/// Capacity of [`NearWalls`]; a cell with more nearby walls falls back to its full list.
+pub const NEAR_CAP: usize = 24;
+
+/// The walls near a robot, found once per step and shared by sensing and collision.
+#[derive(Debug, Clone, Copy)]
+pub struct NearWalls {
+    len: usize,
+    overflow: bool,
+    cell: usize,
+    walls: [u32; NEAR_CAP],
+}
+
+impl NearWalls {
+    /// Number of nearby walls (when they fit).
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether no wall is near.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0 && !self.overflow
     }
 }
 
@@ -324,7 +413,8 @@ where
     let mut pose = arena.room.home;
     let v_max = params.robot.v_max;
     for t in 0..params.steps {
-        let mut sensors = arena.read_sensors(&pose);
+        let near = arena.near_walls(pose.position());
+        let mut sensors = arena.read_sensors_near(&pose, &near);
         perturb_sensors(&mut sensors, params.noise, SENSOR_MAX, rng);
         let inputs = sensors.map(|v| v / SENSOR_MAX);
         let motors = controller.step(&inputs);
@@ -332,7 +422,7 @@ where
         let s_left = perturb(speeds[0], params.noise, rng);
         let s_right = perturb(speeds[1], params.noise, rng);
         let candidate = drive(pose, s_left, s_right, params.robot.wheel_base, params.dt);
-        let collided = arena.overlaps(candidate.position());
+        let collided = arena.overlaps_near(candidate.position(), &near);
         pose = if collided {
             Pose {
                 heading: candidate.heading,
