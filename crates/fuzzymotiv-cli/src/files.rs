@@ -29,14 +29,34 @@ pub struct StagedDir {
 }
 
 impl StagedDir {
-    /// Starts a fresh staging directory for `dir`.
-    pub fn new(dir: &Path) -> Result<Self, CliError> {
+    /// Where the staging directory of `dir` lives: `<dir>.partial`.
+    pub fn staging_path(dir: &Path) -> PathBuf {
         let mut name = dir
             .file_name()
             .map(|n| n.to_os_string())
             .unwrap_or_else(|| "run".into());
         name.push(".partial");
-        let staging = dir.with_file_name(name);
+        dir.with_file_name(name)
+    }
+
+    /// Reopens an existing staging directory (to resume an interrupted run).
+    pub fn reopen(dir: &Path) -> Result<Self, CliError> {
+        let staging = Self::staging_path(dir);
+        if !staging.is_dir() {
+            return Err(CliError::input(format!(
+                "{}: no interrupted run to resume",
+                staging.display()
+            )));
+        }
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            staging,
+        })
+    }
+
+    /// Starts a fresh staging directory for `dir`.
+    pub fn new(dir: &Path) -> Result<Self, CliError> {
+        let staging = Self::staging_path(dir);
         if staging.exists() {
             std::fs::remove_dir_all(&staging).map_err(|e| io_err(&staging, e))?;
         }

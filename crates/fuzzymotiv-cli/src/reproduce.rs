@@ -97,7 +97,12 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     let mut finished: Vec<Finished> = Vec::new();
     for (setting, l) in SETTINGS.iter().zip(&loaded) {
         progress.set_prefix(setting.name);
-        finished.push(execute(l, &staged.staging.join(setting.name), &progress)?);
+        finished.push(execute(
+            l,
+            &staged.staging.join(setting.name),
+            &progress,
+            false,
+        )?);
     }
     progress.finish_and_clear();
     let mut settings_json = Vec::new();

@@ -6,19 +6,26 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use fuzzymotiv::config::RawConfig;
-use fuzzymotiv::experiment::{AemReport, Evolution, Experiment};
+use fuzzymotiv::experiment::{
+    AemReport, Evolution, Experiment, GenerationRecord, GenerationState, Run,
+};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::error::CliError;
-use crate::files::{StagedDir, num};
+use crate::files::{StagedDir, io_err, num, write_atomic};
 use crate::inputs::{Loaded, load_config};
 
 /// Arguments of `fuzzymotiv run`.
 #[derive(clap::Args)]
 pub struct RunArgs {
     /// Experiment config (TOML); every key is optional (SPEC defaults).
-    pub config: PathBuf,
+    #[arg(required_unless_present = "resume")]
+    pub config: Option<PathBuf>,
+    /// Continue a killed run: DIR is the run's output directory (its `DIR.partial/` holds the
+    /// checkpoint and resolved config). The result equals an uninterrupted run.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["config", "out", "seed", "sets"])]
+    pub resume: Option<PathBuf>,
     /// Output directory [default: runs/NAME].
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -50,12 +57,36 @@ pub fn set_threads(threads: Option<usize>) -> Result<(), CliError> {
 /// Entry point of `fuzzymotiv run`.
 pub fn run(args: RunArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
-    let loaded = load_config(Some(&args.config), &args.sets, args.seed)?;
-    let out = args
-        .out
-        .unwrap_or_else(|| Path::new("runs").join(&loaded.raw.name));
+    let (loaded, out, resume) = match (&args.resume, &args.config) {
+        (Some(dir), _) => {
+            let staging = StagedDir::staging_path(dir);
+            let cfg = staging.join("config.resolved.toml");
+            if !cfg.is_file() {
+                if dir.join("summary.json").is_file() {
+                    eprintln!("{} is already complete; nothing to resume", dir.display());
+                    return Ok(());
+                }
+                return Err(CliError::input(format!(
+                    "--resume {}: no interrupted run there ({} not found); start it with `fuzzymotiv run CONFIG --out {}`",
+                    dir.display(),
+                    cfg.display(),
+                    dir.display()
+                )));
+            }
+            (load_config(Some(&cfg), &[], None)?, dir.clone(), true)
+        }
+        (None, Some(config)) => {
+            let loaded = load_config(Some(config), &args.sets, args.seed)?;
+            let out = args
+                .out
+                .clone()
+                .unwrap_or_else(|| Path::new("runs").join(&loaded.raw.name));
+            (loaded, out, false)
+        }
+        (None, None) => return Err(CliError::input("give a CONFIG file or --resume DIR")),
+    };
     let progress = progress_bar(&loaded.experiment, 1, "");
-    let done = execute(&loaded, &out, &progress)?;
+    let done = execute(&loaded, &out, &progress, resume)?;
     progress.finish_and_clear();
     print!("{}", table_markdown(&done.rows));
     eprintln!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
@@ -111,19 +142,65 @@ pub struct Finished {
     pub wall_seconds: f64,
 }
 
-/// Runs a loaded config and writes its run directory `out` (atomically).
-pub fn execute(loaded: &Loaded, out: &Path, progress: &ProgressBar) -> Result<Finished, CliError> {
+/// Runs a loaded config and writes its run directory `out` (atomically). After every
+/// generation a checkpoint is written into the staging directory; with `resume`, an interrupted
+/// run continues from its last checkpoint and ends with the same files.
+pub fn execute(
+    loaded: &Loaded,
+    out: &Path,
+    progress: &ProgressBar,
+    resume: bool,
+) -> Result<Finished, CliError> {
     let exp = &loaded.experiment;
     let start = Instant::now();
-    let staged = StagedDir::new(out)?;
-    staged.write("config.resolved.toml", resolved_toml(&loaded.raw))?;
+    let staged = if resume {
+        StagedDir::reopen(out)?
+    } else {
+        StagedDir::new(out)?
+    };
+    let resolved = resolved_toml(&loaded.raw);
+    if !resume {
+        staged.write("config.resolved.toml", &resolved)?;
+    }
+    let runs = exp.runs();
+    let mut checkpoint = if resume {
+        Checkpoint::load(&staged.path(CHECKPOINT), &runs, exp)?
+    } else {
+        Checkpoint::fresh(&runs)
+    };
     let mut evolutions = Vec::new();
     let mut csv = String::from("generation,best,mean,std,min,max,a,g,l,b,room\n");
-    for run in exp.runs() {
-        let evo = exp.evolve(&run, &mut |rec| {
-            progress.inc(1);
-            progress.set_message(format!("best F {:.3}", rec.stats.best));
-        });
+    for (k, run) in runs.iter().enumerate() {
+        let saved = checkpoint.runs[k].clone();
+        progress.inc(saved.history.len() as u64);
+        let mut write_error = None;
+        let evo = if saved.done {
+            exp.finished(run, saved.population_f64(), saved.history.clone())
+        } else {
+            let population = if saved.population.is_empty() {
+                exp.initial_population(run)
+            } else {
+                saved.population_f64()
+            };
+            let mut on_generation = |state: &GenerationState<'_>| {
+                progress.inc(1);
+                progress.set_message(format!("best F {:.3}", state.record().stats.best));
+                checkpoint.runs[k] = CheckpointRun::from_state(&run.label, state);
+                if let Err(e) = checkpoint.save(&staged.path(CHECKPOINT)) {
+                    write_error.get_or_insert(e);
+                }
+            };
+            exp.evolve_from(
+                run,
+                saved.history.len(),
+                population,
+                saved.history.clone(),
+                &mut on_generation,
+            )
+        };
+        if let Some(e) = write_error {
+            return Err(e);
+        }
         for rec in &evo.history {
             let s = rec.stats;
             let t = rec.terms;
@@ -161,6 +238,8 @@ pub fn execute(loaded: &Loaded, out: &Path, progress: &ProgressBar) -> Result<Fi
         "summary.json",
         serde_json::to_string_pretty(&summary).expect("serialisable") + "\n",
     )?;
+    std::fs::remove_file(staged.path(CHECKPOINT))
+        .map_err(|e| io_err(&staged.path(CHECKPOINT), e))?;
     staged.commit()?;
     Ok(Finished {
         evolutions,
@@ -323,4 +402,108 @@ fn summary_json(
         "runs": runs,
         "wall_seconds": wall_seconds,
     })
+}
+
+/// File name of the checkpoint inside the staging directory.
+pub const CHECKPOINT: &str = "checkpoint.json";
+
+/// What a killed run needs to continue: per run of the protocol, the history so far and the
+/// next population (floats stored as their exact bit patterns). The random streams are
+/// derived per generation, so no generator state needs saving.
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
+pub struct Checkpoint {
+    /// Format version.
+    pub format: u32,
+    /// Program version that wrote it.
+    pub version: String,
+    /// One entry per run.
+    pub runs: Vec<CheckpointRun>,
+}
+
+/// One run's saved state.
+#[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
+pub struct CheckpointRun {
+    /// Run label.
+    pub label: String,
+    /// Whether the last generation has been evaluated (then `population` is the final one).
+    pub done: bool,
+    /// Per-generation records so far (floats printed by serde_json round-trip exactly).
+    pub history: Vec<GenerationRecord>,
+    /// Genomes to evaluate next (or the final population), as f64 bits.
+    pub population: Vec<Vec<u64>>,
+}
+
+impl CheckpointRun {
+    fn from_state(label: &str, state: &GenerationState<'_>) -> Self {
+        let (done, pop) = match state.next {
+            Some(next) => (false, next),
+            None => (true, state.population),
+        };
+        CheckpointRun {
+            label: label.to_string(),
+            done,
+            history: state.history.to_vec(),
+            population: pop
+                .iter()
+                .map(|g| g.iter().map(|v| v.to_bits()).collect())
+                .collect(),
+        }
+    }
+
+    fn population_f64(&self) -> Vec<Vec<f64>> {
+        self.population
+            .iter()
+            .map(|g| g.iter().map(|&b| f64::from_bits(b)).collect())
+            .collect()
+    }
+}
+
+impl Checkpoint {
+    fn fresh(runs: &[Run]) -> Self {
+        Checkpoint {
+            format: 1,
+            version: fuzzymotiv::VERSION.to_string(),
+            runs: runs
+                .iter()
+                .map(|r| CheckpointRun {
+                    label: r.label.clone(),
+                    ..Default::default()
+                })
+                .collect(),
+        }
+    }
+
+    fn load(path: &Path, runs: &[Run], exp: &Experiment) -> Result<Self, CliError> {
+        if !path.is_file() {
+            // Killed before the first generation finished: start over.
+            return Ok(Self::fresh(runs));
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| io_err(path, e))?;
+        let cp: Checkpoint = serde_json::from_str(&text).map_err(|e| {
+            CliError::input(format!(
+                "{}: not a fuzzymotiv checkpoint: {e}",
+                path.display()
+            ))
+        })?;
+        let ok = cp.runs.len() == runs.len()
+            && cp.runs.iter().zip(runs).all(|(c, r)| {
+                c.label == r.label
+                    && c.history.len() <= exp.ga.generations
+                    && c.population
+                        .iter()
+                        .all(|g| g.len() == exp.shape.genome_len())
+                    && (c.history.is_empty() || c.population.len() == exp.ga.population)
+            });
+        if !ok {
+            return Err(CliError::input(format!(
+                "{}: the checkpoint does not match the run's config (runs, sizes); start the run again without --resume",
+                path.display()
+            )));
+        }
+        Ok(cp)
+    }
+
+    fn save(&self, path: &Path) -> Result<(), CliError> {
+        write_atomic(path, serde_json::to_vec(self).expect("serialisable"))
+    }
 }

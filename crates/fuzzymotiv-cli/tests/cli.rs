@@ -386,3 +386,96 @@ fn reproduce_quick_writes_every_documented_file() {
     let svg = std::fs::read_to_string(out.join("trajectories_high_curiosity.svg")).unwrap();
     assert_eq!(svg.matches("<polyline").count(), 5, "one path per room");
 }
+
+/// SIGKILL a run at several points, resume it each time, and get exactly the files of an
+/// uninterrupted run.
+#[test]
+fn killed_run_resumes_to_identical_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let sets = [
+        "--set",
+        "ga.population=30",
+        "--set",
+        "ga.generations=30",
+        "--set",
+        "trial.steps=300",
+    ];
+    let reference = dir.path().join("reference");
+    let mut args = vec![
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        reference.to_str().unwrap(),
+    ];
+    args.extend_from_slice(&sets);
+    assert!(run(&args).status.success());
+
+    let out = dir.path().join("killed");
+    let partial = dir.path().join("killed.partial");
+    let mut fresh = vec!["run", cfg.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    fresh.extend_from_slice(&sets);
+    let resume = vec!["run", "--resume", out.to_str().unwrap()];
+    let mut kills = 0;
+    // Delays in ms, varied so kills land at different generations (and sometimes mid-write).
+    for delay in [60u64, 170, 90, 240, 130, 310] {
+        let args = if partial.join("config.resolved.toml").is_file() {
+            &resume
+        } else {
+            &fresh
+        };
+        let mut child = bin()
+            .args(args)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(delay));
+        if child.try_wait().unwrap().is_none() {
+            child.kill().unwrap(); // SIGKILL on Unix
+            kills += 1;
+        }
+        child.wait().unwrap();
+        if out.join("summary.json").is_file() {
+            break;
+        }
+    }
+    assert!(
+        kills >= 2,
+        "the run finished too fast to be killed ({kills} kills)"
+    );
+    if !out.join("summary.json").is_file() {
+        let o = run(if partial.join("config.resolved.toml").is_file() {
+            &resume
+        } else {
+            &fresh
+        });
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    for f in [
+        "generations.csv",
+        "best_genome.json",
+        "recognition.csv",
+        "table.md",
+        "config.resolved.toml",
+    ] {
+        assert_eq!(
+            std::fs::read_to_string(reference.join(f)).unwrap(),
+            std::fs::read_to_string(out.join(f)).unwrap(),
+            "{f} differs after {kills} kills"
+        );
+    }
+    assert!(!partial.exists());
+}
+
+#[test]
+fn resume_without_an_interrupted_run_is_a_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(&[
+        "run",
+        "--resume",
+        dir.path().join("nothing").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("no interrupted run"), "{}", stderr(&o));
+}

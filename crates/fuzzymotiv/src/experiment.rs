@@ -551,28 +551,36 @@ impl Experiment {
     }
 
     /// Evolves one run from scratch, calling `on_generation` after each generation.
-    pub fn evolve(&self, run: &Run, on_generation: &mut dyn FnMut(&GenerationRecord)) -> Evolution {
+    pub fn evolve(
+        &self,
+        run: &Run,
+        on_generation: &mut dyn FnMut(&GenerationState<'_>),
+    ) -> Evolution {
         let population = self.initial_population(run);
         self.evolve_from(run, 0, population, Vec::new(), on_generation)
     }
 
     /// Continues a run at `generation` with `population` (not yet evaluated) and the records of
-    /// the generations before it; the result equals an uninterrupted [`Experiment::evolve`].
+    /// the generations before it; the result equals an uninterrupted [`Experiment::evolve`],
+    /// because every random stream is derived from (run, generation, individual, room).
     pub fn evolve_from(
         &self,
         run: &Run,
         generation: usize,
         mut population: Vec<Genome>,
         mut history: Vec<GenerationRecord>,
-        on_generation: &mut dyn FnMut(&GenerationRecord),
+        on_generation: &mut dyn FnMut(&GenerationState<'_>),
     ) -> Evolution {
         let mut g = generation;
         loop {
             let evals = self.evaluate_population(&population, run, g);
-            let record = self.generation_record(g, &evals);
-            on_generation(&record);
-            history.push(record);
+            history.push(self.generation_record(g, &evals));
             if g + 1 >= self.ga.generations {
+                on_generation(&GenerationState {
+                    history: &history,
+                    population: &population,
+                    next: None,
+                });
                 let best =
                     crate::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
                 return Evolution {
@@ -583,8 +591,34 @@ impl Experiment {
                     best,
                 };
             }
-            population = self.breed(&population, &evals, run, g);
+            let next = self.breed(&population, &evals, run, g);
+            on_generation(&GenerationState {
+                history: &history,
+                population: &population,
+                next: Some(&next),
+            });
+            population = next;
             g += 1;
+        }
+    }
+
+    /// Rebuilds a finished evolution from its final population and history (the final
+    /// generation is evaluated again on its own streams, giving the same evaluations).
+    pub fn finished(
+        &self,
+        run: &Run,
+        population: Vec<Genome>,
+        history: Vec<GenerationRecord>,
+    ) -> Evolution {
+        let last = history.len().saturating_sub(1);
+        let evals = self.evaluate_population(&population, run, last);
+        let best = crate::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
+        Evolution {
+            run: run.clone(),
+            history,
+            population,
+            evaluations: evals,
+            best,
         }
     }
 
@@ -727,6 +761,24 @@ pub struct GenerationRecord {
     pub stats: Stats,
     /// Population means of a, g, l, b.
     pub terms: FitnessTerms,
+}
+
+/// Where an evolution stands after a generation: enough to checkpoint it.
+#[derive(Debug, Clone, Copy)]
+pub struct GenerationState<'a> {
+    /// Records of every generation so far (the last is the one just evaluated).
+    pub history: &'a [GenerationRecord],
+    /// The generation just evaluated.
+    pub population: &'a [Genome],
+    /// The next generation (not yet evaluated), or `None` after the last generation.
+    pub next: Option<&'a [Genome]>,
+}
+
+impl GenerationState<'_> {
+    /// The record of the generation just evaluated.
+    pub fn record(&self) -> &GenerationRecord {
+        self.history.last().expect("at least one generation")
+    }
 }
 
 /// The outcome of one evolution.
