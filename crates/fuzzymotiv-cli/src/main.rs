@@ -7,6 +7,7 @@ mod inputs;
 mod reproduce;
 mod run;
 mod svg;
+mod sweep;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -36,6 +37,12 @@ enum Command {
     Rooms(RoomsArgs),
     /// Measure simulation speed (robot-steps per second).
     Bench(bench::BenchArgs),
+    /// Expand a sweep file into its jobs (one JSON line each), or count them.
+    Plan(sweep::PlanArgs),
+    /// Run a sweep's jobs (all, a shard, or one array-task index) into DIR/jobs/<id>/.
+    Sweep(sweep::SweepArgs),
+    /// Merge a sweep directory into results.csv, aggregate tables and summary plots.
+    Merge(sweep::MergeArgs),
 }
 
 #[derive(clap::Args)]
@@ -66,6 +73,9 @@ fn main() -> ExitCode {
         Command::Fuzzy(args) => fuzzy(args),
         Command::Rooms(args) => rooms(args),
         Command::Bench(args) => bench::bench(args),
+        Command::Plan(args) => sweep::plan(args),
+        Command::Sweep(args) => sweep::sweep(args),
+        Command::Merge(args) => sweep::merge(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -211,3 +211,177 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     s.push_str("</svg>\n");
     s
 }
+
+/// One sweep setting with its mean outcomes over rooms and replicates.
+pub struct SettingPoint {
+    /// The setting's key.
+    pub label: String,
+    /// Its motivations (C, H, O, E).
+    pub motivations: [f64; 4],
+    /// Mean exploration %, recognition %, battery %, homing % (None when not measured).
+    pub values: [Option<f64>; 4],
+}
+
+/// A colour for a value in [0, 100]: dark blue → teal → yellow.
+fn colour(v: f64) -> String {
+    let t = (v / 100.0).clamp(0.0, 1.0);
+    let stops = [
+        (68.0, 1.0, 84.0),
+        (33.0, 145.0, 140.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let (a, b, u) = if t < 0.5 {
+        (stops[0], stops[1], t * 2.0)
+    } else {
+        (stops[1], stops[2], (t - 0.5) * 2.0)
+    };
+    let mix = |x: f64, y: f64| (x + (y - x) * u).round() as u8;
+    format!(
+        "#{:02x}{:02x}{:02x}",
+        mix(a.0, b.0),
+        mix(a.1, b.1),
+        mix(a.2, b.2)
+    )
+}
+
+/// How each motivation shapes the outcomes: one panel per outcome. Many settings are drawn as
+/// points on the (C, H, E) simplex coloured by the outcome; a few as labelled bars.
+pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
+    const OUTCOMES: [&str; 4] = [
+        "% optimal exploration",
+        "% recognition",
+        "% battery usage",
+        "% homing",
+    ];
+    let ternary = points.len() >= 6;
+    let (pw, ph) = if ternary {
+        (330.0, 330.0)
+    } else {
+        (330.0, 60.0 + 22.0 * points.len() as f64)
+    };
+    let width = pw * 4.0;
+    let height = ph + 40.0;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="11">"#
+    );
+    let _ = writeln!(
+        s,
+        r#"<rect width="{width}" height="{height}" fill="white"/>"#
+    );
+    for (k, name) in OUTCOMES.iter().enumerate() {
+        let ox = k as f64 * pw;
+        let _ = writeln!(
+            s,
+            r#"<text x="{}" y="18" text-anchor="middle" font-weight="bold" font-size="13">{name}</text>"#,
+            ox + pw / 2.0
+        );
+        if ternary {
+            let side = pw - 70.0;
+            let (x0, y0) = (ox + 35.0, 40.0 + side * 0.866);
+            let corner = |c: f64, h: f64, e: f64| {
+                let sum = c + h + e;
+                let (h, e) = if sum > 0.0 {
+                    (h / sum, e / sum)
+                } else {
+                    (0.0, 0.0)
+                };
+                (x0 + side * (h + 0.5 * e), y0 - side * 0.866 * e)
+            };
+            let (a, b, c) = (
+                corner(1.0, 0.0, 0.0),
+                corner(0.0, 1.0, 0.0),
+                corner(0.0, 0.0, 1.0),
+            );
+            let _ = writeln!(
+                s,
+                r##"<polygon points="{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}" fill="none" stroke="#444"/><text x="{:.1}" y="{:.1}" text-anchor="end">C=1</text><text x="{:.1}" y="{:.1}">H=1</text><text x="{:.1}" y="{:.1}" text-anchor="middle">E=1</text>"##,
+                a.0,
+                a.1,
+                b.0,
+                b.1,
+                c.0,
+                c.1,
+                a.0 - 4.0,
+                a.1 + 12.0,
+                b.0 + 4.0,
+                b.1 + 12.0,
+                c.0,
+                c.1 - 6.0
+            );
+            for p in points {
+                let m = p.motivations;
+                let (x, y) = corner(m[0], m[1], m[3]);
+                match p.values[k] {
+                    Some(v) => {
+                        let _ = writeln!(
+                            s,
+                            r##"<circle cx="{x:.1}" cy="{y:.1}" r="7" fill="{}" stroke="#333" stroke-width="0.5"><title>{}: {v:.1}</title></circle>"##,
+                            colour(v),
+                            esc(&p.label)
+                        );
+                    }
+                    None => {
+                        let _ = writeln!(
+                            s,
+                            r##"<circle cx="{x:.1}" cy="{y:.1}" r="3" fill="#ccc"/>"##
+                        );
+                    }
+                }
+            }
+            // Colour key.
+            for i in 0..=10 {
+                let v = i as f64 * 10.0;
+                let _ = writeln!(
+                    s,
+                    r#"<rect x="{:.1}" y="{:.1}" width="20" height="6" fill="{}"/>"#,
+                    ox + 40.0 + 22.0 * i as f64,
+                    height - 26.0,
+                    colour(v)
+                );
+            }
+            let _ = writeln!(
+                s,
+                r#"<text x="{:.1}" y="{:.1}">0</text><text x="{:.1}" y="{:.1}">100</text>"#,
+                ox + 40.0,
+                height - 8.0,
+                ox + 250.0,
+                height - 8.0
+            );
+        } else {
+            for (i, p) in points.iter().enumerate() {
+                let y = 40.0 + 22.0 * i as f64;
+                let m = p.motivations;
+                let _ = writeln!(
+                    s,
+                    r#"<text x="{:.1}" y="{:.1}">({},{},{},{})</text>"#,
+                    ox + 8.0,
+                    y + 12.0,
+                    m[0],
+                    m[1],
+                    m[2],
+                    m[3]
+                );
+                if let Some(v) = p.values[k] {
+                    let w = 160.0 * (v / 100.0).clamp(0.0, 1.0);
+                    let _ = writeln!(
+                        s,
+                        r##"<rect x="{:.1}" y="{y:.1}" width="{w:.1}" height="15" fill="{}"/><text x="{:.1}" y="{:.1}">{v:.1}</text>"##,
+                        ox + 130.0,
+                        colour(v),
+                        ox + 134.0 + w,
+                        y + 12.0
+                    );
+                }
+            }
+        }
+    }
+    let _ = writeln!(
+        s,
+        r##"<text x="8" y="{:.0}" fill="#555">Means over rooms and replicates per motivation setting (C, H, O, E).</text>"##,
+        height - 2.0
+    );
+    s.push_str("</svg>\n");
+    s
+}

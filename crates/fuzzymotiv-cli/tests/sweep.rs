@@ -1,0 +1,255 @@
+//! Sweeps: the same results whole, in shards, with any thread count, and after kills.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_fuzzymotiv"))
+}
+
+fn run(args: &[&str]) -> Output {
+    bin().args(args).output().expect("binary runs")
+}
+
+fn ok(args: &[&str]) -> Output {
+    let o = run(args);
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    o
+}
+
+const SWEEP: &str = r#"
+name = "t"
+seed = 9
+rooms = ["H", "square"]
+[ga]
+population = 10
+generations = 4
+[trial]
+steps = 120
+[aem]
+epochs = 20
+test_runs = 2
+[sweep]
+replicates = 2
+motivations = [[0.8, 0.1, 0.0, 0.1], [0.5, 0.3, 0.0, 0.2]]
+[sweep.grid]
+"trial.noise" = [0.06, 0.03]
+"#;
+
+fn sweep_file(dir: &Path) -> PathBuf {
+    let p = dir.join("sweep.toml");
+    std::fs::write(&p, SWEEP).unwrap();
+    p
+}
+
+fn results(dir: &Path) -> String {
+    ok(&["merge", dir.to_str().unwrap()]);
+    std::fs::read_to_string(dir.join("results.csv")).unwrap()
+}
+
+#[test]
+fn plan_is_stable_and_counts_jobs() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = sweep_file(dir.path());
+    let count = String::from_utf8(ok(&["plan", f.to_str().unwrap(), "--count"]).stdout).unwrap();
+    assert_eq!(count.trim(), "8"); // 2 points × 2 noise levels × 2 replicates
+    let a = ok(&["plan", f.to_str().unwrap()]).stdout;
+    let b = ok(&["plan", f.to_str().unwrap()]).stdout;
+    assert_eq!(a, b);
+    let lines: Vec<serde_json::Value> = String::from_utf8(a)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let ids: std::collections::BTreeSet<_> = lines
+        .iter()
+        .map(|l| l["id"].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(ids.len(), 8, "ids are unique");
+    // Seeds come from the key: the same key gives the same seed in a different sweep file.
+    let other = dir.path().join("other.toml");
+    std::fs::write(&other, SWEEP.replace("[0.8, 0.1, 0.0, 0.1], ", "")).unwrap();
+    let o = String::from_utf8(ok(&["plan", other.to_str().unwrap()]).stdout).unwrap();
+    let first: serde_json::Value = serde_json::from_str(o.lines().next().unwrap()).unwrap();
+    let same = lines.iter().find(|l| l["key"] == first["key"]).unwrap();
+    assert_eq!(same["seed"], first["seed"]);
+    assert_eq!(same["id"], first["id"]);
+}
+
+#[test]
+fn whole_sharded_and_threaded_sweeps_agree() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = sweep_file(dir.path());
+    let f = f.to_str().unwrap();
+    let whole = dir.path().join("whole");
+    ok(&[
+        "sweep",
+        f,
+        "--out",
+        whole.to_str().unwrap(),
+        "--threads",
+        "2",
+    ]);
+    let sharded = dir.path().join("sharded");
+    for i in 0..3 {
+        ok(&[
+            "sweep",
+            f,
+            "--out",
+            sharded.to_str().unwrap(),
+            "--shard",
+            &format!("{i}/3"),
+            "--threads",
+            "1",
+        ]);
+    }
+    let by_env = dir.path().join("env");
+    for k in 0..8 {
+        let o = bin()
+            .args([
+                "sweep",
+                f,
+                "--out",
+                by_env.to_str().unwrap(),
+                "--index-from-env",
+                "SLURM_ARRAY_TASK_ID",
+            ])
+            .env("SLURM_ARRAY_TASK_ID", k.to_string())
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let r = results(&whole);
+    assert_eq!(r.lines().count(), 1 + 8 * 2, "{r}");
+    assert_eq!(r, results(&sharded));
+    assert_eq!(r, results(&by_env));
+    // A rerun skips finished jobs.
+    let o = ok(&["sweep", f, "--out", whole.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("0 jobs run, 8 already done"));
+    let agg = std::fs::read_to_string(whole.join("aggregate.csv")).unwrap();
+    assert_eq!(agg.lines().count(), 1 + 4 * 2);
+    assert!(whole.join("summary.svg").is_file());
+}
+
+#[test]
+fn killed_sweep_finishes_with_identical_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = SWEEP
+        .replace("generations = 4", "generations = 25")
+        .replace("population = 10", "population = 24");
+    let f = dir.path().join("sweep.toml");
+    std::fs::write(&f, text).unwrap();
+    let f = f.to_str().unwrap();
+    let reference = dir.path().join("reference");
+    ok(&["sweep", f, "--out", reference.to_str().unwrap()]);
+    let killed = dir.path().join("killed");
+    let mut kills = 0;
+    for delay in [150u64, 400, 250, 600, 350] {
+        let mut child = bin()
+            .args(["sweep", f, "--out", killed.to_str().unwrap()])
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(delay));
+        if child.try_wait().unwrap().is_none() {
+            child.kill().unwrap();
+            kills += 1;
+        }
+        child.wait().unwrap();
+    }
+    ok(&["sweep", f, "--out", killed.to_str().unwrap()]);
+    assert!(kills >= 2, "the sweep finished too fast to be killed");
+    assert_eq!(results(&reference), results(&killed), "after {kills} kills");
+}
+
+#[test]
+fn bad_sweeps_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (
+            "[sweep]\nmotivations = [[0.5, 0.5, 0.5, 0.0]]\n",
+            "motivations",
+        ),
+        ("[sweep]\nreplicates = 0\n", "sweep.replicates"),
+        ("[sweep.simplex]\nstep = 0.3\n", "sweep.simplex.step"),
+        (
+            "[sweep.simplex]\nstep = 0.1\nfixed = { charisma = 0.1 }\n",
+            "sweep.simplex.fixed.charisma",
+        ),
+        (
+            "[sweep.grid]\n\"ga.population\" = []\n",
+            "sweep.grid.ga.population",
+        ),
+        ("[sweep.grid]\n\"ga.population\" = [0]\n", "ga.population"),
+        ("[sweep]\ncolour = 1\n", "sweep"),
+        ("name = \"no sweep table\"\n", "sweep"),
+    ];
+    for (k, (text, field)) in cases.iter().enumerate() {
+        let f = dir.path().join(format!("s{k}.toml"));
+        std::fs::write(&f, text).unwrap();
+        let out = dir.path().join(format!("o{k}"));
+        let o = run(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "case {k}: {e}");
+        assert!(
+            e.contains(&format!("`{field}`")),
+            "case {k}: should name `{field}`: {e}"
+        );
+        assert!(!out.exists(), "case {k}: wrote output");
+    }
+    let f = sweep_file(dir.path());
+    let o = run(&[
+        "sweep",
+        f.to_str().unwrap(),
+        "--out",
+        dir.path().join("x").to_str().unwrap(),
+        "--index",
+        "99",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = run(&[
+        "sweep",
+        f.to_str().unwrap(),
+        "--out",
+        dir.path().join("y").to_str().unwrap(),
+        "--shard",
+        "3/3",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = bin()
+        .args([
+            "sweep",
+            f.to_str().unwrap(),
+            "--out",
+            dir.path().join("z").to_str().unwrap(),
+            "--index-from-env",
+            "NO_SUCH_VAR_X",
+        ])
+        .env_remove("NO_SUCH_VAR_X")
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn simplex_sweep_covers_the_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("simplex.toml");
+    std::fs::write(
+        &f,
+        "[sweep.simplex]\nstep = 0.25\nfixed = { orientation = 0.0 }\n",
+    )
+    .unwrap();
+    let count = String::from_utf8(ok(&["plan", f.to_str().unwrap(), "--count"]).stdout).unwrap();
+    // (C, H, E) in quarters summing to 1: C(4+2, 2) = 15 points.
+    assert_eq!(count.trim(), "15");
+    std::fs::write(&f, "[sweep.simplex]\nstep = 0.5\n").unwrap();
+    let count = String::from_utf8(ok(&["plan", f.to_str().unwrap(), "--count"]).stdout).unwrap();
+    // All four free in halves: C(2+3, 3) = 10 points.
+    assert_eq!(count.trim(), "10");
+}
