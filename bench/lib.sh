@@ -1,3 +1,4 @@
+# shellcheck shell=bash disable=SC2034  # FM, FM_SOURCE and ENKI are used by the sourcing scripts
 # Shared helpers of bench/run.sh and bench/callgrind.sh (sourced, not run).
 # Expects ROOT (repo root) and HERE (bench/) to be set.
 

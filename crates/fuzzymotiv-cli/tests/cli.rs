@@ -479,3 +479,49 @@ fn resume_without_an_interrupted_run_is_a_clear_error() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("no interrupted run"), "{}", stderr(&o));
 }
+
+/// The library's corpus of bad configs and rooms, through the binary: exit 2, the field named,
+/// nothing written, no panic.
+#[test]
+fn corpus_through_the_binary() {
+    let corpus = repo().join("crates/fuzzymotiv/tests/corpus");
+    let dir = tempfile::tempdir().unwrap();
+    let mut n = 0;
+    for entry in std::fs::read_dir(corpus.join("configs")).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let field = text
+            .lines()
+            .next()
+            .unwrap()
+            .trim_start_matches("# field: ")
+            .trim()
+            .to_string();
+        let out = dir.path().join(format!("out{n}"));
+        let o = run(&[
+            "run",
+            path.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{path:?}: {e}");
+        assert!(
+            e.contains(&format!("`{field}`")) && !e.contains("panicked"),
+            "{path:?}: {e}"
+        );
+        assert!(
+            !out.exists() && !dir.path().join(format!("out{n}.partial")).exists(),
+            "{path:?} wrote output"
+        );
+        n += 1;
+    }
+    for entry in std::fs::read_dir(corpus.join("rooms")).unwrap() {
+        let path = entry.unwrap().path();
+        let o = run(&["rooms", "--check", path.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{path:?}");
+        assert!(!stderr(&o).contains("panicked"));
+        n += 1;
+    }
+    assert!(n >= 50);
+}

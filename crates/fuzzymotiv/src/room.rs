@@ -14,6 +14,12 @@ use crate::geom::{
 };
 use crate::robot::{KHEPERA_RADIUS, Pose};
 
+/// Largest coordinate magnitude accepted in room files (mm): rooms up to 20 m across.
+pub const MAX_COORD: f64 = 1e4;
+
+/// Most wall segments a room file may have (outline plus obstacles).
+pub const MAX_WALLS: usize = 2000;
+
 /// Names of the built-in rooms, in the order of the paper's tables.
 pub const BUILTIN_ROOMS: [&str; 5] = ["H", "T", "L", "square", "rectangle"];
 
@@ -158,9 +164,32 @@ impl Room {
                 ));
             }
         }
+        let walls =
+            raw.outline.len() + raw.obstacles.iter().map(|o| o.outline.len()).sum::<usize>();
+        if walls > MAX_WALLS {
+            return Err(err(
+                "outline",
+                format!("the room has {walls} wall segments; at most {MAX_WALLS} are supported"),
+            ));
+        }
+        for (i, p) in raw.outline.iter().enumerate() {
+            if p[0].abs() > MAX_COORD || p[1].abs() > MAX_COORD {
+                return Err(err(
+                    &format!("outline[{i}]"),
+                    format!(
+                        "coordinates must be within ±{MAX_COORD} mm (10 m), got [{}, {}]",
+                        p[0], p[1]
+                    ),
+                ));
+            }
+        }
         for (k, o) in raw.obstacles.iter().enumerate() {
             for (i, p) in o.outline.iter().enumerate() {
-                if !p[0].is_finite() || !p[1].is_finite() {
+                if !p[0].is_finite()
+                    || !p[1].is_finite()
+                    || p[0].abs() > MAX_COORD
+                    || p[1].abs() > MAX_COORD
+                {
                     return Err(err(
                         &format!("obstacles[{k}].outline[{i}]"),
                         format!(
