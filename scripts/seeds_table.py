@@ -1,0 +1,41 @@
+#!/usr/bin/env python3
+"""Mean ± std over several `fuzzymotiv reproduce` output directories (one per seed).
+
+Usage: scripts/seeds_table.py results-s1 results-s2 ...   (prints Markdown tables)
+"""
+import json
+import statistics
+import sys
+
+COLS = [("average_fitness", "average fitness", 3), ("exploration_pct", "% optimal exploration", 1),
+        ("recognition_pct", "% recognition", 0), ("battery_pct", "% battery usage", 1), ("homing", "% homing", 1)]
+
+
+def main(dirs):
+    summaries = [json.load(open(f"{d}/summary.json")) for d in dirs]
+    seeds = [s["seed"] for s in summaries]
+    for k, setting in enumerate(summaries[0]["settings"]):
+        m = setting["motivations"]
+        print(f"### {setting['name']} (C, H, O, E) = ({m['curiosity']}, {m['homing']}, {m['orientation']}, {m['energy']}), seeds {seeds}\n")
+        print("| room | " + " | ".join(c[1] for c in COLS) + " |")
+        print("|---|" + "---|" * len(COLS))
+        rows = [s["settings"][k]["rows"] for s in summaries]
+        for i, row in enumerate(rows[0]):
+            cells = []
+            for key, _, p in COLS:
+                vals = [r[i][key] for r in rows if r[i][key] is not None]
+                mean = statistics.mean(vals)
+                std = statistics.stdev(vals) if len(vals) > 1 else 0.0
+                cells.append(f"{mean:.{p}f} ± {std:.{p}f}")
+            print(f"| {row['room']} | " + " | ".join(cells) + " |")
+        firsts = [s["settings"][k]["first_generation"]["mean"] for s in summaries]
+        lasts = [s["settings"][k]["last_generation"]["mean"] for s in summaries]
+        bests = [s["settings"][k]["last_generation"]["best"] for s in summaries]
+        print(f"\nmean F of the population: first generation {statistics.mean(firsts):.3f} ± {statistics.stdev(firsts) if len(firsts) > 1 else 0:.3f}, "
+              f"last generation {statistics.mean(lasts):.3f} ± {statistics.stdev(lasts) if len(lasts) > 1 else 0:.3f}; "
+              f"best F in the last generation {statistics.mean(bests):.3f} ± {statistics.stdev(bests) if len(bests) > 1 else 0:.3f}\n")
+    print("wall time per reproduce (s): " + ", ".join(f"{s['wall_seconds']:.1f}" for s in summaries))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
