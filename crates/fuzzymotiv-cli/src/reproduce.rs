@@ -27,6 +27,10 @@ pub struct ReproduceArgs {
     /// Worker threads [default: all cores]; results do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Run the orientation study instead (configs/orientation-study.toml): does rewarding
+    /// orientation (online recognition in the fitness) raise recognition, and at what cost?
+    #[arg(long)]
+    pub orientation: bool,
     /// Override a config key of both settings (repeatable), e.g. --set trial.steps=200.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
@@ -75,6 +79,9 @@ pub const SETTINGS: [Setting; 2] = [
 /// Entry point of `fuzzymotiv reproduce`.
 pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
+    if args.orientation {
+        return orientation_study(&args);
+    }
     let start = Instant::now();
     let mut sets = Vec::new();
     if args.quick {
@@ -254,4 +261,65 @@ fn table(setting: &Setting, rows: &[RoomRow]) -> (String, String) {
         );
     }
     (md, csv)
+}
+
+/// The orientation study: a built-in sweep (three motivation settings × seeds, online
+/// orientation), run in-process, then merged into tables and plots.
+fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
+    let start = Instant::now();
+    let mut text = include_str!("../../../configs/orientation-study.toml").to_string();
+    let mut sets: Vec<String> = Vec::new();
+    sets.push(format!("seed={}", args.seed));
+    if args.quick {
+        sets.push("ga.population=30".into());
+        sets.push("ga.generations=30".into());
+        sets.push("sweep.replicates=2".into());
+    }
+    sets.extend(args.sets.iter().cloned());
+    if !sets.is_empty() {
+        // Apply overrides to the document (config keys and sweep keys alike).
+        let mut table: toml::Table = toml::from_str(&text).expect("built-in sweep is valid TOML");
+        for set in &sets {
+            let (key, value) = set
+                .split_once('=')
+                .ok_or_else(|| CliError::input(format!("--set {set}: expected key=value")))?;
+            let parsed = toml::from_str::<toml::Table>(&format!("v = {value}"))
+                .ok()
+                .and_then(|mut t| t.remove("v"))
+                .unwrap_or_else(|| toml::Value::String(value.to_string()));
+            let mut t = &mut table;
+            let parts: Vec<&str> = key.trim().split('.').collect();
+            for part in &parts[..parts.len() - 1] {
+                t = t
+                    .entry(part.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+                    .as_table_mut()
+                    .ok_or_else(|| {
+                        CliError::input(format!("--set {set}: `{part}` is not a table"))
+                    })?;
+            }
+            t.insert(parts[parts.len() - 1].to_string(), parsed);
+        }
+        text = toml::to_string(&table).expect("a table serialises");
+    }
+    let sweep = crate::sweep::Sweep::parse_str(
+        &text,
+        "built-in orientation study",
+        std::path::Path::new("."),
+    )?;
+    let all: Vec<usize> = (0..sweep.jobs.len()).collect();
+    eprintln!(
+        "orientation study: {} jobs into {}",
+        all.len(),
+        args.out.display()
+    );
+    crate::sweep::run_jobs(&sweep, &text, &all, &args.out)?;
+    crate::sweep::merge(crate::sweep::MergeArgs {
+        dir: args.out.clone(),
+    })?;
+    eprintln!(
+        "orientation study done in {:.1} s",
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
 }

@@ -101,8 +101,14 @@ impl Sweep {
         let text = std::fs::read_to_string(path).map_err(|e| {
             CliError::input(format!("{}: cannot read sweep file: {e}", path.display()))
         })?;
-        let source = path.display().to_string();
-        let mut table: toml::Table = toml::from_str(&text).map_err(|e| {
+        let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Self::parse_str(&text, &path.display().to_string(), &base_dir)
+    }
+
+    /// Parses a sweep document; room files are relative to `base_dir`.
+    pub fn parse_str(text: &str, source: &str, base_dir: &Path) -> Result<Sweep, CliError> {
+        let source = source.to_string();
+        let mut table: toml::Table = toml::from_str(text).map_err(|e| {
             err(
                 &source,
                 "(document)",
@@ -202,11 +208,10 @@ impl Sweep {
                 }
             }
         }
-        let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let sweep = Sweep {
             base_text,
             source,
-            base_dir,
+            base_dir: base_dir.to_path_buf(),
             jobs,
         };
         // Validate every job now, so a bad point fails before anything runs.
@@ -411,18 +416,23 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
     let sweep = Sweep::load(&args.sweep)?;
     let selected = select(&args, sweep.jobs.len())?;
-    let jobs_dir = args.out.join("jobs");
-    std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
-    write_atomic(&args.out.join("plan.jsonl"), sweep.plan_jsonl())?;
     let text = std::fs::read_to_string(&args.sweep).map_err(|e| io_err(&args.sweep, e))?;
-    write_atomic(&args.out.join("sweep.toml"), text)?;
+    run_jobs(&sweep, &text, &selected, &args.out)
+}
+
+/// Runs the `selected` jobs of `sweep` into `out/jobs/<id>/`, skipping finished ones.
+pub fn run_jobs(sweep: &Sweep, text: &str, selected: &[usize], out: &Path) -> Result<(), CliError> {
+    let jobs_dir = out.join("jobs");
+    std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
+    write_atomic(&out.join("plan.jsonl"), sweep.plan_jsonl())?;
+    write_atomic(&out.join("sweep.toml"), text)?;
     let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
         ProgressBar::new(selected.len() as u64)
     } else {
         ProgressBar::hidden()
     };
     let (mut ran, mut skipped) = (0, 0);
-    for &k in &selected {
+    for &k in selected {
         let job = &sweep.jobs[k];
         let dir = jobs_dir.join(&job.id);
         bar.set_message(job.key.clone());

@@ -877,3 +877,165 @@ impl StepObserver for ActionRecorder {
         ));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::room::BUILTIN_ROOMS;
+
+    fn experiment(extra: &[&str]) -> Experiment {
+        let mut sets: Vec<String> = [
+            "ga.population=8",
+            "ga.generations=3",
+            "trial.steps=120",
+            "aem.epochs=10",
+            "aem.test_runs=2",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        sets.extend(extra.iter().map(|s| s.to_string()));
+        let raw = RawConfig::parse("", "test", &sets).unwrap();
+        let rooms = BUILTIN_ROOMS
+            .iter()
+            .map(|r| Room::builtin(r).unwrap())
+            .collect();
+        Experiment::new(&raw, rooms, "test").unwrap()
+    }
+
+    const ORIENTED: [&str; 5] = [
+        "fitness.orientation=\"online\"",
+        "motivations.curiosity=0.4",
+        "motivations.homing=0.2",
+        "motivations.orientation=0.3",
+        "motivations.energy=0.1",
+    ];
+
+    /// Online l is exactly the off-line 1-NN computation on the same trajectories, run on the
+    /// derived streams (EVAL for the first run, ONLINE for the second).
+    #[test]
+    fn online_orientation_equals_offline_nearest_neighbour() {
+        let exp = experiment(&ORIENTED);
+        let run = &exp.runs()[0];
+        let genome = &exp.initial_population(run)[3];
+        let (g, i) = (2usize, 3usize);
+        let eval = exp.evaluate(genome, run, g, i);
+        let first: Vec<Vec<f64>> = run
+            .rooms
+            .iter()
+            .map(|&r| {
+                let seed = derive(
+                    exp.seed,
+                    &[
+                        purpose::EVAL,
+                        run.tag,
+                        g as u64,
+                        i as u64,
+                        exp.room_key(r),
+                        0,
+                    ],
+                );
+                environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder)
+            })
+            .collect();
+        let mut correct = 0;
+        for (k, &r) in run.rooms.iter().enumerate() {
+            let seed = derive(
+                exp.seed,
+                &[
+                    purpose::ONLINE,
+                    run.tag,
+                    g as u64,
+                    i as u64,
+                    exp.room_key(r),
+                    1,
+                ],
+            );
+            assert_ne!(
+                seed,
+                derive(
+                    exp.seed,
+                    &[
+                        purpose::EVAL,
+                        run.tag,
+                        g as u64,
+                        i as u64,
+                        exp.room_key(r),
+                        0
+                    ]
+                )
+            );
+            let v = environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder);
+            if nearest(&first, &v).unwrap() == k {
+                correct += 1;
+            }
+        }
+        let l = correct as f64 / run.rooms.len() as f64;
+        assert!(
+            eval.per_room.iter().all(|s| s.terms.l == l),
+            "{eval:?} vs l = {l}"
+        );
+        // The first run's terms are those of the off-line evaluation on the same stream.
+        let offline = experiment(&[
+            "fitness.orientation=\"offline\"",
+            "motivations.curiosity=0.4",
+            "motivations.homing=0.2",
+            "motivations.orientation=0.3",
+            "motivations.energy=0.1",
+        ]);
+        let off = offline.evaluate(genome, run, g, i);
+        for (a, b) in eval.per_room.iter().zip(&off.per_room) {
+            assert_eq!(
+                (a.terms.a, a.terms.g, a.terms.b),
+                (b.terms.a, b.terms.g, b.terms.b)
+            );
+            assert_eq!(b.terms.l, 0.0);
+        }
+    }
+
+    /// With O = 0, online mode computes nothing extra and gives byte-identical evolutions.
+    #[test]
+    fn zero_orientation_online_equals_offline() {
+        let off = experiment(&[]);
+        let on = experiment(&["fitness.orientation=\"online\""]);
+        let run = &off.runs()[0];
+        let a = off.evolve(run, &mut |_| {});
+        let b = on.evolve(run, &mut |_| {});
+        assert_eq!(a.history, b.history);
+        assert_eq!(a.population, b.population);
+        assert_eq!(a.evaluations, b.evaluations);
+    }
+
+    /// Online orientation makes F depend on O and stays deterministic.
+    #[test]
+    fn online_orientation_is_deterministic_and_used() {
+        let exp = experiment(&ORIENTED);
+        let run = &exp.runs()[0];
+        let x = exp.evolve(run, &mut |_| {});
+        let y = exp.evolve(run, &mut |_| {});
+        assert_eq!(x.history, y.history);
+        assert!(
+            x.evaluations.iter().any(|e| e.per_room[0].terms.l > 0.0),
+            "some robot recognises something"
+        );
+    }
+
+    /// A resumed evolution equals an uninterrupted one.
+    #[test]
+    fn evolve_from_a_checkpoint_equals_uninterrupted() {
+        let exp = experiment(&[]);
+        let run = &exp.runs()[0];
+        let mut saved = None;
+        let full = exp.evolve(run, &mut |s| {
+            if s.history.len() == 2 {
+                saved = Some((s.history.to_vec(), s.next.unwrap().to_vec()));
+            }
+        });
+        let (history, next) = saved.unwrap();
+        let resumed = exp.evolve_from(run, history.len(), next, history, &mut |_| {});
+        assert_eq!(full.history, resumed.history);
+        assert_eq!(full.evaluations, resumed.evaluations);
+        let rebuilt = exp.finished(run, full.population.clone(), full.history.clone());
+        assert_eq!(rebuilt.evaluations, full.evaluations);
+    }
+}
