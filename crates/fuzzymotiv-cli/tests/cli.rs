@@ -409,7 +409,10 @@ fn killed_run_resumes_to_identical_results() {
         reference.to_str().unwrap(),
     ];
     args.extend_from_slice(&sets);
+    let t0 = std::time::Instant::now();
     assert!(run(&args).status.success());
+    // Kill points are fractions of an uninterrupted run's time (machine-independent).
+    let whole = t0.elapsed().as_millis() as u64;
 
     let out = dir.path().join("killed");
     let partial = dir.path().join("killed.partial");
@@ -417,8 +420,9 @@ fn killed_run_resumes_to_identical_results() {
     fresh.extend_from_slice(&sets);
     let resume = vec!["run", "--resume", out.to_str().unwrap()];
     let mut kills = 0;
-    // Delays in ms, varied so kills land at different generations (and sometimes mid-write).
-    for delay in [60u64, 170, 90, 240, 130, 310] {
+    // Varied so kills land at different generations (and sometimes mid-write).
+    for fraction in [12u64, 30, 18, 40, 25, 50] {
+        let delay = whole * fraction / 100;
         let args = if partial.join("config.resolved.toml").is_file() {
             &resume
         } else {

@@ -145,10 +145,15 @@ fn killed_sweep_finishes_with_identical_results() {
     std::fs::write(&f, text).unwrap();
     let f = f.to_str().unwrap();
     let reference = dir.path().join("reference");
+    let t0 = std::time::Instant::now();
     ok(&["sweep", f, "--out", reference.to_str().unwrap()]);
+    // Kill points are fractions of an uninterrupted sweep's time, so the test does not depend
+    // on the machine's speed.
+    let whole = t0.elapsed().as_millis() as u64;
     let killed = dir.path().join("killed");
     let mut kills = 0;
-    for delay in [150u64, 400, 250, 600, 350] {
+    for fraction in [15u64, 30, 20, 35, 25] {
+        let delay = whole * fraction / 100;
         let mut child = bin()
             .args(["sweep", f, "--out", killed.to_str().unwrap()])
             .stdout(std::process::Stdio::null())

@@ -76,6 +76,7 @@ pub struct Arena {
     rays_per_sensor: usize,
     radius: f64,
     near_reach: f64,
+    ray_range: f64,
 }
 
 impl Arena {
@@ -179,6 +180,12 @@ impl Arena {
             rays_per_sensor: ray_count(params.sensor_model),
             radius,
             near_reach: sensing_reach(params.sensor_model).max(radius + params.max_step()) + 1e-6,
+            ray_range: rays(params.sensor_model)
+                .iter()
+                .flat_map(|r| r[..ray_count(params.sensor_model)].iter())
+                .map(|r| r.range())
+                .fold(0.0, f64::max)
+                + 1e-6,
         }
     }
 
@@ -310,15 +317,39 @@ impl Arena {
         let (s, c) = pose.heading.sin_cos();
         let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
         let pos = pose.position();
+        let range2 = self.ray_range * self.ray_range;
         for (o, sensor) in out.iter_mut().zip(&self.rays) {
+            // All rays of a sensor share its origin; walls beyond the longest ray's range
+            // cannot change the value, so they are dropped before casting.
+            let origin = pos + rot(sensor[0].origin);
+            let mut cand = [0u32; NEAR_CAP];
+            let mut n = 0;
+            if !near.overflow {
+                for &k in &near.walls[..near.len] {
+                    if self.walls[k as usize].dist2_to(origin) <= range2 {
+                        cand[n] = k;
+                        n += 1;
+                    }
+                }
+                if n == 0 {
+                    continue;
+                }
+            }
             let mut total = 0.0;
             for ray in &sensor[..self.rays_per_sensor] {
-                let origin = pos + rot(ray.origin);
                 let dir = rot(ray.dir);
                 let mut nearest = f64::INFINITY;
-                for w in self.near_iter(near) {
-                    if let Some(t) = w.ray_hit(origin, dir) {
-                        nearest = nearest.min(t);
+                if near.overflow {
+                    for w in self.near_iter(near) {
+                        if let Some(t) = w.ray_hit(origin, dir) {
+                            nearest = nearest.min(t);
+                        }
+                    }
+                } else {
+                    for &k in &cand[..n] {
+                        if let Some(t) = self.walls[k as usize].ray_hit(origin, dir) {
+                            nearest = nearest.min(t);
+                        }
                     }
                 }
                 total += ray.table.value(nearest);
