@@ -4,6 +4,8 @@ mod bench;
 mod error;
 mod files;
 mod inputs;
+mod png;
+mod report;
 mod reproduce;
 mod run;
 mod svg;

@@ -386,3 +386,65 @@ fn reproduce_quick_writes_every_documented_file() {
     let svg = std::fs::read_to_string(out.join("trajectories_high_curiosity.svg")).unwrap();
     assert_eq!(svg.matches("<polyline").count(), 5, "one path per room");
 }
+
+/// The `fm-data` JSON block of a report page.
+fn page_data(html: &str) -> serde_json::Value {
+    let start = html
+        .find(r#"<script type="application/json" id="fm-data">"#)
+        .unwrap();
+    let rest = &html[start..];
+    let body = &rest[rest.find('>').unwrap() + 1..rest.find("</script>").unwrap()];
+    serde_json::from_str(&body.replace("<\\/", "</")).unwrap()
+}
+
+#[test]
+fn run_writes_a_self_contained_report_and_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = small_run(dir.path(), "rep", &["--png"]);
+    for f in [
+        "report.html",
+        "fitness.svg",
+        "fitness.png",
+        "terms.svg",
+        "terms.png",
+        "trajectories.svg",
+        "trajectories.png",
+    ] {
+        assert!(out.join(f).is_file(), "missing {f}");
+    }
+    let png = std::fs::read(out.join("fitness.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    for needle in [
+        "Fitness evolution",
+        "Results per room",
+        "firing rules",
+        "Confusion matrix",
+        "r-node",
+        "config.resolved.toml",
+        "seed = 3",
+        "class=\"replay\"",
+        "Content-Security-Policy",
+    ] {
+        assert!(html.contains(needle), "report lacks {needle}");
+    }
+    // Nothing is fetched: no external scripts, styles, images or fonts.
+    for bad in ["<link", " src=", "@import", "url(", "https://"] {
+        assert!(!html.contains(bad), "report contains {bad}");
+    }
+    let without_ns = html.replace("http://www.w3.org/2000/svg", "");
+    assert!(
+        !without_ns.contains("http://"),
+        "report refers to the network"
+    );
+    // One replay room per config room, each with steps + 1 poses and one action per step.
+    let data = page_data(&html);
+    let rooms = data["replays"][0]["rooms"].as_array().unwrap();
+    assert_eq!(rooms.len(), 2);
+    for r in rooms {
+        assert_eq!(r["x"].as_array().unwrap().len(), 151);
+        assert_eq!(r["s"].as_array().unwrap().len(), 150);
+        assert_eq!(r["a"].as_str().unwrap().len(), 150);
+        assert!(r["a"].as_str().unwrap().chars().all(|c| "SLRT".contains(c)));
+    }
+}
