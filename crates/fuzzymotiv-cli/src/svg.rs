@@ -217,12 +217,18 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         r#"<text x="{pad}" y="22" font-weight="bold">{}</text>"#,
         esc(title)
     );
+    let bar = 100.0 * scale;
     let _ = writeln!(
         s,
-        r##"<text x="{:.0}" y="{:.0}" fill="#555">green: home pose; red: path of the best robot, filled circle: where it ended; 1 px = {:.1} mm</text>"##,
+        r##"<text x="{:.0}" y="{:.0}" fill="#555">green: home pose; red: path of the best robot, filled circle: where it ended</text><line x1="{:.1}" x2="{:.1}" y1="{:.0}" y2="{:.0}" stroke="#555" stroke-width="2"/><text x="{:.1}" y="{:.0}" fill="#555" text-anchor="end">100 mm</text>"##,
         pad,
         height - 12.0,
-        1.0 / scale
+        width - pad - bar,
+        width - pad,
+        height - 16.0,
+        height - 16.0,
+        width - pad - bar - 4.0,
+        height - 12.0
     );
     s.push_str(&parts);
     s.push_str("</svg>\n");
