@@ -20,7 +20,7 @@ use crate::error::CliError;
 use crate::files::{io_err, num, write_atomic};
 use crate::inputs::{load_config, load_room_file, resolve};
 use crate::png::write_figure_at;
-use crate::report::{replay_page, trajectory_terms};
+use crate::report::{replay_page, trajectory_terms, xs};
 use crate::svg::trajectories_svg;
 
 /// Arguments of `fuzzymotiv replay`.
@@ -322,11 +322,11 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         args.png,
     )?;
     let about = format!(
-        "genome {} · config {} · seed {} · motivations (C, H, O, E) = {:?} · {} steps per trial",
+        "genome {} · config {} · seed {} · motivations (C, H, O, E) = {} · {} steps per trial",
         genome_path.display(),
         source_name,
         exp.seed,
-        exp.motivations.as_array(),
+        xs(&exp),
         exp.trial.steps
     );
     write_atomic(out, replay_page("fuzzymotiv replay", &about, &exp, &trials))?;

@@ -335,7 +335,8 @@ pub fn replay_page(
     page.finish()
 }
 
-fn xs(exp: &Experiment) -> String {
+/// The motivations as "(C, H, O, E)" numbers.
+pub fn xs(exp: &Experiment) -> String {
     let m = exp.motivations;
     format!(
         "({}, {}, {}, {})",

@@ -355,6 +355,9 @@ fn reproduce_quick_writes_every_documented_file() {
         "trajectories_low_curiosity.svg",
         "high-curiosity/generations.csv",
         "low-curiosity/best_genome.json",
+        "report.html",
+        "high-curiosity/report.html",
+        "low-curiosity/trajectories.svg",
     ] {
         assert!(out.join(f).is_file(), "missing {f}");
     }

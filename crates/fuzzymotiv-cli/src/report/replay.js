@@ -113,7 +113,7 @@
       var val = el("span", { class: "val" }, sbars);
       return { fill: fill, val: val };
     });
-    el("div", { text: "Motor outputs (0.5 = stop, 1 = full speed forward, 0 = full speed back):" }, side);
+    el("div", { text: "Motor outputs (0.5 = stop, 1 = full speed forward, 0 = full speed back; orange = backwards):" }, side);
     var mbars = el("div", { class: "sbars" }, side);
     var motorRows = ["mL left wheel", "mR right wheel"].map(function (name) {
       el("span", { text: name }, mbars);
@@ -142,7 +142,8 @@
       slider.max = r.steps;
       stepInfo.textContent = "";
       termsEl.textContent = "This run: a = " + r.terms.a.toFixed(3) + ", g = " + r.terms.g.toFixed(3) +
-        ", b = " + r.terms.b.toFixed(3) + ", F = " + r.f.toFixed(3) + " (evolved by run \u201c" + r.run + "\u201d).";
+        ", b = " + r.terms.b.toFixed(3) + ", F = " + r.f.toFixed(3) + " (" +
+        (r.run === "all" ? "the robot evolved in all rooms" : "the robot evolved in " + r.run) + ").";
     }
 
     function px(r, x) { return view.pad + (x - r.prep.lo[0]) * view.scale; }
