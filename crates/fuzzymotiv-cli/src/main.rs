@@ -4,6 +4,9 @@ mod bench;
 mod error;
 mod files;
 mod inputs;
+mod png;
+mod replay;
+mod report;
 mod reproduce;
 mod run;
 mod svg;
@@ -31,6 +34,8 @@ enum Command {
     /// Run the paper's whole study (both motivation settings, five rooms) and write its tables
     /// and figures.
     Reproduce(reproduce::ReproduceArgs),
+    /// Run a saved genome again: write its trajectory (CSV, JSON) and a replay page (HTML).
+    Replay(replay::ReplayArgs),
     /// Evaluate the TSK fuzzy fitness F for motivations X and fitness values Y.
     Fuzzy(FuzzyArgs),
     /// List the built-in rooms and validate room files.
@@ -70,6 +75,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Run(args) => run::run(args),
         Command::Reproduce(args) => reproduce::reproduce(args),
+        Command::Replay(args) => replay::replay(args),
         Command::Fuzzy(args) => fuzzy(args),
         Command::Rooms(args) => rooms(args),
         Command::Bench(args) => bench::bench(args),

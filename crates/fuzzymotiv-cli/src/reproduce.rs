@@ -9,6 +9,8 @@ use fuzzymotiv::config::RawConfig;
 use crate::error::CliError;
 use crate::files::StagedDir;
 use crate::inputs::resolve;
+use crate::png::write_figure;
+use crate::report::{Section, reproduce_page};
 use crate::run::{Finished, RoomRow, execute, progress_bar, set_threads};
 use crate::svg::{fitness_svg, trajectories_svg};
 
@@ -34,6 +36,9 @@ pub struct ReproduceArgs {
     /// Override a config key of both settings (repeatable), e.g. --set trial.steps=200.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
+    /// Also write a PNG beside every SVG figure.
+    #[arg(long)]
+    pub png: bool,
 }
 
 /// A built-in setting of the study with the paper's table.
@@ -109,6 +114,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
             &staged.staging.join(setting.name),
             &progress,
             false,
+            args.png,
         )?);
     }
     progress.finish_and_clear();
@@ -134,30 +140,22 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
             ),
             evo.history.clone(),
         ));
-        let trajectories: Vec<_> = (0..exp.arenas.len())
-            .map(|r| {
-                let evo = if done.evolutions.len() == 1 {
-                    &done.evolutions[0]
-                } else {
-                    &done.evolutions[r]
-                };
-                exp.instance_trajectory(&evo.population[evo.best], &evo.run, r)
-            })
-            .collect();
         let pairs: Vec<_> = exp
             .arenas
             .iter()
             .map(|a| a.room())
-            .zip(trajectories.iter())
+            .zip(done.trajectories.iter())
             .collect();
         let title = format!(
             "Best robot, {} (C, H, O, E) = {:?}",
             setting.name,
             exp.motivations.as_array()
         );
-        staged.write(
-            &format!("trajectories_{}.svg", setting.tag),
-            trajectories_svg(&title, &pairs),
+        write_figure(
+            &staged,
+            &format!("trajectories_{}", setting.tag),
+            &trajectories_svg(&title, &pairs),
+            args.png,
         )?;
         let m = exp.motivations;
         let rows: Vec<serde_json::Value> = done
@@ -186,7 +184,25 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
             "confusion": done.aem.iter().map(|a| &a.confusion.counts).collect::<Vec<_>>(),
         }));
     }
-    staged.write("fitness.svg", fitness_svg(&panels))?;
+    write_figure(&staged, "fitness", &fitness_svg(&panels), args.png)?;
+    let wall_seconds = start.elapsed().as_secs_f64();
+    let sections: Vec<Section<'_>> = SETTINGS
+        .iter()
+        .zip(&loaded)
+        .zip(&finished)
+        .map(|((setting, l), done)| Section {
+            id: setting.name,
+            title: setting.name.to_string(),
+            loaded: l,
+            done,
+            paper: Some(setting),
+            link: Some(format!("{}/report.html", setting.name)),
+        })
+        .collect();
+    staged.write(
+        "report.html",
+        reproduce_page(&sections, args.seed, &args.sets, wall_seconds),
+    )?;
     let summary = serde_json::json!({
         "program": "fuzzymotiv",
         "version": fuzzymotiv::VERSION,
@@ -194,7 +210,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
         "quick": args.quick,
         "overrides": args.sets,
         "settings": settings_json,
-        "wall_seconds": start.elapsed().as_secs_f64(),
+        "wall_seconds": wall_seconds,
     });
     staged.write(
         "summary.json",

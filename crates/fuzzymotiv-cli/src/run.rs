@@ -5,16 +5,20 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use fuzzymotiv::config::RawConfig;
+use fuzzymotiv::config::{RawConfig, Training};
 use fuzzymotiv::experiment::{
     AemReport, Evolution, Experiment, GenerationRecord, GenerationState, Run,
 };
+use fuzzymotiv::trial::Trajectory;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::error::CliError;
 use crate::files::{StagedDir, io_err, num, write_atomic};
 use crate::inputs::{Loaded, load_config};
+use crate::png::write_figure;
+use crate::report;
+use crate::svg::{fitness_svg, terms_svg, trajectories_svg};
 
 /// Arguments of `fuzzymotiv run`.
 #[derive(clap::Args)]
@@ -38,6 +42,9 @@ pub struct RunArgs {
     /// Override a config key, e.g. --set ga.population=20 (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
+    /// Also write a PNG beside every SVG figure.
+    #[arg(long)]
+    pub png: bool,
 }
 
 /// Configures rayon's global pool.
@@ -86,7 +93,7 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
         (None, None) => return Err(CliError::input("give a CONFIG file or --resume DIR")),
     };
     let progress = progress_bar(&loaded.experiment, 1, "");
-    let done = execute(&loaded, &out, &progress, resume)?;
+    let done = execute(&loaded, &out, &progress, resume, args.png)?;
     progress.finish_and_clear();
     print!("{}", table_markdown(&done.rows));
     eprintln!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
@@ -138,18 +145,47 @@ pub struct Finished {
     pub aem: Vec<AemReport>,
     /// The per-room table.
     pub rows: Vec<RoomRow>,
+    /// Per room, the best robot's room-modelling run (the one whose actions became the room's
+    /// stored instance): for figures and the replay.
+    pub trajectories: Vec<Trajectory>,
     /// Wall time (s).
     pub wall_seconds: f64,
 }
 
-/// Runs a loaded config and writes its run directory `out` (atomically). After every
-/// generation a checkpoint is written into the staging directory; with `resume`, an interrupted
-/// run continues from its last checkpoint and ends with the same files.
+/// The evolution whose best robot stands for room `r` (the one robot of all-rooms training, or
+/// the room's own robot), and the room's position among that evolution's rooms.
+pub fn robot_for_room(evolutions: &[Evolution], r: usize) -> (&Evolution, usize) {
+    match evolutions.len() {
+        1 => (&evolutions[0], r),
+        _ => (&evolutions[r], 0),
+    }
+}
+
+/// The AEM report of the robot that stands for room `r` (see [`robot_for_room`]).
+pub fn aem_for_room(aem: &[AemReport], r: usize) -> &AemReport {
+    if aem.len() == 1 { &aem[0] } else { &aem[r] }
+}
+
+/// The best robot's room-modelling run in every room.
+pub fn best_trajectories(exp: &Experiment, evolutions: &[Evolution]) -> Vec<Trajectory> {
+    (0..exp.arenas.len())
+        .map(|r| {
+            let (evo, _) = robot_for_room(evolutions, r);
+            exp.instance_trajectory(&evo.population[evo.best], &evo.run, r)
+        })
+        .collect()
+}
+
+/// Runs a loaded config and writes its run directory `out` (atomically), with `report.html`
+/// and the figures (and their PNGs with `png`). After every generation a checkpoint is written
+/// into the staging directory; with `resume`, an interrupted run continues from its last
+/// checkpoint and ends with the same files.
 pub fn execute(
     loaded: &Loaded,
     out: &Path,
     progress: &ProgressBar,
     resume: bool,
+    png: bool,
 ) -> Result<Finished, CliError> {
     let exp = &loaded.experiment;
     let start = Instant::now();
@@ -232,6 +268,38 @@ pub fn execute(
     staged.write("best_genome.json", best_genome_json(exp, &evolutions)?)?;
     staged.write("recognition.csv", recognition_csv(exp, &aem, &rows))?;
     staged.write("table.md", table_markdown(&rows))?;
+    let trajectories = best_trajectories(exp, &evolutions);
+    let panels: Vec<_> = evolutions
+        .iter()
+        .map(|e| {
+            let title = match exp.training {
+                Training::AllRooms => {
+                    format!("{} (C,H,O,E) = {:?}", exp.name, exp.motivations.as_array())
+                }
+                Training::PerRoom => format!("{}: robot evolved in {}", exp.name, e.run.label),
+            };
+            (title, e.history.clone())
+        })
+        .collect();
+    write_figure(&staged, "fitness", &fitness_svg(&panels), png)?;
+    write_figure(&staged, "terms", &terms_svg(&panels), png)?;
+    let pairs: Vec<_> = exp
+        .arenas
+        .iter()
+        .map(|a| a.room())
+        .zip(trajectories.iter())
+        .collect();
+    let title = format!(
+        "Best robot, {} (C, H, O, E) = {:?}",
+        exp.name,
+        exp.motivations.as_array()
+    );
+    write_figure(
+        &staged,
+        "trajectories",
+        &trajectories_svg(&title, &pairs),
+        png,
+    )?;
     let wall_seconds = start.elapsed().as_secs_f64();
     let summary = summary_json(exp, &evolutions, &rows, wall_seconds);
     staged.write(
@@ -240,13 +308,16 @@ pub fn execute(
     )?;
     std::fs::remove_file(staged.path(CHECKPOINT))
         .map_err(|e| io_err(&staged.path(CHECKPOINT), e))?;
-    staged.commit()?;
-    Ok(Finished {
+    let done = Finished {
         evolutions,
         aem,
         rows,
+        trajectories,
         wall_seconds,
-    })
+    };
+    staged.write("report.html", report::run_page(loaded, &done))?;
+    staged.commit()?;
+    Ok(done)
 }
 
 /// The resolved config with the program version on top.

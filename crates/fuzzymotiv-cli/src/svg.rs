@@ -1,4 +1,5 @@
-//! Hand-written SVG figures: fitness evolution (paper Fig. 6) and trajectories (Figs. 7–8).
+//! Hand-written SVG figures: fitness evolution (paper Fig. 6), trajectories (Figs. 7–8), the
+//! fitness terms per generation, the membership functions and the rooms' nodes on the SOM line.
 
 use std::fmt::Write as _;
 
@@ -6,10 +7,23 @@ use fuzzymotiv::experiment::GenerationRecord;
 use fuzzymotiv::room::Room;
 use fuzzymotiv::trial::Trajectory;
 
-fn esc(s: &str) -> String {
+/// Escapes text for XML/HTML content and attribute values.
+pub fn esc(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Colours for rooms (and other categories), in order; cycles after ten.
+pub const PALETTE: [&str; 10] = [
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+    "#bcbd22", "#17becf",
+];
+
+/// The colour of category `k`.
+pub fn colour(k: usize) -> &'static str {
+    PALETTE[k % PALETTE.len()]
 }
 
 /// One panel per setting: best and mean F per generation, with the min–max band.
@@ -49,11 +63,12 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
             s,
             r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
         );
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle">generation</text>"#,
-            (x0 + x1) / 2.0,
-            ph - 8.0
+        axis_labels(
+            &mut s,
+            (x0, x1, y0, y1),
+            ph,
+            "generation",
+            "fuzzy fitness F",
         );
         let _ = writeln!(
             s,
@@ -105,7 +120,9 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
         }
         let _ = writeln!(
             s,
-            r#"<text x="{}" y="{}">min–max band</text>"#,
+            r##"<rect x="{}" y="{}" width="20" height="10" fill="#9ecae1" fill-opacity="0.4"/><text x="{}" y="{}">min–max band</text>"##,
+            x0 + 10.0,
+            y1 + 41.0,
             x0 + 35.0,
             y1 + 50.0
         );
@@ -200,14 +217,322 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         r#"<text x="{pad}" y="22" font-weight="bold">{}</text>"#,
         esc(title)
     );
+    let bar = 100.0 * scale;
     let _ = writeln!(
         s,
-        r##"<text x="{:.0}" y="{:.0}" fill="#555">green: home pose; red: path of the best robot, filled circle: where it ended; 1 px = {:.1} mm</text>"##,
+        r##"<text x="{:.0}" y="{:.0}" fill="#555">green: home pose; red: path of the best robot, filled circle: where it ended</text><line x1="{:.1}" x2="{:.1}" y1="{:.0}" y2="{:.0}" stroke="#555" stroke-width="2"/><text x="{:.1}" y="{:.0}" fill="#555" text-anchor="end">100 mm</text>"##,
         pad,
         height - 12.0,
-        1.0 / scale
+        width - pad - bar,
+        width - pad,
+        height - 16.0,
+        height - 16.0,
+        width - pad - bar - 4.0,
+        height - 12.0
     );
     s.push_str(&parts);
+    s.push_str("</svg>\n");
+    s
+}
+
+/// The x-axis label under a plot area `(x0, x1, y0, y1)` of a figure `height` tall, and the
+/// y-axis label turned along the left edge.
+fn axis_labels(
+    s: &mut String,
+    (x0, x1, y0, y1): (f64, f64, f64, f64),
+    height: f64,
+    x: &str,
+    y: &str,
+) {
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#,
+        (x0 + x1) / 2.0,
+        height - 8.0,
+        esc(x)
+    );
+    let (cx, cy) = (x0 - 36.0, (y0 + y1) / 2.0);
+    let _ = writeln!(
+        s,
+        r#"<text x="{cx}" y="{cy}" text-anchor="middle" transform="rotate(-90 {cx} {cy})">{}</text>"#,
+        esc(y)
+    );
+}
+
+/// Picks one fitness term of a generation record.
+type TermOf = fn(&GenerationRecord) -> f64;
+
+/// One panel per run: the population means of the fitness terms a, g, l, b per generation.
+pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
+    let (pw, ph) = (520.0, 300.0);
+    let (ml, mr, mt, mb) = (50.0, 115.0, 30.0, 40.0);
+    let width = pw * panels.len() as f64;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{ph}" viewBox="0 0 {width} {ph}" font-family="sans-serif" font-size="12">"#
+    );
+    let _ = writeln!(s, r#"<rect width="{width}" height="{ph}" fill="white"/>"#);
+    let series: [(&str, &str, TermOf); 4] = [
+        ("a exploration", "#2ca02c", |r| r.terms.a),
+        ("g homing", "#9467bd", |r| r.terms.g),
+        ("l recognition", "#8c564b", |r| r.terms.l),
+        ("b battery", "#ff7f0e", |r| r.terms.b),
+    ];
+    for (p, (name, hist)) in panels.iter().enumerate() {
+        let ox = p as f64 * pw;
+        let (x0, x1, y0, y1) = (ox + ml, ox + pw - mr, ph - mb, mt);
+        let n = hist.len().max(2) as f64 - 1.0;
+        let x = |g: usize| x0 + (x1 - x0) * g as f64 / n;
+        let y = |f: f64| y0 + (y1 - y0) * f.clamp(0.0, 1.0);
+        let _ = writeln!(
+            s,
+            r#"<text x="{}" y="18" text-anchor="middle" font-weight="bold">{}</text>"#,
+            (x0 + x1) / 2.0,
+            esc(name)
+        );
+        for k in 0..=5 {
+            let f = k as f64 / 5.0;
+            let _ = writeln!(
+                s,
+                r##"<line x1="{x0}" x2="{x1}" y1="{yy:.1}" y2="{yy:.1}" stroke="#ddd"/><text x="{}" y="{:.1}" text-anchor="end">{f:.1}</text>"##,
+                x0 - 4.0,
+                y(f) + 4.0,
+                yy = y(f)
+            );
+        }
+        let _ = writeln!(
+            s,
+            r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
+        );
+        axis_labels(
+            &mut s,
+            (x0, x1, y0, y1),
+            ph,
+            "generation",
+            "population mean",
+        );
+        let _ = writeln!(
+            s,
+            r#"<text x="{x0}" y="{}" text-anchor="start">0</text><text x="{x1}" y="{}" text-anchor="end">{}</text>"#,
+            y0 + 16.0,
+            y0 + 16.0,
+            hist.len().saturating_sub(1)
+        );
+        for (k, (label, colour, pick)) in series.iter().enumerate() {
+            let pts: String = hist
+                .iter()
+                .enumerate()
+                .map(|(g, r)| format!("{:.1},{:.1} ", x(g), y(pick(r))))
+                .collect();
+            let _ = writeln!(
+                s,
+                r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8"/>"#
+            );
+            let (lx, ly) = (x1 + 10.0, y1 + 10.0 + 16.0 * k as f64);
+            let _ = writeln!(
+                s,
+                r#"<line x1="{lx}" x2="{}" y1="{ly}" y2="{ly}" stroke="{colour}" stroke-width="2"/><text x="{}" y="{}">{label}</text>"#,
+                lx + 16.0,
+                lx + 20.0,
+                ly + 4.0
+            );
+        }
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+/// The triangular membership functions μ(y) of the fuzzy labels (V.L. … V.H. by default).
+pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
+    let (w, h) = (420.0, 205.0);
+    let (x0, x1, y0, y1) = (50.0, w - 15.0, h - 40.0, 48.0);
+    let (lo, hi) = (
+        peaks.first().copied().unwrap_or(0.0).min(0.0),
+        peaks.last().copied().unwrap_or(1.0).max(1.0),
+    );
+    let x = |v: f64| x0 + (x1 - x0) * (v - lo) / (hi - lo);
+    let y = |m: f64| y0 + (y1 - y0) * m;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="12">"#
+    );
+    let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="16" text-anchor="middle" font-weight="bold">Membership of a fitness value y in each label</text>"#,
+        (x0 + x1) / 2.0
+    );
+    let _ = writeln!(
+        s,
+        r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
+    );
+    for m in [0.0, 0.5, 1.0] {
+        let _ = writeln!(
+            s,
+            r#"<text x="{}" y="{:.1}" text-anchor="end">{m}</text>"#,
+            x0 - 4.0,
+            y(m) + 4.0
+        );
+    }
+    for v in [0.0, 0.25, 0.5, 0.75, 1.0] {
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{}" text-anchor="middle">{v}</text>"#,
+            x(v),
+            y0 + 15.0
+        );
+    }
+    axis_labels(
+        &mut s,
+        (x0, x1, y0, y1),
+        h,
+        "fitness value y (a, g, l or b)",
+        "μ(y)",
+    );
+    for (k, &p) in peaks.iter().enumerate() {
+        let left = if k == 0 { lo } else { peaks[k - 1] };
+        let right = if k + 1 == peaks.len() {
+            hi
+        } else {
+            peaks[k + 1]
+        };
+        let (ml, mr) = (
+            if k == 0 { 1.0 } else { 0.0 },
+            if k + 1 == peaks.len() { 1.0 } else { 0.0 },
+        );
+        let c = colour(k);
+        let _ = writeln!(
+            s,
+            r#"<polyline points="{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}" fill="none" stroke="{c}" stroke-width="2"/>"#,
+            x(left),
+            y(ml),
+            x(p),
+            y(1.0),
+            x(right),
+            y(mr)
+        );
+        let name = names.get(k).map_or("", String::as_str);
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle" fill="{c}" font-weight="bold">{}</text>"#,
+            x(p),
+            y(1.0) - 5.0,
+            esc(name)
+        );
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+/// One room's place on a SOM line: its r-node and the winners of its test runs.
+pub struct SomRoom<'a> {
+    /// Room name.
+    pub name: &'a str,
+    /// The stored instance's winning node.
+    pub r_node: usize,
+    /// Winning nodes of the room's test runs.
+    pub winners: Vec<usize>,
+}
+
+/// The 1-D SOM as a line of `nodes` nodes; per room its r-node (a labelled marker with the
+/// ±`threshold` window a test winner must fall in) and its test runs' winners (dots below).
+pub fn som_svg(title: &str, nodes: usize, threshold: usize, rooms: &[SomRoom<'_>]) -> String {
+    let w = 840.0;
+    let (x0, x1) = (40.0, w - 40.0);
+    let line_y = 70.0 + 16.0 * rooms.len() as f64;
+    let max_dots = rooms
+        .iter()
+        .flat_map(|r| {
+            r.winners.iter().map(|&n| {
+                rooms
+                    .iter()
+                    .flat_map(|q| q.winners.iter())
+                    .filter(|&&m| m == n)
+                    .count()
+            })
+        })
+        .max()
+        .unwrap_or(0);
+    let h = line_y + 40.0 + 9.0 * max_dots as f64 + 30.0;
+    let last = nodes.saturating_sub(1).max(1) as f64;
+    let x = |n: f64| x0 + (x1 - x0) * n / last;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h:.0}" viewBox="0 0 {w} {h:.0}" font-family="sans-serif" font-size="12">"#
+    );
+    let _ = writeln!(s, r#"<rect width="{w}" height="{h:.0}" fill="white"/>"#);
+    let _ = writeln!(
+        s,
+        r#"<text x="{x0}" y="18" font-weight="bold">{}</text>"#,
+        esc(title)
+    );
+    for (k, r) in rooms.iter().enumerate() {
+        let c = colour(k);
+        let (a, b) = (
+            r.r_node.saturating_sub(threshold) as f64,
+            (r.r_node + threshold).min(nodes.saturating_sub(1)) as f64,
+        );
+        let _ = writeln!(
+            s,
+            r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="14" fill="{c}" fill-opacity="0.15"/>"#,
+            x(a),
+            line_y - 7.0,
+            (x(b) - x(a)).max(1.0)
+        );
+        let ly = 40.0 + 16.0 * k as f64;
+        let _ = writeln!(
+            s,
+            r#"<line x1="{xr:.1}" x2="{xr:.1}" y1="{:.1}" y2="{:.1}" stroke="{c}" stroke-width="1.5"/><circle cx="{xr:.1}" cy="{line_y}" r="5" fill="{c}"/><text x="{:.1}" y="{:.1}" fill="{c}" font-weight="bold">{} (r-node {})</text>"#,
+            ly + 2.0,
+            line_y,
+            x(r.r_node as f64) + 4.0,
+            ly,
+            esc(r.name),
+            r.r_node,
+            xr = x(r.r_node as f64)
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<line x1="{x0}" x2="{x1}" y1="{line_y}" y2="{line_y}" stroke="#222" stroke-width="2"/>"##
+    );
+    let step = if nodes > 64 { 16 } else { 8 };
+    for n in (0..nodes)
+        .step_by(step)
+        .chain(std::iter::once(nodes.saturating_sub(1)))
+    {
+        let _ = writeln!(
+            s,
+            r##"<line x1="{xn:.1}" x2="{xn:.1}" y1="{}" y2="{}" stroke="#222"/><text x="{xn:.1}" y="{}" text-anchor="middle" fill="#555">{n}</text>"##,
+            line_y - 4.0,
+            line_y + 4.0,
+            line_y + 18.0,
+            xn = x(n as f64)
+        );
+    }
+    let mut stack = vec![0usize; nodes.max(1)];
+    for (k, r) in rooms.iter().enumerate() {
+        for &n in &r.winners {
+            let n = n.min(nodes.saturating_sub(1));
+            let dy = line_y + 30.0 + 9.0 * stack[n] as f64;
+            stack[n] += 1;
+            let _ = writeln!(
+                s,
+                r#"<circle cx="{:.1}" cy="{dy:.1}" r="3.5" fill="{}"/>"#,
+                x(n as f64),
+                colour(k)
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        r##"<text x="{x0}" y="{:.0}" fill="#555">SOM node index (0–{}). Marker: a room's stored instance (r-node), band: ±{threshold} nodes; dots: winners of test runs, coloured by true room.</text>"##,
+        h - 10.0,
+        nodes.saturating_sub(1)
+    );
     s.push_str("</svg>\n");
     s
 }
@@ -223,7 +548,7 @@ pub struct SettingPoint {
 }
 
 /// A colour for a value in [0, 100]: dark blue → teal → yellow.
-fn colour(v: f64) -> String {
+fn value_colour(v: f64) -> String {
     let t = (v / 100.0).clamp(0.0, 1.0);
     let stops = [
         (68.0, 1.0, 84.0),
@@ -318,7 +643,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
                         let _ = writeln!(
                             s,
                             r##"<circle cx="{x:.1}" cy="{y:.1}" r="7" fill="{}" stroke="#333" stroke-width="0.5"><title>{}: {v:.1}</title></circle>"##,
-                            colour(v),
+                            value_colour(v),
                             esc(&p.label)
                         );
                     }
@@ -338,7 +663,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
                     r#"<rect x="{:.1}" y="{:.1}" width="20" height="6" fill="{}"/>"#,
                     ox + 40.0 + 22.0 * i as f64,
                     height - 26.0,
-                    colour(v)
+                    value_colour(v)
                 );
             }
             let _ = writeln!(
@@ -369,7 +694,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
                         s,
                         r##"<rect x="{:.1}" y="{y:.1}" width="{w:.1}" height="15" fill="{}"/><text x="{:.1}" y="{:.1}">{v:.1}</text>"##,
                         ox + 130.0,
-                        colour(v),
+                        value_colour(v),
                         ox + 134.0 + w,
                         y + 12.0
                     );

@@ -445,7 +445,7 @@ pub fn run_jobs(sweep: &Sweep, text: &str, selected: &[usize], out: &Path) -> Re
         let resume = StagedDir::staging_path(&dir)
             .join(crate::run::CHECKPOINT)
             .is_file();
-        execute(&loaded, &dir, &ProgressBar::hidden(), resume)?;
+        execute(&loaded, &dir, &ProgressBar::hidden(), resume, false)?;
         write_atomic(
             &dir.join("job.json"),
             serde_json::to_string_pretty(job).expect("serialisable") + "\n",

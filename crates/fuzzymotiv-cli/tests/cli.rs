@@ -355,6 +355,9 @@ fn reproduce_quick_writes_every_documented_file() {
         "trajectories_low_curiosity.svg",
         "high-curiosity/generations.csv",
         "low-curiosity/best_genome.json",
+        "report.html",
+        "high-curiosity/report.html",
+        "low-curiosity/trajectories.svg",
     ] {
         assert!(out.join(f).is_file(), "missing {f}");
     }
@@ -385,6 +388,186 @@ fn reproduce_quick_writes_every_documented_file() {
     }
     let svg = std::fs::read_to_string(out.join("trajectories_high_curiosity.svg")).unwrap();
     assert_eq!(svg.matches("<polyline").count(), 5, "one path per room");
+}
+
+/// The `fm-data` JSON block of a report page.
+fn page_data(html: &str) -> serde_json::Value {
+    let start = html
+        .find(r#"<script type="application/json" id="fm-data">"#)
+        .unwrap();
+    let rest = &html[start..];
+    let body = &rest[rest.find('>').unwrap() + 1..rest.find("</script>").unwrap()];
+    serde_json::from_str(&body.replace("<\\/", "</")).unwrap()
+}
+
+#[test]
+fn run_writes_a_self_contained_report_and_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = small_run(dir.path(), "rep", &["--png"]);
+    for f in [
+        "report.html",
+        "fitness.svg",
+        "fitness.png",
+        "terms.svg",
+        "terms.png",
+        "trajectories.svg",
+        "trajectories.png",
+    ] {
+        assert!(out.join(f).is_file(), "missing {f}");
+    }
+    let png = std::fs::read(out.join("fitness.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    for needle in [
+        "Fitness evolution",
+        "Results per room",
+        "firing rules",
+        "Confusion matrix",
+        "r-node",
+        "config.resolved.toml",
+        "seed = 3",
+        "class=\"replay\"",
+        "Content-Security-Policy",
+    ] {
+        assert!(html.contains(needle), "report lacks {needle}");
+    }
+    // Nothing is fetched: no external scripts, styles, images or fonts.
+    for bad in ["<link", " src=", "@import", "url(", "https://"] {
+        assert!(!html.contains(bad), "report contains {bad}");
+    }
+    let without_ns = html.replace("http://www.w3.org/2000/svg", "");
+    assert!(
+        !without_ns.contains("http://"),
+        "report refers to the network"
+    );
+    // One replay room per config room, each with steps + 1 poses and one action per step.
+    let data = page_data(&html);
+    let rooms = data["replays"][0]["rooms"].as_array().unwrap();
+    assert_eq!(rooms.len(), 2);
+    for r in rooms {
+        assert_eq!(r["x"].as_array().unwrap().len(), 151);
+        assert_eq!(r["s"].as_array().unwrap().len(), 150);
+        assert_eq!(r["a"].as_str().unwrap().len(), 150);
+        assert!(r["a"].as_str().unwrap().chars().all(|c| "SLRT".contains(c)));
+    }
+}
+
+fn replay(args: &[&str]) -> Output {
+    let mut all = vec!["replay"];
+    all.extend_from_slice(args);
+    run(&all)
+}
+
+#[test]
+fn replay_is_deterministic_and_redraws_the_reported_paths() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = small_run(dir.path(), "rp", &[]);
+    let run_dir = out.to_str().unwrap();
+    let page = |name: &str| dir.path().join(name).join("replay.html");
+    for name in ["one", "two"] {
+        let o = replay(&[run_dir, "--out", page(name).to_str().unwrap(), "--png"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    for f in [
+        "replay.html",
+        "replay.json",
+        "replay-H.csv",
+        "replay-square.csv",
+        "replay.svg",
+        "replay.png",
+    ] {
+        assert!(dir.path().join("one").join(f).is_file(), "missing {f}");
+    }
+    for f in ["replay-H.csv", "replay-square.csv", "replay.json"] {
+        assert_eq!(
+            std::fs::read(dir.path().join("one").join(f)).unwrap(),
+            std::fs::read(dir.path().join("two").join(f)).unwrap(),
+            "{f} differs between two replays"
+        );
+    }
+    let csv = std::fs::read_to_string(dir.path().join("one/replay-H.csv")).unwrap();
+    assert!(csv.starts_with("step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision\n0,"));
+    assert_eq!(
+        csv.lines().count(),
+        1 + 150 + 1,
+        "header, 150 steps, final pose"
+    );
+    // Without --seed the replay is the report's room-modelling run.
+    let xs = column(&csv, "x");
+    let ys = column(&csv, "y");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let reported = &page_data(&html)["replays"][0]["rooms"][0];
+    assert_eq!(reported["room"], "H");
+    for t in [0, 75, 150] {
+        let rx = reported["x"][t].as_f64().unwrap();
+        let ry = reported["y"][t].as_f64().unwrap();
+        assert!(
+            (rx - xs[t]).abs() <= 0.05 && (ry - ys[t]).abs() <= 0.05,
+            "step {t}"
+        );
+    }
+    // Another seed, another noise stream; one room only.
+    let other = dir.path().join("other/replay.html");
+    let o = replay(&[
+        run_dir,
+        "--room",
+        "H",
+        "--seed",
+        "99",
+        "--out",
+        other.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!dir.path().join("other/replay-square.csv").exists());
+    let again = std::fs::read_to_string(dir.path().join("other/replay-H.csv")).unwrap();
+    assert_ne!(again, csv, "--seed had no effect");
+    // A genome file alone replays under the default config (five rooms) and its own seed.
+    let alone = dir.path().join("alone/replay.html");
+    let genome = out.join("best_genome.json");
+    let o = replay(&[
+        genome.to_str().unwrap(),
+        "--room",
+        "T",
+        "--out",
+        alone.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let t = std::fs::read_to_string(dir.path().join("alone/replay-T.csv")).unwrap();
+    assert_eq!(t.lines().count(), 1 + 400 + 1, "default trial length");
+}
+
+#[test]
+fn replay_rejects_bad_input_with_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = small_run(dir.path(), "bad", &["--set", "ga.generations=2"]);
+    let garbage = dir.path().join("garbage.json");
+    std::fs::write(&garbage, "{ not json").unwrap();
+    let short = dir.path().join("short.json");
+    std::fs::write(&short, r#"{"shape": {"hidden": 6}, "weights": [0.5, 1.0]}"#).unwrap();
+    let empty_dir = dir.path().join("empty");
+    std::fs::create_dir(&empty_dir).unwrap();
+    let page = dir.path().join("x/replay.html");
+    let nowhere = dir.path().join("nowhere");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec![nowhere.to_str().unwrap()], "no such"),
+        (vec![empty_dir.to_str().unwrap()], "config.resolved.toml"),
+        (vec![garbage.to_str().unwrap()], "not valid JSON"),
+        (vec![short.to_str().unwrap()], "68"),
+        (
+            vec![out.to_str().unwrap(), "--room", "attic"],
+            "not a room of the config",
+        ),
+    ];
+    for (args, expect) in cases {
+        let mut all = args.clone();
+        all.extend_from_slice(&["--out", page.to_str().unwrap()]);
+        let o = replay(&all);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {e}");
+        assert!(e.contains(expect), "{args:?}: {e}");
+        assert!(!e.contains("panicked"), "{args:?}: {e}");
+    }
+    assert!(!page.exists());
 }
 
 /// SIGKILL a run at several points, resume it each time, and get exactly the files of an

@@ -1,0 +1,335 @@
+//! `fuzzymotiv replay`: run a saved genome again and write its trajectory (CSV and JSON) and a
+//! replay page.
+//!
+//! The trial uses the experiment's room-modelling stream (SPEC §11: the run whose actions became
+//! a room's stored instance), so `replay RUN_DIR` redraws exactly the paths of the run's
+//! `report.html`; `--seed N` replays under another base seed. Same genome, room and seed → the
+//! same trajectory, byte for byte.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::aem::Action;
+use fuzzymotiv::config::{OrientationMode, Training};
+use fuzzymotiv::controller::MlpShape;
+use fuzzymotiv::experiment::Run;
+use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::trial::Trajectory;
+
+use crate::error::CliError;
+use crate::files::{io_err, num, write_atomic};
+use crate::inputs::{load_config, load_room_file, resolve};
+use crate::png::write_figure_at;
+use crate::report::{replay_page, trajectory_terms, xs};
+use crate::svg::trajectories_svg;
+
+/// Arguments of `fuzzymotiv replay`.
+#[derive(clap::Args)]
+pub struct ReplayArgs {
+    /// A run directory (its best_genome.json and config.resolved.toml), or a genome file
+    /// (best_genome.json; the built-in default config then gives rooms and trial settings).
+    #[arg(value_name = "RUN_DIR|GENOME.json")]
+    pub source: PathBuf,
+    /// The room to replay: a room of the config, a built-in room or a room file
+    /// [default: every room of the config].
+    #[arg(long, value_name = "NAME|FILE")]
+    pub room: Option<String>,
+    /// Base seed of the replay's noise [default: the run's seed, so the run's own paths].
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// The replay page to write; the trajectories go beside it as STEM.json, STEM-ROOM.csv and
+    /// the figure as STEM.svg.
+    #[arg(long, value_name = "FILE", default_value = "replay.html")]
+    pub out: PathBuf,
+    /// Also write STEM.png beside STEM.svg.
+    #[arg(long)]
+    pub png: bool,
+}
+
+/// A genome read from `best_genome.json`.
+struct SavedGenome {
+    hidden: usize,
+    weights: Vec<f64>,
+    seed: Option<u64>,
+    /// Per evolution (run label, weights), when the file lists them (per-room training).
+    runs: Vec<(String, Vec<f64>)>,
+}
+
+fn weights_of(v: &serde_json::Value, what: &str, path: &Path) -> Result<Vec<f64>, CliError> {
+    let bad = |reason: &str| {
+        CliError::input(format!(
+            "{}: `{what}` {reason}; expected the best_genome.json that `fuzzymotiv run` writes",
+            path.display()
+        ))
+    };
+    let list = v
+        .as_array()
+        .ok_or_else(|| bad("is missing or not a list"))?;
+    list.iter()
+        .map(|w| w.as_f64().filter(|x| x.is_finite()))
+        .collect::<Option<Vec<f64>>>()
+        .ok_or_else(|| bad("holds something that is not a finite number"))
+}
+
+fn read_genome(path: &Path) -> Result<SavedGenome, CliError> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        CliError::input(format!("{}: cannot read genome file: {e}", path.display()))
+    })?;
+    let doc: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| CliError::input(format!("{}: not valid JSON: {e}", path.display())))?;
+    let weights = weights_of(&doc["weights"], "weights", path)?;
+    let hidden = doc["shape"]["hidden"]
+        .as_u64()
+        .and_then(|h| usize::try_from(h).ok())
+        .filter(|h| (1..=1024).contains(h))
+        .ok_or_else(|| {
+            CliError::input(format!(
+                "{}: `shape.hidden` is missing or not a number of hidden units in 1..=1024",
+                path.display()
+            ))
+        })?;
+    let mut runs = Vec::new();
+    if let Some(list) = doc["runs"].as_array() {
+        for (k, r) in list.iter().enumerate() {
+            if let Some(label) = r["run"].as_str() {
+                runs.push((
+                    label.to_string(),
+                    weights_of(&r["weights"], &format!("runs[{k}].weights"), path)?,
+                ));
+            }
+        }
+    }
+    Ok(SavedGenome {
+        hidden,
+        weights,
+        seed: doc["seed"].as_u64(),
+        runs,
+    })
+}
+
+/// A file-name-safe version of a room name.
+fn file_tag(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// The trajectory as CSV: one row per step `t` with the pose at the start of the step, the
+/// sensor values read there, the motor outputs, the action label and whether the move collided;
+/// a last row `t = steps` holds the final pose only.
+pub fn trajectory_csv(tr: &Trajectory, tolerance: f64) -> String {
+    let mut s = String::from("step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision\n");
+    for t in 0..tr.len() {
+        let p = tr.poses[t];
+        let _ = write!(s, "{t},{},{},{}", num(p.x), num(p.y), num(p.heading));
+        for v in tr.sensors[t] {
+            let _ = write!(s, ",{}", num(v));
+        }
+        let [ml, mr] = tr.motors[t];
+        let _ = writeln!(
+            s,
+            ",{},{},{},{}",
+            num(ml),
+            num(mr),
+            Action::from_motors(ml, mr, tolerance).label(),
+            u8::from(tr.collisions[t])
+        );
+    }
+    if let Some(p) = tr.poses.last() {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},,,,,,,,,,,,",
+            tr.len(),
+            num(p.x),
+            num(p.y),
+            num(p.heading)
+        );
+    }
+    s
+}
+
+/// Entry point of `fuzzymotiv replay`.
+pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
+    let src = &args.source;
+    let (genome_path, config_path) = if src.is_dir() {
+        let config = src.join("config.resolved.toml");
+        if !config.is_file() {
+            return Err(CliError::input(format!(
+                "{}: not a run directory (no config.resolved.toml); pass a directory written by `fuzzymotiv run` or a best_genome.json",
+                src.display()
+            )));
+        }
+        (src.join("best_genome.json"), Some(config))
+    } else if src.is_file() {
+        (src.clone(), None)
+    } else {
+        return Err(CliError::input(format!(
+            "{}: no such run directory or genome file",
+            src.display()
+        )));
+    };
+    let genome = read_genome(&genome_path)?;
+    // A genome alone is replayed under the default config and, unless --seed says otherwise,
+    // the seed it was evolved with.
+    let seed = args.seed.or(if config_path.is_none() {
+        genome.seed
+    } else {
+        None
+    });
+    let loaded = load_config(config_path.as_deref(), &[], seed)?;
+    let source_name = config_path
+        .as_ref()
+        .map_or("(built-in defaults)".to_string(), |p| {
+            p.display().to_string()
+        });
+    if config_path.is_some() && loaded.raw.network.hidden != genome.hidden {
+        return Err(CliError::input(format!(
+            "{}: the genome has {} hidden units but the config says network.hidden = {}",
+            genome_path.display(),
+            genome.hidden,
+            loaded.raw.network.hidden
+        )));
+    }
+
+    // The rooms to replay, as config entries (built-in names or absolute room-file paths).
+    let names = loaded.experiment.room_names();
+    let entries: Vec<String> = match &args.room {
+        None => loaded.raw.rooms.clone(),
+        Some(want) => {
+            if let Some(i) = names.iter().position(|n| n == want) {
+                vec![loaded.raw.rooms[i].clone()]
+            } else if Room::builtin(want).is_some() {
+                vec![want.clone()]
+            } else if Path::new(want).is_file() {
+                let path = Path::new(want);
+                load_room_file(path)?;
+                let abs = path.canonicalize().map_err(|e| io_err(path, e))?;
+                vec![abs.display().to_string()]
+            } else {
+                return Err(CliError::input(format!(
+                    "--room {want}: not a room of the config ({}), a built-in room ({}) or a room file",
+                    names.join(", "),
+                    BUILTIN_ROOMS.join(", ")
+                )));
+            }
+        }
+    };
+    let mut raw = loaded.raw.clone();
+    raw.rooms = entries;
+    raw.network.hidden = genome.hidden;
+    // Replaying needs neither room recognition nor online orientation (they would demand more
+    // rooms); neither changes a trajectory.
+    raw.aem.enabled = false;
+    raw.fitness.orientation = OrientationMode::Offline;
+    let exp = resolve(raw, Path::new("."), &source_name)?.experiment;
+    let want_len = MlpShape::with_hidden(genome.hidden).genome_len();
+
+    let runs = exp.runs();
+    let mut trials = Vec::new();
+    for r in 0..exp.arenas.len() {
+        let name = &exp.arenas[r].room().name;
+        let run: Run = match exp.training {
+            Training::AllRooms => runs[0].clone(),
+            Training::PerRoom => runs[r].clone(),
+        };
+        let weights = match exp.training {
+            Training::PerRoom => match genome.runs.iter().find(|(label, _)| label == name) {
+                Some((_, w)) => w,
+                None => {
+                    eprintln!(
+                        "note: no robot was evolved in room {name}; replaying the genome's main robot"
+                    );
+                    &genome.weights
+                }
+            },
+            Training::AllRooms => &genome.weights,
+        };
+        if weights.len() != want_len {
+            return Err(CliError::input(format!(
+                "{}: {} weights, but an 8-{}-2 network needs {want_len}",
+                genome_path.display(),
+                weights.len(),
+                genome.hidden
+            )));
+        }
+        let tr = exp.instance_trajectory(weights, &run, r);
+        trials.push((r, run.label.clone(), tr));
+    }
+
+    let out = &args.out;
+    let dir = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    std::fs::create_dir_all(&dir).map_err(|e| io_err(&dir, e))?;
+    let stem = out
+        .file_stem()
+        .map_or("replay".to_string(), |s| s.to_string_lossy().into_owned());
+    let tolerance = exp.aem.action_tolerance;
+    let mut rooms_json = Vec::new();
+    for (r, label, tr) in &trials {
+        let name = &exp.arenas[*r].room().name;
+        let csv = dir.join(format!("{stem}-{}.csv", file_tag(name)));
+        write_atomic(&csv, trajectory_csv(tr, tolerance))?;
+        let (terms, f) = trajectory_terms(&exp, *r, tr);
+        println!(
+            "{name}: a = {:.3}, g = {:.3}, b = {:.3}, F = {f:.4}, {} collisions → {}",
+            terms.a,
+            terms.g,
+            terms.b,
+            tr.collisions.iter().filter(|&&c| c).count(),
+            csv.display()
+        );
+        rooms_json.push(serde_json::json!({
+            "room": name,
+            "run": label,
+            "steps": tr.len(),
+            "terms": terms,
+            "f": f,
+            "actions": tr.motors.iter().map(|m| Action::from_motors(m[0], m[1], tolerance).label()).collect::<Vec<_>>(),
+            "trajectory": tr,
+        }));
+    }
+    let doc = serde_json::json!({
+        "program": "fuzzymotiv",
+        "version": fuzzymotiv::VERSION,
+        "genome": genome_path.display().to_string(),
+        "config": source_name,
+        "seed": exp.seed,
+        "note": "poses[t] is the pose at the start of step t (poses[0] = home, poses[steps] = the end); sensors[t], motors[t], speeds[t] and collisions[t] belong to step t",
+        "rooms": rooms_json,
+    });
+    write_atomic(
+        &dir.join(format!("{stem}.json")),
+        serde_json::to_string(&doc).expect("serialisable") + "\n",
+    )?;
+    let pairs: Vec<_> = trials
+        .iter()
+        .map(|(r, _, tr)| (exp.arenas[*r].room(), tr))
+        .collect();
+    write_figure_at(
+        &dir.join(format!("{stem}.svg")),
+        &trajectories_svg(
+            &format!("Replay of {} (seed {})", genome_path.display(), exp.seed),
+            &pairs,
+        ),
+        args.png,
+    )?;
+    let about = format!(
+        "genome {} · config {} · seed {} · motivations (C, H, O, E) = {} · {} steps per trial",
+        genome_path.display(),
+        source_name,
+        exp.seed,
+        xs(&exp),
+        exp.trial.steps
+    );
+    write_atomic(out, replay_page("fuzzymotiv replay", &about, &exp, &trials))?;
+    eprintln!("wrote {}", out.display());
+    Ok(())
+}

@@ -1,0 +1,772 @@
+//! The self-contained HTML report (`report.html`): config, fitness evolution, the per-room
+//! table, the fuzzy fitness of the best robot with its firing rules, the rooms with the best
+//! robot's paths and an animated replay, and room recognition (SOM line, confusion matrix).
+//!
+//! Everything is inline (SVG figures, one JSON data block, one small script, one style sheet);
+//! a Content-Security-Policy forbids every network request, so the page opens from disk.
+
+use std::fmt::Write as _;
+
+use fuzzymotiv::config::{EnergyMode, Training};
+use fuzzymotiv::experiment::{AemReport, Experiment};
+use fuzzymotiv::fitness::FitnessTerms;
+use fuzzymotiv::fuzzy::label_name;
+use fuzzymotiv::sensor::SENSOR_LAYOUT;
+use fuzzymotiv::trial::Trajectory;
+use serde_json::{Value, json};
+
+use crate::inputs::Loaded;
+use crate::reproduce::Setting;
+use crate::run::{Finished, aem_for_room, resolved_toml, robot_for_room};
+use crate::svg::{
+    SomRoom, colour, esc, fitness_svg, membership_svg, som_svg, terms_svg, trajectories_svg,
+};
+
+const CSS: &str = include_str!("report/report.css");
+const SCRIPT: &str = include_str!("report/replay.js");
+
+/// Length of the drawn IR rays (mm): about the reach of the sampled sensor model.
+const RAY_MM: f64 = 50.0;
+
+/// A page being assembled: HTML body and the replay data its widgets read.
+pub struct Page {
+    title: String,
+    body: String,
+    replays: Vec<Value>,
+}
+
+impl Page {
+    /// An empty page.
+    pub fn new(title: impl Into<String>) -> Self {
+        Self {
+            title: title.into(),
+            body: String::new(),
+            replays: Vec::new(),
+        }
+    }
+
+    /// Appends raw HTML.
+    pub fn push(&mut self, html: &str) {
+        self.body.push_str(html);
+    }
+
+    /// Adds a replay widget for the given rooms (from [`replay_room`]) at this point of the page.
+    pub fn replay(&mut self, exp: &Experiment, rooms: Vec<Value>) {
+        let k = self.replays.len();
+        let trial = &exp.trial;
+        self.replays.push(json!({
+            "robot": {
+                "radius": trial.robot.radius,
+                "dt": trial.dt,
+                "ray": RAY_MM,
+                "sensors": SENSOR_LAYOUT.iter().map(|m| [m.x, m.y, m.facing_deg]).collect::<Vec<_>>(),
+            },
+            "rooms": rooms,
+        }));
+        let _ = writeln!(self.body, r#"<div class="replay" data-replay="{k}"></div>"#);
+    }
+
+    /// The finished document.
+    pub fn finish(self) -> String {
+        let data = serde_json::to_string(&json!({ "replays": self.replays }))
+            .expect("serialisable")
+            .replace("</", "<\\/");
+        format!(
+            r#"<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<meta http-equiv="Content-Security-Policy" content="default-src 'none'; style-src 'unsafe-inline'; script-src 'unsafe-inline'; img-src data:">
+<title>{title}</title>
+<style>
+{CSS}</style>
+<script>window.fuzzymotivErrors = []; window.addEventListener("error", function (e) {{ window.fuzzymotivErrors.push(String(e.message)); }});</script>
+</head>
+<body>
+<main>
+{body}
+<p class="note">Written by fuzzymotiv {version}. This page is self-contained: it makes no network requests.</p>
+</main>
+<script type="application/json" id="fm-data">{data}</script>
+<script>
+{SCRIPT}</script>
+</body>
+</html>
+"#,
+            title = esc(&self.title),
+            body = self.body,
+            version = fuzzymotiv::VERSION,
+        )
+    }
+}
+
+fn r1(v: f64) -> f64 {
+    (v * 10.0).round() / 10.0
+}
+
+fn r3(v: f64) -> f64 {
+    (v * 1000.0).round() / 1000.0
+}
+
+/// One letter per action: S straight, L left30, R right30, T turn180.
+fn action_letter(a: fuzzymotiv::aem::Action) -> char {
+    use fuzzymotiv::aem::Action::*;
+    match a {
+        Straight => 'S',
+        Left30 => 'L',
+        Right30 => 'R',
+        Turn180 => 'T',
+    }
+}
+
+/// The fitness terms of a recorded trial and its F under the experiment's motivations.
+pub fn trajectory_terms(exp: &Experiment, room: usize, tr: &Trajectory) -> (FitnessTerms, f64) {
+    let terms = FitnessTerms::measure(&exp.arenas[room], &exp.trial, tr);
+    (terms, exp.fuzzy_fitness(&terms))
+}
+
+/// Compact replay data of one trial (positions to 0.1 mm, angles and motors to 3 decimals,
+/// sensors to integers; actions and collisions as one character per step).
+pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, tr: &Trajectory) -> Value {
+    let r = exp.arenas[room].room();
+    let pts =
+        |p: &[fuzzymotiv::geom::Vec2]| p.iter().map(|v| [r1(v.x), r1(v.y)]).collect::<Vec<_>>();
+    let tol = exp.aem.action_tolerance;
+    let (terms, f) = trajectory_terms(exp, room, tr);
+    json!({
+        "room": r.name,
+        "run": run_label,
+        "steps": tr.len(),
+        "outline": pts(&r.outline),
+        "obstacles": r.obstacles.iter().map(|o| pts(o)).collect::<Vec<_>>(),
+        "home": [r1(r.home.x), r1(r.home.y), r3(r.home.heading)],
+        "x": tr.poses.iter().map(|p| r1(p.x)).collect::<Vec<_>>(),
+        "y": tr.poses.iter().map(|p| r1(p.y)).collect::<Vec<_>>(),
+        "h": tr.poses.iter().map(|p| r3(p.heading)).collect::<Vec<_>>(),
+        "s": tr.sensors.iter().map(|s| s.map(|v| v.round() as i64)).collect::<Vec<_>>(),
+        "m": tr.motors.iter().map(|m| m.map(r3)).collect::<Vec<_>>(),
+        "a": tr.motors.iter().map(|m| action_letter(fuzzymotiv::aem::Action::from_motors(m[0], m[1], tol))).collect::<String>(),
+        "c": tr.collisions.iter().map(|&c| if c { '1' } else { '0' }).collect::<String>(),
+        "terms": {"a": r3(terms.a), "g": r3(terms.g), "l": r3(terms.l), "b": r3(terms.b)},
+        "f": r3(f),
+    })
+}
+
+/// One setting (one run directory) to show on a page.
+pub struct Section<'a> {
+    /// Prefix of the element ids of this section.
+    pub id: &'a str,
+    /// Heading of the section (reproduce) or of the page (run).
+    pub title: String,
+    /// The config and experiment.
+    pub loaded: &'a Loaded,
+    /// The results.
+    pub done: &'a Finished,
+    /// The paper's values, for the reproduce page.
+    pub paper: Option<&'a Setting>,
+    /// Link to the run directory's own report, for the reproduce page.
+    pub link: Option<String>,
+}
+
+/// `report.html` of a run directory.
+pub fn run_page(loaded: &Loaded, done: &Finished) -> String {
+    let exp = &loaded.experiment;
+    let mut page = Page::new(format!("fuzzymotiv run report — {}", exp.name));
+    let _ = writeln!(
+        page.body,
+        "<h1>Run report: {}</h1>\n<p class=\"meta\">fuzzymotiv {} · seed {} · wall time {:.2} s · {}</p>",
+        esc(&exp.name),
+        fuzzymotiv::VERSION,
+        exp.seed,
+        done.wall_seconds,
+        esc(&setting_line(exp))
+    );
+    page.push(&intro());
+    let section = Section {
+        id: "run",
+        title: exp.name.clone(),
+        loaded,
+        done,
+        paper: None,
+        link: None,
+    };
+    page.push(&toc("run"));
+    render_section(&mut page, &section, 2);
+    page.push(&files_list());
+    page.finish()
+}
+
+/// `report.html` of `reproduce`: both settings, with the paper's values beside ours.
+pub fn reproduce_page(
+    sections: &[Section<'_>],
+    seed: u64,
+    overrides: &[String],
+    wall: f64,
+) -> String {
+    let mut page = Page::new("fuzzymotiv — the paper's study reproduced");
+    let _ = writeln!(
+        page.body,
+        "<h1>The paper's study, reproduced</h1>\n<p class=\"meta\">fuzzymotiv {} · seed {seed} · wall time {wall:.2} s{}</p>",
+        fuzzymotiv::VERSION,
+        if overrides.is_empty() {
+            String::new()
+        } else {
+            format!(" · overrides: {}", esc(&overrides.join(", ")))
+        }
+    );
+    page.push(&intro());
+    page.push(
+        "<p>Two motivation settings from the paper are evolved separately: <b>high curiosity</b> \
+         (C, H, O, E) = (0.8, 0.1, 0, 0.1) and <b>low curiosity</b> (0.5, 0.3, 0, 0.2). The paper \
+         reports that high curiosity explores 92–100 % of the optimum and recognises rooms well, \
+         while low curiosity explores less and recognises rooms poorly. Trends, not digits, are the \
+         target: the numbers below come from the simulation, not from tuning.</p>\n",
+    );
+    let _ = writeln!(page.body, "<nav class=\"toc\"><b>Settings:</b> ");
+    for s in sections {
+        let _ = write!(page.body, r##"<a href="#{}">{}</a>"##, s.id, esc(&s.title));
+    }
+    page.push("</nav>\n");
+    // Overview: both settings' fitness curves side by side, then the headline numbers.
+    let panels: Vec<_> = sections
+        .iter()
+        .map(|s| {
+            (
+                format!("{} (C,H,O,E) = {}", s.title, xs(&s.loaded.experiment)),
+                s.done.evolutions[0].history.clone(),
+            )
+        })
+        .collect();
+    page.push("<h2 id=\"overview\">Overview</h2>\n");
+    figure(
+        &mut page,
+        &fitness_svg(&panels),
+        "Fitness evolution of both settings: best F (red) and mean F (blue) of the population in every generation; the shaded band spans the population's minimum to maximum F.",
+    );
+    page.push("<table><tr><th>setting</th><th>mean % optimal exploration</th><th>mean % recognition</th><th>mean % battery usage</th></tr>\n");
+    for s in sections {
+        let rows = &s.done.rows;
+        let n = rows.len().max(1) as f64;
+        let mean = |f: &dyn Fn(&crate::run::RoomRow) -> f64| rows.iter().map(f).sum::<f64>() / n;
+        let paper = s.paper.map(|p| {
+            let m = |k: usize| {
+                p.paper.iter().map(|r| [r.2, r.3, r.4][k]).sum::<f64>() / p.paper.len() as f64
+            };
+            [m(0), m(1), m(2)]
+        });
+        let cell = |v: f64, k: usize| match paper {
+            Some(p) => format!("{v:.1} <span class=\"paper\">(paper {:.1})</span>", p[k]),
+            None => format!("{v:.1}"),
+        };
+        let rec = if rows.iter().all(|r| r.recognition_pct.is_some()) {
+            cell(mean(&|r| r.recognition_pct.unwrap_or(0.0)), 1)
+        } else {
+            "n/a".into()
+        };
+        let _ = writeln!(
+            page.body,
+            r##"<tr><td><a href="#{}">{}</a></td><td>{}</td><td>{}</td><td>{}</td></tr>"##,
+            s.id,
+            esc(&s.title),
+            cell(mean(&|r| r.exploration_pct), 0),
+            rec,
+            cell(mean(&|r| r.battery_pct), 2)
+        );
+    }
+    page.push(
+        "</table>\n<p class=\"caption\">Means over the rooms of each setting's table below.</p>\n",
+    );
+    for s in sections {
+        let _ = writeln!(
+            page.body,
+            "<h2 id=\"{}\">Setting: {}</h2>\n<p class=\"meta\">{}{}</p>",
+            s.id,
+            esc(&s.title),
+            esc(&setting_line(&s.loaded.experiment)),
+            s.link.as_ref().map_or(String::new(), |l| format!(
+                " · its run directory's own report: <a href=\"{}\">{}</a>",
+                esc(l),
+                esc(l)
+            ))
+        );
+        page.push(&toc(s.id));
+        render_section(&mut page, s, 3);
+    }
+    page.finish()
+}
+
+/// A replay page for trajectories replayed by `fuzzymotiv replay`.
+pub fn replay_page(
+    title: &str,
+    about: &str,
+    exp: &Experiment,
+    trials: &[(usize, String, Trajectory)],
+) -> String {
+    let mut page = Page::new(title.to_string());
+    let _ = writeln!(
+        page.body,
+        "<h1>{}</h1>\n<p class=\"meta\">{}</p>",
+        esc(title),
+        esc(about)
+    );
+    page.push(
+        "<p>The robot is replayed step by step from its home pose: the circle is its body \
+         (27.5 mm radius by default), the dark line its heading, the coloured rays its eight infrared \
+         sensors (grey = nothing seen, red and thick = a wall very close). Green cells are the 50 mm \
+         cells its centre has entered so far, which is what the exploration term a counts. Each step \
+         also shows the action label the controller's motor outputs give (straight, left30, right30, \
+         turn180), the symbols room recognition works with.</p>\n",
+    );
+    let pairs: Vec<_> = trials
+        .iter()
+        .map(|(r, _, tr)| (exp.arenas[*r].room(), tr))
+        .collect();
+    figure(
+        &mut page,
+        &trajectories_svg("Replayed paths", &pairs),
+        "Top-down view of every replayed room: green circle = home pose, red line = path, filled circle = where the trial ended.",
+    );
+    let rooms = trials
+        .iter()
+        .map(|(r, label, tr)| replay_room(exp, *r, label, tr))
+        .collect();
+    page.replay(exp, rooms);
+    page.finish()
+}
+
+/// The motivations as "(C, H, O, E)" numbers.
+pub fn xs(exp: &Experiment) -> String {
+    let m = exp.motivations;
+    format!(
+        "({}, {}, {}, {})",
+        m.curiosity, m.homing, m.orientation, m.energy
+    )
+}
+
+fn setting_line(exp: &Experiment) -> String {
+    format!(
+        "motivations (C, H, O, E) = {} · rooms {} · {} · population {} × {} generations · {} steps per trial",
+        xs(exp),
+        exp.room_names().join(", "),
+        match exp.training {
+            Training::AllRooms => "one robot evolved in all rooms",
+            Training::PerRoom => "one robot evolved per room",
+        },
+        exp.ga.population,
+        exp.ga.generations,
+        exp.trial.steps
+    )
+}
+
+fn intro() -> String {
+    "<p>A population of simulated Khepera robots, each controlled by a small neural network, is \
+     evolved by a genetic algorithm. A robot's fitness F combines four measured fitness terms \
+     (exploration a, homing g, recognition l, battery b) through a fuzzy rule base weighted by the \
+     robot's <i>motivations</i> (curiosity C, homing H, orientation O, energy E). The best robot of \
+     the last generation is then asked to recognise rooms from its own sequence of actions.</p>\n"
+        .to_string()
+}
+
+fn toc(id: &str) -> String {
+    let items = [
+        ("fitness", "Fitness evolution"),
+        ("rooms", "Results per room"),
+        ("fuzzy", "Fuzzy fitness of the best robot"),
+        ("paths", "Paths and replay"),
+        ("aem", "Room recognition"),
+        ("config", "Configuration"),
+    ];
+    let mut s = String::from("<nav class=\"toc\">");
+    for (k, name) in items {
+        let _ = write!(s, r##"<a href="#{id}-{k}">{name}</a>"##);
+    }
+    s.push_str("</nav>\n");
+    s
+}
+
+fn figure(page: &mut Page, svg: &str, caption: &str) {
+    let _ = writeln!(
+        page.body,
+        "<div class=\"figure\">{svg}</div>\n<p class=\"caption\">{}</p>",
+        esc(caption)
+    );
+}
+
+fn heading(page: &mut Page, level: u8, id: &str, part: &str, text: &str) {
+    let _ = writeln!(page.body, "<h{level} id=\"{id}-{part}\">{text}</h{level}>");
+}
+
+fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
+    let exp = &s.loaded.experiment;
+    let done = s.done;
+    let names = exp.room_names();
+    let label = |evo: &fuzzymotiv::experiment::Evolution| match exp.training {
+        Training::AllRooms => s.title.clone(),
+        Training::PerRoom => format!("{}: robot evolved in {}", s.title, evo.run.label),
+    };
+
+    // Fitness evolution.
+    heading(page, level, s.id, "fitness", "Fitness evolution");
+    let panels: Vec<_> = done
+        .evolutions
+        .iter()
+        .map(|e| (label(e), e.history.clone()))
+        .collect();
+    figure(
+        page,
+        &fitness_svg(&panels),
+        "Best F (red) and mean F (blue) of the population in every generation; the shaded band spans the population's minimum to maximum F. Evaluations are noisy (6 % sensor and motor noise), so the best F can drop between generations.",
+    );
+    figure(
+        page,
+        &terms_svg(&panels),
+        "The population's mean fitness terms per generation: which behaviour the motivations pushed the population towards.",
+    );
+
+    // Per-room table.
+    heading(page, level, s.id, "rooms", "Results per room");
+    page.push("<table><tr><th>room</th><th>average fitness</th><th>% optimal exploration</th><th>% recognition</th><th>% battery usage</th><th>% homing</th></tr>\n");
+    for r in &done.rows {
+        let p = s
+            .paper
+            .and_then(|set| set.paper.iter().find(|p| p.0 == r.room));
+        let paper = |v: Option<f64>, digits: usize| match v {
+            Some(v) => format!(" <span class=\"paper\">(paper {v:.digits$})</span>"),
+            None => String::new(),
+        };
+        let _ = writeln!(
+            page.body,
+            "<tr><td>{}</td><td>{:.4}{}</td><td>{:.1}{}</td><td>{}{}</td><td>{:.1}{}</td><td>{:.1}</td></tr>",
+            esc(&r.room),
+            r.average_fitness,
+            paper(p.map(|p| p.1), 4),
+            r.exploration_pct,
+            paper(p.map(|p| p.2), 2),
+            r.recognition_pct
+                .map_or("n/a".to_string(), |v| format!("{v:.0}")),
+            paper(p.map(|p| p.3), 0),
+            r.battery_pct,
+            paper(p.map(|p| p.4), 2),
+            r.homing
+        );
+    }
+    let _ = writeln!(
+        page.body,
+        "</table>\n<p class=\"caption\"><b>average fitness</b>: mean F of the final generation's population in that room. The other columns come from {} test runs of the best robot per room (fresh noise each): <b>% optimal exploration</b> = mean 100·a, <b>% recognition</b> = share of test runs whose room was recognised correctly, <b>% battery usage</b> = mean 100·b, <b>% homing</b> = mean 100·g.{}</p>",
+        exp.aem.test_runs,
+        if s.paper.is_some() {
+            " Grey: the paper's value (Tables 1 and 2)."
+        } else {
+            ""
+        }
+    );
+
+    // Fuzzy fitness.
+    heading(
+        page,
+        level,
+        s.id,
+        "fuzzy",
+        "Fuzzy fitness of the best robot",
+    );
+    fuzzy_part(page, s);
+
+    // Paths and replay.
+    heading(page, level, s.id, "paths", "Paths and replay");
+    let pairs: Vec<_> = exp
+        .arenas
+        .iter()
+        .map(|a| a.room())
+        .zip(done.trajectories.iter())
+        .collect();
+    figure(
+        page,
+        &trajectories_svg(&format!("Best robot, {}", s.title), &pairs),
+        "Each room to scale, seen from above: green circle and line = home pose (start of every trial), red line = the best robot's path in its room-modelling run (the run whose actions became the room's stored instance), filled circle = where it ended.",
+    );
+    page.push(
+        "<p>The replay below animates those same runs. The circle is the robot's body, the dark \
+         line its heading, the coloured rays its eight infrared sensors (grey and thin = nothing \
+         within reach, red and thick = a wall very close). Green cells are the 50 mm cells its \
+         centre has entered so far, which is what the exploration term a counts. The panel on the \
+         right shows the sensor readings and motor outputs at the current step and the action label \
+         the motors give (straight, left30, right30, turn180): the sequence of these labels is what \
+         room recognition works with. The strip under the room shows the actions of all steps; \
+         click it, drag the slider or use the arrow keys to move in time.</p>\n",
+    );
+    let rooms = (0..exp.arenas.len())
+        .map(|r| {
+            let (evo, _) = robot_for_room(&done.evolutions, r);
+            replay_room(exp, r, &evo.run.label, &done.trajectories[r])
+        })
+        .collect();
+    page.replay(exp, rooms);
+
+    // Room recognition.
+    heading(
+        page,
+        level,
+        s.id,
+        "aem",
+        "Room recognition (action-based environment modelling)",
+    );
+    aem_part(page, s, &names);
+
+    // Configuration.
+    heading(page, level, s.id, "config", "Configuration");
+    let _ = writeln!(
+        page.body,
+        "<p>The fully resolved configuration (every key, with the seed); run it again with <code>fuzzymotiv run config.resolved.toml</code>. Wall time of this run: {:.2} s.</p>\n<details><summary>config.resolved.toml</summary><pre class=\"config\">{}</pre></details>",
+        done.wall_seconds,
+        esc(&resolved_toml(&s.loaded.raw))
+    );
+}
+
+fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
+    let exp = &s.loaded.experiment;
+    let done = s.done;
+    let m = exp.motivations;
+    page.push("<p>The robot's <b>motivations</b> X weight the four fitness terms Y it is measured on:</p>\n<div class=\"bars\">\n");
+    for (name, v, colour) in [
+        ("curiosity C", m.curiosity, "#2ca02c"),
+        ("homing H", m.homing, "#9467bd"),
+        ("orientation O", m.orientation, "#8c564b"),
+        ("energy E", m.energy, "#ff7f0e"),
+    ] {
+        let _ = writeln!(
+            page.body,
+            "<span>{name}</span><div class=\"bar\"><span style=\"width:{:.1}%;background:{colour}\"></span></div><span>{v}</span>",
+            100.0 * v
+        );
+    }
+    let battery = match exp.energy {
+        EnergyMode::Use => "the fuzzy input is b itself (energy is \"the opposite of laziness\")",
+        EnergyMode::Conserve => "with <code>energy = \"conserve\"</code> the fuzzy input is 1 − b",
+    };
+    let _ = writeln!(
+        page.body,
+        "</div>\n<dl class=\"terms\">\
+<dt>a</dt><dd><b>exploration</b>: the 50 mm grid cells the robot's centre entered, divided by the optimum (what a robot at full speed that never revisits a cell could reach, at most every reachable cell).</dd>\
+<dt>g</dt><dd><b>homing</b>: 1 − (distance from home at the end) / (largest distance from home to a corner of the room).</dd>\
+<dt>l</dt><dd><b>orientation (recognition)</b>: 0 during evolution in the paper (O = 0); with online orientation, the share of rooms the robot recognised.</dd>\
+<dt>b</dt><dd><b>battery usage</b>: the mean wheel speed as a fraction of the maximum (1 = always full speed); {battery}.</dd></dl>\
+<p><b>How F is computed.</b> Each term y is described by fuzzy labels, very low (V.L.) to very high (V.H.) by default, with the membership functions below. A rule takes one label per term, e.g. \"if a is H and g is L and l is V.L. and b is H\"; with {labels} labels there are {labels}⁴ = {rules} rules. A rule fires with strength w = the smallest membership of its four labels, and proposes f = C·a·c(label of a) + H·g·c(label of g) + O·l·c(label of l) + E·b·c(label of b), where c = {:?} rises with the label. The fitness is the weighted mean <b>F = Σ w·f / Σ w</b>; since every value lies between two label peaks, at most 16 rules fire at once.</p>",
+        exp.fuzzy.coefficients(),
+        labels = exp.fuzzy.labels(),
+        rules = exp.fuzzy.rule_count(),
+    );
+    let names: Vec<String> = (0..exp.fuzzy.labels())
+        .map(|k| label_name(k, exp.fuzzy.labels()))
+        .collect();
+    figure(
+        page,
+        &membership_svg(exp.fuzzy.peaks(), &names),
+        "Triangular membership functions: each value belongs to at most two neighbouring labels, and its memberships add up to 1.",
+    );
+    page.push(
+        "<p>The best robot of the last generation, as the GA evaluated it (one trial per room, \
+         with noise). F is its fitness in that room; the robot's overall fitness is the mean F over \
+         its rooms. Open a row's rules to see how F came about.</p>\n",
+    );
+    page.push("<table><tr><th>room</th><th>a</th><th>g</th><th>l</th><th>b</th><th>F</th><th class=\"left\">firing rules</th></tr>\n");
+    for r in 0..exp.arenas.len() {
+        let (evo, k) = robot_for_room(&done.evolutions, r);
+        let score = &evo.evaluations[evo.best].per_room[k];
+        let y = exp.fuzzy_inputs(&score.terms);
+        let ex = exp.fuzzy.explain(&exp.motivations, y);
+        let t = score.terms;
+        let mut rules = String::from(
+            "<table><tr><th>rule</th><th class=\"left\">if …</th><th>w</th><th>f</th><th>w·f</th></tr>",
+        );
+        let mut sum_wf = 0.0;
+        for rule in &ex.rules {
+            let cond = ["a", "g", "l", "b"]
+                .iter()
+                .zip(&rule.label_names)
+                .map(|(i, n)| format!("{i} is {n}"))
+                .collect::<Vec<_>>()
+                .join(" and ");
+            sum_wf += rule.weight * rule.output;
+            let _ = write!(
+                rules,
+                "<tr><td>{}</td><td class=\"rule-if\">{}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td></tr>",
+                rule.number,
+                esc(&cond),
+                rule.weight,
+                rule.output,
+                rule.weight * rule.output
+            );
+        }
+        let _ = write!(
+            rules,
+            "<tr><th colspan=\"2\" class=\"left\">Σ</th><th>{:.4}</th><th></th><th>{sum_wf:.4}</th></tr></table><p class=\"note\">F = Σ w·f / Σ w = {sum_wf:.4} / {:.4} = {:.4}; inputs Y = ({:.3}, {:.3}, {:.3}, {:.3}), motivations X = {}.</p>",
+            ex.weight_sum,
+            ex.weight_sum,
+            ex.fitness,
+            y[0],
+            y[1],
+            y[2],
+            y[3],
+            xs(exp)
+        );
+        let _ = writeln!(
+            page.body,
+            "<tr><td>{}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td><b>{:.4}</b></td><td class=\"left\"><details><summary>{} rules</summary>{rules}</details></td></tr>",
+            esc(&exp.arenas[r].room().name),
+            t.a,
+            t.g,
+            t.l,
+            t.b,
+            score.f,
+            ex.rules.len()
+        );
+    }
+    page.push("</table>\n");
+    for evo in &done.evolutions {
+        let e = &evo.evaluations[evo.best];
+        let _ = writeln!(
+            page.body,
+            "<p class=\"note\">Best robot of run “{}”: individual {} of generation {}, fitness (mean F over its rooms) = {:.4}.</p>",
+            esc(&evo.run.label),
+            evo.best,
+            evo.history.len().saturating_sub(1),
+            e.fitness
+        );
+    }
+}
+
+fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
+    let exp = &s.loaded.experiment;
+    let done = s.done;
+    if !exp.aem.enabled || done.aem.iter().all(|a| a.som_nodes == 0) {
+        page.push("<p>Room recognition was not run (<code>aem.enabled = false</code>).</p>\n");
+        return;
+    }
+    let _ = writeln!(
+        page.body,
+        "<p>The best robot runs once in every room. Its sequence of actions becomes a chain code \
+         (its cumulative heading change after every step) — the room's <b>environment vector</b>. A \
+         one-dimensional self-organising map (SOM) of {} nodes is trained on these vectors; each \
+         room's vector wins one node, its <b>r-node</b>. In a test run the robot's new vector wins \
+         some node; rooms whose r-node lies within {} nodes of it are candidates, and the candidate \
+         whose stored vector is nearest is the answer (no candidate = not recognised). Rooms whose \
+         paths look alike get nearby r-nodes and are easily confused.</p>",
+        exp.aem.som.nodes, exp.aem.threshold
+    );
+    for (k, rep) in done.aem.iter().enumerate() {
+        let rooms: Vec<SomRoom<'_>> = rep
+            .rooms
+            .iter()
+            .filter_map(|r| {
+                Some(SomRoom {
+                    name: &r.room,
+                    r_node: r.r_node?,
+                    winners: r.tests.iter().filter_map(|t| t.winner).collect(),
+                })
+            })
+            .collect();
+        let title = match exp.training {
+            Training::AllRooms => "The rooms on the SOM line".to_string(),
+            Training::PerRoom => format!(
+                "The rooms on the SOM line of the robot evolved in {}",
+                done.evolutions[k].run.label
+            ),
+        };
+        figure(
+            page,
+            &som_svg(&title, rep.som_nodes, exp.aem.threshold, &rooms),
+            "Each room's r-node on the line of SOM nodes, with the window of nodes a test run's winner must fall in for that room to be a candidate; dots are the winners of the test runs, coloured by the room the robot was really in.",
+        );
+    }
+    confusion_table(page, exp, &done.aem, names);
+}
+
+fn confusion_table(page: &mut Page, exp: &Experiment, aem: &[AemReport], names: &[String]) {
+    page.push(
+        "<h4>Confusion matrix</h4>\n<table class=\"cm\"><tr><th>true room ↓ / recognised as →</th>",
+    );
+    for (k, n) in names.iter().enumerate() {
+        let _ = write!(
+            page.body,
+            "<th style=\"color:{}\">{}</th>",
+            colour(k),
+            esc(n)
+        );
+    }
+    page.push("<th>not recognised</th><th>% correct</th></tr>\n");
+    for (r, n) in names.iter().enumerate() {
+        let rep = aem_for_room(aem, r);
+        let counts = &rep.confusion.counts[r];
+        let total: u32 = counts.iter().sum();
+        let _ = write!(
+            page.body,
+            "<tr><th class=\"left\" style=\"color:{}\">{}</th>",
+            colour(r),
+            esc(n)
+        );
+        for (a, &c) in counts.iter().enumerate() {
+            let share = if total == 0 {
+                0.0
+            } else {
+                f64::from(c) / f64::from(total)
+            };
+            let bg = if a == r {
+                format!("rgba(44,160,44,{:.2})", 0.1 + 0.5 * share)
+            } else if c > 0 {
+                format!("rgba(214,39,40,{:.2})", 0.1 + 0.5 * share)
+            } else {
+                "transparent".to_string()
+            };
+            let _ = write!(
+                page.body,
+                "<td{} style=\"background:{bg}\">{c}</td>",
+                if a == r { " class=\"hit\"" } else { "" }
+            );
+        }
+        let _ = writeln!(page.body, "<td>{:.0}</td></tr>", rep.confusion.percent(r));
+    }
+    let _ = writeln!(
+        page.body,
+        "</table>\n<p class=\"caption\">Counts of test runs ({} per room, fresh noise each): row = the room the robot was in, column = the room it was recognised as. The diagonal (green outline) counts correct answers. The same numbers are in <code>recognition.csv</code>.</p>",
+        exp.aem.test_runs
+    );
+}
+
+fn files_list() -> String {
+    let files = [
+        (
+            "config.resolved.toml",
+            "the resolved configuration (with seed and program version)",
+        ),
+        (
+            "generations.csv",
+            "per generation: best, mean, std, min, max F and mean a, g, l, b",
+        ),
+        (
+            "best_genome.json",
+            "the best robot's network weights (replay it with fuzzymotiv replay)",
+        ),
+        (
+            "recognition.csv",
+            "per room: test runs, correct answers, confusion counts",
+        ),
+        ("table.md", "the per-room table"),
+        ("summary.json", "headline numbers and wall time"),
+        (
+            "fitness.svg, terms.svg, trajectories.svg",
+            "the figures of this page (PNG too with --png)",
+        ),
+    ];
+    let mut s = String::from("<h2 id=\"files\">Files in this run directory</h2>\n<ul>\n");
+    for (f, what) in files {
+        let link = if f.contains(',') {
+            esc(f)
+        } else {
+            format!("<a href=\"{f}\">{f}</a>")
+        };
+        let _ = writeln!(s, "<li>{link}: {what}</li>");
+    }
+    s.push_str("</ul>\n");
+    s
+}
