@@ -259,7 +259,7 @@ impl Arena {
     }
 
     /// The walls that can be seen by a sensor or touched within one step from a robot centred
-    /// at `p`: those of `p`'s cell closer than [`Arena::near_reach`]. Usually none in open floor,
+    /// at `p`: those of `p`'s cell closer than the sensing (or one-step collision) reach. Usually none in open floor,
     /// which skips ray casting altogether.
     #[inline]
     pub fn near_walls(&self, p: Vec2) -> NearWalls {
