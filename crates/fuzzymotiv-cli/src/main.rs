@@ -44,7 +44,7 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Expand a sweep file into its jobs (one JSON line each), or count them.
     Plan(sweep::PlanArgs),
-    /// Run a sweep's jobs (all, a shard, or one array-task index) into DIR/jobs/<id>/.
+    /// Run a sweep's jobs (all, a shard, or one array-task index) into DIR/jobs/ID/.
     Sweep(sweep::SweepArgs),
     /// Merge a sweep directory into results.csv, aggregate tables and summary plots.
     Merge(sweep::MergeArgs),

@@ -1,5 +1,5 @@
 //! Sweeps: `plan` expands a `[sweep]` into a stable list of jobs, `sweep` runs (a shard of)
-//! them into `DIR/jobs/<id>/`, `merge` builds the tables and plots.
+//! them into `DIR/jobs/ID/`, `merge` builds the tables and plots.
 //!
 //! A job's seed derives from the base seed and the job's key (its motivation point, grid values
 //! and replicate), never from its position in a shard, and its id is a hash of its fully
@@ -354,7 +354,7 @@ pub fn plan(args: PlanArgs) -> Result<(), CliError> {
 pub struct SweepArgs {
     /// Sweep file (a config with a `[sweep]` table).
     pub sweep: PathBuf,
-    /// Output directory; jobs go to DIR/jobs/<id>/.
+    /// Output directory; jobs go to DIR/jobs/ID/.
     #[arg(long)]
     pub out: PathBuf,
     /// Run shard I of N (0-based): the jobs whose index ≡ I mod N.
@@ -420,7 +420,7 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     run_jobs(&sweep, &text, &selected, &args.out)
 }
 
-/// Runs the `selected` jobs of `sweep` into `out/jobs/<id>/`, skipping finished ones.
+/// Runs the `selected` jobs of `sweep` into `out/jobs/ID/`, skipping finished ones.
 pub fn run_jobs(sweep: &Sweep, text: &str, selected: &[usize], out: &Path) -> Result<(), CliError> {
     let jobs_dir = out.join("jobs");
     std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
