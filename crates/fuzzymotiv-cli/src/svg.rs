@@ -585,7 +585,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
         (330.0, 60.0 + 22.0 * points.len() as f64)
     };
     let width = pw * 4.0;
-    let height = ph + 40.0;
+    let height = ph + 56.0;
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -662,7 +662,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
                     s,
                     r#"<rect x="{:.1}" y="{:.1}" width="20" height="6" fill="{}"/>"#,
                     ox + 40.0 + 22.0 * i as f64,
-                    height - 26.0,
+                    height - 42.0,
                     value_colour(v)
                 );
             }
@@ -670,9 +670,9 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
                 s,
                 r#"<text x="{:.1}" y="{:.1}">0</text><text x="{:.1}" y="{:.1}">100</text>"#,
                 ox + 40.0,
-                height - 8.0,
+                height - 24.0,
                 ox + 250.0,
-                height - 8.0
+                height - 24.0
             );
         } else {
             for (i, p) in points.iter().enumerate() {
