@@ -95,7 +95,9 @@ impl<'a> TermsRecorder<'a> {
 impl StepObserver for TermsRecorder<'_> {
     #[inline]
     fn observe(&mut self, s: &Step) {
-        let k = self.arena.cell_of(s.pose.position());
+        let k = s
+            .cell
+            .unwrap_or_else(|| self.arena.cell_of(s.pose.position()));
         if !self.visited[k] {
             self.visited[k] = true;
             self.visited_count += 1;

@@ -28,6 +28,11 @@ pub fn perturb_sensors<R: Rng + ?Sized>(values: &mut [f64; 8], level: f64, max: 
         return;
     }
     for v in values.iter_mut() {
-        *v = perturb(*v, level, rng).clamp(0.0, max);
+        if *v == 0.0 {
+            // 0 · u = 0 for every draw: skip the arithmetic, keep the stream in step.
+            rng.next_u64();
+        } else {
+            *v = perturb(*v, level, rng).clamp(0.0, max);
+        }
     }
 }

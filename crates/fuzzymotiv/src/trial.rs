@@ -263,6 +263,12 @@ impl Arena {
     /// which skips ray casting altogether.
     #[inline]
     pub fn near_walls(&self, p: Vec2) -> NearWalls {
+        self.near_walls_in(p, self.cell_of(p))
+    }
+
+    /// As [`Arena::near_walls`], with `p`'s grid cell already known.
+    #[inline]
+    pub fn near_walls_in(&self, p: Vec2, cell: usize) -> NearWalls {
         let mut near = NearWalls {
             len: 0,
             overflow: false,
@@ -270,7 +276,6 @@ impl Arena {
             walls: [0; NEAR_CAP],
         };
         let r2 = self.near_reach * self.near_reach;
-        let cell = self.cell_of(p);
         let (a, b) = (
             self.cell_start[cell] as usize,
             self.cell_start[cell + 1] as usize,
@@ -407,6 +412,8 @@ pub struct Step {
     pub pose: Pose,
     /// Whether the candidate move hit a wall (the robot kept its position).
     pub collided: bool,
+    /// The grid cell of `pose`, when the simulator knows it (saves observers a lookup).
+    pub cell: Option<usize>,
 }
 
 /// Receives every step of a trial.
@@ -442,32 +449,34 @@ where
     O: StepObserver + ?Sized,
 {
     let mut pose = arena.room.home;
+    let mut cell = arena.cell_of(pose.position());
     let v_max = params.robot.v_max;
     for t in 0..params.steps {
-        let near = arena.near_walls(pose.position());
+        let near = arena.near_walls_in(pose.position(), cell);
         let mut sensors = arena.read_sensors_near(&pose, &near);
         perturb_sensors(&mut sensors, params.noise, SENSOR_MAX, rng);
-        let inputs = sensors.map(|v| v / SENSOR_MAX);
+        // Most readings are 0 in open floor; 0 / 1023 is exactly 0, so skip the division.
+        let inputs = sensors.map(|v| if v == 0.0 { 0.0 } else { v / SENSOR_MAX });
         let motors = controller.step(&inputs);
         let speeds = motors.map(|m| (2.0 * m - 1.0) * v_max);
         let s_left = perturb(speeds[0], params.noise, rng);
         let s_right = perturb(speeds[1], params.noise, rng);
         let candidate = drive(pose, s_left, s_right, params.robot.wheel_base, params.dt);
         let collided = arena.overlaps_near(candidate.position(), &near);
-        pose = if collided {
-            Pose {
-                heading: candidate.heading,
-                ..pose
-            }
+        if collided {
+            // Position (and so cell) unchanged; the heading change is kept.
+            pose.heading = candidate.heading;
         } else {
-            candidate
-        };
+            pose = candidate;
+            cell = arena.cell_of(pose.position());
+        }
         observer.observe(&Step {
             t,
             sensors,
             motors,
             speeds,
             pose,
+            cell: Some(cell),
             collided,
         });
     }
@@ -508,6 +517,7 @@ impl Trajectory {
             motors: self.motors[t],
             speeds: self.speeds[t],
             pose: self.poses[t + 1],
+            cell: None,
             collided: self.collisions[t],
         })
     }
