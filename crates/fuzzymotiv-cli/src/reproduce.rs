@@ -295,27 +295,7 @@ fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
     if !sets.is_empty() {
         // Apply overrides to the document (config keys and sweep keys alike).
         let mut table: toml::Table = toml::from_str(&text).expect("built-in sweep is valid TOML");
-        for set in &sets {
-            let (key, value) = set
-                .split_once('=')
-                .ok_or_else(|| CliError::input(format!("--set {set}: expected key=value")))?;
-            let parsed = toml::from_str::<toml::Table>(&format!("v = {value}"))
-                .ok()
-                .and_then(|mut t| t.remove("v"))
-                .unwrap_or_else(|| toml::Value::String(value.to_string()));
-            let mut t = &mut table;
-            let parts: Vec<&str> = key.trim().split('.').collect();
-            for part in &parts[..parts.len() - 1] {
-                t = t
-                    .entry(part.to_string())
-                    .or_insert_with(|| toml::Value::Table(toml::Table::new()))
-                    .as_table_mut()
-                    .ok_or_else(|| {
-                        CliError::input(format!("--set {set}: `{part}` is not a table"))
-                    })?;
-            }
-            t.insert(parts[parts.len() - 1].to_string(), parsed);
-        }
+        fuzzymotiv::config::apply_sets(&mut table, &sets)?;
         text = toml::to_string(&table).expect("a table serialises");
     }
     let sweep = crate::sweep::Sweep::parse_str(

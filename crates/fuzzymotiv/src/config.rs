@@ -279,48 +279,7 @@ impl RawConfig {
         if sets.is_empty() {
             return Self::from_text(text, source_name);
         }
-        for set in sets {
-            let Some((key, value)) = set.split_once('=') else {
-                return Err(ConfigError {
-                    source_name: "--set".into(),
-                    field: set.clone(),
-                    reason: "expected key=value, e.g. --set ga.population=20".into(),
-                });
-            };
-            let key = key.trim();
-            let value = value.trim();
-            let parsed: toml::Value = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
-                Ok(mut t) => t
-                    .remove("v")
-                    .unwrap_or(toml::Value::String(value.to_string())),
-                Err(_) => toml::Value::String(value.to_string()),
-            };
-            let parts: Vec<&str> = key.split('.').collect();
-            if parts.iter().any(|p| p.is_empty()) {
-                return Err(ConfigError {
-                    source_name: "--set".into(),
-                    field: key.to_string(),
-                    reason: "empty key part; use dotted keys such as ga.population".into(),
-                });
-            }
-            let mut t = &mut table;
-            for part in &parts[..parts.len() - 1] {
-                let entry = t
-                    .entry(part.to_string())
-                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-                t = match entry {
-                    toml::Value::Table(inner) => inner,
-                    _ => {
-                        return Err(ConfigError {
-                            source_name: "--set".into(),
-                            field: key.to_string(),
-                            reason: format!("`{part}` is not a table, so it has no key below it"),
-                        });
-                    }
-                };
-            }
-            t.insert(parts[parts.len() - 1].to_string(), parsed);
-        }
+        apply_sets(&mut table, sets)?;
         let merged = toml::to_string(&table).map_err(|e| err("(document)", e.to_string()))?;
         Self::from_text(&merged, &format!("{source_name} (with --set overrides)"))
     }
@@ -340,6 +299,54 @@ impl RawConfig {
     pub fn to_toml(&self) -> String {
         toml::to_string(self).expect("the config is always serialisable")
     }
+}
+
+/// Applies `key=value` overrides to a TOML document: dotted keys create or descend into tables;
+/// the value is read as TOML, and as a plain string if it is not valid TOML.
+pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), ConfigError> {
+    for set in sets {
+        let Some((key, value)) = set.split_once('=') else {
+            return Err(ConfigError {
+                source_name: "--set".into(),
+                field: set.clone(),
+                reason: "expected key=value, e.g. --set ga.population=20".into(),
+            });
+        };
+        let key = key.trim();
+        let value = value.trim();
+        let parsed: toml::Value = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
+            Ok(mut t) => t
+                .remove("v")
+                .unwrap_or(toml::Value::String(value.to_string())),
+            Err(_) => toml::Value::String(value.to_string()),
+        };
+        let parts: Vec<&str> = key.split('.').collect();
+        if parts.iter().any(|p| p.is_empty()) {
+            return Err(ConfigError {
+                source_name: "--set".into(),
+                field: key.to_string(),
+                reason: "empty key part; use dotted keys such as ga.population".into(),
+            });
+        }
+        let mut t = &mut *table;
+        for part in &parts[..parts.len() - 1] {
+            let entry = t
+                .entry(part.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            t = match entry {
+                toml::Value::Table(inner) => inner,
+                _ => {
+                    return Err(ConfigError {
+                        source_name: "--set".into(),
+                        field: key.to_string(),
+                        reason: format!("`{part}` is not a table, so it has no key below it"),
+                    });
+                }
+            };
+        }
+        t.insert(parts[parts.len() - 1].to_string(), parsed);
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -173,44 +173,49 @@ proptest! {
     }
 }
 
+/// The corpus files of `tests/corpus/<kind>/`, each with the field its first line names
+/// (`# field: ...`).
+fn corpus(kind: &str) -> Vec<(std::path::PathBuf, String, String)> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/corpus")
+        .join(kind);
+    let mut cases: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|entry| {
+            let path = entry.unwrap().path();
+            let text = std::fs::read_to_string(&path).unwrap();
+            let expected = text
+                .lines()
+                .next()
+                .and_then(|l| l.strip_prefix("# field: "))
+                .unwrap_or_else(|| panic!("{path:?} lacks '# field: ' header"))
+                .trim()
+                .to_string();
+            (path, text, expected)
+        })
+        .collect();
+    cases.sort();
+    cases
+}
+
 /// Regression corpus: every case names its field (kept as files in tests/corpus/).
 #[test]
 fn corpus_of_bad_configs_names_the_field() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/configs");
-    let mut n = 0;
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let path = entry.unwrap().path();
-        let text = std::fs::read_to_string(&path).unwrap();
-        let expected = text
-            .lines()
-            .next()
-            .and_then(|l| l.strip_prefix("# field: "))
-            .unwrap_or_else(|| panic!("{path:?} lacks '# field: ' header"))
-            .trim();
-        let got = check(&text).expect_err(&format!("{path:?} should be rejected"));
-        assert_eq!(got, expected, "{path:?}");
-        n += 1;
+    let cases = corpus("configs");
+    for (path, text, expected) in &cases {
+        let got = check(text).expect_err(&format!("{path:?} should be rejected"));
+        assert_eq!(&got, expected, "{path:?}");
     }
-    assert!(n >= 20, "corpus too small: {n}");
+    assert!(cases.len() >= 20, "corpus too small: {}", cases.len());
 }
 
 #[test]
 fn corpus_of_bad_rooms_names_the_field() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/corpus/rooms");
-    let mut n = 0;
-    for entry in std::fs::read_dir(&dir).unwrap() {
-        let path = entry.unwrap().path();
-        let text = std::fs::read_to_string(&path).unwrap();
-        let expected = text
-            .lines()
-            .next()
-            .and_then(|l| l.strip_prefix("# field: "))
-            .unwrap_or_else(|| panic!("{path:?} lacks '# field: ' header"))
-            .trim();
-        let got = Room::from_toml_str(&text, "corpus")
-            .expect_err(&format!("{path:?} should be rejected"));
-        assert_eq!(got.field, expected, "{path:?}: {got}");
-        n += 1;
+    let cases = corpus("rooms");
+    for (path, text, expected) in &cases {
+        let got =
+            Room::from_toml_str(text, "corpus").expect_err(&format!("{path:?} should be rejected"));
+        assert_eq!(&got.field, expected, "{path:?}: {got}");
     }
-    assert!(n >= 10, "corpus too small: {n}");
+    assert!(cases.len() >= 10, "corpus too small: {}", cases.len());
 }
