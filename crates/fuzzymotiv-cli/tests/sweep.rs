@@ -258,3 +258,62 @@ fn simplex_sweep_covers_the_grid() {
     // All four free in halves: C(2+3, 3) = 10 points.
     assert_eq!(count.trim(), "10");
 }
+
+#[test]
+fn orientation_study_runs_from_one_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("orientation");
+    let o = run(&[
+        "reproduce",
+        "--orientation",
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "ga.population=8",
+        "--set",
+        "ga.generations=2",
+        "--set",
+        "trial.steps=100",
+        "--set",
+        "aem.epochs=10",
+        "--set",
+        "aem.test_runs=2",
+        "--set",
+        "sweep.replicates=1",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let agg = std::fs::read_to_string(out.join("aggregate.csv")).unwrap();
+    assert_eq!(agg.lines().count(), 1 + 3 * 5, "{agg}");
+    for setting in [
+        "C=0.5,H=0.3,O=0,E=0.2",
+        "C=0.4,H=0.2,O=0.3,E=0.1",
+        "C=0.3,H=0.1,O=0.5,E=0.1",
+    ] {
+        assert!(agg.contains(setting), "{setting} missing");
+    }
+    // O > 0 jobs measured l online: some generation has a non-zero mean l.
+    let plan = std::fs::read_to_string(out.join("plan.jsonl")).unwrap();
+    let oriented: serde_json::Value = serde_json::from_str(plan.lines().nth(2).unwrap()).unwrap();
+    let gens = std::fs::read_to_string(
+        out.join("jobs")
+            .join(oriented["id"].as_str().unwrap())
+            .join("generations.csv"),
+    )
+    .unwrap();
+    assert!(
+        gens.lines()
+            .skip(1)
+            .any(|l| l.split(',').nth(8).unwrap().parse::<f64>().unwrap() > 0.0),
+        "{gens}"
+    );
+    let o = run(&[
+        "reproduce",
+        "--orientation",
+        "--out",
+        dir.path().join("bad").to_str().unwrap(),
+        "--set",
+        "ga.population=0",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+}
