@@ -45,7 +45,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
         ));
     }
     let sets = vec![
-        format!("rooms=[{:?}]", args.room),
+        format!("rooms=[{}]", toml::Value::String(args.room.clone())),
         format!("ga.population={}", args.population),
         format!("ga.elite={}", args.population.min(3) - 1),
         "aem.enabled=false".to_string(),

@@ -54,8 +54,10 @@ impl StagedDir {
         })
     }
 
-    /// Starts a fresh staging directory for `dir`.
+    /// Starts a fresh staging directory for `dir` (refused up front if `dir` exists and is not
+    /// an earlier fuzzymotiv output, since it would be replaced at the end).
     pub fn new(dir: &Path) -> Result<Self, CliError> {
+        ensure_replaceable(dir)?;
         let staging = Self::staging_path(dir);
         if staging.exists() {
             std::fs::remove_dir_all(&staging).map_err(|e| io_err(&staging, e))?;
@@ -77,13 +79,36 @@ impl StagedDir {
         write_atomic(&self.path(name), contents)
     }
 
-    /// Moves the finished directory into place.
+    /// Moves the finished directory into place. An existing `dir` is replaced only when it is
+    /// an earlier fuzzymotiv output (or empty); anything else is left alone.
     pub fn commit(self) -> Result<PathBuf, CliError> {
+        ensure_replaceable(&self.dir)?;
         if self.dir.exists() {
             std::fs::remove_dir_all(&self.dir).map_err(|e| io_err(&self.dir, e))?;
         }
         std::fs::rename(&self.staging, &self.dir).map_err(|e| io_err(&self.dir, e))?;
         Ok(self.dir)
+    }
+}
+
+/// Whether `dir` may be replaced by a new output: it does not exist, is an empty directory, or
+/// holds an earlier run's `summary.json` or `config.resolved.toml`.
+pub fn ensure_replaceable(dir: &Path) -> Result<(), CliError> {
+    if !dir.exists() {
+        return Ok(());
+    }
+    let empty = dir
+        .read_dir()
+        .map(|mut d| d.next().is_none())
+        .unwrap_or(false);
+    let ours = dir.join("summary.json").is_file() || dir.join("config.resolved.toml").is_file();
+    if dir.is_dir() && (empty || ours) {
+        Ok(())
+    } else {
+        Err(CliError::input(format!(
+            "{}: exists and is not a fuzzymotiv output directory, so it will not be replaced; choose another --out (or remove it yourself)",
+            dir.display()
+        )))
     }
 }
 

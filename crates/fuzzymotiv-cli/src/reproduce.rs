@@ -21,7 +21,7 @@ pub struct ReproduceArgs {
     #[arg(long, default_value = "results")]
     pub out: PathBuf,
     /// Base seed of both settings.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(0..=i64::MAX as u64))]
     pub seed: u64,
     /// A fast look: GA 30 × 30 instead of the paper's 200 × 200.
     #[arg(long)]

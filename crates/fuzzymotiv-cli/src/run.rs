@@ -33,8 +33,8 @@ pub struct RunArgs {
     /// Output directory [default: runs/NAME].
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Base seed (overrides `seed` in the config).
-    #[arg(long)]
+    /// Base seed (overrides `seed` in the config), 0 ..= 2^63 − 1.
+    #[arg(long, value_parser = clap::value_parser!(u64).range(0..=i64::MAX as u64))]
     pub seed: Option<u64>,
     /// Worker threads [default: all cores]; results do not depend on it.
     #[arg(long)]
@@ -559,7 +559,12 @@ impl Checkpoint {
         let ok = cp.runs.len() == runs.len()
             && cp.runs.iter().zip(runs).all(|(c, r)| {
                 c.label == r.label
-                    && c.history.len() <= exp.ga.generations
+                    && if c.done {
+                        c.history.len() == exp.ga.generations
+                            && c.population.len() == exp.ga.population
+                    } else {
+                        c.history.len() < exp.ga.generations
+                    }
                     && c.population
                         .iter()
                         .all(|g| g.len() == exp.shape.genome_len())

@@ -51,6 +51,9 @@ struct RawSimplex {
     fixed: BTreeMap<String, f64>,
 }
 
+/// Most jobs one sweep file may plan.
+const MAX_JOBS: usize = 100_000;
+
 const MOTIVATIONS: [&str; 4] = ["curiosity", "homing", "orientation", "energy"];
 
 /// One job of a sweep.
@@ -168,6 +171,20 @@ impl Sweep {
                 })
                 .collect();
         }
+        let planned = motivation_axis
+            .len()
+            .saturating_mul(combos.len())
+            .saturating_mul(sweep.replicates);
+        if planned > MAX_JOBS {
+            return Err(err(
+                &source,
+                "sweep",
+                format!(
+                    "{planned} jobs planned; at most {MAX_JOBS} per sweep file (split it, or use a coarser step)"
+                ),
+            ));
+        }
+        let mut seen = std::collections::HashSet::new();
         for point in &motivation_axis {
             for combo in &combos {
                 let mut overrides = Vec::new();
@@ -187,6 +204,10 @@ impl Sweep {
                 } else {
                     parts.join(";")
                 };
+                if !seen.insert(setting.clone()) {
+                    // The same point listed twice (e.g. explicitly and by the simplex): once.
+                    continue;
+                }
                 for rep in 0..sweep.replicates {
                     let key = format!("{setting};rep={rep}");
                     // TOML integers are signed 64-bit: keep the derived seed in 0..2^63.
@@ -247,12 +268,12 @@ fn simplex_points(s: &RawSimplex, source: &str) -> Result<Vec<[f64; 4]>, CliErro
         ));
     }
     let n = (1.0 / s.step).round();
-    if ((1.0 / s.step) - n).abs() > 1e-9 || n > 1000.0 {
+    if ((1.0 / s.step) - n).abs() > 1e-9 || n > 100.0 {
         return Err(err(
             source,
             field,
             format!(
-                "1/step must be a whole number ≤ 1000 (e.g. 0.1, 0.05), got step {}",
+                "1/step must be a whole number ≤ 100 (e.g. 0.1, 0.05), got step {}",
                 s.step
             ),
         ));

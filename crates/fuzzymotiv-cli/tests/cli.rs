@@ -712,3 +712,45 @@ fn corpus_through_the_binary() {
     }
     assert!(n >= 50);
 }
+
+/// `--out` pointing at a directory that is not a fuzzymotiv output is refused before the run,
+/// and the directory is left untouched.
+#[test]
+fn out_dir_that_is_not_ours_is_never_replaced() {
+    let dir = tempfile::tempdir().unwrap();
+    let precious = dir.path().join("precious");
+    std::fs::create_dir(&precious).unwrap();
+    std::fs::write(precious.join("thesis.tex"), "do not delete").unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let o = run(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        precious.to_str().unwrap(),
+        "--set",
+        "ga.generations=2",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("not a fuzzymotiv output"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read_to_string(precious.join("thesis.tex")).unwrap(),
+        "do not delete"
+    );
+    // An earlier run directory is replaced.
+    let out = dir.path().join("run");
+    for _ in 0..2 {
+        let o = run(&[
+            "run",
+            cfg.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--set",
+            "ga.generations=2",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+}

@@ -11,7 +11,7 @@ use crate::controller::{Mlp, MlpShape};
 use crate::fitness::{FitnessTerms, TermsRecorder};
 use crate::fuzzy::{FuzzyError, Motivations, TskFitness};
 use crate::ga::{GaParams, Genome, Stats, initial_population, next_generation};
-use crate::recognition::{Confusion, Recognizer, nearest};
+use crate::recognition::{Confusion, Recognizer, nearest_unique};
 use crate::rng::{Rng64, rng_from_seed};
 use crate::robot::{KHEPERA_RADIUS, Khepera};
 use crate::room::Room;
@@ -93,8 +93,19 @@ impl Experiment {
 
     fn build(raw: &RawConfig, rooms: Vec<Room>) -> Result<Experiment, (String, String)> {
         const BIG: usize = 1_000_000;
-        check(!raw.name.trim().is_empty(), "name", || {
-            "must not be empty".into()
+        let safe_name = !raw.name.is_empty()
+            && raw.name.len() <= 100
+            && raw.name != "."
+            && raw.name != ".."
+            && raw
+                .name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || "._-".contains(c));
+        check(safe_name, "name", || {
+            format!(
+                "must be a plain name of letters, digits, '.', '_' or '-' (it names the output directory runs/NAME), got {:?}",
+                raw.name
+            )
         })?;
         check(!rooms.is_empty(), "rooms", || {
             "needs at least one room, e.g. rooms = [\"H\", \"T\", \"L\", \"square\", \"rectangle\"]"
@@ -186,10 +197,21 @@ impl Experiment {
             "robot.v_max",
             || format!("must be a speed > 0 (mm/s), got {}", robot.v_max),
         )?;
+        // The sensor mounts are fixed (SPEC §4): they must sit inside the body, and a body far
+        // larger than the sensors' reach would be blind.
+        let mounts = crate::sensor::SENSOR_LAYOUT
+            .iter()
+            .map(|m| m.x.hypot(m.y))
+            .fold(0.0, f64::max);
         check(
-            robot.radius.is_finite() && robot.radius > 0.0 && robot.radius <= 1000.0,
+            robot.radius.is_finite() && robot.radius >= mounts && robot.radius <= 80.0,
             "robot.radius",
-            || format!("must be in (0, 1000] mm, got {}", robot.radius),
+            || {
+                format!(
+                    "must be in [{mounts:.2}, 80] mm (the IR sensors sit {mounts:.2} mm from the centre and see 58 mm), got {}",
+                    robot.radius
+                )
+            },
         )?;
         check(
             robot.wheel_base.is_finite() && robot.wheel_base > 0.0 && robot.wheel_base <= 1000.0,
@@ -271,6 +293,16 @@ impl Experiment {
                 format!("must be a finite number > 0, got {v}")
             })?;
         }
+        check(
+            !a.enabled || t.steps.saturating_mul(a.som_nodes) <= 50_000_000,
+            "aem.som_nodes",
+            || {
+                format!(
+                    "the SOM would hold aem.som_nodes × trial.steps = {} × {} weights; keep the product ≤ 5e7",
+                    a.som_nodes, t.steps
+                )
+            },
+        )?;
         check(!a.enabled || rooms.len() >= 2, "aem.enabled", || {
             format!(
                 "room recognition needs at least 2 rooms, got {}; add rooms or set aem.enabled = false",
@@ -475,7 +507,7 @@ impl Experiment {
                 );
                 let (_, actions) = self.trial(genome, r, seed);
                 let v = environment_vector(&actions, self.aem.encoder);
-                if nearest(&first_vectors, &v).ok() == Some(k) {
+                if nearest_unique(&first_vectors, &v).ok().flatten() == Some(k) {
                     correct += 1;
                 }
             }
@@ -966,7 +998,7 @@ mod tests {
                 )
             );
             let v = environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder);
-            if nearest(&first, &v).unwrap() == k {
+            if crate::recognition::nearest_unique(&first, &v).unwrap() == Some(k) {
                 correct += 1;
             }
         }
@@ -1009,13 +1041,15 @@ mod tests {
     /// Online orientation makes F depend on O and stays deterministic.
     #[test]
     fn online_orientation_is_deterministic_and_used() {
-        let exp = experiment(&ORIENTED);
+        let mut sets = ORIENTED.to_vec();
+        sets.push("ga.population=40");
+        let exp = experiment(&sets);
         let run = &exp.runs()[0];
         let x = exp.evolve(run, &mut |_| {});
         let y = exp.evolve(run, &mut |_| {});
         assert_eq!(x.history, y.history);
         assert!(
-            x.evaluations.iter().any(|e| e.per_room[0].terms.l > 0.0),
+            x.history.iter().any(|h| h.terms.l > 0.0),
             "some robot recognises something"
         );
     }

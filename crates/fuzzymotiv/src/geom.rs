@@ -166,6 +166,25 @@ impl Segment {
             || (o4 == 0.0 && on_segment(other.a, other.b, self.b))
     }
 
+    /// Distance between two segments (0 when they touch or cross).
+    ///
+    /// ```
+    /// use fuzzymotiv::geom::{Segment, Vec2};
+    /// let a = Segment::new(Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0));
+    /// let b = Segment::new(Vec2::new(5.0, 3.0), Vec2::new(5.0, 9.0));
+    /// assert_eq!(a.dist_to_segment(&b), 3.0);
+    /// ```
+    pub fn dist_to_segment(&self, other: &Segment) -> f64 {
+        if self.intersects(other) {
+            return 0.0;
+        }
+        self.dist2_to(other.a)
+            .min(self.dist2_to(other.b))
+            .min(other.dist2_to(self.a))
+            .min(other.dist2_to(self.b))
+            .sqrt()
+    }
+
     /// Axis-aligned bounding box `(min, max)`.
     pub fn bounds(&self) -> (Vec2, Vec2) {
         (

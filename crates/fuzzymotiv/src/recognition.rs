@@ -68,11 +68,14 @@ impl Recognizer {
 
     /// The recognised room (the `room` of the chosen instance), or `None` when no instance's
     /// r-node is within `threshold` nodes of `v`'s winner. Among candidates, the instance with
-    /// the nearest stored vector (Euclidean) wins; ties → lowest instance index. Errors if `v`
-    /// or a candidate's vector does not match the map's dimension.
+    /// the nearest stored vector (Euclidean) wins. An exact tie between instances of different
+    /// rooms is `None` too: a robot whose vectors are identical in several rooms cannot tell
+    /// them apart (the paper's "first room wins" would credit the first room in the list).
+    /// Errors if `v` or a candidate's vector does not match the map's dimension.
     pub fn recognise(&self, v: &[f64]) -> Result<Option<usize>, SomError> {
         let r = self.som.winner(v)?;
         let mut best: Option<(usize, f64)> = None;
+        let mut tied = false;
         for inst in &self.instances {
             if inst.r_node.abs_diff(r) > self.threshold {
                 continue;
@@ -87,12 +90,31 @@ impl Recognizer {
             let d = sq_dist(&inst.vector, v);
             let d = if d.is_nan() { f64::INFINITY } else { d };
             match best {
-                Some((_, bd)) if d >= bd => {}
-                _ => best = Some((inst.room, d)),
+                Some((_, bd)) if d > bd => {}
+                // An exact tie between different rooms: the nearest room is undefined.
+                Some((room, bd)) if d == bd && room != inst.room => tied = true,
+                Some((_, bd)) if d == bd => {}
+                _ => {
+                    best = Some((inst.room, d));
+                    tied = false;
+                }
             }
         }
-        Ok(best.map(|(room, _)| room))
+        Ok(if tied {
+            None
+        } else {
+            best.map(|(room, _)| room)
+        })
     }
+}
+
+/// The reference nearest to `v`, or `None` when two or more references tie at the smallest
+/// distance (used by online orientation, where each reference is one room).
+pub fn nearest_unique(references: &[Vec<f64>], v: &[f64]) -> Result<Option<usize>, SomError> {
+    let best = nearest(references, v)?;
+    let d = sq_dist(&references[best], v);
+    let ties = references.iter().filter(|r| sq_dist(r, v) == d).count();
+    Ok((ties == 1).then_some(best))
 }
 
 /// Index of the reference nearest to `v` (Euclidean, ties → lowest index).
@@ -262,7 +284,7 @@ mod tests {
     }
 
     #[test]
-    fn ties_go_to_lowest_instance() {
+    fn ties_between_rooms_are_not_recognised() {
         let inst = vec![
             RoomInstance {
                 room: 7,
@@ -275,9 +297,24 @@ mod tests {
                 r_node: 3,
             },
         ];
-        let rec = Recognizer::from_parts(line_som(), inst, 10);
+        let rec = Recognizer::from_parts(line_som(), inst.clone(), 10);
+        // Equidistant from rooms 7 and 3: undefined, so not recognised.
+        assert_eq!(rec.recognise(&[3.0]).unwrap(), None);
+        assert_eq!(rec.recognise(&[2.5]).unwrap(), Some(7));
+        // Two instances of the same room tying is fine.
+        let mut same = inst;
+        same[1].room = 7;
+        let rec = Recognizer::from_parts(line_som(), same, 10);
         assert_eq!(rec.recognise(&[3.0]).unwrap(), Some(7));
         assert_eq!(nearest(&[vec![2.0], vec![4.0]], &[3.0]).unwrap(), 0);
+        assert_eq!(
+            nearest_unique(&[vec![2.0], vec![4.0]], &[3.0]).unwrap(),
+            None
+        );
+        assert_eq!(
+            nearest_unique(&[vec![2.0], vec![4.0]], &[3.5]).unwrap(),
+            Some(1)
+        );
     }
 
     #[test]

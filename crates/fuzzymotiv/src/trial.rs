@@ -110,21 +110,37 @@ impl Arena {
             }
         }
         cell_start.push(cell_walls.len() as u32);
-        // Flood fill (4-neighbours) from the valid cell nearest to home. Two valid centres 50 mm
-        // apart cannot have a wall between them: it would be < 25 mm from one of them.
+        // Flood fill (4-neighbours) over valid cells, stepping only where the body can slide
+        // from one centre to the next (the segment between them stays ≥ radius from every
+        // wall: a gap narrower than the body is not a passage). It starts from the valid cell
+        // nearest to home that the body can reach from home in a straight line.
+        let centre = |k: usize| {
+            Vec2::new(
+                lo.x + ((k % cols) as f64 + 0.5) * CELL,
+                lo.y + ((k / cols) as f64 + 0.5) * CELL,
+            )
+        };
+        let list = |k: usize| &cell_walls[cell_start[k] as usize..cell_start[k + 1] as usize];
+        let free = |k: usize, a: Vec2, b: Vec2| {
+            let path = Segment::new(a, b);
+            list(k)
+                .iter()
+                .all(|&w| walls[w as usize].dist_to_segment(&path) >= radius)
+        };
         let home = room.home.position();
+        let free_from_home = |b: Vec2| {
+            let path = Segment::new(home, b);
+            walls.iter().all(|w| w.dist_to_segment(&path) >= radius)
+        };
         let start = (0..cols * rows)
-            .filter(|&k| reachable_cell[k])
+            .filter(|&k| {
+                reachable_cell[k] && centre(k).dist(home) <= 2.0 * CELL && free_from_home(centre(k))
+            })
             .min_by(|&a, &b| {
-                let ca = Vec2::new(
-                    lo.x + ((a % cols) as f64 + 0.5) * CELL,
-                    lo.y + ((a / cols) as f64 + 0.5) * CELL,
-                );
-                let cb = Vec2::new(
-                    lo.x + ((b % cols) as f64 + 0.5) * CELL,
-                    lo.y + ((b / cols) as f64 + 0.5) * CELL,
-                );
-                ca.dist(home).total_cmp(&cb.dist(home)).then(a.cmp(&b))
+                centre(a)
+                    .dist(home)
+                    .total_cmp(&centre(b).dist(home))
+                    .then(a.cmp(&b))
             });
         let mut reachable = vec![false; cols * rows];
         if let Some(s) = start {
@@ -132,23 +148,28 @@ impl Arena {
             reachable[s] = true;
             while let Some(k) = stack.pop() {
                 let (i, j) = (k % cols, k / cols);
-                let mut push = |n: usize| {
-                    if reachable_cell[n] && !reachable[n] {
+                let mut neighbours = [usize::MAX; 4];
+                if i > 0 {
+                    neighbours[0] = k - 1;
+                }
+                if i + 1 < cols {
+                    neighbours[1] = k + 1;
+                }
+                if j > 0 {
+                    neighbours[2] = k - cols;
+                }
+                if j + 1 < rows {
+                    neighbours[3] = k + cols;
+                }
+                for n in neighbours {
+                    if n != usize::MAX
+                        && reachable_cell[n]
+                        && !reachable[n]
+                        && free(k, centre(k), centre(n))
+                    {
                         reachable[n] = true;
                         stack.push(n);
                     }
-                };
-                if i > 0 {
-                    push(k - 1);
-                }
-                if i + 1 < cols {
-                    push(k + 1);
-                }
-                if j > 0 {
-                    push(k - cols);
-                }
-                if j + 1 < rows {
-                    push(k + cols);
                 }
             }
         }
@@ -609,6 +630,33 @@ mod tests {
         // Cells of 50 mm in a 600 mm square: centres at 25, 75, …, 575; those ≥ 27.5 mm from the
         // walls are 75 … 525, i.e. 10 × 10.
         assert_eq!(square().reachable_cells(), 100);
+    }
+
+    /// A 50 mm gap is narrower than the 55 mm body: the far half is not reachable, even though
+    /// valid cell centres lie on both sides of the gap 50 mm apart (regression: the first flood
+    /// fill joined any two valid neighbours).
+    #[test]
+    fn a_gap_narrower_than_the_body_is_not_a_passage() {
+        let text = "name='gap'\noutline=[[0,0],[700,0],[700,300],[0,300]]\nhome={x=100,y=150,heading_deg=0}\n\
+            [[obstacles]]\noutline=[[349,2],[351,2],[351,100],[349,100]]\n\
+            [[obstacles]]\noutline=[[349,150],[351,150],[351,298],[349,298]]\n";
+        let room = Room::from_toml_str(text, "gap.toml").unwrap();
+        let narrow = Arena::new(room.clone(), &TrialParams::default());
+        assert_eq!(narrow.reachable_cells(), 21);
+        // A 70 mm gap (y 90..160): both halves are reachable.
+        let mut wide = room;
+        wide.obstacles[0] = wide.obstacles[0]
+            .iter()
+            .map(|p| Vec2::new(p.x, if p.y == 100.0 { 90.0 } else { p.y }))
+            .collect();
+        wide.obstacles[1] = wide.obstacles[1]
+            .iter()
+            .map(|p| Vec2::new(p.x, if p.y == 150.0 { 160.0 } else { p.y }))
+            .collect();
+        assert_eq!(
+            Arena::new(wide, &TrialParams::default()).reachable_cells(),
+            42
+        );
     }
 
     #[test]
