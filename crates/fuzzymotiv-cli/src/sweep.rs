@@ -216,7 +216,15 @@ impl Sweep {
                     sets.push(format!("seed={seed}"));
                     let raw =
                         RawConfig::parse(&base_text, &format!("{source} (job {key})"), &sets)?;
-                    let id = format!("{:016x}", hash_str(&raw.to_toml()));
+                    // The id covers the resolved config and the contents of its room files, so an
+                    // edited room file is a new job rather than a finished one.
+                    let mut resolved = raw.to_toml();
+                    for room in &raw.rooms {
+                        if let Ok(text) = std::fs::read_to_string(base_dir.join(room)) {
+                            resolved.push_str(&text);
+                        }
+                    }
+                    let id = format!("{:016x}", hash_str(&resolved));
                     jobs.push(Job {
                         index: jobs.len(),
                         id,

@@ -317,3 +317,29 @@ fn orientation_study_runs_from_one_command() {
     ]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn editing_a_room_file_changes_the_job_id() {
+    let dir = tempfile::tempdir().unwrap();
+    let room = |w: u32| {
+        format!(
+            "name = \"box\"\noutline = [[0,0],[{w},0],[{w},400],[0,400]]\nhome = {{ x = 100, y = 100, heading_deg = 0 }}\n"
+        )
+    };
+    std::fs::write(dir.path().join("box.toml"), room(400)).unwrap();
+    let f = dir.path().join("s.toml");
+    std::fs::write(
+        &f,
+        "rooms = [\"H\", \"box.toml\"]\n[sweep]\nreplicates = 1\n",
+    )
+    .unwrap();
+    let id = |f: &Path| {
+        let plan = String::from_utf8(ok(&["plan", f.to_str().unwrap()]).stdout).unwrap();
+        let job: serde_json::Value = serde_json::from_str(plan.lines().next().unwrap()).unwrap();
+        job["id"].as_str().unwrap().to_string()
+    };
+    let before = id(&f);
+    assert_eq!(before, id(&f));
+    std::fs::write(dir.path().join("box.toml"), room(500)).unwrap();
+    assert_ne!(before, id(&f));
+}
