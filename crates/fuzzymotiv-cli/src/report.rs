@@ -149,6 +149,7 @@ pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, tr: &Trajecto
         "a": tr.motors.iter().map(|m| action_letter(fuzzymotiv::aem::Action::from_motors(m[0], m[1], tol))).collect::<String>(),
         "c": tr.collisions.iter().map(|&c| if c { '1' } else { '0' }).collect::<String>(),
         "terms": {"a": r3(terms.a), "g": r3(terms.g), "l": r3(terms.l), "b": r3(terms.b)},
+        "online_l": exp.orientation == fuzzymotiv::config::OrientationMode::Online && exp.motivations.orientation > 0.0,
         "f": r3(f),
     })
 }

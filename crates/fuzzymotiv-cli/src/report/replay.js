@@ -142,7 +142,8 @@
       slider.max = r.steps;
       stepInfo.textContent = "";
       termsEl.textContent = "This run: a = " + r.terms.a.toFixed(3) + ", g = " + r.terms.g.toFixed(3) +
-        ", b = " + r.terms.b.toFixed(3) + ", F = " + r.f.toFixed(3) + " (" +
+        ", b = " + r.terms.b.toFixed(3) + ", F = " + r.f.toFixed(3) +
+        (r.online_l ? " with l = 0 (one run cannot measure recognition; the GA's F is in the table above)" : "") + " (" +
         (r.run === "all" ? "the robot evolved in all rooms" : "the robot evolved in " + r.run) + ").";
     }
 
