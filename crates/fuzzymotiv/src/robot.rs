@@ -43,6 +43,17 @@ impl Pose {
 #[inline]
 pub fn wrap_angle(theta: f64) -> f64 {
     use std::f64::consts::{PI, TAU};
+    // Fast path for the usual case (a heading plus one step's turn): for |θ| < 2π the remainder
+    // below is θ itself, so skipping it gives bit-identical results without a call to fmod.
+    if theta.abs() < TAU {
+        return if theta > PI {
+            theta - TAU
+        } else if theta <= -PI {
+            theta + TAU
+        } else {
+            theta
+        };
+    }
     let mut t = theta % TAU;
     if t > PI {
         t -= TAU;
@@ -128,6 +139,42 @@ mod tests {
         assert!((p.x - r).abs() < 1e-9, "{p:?}");
         assert!((p.y - r).abs() < 1e-9, "{p:?}");
         assert!((p.heading - PI / 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn wrap_angle_fast_path_equals_remainder() {
+        let slow = |theta: f64| {
+            let mut t = theta % std::f64::consts::TAU;
+            if t > PI {
+                t -= std::f64::consts::TAU;
+            } else if t <= -PI {
+                t += std::f64::consts::TAU;
+            }
+            t
+        };
+        for i in -300_000..300_000 {
+            let theta = i as f64 * 3.1e-5 + (i % 7) as f64 * 1e-9;
+            assert_eq!(
+                wrap_angle(theta).to_bits(),
+                slow(theta).to_bits(),
+                "{theta}"
+            );
+        }
+        for theta in [
+            PI,
+            -PI,
+            2.0 * PI - 1e-12,
+            -2.0 * PI + 1e-12,
+            2.0 * PI,
+            -2.0 * PI,
+            3.0 * PI,
+        ] {
+            assert_eq!(
+                wrap_angle(theta).to_bits(),
+                slow(theta).to_bits(),
+                "{theta}"
+            );
+        }
     }
 
     #[test]
