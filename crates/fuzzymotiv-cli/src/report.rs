@@ -19,7 +19,8 @@ use crate::inputs::Loaded;
 use crate::reproduce::Setting;
 use crate::run::{Finished, aem_for_room, resolved_toml, robot_for_room};
 use crate::svg::{
-    SomRoom, colour, esc, fitness_svg, membership_svg, som_svg, terms_svg, trajectories_svg,
+    SomRoom, best_paths_svg, colour, esc, fitness_svg, membership_svg, som_svg, terms_svg,
+    trajectories_svg,
 };
 
 const CSS: &str = include_str!("report/report.css");
@@ -475,15 +476,9 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
 
     // Paths and replay.
     heading(page, level, s.id, "paths", "Paths and replay");
-    let pairs: Vec<_> = exp
-        .arenas
-        .iter()
-        .map(|a| a.room())
-        .zip(done.trajectories.iter())
-        .collect();
     figure(
         page,
-        &trajectories_svg(&format!("Best robot, {}", s.title), &pairs),
+        &best_paths_svg(&format!("Best robot, {}", s.title), exp, &done.trajectories),
         "Each room to scale, seen from above: green circle and line = home pose (start of every trial), red line = the best robot's path in its room-modelling run (the run whose actions became the room's stored instance), filled circle = where it ended.",
     );
     page.push(

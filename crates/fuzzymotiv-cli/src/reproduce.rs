@@ -12,7 +12,7 @@ use crate::inputs::resolve;
 use crate::png::write_figure;
 use crate::report::{Section, reproduce_page};
 use crate::run::{Finished, RoomRow, execute, progress_bar, set_threads};
-use crate::svg::{fitness_svg, trajectories_svg};
+use crate::svg::{best_paths_svg, fitness_svg};
 
 /// Arguments of `fuzzymotiv reproduce`.
 #[derive(clap::Args)]
@@ -140,12 +140,6 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
             ),
             evo.history.clone(),
         ));
-        let pairs: Vec<_> = exp
-            .arenas
-            .iter()
-            .map(|a| a.room())
-            .zip(done.trajectories.iter())
-            .collect();
         let title = format!(
             "Best robot, {} (C, H, O, E) = {:?}",
             setting.name,
@@ -154,7 +148,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
         write_figure(
             &staged,
             &format!("trajectories_{}", setting.tag),
-            &trajectories_svg(&title, &pairs),
+            &best_paths_svg(&title, exp, &done.trajectories),
             args.png,
         )?;
         let m = exp.motivations;

@@ -18,7 +18,7 @@ use crate::files::{StagedDir, io_err, num, write_atomic};
 use crate::inputs::{Loaded, load_config};
 use crate::png::write_figure;
 use crate::report;
-use crate::svg::{fitness_svg, terms_svg, trajectories_svg};
+use crate::svg::{best_paths_svg, fitness_svg, terms_svg};
 
 /// Arguments of `fuzzymotiv run`.
 #[derive(clap::Args)]
@@ -283,12 +283,6 @@ pub fn execute(
         .collect();
     write_figure(&staged, "fitness", &fitness_svg(&panels), png)?;
     write_figure(&staged, "terms", &terms_svg(&panels), png)?;
-    let pairs: Vec<_> = exp
-        .arenas
-        .iter()
-        .map(|a| a.room())
-        .zip(trajectories.iter())
-        .collect();
     let title = format!(
         "Best robot, {} (C, H, O, E) = {:?}",
         exp.name,
@@ -297,7 +291,7 @@ pub fn execute(
     write_figure(
         &staged,
         "trajectories",
-        &trajectories_svg(&title, &pairs),
+        &best_paths_svg(&title, exp, &trajectories),
         png,
     )?;
     let wall_seconds = start.elapsed().as_secs_f64();

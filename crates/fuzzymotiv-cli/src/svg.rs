@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::experiment::GenerationRecord;
+use fuzzymotiv::experiment::{Experiment, GenerationRecord};
 use fuzzymotiv::room::Room;
 use fuzzymotiv::trial::Trajectory;
 
@@ -43,39 +43,13 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
         let n = hist.len().max(2) as f64 - 1.0;
         let x = |g: usize| x0 + (x1 - x0) * g as f64 / n;
         let y = |f: f64| y0 + (y1 - y0) * f.clamp(0.0, 1.0);
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="18" text-anchor="middle" font-weight="bold">{}</text>"#,
-            (x0 + x1) / 2.0,
-            esc(name)
-        );
-        for k in 0..=5 {
-            let f = k as f64 / 5.0;
-            let _ = writeln!(
-                s,
-                r##"<line x1="{x0}" x2="{x1}" y1="{yy:.1}" y2="{yy:.1}" stroke="#ddd"/><text x="{}" y="{:.1}" text-anchor="end">{f:.1}</text>"##,
-                x0 - 4.0,
-                y(f) + 4.0,
-                yy = y(f)
-            );
-        }
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
-        );
-        axis_labels(
+        panel_frame(
             &mut s,
+            name,
             (x0, x1, y0, y1),
             ph,
-            "generation",
+            hist.len(),
             "fuzzy fitness F",
-        );
-        let _ = writeln!(
-            s,
-            r#"<text x="{x0}" y="{}" text-anchor="start">0</text><text x="{x1}" y="{}" text-anchor="end">{}</text>"#,
-            y0 + 16.0,
-            y0 + 16.0,
-            hist.len().saturating_sub(1)
         );
         let mut band = String::new();
         for (g, r) in hist.iter().enumerate() {
@@ -129,6 +103,18 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// Every room of the experiment with the best robot's path in it (`trajectories[r]` for room
+/// `r`), as [`trajectories_svg`] draws them.
+pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[Trajectory]) -> String {
+    let pairs: Vec<_> = exp
+        .arenas
+        .iter()
+        .map(|a| a.room())
+        .zip(trajectories)
+        .collect();
+    trajectories_svg(title, &pairs)
 }
 
 /// Rooms drawn to scale side by side, each with a path, the home pose and the end point.
@@ -235,6 +221,48 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     s
 }
 
+/// The frame of one per-generation panel over the plot area `(x0, x1, y0, y1)` of a figure
+/// `height` tall: title, grid lines at 0, 0.2, …, 1, axes, axis labels and the first and last
+/// generation.
+fn panel_frame(
+    s: &mut String,
+    name: &str,
+    (x0, x1, y0, y1): (f64, f64, f64, f64),
+    height: f64,
+    generations: usize,
+    y_label: &str,
+) {
+    let y = |f: f64| y0 + (y1 - y0) * f;
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="18" text-anchor="middle" font-weight="bold">{}</text>"#,
+        (x0 + x1) / 2.0,
+        esc(name)
+    );
+    for k in 0..=5 {
+        let f = k as f64 / 5.0;
+        let _ = writeln!(
+            s,
+            r##"<line x1="{x0}" x2="{x1}" y1="{yy:.1}" y2="{yy:.1}" stroke="#ddd"/><text x="{}" y="{:.1}" text-anchor="end">{f:.1}</text>"##,
+            x0 - 4.0,
+            y(f) + 4.0,
+            yy = y(f)
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
+    );
+    axis_labels(s, (x0, x1, y0, y1), height, "generation", y_label);
+    let _ = writeln!(
+        s,
+        r#"<text x="{x0}" y="{}" text-anchor="start">0</text><text x="{x1}" y="{}" text-anchor="end">{}</text>"#,
+        y0 + 16.0,
+        y0 + 16.0,
+        generations.saturating_sub(1)
+    );
+}
+
 /// The x-axis label under a plot area `(x0, x1, y0, y1)` of a figure `height` tall, and the
 /// y-axis label turned along the left edge.
 fn axis_labels(
@@ -285,39 +313,13 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
         let n = hist.len().max(2) as f64 - 1.0;
         let x = |g: usize| x0 + (x1 - x0) * g as f64 / n;
         let y = |f: f64| y0 + (y1 - y0) * f.clamp(0.0, 1.0);
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="18" text-anchor="middle" font-weight="bold">{}</text>"#,
-            (x0 + x1) / 2.0,
-            esc(name)
-        );
-        for k in 0..=5 {
-            let f = k as f64 / 5.0;
-            let _ = writeln!(
-                s,
-                r##"<line x1="{x0}" x2="{x1}" y1="{yy:.1}" y2="{yy:.1}" stroke="#ddd"/><text x="{}" y="{:.1}" text-anchor="end">{f:.1}</text>"##,
-                x0 - 4.0,
-                y(f) + 4.0,
-                yy = y(f)
-            );
-        }
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
-        );
-        axis_labels(
+        panel_frame(
             &mut s,
+            name,
             (x0, x1, y0, y1),
             ph,
-            "generation",
+            hist.len(),
             "population mean",
-        );
-        let _ = writeln!(
-            s,
-            r#"<text x="{x0}" y="{}" text-anchor="start">0</text><text x="{x1}" y="{}" text-anchor="end">{}</text>"#,
-            y0 + 16.0,
-            y0 + 16.0,
-            hist.len().saturating_sub(1)
         );
         for (k, (label, colour, pick)) in series.iter().enumerate() {
             let pts: String = hist
