@@ -15,14 +15,14 @@ use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
 
+mod common;
+
+use common::ok;
+
 const CHROMIUM: &str = "/usr/bin/chromium";
 const CHROMEDRIVER: &str = "/usr/bin/chromedriver";
 /// WebDriver's key for element references.
 const ELEMENT: &str = "element-6066-11e4-a52e-4f735466cecf";
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_fuzzymotiv"))
-}
 
 fn target_dir() -> PathBuf {
     Path::new(env!("CARGO_TARGET_TMPDIR"))
@@ -285,15 +285,6 @@ impl Drop for Driver {
     }
 }
 
-fn run_ok(args: &[&str]) {
-    let o = bin().args(args).output().expect("binary runs");
-    assert!(
-        o.status.success(),
-        "fuzzymotiv {args:?} failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-}
-
 const SMALL: [&str; 10] = [
     "--set",
     "ga.population=10",
@@ -331,7 +322,7 @@ fn report_page_runs_and_replays_in_chromium() {
     let out = dir.path().join("run");
     let mut args = vec!["run", cfg.to_str().unwrap(), "--out", out.to_str().unwrap()];
     args.extend_from_slice(&SMALL);
-    run_ok(&args);
+    ok(&args);
     let report = out.join("report.html");
     assert!(report.is_file(), "run wrote no report.html");
 
@@ -401,7 +392,7 @@ fn report_page_runs_and_replays_in_chromium() {
 
     // The replay page of `fuzzymotiv replay` uses the same widget.
     let page = dir.path().join("replay/replay.html");
-    run_ok(&[
+    ok(&[
         "replay",
         out.to_str().unwrap(),
         "--out",
@@ -417,7 +408,7 @@ fn report_page_runs_and_replays_in_chromium() {
     let results = dir.path().join("results");
     let mut args = vec!["reproduce", "--out", results.to_str().unwrap()];
     args.extend_from_slice(&SMALL);
-    run_ok(&args);
+    ok(&args);
     driver.open(&results.join("report.html"));
     check_page_health(&driver, 2, "reproduce report");
     std::fs::write(
