@@ -12,7 +12,7 @@ use crate::fitness::{FitnessTerms, TermsRecorder};
 use crate::fuzzy::{FuzzyError, Motivations, TskFitness};
 use crate::ga::{GaParams, Genome, Stats, initial_population, next_generation};
 use crate::recognition::{Confusion, Recognizer, nearest_unique};
-use crate::rng::{Rng64, rng_from_seed};
+use crate::rng::rng_from_seed;
 use crate::robot::{KHEPERA_RADIUS, Khepera};
 use crate::room::Room;
 use crate::seed::{derive, hash_str, purpose};
@@ -455,7 +455,6 @@ impl Experiment {
     ) -> Evaluation {
         let online =
             self.orientation == OrientationMode::Online && self.motivations.orientation > 0.0;
-        let mut rng_buf: Option<Rng64> = None;
         let mut per_room = Vec::with_capacity(run.rooms.len());
         let mut first_vectors = Vec::new();
         for &r in &run.rooms {
@@ -474,13 +473,13 @@ impl Experiment {
                 self.trial(genome, r, seed)
             } else {
                 let arena = &self.arenas[r];
-                let rng = rng_buf.insert(rng_from_seed(seed));
+                let mut rng = rng_from_seed(seed);
                 let mut rec = TermsRecorder::new(arena, &self.trial);
                 simulate(
                     arena,
                     &mut self.controller(genome),
                     &self.trial,
-                    rng,
+                    &mut rng,
                     &mut rec,
                 );
                 (rec.finish(), Vec::new())

@@ -254,23 +254,16 @@ impl Arena {
         self.d_max
     }
 
-    /// The walls that can matter to a robot whose centre is in `cell`.
+    /// Indices of the walls that can matter to a robot whose centre is in `cell`.
     #[inline]
-    fn nearby(&self, cell: usize) -> impl Iterator<Item = &Segment> + '_ {
-        let (a, b) = (
-            self.cell_start[cell] as usize,
-            self.cell_start[cell + 1] as usize,
-        );
-        self.cell_walls[a..b]
-            .iter()
-            .map(|&k| &self.walls[k as usize])
+    fn cell_list(&self, cell: usize) -> &[u32] {
+        &self.cell_walls[self.cell_start[cell] as usize..self.cell_start[cell + 1] as usize]
     }
 
     /// Whether a body of the arena's radius centred at `p` overlaps a wall.
     #[inline]
     pub fn overlaps(&self, p: Vec2) -> bool {
-        let r2 = self.radius * self.radius;
-        self.nearby(self.cell_of(p)).any(|w| w.dist2_to(p) < r2)
+        self.overlaps_near(p, &self.near_walls(p))
     }
 
     /// Noise-free sensor values (0–1023) at `pose`.
@@ -297,11 +290,7 @@ impl Arena {
             walls: [0; NEAR_CAP],
         };
         let r2 = self.near_reach * self.near_reach;
-        let (a, b) = (
-            self.cell_start[cell] as usize,
-            self.cell_start[cell + 1] as usize,
-        );
-        for &k in &self.cell_walls[a..b] {
+        for &k in self.cell_list(cell) {
             if self.walls[k as usize].dist2_to(p) <= r2 {
                 if near.len == NEAR_CAP {
                     near.overflow = true;
@@ -322,11 +311,7 @@ impl Arena {
     #[inline]
     fn near_iter<'a>(&'a self, near: &'a NearWalls) -> impl Iterator<Item = &'a Segment> + 'a {
         let list: &[u32] = if near.overflow {
-            let (a, b) = (
-                self.cell_start[near.cell] as usize,
-                self.cell_start[near.cell + 1] as usize,
-            );
-            &self.cell_walls[a..b]
+            self.cell_list(near.cell)
         } else {
             &near.walls[..near.len]
         };
