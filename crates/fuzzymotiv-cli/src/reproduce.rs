@@ -7,21 +7,29 @@ use std::time::Instant;
 use fuzzymotiv::config::RawConfig;
 
 use crate::error::CliError;
-use crate::files::StagedDir;
+use crate::files::{OutState, StagedDir, check_out};
 use crate::inputs::resolve;
 use crate::png::write_figure;
+use crate::progress::Progress;
 use crate::report::{Section, reproduce_page};
-use crate::run::{Finished, RoomRow, execute, progress_bar, set_threads};
+use crate::run::{Finished, RoomRow, execute, resolved_toml, set_threads, start_line};
 use crate::svg::{best_paths_svg, fitness_svg};
 
 /// Arguments of `fuzzymotiv reproduce`.
 #[derive(clap::Args)]
 pub struct ReproduceArgs {
-    /// Output directory.
-    #[arg(long, default_value = "results")]
-    pub out: PathBuf,
-    /// Base seed of both settings.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(0..=i64::MAX as u64))]
+    /// Output directory [default: results; with --quick results-quick; with --orientation
+    /// results-orientation(-quick)]. Another study's results there are kept unless --force.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Replace another study's results in --out (or an unfinished one) and start over.
+    #[arg(long)]
+    pub force: bool,
+    /// No progress lines on stderr.
+    #[arg(long, short)]
+    pub quiet: bool,
+    /// Base seed of both settings: a whole number from 0 to 2^53 − 1.
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::inputs::parse_seed)]
     pub seed: u64,
     /// A fast look: GA 30 × 30 instead of the paper's 200 × 200.
     #[arg(long)]
@@ -81,12 +89,32 @@ pub const SETTINGS: [Setting; 2] = [
     },
 ];
 
+impl ReproduceArgs {
+    /// `--out`, or the default for the study and its size (a quick look never lands in the
+    /// full study's directory).
+    pub fn out_dir(&self) -> PathBuf {
+        self.out.clone().unwrap_or_else(|| {
+            let base = if self.orientation {
+                "results-orientation"
+            } else {
+                "results"
+            };
+            PathBuf::from(if self.quick {
+                format!("{base}-quick")
+            } else {
+                base.to_string()
+            })
+        })
+    }
+}
+
 /// Entry point of `fuzzymotiv reproduce`.
 pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
     if args.orientation {
         return orientation_study(&args);
     }
+    let out = args.out_dir();
     let start = Instant::now();
     let mut sets = Vec::new();
     if args.quick {
@@ -104,11 +132,40 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
             resolve(raw, std::path::Path::new("."), &source)
         })
         .collect::<Result<Vec<_>, CliError>>()?;
-    let staged = StagedDir::new(&args.out)?;
-    let progress = progress_bar(&loaded[0].experiment, SETTINGS.len(), "");
+    // The study is "the same" when both settings' resolved configs are.
+    let id: Vec<(String, String)> = SETTINGS
+        .iter()
+        .zip(&loaded)
+        .map(|(s, l)| {
+            (
+                format!("{}/config.resolved.toml", s.name),
+                resolved_toml(&l.raw),
+            )
+        })
+        .collect();
+    match check_out(&out, &id, args.force)? {
+        OutState::Done => {
+            eprintln!(
+                "{} already holds this study, finished (same resolved configs); nothing to do. --force runs it again",
+                out.display()
+            );
+            return Ok(());
+        }
+        OutState::Unfinished => {
+            return Err(CliError::input(format!(
+                "{}: an unfinished study of this command is in {}; reproduce cannot resume it: pass --force to discard it and start over",
+                out.display(),
+                StagedDir::staging_path(&out).display()
+            )));
+        }
+        OutState::Fresh => {}
+    }
+    let staged = StagedDir::new(&out)?;
+    let progress = Progress::new(&loaded[0].experiment, SETTINGS.len(), args.quiet);
     let mut finished: Vec<Finished> = Vec::new();
     for (setting, l) in SETTINGS.iter().zip(&loaded) {
-        progress.set_prefix(setting.name);
+        progress.set_prefix(&format!("{} seed {}", setting.name, args.seed));
+        progress.note(&start_line(&l.experiment, &out.join(setting.name)));
         finished.push(execute(
             l,
             &staged.staging.join(setting.name),
@@ -117,7 +174,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
             args.png,
         )?);
     }
-    progress.finish_and_clear();
+    progress.finish();
     let mut settings_json = Vec::new();
     let mut panels = Vec::new();
     for (k, ((setting, l), done)) in SETTINGS.iter().zip(&loaded).zip(&finished).enumerate() {
@@ -210,7 +267,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
         "summary.json",
         serde_json::to_string_pretty(&summary).expect("serialisable") + "\n",
     )?;
-    let out = staged.commit()?;
+    staged.commit()?;
     eprintln!(
         "wrote {} ({:.1} s)",
         out.display(),
@@ -277,6 +334,7 @@ fn table(setting: &Setting, rows: &[RoomRow]) -> (String, String) {
 /// orientation), run in-process, then merged into tables and plots.
 fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
     let start = Instant::now();
+    let out = args.out_dir();
     let mut text = include_str!("../../../configs/orientation-study.toml").to_string();
     let mut sets: Vec<String> = Vec::new();
     sets.push(format!("seed={}", args.seed));
@@ -301,12 +359,10 @@ fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
     eprintln!(
         "orientation study: {} jobs into {}",
         all.len(),
-        args.out.display()
+        out.display()
     );
-    crate::sweep::run_jobs(&sweep, &text, &all, &args.out)?;
-    crate::sweep::merge(crate::sweep::MergeArgs {
-        dir: args.out.clone(),
-    })?;
+    crate::sweep::run_jobs(&sweep, &text, &all, &out, args.quiet)?;
+    crate::sweep::merge(crate::sweep::MergeArgs { dir: out })?;
     eprintln!(
         "orientation study done in {:.1} s",
         start.elapsed().as_secs_f64()
