@@ -356,13 +356,12 @@ pub fn resolved_toml(raw: &RawConfig) -> String {
     )
 }
 
-/// Where a table came from, as a Markdown line below it: program version, config name, seed,
-/// GA size and trial length (so a small trial run and a paper-scale one never look alike).
+/// Where a table came from, as a Markdown line below it: program version, seed, GA size, trial
+/// length and training (so a small trial run and a paper-scale one never look alike).
 pub fn provenance_line(exp: &Experiment, loaded: &Loaded) -> String {
     format!(
-        "\nfuzzymotiv {} · config `{}` · seed {} · GA {} robots × {} generations · {} steps per trial · training {}\n",
+        "\nfuzzymotiv {} · seed {} · GA {} robots × {} generations · {} steps per trial · training {}\n",
         fuzzymotiv::VERSION,
-        loaded.raw.name,
         exp.seed,
         exp.ga.population,
         exp.ga.generations,
