@@ -2,6 +2,9 @@
 """Mean ± std over several `fuzzymotiv reproduce` output directories (one per seed).
 
 Usage: scripts/seeds_table.py results-s1 results-s2 ...   (prints Markdown tables)
+
+Refuses (exit status 1) to average studies of different kinds: quick and full runs, other GA sizes, or
+other program versions.
 """
 import json
 import statistics
@@ -11,9 +14,36 @@ COLS = [("average_fitness", "average fitness", 3), ("exploration_pct", "% optima
         ("recognition_pct", "% recognition", 0), ("battery_pct", "% battery usage", 1), ("homing", "% homing", 1)]
 
 
+def kind(summary):
+    """What must agree between averaged studies: quick flag, GA size per setting, version."""
+    sizes = [(s["name"], s.get("population"), s.get("generations")) for s in summary["settings"]]
+    return {"quick": summary.get("quick"), "GA size": sizes, "version": summary.get("version")}
+
+
+def check_same_kind(dirs, summaries):
+    first = kind(summaries[0])
+    for d, s in zip(dirs[1:], summaries[1:]):
+        k = kind(s)
+        for key in first:
+            if k[key] != first[key]:
+                sys.exit(f"error: {dirs[0]} and {d} differ in {key} ({first[key]} vs {k[key]}); "
+                         "averaging them would mix different studies (e.g. a --quick run and a full one). "
+                         "Pass only directories of the same kind.")
+
+
 def main(dirs):
-    summaries = [json.load(open(f"{d}/summary.json")) for d in dirs]
+    if not dirs:
+        sys.exit("usage: scripts/seeds_table.py RESULTS_DIR...")
+    summaries = []
+    for d in dirs:
+        try:
+            summaries.append(json.load(open(f"{d}/summary.json")))
+        except (OSError, ValueError) as e:
+            sys.exit(f"error: {d}: not a `fuzzymotiv reproduce` directory ({e})")
+    check_same_kind(dirs, summaries)
     seeds = [s["seed"] for s in summaries]
+    quick = " (quick: GA 30 × 30)" if summaries[0].get("quick") else ""
+    print(f"fuzzymotiv {summaries[0].get('version')}, {len(dirs)} studies{quick}\n")
     for k, setting in enumerate(summaries[0]["settings"]):
         m = setting["motivations"]
         print(f"### {setting['name']} (C, H, O, E) = ({m['curiosity']}, {m['homing']}, {m['orientation']}, {m['energy']}), seeds {seeds}\n")

@@ -14,7 +14,8 @@ pub struct BenchArgs {
     /// Room: a built-in name or a room file.
     #[arg(long, default_value = "H")]
     pub room: String,
-    /// Robot-steps of the single-robot measurement.
+    /// Robot-steps of each measurement (the population one evaluates whole populations until
+    /// it has done at least this many, so its time is long enough to measure).
     #[arg(long, default_value_t = 2_000_000)]
     pub steps: usize,
     /// Threads for the population measurement [default: all cores].
@@ -72,17 +73,21 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
         }
         single.push(t0.elapsed().as_secs_f64());
     }
+    // One population evaluation takes only milliseconds: time enough of them to cover `steps`.
+    let evaluations = args.steps.div_ceil(population.len() * trial_steps);
     let mut pop = Vec::new();
     for rep in 0..args.repeat {
         let t0 = Instant::now();
-        let evals = exp.evaluate_population(&population, run, rep);
-        sink += evals[0].fitness;
+        for g in 0..evaluations {
+            let evals = exp.evaluate_population(&population, run, rep * evaluations + g);
+            sink += evals[0].fitness;
+        }
         pop.push(t0.elapsed().as_secs_f64());
     }
     let robot_steps = trials * trial_steps;
     let seconds = median(single);
     let pop_seconds = median(pop);
-    let pop_steps = population.len() * trial_steps;
+    let pop_steps = evaluations * population.len() * trial_steps;
     let threads = rayon::current_num_threads();
     std::hint::black_box(sink);
     if args.json {
@@ -92,6 +97,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
             "seconds": seconds,
             "robot_steps_per_sec": robot_steps as f64 / seconds,
             "population": population.len(),
+            "population_evaluations": evaluations,
             "population_robot_steps": pop_steps,
             "population_seconds": pop_seconds,
             "population_robot_steps_per_sec": pop_steps as f64 / pop_seconds,
@@ -113,7 +119,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
             args.repeat
         );
         println!(
-            "population {} x {trial_steps} steps, {threads} threads: {:.3} M robot-steps/s (median {:.4} s)",
+            "population {} x {trial_steps} steps, {evaluations} evaluations, {threads} threads: {:.3} M robot-steps/s (median {:.3} s)",
             population.len(),
             pop_steps as f64 / pop_seconds / 1e6,
             pop_seconds

@@ -55,7 +55,8 @@ impl StagedDir {
     }
 
     /// Starts a fresh staging directory for `dir` (refused up front if `dir` exists and is not
-    /// an earlier fuzzymotiv output, since it would be replaced at the end).
+    /// an earlier fuzzymotiv output, since it would be replaced at the end). An older staging
+    /// directory is discarded: callers check with [`check_out`] first.
     pub fn new(dir: &Path) -> Result<Self, CliError> {
         ensure_replaceable(dir)?;
         let staging = Self::staging_path(dir);
@@ -97,10 +98,7 @@ pub fn ensure_replaceable(dir: &Path) -> Result<(), CliError> {
     if !dir.exists() {
         return Ok(());
     }
-    let empty = dir
-        .read_dir()
-        .map(|mut d| d.next().is_none())
-        .unwrap_or(false);
+    let empty = is_empty_dir(dir);
     let ours = dir.join("summary.json").is_file() || dir.join("config.resolved.toml").is_file();
     if dir.is_dir() && (empty || ours) {
         Ok(())
@@ -110,6 +108,93 @@ pub fn ensure_replaceable(dir: &Path) -> Result<(), CliError> {
             dir.display()
         )))
     }
+}
+
+/// What an output directory (`--out DIR`) already holds, found before any work starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutState {
+    /// Nothing of value: new, empty, or to be replaced (`--force`).
+    Fresh,
+    /// A finished output of this very command (same resolved config): nothing to do.
+    Done,
+    /// An unfinished output of this very command in `DIR.partial/`: it can be resumed.
+    Unfinished,
+}
+
+/// What makes an output "the same": files (relative to the output directory) and the exact
+/// contents this command would write there (e.g. `config.resolved.toml`).
+pub type Identity = [(String, String)];
+
+/// Checks `--out DIR` before any work: it must not be the current directory (or hold it), nor a
+/// file; an earlier output of another run (another resolved config, or another kind of output)
+/// and an unfinished one (a checkpoint) are replaced only with `force`; anything that is not a
+/// fuzzymotiv output is never replaced.
+pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, CliError> {
+    refuse_current_dir(dir)?;
+    if dir.exists() && !dir.is_dir() {
+        return Err(CliError::input(format!(
+            "--out {}: is a file, not a directory; choose another --out",
+            dir.display()
+        )));
+    }
+    let staging = StagedDir::staging_path(dir);
+    if staging.exists() && !force {
+        if matches(&staging, id) {
+            return Ok(OutState::Unfinished);
+        }
+        return Err(CliError::input(format!(
+            "--out {}: {} holds an unfinished output of another run or command (a checkpoint); \
+             continue a run with `fuzzymotiv run --resume {}`, or pass --force to discard it",
+            dir.display(),
+            staging.display(),
+            dir.display()
+        )));
+    }
+    if !dir.exists() || is_empty_dir(dir) {
+        return Ok(OutState::Fresh);
+    }
+    ensure_replaceable(dir)?;
+    if matches(dir, id) && dir.join("summary.json").is_file() && !force {
+        return Ok(OutState::Done);
+    }
+    if force {
+        eprintln!("note: --force: {} will be replaced", dir.display());
+        return Ok(OutState::Fresh);
+    }
+    Err(CliError::input(format!(
+        "--out {}: holds the results of a different run (another config, seed, size or \
+         command); they are kept. Choose another --out, or pass --force to replace them",
+        dir.display()
+    )))
+}
+
+/// Whether every identity file under `dir` has exactly the expected contents.
+fn matches(dir: &Path, id: &Identity) -> bool {
+    !id.is_empty()
+        && id.iter().all(|(name, want)| {
+            std::fs::read_to_string(dir.join(name)).is_ok_and(|have| have == *want)
+        })
+}
+
+fn is_empty_dir(dir: &Path) -> bool {
+    dir.read_dir().is_ok_and(|mut d| d.next().is_none())
+}
+
+/// `--out .` (or any directory holding the current one) cannot be replaced atomically: refused.
+fn refuse_current_dir(dir: &Path) -> Result<(), CliError> {
+    let (Ok(here), Ok(out)) = (std::env::current_dir(), std::path::absolute(dir)) else {
+        return Ok(());
+    };
+    let out = out.canonicalize().unwrap_or(out);
+    let here = here.canonicalize().unwrap_or(here);
+    if here.starts_with(&out) {
+        return Err(CliError::input(format!(
+            "--out {}: is the current directory (or holds it); an output directory is written \
+             beside and then renamed into place, so give a new directory, e.g. --out results",
+            dir.display()
+        )));
+    }
+    Ok(())
 }
 
 /// Formats a float for CSV with fixed precision (stable across runs and platforms).

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use fuzzymotiv::config::{ConfigError, RawConfig};
 use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::fuzzy::Motivations;
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 
 use crate::error::CliError;
@@ -12,6 +13,14 @@ use crate::error::CliError;
 pub fn load_room_file(path: &Path) -> Result<Room, CliError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| CliError::input(format!("{}: cannot read room file: {e}", path.display())))?;
+    if let Err(e) = toml::from_str::<toml::Table>(&text) {
+        return Err(CliError::input(format!(
+            "{}: not valid TOML{}: {}",
+            path.display(),
+            fuzzymotiv::config::at_line(&text, e.span()),
+            e.message().trim()
+        )));
+    }
     Ok(Room::from_toml_str(&text, &path.display().to_string())?)
 }
 
@@ -48,8 +57,30 @@ pub fn resolve(mut raw: RawConfig, base_dir: &Path, source: &str) -> Result<Load
         let abs: PathBuf = path.canonicalize().unwrap_or(path);
         raw.rooms[i] = abs.display().to_string();
     }
+    normalise_motivations(&mut raw, source);
     let experiment = Experiment::new(&raw, rooms, source)?;
     Ok(Loaded { raw, experiment })
+}
+
+/// SPEC §10: motivations summing to within 1e-3 of 1 are normalised (the resolved config records
+/// the normalised values), and the program says so once; farther off is left to validation.
+fn normalise_motivations(raw: &mut RawConfig, source: &str) {
+    static SAID: std::sync::Once = std::sync::Once::new();
+    let m = raw.motivations;
+    if let Ok((n, Some(sum))) =
+        Motivations::normalised(m.curiosity, m.homing, m.orientation, m.energy)
+    {
+        raw.motivations.curiosity = n.curiosity;
+        raw.motivations.homing = n.homing;
+        raw.motivations.orientation = n.orientation;
+        raw.motivations.energy = n.energy;
+        SAID.call_once(|| {
+            eprintln!(
+                "note: {source}: motivations summed to {sum}, normalised to (C, H, O, E) = {:?}",
+                n.as_array()
+            );
+        });
+    }
 }
 
 /// Reads a config file (or the built-in defaults for `None`) with overrides.
@@ -78,4 +109,21 @@ pub fn load_config(
     };
     let raw = RawConfig::parse(&text, &source, &sets)?;
     resolve(raw, &base, &source)
+}
+
+/// The largest seed: 2^53 − 1, so every seed is exact in JSON for tools that read numbers as
+/// doubles (JavaScript, jq).
+pub const MAX_SEED: u64 = fuzzymotiv::config::MAX_SEED;
+
+/// Parses `--seed`: a whole number from 0 to 2^53 − 1, with a plain message otherwise.
+pub fn parse_seed(text: &str) -> Result<u64, String> {
+    text.trim()
+        .parse::<u64>()
+        .ok()
+        .filter(|&s| s <= MAX_SEED)
+        .ok_or_else(|| {
+            format!(
+                "`{text}` is not a seed; a seed is a whole number from 0 to {MAX_SEED} (2^53 − 1)"
+            )
+        })
 }

@@ -5,6 +5,7 @@ mod error;
 mod files;
 mod inputs;
 mod png;
+mod progress;
 mod replay;
 mod report;
 mod reproduce;
@@ -30,6 +31,9 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Evolve controllers as a config file says and write a run directory.
+    #[command(
+        override_usage = "fuzzymotiv run CONFIG [OPTIONS]\n       fuzzymotiv run --resume DIR [--threads N] [--png] [--quiet]"
+    )]
     Run(run::RunArgs),
     /// Run the paper's whole study (both motivation settings, five rooms) and write its tables
     /// and figures.
@@ -52,7 +56,8 @@ enum Command {
 
 #[derive(clap::Args)]
 struct FuzzyArgs {
-    /// Motivations C,H,O,E (each in [0, 1], summing to 1), e.g. 0.8,0.1,0,0.1.
+    /// Motivations C,H,O,E (each in [0, 1], summing to 1; a sum within 0.001 of 1 is
+    /// normalised), e.g. 0.8,0.1,0,0.1.
     #[arg(long, value_name = "C,H,O,E")]
     motivations: String,
     /// Fitness values a,g,l,b (each clamped to [0, 1]), e.g. 0.95,0.5,0,0.79.
@@ -65,8 +70,8 @@ struct FuzzyArgs {
 
 #[derive(clap::Args)]
 struct RoomsArgs {
-    /// Room files to validate (TOML, SPEC §6 format); may be repeated.
-    #[arg(long = "check", value_name = "FILE")]
+    /// Room files to validate (TOML, SPEC §6 format): one or more, e.g. --check rooms/*.toml.
+    #[arg(long = "check", value_name = "FILE", num_args = 1..)]
     check: Vec<PathBuf>,
 }
 
@@ -128,8 +133,14 @@ fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
     use fuzzymotiv::fuzzy::{Motivations, TskFitness};
     let x = parse_four(&args.motivations, "--motivations", ["C", "H", "O", "E"])?;
     let y = parse_four(&args.fitness, "--fitness", ["a", "g", "l", "b"])?;
-    let m = Motivations::new(x[0], x[1], x[2], x[3])
+    let (m, sum) = Motivations::normalised(x[0], x[1], x[2], x[3])
         .map_err(|e| CliError::input(format!("--motivations: {e}")))?;
+    if let Some(sum) = sum {
+        eprintln!(
+            "note: --motivations summed to {sum}, normalised to (C, H, O, E) = {:?}",
+            m.as_array()
+        );
+    }
     let tsk = TskFitness::paper();
     let f = tsk.evaluate(&m, y);
     println!("{f:.12}");

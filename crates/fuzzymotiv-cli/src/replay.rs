@@ -26,15 +26,21 @@ use crate::svg::trajectories_svg;
 #[derive(clap::Args)]
 pub struct ReplayArgs {
     /// A run directory (its best_genome.json and config.resolved.toml), or a genome file
-    /// (best_genome.json; the built-in default config then gives rooms and trial settings).
+    /// (best_genome.json: its rooms and trial settings come from --config, else from the
+    /// config.resolved.toml beside it, else from the built-in defaults; the program says which).
     #[arg(value_name = "RUN_DIR|GENOME.json")]
     pub source: PathBuf,
+    /// The config to replay under (rooms, trial steps, noise), e.g. the run's
+    /// config.resolved.toml [default: the run's own config].
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
     /// The room to replay: a room of the config, a built-in room or a room file
     /// [default: every room of the config].
     #[arg(long, value_name = "NAME|FILE")]
     pub room: Option<String>,
-    /// Base seed of the replay's noise [default: the run's seed, so the run's own paths].
-    #[arg(long)]
+    /// Base seed of the replay's noise [default: the run's seed, so the run's own paths]: a
+    /// whole number from 0 to 2^53 − 1.
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::inputs::parse_seed)]
     pub seed: Option<u64>,
     /// The replay page to write; the trajectories go beside it as STEM.json, STEM-ROOM.csv and
     /// the figure as STEM.svg.
@@ -124,8 +130,9 @@ fn file_tag(name: &str) -> String {
 /// whether the step was idle (after the trial ended at home); a last row `t = steps` holds the
 /// final pose only.
 pub fn trajectory_csv(tr: &Trajectory) -> String {
-    let mut s =
-        String::from("step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n");
+    let mut s = String::from(
+        "step,x_mm,y_mm,heading_rad,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n",
+    );
     for t in 0..tr.len() {
         let p = tr.poses[t];
         let _ = write!(s, "{t},{},{},{}", num(p.x), num(p.y), num(p.heading));
@@ -159,7 +166,7 @@ pub fn trajectory_csv(tr: &Trajectory) -> String {
 /// Entry point of `fuzzymotiv replay`.
 pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     let src = &args.source;
-    let (genome_path, config_path) = if src.is_dir() {
+    let (genome_path, found_config) = if src.is_dir() {
         let config = src.join("config.resolved.toml");
         if !config.is_file() {
             return Err(CliError::input(format!(
@@ -169,13 +176,18 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         }
         (src.join("best_genome.json"), Some(config))
     } else if src.is_file() {
-        (src.clone(), None)
+        let beside = src
+            .parent()
+            .map(|d| d.join("config.resolved.toml"))
+            .filter(|c| c.is_file());
+        (src.clone(), beside)
     } else {
         return Err(CliError::input(format!(
             "{}: no such run directory or genome file",
             src.display()
         )));
     };
+    let config_path = args.config.clone().or(found_config);
     let genome = read_genome(&genome_path)?;
     // A genome alone is replayed under the default config and, unless --seed says otherwise,
     // the seed it was evolved with.
@@ -190,6 +202,14 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         .map_or("(built-in defaults)".to_string(), |p| {
             p.display().to_string()
         });
+    eprintln!(
+        "config: {source_name}{}",
+        if config_path.is_none() {
+            " (no config beside the genome; --config FILE replays under the run's own)"
+        } else {
+            ""
+        }
+    );
     if config_path.is_some() && loaded.raw.network.hidden != genome.hidden {
         return Err(CliError::input(format!(
             "{}: the genome has {} hidden units but the config says network.hidden = {}",

@@ -8,21 +8,31 @@ use fuzzymotiv::config::RawConfig;
 use fuzzymotiv::seed::study_seed;
 
 use crate::error::CliError;
-use crate::files::{StagedDir, write_atomic};
+use crate::files::{OutState, StagedDir, check_out, write_atomic};
 use crate::inputs::{Loaded, resolve};
 use crate::png::write_figure_at;
+use crate::progress::Progress;
 use crate::report::{Section, reproduce_page};
-use crate::run::{Finished, RoomRow, execute, progress_bar, set_threads};
+use crate::run::{Finished, RoomRow, execute, resolved_toml, set_threads, start_line};
 use crate::svg::{best_paths_svg, fitness_svg};
 
 /// Arguments of `fuzzymotiv reproduce`.
 #[derive(clap::Args)]
 pub struct ReproduceArgs {
-    /// Output directory.
-    #[arg(long, default_value = "results")]
-    pub out: PathBuf,
-    /// Base seed: seed 1 of the study is this seed, the others derive from it.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(0..=i64::MAX as u64))]
+    /// Output directory [default: results; with --quick results-quick; with --orientation
+    /// results-orientation(-quick); with --ablation results-ablation(-quick)]. Another study's
+    /// results there are kept unless --force.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Replace another study's results in --out (or an unfinished one) and start over.
+    #[arg(long)]
+    pub force: bool,
+    /// No progress lines on stderr.
+    #[arg(long, short)]
+    pub quiet: bool,
+    /// Base seed, a whole number from 0 to 2^53 − 1: the study's first seed is this seed, the
+    /// others derive from it.
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = crate::inputs::parse_seed)]
     pub seed: u64,
     /// Number of seeds per setting; tables give mean ± std over them and every seed's values.
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=1000))]
@@ -48,6 +58,27 @@ pub struct ReproduceArgs {
     /// paper's claims hold under each.
     #[arg(long, conflicts_with = "orientation")]
     pub ablation: bool,
+}
+
+impl ReproduceArgs {
+    /// `--out`, or the default for the study and its size (a quick look never lands in the
+    /// full study's directory).
+    pub fn out_dir(&self) -> PathBuf {
+        self.out.clone().unwrap_or_else(|| {
+            let base = if self.orientation {
+                "results-orientation"
+            } else if self.ablation {
+                "results-ablation"
+            } else {
+                "results"
+            };
+            PathBuf::from(if self.quick {
+                format!("{base}-quick")
+            } else {
+                base.to_string()
+            })
+        })
+    }
 }
 
 /// A built-in setting of the study with the paper's table.
@@ -240,15 +271,16 @@ fn run_study<'a>(
     seeds: &[u64],
     loaded: Vec<Vec<Loaded>>,
     dir: &Path,
-    progress: &indicatif::ProgressBar,
+    progress: &Progress,
     label: &str,
 ) -> Result<Vec<SettingRuns<'a>>, CliError> {
     let mut studies = Vec::new();
     for (setting, loaded) in SETTINGS.iter().zip(loaded) {
         let mut finished = Vec::new();
         for (seed, l) in seeds.iter().zip(&loaded) {
-            progress.set_prefix(format!("{label}{} seed {seed}", setting.name));
+            progress.set_prefix(&format!("{label}{} seed {seed}", setting.name));
             let run_dir = dir.join(setting.name).join(format!("seed-{seed}"));
+            progress.note(&start_line(&l.experiment, &run_dir));
             finished.push(execute(l, &run_dir, progress, false, args.png)?);
         }
         studies.push(SettingRuns {
@@ -273,10 +305,18 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     let start = Instant::now();
     let seeds = study_seeds(&args);
     let loaded = load_settings(&args, &seeds, &DEFAULT_MODEL)?;
-    let staged = StagedDir::new(&args.out)?;
-    let progress = progress_bar(&loaded[0][0].experiment, SETTINGS.len() * seeds.len(), "");
+    let out = args.out_dir();
+    if !fresh_out(&args, &out, &identity(&[(&DEFAULT_MODEL, &loaded)]))? {
+        return Ok(());
+    }
+    let staged = StagedDir::new(&out)?;
+    let progress = Progress::new(
+        &loaded[0][0].experiment,
+        SETTINGS.len() * seeds.len(),
+        args.quiet,
+    );
     let studies = run_study(&args, &seeds, loaded, &staged.staging, &progress, "")?;
-    progress.finish_and_clear();
+    progress.finish();
     let claims = write_study(&args, &staged.staging, &studies, start)?;
     print_claims(&claims);
     let out = staged.commit()?;
@@ -302,11 +342,16 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         .iter()
         .map(|v| load_settings(args, &seeds, v))
         .collect::<Result<Vec<_>, CliError>>()?;
-    let staged = StagedDir::new(&args.out)?;
-    let progress = progress_bar(
+    let out = args.out_dir();
+    let variants: Vec<_> = ABLATION.iter().zip(&loaded).collect();
+    if !fresh_out(args, &out, &identity(&variants))? {
+        return Ok(());
+    }
+    let staged = StagedDir::new(&out)?;
+    let progress = Progress::new(
         &loaded[0][0][0].experiment,
         ABLATION.len() * SETTINGS.len() * seeds.len(),
-        "",
+        args.quiet,
     );
     let mut rows = Vec::new();
     for (variant, loaded) in ABLATION.iter().zip(loaded) {
@@ -316,11 +361,31 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         let claims = write_study(args, &dir, &studies, Instant::now())?;
         rows.push((variant, claims));
     }
-    progress.finish_and_clear();
+    progress.finish();
     let prov = Provenance::of(args, &seeds, &rows_exp(args, &seeds)?);
     let (md, csv) = ablation_table(&rows, &prov);
     staged.write("ablation.md", &md)?;
     staged.write("ablation.csv", &csv)?;
+    let summary = serde_json::json!({
+        "program": "fuzzymotiv",
+        "version": fuzzymotiv::VERSION,
+        "seed": args.seed,
+        "seeds": seeds,
+        "quick": args.quick,
+        "population": prov.population,
+        "generations": prov.generations,
+        "overrides": args.sets,
+        "variants": rows.iter().map(|(v, claims)| serde_json::json!({
+            "name": v.name,
+            "switched_back": v.what,
+            "claims": claims.iter().map(|c| serde_json::json!({"claim": c.claim, "holds": c.holds, "evidence": c.evidence})).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "wall_seconds": start.elapsed().as_secs_f64(),
+    });
+    staged.write(
+        "summary.json",
+        serde_json::to_string_pretty(&summary).expect("serialisable") + "\n",
+    )?;
     println!("{md}");
     let out = staged.commit()?;
     eprintln!(
@@ -329,6 +394,58 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         start.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// What makes a study "the same": every run's resolved config, by its path in the output.
+fn identity(variants: &[(&Variant, &Vec<Vec<Loaded>>)]) -> Vec<(String, String)> {
+    let prefix = |v: &Variant| {
+        if variants.len() == 1 {
+            String::new()
+        } else {
+            format!("{}/", v.name)
+        }
+    };
+    variants
+        .iter()
+        .flat_map(|(v, loaded)| {
+            SETTINGS
+                .iter()
+                .zip(loaded.iter())
+                .flat_map(move |(s, seeds)| {
+                    seeds.iter().map(move |l| {
+                        (
+                            format!(
+                                "{}{}/seed-{}/config.resolved.toml",
+                                prefix(v),
+                                s.name,
+                                l.experiment.seed
+                            ),
+                            resolved_toml(&l.raw),
+                        )
+                    })
+                })
+        })
+        .collect()
+}
+
+/// Checks `--out` before any work: false when it already holds this very study (nothing to
+/// do); an unfinished study cannot be resumed and is replaced only with `--force`.
+fn fresh_out(args: &ReproduceArgs, out: &Path, id: &[(String, String)]) -> Result<bool, CliError> {
+    match check_out(out, id, args.force)? {
+        OutState::Done => {
+            eprintln!(
+                "{} already holds this study, finished (same resolved configs); nothing to do. --force runs it again",
+                out.display()
+            );
+            Ok(false)
+        }
+        OutState::Unfinished => Err(CliError::input(format!(
+            "{}: an unfinished study of this command is in {}; reproduce cannot resume it: pass --force to discard it and start over",
+            out.display(),
+            StagedDir::staging_path(out).display()
+        ))),
+        OutState::Fresh => Ok(true),
+    }
 }
 
 /// The first config of the default variant (for provenance).
@@ -867,6 +984,7 @@ fn spread_html(study: &SettingRuns<'_>) -> String {
 /// orientation), run in-process, then merged into tables and plots.
 fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
     let start = Instant::now();
+    let out = args.out_dir();
     let mut text = include_str!("../../../configs/orientation-study.toml").to_string();
     let mut sets: Vec<String> = Vec::new();
     sets.push(format!("seed={}", args.seed));
@@ -891,12 +1009,10 @@ fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
     eprintln!(
         "orientation study: {} jobs into {}",
         all.len(),
-        args.out.display()
+        out.display()
     );
-    crate::sweep::run_jobs(&sweep, &text, &all, &args.out)?;
-    crate::sweep::merge(crate::sweep::MergeArgs {
-        dir: args.out.clone(),
-    })?;
+    crate::sweep::run_jobs(&sweep, &text, &all, &out, args.quiet)?;
+    crate::sweep::merge(crate::sweep::MergeArgs { dir: out })?;
     eprintln!(
         "orientation study done in {:.1} s",
         start.elapsed().as_secs_f64()

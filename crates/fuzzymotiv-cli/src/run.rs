@@ -1,7 +1,6 @@
 //! `fuzzymotiv run`: evolve, model the rooms, write the run directory.
 
 use std::fmt::Write as _;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -10,31 +9,40 @@ use fuzzymotiv::experiment::{
     AemReport, Evolution, Experiment, GenerationRecord, GenerationState, Run,
 };
 use fuzzymotiv::trial::Trajectory;
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::error::CliError;
-use crate::files::{StagedDir, io_err, num, write_atomic};
+use crate::files::{OutState, StagedDir, check_out, io_err, num, write_atomic};
 use crate::inputs::{Loaded, load_config};
 use crate::png::write_figure;
+use crate::progress::Progress;
 use crate::report;
 use crate::svg::{best_paths_svg, fitness_svg, terms_svg};
 
 /// Arguments of `fuzzymotiv run`.
 #[derive(clap::Args)]
 pub struct RunArgs {
-    /// Experiment config (TOML); every key is optional (SPEC defaults).
-    #[arg(required_unless_present = "resume")]
+    /// Experiment config (TOML; every key is optional, SPEC defaults). Required, unless
+    /// --resume DIR is given instead.
+    #[arg(value_name = "CONFIG", required_unless_present = "resume")]
     pub config: Option<PathBuf>,
     /// Continue a killed run: DIR is the run's output directory (its `DIR.partial/` holds the
     /// checkpoint and resolved config). The result equals an uninterrupted run.
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["config", "out", "seed", "sets"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["config", "out", "seed", "sets", "force"])]
     pub resume: Option<PathBuf>,
-    /// Output directory [default: runs/NAME].
+    /// Output directory [default: runs/NAME]. The same command again finishes an unfinished
+    /// run there or says it is done; another run's results there are kept unless --force.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Base seed (overrides `seed` in the config), 0 ..= 2^63 − 1.
-    #[arg(long, value_parser = clap::value_parser!(u64).range(0..=i64::MAX as u64))]
+    /// Replace the results of another run in --out, or discard an unfinished one (its
+    /// checkpoint), and start over.
+    #[arg(long)]
+    pub force: bool,
+    /// No progress lines on stderr.
+    #[arg(long, short)]
+    pub quiet: bool,
+    /// Base seed (overrides `seed` in the config): a whole number from 0 to 2^53 − 1.
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::inputs::parse_seed)]
     pub seed: Option<u64>,
     /// Worker threads [default: all cores]; results do not depend on it.
     #[arg(long)]
@@ -88,34 +96,50 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
                 .out
                 .clone()
                 .unwrap_or_else(|| Path::new("runs").join(&loaded.raw.name));
-            (loaded, out, false)
+            let id = [(
+                "config.resolved.toml".to_string(),
+                resolved_toml(&loaded.raw),
+            )];
+            match check_out(&out, &id, args.force)? {
+                OutState::Done => {
+                    eprintln!(
+                        "{} already holds this run, finished (same resolved config); nothing to do. --force runs it again",
+                        out.display()
+                    );
+                    return Ok(());
+                }
+                OutState::Unfinished => (loaded, out, true),
+                OutState::Fresh => (loaded, out, false),
+            }
         }
         (None, None) => return Err(CliError::input("give a CONFIG file or --resume DIR")),
     };
-    let progress = progress_bar(&loaded.experiment, 1, "");
+    let progress = Progress::new(&loaded.experiment, 1, args.quiet);
+    progress.set_prefix(&format!(
+        "{} seed {}",
+        loaded.experiment.name, loaded.experiment.seed
+    ));
+    progress.note(&start_line(&loaded.experiment, &out));
     let done = execute(&loaded, &out, &progress, resume, args.png)?;
-    progress.finish_and_clear();
+    progress.finish();
     print!("{}", table_markdown(&done.rows));
     eprintln!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
     Ok(())
 }
 
-/// A progress bar over all generations of `settings` experiments like this one; hidden when
-/// stderr is not a terminal.
-pub fn progress_bar(exp: &Experiment, settings: usize, prefix: &str) -> ProgressBar {
-    let total = (exp.runs().len() * exp.ga.generations * settings) as u64;
-    if !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::new(total);
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{prefix} [{elapsed_precise}] {wide_bar} gen {pos}/{len} {msg} (eta {eta})",
-        )
-        .expect("valid template"),
-    );
-    bar.set_prefix(prefix.to_string());
-    bar
+/// What is about to run, said before the first generation (which may take long).
+pub fn start_line(exp: &Experiment, out: &Path) -> String {
+    format!(
+        "{}: seed {}, {} × {} generations of {} robots, {} room(s) × {} steps per trial → {}",
+        exp.name,
+        exp.seed,
+        exp.runs().len(),
+        exp.ga.generations,
+        exp.ga.population,
+        exp.arenas.len(),
+        exp.trial.steps,
+        out.display()
+    )
 }
 
 /// One row of the per-room table (SPEC §12).
@@ -183,7 +207,7 @@ pub fn best_trajectories(exp: &Experiment, evolutions: &[Evolution]) -> Vec<Traj
 pub fn execute(
     loaded: &Loaded,
     out: &Path,
-    progress: &ProgressBar,
+    progress: &Progress,
     resume: bool,
     png: bool,
 ) -> Result<Finished, CliError> {
@@ -200,15 +224,19 @@ pub fn execute(
     }
     let runs = exp.runs();
     let mut checkpoint = if resume {
-        Checkpoint::load(&staged.path(CHECKPOINT), &runs, exp)?
+        let cp = Checkpoint::load(&staged.path(CHECKPOINT), &runs, exp)?;
+        progress.note(&cp.resume_note(out, exp.ga.generations));
+        cp
     } else {
         Checkpoint::fresh(&runs)
     };
+    // Wall time of earlier sessions (before a resume) counts too.
+    let earlier_seconds = checkpoint.wall_seconds;
     let mut evolutions = Vec::new();
     let mut csv = String::from("generation,best,mean,std,min,max,a,g,l,b,room\n");
     for (k, run) in runs.iter().enumerate() {
         let saved = checkpoint.runs[k].clone();
-        progress.inc(saved.history.len() as u64);
+        progress.skip(saved.history.len());
         let mut write_error = None;
         let evo = if saved.done {
             exp.finished(run, saved.population_f64(), saved.history.clone())
@@ -219,9 +247,11 @@ pub fn execute(
                 saved.population_f64()
             };
             let mut on_generation = |state: &GenerationState<'_>| {
-                progress.inc(1);
-                progress.set_message(format!("best F {:.3}", state.record().stats.best));
+                let g = state.history.len();
+                let best = state.record().stats.best;
+                progress.generation(&run.label, g, exp.ga.generations, best);
                 checkpoint.runs[k] = CheckpointRun::from_state(&run.label, state);
+                checkpoint.wall_seconds = earlier_seconds + start.elapsed().as_secs_f64();
                 if let Err(e) = checkpoint.save(&staged.path(CHECKPOINT)) {
                     write_error.get_or_insert(e);
                 }
@@ -267,7 +297,10 @@ pub fn execute(
     let rows = room_rows(exp, &evolutions, &aem);
     staged.write("best_genome.json", best_genome_json(exp, &evolutions)?)?;
     staged.write("recognition.csv", recognition_csv(exp, &aem, &rows))?;
-    staged.write("table.md", table_markdown(&rows))?;
+    staged.write(
+        "table.md",
+        table_markdown(&rows) + &provenance_line(exp, loaded),
+    )?;
     let trajectories = best_trajectories(exp, &evolutions);
     let panels: Vec<_> = evolutions
         .iter()
@@ -294,7 +327,7 @@ pub fn execute(
         &best_paths_svg(&title, exp, &trajectories),
         png,
     )?;
-    let wall_seconds = start.elapsed().as_secs_f64();
+    let wall_seconds = earlier_seconds + start.elapsed().as_secs_f64();
     let summary = summary_json(exp, &evolutions, &rows, wall_seconds);
     staged.write(
         "summary.json",
@@ -320,6 +353,23 @@ pub fn resolved_toml(raw: &RawConfig) -> String {
         "# Resolved configuration written by fuzzymotiv {} (all keys, with the seed).\n# Re-run: fuzzymotiv run config.resolved.toml\n{}",
         fuzzymotiv::VERSION,
         raw.to_toml()
+    )
+}
+
+/// Where a table came from, as a Markdown line below it: program version, seed, GA size, trial
+/// length and training (so a small trial run and a paper-scale one never look alike).
+pub fn provenance_line(exp: &Experiment, loaded: &Loaded) -> String {
+    format!(
+        "\nfuzzymotiv {} · seed {} · GA {} robots × {} generations · {} steps per trial · training {}\n",
+        fuzzymotiv::VERSION,
+        exp.seed,
+        exp.ga.population,
+        exp.ga.generations,
+        exp.trial.steps,
+        match loaded.raw.training {
+            Training::AllRooms => "all-rooms",
+            Training::PerRoom => "per-room",
+        },
     )
 }
 
@@ -463,6 +513,9 @@ fn summary_json(
         "seed": exp.seed,
         "motivations": exp.motivations,
         "training": exp.training,
+        "population": exp.ga.population,
+        "generations": exp.ga.generations,
+        "steps": exp.trial.steps,
         "rooms": rows,
         "runs": runs,
         "wall_seconds": wall_seconds,
@@ -481,6 +534,9 @@ pub struct Checkpoint {
     pub format: u32,
     /// Program version that wrote it.
     pub version: String,
+    /// Wall time (s) of the run so far, over all sessions.
+    #[serde(default)]
+    pub wall_seconds: f64,
     /// One entry per run.
     pub runs: Vec<CheckpointRun>,
 }
@@ -528,6 +584,7 @@ impl Checkpoint {
         Checkpoint {
             format: 1,
             version: fuzzymotiv::VERSION.to_string(),
+            wall_seconds: 0.0,
             runs: runs
                 .iter()
                 .map(|r| CheckpointRun {
@@ -571,6 +628,28 @@ impl Checkpoint {
             )));
         }
         Ok(cp)
+    }
+
+    /// Says where a resumed run continues.
+    fn resume_note(&self, out: &Path, generations: usize) -> String {
+        match self.runs.iter().find(|r| !r.done) {
+            Some(r) => format!(
+                "resuming {} at generation {}/{generations}{} ({} generation(s) were done, {:.1} s)",
+                out.display(),
+                r.history.len() + 1,
+                if self.runs.len() > 1 {
+                    format!(" of the robot of {}", r.label)
+                } else {
+                    String::new()
+                },
+                r.history.len(),
+                self.wall_seconds
+            ),
+            None => format!(
+                "resuming {}: evolution finished, writing the results",
+                out.display()
+            ),
+        }
     }
 
     fn save(&self, path: &Path) -> Result<(), CliError> {

@@ -15,6 +15,12 @@ pub fn esc(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
+/// A generous estimate of the width (px) of `text` at 12 px sans-serif (bold or not): wide
+/// enough for DejaVu Sans, the widest of the fonts the PNGs use.
+pub fn text_width(text: &str, bold: bool) -> f64 {
+    text.chars().count() as f64 * if bold { 8.0 } else { 7.2 }
+}
+
 /// Colours for rooms (and other categories), in order; cycles after ten.
 pub const PALETTE: [&str; 10] = [
     "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
@@ -117,6 +123,37 @@ pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[Trajectory]
     trajectories_svg(title, &pairs)
 }
 
+/// The part of a room's home zone on its floor, as a polygon: the zone's circle sampled every
+/// 3°, keeping the points inside the room, closed through the centre when part of the circle
+/// lies outside (a zone centred on a corner becomes the paper's quarter circle).
+fn zone_outline(room: &Room) -> Vec<fuzzymotiv::geom::Vec2> {
+    use fuzzymotiv::geom::Vec2;
+    let zone = room.home_zone;
+    let circle: Vec<Vec2> = (0..120)
+        .map(|i| {
+            let a = i as f64 * std::f64::consts::TAU / 120.0;
+            Vec2::new(
+                zone.centre.x + zone.radius * a.cos(),
+                zone.centre.y + zone.radius * a.sin(),
+            )
+        })
+        .collect();
+    let inside: Vec<bool> = circle.iter().map(|&p| room.contains(p)).collect();
+    if inside.iter().all(|&i| i) {
+        return circle;
+    }
+    // Start just after an outside point so the kept arc is contiguous.
+    let start = (0..circle.len()).find(|&i| !inside[i]).unwrap_or(0);
+    let mut out = vec![zone.centre];
+    out.extend(
+        (1..=circle.len())
+            .map(|k| (start + k) % circle.len())
+            .filter(|&i| inside[i])
+            .map(|i| circle[i]),
+    );
+    out
+}
+
 /// Length of a step marker's heading tick in the trajectory figures (px).
 const TICK: f64 = 3.0;
 
@@ -128,9 +165,7 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     let mut x_off = pad;
     let mut parts = String::new();
     let mut max_h: f64 = 0.0;
-    // Clip-path ids must be unique on a page that inlines several figures.
-    let figure_id = fuzzymotiv::seed::hash_str(title) & 0xffff_ffff;
-    for (k, (room, tr)) in rooms.iter().enumerate() {
+    for (room, tr) in rooms {
         let (lo, hi) = room.bounds();
         let (w, h) = ((hi.x - lo.x) * scale, (hi.y - lo.y) * scale);
         max_h = max_h.max(h);
@@ -155,14 +190,10 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
                 poly(o)
             );
         }
-        let zone = room.home_zone;
         let _ = writeln!(
             parts,
-            r##"<clipPath id="clip-{figure_id:x}-{k}"><polygon points="{}"/></clipPath><circle cx="{:.1}" cy="{:.1}" r="{:.1}" clip-path="url(#clip-{figure_id:x}-{k})" fill="#1f77b4" fill-opacity="0.10" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##,
-            poly(&room.outline),
-            tx(zone.centre.x),
-            ty(zone.centre.y),
-            zone.radius * scale
+            r##"<polygon points="{}" fill="#1f77b4" fill-opacity="0.10" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##,
+            poly(&zone_outline(room))
         );
         let executed = tr.executed();
         let path: String = tr.poses[..=executed]
@@ -227,8 +258,14 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         );
         x_off += w + pad;
     }
-    let width = x_off;
-    let height = 40.0 + max_h + 50.0;
+    // Title, caption and scale bar each get a line of their own, and the figure is wide enough
+    // for the longest text, so nothing is clipped or overprinted, whatever the number of rooms.
+    let caption = "green: home pose; blue quarter: home zone; red: path, a tick per step; filled circle: the end (ringed: back home)";
+    let width = x_off
+        .max(2.0 * pad + text_width(title, true))
+        .max(2.0 * pad + text_width(caption, false));
+    let (caption_y, bar_y) = (40.0 + max_h + 40.0, 40.0 + max_h + 60.0);
+    let height = bar_y + 12.0;
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -246,15 +283,11 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     let bar = 100.0 * scale;
     let _ = writeln!(
         s,
-        r##"<text x="{:.0}" y="{:.0}" fill="#555">green: home pose; blue quarter: home zone; red: path, a tick per step; filled circle: the end (ringed: back home)</text><line x1="{:.1}" x2="{:.1}" y1="{:.0}" y2="{:.0}" stroke="#555" stroke-width="2"/><text x="{:.1}" y="{:.0}" fill="#555" text-anchor="end">100 mm</text>"##,
-        pad,
-        height - 12.0,
-        width - pad - bar,
-        width - pad,
-        height - 16.0,
-        height - 16.0,
-        width - pad - bar - 4.0,
-        height - 12.0
+        r##"<text x="{pad}" y="{caption_y:.0}" fill="#555">{caption}</text><line x1="{pad}" x2="{:.1}" y1="{:.0}" y2="{:.0}" stroke="#555" stroke-width="2"/><text x="{:.1}" y="{bar_y:.0}" fill="#555">100 mm</text>"##,
+        pad + bar,
+        bar_y - 4.0,
+        bar_y - 4.0,
+        pad + bar + 6.0,
     );
     s.push_str(&parts);
     s.push_str("</svg>\n");
@@ -751,4 +784,88 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
     );
     s.push_str("</svg>\n");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+
+    /// Text boxes `(x0, x1, y0, y1)` of every `<text>` of a figure (estimated widths).
+    fn text_boxes(svg: &str) -> Vec<(f64, f64, f64, f64, String)> {
+        let attr = |el: &str, name: &str| -> Option<String> {
+            let start = el.find(&format!(" {name}=\""))? + name.len() + 3;
+            Some(el[start..].split('"').next()?.to_string())
+        };
+        svg.split("<text")
+            .skip(1)
+            .map(|el| {
+                let (head, rest) = el.split_once('>').unwrap();
+                let content = rest.split("</text>").next().unwrap().to_string();
+                let x: f64 = attr(head, "x").unwrap().parse().unwrap();
+                let y: f64 = attr(head, "y").unwrap().parse().unwrap();
+                let w = text_width(&content, head.contains("bold"));
+                let x0 = match attr(head, "text-anchor").as_deref() {
+                    Some("middle") => x - w / 2.0,
+                    Some("end") => x - w,
+                    _ => x,
+                };
+                (x0, x0 + w, y - 12.0, y + 3.0, content)
+            })
+            .collect()
+    }
+
+    /// Every trajectory figure lays out cleanly with 1 to 8 rooms: each text inside the figure,
+    /// no two texts overlapping (title, room names, caption, scale bar label).
+    #[test]
+    fn trajectory_figures_lay_out_cleanly_with_1_to_8_rooms() {
+        let rooms: Vec<Room> = (0..8)
+            .map(|k| Room::builtin(BUILTIN_ROOMS[k % BUILTIN_ROOMS.len()]).unwrap())
+            .collect();
+        let title = "Replay of runs/high-curiosity/best_genome.json (seed 9007199254740991)";
+        for n in 1..=8 {
+            let trs: Vec<Trajectory> = rooms[..n]
+                .iter()
+                .map(|r| Trajectory {
+                    poses: vec![r.home],
+                    ..Default::default()
+                })
+                .collect();
+            let pairs: Vec<_> = rooms[..n].iter().zip(&trs).collect();
+            let svg = trajectories_svg(title, &pairs);
+            let head = svg.split('>').next().unwrap();
+            let width: f64 = head
+                .split("width=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            let height: f64 = head
+                .split("height=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            let boxes = text_boxes(&svg);
+            for b in &boxes {
+                assert!(
+                    b.0 >= 0.0 && b.1 <= width && b.2 >= 0.0 && b.3 <= height,
+                    "{n} rooms: `{}` outside {width}×{height}: {b:?}",
+                    b.4
+                );
+            }
+            for (i, a) in boxes.iter().enumerate() {
+                for b in &boxes[i + 1..] {
+                    let apart = a.1 <= b.0 || b.1 <= a.0 || a.3 <= b.2 || b.3 <= a.2;
+                    assert!(apart, "{n} rooms: `{}` overlaps `{}`", a.4, b.4);
+                }
+            }
+        }
+    }
 }

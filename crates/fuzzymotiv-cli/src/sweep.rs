@@ -17,6 +17,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::CliError;
 use crate::files::{StagedDir, io_err, write_atomic};
 use crate::inputs::{Loaded, resolve};
+use crate::progress::Progress;
 use crate::run::{execute, set_threads};
 
 /// The `[sweep]` table.
@@ -210,8 +211,9 @@ impl Sweep {
                 }
                 for rep in 0..sweep.replicates {
                     let key = format!("{setting};rep={rep}");
-                    // TOML integers are signed 64-bit: keep the derived seed in 0..2^63.
-                    let seed = derive(base.seed, &[hash_str(&key)]) >> 1;
+                    // Keep the derived seed in 0..2^53: exact in TOML (signed 64-bit) and in
+                    // JSON read as doubles (JavaScript, jq).
+                    let seed = derive(base.seed, &[hash_str(&key)]) >> 11;
                     let mut sets = overrides.clone();
                     sets.push(format!("seed={seed}"));
                     let raw =
@@ -399,6 +401,9 @@ pub struct SweepArgs {
     /// Worker threads per job [default: all cores]; results do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// No progress lines on stderr.
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 fn select(args: &SweepArgs, n: usize) -> Result<Vec<usize>, CliError> {
@@ -446,16 +451,24 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     let sweep = Sweep::load(&args.sweep)?;
     let selected = select(&args, sweep.jobs.len())?;
     let text = std::fs::read_to_string(&args.sweep).map_err(|e| io_err(&args.sweep, e))?;
-    run_jobs(&sweep, &text, &selected, &args.out)
+    run_jobs(&sweep, &text, &selected, &args.out, args.quiet)
 }
 
-/// Runs the `selected` jobs of `sweep` into `out/jobs/ID/`, skipping finished ones.
-pub fn run_jobs(sweep: &Sweep, text: &str, selected: &[usize], out: &Path) -> Result<(), CliError> {
+/// Runs the `selected` jobs of `sweep` into `out/jobs/ID/`, skipping finished ones. On a
+/// terminal a bar counts jobs; otherwise each job prints plain progress lines (not with `quiet`).
+pub fn run_jobs(
+    sweep: &Sweep,
+    text: &str,
+    selected: &[usize],
+    out: &Path,
+    quiet: bool,
+) -> Result<(), CliError> {
+    let terminal = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let jobs_dir = out.join("jobs");
     std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
     write_atomic(&out.join("plan.jsonl"), sweep.plan_jsonl())?;
     write_atomic(&out.join("sweep.toml"), text)?;
-    let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+    let bar = if terminal && !quiet {
         ProgressBar::new(selected.len() as u64)
     } else {
         ProgressBar::hidden()
@@ -474,7 +487,21 @@ pub fn run_jobs(sweep: &Sweep, text: &str, selected: &[usize], out: &Path) -> Re
         let resume = StagedDir::staging_path(&dir)
             .join(crate::run::CHECKPOINT)
             .is_file();
-        execute(&loaded, &dir, &ProgressBar::hidden(), resume, false)?;
+        let progress = if terminal || quiet {
+            Progress::hidden()
+        } else {
+            let p = Progress::new(&loaded.experiment, 1, false);
+            p.set_prefix(&format!(
+                "job {} ({}/{} here) {} seed {}",
+                job.id,
+                ran + skipped + 1,
+                selected.len(),
+                job.key,
+                job.seed
+            ));
+            p
+        };
+        execute(&loaded, &dir, &progress, resume, false)?;
         write_atomic(
             &dir.join("job.json"),
             serde_json::to_string_pretty(job).expect("serialisable") + "\n",

@@ -5,7 +5,7 @@ use std::process::Output;
 
 mod common;
 
-use common::{bin, repo, run, stderr, stdout};
+use common::{bin, ok, repo, run, stderr, stdout};
 
 #[test]
 fn fuzzy_prints_the_spec_worked_values() {
@@ -308,28 +308,31 @@ fn bench_json_has_the_documented_keys() {
 #[test]
 fn reproduce_quick_writes_every_documented_file() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("results");
-    let o = run(&[
-        "reproduce",
-        "--quick",
-        "--out",
-        out.to_str().unwrap(),
-        "--seed",
-        "5",
-        "--seeds",
-        "2",
-        "--set",
-        "ga.population=10",
-        "--set",
-        "ga.generations=3",
-        "--set",
-        "trial.steps=100",
-        "--set",
-        "aem.epochs=20",
-        "--set",
-        "aem.test_runs=2",
-    ]);
+    // A quick look has its own default directory: it never lands in a full study's `results`.
+    let out = dir.path().join("results-quick");
+    let o = in_dir(
+        dir.path(),
+        &[
+            "reproduce",
+            "--quick",
+            "--seed",
+            "5",
+            "--seeds",
+            "2",
+            "--set",
+            "ga.population=10",
+            "--set",
+            "ga.generations=3",
+            "--set",
+            "trial.steps=100",
+            "--set",
+            "aem.epochs=20",
+            "--set",
+            "aem.test_runs=2",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!dir.path().join("results").exists());
     for f in [
         "table1.md",
         "table1.csv",
@@ -501,17 +504,17 @@ fn replay_is_deterministic_and_redraws_the_reported_paths() {
         );
     }
     let csv = std::fs::read_to_string(dir.path().join("one/replay-H.csv")).unwrap();
-    assert!(
-        csv.starts_with("step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n0,")
-    );
+    assert!(csv.starts_with(
+        "step,x_mm,y_mm,heading_rad,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n0,"
+    ));
     assert_eq!(
         csv.lines().count(),
         1 + 150 + 1,
         "header, 150 steps, final pose"
     );
     // Without --seed the replay is the report's room-modelling run.
-    let xs = column(&csv, "x");
-    let ys = column(&csv, "y");
+    let xs = column(&csv, "x_mm");
+    let ys = column(&csv, "y_mm");
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     let reported = &page_data(&html)["replays"][0]["rooms"][0];
     assert_eq!(reported["room"], "H");
@@ -538,9 +541,11 @@ fn replay_is_deterministic_and_redraws_the_reported_paths() {
     assert!(!dir.path().join("other/replay-square.csv").exists());
     let again = std::fs::read_to_string(dir.path().join("other/replay-H.csv")).unwrap();
     assert_ne!(again, csv, "--seed had no effect");
-    // A genome file alone replays under the default config (five rooms) and its own seed.
+    // A genome file alone (no config beside it, no --config) replays under the default config
+    // (five rooms) and its own seed, and says so.
     let alone = dir.path().join("alone/replay.html");
-    let genome = out.join("best_genome.json");
+    let genome = dir.path().join("lone-genome.json");
+    std::fs::copy(out.join("best_genome.json"), &genome).unwrap();
     let o = replay(&[
         genome.to_str().unwrap(),
         "--room",
@@ -551,6 +556,7 @@ fn replay_is_deterministic_and_redraws_the_reported_paths() {
     assert!(o.status.success(), "{}", stderr(&o));
     let t = std::fs::read_to_string(dir.path().join("alone/replay-T.csv")).unwrap();
     assert_eq!(t.lines().count(), 1 + 400 + 1, "default trial length");
+    assert!(stderr(&o).contains("built-in defaults"), "{}", stderr(&o));
 }
 
 #[test]
@@ -770,4 +776,407 @@ fn out_dir_that_is_not_ours_is_never_replaced() {
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
     }
+}
+
+/// Runs the binary in directory `cwd`.
+fn in_dir(cwd: &Path, args: &[&str]) -> Output {
+    bin().current_dir(cwd).args(args).output().unwrap()
+}
+
+/// The files of a directory with their contents (to see that nothing changed).
+fn snapshot(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_file())
+        .map(|p| (p.clone(), std::fs::read(&p).unwrap()))
+        .collect();
+    files.sort();
+    files
+}
+
+/// Issue #13 item 1: results of another run (other config, other kind of output) are kept unless
+/// --force; the same command again says it is done; an unfinished run is resumed, not discarded.
+#[test]
+fn results_are_never_replaced_silently() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let out = dir.path().join("r");
+    let go = |extra: &[&str]| {
+        let mut args = vec!["run", cfg.to_str().unwrap(), "--out", out.to_str().unwrap()];
+        args.extend_from_slice(&["--set", "ga.generations=2"]);
+        args.extend_from_slice(extra);
+        run(&args)
+    };
+    assert!(go(&[]).status.success());
+    let before = snapshot(&out);
+    // The same command again: done, nothing rewritten.
+    let o = go(&[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("already holds this run"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(snapshot(&out), before);
+    // Another run (other seed): refused before any work, the results kept.
+    let o = go(&["--seed", "4"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("different run") && stderr(&o).contains("--force"));
+    assert_eq!(snapshot(&out), before);
+    assert!(!dir.path().join("r.partial").exists());
+    // --force replaces them.
+    assert!(go(&["--seed", "4", "--force"]).status.success());
+    assert!(
+        std::fs::read_to_string(out.join("config.resolved.toml"))
+            .unwrap()
+            .contains("seed = 4")
+    );
+    // Another kind of output (a reproduce study): refused.
+    let study = dir.path().join("study");
+    std::fs::create_dir_all(study.join("high-curiosity")).unwrap();
+    std::fs::write(study.join("summary.json"), "{}").unwrap();
+    let o = run(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        study.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(study.join("summary.json").is_file());
+    // An unfinished run of another config: its checkpoint is kept unless --force.
+    let other = dir.path().join("other.partial");
+    std::fs::create_dir_all(&other).unwrap();
+    std::fs::write(other.join("config.resolved.toml"), "seed = 99\n").unwrap();
+    std::fs::write(other.join("checkpoint.json"), "{}").unwrap();
+    let target = dir.path().join("other");
+    let o = run(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        target.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("unfinished"), "{}", stderr(&o));
+    assert!(other.join("checkpoint.json").is_file());
+}
+
+/// Issue #13 item 2: `--out .` is refused at once and leaves nothing behind.
+#[test]
+fn out_dot_is_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let o = in_dir(dir.path(), &["run", cfg.to_str().unwrap(), "--out", "."]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("current directory"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("generation"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    let parent = dir.path().parent().unwrap();
+    assert!(
+        !parent
+            .join(format!(
+                "{}.partial",
+                dir.path().file_name().unwrap().to_str().unwrap()
+            ))
+            .exists()
+    );
+}
+
+/// Issue #13 item 3: without a terminal, plain progress lines (setting, seed, generation, best F,
+/// elapsed, ETA); none with --quiet.
+#[test]
+fn progress_lines_without_a_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let out = dir.path().join("p");
+    let o = ok(&["run", cfg.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let e = stderr(&o);
+    assert!(
+        e.contains("tiny: seed 7, 1 × 10 generations of 20 robots"),
+        "{e}"
+    );
+    assert!(e.contains("tiny seed 7: generation 1/10, best F "), "{e}");
+    assert!(
+        e.contains("generation 10/10") && e.contains("elapsed") && e.contains("ETA"),
+        "{e}"
+    );
+    let q = dir.path().join("q");
+    let o = ok(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        q.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(!stderr(&o).contains("generation"), "{}", stderr(&o));
+}
+
+/// Issue #13 item 3: a killed run re-run with the same command resumes (saying from which
+/// generation), and `wall_seconds` counts the time before the kill too.
+#[test]
+fn same_command_resumes_a_killed_run_and_counts_all_wall_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let out = dir.path().join("k");
+    let cp = dir.path().join("k.partial/checkpoint.json");
+    let args = [
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "ga.generations=200",
+        "--set",
+        "ga.population=30",
+    ];
+    let mut child = bin()
+        .args(args)
+        .stderr(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let checkpoint = |p: &Path| -> Option<serde_json::Value> {
+        serde_json::from_str(&std::fs::read_to_string(p).ok()?).ok()
+    };
+    let t0 = std::time::Instant::now();
+    while checkpoint(&cp).is_none_or(|c| c["runs"][0]["history"].as_array().unwrap().len() < 3) {
+        assert!(
+            t0.elapsed().as_secs() < 60 && child.try_wait().unwrap().is_none(),
+            "no checkpoint"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let before = checkpoint(&cp).unwrap();
+    let done = before["runs"][0]["history"].as_array().unwrap().len();
+    let earlier = before["wall_seconds"].as_f64().unwrap();
+    assert!(earlier > 0.0);
+    let o = ok(&args);
+    let e = stderr(&o);
+    assert!(
+        e.contains(&format!("at generation {}/200", done + 1)),
+        "{e}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(summary["wall_seconds"].as_f64().unwrap() >= earlier);
+}
+
+/// Issue #13 item 5: every seed in JSON output is exact for a double (< 2^53).
+#[test]
+fn plan_seeds_are_exact_as_doubles() {
+    let o = ok(&[
+        "plan",
+        repo().join("configs/sweep-small.toml").to_str().unwrap(),
+    ]);
+    for line in stdout(&o).lines() {
+        let job: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert!(job["seed"].as_u64().unwrap() < 1 << 53, "{line}");
+    }
+    let cfg = repo().join("configs/tiny.toml");
+    let o = run(&["run", cfg.to_str().unwrap(), "--seed", "9007199254740992"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("0 to 9007199254740991"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// Issue #13 item 6: the run's table and summary say what produced them; seeds_table.py refuses
+/// to average a quick and a full study.
+#[test]
+fn tables_carry_their_provenance() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let out = dir.path().join("t");
+    ok(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "ga.generations=2",
+    ]);
+    let table = std::fs::read_to_string(out.join("table.md")).unwrap();
+    assert!(
+        table.contains(&format!("fuzzymotiv {}", env!("CARGO_PKG_VERSION"))),
+        "{table}"
+    );
+    assert!(
+        table.contains("seed 7") && table.contains("GA 20 robots × 2 generations"),
+        "{table}"
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(
+        (s["population"].as_u64(), s["generations"].as_u64()),
+        (Some(20), Some(2))
+    );
+    let mut dirs = Vec::new();
+    for quick in [true, false] {
+        let d = dir.path().join(format!("study-{quick}"));
+        std::fs::create_dir_all(&d).unwrap();
+        let settings = serde_json::json!([{"name": "high-curiosity", "population": if quick {30} else {200}, "generations": 30, "rows": []}]);
+        let doc = serde_json::json!({"version": "x", "seed": 1, "quick": quick, "settings": settings, "wall_seconds": 1.0});
+        std::fs::write(d.join("summary.json"), doc.to_string()).unwrap();
+        dirs.push(d);
+    }
+    let o = std::process::Command::new("python3")
+        .arg(repo().join("scripts/seeds_table.py"))
+        .args(&dirs)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("quick"), "{}", stderr(&o));
+}
+
+/// Issue #13 item 7: the CLI's rough edges.
+#[test]
+fn plain_messages_for_rough_edges() {
+    let dir = tempfile::tempdir().unwrap();
+    let u = repo().join("rooms/U.toml");
+    // rooms --check takes several files (as a shell glob gives them).
+    let o = ok(&["rooms", "--check", u.to_str().unwrap(), u.to_str().unwrap()]);
+    assert_eq!(stdout(&o).matches("ok  ").count(), 2);
+    // run --help says CONFIG is required (unless --resume).
+    let help = stdout(&ok(&["run", "--help"]));
+    assert!(
+        help.contains("Usage: fuzzymotiv run CONFIG") && help.contains("Required, unless --resume"),
+        "{help}"
+    );
+    let cfg = repo().join("configs/tiny.toml");
+    let c = cfg.to_str().unwrap();
+    let expect = |args: &[&str], words: &[&str]| {
+        let o = run(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        for w in words {
+            assert!(
+                stderr(&o).contains(w),
+                "{args:?}: `{w}` not in {}",
+                stderr(&o)
+            );
+        }
+        assert!(!stderr(&o).contains("expected u64") && !stderr(&o).contains("expected usize"));
+    };
+    expect(
+        &["run", c, "--seed", "-1"],
+        &["whole number from 0 to 9007199254740991"],
+    );
+    expect(
+        &["run", c, "--set", "seed=-3"],
+        &["`seed`", "whole number from 0 to 9007199254740991"],
+    );
+    expect(
+        &["run", c, "--set", "ga.population=2.5"],
+        &["`ga.population`", "a whole number"],
+    );
+    expect(
+        &["run", c, "--set", "trial.dt=abc"],
+        &["`trial.dt`", "a number"],
+    );
+    // TOML syntax errors give line and column.
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "seed = 1\n[ga\npopulation = 3\n").unwrap();
+    expect(&["run", bad.to_str().unwrap()], &["line 2, column"]);
+    let bad_room = dir.path().join("bad-room.toml");
+    std::fs::write(&bad_room, "name = 'x'\noutline = [[0,0],\n").unwrap();
+    let o = run(&["rooms", "--check", bad_room.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("line "), "{}", stderr(&o));
+    // A room file given as a config says so.
+    expect(
+        &["run", u.to_str().unwrap()],
+        &["looks like a room file", "rooms --check"],
+    );
+    // Motivations within 1e-3 of 1 are normalised, with a note.
+    let o = ok(&[
+        "fuzzy",
+        "--motivations",
+        ".3333,.3333,.3333,0",
+        "--fitness",
+        "1,1,1,1",
+    ]);
+    assert!(stderr(&o).contains("normalised"), "{}", stderr(&o));
+    expect(
+        &[
+            "fuzzy",
+            "--motivations",
+            ".3,.3,.3,0",
+            "--fitness",
+            "1,1,1,1",
+        ],
+        &["within 0.001"],
+    );
+    let m = dir.path().join("m.toml");
+    std::fs::write(&m, "[motivations]\ncuriosity = 0.3333\nhoming = 0.3333\norientation = 0\nenergy = 0.3333\n[ga]\npopulation = 4\ngenerations = 1\n[trial]\nsteps = 20\n[aem]\nenabled = false\n").unwrap();
+    let out = dir.path().join("m");
+    let o = ok(&[
+        "run",
+        m.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(
+        stderr(&o).matches("normalised").count(),
+        1,
+        "{}",
+        stderr(&o)
+    );
+    let resolved = std::fs::read_to_string(out.join("config.resolved.toml")).unwrap();
+    let raw: toml::Table = toml::from_str(&resolved).unwrap();
+    let sum: f64 = ["curiosity", "homing", "orientation", "energy"]
+        .iter()
+        .map(|k| raw["motivations"][k].as_float().unwrap())
+        .sum();
+    assert!((sum - 1.0).abs() < 1e-12, "{resolved}");
+}
+
+/// Issue #13 item 7: a genome file is replayed under the config beside it (or --config), and
+/// the program says which; the CSV names its units.
+#[test]
+fn replay_of_a_genome_file_uses_and_names_its_config() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = small_run(dir.path(), "g", &[]);
+    let genome = out.join("best_genome.json");
+    let page = dir.path().join("rg/replay.html");
+    let o = ok(&[
+        "replay",
+        genome.to_str().unwrap(),
+        "--room",
+        "H",
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    assert!(
+        stderr(&o).contains("config.resolved.toml"),
+        "{}",
+        stderr(&o)
+    );
+    let csv = std::fs::read_to_string(dir.path().join("rg/replay-H.csv")).unwrap();
+    assert!(csv.starts_with("step,x_mm,y_mm,heading_rad,"));
+    assert_eq!(
+        csv.lines().count(),
+        150 + 2,
+        "150 steps as trained, not the default 400"
+    );
+    let lone = dir.path().join("lone.json");
+    std::fs::copy(&genome, &lone).unwrap();
+    let page = dir.path().join("rl/replay.html");
+    let cfg = out.join("config.resolved.toml");
+    let o = ok(&[
+        "replay",
+        lone.to_str().unwrap(),
+        "--config",
+        cfg.to_str().unwrap(),
+        "--room",
+        "H",
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    assert!(stderr(&o).contains(cfg.to_str().unwrap()), "{}", stderr(&o));
+    let again = std::fs::read_to_string(dir.path().join("rl/replay-H.csv")).unwrap();
+    assert_eq!(again, csv);
 }

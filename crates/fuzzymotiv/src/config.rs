@@ -18,6 +18,10 @@ use crate::robot::Khepera;
 use crate::room::{BUILTIN_ROOMS, field_from_toml_message};
 use crate::sensor::SensorModel;
 
+/// The largest base seed, 2^53 − 1: every seed (and every seed derived from it for a sweep) is
+/// then exact as a JSON number, also for tools that read numbers as doubles (JavaScript, jq).
+pub const MAX_SEED: u64 = (1 << 53) - 1;
+
 /// A configuration that cannot be used: the file, the field and what is wrong.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{source_name}: field `{field}`: {reason}")]
@@ -279,7 +283,7 @@ impl RawConfig {
             let msg = e.message().trim().to_string();
             err(
                 &field_from_toml_message(&msg, text, e.span()),
-                format!("not valid TOML: {msg}"),
+                format!("not valid TOML{}: {msg}", at_line(text, e.span())),
             )
         })?;
         if sets.is_empty() {
@@ -291,19 +295,78 @@ impl RawConfig {
     }
 
     fn from_text(text: &str, source_name: &str) -> Result<RawConfig, ConfigError> {
-        toml::from_str(text).map_err(|e| {
+        let raw: RawConfig = toml::from_str(text).map_err(|e| {
             let msg = e.message().trim().to_string();
+            let field = field_from_toml_message(&msg, text, e.span());
+            // Line numbers only point into the user's own file, not a document with overrides.
+            let at = if source_name.ends_with("(with --set overrides)") {
+                String::new()
+            } else {
+                at_line(text, e.span())
+            };
+            let reason = format!("{}{at}{}", plain_words(&msg, &field), room_file_hint(&msg));
             ConfigError {
                 source_name: source_name.to_string(),
-                field: field_from_toml_message(&msg, text, e.span()),
-                reason: msg,
+                field,
+                reason,
             }
-        })
+        })?;
+        if raw.seed > MAX_SEED {
+            return Err(ConfigError {
+                source_name: source_name.to_string(),
+                field: "seed".into(),
+                reason: format!(
+                    "{} is too large; a seed is a whole number from 0 to {MAX_SEED} (2^53 − 1)",
+                    raw.seed
+                ),
+            });
+        }
+        Ok(raw)
     }
 
     /// The document as TOML (all keys, resolved).
     pub fn to_toml(&self) -> String {
         toml::to_string(self).expect("the config is always serialisable")
+    }
+}
+
+/// ` (line L, column C)` of the start of `span` in `text`, or nothing without a span.
+pub fn at_line(text: &str, span: Option<std::ops::Range<usize>>) -> String {
+    let Some(span) = span else {
+        return String::new();
+    };
+    let before = &text[..span.start.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    format!(" (line {line}, column {column})")
+}
+
+/// Serde's type names in plain words: "expected u64" → "expected a whole number ≥ 0", etc.
+fn plain_words(msg: &str, field: &str) -> String {
+    let whole = if field == "seed" {
+        format!("a whole number from 0 to {MAX_SEED} (2^53 − 1)")
+    } else {
+        "a whole number ≥ 0".to_string()
+    };
+    let mut out = msg.to_string();
+    for t in ["u64", "usize", "u32", "u16", "u8", "i64"] {
+        out = out.replace(&format!("expected {t}"), &format!("expected {whole}"));
+    }
+    out.replace("expected f64", "expected a number (e.g. 0.5)")
+        .replace("expected a boolean", "expected true or false")
+}
+
+/// A hint when a room file (SPEC §6) was given where a config belongs.
+fn room_file_hint(msg: &str) -> &'static str {
+    let room_keys = [
+        "unknown field `outline`",
+        "unknown field `home`",
+        "unknown field `obstacles`",
+    ];
+    if room_keys.iter().any(|k| msg.starts_with(k)) {
+        ". This looks like a room file, not a config: list it in a config's `rooms = [\"path/to/room.toml\"]`, or check it with `fuzzymotiv rooms --check FILE`"
+    } else {
+        ""
     }
 }
 

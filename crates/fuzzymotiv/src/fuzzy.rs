@@ -29,6 +29,10 @@ use std::fmt;
 /// Tolerance on `|C + H + O + E − 1|` accepted by [`Motivations::new`].
 pub const MOTIVATION_SUM_TOLERANCE: f64 = 1e-9;
 
+/// How far `C + H + O + E` may be off 1 and still be normalised by
+/// [`Motivations::normalised`] (SPEC §10: e.g. `.3333` three times).
+pub const MOTIVATION_NORMALISE_TOLERANCE: f64 = 1e-3;
+
 /// Largest number of labels (peaks) accepted by [`TskFitness::new`]; keeps
 /// `M^4` representable in `usize` on every supported platform.
 pub const MAX_LABELS: usize = 255;
@@ -64,7 +68,7 @@ pub enum FuzzyError {
     /// The four motivations do not sum to 1 (within
     /// [`MOTIVATION_SUM_TOLERANCE`]).
     #[error(
-        "motivations must sum to 1, got {sum} (curiosity {curiosity} + homing {homing} + orientation {orientation} + energy {energy})"
+        "motivations must sum to 1, got {sum} (curiosity {curiosity} + homing {homing} + orientation {orientation} + energy {energy}); a sum within 0.001 of 1 is normalised, farther off is an error"
     )]
     MotivationSum {
         /// The actual sum `C + H + O + E`.
@@ -199,6 +203,24 @@ impl Motivations {
             orientation,
             energy,
         })
+    }
+
+    /// Like [`Motivations::new`], but a sum within [`MOTIVATION_NORMALISE_TOLERANCE`] of 1 is
+    /// normalised (each value divided by the sum); then the original sum is returned as well,
+    /// so the caller can say so.
+    pub fn normalised(
+        curiosity: f64,
+        homing: f64,
+        orientation: f64,
+        energy: f64,
+    ) -> Result<(Self, Option<f64>), FuzzyError> {
+        let sum = curiosity + homing + orientation + energy;
+        let off = (sum - 1.0).abs();
+        if off <= MOTIVATION_SUM_TOLERANCE || off > MOTIVATION_NORMALISE_TOLERANCE {
+            return Self::new(curiosity, homing, orientation, energy).map(|m| (m, None));
+        }
+        let [c, h, o, e] = [curiosity, homing, orientation, energy].map(|v| v / sum);
+        Self::new(c, h, o, e).map(|m| (m, Some(sum)))
     }
 
     /// The motivations as `[C, H, O, E]`, matching the order of `Y = [a, g, l, b]`.
