@@ -30,6 +30,11 @@ pub struct BenchArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Motion model: "actions" (the paper's robot, default) or "wheels" (differential drive,
+    /// the workload the Enki harness compares). Only executed steps count: idle steps after a
+    /// trial ended at home are not work.
+    #[arg(long, default_value = "actions", value_parser = ["actions", "wheels"])]
+    pub motion: String,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -50,6 +55,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
         format!("ga.population={}", args.population),
         format!("ga.elite={}", args.population.min(3) - 1),
         "aem.enabled=false".to_string(),
+        format!("robot.motion=\"{}\"", args.motion),
     ];
     let loaded = if Room::builtin(&args.room).is_some() {
         load_config(None, &sets, None)?
@@ -65,10 +71,10 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     let trials = args.steps.div_ceil(trial_steps);
     let mut single = Vec::new();
     let mut sink = 0.0;
-    for rep in 0..args.repeat {
+    for _ in 0..args.repeat {
         let t0 = Instant::now();
         for k in 0..trials {
-            let e = exp.evaluate(&population[k % population.len()], run, rep, k);
+            let e = exp.evaluate(&population[k % population.len()], run, 0, k);
             sink += e.fitness;
         }
         single.push(t0.elapsed().as_secs_f64());
@@ -76,23 +82,32 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     // One population evaluation takes only milliseconds: time enough of them to cover `steps`.
     let evaluations = args.steps.div_ceil(population.len() * trial_steps);
     let mut pop = Vec::new();
-    for rep in 0..args.repeat {
+    for _ in 0..args.repeat {
         let t0 = Instant::now();
-        for g in 0..evaluations {
-            let evals = exp.evaluate_population(&population, run, rep * evaluations + g);
+        for _ in 0..evaluations {
+            let evals = exp.evaluate_population(&population, run, 0);
             sink += evals[0].fitness;
         }
         pop.push(t0.elapsed().as_secs_f64());
     }
-    let robot_steps = trials * trial_steps;
+    // Count the executed steps of exactly the trials timed above (idle steps are not work).
+    let robot_steps: usize = (0..trials)
+        .map(|k| exp.executed_steps(&population[k % population.len()], run, 0, k))
+        .sum();
+    let per_population: usize = population
+        .iter()
+        .enumerate()
+        .map(|(i, g)| exp.executed_steps(g, run, 0, i))
+        .sum();
     let seconds = median(single);
     let pop_seconds = median(pop);
-    let pop_steps = evaluations * population.len() * trial_steps;
+    let pop_steps = evaluations * per_population;
     let threads = rayon::current_num_threads();
     std::hint::black_box(sink);
     if args.json {
         let doc = serde_json::json!({
             "room": exp.arenas[0].room().name,
+            "motion": args.motion,
             "robot_steps": robot_steps,
             "seconds": seconds,
             "robot_steps_per_sec": robot_steps as f64 / seconds,
@@ -112,8 +127,9 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
         );
     } else {
         println!(
-            "room {}: single robot, 1 thread: {:.3} M robot-steps/s ({robot_steps} steps, median {:.3} s of {})",
+            "room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({robot_steps} executed steps, median {:.3} s of {})",
             exp.arenas[0].room().name,
+            args.motion,
             robot_steps as f64 / seconds / 1e6,
             seconds,
             args.repeat

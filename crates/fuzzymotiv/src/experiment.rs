@@ -452,6 +452,46 @@ impl Experiment {
         )
     }
 
+    /// The random stream of individual `individual`'s evaluation trial in `room` in generation
+    /// `generation` of `run`.
+    pub fn eval_seed(&self, run: &Run, generation: usize, individual: usize, room: usize) -> u64 {
+        derive(
+            self.seed,
+            &[
+                purpose::EVAL,
+                run.tag,
+                generation as u64,
+                individual as u64,
+                self.room_key(room),
+                0,
+            ],
+        )
+    }
+
+    /// Steps executed (not idle) by the evaluation trials of one individual: runs them again on
+    /// the same streams, so it counts exactly what [`Experiment::evaluate`] simulated.
+    pub fn executed_steps(
+        &self,
+        genome: &[f64],
+        run: &Run,
+        generation: usize,
+        individual: usize,
+    ) -> usize {
+        run.rooms
+            .iter()
+            .map(|&r| {
+                let mut rng = rng_from_seed(self.eval_seed(run, generation, individual, r));
+                crate::trial::run_trial(
+                    &self.arenas[r],
+                    &mut self.controller(genome),
+                    &self.trial,
+                    &mut rng,
+                )
+                .executed()
+            })
+            .sum()
+    }
+
     /// Evaluates one individual of generation `generation` in the rooms of `run`.
     pub fn evaluate(
         &self,
@@ -465,17 +505,7 @@ impl Experiment {
         let mut per_room = Vec::with_capacity(run.rooms.len());
         let mut first_vectors = Vec::new();
         for &r in &run.rooms {
-            let seed = derive(
-                self.seed,
-                &[
-                    purpose::EVAL,
-                    run.tag,
-                    generation as u64,
-                    individual as u64,
-                    self.room_key(r),
-                    0,
-                ],
-            );
+            let seed = self.eval_seed(run, generation, individual, r);
             let (terms, actions) = if online {
                 self.trial(genome, r, seed)
             } else {
