@@ -62,7 +62,7 @@ pub fn resolve(mut raw: RawConfig, base_dir: &Path, source: &str) -> Result<Load
     Ok(Loaded { raw, experiment })
 }
 
-/// SPEC §10: motivations summing to within 1e-3 of 1 are normalised (the resolved config records
+/// docs/model.md §8: motivations summing to within 1e-3 of 1 are normalised (the resolved config records
 /// the normalised values), and the program says so once; farther off is left to validation.
 fn normalise_motivations(raw: &mut RawConfig, source: &str) {
     static SAID: std::sync::Once = std::sync::Once::new();

@@ -1,7 +1,7 @@
 //! `fuzzymotiv replay`: run a saved genome again and write its trajectory (CSV and JSON) and a
 //! replay page.
 //!
-//! The trial uses the experiment's room-modelling stream (SPEC §11: the run whose actions became
+//! The trial uses the experiment's room-modelling stream (docs/model.md §9: the run whose actions became
 //! a room's stored instance), so `replay RUN_DIR` redraws exactly the paths of the run's
 //! `report.html`; `--seed N` replays under another base seed. Same genome, room and seed → the
 //! same trajectory, byte for byte.

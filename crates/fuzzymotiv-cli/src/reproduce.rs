@@ -1,4 +1,4 @@
-//! `fuzzymotiv reproduce`: the paper's study (SPEC §12) in one command.
+//! `fuzzymotiv reproduce`: the paper's study (docs/model.md §10) in one command.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

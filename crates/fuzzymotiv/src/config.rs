@@ -1,4 +1,4 @@
-//! Experiment configuration: the raw TOML document (every key has the SPEC default, unknown keys
+//! Experiment configuration: the raw TOML document (every key has the default of docs/model.md, unknown keys
 //! are rejected), `--set key=value` overrides, and validation into [`crate::experiment::Experiment`].
 //!
 //! ```
@@ -34,7 +34,7 @@ pub struct ConfigError {
     pub reason: String,
 }
 
-/// How populations are trained over rooms (SPEC §12).
+/// How populations are trained over rooms (docs/model.md §10).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Training {
@@ -56,7 +56,7 @@ pub enum EnergyMode {
     Conserve,
 }
 
-/// When the orientation term `l` is measured (SPEC §13).
+/// When the orientation term `l` is measured (docs/model.md §10).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum OrientationMode {
@@ -175,7 +175,7 @@ pub struct RawFitness {
     pub homing: Homing,
 }
 
-/// `[aem]`: action-based environment modelling (SPEC §11).
+/// `[aem]`: action-based environment modelling (docs/model.md §9).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RawAem {
@@ -221,7 +221,7 @@ impl Default for RawAem {
     }
 }
 
-/// The configuration document as written (every key optional, SPEC defaults).
+/// The configuration document as written (every key optional, the defaults of docs/model.md).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RawConfig {
@@ -356,7 +356,7 @@ fn plain_words(msg: &str, field: &str) -> String {
         .replace("expected a boolean", "expected true or false")
 }
 
-/// A hint when a room file (SPEC §6) was given where a config belongs.
+/// A hint when a room file (docs/model.md §4) was given where a config belongs.
 fn room_file_hint(msg: &str) -> &'static str {
     let room_keys = [
         "unknown field `outline`",

@@ -199,7 +199,7 @@ impl Experiment {
             "robot.v_max",
             || format!("must be a speed > 0 (mm/s), got {}", robot.v_max),
         )?;
-        // The sensor mounts are fixed (SPEC §4): they must sit inside the body, and a body far
+        // The sensor mounts are fixed (docs/model.md §3): they must sit inside the body, and a body far
         // larger than the sensors' reach would be blind.
         let mounts = crate::sensor::SENSOR_LAYOUT
             .iter()
@@ -527,7 +527,7 @@ impl Experiment {
             per_room.push(RoomScore { f: 0.0, terms });
         }
         if online {
-            // SPEC §13: a second run per room, classified by 1-NN against the first runs.
+            // docs/model.md §10: a second run per room, classified by 1-NN against the first runs.
             let mut correct = 0;
             for (k, &r) in run.rooms.iter().enumerate() {
                 let seed = derive(
@@ -691,7 +691,7 @@ impl Experiment {
     }
 
     /// Action-based environment modelling with one robot: an instance run per room, SOM
-    /// training, then `test_runs` recognition tests per room (SPEC §11–§12). With AEM disabled
+    /// training, then `test_runs` recognition tests per room (docs/model.md §9–§10). With AEM disabled
     /// the test runs still measure exploration, homing and battery, and nothing is recognised.
     pub fn environment_modelling(&self, genome: &[f64], run: &Run) -> Result<AemReport, SomError> {
         let rooms = self.arenas.len();

@@ -1,6 +1,6 @@
 //! Fuzzy-motivated fitness: the zero-order TSK-style rule base of the paper
 //! "Fuzzy Motivations for Evolutionary Behavior Learning by a Mobile Robot"
-//! (Fig. 3, SPEC §10).
+//! (Fig. 3, docs/model.md §8).
 //!
 //! Four fitness values `Y = (a, g, l, b)` (exploration, homing,
 //! orientation/recognition, battery), each in `[0, 1]`, are fuzzified with `M`
@@ -30,7 +30,7 @@ use std::fmt;
 pub const MOTIVATION_SUM_TOLERANCE: f64 = 1e-9;
 
 /// How far `C + H + O + E` may be off 1 and still be normalised by
-/// [`Motivations::normalised`] (SPEC §10: e.g. `.3333` three times).
+/// [`Motivations::normalised`] (docs/model.md §8: e.g. `.3333` three times).
 pub const MOTIVATION_NORMALISE_TOLERANCE: f64 = 1e-3;
 
 /// Largest number of labels (peaks) accepted by [`TskFitness::new`]; keeps

@@ -1,4 +1,4 @@
-//! The genetic algorithm of SPEC §8. It knows genomes (weight vectors) and fitness values only
+//! The genetic algorithm of docs/model.md §6. It knows genomes (weight vectors) and fitness values only
 //! — higher fitness is better — and never sees robots, rooms or fuzzy logic.
 
 use serde::{Deserialize, Serialize};
@@ -8,7 +8,7 @@ use crate::rng::{Rng, index, standard_normal, uniform, uniform01};
 /// A genome: the controller's weights.
 pub type Genome = Vec<f64>;
 
-/// GA parameters (SPEC §8 defaults).
+/// GA parameters (docs/model.md §6 defaults).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct GaParams {

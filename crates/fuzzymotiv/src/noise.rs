@@ -1,4 +1,4 @@
-//! The one place values are perturbed: the paper's "6 %" multiplicative noise (SPEC §5).
+//! The one place values are perturbed: the paper's "6 %" multiplicative noise (docs/model.md §3).
 
 use crate::rng::{Rng, uniform};
 

@@ -1,5 +1,5 @@
 //! Room recognition from environment vectors: SOM r-node gating plus nearest stored vector
-//! (SPEC §11), a plain 1-nearest-neighbour for the online mode (SPEC §13), and confusion counts.
+//! (docs/model.md §9), a plain 1-nearest-neighbour for the online mode (docs/model.md §10), and confusion counts.
 
 use crate::rng::Rng;
 use crate::som::{Som, SomError, SomParams, sq_dist};

@@ -1,4 +1,4 @@
-//! Rooms: walls as polygons, the home pose, the five built-in rooms (SPEC §6) and room files.
+//! Rooms: walls as polygons, the home pose, the five built-in rooms (docs/model.md §4) and room files.
 //!
 //! ```
 //! use fuzzymotiv::room::Room;
@@ -174,7 +174,7 @@ impl Room {
         })
     }
 
-    /// Parses and validates a room file (SPEC §6). `source_name` (usually the path) is used in
+    /// Parses and validates a room file (docs/model.md §4). `source_name` (usually the path) is used in
     /// error messages.
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
         let err = |field: &str, reason: String| RoomError {
@@ -275,7 +275,7 @@ impl Room {
         room.validated(source_name)
     }
 
-    /// Checks the geometry (SPEC §6) and normalises the outline to counter-clockwise order.
+    /// Checks the geometry (docs/model.md §4) and normalises the outline to counter-clockwise order.
     pub fn validated(mut self, source_name: &str) -> Result<Room, RoomError> {
         let err = |field: &str, reason: String| RoomError {
             source_name: source_name.to_string(),

@@ -1,5 +1,5 @@
 //! Seed derivation: one independent stream per work item, so results never depend on the
-//! number of threads or the order in which work is scheduled (SPEC §14).
+//! number of threads or the order in which work is scheduled (docs/model.md §11).
 
 /// Purposes of derived streams (the first tag of every derivation).
 pub mod purpose {

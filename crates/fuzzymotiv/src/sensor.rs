@@ -15,7 +15,7 @@ pub struct SensorMount {
     pub facing_deg: f64,
 }
 
-/// The classic Khepera simulator layout (SPEC §4), sensors 0–7.
+/// The classic Khepera simulator layout (docs/model.md §3), sensors 0–7.
 pub const SENSOR_LAYOUT: [SensorMount; 8] = [
     SensorMount {
         x: 9.5,

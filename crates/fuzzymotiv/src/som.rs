@@ -1,4 +1,4 @@
-//! A one-dimensional self-organising map (SOM) for environment vectors (SPEC §11).
+//! A one-dimensional self-organising map (SOM) for environment vectors (docs/model.md §9).
 //!
 //! Nodes lie on a line; the winner is the node with the smallest Euclidean distance (ties →
 //! lowest index) and the neighbourhood is Gaussian in node index. Width and learning rate decay
