@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use fuzzymotiv::config::RawConfig;
-use fuzzymotiv::seed::study_seed;
+use fuzzymotiv::seed::Streams;
 
 use crate::error::CliError;
 use crate::files::{OutState, StagedDir, check_out, write_atomic};
@@ -330,7 +330,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
 
 fn study_seeds(args: &ReproduceArgs) -> Vec<u64> {
     (0..args.seeds as usize)
-        .map(|k| study_seed(args.seed, k))
+        .map(|k| Streams::new(args.seed).study(k))
         .collect()
 }
 

@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use fuzzymotiv::config::RawConfig;
-use fuzzymotiv::seed::{derive, hash_str};
+use fuzzymotiv::seed::{Streams, hash_str};
 use indicatif::ProgressBar;
 use serde::{Deserialize, Serialize};
 
@@ -213,7 +213,7 @@ impl Sweep {
                     let key = format!("{setting};rep={rep}");
                     // Keep the derived seed in 0..2^53: exact in TOML (signed 64-bit) and in
                     // JSON read as doubles (JavaScript, jq).
-                    let seed = derive(base.seed, &[hash_str(&key)]) >> 11;
+                    let seed = Streams::new(base.seed).sweep_job(&key);
                     let mut sets = overrides.clone();
                     sets.push(format!("seed={seed}"));
                     let raw =

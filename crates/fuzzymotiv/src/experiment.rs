@@ -15,7 +15,7 @@ use crate::recognition::{Confusion, Recognizer, nearest_unique};
 use crate::rng::rng_from_seed;
 use crate::robot::{KHEPERA_RADIUS, Khepera};
 use crate::room::Room;
-use crate::seed::{derive, hash_str, purpose};
+use crate::seed::{Streams, hash_str};
 use crate::som::{SomError, SomParams};
 use crate::trial::{ActionLog, Arena, TrialParams, simulate};
 
@@ -391,6 +391,11 @@ impl Experiment {
         hash_str(&self.arenas[room].room().name)
     }
 
+    /// The random streams of this experiment (docs/model.md §11).
+    pub fn streams(&self) -> Streams {
+        Streams::new(self.seed)
+    }
+
     /// F for fitness terms under this experiment's motivations (battery direction applied).
     pub fn fuzzy_fitness(&self, terms: &FitnessTerms) -> f64 {
         self.fuzzy
@@ -439,10 +444,7 @@ impl Experiment {
         run: &Run,
         room: usize,
     ) -> crate::trial::Trajectory {
-        let seed = derive(
-            self.seed,
-            &[purpose::AEM_INSTANCE, run.tag, self.room_key(room)],
-        );
+        let seed = self.streams().aem_instance(run.tag, self.room_key(room));
         let mut rng = rng_from_seed(seed);
         crate::trial::run_trial(
             &self.arenas[room],
@@ -455,17 +457,8 @@ impl Experiment {
     /// The random stream of individual `individual`'s evaluation trial in `room` in generation
     /// `generation` of `run`.
     pub fn eval_seed(&self, run: &Run, generation: usize, individual: usize, room: usize) -> u64 {
-        derive(
-            self.seed,
-            &[
-                purpose::EVAL,
-                run.tag,
-                generation as u64,
-                individual as u64,
-                self.room_key(room),
-                0,
-            ],
-        )
+        self.streams()
+            .evaluation(run.tag, generation, individual, self.room_key(room))
     }
 
     /// Steps executed (not idle) by the evaluation trials of one individual: runs them again on
@@ -530,17 +523,9 @@ impl Experiment {
             // docs/model.md §10: a second run per room, classified by 1-NN against the first runs.
             let mut correct = 0;
             for (k, &r) in run.rooms.iter().enumerate() {
-                let seed = derive(
-                    self.seed,
-                    &[
-                        purpose::ONLINE,
-                        run.tag,
-                        generation as u64,
-                        individual as u64,
-                        self.room_key(r),
-                        1,
-                    ],
-                );
+                let seed = self
+                    .streams()
+                    .online(run.tag, generation, individual, self.room_key(r));
                 let (_, actions) = self.trial(genome, r, seed);
                 let v = environment_vector(&actions, self.aem.encoder);
                 if nearest_unique(&first_vectors, &v).ok().flatten() == Some(k) {
@@ -561,7 +546,7 @@ impl Experiment {
 
     /// The initial population of a run.
     pub fn initial_population(&self, run: &Run) -> Vec<Genome> {
-        let mut rng = rng_from_seed(derive(self.seed, &[purpose::INIT, run.tag]));
+        let mut rng = rng_from_seed(self.streams().initial_population(run.tag));
         initial_population(&self.ga, self.shape.genome_len(), &mut rng)
     }
 
@@ -611,10 +596,7 @@ impl Experiment {
         generation: usize,
     ) -> Vec<Genome> {
         let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
-        let mut rng = rng_from_seed(derive(
-            self.seed,
-            &[purpose::BREED, run.tag, generation as u64],
-        ));
+        let mut rng = rng_from_seed(self.streams().breeding(run.tag, generation));
         next_generation(population, &fitness, &self.ga, &mut rng)
     }
 
@@ -699,14 +681,11 @@ impl Experiment {
             let vectors: Vec<Vec<f64>> = (0..rooms)
                 .into_par_iter()
                 .map(|r| {
-                    let seed = derive(
-                        self.seed,
-                        &[purpose::AEM_INSTANCE, run.tag, self.room_key(r)],
-                    );
+                    let seed = self.streams().aem_instance(run.tag, self.room_key(r));
                     environment_vector(&self.trial(genome, r, seed).1, self.aem.encoder)
                 })
                 .collect();
-            let mut som_rng = rng_from_seed(derive(self.seed, &[purpose::SOM, run.tag]));
+            let mut som_rng = rng_from_seed(self.streams().som(run.tag));
             Some(Recognizer::train(
                 &vectors,
                 &self.aem.som,
@@ -721,10 +700,7 @@ impl Experiment {
             .collect::<Vec<_>>()
             .into_par_iter()
             .map(|(r, t)| {
-                let seed = derive(
-                    self.seed,
-                    &[purpose::AEM_TEST, run.tag, self.room_key(r), t as u64],
-                );
+                let seed = self.streams().aem_test(run.tag, self.room_key(r), t);
                 let (terms, actions) = self.trial(genome, r, seed);
                 let (answer, winner) = match &recognizer {
                     Some(rec) => {
@@ -964,47 +940,14 @@ mod tests {
             .rooms
             .iter()
             .map(|&r| {
-                let seed = derive(
-                    exp.seed,
-                    &[
-                        purpose::EVAL,
-                        run.tag,
-                        g as u64,
-                        i as u64,
-                        exp.room_key(r),
-                        0,
-                    ],
-                );
+                let seed = exp.eval_seed(run, g, i, r);
                 environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder)
             })
             .collect();
         let mut correct = 0;
         for (k, &r) in run.rooms.iter().enumerate() {
-            let seed = derive(
-                exp.seed,
-                &[
-                    purpose::ONLINE,
-                    run.tag,
-                    g as u64,
-                    i as u64,
-                    exp.room_key(r),
-                    1,
-                ],
-            );
-            assert_ne!(
-                seed,
-                derive(
-                    exp.seed,
-                    &[
-                        purpose::EVAL,
-                        run.tag,
-                        g as u64,
-                        i as u64,
-                        exp.room_key(r),
-                        0
-                    ]
-                )
-            );
+            let seed = exp.streams().online(run.tag, g, i, exp.room_key(r));
+            assert_ne!(seed, exp.eval_seed(run, g, i, r));
             let v = environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder);
             if crate::recognition::nearest_unique(&first, &v).unwrap() == Some(k) {
                 correct += 1;
