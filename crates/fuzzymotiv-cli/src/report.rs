@@ -8,9 +8,10 @@
 use std::fmt::Write as _;
 
 use fuzzymotiv::config::{EnergyMode, Training};
-use fuzzymotiv::experiment::{AemReport, Experiment};
+use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::fitness::FitnessTerms;
 use fuzzymotiv::fuzzy::label_name;
+use fuzzymotiv::modelling::AemReport;
 use fuzzymotiv::sensor::SENSOR_LAYOUT;
 use fuzzymotiv::trial::Trajectory;
 use serde_json::{Value, json};
@@ -426,7 +427,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     let exp = &s.loaded.experiment;
     let done = s.done;
     let names = exp.room_names();
-    let label = |evo: &fuzzymotiv::experiment::Evolution| match exp.training {
+    let label = |evo: &fuzzymotiv::evolution::Evolution| match exp.training {
         Training::AllRooms => s.title.clone(),
         Training::PerRoom => format!("{}: robot evolved in {}", s.title, evo.run.label),
     };

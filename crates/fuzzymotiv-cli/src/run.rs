@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use fuzzymotiv::config::{RawConfig, Training};
-use fuzzymotiv::experiment::{
-    AemReport, Evolution, Experiment, GenerationRecord, GenerationState, Run,
-};
+use fuzzymotiv::evolution::{Evolution, GenerationRecord, GenerationState};
+use fuzzymotiv::experiment::{Experiment, Run};
+use fuzzymotiv::modelling::AemReport;
 use fuzzymotiv::trial::Trajectory;
 use serde::Serialize;
 

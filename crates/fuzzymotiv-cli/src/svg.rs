@@ -3,7 +3,8 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::experiment::{Experiment, GenerationRecord};
+use fuzzymotiv::evolution::GenerationRecord;
+use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::room::Room;
 use fuzzymotiv::trial::Trajectory;
 

@@ -22,11 +22,14 @@
 pub mod aem;
 pub mod config;
 pub mod controller;
+pub mod evaluation;
+pub mod evolution;
 pub mod experiment;
 pub mod fitness;
 pub mod fuzzy;
 pub mod ga;
 pub mod geom;
+pub mod modelling;
 pub mod noise;
 pub mod recognition;
 pub mod rng;

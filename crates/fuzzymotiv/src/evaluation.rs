@@ -1,0 +1,235 @@
+//! Evaluation: one individual's trials in the rooms of a run, on the evaluation (and online
+//! orientation) streams, combined into its fuzzy fitness; populations are evaluated in parallel.
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::aem::{Action, environment_vector};
+use crate::config::OrientationMode;
+use crate::controller::Mlp;
+use crate::experiment::{Experiment, Run};
+use crate::fitness::{FitnessTerms, TermsRecorder};
+use crate::ga::Genome;
+use crate::recognition::nearest_unique;
+use crate::rng::rng_from_seed;
+use crate::trial::{ActionLog, simulate};
+
+impl Experiment {
+    /// The controller of `genome` (its length is the validated shape's).
+    pub(crate) fn controller(&self, genome: &[f64]) -> Mlp {
+        Mlp::from_genome(self.shape, genome).expect("genome length matches the validated shape")
+    }
+
+    /// Runs one trial of `genome` in `room` with the random stream `seed`; returns the terms
+    /// (`l` = 0) and the action labels.
+    pub fn trial(&self, genome: &[f64], room: usize, seed: u64) -> (FitnessTerms, Vec<Action>) {
+        let arena = &self.arenas[room];
+        let mut rng = rng_from_seed(seed);
+        let mut obs = (
+            TermsRecorder::new(arena, &self.trial, self.homing),
+            ActionLog {
+                actions: Vec::with_capacity(self.trial.steps),
+            },
+        );
+        simulate(
+            arena,
+            &mut self.controller(genome),
+            &self.trial,
+            &mut rng,
+            &mut obs,
+        );
+        (obs.0.finish(), obs.1.actions)
+    }
+
+    /// The random stream of individual `individual`'s evaluation trial in `room` in generation
+    /// `generation` of `run`.
+    pub fn eval_seed(&self, run: &Run, generation: usize, individual: usize, room: usize) -> u64 {
+        self.streams()
+            .evaluation(run.tag, generation, individual, self.room_key(room))
+    }
+
+    /// Steps executed (not idle) by the evaluation trials of one individual: runs them again on
+    /// the same streams, so it counts exactly what [`Experiment::evaluate`] simulated.
+    pub fn executed_steps(
+        &self,
+        genome: &[f64],
+        run: &Run,
+        generation: usize,
+        individual: usize,
+    ) -> usize {
+        run.rooms
+            .iter()
+            .map(|&r| {
+                let mut rng = rng_from_seed(self.eval_seed(run, generation, individual, r));
+                crate::trial::run_trial(
+                    &self.arenas[r],
+                    &mut self.controller(genome),
+                    &self.trial,
+                    &mut rng,
+                )
+                .executed()
+            })
+            .sum()
+    }
+
+    /// Evaluates one individual of generation `generation` in the rooms of `run`.
+    pub fn evaluate(
+        &self,
+        genome: &[f64],
+        run: &Run,
+        generation: usize,
+        individual: usize,
+    ) -> Evaluation {
+        let online =
+            self.orientation == OrientationMode::Online && self.motivations.orientation > 0.0;
+        let mut per_room = Vec::with_capacity(run.rooms.len());
+        let mut first_vectors = Vec::new();
+        for &r in &run.rooms {
+            let seed = self.eval_seed(run, generation, individual, r);
+            let (terms, actions) = if online {
+                self.trial(genome, r, seed)
+            } else {
+                let arena = &self.arenas[r];
+                let mut rng = rng_from_seed(seed);
+                let mut rec = TermsRecorder::new(arena, &self.trial, self.homing);
+                simulate(
+                    arena,
+                    &mut self.controller(genome),
+                    &self.trial,
+                    &mut rng,
+                    &mut rec,
+                );
+                (rec.finish(), Vec::new())
+            };
+            if online {
+                first_vectors.push(environment_vector(&actions, self.aem.encoder));
+            }
+            per_room.push(RoomScore { f: 0.0, terms });
+        }
+        if online {
+            // docs/model.md §10: a second run per room, classified by 1-NN against the first runs.
+            let mut correct = 0;
+            for (k, &r) in run.rooms.iter().enumerate() {
+                let seed = self
+                    .streams()
+                    .online(run.tag, generation, individual, self.room_key(r));
+                let (_, actions) = self.trial(genome, r, seed);
+                let v = environment_vector(&actions, self.aem.encoder);
+                if nearest_unique(&first_vectors, &v).ok().flatten() == Some(k) {
+                    correct += 1;
+                }
+            }
+            let l = correct as f64 / run.rooms.len() as f64;
+            for s in &mut per_room {
+                s.terms.l = l;
+            }
+        }
+        for s in &mut per_room {
+            s.f = self.fuzzy_fitness(&s.terms);
+        }
+        let fitness = per_room.iter().map(|s| s.f).sum::<f64>() / per_room.len() as f64;
+        Evaluation { fitness, per_room }
+    }
+
+    /// Evaluates a population in parallel (results in index order, independent of threads).
+    pub fn evaluate_population(
+        &self,
+        population: &[Genome],
+        run: &Run,
+        generation: usize,
+    ) -> Vec<Evaluation> {
+        population
+            .par_iter()
+            .enumerate()
+            .map(|(i, g)| self.evaluate(g, run, generation, i))
+            .collect()
+    }
+}
+
+/// F and terms of one individual in one room.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RoomScore {
+    /// Fuzzy fitness F in this room.
+    pub f: f64,
+    /// The terms measured.
+    pub terms: FitnessTerms,
+}
+
+/// One individual's evaluation: mean F over its rooms, and per-room scores.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Evaluation {
+    /// Fitness used by the GA (mean F over the run's rooms).
+    pub fitness: f64,
+    /// Per room of the run, in order.
+    pub per_room: Vec<RoomScore>,
+}
+
+impl Evaluation {
+    /// Mean terms over the rooms.
+    pub fn mean_terms(&self) -> FitnessTerms {
+        let n = self.per_room.len() as f64;
+        let mut t = FitnessTerms::default();
+        for s in &self.per_room {
+            t.a += s.terms.a / n;
+            t.g += s.terms.g / n;
+            t.l += s.terms.l / n;
+            t.b += s.terms.b / n;
+        }
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiment::testing::{ORIENTED, experiment};
+
+    /// Online l is exactly the off-line 1-NN computation on the same trajectories, run on the
+    /// derived streams (EVAL for the first run, ONLINE for the second).
+    #[test]
+    fn online_orientation_equals_offline_nearest_neighbour() {
+        let exp = experiment(&ORIENTED);
+        let run = &exp.runs()[0];
+        let genome = &exp.initial_population(run)[3];
+        let (g, i) = (2usize, 3usize);
+        let eval = exp.evaluate(genome, run, g, i);
+        let first: Vec<Vec<f64>> = run
+            .rooms
+            .iter()
+            .map(|&r| {
+                let seed = exp.eval_seed(run, g, i, r);
+                environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder)
+            })
+            .collect();
+        let mut correct = 0;
+        for (k, &r) in run.rooms.iter().enumerate() {
+            let seed = exp.streams().online(run.tag, g, i, exp.room_key(r));
+            assert_ne!(seed, exp.eval_seed(run, g, i, r));
+            let v = environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder);
+            if crate::recognition::nearest_unique(&first, &v).unwrap() == Some(k) {
+                correct += 1;
+            }
+        }
+        let l = correct as f64 / run.rooms.len() as f64;
+        assert!(
+            eval.per_room.iter().all(|s| s.terms.l == l),
+            "{eval:?} vs l = {l}"
+        );
+        // The first run's terms are those of the off-line evaluation on the same stream.
+        let offline = experiment(&[
+            "fitness.orientation=\"offline\"",
+            "motivations.curiosity=0.4",
+            "motivations.homing=0.2",
+            "motivations.orientation=0.3",
+            "motivations.energy=0.1",
+        ]);
+        let off = offline.evaluate(genome, run, g, i);
+        for (a, b) in eval.per_room.iter().zip(&off.per_room) {
+            assert_eq!(
+                (a.terms.a, a.terms.g, a.terms.b),
+                (b.terms.a, b.terms.g, b.terms.b)
+            );
+            assert_eq!(b.terms.l, 0.0);
+        }
+    }
+}

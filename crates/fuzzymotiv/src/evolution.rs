@@ -1,0 +1,234 @@
+//! Evolution: the initial population, breeding and the generation loop of a run, resumable from
+//! any generation because every random stream is derived from (run, generation, individual, room).
+
+use serde::{Deserialize, Serialize};
+
+use crate::evaluation::Evaluation;
+use crate::experiment::{Experiment, Run};
+use crate::fitness::FitnessTerms;
+use crate::ga::{Genome, Stats, initial_population, next_generation};
+use crate::rng::rng_from_seed;
+
+impl Experiment {
+    /// The initial population of a run.
+    pub fn initial_population(&self, run: &Run) -> Vec<Genome> {
+        let mut rng = rng_from_seed(self.streams().initial_population(run.tag));
+        initial_population(&self.ga, self.shape.genome_len(), &mut rng)
+    }
+
+    /// Statistics of an evaluated generation.
+    pub fn generation_record(&self, generation: usize, evals: &[Evaluation]) -> GenerationRecord {
+        let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
+        let n = evals.len() as f64;
+        let mut mean = [0.0; 4];
+        for e in evals {
+            let t = e.mean_terms();
+            for (m, v) in mean.iter_mut().zip(t.as_array()) {
+                *m += v / n;
+            }
+        }
+        GenerationRecord {
+            generation,
+            stats: Stats::of(&fitness),
+            terms: FitnessTerms {
+                a: mean[0],
+                g: mean[1],
+                l: mean[2],
+                b: mean[3],
+            },
+        }
+    }
+
+    /// Breeds generation `generation + 1` from an evaluated generation.
+    pub fn breed(
+        &self,
+        population: &[Genome],
+        evals: &[Evaluation],
+        run: &Run,
+        generation: usize,
+    ) -> Vec<Genome> {
+        let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
+        let mut rng = rng_from_seed(self.streams().breeding(run.tag, generation));
+        next_generation(population, &fitness, &self.ga, &mut rng)
+    }
+
+    /// Evolves one run from scratch, calling `on_generation` after each generation.
+    pub fn evolve(
+        &self,
+        run: &Run,
+        on_generation: &mut dyn FnMut(&GenerationState<'_>),
+    ) -> Evolution {
+        let population = self.initial_population(run);
+        self.evolve_from(run, 0, population, Vec::new(), on_generation)
+    }
+
+    /// Continues a run at `generation` with `population` (not yet evaluated) and the records of
+    /// the generations before it; the result equals an uninterrupted [`Experiment::evolve`],
+    /// because every random stream is derived from (run, generation, individual, room).
+    pub fn evolve_from(
+        &self,
+        run: &Run,
+        generation: usize,
+        mut population: Vec<Genome>,
+        mut history: Vec<GenerationRecord>,
+        on_generation: &mut dyn FnMut(&GenerationState<'_>),
+    ) -> Evolution {
+        let mut g = generation;
+        loop {
+            let evals = self.evaluate_population(&population, run, g);
+            history.push(self.generation_record(g, &evals));
+            if g + 1 >= self.ga.generations {
+                on_generation(&GenerationState {
+                    history: &history,
+                    population: &population,
+                    next: None,
+                });
+                let best =
+                    crate::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
+                return Evolution {
+                    run: run.clone(),
+                    history,
+                    population,
+                    evaluations: evals,
+                    best,
+                };
+            }
+            let next = self.breed(&population, &evals, run, g);
+            on_generation(&GenerationState {
+                history: &history,
+                population: &population,
+                next: Some(&next),
+            });
+            population = next;
+            g += 1;
+        }
+    }
+
+    /// Rebuilds a finished evolution from its final population and history (the final
+    /// generation is evaluated again on its own streams, giving the same evaluations).
+    pub fn finished(
+        &self,
+        run: &Run,
+        population: Vec<Genome>,
+        history: Vec<GenerationRecord>,
+    ) -> Evolution {
+        let last = history.len().saturating_sub(1);
+        let evals = self.evaluate_population(&population, run, last);
+        let best = crate::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
+        Evolution {
+            run: run.clone(),
+            history,
+            population,
+            evaluations: evals,
+            best,
+        }
+    }
+}
+
+/// Statistics of one generation (a row of `generations.csv`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct GenerationRecord {
+    /// Generation index, from 0.
+    pub generation: usize,
+    /// Best/mean/std/min/max of F.
+    pub stats: Stats,
+    /// Population means of a, g, l, b.
+    pub terms: FitnessTerms,
+}
+
+/// Where an evolution stands after a generation: enough to checkpoint it.
+#[derive(Debug, Clone, Copy)]
+pub struct GenerationState<'a> {
+    /// Records of every generation so far (the last is the one just evaluated).
+    pub history: &'a [GenerationRecord],
+    /// The generation just evaluated.
+    pub population: &'a [Genome],
+    /// The next generation (not yet evaluated), or `None` after the last generation.
+    pub next: Option<&'a [Genome]>,
+}
+
+impl GenerationState<'_> {
+    /// The record of the generation just evaluated.
+    pub fn record(&self) -> &GenerationRecord {
+        self.history.last().expect("at least one generation")
+    }
+}
+
+/// The outcome of one evolution.
+#[derive(Debug, Clone)]
+pub struct Evolution {
+    /// The run.
+    pub run: Run,
+    /// Per generation.
+    pub history: Vec<GenerationRecord>,
+    /// The final generation.
+    pub population: Vec<Genome>,
+    /// Its evaluations.
+    pub evaluations: Vec<Evaluation>,
+    /// Index of the best final individual.
+    pub best: usize,
+}
+
+impl Evolution {
+    /// Mean F of the final population in room position `k` of the run.
+    pub fn mean_room_fitness(&self, k: usize) -> f64 {
+        self.evaluations
+            .iter()
+            .map(|e| e.per_room[k].f)
+            .sum::<f64>()
+            / self.evaluations.len() as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::experiment::testing::{ORIENTED, experiment};
+
+    /// With O = 0, online mode computes nothing extra and gives byte-identical evolutions.
+    #[test]
+    fn zero_orientation_online_equals_offline() {
+        let off = experiment(&[]);
+        let on = experiment(&["fitness.orientation=\"online\""]);
+        let run = &off.runs()[0];
+        let a = off.evolve(run, &mut |_| {});
+        let b = on.evolve(run, &mut |_| {});
+        assert_eq!(a.history, b.history);
+        assert_eq!(a.population, b.population);
+        assert_eq!(a.evaluations, b.evaluations);
+    }
+
+    /// Online orientation makes F depend on O and stays deterministic.
+    #[test]
+    fn online_orientation_is_deterministic_and_used() {
+        let mut sets = ORIENTED.to_vec();
+        sets.push("ga.population=40");
+        let exp = experiment(&sets);
+        let run = &exp.runs()[0];
+        let x = exp.evolve(run, &mut |_| {});
+        let y = exp.evolve(run, &mut |_| {});
+        assert_eq!(x.history, y.history);
+        assert!(
+            x.history.iter().any(|h| h.terms.l > 0.0),
+            "some robot recognises something"
+        );
+    }
+
+    /// A resumed evolution equals an uninterrupted one.
+    #[test]
+    fn evolve_from_a_checkpoint_equals_uninterrupted() {
+        let exp = experiment(&[]);
+        let run = &exp.runs()[0];
+        let mut saved = None;
+        let full = exp.evolve(run, &mut |s| {
+            if s.history.len() == 2 {
+                saved = Some((s.history.to_vec(), s.next.unwrap().to_vec()));
+            }
+        });
+        let (history, next) = saved.unwrap();
+        let resumed = exp.evolve_from(run, history.len(), next, history, &mut |_| {});
+        assert_eq!(full.history, resumed.history);
+        assert_eq!(full.evaluations, resumed.evaluations);
+        let rebuilt = exp.finished(run, full.population.clone(), full.history.clone());
+        assert_eq!(rebuilt.evaluations, full.evaluations);
+    }
+}
