@@ -38,14 +38,10 @@ impl fmt::Display for CliError {
     }
 }
 
-impl From<fuzzymotiv::config::ConfigError> for CliError {
-    fn from(e: fuzzymotiv::config::ConfigError) -> Self {
-        CliError::input(e.to_string())
-    }
-}
-
-impl From<fuzzymotiv::room::RoomError> for CliError {
-    fn from(e: fuzzymotiv::room::RoomError) -> Self {
+/// A config or room file that cannot be used ([`fuzzymotiv::config::ConfigError`] and
+/// [`fuzzymotiv::room::RoomError`] are this one type).
+impl From<fuzzymotiv::params::FieldError> for CliError {
+    fn from(e: fuzzymotiv::params::FieldError) -> Self {
         CliError::input(e.to_string())
     }
 }

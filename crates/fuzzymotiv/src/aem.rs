@@ -5,6 +5,164 @@
 //! `T`-dimensional environment vector (docs/model.md). The default
 //! [`Encoder::ChainCode`] is the paper's unwrapped 12-direction chain code divided by 12.
 
+use serde::{Deserialize, Serialize};
+
+use crate::params::{BIG, FieldError, check};
+use crate::som::SomParams;
+
+/// Default signed-speed difference (fractions of `v_max`) separating a turn from a straight
+/// step.
+pub const DEFAULT_ACTION_TOLERANCE: f64 = 0.25;
+
+/// Validated AEM parameters.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AemParams {
+    /// Whether AEM runs after evolution; default true (needs at least 2 rooms).
+    pub enabled: bool,
+    /// Action sequence → vector encoding; default `chain-code`.
+    pub encoder: Encoder,
+    /// SOM training parameters (defaults [`SomParams::default`]); nodes in 1..=100000 with
+    /// nodes × `trial.steps` ≤ 5·10⁷, epochs in 1..=10⁶, widths and rates finite and > 0.
+    pub som: SomParams,
+    /// r-node gate (nodes); default 10.
+    pub threshold: usize,
+    /// Test runs per room; default 10; range 1..=100000.
+    pub test_runs: usize,
+    /// Action classification tolerance (fractions of `v_max`); default 0.25
+    /// ([`DEFAULT_ACTION_TOLERANCE`]); range [0, 2].
+    pub action_tolerance: f64,
+}
+
+impl Default for AemParams {
+    fn default() -> Self {
+        AemParams {
+            enabled: true,
+            encoder: Encoder::ChainCode,
+            som: SomParams::default(),
+            threshold: 10,
+            test_runs: 10,
+            action_tolerance: DEFAULT_ACTION_TOLERANCE,
+        }
+    }
+}
+
+/// `[aem]` in a config, as written (docs/model.md §9): see [`AemParams`] and [`SomParams`] for
+/// each field's unit, default and range.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RawAem {
+    /// [`AemParams::enabled`].
+    pub enabled: bool,
+    /// [`AemParams::encoder`]: `"chain-code"`, `"heading"` or `"symbols"`.
+    pub encoder: Encoder,
+    /// [`SomParams::nodes`].
+    pub som_nodes: usize,
+    /// [`SomParams::epochs`].
+    pub epochs: usize,
+    /// [`AemParams::threshold`].
+    pub threshold: usize,
+    /// [`AemParams::test_runs`].
+    pub test_runs: usize,
+    /// [`AemParams::action_tolerance`].
+    pub action_tolerance: f64,
+    /// [`SomParams::sigma_start`].
+    pub sigma_start: f64,
+    /// [`SomParams::sigma_end`].
+    pub sigma_end: f64,
+    /// [`SomParams::rate_start`].
+    pub rate_start: f64,
+    /// [`SomParams::rate_end`].
+    pub rate_end: f64,
+}
+
+impl Default for RawAem {
+    fn default() -> Self {
+        let d = AemParams::default();
+        Self {
+            enabled: d.enabled,
+            encoder: d.encoder,
+            som_nodes: d.som.nodes,
+            epochs: d.som.epochs,
+            threshold: d.threshold,
+            test_runs: d.test_runs,
+            action_tolerance: d.action_tolerance,
+            sigma_start: d.som.sigma_start,
+            sigma_end: d.som.sigma_end,
+            rate_start: d.som.rate_start,
+            rate_end: d.som.rate_end,
+        }
+    }
+}
+
+impl AemParams {
+    /// Validates `[aem]` for trials of `steps` steps in `rooms` rooms.
+    pub fn from_raw(a: &RawAem, steps: usize, rooms: usize) -> Result<AemParams, FieldError> {
+        check(
+            (1..=100_000).contains(&a.som_nodes),
+            "aem.som_nodes",
+            || format!("must be in 1..=100000, got {}", a.som_nodes),
+        )?;
+        check((1..=BIG).contains(&a.epochs), "aem.epochs", || {
+            format!("must be in 1..={BIG}, got {}", a.epochs)
+        })?;
+        check(
+            (1..=100_000).contains(&a.test_runs),
+            "aem.test_runs",
+            || format!("must be in 1..=100000, got {}", a.test_runs),
+        )?;
+        check(
+            a.action_tolerance.is_finite() && (0.0..=2.0).contains(&a.action_tolerance),
+            "aem.action_tolerance",
+            || {
+                format!(
+                    "must be in [0, 2] (signed-speed units), got {}",
+                    a.action_tolerance
+                )
+            },
+        )?;
+        for (name, v) in [
+            ("aem.sigma_start", a.sigma_start),
+            ("aem.sigma_end", a.sigma_end),
+            ("aem.rate_start", a.rate_start),
+            ("aem.rate_end", a.rate_end),
+        ] {
+            check(v.is_finite() && v > 0.0, name, || {
+                format!("must be a finite number > 0, got {v}")
+            })?;
+        }
+        check(
+            !a.enabled || steps.saturating_mul(a.som_nodes) <= 50_000_000,
+            "aem.som_nodes",
+            || {
+                format!(
+                    "the SOM would hold aem.som_nodes × trial.steps = {} × {} weights; keep the product ≤ 5e7",
+                    a.som_nodes, steps
+                )
+            },
+        )?;
+        check(!a.enabled || rooms >= 2, "aem.enabled", || {
+            format!(
+                "room recognition needs at least 2 rooms, got {rooms}; add rooms or set aem.enabled = false"
+            )
+        })?;
+        Ok(AemParams {
+            enabled: a.enabled,
+            encoder: a.encoder,
+            som: SomParams {
+                nodes: a.som_nodes,
+                epochs: a.epochs,
+                sigma_start: a.sigma_start,
+                sigma_end: a.sigma_end,
+                rate_start: a.rate_start,
+                rate_end: a.rate_end,
+            },
+            threshold: a.threshold,
+            test_runs: a.test_runs,
+            action_tolerance: a.action_tolerance,
+        })
+    }
+}
+
 /// The action taken in one control step, derived from the two motor outputs.
 ///
 /// Its chain-code step ([`Action::chain_step`]) is the heading change in units of 30°.

@@ -1,5 +1,7 @@
 //! Experiment configuration: the raw TOML document (every key has the default of docs/model.md, unknown keys
 //! are rejected), `--set key=value` overrides, and validation into [`crate::experiment::Experiment`].
+//! Each section's raw struct is declared beside the validated type it turns into (`[trial]` in
+//! [`crate::trial`], `[aem]` in [`crate::aem`], …) and re-exported here.
 //!
 //! ```
 //! use fuzzymotiv::config::RawConfig;
@@ -10,29 +12,23 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::aem::Encoder;
+pub use crate::aem::RawAem;
+pub use crate::controller::RawNetwork;
 use crate::fitness::Homing;
-use crate::fuzzy::{CoefficientScheme, PAPER_PEAKS};
+pub use crate::fuzzy::{Coefficients, RawFuzzy, RawMotivations};
 use crate::ga::GaParams;
+use crate::params::FieldError;
 use crate::robot::Khepera;
 use crate::room::{BUILTIN_ROOMS, field_from_toml_message};
-use crate::sensor::SensorModel;
+pub use crate::trial::RawTrial;
 
 /// The largest base seed, 2^53 − 1: every seed (and every seed derived from it for a sweep) is
 /// then exact as a JSON number, also for tools that read numbers as doubles (JavaScript, jq).
 pub const MAX_SEED: u64 = (1 << 53) - 1;
 
-/// A configuration that cannot be used: the file, the field and what is wrong.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{source_name}: field `{field}`: {reason}")]
-pub struct ConfigError {
-    /// File (or other source) of the configuration.
-    pub source_name: String,
-    /// Dotted key, e.g. `ga.population`.
-    pub field: String,
-    /// What is wrong and what would be right.
-    pub reason: String,
-}
+/// A configuration that cannot be used: the file, the field and what is wrong (the same type
+/// as a room file's [`crate::room::RoomError`]).
+pub type ConfigError = FieldError;
 
 /// How populations are trained over rooms (docs/model.md §10).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -67,102 +63,6 @@ pub enum OrientationMode {
     Online,
 }
 
-/// `[motivations]`: X = (C, H, O, E), defaults to the paper's high-curiosity setting.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RawMotivations {
-    /// Curiosity C (weight of exploration a); default 0.8.
-    pub curiosity: f64,
-    /// Homing H (weight of homing g); default 0.1.
-    pub homing: f64,
-    /// Orientation O (weight of recognition l); default 0.
-    pub orientation: f64,
-    /// Energy E (weight of battery b); default 0.1.
-    pub energy: f64,
-}
-
-impl Default for RawMotivations {
-    fn default() -> Self {
-        Self {
-            curiosity: 0.8,
-            homing: 0.1,
-            orientation: 0.0,
-            energy: 0.1,
-        }
-    }
-}
-
-/// `[trial]`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RawTrial {
-    /// Steps per trial T; default 400.
-    pub steps: usize,
-    /// Control step (s); default 0.1.
-    pub dt: f64,
-    /// Noise level; default 0.06.
-    pub noise: f64,
-    /// `"sampled"` (default) or `"linear"`.
-    pub sensor_model: SensorModel,
-    /// End a trial when the robot is back in the home zone after escaping it; default true.
-    pub end_at_home: bool,
-}
-
-impl Default for RawTrial {
-    fn default() -> Self {
-        Self {
-            steps: 400,
-            dt: 0.1,
-            noise: 0.06,
-            sensor_model: SensorModel::Sampled,
-            end_at_home: true,
-        }
-    }
-}
-
-/// `[network]`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RawNetwork {
-    /// Hidden units; default 6.
-    pub hidden: usize,
-}
-
-impl Default for RawNetwork {
-    fn default() -> Self {
-        Self { hidden: 6 }
-    }
-}
-
-/// Coefficient array: a scheme name or explicit values.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
-pub enum Coefficients {
-    /// `"linear"` (default) or `"ratio"`.
-    Scheme(CoefficientScheme),
-    /// One value per label.
-    Values(Vec<f64>),
-}
-
-/// `[fuzzy]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RawFuzzy {
-    /// Peaks of the triangular labels; default [0, 0.25, 0.5, 0.75, 1].
-    pub peaks: Vec<f64>,
-    /// Coefficient array; default `"linear"`.
-    pub coefficients: Coefficients,
-}
-
-impl Default for RawFuzzy {
-    fn default() -> Self {
-        Self {
-            peaks: PAPER_PEAKS.to_vec(),
-            coefficients: Coefficients::Scheme(CoefficientScheme::Linear),
-        }
-    }
-}
-
 /// `[fitness]`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -173,52 +73,6 @@ pub struct RawFitness {
     pub orientation: OrientationMode,
     /// `"escape"` (default) or `"distance"`.
     pub homing: Homing,
-}
-
-/// `[aem]`: action-based environment modelling (docs/model.md §9).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RawAem {
-    /// Run AEM after evolution; default true (needs at least 2 rooms).
-    pub enabled: bool,
-    /// `"chain-code"` (default), `"heading"` or `"symbols"`.
-    pub encoder: Encoder,
-    /// SOM nodes; default 128.
-    pub som_nodes: usize,
-    /// SOM epochs; default 1000.
-    pub epochs: usize,
-    /// r-node gate (nodes); default 10.
-    pub threshold: usize,
-    /// Test runs per room; default 10.
-    pub test_runs: usize,
-    /// Signed-speed difference separating turns from straight; default 0.25.
-    pub action_tolerance: f64,
-    /// Neighbourhood width at the first epoch; default 32.
-    pub sigma_start: f64,
-    /// Neighbourhood width at the last epoch; default 1.
-    pub sigma_end: f64,
-    /// Learning rate at the first epoch; default 0.5.
-    pub rate_start: f64,
-    /// Learning rate at the last epoch; default 0.01.
-    pub rate_end: f64,
-}
-
-impl Default for RawAem {
-    fn default() -> Self {
-        Self {
-            enabled: true,
-            encoder: Encoder::ChainCode,
-            som_nodes: 128,
-            epochs: 1000,
-            threshold: 10,
-            test_runs: 10,
-            action_tolerance: 0.25,
-            sigma_start: 32.0,
-            sigma_end: 1.0,
-            rate_start: 0.5,
-            rate_end: 0.01,
-        }
-    }
 }
 
 /// The configuration document as written (every key optional, the defaults of docs/model.md).

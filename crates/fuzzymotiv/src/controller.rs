@@ -18,13 +18,42 @@ pub trait Controller {
 pub struct MlpShape {
     /// Inputs (8).
     pub inputs: usize,
-    /// Hidden units (default 6).
+    /// Hidden units; default 6 ([`MlpShape::DEFAULT_HIDDEN`]); range 1..=1024.
     pub hidden: usize,
     /// Outputs (2).
     pub outputs: usize,
 }
 
+/// `[network]` in a config, as written.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RawNetwork {
+    /// [`MlpShape::hidden`].
+    pub hidden: usize,
+}
+
+impl Default for RawNetwork {
+    fn default() -> Self {
+        Self {
+            hidden: MlpShape::DEFAULT_HIDDEN,
+        }
+    }
+}
+
+impl RawNetwork {
+    /// The validated shape.
+    pub fn shape(&self) -> Result<MlpShape, crate::params::FieldError> {
+        crate::params::check((1..=1024).contains(&self.hidden), "network.hidden", || {
+            format!("must be in 1..=1024, got {}", self.hidden)
+        })?;
+        Ok(MlpShape::with_hidden(self.hidden))
+    }
+}
+
 impl MlpShape {
+    /// The paper's hidden layer: 6 units.
+    pub const DEFAULT_HIDDEN: usize = 6;
+
     /// The shape with `hidden` hidden units.
     pub fn with_hidden(hidden: usize) -> Self {
         Self {

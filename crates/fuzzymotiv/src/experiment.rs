@@ -6,34 +6,17 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::aem::Encoder;
-use crate::config::{Coefficients, ConfigError, EnergyMode, OrientationMode, RawConfig, Training};
+use crate::aem::AemParams;
+use crate::config::{ConfigError, EnergyMode, OrientationMode, RawConfig, Training};
 use crate::controller::MlpShape;
 use crate::fitness::{FitnessTerms, Homing};
-use crate::fuzzy::{FuzzyError, Motivations, TskFitness};
+use crate::fuzzy::{Motivations, TskFitness};
 use crate::ga::GaParams;
-use crate::robot::{KHEPERA_RADIUS, Khepera};
+use crate::params::{FieldError, check};
+use crate::robot::KHEPERA_RADIUS;
 use crate::room::Room;
 use crate::seed::{Streams, hash_str};
-use crate::som::SomParams;
 use crate::trial::{Arena, TrialParams};
-
-/// Validated AEM parameters.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct AemParams {
-    /// Whether AEM runs after evolution.
-    pub enabled: bool,
-    /// Action sequence → vector encoding.
-    pub encoder: Encoder,
-    /// SOM training parameters.
-    pub som: SomParams,
-    /// r-node gate (nodes).
-    pub threshold: usize,
-    /// Test runs per room.
-    pub test_runs: usize,
-    /// Action classification tolerance.
-    pub action_tolerance: f64,
-}
 
 /// A validated experiment: nothing downstream re-checks these values.
 #[derive(Debug, Clone)]
@@ -66,18 +49,6 @@ pub struct Experiment {
     pub aem: AemParams,
 }
 
-fn check(ok: bool, field: &str, reason: impl FnOnce() -> String) -> Result<(), (String, String)> {
-    if ok {
-        Ok(())
-    } else {
-        Err((field.to_string(), reason()))
-    }
-}
-
-fn unit(v: f64) -> bool {
-    v.is_finite() && (0.0..=1.0).contains(&v)
-}
-
 impl Experiment {
     /// Validates `raw` with its rooms already loaded (`rooms[i]` for `raw.rooms[i]`).
     pub fn new(
@@ -85,256 +56,25 @@ impl Experiment {
         rooms: Vec<Room>,
         source_name: &str,
     ) -> Result<Experiment, ConfigError> {
-        Self::build(raw, rooms).map_err(|(field, reason)| ConfigError {
-            source_name: source_name.to_string(),
-            field,
-            reason,
-        })
+        Self::build(raw, rooms).map_err(|e| e.in_source(source_name))
     }
 
-    fn build(raw: &RawConfig, rooms: Vec<Room>) -> Result<Experiment, (String, String)> {
-        const BIG: usize = 1_000_000;
-        let safe_name = !raw.name.is_empty()
-            && raw.name.len() <= 100
-            && raw.name != "."
-            && raw.name != ".."
-            && raw
-                .name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || "._-".contains(c));
-        check(safe_name, "name", || {
-            format!(
-                "must be a plain name of letters, digits, '.', '_' or '-' (it names the output directory runs/NAME), got {:?}",
-                raw.name
-            )
-        })?;
-        check(!rooms.is_empty(), "rooms", || {
-            "needs at least one room, e.g. rooms = [\"H\", \"T\", \"L\", \"square\", \"rectangle\"]"
-                .into()
-        })?;
-        for (i, r) in rooms.iter().enumerate() {
-            if let Some(j) = rooms[..i].iter().position(|o| o.name == r.name) {
-                return Err((
-                    format!("rooms[{i}]"),
-                    format!(
-                        "room name \"{}\" is used twice (also rooms[{j}]); names must be unique",
-                        r.name
-                    ),
-                ));
-            }
-        }
-        let m = &raw.motivations;
-        let motivations = Motivations::new(m.curiosity, m.homing, m.orientation, m.energy)
-            .map_err(|e| {
-                let field = match &e {
-                    FuzzyError::MotivationOutOfRange { name, .. } => format!("motivations.{name}"),
-                    _ => "motivations".to_string(),
-                };
-                (field, e.to_string())
-            })?;
-        let ga = raw.ga;
-        check((2..=BIG).contains(&ga.population), "ga.population", || {
-            format!("must be an integer in 2..={BIG}, got {}", ga.population)
-        })?;
+    fn build(raw: &RawConfig, rooms: Vec<Room>) -> Result<Experiment, FieldError> {
+        check_name(&raw.name)?;
+        check_rooms(&rooms)?;
+        let motivations = raw.motivations.validated()?;
+        raw.ga.validate()?;
+        let trial = TrialParams::from_raw(&raw.trial, raw.robot, raw.aem.action_tolerance)?;
+        let shape = raw.network.shape()?;
+        let fuzzy = raw.fuzzy.validated()?;
+        let aem = AemParams::from_raw(&raw.aem, trial.steps, rooms.len())?;
         check(
-            (1..=BIG).contains(&ga.generations),
-            "ga.generations",
-            || format!("must be an integer in 1..={BIG}, got {}", ga.generations),
-        )?;
-        check(ga.elite < ga.population, "ga.elite", || {
-            format!(
-                "must be smaller than ga.population ({}), got {}",
-                ga.population, ga.elite
-            )
-        })?;
-        check(
-            ga.parent_fraction.is_finite() && ga.parent_fraction > 0.0 && ga.parent_fraction <= 1.0,
-            "ga.parent_fraction",
-            || format!("must be in (0, 1], got {}", ga.parent_fraction),
-        )?;
-        check(unit(ga.crossover), "ga.crossover", || {
-            format!("must be a probability in [0, 1], got {}", ga.crossover)
-        })?;
-        check(unit(ga.mutation_rate), "ga.mutation_rate", || {
-            format!("must be a probability in [0, 1], got {}", ga.mutation_rate)
-        })?;
-        check(
-            ga.mutation_sigma.is_finite() && ga.mutation_sigma >= 0.0,
-            "ga.mutation_sigma",
-            || format!("must be a finite number ≥ 0, got {}", ga.mutation_sigma),
-        )?;
-        check(
-            ga.weight_limit.is_finite() && ga.weight_limit > 0.0 && ga.weight_limit <= 1e6,
-            "ga.weight_limit",
-            || format!("must be in (0, 1e6], got {}", ga.weight_limit),
-        )?;
-        check(
-            ga.init_range.is_finite() && ga.init_range >= 0.0 && ga.init_range <= ga.weight_limit,
-            "ga.init_range",
-            || format!("must be in [0, ga.weight_limit], got {}", ga.init_range),
-        )?;
-        let t = &raw.trial;
-        check((1..=10 * BIG).contains(&t.steps), "trial.steps", || {
-            format!("must be an integer in 1..={}, got {}", 10 * BIG, t.steps)
-        })?;
-        check(
-            t.dt.is_finite() && t.dt > 0.0 && t.dt <= 10.0,
-            "trial.dt",
-            || format!("must be a time step in (0, 10] seconds, got {}", t.dt),
-        )?;
-        check(
-            t.noise.is_finite() && (0.0..=0.5).contains(&t.noise),
-            "trial.noise",
-            || {
-                format!(
-                    "must be a noise level in [0, 0.5] (0.06 is the paper's 6 %), got {}",
-                    t.noise
-                )
-            },
-        )?;
-        let robot: Khepera = raw.robot;
-        check(
-            robot.v_max.is_finite() && robot.v_max > 0.0,
-            "robot.v_max",
-            || format!("must be a speed > 0 (mm/s), got {}", robot.v_max),
-        )?;
-        // The sensor mounts are fixed (docs/model.md §3): they must sit inside the body, and a body far
-        // larger than the sensors' reach would be blind.
-        let mounts = crate::sensor::SENSOR_LAYOUT
-            .iter()
-            .map(|m| m.x.hypot(m.y))
-            .fold(0.0, f64::max);
-        check(
-            robot.radius.is_finite() && robot.radius >= mounts && robot.radius <= 80.0,
-            "robot.radius",
-            || {
-                format!(
-                    "must be in [{mounts:.2}, 80] mm (the IR sensors sit {mounts:.2} mm from the centre and see 58 mm), got {}",
-                    robot.radius
-                )
-            },
-        )?;
-        check(
-            robot.wheel_base.is_finite() && robot.wheel_base > 0.0 && robot.wheel_base <= 1000.0,
-            "robot.wheel_base",
-            || format!("must be in (0, 1000] mm, got {}", robot.wheel_base),
-        )?;
-        let trial = TrialParams {
-            steps: t.steps,
-            dt: t.dt,
-            noise: t.noise,
-            sensor_model: t.sensor_model,
-            robot,
-            end_at_home: t.end_at_home,
-            action_tolerance: raw.aem.action_tolerance,
-        };
-        check(trial.max_step() < robot.radius, "trial.dt", || {
-            format!(
-                "one step may move the robot {:.1} mm (robot.v_max × trial.dt × (1 + trial.noise)), which must stay below the body radius {} mm so it cannot pass through walls; use a smaller dt or v_max",
-                trial.max_step(),
-                robot.radius
-            )
-        })?;
-        check(
-            (1..=1024).contains(&raw.network.hidden),
-            "network.hidden",
-            || format!("must be in 1..=1024, got {}", raw.network.hidden),
-        )?;
-        let shape = MlpShape::with_hidden(raw.network.hidden);
-        let fuzzy = match &raw.fuzzy.coefficients {
-            Coefficients::Scheme(s) => TskFitness::with_scheme(raw.fuzzy.peaks.clone(), *s),
-            Coefficients::Values(v) => TskFitness::new(raw.fuzzy.peaks.clone(), v.clone()),
-        }
-        .map_err(|e| {
-            let field = match e {
-                FuzzyError::CoefficientCount { .. } | FuzzyError::InvalidCoefficient { .. } => {
-                    "fuzzy.coefficients"
-                }
-                _ => "fuzzy.peaks",
-            };
-            (field.to_string(), e.to_string())
-        })?;
-        let a = &raw.aem;
-        let som = SomParams {
-            nodes: a.som_nodes,
-            epochs: a.epochs,
-            sigma_start: a.sigma_start,
-            sigma_end: a.sigma_end,
-            rate_start: a.rate_start,
-            rate_end: a.rate_end,
-        };
-        check(
-            (1..=100_000).contains(&a.som_nodes),
-            "aem.som_nodes",
-            || format!("must be in 1..=100000, got {}", a.som_nodes),
-        )?;
-        check((1..=BIG).contains(&a.epochs), "aem.epochs", || {
-            format!("must be in 1..={BIG}, got {}", a.epochs)
-        })?;
-        check(
-            (1..=100_000).contains(&a.test_runs),
-            "aem.test_runs",
-            || format!("must be in 1..=100000, got {}", a.test_runs),
-        )?;
-        check(
-            a.action_tolerance.is_finite() && (0.0..=2.0).contains(&a.action_tolerance),
-            "aem.action_tolerance",
-            || {
-                format!(
-                    "must be in [0, 2] (signed-speed units), got {}",
-                    a.action_tolerance
-                )
-            },
-        )?;
-        for (name, v) in [
-            ("aem.sigma_start", a.sigma_start),
-            ("aem.sigma_end", a.sigma_end),
-            ("aem.rate_start", a.rate_start),
-            ("aem.rate_end", a.rate_end),
-        ] {
-            check(v.is_finite() && v > 0.0, name, || {
-                format!("must be a finite number > 0, got {v}")
-            })?;
-        }
-        check(
-            !a.enabled || t.steps.saturating_mul(a.som_nodes) <= 50_000_000,
-            "aem.som_nodes",
-            || {
-                format!(
-                    "the SOM would hold aem.som_nodes × trial.steps = {} × {} weights; keep the product ≤ 5e7",
-                    a.som_nodes, t.steps
-                )
-            },
-        )?;
-        check(!a.enabled || rooms.len() >= 2, "aem.enabled", || {
-            format!(
-                "room recognition needs at least 2 rooms, got {}; add rooms or set aem.enabled = false",
-                rooms.len()
-            )
-        })?;
-        let online = raw.fitness.orientation == OrientationMode::Online;
-        check(
-            !online || (rooms.len() >= 2 && raw.training == Training::AllRooms),
+            raw.fitness.orientation != OrientationMode::Online
+                || (rooms.len() >= 2 && raw.training == Training::AllRooms),
             "fitness.orientation",
             || "\"online\" needs training = \"all-rooms\" with at least 2 rooms".into(),
         )?;
-        // Room files are validated against the Khepera; a bigger body needs its own check.
-        if robot.radius > KHEPERA_RADIUS {
-            for (i, r) in rooms.iter().enumerate() {
-                let home = r.home.position();
-                let clearance = r
-                    .walls()
-                    .iter()
-                    .map(|w| w.dist_to(home))
-                    .fold(f64::INFINITY, f64::min);
-                check(clearance >= robot.radius, &format!("rooms[{i}]"), || {
-                    format!(
-                        "home of room \"{}\" is {clearance:.1} mm from a wall, closer than robot.radius {}",
-                        r.name, robot.radius
-                    )
-                })?;
-            }
-        }
+        check_clearance(&rooms, trial.robot.radius)?;
         let arenas = rooms.into_iter().map(|r| Arena::new(r, &trial)).collect();
         Ok(Experiment {
             name: raw.name.clone(),
@@ -343,20 +83,13 @@ impl Experiment {
             training: raw.training,
             motivations,
             fuzzy,
-            ga,
+            ga: raw.ga,
             trial,
             shape,
             energy: raw.fitness.energy,
             orientation: raw.fitness.orientation,
             homing: raw.fitness.homing,
-            aem: AemParams {
-                enabled: a.enabled,
-                encoder: a.encoder,
-                som,
-                threshold: a.threshold,
-                test_runs: a.test_runs,
-                action_tolerance: a.action_tolerance,
-            },
+            aem,
         })
     }
 
@@ -410,6 +143,64 @@ impl Experiment {
         };
         [terms.a, terms.g, terms.l, b]
     }
+}
+
+/// The experiment's name names its output directory `runs/NAME`.
+fn check_name(name: &str) -> Result<(), FieldError> {
+    let safe_name = !name.is_empty()
+        && name.len() <= 100
+        && name != "."
+        && name != ".."
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "._-".contains(c));
+    check(safe_name, "name", || {
+        format!(
+            "must be a plain name of letters, digits, '.', '_' or '-' (it names the output directory runs/NAME), got {name:?}"
+        )
+    })
+}
+
+/// At least one room, and no two with the same name.
+fn check_rooms(rooms: &[Room]) -> Result<(), FieldError> {
+    check(!rooms.is_empty(), "rooms", || {
+        "needs at least one room, e.g. rooms = [\"H\", \"T\", \"L\", \"square\", \"rectangle\"]"
+            .into()
+    })?;
+    for (i, r) in rooms.iter().enumerate() {
+        if let Some(j) = rooms[..i].iter().position(|o| o.name == r.name) {
+            return Err(FieldError::new(
+                format!("rooms[{i}]"),
+                format!(
+                    "room name \"{}\" is used twice (also rooms[{j}]); names must be unique",
+                    r.name
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Room files are validated against the Khepera; a bigger body needs its own check.
+fn check_clearance(rooms: &[Room], radius: f64) -> Result<(), FieldError> {
+    if radius <= KHEPERA_RADIUS {
+        return Ok(());
+    }
+    for (i, r) in rooms.iter().enumerate() {
+        let home = r.home.position();
+        let clearance = r
+            .walls()
+            .iter()
+            .map(|w| w.dist_to(home))
+            .fold(f64::INFINITY, f64::min);
+        check(clearance >= radius, &format!("rooms[{i}]"), || {
+            format!(
+                "home of room \"{}\" is {clearance:.1} mm from a wall, closer than robot.radius {radius}",
+                r.name
+            )
+        })?;
+    }
+    Ok(())
 }
 
 /// One evolution: its label (`all` or a room name), its stream tag and its rooms.

@@ -151,6 +151,95 @@ pub struct Motivations {
     pub energy: f64,
 }
 
+/// `[motivations]` in a config, as written: X = (C, H, O, E), each in [0, 1], summing to 1;
+/// default the paper's high-curiosity setting [`Motivations::HIGH_CURIOSITY`].
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RawMotivations {
+    /// Curiosity C (weight of exploration a); default 0.8.
+    pub curiosity: f64,
+    /// Homing H (weight of homing g); default 0.1.
+    pub homing: f64,
+    /// Orientation O (weight of recognition l); default 0.
+    pub orientation: f64,
+    /// Energy E (weight of battery b); default 0.1.
+    pub energy: f64,
+}
+
+impl Default for RawMotivations {
+    fn default() -> Self {
+        let m = Motivations::HIGH_CURIOSITY;
+        Self {
+            curiosity: m.curiosity,
+            homing: m.homing,
+            orientation: m.orientation,
+            energy: m.energy,
+        }
+    }
+}
+
+impl RawMotivations {
+    /// The validated motivations; an error names `motivations.NAME` or `motivations`.
+    pub fn validated(&self) -> Result<Motivations, crate::params::FieldError> {
+        Motivations::new(self.curiosity, self.homing, self.orientation, self.energy).map_err(|e| {
+            let field = match &e {
+                FuzzyError::MotivationOutOfRange { name, .. } => format!("motivations.{name}"),
+                _ => "motivations".to_string(),
+            };
+            crate::params::FieldError::new(field, e.to_string())
+        })
+    }
+}
+
+/// Coefficient array of `[fuzzy]`: a scheme name or explicit values.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(untagged)]
+pub enum Coefficients {
+    /// `"linear"` (default) or `"ratio"`.
+    Scheme(CoefficientScheme),
+    /// One value per label.
+    Values(Vec<f64>),
+}
+
+/// `[fuzzy]` in a config, as written.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RawFuzzy {
+    /// Peaks of the triangular labels, increasing in [0, 1]; default [0, 0.25, 0.5, 0.75, 1]
+    /// ([`PAPER_PEAKS`]).
+    pub peaks: Vec<f64>,
+    /// Coefficient array, one per label; default `"linear"`.
+    pub coefficients: Coefficients,
+}
+
+impl Default for RawFuzzy {
+    fn default() -> Self {
+        Self {
+            peaks: PAPER_PEAKS.to_vec(),
+            coefficients: Coefficients::Scheme(CoefficientScheme::Linear),
+        }
+    }
+}
+
+impl RawFuzzy {
+    /// The validated evaluator; an error names `fuzzy.peaks` or `fuzzy.coefficients`.
+    pub fn validated(&self) -> Result<TskFitness, crate::params::FieldError> {
+        match &self.coefficients {
+            Coefficients::Scheme(s) => TskFitness::with_scheme(self.peaks.clone(), *s),
+            Coefficients::Values(v) => TskFitness::new(self.peaks.clone(), v.clone()),
+        }
+        .map_err(|e| {
+            let field = match e {
+                FuzzyError::CoefficientCount { .. } | FuzzyError::InvalidCoefficient { .. } => {
+                    "fuzzy.coefficients"
+                }
+                _ => "fuzzy.peaks",
+            };
+            crate::params::FieldError::new(field, e.to_string())
+        })
+    }
+}
+
 impl Motivations {
     /// The paper's high-curiosity setting `(C, H, O, E) = (0.8, 0.1, 0, 0.1)`.
     pub const HIGH_CURIOSITY: Motivations = Motivations {

@@ -3,32 +3,36 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::params::{BIG, FieldError, check, unit};
 use crate::rng::{Rng, index, standard_normal, uniform, uniform01};
 
 /// A genome: the controller's weights.
 pub type Genome = Vec<f64>;
 
-/// GA parameters (docs/model.md §6 defaults).
+/// GA parameters, `[ga]` in a config (docs/model.md §6 defaults); [`GaParams::validate`] checks
+/// the ranges below.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct GaParams {
-    /// Population size; default 200.
+    /// Population size (individuals); default 200; range 2..=10⁶.
     pub population: usize,
-    /// Generations; default 200.
+    /// Generations; default 200; range 1..=10⁶.
     pub generations: usize,
-    /// Best individuals copied unchanged into the next generation; default 2.
+    /// Best individuals copied unchanged into the next generation; default 2; below `population`.
     pub elite: usize,
-    /// Parents are drawn uniformly from this best fraction; default 0.2.
+    /// Parents are drawn uniformly from this best fraction of the population; default 0.2;
+    /// range (0, 1].
     pub parent_fraction: f64,
-    /// Probability of one-point crossover per child; default 0.5.
+    /// Probability of one-point crossover per child; default 0.5; range [0, 1].
     pub crossover: f64,
-    /// Per-gene mutation probability; default 0.01.
+    /// Per-gene mutation probability; default 0.01; range [0, 1].
     pub mutation_rate: f64,
-    /// Standard deviation of the Gaussian mutation; default 0.5.
+    /// Standard deviation of the Gaussian mutation (weight units); default 0.5; ≥ 0, finite.
     pub mutation_sigma: f64,
-    /// Genes are clamped to [−limit, limit]; default 5.
+    /// Genes are clamped to [−limit, limit] (weight units); default 5; range (0, 10⁶].
     pub weight_limit: f64,
-    /// Initial genes are drawn from U(−init_range, init_range); default 1.
+    /// Initial genes are drawn from U(−init_range, init_range); default 1; range
+    /// [0, `weight_limit`].
     pub init_range: f64,
 }
 
@@ -45,6 +49,62 @@ impl Default for GaParams {
             weight_limit: 5.0,
             init_range: 1.0,
         }
+    }
+}
+
+impl GaParams {
+    /// Checks every field against the range documented on it, naming the first field out of
+    /// range as `ga.FIELD`.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        check(
+            (2..=BIG).contains(&self.population),
+            "ga.population",
+            || format!("must be an integer in 2..={BIG}, got {}", self.population),
+        )?;
+        check(
+            (1..=BIG).contains(&self.generations),
+            "ga.generations",
+            || format!("must be an integer in 1..={BIG}, got {}", self.generations),
+        )?;
+        check(self.elite < self.population, "ga.elite", || {
+            format!(
+                "must be smaller than ga.population ({}), got {}",
+                self.population, self.elite
+            )
+        })?;
+        check(
+            self.parent_fraction.is_finite()
+                && self.parent_fraction > 0.0
+                && self.parent_fraction <= 1.0,
+            "ga.parent_fraction",
+            || format!("must be in (0, 1], got {}", self.parent_fraction),
+        )?;
+        check(unit(self.crossover), "ga.crossover", || {
+            format!("must be a probability in [0, 1], got {}", self.crossover)
+        })?;
+        check(unit(self.mutation_rate), "ga.mutation_rate", || {
+            format!(
+                "must be a probability in [0, 1], got {}",
+                self.mutation_rate
+            )
+        })?;
+        check(
+            self.mutation_sigma.is_finite() && self.mutation_sigma >= 0.0,
+            "ga.mutation_sigma",
+            || format!("must be a finite number ≥ 0, got {}", self.mutation_sigma),
+        )?;
+        check(
+            self.weight_limit.is_finite() && self.weight_limit > 0.0 && self.weight_limit <= 1e6,
+            "ga.weight_limit",
+            || format!("must be in (0, 1e6], got {}", self.weight_limit),
+        )?;
+        check(
+            self.init_range.is_finite()
+                && self.init_range >= 0.0
+                && self.init_range <= self.weight_limit,
+            "ga.init_range",
+            || format!("must be in [0, ga.weight_limit], got {}", self.init_range),
+        )
     }
 }
 

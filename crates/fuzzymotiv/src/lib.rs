@@ -31,6 +31,7 @@ pub mod ga;
 pub mod geom;
 pub mod modelling;
 pub mod noise;
+pub mod params;
 pub mod recognition;
 pub mod rng;
 pub mod robot;

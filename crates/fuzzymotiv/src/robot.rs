@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::aem::Action;
 use crate::geom::Vec2;
+use crate::params::{FieldError, check};
 
 /// Where the robot is: centre `(x, y)` in mm and `heading` in radians (counter-clockwise from +x,
 /// wrapped to (−π, π]).
@@ -70,15 +71,50 @@ pub fn wrap_angle(theta: f64) -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Khepera {
-    /// Body radius; default 27.5 mm (diameter 55 mm).
+    /// Body radius (mm); default 27.5 (diameter 55 mm); range [r, 80] where r ≈ 25.1 mm is
+    /// the IR sensors' distance from the centre.
     pub radius: f64,
-    /// Distance between the wheels; default 53 mm (used by `wheels` motion only).
+    /// Distance between the wheels (mm); default 53 (used by `wheels` motion only); range
+    /// (0, 1000].
     pub wheel_base: f64,
-    /// Maximum wheel speed; default 80 mm/s. With `actions` motion a straight step moves
-    /// `v_max · dt` (8 mm by default).
+    /// Maximum wheel speed (mm/s); default 80; > 0, finite. With `actions` motion a straight
+    /// step moves `v_max · dt` (8 mm by default).
     pub v_max: f64,
     /// How the network's motor commands move the robot; default `"actions"` (the paper's).
     pub motion: Motion,
+}
+
+impl Khepera {
+    /// Checks the body against the ranges documented on its fields, naming the first field out
+    /// of range as `robot.FIELD`.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        check(
+            self.v_max.is_finite() && self.v_max > 0.0,
+            "robot.v_max",
+            || format!("must be a speed > 0 (mm/s), got {}", self.v_max),
+        )?;
+        // The sensor mounts are fixed (docs/model.md §3): they must sit inside the body, and a
+        // body far larger than the sensors' reach would be blind.
+        let mounts = crate::sensor::SENSOR_LAYOUT
+            .iter()
+            .map(|m| m.x.hypot(m.y))
+            .fold(0.0, f64::max);
+        check(
+            self.radius.is_finite() && self.radius >= mounts && self.radius <= 80.0,
+            "robot.radius",
+            || {
+                format!(
+                    "must be in [{mounts:.2}, 80] mm (the IR sensors sit {mounts:.2} mm from the centre and see 58 mm), got {}",
+                    self.radius
+                )
+            },
+        )?;
+        check(
+            self.wheel_base.is_finite() && self.wheel_base > 0.0 && self.wheel_base <= 1000.0,
+            "robot.wheel_base",
+            || format!("must be in (0, 1000] mm, got {}", self.wheel_base),
+        )
+    }
 }
 
 /// How the network's two motor commands move the robot (config `[robot] motion`).

@@ -71,17 +71,9 @@ pub const HOME_ZONE_RADIUS: f64 = 160.0;
 /// Home position of the built-in rooms (mm), heading +x.
 pub const BUILTIN_HOME: (f64, f64) = (40.0, 40.0);
 
-/// A room that cannot be used, with the file (or built-in name), the field and the reason.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{source_name}: field `{field}`: {reason}")]
-pub struct RoomError {
-    /// The file the room came from.
-    pub source_name: String,
-    /// The offending field, e.g. `outline` or `home.x`.
-    pub field: String,
-    /// What is wrong and what would be right.
-    pub reason: String,
-}
+/// A room that cannot be used, with the file (or built-in name), the field (e.g. `outline` or
+/// `home.x`) and the reason: the same type as a config's [`crate::config::ConfigError`].
+pub type RoomError = crate::params::FieldError;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]

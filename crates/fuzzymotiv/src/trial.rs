@@ -11,6 +11,7 @@ use crate::aem::Action;
 use crate::controller::{Controller, INPUTS};
 use crate::geom::{Segment, Vec2};
 use crate::noise::{perturb, perturb_sensors};
+use crate::params::{FieldError, check};
 use crate::rng::Rng;
 use crate::robot::{Compass, Khepera, Motion, Pose, drive};
 use crate::room::Room;
@@ -22,11 +23,13 @@ pub const CELL: f64 = 50.0;
 /// Parameters of a trial (docs/model.md, "Robot", "Noise" and "Home zone").
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct TrialParams {
-    /// Steps per trial `T`; default 400.
+    /// Steps per trial `T`; default 400; range 1..=10⁷.
     pub steps: usize,
-    /// Control step (s); default 0.1.
+    /// Control step (s); default 0.1; range (0, 10], and one step must move the robot less than
+    /// its radius ([`TrialParams::max_step`]).
     pub dt: f64,
-    /// Multiplicative noise level on sensors and wheels; default 0.06; 0 disables it.
+    /// Multiplicative noise level on sensors and wheels; default 0.06 (the paper's 6 %); range
+    /// [0, 0.5]; 0 disables it.
     pub noise: f64,
     /// IR response model; default `sampled`.
     pub sensor_model: SensorModel,
@@ -49,8 +52,85 @@ impl Default for TrialParams {
             sensor_model: SensorModel::Sampled,
             robot: Khepera::default(),
             end_at_home: true,
-            action_tolerance: 0.25,
+            action_tolerance: crate::aem::DEFAULT_ACTION_TOLERANCE,
         }
+    }
+}
+
+/// `[trial]` in a config, as written: see [`TrialParams`] for each field's unit, default and
+/// range.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RawTrial {
+    /// [`TrialParams::steps`].
+    pub steps: usize,
+    /// [`TrialParams::dt`].
+    pub dt: f64,
+    /// [`TrialParams::noise`].
+    pub noise: f64,
+    /// [`TrialParams::sensor_model`].
+    pub sensor_model: SensorModel,
+    /// [`TrialParams::end_at_home`].
+    pub end_at_home: bool,
+}
+
+impl Default for RawTrial {
+    fn default() -> Self {
+        let d = TrialParams::default();
+        Self {
+            steps: d.steps,
+            dt: d.dt,
+            noise: d.noise,
+            sensor_model: d.sensor_model,
+            end_at_home: d.end_at_home,
+        }
+    }
+}
+
+impl TrialParams {
+    /// Validates `[trial]` with the robot body (`[robot]`, checked here too) and the action
+    /// tolerance (`aem.action_tolerance`, checked with the AEM parameters).
+    pub fn from_raw(
+        t: &RawTrial,
+        robot: Khepera,
+        action_tolerance: f64,
+    ) -> Result<TrialParams, FieldError> {
+        check((1..=10_000_000).contains(&t.steps), "trial.steps", || {
+            format!("must be an integer in 1..={}, got {}", 10_000_000, t.steps)
+        })?;
+        check(
+            t.dt.is_finite() && t.dt > 0.0 && t.dt <= 10.0,
+            "trial.dt",
+            || format!("must be a time step in (0, 10] seconds, got {}", t.dt),
+        )?;
+        check(
+            t.noise.is_finite() && (0.0..=0.5).contains(&t.noise),
+            "trial.noise",
+            || {
+                format!(
+                    "must be a noise level in [0, 0.5] (0.06 is the paper's 6 %), got {}",
+                    t.noise
+                )
+            },
+        )?;
+        robot.validate()?;
+        let trial = TrialParams {
+            steps: t.steps,
+            dt: t.dt,
+            noise: t.noise,
+            sensor_model: t.sensor_model,
+            robot,
+            end_at_home: t.end_at_home,
+            action_tolerance,
+        };
+        check(trial.max_step() < robot.radius, "trial.dt", || {
+            format!(
+                "one step may move the robot {:.1} mm (robot.v_max × trial.dt × (1 + trial.noise)), which must stay below the body radius {} mm so it cannot pass through walls; use a smaller dt or v_max",
+                trial.max_step(),
+                robot.radius
+            )
+        })?;
+        Ok(trial)
     }
 }
 

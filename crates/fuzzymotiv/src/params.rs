@@ -1,0 +1,57 @@
+//! The one error type of every value read from a user's input (config or room file): the source,
+//! the field and what is wrong. Each parameter section is checked beside its own type
+//! ([`crate::ga::GaParams::validate`], [`crate::trial::TrialParams::from_raw`],
+//! [`crate::aem::AemParams::from_raw`], …) and [`crate::experiment::Experiment::new`] composes
+//! the checks, naming the source.
+
+/// A value that cannot be used: the file (or other source), the field and the reason.
+///
+/// ```
+/// use fuzzymotiv::params::FieldError;
+/// let e = FieldError::new("ga.population", "must be ≥ 2").in_source("c.toml");
+/// assert_eq!(e.to_string(), "c.toml: field `ga.population`: must be ≥ 2");
+/// ```
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{source_name}: field `{field}`: {reason}")]
+pub struct FieldError {
+    /// File (or other source) the value came from; empty until [`FieldError::in_source`].
+    pub source_name: String,
+    /// Dotted key, e.g. `ga.population`, `rooms[2]` or `home.x`.
+    pub field: String,
+    /// What is wrong and what would be right.
+    pub reason: String,
+}
+
+impl FieldError {
+    /// An error in `field`, its source not yet known.
+    pub fn new(field: impl Into<String>, reason: impl Into<String>) -> FieldError {
+        FieldError {
+            source_name: String::new(),
+            field: field.into(),
+            reason: reason.into(),
+        }
+    }
+
+    /// The same error, read from `source_name`.
+    pub fn in_source(mut self, source_name: &str) -> FieldError {
+        self.source_name = source_name.to_string();
+        self
+    }
+}
+
+/// The largest count most integer parameters accept (10⁶).
+pub const BIG: usize = 1_000_000;
+
+/// `Ok` if `ok`, else an error in `field` with the reason `reason()`.
+pub fn check(ok: bool, field: &str, reason: impl FnOnce() -> String) -> Result<(), FieldError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(FieldError::new(field, reason()))
+    }
+}
+
+/// Whether `v` is a probability: finite and in [0, 1].
+pub fn unit(v: f64) -> bool {
+    v.is_finite() && (0.0..=1.0).contains(&v)
+}
