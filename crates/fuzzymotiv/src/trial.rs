@@ -8,7 +8,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::controller::{Controller, INPUTS};
-use crate::geom::{Segment, Vec2};
+use crate::geom::{PreparedSegment, Segment, Vec2};
 use crate::noise::{perturb, perturb_sensors};
 use crate::rng::Rng;
 use crate::robot::{Khepera, Pose, drive};
@@ -64,6 +64,8 @@ struct Ray {
 pub struct Arena {
     room: Room,
     walls: Vec<Segment>,
+    /// The walls prepared for division-free culling tests (same order as `walls`).
+    prepared: Vec<PreparedSegment>,
     origin: Vec2,
     cols: usize,
     rows: usize,
@@ -188,6 +190,7 @@ impl Arena {
         let d_max = room.max_home_distance();
         Arena {
             room,
+            prepared: walls.iter().map(PreparedSegment::new).collect(),
             walls,
             origin: lo,
             cols,
@@ -290,8 +293,10 @@ impl Arena {
             walls: [0; NEAR_CAP],
         };
         let r2 = self.near_reach * self.near_reach;
+        // A culling test: `near_reach` keeps a 1e-6 mm margin over every distance that can
+        // matter, far above the rounding of the division-free test (see `PreparedSegment`).
         for &k in self.cell_list(cell) {
-            if self.walls[k as usize].dist2_to(p) <= r2 {
+            if self.prepared[k as usize].dist2_to(p) <= r2 {
                 if near.len == NEAR_CAP {
                     near.overflow = true;
                     break;
@@ -337,7 +342,7 @@ impl Arena {
             let mut n = 0;
             if !near.overflow {
                 for &k in &near.walls[..near.len] {
-                    if self.walls[k as usize].dist2_to(origin) <= range2 {
+                    if self.prepared[k as usize].dist2_to(origin) <= range2 {
                         cand[n] = k;
                         n += 1;
                     }
