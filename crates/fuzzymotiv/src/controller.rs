@@ -45,11 +45,9 @@ impl MlpShape {
     }
 }
 
-/// Logistic function 1 / (1 + e^(−x)).
-#[inline]
-pub fn logistic(x: f64) -> f64 {
-    1.0 / (1.0 + (-x).exp())
-}
+/// Logistic function 1 / (1 + e^(−x)), with the project's own `exp` (error bound and range:
+/// [`crate::math::logistic`]).
+pub use crate::math::logistic;
 
 /// The feed-forward logistic MLP whose weights are the genome.
 #[derive(Debug, Clone)]

@@ -23,10 +23,11 @@ impl Vec2 {
     pub const fn new(x: f64, y: f64) -> Self {
         Self { x, y }
     }
-    /// The unit vector at angle `theta` (rad) from +x.
+    /// The unit vector at angle `theta` (rad) from +x (the project's own sin/cos: ≤ 1 ulp for
+    /// `|theta| ≤ 10⁶`, see [`crate::math`]).
     #[inline]
     pub fn from_angle(theta: f64) -> Self {
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::math::sin_cos(theta);
         Self::new(c, s)
     }
     /// Dot product.
@@ -52,7 +53,7 @@ impl Vec2 {
     /// This vector rotated by `theta` (rad), counter-clockwise.
     #[inline]
     pub fn rotate(self, theta: f64) -> Self {
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::math::sin_cos(theta);
         Self::new(c * self.x - s * self.y, s * self.x + c * self.y)
     }
     /// Whether both coordinates are finite.

@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::geom::Vec2;
+use crate::math;
 
 /// Where the robot is: centre `(x, y)` in mm and `heading` in radians (counter-clockwise from +x,
 /// wrapped to (−π, π]).
@@ -108,16 +109,17 @@ pub fn drive(pose: Pose, s_left: f64, s_right: f64, wheel_base: f64, dt: f64) ->
     let dtheta = (s_right - s_left) / wheel_base * dt;
     let half = 0.5 * dtheta;
     // Chord length of the arc: v·dt·sin(half)/half (→ v·dt as half → 0).
+    // The project's own sin/cos (≤ 1 ulp, |x| ≤ 10⁶: see `crate::math`), not libm's.
     let sinc = if half.abs() < 1e-6 {
         1.0 - half * half / 6.0
     } else {
-        half.sin() / half
+        math::sin(half) / half
     };
     let chord = v * dt * sinc;
-    let mid = pose.heading + half;
+    let (s, c) = math::sin_cos(pose.heading + half);
     Pose::new(
-        pose.x + chord * mid.cos(),
-        pose.y + chord * mid.sin(),
+        pose.x + chord * c,
+        pose.y + chord * s,
         pose.heading + dtheta,
     )
 }

@@ -330,7 +330,7 @@ impl Arena {
         if near.len == 0 && !near.overflow {
             return out;
         }
-        let (s, c) = pose.heading.sin_cos();
+        let (s, c) = crate::math::sin_cos(pose.heading);
         let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
         let pos = pose.position();
         let range2 = self.ray_range * self.ray_range;
