@@ -334,11 +334,12 @@ impl Arena {
         let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
         let pos = pose.position();
         let range2 = self.ray_range * self.ray_range;
+        // Candidate walls of one sensor; filled anew for each (only `cand[..n]` is read).
+        let mut cand = [0u32; NEAR_CAP];
         for (o, sensor) in out.iter_mut().zip(&self.rays) {
             // All rays of a sensor share its origin; walls beyond the longest ray's range
             // cannot change the value, so they are dropped before casting.
             let origin = pos + rot(sensor[0].origin);
-            let mut cand = [0u32; NEAR_CAP];
             let mut n = 0;
             if !near.overflow {
                 for &k in &near.walls[..near.len] {
