@@ -27,6 +27,7 @@ pub mod fitness;
 pub mod fuzzy;
 pub mod ga;
 pub mod geom;
+pub mod math;
 pub mod noise;
 pub mod recognition;
 pub mod rng;
