@@ -10,8 +10,8 @@ for the same config and seed).
 array([0.263309, 1.      ])
 >>> res = fm.run(overrides={"ga.population": 6, "ga.generations": 2, "trial.steps": 50,
 ...                         "rooms": ["H"], "aem.enabled": False})
->>> list(res.summary["runs"][0])[:2]
-['run', 'first_generation']
+>>> res.summary["runs"][0]["run"], len(res.generations["best"])
+('all', 2)
 >>> tr = fm.simulate(res.best_genome, "H", seed=1, overrides={"trial.steps": 50})
 >>> tr["sensors"].shape
 (50, 8)
