@@ -9,7 +9,6 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::aem::Action;
 use fuzzymotiv::config::{OrientationMode, Training};
 use fuzzymotiv::controller::MlpShape;
 use fuzzymotiv::experiment::Run;
@@ -121,10 +120,13 @@ fn file_tag(name: &str) -> String {
 }
 
 /// The trajectory as CSV: one row per step `t` with the pose at the start of the step, the
-/// sensor values read there, the motor outputs, the action label and whether the move collided;
-/// a last row `t = steps` holds the final pose only.
-pub fn trajectory_csv(tr: &Trajectory, tolerance: f64) -> String {
-    let mut s = String::from("step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision\n");
+/// sensor values read there, the motor outputs, the action, whether the move collided and
+/// whether the step was idle (after the trial ended at home); a last row `t = steps` holds the
+/// final pose only.
+pub fn trajectory_csv(tr: &Trajectory) -> String {
+    let mut s = String::from(
+        "step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n",
+    );
     for t in 0..tr.len() {
         let p = tr.poses[t];
         let _ = write!(s, "{t},{},{},{}", num(p.x), num(p.y), num(p.heading));
@@ -134,17 +136,18 @@ pub fn trajectory_csv(tr: &Trajectory, tolerance: f64) -> String {
         let [ml, mr] = tr.motors[t];
         let _ = writeln!(
             s,
-            ",{},{},{},{}",
+            ",{},{},{},{},{}",
             num(ml),
             num(mr),
-            Action::from_motors(ml, mr, tolerance).label(),
-            u8::from(tr.collisions[t])
+            tr.actions[t].label(),
+            u8::from(tr.collisions[t]),
+            u8::from(tr.idle[t])
         );
     }
     if let Some(p) = tr.poses.last() {
         let _ = writeln!(
             s,
-            "{},{},{},{},,,,,,,,,,,,",
+            "{},{},{},{},,,,,,,,,,,,,",
             tr.len(),
             num(p.x),
             num(p.y),
@@ -271,12 +274,11 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     let stem = out
         .file_stem()
         .map_or("replay".to_string(), |s| s.to_string_lossy().into_owned());
-    let tolerance = exp.aem.action_tolerance;
     let mut rooms_json = Vec::new();
     for (r, label, tr) in &trials {
         let name = &exp.arenas[*r].room().name;
         let csv = dir.join(format!("{stem}-{}.csv", file_tag(name)));
-        write_atomic(&csv, trajectory_csv(tr, tolerance))?;
+        write_atomic(&csv, trajectory_csv(tr))?;
         let (terms, f) = trajectory_terms(&exp, *r, tr);
         println!(
             "{name}: a = {:.3}, g = {:.3}, b = {:.3}, F = {f:.4}, {} collisions → {}",
@@ -292,7 +294,8 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
             "steps": tr.len(),
             "terms": terms,
             "f": f,
-            "actions": tr.motors.iter().map(|m| Action::from_motors(m[0], m[1], tolerance).label()).collect::<Vec<_>>(),
+            "executed_steps": tr.executed(),
+            "actions": tr.actions.iter().map(|a| a.label()).collect::<Vec<_>>(),
             "trajectory": tr,
         }));
     }

@@ -123,7 +123,7 @@ fn action_letter(a: fuzzymotiv::aem::Action) -> char {
 
 /// The fitness terms of a recorded trial and its F under the experiment's motivations.
 pub fn trajectory_terms(exp: &Experiment, room: usize, tr: &Trajectory) -> (FitnessTerms, f64) {
-    let terms = FitnessTerms::measure(&exp.arenas[room], &exp.trial, tr);
+    let terms = FitnessTerms::measure(&exp.arenas[room], &exp.trial, exp.homing, tr);
     (terms, exp.fuzzy_fitness(&terms))
 }
 
@@ -133,8 +133,8 @@ pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, tr: &Trajecto
     let r = exp.arenas[room].room();
     let pts =
         |p: &[fuzzymotiv::geom::Vec2]| p.iter().map(|v| [r1(v.x), r1(v.y)]).collect::<Vec<_>>();
-    let tol = exp.aem.action_tolerance;
     let (terms, f) = trajectory_terms(exp, room, tr);
+    let zone = r.home_zone;
     json!({
         "room": r.name,
         "run": run_label,
@@ -147,7 +147,10 @@ pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, tr: &Trajecto
         "h": tr.poses.iter().map(|p| r3(p.heading)).collect::<Vec<_>>(),
         "s": tr.sensors.iter().map(|s| s.map(|v| v.round() as i64)).collect::<Vec<_>>(),
         "m": tr.motors.iter().map(|m| m.map(r3)).collect::<Vec<_>>(),
-        "a": tr.motors.iter().map(|m| action_letter(fuzzymotiv::aem::Action::from_motors(m[0], m[1], tol))).collect::<String>(),
+        "zone": [r1(zone.centre.x), r1(zone.centre.y), r1(zone.radius)],
+        "executed": tr.executed(),
+        "a": tr.actions.iter().map(|&a| action_letter(a)).collect::<String>(),
+        "i": tr.idle.iter().map(|&i| if i { '1' } else { '0' }).collect::<String>(),
         "c": tr.collisions.iter().map(|&c| if c { '1' } else { '0' }).collect::<String>(),
         "terms": {"a": r3(terms.a), "g": r3(terms.g), "l": r3(terms.l), "b": r3(terms.b)},
         "online_l": exp.orientation == fuzzymotiv::config::OrientationMode::Online && exp.motivations.orientation > 0.0,

@@ -1,7 +1,8 @@
 //! Action-based environment modelling (AEM): per-step action labels and environment vectors.
 //!
-//! Each control step's motor outputs are reduced to one of four [`Action`]s; a run of `T`
-//! actions is then encoded as a `T`-dimensional environment vector (SPEC §11). The default
+//! Each control step is one of four [`Action`]s (with `actions` motion the robot executes it;
+//! with `wheels` motion it labels the motor outputs); a run of `T` actions is then encoded as a
+//! `T`-dimensional environment vector (docs/model.md). The default
 //! [`Encoder::ChainCode`] is the paper's unwrapped 12-direction chain code divided by 12.
 
 /// The action taken in one control step, derived from the two motor outputs.
@@ -29,8 +30,22 @@ impl Action {
     /// 0.25 (config key `aem.action_tolerance`). NaN inputs fail every comparison and give
     /// `Straight`.
     pub fn from_motors(m_left: f64, m_right: f64, tolerance: f64) -> Action {
-        let s_left = 2.0 * m_left - 1.0;
-        let s_right = 2.0 * m_right - 1.0;
+        Action::from_speeds(2.0 * m_left - 1.0, 2.0 * m_right - 1.0, tolerance)
+    }
+
+    /// Classifies wheel speeds given as fractions of `v_max`, `s_left`, `s_right` (nominally in
+    /// [−1, 1]; noise may take them a little beyond): both `< 0` → `Turn180`; else
+    /// `sR − sL > tolerance` → `Left30`; else `sL − sR > tolerance` → `Right30`; else
+    /// `Straight` (see [`Action::from_motors`]).
+    ///
+    /// ```
+    /// use fuzzymotiv::aem::Action;
+    /// assert_eq!(Action::from_speeds(-0.1, -0.9, 0.25), Action::Turn180);
+    /// assert_eq!(Action::from_speeds(0.2, 0.6, 0.25), Action::Left30);
+    /// assert_eq!(Action::from_speeds(0.9, 0.8, 0.25), Action::Straight);
+    /// ```
+    #[inline]
+    pub fn from_speeds(s_left: f64, s_right: f64, tolerance: f64) -> Action {
         if s_left < 0.0 && s_right < 0.0 {
             Action::Turn180
         } else if s_right - s_left > tolerance {

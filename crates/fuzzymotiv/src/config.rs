@@ -11,6 +11,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::aem::Encoder;
+use crate::fitness::Homing;
 use crate::fuzzy::{CoefficientScheme, PAPER_PEAKS};
 use crate::ga::GaParams;
 use crate::robot::Khepera;
@@ -99,6 +100,8 @@ pub struct RawTrial {
     pub noise: f64,
     /// `"sampled"` (default) or `"linear"`.
     pub sensor_model: SensorModel,
+    /// End a trial when the robot is back in the home zone after escaping it; default true.
+    pub end_at_home: bool,
 }
 
 impl Default for RawTrial {
@@ -108,6 +111,7 @@ impl Default for RawTrial {
             dt: 0.1,
             noise: 0.06,
             sensor_model: SensorModel::Sampled,
+            end_at_home: true,
         }
     }
 }
@@ -163,6 +167,8 @@ pub struct RawFitness {
     pub energy: EnergyMode,
     /// `"offline"` (default) or `"online"`.
     pub orientation: OrientationMode,
+    /// `"escape"` (default) or `"distance"`.
+    pub homing: Homing,
 }
 
 /// `[aem]`: action-based environment modelling (SPEC §11).

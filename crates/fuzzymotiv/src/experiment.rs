@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use crate::aem::{Action, Encoder, environment_vector};
 use crate::config::{Coefficients, ConfigError, EnergyMode, OrientationMode, RawConfig, Training};
 use crate::controller::{Mlp, MlpShape};
-use crate::fitness::{FitnessTerms, TermsRecorder};
+use crate::fitness::{FitnessTerms, Homing, TermsRecorder};
 use crate::fuzzy::{FuzzyError, Motivations, TskFitness};
 use crate::ga::{GaParams, Genome, Stats, initial_population, next_generation};
 use crate::recognition::{Confusion, Recognizer, nearest_unique};
@@ -17,7 +17,7 @@ use crate::robot::{KHEPERA_RADIUS, Khepera};
 use crate::room::Room;
 use crate::seed::{derive, hash_str, purpose};
 use crate::som::{SomError, SomParams};
-use crate::trial::{Arena, Step, StepObserver, TrialParams, simulate};
+use crate::trial::{ActionLog, Arena, TrialParams, simulate};
 
 /// Validated AEM parameters.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -61,6 +61,8 @@ pub struct Experiment {
     pub energy: EnergyMode,
     /// When `l` is measured.
     pub orientation: OrientationMode,
+    /// How `g` is measured.
+    pub homing: Homing,
     /// Environment modelling.
     pub aem: AemParams,
 }
@@ -224,6 +226,8 @@ impl Experiment {
             noise: t.noise,
             sensor_model: t.sensor_model,
             robot,
+            end_at_home: t.end_at_home,
+            action_tolerance: raw.aem.action_tolerance,
         };
         check(trial.max_step() < robot.radius, "trial.dt", || {
             format!(
@@ -345,6 +349,7 @@ impl Experiment {
             shape,
             energy: raw.fitness.energy,
             orientation: raw.fitness.orientation,
+            homing: raw.fitness.homing,
             aem: AemParams {
                 enabled: a.enabled,
                 encoder: a.encoder,
@@ -411,8 +416,10 @@ impl Experiment {
         let arena = &self.arenas[room];
         let mut rng = rng_from_seed(seed);
         let mut obs = (
-            TermsRecorder::new(arena, &self.trial),
-            ActionRecorder::new(self.aem.action_tolerance, self.trial.steps),
+            TermsRecorder::new(arena, &self.trial, self.homing),
+            ActionLog {
+                actions: Vec::with_capacity(self.trial.steps),
+            },
         );
         simulate(
             arena,
@@ -474,7 +481,7 @@ impl Experiment {
             } else {
                 let arena = &self.arenas[r];
                 let mut rng = rng_from_seed(seed);
-                let mut rec = TermsRecorder::new(arena, &self.trial);
+                let mut rec = TermsRecorder::new(arena, &self.trial, self.homing);
                 simulate(
                     arena,
                     &mut self.controller(genome),
@@ -879,34 +886,6 @@ pub struct AemReport {
     pub confusion: Confusion,
     /// Number of SOM nodes.
     pub som_nodes: usize,
-}
-
-/// Records one action label per step.
-#[derive(Debug, Clone)]
-pub struct ActionRecorder {
-    tolerance: f64,
-    /// The labels so far.
-    pub actions: Vec<Action>,
-}
-
-impl ActionRecorder {
-    /// An empty recorder.
-    pub fn new(tolerance: f64, capacity: usize) -> Self {
-        Self {
-            tolerance,
-            actions: Vec::with_capacity(capacity),
-        }
-    }
-}
-
-impl StepObserver for ActionRecorder {
-    fn observe(&mut self, s: &Step) {
-        self.actions.push(Action::from_motors(
-            s.motors[0],
-            s.motors[1],
-            self.tolerance,
-        ));
-    }
 }
 
 #[cfg(test)]

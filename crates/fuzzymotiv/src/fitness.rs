@@ -1,4 +1,5 @@
-//! The fitness terms of SPEC §9: exploration `a`, homing `g`, orientation `l`, battery `b`.
+//! The fitness terms (docs/model.md, "Fitness terms"): exploration `a`, homing `g`,
+//! orientation `l`, battery `b`.
 
 use serde::{Deserialize, Serialize};
 
@@ -10,12 +11,26 @@ use crate::trial::{Arena, CELL, Step, StepObserver, Trajectory, TrialParams};
 pub struct FitnessTerms {
     /// Exploration: visited cells / optimum.
     pub a: f64,
-    /// Homing: 1 − d_final / d_max.
+    /// Homing: 1 − d_final / d_max (0 if the robot never escaped the home zone, with
+    /// [`Homing::Escape`]).
     pub g: f64,
     /// Orientation (recognition); 0 during evolution unless online orientation is on.
     pub l: f64,
-    /// Battery usage: mean (|sL| + |sR|) / (2·v_max) of the commanded speeds.
+    /// Battery usage: the energy of the executed steps / T (one unit per action with
+    /// `actions` motion; (|sL| + |sR|) / (2·v_max) of the commanded speeds with `wheels`).
     pub b: f64,
+}
+
+/// How the homing term `g` is measured (config `[fitness] homing`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Homing {
+    /// `g = 1 − d_final / d_max` if the robot escaped the home zone during the trial, else 0
+    /// (default: the paper's "escape from original neighborhood area").
+    #[default]
+    Escape,
+    /// `g = 1 − d_final / d_max` whatever happened (the first release).
+    Distance,
 }
 
 impl FitnessTerms {
@@ -25,8 +40,13 @@ impl FitnessTerms {
     }
 
     /// Measures the terms of a recorded trajectory (`l` = 0).
-    pub fn measure(arena: &Arena, params: &TrialParams, trajectory: &Trajectory) -> FitnessTerms {
-        let mut rec = TermsRecorder::new(arena, params);
+    pub fn measure(
+        arena: &Arena,
+        params: &TrialParams,
+        homing: Homing,
+        trajectory: &Trajectory,
+    ) -> FitnessTerms {
+        let mut rec = TermsRecorder::new(arena, params, homing);
         for s in trajectory.steps() {
             rec.observe(&s);
         }
@@ -51,13 +71,14 @@ pub struct TermsRecorder<'a> {
     battery: f64,
     steps: usize,
     last: crate::robot::Pose,
-    v_max: f64,
+    escaped: bool,
+    homing: Homing,
     optimum: usize,
 }
 
 impl<'a> TermsRecorder<'a> {
     /// A recorder for a trial starting at home (the home cell counts as visited).
-    pub fn new(arena: &'a Arena, params: &TrialParams) -> Self {
+    pub fn new(arena: &'a Arena, params: &TrialParams, homing: Homing) -> Self {
         let home = arena.room().home;
         let mut visited = vec![false; arena.cell_count()];
         visited[arena.cell_of(home.position())] = true;
@@ -68,7 +89,8 @@ impl<'a> TermsRecorder<'a> {
             battery: 0.0,
             steps: 0,
             last: home,
-            v_max: params.robot.v_max,
+            escaped: false,
+            homing,
             optimum: exploration_optimum(arena, params),
         }
     }
@@ -82,7 +104,11 @@ impl<'a> TermsRecorder<'a> {
     pub fn finish(&self) -> FitnessTerms {
         let a = (self.visited_count as f64 / self.optimum as f64).clamp(0.0, 1.0);
         let home = self.arena.room().home.position();
-        let g = (1.0 - self.last.position().dist(home) / self.arena.d_max()).clamp(0.0, 1.0);
+        let g = if self.homing == Homing::Escape && !self.escaped {
+            0.0
+        } else {
+            (1.0 - self.last.position().dist(home) / self.arena.d_max()).clamp(0.0, 1.0)
+        };
         let b = if self.steps == 0 {
             0.0
         } else {
@@ -102,9 +128,10 @@ impl StepObserver for TermsRecorder<'_> {
             self.visited[k] = true;
             self.visited_count += 1;
         }
-        self.battery += (s.speeds[0].abs() + s.speeds[1].abs()) / (2.0 * self.v_max);
+        self.battery += s.energy;
         self.steps += 1;
         self.last = s.pose;
+        self.escaped = s.escaped;
     }
 }
 
@@ -113,68 +140,135 @@ mod tests {
     use super::*;
     use crate::controller::{Controller, INPUTS};
     use crate::rng::rng_from_seed;
+    use crate::robot::{Khepera, Motion};
     use crate::room::Room;
     use crate::trial::run_trial;
 
-    struct Fixed([f64; 2]);
-    impl Controller for Fixed {
+    /// A controller that plays a fixed list of motor outputs, then repeats the last one.
+    struct Script(Vec<[f64; 2]>, usize);
+    impl Controller for Script {
         fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
-            self.0
+            let m = self.0[self.1.min(self.0.len() - 1)];
+            self.1 += 1;
+            m
         }
     }
 
-    fn terms(room: &str, motors: [f64; 2], steps: usize) -> FitnessTerms {
-        let params = TrialParams {
+    fn params(motion: Motion, steps: usize) -> TrialParams {
+        TrialParams {
             noise: 0.0,
             steps,
+            robot: Khepera {
+                motion,
+                ..Khepera::default()
+            },
             ..TrialParams::default()
-        };
-        let arena = Arena::new(Room::builtin(room).unwrap(), &params);
-        let tr = run_trial(&arena, &mut Fixed(motors), &params, &mut rng_from_seed(3));
-        FitnessTerms::measure(&arena, &params, &tr)
+        }
     }
 
+    fn measure(room: &str, params: &TrialParams, homing: Homing, script: Vec<[f64; 2]>) -> (FitnessTerms, Trajectory) {
+        let arena = Arena::new(Room::builtin(room).unwrap(), params);
+        let tr = run_trial(&arena, &mut Script(script, 0), params, &mut rng_from_seed(3));
+        (FitnessTerms::measure(&arena, params, homing, &tr), tr)
+    }
+
+    const STRAIGHT: [f64; 2] = [1.0, 1.0];
+    const BACK: [f64; 2] = [0.0, 0.0];
+    const LEFT: [f64; 2] = [0.3, 0.9];
+
     #[test]
-    fn robot_standing_still() {
-        let t = terms("square", [0.5, 0.5], 400);
-        // Optimum = min(100 reachable, floor(400·80·0.1/50)+1 = 65) = 65; one cell visited.
+    fn wheels_robot_standing_still() {
+        let (t, _) = measure("square", &params(Motion::Wheels, 400), Homing::Distance, vec![[0.5, 0.5]]);
+        // Optimum = min(196 reachable, floor(400·80·0.1/50)+1 = 65) = 65; one cell visited.
         assert_eq!(t.a, 1.0 / 65.0);
         assert_eq!(t.g, 1.0);
         assert_eq!(t.b, 0.0);
         assert_eq!(t.l, 0.0);
+        // With the escape rule, a robot that never left the home zone has not homed.
+        let (t, _) = measure("square", &params(Motion::Wheels, 400), Homing::Escape, vec![[0.5, 0.5]]);
+        assert_eq!(t.g, 0.0);
+    }
+
+    /// A robot that only turns on the spot never leaves the zone: g = 0, and every turn is an
+    /// executed action, so b = 1.
+    #[test]
+    fn a_robot_that_never_leaves_the_zone_gets_no_homing() {
+        let (t, tr) = measure("square", &params(Motion::Actions, 400), Homing::Escape, vec![LEFT]);
+        assert_eq!(t.g, 0.0);
+        assert_eq!(t.b, 1.0);
+        assert_eq!(t.a, 1.0 / 65.0);
+        assert_eq!(tr.executed(), 400);
+        assert!(tr.escaped.iter().all(|&e| !e));
+    }
+
+    /// Out of the zone along +x, turn 180°, back in: the trial ends at re-entry and the rest of
+    /// the 400 steps are idle; b counts the executed actions.
+    #[test]
+    fn a_robot_that_comes_back_ends_its_trial_at_home() {
+        let mut script = vec![STRAIGHT; 20];
+        script.push(BACK);
+        script.extend([STRAIGHT; 400]);
+        let (t, tr) = measure("square", &params(Motion::Actions, 400), Homing::Escape, script);
+        // 20 moves to x = 200 (out of the 160 mm zone after x = 160), one turn, then 6 moves
+        // back to x = 152, where |(152, 40)| = 157.2 ≤ 160: 27 executed steps.
+        assert_eq!(tr.executed(), 27);
+        assert_eq!(tr.len(), 400);
+        assert_eq!(tr.poses.len(), 401);
+        let end = tr.poses[27];
+        assert_eq!((end.x, end.y), (152.0, 40.0));
+        assert!(tr.poses[27..].iter().all(|p| *p == end), "idle steps stand still");
+        assert!(tr.idle[27..].iter().all(|&i| i) && tr.idle[..27].iter().all(|&i| !i));
+        assert!(tr.actions[27..].iter().all(|&a| a == crate::aem::Action::Straight));
+        assert!(tr.energy[27..].iter().all(|&e| e == 0.0));
+        assert_eq!(t.b, 27.0 / 400.0);
+        // g: 112 mm from home (40, 40); d_max = |(800, 800) − (40, 40)| = 760·√2.
+        assert!((t.g - (1.0 - 112.0 / (760.0 * 2f64.sqrt()))).abs() < 1e-12, "{t:?}");
+        // Cells of x = 40 … 200 on the bottom row: 0, 1, 2, 3, 4.
+        assert_eq!(t.a, 5.0 / 65.0);
+        // Without end_at_home the robot drives on to the far wall.
+        let p = TrialParams {
+            end_at_home: false,
+            ..params(Motion::Actions, 400)
+        };
+        let mut script = vec![STRAIGHT; 20];
+        script.push(BACK);
+        script.extend([STRAIGHT; 400]);
+        let (_, tr) = measure("square", &p, Homing::Escape, script);
+        assert_eq!(tr.executed(), 400);
     }
 
     #[test]
-    fn robot_driving_straight() {
-        // From (150, 150) heading +x at 8 mm/step for 20 steps: 160 mm, ending at x = 310.
-        let t = terms("square", [1.0, 1.0], 20);
-        // Cells entered: x-cells 3,4,5,6 (150 → 310 crosses 200, 250, 300): 4 cells.
-        // Optimum = floor(20·8/50)+1 = 4.
+    fn wheels_robot_driving_straight() {
+        // From (40, 40) heading +x at 8 mm/step for 20 steps: 160 mm, ending at x = 200.
+        let (t, _) = measure("square", &params(Motion::Wheels, 20), Homing::Distance, vec![STRAIGHT]);
+        // Cells entered: x-cells 0 … 4: 5 cells; optimum = floor(20·8/50)+1 = 4 → a = 1.
         assert_eq!(t.a, 1.0);
-        // d_max from (150,150) is the far corner (600,600): 450·√2.
-        let d_max = 450.0 * 2f64.sqrt();
+        let d_max = 760.0 * 2f64.sqrt();
         assert!((t.g - (1.0 - 160.0 / d_max)).abs() < 1e-9, "{t:?}");
         assert_eq!(t.b, 1.0);
     }
 
     #[test]
     fn recorder_and_trajectory_agree() {
-        let params = TrialParams::default();
-        let arena = Arena::new(Room::builtin("H").unwrap(), &params);
-        let tr = run_trial(
-            &arena,
-            &mut Fixed([0.9, 0.7]),
-            &params,
-            &mut rng_from_seed(9),
-        );
-        let mut rec = TermsRecorder::new(&arena, &params);
-        crate::trial::simulate(
-            &arena,
-            &mut Fixed([0.9, 0.7]),
-            &params,
-            &mut rng_from_seed(9),
-            &mut rec,
-        );
-        assert_eq!(rec.finish(), FitnessTerms::measure(&arena, &params, &tr));
+        for motion in [Motion::Actions, Motion::Wheels] {
+            let params = TrialParams {
+                robot: Khepera {
+                    motion,
+                    ..Khepera::default()
+                },
+                ..TrialParams::default()
+            };
+            let arena = Arena::new(Room::builtin("H").unwrap(), &params);
+            let tr = run_trial(&arena, &mut Script(vec![[0.9, 0.7]], 0), &params, &mut rng_from_seed(9));
+            let mut rec = TermsRecorder::new(&arena, &params, Homing::Escape);
+            crate::trial::simulate(
+                &arena,
+                &mut Script(vec![[0.9, 0.7]], 0),
+                &params,
+                &mut rng_from_seed(9),
+                &mut rec,
+            );
+            assert_eq!(rec.finish(), FitnessTerms::measure(&arena, &params, Homing::Escape, &tr));
+        }
     }
 }

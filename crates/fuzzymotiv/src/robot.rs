@@ -1,7 +1,9 @@
-//! The Khepera I body: pose, physical parameters and pure differential-drive kinematics.
+//! The Khepera I body: pose, physical parameters and the two motion models — the paper's
+//! executed actions ([`Motion::Actions`]) and continuous differential drive ([`Motion::Wheels`]).
 
 use serde::{Deserialize, Serialize};
 
+use crate::aem::Action;
 use crate::geom::Vec2;
 
 /// Where the robot is: centre `(x, y)` in mm and `heading` in radians (counter-clockwise from +x,
@@ -63,16 +65,173 @@ pub fn wrap_angle(theta: f64) -> f64 {
     t
 }
 
-/// Physical parameters of the Khepera I (SPEC §3). All lengths in mm, speeds in mm/s.
+/// Physical parameters of the Khepera I and its motion model (`[robot]` in a config; see
+/// docs/model.md). All lengths in mm, speeds in mm/s.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Khepera {
     /// Body radius; default 27.5 mm (diameter 55 mm).
     pub radius: f64,
-    /// Distance between the wheels; default 53 mm.
+    /// Distance between the wheels; default 53 mm (used by `wheels` motion only).
     pub wheel_base: f64,
-    /// Maximum wheel speed; default 80 mm/s.
+    /// Maximum wheel speed; default 80 mm/s. With `actions` motion a straight step moves
+    /// `v_max · dt` (8 mm by default).
     pub v_max: f64,
+    /// How the network's motor commands move the robot; default `"actions"` (the paper's).
+    pub motion: Motion,
+}
+
+/// How the network's two motor commands move the robot (config `[robot] motion`).
+///
+/// ```
+/// use fuzzymotiv::aem::Action;
+/// use fuzzymotiv::robot::{Compass, Motion, Pose};
+/// let compass = Compass::new(0.0);
+/// let home = Pose::new(40.0, 40.0, 0.0);
+/// // A straight action moves 8 mm along the heading; a turn rotates on the spot.
+/// let (p, dir) = Motion::execute(home, 0, Action::Straight, 8.0, &compass);
+/// assert_eq!((p.x, p.y, dir), (48.0, 40.0, 0));
+/// let (q, dir) = Motion::execute(home, 0, Action::Left30, 8.0, &compass);
+/// assert_eq!((q.x, q.y, q.heading, dir), (40.0, 40.0, std::f64::consts::FRAC_PI_6, 1));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Motion {
+    /// The paper's robot (default): each step's noisy wheel speeds are labelled as one of the
+    /// four AEM actions and the robot executes it exactly: `straight` moves `v_max · dt`
+    /// forward, `left30` / `right30` rotate on the spot by ±30°, `turn180` by 180°. The
+    /// heading stays on the 30° grid from the home heading; one step uses one unit of energy.
+    #[default]
+    Actions,
+    /// Continuous differential drive (the first release's model): the noisy wheel speeds are
+    /// integrated exactly along the arc; the action label only records the step, taken from
+    /// the motor outputs before noise; energy is (|sL| + |sR|) / (2·v_max).
+    Wheels,
+}
+
+impl Motion {
+    /// The action label of a step. `motors` are the network outputs `mL, mR` ∈ [0, 1];
+    /// `noisy` the wheel speeds after noise (mm/s). `actions` motion labels the noisy speeds
+    /// as fractions of `v_max` (they drive the robot); `wheels` labels the motor outputs
+    /// before noise, as the first release did.
+    #[inline]
+    pub fn label(self, motors: [f64; 2], noisy: [f64; 2], v_max: f64, tolerance: f64) -> Action {
+        match self {
+            Motion::Actions => Action::from_speeds(noisy[0] / v_max, noisy[1] / v_max, tolerance),
+            Motion::Wheels => Action::from_motors(motors[0], motors[1], tolerance),
+        }
+    }
+
+    /// Energy used by an executed step, in units where 1 is a full step: one unit per action
+    /// with `actions` motion; `(|sL| + |sR|) / (2·v_max)` of the commanded speeds `speeds`
+    /// (before noise) with `wheels` motion.
+    #[inline]
+    pub fn energy(self, speeds: [f64; 2], v_max: f64) -> f64 {
+        match self {
+            Motion::Actions => 1.0,
+            Motion::Wheels => (speeds[0].abs() + speeds[1].abs()) / (2.0 * v_max),
+        }
+    }
+
+    /// Executes `action` from `pose`, whose heading is `compass`'s direction `dir` (0..12):
+    /// the candidate pose and its direction. `step` is the length of a straight move (mm).
+    #[inline]
+    pub fn execute(pose: Pose, dir: usize, action: Action, step: f64, compass: &Compass) -> (Pose, usize) {
+        let dir = match action {
+            Action::Straight => {
+                let p = Pose {
+                    x: pose.x + step * compass.cos[dir],
+                    y: pose.y + step * compass.sin[dir],
+                    heading: pose.heading,
+                };
+                return (p, dir);
+            }
+            Action::Left30 => (dir + 1) % 12,
+            Action::Right30 => (dir + 11) % 12,
+            Action::Turn180 => (dir + 6) % 12,
+        };
+        let p = Pose {
+            heading: compass.heading[dir],
+            ..pose
+        };
+        (p, dir)
+    }
+}
+
+/// The twelve headings of the 30° grid from a home heading, with their cosines and sines, so
+/// that `actions` motion needs no trigonometry per step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Compass {
+    /// `heading[k]` = home heading + k·30°, wrapped to (−π, π] (rad).
+    pub heading: [f64; 12],
+    /// Cosine of each heading.
+    pub cos: [f64; 12],
+    /// Sine of each heading.
+    pub sin: [f64; 12],
+}
+
+/// `k·30°` for k = 0..12, wrapped to (−π, π], each the correctly rounded double.
+const GRID_ANGLES: [f64; 12] = [
+    0.0,
+    0.523_598_775_598_298_9,
+    1.047_197_551_196_597_9,
+    1.570_796_326_794_896_6,
+    2.094_395_102_393_195_7,
+    2.617_993_877_991_494_4,
+    std::f64::consts::PI,
+    -2.617_993_877_991_494_4,
+    -2.094_395_102_393_195_7,
+    -1.570_796_326_794_896_6,
+    -1.047_197_551_196_597_9,
+    -0.523_598_775_598_298_9,
+];
+
+/// `√3 / 2`, correctly rounded: cos 30°.
+const HALF_SQRT3: f64 = 0.866_025_403_784_438_6;
+
+/// cos(k·30°), exact to the last bit.
+const GRID_COS: [f64; 12] = [
+    1.0,
+    HALF_SQRT3,
+    0.5,
+    0.0,
+    -0.5,
+    -HALF_SQRT3,
+    -1.0,
+    -HALF_SQRT3,
+    -0.5,
+    0.0,
+    0.5,
+    HALF_SQRT3,
+];
+
+impl Compass {
+    /// The grid from `home_heading` (rad). Direction 0 is the home heading itself. When the
+    /// home heading is itself a multiple of 30° (every built-in room's is 0), every heading,
+    /// cosine and sine is the correctly rounded value, so no trigonometry is computed;
+    /// otherwise cosines and sines are computed once here.
+    pub fn new(home_heading: f64) -> Compass {
+        if let Some(k0) = GRID_ANGLES.iter().position(|&a| a == home_heading) {
+            let at = |k: usize| (k0 + k) % 12;
+            return Compass {
+                heading: std::array::from_fn(|k| GRID_ANGLES[at(k)]),
+                cos: std::array::from_fn(|k| GRID_COS[at(k)]),
+                sin: std::array::from_fn(|k| GRID_COS[(at(k) + 9) % 12]),
+            };
+        }
+        let heading: [f64; 12] = std::array::from_fn(|k| {
+            if k == 0 {
+                home_heading
+            } else {
+                wrap_angle(home_heading + GRID_ANGLES[k])
+            }
+        });
+        Compass {
+            heading,
+            cos: heading.map(f64::cos),
+            sin: heading.map(f64::sin),
+        }
+    }
 }
 
 /// The Khepera's body radius (mm), also used to validate room files.
@@ -84,6 +243,7 @@ impl Default for Khepera {
             radius: KHEPERA_RADIUS,
             wheel_base: 53.0,
             v_max: 80.0,
+            motion: Motion::Actions,
         }
     }
 }
@@ -175,6 +335,29 @@ mod tests {
                 "{theta}"
             );
         }
+    }
+
+    #[test]
+    fn compass_grid_is_exact() {
+        let c = Compass::new(0.0);
+        for k in 0..12 {
+            let a = k as f64 * PI / 6.0;
+            assert!((c.cos[k] - a.cos()).abs() < 1e-15, "{k}");
+            assert!((c.sin[k] - a.sin()).abs() < 1e-15, "{k}");
+            assert!((wrap_angle(c.heading[k] - a)).abs() < 1e-15, "{k}");
+        }
+        assert_eq!(c.heading[1], std::f64::consts::FRAC_PI_6);
+        assert_eq!(c.heading[6], PI);
+        assert_eq!(c.sin[3], 1.0);
+        // A home heading on the grid (90°) rotates the exact table.
+        let up = Compass::new(90f64.to_radians());
+        assert_eq!(up.heading[0], std::f64::consts::FRAC_PI_2);
+        assert_eq!((up.cos[0], up.sin[0]), (0.0, 1.0));
+        assert_eq!((up.cos[3], up.sin[3]), (-1.0, 0.0));
+        // Off the grid: computed once.
+        let odd = Compass::new(0.1);
+        assert_eq!(odd.heading[0], 0.1);
+        assert!((odd.heading[6] - (0.1 - PI)).abs() < 1e-15);
     }
 
     #[test]

@@ -34,7 +34,42 @@ pub struct Room {
     pub obstacles: Vec<Vec<Vec2>>,
     /// Start pose of every trial.
     pub home: Pose,
+    /// The home zone: a trial can end when the robot comes back into it (docs/model.md).
+    pub home_zone: HomeZone,
 }
+
+/// The home zone, a disc: the robot has *escaped* once its centre has been outside it, and an
+/// escaped robot whose centre is inside it again has come home.
+///
+/// ```
+/// use fuzzymotiv::{geom::Vec2, room::HomeZone};
+/// let zone = HomeZone { centre: Vec2::new(0.0, 0.0), radius: 160.0 };
+/// assert!(zone.contains(Vec2::new(40.0, 40.0)));
+/// assert!(!zone.contains(Vec2::new(120.0, 120.0)));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct HomeZone {
+    /// Centre (mm).
+    pub centre: Vec2,
+    /// Radius (mm), > 0.
+    pub radius: f64,
+}
+
+impl HomeZone {
+    /// Whether `p` is inside the zone (on its rim counts as inside).
+    #[inline]
+    pub fn contains(&self, p: Vec2) -> bool {
+        let d = p - self.centre;
+        d.x * d.x + d.y * d.y <= self.radius * self.radius
+    }
+}
+
+/// Radius of the built-in rooms' home zones and of a room file's default zone (mm): the quarter
+/// circle the paper's Figs. 7–8 draw in every room.
+pub const HOME_ZONE_RADIUS: f64 = 160.0;
+
+/// Home position of the built-in rooms (mm), heading +x.
+pub const BUILTIN_HOME: (f64, f64) = (40.0, 40.0);
 
 /// A room that cannot be used, with the file (or built-in name), the field and the reason.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -54,8 +89,17 @@ struct RawRoom {
     name: String,
     outline: Vec<[f64; 2]>,
     home: RawHome,
+    home_zone: Option<RawZone>,
     #[serde(default)]
     obstacles: Vec<RawObstacle>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawZone {
+    x: f64,
+    y: f64,
+    radius: f64,
 }
 
 #[derive(Deserialize)]
@@ -77,66 +121,56 @@ fn pts(v: &[(f64, f64)]) -> Vec<Vec2> {
 }
 
 impl Room {
-    /// One of the five built-in rooms by name (`H`, `T`, `L`, `square`, `rectangle`).
+    /// One of the five built-in rooms by name (`H`, `T`, `L`, `square`, `rectangle`): the
+    /// paper's rooms as its Figs. 7–8 draw them (docs/model.md), 800 mm across, home at
+    /// (40, 40) heading +x, home zone of radius 160 mm centred on the bottom-left corner.
     pub fn builtin(name: &str) -> Option<Room> {
-        let deg = std::f64::consts::PI / 180.0;
-        let (outline, home) = match name {
-            "square" => (
-                pts(&[(0., 0.), (600., 0.), (600., 600.), (0., 600.)]),
-                (150., 150., 0.),
-            ),
-            "rectangle" => (
-                pts(&[(0., 0.), (900., 0.), (900., 400.), (0., 400.)]),
-                (150., 150., 0.),
-            ),
-            "L" => (
-                pts(&[
-                    (0., 0.),
-                    (800., 0.),
-                    (800., 300.),
-                    (300., 300.),
-                    (300., 800.),
-                    (0., 800.),
-                ]),
-                (150., 150., 0.),
-            ),
-            "T" => (
-                pts(&[
-                    (325., 0.),
-                    (575., 0.),
-                    (575., 550.),
-                    (900., 550.),
-                    (900., 800.),
-                    (0., 800.),
-                    (0., 550.),
-                    (325., 550.),
-                ]),
-                (450., 150., 90.),
-            ),
-            "H" => (
-                pts(&[
-                    (0., 0.),
-                    (200., 0.),
-                    (200., 300.),
-                    (700., 300.),
-                    (700., 0.),
-                    (900., 0.),
-                    (900., 800.),
-                    (700., 800.),
-                    (700., 500.),
-                    (200., 500.),
-                    (200., 800.),
-                    (0., 800.),
-                ]),
-                (100., 150., 90.),
-            ),
+        let outline = match name {
+            "square" => pts(&[(0., 0.), (800., 0.), (800., 800.), (0., 800.)]),
+            "rectangle" => pts(&[(0., 0.), (800., 0.), (800., 400.), (0., 400.)]),
+            "L" => pts(&[
+                (0., 0.),
+                (400., 0.),
+                (400., 400.),
+                (800., 400.),
+                (800., 800.),
+                (0., 800.),
+            ]),
+            "T" => pts(&[
+                (0., 0.),
+                (400., 0.),
+                (400., 240.),
+                (800., 240.),
+                (800., 560.),
+                (400., 560.),
+                (400., 800.),
+                (0., 800.),
+            ]),
+            "H" => pts(&[
+                (0., 0.),
+                (200., 0.),
+                (200., 280.),
+                (600., 280.),
+                (600., 0.),
+                (800., 0.),
+                (800., 800.),
+                (600., 800.),
+                (600., 520.),
+                (200., 520.),
+                (200., 800.),
+                (0., 800.),
+            ]),
             _ => return None,
         };
         Some(Room {
             name: name.to_string(),
             outline,
             obstacles: Vec::new(),
-            home: Pose::new(home.0, home.1, home.2 * deg),
+            home: Pose::new(BUILTIN_HOME.0, BUILTIN_HOME.1, 0.0),
+            home_zone: HomeZone {
+                centre: Vec2::new(0.0, 0.0),
+                radius: HOME_ZONE_RADIUS,
+            },
         })
     }
 
@@ -151,7 +185,7 @@ impl Room {
         let raw: RawRoom = toml::from_str(text).map_err(|e| {
             let msg = e.message().to_string();
             let field = field_from_toml_message(&msg, text, e.span());
-            err(&field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional [[obstacles]] outline)"))
+            err(&field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline)"))
         })?;
         for (i, p) in raw.outline.iter().enumerate() {
             if !p[0].is_finite() || !p[1].is_finite() {
@@ -209,12 +243,34 @@ impl Room {
                 return Err(err(name, format!("must be a finite number, got {v}")));
             }
         }
+        let home_zone = match &raw.home_zone {
+            Some(z) => {
+                for (name, v) in [
+                    ("home_zone.x", z.x),
+                    ("home_zone.y", z.y),
+                    ("home_zone.radius", z.radius),
+                ] {
+                    if !v.is_finite() {
+                        return Err(err(name, format!("must be a finite number (mm), got {v}")));
+                    }
+                }
+                HomeZone {
+                    centre: Vec2::new(z.x, z.y),
+                    radius: z.radius,
+                }
+            }
+            None => HomeZone {
+                centre: Vec2::new(raw.home.x, raw.home.y),
+                radius: HOME_ZONE_RADIUS,
+            },
+        };
         let to_vec = |v: &[[f64; 2]]| v.iter().map(|p| Vec2::new(p[0], p[1])).collect::<Vec<_>>();
         let room = Room {
             name: raw.name,
             outline: to_vec(&raw.outline),
             obstacles: raw.obstacles.iter().map(|o| to_vec(&o.outline)).collect(),
             home: Pose::new(raw.home.x, raw.home.y, raw.home.heading_deg.to_radians()),
+            home_zone,
         };
         room.validated(source_name)
     }
@@ -282,6 +338,30 @@ impl Room {
                 format!(
                     "home ({}, {}) is {clearance:.1} mm from a wall; it must be at least the body radius ({KHEPERA_RADIUS} mm) away",
                     home.x, home.y
+                ),
+            ));
+        }
+        let zone = self.home_zone;
+        if !(zone.radius > 0.0 && zone.radius <= MAX_COORD) {
+            return Err(err(
+                "home_zone.radius",
+                format!(
+                    "must be a radius > 0 and ≤ {MAX_COORD} mm, got {} (the default is {HOME_ZONE_RADIUS})",
+                    zone.radius
+                ),
+            ));
+        }
+        if !zone.contains(home) {
+            return Err(err(
+                "home_zone",
+                format!(
+                    "home ({}, {}) is {:.1} mm from the zone centre ({}, {}), outside its radius {}; the home position must lie inside its zone",
+                    home.x,
+                    home.y,
+                    home.dist(zone.centre),
+                    zone.centre.x,
+                    zone.centre.y,
+                    zone.radius
                 ),
             ));
         }
@@ -413,8 +493,21 @@ mod tests {
             r.clone().validated(name).unwrap();
             assert!(signed_area(&r.outline) > 0.0, "{name} not CCW");
         }
-        assert_eq!(Room::builtin("square").unwrap().area(), 360_000.0);
+        assert_eq!(Room::builtin("square").unwrap().area(), 640_000.0);
+        assert_eq!(Room::builtin("rectangle").unwrap().area(), 320_000.0);
+        assert_eq!(Room::builtin("L").unwrap().area(), 480_000.0);
+        assert_eq!(Room::builtin("T").unwrap().area(), 320_000.0 + 400.0 * 320.0);
+        assert_eq!(
+            Room::builtin("H").unwrap().area(),
+            2.0 * 200.0 * 800.0 + 400.0 * 240.0
+        );
         assert_eq!(Room::builtin("L").unwrap().perimeter(), 3200.0);
+        for name in BUILTIN_ROOMS {
+            let r = Room::builtin(name).unwrap();
+            assert_eq!((r.home.x, r.home.y, r.home.heading), (40.0, 40.0, 0.0));
+            assert_eq!(r.home_zone.centre, Vec2::new(0.0, 0.0));
+            assert_eq!(r.home_zone.radius, 160.0);
+        }
         assert!(Room::builtin("nope").is_none());
     }
 
@@ -431,6 +524,39 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
         assert!(signed_area(&r.outline) > 0.0);
         assert_eq!(r.walls().len(), 12);
         assert!((r.home.heading + std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        // No home_zone: centred on home, radius 160.
+        assert_eq!(r.home_zone.centre, Vec2::new(125.0, 600.0));
+        assert_eq!(r.home_zone.radius, HOME_ZONE_RADIUS);
+        let z = Room::from_toml_str(
+            &format!("{text}\nhome_zone = {{ x = 100, y = 650, radius = 120 }}\n").replace(
+                "[[obstacles]]\noutline = [[400,100],[500,100],[500,200],[400,200]]\n",
+                "",
+            ),
+            "u.toml",
+        )
+        .unwrap();
+        assert_eq!(z.home_zone.centre, Vec2::new(100.0, 650.0));
+        assert_eq!(z.home_zone.radius, 120.0);
+    }
+
+    /// Room-file `home_zone` errors name the field (radius > 0, finite, home inside the zone).
+    #[test]
+    fn bad_home_zones_name_the_field() {
+        let room = "name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x=150,y=150,heading_deg=0}\n";
+        let e = bad(&format!("{room}home_zone={{x=150,y=150,radius=0}}"));
+        assert_eq!(e.field, "home_zone.radius");
+        assert!(e.reason.contains("> 0"), "{e}");
+        let e = bad(&format!("{room}home_zone={{x=150,y=150,radius=-5}}"));
+        assert_eq!(e.field, "home_zone.radius");
+        let e = bad(&format!("{room}home_zone={{x=150,y=150,radius=nan}}"));
+        assert_eq!(e.field, "home_zone.radius");
+        let e = bad(&format!("{room}home_zone={{x=inf,y=150,radius=10}}"));
+        assert_eq!(e.field, "home_zone.x");
+        let e = bad(&format!("{room}home_zone={{x=0,y=0,radius=100}}"));
+        assert_eq!(e.field, "home_zone");
+        assert!(e.reason.contains("inside its zone"), "{e}");
+        let e = bad(&format!("{room}home_zone={{x=0,y=0}}"));
+        assert!(e.to_string().contains("radius"), "{e}");
     }
 
     fn bad(text: &str) -> RoomError {

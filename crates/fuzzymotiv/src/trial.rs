@@ -7,18 +7,19 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::aem::Action;
 use crate::controller::{Controller, INPUTS};
 use crate::geom::{Segment, Vec2};
 use crate::noise::{perturb, perturb_sensors};
 use crate::rng::Rng;
-use crate::robot::{Khepera, Pose, drive};
+use crate::robot::{Compass, Khepera, Motion, Pose, drive};
 use crate::room::Room;
 use crate::sensor::{SENSOR_MAX, SensorModel, ray_count, rays, sensing_reach};
 
 /// Side of a grid cell (mm): the exploration grid of SPEC §9 and the wall-culling grid.
 pub const CELL: f64 = 50.0;
 
-/// Parameters of a trial (SPEC §3–§5).
+/// Parameters of a trial (docs/model.md, "Robot", "Noise" and "Home zone").
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct TrialParams {
     /// Steps per trial `T`; default 400.
@@ -29,8 +30,14 @@ pub struct TrialParams {
     pub noise: f64,
     /// IR response model; default `sampled`.
     pub sensor_model: SensorModel,
-    /// The robot's body.
+    /// The robot's body and motion model.
     pub robot: Khepera,
+    /// End the trial when the robot, having escaped the home zone, is back inside it; the
+    /// remaining steps are idle. Default true.
+    pub end_at_home: bool,
+    /// Signed-speed difference (fractions of `v_max`) separating a turn from a straight step
+    /// in the action labels; default 0.25 (config `aem.action_tolerance`).
+    pub action_tolerance: f64,
 }
 
 impl Default for TrialParams {
@@ -41,6 +48,8 @@ impl Default for TrialParams {
             noise: 0.06,
             sensor_model: SensorModel::Sampled,
             robot: Khepera::default(),
+            end_at_home: true,
+            action_tolerance: 0.25,
         }
     }
 }
@@ -48,7 +57,15 @@ impl Default for TrialParams {
 impl TrialParams {
     /// Longest distance the centre can move in one step (mm), noise included.
     pub fn max_step(&self) -> f64 {
-        self.robot.v_max * self.dt * (1.0 + self.noise)
+        match self.robot.motion {
+            Motion::Actions => self.straight_step(),
+            Motion::Wheels => self.robot.v_max * self.dt * (1.0 + self.noise),
+        }
+    }
+
+    /// Length of a straight action (mm): `v_max · dt`, 8 mm by default.
+    pub fn straight_step(&self) -> f64 {
+        self.robot.v_max * self.dt
     }
 }
 
@@ -77,6 +94,7 @@ pub struct Arena {
     radius: f64,
     near_reach: f64,
     ray_range: f64,
+    compass: Compass,
 }
 
 impl Arena {
@@ -186,6 +204,7 @@ impl Arena {
             })
             .collect();
         let d_max = room.max_home_distance();
+        let compass = Compass::new(room.home.heading);
         Arena {
             room,
             walls,
@@ -207,6 +226,7 @@ impl Arena {
                 .map(|r| r.range())
                 .fold(0.0, f64::max)
                 + 1e-6,
+            compass,
         }
     }
 
@@ -321,13 +341,21 @@ impl Arena {
     /// Sensor values at `pose` given its [`Arena::near_walls`].
     #[inline]
     pub fn read_sensors_near(&self, pose: &Pose, near: &NearWalls) -> [f64; INPUTS] {
+        if near.len == 0 && !near.overflow {
+            return [0.0; INPUTS];
+        }
+        let (s, c) = pose.heading.sin_cos();
+        self.read_sensors_rotated(pose.position(), s, c, near)
+    }
+
+    /// Sensor values of a robot centred at `pos` whose heading has sine `s` and cosine `c`.
+    #[inline]
+    pub fn read_sensors_rotated(&self, pos: Vec2, s: f64, c: f64, near: &NearWalls) -> [f64; INPUTS] {
         let mut out = [0.0; INPUTS];
         if near.len == 0 && !near.overflow {
             return out;
         }
-        let (s, c) = pose.heading.sin_cos();
         let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
-        let pos = pose.position();
         let range2 = self.ray_range * self.ray_range;
         for (o, sensor) in out.iter_mut().zip(&self.rays) {
             // All rays of a sensor share its origin; walls beyond the longest ray's range
@@ -408,11 +436,11 @@ impl NearWalls {
 pub struct Step {
     /// Step index, 0-based.
     pub t: usize,
-    /// Sensor values (0–1023, noise included) read at the start of the step.
+    /// Sensor values (0–1023, noise included) read at the start of the step (0 when idle).
     pub sensors: [f64; INPUTS],
-    /// Motor outputs `mL, mR` ∈ [0, 1].
+    /// Motor outputs `mL, mR` ∈ [0, 1] (0.5, 0.5 when idle: the network is not run).
     pub motors: [f64; 2],
-    /// Commanded wheel speeds `sL, sR` (mm/s, before noise).
+    /// Commanded wheel speeds `sL, sR` (mm/s, before noise; 0 when idle).
     pub speeds: [f64; 2],
     /// Pose at the end of the step.
     pub pose: Pose,
@@ -420,6 +448,35 @@ pub struct Step {
     pub collided: bool,
     /// The grid cell of `pose`, when the simulator knows it (saves observers a lookup).
     pub cell: Option<usize>,
+    /// The step's action: executed with `actions` motion, recorded with `wheels` motion;
+    /// `Straight` when idle.
+    pub action: Action,
+    /// Whether the step is idle: the trial already ended at home (nothing is read, run or
+    /// moved, no energy is used).
+    pub idle: bool,
+    /// Energy used by the step (see [`Motion::energy`]); 0 when idle.
+    pub energy: f64,
+    /// Whether the robot's centre has been outside the home zone by the end of this step.
+    pub escaped: bool,
+}
+
+impl Step {
+    /// An idle step `t` at `pose` (after the trial ended at home).
+    pub fn idle(t: usize, pose: Pose, cell: Option<usize>, escaped: bool) -> Step {
+        Step {
+            t,
+            sensors: [0.0; INPUTS],
+            motors: [0.5; 2],
+            speeds: [0.0; 2],
+            pose,
+            collided: false,
+            cell,
+            action: Action::Straight,
+            idle: true,
+            energy: 0.0,
+            escaped,
+        }
+    }
 }
 
 /// Receives every step of a trial.
@@ -439,9 +496,12 @@ impl<A: StepObserver, B: StepObserver> StepObserver for (A, B) {
     }
 }
 
-/// Runs one trial from the room's home pose, reporting each step to `observer`. Returns the final
-/// pose. Per step: read sensors, add sensor noise, run the network, add wheel noise, move, and
-/// undo the move (keeping the heading change) if the body would overlap a wall.
+/// Runs one trial from the room's home pose, reporting each of the `T` steps to `observer`.
+/// Returns the final pose. Per step: read sensors, add sensor noise, run the network, add
+/// wheel noise, label the step and move by the motion model ([`Motion`]), and undo the move
+/// (keeping the heading change) if the body would overlap a wall. With `end_at_home`, the trial
+/// ends after the first step that brings an escaped robot back into the home zone; the rest
+/// of the `T` steps are reported as idle.
 pub fn simulate<C, R, O>(
     arena: &Arena,
     controller: &mut C,
@@ -456,26 +516,55 @@ where
 {
     let mut pose = arena.room.home;
     let mut cell = arena.cell_of(pose.position());
+    let mut dir = 0;
+    let zone = arena.room.home_zone;
+    let mut escaped = false;
+    let motion = params.robot.motion;
     let v_max = params.robot.v_max;
-    for t in 0..params.steps {
+    let mut t = 0;
+    while t < params.steps {
         let near = arena.near_walls_in(pose.position(), cell);
-        let mut sensors = arena.read_sensors_near(&pose, &near);
+        let mut sensors = match motion {
+            Motion::Actions => {
+                let c = &arena.compass;
+                arena.read_sensors_rotated(pose.position(), c.sin[dir], c.cos[dir], &near)
+            }
+            Motion::Wheels => arena.read_sensors_near(&pose, &near),
+        };
         perturb_sensors(&mut sensors, params.noise, SENSOR_MAX, rng);
         // Most readings are 0 in open floor; 0 / 1023 is exactly 0, so skip the division.
         let inputs = sensors.map(|v| if v == 0.0 { 0.0 } else { v / SENSOR_MAX });
         let motors = controller.step(&inputs);
         let speeds = motors.map(|m| (2.0 * m - 1.0) * v_max);
-        let s_left = perturb(speeds[0], params.noise, rng);
-        let s_right = perturb(speeds[1], params.noise, rng);
-        let candidate = drive(pose, s_left, s_right, params.robot.wheel_base, params.dt);
-        let collided = arena.overlaps_near(candidate.position(), &near);
+        let noisy = [
+            perturb(speeds[0], params.noise, rng),
+            perturb(speeds[1], params.noise, rng),
+        ];
+        let action = motion.label(motors, noisy, v_max, params.action_tolerance);
+        let (candidate, next_dir) = match motion {
+            Motion::Actions => {
+                Motion::execute(pose, dir, action, params.straight_step(), &arena.compass)
+            }
+            Motion::Wheels => (
+                drive(pose, noisy[0], noisy[1], params.robot.wheel_base, params.dt),
+                dir,
+            ),
+        };
+        dir = next_dir;
+        // A turn on the spot cannot collide: the position is the previous, wall-free one.
+        let moved = candidate.x != pose.x || candidate.y != pose.y;
+        let collided = moved && arena.overlaps_near(candidate.position(), &near);
         if collided {
             // Position (and so cell) unchanged; the heading change is kept.
             pose.heading = candidate.heading;
         } else {
             pose = candidate;
-            cell = arena.cell_of(pose.position());
+            if moved {
+                cell = arena.cell_of(pose.position());
+            }
         }
+        let inside = zone.contains(pose.position());
+        escaped |= !inside;
         observer.observe(&Step {
             t,
             sensors,
@@ -484,12 +573,24 @@ where
             pose,
             cell: Some(cell),
             collided,
+            action,
+            idle: false,
+            energy: motion.energy(speeds, v_max),
+            escaped,
         });
+        t += 1;
+        if params.end_at_home && escaped && inside {
+            break;
+        }
+    }
+    for t in t..params.steps {
+        observer.observe(&Step::idle(t, pose, Some(cell), escaped));
     }
     pose
 }
 
-/// Everything recorded in a trial. `poses[0]` is home; `poses[t + 1]` the pose after step `t`.
+/// Everything recorded in a trial, one entry per step (idle steps included).
+/// `poses[0]` is home; `poses[t + 1]` the pose after step `t`.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Trajectory {
     /// Poses, `steps + 1` of them.
@@ -502,9 +603,34 @@ pub struct Trajectory {
     pub speeds: Vec<[f64; 2]>,
     /// Whether each step collided.
     pub collisions: Vec<bool>,
+    /// The action of each step.
+    pub actions: Vec<Action>,
+    /// Whether each step was idle (after the trial ended at home).
+    pub idle: Vec<bool>,
+    /// Energy used by each step.
+    pub energy: Vec<f64>,
+    /// Whether the robot had escaped the home zone by the end of each step.
+    pub escaped: Vec<bool>,
 }
 
 impl Trajectory {
+    /// An empty trajectory at `home`, with room for `steps` steps.
+    pub fn starting_at(home: Pose, steps: usize) -> Trajectory {
+        let mut poses = Vec::with_capacity(steps + 1);
+        poses.push(home);
+        Trajectory {
+            poses,
+            sensors: Vec::with_capacity(steps),
+            motors: Vec::with_capacity(steps),
+            speeds: Vec::with_capacity(steps),
+            collisions: Vec::with_capacity(steps),
+            actions: Vec::with_capacity(steps),
+            idle: Vec::with_capacity(steps),
+            energy: Vec::with_capacity(steps),
+            escaped: Vec::with_capacity(steps),
+        }
+    }
+
     /// Number of steps.
     pub fn len(&self) -> usize {
         self.motors.len()
@@ -513,6 +639,11 @@ impl Trajectory {
     /// Whether no step was recorded.
     pub fn is_empty(&self) -> bool {
         self.motors.is_empty()
+    }
+
+    /// Steps executed before the trial ended (the rest are idle).
+    pub fn executed(&self) -> usize {
+        self.idle.iter().filter(|&&i| !i).count()
     }
 
     /// The step records, in order (for replaying into observers).
@@ -525,6 +656,10 @@ impl Trajectory {
             pose: self.poses[t + 1],
             cell: None,
             collided: self.collisions[t],
+            action: self.actions[t],
+            idle: self.idle[t],
+            energy: self.energy[t],
+            escaped: self.escaped[t],
         })
     }
 }
@@ -536,6 +671,24 @@ impl StepObserver for Trajectory {
         self.speeds.push(s.speeds);
         self.poses.push(s.pose);
         self.collisions.push(s.collided);
+        self.actions.push(s.action);
+        self.idle.push(s.idle);
+        self.energy.push(s.energy);
+        self.escaped.push(s.escaped);
+    }
+}
+
+/// Records only the action of each step (for environment vectors).
+#[derive(Debug, Clone, Default)]
+pub struct ActionLog {
+    /// The actions so far.
+    pub actions: Vec<Action>,
+}
+
+impl StepObserver for ActionLog {
+    #[inline]
+    fn observe(&mut self, s: &Step) {
+        self.actions.push(s.action);
     }
 }
 
@@ -550,14 +703,7 @@ where
     C: Controller + ?Sized,
     R: Rng + ?Sized,
 {
-    let mut tr = Trajectory {
-        poses: Vec::with_capacity(params.steps + 1),
-        sensors: Vec::with_capacity(params.steps),
-        motors: Vec::with_capacity(params.steps),
-        speeds: Vec::with_capacity(params.steps),
-        collisions: Vec::with_capacity(params.steps),
-    };
-    tr.poses.push(arena.room.home);
+    let mut tr = Trajectory::starting_at(arena.room.home, params.steps);
     simulate(arena, controller, params, rng, &mut tr);
     tr
 }
@@ -581,21 +727,21 @@ mod tests {
     #[test]
     fn sensors_at_known_distances() {
         let a = square();
-        // Facing the x = 600 wall from 30 mm away (centre): front sensors 2, 3 are at x + 24.5,
+        // Facing the x = 800 wall from 30 mm away (centre): front sensors 2, 3 are at x + 24.5,
         // so the wall is 5.5 mm along their axis → first axis sample 12 mm → 900.
-        let p = Pose::new(570.0, 300.0, 0.0);
+        let p = Pose::new(770.0, 300.0, 0.0);
         let s = a.read_sensors(&p);
         // Side rays at ±24.2° hit at 5.5 / cos(24.2°) = 6.03 mm → 800 each; 900 + 1600 capped.
         assert_eq!(s[2], 1023.0);
         assert_eq!(s[3], 1023.0);
-        // Rear sensors face away into 570 mm of empty room.
+        // Rear sensors face away into 770 mm of empty room.
         assert_eq!(s[6], 0.0);
         assert_eq!(s[7], 0.0);
         // In the middle of the room nothing is seen.
-        assert_eq!(a.read_sensors(&Pose::new(300.0, 300.0, 0.3)), [0.0; 8]);
+        assert_eq!(a.read_sensors(&Pose::new(400.0, 400.0, 0.3)), [0.0; 8]);
         // 40 mm from the sensor face: axis hits at 40 → 44 mm sample → 160; sides at
         // 40 / cos 24.2° = 43.86 → 43.9 mm sample → 60 each.
-        let s = a.read_sensors(&Pose::new(600.0 - 24.5 - 40.0, 300.0, 0.0));
+        let s = a.read_sensors(&Pose::new(800.0 - 24.5 - 40.0, 300.0, 0.0));
         assert_eq!(s[2], 160.0 + 60.0 + 60.0);
     }
 
@@ -606,15 +752,15 @@ mod tests {
             ..TrialParams::default()
         };
         let a = Arena::new(Room::builtin("square").unwrap(), &params);
-        let s = a.read_sensors(&Pose::new(600.0 - 24.5 - 25.0, 300.0, 0.0));
+        let s = a.read_sensors(&Pose::new(800.0 - 24.5 - 25.0, 300.0, 0.0));
         assert!((s[2] - 511.5).abs() < 1e-9, "{}", s[2]);
     }
 
     #[test]
     fn reachable_cells_of_the_square() {
-        // Cells of 50 mm in a 600 mm square: centres at 25, 75, …, 575; those ≥ 27.5 mm from the
-        // walls are 75 … 525, i.e. 10 × 10.
-        assert_eq!(square().reachable_cells(), 100);
+        // Cells of 50 mm in an 800 mm square: centres at 25, 75, …, 775; those ≥ 27.5 mm from
+        // the walls are 75 … 725, i.e. 14 × 14.
+        assert_eq!(square().reachable_cells(), 196);
     }
 
     /// A 50 mm gap is narrower than the 55 mm body: the far half is not reachable, even though
@@ -652,10 +798,86 @@ mod tests {
             ..TrialParams::default()
         };
         let tr = run_trial(&a, &mut Fixed([1.0, 1.0]), &params, &mut rng_from_seed(1));
-        // 400 steps × 8 mm would be 3.2 m; the wall stops the robot short of x = 572.5.
+        // 400 steps × 8 mm would be 3.2 m; the wall stops the robot at x = 40 + 91·8 = 768,
+        // short of 800 − 27.5; every later straight action collides and stays.
         let last = tr.poses.last().unwrap();
-        assert!(last.x <= 600.0 - 27.5 && last.x > 560.0, "{last:?}");
-        assert!(tr.collisions.iter().filter(|&&c| c).count() > 300);
+        assert_eq!((last.x, last.y, last.heading), (768.0, 40.0, 0.0));
+        assert_eq!(tr.collisions.iter().filter(|&&c| c).count(), 400 - 91);
+        assert!(tr.poses[92..].iter().all(|p| p == last));
         assert_eq!(tr.poses.len(), 401);
+    }
+
+    fn noiseless() -> TrialParams {
+        TrialParams {
+            noise: 0.0,
+            ..TrialParams::default()
+        }
+    }
+
+    /// `actions` motion, hand-computed poses: straight moves 8 mm along the heading, left30
+    /// rotates by exactly π/6, right30 by −π/6, turn180 by π, all on the spot.
+    #[test]
+    fn actions_move_and_turn_exactly() {
+        let a = square();
+        let one = |motors: [f64; 2]| {
+            let p = TrialParams {
+                steps: 1,
+                ..noiseless()
+            };
+            let tr = run_trial(&a, &mut Fixed(motors), &p, &mut rng_from_seed(1));
+            (tr.poses[1], tr.actions[0])
+        };
+        let (p, act) = one([1.0, 1.0]);
+        assert_eq!((p.x, p.y, p.heading, act), (48.0, 40.0, 0.0, Action::Straight));
+        let (p, act) = one([0.3, 0.9]);
+        assert_eq!((p.x, p.y, act), (40.0, 40.0, Action::Left30));
+        assert_eq!(p.heading, std::f64::consts::FRAC_PI_6);
+        let (p, act) = one([0.9, 0.3]);
+        assert_eq!((p.x, p.y, act), (40.0, 40.0, Action::Right30));
+        assert_eq!(p.heading, -std::f64::consts::FRAC_PI_6);
+        let (p, act) = one([0.1, 0.2]);
+        assert_eq!((p.x, p.y, act), (40.0, 40.0, Action::Turn180));
+        assert_eq!(p.heading, std::f64::consts::PI);
+        // Three left turns then straight: heading π/2, 8 mm up.
+        let p = TrialParams {
+            steps: 4,
+            ..noiseless()
+        };
+        struct Seq(usize);
+        impl Controller for Seq {
+            fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
+                self.0 += 1;
+                if self.0 <= 3 { [0.3, 0.9] } else { [1.0, 1.0] }
+            }
+        }
+        let tr = run_trial(&a, &mut Seq(0), &p, &mut rng_from_seed(1));
+        let end = tr.poses[4];
+        assert!((end.x - 40.0).abs() < 1e-12 && (end.y - 48.0).abs() < 1e-12, "{end:?}");
+        assert!((end.heading - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    }
+
+    /// A straight action into a wall collides: the robot stays where it was.
+    #[test]
+    fn a_straight_action_into_a_wall_collides_and_stays() {
+        let a = square();
+        // Facing −x from home (40, 40): the wall x = 0 is 40 mm away, closer than 27.5 + 8.
+        struct Back(bool);
+        impl Controller for Back {
+            fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
+                let first = self.0;
+                self.0 = false;
+                if first { [0.0, 0.0] } else { [1.0, 1.0] }
+            }
+        }
+        let p = TrialParams {
+            steps: 3,
+            ..noiseless()
+        };
+        let tr = run_trial(&a, &mut Back(true), &p, &mut rng_from_seed(1));
+        assert_eq!(tr.actions[0], Action::Turn180);
+        // 40 → 32 is still ≥ 27.5 from the wall; 32 → 24 is not.
+        assert_eq!((tr.poses[2].x, tr.collisions[1]), (32.0, false));
+        assert_eq!((tr.poses[3].x, tr.collisions[2]), (32.0, true));
+        assert_eq!(tr.poses[3].heading, std::f64::consts::PI);
     }
 }

@@ -1,7 +1,9 @@
 //! Property tests of the simulator's invariants and value-stability (golden) tests.
 
+use fuzzymotiv::aem::Action;
 use fuzzymotiv::controller::{Mlp, MlpShape};
 use fuzzymotiv::rng::{Rng, rng_from_seed, standard_normal, uniform01};
+use fuzzymotiv::robot::{Khepera, Motion, wrap_angle};
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::trial::{Arena, TrialParams, run_trial};
 use proptest::prelude::*;
@@ -18,8 +20,10 @@ proptest! {
 
     /// The robot never ends a step overlapping a wall, whatever the controller and room.
     #[test]
-    fn robot_never_overlaps_a_wall(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2) {
-        let params = TrialParams { steps: 300, noise, ..TrialParams::default() };
+    fn robot_never_overlaps_a_wall(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2, wheels in any::<bool>()) {
+        let motion = if wheels { Motion::Wheels } else { Motion::Actions };
+        let robot = Khepera { motion, ..Khepera::default() };
+        let params = TrialParams { steps: 300, noise, robot, ..TrialParams::default() };
         let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
         let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(seed, scale)).unwrap();
         let tr = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(seed ^ 1));
@@ -27,6 +31,34 @@ proptest! {
             let clearance = arena.walls().iter().map(|w| w.dist_to(p.position())).fold(f64::INFINITY, f64::min);
             prop_assert!(clearance >= params.robot.radius, "pose {p:?} is {clearance} mm from a wall");
             prop_assert!(arena.room().contains(p.position()));
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// With `actions` motion every heading stays on the 30° grid from home and every step moves
+    /// the centre by 0 or exactly v_max·dt = 8 mm, for random controllers in every room.
+    #[test]
+    fn actions_stay_on_the_grid(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2) {
+        let params = TrialParams { steps: 300, noise, ..TrialParams::default() };
+        let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
+        let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(seed, scale)).unwrap();
+        let tr = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(seed ^ 1));
+        let home = arena.room().home.heading;
+        for (t, w) in tr.poses.windows(2).enumerate() {
+            let k = wrap_angle(w[1].heading - home) / (std::f64::consts::PI / 6.0);
+            prop_assert!((k - k.round()).abs() < 1e-9, "step {t}: heading {} off the grid", w[1].heading);
+            let d = w[0].position().dist(w[1].position());
+            prop_assert!(d == 0.0 || (d - 8.0).abs() < 1e-9, "step {t} moved {d} mm");
+            let turned = w[0].heading != w[1].heading;
+            prop_assert!(!(turned && d > 0.0), "step {t} both turned and moved");
+            if tr.actions[t] == Action::Straight {
+                prop_assert!(!turned);
+            } else {
+                prop_assert!(d == 0.0 && !tr.collisions[t]);
+            }
         }
     }
 }
@@ -67,14 +99,25 @@ fn random_streams_are_value_stable() {
     assert_eq!(got, GOLDEN_STREAM, "the random stream changed");
 }
 
-/// Pinned short trajectory (noise on): the whole pipeline sensor → network → noise → motion.
+/// Pinned short trajectory of the first release's model (`wheels` motion, no end at home, the
+/// first release's H room; noise on): sensor → network → noise → arc kinematics.
 #[test]
-fn short_trajectory_is_value_stable() {
+fn short_wheels_trajectory_is_value_stable() {
     let params = TrialParams {
         steps: 60,
+        end_at_home: false,
+        robot: Khepera {
+            motion: Motion::Wheels,
+            ..Khepera::default()
+        },
         ..TrialParams::default()
     };
-    let arena = Arena::new(Room::builtin("H").unwrap(), &params);
+    let room = Room::from_toml_str(
+        include_str!("../../../rooms/first-release/H.toml"),
+        "H.toml",
+    )
+    .unwrap();
+    let arena = Arena::new(room, &params);
     let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(7, 2.0)).unwrap();
     let tr = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(7));
     let last = tr.poses.last().unwrap();
@@ -83,8 +126,35 @@ fn short_trajectory_is_value_stable() {
         "{:.9} {:.9} {:.9} {collisions}",
         last.x, last.y, last.heading
     );
-    assert_eq!(got, GOLDEN_TRAJECTORY, "the trajectory changed");
+    assert_eq!(got, GOLDEN_WHEELS_TRAJECTORY, "the trajectory changed");
+}
+
+/// Pinned trajectory of the default model (`actions` motion, built-in H room, noise on): the
+/// final pose, collisions, executed steps (this robot ends its trial at home after 251) and
+/// the action counts (idle steps count as straight).
+#[test]
+fn actions_trajectory_is_value_stable() {
+    let params = TrialParams::default();
+    let arena = Arena::new(Room::builtin("H").unwrap(), &params);
+    let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(14, 3.0)).unwrap();
+    let tr = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(14));
+    let last = tr.poses.last().unwrap();
+    let collisions = tr.collisions.iter().filter(|&&c| c).count();
+    let count = |a: Action| tr.actions.iter().filter(|&&x| x == a).count();
+    let got = format!(
+        "{:.9} {:.9} {:.9} {collisions} {} {}/{}/{}/{}",
+        last.x,
+        last.y,
+        last.heading,
+        tr.executed(),
+        count(Action::Straight),
+        count(Action::Left30),
+        count(Action::Right30),
+        count(Action::Turn180)
+    );
+    assert_eq!(got, GOLDEN_ACTIONS_TRAJECTORY, "the trajectory changed");
 }
 
 const GOLDEN_STREAM: &str = "[15021278609987233951, 5881210131331364753, 18149643915985481100] 0.70113559813475557 -1.51097498300067068";
-const GOLDEN_TRAJECTORY: &str = "140.946894338 99.908383522 2.859619974 0";
+const GOLDEN_WHEELS_TRAJECTORY: &str = "140.946894338 99.908383522 2.859619974 0";
+const GOLDEN_ACTIONS_TRAJECTORY: &str = "34.143593539 150.276877527 -1.570796327 22 251 365/28/7/0";
