@@ -145,8 +145,8 @@ def export_fll(
 def rooms(files: Optional[Sequence[Union[str, os.PathLike]]] = None) -> list:
     """The built-in rooms (or the given room files, validated like ``fuzzymotiv rooms --check``)
     as dicts: ``name``, ``outline`` (n × 2 array, mm), ``obstacles`` (list of arrays),
-    ``home`` (``x``, ``y``, ``heading`` in rad, ``heading_deg``), ``area`` (mm²),
-    ``perimeter`` (mm).
+    ``home`` (``x``, ``y``, ``heading`` in rad, ``heading_deg``), ``home_zone`` (``x``,
+    ``y``, ``radius``: the disc a trial can end in), ``area`` (mm²), ``perimeter`` (mm).
 
     >>> [r["name"] for r in rooms()]
     ['H', 'T', 'L', 'square', 'rectangle']
@@ -326,8 +326,10 @@ def simulate(
 
     Returns a dict of numpy arrays: ``x``, ``y``, ``heading`` (T + 1 poses: the pose at the
     start of every step, then the final one), ``sensors`` (T × 8), ``motors`` (T × 2,
-    mL, mR), ``action`` (T labels), ``idle`` (T booleans), ``collision`` (T booleans); and the
-    fitness terms ``a``, ``g``, ``l``, ``b`` with ``F`` under the config's motivations.
+    mL, mR), ``action`` (T labels: the executed actions), ``idle`` (T booleans: steps after
+    the trial ended at home), ``energy`` (T), ``escaped`` (T booleans: out of the home zone
+    yet), ``collision`` (T booleans); and the fitness terms ``a``, ``g``, ``l``, ``b`` with
+    ``F`` under the config's motivations.
 
     >>> tr = simulate(np.zeros(68), "H", seed=3, overrides={"trial.steps": 20})
     >>> tr["x"].shape, tr["sensors"].shape, str(tr["action"][0])

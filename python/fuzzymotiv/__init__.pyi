@@ -74,11 +74,17 @@ class Home(TypedDict):
     heading: float
     heading_deg: float
 
+class HomeZone(TypedDict):
+    x: float
+    y: float
+    radius: float
+
 class RoomInfo(TypedDict):
     name: str
     outline: FloatArray
     obstacles: list[FloatArray]
     home: Home
+    home_zone: HomeZone
     area: float
     perimeter: float
 
@@ -115,6 +121,8 @@ class Trajectory(TypedDict):
     motors: FloatArray
     action: npt.NDArray[np.str_]
     idle: npt.NDArray[np.bool_]
+    energy: FloatArray
+    escaped: npt.NDArray[np.bool_]
     collision: npt.NDArray[np.bool_]
     a: float
     g: float

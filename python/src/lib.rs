@@ -11,7 +11,6 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use fuzzymotiv::aem::Action;
 use fuzzymotiv::config::{OrientationMode, RawConfig};
 use fuzzymotiv::experiment::{Evolution, GenerationState};
 use fuzzymotiv::fuzzy::{CoefficientScheme, Motivations, TskFitness};
@@ -201,6 +200,11 @@ fn room_dict<'py>(py: Python<'py>, r: &Room) -> PyResult<Bound<'py, PyDict>> {
     home.set_item("heading", r.home.heading)?;
     home.set_item("heading_deg", r.home.heading.to_degrees())?;
     d.set_item("home", home)?;
+    let zone = PyDict::new(py);
+    zone.set_item("x", r.home_zone.centre.x)?;
+    zone.set_item("y", r.home_zone.centre.y)?;
+    zone.set_item("radius", r.home_zone.radius)?;
+    d.set_item("home_zone", zone)?;
     d.set_item("area", r.area())?;
     d.set_item("perimeter", r.perimeter())?;
     Ok(d)
@@ -339,7 +343,8 @@ fn run<'py>(
     if threads == Some(0) {
         return Err(input_err("threads must be at least 1"));
     }
-    let loaded = load(config_path.as_deref(), config_text.as_deref(), &sets, None).map_err(py_err)?;
+    let loaded =
+        load(config_path.as_deref(), config_text.as_deref(), &sets, None).map_err(py_err)?;
     let pool = match threads {
         Some(n) => Some(
             rayon::ThreadPoolBuilder::new()
@@ -372,7 +377,11 @@ fn run<'py>(
                     resume_unwind(Box::new(Cancelled));
                 }
             };
-            let mut body = || catch_unwind(AssertUnwindSafe(|| execute(&loaded, out.as_deref(), &mut hook)));
+            let mut body = || {
+                catch_unwind(AssertUnwindSafe(|| {
+                    execute(&loaded, out.as_deref(), &mut hook)
+                }))
+            };
             let r = match &pool {
                 Some(p) => p.install(body),
                 None => body(),
@@ -485,8 +494,14 @@ fn run_dict(py: Python<'_>, o: RunOutput) -> PyResult<Bound<'_, PyDict>> {
     let paths = PyDict::new(py);
     for (room, p) in o.paths {
         let pd = PyDict::new(py);
-        pd.set_item("x", PyArray1::from_vec(py, p.iter().map(|q| q[0]).collect()))?;
-        pd.set_item("y", PyArray1::from_vec(py, p.iter().map(|q| q[1]).collect()))?;
+        pd.set_item(
+            "x",
+            PyArray1::from_vec(py, p.iter().map(|q| q[0]).collect()),
+        )?;
+        pd.set_item(
+            "y",
+            PyArray1::from_vec(py, p.iter().map(|q| q[1]).collect()),
+        )?;
         pd.set_item(
             "heading",
             PyArray1::from_vec(py, p.iter().map(|q| q[2]).collect()),
@@ -513,7 +528,9 @@ fn simulate<'py>(
     sets: Vec<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if seed > i64::MAX as u64 {
-        return Err(input_err(format!("seed must be in 0 ..= 2^63 - 1, got {seed}")));
+        return Err(input_err(format!(
+            "seed must be in 0 ..= 2^63 - 1, got {seed}"
+        )));
     }
     let loaded = load(
         config_path.as_deref(),
@@ -561,20 +578,15 @@ fn simulate<'py>(
     let run = exp.runs().remove(0);
     let tr = py.detach(|| exp.instance_trajectory(&genome, &run, 0));
     let (terms, f) = fuzzymotiv_cli::report::trajectory_terms(&exp, 0, &tr);
-    let tol = exp.aem.action_tolerance;
     let d = PyDict::new(py);
-    let poses = |k: usize| -> Vec<f64> {
-        tr.poses
-            .iter()
-            .map(|p| [p.x, p.y, p.heading][k])
-            .collect()
-    };
+    let poses =
+        |k: usize| -> Vec<f64> { tr.poses.iter().map(|p| [p.x, p.y, p.heading][k]).collect() };
     d.set_item("x", PyArray1::from_vec(py, poses(0)))?;
     d.set_item("y", PyArray1::from_vec(py, poses(1)))?;
     d.set_item("heading", PyArray1::from_vec(py, poses(2)))?;
     let t = tr.sensors.len();
     let flat: Vec<f64> = tr.sensors.iter().flatten().copied().collect();
-    let cols = if t == 0 { 8 } else { flat.len() / t };
+    let cols = tr.sensors.first().map_or(8, |s| s.len());
     d.set_item(
         "sensors",
         Array2::from_shape_vec((t, cols), flat)
@@ -588,13 +600,11 @@ fn simulate<'py>(
             .expect("T × 2")
             .into_pyarray(py),
     )?;
-    let actions: Vec<&str> = tr
-        .motors
-        .iter()
-        .map(|m| Action::from_motors(m[0], m[1], tol).label())
-        .collect();
+    let actions: Vec<&str> = tr.actions.iter().map(|a| a.label()).collect();
     d.set_item("action", numpy_strings(py, &actions)?)?;
-    d.set_item("idle", PyArray1::from_vec(py, vec![false; tr.motors.len()]))?;
+    d.set_item("idle", PyArray1::from_vec(py, tr.idle.clone()))?;
+    d.set_item("energy", PyArray1::from_vec(py, tr.energy.clone()))?;
+    d.set_item("escaped", PyArray1::from_vec(py, tr.escaped.clone()))?;
     d.set_item("collision", PyArray1::from_vec(py, tr.collisions.clone()))?;
     d.set_item("a", terms.a)?;
     d.set_item("g", terms.g)?;

@@ -106,7 +106,9 @@ def test_simulate_equals_cli_replay(cli, cli_run, py_run, tmp_path):
     assert tr["motors"].tolist() == want["motors"]
     assert tr["collision"].tolist() == want["collisions"]
     assert tr["action"].tolist() == doc["actions"]
-    assert tr["idle"].dtype == bool and tr["idle"].shape == (t,)
+    assert tr["idle"].dtype == bool and tr["idle"].tolist() == want["idle"]
+    assert tr["energy"].tolist() == want["energy"]
+    assert tr["escaped"].tolist() == want["escaped"]
     for k in "aglb":
         assert tr[k] == doc["terms"][k]
     assert tr["F"] == doc["f"]
@@ -132,6 +134,7 @@ def test_rooms_and_room_files(cli, repo):
     for r in rooms:
         assert r["outline"].ndim == 2 and r["outline"].shape[1] == 2
         assert set(r["home"]) == {"x", "y", "heading", "heading_deg"}
+        assert set(r["home_zone"]) == {"x", "y", "radius"} and r["home_zone"]["radius"] > 0
         assert r["area"] > 0
     u = fm.load_room(repo / "rooms/U.toml")
     assert u["name"] == "U" and fm.rooms([repo / "rooms/U.toml"])[0]["name"] == "U"
