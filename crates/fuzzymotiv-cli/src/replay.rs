@@ -124,9 +124,8 @@ fn file_tag(name: &str) -> String {
 /// whether the step was idle (after the trial ended at home); a last row `t = steps` holds the
 /// final pose only.
 pub fn trajectory_csv(tr: &Trajectory) -> String {
-    let mut s = String::from(
-        "step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n",
-    );
+    let mut s =
+        String::from("step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n");
     for t in 0..tr.len() {
         let p = tr.poses[t];
         let _ = write!(s, "{t},{},{},{}", num(p.x), num(p.y), num(p.heading));

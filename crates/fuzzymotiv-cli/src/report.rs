@@ -172,6 +172,11 @@ pub struct Section<'a> {
     pub paper: Option<&'a Setting>,
     /// Link to the run directory's own report, for the reproduce page.
     pub link: Option<String>,
+    /// The spread over seeds (an HTML table), for the reproduce page.
+    pub spread: Option<&'a str>,
+    /// Mean % exploration, % recognition (if measured) and % battery over rooms and seeds, for
+    /// the reproduce page's overview (else the section's own table is averaged).
+    pub overall: Option<[Option<f64>; 3]>,
 }
 
 /// `report.html` of a run directory.
@@ -195,6 +200,8 @@ pub fn run_page(loaded: &Loaded, done: &Finished) -> String {
         done,
         paper: None,
         link: None,
+        spread: None,
+        overall: None,
     };
     page.push(&toc("run"));
     render_section(&mut page, &section, 2);
@@ -205,15 +212,16 @@ pub fn run_page(loaded: &Loaded, done: &Finished) -> String {
 /// `report.html` of `reproduce`: both settings, with the paper's values beside ours.
 pub fn reproduce_page(
     sections: &[Section<'_>],
-    seed: u64,
+    provenance: &str,
     overrides: &[String],
     wall: f64,
+    claims: &str,
 ) -> String {
     let mut page = Page::new("fuzzymotiv — the paper's study reproduced");
     let _ = writeln!(
         page.body,
-        "<h1>The paper's study, reproduced</h1>\n<p class=\"meta\">fuzzymotiv {} · seed {seed} · wall time {wall:.2} s{}</p>",
-        fuzzymotiv::VERSION,
+        "<h1>The paper's study, reproduced</h1>\n<p class=\"meta\">{} · wall time {wall:.2} s{}</p>",
+        esc(provenance),
         if overrides.is_empty() {
             String::new()
         } else {
@@ -264,24 +272,29 @@ pub fn reproduce_page(
             Some(p) => format!("{v:.1} <span class=\"paper\">(paper {:.1})</span>", p[k]),
             None => format!("{v:.1}"),
         };
-        let rec = if rows.iter().all(|r| r.recognition_pct.is_some()) {
-            cell(mean(&|r| r.recognition_pct.unwrap_or(0.0)), 1)
-        } else {
-            "n/a".into()
-        };
+        let own = [
+            Some(mean(&|r| r.exploration_pct)),
+            rows.iter()
+                .all(|r| r.recognition_pct.is_some())
+                .then(|| mean(&|r| r.recognition_pct.unwrap_or(0.0))),
+            Some(mean(&|r| r.battery_pct)),
+        ];
+        let [explore, rec, battery] = s.overall.unwrap_or(own);
+        let rec = rec.map_or("n/a".into(), |v| cell(v, 1));
         let _ = writeln!(
             page.body,
             r##"<tr><td><a href="#{}">{}</a></td><td>{}</td><td>{}</td><td>{}</td></tr>"##,
             s.id,
             esc(&s.title),
-            cell(mean(&|r| r.exploration_pct), 0),
+            explore.map_or("n/a".into(), |v| cell(v, 0)),
             rec,
-            cell(mean(&|r| r.battery_pct), 2)
+            battery.map_or("n/a".into(), |v| cell(v, 2))
         );
     }
     page.push(
-        "</table>\n<p class=\"caption\">Means over the rooms of each setting's table below.</p>\n",
+        "</table>\n<p class=\"caption\">Means over the rooms (and over the seeds, on a multi-seed study) of each setting.</p>\n",
     );
+    page.push(claims);
     for s in sections {
         let _ = writeln!(
             page.body,
@@ -295,6 +308,13 @@ pub fn reproduce_page(
                 esc(l)
             ))
         );
+        if let Some(spread) = s.spread {
+            let _ = writeln!(
+                page.body,
+                "<h3 id=\"{}-seeds\">Over all seeds</h3>\n{spread}",
+                s.id
+            );
+        }
         page.push(&toc(s.id));
         render_section(&mut page, s, 3);
     }

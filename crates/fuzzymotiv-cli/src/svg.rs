@@ -117,14 +117,20 @@ pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[Trajectory]
     trajectories_svg(title, &pairs)
 }
 
-/// Rooms drawn to scale side by side, each with a path, the home pose and the end point.
+/// Length of a step marker's heading tick in the trajectory figures (px).
+const TICK: f64 = 3.0;
+
+/// Rooms drawn to scale side by side, each with its home zone, the path with a marker per
+/// executed step, the home pose and the end point (ringed when the trial ended at home).
 pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     let scale = 0.3; // px per mm
     let pad = 20.0;
     let mut x_off = pad;
     let mut parts = String::new();
     let mut max_h: f64 = 0.0;
-    for (room, tr) in rooms {
+    // Clip-path ids must be unique on a page that inlines several figures.
+    let figure_id = fuzzymotiv::seed::hash_str(title) & 0xffff_ffff;
+    for (k, (room, tr)) in rooms.iter().enumerate() {
         let (lo, hi) = room.bounds();
         let (w, h) = ((hi.x - lo.x) * scale, (hi.y - lo.y) * scale);
         max_h = max_h.max(h);
@@ -149,14 +155,41 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
                 poly(o)
             );
         }
-        let path: String = tr
-            .poses
+        let zone = room.home_zone;
+        let _ = writeln!(
+            parts,
+            r##"<clipPath id="clip-{figure_id:x}-{k}"><polygon points="{}"/></clipPath><circle cx="{:.1}" cy="{:.1}" r="{:.1}" clip-path="url(#clip-{figure_id:x}-{k})" fill="#1f77b4" fill-opacity="0.10" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##,
+            poly(&room.outline),
+            tx(zone.centre.x),
+            ty(zone.centre.y),
+            zone.radius * scale
+        );
+        let executed = tr.executed();
+        let path: String = tr.poses[..=executed]
             .iter()
             .map(|p| format!("{:.1},{:.1} ", tx(p.x), ty(p.y)))
             .collect();
         let _ = writeln!(
             parts,
-            r##"<polyline points="{path}" fill="none" stroke="#d62728" stroke-width="1.2"/>"##
+            r##"<polyline points="{path}" fill="none" stroke="#d62728" stroke-width="1"/>"##
+        );
+        // One marker per executed step: a short tick along the heading after the step, so
+        // turns on the spot show as several ticks on one point.
+        let ticks: String = tr.poses[1..=executed]
+            .iter()
+            .map(|p| {
+                format!(
+                    "M{:.1} {:.1}l{:.1} {:.1}",
+                    tx(p.x),
+                    ty(p.y),
+                    TICK * p.heading.cos(),
+                    -TICK * p.heading.sin()
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            parts,
+            r##"<path d="{ticks}" stroke="#7f1d1d" stroke-width="0.8" fill="none"/>"##
         );
         let home = room.home;
         let r = 27.5 * scale;
@@ -171,11 +204,18 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
             ty(home.y + 2.0 * 27.5 * home.heading.sin())
         );
         if let Some(end) = tr.poses.last() {
+            let at_home = executed < tr.len();
             let _ = writeln!(
                 parts,
-                r##"<circle cx="{:.1}" cy="{:.1}" r="{r:.1}" fill="#d62728" fill-opacity="0.5"/>"##,
+                r##"<circle cx="{:.1}" cy="{:.1}" r="{r:.1}" fill="#d62728" fill-opacity="0.5" stroke="{}" stroke-width="1.5"><title>{}</title></circle>"##,
                 tx(end.x),
-                ty(end.y)
+                ty(end.y),
+                if at_home { "#000" } else { "none" },
+                if at_home {
+                    format!("back in the home zone after step {executed}: the trial ended")
+                } else {
+                    format!("end of the trial after {} steps", tr.len())
+                }
             );
         }
         let _ = writeln!(
@@ -206,7 +246,7 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     let bar = 100.0 * scale;
     let _ = writeln!(
         s,
-        r##"<text x="{:.0}" y="{:.0}" fill="#555">green: home pose; red: path of the best robot, filled circle: where it ended</text><line x1="{:.1}" x2="{:.1}" y1="{:.0}" y2="{:.0}" stroke="#555" stroke-width="2"/><text x="{:.1}" y="{:.0}" fill="#555" text-anchor="end">100 mm</text>"##,
+        r##"<text x="{:.0}" y="{:.0}" fill="#555">green: home pose; blue quarter: home zone; red: path, a tick per step; filled circle: the end (ringed: back home)</text><line x1="{:.1}" x2="{:.1}" y1="{:.0}" y2="{:.0}" stroke="#555" stroke-width="2"/><text x="{:.1}" y="{:.0}" fill="#555" text-anchor="end">100 mm</text>"##,
         pad,
         height - 12.0,
         width - pad - bar,

@@ -406,7 +406,13 @@ fn report_page_runs_and_replays_in_chromium() {
 
     // The reproduce page: one widget per setting.
     let results = dir.path().join("results");
-    let mut args = vec!["reproduce", "--out", results.to_str().unwrap()];
+    let mut args = vec![
+        "reproduce",
+        "--seeds",
+        "2",
+        "--out",
+        results.to_str().unwrap(),
+    ];
     args.extend_from_slice(&SMALL);
     ok(&args);
     driver.open(&results.join("report.html"));

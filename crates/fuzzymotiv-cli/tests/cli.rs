@@ -316,6 +316,8 @@ fn reproduce_quick_writes_every_documented_file() {
         out.to_str().unwrap(),
         "--seed",
         "5",
+        "--seeds",
+        "2",
         "--set",
         "ga.population=10",
         "--set",
@@ -337,24 +339,53 @@ fn reproduce_quick_writes_every_documented_file() {
         "fitness.svg",
         "trajectories_high_curiosity.svg",
         "trajectories_low_curiosity.svg",
-        "high-curiosity/generations.csv",
-        "low-curiosity/best_genome.json",
+        "table1_seeds.csv",
+        "claims.md",
+        "claims.csv",
         "report.html",
-        "high-curiosity/report.html",
-        "low-curiosity/trajectories.svg",
     ] {
         assert!(out.join(f).is_file(), "missing {f}");
     }
+    let second = fuzzymotiv::seed::study_seed(5, 1);
+    for seed in [5, second] {
+        for f in [
+            "high-curiosity/SEED/generations.csv",
+            "low-curiosity/SEED/best_genome.json",
+            "high-curiosity/SEED/report.html",
+            "low-curiosity/SEED/trajectories.svg",
+        ] {
+            let f = f.replace("SEED", &format!("seed-{seed}"));
+            assert!(out.join(&f).is_file(), "missing {f}");
+        }
+    }
     let t1 = std::fs::read_to_string(out.join("table1.csv")).unwrap();
-    assert!(t1.starts_with("room,average_fitness,paper_average_fitness,exploration_pct,paper_exploration_pct,recognition_pct,paper_recognition_pct,battery_pct,paper_battery_pct"), "{t1}");
+    assert!(t1.starts_with("room,seeds,average_fitness,average_fitness_std,paper_average_fitness,exploration_pct,exploration_pct_std,paper_exploration_pct"), "{t1}");
     assert_eq!(t1.lines().count(), 6);
     assert!(
-        t1.lines().nth(1).unwrap().starts_with("H,") && t1.contains(",0.6421,"),
+        t1.lines().nth(1).unwrap().starts_with("H,2,") && t1.contains(",0.6421,"),
         "{t1}"
+    );
+    let per_seed = std::fs::read_to_string(out.join("table1_seeds.csv")).unwrap();
+    assert_eq!(per_seed.lines().count(), 1 + 5 * 2, "{per_seed}");
+    let md = std::fs::read_to_string(out.join("table1.md")).unwrap();
+    assert!(
+        md.contains(" ± ")
+            && md.contains(&format!("2 seeds (5, {second})"))
+            && md.contains("quick"),
+        "{md}"
     );
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["seed"], 5);
+    assert_eq!(s["seeds"], serde_json::json!([5, second]));
+    assert!(second < 1 << 53, "seeds survive JSON readers");
+    assert_eq!(s["settings"][0]["per_seed"].as_array().unwrap().len(), 2);
+    assert!(
+        s["settings"][0]["std"][0]["exploration_pct"]
+            .as_f64()
+            .is_some()
+    );
+    assert_eq!(s["claims"].as_array().unwrap().len(), 6);
     assert!(s["wall_seconds"].as_f64().unwrap() > 0.0);
     let settings = s["settings"].as_array().unwrap();
     assert_eq!(settings.len(), 2);
@@ -470,7 +501,9 @@ fn replay_is_deterministic_and_redraws_the_reported_paths() {
         );
     }
     let csv = std::fs::read_to_string(dir.path().join("one/replay-H.csv")).unwrap();
-    assert!(csv.starts_with("step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision\n0,"));
+    assert!(
+        csv.starts_with("step,x,y,heading,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n0,")
+    );
     assert_eq!(
         csv.lines().count(),
         1 + 150 + 1,

@@ -166,9 +166,19 @@ mod tests {
         }
     }
 
-    fn measure(room: &str, params: &TrialParams, homing: Homing, script: Vec<[f64; 2]>) -> (FitnessTerms, Trajectory) {
+    fn measure(
+        room: &str,
+        params: &TrialParams,
+        homing: Homing,
+        script: Vec<[f64; 2]>,
+    ) -> (FitnessTerms, Trajectory) {
         let arena = Arena::new(Room::builtin(room).unwrap(), params);
-        let tr = run_trial(&arena, &mut Script(script, 0), params, &mut rng_from_seed(3));
+        let tr = run_trial(
+            &arena,
+            &mut Script(script, 0),
+            params,
+            &mut rng_from_seed(3),
+        );
         (FitnessTerms::measure(&arena, params, homing, &tr), tr)
     }
 
@@ -178,14 +188,24 @@ mod tests {
 
     #[test]
     fn wheels_robot_standing_still() {
-        let (t, _) = measure("square", &params(Motion::Wheels, 400), Homing::Distance, vec![[0.5, 0.5]]);
+        let (t, _) = measure(
+            "square",
+            &params(Motion::Wheels, 400),
+            Homing::Distance,
+            vec![[0.5, 0.5]],
+        );
         // Optimum = min(196 reachable, floor(400·80·0.1/50)+1 = 65) = 65; one cell visited.
         assert_eq!(t.a, 1.0 / 65.0);
         assert_eq!(t.g, 1.0);
         assert_eq!(t.b, 0.0);
         assert_eq!(t.l, 0.0);
         // With the escape rule, a robot that never left the home zone has not homed.
-        let (t, _) = measure("square", &params(Motion::Wheels, 400), Homing::Escape, vec![[0.5, 0.5]]);
+        let (t, _) = measure(
+            "square",
+            &params(Motion::Wheels, 400),
+            Homing::Escape,
+            vec![[0.5, 0.5]],
+        );
         assert_eq!(t.g, 0.0);
     }
 
@@ -193,7 +213,12 @@ mod tests {
     /// executed action, so b = 1.
     #[test]
     fn a_robot_that_never_leaves_the_zone_gets_no_homing() {
-        let (t, tr) = measure("square", &params(Motion::Actions, 400), Homing::Escape, vec![LEFT]);
+        let (t, tr) = measure(
+            "square",
+            &params(Motion::Actions, 400),
+            Homing::Escape,
+            vec![LEFT],
+        );
         assert_eq!(t.g, 0.0);
         assert_eq!(t.b, 1.0);
         assert_eq!(t.a, 1.0 / 65.0);
@@ -208,7 +233,12 @@ mod tests {
         let mut script = vec![STRAIGHT; 20];
         script.push(BACK);
         script.extend([STRAIGHT; 400]);
-        let (t, tr) = measure("square", &params(Motion::Actions, 400), Homing::Escape, script);
+        let (t, tr) = measure(
+            "square",
+            &params(Motion::Actions, 400),
+            Homing::Escape,
+            script,
+        );
         // 20 moves to x = 200 (out of the 160 mm zone after x = 160), one turn, then 6 moves
         // back to x = 152, where |(152, 40)| = 157.2 ≤ 160: 27 executed steps.
         assert_eq!(tr.executed(), 27);
@@ -216,13 +246,23 @@ mod tests {
         assert_eq!(tr.poses.len(), 401);
         let end = tr.poses[27];
         assert_eq!((end.x, end.y), (152.0, 40.0));
-        assert!(tr.poses[27..].iter().all(|p| *p == end), "idle steps stand still");
+        assert!(
+            tr.poses[27..].iter().all(|p| *p == end),
+            "idle steps stand still"
+        );
         assert!(tr.idle[27..].iter().all(|&i| i) && tr.idle[..27].iter().all(|&i| !i));
-        assert!(tr.actions[27..].iter().all(|&a| a == crate::aem::Action::Straight));
+        assert!(
+            tr.actions[27..]
+                .iter()
+                .all(|&a| a == crate::aem::Action::Straight)
+        );
         assert!(tr.energy[27..].iter().all(|&e| e == 0.0));
         assert_eq!(t.b, 27.0 / 400.0);
         // g: 112 mm from home (40, 40); d_max = |(800, 800) − (40, 40)| = 760·√2.
-        assert!((t.g - (1.0 - 112.0 / (760.0 * 2f64.sqrt()))).abs() < 1e-12, "{t:?}");
+        assert!(
+            (t.g - (1.0 - 112.0 / (760.0 * 2f64.sqrt()))).abs() < 1e-12,
+            "{t:?}"
+        );
         // Cells of x = 40 … 200 on the bottom row: 0, 1, 2, 3, 4.
         assert_eq!(t.a, 5.0 / 65.0);
         // Without end_at_home the robot drives on to the far wall.
@@ -240,7 +280,12 @@ mod tests {
     #[test]
     fn wheels_robot_driving_straight() {
         // From (40, 40) heading +x at 8 mm/step for 20 steps: 160 mm, ending at x = 200.
-        let (t, _) = measure("square", &params(Motion::Wheels, 20), Homing::Distance, vec![STRAIGHT]);
+        let (t, _) = measure(
+            "square",
+            &params(Motion::Wheels, 20),
+            Homing::Distance,
+            vec![STRAIGHT],
+        );
         // Cells entered: x-cells 0 … 4: 5 cells; optimum = floor(20·8/50)+1 = 4 → a = 1.
         assert_eq!(t.a, 1.0);
         let d_max = 760.0 * 2f64.sqrt();
@@ -259,7 +304,12 @@ mod tests {
                 ..TrialParams::default()
             };
             let arena = Arena::new(Room::builtin("H").unwrap(), &params);
-            let tr = run_trial(&arena, &mut Script(vec![[0.9, 0.7]], 0), &params, &mut rng_from_seed(9));
+            let tr = run_trial(
+                &arena,
+                &mut Script(vec![[0.9, 0.7]], 0),
+                &params,
+                &mut rng_from_seed(9),
+            );
             let mut rec = TermsRecorder::new(&arena, &params, Homing::Escape);
             crate::trial::simulate(
                 &arena,
@@ -268,7 +318,10 @@ mod tests {
                 &mut rng_from_seed(9),
                 &mut rec,
             );
-            assert_eq!(rec.finish(), FitnessTerms::measure(&arena, &params, Homing::Escape, &tr));
+            assert_eq!(
+                rec.finish(),
+                FitnessTerms::measure(&arena, &params, Homing::Escape, &tr)
+            );
         }
     }
 }

@@ -136,7 +136,13 @@ impl Motion {
     /// Executes `action` from `pose`, whose heading is `compass`'s direction `dir` (0..12):
     /// the candidate pose and its direction. `step` is the length of a straight move (mm).
     #[inline]
-    pub fn execute(pose: Pose, dir: usize, action: Action, step: f64, compass: &Compass) -> (Pose, usize) {
+    pub fn execute(
+        pose: Pose,
+        dir: usize,
+        action: Action,
+        step: f64,
+        compass: &Compass,
+    ) -> (Pose, usize) {
         let dir = match action {
             Action::Straight => {
                 let p = Pose {

@@ -3,7 +3,7 @@
 //! ```
 //! use fuzzymotiv::room::Room;
 //! let h = Room::builtin("H").unwrap();
-//! assert_eq!(h.area(), 900.0 * 800.0 - 2.0 * 500.0 * 300.0);
+//! assert_eq!(h.area(), 2.0 * 200.0 * 800.0 + 400.0 * 240.0);
 //! assert_eq!(h.walls().len(), 12);
 //! ```
 
@@ -496,7 +496,10 @@ mod tests {
         assert_eq!(Room::builtin("square").unwrap().area(), 640_000.0);
         assert_eq!(Room::builtin("rectangle").unwrap().area(), 320_000.0);
         assert_eq!(Room::builtin("L").unwrap().area(), 480_000.0);
-        assert_eq!(Room::builtin("T").unwrap().area(), 320_000.0 + 400.0 * 320.0);
+        assert_eq!(
+            Room::builtin("T").unwrap().area(),
+            320_000.0 + 400.0 * 320.0
+        );
         assert_eq!(
             Room::builtin("H").unwrap().area(),
             2.0 * 200.0 * 800.0 + 400.0 * 240.0

@@ -17,6 +17,29 @@ pub mod purpose {
     pub const SOM: u64 = 6;
     /// Online-orientation extra runs.
     pub const ONLINE: u64 = 7;
+    /// The seeds of a multi-seed study (`reproduce --seeds N`).
+    pub const STUDY: u64 = 8;
+}
+
+/// Largest integer every JSON reader keeps exactly (JavaScript and jq read numbers as doubles).
+pub const JSON_EXACT: u64 = (1 << 53) - 1;
+
+/// Seed `k` of a study of several seeds from `base`: seed 0 is `base` itself (so a one-seed
+/// study is the plain run), seed k ≥ 1 is derived from `base` and `k` and kept below 2^53 so
+/// that it survives any JSON reader.
+///
+/// ```
+/// use fuzzymotiv::seed::{study_seed, JSON_EXACT};
+/// assert_eq!(study_seed(1, 0), 1);
+/// assert_ne!(study_seed(1, 1), study_seed(1, 2));
+/// assert!(study_seed(1, 1) <= JSON_EXACT);
+/// ```
+pub fn study_seed(base: u64, k: usize) -> u64 {
+    if k == 0 {
+        base
+    } else {
+        derive(base, &[purpose::STUDY, k as u64]) & JSON_EXACT
+    }
 }
 
 /// SplitMix64's finaliser: a bijective 64-bit mixer.

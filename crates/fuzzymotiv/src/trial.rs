@@ -350,7 +350,13 @@ impl Arena {
 
     /// Sensor values of a robot centred at `pos` whose heading has sine `s` and cosine `c`.
     #[inline]
-    pub fn read_sensors_rotated(&self, pos: Vec2, s: f64, c: f64, near: &NearWalls) -> [f64; INPUTS] {
+    pub fn read_sensors_rotated(
+        &self,
+        pos: Vec2,
+        s: f64,
+        c: f64,
+        near: &NearWalls,
+    ) -> [f64; INPUTS] {
         let mut out = [0.0; INPUTS];
         if near.len == 0 && !near.overflow {
             return out;
@@ -828,7 +834,10 @@ mod tests {
             (tr.poses[1], tr.actions[0])
         };
         let (p, act) = one([1.0, 1.0]);
-        assert_eq!((p.x, p.y, p.heading, act), (48.0, 40.0, 0.0, Action::Straight));
+        assert_eq!(
+            (p.x, p.y, p.heading, act),
+            (48.0, 40.0, 0.0, Action::Straight)
+        );
         let (p, act) = one([0.3, 0.9]);
         assert_eq!((p.x, p.y, act), (40.0, 40.0, Action::Left30));
         assert_eq!(p.heading, std::f64::consts::FRAC_PI_6);
@@ -852,7 +861,10 @@ mod tests {
         }
         let tr = run_trial(&a, &mut Seq(0), &p, &mut rng_from_seed(1));
         let end = tr.poses[4];
-        assert!((end.x - 40.0).abs() < 1e-12 && (end.y - 48.0).abs() < 1e-12, "{end:?}");
+        assert!(
+            (end.x - 40.0).abs() < 1e-12 && (end.y - 48.0).abs() < 1e-12,
+            "{end:?}"
+        );
         assert!((end.heading - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
     }
 

@@ -182,6 +182,12 @@
       for (var gy = r.prep.lo[1]; gy <= r.prep.hi[1]; gy += CELL) {
         ctx.beginPath(); ctx.moveTo(px(r, r.prep.lo[0]), py(r, gy)); ctx.lineTo(px(r, r.prep.hi[0]), py(r, gy)); ctx.stroke();
       }
+      // home zone (clipped to the room, as the paper draws it)
+      if (r.zone) {
+        ctx.beginPath(); ctx.arc(px(r, r.zone[0]), py(r, r.zone[1]), r.zone[2] * view.scale, 0, 2 * Math.PI);
+        ctx.fillStyle = "rgba(31,119,180,0.10)"; ctx.fill();
+        ctx.strokeStyle = "rgba(31,119,180,0.6)"; ctx.setLineDash([5, 4]); ctx.lineWidth = 1.2; ctx.stroke(); ctx.setLineDash([]);
+      }
       ctx.restore();
       r.obstacles.forEach(function (o) { polygon(ctx, r, o); ctx.fillStyle = "#999"; ctx.fill(); });
       polygon(ctx, r, r.outline);
@@ -242,7 +248,7 @@
       ctx.clearRect(0, 0, view.sw, 26);
       var w = view.sw / Math.max(1, r.steps);
       for (var k = 0; k < r.steps; k++) {
-        ctx.fillStyle = ACOLOUR[r.a[k]];
+        ctx.fillStyle = r.i && r.i.charAt(k) === "1" ? "#ddd" : ACOLOUR[r.a[k]];
         ctx.fillRect(k * w, 2, Math.max(1, w), 14);
         if (r.c.charAt(k) === "1") { ctx.fillStyle = "#000"; ctx.fillRect(k * w, 19, Math.max(1, w), 5); }
       }
@@ -251,7 +257,10 @@
 
     function updateSide(r, t) {
       stepInfo.textContent = "step " + t + " / " + r.steps + "  (t = " + (t * robot.dt).toFixed(1) + " s)";
-      if (t < r.steps) {
+      if (t < r.steps && r.i && r.i.charAt(t) === "1") {
+        actionEl.textContent = "idle: the trial ended at home after step " + r.executed;
+        collEl.textContent = "";
+      } else if (t < r.steps) {
         var a = r.a[t];
         actionEl.innerHTML = "";
         el("span", { class: "arrow", text: ARROW[a] }, actionEl).style.color = ACOLOUR[a];
