@@ -24,6 +24,7 @@ pub mod config;
 pub mod controller;
 pub mod experiment;
 pub mod fitness;
+pub mod fll;
 pub mod fuzzy;
 pub mod ga;
 pub mod geom;
