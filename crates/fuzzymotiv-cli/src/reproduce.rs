@@ -484,10 +484,17 @@ fn write_study(
             exp.motivations.as_array(),
             study.median_label()
         );
-        panels.push((
-            title.clone(),
-            study.finished[m].evolutions[0].history.clone(),
-        ));
+        // Panels are narrow: the setting and "median of N seeds" only.
+        let panel = if study.seeds.len() == 1 {
+            format!("{} {:?}", study.setting.name, exp.motivations.as_array())
+        } else {
+            format!(
+                "{}, median of {} seeds",
+                study.setting.name,
+                study.seeds.len()
+            )
+        };
+        panels.push((panel, study.finished[m].evolutions[0].history.clone()));
         write_figure_at(
             &dir.join(format!("trajectories_{}.svg", study.setting.tag)),
             &best_paths_svg(
