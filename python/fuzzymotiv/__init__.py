@@ -159,7 +159,7 @@ def rooms(files: Optional[Sequence[Union[str, os.PathLike]]] = None) -> list:
 
 
 def load_room(path: Union[str, os.PathLike]) -> dict:
-    """One room file (SPEC §6 format) as a dict like those of :func:`rooms`."""
+    """One room file (docs/model.md §4 format) as a dict like those of :func:`rooms`."""
     return _native.rooms([os.fspath(path)])[0]
 
 

@@ -1,4 +1,4 @@
-"""The TSK motivation fitness: SPEC worked values, the CLI, vectorisation, explain, errors, FLL."""
+"""The TSK motivation fitness: the worked values of docs/model.md §8, the CLI, vectorisation, explain, errors, FLL."""
 
 import doctest
 

@@ -65,7 +65,7 @@ struct FuzzyArgs {
 
 #[derive(clap::Args)]
 struct RoomsArgs {
-    /// Room files to validate (TOML, SPEC §6 format): one or more, e.g. --check rooms/*.toml.
+    /// Room files to validate (TOML, docs/model.md §4 format): one or more, e.g. --check rooms/*.toml.
     #[arg(long = "check", value_name = "FILE", num_args = 1..)]
     check: Vec<PathBuf>,
 }

@@ -22,7 +22,7 @@ use crate::svg::{best_paths_svg, fitness_svg, terms_svg};
 /// Arguments of `fuzzymotiv run`.
 #[derive(clap::Args)]
 pub struct RunArgs {
-    /// Experiment config (TOML; every key is optional, SPEC defaults). Required, unless
+    /// Experiment config (TOML; every key is optional, defaults in docs/model.md). Required, unless
     /// --resume DIR is given instead.
     #[arg(value_name = "CONFIG", required_unless_present = "resume")]
     pub config: Option<PathBuf>,
@@ -142,7 +142,7 @@ pub fn start_line(exp: &Experiment, out: &Path) -> String {
     )
 }
 
-/// One row of the per-room table (SPEC §12).
+/// One row of the per-room table (docs/model.md §10).
 #[derive(Debug, Clone, Serialize)]
 pub struct RoomRow {
     /// Room name.

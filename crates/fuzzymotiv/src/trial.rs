@@ -16,7 +16,7 @@ use crate::robot::{Compass, Khepera, Motion, Pose, drive};
 use crate::room::Room;
 use crate::sensor::{SENSOR_MAX, SensorModel, ray_count, rays, sensing_reach};
 
-/// Side of a grid cell (mm): the exploration grid of SPEC §9 and the wall-culling grid.
+/// Side of a grid cell (mm): the exploration grid of docs/model.md §7 and the wall-culling grid.
 pub const CELL: f64 = 50.0;
 
 /// Parameters of a trial (docs/model.md, "Robot", "Noise" and "Home zone").
@@ -262,7 +262,7 @@ impl Arena {
         j * self.cols + i
     }
 
-    /// Cells whose centre the robot's centre can occupy, connected to home (SPEC §9).
+    /// Cells whose centre the robot's centre can occupy, connected to home (docs/model.md §7).
     pub fn reachable_cells(&self) -> usize {
         self.reachable_count
     }
