@@ -46,9 +46,17 @@ total_ir() {
 }
 
 N1="$STEPS"; N2=$((2 * STEPS))
-echo "== callgrind: fuzzymotiv bench --steps $N1 and $N2" >&2
-FM1=$(total_ir fm1 "$FM" bench --room H --steps "$N1" --repeat 1 --population 2 --threads 1 --json)
-FM2=$(total_ir fm2 "$FM" bench --room H --steps "$N2" --repeat 1 --population 2 --threads 1 --json)
+# wheels: Enki's workload (the first release's model and H room); actions: the default model.
+WHEELS=(--room "$ROOT/rooms/first-release/H.toml" --motion wheels --set trial.end_at_home=false)
+ACTIONS=(--room H --motion actions)
+echo "== callgrind: fuzzymotiv bench --steps $N1 and $N2, wheels and actions" >&2
+FM1=$(total_ir fm1 "$FM" bench "${WHEELS[@]}" --steps "$N1" --repeat 1 --population 2 --threads 1 --json)
+FM2=$(total_ir fm2 "$FM" bench "${WHEELS[@]}" --steps "$N2" --repeat 1 --population 2 --threads 1 --json)
+FA1=$(total_ir fa1 "$FM" bench "${ACTIONS[@]}" --steps "$N1" --repeat 1 --population 2 --threads 1 --json)
+FA2=$(total_ir fa2 "$FM" bench "${ACTIONS[@]}" --steps "$N2" --repeat 1 --population 2 --threads 1 --json)
+# Executed robot-steps of each run, as bench counted them (idle steps are not work).
+executed() { python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(d["robot_steps"] + d["population_robot_steps"])' "$TMP/$1.stdout"; }
+SW1=$(executed fm1); SW2=$(executed fm2); SA1=$(executed fa1); SA2=$(executed fa2)
 EN1=""; EN2=""
 if [ "$WITH_ENKI" -eq 1 ]; then
     echo "== callgrind: khepera_h --steps $N1 and $N2" >&2
@@ -56,28 +64,38 @@ if [ "$WITH_ENKI" -eq 1 ]; then
     EN2=$(total_ir en2 "$ENKI" --steps "$N2" --repeat 1)
 fi
 
-python3 - "$N1" "$N2" "$FM1" "$FM2" "$EN1" "$EN2" "$HERE/callgrind.json" "$ROOT" <<'PY'
+python3 - "$N1" "$N2" "$FM1" "$FM2" "$EN1" "$EN2" "$HERE/callgrind.json" "$ROOT" \
+    "$SW1" "$SW2" "$FA1" "$FA2" "$SA1" "$SA2" <<'PY'
 import datetime, json, os, subprocess, sys
 n1, n2, fm1, fm2 = (int(x) for x in sys.argv[1:5])
 en1, en2, out, root = sys.argv[5:9]
+fm_steps1, fm_steps2, fa1, fa2, fa_steps1, fa_steps2 = (int(x) for x in sys.argv[9:15])
 trial = 400
 steps = lambda n: -(-n // trial) * trial
-fm_steps1, fm_steps2 = steps(n1) + 2 * trial, steps(n2) + 2 * trial
 doc = {
     "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
     "fuzzymotiv_source": os.environ.get("FM_SOURCE", ""),
     "valgrind": subprocess.run(["valgrind", "--version"], capture_output=True,
                                text=True).stdout.strip(),
+    "fuzzymotiv_actions": {
+        "command": f"fuzzymotiv bench --room H --motion actions --steps {n1} --repeat 1 --population 2 --threads 1",
+        "total_ir": fa1, "robot_steps": fa_steps1,
+        "ir_per_robot_step": fa1 / fa_steps1,
+        "second_run": {"steps_arg": n2, "total_ir": fa2, "robot_steps": fa_steps2},
+        "marginal_ir_per_robot_step": (fa2 - fa1) / (fa_steps2 - fa_steps1),
+    },
     "fuzzymotiv": {
-        "command": f"fuzzymotiv bench --room H --steps {n1} --repeat 1 --population 2 --threads 1",
+        "command": f"fuzzymotiv bench --room rooms/first-release/H.toml --motion wheels --set trial.end_at_home=false --steps {n1} --repeat 1 --population 2 --threads 1",
         "total_ir": fm1, "robot_steps": fm_steps1,
         "ir_per_robot_step": fm1 / fm_steps1,
         "second_run": {"steps_arg": n2, "total_ir": fm2, "robot_steps": fm_steps2},
         "marginal_ir_per_robot_step": (fm2 - fm1) / (fm_steps2 - fm_steps1),
     },
 }
-print(f"fuzzymotiv: {fm1:,} Ir / {fm_steps1:,} robot-steps = {fm1 / fm_steps1:,.0f} Ir per robot-step"
+print(f"fuzzymotiv wheels:  {fm1:,} Ir / {fm_steps1:,} robot-steps = {fm1 / fm_steps1:,.0f} Ir per robot-step"
       f" (marginal, start-up cancelled: {(fm2 - fm1) / (fm_steps2 - fm_steps1):,.0f})")
+print(f"fuzzymotiv actions: {fa1:,} Ir / {fa_steps1:,} executed robot-steps = {fa1 / fa_steps1:,.0f} Ir per robot-step"
+      f" (marginal: {(fa2 - fa1) / (fa_steps2 - fa_steps1):,.0f})")
 if en1:
     en1, en2 = int(en1), int(en2)
     e_steps1, e_steps2 = steps(n1), steps(n2)

@@ -53,9 +53,14 @@ export LOAD_BEFORE
 
 echo "== $ROUNDS alternating rounds, $STEPS robot-steps each, repeat $REPEAT" >&2
 for k in $(seq 1 "$ROUNDS"); do
-    "$FM" bench --room H --steps "$STEPS" --population 200 --repeat "$REPEAT" --threads 1 --json \
+    # The same workload as Enki's: the first release's model (wheels, no end at home) in its H room.
+    "$FM" bench --room "$ROOT/rooms/first-release/H.toml" --motion wheels --set trial.end_at_home=false \
+        --steps "$STEPS" --population 200 --repeat "$REPEAT" --threads 1 --json \
         > "$RAW/fm_single_$k.json"
     "$ENKI" --steps "$STEPS" --repeat "$REPEAT" --seed 1 > "$RAW/enki_$k.json"
+    # The default model (the paper's robot in the paper's H room), executed steps only.
+    "$FM" bench --room H --motion actions --steps "$STEPS" --population 200 --repeat "$REPEAT" \
+        --threads 1 --json > "$RAW/fm_actions_$k.json"
     python3 - "$RAW/fm_single_$k.json" "$RAW/enki_$k.json" "$k" >&2 <<'PY'
 import json, sys
 f, e = (json.load(open(p)) for p in sys.argv[1:3])
@@ -82,6 +87,7 @@ raw, out, rounds, steps, repeat, pop_repeat, nproc, root = sys.argv[1:]
 rounds, nproc = int(rounds), int(nproc)
 load = lambda name: [json.load(open(os.path.join(raw, f"{name}_{k}.json"))) for k in range(1, rounds + 1)]
 fm, enki, pop1, popn = load("fm_single"), load("enki"), load("fm_pop1"), load("fm_popn")
+act = load("fm_actions")
 
 def sh(*cmd):
     try:
@@ -109,7 +115,9 @@ fm_sps = [r["robot_steps_per_sec"] for r in fm]
 en_sps = [r["robot_steps_per_sec"] for r in enki]
 p1 = [r["population_robot_steps_per_sec"] for r in pop1]
 pn = [r["population_robot_steps_per_sec"] for r in popn]
+act_sps = [r["robot_steps_per_sec"] for r in act]
 fm_m, en_m, p1_m, pn_m = med(fm_sps), med(en_sps), med(p1), med(pn)
+act_m = med(act_sps)
 threads_n = popn[0]["threads"]
 
 doc = {
@@ -130,6 +138,8 @@ doc = {
         "fuzzymotiv_robot_steps_per_sec_median": fm_m,
         "enki_robot_steps_per_sec_median": en_m,
         "ratio_fuzzymotiv_over_enki": fm_m / en_m,
+        "actions_robot_steps_per_sec_median": act_m,
+        "ratio_actions_over_enki": act_m / en_m,
         "population_1_thread_robot_steps_per_sec_median": p1_m,
         "population_all_threads_robot_steps_per_sec_median": pn_m,
         "population_threads": threads_n,
@@ -138,6 +148,7 @@ doc = {
     "raw": {
         "fuzzymotiv_single_thread": fm,
         "enki": enki,
+        "fuzzymotiv_actions_single_thread": act,
         "fuzzymotiv_population_1_thread": pop1,
         "fuzzymotiv_population_all_threads": popn,
     },
@@ -154,9 +165,11 @@ print()
 print(f"H room, {fm[0]['robot_steps']:,} robot-steps per run, {rounds} alternating rounds "
       f"({doc['date']}, {doc['machine']['cpu']}, {nproc} cores)")
 print(f"{'robot-steps/s':<44} {'median':>14} {'min':>14} {'max':>14}")
-row("fuzzymotiv, 1 robot, 1 thread", fm_sps, fm_m)
+row("fuzzymotiv wheels, 1 robot, 1 thread", fm_sps, fm_m)
 row("Enki (libenki " + doc["versions"]["libenki"] + "), 1 robot, 1 thread", en_sps, en_m)
-print(f"{'ratio of medians fuzzymotiv / Enki':<44} {fm_m / en_m:>14.2f}")
+print(f"{'ratio of medians fuzzymotiv wheels / Enki':<44} {fm_m / en_m:>14.2f}")
+row("fuzzymotiv actions (paper's H), 1 thread", act_sps, act_m)
+print(f"{'ratio of medians fuzzymotiv actions / Enki':<44} {act_m / en_m:>14.2f}")
 row("fuzzymotiv population 200x400, 1 thread", p1, p1_m)
 row(f"fuzzymotiv population 200x400, {threads_n} threads", pn, pn_m)
 print(f"{'population speed-up ' + str(threads_n) + ' threads / 1':<44} {pn_m / p1_m:>14.2f}")

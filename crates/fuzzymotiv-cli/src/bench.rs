@@ -35,6 +35,9 @@ pub struct BenchArgs {
     /// trial ended at home are not work.
     #[arg(long, default_value = "actions", value_parser = ["actions", "wheels"])]
     pub motion: String,
+    /// Override a config key (repeatable), e.g. --set trial.end_at_home=false.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -57,6 +60,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
         "aem.enabled=false".to_string(),
         format!("robot.motion=\"{}\"", args.motion),
     ];
+    let sets: Vec<String> = sets.into_iter().chain(args.sets.iter().cloned()).collect();
     let loaded = if Room::builtin(&args.room).is_some() {
         load_config(None, &sets, None)?
     } else {

@@ -1,17 +1,6 @@
 //! `fuzzymotiv`: evolve Khepera controllers under fuzzy motivations, from the command line.
 
-mod bench;
-mod error;
-mod files;
-mod inputs;
-mod png;
-mod progress;
-mod replay;
-mod report;
-mod reproduce;
-mod run;
-mod svg;
-mod sweep;
+use fuzzymotiv_cli::{bench, error, inputs, replay, reproduce, run, sweep};
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -61,16 +50,22 @@ struct FuzzyArgs {
     #[arg(long, value_name = "C,H,O,E")]
     motivations: String,
     /// Fitness values a,g,l,b (each clamped to [0, 1]), e.g. 0.95,0.5,0,0.79.
-    #[arg(long, value_name = "a,g,l,b")]
-    fitness: String,
+    #[arg(long, value_name = "a,g,l,b", required_unless_present = "export_fll")]
+    fitness: Option<String>,
     /// Also list the firing rules with their labels, weights and outputs.
-    #[arg(long)]
+    #[arg(long, requires = "fitness")]
     explain: bool,
+    /// Write the 625-rule TSK of these motivations as a fuzzylite FLL file.
+    #[arg(long, value_name = "FILE")]
+    export_fll: Option<PathBuf>,
+    /// Overwrite an existing --export-fll FILE.
+    #[arg(long, requires = "export_fll")]
+    force: bool,
 }
 
 #[derive(clap::Args)]
 struct RoomsArgs {
-    /// Room files to validate (TOML, SPEC §6 format): one or more, e.g. --check rooms/*.toml.
+    /// Room files to validate (TOML, docs/model.md §4 format): one or more, e.g. --check rooms/*.toml.
     #[arg(long = "check", value_name = "FILE", num_args = 1..)]
     check: Vec<PathBuf>,
 }
@@ -132,7 +127,6 @@ fn parse_four(text: &str, option: &str, names: [&str; 4]) -> Result<[f64; 4], Cl
 fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
     use fuzzymotiv::fuzzy::{Motivations, TskFitness};
     let x = parse_four(&args.motivations, "--motivations", ["C", "H", "O", "E"])?;
-    let y = parse_four(&args.fitness, "--fitness", ["a", "g", "l", "b"])?;
     let (m, sum) = Motivations::normalised(x[0], x[1], x[2], x[3])
         .map_err(|e| CliError::input(format!("--motivations: {e}")))?;
     if let Some(sum) = sum {
@@ -142,11 +136,41 @@ fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
         );
     }
     let tsk = TskFitness::paper();
-    let f = tsk.evaluate(&m, y);
-    println!("{f:.12}");
-    if args.explain {
-        print!("{}", tsk.explain(&m, y));
+    if let Some(fitness) = &args.fitness {
+        let y = parse_four(fitness, "--fitness", ["a", "g", "l", "b"])?;
+        let f = tsk.evaluate(&m, y);
+        println!("{f:.12}");
+        if args.explain {
+            print!("{}", tsk.explain(&m, y));
+        }
     }
+    if let Some(path) = &args.export_fll {
+        export_fll(path, &tsk, &m, args.force)?;
+    }
+    Ok(())
+}
+
+fn export_fll(
+    path: &std::path::Path,
+    tsk: &fuzzymotiv::fuzzy::TskFitness,
+    m: &fuzzymotiv::fuzzy::Motivations,
+    force: bool,
+) -> Result<(), CliError> {
+    if path.exists() && !force {
+        return Err(CliError::input(format!(
+            "--export-fll {}: the file exists; add --force to overwrite it",
+            path.display()
+        )));
+    }
+    let name = path
+        .file_stem()
+        .map_or("fuzzymotiv".into(), |s| s.to_string_lossy().into_owned());
+    fuzzymotiv_cli::files::write_atomic(path, fuzzymotiv::fll::to_fll(tsk, m, &name))?;
+    eprintln!(
+        "wrote {} ({} rules, fuzzylite FLL)",
+        path.display(),
+        tsk.rule_count()
+    );
     Ok(())
 }
 

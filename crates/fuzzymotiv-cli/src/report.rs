@@ -247,7 +247,7 @@ pub fn reproduce_page(
         .iter()
         .map(|s| {
             (
-                format!("{} (C,H,O,E) = {}", s.title, xs(&s.loaded.experiment)),
+                format!("{} (C,H,O,E) = {}", s.id, xs(&s.loaded.experiment)),
                 s.done.evolutions[0].history.clone(),
             )
         })
@@ -256,7 +256,7 @@ pub fn reproduce_page(
     figure(
         &mut page,
         &fitness_svg(&panels),
-        "Fitness evolution of both settings: best F (red) and mean F (blue) of the population in every generation; the shaded band spans the population's minimum to maximum F.",
+        "Fitness evolution of both settings (on a multi-seed study, each setting's median seed): best F (red) and mean F (blue) of the population in every generation; the shaded band spans the population's minimum to maximum F.",
     );
     page.push("<table><tr><th>setting</th><th>mean % optimal exploration</th><th>mean % recognition</th><th>mean % battery usage</th></tr>\n");
     for s in sections {

@@ -484,10 +484,17 @@ fn write_study(
             exp.motivations.as_array(),
             study.median_label()
         );
-        panels.push((
-            title.clone(),
-            study.finished[m].evolutions[0].history.clone(),
-        ));
+        // Panels are narrow: the setting and "median of N seeds" only.
+        let panel = if study.seeds.len() == 1 {
+            format!("{} {:?}", study.setting.name, exp.motivations.as_array())
+        } else {
+            format!(
+                "{}, median of {} seeds",
+                study.setting.name,
+                study.seeds.len()
+            )
+        };
+        panels.push((panel, study.finished[m].evolutions[0].history.clone()));
         write_figure_at(
             &dir.join(format!("trajectories_{}.svg", study.setting.tag)),
             &best_paths_svg(
@@ -664,7 +671,7 @@ fn study_table(study: &SettingRuns<'_>, prov: &Provenance) -> (String, String, S
             let d = DIGITS[c];
             let cell = stat.map_or("n/a".to_string(), |(m, s)| format!("{m:.d$} ± {s:.d$}"));
             let paper_cell = p.map_or(String::new(), |p| {
-                format!(" ({p:.prec$})", prec = d.max(2).min(4))
+                format!(" ({p:.prec$})", prec = d.clamp(2, 4))
             });
             let _ = write!(md, " {cell}{paper_cell} |");
             let (m, s) = stat.map_or((String::new(), String::new()), |(m, s)| {
@@ -940,8 +947,8 @@ fn ablation_table(rows: &[(&Variant, Vec<Claim>)], prov: &Provenance) -> (String
 
 /// The report's spread table of one setting: mean ± std over seeds and the range, per room.
 fn spread_html(study: &SettingRuns<'_>) -> String {
-    let mut html = format!(
-        "<table><tr><th>room</th><th>average fitness</th><th>% optimal exploration</th><th>% recognition</th><th>% battery usage</th><th>% homing</th></tr>\n"
+    let mut html = String::from(
+        "<table><tr><th>room</th><th>average fitness</th><th>% optimal exploration</th><th>% recognition</th><th>% battery usage</th><th>% homing</th></tr>\n",
     );
     for (i, row) in study.finished[0].rows.iter().enumerate() {
         let _ = write!(html, "<tr><td>{}</td>", crate::svg::esc(&row.room));
@@ -965,9 +972,9 @@ fn spread_html(study: &SettingRuns<'_>) -> String {
         html.push_str("</tr>\n");
     }
     html.push_str("</table>\n");
-    let _ = write!(
+    let _ = writeln!(
         html,
-        "<p class=\"caption\">Mean ± standard deviation over {} seeds ({}), with the range in brackets. The figures and the detailed sections below show the {}.</p>\n",
+        "<p class=\"caption\">Mean ± standard deviation over {} seeds ({}), with the range in brackets. The figures and the detailed sections below show the {}.</p>",
         study.seeds.len(),
         study
             .seeds

@@ -22,7 +22,7 @@ use crate::svg::{best_paths_svg, fitness_svg, terms_svg};
 /// Arguments of `fuzzymotiv run`.
 #[derive(clap::Args)]
 pub struct RunArgs {
-    /// Experiment config (TOML; every key is optional, SPEC defaults). Required, unless
+    /// Experiment config (TOML; every key is optional, defaults in docs/model.md). Required, unless
     /// --resume DIR is given instead.
     #[arg(value_name = "CONFIG", required_unless_present = "resume")]
     pub config: Option<PathBuf>,
@@ -142,7 +142,7 @@ pub fn start_line(exp: &Experiment, out: &Path) -> String {
     )
 }
 
-/// One row of the per-room table (SPEC §12).
+/// One row of the per-room table (docs/model.md §10).
 #[derive(Debug, Clone, Serialize)]
 pub struct RoomRow {
     /// Room name.
@@ -211,6 +211,20 @@ pub fn execute(
     resume: bool,
     png: bool,
 ) -> Result<Finished, CliError> {
+    execute_with(loaded, out, progress, resume, png, &mut |_| {})
+}
+
+/// [`execute`], calling `hook` after every generation once its checkpoint is saved (the Python
+/// bindings report progress and stop on Ctrl-C there; a hook that unwinds leaves the staging
+/// directory resumable).
+pub fn execute_with(
+    loaded: &Loaded,
+    out: &Path,
+    progress: &Progress,
+    resume: bool,
+    png: bool,
+    hook: &mut dyn FnMut(&GenerationState<'_>),
+) -> Result<Finished, CliError> {
     let exp = &loaded.experiment;
     let start = Instant::now();
     let staged = if resume {
@@ -255,6 +269,7 @@ pub fn execute(
                 if let Err(e) = checkpoint.save(&staged.path(CHECKPOINT)) {
                     write_error.get_or_insert(e);
                 }
+                hook(state);
             };
             exp.evolve_from(
                 run,
@@ -487,7 +502,8 @@ pub fn table_markdown(rows: &[RoomRow]) -> String {
     s
 }
 
-fn summary_json(
+/// The contents of `summary.json` (also the Python bindings' `summary`).
+pub fn summary_json(
     exp: &Experiment,
     evolutions: &[Evolution],
     rows: &[RoomRow],

@@ -74,11 +74,9 @@ impl MlpShape {
     }
 }
 
-/// Logistic function 1 / (1 + e^(−x)).
-#[inline]
-pub fn logistic(x: f64) -> f64 {
-    1.0 / (1.0 + (-x).exp())
-}
+/// Logistic function 1 / (1 + e^(−x)), with the project's own `exp` (error bound and range:
+/// [`crate::math::logistic`]).
+pub use crate::math::logistic;
 
 /// The feed-forward logistic MLP whose weights are the genome.
 #[derive(Debug, Clone)]
@@ -86,6 +84,10 @@ pub struct Mlp {
     shape: MlpShape,
     weights: Vec<f64>,
     hidden: Vec<f64>,
+    /// The hidden units' outputs when every input is 0 (`logistic(bias)`): in open floor all
+    /// eight sensors read 0, and a term `w · 0` adds ±0, which changes no sum that reaches the
+    /// logistic (`exp(±0)` is 1 either way), so these are the loop's results bit for bit.
+    idle_hidden: Vec<f64>,
 }
 
 impl Mlp {
@@ -97,6 +99,10 @@ impl Mlp {
                 shape,
                 weights: genome.to_vec(),
                 hidden: vec![0.0; shape.hidden],
+                idle_hidden: genome[..shape.hidden * (INPUTS + 1)]
+                    .chunks_exact(INPUTS + 1)
+                    .map(|w| logistic(w[0]))
+                    .collect(),
             })
     }
 
@@ -109,15 +115,23 @@ impl Mlp {
 /// The network with `H` hidden units known at compile time: the same arithmetic in the same
 /// order as the general loop (so identical results), with fixed trip counts the compiler unrolls.
 #[inline]
-fn step_fixed<const H: usize>(weights: &[f64], inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
+fn step_fixed<const H: usize>(
+    weights: &[f64],
+    idle_hidden: &[f64],
+    inputs: &[f64; INPUTS],
+) -> [f64; OUTPUTS] {
     let (hidden_w, out_w) = weights.split_at(H * (INPUTS + 1));
     let mut hidden = [0.0; H];
-    for (h, w) in hidden.iter_mut().zip(hidden_w.chunks_exact(INPUTS + 1)) {
-        let mut s = w[0];
-        for k in 0..INPUTS {
-            s += w[k + 1] * inputs[k];
+    if inputs.iter().all(|&x| x == 0.0) {
+        hidden.copy_from_slice(&idle_hidden[..H]);
+    } else {
+        for (h, w) in hidden.iter_mut().zip(hidden_w.chunks_exact(INPUTS + 1)) {
+            let mut s = w[0];
+            for k in 0..INPUTS {
+                s += w[k + 1] * inputs[k];
+            }
+            *h = logistic(s);
         }
-        *h = logistic(s);
     }
     let mut out = [0.0; OUTPUTS];
     for (o, w) in out.iter_mut().zip(out_w.chunks_exact(H + 1)) {
@@ -134,7 +148,7 @@ impl Controller for Mlp {
     #[inline]
     fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
         if self.shape.hidden == 6 {
-            return step_fixed::<6>(&self.weights, inputs);
+            return step_fixed::<6>(&self.weights, &self.idle_hidden, inputs);
         }
         let (hidden_w, out_w) = self.weights.split_at(self.shape.hidden * (INPUTS + 1));
         for (h, w) in self
@@ -176,8 +190,12 @@ mod tests {
                 .map(|_| crate::rng::uniform(&mut rng, -5.0, 5.0))
                 .collect();
             let mut m = Mlp::from_genome(shape, &g).unwrap();
-            for _ in 0..50 {
-                let x: [f64; 8] = std::array::from_fn(|_| crate::rng::uniform01(&mut rng));
+            for i in 0..50 {
+                // Input 0: open floor (all sensors 0), the cached idle path.
+                let x: [f64; 8] = std::array::from_fn(|_| match i {
+                    0 => 0.0,
+                    _ => crate::rng::uniform01(&mut rng),
+                });
                 let fast = m.step(&x);
                 // The general loop, written out.
                 let (hw, ow) = g.split_at(hidden * 9);

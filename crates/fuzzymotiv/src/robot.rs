@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::aem::Action;
 use crate::geom::Vec2;
+use crate::math;
 use crate::params::{FieldError, check};
 
 /// Where the robot is: centre `(x, y)` in mm and `heading` in radians (counter-clockwise from +x,
@@ -213,20 +214,23 @@ pub struct Compass {
 }
 
 /// `k·30°` for k = 0..12, wrapped to (−π, π], each the correctly rounded double.
-const GRID_ANGLES: [f64; 12] = [
-    0.0,
-    0.523_598_775_598_298_9,
-    1.047_197_551_196_597_9,
-    1.570_796_326_794_896_6,
-    2.094_395_102_393_195_7,
-    2.617_993_877_991_494_4,
-    std::f64::consts::PI,
-    -2.617_993_877_991_494_4,
-    -2.094_395_102_393_195_7,
-    -1.570_796_326_794_896_6,
-    -1.047_197_551_196_597_9,
-    -0.523_598_775_598_298_9,
-];
+const GRID_ANGLES: [f64; 12] = {
+    use std::f64::consts::{FRAC_PI_2, FRAC_PI_3, FRAC_PI_6, PI};
+    [
+        0.0,
+        FRAC_PI_6,
+        FRAC_PI_3,
+        FRAC_PI_2,
+        2.094_395_102_393_195_7, // 2π/3
+        2.617_993_877_991_494_4, // 5π/6
+        PI,
+        -2.617_993_877_991_494_4,
+        -2.094_395_102_393_195_7,
+        -FRAC_PI_2,
+        -FRAC_PI_3,
+        -FRAC_PI_6,
+    ]
+};
 
 /// `√3 / 2`, correctly rounded: cos 30°.
 const HALF_SQRT3: f64 = 0.866_025_403_784_438_6;
@@ -251,7 +255,8 @@ impl Compass {
     /// The grid from `home_heading` (rad). Direction 0 is the home heading itself. When the
     /// home heading is itself a multiple of 30° (every built-in room's is 0), every heading,
     /// cosine and sine is the correctly rounded value, so no trigonometry is computed;
-    /// otherwise cosines and sines are computed once here.
+    /// otherwise cosines and sines are computed once here (with the project's own `math::sin`,
+    /// `math::cos`).
     pub fn new(home_heading: f64) -> Compass {
         if let Some(k0) = GRID_ANGLES.iter().position(|&a| a == home_heading) {
             let at = |k: usize| (k0 + k) % 12;
@@ -270,8 +275,8 @@ impl Compass {
         });
         Compass {
             heading,
-            cos: heading.map(f64::cos),
-            sin: heading.map(f64::sin),
+            cos: heading.map(math::cos),
+            sin: heading.map(math::sin),
         }
     }
 }
@@ -310,16 +315,17 @@ pub fn drive(pose: Pose, s_left: f64, s_right: f64, wheel_base: f64, dt: f64) ->
     let dtheta = (s_right - s_left) / wheel_base * dt;
     let half = 0.5 * dtheta;
     // Chord length of the arc: v·dt·sin(half)/half (→ v·dt as half → 0).
+    // The project's own sin/cos (≤ 1 ulp, |x| ≤ 10⁶: see `crate::math`), not libm's.
     let sinc = if half.abs() < 1e-6 {
         1.0 - half * half / 6.0
     } else {
-        half.sin() / half
+        math::sin(half) / half
     };
     let chord = v * dt * sinc;
-    let mid = pose.heading + half;
+    let (s, c) = math::sin_cos(pose.heading + half);
     Pose::new(
-        pose.x + chord * mid.cos(),
-        pose.y + chord * mid.sin(),
+        pose.x + chord * c,
+        pose.y + chord * s,
         pose.heading + dtheta,
     )
 }

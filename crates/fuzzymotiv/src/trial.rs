@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::aem::Action;
 use crate::controller::{Controller, INPUTS};
-use crate::geom::{Segment, Vec2};
+use crate::geom::{PreparedSegment, Segment, Vec2};
 use crate::noise::{perturb, perturb_sensors};
 use crate::params::{FieldError, check};
 use crate::rng::Rng;
@@ -17,7 +17,7 @@ use crate::robot::{Compass, Khepera, Motion, Pose, drive};
 use crate::room::Room;
 use crate::sensor::{SENSOR_MAX, SensorModel, ray_count, rays, sensing_reach};
 
-/// Side of a grid cell (mm): the exploration grid of SPEC §9 and the wall-culling grid.
+/// Side of a grid cell (mm): the exploration grid of docs/model.md §7 and the wall-culling grid.
 pub const CELL: f64 = 50.0;
 
 /// Parameters of a trial (docs/model.md, "Robot", "Noise" and "Home zone").
@@ -161,6 +161,8 @@ struct Ray {
 pub struct Arena {
     room: Room,
     walls: Vec<Segment>,
+    /// The walls prepared for division-free culling tests (same order as `walls`).
+    prepared: Vec<PreparedSegment>,
     origin: Vec2,
     cols: usize,
     rows: usize,
@@ -287,6 +289,7 @@ impl Arena {
         let compass = Compass::new(room.home.heading);
         Arena {
             room,
+            prepared: walls.iter().map(PreparedSegment::new).collect(),
             walls,
             origin: lo,
             cols,
@@ -339,7 +342,7 @@ impl Arena {
         j * self.cols + i
     }
 
-    /// Cells whose centre the robot's centre can occupy, connected to home (SPEC §9).
+    /// Cells whose centre the robot's centre can occupy, connected to home (docs/model.md §7).
     pub fn reachable_cells(&self) -> usize {
         self.reachable_count
     }
@@ -390,8 +393,10 @@ impl Arena {
             walls: [0; NEAR_CAP],
         };
         let r2 = self.near_reach * self.near_reach;
+        // A culling test: `near_reach` keeps a 1e-6 mm margin over every distance that can
+        // matter, far above the rounding of the division-free test (see `PreparedSegment`).
         for &k in self.cell_list(cell) {
-            if self.walls[k as usize].dist2_to(p) <= r2 {
+            if self.prepared[k as usize].dist2_to(p) <= r2 {
                 if near.len == NEAR_CAP {
                     near.overflow = true;
                     break;
@@ -424,7 +429,7 @@ impl Arena {
         if near.len == 0 && !near.overflow {
             return [0.0; INPUTS];
         }
-        let (s, c) = pose.heading.sin_cos();
+        let (s, c) = crate::math::sin_cos(pose.heading);
         self.read_sensors_rotated(pose.position(), s, c, near)
     }
 
@@ -443,15 +448,16 @@ impl Arena {
         }
         let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
         let range2 = self.ray_range * self.ray_range;
+        // Candidate walls of one sensor; filled anew for each (only `cand[..n]` is read).
+        let mut cand = [0u32; NEAR_CAP];
         for (o, sensor) in out.iter_mut().zip(&self.rays) {
             // All rays of a sensor share its origin; walls beyond the longest ray's range
             // cannot change the value, so they are dropped before casting.
             let origin = pos + rot(sensor[0].origin);
-            let mut cand = [0u32; NEAR_CAP];
             let mut n = 0;
             if !near.overflow {
                 for &k in &near.walls[..near.len] {
-                    if self.walls[k as usize].dist2_to(origin) <= range2 {
+                    if self.prepared[k as usize].dist2_to(origin) <= range2 {
                         cand[n] = k;
                         n += 1;
                     }

@@ -1,0 +1,141 @@
+"""Type stubs of the fuzzymotiv Python API (see the module docstring for examples)."""
+
+import os
+from pathlib import Path
+from typing import Any, Callable, Literal, Mapping, Optional, Sequence, TypedDict, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Motivations = Union[Sequence[float], Mapping[str, float]]
+Coefficients = Union[Literal["linear", "ratio"], Sequence[float], None]
+Config = Union[str, os.PathLike[str], None]
+Overrides = Union[Mapping[str, Any], Sequence[str], None]
+FloatArray = npt.NDArray[np.float64]
+
+class FuzzymotivError(ValueError):
+    """Bad input: the message is the one the CLI prints (file, field, what is wrong)."""
+
+class FiringRule(TypedDict):
+    number: int
+    labels: list[int]
+    label_names: list[str]
+    weight: float
+    output: float
+
+class Explanation(TypedDict):
+    fitness: float
+    weight_sum: float
+    rules: list[FiringRule]
+    text: str
+
+@overload
+def fuzzy_fitness(
+    motivations: Motivations,
+    terms: Sequence[float],
+    explain: Literal[False] = ...,
+    *,
+    peaks: Optional[Sequence[float]] = ...,
+    coefficients: Coefficients = ...,
+) -> float: ...
+@overload
+def fuzzy_fitness(
+    motivations: Motivations,
+    terms: Union[Sequence[Sequence[float]], npt.ArrayLike],
+    explain: Literal[False] = ...,
+    *,
+    peaks: Optional[Sequence[float]] = ...,
+    coefficients: Coefficients = ...,
+) -> Union[float, FloatArray]: ...
+@overload
+def fuzzy_fitness(
+    motivations: Motivations,
+    terms: npt.ArrayLike,
+    explain: Literal[True],
+    *,
+    peaks: Optional[Sequence[float]] = ...,
+    coefficients: Coefficients = ...,
+) -> Union[Explanation, list[Explanation]]: ...
+def export_fll(
+    motivations: Motivations,
+    path: Union[str, os.PathLike[str], None] = ...,
+    *,
+    peaks: Optional[Sequence[float]] = ...,
+    coefficients: Coefficients = ...,
+    name: Optional[str] = ...,
+    force: bool = ...,
+) -> str: ...
+
+class Home(TypedDict):
+    x: float
+    y: float
+    heading: float
+    heading_deg: float
+
+class HomeZone(TypedDict):
+    x: float
+    y: float
+    radius: float
+
+class RoomInfo(TypedDict):
+    name: str
+    outline: FloatArray
+    obstacles: list[FloatArray]
+    home: Home
+    home_zone: HomeZone
+    area: float
+    perimeter: float
+
+def rooms(files: Optional[Sequence[Union[str, os.PathLike[str]]]] = ...) -> list[RoomInfo]: ...
+def load_room(path: Union[str, os.PathLike[str]]) -> RoomInfo: ...
+
+class RunResult:
+    generations: Any
+    """pandas.DataFrame (or dict of numpy arrays): generation,best,mean,std,min,max,a,g,l,b,room."""
+    rooms: Any
+    """pandas.DataFrame (or dict): room,average_fitness,exploration_pct,recognition_pct,battery_pct,homing_pct,r_node."""
+    best_genome: FloatArray
+    best_genomes: dict[str, FloatArray]
+    trajectories: dict[str, dict[str, FloatArray]]
+    summary: dict[str, Any]
+    hidden: int
+    out: Optional[Path]
+
+def run(
+    config: Config = ...,
+    overrides: Overrides = ...,
+    threads: Optional[int] = ...,
+    out: Union[str, os.PathLike[str], None] = ...,
+    *,
+    seed: Optional[int] = ...,
+    progress: Union[None, bool, Callable[[int, int, float], Any]] = ...,
+) -> RunResult: ...
+
+class Trajectory(TypedDict):
+    x: FloatArray
+    y: FloatArray
+    heading: FloatArray
+    sensors: FloatArray
+    motors: FloatArray
+    action: npt.NDArray[np.str_]
+    idle: npt.NDArray[np.bool_]
+    energy: FloatArray
+    escaped: npt.NDArray[np.bool_]
+    collision: npt.NDArray[np.bool_]
+    a: float
+    g: float
+    l: float
+    b: float
+    F: float
+    room: str
+    seed: int
+
+def simulate(
+    genome: npt.ArrayLike,
+    room: Union[str, os.PathLike[str]],
+    seed: int,
+    config: Config = ...,
+    overrides: Overrides = ...,
+) -> Trajectory: ...

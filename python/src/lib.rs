@@ -1,0 +1,642 @@
+//! The native part of the `fuzzymotiv` Python package (`fuzzymotiv._fuzzymotiv`).
+//!
+//! Thin: configs are loaded, runs executed and run directories written by the very code of the
+//! `fuzzymotiv` binary (the `fuzzymotiv-cli` library), so results equal the CLI's for the same
+//! config and seed. The Python layer (`fuzzymotiv/__init__.py`) adds pandas, tqdm and the
+//! friendlier signatures.
+
+use std::panic::{AssertUnwindSafe, catch_unwind, resume_unwind};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use fuzzymotiv::config::{OrientationMode, RawConfig};
+use fuzzymotiv::evolution::{Evolution, GenerationState};
+use fuzzymotiv::fuzzy::{CoefficientScheme, Motivations, TskFitness};
+use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+use fuzzymotiv_cli::error::CliError;
+use fuzzymotiv_cli::inputs::{Loaded, load_config, load_room_file, resolve};
+use fuzzymotiv_cli::run::{self as cli_run, RoomRow};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+create_exception!(
+    _fuzzymotiv,
+    FuzzymotivError,
+    PyValueError,
+    "Bad input (config, room file, motivations, ...): the message is the CLI's, naming the file, the field and what is wrong."
+);
+
+/// A CLI error as a Python exception: bad input → `FuzzymotivError` (a `ValueError`), a
+/// failure while running → `RuntimeError`; the message is what the CLI prints after `error:`.
+fn py_err(e: CliError) -> PyErr {
+    if e.exit_code() == 2 {
+        FuzzymotivError::new_err(e.to_string())
+    } else {
+        PyRuntimeError::new_err(e.to_string())
+    }
+}
+
+fn input_err(message: impl Into<String>) -> PyErr {
+    FuzzymotivError::new_err(message.into())
+}
+
+/// Motivations as the CLI reads them: a sum within 1e-3 of 1 is normalised (silently here;
+/// the normalised values are what is used).
+fn motivations(x: [f64; 4]) -> PyResult<Motivations> {
+    Motivations::normalised(x[0], x[1], x[2], x[3])
+        .map(|(m, _)| m)
+        .map_err(|e| input_err(format!("motivations: {e}")))
+}
+
+/// The TSK from optional peaks and coefficients (`"linear"`, `"ratio"` or a list).
+fn tsk(peaks: Option<Vec<f64>>, coefficients: Option<&Bound<'_, PyAny>>) -> PyResult<TskFitness> {
+    let peaks = peaks.unwrap_or_else(|| fuzzymotiv::fuzzy::PAPER_PEAKS.to_vec());
+    let result = match coefficients {
+        None => TskFitness::with_scheme(peaks, CoefficientScheme::Linear),
+        Some(c) => {
+            if let Ok(name) = c.extract::<String>() {
+                let scheme = match name.as_str() {
+                    "linear" => CoefficientScheme::Linear,
+                    "ratio" => CoefficientScheme::Ratio,
+                    other => {
+                        return Err(input_err(format!(
+                            "coefficients: expected \"linear\", \"ratio\" or a list of numbers, got \"{other}\""
+                        )));
+                    }
+                };
+                TskFitness::with_scheme(peaks, scheme)
+            } else {
+                let values: Vec<f64> = c.extract().map_err(|_| {
+                    input_err("coefficients: expected \"linear\", \"ratio\" or a list of numbers")
+                })?;
+                TskFitness::new(peaks, values)
+            }
+        }
+    };
+    result.map_err(|e| input_err(e.to_string()))
+}
+
+/// F for one term vector `[a, g, l, b]`.
+#[pyfunction]
+#[pyo3(signature = (motivations, terms, peaks=None, coefficients=None))]
+fn fuzzy_fitness_one(
+    motivations: [f64; 4],
+    terms: [f64; 4],
+    peaks: Option<Vec<f64>>,
+    coefficients: Option<&Bound<'_, PyAny>>,
+) -> PyResult<f64> {
+    let x = self::motivations(motivations)?;
+    Ok(tsk(peaks, coefficients)?.evaluate(&x, terms))
+}
+
+/// F for every row of an `n × 4` float64 array.
+#[pyfunction]
+#[pyo3(signature = (motivations, terms, peaks=None, coefficients=None))]
+fn fuzzy_fitness_many<'py>(
+    py: Python<'py>,
+    motivations: [f64; 4],
+    terms: PyReadonlyArray2<'py, f64>,
+    peaks: Option<Vec<f64>>,
+    coefficients: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let x = self::motivations(motivations)?;
+    let t = tsk(peaks, coefficients)?;
+    if terms.shape()[1] != 4 {
+        return Err(input_err(format!(
+            "terms: expected an n × 4 array of (a, g, l, b), got shape {:?}",
+            terms.shape()
+        )));
+    }
+    let view = terms.as_array();
+    let out: Vec<f64> = view
+        .rows()
+        .into_iter()
+        .map(|r| t.evaluate(&x, [r[0], r[1], r[2], r[3]]))
+        .collect();
+    Ok(PyArray1::from_vec(py, out))
+}
+
+/// F with its firing rules: `{"fitness", "weight_sum", "rules": [{"number", "labels",
+/// "label_names", "weight", "output"}]}`.
+#[pyfunction]
+#[pyo3(signature = (motivations, terms, peaks=None, coefficients=None))]
+fn explain<'py>(
+    py: Python<'py>,
+    motivations: [f64; 4],
+    terms: [f64; 4],
+    peaks: Option<Vec<f64>>,
+    coefficients: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let x = self::motivations(motivations)?;
+    let e = tsk(peaks, coefficients)?.explain(&x, terms);
+    let d = PyDict::new(py);
+    d.set_item("fitness", e.fitness)?;
+    d.set_item("weight_sum", e.weight_sum)?;
+    let rules = PyList::empty(py);
+    for r in &e.rules {
+        let rd = PyDict::new(py);
+        rd.set_item("number", r.number)?;
+        rd.set_item("labels", r.labels.to_vec())?;
+        rd.set_item("label_names", r.label_names.to_vec())?;
+        rd.set_item("weight", r.weight)?;
+        rd.set_item("output", r.output)?;
+        rules.append(rd)?;
+    }
+    d.set_item("rules", rules)?;
+    d.set_item("text", e.to_string())?;
+    Ok(d)
+}
+
+/// The FLL text of the TSK; written (atomically) to `path` when given.
+#[pyfunction]
+#[pyo3(signature = (motivations, path=None, peaks=None, coefficients=None, name=None, force=false))]
+fn export_fll(
+    motivations: [f64; 4],
+    path: Option<PathBuf>,
+    peaks: Option<Vec<f64>>,
+    coefficients: Option<&Bound<'_, PyAny>>,
+    name: Option<String>,
+    force: bool,
+) -> PyResult<String> {
+    let x = self::motivations(motivations)?;
+    let t = tsk(peaks, coefficients)?;
+    let name = name.unwrap_or_else(|| {
+        path.as_ref()
+            .and_then(|p| p.file_stem())
+            .map_or("fuzzymotiv".into(), |s| s.to_string_lossy().into_owned())
+    });
+    let text = fuzzymotiv::fll::to_fll(&t, &x, &name);
+    if let Some(path) = path {
+        if path.exists() && !force {
+            return Err(input_err(format!(
+                "{}: the file exists; pass force=True to overwrite it",
+                path.display()
+            )));
+        }
+        fuzzymotiv_cli::files::write_atomic(&path, &text).map_err(py_err)?;
+    }
+    Ok(text)
+}
+
+fn room_dict<'py>(py: Python<'py>, r: &Room) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let pts = |p: &[fuzzymotiv::geom::Vec2]| -> PyResult<Bound<'py, PyAny>> {
+        let flat: Vec<f64> = p.iter().flat_map(|v| [v.x, v.y]).collect();
+        let a = Array2::from_shape_vec((p.len(), 2), flat).expect("n × 2");
+        Ok(a.into_pyarray(py).into_any())
+    };
+    d.set_item("name", &r.name)?;
+    d.set_item("outline", pts(&r.outline)?)?;
+    let obstacles = PyList::empty(py);
+    for o in &r.obstacles {
+        obstacles.append(pts(o)?)?;
+    }
+    d.set_item("obstacles", obstacles)?;
+    let home = PyDict::new(py);
+    home.set_item("x", r.home.x)?;
+    home.set_item("y", r.home.y)?;
+    home.set_item("heading", r.home.heading)?;
+    home.set_item("heading_deg", r.home.heading.to_degrees())?;
+    d.set_item("home", home)?;
+    let zone = PyDict::new(py);
+    zone.set_item("x", r.home_zone.centre.x)?;
+    zone.set_item("y", r.home_zone.centre.y)?;
+    zone.set_item("radius", r.home_zone.radius)?;
+    d.set_item("home_zone", zone)?;
+    d.set_item("area", r.area())?;
+    d.set_item("perimeter", r.perimeter())?;
+    Ok(d)
+}
+
+/// The built-in rooms, then the room files `files` (validated as `fuzzymotiv rooms --check`).
+#[pyfunction]
+#[pyo3(signature = (files=None))]
+fn rooms<'py>(py: Python<'py>, files: Option<Vec<PathBuf>>) -> PyResult<Bound<'py, PyList>> {
+    let out = PyList::empty(py);
+    match files {
+        None => {
+            for name in BUILTIN_ROOMS {
+                out.append(room_dict(py, &Room::builtin(name).expect("built-in"))?)?;
+            }
+        }
+        Some(files) => {
+            for f in files {
+                out.append(room_dict(py, &load_room_file(&f).map_err(py_err)?)?)?;
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Loads a config the CLI's way: a file (`config_path`) or TOML text, with `--set` overrides
+/// (and a seed); room files are looked up beside the config (text: the working directory).
+fn load(
+    config_path: Option<&Path>,
+    config_text: Option<&str>,
+    sets: &[String],
+    seed: Option<u64>,
+) -> Result<Loaded, CliError> {
+    match config_text {
+        None => load_config(config_path, sets, seed),
+        Some(text) => {
+            let mut sets = sets.to_vec();
+            if let Some(s) = seed {
+                sets.push(format!("seed={s}"));
+            }
+            let source = "(config text)";
+            let raw = RawConfig::parse(text, source, &sets)?;
+            resolve(raw, Path::new("."), source)
+        }
+    }
+}
+
+/// Marker payload of a run stopped by Ctrl-C or a failing progress callback.
+struct Cancelled;
+
+/// What a run returns to Python (plain Rust data, built without the GIL).
+struct RunOutput {
+    /// Per generation and run: the record and the run's label.
+    generations: Vec<(fuzzymotiv::evolution::GenerationRecord, String)>,
+    rows: Vec<RoomRow>,
+    best: Vec<(String, Vec<f64>)>,
+    summary: String,
+    /// Per room: name and the best robot's room-modelling path (x, y, heading).
+    paths: Vec<(String, Vec<[f64; 3]>)>,
+    shape: (usize, usize),
+}
+
+fn output(loaded: &Loaded, evolutions: &[Evolution], finished: cli_run::Finished) -> RunOutput {
+    let exp = &loaded.experiment;
+    let summary = cli_run::summary_json(exp, evolutions, &finished.rows, finished.wall_seconds);
+    RunOutput {
+        generations: evolutions
+            .iter()
+            .flat_map(|e| e.history.iter().map(|r| (*r, e.run.label.clone())))
+            .collect(),
+        best: evolutions
+            .iter()
+            .map(|e| (e.run.label.clone(), e.population[e.best].clone()))
+            .collect(),
+        summary: serde_json::to_string(&summary).expect("serialisable"),
+        paths: exp
+            .room_names()
+            .into_iter()
+            .zip(&finished.trajectories)
+            .map(|(n, t)| (n, t.poses.iter().map(|p| [p.x, p.y, p.heading]).collect()))
+            .collect(),
+        rows: finished.rows,
+        shape: (exp.shape.hidden, exp.shape.genome_len()),
+    }
+}
+
+/// The run itself (no GIL): in memory, or through the CLI's writer into `out`.
+fn execute(
+    loaded: &Loaded,
+    out: Option<&Path>,
+    hook: &mut dyn FnMut(&GenerationState<'_>),
+) -> Result<RunOutput, CliError> {
+    let exp = &loaded.experiment;
+    match out {
+        Some(dir) => {
+            let progress = fuzzymotiv_cli::progress::Progress::hidden();
+            let mut done = cli_run::execute_with(loaded, dir, &progress, false, false, hook)?;
+            let evolutions = std::mem::take(&mut done.evolutions);
+            Ok(output(loaded, &evolutions, done))
+        }
+        None => {
+            let start = Instant::now();
+            let evolutions: Vec<Evolution> =
+                exp.runs().iter().map(|run| exp.evolve(run, hook)).collect();
+            let aem = evolutions
+                .iter()
+                .map(|e| exp.environment_modelling(&e.population[e.best], &e.run))
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|e| CliError::runtime(format!("environment modelling failed: {e}")))?;
+            let rows = cli_run::room_rows(exp, &evolutions, &aem);
+            let trajectories = cli_run::best_trajectories(exp, &evolutions);
+            let finished = cli_run::Finished {
+                evolutions: Vec::new(),
+                aem,
+                rows,
+                trajectories,
+                wall_seconds: start.elapsed().as_secs_f64(),
+            };
+            Ok(output(loaded, &evolutions, finished))
+        }
+    }
+}
+
+/// Evolves as `fuzzymotiv run` does. Returns a dict of plain columns; see `fuzzymotiv.run`.
+#[pyfunction]
+#[pyo3(signature = (config_path=None, config_text=None, sets=Vec::new(), threads=None, out=None, progress=None))]
+fn run<'py>(
+    py: Python<'py>,
+    config_path: Option<PathBuf>,
+    config_text: Option<String>,
+    sets: Vec<String>,
+    threads: Option<usize>,
+    out: Option<PathBuf>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    if threads == Some(0) {
+        return Err(input_err("threads must be at least 1"));
+    }
+    let loaded =
+        load(config_path.as_deref(), config_text.as_deref(), &sets, None).map_err(py_err)?;
+    let pool = match threads {
+        Some(n) => Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?,
+        ),
+        None => None,
+    };
+    let total = loaded.experiment.runs().len() * loaded.experiment.ga.generations;
+    let cancel = AtomicBool::new(false);
+    let finished = AtomicBool::new(false);
+    let callback_error: Mutex<Option<PyErr>> = Mutex::new(None);
+    let mut interrupted: Option<PyErr> = None;
+
+    let result = std::thread::scope(|s| {
+        let worker = s.spawn(|| {
+            let mut done = 0usize;
+            let mut hook = |state: &GenerationState<'_>| {
+                done += 1;
+                if let Some(cb) = &progress {
+                    let best = state.record().stats.best;
+                    let r = Python::attach(|py| cb.call1(py, (done, total, best)).map(|_| ()));
+                    if let Err(e) = r {
+                        *callback_error.lock().expect("not poisoned") = Some(e);
+                        cancel.store(true, Ordering::SeqCst);
+                    }
+                }
+                if cancel.load(Ordering::SeqCst) {
+                    resume_unwind(Box::new(Cancelled));
+                }
+            };
+            let mut body = || {
+                catch_unwind(AssertUnwindSafe(|| {
+                    execute(&loaded, out.as_deref(), &mut hook)
+                }))
+            };
+            let r = match &pool {
+                Some(p) => p.install(body),
+                None => body(),
+            };
+            finished.store(true, Ordering::SeqCst);
+            r
+        });
+        while !finished.load(Ordering::SeqCst) {
+            py.detach(|| {
+                for _ in 0..20 {
+                    if finished.load(Ordering::SeqCst) {
+                        break;
+                    }
+                    std::thread::sleep(Duration::from_millis(5));
+                }
+            });
+            if interrupted.is_none()
+                && let Err(e) = py.check_signals()
+            {
+                interrupted = Some(e);
+                cancel.store(true, Ordering::SeqCst);
+            }
+        }
+        worker.join().expect("worker panics are caught")
+    });
+    if let Some(e) = interrupted {
+        return Err(e);
+    }
+    if let Some(e) = callback_error.lock().expect("not poisoned").take() {
+        return Err(e);
+    }
+    let output = match result {
+        Ok(r) => r.map_err(py_err)?,
+        Err(payload) if payload.is::<Cancelled>() => {
+            return Err(PyRuntimeError::new_err("run cancelled"));
+        }
+        Err(payload) => {
+            let msg = payload
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            return Err(PyRuntimeError::new_err(format!(
+                "fuzzymotiv panicked (a bug): {msg}"
+            )));
+        }
+    };
+    run_dict(py, output)
+}
+
+fn run_dict(py: Python<'_>, o: RunOutput) -> PyResult<Bound<'_, PyDict>> {
+    let d = PyDict::new(py);
+    let g = PyDict::new(py);
+    let col = |f: &dyn Fn(&fuzzymotiv::evolution::GenerationRecord) -> f64| {
+        PyArray1::from_vec(py, o.generations.iter().map(|(r, _)| f(r)).collect())
+    };
+    g.set_item(
+        "generation",
+        PyArray1::from_vec(
+            py,
+            o.generations
+                .iter()
+                .map(|(r, _)| r.generation as i64)
+                .collect(),
+        ),
+    )?;
+    g.set_item("best", col(&|r| r.stats.best))?;
+    g.set_item("mean", col(&|r| r.stats.mean))?;
+    g.set_item("std", col(&|r| r.stats.std))?;
+    g.set_item("min", col(&|r| r.stats.min))?;
+    g.set_item("max", col(&|r| r.stats.max))?;
+    g.set_item("a", col(&|r| r.terms.a))?;
+    g.set_item("g", col(&|r| r.terms.g))?;
+    g.set_item("l", col(&|r| r.terms.l))?;
+    g.set_item("b", col(&|r| r.terms.b))?;
+    g.set_item(
+        "room",
+        o.generations
+            .iter()
+            .map(|(_, l)| l.clone())
+            .collect::<Vec<_>>(),
+    )?;
+    d.set_item("generations", g)?;
+    let rooms = PyDict::new(py);
+    rooms.set_item(
+        "room",
+        o.rows.iter().map(|r| r.room.clone()).collect::<Vec<_>>(),
+    )?;
+    let rcol = |f: &dyn Fn(&RoomRow) -> f64| {
+        PyArray1::from_vec(py, o.rows.iter().map(f).collect::<Vec<_>>())
+    };
+    rooms.set_item("average_fitness", rcol(&|r| r.average_fitness))?;
+    rooms.set_item("exploration_pct", rcol(&|r| r.exploration_pct))?;
+    rooms.set_item(
+        "recognition_pct",
+        rcol(&|r| r.recognition_pct.unwrap_or(f64::NAN)),
+    )?;
+    rooms.set_item("battery_pct", rcol(&|r| r.battery_pct))?;
+    rooms.set_item("homing_pct", rcol(&|r| r.homing))?;
+    rooms.set_item(
+        "r_node",
+        o.rows.iter().map(|r| r.r_node).collect::<Vec<_>>(),
+    )?;
+    d.set_item("rooms", rooms)?;
+    let best = PyDict::new(py);
+    for (label, w) in o.best {
+        best.set_item(label, PyArray1::from_vec(py, w))?;
+    }
+    d.set_item("best_genomes", best)?;
+    let paths = PyDict::new(py);
+    for (room, p) in o.paths {
+        let pd = PyDict::new(py);
+        pd.set_item(
+            "x",
+            PyArray1::from_vec(py, p.iter().map(|q| q[0]).collect()),
+        )?;
+        pd.set_item(
+            "y",
+            PyArray1::from_vec(py, p.iter().map(|q| q[1]).collect()),
+        )?;
+        pd.set_item(
+            "heading",
+            PyArray1::from_vec(py, p.iter().map(|q| q[2]).collect()),
+        )?;
+        paths.set_item(room, pd)?;
+    }
+    d.set_item("trajectories", paths)?;
+    d.set_item("summary_json", o.summary)?;
+    d.set_item("hidden", o.shape.0)?;
+    Ok(d)
+}
+
+/// One trial of `genome` in `room` under base seed `seed`, exactly as `fuzzymotiv replay
+/// --room ROOM --seed SEED` runs it (the room-modelling stream of that seed).
+#[pyfunction]
+#[pyo3(signature = (genome, room, seed, config_path=None, config_text=None, sets=Vec::new()))]
+fn simulate<'py>(
+    py: Python<'py>,
+    genome: Vec<f64>,
+    room: String,
+    seed: u64,
+    config_path: Option<PathBuf>,
+    config_text: Option<String>,
+    sets: Vec<String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    if seed > i64::MAX as u64 {
+        return Err(input_err(format!(
+            "seed must be in 0 ..= 2^63 - 1, got {seed}"
+        )));
+    }
+    let loaded = load(
+        config_path.as_deref(),
+        config_text.as_deref(),
+        &sets,
+        Some(seed),
+    )
+    .map_err(py_err)?;
+    let names = loaded.experiment.room_names();
+    let entry = if let Some(i) = names.iter().position(|n| *n == room) {
+        loaded.raw.rooms[i].clone()
+    } else if Room::builtin(&room).is_some() {
+        room.clone()
+    } else if Path::new(&room).is_file() {
+        let path = Path::new(&room);
+        load_room_file(path).map_err(py_err)?;
+        path.canonicalize()
+            .map_err(|e| PyRuntimeError::new_err(format!("{}: {e}", path.display())))?
+            .display()
+            .to_string()
+    } else {
+        return Err(input_err(format!(
+            "room {room}: not a room of the config ({}), a built-in room ({}) or a room file",
+            names.join(", "),
+            BUILTIN_ROOMS.join(", ")
+        )));
+    };
+    let mut raw = loaded.raw.clone();
+    raw.rooms = vec![entry];
+    // As `replay`: neither recognition nor online orientation changes a trajectory.
+    raw.aem.enabled = false;
+    raw.fitness.orientation = OrientationMode::Offline;
+    let exp = resolve(raw, Path::new("."), "(simulate)")
+        .map_err(py_err)?
+        .experiment;
+    let want = exp.shape.genome_len();
+    if genome.len() != want {
+        return Err(input_err(format!(
+            "genome: {} weights, but an 8-{}-2 network needs {want} (network.hidden = {})",
+            genome.len(),
+            exp.shape.hidden,
+            exp.shape.hidden
+        )));
+    }
+    let run = exp.runs().remove(0);
+    let tr = py.detach(|| exp.instance_trajectory(&genome, &run, 0));
+    let (terms, f) = fuzzymotiv_cli::report::trajectory_terms(&exp, 0, &tr);
+    let d = PyDict::new(py);
+    let poses =
+        |k: usize| -> Vec<f64> { tr.poses.iter().map(|p| [p.x, p.y, p.heading][k]).collect() };
+    d.set_item("x", PyArray1::from_vec(py, poses(0)))?;
+    d.set_item("y", PyArray1::from_vec(py, poses(1)))?;
+    d.set_item("heading", PyArray1::from_vec(py, poses(2)))?;
+    let t = tr.sensors.len();
+    let flat: Vec<f64> = tr.sensors.iter().flatten().copied().collect();
+    let cols = tr.sensors.first().map_or(8, |s| s.len());
+    d.set_item(
+        "sensors",
+        Array2::from_shape_vec((t, cols), flat)
+            .expect("T × 8")
+            .into_pyarray(py),
+    )?;
+    let motors: Vec<f64> = tr.motors.iter().flatten().copied().collect();
+    d.set_item(
+        "motors",
+        Array2::from_shape_vec((tr.motors.len(), 2), motors)
+            .expect("T × 2")
+            .into_pyarray(py),
+    )?;
+    let actions: Vec<&str> = tr.actions.iter().map(|a| a.label()).collect();
+    d.set_item("action", numpy_strings(py, &actions)?)?;
+    d.set_item("idle", PyArray1::from_vec(py, tr.idle.clone()))?;
+    d.set_item("energy", PyArray1::from_vec(py, tr.energy.clone()))?;
+    d.set_item("escaped", PyArray1::from_vec(py, tr.escaped.clone()))?;
+    d.set_item("collision", PyArray1::from_vec(py, tr.collisions.clone()))?;
+    d.set_item("a", terms.a)?;
+    d.set_item("g", terms.g)?;
+    d.set_item("l", terms.l)?;
+    d.set_item("b", terms.b)?;
+    d.set_item("F", f)?;
+    d.set_item("room", &exp.arenas[0].room().name)?;
+    d.set_item("seed", seed)?;
+    Ok(d)
+}
+
+/// A numpy array of Python strings (dtype `<U…`).
+fn numpy_strings<'py>(py: Python<'py>, items: &[&str]) -> PyResult<Bound<'py, PyAny>> {
+    let np = py.import("numpy")?;
+    np.call_method1("array", (items.to_vec(),))
+}
+
+/// The native module `fuzzymotiv._fuzzymotiv`.
+#[pymodule]
+fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("FuzzymotivError", m.py().get_type::<FuzzymotivError>())?;
+    m.add("VERSION", fuzzymotiv::VERSION)?;
+    m.add_function(wrap_pyfunction!(fuzzy_fitness_one, m)?)?;
+    m.add_function(wrap_pyfunction!(fuzzy_fitness_many, m)?)?;
+    m.add_function(wrap_pyfunction!(explain, m)?)?;
+    m.add_function(wrap_pyfunction!(export_fll, m)?)?;
+    m.add_function(wrap_pyfunction!(rooms, m)?)?;
+    m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    Ok(())
+}

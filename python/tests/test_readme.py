@@ -1,0 +1,20 @@
+"""The README's Python session works as written (run as a doctest from the repository root)."""
+
+import doctest
+import re
+
+import pytest
+
+
+def test_readme_python_session(repo, tmp_path, monkeypatch):
+    pytest.importorskip("pandas")  # the session shows a DataFrame
+    text = (repo / "README.md").read_text()
+    section = text.split("\n## Python\n", 1)[1].split("\n## ", 1)[0]
+    session = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    session = session.replace('"hc.fll"', repr(str(tmp_path / "hc.fll")))
+    monkeypatch.chdir(repo)
+    test = doctest.DocTestParser().get_doctest(session, {}, "README", "README.md", 0)
+    runner = doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE)
+    runner.run(test)
+    assert runner.failures == 0 and runner.tries >= 8
+    assert (tmp_path / "hc.fll").is_file()
