@@ -291,7 +291,7 @@ fn output(loaded: &Loaded, evolutions: &[Evolution], finished: cli_run::Finished
             .map(|(n, t)| (n, t.poses.iter().map(|p| [p.x, p.y, p.heading]).collect()))
             .collect(),
         rows: finished.rows,
-        shape: (exp.shape.hidden, exp.shape.genome_len()),
+        shape: (exp.shape().hidden, exp.shape().genome_len()),
     }
 }
 
@@ -358,7 +358,7 @@ fn run<'py>(
         ),
         None => None,
     };
-    let total = loaded.experiment.runs().len() * loaded.experiment.ga.generations;
+    let total = loaded.experiment.runs().len() * loaded.experiment.ga().generations;
     let cancel = AtomicBool::new(false);
     let finished = AtomicBool::new(false);
     let callback_error: Mutex<Option<PyErr>> = Mutex::new(None);
@@ -570,13 +570,13 @@ fn simulate<'py>(
     let exp = resolve(raw, Path::new("."), "(simulate)")
         .map_err(py_err)?
         .experiment;
-    let want = exp.shape.genome_len();
+    let want = exp.shape().genome_len();
     if genome.len() != want {
         return Err(input_err(format!(
             "genome: {} weights, but an 8-{}-2 network needs {want} (network.hidden = {})",
             genome.len(),
-            exp.shape.hidden,
-            exp.shape.hidden
+            exp.shape().hidden,
+            exp.shape().hidden
         )));
     }
     let run = exp.runs().remove(0);
@@ -615,7 +615,7 @@ fn simulate<'py>(
     d.set_item("l", terms.l)?;
     d.set_item("b", terms.b)?;
     d.set_item("F", f)?;
-    d.set_item("room", &exp.arenas[0].room().name)?;
+    d.set_item("room", &exp.arenas()[0].room().name)?;
     d.set_item("seed", seed)?;
     Ok(d)
 }

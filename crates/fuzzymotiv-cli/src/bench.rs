@@ -70,7 +70,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     let exp: Experiment = loaded.experiment;
     let run = &exp.runs()[0];
     let population = exp.initial_population(run);
-    let trial_steps = exp.trial.steps;
+    let trial_steps = exp.trial_params().steps;
     // Single robot, single thread: whole trials of the paper's length until `steps` are done.
     let trials = args.steps.div_ceil(trial_steps);
     let mut single = Vec::new();
@@ -110,7 +110,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     std::hint::black_box(sink);
     if args.json {
         let doc = serde_json::json!({
-            "room": exp.arenas[0].room().name,
+            "room": exp.arenas()[0].room().name,
             "motion": args.motion,
             "robot_steps": robot_steps,
             "seconds": seconds,
@@ -132,7 +132,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     } else {
         println!(
             "room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({robot_steps} executed steps, median {:.3} s of {})",
-            exp.arenas[0].room().name,
+            exp.arenas()[0].room().name,
             args.motion,
             robot_steps as f64 / seconds / 1e6,
             seconds,

@@ -254,13 +254,13 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
 
     let runs = exp.runs();
     let mut trials = Vec::new();
-    for r in 0..exp.arenas.len() {
-        let name = &exp.arenas[r].room().name;
-        let run: Run = match exp.training {
+    for r in 0..exp.arenas().len() {
+        let name = &exp.arenas()[r].room().name;
+        let run: Run = match exp.training() {
             Training::AllRooms => runs[0].clone(),
             Training::PerRoom => runs[r].clone(),
         };
-        let weights = match exp.training {
+        let weights = match exp.training() {
             Training::PerRoom => match genome.runs.iter().find(|(label, _)| label == name) {
                 Some((_, w)) => w,
                 None => {
@@ -295,7 +295,7 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         .map_or("replay".to_string(), |s| s.to_string_lossy().into_owned());
     let mut rooms_json = Vec::new();
     for (r, label, tr) in &trials {
-        let name = &exp.arenas[*r].room().name;
+        let name = &exp.arenas()[*r].room().name;
         let csv = dir.join(format!("{stem}-{}.csv", file_tag(name)));
         write_atomic(&csv, trajectory_csv(tr))?;
         let (terms, f) = trajectory_terms(&exp, *r, tr);
@@ -323,7 +323,7 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         "version": fuzzymotiv::VERSION,
         "genome": genome_path.display().to_string(),
         "config": source_name,
-        "seed": exp.seed,
+        "seed": exp.seed(),
         "note": "poses[t] is the pose at the start of step t (poses[0] = home, poses[steps] = the end); sensors[t], motors[t], speeds[t] and collisions[t] belong to step t",
         "rooms": rooms_json,
     });
@@ -333,12 +333,12 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     )?;
     let pairs: Vec<_> = trials
         .iter()
-        .map(|(r, _, tr)| (exp.arenas[*r].room(), tr))
+        .map(|(r, _, tr)| (exp.arenas()[*r].room(), tr))
         .collect();
     write_figure_at(
         &dir.join(format!("{stem}.svg")),
         &trajectories_svg(
-            &format!("Replay of {} (seed {})", genome_path.display(), exp.seed),
+            &format!("Replay of {} (seed {})", genome_path.display(), exp.seed()),
             &pairs,
         ),
         args.png,
@@ -347,9 +347,9 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         "genome {} · config {} · seed {} · motivations (C, H, O, E) = {} · {} steps per trial",
         genome_path.display(),
         source_name,
-        exp.seed,
+        exp.seed(),
         xs(&exp),
-        exp.trial.steps
+        exp.trial_params().steps
     );
     write_atomic(out, replay_page("fuzzymotiv replay", &about, &exp, &trials))?;
     eprintln!("wrote {}", out.display());

@@ -55,7 +55,7 @@ impl Page {
     /// Adds a replay widget for the given rooms (from [`replay_room`]) at this point of the page.
     pub fn replay(&mut self, exp: &Experiment, rooms: Vec<Value>) {
         let k = self.replays.len();
-        let trial = &exp.trial;
+        let trial = &exp.trial_params();
         self.replays.push(json!({
             "robot": {
                 "radius": trial.robot.radius,
@@ -124,14 +124,14 @@ fn action_letter(a: fuzzymotiv::aem::Action) -> char {
 
 /// The fitness terms of a recorded trial and its F under the experiment's motivations.
 pub fn trajectory_terms(exp: &Experiment, room: usize, tr: &Trajectory) -> (FitnessTerms, f64) {
-    let terms = FitnessTerms::measure(&exp.arenas[room], &exp.trial, exp.homing, tr);
+    let terms = FitnessTerms::measure(&exp.arenas()[room], &exp.trial_params(), exp.homing(), tr);
     (terms, exp.fuzzy_fitness(&terms))
 }
 
 /// Compact replay data of one trial (positions to 0.1 mm, angles and motors to 3 decimals,
 /// sensors to integers; actions and collisions as one character per step).
 pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, tr: &Trajectory) -> Value {
-    let r = exp.arenas[room].room();
+    let r = exp.arenas()[room].room();
     let pts =
         |p: &[fuzzymotiv::geom::Vec2]| p.iter().map(|v| [r1(v.x), r1(v.y)]).collect::<Vec<_>>();
     let (terms, f) = trajectory_terms(exp, room, tr);
@@ -154,7 +154,7 @@ pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, tr: &Trajecto
         "i": tr.idle.iter().map(|&i| if i { '1' } else { '0' }).collect::<String>(),
         "c": tr.collisions.iter().map(|&c| if c { '1' } else { '0' }).collect::<String>(),
         "terms": {"a": r3(terms.a), "g": r3(terms.g), "l": r3(terms.l), "b": r3(terms.b)},
-        "online_l": exp.orientation == fuzzymotiv::config::OrientationMode::Online && exp.motivations.orientation > 0.0,
+        "online_l": exp.orientation() == fuzzymotiv::config::OrientationMode::Online && exp.motivations().orientation > 0.0,
         "f": r3(f),
     })
 }
@@ -183,20 +183,20 @@ pub struct Section<'a> {
 /// `report.html` of a run directory.
 pub fn run_page(loaded: &Loaded, done: &Finished) -> String {
     let exp = &loaded.experiment;
-    let mut page = Page::new(format!("fuzzymotiv run report — {}", exp.name));
+    let mut page = Page::new(format!("fuzzymotiv run report — {}", exp.name()));
     let _ = writeln!(
         page.body,
         "<h1>Run report: {}</h1>\n<p class=\"meta\">fuzzymotiv {} · seed {} · wall time {:.2} s · {}</p>",
-        esc(&exp.name),
+        esc(&exp.name()),
         fuzzymotiv::VERSION,
-        exp.seed,
+        exp.seed(),
         done.wall_seconds,
         esc(&setting_line(exp))
     );
     page.push(&intro());
     let section = Section {
         id: "run",
-        title: exp.name.clone(),
+        title: exp.name().to_string(),
         loaded,
         done,
         paper: None,
@@ -346,7 +346,7 @@ pub fn replay_page(
     );
     let pairs: Vec<_> = trials
         .iter()
-        .map(|(r, _, tr)| (exp.arenas[*r].room(), tr))
+        .map(|(r, _, tr)| (exp.arenas()[*r].room(), tr))
         .collect();
     figure(
         &mut page,
@@ -363,7 +363,7 @@ pub fn replay_page(
 
 /// The motivations as "(C, H, O, E)" numbers.
 pub fn xs(exp: &Experiment) -> String {
-    let m = exp.motivations;
+    let m = exp.motivations();
     format!(
         "({}, {}, {}, {})",
         m.curiosity, m.homing, m.orientation, m.energy
@@ -375,13 +375,13 @@ fn setting_line(exp: &Experiment) -> String {
         "motivations (C, H, O, E) = {} · rooms {} · {} · population {} × {} generations · {} steps per trial",
         xs(exp),
         exp.room_names().join(", "),
-        match exp.training {
+        match exp.training() {
             Training::AllRooms => "one robot evolved in all rooms",
             Training::PerRoom => "one robot evolved per room",
         },
-        exp.ga.population,
-        exp.ga.generations,
-        exp.trial.steps
+        exp.ga().population,
+        exp.ga().generations,
+        exp.trial_params().steps
     )
 }
 
@@ -427,7 +427,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     let exp = &s.loaded.experiment;
     let done = s.done;
     let names = exp.room_names();
-    let label = |evo: &fuzzymotiv::evolution::Evolution| match exp.training {
+    let label = |evo: &fuzzymotiv::evolution::Evolution| match exp.training() {
         Training::AllRooms => s.title.clone(),
         Training::PerRoom => format!("{}: robot evolved in {}", s.title, evo.run.label),
     };
@@ -480,7 +480,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     let _ = writeln!(
         page.body,
         "</table>\n<p class=\"caption\"><b>average fitness</b>: mean F of the final generation's population in that room. The other columns come from {} test runs of the best robot per room (fresh noise each): <b>% optimal exploration</b> = mean 100·a, <b>% recognition</b> = share of test runs whose room was recognised correctly, <b>% battery usage</b> = mean 100·b, <b>% homing</b> = mean 100·g.{}</p>",
-        exp.aem.test_runs,
+        exp.aem().test_runs,
         if s.paper.is_some() {
             " Grey: the paper's value (Tables 1 and 2)."
         } else {
@@ -515,7 +515,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
          room recognition works with. The strip under the room shows the actions of all steps; \
          click it, drag the slider or use the arrow keys to move in time.</p>\n",
     );
-    let rooms = (0..exp.arenas.len())
+    let rooms = (0..exp.arenas().len())
         .map(|r| {
             let (evo, _) = robot_for_room(&done.evolutions, r);
             replay_room(exp, r, &evo.run.label, &done.trajectories[r])
@@ -546,7 +546,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
 fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
     let exp = &s.loaded.experiment;
     let done = s.done;
-    let m = exp.motivations;
+    let m = exp.motivations();
     page.push("<p>The robot's <b>motivations</b> X weight the four fitness terms Y it is measured on:</p>\n<div class=\"bars\">\n");
     for (name, v, colour) in [
         ("curiosity C", m.curiosity, "#2ca02c"),
@@ -560,7 +560,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
             100.0 * v
         );
     }
-    let battery = match exp.energy {
+    let battery = match exp.energy() {
         EnergyMode::Use => "the fuzzy input is b itself (energy is \"the opposite of laziness\")",
         EnergyMode::Conserve => "with <code>energy = \"conserve\"</code> the fuzzy input is 1 − b",
     };
@@ -572,16 +572,16 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
 <dt>l</dt><dd><b>orientation (recognition)</b>: 0 during evolution in the paper (O = 0); with online orientation, the share of rooms the robot recognised.</dd>\
 <dt>b</dt><dd><b>battery usage</b>: the mean wheel speed as a fraction of the maximum (1 = always full speed); {battery}.</dd></dl>\
 <p><b>How F is computed.</b> Each term y is described by fuzzy labels, very low (V.L.) to very high (V.H.) by default, with the membership functions below. A rule takes one label per term, e.g. \"if a is H and g is L and l is V.L. and b is H\"; with {labels} labels there are {labels}⁴ = {rules} rules. A rule fires with strength w = the smallest membership of its four labels, and proposes f = C·a·c(label of a) + H·g·c(label of g) + O·l·c(label of l) + E·b·c(label of b), where c = {:?} rises with the label. The fitness is the weighted mean <b>F = Σ w·f / Σ w</b>; since every value lies between two label peaks, at most 16 rules fire at once.</p>",
-        exp.fuzzy.coefficients(),
-        labels = exp.fuzzy.labels(),
-        rules = exp.fuzzy.rule_count(),
+        exp.fuzzy().coefficients(),
+        labels = exp.fuzzy().labels(),
+        rules = exp.fuzzy().rule_count(),
     );
-    let names: Vec<String> = (0..exp.fuzzy.labels())
-        .map(|k| label_name(k, exp.fuzzy.labels()))
+    let names: Vec<String> = (0..exp.fuzzy().labels())
+        .map(|k| label_name(k, exp.fuzzy().labels()))
         .collect();
     figure(
         page,
-        &membership_svg(exp.fuzzy.peaks(), &names),
+        &membership_svg(exp.fuzzy().peaks(), &names),
         "Triangular membership functions: each value belongs to at most two neighbouring labels, and its memberships add up to 1.",
     );
     page.push(
@@ -590,11 +590,11 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
          its rooms. Open a row's rules to see how F came about.</p>\n",
     );
     page.push("<table><tr><th>room</th><th>a</th><th>g</th><th>l</th><th>b</th><th>F</th><th class=\"left\">firing rules</th></tr>\n");
-    for r in 0..exp.arenas.len() {
+    for r in 0..exp.arenas().len() {
         let (evo, k) = robot_for_room(&done.evolutions, r);
         let score = &evo.evaluations[evo.best].per_room[k];
         let y = exp.fuzzy_inputs(&score.terms);
-        let ex = exp.fuzzy.explain(&exp.motivations, y);
+        let ex = exp.fuzzy().explain(&exp.motivations(), y);
         let t = score.terms;
         let mut rules = String::from(
             "<table><tr><th>rule</th><th class=\"left\">if …</th><th>w</th><th>f</th><th>w·f</th></tr>",
@@ -633,7 +633,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
         let _ = writeln!(
             page.body,
             "<tr><td>{}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td><b>{:.4}</b></td><td class=\"left\"><details><summary>{} rules</summary>{rules}</details></td></tr>",
-            esc(&exp.arenas[r].room().name),
+            esc(&exp.arenas()[r].room().name),
             t.a,
             t.g,
             t.l,
@@ -659,7 +659,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
 fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
     let exp = &s.loaded.experiment;
     let done = s.done;
-    if !exp.aem.enabled || done.aem.iter().all(|a| a.som_nodes == 0) {
+    if !exp.aem().enabled || done.aem.iter().all(|a| a.som_nodes == 0) {
         page.push("<p>Room recognition was not run (<code>aem.enabled = false</code>).</p>\n");
         return;
     }
@@ -672,7 +672,8 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
          some node; rooms whose r-node lies within {} nodes of it are candidates, and the candidate \
          whose stored vector is nearest is the answer (no candidate = not recognised). Rooms whose \
          paths look alike get nearby r-nodes and are easily confused.</p>",
-        exp.aem.som.nodes, exp.aem.threshold
+        exp.aem().som.nodes,
+        exp.aem().threshold
     );
     for (k, rep) in done.aem.iter().enumerate() {
         let rooms: Vec<SomRoom<'_>> = rep
@@ -686,7 +687,7 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
                 })
             })
             .collect();
-        let title = match exp.training {
+        let title = match exp.training() {
             Training::AllRooms => "The rooms on the SOM line".to_string(),
             Training::PerRoom => format!(
                 "The rooms on the SOM line of the robot evolved in {}",
@@ -695,7 +696,7 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
         };
         figure(
             page,
-            &som_svg(&title, rep.som_nodes, exp.aem.threshold, &rooms),
+            &som_svg(&title, rep.som_nodes, exp.aem().threshold, &rooms),
             "Each room's r-node on the line of SOM nodes, with the window of nodes a test run's winner must fall in for that room to be a candidate; dots are the winners of the test runs, coloured by the room the robot was really in.",
         );
     }
@@ -749,7 +750,7 @@ fn confusion_table(page: &mut Page, exp: &Experiment, aem: &[AemReport], names: 
     let _ = writeln!(
         page.body,
         "</table>\n<p class=\"caption\">Counts of test runs ({} per room, fresh noise each): row = the room the robot was in, column = the room it was recognised as. The diagonal (green outline) counts correct answers. The same numbers are in <code>recognition.csv</code>.</p>",
-        exp.aem.test_runs
+        exp.aem().test_runs
     );
 }
 

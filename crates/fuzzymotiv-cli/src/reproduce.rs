@@ -418,7 +418,7 @@ fn identity(variants: &[(&Variant, &Vec<Vec<Loaded>>)]) -> Vec<(String, String)>
                                 "{}{}/seed-{}/config.resolved.toml",
                                 prefix(v),
                                 s.name,
-                                l.experiment.seed
+                                l.experiment.seed()
                             ),
                             resolved_toml(&l.raw),
                         )
@@ -475,18 +475,18 @@ fn write_study(
                 "Table {} — {} (C, H, O, E) = {:?}\n{md}",
                 k + 1,
                 study.setting.name,
-                exp.motivations.as_array(),
+                exp.motivations().as_array(),
             );
         }
         let title = format!(
             "{} (C,H,O,E) = {:?}, {}",
             study.setting.name,
-            exp.motivations.as_array(),
+            exp.motivations().as_array(),
             study.median_label()
         );
         // Panels are narrow: the setting and "median of N seeds" only.
         let panel = if study.seeds.len() == 1 {
-            format!("{} {:?}", study.setting.name, exp.motivations.as_array())
+            format!("{} {:?}", study.setting.name, exp.motivations().as_array())
         } else {
             format!(
                 "{}, median of {} seeds",
@@ -586,8 +586,8 @@ impl Provenance {
     fn of(args: &ReproduceArgs, seeds: &[u64], loaded: &Loaded) -> Provenance {
         Provenance {
             seeds: seeds.to_vec(),
-            population: loaded.experiment.ga.population,
-            generations: loaded.experiment.ga.generations,
+            population: loaded.experiment.ga().population,
+            generations: loaded.experiment.ga().generations,
             quick: args.quick,
         }
     }
@@ -714,7 +714,7 @@ fn study_table(study: &SettingRuns<'_>, prov: &Provenance) -> (String, String, S
 /// means over seeds; `std` and `per_seed` give the spread.
 fn setting_json(study: &SettingRuns<'_>) -> serde_json::Value {
     let exp = &study.loaded[0].experiment;
-    let m = exp.motivations;
+    let m = exp.motivations();
     let rows = &study.finished[0].rows;
     let stats: Vec<_> = (0..rows.len()).map(|i| room_stats(study, i)).collect();
     let pick = |s: &[Option<(f64, f64)>; 5], c: usize, std: bool| {
@@ -781,8 +781,8 @@ fn setting_json(study: &SettingRuns<'_>) -> serde_json::Value {
         "std": table(true),
         "first_generation": {"best": generation(false, true), "mean": generation(false, false)},
         "last_generation": {"best": generation(true, true), "mean": generation(true, false)},
-        "population": exp.ga.population,
-        "generations": exp.ga.generations,
+        "population": exp.ga().population,
+        "generations": exp.ga().generations,
         "median_seed": study.seeds[study.median()],
         "per_seed": per_seed,
     })

@@ -117,7 +117,8 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
     let progress = Progress::new(&loaded.experiment, 1, args.quiet);
     progress.set_prefix(&format!(
         "{} seed {}",
-        loaded.experiment.name, loaded.experiment.seed
+        loaded.experiment.name(),
+        loaded.experiment.seed()
     ));
     progress.note(&start_line(&loaded.experiment, &out));
     let done = execute(&loaded, &out, &progress, resume, args.png)?;
@@ -131,13 +132,13 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
 pub fn start_line(exp: &Experiment, out: &Path) -> String {
     format!(
         "{}: seed {}, {} × {} generations of {} robots, {} room(s) × {} steps per trial → {}",
-        exp.name,
-        exp.seed,
+        exp.name(),
+        exp.seed(),
         exp.runs().len(),
-        exp.ga.generations,
-        exp.ga.population,
-        exp.arenas.len(),
-        exp.trial.steps,
+        exp.ga().generations,
+        exp.ga().population,
+        exp.arenas().len(),
+        exp.trial_params().steps,
         out.display()
     )
 }
@@ -192,7 +193,7 @@ pub fn aem_for_room(aem: &[AemReport], r: usize) -> &AemReport {
 
 /// The best robot's room-modelling run in every room.
 pub fn best_trajectories(exp: &Experiment, evolutions: &[Evolution]) -> Vec<Trajectory> {
-    (0..exp.arenas.len())
+    (0..exp.arenas().len())
         .map(|r| {
             let (evo, _) = robot_for_room(evolutions, r);
             exp.instance_trajectory(&evo.population[evo.best], &evo.run, r)
@@ -239,7 +240,7 @@ pub fn execute_with(
     let runs = exp.runs();
     let mut checkpoint = if resume {
         let cp = Checkpoint::load(&staged.path(CHECKPOINT), &runs, exp)?;
-        progress.note(&cp.resume_note(out, exp.ga.generations));
+        progress.note(&cp.resume_note(out, exp.ga().generations));
         cp
     } else {
         Checkpoint::fresh(&runs)
@@ -263,7 +264,7 @@ pub fn execute_with(
             let mut on_generation = |state: &GenerationState<'_>| {
                 let g = state.history.len();
                 let best = state.record().stats.best;
-                progress.generation(&run.label, g, exp.ga.generations, best);
+                progress.generation(&run.label, g, exp.ga().generations, best);
                 checkpoint.runs[k] = CheckpointRun::from_state(&run.label, state);
                 checkpoint.wall_seconds = earlier_seconds + start.elapsed().as_secs_f64();
                 if let Err(e) = checkpoint.save(&staged.path(CHECKPOINT)) {
@@ -320,11 +321,15 @@ pub fn execute_with(
     let panels: Vec<_> = evolutions
         .iter()
         .map(|e| {
-            let title = match exp.training {
+            let title = match exp.training() {
                 Training::AllRooms => {
-                    format!("{} (C,H,O,E) = {:?}", exp.name, exp.motivations.as_array())
+                    format!(
+                        "{} (C,H,O,E) = {:?}",
+                        exp.name(),
+                        exp.motivations().as_array()
+                    )
                 }
-                Training::PerRoom => format!("{}: robot evolved in {}", exp.name, e.run.label),
+                Training::PerRoom => format!("{}: robot evolved in {}", exp.name(), e.run.label),
             };
             (title, e.history.clone())
         })
@@ -333,8 +338,8 @@ pub fn execute_with(
     write_figure(&staged, "terms", &terms_svg(&panels), png)?;
     let title = format!(
         "Best robot, {} (C, H, O, E) = {:?}",
-        exp.name,
-        exp.motivations.as_array()
+        exp.name(),
+        exp.motivations().as_array()
     );
     write_figure(
         &staged,
@@ -377,10 +382,10 @@ pub fn provenance_line(exp: &Experiment, loaded: &Loaded) -> String {
     format!(
         "\nfuzzymotiv {} · seed {} · GA {} robots × {} generations · {} steps per trial · training {}\n",
         fuzzymotiv::VERSION,
-        exp.seed,
-        exp.ga.population,
-        exp.ga.generations,
-        exp.trial.steps,
+        exp.seed(),
+        exp.ga().population,
+        exp.ga().generations,
+        exp.trial_params().steps,
         match loaded.raw.training {
             Training::AllRooms => "all-rooms",
             Training::PerRoom => "per-room",
@@ -441,8 +446,8 @@ fn best_genome_json(exp: &Experiment, evolutions: &[Evolution]) -> Result<String
     let doc = serde_json::json!({
         "program": "fuzzymotiv",
         "version": fuzzymotiv::VERSION,
-        "seed": exp.seed,
-        "shape": exp.shape,
+        "seed": exp.seed(),
+        "shape": exp.shape(),
         "layout": "per hidden unit [bias, 8 input weights], then per output [bias, hidden weights]",
         "run": first["run"],
         "fitness": first["fitness"],
@@ -525,13 +530,13 @@ pub fn summary_json(
     serde_json::json!({
         "program": "fuzzymotiv",
         "version": fuzzymotiv::VERSION,
-        "name": exp.name,
-        "seed": exp.seed,
-        "motivations": exp.motivations,
-        "training": exp.training,
-        "population": exp.ga.population,
-        "generations": exp.ga.generations,
-        "steps": exp.trial.steps,
+        "name": exp.name(),
+        "seed": exp.seed(),
+        "motivations": exp.motivations(),
+        "training": exp.training(),
+        "population": exp.ga().population,
+        "generations": exp.ga().generations,
+        "steps": exp.trial_params().steps,
         "rooms": rows,
         "runs": runs,
         "wall_seconds": wall_seconds,
@@ -627,15 +632,15 @@ impl Checkpoint {
             && cp.runs.iter().zip(runs).all(|(c, r)| {
                 c.label == r.label
                     && if c.done {
-                        c.history.len() == exp.ga.generations
-                            && c.population.len() == exp.ga.population
+                        c.history.len() == exp.ga().generations
+                            && c.population.len() == exp.ga().population
                     } else {
-                        c.history.len() < exp.ga.generations
+                        c.history.len() < exp.ga().generations
                     }
                     && c.population
                         .iter()
-                        .all(|g| g.len() == exp.shape.genome_len())
-                    && (c.history.is_empty() || c.population.len() == exp.ga.population)
+                        .all(|g| g.len() == exp.shape().genome_len())
+                    && (c.history.is_empty() || c.population.len() == exp.ga().population)
             });
         if !ok {
             return Err(CliError::input(format!(

@@ -116,7 +116,7 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
 /// `r`), as [`trajectories_svg`] draws them.
 pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[Trajectory]) -> String {
     let pairs: Vec<_> = exp
-        .arenas
+        .arenas()
         .iter()
         .map(|a| a.room())
         .zip(trajectories)

@@ -18,35 +18,23 @@ use crate::room::Room;
 use crate::seed::{Streams, hash_str};
 use crate::trial::{Arena, TrialParams};
 
-/// A validated experiment: nothing downstream re-checks these values.
+/// A validated experiment: its fields are private (read through the accessors below), so their
+/// invariants hold and nothing downstream re-checks these values.
 #[derive(Debug, Clone)]
 pub struct Experiment {
-    /// Name.
-    pub name: String,
-    /// Base seed.
-    pub seed: u64,
-    /// Rooms, prepared for trials.
-    pub arenas: Vec<Arena>,
-    /// Training protocol.
-    pub training: Training,
-    /// Motivations X.
-    pub motivations: Motivations,
-    /// The TSK evaluator.
-    pub fuzzy: TskFitness,
-    /// GA parameters.
-    pub ga: GaParams,
-    /// Trial parameters.
-    pub trial: TrialParams,
-    /// Network shape.
-    pub shape: MlpShape,
-    /// Battery term direction.
-    pub energy: EnergyMode,
-    /// When `l` is measured.
-    pub orientation: OrientationMode,
-    /// How `g` is measured.
-    pub homing: Homing,
-    /// Environment modelling.
-    pub aem: AemParams,
+    pub(crate) name: String,
+    pub(crate) seed: u64,
+    pub(crate) arenas: Vec<Arena>,
+    pub(crate) training: Training,
+    pub(crate) motivations: Motivations,
+    pub(crate) fuzzy: TskFitness,
+    pub(crate) ga: GaParams,
+    pub(crate) trial: TrialParams,
+    pub(crate) shape: MlpShape,
+    pub(crate) energy: EnergyMode,
+    pub(crate) orientation: OrientationMode,
+    pub(crate) homing: Homing,
+    pub(crate) aem: AemParams,
 }
 
 impl Experiment {
@@ -91,6 +79,71 @@ impl Experiment {
             homing: raw.fitness.homing,
             aem,
         })
+    }
+
+    /// Name (a plain file name: it names the output directory `runs/NAME`).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Base seed of every random stream (≤ 2^53 − 1).
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// Rooms, prepared for trials, in config order (at least one, names unique).
+    pub fn arenas(&self) -> &[Arena] {
+        &self.arenas
+    }
+
+    /// Training protocol.
+    pub fn training(&self) -> Training {
+        self.training
+    }
+
+    /// Motivations X.
+    pub fn motivations(&self) -> &Motivations {
+        &self.motivations
+    }
+
+    /// The TSK evaluator.
+    pub fn fuzzy(&self) -> &TskFitness {
+        &self.fuzzy
+    }
+
+    /// GA parameters.
+    pub fn ga(&self) -> &GaParams {
+        &self.ga
+    }
+
+    /// Trial parameters (the robot body included).
+    pub fn trial_params(&self) -> &TrialParams {
+        &self.trial
+    }
+
+    /// Network shape.
+    pub fn shape(&self) -> MlpShape {
+        self.shape
+    }
+
+    /// Battery term direction.
+    pub fn energy(&self) -> EnergyMode {
+        self.energy
+    }
+
+    /// When `l` is measured.
+    pub fn orientation(&self) -> OrientationMode {
+        self.orientation
+    }
+
+    /// How `g` is measured.
+    pub fn homing(&self) -> Homing {
+        self.homing
+    }
+
+    /// Environment modelling parameters.
+    pub fn aem(&self) -> &AemParams {
+        &self.aem
     }
 
     /// Room names, in order.
