@@ -124,7 +124,7 @@ fn action_letter(a: fuzzymotiv::aem::Action) -> char {
 
 /// The fitness terms of a recorded trial and its F under the experiment's motivations.
 pub fn trajectory_terms(exp: &Experiment, room: usize, tr: &Trajectory) -> (FitnessTerms, f64) {
-    let terms = FitnessTerms::measure(&exp.arenas()[room], &exp.trial_params(), exp.homing(), tr);
+    let terms = FitnessTerms::measure(&exp.arenas()[room], exp.trial_params(), exp.homing(), tr);
     (terms, exp.fuzzy_fitness(&terms))
 }
 
@@ -187,7 +187,7 @@ pub fn run_page(loaded: &Loaded, done: &Finished) -> String {
     let _ = writeln!(
         page.body,
         "<h1>Run report: {}</h1>\n<p class=\"meta\">fuzzymotiv {} · seed {} · wall time {:.2} s · {}</p>",
-        esc(&exp.name()),
+        esc(exp.name()),
         fuzzymotiv::VERSION,
         exp.seed(),
         done.wall_seconds,
@@ -594,7 +594,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
         let (evo, k) = robot_for_room(&done.evolutions, r);
         let score = &evo.evaluations[evo.best].per_room[k];
         let y = exp.fuzzy_inputs(&score.terms);
-        let ex = exp.fuzzy().explain(&exp.motivations(), y);
+        let ex = exp.fuzzy().explain(exp.motivations(), y);
         let t = score.terms;
         let mut rules = String::from(
             "<table><tr><th>rule</th><th class=\"left\">if …</th><th>w</th><th>f</th><th>w·f</th></tr>",
