@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 use crate::geom::{
     Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area,
 };
+use crate::params::FieldError;
 use crate::robot::{KHEPERA_RADIUS, Pose};
 
 /// Largest coordinate magnitude accepted in room files (mm): rooms up to 20 m across.
@@ -108,6 +109,102 @@ struct RawObstacle {
     outline: Vec<[f64; 2]>,
 }
 
+impl RawRoom {
+    /// Every coordinate finite and within ±`MAX_COORD`, and at most `MAX_WALLS` walls.
+    fn check_coordinates(&self) -> Result<(), FieldError> {
+        for (i, p) in self.outline.iter().enumerate() {
+            if !p[0].is_finite() || !p[1].is_finite() {
+                return Err(FieldError::new(
+                    format!("outline[{i}]"),
+                    format!(
+                        "coordinates must be finite numbers (mm), got [{}, {}]",
+                        p[0], p[1]
+                    ),
+                ));
+            }
+        }
+        let walls = self.outline.len()
+            + self
+                .obstacles
+                .iter()
+                .map(|o| o.outline.len())
+                .sum::<usize>();
+        if walls > MAX_WALLS {
+            return Err(FieldError::new(
+                "outline",
+                format!("the room has {walls} wall segments; at most {MAX_WALLS} are supported"),
+            ));
+        }
+        for (i, p) in self.outline.iter().enumerate() {
+            if p[0].abs() > MAX_COORD || p[1].abs() > MAX_COORD {
+                return Err(FieldError::new(
+                    format!("outline[{i}]"),
+                    format!(
+                        "coordinates must be within ±{MAX_COORD} mm (10 m), got [{}, {}]",
+                        p[0], p[1]
+                    ),
+                ));
+            }
+        }
+        for (k, o) in self.obstacles.iter().enumerate() {
+            for (i, p) in o.outline.iter().enumerate() {
+                if !p[0].is_finite()
+                    || !p[1].is_finite()
+                    || p[0].abs() > MAX_COORD
+                    || p[1].abs() > MAX_COORD
+                {
+                    return Err(FieldError::new(
+                        format!("obstacles[{k}].outline[{i}]"),
+                        format!(
+                            "coordinates must be finite numbers (mm), got [{}, {}]",
+                            p[0], p[1]
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The home pose's values finite, and its zone (given, or the default around home).
+    fn home_zone(&self) -> Result<HomeZone, FieldError> {
+        for (name, v) in [
+            ("home.x", self.home.x),
+            ("home.y", self.home.y),
+            ("home.heading_deg", self.home.heading_deg),
+        ] {
+            if !v.is_finite() {
+                return Err(FieldError::new(
+                    name,
+                    format!("must be a finite number, got {v}"),
+                ));
+            }
+        }
+        let Some(z) = &self.home_zone else {
+            return Ok(HomeZone {
+                centre: Vec2::new(self.home.x, self.home.y),
+                radius: HOME_ZONE_RADIUS,
+            });
+        };
+        for (name, v) in [
+            ("home_zone.x", z.x),
+            ("home_zone.y", z.y),
+            ("home_zone.radius", z.radius),
+        ] {
+            if !v.is_finite() {
+                return Err(FieldError::new(
+                    name,
+                    format!("must be a finite number (mm), got {v}"),
+                ));
+            }
+        }
+        Ok(HomeZone {
+            centre: Vec2::new(z.x, z.y),
+            radius: z.radius,
+        })
+    }
+}
+
 fn pts(v: &[(f64, f64)]) -> Vec<Vec2> {
     v.iter().map(|&(x, y)| Vec2::new(x, y)).collect()
 }
@@ -169,93 +266,14 @@ impl Room {
     /// Parses and validates a room file (docs/model.md §4). `source_name` (usually the path) is used in
     /// error messages.
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
-        let err = |field: &str, reason: String| RoomError {
-            source_name: source_name.to_string(),
-            field: field.to_string(),
-            reason,
-        };
         let raw: RawRoom = toml::from_str(text).map_err(|e| {
             let msg = e.message().to_string();
             let field = field_from_toml_message(&msg, text, e.span());
-            err(&field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline)"))
+            FieldError::new(field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline)")).in_source(source_name)
         })?;
-        for (i, p) in raw.outline.iter().enumerate() {
-            if !p[0].is_finite() || !p[1].is_finite() {
-                return Err(err(
-                    &format!("outline[{i}]"),
-                    format!(
-                        "coordinates must be finite numbers (mm), got [{}, {}]",
-                        p[0], p[1]
-                    ),
-                ));
-            }
-        }
-        let walls =
-            raw.outline.len() + raw.obstacles.iter().map(|o| o.outline.len()).sum::<usize>();
-        if walls > MAX_WALLS {
-            return Err(err(
-                "outline",
-                format!("the room has {walls} wall segments; at most {MAX_WALLS} are supported"),
-            ));
-        }
-        for (i, p) in raw.outline.iter().enumerate() {
-            if p[0].abs() > MAX_COORD || p[1].abs() > MAX_COORD {
-                return Err(err(
-                    &format!("outline[{i}]"),
-                    format!(
-                        "coordinates must be within ±{MAX_COORD} mm (10 m), got [{}, {}]",
-                        p[0], p[1]
-                    ),
-                ));
-            }
-        }
-        for (k, o) in raw.obstacles.iter().enumerate() {
-            for (i, p) in o.outline.iter().enumerate() {
-                if !p[0].is_finite()
-                    || !p[1].is_finite()
-                    || p[0].abs() > MAX_COORD
-                    || p[1].abs() > MAX_COORD
-                {
-                    return Err(err(
-                        &format!("obstacles[{k}].outline[{i}]"),
-                        format!(
-                            "coordinates must be finite numbers (mm), got [{}, {}]",
-                            p[0], p[1]
-                        ),
-                    ));
-                }
-            }
-        }
-        for (name, v) in [
-            ("home.x", raw.home.x),
-            ("home.y", raw.home.y),
-            ("home.heading_deg", raw.home.heading_deg),
-        ] {
-            if !v.is_finite() {
-                return Err(err(name, format!("must be a finite number, got {v}")));
-            }
-        }
-        let home_zone = match &raw.home_zone {
-            Some(z) => {
-                for (name, v) in [
-                    ("home_zone.x", z.x),
-                    ("home_zone.y", z.y),
-                    ("home_zone.radius", z.radius),
-                ] {
-                    if !v.is_finite() {
-                        return Err(err(name, format!("must be a finite number (mm), got {v}")));
-                    }
-                }
-                HomeZone {
-                    centre: Vec2::new(z.x, z.y),
-                    radius: z.radius,
-                }
-            }
-            None => HomeZone {
-                centre: Vec2::new(raw.home.x, raw.home.y),
-                radius: HOME_ZONE_RADIUS,
-            },
-        };
+        raw.check_coordinates()
+            .map_err(|e| e.in_source(source_name))?;
+        let home_zone = raw.home_zone().map_err(|e| e.in_source(source_name))?;
         let to_vec = |v: &[[f64; 2]]| v.iter().map(|p| Vec2::new(p[0], p[1])).collect::<Vec<_>>();
         let room = Room {
             name: raw.name,
@@ -269,30 +287,33 @@ impl Room {
 
     /// Checks the geometry (docs/model.md §4) and normalises the outline to counter-clockwise order.
     pub fn validated(mut self, source_name: &str) -> Result<Room, RoomError> {
-        let err = |field: &str, reason: String| RoomError {
-            source_name: source_name.to_string(),
-            field: field.to_string(),
-            reason,
-        };
+        let in_source = |e: FieldError| e.in_source(source_name);
         if self.name.trim().is_empty() {
-            return Err(err(
+            return Err(in_source(FieldError::new(
                 "name",
-                "must be a non-empty name, e.g. name = \"U\"".into(),
-            ));
+                "must be a non-empty name, e.g. name = \"U\"",
+            )));
         }
-        check_polygon(&self.outline, "outline").map_err(|(f, r)| err(&f, r))?;
+        check_polygon(&self.outline, "outline").map_err(in_source)?;
         if signed_area(&self.outline) < 0.0 {
             self.outline.reverse();
         }
+        self.check_obstacles().map_err(in_source)?;
+        self.check_home().map_err(in_source)?;
+        Ok(self)
+    }
+
+    /// Every obstacle is a simple polygon strictly inside the outline.
+    fn check_obstacles(&self) -> Result<(), FieldError> {
         for (k, obstacle) in self.obstacles.iter().enumerate() {
             let field = format!("obstacles[{k}].outline");
-            check_polygon(obstacle, &field).map_err(|(f, r)| err(&f, r))?;
+            check_polygon(obstacle, &field)?;
             if let Some(p) = obstacle
                 .iter()
                 .find(|p| !point_in_polygon(&self.outline, **p))
             {
-                return Err(err(
-                    &field,
+                return Err(FieldError::new(
+                    field,
                     format!(
                         "obstacle point ({}, {}) lies outside the room outline; obstacles must be inside the room",
                         p.x, p.y
@@ -300,18 +321,22 @@ impl Room {
                 ));
             }
             if edges(obstacle).any(|e| edges(&self.outline).any(|w| w.intersects(&e))) {
-                return Err(err(
-                    &field,
-                    "obstacle crosses or touches the room outline; it must lie strictly inside"
-                        .into(),
+                return Err(FieldError::new(
+                    field,
+                    "obstacle crosses or touches the room outline; it must lie strictly inside",
                 ));
             }
         }
+        Ok(())
+    }
+
+    /// Home inside the room, a body radius from every wall, and inside its home zone.
+    fn check_home(&self) -> Result<(), FieldError> {
         let home = self.home.position();
         let inside = point_in_polygon(&self.outline, home)
             && !self.obstacles.iter().any(|o| point_in_polygon(o, home));
         if !inside {
-            return Err(err(
+            return Err(FieldError::new(
                 "home",
                 format!(
                     "home ({}, {}) is outside the room (or inside an obstacle); put it inside the outline",
@@ -325,7 +350,7 @@ impl Room {
             .map(|w| w.dist_to(home))
             .fold(f64::INFINITY, f64::min);
         if clearance < KHEPERA_RADIUS {
-            return Err(err(
+            return Err(FieldError::new(
                 "home",
                 format!(
                     "home ({}, {}) is {clearance:.1} mm from a wall; it must be at least the body radius ({KHEPERA_RADIUS} mm) away",
@@ -335,7 +360,7 @@ impl Room {
         }
         let zone = self.home_zone;
         if !(zone.radius > 0.0 && zone.radius <= MAX_COORD) {
-            return Err(err(
+            return Err(FieldError::new(
                 "home_zone.radius",
                 format!(
                     "must be a radius > 0 and ≤ {MAX_COORD} mm, got {} (the default is {HOME_ZONE_RADIUS})",
@@ -344,7 +369,7 @@ impl Room {
             ));
         }
         if !zone.contains(home) {
-            return Err(err(
+            return Err(FieldError::new(
                 "home_zone",
                 format!(
                     "home ({}, {}) is {:.1} mm from the zone centre ({}, {}), outside its radius {}; the home position must lie inside its zone",
@@ -357,7 +382,7 @@ impl Room {
                 ),
             ));
         }
-        Ok(self)
+        Ok(())
     }
 
     /// All wall segments: the outline's edges, then each obstacle's.
@@ -407,23 +432,23 @@ impl Room {
     }
 }
 
-fn check_polygon(poly: &[Vec2], field: &str) -> Result<(), (String, String)> {
+fn check_polygon(poly: &[Vec2], field: &str) -> Result<(), FieldError> {
     if poly.len() < 3 {
-        return Err((
-            field.to_string(),
+        return Err(FieldError::new(
+            field,
             format!("needs at least 3 points [x, y] (mm), got {}", poly.len()),
         ));
     }
     if let Some((i, j)) = self_intersection(poly) {
-        return Err((
-            field.to_string(),
+        return Err(FieldError::new(
+            field,
             format!(
                 "the polygon intersects itself (edges {i} and {j} cross); list the corners in order around the room"
             ),
         ));
     }
     if signed_area(poly).abs() < 1e-9 {
-        return Err((field.to_string(), "the polygon has zero area".to_string()));
+        return Err(FieldError::new(field, "the polygon has zero area"));
     }
     Ok(())
 }
