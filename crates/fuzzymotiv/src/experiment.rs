@@ -300,3 +300,27 @@ pub(crate) mod testing {
         "motivations.energy=0.1",
     ];
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::room::BUILTIN_ROOMS;
+
+    /// The empty config validates to each validated type's own defaults (written once).
+    #[test]
+    fn defaults_are_the_validated_types_defaults() {
+        let rooms = BUILTIN_ROOMS
+            .iter()
+            .map(|r| Room::builtin(r).unwrap())
+            .collect();
+        let exp = Experiment::new(&RawConfig::default(), rooms, "default").unwrap();
+        assert_eq!(exp.trial_params(), &TrialParams::default());
+        assert_eq!(exp.aem(), &AemParams::default());
+        assert_eq!(exp.ga(), &GaParams::default());
+        assert_eq!(exp.shape(), MlpShape::with_hidden(MlpShape::DEFAULT_HIDDEN));
+        assert_eq!(exp.motivations(), &Motivations::HIGH_CURIOSITY);
+        assert_eq!(exp.fuzzy(), &TskFitness::paper());
+        assert_eq!((exp.name(), exp.seed()), ("experiment", 1));
+        assert_eq!(exp.arenas().len(), BUILTIN_ROOMS.len());
+    }
+}
