@@ -73,39 +73,37 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     let trial_steps = exp.trial_params().steps;
     // Single robot, single thread: whole trials of the paper's length until `steps` are done.
     let trials = args.steps.div_ceil(trial_steps);
+    // Every repetition does the same work; its executed steps (idle steps are not work) are
+    // counted by the evaluations themselves.
     let mut single = Vec::new();
     let mut sink = 0.0;
+    let mut robot_steps = 0;
     for _ in 0..args.repeat {
         let t0 = Instant::now();
+        robot_steps = 0;
         for k in 0..trials {
             let e = exp.evaluate(&population[k % population.len()], run, 0, k);
             sink += e.fitness;
+            robot_steps += e.executed();
         }
         single.push(t0.elapsed().as_secs_f64());
     }
     // One population evaluation takes only milliseconds: time enough of them to cover `steps`.
     let evaluations = args.steps.div_ceil(population.len() * trial_steps);
     let mut pop = Vec::new();
+    let mut pop_steps = 0;
     for _ in 0..args.repeat {
         let t0 = Instant::now();
+        pop_steps = 0;
         for _ in 0..evaluations {
             let evals = exp.evaluate_population(&population, run, 0);
             sink += evals[0].fitness;
+            pop_steps += evals.iter().map(|e| e.executed()).sum::<usize>();
         }
         pop.push(t0.elapsed().as_secs_f64());
     }
-    // Count the executed steps of exactly the trials timed above (idle steps are not work).
-    let robot_steps: usize = (0..trials)
-        .map(|k| exp.executed_steps(&population[k % population.len()], run, 0, k))
-        .sum();
-    let per_population: usize = population
-        .iter()
-        .enumerate()
-        .map(|(i, g)| exp.executed_steps(g, run, 0, i))
-        .sum();
     let seconds = median(single);
     let pop_seconds = median(pop);
-    let pop_steps = evaluations * per_population;
     let threads = rayon::current_num_threads();
     std::hint::black_box(sink);
     if args.json {

@@ -23,22 +23,34 @@ impl Experiment {
     /// Runs one trial of `genome` in `room` with the random stream `seed`; returns the terms
     /// (`l` = 0) and the action labels.
     pub fn trial(&self, genome: &[f64], room: usize, seed: u64) -> (FitnessTerms, Vec<Action>) {
+        let (terms, actions, _) = self.recorded_trial(genome, room, seed, true);
+        (terms, actions)
+    }
+
+    /// One trial: its terms (`l` = 0), its actions (when `actions`, else none) and the number of
+    /// steps it executed before it ended (the rest were idle).
+    fn recorded_trial(
+        &self,
+        genome: &[f64],
+        room: usize,
+        seed: u64,
+        actions: bool,
+    ) -> (FitnessTerms, Vec<Action>, usize) {
         let arena = &self.arenas[room];
         let mut rng = rng_from_seed(seed);
         let mut obs = (
             TermsRecorder::new(arena, &self.trial, self.homing),
             ActionLog {
-                actions: Vec::with_capacity(self.trial.steps),
+                actions: Vec::with_capacity(if actions { self.trial.steps } else { 0 }),
             },
         );
-        simulate(
-            arena,
-            &mut self.controller(genome),
-            &self.trial,
-            &mut rng,
-            &mut obs,
-        );
-        (obs.0.finish(), obs.1.actions)
+        let mut controller = self.controller(genome);
+        if actions {
+            simulate(arena, &mut controller, &self.trial, &mut rng, &mut obs);
+        } else {
+            simulate(arena, &mut controller, &self.trial, &mut rng, &mut obs.0);
+        }
+        (obs.0.finish(), obs.1.actions, obs.0.executed())
     }
 
     /// The random stream of individual `individual`'s evaluation trial in `room` in generation
@@ -46,30 +58,6 @@ impl Experiment {
     pub fn eval_seed(&self, run: &Run, generation: usize, individual: usize, room: usize) -> u64 {
         self.streams()
             .evaluation(run.tag, generation, individual, self.room_key(room))
-    }
-
-    /// Steps executed (not idle) by the evaluation trials of one individual: runs them again on
-    /// the same streams, so it counts exactly what [`Experiment::evaluate`] simulated.
-    pub fn executed_steps(
-        &self,
-        genome: &[f64],
-        run: &Run,
-        generation: usize,
-        individual: usize,
-    ) -> usize {
-        run.rooms
-            .iter()
-            .map(|&r| {
-                let mut rng = rng_from_seed(self.eval_seed(run, generation, individual, r));
-                crate::trial::run_trial(
-                    &self.arenas[r],
-                    &mut self.controller(genome),
-                    &self.trial,
-                    &mut rng,
-                )
-                .executed()
-            })
-            .sum()
     }
 
     /// Evaluates one individual of generation `generation` in the rooms of `run`.
@@ -86,25 +74,15 @@ impl Experiment {
         let mut first_vectors = Vec::new();
         for &r in &run.rooms {
             let seed = self.eval_seed(run, generation, individual, r);
-            let (terms, actions) = if online {
-                self.trial(genome, r, seed)
-            } else {
-                let arena = &self.arenas[r];
-                let mut rng = rng_from_seed(seed);
-                let mut rec = TermsRecorder::new(arena, &self.trial, self.homing);
-                simulate(
-                    arena,
-                    &mut self.controller(genome),
-                    &self.trial,
-                    &mut rng,
-                    &mut rec,
-                );
-                (rec.finish(), Vec::new())
-            };
+            let (terms, actions, executed) = self.recorded_trial(genome, r, seed, online);
             if online {
                 first_vectors.push(environment_vector(&actions, self.aem.encoder));
             }
-            per_room.push(RoomScore { f: 0.0, terms });
+            per_room.push(RoomScore {
+                f: 0.0,
+                terms,
+                executed,
+            });
         }
         if online {
             // docs/model.md §10: a second run per room, classified by 1-NN against the first runs.
@@ -153,6 +131,9 @@ pub struct RoomScore {
     pub f: f64,
     /// The terms measured.
     pub terms: FitnessTerms,
+    /// Steps the evaluation trial executed before it ended (the rest were idle): the work done.
+    #[serde(default)]
+    pub executed: usize,
 }
 
 /// One individual's evaluation: mean F over its rooms, and per-room scores.
@@ -165,6 +146,11 @@ pub struct Evaluation {
 }
 
 impl Evaluation {
+    /// Steps executed by the evaluation trials (the online second runs not counted).
+    pub fn executed(&self) -> usize {
+        self.per_room.iter().map(|s| s.executed).sum()
+    }
+
     /// Mean terms over the rooms.
     pub fn mean_terms(&self) -> FitnessTerms {
         let n = self.per_room.len() as f64;

@@ -70,6 +70,7 @@ pub struct TermsRecorder<'a> {
     visited_count: usize,
     battery: f64,
     steps: usize,
+    executed: usize,
     last: crate::robot::Pose,
     escaped: bool,
     homing: Homing,
@@ -88,11 +89,17 @@ impl<'a> TermsRecorder<'a> {
             visited_count: 1,
             battery: 0.0,
             steps: 0,
+            executed: 0,
             last: home,
             escaped: false,
             homing,
             optimum: exploration_optimum(arena, params),
         }
+    }
+
+    /// Steps executed so far (idle steps after the trial ended at home not counted).
+    pub fn executed(&self) -> usize {
+        self.executed
     }
 
     /// Cells visited so far.
@@ -130,6 +137,7 @@ impl StepObserver for TermsRecorder<'_> {
         }
         self.battery += s.energy;
         self.steps += 1;
+        self.executed += usize::from(!s.idle);
         self.last = s.pose;
         self.escaped = s.escaped;
     }
