@@ -58,9 +58,9 @@ for k in $(seq 1 "$ROUNDS"); do
         --steps "$STEPS" --population 200 --repeat "$REPEAT" --threads 1 --json \
         > "$RAW/fm_single_$k.json"
     "$ENKI" --steps "$STEPS" --repeat "$REPEAT" --seed 1 > "$RAW/enki_$k.json"
-    # The default model (the paper's robot in the paper's H room), executed steps only.
-    "$FM" bench --room H --motion actions --steps "$STEPS" --population 200 --repeat "$REPEAT" \
-        --threads 1 --json > "$RAW/fm_actions_$k.json"
+    # The actions model (the paper's robot) on the same workload.
+    "$FM" bench --room "$ROOT/rooms/first-release/H.toml" --motion actions --set trial.end_at_home=false \
+        --steps "$STEPS" --population 200 --repeat "$REPEAT" --threads 1 --json > "$RAW/fm_actions_$k.json"
     python3 - "$RAW/fm_single_$k.json" "$RAW/enki_$k.json" "$k" >&2 <<'PY'
 import json, sys
 f, e = (json.load(open(p)) for p in sys.argv[1:3])
@@ -168,7 +168,7 @@ print(f"{'robot-steps/s':<44} {'median':>14} {'min':>14} {'max':>14}")
 row("fuzzymotiv wheels, 1 robot, 1 thread", fm_sps, fm_m)
 row("Enki (libenki " + doc["versions"]["libenki"] + "), 1 robot, 1 thread", en_sps, en_m)
 print(f"{'ratio of medians fuzzymotiv wheels / Enki':<44} {fm_m / en_m:>14.2f}")
-row("fuzzymotiv actions (paper's H), 1 thread", act_sps, act_m)
+row("fuzzymotiv actions, 1 robot, 1 thread", act_sps, act_m)
 print(f"{'ratio of medians fuzzymotiv actions / Enki':<44} {act_m / en_m:>14.2f}")
 row("fuzzymotiv population 200x400, 1 thread", p1, p1_m)
 row(f"fuzzymotiv population 200x400, {threads_n} threads", pn, pn_m)
