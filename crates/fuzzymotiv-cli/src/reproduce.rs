@@ -378,7 +378,7 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         "variants": rows.iter().map(|(v, claims)| serde_json::json!({
             "name": v.name,
             "switched_back": v.what,
-            "claims": claims.iter().map(|c| serde_json::json!({"claim": c.claim, "holds": c.holds, "evidence": c.evidence})).collect::<Vec<_>>(),
+            "claims": claims_json(claims),
         })).collect::<Vec<_>>(),
         "wall_seconds": start.elapsed().as_secs_f64(),
     });
@@ -526,7 +526,7 @@ fn write_study(
         "generations": provenance.generations,
         "overrides": args.sets,
         "settings": settings_json,
-        "claims": claims.iter().map(|c| serde_json::json!({"claim": c.claim, "holds": c.holds, "evidence": c.evidence})).collect::<Vec<_>>(),
+        "claims": claims_json(&claims),
         "wall_seconds": wall_seconds,
     });
     write_atomic(
@@ -873,6 +873,14 @@ fn claims(studies: &[SettingRuns<'_>]) -> Vec<Claim> {
             ),
         },
     ]
+}
+
+/// The claims as `summary.json` records them.
+fn claims_json(claims: &[Claim]) -> Vec<serde_json::Value> {
+    claims
+        .iter()
+        .map(|c| serde_json::json!({"claim": c.claim, "holds": c.holds, "evidence": c.evidence}))
+        .collect()
 }
 
 fn mark(holds: bool) -> &'static str {
