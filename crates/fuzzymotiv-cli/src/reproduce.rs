@@ -319,13 +319,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     progress.finish();
     let claims = write_study(&args, &staged.staging, &studies, start)?;
     print_claims(&claims);
-    let out = staged.commit()?;
-    eprintln!(
-        "wrote {} ({:.1} s)",
-        out.display(),
-        start.elapsed().as_secs_f64()
-    );
-    Ok(())
+    commit(staged, start)
 }
 
 fn study_seeds(args: &ReproduceArgs) -> Vec<u64> {
@@ -387,6 +381,11 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         serde_json::to_string_pretty(&summary).expect("serialisable") + "\n",
     )?;
     println!("{md}");
+    commit(staged, start)
+}
+
+/// Renames the staged output into place and says where it went and how long it took.
+fn commit(staged: StagedDir, start: Instant) -> Result<(), CliError> {
     let out = staged.commit()?;
     eprintln!(
         "wrote {} ({:.1} s)",
@@ -735,22 +734,6 @@ fn setting_json(study: &SettingRuns<'_>) -> serde_json::Value {
             })
             .collect()
     };
-    let generation = |last: bool, best: bool| {
-        let v: Vec<f64> = study
-            .finished
-            .iter()
-            .map(|f| {
-                let h = &f.evolutions[0].history;
-                let rec = if last {
-                    h.last().expect("≥ 1 generation")
-                } else {
-                    &h[0]
-                };
-                if best { rec.stats.best } else { rec.stats.mean }
-            })
-            .collect();
-        mean_std(&v).0
-    };
     let per_seed: Vec<serde_json::Value> = study
         .seeds
         .iter()
@@ -779,8 +762,8 @@ fn setting_json(study: &SettingRuns<'_>) -> serde_json::Value {
         "motivations": {"curiosity": m.curiosity, "homing": m.homing, "orientation": m.orientation, "energy": m.energy},
         "rows": table(false),
         "std": table(true),
-        "first_generation": {"best": generation(false, true), "mean": generation(false, false)},
-        "last_generation": {"best": generation(true, true), "mean": generation(true, false)},
+        "first_generation": {"best": generation_stat(study, false, true), "mean": generation_stat(study, false, false)},
+        "last_generation": {"best": generation_stat(study, true, true), "mean": generation_stat(study, true, false)},
         "population": exp.ga().population,
         "generations": exp.ga().generations,
         "median_seed": study.seeds[study.median()],
@@ -807,18 +790,16 @@ fn overall(study: &SettingRuns<'_>) -> [Option<f64>; 3] {
     ]
 }
 
-/// Mean over seeds of the population's mean F in the first or the last generation.
-fn generation_mean(study: &SettingRuns<'_>, last: bool) -> f64 {
+/// Mean over seeds of the population's best (`best`) or mean F in the first or the last
+/// generation.
+fn generation_stat(study: &SettingRuns<'_>, last: bool, best: bool) -> f64 {
     let v: Vec<f64> = study
         .finished
         .iter()
         .map(|f| {
             let h = &f.evolutions[0].history;
-            if last {
-                h[h.len() - 1].stats.mean
-            } else {
-                h[0].stats.mean
-            }
+            let rec = if last { &h[h.len() - 1] } else { &h[0] };
+            if best { rec.stats.best } else { rec.stats.mean }
         })
         .collect();
     mean_std(&v).0
@@ -848,8 +829,14 @@ fn claims(studies: &[SettingRuns<'_>]) -> Vec<Claim> {
             evidence: format!("high {} vs low {}", show(h), show(l)),
         }
     };
-    let first = [generation_mean(hc, false), generation_mean(lc, false)];
-    let last = [generation_mean(hc, true), generation_mean(lc, true)];
+    let first = [
+        generation_stat(hc, false, false),
+        generation_stat(lc, false, false),
+    ];
+    let last = [
+        generation_stat(hc, true, false),
+        generation_stat(lc, true, false),
+    ];
     vec![
         compare("high curiosity explores more than low curiosity", 1, true),
         compare("high curiosity uses more battery", 3, true),

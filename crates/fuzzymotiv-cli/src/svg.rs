@@ -835,24 +835,11 @@ mod tests {
             let pairs: Vec<_> = rooms[..n].iter().zip(&trs).collect();
             let svg = trajectories_svg(title, &pairs);
             let head = svg.split('>').next().unwrap();
-            let width: f64 = head
-                .split("width=\"")
-                .nth(1)
-                .unwrap()
-                .split('"')
-                .next()
-                .unwrap()
-                .parse()
-                .unwrap();
-            let height: f64 = head
-                .split("height=\"")
-                .nth(1)
-                .unwrap()
-                .split('"')
-                .next()
-                .unwrap()
-                .parse()
-                .unwrap();
+            let attr = |name: &str| -> f64 {
+                let value = head.split(&format!(" {name}=\"")).nth(1).unwrap();
+                value.split('"').next().unwrap().parse().unwrap()
+            };
+            let (width, height) = (attr("width"), attr("height"));
             let boxes = text_boxes(&svg);
             for b in &boxes {
                 assert!(

@@ -232,25 +232,6 @@ const GRID_ANGLES: [f64; 12] = {
     ]
 };
 
-/// `√3 / 2`, correctly rounded: cos 30°.
-const HALF_SQRT3: f64 = 0.866_025_403_784_438_6;
-
-/// cos(k·30°), exact to the last bit.
-const GRID_COS: [f64; 12] = [
-    1.0,
-    HALF_SQRT3,
-    0.5,
-    0.0,
-    -0.5,
-    -HALF_SQRT3,
-    -1.0,
-    -HALF_SQRT3,
-    -0.5,
-    0.0,
-    0.5,
-    HALF_SQRT3,
-];
-
 impl Compass {
     /// The grid from `home_heading` (rad). Direction 0 is the home heading itself. When the
     /// home heading is itself a multiple of 30° (every built-in room's is 0), every heading,
@@ -262,8 +243,8 @@ impl Compass {
             let at = |k: usize| (k0 + k) % 12;
             return Compass {
                 heading: std::array::from_fn(|k| GRID_ANGLES[at(k)]),
-                cos: std::array::from_fn(|k| GRID_COS[at(k)]),
-                sin: std::array::from_fn(|k| GRID_COS[(at(k) + 9) % 12]),
+                cos: std::array::from_fn(|k| math::GRID_30[at(k)].0),
+                sin: std::array::from_fn(|k| math::GRID_30[at(k)].1),
             };
         }
         let heading: [f64; 12] = std::array::from_fn(|k| {
