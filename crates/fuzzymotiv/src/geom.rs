@@ -238,6 +238,40 @@ impl PreparedSegment {
         let e = w - self.d * t;
         e.dot(e)
     }
+
+    /// Lowers each `nearest[r]` to the distance at which the ray from `origin` along `dirs[r]`
+    /// hits this wall, when it does. The same arithmetic, bit for bit, as
+    /// [`Segment::ray_hit`]; the part that does not depend on the direction (`a − origin` and
+    /// the numerator of `t`) is computed once for all the rays.
+    ///
+    /// ```
+    /// use fuzzymotiv::geom::{PreparedSegment, Segment, Vec2};
+    /// let wall = PreparedSegment::new(&Segment::new(Vec2::new(10.0, -5.0), Vec2::new(10.0, 5.0)));
+    /// let mut nearest = [f64::INFINITY; 2];
+    /// wall.lower_ray_hits(Vec2::new(0.0, 0.0), &[Vec2::new(1.0, 0.0), Vec2::new(-1.0, 0.0)], &mut nearest);
+    /// assert_eq!(nearest, [10.0, f64::INFINITY]);
+    /// ```
+    #[inline]
+    pub fn lower_ray_hits(&self, origin: Vec2, dirs: &[Vec2], nearest: &mut [f64]) {
+        let e = self.d;
+        let w = self.a - origin;
+        let t_num = w.cross(e);
+        for (&dir, best) in dirs.iter().zip(nearest) {
+            let denom = dir.cross(e);
+            if denom == 0.0 {
+                continue;
+            }
+            let u_num = w.cross(dir);
+            let hit = if denom > 0.0 {
+                t_num >= 0.0 && u_num >= 0.0 && u_num <= denom
+            } else {
+                t_num <= 0.0 && u_num <= 0.0 && u_num >= denom
+            };
+            if hit {
+                *best = best.min(t_num / denom);
+            }
+        }
+    }
 }
 
 fn orient(a: Vec2, b: Vec2, c: Vec2) -> f64 {
@@ -350,6 +384,29 @@ mod tests {
         assert_eq!(s.dist_to(Vec2::new(7.0, -2.0)), 2.0);
         let degenerate = Segment::new(Vec2::new(1.0, 1.0), Vec2::new(1.0, 1.0));
         assert_eq!(degenerate.dist_to(Vec2::new(4.0, 5.0)), 5.0);
+    }
+
+    #[test]
+    fn prepared_ray_hits_equal_ray_hit_bit_for_bit() {
+        let walls = [
+            Segment::new(Vec2::new(0.0, 0.0), Vec2::new(900.0, 0.0)),
+            Segment::new(Vec2::new(200.0, 300.0), Vec2::new(700.0, 300.0)),
+            Segment::new(Vec2::new(13.7, 451.2), Vec2::new(388.1, 97.3)),
+            Segment::new(Vec2::new(5.0, 5.0), Vec2::new(5.0, 5.0)),
+        ];
+        for w in &walls {
+            let pw = PreparedSegment::new(w);
+            for i in 0..3000 {
+                let o = Vec2::new((i * 37 % 1000) as f64 * 0.93, (i * 53 % 700) as f64 * 0.71);
+                let dirs = [0.0, 1.3, 2.9].map(|a: f64| Vec2::from_angle(a + i as f64 * 0.1));
+                let mut nearest = [f64::INFINITY; 3];
+                pw.lower_ray_hits(o, &dirs, &mut nearest);
+                for (d, got) in dirs.iter().zip(nearest) {
+                    let want = w.ray_hit(o, *d).unwrap_or(f64::INFINITY);
+                    assert_eq!(got.to_bits(), want.to_bits(), "{w:?} {o:?} {d:?}");
+                }
+            }
+        }
     }
 
     #[test]

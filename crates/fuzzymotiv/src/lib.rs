@@ -39,6 +39,7 @@ pub mod rng;
 pub mod robot;
 pub mod room;
 pub mod seed;
+pub mod sensing;
 pub mod sensor;
 pub mod som;
 pub mod trial;

@@ -137,6 +137,10 @@ impl RayMount {
                 };
             }
         };
+        // Beyond the last sample (no hit: d = ∞) the value is 0; most rays see nothing.
+        if d > table[table.len() - 1].0 {
+            return 0.0;
+        }
         for &(s, v) in table {
             if s >= d {
                 return v;

@@ -15,7 +15,8 @@ use crate::params::{FieldError, check};
 use crate::rng::Rng;
 use crate::robot::{Compass, Khepera, Motion, Pose, drive};
 use crate::room::Room;
-use crate::sensor::{SENSOR_MAX, SensorModel, ray_count, rays, sensing_reach};
+use crate::sensing::{Eyes, Facing};
+use crate::sensor::{SENSOR_MAX, SensorModel, sensing_reach};
 
 /// Side of a grid cell (mm): the exploration grid of docs/model.md §7 and the wall-culling grid.
 pub const CELL: f64 = 50.0;
@@ -149,13 +150,6 @@ impl TrialParams {
     }
 }
 
-#[derive(Debug, Clone, Copy)]
-struct Ray {
-    origin: Vec2,
-    dir: Vec2,
-    table: crate::sensor::RayMount,
-}
-
 /// A room prepared for fast trials.
 #[derive(Debug, Clone)]
 pub struct Arena {
@@ -171,12 +165,10 @@ pub struct Arena {
     reachable: Vec<bool>,
     reachable_count: usize,
     d_max: f64,
-    rays: Vec<[Ray; 3]>,
-    rays_per_sensor: usize,
     radius: f64,
     near_reach: f64,
-    ray_range: f64,
     compass: Compass,
+    eyes: Eyes,
 }
 
 impl Arena {
@@ -274,17 +266,6 @@ impl Arena {
             }
         }
         let reachable_count = reachable.iter().filter(|&&r| r).count();
-        let model_rays = rays(params.sensor_model);
-        let ray_list = model_rays
-            .iter()
-            .map(|sensor| {
-                sensor.map(|m| Ray {
-                    origin: m.origin,
-                    dir: Vec2::from_angle(m.angle),
-                    table: m,
-                })
-            })
-            .collect();
         let d_max = room.max_home_distance();
         let compass = Compass::new(room.home.heading);
         Arena {
@@ -299,17 +280,10 @@ impl Arena {
             reachable,
             reachable_count,
             d_max,
-            rays: ray_list,
-            rays_per_sensor: ray_count(params.sensor_model),
             radius,
             near_reach: sensing_reach(params.sensor_model).max(radius + params.max_step()) + 1e-6,
-            ray_range: rays(params.sensor_model)
-                .iter()
-                .flat_map(|r| r[..ray_count(params.sensor_model)].iter())
-                .map(|r| r.range())
-                .fold(0.0, f64::max)
-                + 1e-6,
             compass,
+            eyes: Eyes::new(params.sensor_model, &compass),
         }
     }
 
@@ -413,81 +387,47 @@ impl Arena {
         near
     }
 
+    /// The indices of the `near` walls (the whole cell's list when they did not fit).
     #[inline]
-    fn near_iter<'a>(&'a self, near: &'a NearWalls) -> impl Iterator<Item = &'a Segment> + 'a {
-        let list: &[u32] = if near.overflow {
+    fn near_list<'a>(&'a self, near: &'a NearWalls) -> &'a [u32] {
+        if near.overflow {
             self.cell_list(near.cell)
         } else {
             &near.walls[..near.len]
-        };
-        list.iter().map(|&k| &self.walls[k as usize])
+        }
     }
 
     /// Sensor values at `pose` given its [`Arena::near_walls`].
     #[inline]
     pub fn read_sensors_near(&self, pose: &Pose, near: &NearWalls) -> [f64; INPUTS] {
-        if near.len == 0 && !near.overflow {
+        if near.is_empty() {
             return [0.0; INPUTS];
         }
-        let (s, c) = crate::math::sin_cos(pose.heading);
-        self.read_sensors_rotated(pose.position(), s, c, near)
+        let (sin, cos) = crate::math::sin_cos(pose.heading);
+        let facing = Facing::Angle { sin, cos };
+        self.eyes.read(
+            pose.position(),
+            facing,
+            &self.prepared,
+            self.near_list(near),
+        )
     }
 
-    /// Sensor values of a robot centred at `pos` whose heading has sine `s` and cosine `c`.
+    /// Sensor values of a robot centred at `pos` facing compass direction `dir` (`actions`
+    /// motion: the rays were turned once, in [`Arena::new`]).
     #[inline]
-    pub fn read_sensors_rotated(
+    pub fn read_sensors_on_compass(
         &self,
         pos: Vec2,
-        s: f64,
-        c: f64,
+        dir: usize,
         near: &NearWalls,
     ) -> [f64; INPUTS] {
-        let mut out = [0.0; INPUTS];
-        if near.len == 0 && !near.overflow {
-            return out;
+        if near.is_empty() {
+            return [0.0; INPUTS];
         }
-        let rot = |v: Vec2| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
-        let range2 = self.ray_range * self.ray_range;
-        // Candidate walls of one sensor; filled anew for each (only `cand[..n]` is read).
-        let mut cand = [0u32; NEAR_CAP];
-        for (o, sensor) in out.iter_mut().zip(&self.rays) {
-            // All rays of a sensor share its origin; walls beyond the longest ray's range
-            // cannot change the value, so they are dropped before casting.
-            let origin = pos + rot(sensor[0].origin);
-            let mut n = 0;
-            if !near.overflow {
-                for &k in &near.walls[..near.len] {
-                    if self.prepared[k as usize].dist2_to(origin) <= range2 {
-                        cand[n] = k;
-                        n += 1;
-                    }
-                }
-                if n == 0 {
-                    continue;
-                }
-            }
-            let mut total = 0.0;
-            for ray in &sensor[..self.rays_per_sensor] {
-                let dir = rot(ray.dir);
-                let mut nearest = f64::INFINITY;
-                if near.overflow {
-                    for w in self.near_iter(near) {
-                        if let Some(t) = w.ray_hit(origin, dir) {
-                            nearest = nearest.min(t);
-                        }
-                    }
-                } else {
-                    for &k in &cand[..n] {
-                        if let Some(t) = self.walls[k as usize].ray_hit(origin, dir) {
-                            nearest = nearest.min(t);
-                        }
-                    }
-                }
-                total += ray.table.value(nearest);
-            }
-            *o = total.min(SENSOR_MAX);
-        }
-        out
+        let facing = Facing::Compass(self.eyes.on_compass(dir));
+        self.eyes
+            .read(pos, facing, &self.prepared, self.near_list(near))
     }
 
     /// Whether a body centred at `p` overlaps one of the `near` walls (computed for a point
@@ -495,7 +435,9 @@ impl Arena {
     #[inline]
     pub fn overlaps_near(&self, p: Vec2, near: &NearWalls) -> bool {
         let r2 = self.radius * self.radius;
-        self.near_iter(near).any(|w| w.dist2_to(p) < r2)
+        self.near_list(near)
+            .iter()
+            .any(|&k| self.walls[k as usize].dist2_to(p) < r2)
     }
 }
 
@@ -617,10 +559,7 @@ where
     while t < params.steps {
         let near = arena.near_walls_in(pose.position(), cell);
         let mut sensors = match motion {
-            Motion::Actions => {
-                let c = &arena.compass;
-                arena.read_sensors_rotated(pose.position(), c.sin[dir], c.cos[dir], &near)
-            }
+            Motion::Actions => arena.read_sensors_on_compass(pose.position(), dir, &near),
             Motion::Wheels => arena.read_sensors_near(&pose, &near),
         };
         perturb_sensors(&mut sensors, params.noise, SENSOR_MAX, rng);
