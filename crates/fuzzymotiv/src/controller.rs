@@ -84,10 +84,11 @@ pub struct Mlp {
     shape: MlpShape,
     weights: Vec<f64>,
     hidden: Vec<f64>,
-    /// The hidden units' outputs when every input is 0 (`logistic(bias)`): in open floor all
-    /// eight sensors read 0, and a term `w · 0` adds ±0, which changes no sum that reaches the
-    /// logistic (`exp(±0)` is 1 either way), so these are the loop's results bit for bit.
-    idle_hidden: Vec<f64>,
+    /// The outputs when every input is 0, computed once: the hidden units are then
+    /// `logistic(bias)` (in open floor all eight sensors read 0, and a term `w · 0` adds ±0,
+    /// which changes no sum that reaches the logistic: `exp(±0)` is 1 either way), so these
+    /// are the loop's results bit for bit.
+    idle_out: [f64; OUTPUTS],
 }
 
 impl Mlp {
@@ -95,14 +96,18 @@ impl Mlp {
     /// length does not match.
     pub fn from_genome(shape: MlpShape, genome: &[f64]) -> Option<Self> {
         (genome.len() == shape.genome_len() && shape.inputs == INPUTS && shape.outputs == OUTPUTS)
-            .then(|| Self {
-                shape,
-                weights: genome.to_vec(),
-                hidden: vec![0.0; shape.hidden],
-                idle_hidden: genome[..shape.hidden * (INPUTS + 1)]
+            .then(|| {
+                let (hidden_w, out_w) = genome.split_at(shape.hidden * (INPUTS + 1));
+                let idle_hidden: Vec<f64> = hidden_w
                     .chunks_exact(INPUTS + 1)
                     .map(|w| logistic(w[0]))
-                    .collect(),
+                    .collect();
+                Self {
+                    shape,
+                    weights: genome.to_vec(),
+                    hidden: vec![0.0; shape.hidden],
+                    idle_out: output_layer(out_w, &idle_hidden),
+                }
             })
     }
 
@@ -115,23 +120,15 @@ impl Mlp {
 /// The network with `H` hidden units known at compile time: the same arithmetic in the same
 /// order as the general loop (so identical results), with fixed trip counts the compiler unrolls.
 #[inline]
-fn step_fixed<const H: usize>(
-    weights: &[f64],
-    idle_hidden: &[f64],
-    inputs: &[f64; INPUTS],
-) -> [f64; OUTPUTS] {
+fn step_fixed<const H: usize>(weights: &[f64], inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
     let (hidden_w, out_w) = weights.split_at(H * (INPUTS + 1));
     let mut hidden = [0.0; H];
-    if inputs.iter().all(|&x| x == 0.0) {
-        hidden.copy_from_slice(&idle_hidden[..H]);
-    } else {
-        for (h, w) in hidden.iter_mut().zip(hidden_w.chunks_exact(INPUTS + 1)) {
-            let mut s = w[0];
-            for k in 0..INPUTS {
-                s += w[k + 1] * inputs[k];
-            }
-            *h = logistic(s);
+    for (h, w) in hidden.iter_mut().zip(hidden_w.chunks_exact(INPUTS + 1)) {
+        let mut s = w[0];
+        for k in 0..INPUTS {
+            s += w[k + 1] * inputs[k];
         }
+        *h = logistic(s);
     }
     let mut out = [0.0; OUTPUTS];
     for (o, w) in out.iter_mut().zip(out_w.chunks_exact(H + 1)) {
@@ -147,8 +144,11 @@ fn step_fixed<const H: usize>(
 impl Controller for Mlp {
     #[inline]
     fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
+        if inputs.iter().all(|&x| x == 0.0) {
+            return self.idle_out;
+        }
         if self.shape.hidden == 6 {
-            return step_fixed::<6>(&self.weights, &self.idle_hidden, inputs);
+            return step_fixed::<6>(&self.weights, inputs);
         }
         let (hidden_w, out_w) = self.weights.split_at(self.shape.hidden * (INPUTS + 1));
         for (h, w) in self
@@ -162,19 +162,22 @@ impl Controller for Mlp {
             }
             *h = logistic(s);
         }
-        let mut out = [0.0; OUTPUTS];
-        for (o, w) in out
-            .iter_mut()
-            .zip(out_w.chunks_exact(self.shape.hidden + 1))
-        {
-            let mut s = w[0];
-            for (wk, h) in w[1..].iter().zip(&self.hidden) {
-                s += wk * h;
-            }
-            *o = logistic(s);
-        }
-        out
+        output_layer(out_w, &self.hidden)
     }
+}
+
+/// The output layer on `hidden`, whatever its size (the fixed-size path repeats this
+/// arithmetic in the same order).
+fn output_layer(out_w: &[f64], hidden: &[f64]) -> [f64; OUTPUTS] {
+    let mut out = [0.0; OUTPUTS];
+    for (o, w) in out.iter_mut().zip(out_w.chunks_exact(hidden.len() + 1)) {
+        let mut s = w[0];
+        for (wk, h) in w[1..].iter().zip(hidden) {
+            s += wk * h;
+        }
+        *o = logistic(s);
+    }
+    out
 }
 
 #[cfg(test)]
