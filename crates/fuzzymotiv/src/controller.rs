@@ -83,6 +83,9 @@ pub use crate::math::logistic;
 pub struct Mlp {
     shape: MlpShape,
     weights: Vec<f64>,
+    /// The hidden layer's weights by input: the biases, then for each input its weight into
+    /// every hidden unit (so a sensor that reads 0 is skipped as a whole row).
+    by_input: Vec<f64>,
     hidden: Vec<f64>,
     /// The outputs when every input is 0, computed once: the hidden units are then
     /// `logistic(bias)` (in open floor all eight sensors read 0, and a term `w · 0` adds ±0,
@@ -102,9 +105,13 @@ impl Mlp {
                     .chunks_exact(INPUTS + 1)
                     .map(|w| logistic(w[0]))
                     .collect();
+                let by_input = (0..=INPUTS)
+                    .flat_map(|k| hidden_w.chunks_exact(INPUTS + 1).map(move |w| w[k]))
+                    .collect();
                 Self {
                     shape,
                     weights: genome.to_vec(),
+                    by_input,
                     hidden: vec![0.0; shape.hidden],
                     idle_out: output_layer(out_w, &idle_hidden),
                 }
@@ -117,19 +124,36 @@ impl Mlp {
     }
 }
 
-/// The network with `H` hidden units known at compile time: the same arithmetic in the same
-/// order as the general loop (so identical results), with fixed trip counts the compiler unrolls.
+/// The hidden layer's weighted sums, input by input: each unit's sum is
+/// `bias + w₁·x₁ + … + w₈·x₈` added in that order, as the genome lays it out, but inputs that
+/// are exactly 0 (a sensor that sees nothing: most of them, most of the time) are skipped.
+/// Adding `w · 0 = ±0` leaves a sum unchanged except for the sign of a zero sum, and
+/// `logistic(−0) = logistic(+0) = 0.5`, so the outputs are the same bits.
 #[inline]
-fn step_fixed<const H: usize>(weights: &[f64], inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
-    let (hidden_w, out_w) = weights.split_at(H * (INPUTS + 1));
-    let mut hidden = [0.0; H];
-    for (h, w) in hidden.iter_mut().zip(hidden_w.chunks_exact(INPUTS + 1)) {
-        let mut s = w[0];
-        for k in 0..INPUTS {
-            s += w[k + 1] * inputs[k];
+fn hidden_sums(by_input: &[f64], inputs: &[f64; INPUTS], sums: &mut [f64]) {
+    let h = sums.len();
+    sums.copy_from_slice(&by_input[..h]);
+    for (row, &x) in by_input[h..].chunks_exact(h).zip(inputs) {
+        if x != 0.0 {
+            for (s, &w) in sums.iter_mut().zip(row) {
+                *s += w * x;
+            }
         }
-        *h = logistic(s);
     }
+}
+
+/// The network with `H` hidden units known at compile time: the same arithmetic in the same
+/// order as the general path (so identical results), with fixed trip counts the compiler
+/// unrolls and vectorises.
+#[inline]
+fn step_fixed<const H: usize>(
+    by_input: &[f64],
+    out_w: &[f64],
+    inputs: &[f64; INPUTS],
+) -> [f64; OUTPUTS] {
+    let mut hidden = [0.0; H];
+    hidden_sums(&by_input[..H * (INPUTS + 1)], inputs, &mut hidden);
+    let hidden = hidden.map(logistic);
     let mut out = [0.0; OUTPUTS];
     for (o, w) in out.iter_mut().zip(out_w.chunks_exact(H + 1)) {
         let mut s = w[0];
@@ -147,20 +171,13 @@ impl Controller for Mlp {
         if inputs.iter().all(|&x| x == 0.0) {
             return self.idle_out;
         }
+        let out_w = &self.weights[self.shape.hidden * (INPUTS + 1)..];
         if self.shape.hidden == 6 {
-            return step_fixed::<6>(&self.weights, inputs);
+            return step_fixed::<6>(&self.by_input, out_w, inputs);
         }
-        let (hidden_w, out_w) = self.weights.split_at(self.shape.hidden * (INPUTS + 1));
-        for (h, w) in self
-            .hidden
-            .iter_mut()
-            .zip(hidden_w.chunks_exact(INPUTS + 1))
-        {
-            let mut s = w[0];
-            for k in 0..INPUTS {
-                s += w[k + 1] * inputs[k];
-            }
-            *h = logistic(s);
+        hidden_sums(&self.by_input, inputs, &mut self.hidden);
+        for h in &mut self.hidden {
+            *h = logistic(*h);
         }
         output_layer(out_w, &self.hidden)
     }
