@@ -176,112 +176,41 @@ impl Arena {
     pub fn new(room: Room, params: &TrialParams) -> Arena {
         let walls = room.walls();
         let (lo, hi) = room.bounds();
-        let cols = (((hi.x - lo.x) / CELL).ceil() as usize).max(1);
-        let rows = (((hi.y - lo.y) / CELL).ceil() as usize).max(1);
+        let grid = Grid {
+            origin: lo,
+            cols: (((hi.x - lo.x) / CELL).ceil() as usize).max(1),
+            rows: (((hi.y - lo.y) / CELL).ceil() as usize).max(1),
+        };
         let radius = params.robot.radius;
-        let reach = sensing_reach(params.sensor_model).max(radius + params.max_step())
-            + CELL * std::f64::consts::SQRT_2 / 2.0
-            + 1e-6;
-        let mut cell_start = Vec::with_capacity(cols * rows + 1);
-        let mut cell_walls = Vec::new();
-        let mut reachable_cell = vec![false; cols * rows];
-        for j in 0..rows {
-            for i in 0..cols {
-                cell_start.push(cell_walls.len() as u32);
-                let c = Vec2::new(
-                    lo.x + (i as f64 + 0.5) * CELL,
-                    lo.y + (j as f64 + 0.5) * CELL,
-                );
-                for (k, w) in walls.iter().enumerate() {
-                    if w.dist_to(c) <= reach {
-                        cell_walls.push(k as u32);
-                    }
-                }
-                reachable_cell[j * cols + i] =
-                    room.contains(c) && walls.iter().all(|w| w.dist2_to(c) >= radius * radius);
-            }
-        }
-        cell_start.push(cell_walls.len() as u32);
-        // Flood fill (4-neighbours) over valid cells, stepping only where the body can slide
-        // from one centre to the next (the segment between them stays ≥ radius from every
-        // wall: a gap narrower than the body is not a passage). It starts from the valid cell
-        // nearest to home that the body can reach from home in a straight line.
-        let centre = |k: usize| {
-            Vec2::new(
-                lo.x + ((k % cols) as f64 + 0.5) * CELL,
-                lo.y + ((k / cols) as f64 + 0.5) * CELL,
-            )
-        };
-        let list = |k: usize| &cell_walls[cell_start[k] as usize..cell_start[k + 1] as usize];
-        let free = |k: usize, a: Vec2, b: Vec2| {
-            let path = Segment::new(a, b);
-            list(k)
-                .iter()
-                .all(|&w| walls[w as usize].dist_to_segment(&path) >= radius)
-        };
-        let home = room.home.position();
-        let free_from_home = |b: Vec2| {
-            let path = Segment::new(home, b);
-            walls.iter().all(|w| w.dist_to_segment(&path) >= radius)
-        };
-        let start = (0..cols * rows)
-            .filter(|&k| {
-                reachable_cell[k] && centre(k).dist(home) <= 2.0 * CELL && free_from_home(centre(k))
+        let near_reach = sensing_reach(params.sensor_model).max(radius + params.max_step());
+        // A wall can matter to a robot in a cell if it is within reach of some point of the cell.
+        let (cell_start, cell_walls) = grid.cull(
+            &walls,
+            near_reach + CELL * std::f64::consts::SQRT_2 / 2.0 + 1e-6,
+        );
+        let valid: Vec<bool> = (0..grid.cells())
+            .map(|k| {
+                let c = grid.centre(k);
+                room.contains(c) && walls.iter().all(|w| w.dist2_to(c) >= radius * radius)
             })
-            .min_by(|&a, &b| {
-                centre(a)
-                    .dist(home)
-                    .total_cmp(&centre(b).dist(home))
-                    .then(a.cmp(&b))
-            });
-        let mut reachable = vec![false; cols * rows];
-        if let Some(s) = start {
-            let mut stack = vec![s];
-            reachable[s] = true;
-            while let Some(k) = stack.pop() {
-                let (i, j) = (k % cols, k / cols);
-                let mut neighbours = [usize::MAX; 4];
-                if i > 0 {
-                    neighbours[0] = k - 1;
-                }
-                if i + 1 < cols {
-                    neighbours[1] = k + 1;
-                }
-                if j > 0 {
-                    neighbours[2] = k - cols;
-                }
-                if j + 1 < rows {
-                    neighbours[3] = k + cols;
-                }
-                for n in neighbours {
-                    if n != usize::MAX
-                        && reachable_cell[n]
-                        && !reachable[n]
-                        && free(k, centre(k), centre(n))
-                    {
-                        reachable[n] = true;
-                        stack.push(n);
-                    }
-                }
-            }
-        }
-        let reachable_count = reachable.iter().filter(|&&r| r).count();
-        let d_max = room.max_home_distance();
+            .collect();
+        let list = |k: usize| &cell_walls[cell_start[k] as usize..cell_start[k + 1] as usize];
+        let reachable = grid.reachable(&valid, room.home.position(), radius, &walls, list);
         let compass = Compass::new(room.home.heading);
         Arena {
-            room,
             prepared: walls.iter().map(PreparedSegment::new).collect(),
             walls,
             origin: lo,
-            cols,
-            rows,
+            cols: grid.cols,
+            rows: grid.rows,
+            reachable_count: reachable.iter().filter(|&&r| r).count(),
+            reachable,
             cell_start,
             cell_walls,
-            reachable,
-            reachable_count,
-            d_max,
+            d_max: room.max_home_distance(),
+            room,
             radius,
-            near_reach: sensing_reach(params.sensor_model).max(radius + params.max_step()) + 1e-6,
+            near_reach: near_reach + 1e-6,
             compass,
             eyes: Eyes::new(params.sensor_model, &compass),
         }
@@ -441,6 +370,104 @@ impl Arena {
     }
 }
 
+/// The 50 mm cells over a room's bounding box, row by row from `origin`.
+struct Grid {
+    origin: Vec2,
+    cols: usize,
+    rows: usize,
+}
+
+impl Grid {
+    fn cells(&self) -> usize {
+        self.cols * self.rows
+    }
+
+    fn centre(&self, k: usize) -> Vec2 {
+        Vec2::new(
+            self.origin.x + ((k % self.cols) as f64 + 0.5) * CELL,
+            self.origin.y + ((k / self.cols) as f64 + 0.5) * CELL,
+        )
+    }
+
+    /// For each cell, the indices of the walls within `reach` of its centre, as one flat list
+    /// (`walls[start[k]..start[k + 1]]` are cell `k`'s).
+    fn cull(&self, walls: &[Segment], reach: f64) -> (Vec<u32>, Vec<u32>) {
+        let mut start = Vec::with_capacity(self.cells() + 1);
+        let mut list = Vec::new();
+        for k in 0..self.cells() {
+            start.push(list.len() as u32);
+            let c = self.centre(k);
+            list.extend((0..walls.len() as u32).filter(|&w| walls[w as usize].dist_to(c) <= reach));
+        }
+        start.push(list.len() as u32);
+        (start, list)
+    }
+
+    /// Cell `k`'s 4-neighbours (`usize::MAX` where the grid ends).
+    fn neighbours(&self, k: usize) -> [usize; 4] {
+        let (i, j) = (k % self.cols, k / self.cols);
+        [
+            if i > 0 { k - 1 } else { usize::MAX },
+            if i + 1 < self.cols { k + 1 } else { usize::MAX },
+            if j > 0 { k - self.cols } else { usize::MAX },
+            if j + 1 < self.rows {
+                k + self.cols
+            } else {
+                usize::MAX
+            },
+        ]
+    }
+
+    /// The `valid` cells connected to home (docs/model.md §7): a flood fill (4-neighbours)
+    /// stepping only where the body can slide from one centre to the next (the segment between
+    /// them stays ≥ `radius` from every wall of `list(cell)`: a gap narrower than the body is
+    /// not a passage). It starts from the valid cell nearest to home that the body can reach
+    /// from home in a straight line.
+    fn reachable<'a>(
+        &self,
+        valid: &[bool],
+        home: Vec2,
+        radius: f64,
+        walls: &[Segment],
+        list: impl Fn(usize) -> &'a [u32],
+    ) -> Vec<bool> {
+        let start = (0..self.cells())
+            .filter(|&k| {
+                let c = self.centre(k);
+                valid[k]
+                    && c.dist(home) <= 2.0 * CELL
+                    && clear(Segment::new(home, c), walls.iter(), radius)
+            })
+            .min_by(|&a, &b| {
+                let (da, db) = (self.centre(a).dist(home), self.centre(b).dist(home));
+                da.total_cmp(&db).then(a.cmp(&b))
+            });
+        let mut reachable = vec![false; self.cells()];
+        let Some(s) = start else {
+            return reachable;
+        };
+        let mut stack = vec![s];
+        reachable[s] = true;
+        while let Some(k) = stack.pop() {
+            for n in self.neighbours(k) {
+                if n != usize::MAX && valid[n] && !reachable[n] {
+                    let path = Segment::new(self.centre(k), self.centre(n));
+                    if clear(path, list(k).iter().map(|&w| &walls[w as usize]), radius) {
+                        reachable[n] = true;
+                        stack.push(n);
+                    }
+                }
+            }
+        }
+        reachable
+    }
+}
+
+/// Whether a body of `radius` can slide along `path` without touching one of `walls`.
+fn clear<'w>(path: Segment, mut walls: impl Iterator<Item = &'w Segment>, radius: f64) -> bool {
+    walls.all(|w| w.dist_to_segment(&path) >= radius)
+}
+
 /// Capacity of [`NearWalls`]; a cell with more nearby walls falls back to its full list.
 pub const NEAR_CAP: usize = 24;
 
@@ -548,19 +575,61 @@ where
     R: Rng + ?Sized,
     O: StepObserver + ?Sized,
 {
-    let mut pose = arena.room.home;
-    let mut cell = arena.cell_of(pose.position());
-    let mut dir = 0;
-    let zone = arena.room.home_zone;
-    let mut escaped = false;
-    let motion = params.robot.motion;
-    let v_max = params.robot.v_max;
+    let mut walk = Walk {
+        pose: arena.room.home,
+        cell: arena.cell_of(arena.room.home.position()),
+        dir: 0,
+        escaped: false,
+    };
     let mut t = 0;
     while t < params.steps {
-        let near = arena.near_walls_in(pose.position(), cell);
+        let (step, home) = walk.step(t, arena, controller, params, rng);
+        observer.observe(&step);
+        t += 1;
+        if params.end_at_home && home {
+            break;
+        }
+    }
+    for t in t..params.steps {
+        observer.observe(&Step::idle(t, walk.pose, Some(walk.cell), walk.escaped));
+    }
+    walk.pose
+}
+
+/// Where a robot is during a trial.
+struct Walk {
+    pose: Pose,
+    /// The grid cell of `pose`.
+    cell: usize,
+    /// The compass direction of `pose` (`actions` motion).
+    dir: usize,
+    /// Whether the robot has been outside the home zone.
+    escaped: bool,
+}
+
+impl Walk {
+    /// Step `t`: read the sensors (with noise), run the network, add wheel noise, label the
+    /// step and move by the motion model, undoing the move (keeping the heading change) if the
+    /// body would overlap a wall. Returns the step's record and whether the robot, having
+    /// escaped, is back in the home zone.
+    #[inline(always)]
+    fn step<C, R>(
+        &mut self,
+        t: usize,
+        arena: &Arena,
+        controller: &mut C,
+        params: &TrialParams,
+        rng: &mut R,
+    ) -> (Step, bool)
+    where
+        C: Controller + ?Sized,
+        R: Rng + ?Sized,
+    {
+        let (motion, v_max) = (params.robot.motion, params.robot.v_max);
+        let near = arena.near_walls_in(self.pose.position(), self.cell);
         let mut sensors = match motion {
-            Motion::Actions => arena.read_sensors_on_compass(pose.position(), dir, &near),
-            Motion::Wheels => arena.read_sensors_near(&pose, &near),
+            Motion::Actions => arena.read_sensors_on_compass(self.pose.position(), self.dir, &near),
+            Motion::Wheels => arena.read_sensors_near(&self.pose, &near),
         };
         perturb_sensors(&mut sensors, params.noise, SENSOR_MAX, rng);
         // Most readings are 0 in open floor; 0 / 1023 is exactly 0, so skip the division.
@@ -572,52 +641,65 @@ where
             perturb(speeds[1], params.noise, rng),
         ];
         let action = motion.label(motors, noisy, v_max, params.action_tolerance);
-        let (candidate, next_dir) = match motion {
-            Motion::Actions => {
-                Motion::execute(pose, dir, action, params.straight_step(), &arena.compass)
-            }
-            Motion::Wheels => (
-                drive(pose, noisy[0], noisy[1], params.robot.wheel_base, params.dt),
-                dir,
-            ),
-        };
-        dir = next_dir;
-        // A turn on the spot cannot collide: the position is the previous, wall-free one.
-        let moved = candidate.x != pose.x || candidate.y != pose.y;
-        let collided = moved && arena.overlaps_near(candidate.position(), &near);
-        if collided {
-            // Position (and so cell) unchanged; the heading change is kept.
-            pose.heading = candidate.heading;
-        } else {
-            pose = candidate;
-            if moved {
-                cell = arena.cell_of(pose.position());
-            }
-        }
-        let inside = zone.contains(pose.position());
-        escaped |= !inside;
-        observer.observe(&Step {
+        let collided = self.execute(action, noisy, arena, params, &near);
+        let inside = arena.room.home_zone.contains(self.pose.position());
+        self.escaped |= !inside;
+        let step = Step {
             t,
             sensors,
             motors,
             speeds,
-            pose,
-            cell: Some(cell),
+            pose: self.pose,
+            cell: Some(self.cell),
             collided,
             action,
             idle: false,
             energy: motion.energy(speeds, v_max),
-            escaped,
-        });
-        t += 1;
-        if params.end_at_home && escaped && inside {
-            break;
+            escaped: self.escaped,
+        };
+        (step, self.escaped && inside)
+    }
+
+    /// Moves by `action` (`actions` motion) or the `noisy` wheel speeds (`wheels`); a move
+    /// into a wall is undone, its heading change kept. Returns whether it collided.
+    #[inline(always)]
+    fn execute(
+        &mut self,
+        action: Action,
+        noisy: [f64; 2],
+        arena: &Arena,
+        params: &TrialParams,
+        near: &NearWalls,
+    ) -> bool {
+        let pose = self.pose;
+        let (candidate, next_dir) = match params.robot.motion {
+            Motion::Actions => Motion::execute(
+                pose,
+                self.dir,
+                action,
+                params.straight_step(),
+                &arena.compass,
+            ),
+            Motion::Wheels => {
+                let (wheel_base, dt) = (params.robot.wheel_base, params.dt);
+                (drive(pose, noisy[0], noisy[1], wheel_base, dt), self.dir)
+            }
+        };
+        self.dir = next_dir;
+        // A turn on the spot cannot collide: the position is the previous, wall-free one.
+        let moved = candidate.x != pose.x || candidate.y != pose.y;
+        let collided = moved && arena.overlaps_near(candidate.position(), near);
+        if collided {
+            // Position (and so cell) unchanged; the heading change is kept.
+            self.pose.heading = candidate.heading;
+        } else {
+            self.pose = candidate;
+            if moved {
+                self.cell = arena.cell_of(self.pose.position());
+            }
         }
+        collided
     }
-    for t in t..params.steps {
-        observer.observe(&Step::idle(t, pose, Some(cell), escaped));
-    }
-    pose
 }
 
 /// Everything recorded in a trial, one entry per step (idle steps included).
