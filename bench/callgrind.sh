@@ -56,9 +56,14 @@ FM1=$(total_ir fm1 "$FM" bench "${WHEELS[@]}" --steps "$N1" --repeat 1 --populat
 FM2=$(total_ir fm2 "$FM" bench "${WHEELS[@]}" --steps "$N2" --repeat 1 --population 2 --threads 1 --json)
 FA1=$(total_ir fa1 "$FM" bench "${ACTIONS[@]}" --steps "$N1" --repeat 1 --population 2 --threads 1 --json)
 FA2=$(total_ir fa2 "$FM" bench "${ACTIONS[@]}" --steps "$N2" --repeat 1 --population 2 --threads 1 --json)
+# The study's workload: the paper's H room with the default model (home in a corner).
+PAPER=(--room H --motion actions)
+FP1=$(total_ir fp1 "$FM" bench "${PAPER[@]}" --steps "$N1" --repeat 1 --population 2 --threads 1 --json)
+FP2=$(total_ir fp2 "$FM" bench "${PAPER[@]}" --steps "$N2" --repeat 1 --population 2 --threads 1 --json)
 # Executed robot-steps of each run, as bench counted them (idle steps are not work).
 executed() { python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(d["robot_steps"] + d["population_robot_steps"])' "$TMP/$1.stdout"; }
 SW1=$(executed fm1); SW2=$(executed fm2); SA1=$(executed fa1); SA2=$(executed fa2)
+SP1=$(executed fp1); SP2=$(executed fp2)
 EN1=""; EN2=""
 if [ "$WITH_ENKI" -eq 1 ]; then
     echo "== callgrind: khepera_h --steps $N1 and $N2" >&2
@@ -67,11 +72,12 @@ if [ "$WITH_ENKI" -eq 1 ]; then
 fi
 
 python3 - "$N1" "$N2" "$FM1" "$FM2" "$EN1" "$EN2" "$HERE/callgrind.json" "$ROOT" \
-    "$SW1" "$SW2" "$FA1" "$FA2" "$SA1" "$SA2" <<'PY'
+    "$SW1" "$SW2" "$FA1" "$FA2" "$SA1" "$SA2" "$FP1" "$FP2" "$SP1" "$SP2" <<'PY'
 import datetime, json, os, subprocess, sys
 n1, n2, fm1, fm2 = (int(x) for x in sys.argv[1:5])
 en1, en2, out, root = sys.argv[5:9]
 fm_steps1, fm_steps2, fa1, fa2, fa_steps1, fa_steps2 = (int(x) for x in sys.argv[9:15])
+fp1, fp2, fp_steps1, fp_steps2 = (int(x) for x in sys.argv[15:19])
 trial = 400
 steps = lambda n: -(-n // trial) * trial
 doc = {
@@ -86,6 +92,13 @@ doc = {
         "second_run": {"steps_arg": n2, "total_ir": fa2, "robot_steps": fa_steps2},
         "marginal_ir_per_robot_step": (fa2 - fa1) / (fa_steps2 - fa_steps1),
     },
+    "fuzzymotiv_actions_paper_h": {
+        "command": f"fuzzymotiv bench --room H --motion actions --steps {n1} --repeat 1 --population 2 --threads 1",
+        "total_ir": fp1, "robot_steps": fp_steps1,
+        "ir_per_robot_step": fp1 / fp_steps1,
+        "second_run": {"steps_arg": n2, "total_ir": fp2, "robot_steps": fp_steps2},
+        "marginal_ir_per_robot_step": (fp2 - fp1) / (fp_steps2 - fp_steps1),
+    },
     "fuzzymotiv": {
         "command": f"fuzzymotiv bench --room rooms/first-release/H.toml --motion wheels --set trial.end_at_home=false --steps {n1} --repeat 1 --population 2 --threads 1",
         "total_ir": fm1, "robot_steps": fm_steps1,
@@ -98,6 +111,8 @@ print(f"fuzzymotiv wheels:  {fm1:,} Ir / {fm_steps1:,} robot-steps = {fm1 / fm_s
       f" (marginal, start-up cancelled: {(fm2 - fm1) / (fm_steps2 - fm_steps1):,.0f})")
 print(f"fuzzymotiv actions: {fa1:,} Ir / {fa_steps1:,} executed robot-steps = {fa1 / fa_steps1:,.0f} Ir per robot-step"
       f" (marginal: {(fa2 - fa1) / (fa_steps2 - fa_steps1):,.0f})")
+print(f"fuzzymotiv actions, the paper's H room (the study's workload): {fp1 / fp_steps1:,.0f} Ir per robot-step"
+      f" (marginal: {(fp2 - fp1) / (fp_steps2 - fp_steps1):,.0f})")
 if en1:
     en1, en2 = int(en1), int(en2)
     e_steps1, e_steps2 = steps(n1), steps(n2)
