@@ -370,7 +370,7 @@ fn run<'py>(
             let mut hook = |state: &GenerationState<'_>| {
                 done += 1;
                 if let Some(cb) = &progress {
-                    let best = state.record().stats.best;
+                    let best = state.record().stats.max;
                     let r = Python::attach(|py| cb.call1(py, (done, total, best)).map(|_| ()));
                     if let Err(e) = r {
                         *callback_error.lock().expect("not poisoned") = Some(e);
@@ -452,7 +452,7 @@ fn run_dict(py: Python<'_>, o: RunOutput) -> PyResult<Bound<'_, PyDict>> {
                 .collect(),
         ),
     )?;
-    g.set_item("best", col(&|r| r.stats.best))?;
+    g.set_item("best", col(&|r| r.stats.max))?;
     g.set_item("mean", col(&|r| r.stats.mean))?;
     g.set_item("std", col(&|r| r.stats.std))?;
     g.set_item("min", col(&|r| r.stats.min))?;

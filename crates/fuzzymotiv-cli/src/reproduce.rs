@@ -751,8 +751,8 @@ fn setting_json(study: &SettingRuns<'_>) -> serde_json::Value {
                     "battery_pct": r.battery_pct,
                     "homing": r.homing,
                 })).collect::<Vec<_>>(),
-                "first_generation": {"best": h[0].stats.best, "mean": h[0].stats.mean},
-                "last_generation": {"best": h.last().map(|x| x.stats.best), "mean": h.last().map(|x| x.stats.mean)},
+                "first_generation": {"best": h[0].stats.max, "mean": h[0].stats.mean},
+                "last_generation": {"best": h.last().map(|x| x.stats.max), "mean": h.last().map(|x| x.stats.mean)},
                 "confusion": f.aem.iter().map(|a| &a.confusion.counts).collect::<Vec<_>>(),
             })
         })
@@ -799,7 +799,7 @@ fn generation_stat(study: &SettingRuns<'_>, last: bool, best: bool) -> f64 {
         .map(|f| {
             let h = &f.evolutions[0].history;
             let rec = if last { &h[h.len() - 1] } else { &h[0] };
-            if best { rec.stats.best } else { rec.stats.mean }
+            if best { rec.stats.max } else { rec.stats.mean }
         })
         .collect();
     mean_std(&v).0

@@ -263,7 +263,7 @@ pub fn execute_with(
             };
             let mut on_generation = |state: &GenerationState<'_>| {
                 let g = state.history.len();
-                let best = state.record().stats.best;
+                let best = state.record().stats.max;
                 progress.generation(&run.label, g, exp.ga().generations, best);
                 checkpoint.runs[k] = CheckpointRun::from_state(&run.label, state);
                 checkpoint.wall_seconds = earlier_seconds + start.elapsed().as_secs_f64();
@@ -290,7 +290,7 @@ pub fn execute_with(
                 csv,
                 "{},{},{},{},{},{},{},{},{},{},{}",
                 rec.generation,
-                num(s.best),
+                num(s.max),
                 num(s.mean),
                 num(s.std),
                 num(s.min),
@@ -521,8 +521,8 @@ pub fn summary_json(
             let last = evo.history.last().expect("at least one generation");
             serde_json::json!({
                 "run": evo.run.label,
-                "first_generation": {"best": first.stats.best, "mean": first.stats.mean},
-                "last_generation": {"best": last.stats.best, "mean": last.stats.mean},
+                "first_generation": {"best": first.stats.max, "mean": first.stats.mean},
+                "last_generation": {"best": last.stats.max, "mean": last.stats.mean},
                 "best_fitness": evo.evaluations[evo.best].fitness,
             })
         })

@@ -78,7 +78,7 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
                         "{:.1},{:.1} ",
                         x(g),
                         y(if pick == 0 {
-                            r.stats.best
+                            r.stats.max
                         } else {
                             r.stats.mean
                         })
