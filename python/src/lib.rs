@@ -17,7 +17,8 @@ use fuzzymotiv::fuzzy::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv_cli::error::CliError;
 use fuzzymotiv_cli::inputs::{Loaded, load_config, load_room_file, resolve};
-use fuzzymotiv_cli::run::{self as cli_run, RoomRow};
+use fuzzymotiv_cli::pipeline;
+use fuzzymotiv_cli::records::{Finished, RoomRow, RunSummary};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::create_exception;
@@ -271,15 +272,17 @@ struct RunOutput {
     shape: (usize, usize),
 }
 
-fn output(loaded: &Loaded, evolutions: &[Evolution], finished: cli_run::Finished) -> RunOutput {
+fn output(loaded: &Loaded, done: Finished) -> RunOutput {
     let exp = &loaded.experiment;
-    let summary = cli_run::summary_json(exp, evolutions, &finished.rows, finished.wall_seconds);
+    let summary = RunSummary::of(exp, &done);
     RunOutput {
-        generations: evolutions
+        generations: done
+            .evolutions
             .iter()
             .flat_map(|e| e.history.iter().map(|r| (*r, e.run.label.clone())))
             .collect(),
-        best: evolutions
+        best: done
+            .evolutions
             .iter()
             .map(|e| (e.run.label.clone(), e.population[e.best].clone()))
             .collect(),
@@ -287,11 +290,11 @@ fn output(loaded: &Loaded, evolutions: &[Evolution], finished: cli_run::Finished
         paths: exp
             .room_names()
             .into_iter()
-            .zip(&finished.trajectories)
+            .zip(done.trajectories())
             .map(|(n, t)| (n, t.poses.iter().map(|p| [p.x, p.y, p.heading]).collect()))
             .collect(),
-        rows: finished.rows,
         shape: (exp.shape().hidden, exp.shape().genome_len()),
+        rows: done.rows,
     }
 }
 
@@ -302,34 +305,20 @@ fn execute(
     hook: &mut dyn FnMut(&GenerationState<'_>),
 ) -> Result<RunOutput, CliError> {
     let exp = &loaded.experiment;
-    match out {
+    let done = match out {
         Some(dir) => {
             let progress = fuzzymotiv_cli::progress::Progress::hidden();
-            let mut done = cli_run::execute_with(loaded, dir, &progress, false, false, hook)?;
-            let evolutions = std::mem::take(&mut done.evolutions);
-            Ok(output(loaded, &evolutions, done))
+            pipeline::execute_with(loaded, dir, &progress, false, false, hook)?
         }
         None => {
             let start = Instant::now();
             let evolutions: Vec<Evolution> =
                 exp.runs().iter().map(|run| exp.evolve(run, hook)).collect();
-            let aem = evolutions
-                .iter()
-                .map(|e| exp.environment_modelling(&e.population[e.best], &e.run))
-                .collect::<Result<Vec<_>, _>>()
-                .map_err(|e| CliError::runtime(format!("environment modelling failed: {e}")))?;
-            let rows = cli_run::room_rows(exp, &evolutions, &aem);
-            let trajectories = cli_run::best_trajectories(exp, &evolutions);
-            let finished = cli_run::Finished {
-                evolutions: Vec::new(),
-                aem,
-                rows,
-                trajectories,
-                wall_seconds: start.elapsed().as_secs_f64(),
-            };
-            Ok(output(loaded, &evolutions, finished))
+            let aem = pipeline::model_rooms(exp, &evolutions)?;
+            Finished::new(exp, evolutions, aem, start.elapsed().as_secs_f64())
         }
-    }
+    };
+    Ok(output(loaded, done))
 }
 
 /// Evolves as `fuzzymotiv run` does. Returns a dict of plain columns; see `fuzzymotiv.run`.
@@ -580,8 +569,8 @@ fn simulate<'py>(
         )));
     }
     let run = exp.runs().remove(0);
-    let tr = py.detach(|| exp.instance_trajectory(&genome, &run, 0));
-    let (terms, f) = fuzzymotiv_cli::report::trajectory_terms(&exp, 0, &tr);
+    let instance = py.detach(|| exp.instance_run(&genome, &run, 0));
+    let (tr, terms, f) = (&instance.trajectory, instance.terms, instance.f);
     let d = PyDict::new(py);
     let poses =
         |k: usize| -> Vec<f64> { tr.poses.iter().map(|p| [p.x, p.y, p.heading][k]).collect() };

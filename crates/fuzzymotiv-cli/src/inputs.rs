@@ -127,3 +127,12 @@ pub fn parse_seed(text: &str) -> Result<u64, String> {
             )
         })
 }
+
+/// The contents of `config.resolved.toml`: the resolved config with the program version on top.
+pub fn resolved_toml(raw: &RawConfig) -> String {
+    format!(
+        "# Resolved configuration written by fuzzymotiv {} (all keys, with the seed).\n# Re-run: fuzzymotiv run config.resolved.toml\n{}",
+        fuzzymotiv::VERSION,
+        raw.to_toml()
+    )
+}

@@ -9,16 +9,14 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::config::{EnergyMode, Training};
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::fitness::FitnessTerms;
 use fuzzymotiv::fuzzy::label_name;
-use fuzzymotiv::modelling::AemReport;
+use fuzzymotiv::modelling::InstanceRun;
 use fuzzymotiv::sensor::SENSOR_LAYOUT;
-use fuzzymotiv::trial::Trajectory;
 use serde_json::{Value, json};
 
-use crate::inputs::Loaded;
-use crate::reproduce::Setting;
-use crate::run::{Finished, aem_for_room, resolved_toml, robot_for_room};
+use crate::inputs::{Loaded, resolved_toml};
+use crate::records::{Finished, RoomRow};
+use crate::study::Setting;
 use crate::svg::{
     SomRoom, best_paths_svg, colour, esc, fitness_svg, membership_svg, som_svg, terms_svg,
     trajectories_svg,
@@ -122,19 +120,13 @@ fn action_letter(a: fuzzymotiv::aem::Action) -> char {
     }
 }
 
-/// The fitness terms of a recorded trial and its F under the experiment's motivations.
-pub fn trajectory_terms(exp: &Experiment, room: usize, tr: &Trajectory) -> (FitnessTerms, f64) {
-    let terms = FitnessTerms::measure(&exp.arenas()[room], exp.trial_params(), exp.homing(), tr);
-    (terms, exp.fuzzy_fitness(&terms))
-}
-
 /// Compact replay data of one trial (positions to 0.1 mm, angles and motors to 3 decimals,
 /// sensors to integers; actions and collisions as one character per step).
-pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, tr: &Trajectory) -> Value {
+pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, run: &InstanceRun) -> Value {
     let r = exp.arenas()[room].room();
     let pts =
         |p: &[fuzzymotiv::geom::Vec2]| p.iter().map(|v| [r1(v.x), r1(v.y)]).collect::<Vec<_>>();
-    let (terms, f) = trajectory_terms(exp, room, tr);
+    let (tr, terms, f) = (&run.trajectory, run.terms, run.f);
     let zone = r.home_zone;
     json!({
         "room": r.name,
@@ -262,7 +254,7 @@ pub fn reproduce_page(
     for s in sections {
         let rows = &s.done.rows;
         let n = rows.len().max(1) as f64;
-        let mean = |f: &dyn Fn(&crate::run::RoomRow) -> f64| rows.iter().map(f).sum::<f64>() / n;
+        let mean = |f: &dyn Fn(&RoomRow) -> f64| rows.iter().map(f).sum::<f64>() / n;
         let paper = s.paper.map(|p| {
             let m = |k: usize| {
                 p.paper.iter().map(|r| [r.2, r.3, r.4][k]).sum::<f64>() / p.paper.len() as f64
@@ -327,7 +319,7 @@ pub fn replay_page(
     title: &str,
     about: &str,
     exp: &Experiment,
-    trials: &[(usize, String, Trajectory)],
+    trials: &[(usize, String, InstanceRun)],
 ) -> String {
     let mut page = Page::new(title.to_string());
     let _ = writeln!(
@@ -346,7 +338,7 @@ pub fn replay_page(
     );
     let pairs: Vec<_> = trials
         .iter()
-        .map(|(r, _, tr)| (exp.arenas()[*r].room(), tr))
+        .map(|(r, _, run)| (exp.arenas()[*r].room(), &run.trajectory))
         .collect();
     figure(
         &mut page,
@@ -502,7 +494,11 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     heading(page, level, s.id, "paths", "Paths and replay");
     figure(
         page,
-        &best_paths_svg(&format!("Best robot, {}", s.title), exp, &done.trajectories),
+        &best_paths_svg(
+            &format!("Best robot, {}", s.title),
+            exp,
+            &done.trajectories(),
+        ),
         "Each room to scale, seen from above: green circle and line = home pose (start of every trial), red line = the best robot's path in its room-modelling run (the run whose actions became the room's stored instance), filled circle = where it ended.",
     );
     page.push(
@@ -517,8 +513,8 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     );
     let rooms = (0..exp.arenas().len())
         .map(|r| {
-            let (evo, _) = robot_for_room(&done.evolutions, r);
-            replay_room(exp, r, &evo.run.label, &done.trajectories[r])
+            let (evo, _) = done.robot_for_room(r);
+            replay_room(exp, r, &evo.run.label, done.instance(r))
         })
         .collect();
     page.replay(exp, rooms);
@@ -591,7 +587,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
     );
     page.push("<table><tr><th>room</th><th>a</th><th>g</th><th>l</th><th>b</th><th>F</th><th class=\"left\">firing rules</th></tr>\n");
     for r in 0..exp.arenas().len() {
-        let (evo, k) = robot_for_room(&done.evolutions, r);
+        let (evo, k) = done.robot_for_room(r);
         let score = &evo.evaluations[evo.best].per_room[k];
         let y = exp.fuzzy_inputs(&score.terms);
         let ex = exp.fuzzy().explain(exp.motivations(), y);
@@ -700,10 +696,10 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
             "Each room's r-node on the line of SOM nodes, with the window of nodes a test run's winner must fall in for that room to be a candidate; dots are the winners of the test runs, coloured by the room the robot was really in.",
         );
     }
-    confusion_table(page, exp, &done.aem, names);
+    confusion_table(page, exp, done, names);
 }
 
-fn confusion_table(page: &mut Page, exp: &Experiment, aem: &[AemReport], names: &[String]) {
+fn confusion_table(page: &mut Page, exp: &Experiment, done: &Finished, names: &[String]) {
     page.push(
         "<h4>Confusion matrix</h4>\n<table class=\"cm\"><tr><th>true room ↓ / recognised as →</th>",
     );
@@ -717,7 +713,7 @@ fn confusion_table(page: &mut Page, exp: &Experiment, aem: &[AemReport], names: 
     }
     page.push("<th>not recognised</th><th>% correct</th></tr>\n");
     for (r, n) in names.iter().enumerate() {
-        let rep = aem_for_room(aem, r);
+        let rep = done.aem_for_room(r);
         let counts = &rep.confusion.counts[r];
         let total: u32 = counts.iter().sum();
         let _ = write!(

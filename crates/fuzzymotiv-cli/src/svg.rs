@@ -77,11 +77,7 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
                     format!(
                         "{:.1},{:.1} ",
                         x(g),
-                        y(if pick == 0 {
-                            r.stats.max
-                        } else {
-                            r.stats.mean
-                        })
+                        y(if pick == 0 { r.stats.max } else { r.stats.mean })
                     )
                 })
                 .collect();
@@ -114,12 +110,12 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
 
 /// Every room of the experiment with the best robot's path in it (`trajectories[r]` for room
 /// `r`), as [`trajectories_svg`] draws them.
-pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[Trajectory]) -> String {
+pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[&Trajectory]) -> String {
     let pairs: Vec<_> = exp
         .arenas()
         .iter()
         .map(|a| a.room())
-        .zip(trajectories)
+        .zip(trajectories.iter().copied())
         .collect();
     trajectories_svg(title, &pairs)
 }
