@@ -1156,3 +1156,97 @@ impl CsvTable {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// CSV records keep their fixed decimals when written and come back as written.
+    #[test]
+    fn csv_records_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let row = |g: usize| GenerationRow {
+            generation: g,
+            best: Fixed(0.5),
+            mean: Fixed(0.25),
+            std: Fixed(0.125),
+            min: Fixed(0.0),
+            max: Fixed(0.5),
+            a: Fixed(1.0),
+            g: Fixed(0.75),
+            l: Fixed(0.0),
+            b: Fixed(1.0 / 3.0),
+            room: "a, \"b\"".into(),
+        };
+        let text = to_csv(&[row(0), row(1)]);
+        assert_eq!(
+            text.lines().nth(1).unwrap(),
+            "0,0.500000000,0.250000000,0.125000000,0.000000000,0.500000000,1.000000000,0.750000000,0.000000000,0.333333333,\"a, \"\"b\"\"\""
+        );
+        let path = dir.path().join("generations.csv");
+        std::fs::write(&path, &text).unwrap();
+        let back: Vec<GenerationRow> = read_csv(&path).unwrap();
+        assert_eq!(back[1].room, "a, \"b\"");
+        assert_eq!(back[1].b.0, 0.333333333);
+
+        let table = RecognitionTable {
+            rooms: vec!["H".into(), "T".into()],
+            rows: vec![RecognitionRow {
+                room: "H".into(),
+                test_runs: 5,
+                correct: 4,
+                recognition_pct: Some(80.0),
+                recognised_as: vec![4, 0],
+                not_recognised: 1,
+            }],
+        };
+        let text = table.to_csv();
+        assert_eq!(
+            text,
+            "room,test_runs,correct,recognition_pct,as_H,as_T,not_recognised\nH,5,4,80.0,4,0,1\n"
+        );
+        let path = dir.path().join("recognition.csv");
+        std::fs::write(&path, &text).unwrap();
+        assert_eq!(RecognitionTable::read(&path).unwrap(), table);
+    }
+
+    /// A malformed cell names the file, the line and the column.
+    #[test]
+    fn bad_cells_name_their_column() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("generations.csv");
+        std::fs::write(
+            &path,
+            "generation,best,mean,std,min,max,a,g,l,b,room\n0,0.5,oops,0,0,0.5,1,1,0,1,all\n",
+        )
+        .unwrap();
+        let e = read_csv::<GenerationRow>(&path).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(
+            e.to_string().contains("line 2") && e.to_string().contains("field `mean`"),
+            "{e}"
+        );
+        let path = dir.path().join("recognition.csv");
+        std::fs::write(
+            &path,
+            "room,test_runs,correct,recognition_pct,as_H,not_recognised\nH,5,x,,4,1\n",
+        )
+        .unwrap();
+        let e = RecognitionTable::read(&path).unwrap_err();
+        assert!(e.to_string().contains("field `correct`"), "{e}");
+    }
+
+    /// A JSON record with a value of the wrong type names the field's path.
+    #[test]
+    fn bad_json_fields_are_named() {
+        let e =
+            parse_json::<BestGenome>(r#"{"shape": {"hidden": "six"}, "weights": []}"#, "g.json")
+                .unwrap_err();
+        assert!(
+            e.to_string().starts_with("g.json: field `shape.hidden`: "),
+            "{e}"
+        );
+        let e = parse_json::<BestGenome>("{", "g.json").unwrap_err();
+        assert!(e.to_string().contains("not valid JSON"), "{e}");
+    }
+}

@@ -567,6 +567,14 @@ fn replay_rejects_bad_input_with_exit_2() {
     std::fs::write(&garbage, "{ not json").unwrap();
     let short = dir.path().join("short.json");
     std::fs::write(&short, r#"{"shape": {"hidden": 6}, "weights": [0.5, 1.0]}"#).unwrap();
+    let typo = dir.path().join("typo.json");
+    std::fs::write(
+        &typo,
+        r#"{"shape": {"hidden": 6}, "weights": [0.5, "1.0"]}"#,
+    )
+    .unwrap();
+    let shapeless = dir.path().join("shapeless.json");
+    std::fs::write(&shapeless, r#"{"weights": [0.5]}"#).unwrap();
     let empty_dir = dir.path().join("empty");
     std::fs::create_dir(&empty_dir).unwrap();
     let page = dir.path().join("x/replay.html");
@@ -576,6 +584,8 @@ fn replay_rejects_bad_input_with_exit_2() {
         (vec![empty_dir.to_str().unwrap()], "config.resolved.toml"),
         (vec![garbage.to_str().unwrap()], "not valid JSON"),
         (vec![short.to_str().unwrap()], "68"),
+        (vec![typo.to_str().unwrap()], "field `weights[1]`"),
+        (vec![shapeless.to_str().unwrap()], "missing field `shape`"),
         (
             vec![out.to_str().unwrap(), "--room", "attic"],
             "not a room of the config",
