@@ -13,12 +13,11 @@ use fuzzymotiv::config::{OrientationMode, Training};
 use fuzzymotiv::controller::MlpShape;
 use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::modelling::InstanceRun;
-use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::trial::Trajectory;
 
 use crate::error::CliError;
 use crate::files::{io_err, num, write_atomic};
-use crate::inputs::{Loaded, load_config, load_room_file, resolve};
+use crate::inputs::{load_config, resolve, room_entry};
 use crate::png::write_figure_at;
 use crate::records::{BestGenome, PROGRAM, read_json};
 use crate::report::{replay_page, xs};
@@ -173,7 +172,10 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         )));
     }
     let mut raw = loaded.raw.clone();
-    raw.rooms = room_entries(args.room.as_deref(), &loaded)?;
+    raw.rooms = match &args.room {
+        Some(want) => vec![room_entry("--room", want, &loaded)?],
+        None => loaded.raw.rooms.clone(),
+    };
     raw.network.hidden = genome.hidden;
     // Replaying needs neither room recognition nor online orientation (they would demand more
     // rooms); neither changes a trajectory.
@@ -205,31 +207,6 @@ fn locate(src: &Path) -> Result<(PathBuf, Option<PathBuf>), CliError> {
         Err(CliError::input(format!(
             "{}: no such run directory or genome file",
             src.display()
-        )))
-    }
-}
-
-/// The rooms to replay, as config entries (built-in names or absolute room-file paths):
-/// `--room` (a room of the config, a built-in room or a room file), else the config's.
-fn room_entries(room: Option<&str>, loaded: &Loaded) -> Result<Vec<String>, CliError> {
-    let Some(want) = room else {
-        return Ok(loaded.raw.rooms.clone());
-    };
-    let names = loaded.experiment.room_names();
-    if let Some(i) = names.iter().position(|n| n == want) {
-        Ok(vec![loaded.raw.rooms[i].clone()])
-    } else if Room::builtin(want).is_some() {
-        Ok(vec![want.to_string()])
-    } else if Path::new(want).is_file() {
-        let path = Path::new(want);
-        load_room_file(path)?;
-        let abs = path.canonicalize().map_err(|e| io_err(path, e))?;
-        Ok(vec![abs.display().to_string()])
-    } else {
-        Err(CliError::input(format!(
-            "--room {want}: not a room of the config ({}), a built-in room ({}) or a room file",
-            names.join(", "),
-            BUILTIN_ROOMS.join(", ")
         )))
     }
 }
