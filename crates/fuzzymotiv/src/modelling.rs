@@ -65,30 +65,7 @@ impl Experiment {
         } else {
             None
         };
-        let tests: Vec<(usize, AemTest)> = (0..rooms)
-            .flat_map(|r| (0..self.aem.test_runs).map(move |t| (r, t)))
-            .collect::<Vec<_>>()
-            .into_par_iter()
-            .map(|(r, t)| {
-                let seed = self.streams().aem_test(run.tag, self.room_key(r), t);
-                let (terms, actions) = self.trial(genome, r, seed);
-                let (answer, winner) = match &recognizer {
-                    Some(rec) => {
-                        let v = environment_vector(&actions, self.aem.encoder);
-                        (rec.recognise(&v)?, Some(rec.som.winner(&v)?))
-                    }
-                    None => (None, None),
-                };
-                Ok((
-                    r,
-                    AemTest {
-                        terms,
-                        answer,
-                        winner,
-                    },
-                ))
-            })
-            .collect::<Result<_, SomError>>()?;
+        let tests = self.recognition_tests(genome, run, recognizer.as_ref())?;
         let mut confusion = Confusion::new(rooms);
         let mut per_room: Vec<AemRoom> = instances
             .into_iter()
@@ -122,6 +99,40 @@ impl Experiment {
             confusion,
             som_nodes: recognizer.as_ref().map_or(0, |rec| rec.som.nodes()),
         })
+    }
+
+    /// `test_runs` test runs per room of `genome` on the AEM test streams of `run`, each with
+    /// its terms and (when a recognizer is given) its answer and SOM winner: (room, test).
+    fn recognition_tests(
+        &self,
+        genome: &[f64],
+        run: &Run,
+        recognizer: Option<&Recognizer>,
+    ) -> Result<Vec<(usize, AemTest)>, SomError> {
+        (0..self.arenas.len())
+            .flat_map(|r| (0..self.aem.test_runs).map(move |t| (r, t)))
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|(r, t)| {
+                let seed = self.streams().aem_test(run.tag, self.room_key(r), t);
+                let (terms, actions) = self.trial(genome, r, seed);
+                let (answer, winner) = match recognizer {
+                    Some(rec) => {
+                        let v = environment_vector(&actions, self.aem.encoder);
+                        (rec.recognise(&v)?, Some(rec.som.winner(&v)?))
+                    }
+                    None => (None, None),
+                };
+                Ok((
+                    r,
+                    AemTest {
+                        terms,
+                        answer,
+                        winner,
+                    },
+                ))
+            })
+            .collect()
     }
 }
 
