@@ -43,7 +43,7 @@ def missing_field(summary):
 
 def kind(summary):
     """What must agree between averaged studies: quick flag, GA size per setting, version."""
-    sizes = [(s["name"], s.get("population"), s.get("generations")) for s in summary["settings"]]
+    sizes = [(s.get("name"), s.get("population"), s.get("generations")) for s in summary.get("settings", [])]
     return {"quick": summary.get("quick"), "GA size": sizes, "version": summary.get("version")}
 
 
@@ -67,10 +67,11 @@ def main(dirs):
             summaries.append(json.load(open(f"{d}/summary.json")))
         except (OSError, ValueError) as e:
             sys.exit(f"error: {d}: not a `fuzzymotiv reproduce` directory ({e})")
-        missing = missing_field(summaries[-1])
+    check_same_kind(dirs, summaries)
+    for d, summary in zip(dirs, summaries):
+        missing = missing_field(summary)
         if missing:
             sys.exit(f"error: {d}/summary.json: missing field `{missing}`")
-    check_same_kind(dirs, summaries)
     seeds = [s["seed"] for s in summaries]
     quick = " (quick: GA 30 × 30)" if summaries[0].get("quick") else ""
     print(f"fuzzymotiv {summaries[0].get('version')}, {len(dirs)} studies{quick}\n")

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 mod common;
 
-use common::{bin, ok, run};
+use common::{Fm, bin, ok, run};
 
 const SWEEP: &str = r#"
 name = "t"
@@ -248,25 +248,17 @@ fn simplex_sweep_covers_the_grid() {
 fn orientation_study_runs_from_one_command() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("orientation");
-    let o = run(&[
-        "reproduce",
-        "--orientation",
-        "--quick",
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "ga.population=8",
-        "--set",
-        "ga.generations=2",
-        "--set",
-        "trial.steps=100",
-        "--set",
-        "aem.epochs=10",
-        "--set",
-        "aem.test_runs=2",
-        "--set",
-        "sweep.replicates=1",
-    ]);
+    let o = Fm::new(["reproduce", "--orientation", "--quick"])
+        .out(&out)
+        .sets(&[
+            "ga.population=8",
+            "ga.generations=2",
+            "trial.steps=100",
+            "aem.epochs=10",
+            "aem.test_runs=2",
+            "sweep.replicates=1",
+        ])
+        .run();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let agg = std::fs::read_to_string(out.join("aggregate.csv")).unwrap();
     assert_eq!(agg.lines().count(), 1 + 3 * 5, "{agg}");
