@@ -30,6 +30,11 @@ use crate::tables::{
 
 /// Arguments of `fuzzymotiv reproduce`.
 #[derive(clap::Args)]
+#[command(
+    mut_arg("out", |a| a.help("Output directory [default: results; with --quick results-quick; with --orientation results-orientation(-quick); with --ablation results-ablation(-quick)]. Another study's results there are kept unless --force")),
+    mut_arg("force", |a| a.help("Replace another study's results in --out (or an unfinished one) and start over")),
+    mut_arg("seed", |a| a.help("Base seed, a whole number from 0 to 2^53 − 1: the study's first seed is this seed, the others derive from it [default: 1]")),
+)]
 pub struct ReproduceArgs {
     /// --out, --force, --quiet, --seed (default 1: the study's first seed is this seed, the
     /// others derive from it).

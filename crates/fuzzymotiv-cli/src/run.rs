@@ -15,6 +15,11 @@ pub use crate::pipeline::set_threads;
 
 /// Arguments of `fuzzymotiv run`.
 #[derive(clap::Args)]
+#[command(
+    mut_arg("out", |a| a.help("Output directory [default: runs/NAME]. The same command again finishes an unfinished run there or says it is done; another run's results there are kept unless --force")),
+    mut_arg("force", |a| a.help("Replace the results of another run in --out, or discard an unfinished one (its checkpoint), and start over")),
+    mut_arg("seed", |a| a.help("Base seed (overrides `seed` in the config): a whole number from 0 to 2^53 − 1")),
+)]
 pub struct RunArgs {
     /// Experiment config (TOML; every key is optional, defaults in docs/model.md). Required, unless
     /// --resume DIR is given instead.
