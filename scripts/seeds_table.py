@@ -4,7 +4,8 @@
 Usage: scripts/seeds_table.py results-s1 results-s2 ...   (prints Markdown tables)
 
 Refuses (exit status 1) to average studies of different kinds: quick and full runs, other GA sizes, or
-other program versions.
+other program versions, and names the file and the field of a summary.json that lacks one it needs.
+The field names are those of `StudySummary` in crates/fuzzymotiv-cli/src/records.rs.
 """
 import json
 import statistics
@@ -14,9 +15,35 @@ COLS = [("average_fitness", "average fitness", 3), ("exploration_pct", "% optima
         ("recognition_pct", "% recognition", 0), ("battery_pct", "% battery usage", 1), ("homing", "% homing", 1)]
 
 
+SETTING_FIELDS = ("name", "motivations", "population", "generations", "rows", "first_generation", "last_generation")
+
+
+def missing_field(summary):
+    """The path of the first field this script needs that `summary` lacks, or None."""
+    for key in ("seed", "version", "quick", "settings", "wall_seconds"):
+        if key not in summary:
+            return key
+    for k, setting in enumerate(summary["settings"]):
+        for key in SETTING_FIELDS:
+            if key not in setting:
+                return f"settings[{k}].{key}"
+        for key in ("curiosity", "homing", "orientation", "energy"):
+            if key not in setting["motivations"]:
+                return f"settings[{k}].motivations.{key}"
+        for key in ("mean", "best"):
+            for gen in ("first_generation", "last_generation"):
+                if key not in setting[gen]:
+                    return f"settings[{k}].{gen}.{key}"
+        for i, row in enumerate(setting["rows"]):
+            for key in ["room"] + [c[0] for c in COLS]:
+                if key not in row:
+                    return f"settings[{k}].rows[{i}].{key}"
+    return None
+
+
 def kind(summary):
     """What must agree between averaged studies: quick flag, GA size per setting, version."""
-    sizes = [(s["name"], s.get("population"), s.get("generations")) for s in summary["settings"]]
+    sizes = [(s.get("name"), s.get("population"), s.get("generations")) for s in summary.get("settings", [])]
     return {"quick": summary.get("quick"), "GA size": sizes, "version": summary.get("version")}
 
 
@@ -41,6 +68,10 @@ def main(dirs):
         except (OSError, ValueError) as e:
             sys.exit(f"error: {d}: not a `fuzzymotiv reproduce` directory ({e})")
     check_same_kind(dirs, summaries)
+    for d, summary in zip(dirs, summaries):
+        missing = missing_field(summary)
+        if missing:
+            sys.exit(f"error: {d}/summary.json: missing field `{missing}`")
     seeds = [s["seed"] for s in summaries]
     quick = " (quick: GA 30 × 30)" if summaries[0].get("quick") else ""
     print(f"fuzzymotiv {summaries[0].get('version')}, {len(dirs)} studies{quick}\n")

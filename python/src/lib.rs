@@ -15,9 +15,11 @@ use fuzzymotiv::config::{OrientationMode, RawConfig};
 use fuzzymotiv::evolution::{Evolution, GenerationState};
 use fuzzymotiv::fuzzy::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::trial::Trajectory;
 use fuzzymotiv_cli::error::CliError;
 use fuzzymotiv_cli::inputs::{Loaded, load_config, load_room_file, resolve};
-use fuzzymotiv_cli::run::{self as cli_run, RoomRow};
+use fuzzymotiv_cli::pipeline;
+use fuzzymotiv_cli::records::{Finished, RoomRow, RunSummary};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::create_exception;
@@ -271,15 +273,17 @@ struct RunOutput {
     shape: (usize, usize),
 }
 
-fn output(loaded: &Loaded, evolutions: &[Evolution], finished: cli_run::Finished) -> RunOutput {
+fn output(loaded: &Loaded, done: Finished) -> RunOutput {
     let exp = &loaded.experiment;
-    let summary = cli_run::summary_json(exp, evolutions, &finished.rows, finished.wall_seconds);
+    let summary = RunSummary::of(exp, &done);
     RunOutput {
-        generations: evolutions
+        generations: done
+            .evolutions
             .iter()
             .flat_map(|e| e.history.iter().map(|r| (*r, e.run.label.clone())))
             .collect(),
-        best: evolutions
+        best: done
+            .evolutions
             .iter()
             .map(|e| (e.run.label.clone(), e.population[e.best].clone()))
             .collect(),
@@ -287,11 +291,11 @@ fn output(loaded: &Loaded, evolutions: &[Evolution], finished: cli_run::Finished
         paths: exp
             .room_names()
             .into_iter()
-            .zip(&finished.trajectories)
+            .zip(done.trajectories())
             .map(|(n, t)| (n, t.poses.iter().map(|p| [p.x, p.y, p.heading]).collect()))
             .collect(),
-        rows: finished.rows,
         shape: (exp.shape().hidden, exp.shape().genome_len()),
+        rows: done.rows,
     }
 }
 
@@ -302,34 +306,20 @@ fn execute(
     hook: &mut dyn FnMut(&GenerationState<'_>),
 ) -> Result<RunOutput, CliError> {
     let exp = &loaded.experiment;
-    match out {
+    let done = match out {
         Some(dir) => {
             let progress = fuzzymotiv_cli::progress::Progress::hidden();
-            let mut done = cli_run::execute_with(loaded, dir, &progress, false, false, hook)?;
-            let evolutions = std::mem::take(&mut done.evolutions);
-            Ok(output(loaded, &evolutions, done))
+            pipeline::execute_with(loaded, dir, &progress, false, false, hook)?
         }
         None => {
             let start = Instant::now();
             let evolutions: Vec<Evolution> =
                 exp.runs().iter().map(|run| exp.evolve(run, hook)).collect();
-            let aem = evolutions
-                .iter()
-                .map(|e| exp.environment_modelling(&e.population[e.best], &e.run))
-                .collect::<Result<Vec<_>, _>>()
-                .map_err(|e| CliError::runtime(format!("environment modelling failed: {e}")))?;
-            let rows = cli_run::room_rows(exp, &evolutions, &aem);
-            let trajectories = cli_run::best_trajectories(exp, &evolutions);
-            let finished = cli_run::Finished {
-                evolutions: Vec::new(),
-                aem,
-                rows,
-                trajectories,
-                wall_seconds: start.elapsed().as_secs_f64(),
-            };
-            Ok(output(loaded, &evolutions, finished))
+            let aem = pipeline::model_rooms(exp, &evolutions)?;
+            Finished::new(exp, evolutions, aem, start.elapsed().as_secs_f64())
         }
-    }
+    };
+    Ok(output(loaded, done))
 }
 
 /// Evolves as `fuzzymotiv run` does. Returns a dict of plain columns; see `fuzzymotiv.run`.
@@ -358,30 +348,11 @@ fn run<'py>(
         ),
         None => None,
     };
-    let total = loaded.experiment.runs().len() * loaded.experiment.ga().generations;
-    let cancel = AtomicBool::new(false);
-    let finished = AtomicBool::new(false);
-    let callback_error: Mutex<Option<PyErr>> = Mutex::new(None);
-    let mut interrupted: Option<PyErr> = None;
-
+    let control = Control::default();
     let result = std::thread::scope(|s| {
         let worker = s.spawn(|| {
-            let mut done = 0usize;
-            let mut hook = |state: &GenerationState<'_>| {
-                done += 1;
-                if let Some(cb) = &progress {
-                    let best = state.record().stats.best;
-                    let r = Python::attach(|py| cb.call1(py, (done, total, best)).map(|_| ()));
-                    if let Err(e) = r {
-                        *callback_error.lock().expect("not poisoned") = Some(e);
-                        cancel.store(true, Ordering::SeqCst);
-                    }
-                }
-                if cancel.load(Ordering::SeqCst) {
-                    resume_unwind(Box::new(Cancelled));
-                }
-            };
-            let mut body = || {
+            let body = || {
+                let mut hook = control.hook(&progress, &loaded);
                 catch_unwind(AssertUnwindSafe(|| {
                     execute(&loaded, out.as_deref(), &mut hook)
                 }))
@@ -390,106 +361,107 @@ fn run<'py>(
                 Some(p) => p.install(body),
                 None => body(),
             };
-            finished.store(true, Ordering::SeqCst);
+            control.finished.store(true, Ordering::SeqCst);
             r
         });
-        while !finished.load(Ordering::SeqCst) {
+        control.wait(py);
+        worker.join().expect("worker panics are caught")
+    });
+    let output = control.outcome(result)?;
+    run_dict(py, output)
+}
+
+/// How the Python thread and the worker running a run talk: the worker says when it is
+/// finished; Ctrl-C or a failing progress callback cancel it (at the next generation).
+#[derive(Default)]
+struct Control {
+    cancel: AtomicBool,
+    finished: AtomicBool,
+    callback_error: Mutex<Option<PyErr>>,
+    interrupted: Mutex<Option<PyErr>>,
+}
+
+impl Control {
+    /// The worker's hook after every generation: report progress, stop when cancelled.
+    fn hook<'a>(
+        &'a self,
+        progress: &'a Option<Py<PyAny>>,
+        loaded: &Loaded,
+    ) -> impl FnMut(&GenerationState<'_>) + 'a {
+        let total = loaded.experiment.runs().len() * loaded.experiment.ga().generations;
+        let mut done = 0usize;
+        move |state: &GenerationState<'_>| {
+            done += 1;
+            if let Some(cb) = progress {
+                let best = state.record().stats.max;
+                let r = Python::attach(|py| cb.call1(py, (done, total, best)).map(|_| ()));
+                if let Err(e) = r {
+                    *self.callback_error.lock().expect("not poisoned") = Some(e);
+                    self.cancel.store(true, Ordering::SeqCst);
+                }
+            }
+            if self.cancel.load(Ordering::SeqCst) {
+                resume_unwind(Box::new(Cancelled));
+            }
+        }
+    }
+
+    /// Waits (without the GIL, checking for Ctrl-C every 100 ms) until the worker is done.
+    fn wait(&self, py: Python<'_>) {
+        while !self.finished.load(Ordering::SeqCst) {
             py.detach(|| {
                 for _ in 0..20 {
-                    if finished.load(Ordering::SeqCst) {
+                    if self.finished.load(Ordering::SeqCst) {
                         break;
                     }
                     std::thread::sleep(Duration::from_millis(5));
                 }
             });
+            let mut interrupted = self.interrupted.lock().expect("not poisoned");
             if interrupted.is_none()
                 && let Err(e) = py.check_signals()
             {
-                interrupted = Some(e);
-                cancel.store(true, Ordering::SeqCst);
+                *interrupted = Some(e);
+                self.cancel.store(true, Ordering::SeqCst);
             }
         }
-        worker.join().expect("worker panics are caught")
-    });
-    if let Some(e) = interrupted {
-        return Err(e);
     }
-    if let Some(e) = callback_error.lock().expect("not poisoned").take() {
-        return Err(e);
+
+    /// The run's output, or why there is none: Ctrl-C, the callback's error, a cancelled run,
+    /// a CLI error, or a panic (a bug).
+    fn outcome(
+        &self,
+        result: std::thread::Result<Result<RunOutput, CliError>>,
+    ) -> PyResult<RunOutput> {
+        if let Some(e) = self.interrupted.lock().expect("not poisoned").take() {
+            return Err(e);
+        }
+        if let Some(e) = self.callback_error.lock().expect("not poisoned").take() {
+            return Err(e);
+        }
+        match result {
+            Ok(r) => r.map_err(py_err),
+            Err(payload) if payload.is::<Cancelled>() => {
+                Err(PyRuntimeError::new_err("run cancelled"))
+            }
+            Err(payload) => {
+                let msg = payload
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_default();
+                Err(PyRuntimeError::new_err(format!(
+                    "fuzzymotiv panicked (a bug): {msg}"
+                )))
+            }
+        }
     }
-    let output = match result {
-        Ok(r) => r.map_err(py_err)?,
-        Err(payload) if payload.is::<Cancelled>() => {
-            return Err(PyRuntimeError::new_err("run cancelled"));
-        }
-        Err(payload) => {
-            let msg = payload
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_default();
-            return Err(PyRuntimeError::new_err(format!(
-                "fuzzymotiv panicked (a bug): {msg}"
-            )));
-        }
-    };
-    run_dict(py, output)
 }
 
 fn run_dict(py: Python<'_>, o: RunOutput) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
-    let g = PyDict::new(py);
-    let col = |f: &dyn Fn(&fuzzymotiv::evolution::GenerationRecord) -> f64| {
-        PyArray1::from_vec(py, o.generations.iter().map(|(r, _)| f(r)).collect())
-    };
-    g.set_item(
-        "generation",
-        PyArray1::from_vec(
-            py,
-            o.generations
-                .iter()
-                .map(|(r, _)| r.generation as i64)
-                .collect(),
-        ),
-    )?;
-    g.set_item("best", col(&|r| r.stats.best))?;
-    g.set_item("mean", col(&|r| r.stats.mean))?;
-    g.set_item("std", col(&|r| r.stats.std))?;
-    g.set_item("min", col(&|r| r.stats.min))?;
-    g.set_item("max", col(&|r| r.stats.max))?;
-    g.set_item("a", col(&|r| r.terms.a))?;
-    g.set_item("g", col(&|r| r.terms.g))?;
-    g.set_item("l", col(&|r| r.terms.l))?;
-    g.set_item("b", col(&|r| r.terms.b))?;
-    g.set_item(
-        "room",
-        o.generations
-            .iter()
-            .map(|(_, l)| l.clone())
-            .collect::<Vec<_>>(),
-    )?;
-    d.set_item("generations", g)?;
-    let rooms = PyDict::new(py);
-    rooms.set_item(
-        "room",
-        o.rows.iter().map(|r| r.room.clone()).collect::<Vec<_>>(),
-    )?;
-    let rcol = |f: &dyn Fn(&RoomRow) -> f64| {
-        PyArray1::from_vec(py, o.rows.iter().map(f).collect::<Vec<_>>())
-    };
-    rooms.set_item("average_fitness", rcol(&|r| r.average_fitness))?;
-    rooms.set_item("exploration_pct", rcol(&|r| r.exploration_pct))?;
-    rooms.set_item(
-        "recognition_pct",
-        rcol(&|r| r.recognition_pct.unwrap_or(f64::NAN)),
-    )?;
-    rooms.set_item("battery_pct", rcol(&|r| r.battery_pct))?;
-    rooms.set_item("homing_pct", rcol(&|r| r.homing))?;
-    rooms.set_item(
-        "r_node",
-        o.rows.iter().map(|r| r.r_node).collect::<Vec<_>>(),
-    )?;
-    d.set_item("rooms", rooms)?;
+    d.set_item("generations", generations_dict(py, &o.generations)?)?;
+    d.set_item("rooms", rooms_dict(py, &o.rows)?)?;
     let best = PyDict::new(py);
     for (label, w) in o.best {
         best.set_item(label, PyArray1::from_vec(py, w))?;
@@ -518,6 +490,66 @@ fn run_dict(py: Python<'_>, o: RunOutput) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
+/// The columns of `generations.csv`.
+fn generations_dict<'py>(
+    py: Python<'py>,
+    generations: &[(fuzzymotiv::evolution::GenerationRecord, String)],
+) -> PyResult<Bound<'py, PyDict>> {
+    let g = PyDict::new(py);
+    let col = |f: &dyn Fn(&fuzzymotiv::evolution::GenerationRecord) -> f64| {
+        PyArray1::from_vec(py, generations.iter().map(|(r, _)| f(r)).collect())
+    };
+    g.set_item(
+        "generation",
+        PyArray1::from_vec(
+            py,
+            generations
+                .iter()
+                .map(|(r, _)| r.generation as i64)
+                .collect(),
+        ),
+    )?;
+    g.set_item("best", col(&|r| r.stats.max))?;
+    g.set_item("mean", col(&|r| r.stats.mean))?;
+    g.set_item("std", col(&|r| r.stats.std))?;
+    g.set_item("min", col(&|r| r.stats.min))?;
+    g.set_item("max", col(&|r| r.stats.max))?;
+    g.set_item("a", col(&|r| r.terms.a))?;
+    g.set_item("g", col(&|r| r.terms.g))?;
+    g.set_item("l", col(&|r| r.terms.l))?;
+    g.set_item("b", col(&|r| r.terms.b))?;
+    g.set_item(
+        "room",
+        generations
+            .iter()
+            .map(|(_, l)| l.clone())
+            .collect::<Vec<_>>(),
+    )?;
+    Ok(g)
+}
+
+/// The per-room table's columns.
+fn rooms_dict<'py>(py: Python<'py>, rows: &[RoomRow]) -> PyResult<Bound<'py, PyDict>> {
+    let rooms = PyDict::new(py);
+    rooms.set_item(
+        "room",
+        rows.iter().map(|r| r.room.clone()).collect::<Vec<_>>(),
+    )?;
+    let rcol = |f: &dyn Fn(&RoomRow) -> f64| {
+        PyArray1::from_vec(py, rows.iter().map(f).collect::<Vec<_>>())
+    };
+    rooms.set_item("average_fitness", rcol(&|r| r.average_fitness))?;
+    rooms.set_item("exploration_pct", rcol(&|r| r.exploration_pct))?;
+    rooms.set_item(
+        "recognition_pct",
+        rcol(&|r| r.recognition_pct.unwrap_or(f64::NAN)),
+    )?;
+    rooms.set_item("battery_pct", rcol(&|r| r.battery_pct))?;
+    rooms.set_item("homing_pct", rcol(&|r| r.homing))?;
+    rooms.set_item("r_node", rows.iter().map(|r| r.r_node).collect::<Vec<_>>())?;
+    Ok(rooms)
+}
+
 /// One trial of `genome` in `room` under base seed `seed`, exactly as `fuzzymotiv replay
 /// --room ROOM --seed SEED` runs it (the room-modelling stream of that seed).
 #[pyfunction]
@@ -543,25 +575,7 @@ fn simulate<'py>(
         Some(seed),
     )
     .map_err(py_err)?;
-    let names = loaded.experiment.room_names();
-    let entry = if let Some(i) = names.iter().position(|n| *n == room) {
-        loaded.raw.rooms[i].clone()
-    } else if Room::builtin(&room).is_some() {
-        room.clone()
-    } else if Path::new(&room).is_file() {
-        let path = Path::new(&room);
-        load_room_file(path).map_err(py_err)?;
-        path.canonicalize()
-            .map_err(|e| PyRuntimeError::new_err(format!("{}: {e}", path.display())))?
-            .display()
-            .to_string()
-    } else {
-        return Err(input_err(format!(
-            "room {room}: not a room of the config ({}), a built-in room ({}) or a room file",
-            names.join(", "),
-            BUILTIN_ROOMS.join(", ")
-        )));
-    };
+    let entry = fuzzymotiv_cli::inputs::room_entry("room", &room, &loaded).map_err(py_err)?;
     let mut raw = loaded.raw.clone();
     raw.rooms = vec![entry];
     // As `replay`: neither recognition nor online orientation changes a trajectory.
@@ -580,8 +594,21 @@ fn simulate<'py>(
         )));
     }
     let run = exp.runs().remove(0);
-    let tr = py.detach(|| exp.instance_trajectory(&genome, &run, 0));
-    let (terms, f) = fuzzymotiv_cli::report::trajectory_terms(&exp, 0, &tr);
+    let instance = py.detach(|| exp.instance_run(&genome, &run, 0));
+    let d = trajectory_dict(py, &instance.trajectory)?;
+    let terms = instance.terms;
+    d.set_item("a", terms.a)?;
+    d.set_item("g", terms.g)?;
+    d.set_item("l", terms.l)?;
+    d.set_item("b", terms.b)?;
+    d.set_item("F", instance.f)?;
+    d.set_item("room", &exp.arenas()[0].room().name)?;
+    d.set_item("seed", seed)?;
+    Ok(d)
+}
+
+/// A trajectory as numpy columns (poses, sensors, motors and the per-step flags).
+fn trajectory_dict<'py>(py: Python<'py>, tr: &Trajectory) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let poses =
         |k: usize| -> Vec<f64> { tr.poses.iter().map(|p| [p.x, p.y, p.heading][k]).collect() };
@@ -610,13 +637,6 @@ fn simulate<'py>(
     d.set_item("energy", PyArray1::from_vec(py, tr.energy.clone()))?;
     d.set_item("escaped", PyArray1::from_vec(py, tr.escaped.clone()))?;
     d.set_item("collision", PyArray1::from_vec(py, tr.collisions.clone()))?;
-    d.set_item("a", terms.a)?;
-    d.set_item("g", terms.g)?;
-    d.set_item("l", terms.l)?;
-    d.set_item("b", terms.b)?;
-    d.set_item("F", f)?;
-    d.set_item("room", &exp.arenas()[0].room().name)?;
-    d.set_item("seed", seed)?;
     Ok(d)
 }
 

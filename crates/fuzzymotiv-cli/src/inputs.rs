@@ -127,3 +127,36 @@ pub fn parse_seed(text: &str) -> Result<u64, String> {
             )
         })
 }
+
+/// The contents of `config.resolved.toml`: the resolved config with the program version on top.
+pub fn resolved_toml(raw: &RawConfig) -> String {
+    format!(
+        "# Resolved configuration written by fuzzymotiv {} (all keys, with the seed).\n# Re-run: fuzzymotiv run config.resolved.toml\n{}",
+        fuzzymotiv::VERSION,
+        raw.to_toml()
+    )
+}
+
+/// A room to replay in `loaded`'s setting, as a config entry: a room of the config, a built-in
+/// room, or a room file (made absolute). `option` names the choice in the error (`--room`).
+pub fn room_entry(option: &str, want: &str, loaded: &Loaded) -> Result<String, CliError> {
+    let names = loaded.experiment.room_names();
+    if let Some(i) = names.iter().position(|n| n == want) {
+        Ok(loaded.raw.rooms[i].clone())
+    } else if Room::builtin(want).is_some() {
+        Ok(want.to_string())
+    } else if Path::new(want).is_file() {
+        let path = Path::new(want);
+        load_room_file(path)?;
+        let abs = path
+            .canonicalize()
+            .map_err(|e| crate::files::io_err(path, e))?;
+        Ok(abs.display().to_string())
+    } else {
+        Err(CliError::input(format!(
+            "{option} {want}: not a room of the config ({}), a built-in room ({}) or a room file",
+            names.join(", "),
+            BUILTIN_ROOMS.join(", ")
+        )))
+    }
+}

@@ -11,15 +11,16 @@ use std::path::{Path, PathBuf};
 
 use fuzzymotiv::config::{OrientationMode, Training};
 use fuzzymotiv::controller::MlpShape;
-use fuzzymotiv::experiment::Run;
-use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::experiment::{Experiment, Run};
+use fuzzymotiv::modelling::InstanceRun;
 use fuzzymotiv::trial::Trajectory;
 
 use crate::error::CliError;
 use crate::files::{io_err, num, write_atomic};
-use crate::inputs::{load_config, load_room_file, resolve};
+use crate::inputs::{load_config, resolve, room_entry};
 use crate::png::write_figure_at;
-use crate::report::{replay_page, trajectory_terms, xs};
+use crate::records::{BestGenome, PROGRAM, read_json};
+use crate::report::{replay_page, xs};
 use crate::svg::trajectories_svg;
 
 /// Arguments of `fuzzymotiv replay`.
@@ -51,8 +52,9 @@ pub struct ReplayArgs {
     pub png: bool,
 }
 
-/// A genome read from `best_genome.json`.
+/// A genome read from `best_genome.json`, checked.
 struct SavedGenome {
+    path: PathBuf,
     hidden: usize,
     weights: Vec<f64>,
     seed: Option<u64>,
@@ -60,55 +62,27 @@ struct SavedGenome {
     runs: Vec<(String, Vec<f64>)>,
 }
 
-fn weights_of(v: &serde_json::Value, what: &str, path: &Path) -> Result<Vec<f64>, CliError> {
-    let bad = |reason: &str| {
-        CliError::input(format!(
-            "{}: `{what}` {reason}; expected the best_genome.json that `fuzzymotiv run` writes",
-            path.display()
-        ))
-    };
-    let list = v
-        .as_array()
-        .ok_or_else(|| bad("is missing or not a list"))?;
-    list.iter()
-        .map(|w| w.as_f64().filter(|x| x.is_finite()))
-        .collect::<Option<Vec<f64>>>()
-        .ok_or_else(|| bad("holds something that is not a finite number"))
-}
-
 fn read_genome(path: &Path) -> Result<SavedGenome, CliError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        CliError::input(format!("{}: cannot read genome file: {e}", path.display()))
-    })?;
-    let doc: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| CliError::input(format!("{}: not valid JSON: {e}", path.display())))?;
-    let weights = weights_of(&doc["weights"], "weights", path)?;
-    let hidden = doc["shape"]["hidden"]
-        .as_u64()
-        .and_then(|h| usize::try_from(h).ok())
-        .filter(|h| (1..=1024).contains(h))
-        .ok_or_else(|| {
-            CliError::input(format!(
-                "{}: `shape.hidden` is missing or not a number of hidden units in 1..=1024",
-                path.display()
-            ))
-        })?;
-    let mut runs = Vec::new();
-    if let Some(list) = doc["runs"].as_array() {
-        for (k, r) in list.iter().enumerate() {
-            if let Some(label) = r["run"].as_str() {
-                runs.push((
-                    label.to_string(),
-                    weights_of(&r["weights"], &format!("runs[{k}].weights"), path)?,
-                ));
-            }
-        }
+    if !path.is_file() {
+        return Err(CliError::input(format!(
+            "{}: cannot read genome file: no such file",
+            path.display()
+        )));
+    }
+    let doc: BestGenome = read_json(path)?;
+    let hidden = doc.shape.hidden;
+    if !(1..=1024).contains(&hidden) {
+        return Err(CliError::input(format!(
+            "{}: field `shape.hidden`: {hidden} is not a number of hidden units in 1..=1024",
+            path.display()
+        )));
     }
     Ok(SavedGenome {
+        path: path.to_path_buf(),
         hidden,
-        weights,
-        seed: doc["seed"].as_u64(),
-        runs,
+        weights: doc.weights,
+        seed: doc.seed,
+        runs: doc.runs.into_iter().map(|r| (r.run, r.weights)).collect(),
     })
 }
 
@@ -165,28 +139,7 @@ pub fn trajectory_csv(tr: &Trajectory) -> String {
 
 /// Entry point of `fuzzymotiv replay`.
 pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
-    let src = &args.source;
-    let (genome_path, found_config) = if src.is_dir() {
-        let config = src.join("config.resolved.toml");
-        if !config.is_file() {
-            return Err(CliError::input(format!(
-                "{}: not a run directory (no config.resolved.toml); pass a directory written by `fuzzymotiv run` or a best_genome.json",
-                src.display()
-            )));
-        }
-        (src.join("best_genome.json"), Some(config))
-    } else if src.is_file() {
-        let beside = src
-            .parent()
-            .map(|d| d.join("config.resolved.toml"))
-            .filter(|c| c.is_file());
-        (src.clone(), beside)
-    } else {
-        return Err(CliError::input(format!(
-            "{}: no such run directory or genome file",
-            src.display()
-        )));
-    };
+    let (genome_path, found_config) = locate(&args.source)?;
     let config_path = args.config.clone().or(found_config);
     let genome = read_genome(&genome_path)?;
     // A genome alone is replayed under the default config and, unless --seed says otherwise,
@@ -218,72 +171,90 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
             loaded.raw.network.hidden
         )));
     }
-
-    // The rooms to replay, as config entries (built-in names or absolute room-file paths).
-    let names = loaded.experiment.room_names();
-    let entries: Vec<String> = match &args.room {
-        None => loaded.raw.rooms.clone(),
-        Some(want) => {
-            if let Some(i) = names.iter().position(|n| n == want) {
-                vec![loaded.raw.rooms[i].clone()]
-            } else if Room::builtin(want).is_some() {
-                vec![want.clone()]
-            } else if Path::new(want).is_file() {
-                let path = Path::new(want);
-                load_room_file(path)?;
-                let abs = path.canonicalize().map_err(|e| io_err(path, e))?;
-                vec![abs.display().to_string()]
-            } else {
-                return Err(CliError::input(format!(
-                    "--room {want}: not a room of the config ({}), a built-in room ({}) or a room file",
-                    names.join(", "),
-                    BUILTIN_ROOMS.join(", ")
-                )));
-            }
-        }
-    };
     let mut raw = loaded.raw.clone();
-    raw.rooms = entries;
+    raw.rooms = match &args.room {
+        Some(want) => vec![room_entry("--room", want, &loaded)?],
+        None => loaded.raw.rooms.clone(),
+    };
     raw.network.hidden = genome.hidden;
     // Replaying needs neither room recognition nor online orientation (they would demand more
     // rooms); neither changes a trajectory.
     raw.aem.enabled = false;
     raw.fitness.orientation = OrientationMode::Offline;
     let exp = resolve(raw, Path::new("."), &source_name)?.experiment;
-    let want_len = MlpShape::with_hidden(genome.hidden).genome_len();
+    let trials = replay_trials(&exp, &genome)?;
+    write_replay(&args, &exp, &genome, &source_name, &trials)
+}
 
+/// The genome file and the config beside it (a run directory's, or one next to the file).
+fn locate(src: &Path) -> Result<(PathBuf, Option<PathBuf>), CliError> {
+    if src.is_dir() {
+        let config = src.join("config.resolved.toml");
+        if !config.is_file() {
+            return Err(CliError::input(format!(
+                "{}: not a run directory (no config.resolved.toml); pass a directory written by `fuzzymotiv run` or a best_genome.json",
+                src.display()
+            )));
+        }
+        Ok((src.join("best_genome.json"), Some(config)))
+    } else if src.is_file() {
+        let beside = src
+            .parent()
+            .map(|d| d.join("config.resolved.toml"))
+            .filter(|c| c.is_file());
+        Ok((src.to_path_buf(), beside))
+    } else {
+        Err(CliError::input(format!(
+            "{}: no such run directory or genome file",
+            src.display()
+        )))
+    }
+}
+
+/// The room-modelling run of the genome (per-room training: of the room's own robot) in every
+/// room of `exp`, with its run label.
+fn replay_trials(
+    exp: &Experiment,
+    genome: &SavedGenome,
+) -> Result<Vec<(usize, String, InstanceRun)>, CliError> {
     let runs = exp.runs();
+    let want_len = MlpShape::with_hidden(genome.hidden).genome_len();
     let mut trials = Vec::new();
     for r in 0..exp.arenas().len() {
         let name = &exp.arenas()[r].room().name;
-        let run: Run = match exp.training() {
-            Training::AllRooms => runs[0].clone(),
-            Training::PerRoom => runs[r].clone(),
-        };
-        let weights = match exp.training() {
+        let (run, weights): (&Run, &Vec<f64>) = match exp.training() {
+            Training::AllRooms => (&runs[0], &genome.weights),
             Training::PerRoom => match genome.runs.iter().find(|(label, _)| label == name) {
-                Some((_, w)) => w,
+                Some((_, w)) => (&runs[r], w),
                 None => {
                     eprintln!(
                         "note: no robot was evolved in room {name}; replaying the genome's main robot"
                     );
-                    &genome.weights
+                    (&runs[r], &genome.weights)
                 }
             },
-            Training::AllRooms => &genome.weights,
         };
         if weights.len() != want_len {
             return Err(CliError::input(format!(
                 "{}: {} weights, but an 8-{}-2 network needs {want_len}",
-                genome_path.display(),
+                genome.path.display(),
                 weights.len(),
                 genome.hidden
             )));
         }
-        let tr = exp.instance_trajectory(weights, &run, r);
-        trials.push((r, run.label.clone(), tr));
+        trials.push((r, run.label.clone(), exp.instance_run(weights, run, r)));
     }
+    Ok(trials)
+}
 
+/// Writes the replay's CSV per room, JSON, figure and page.
+fn write_replay(
+    args: &ReplayArgs,
+    exp: &Experiment,
+    genome: &SavedGenome,
+    source_name: &str,
+    trials: &[(usize, String, InstanceRun)],
+) -> Result<(), CliError> {
     let out = &args.out;
     let dir = out
         .parent()
@@ -294,16 +265,17 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         .file_stem()
         .map_or("replay".to_string(), |s| s.to_string_lossy().into_owned());
     let mut rooms_json = Vec::new();
-    for (r, label, tr) in &trials {
+    for (r, label, run) in trials {
         let name = &exp.arenas()[*r].room().name;
         let csv = dir.join(format!("{stem}-{}.csv", file_tag(name)));
-        write_atomic(&csv, trajectory_csv(tr))?;
-        let (terms, f) = trajectory_terms(&exp, *r, tr);
+        write_atomic(&csv, trajectory_csv(&run.trajectory))?;
+        let (tr, terms) = (&run.trajectory, run.terms);
         println!(
-            "{name}: a = {:.3}, g = {:.3}, b = {:.3}, F = {f:.4}, {} collisions → {}",
+            "{name}: a = {:.3}, g = {:.3}, b = {:.3}, F = {:.4}, {} collisions → {}",
             terms.a,
             terms.g,
             terms.b,
+            run.f,
             tr.collisions.iter().filter(|&&c| c).count(),
             csv.display()
         );
@@ -312,16 +284,17 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
             "run": label,
             "steps": tr.len(),
             "terms": terms,
-            "f": f,
+            "f": run.f,
             "executed_steps": tr.executed(),
             "actions": tr.actions.iter().map(|a| a.label()).collect::<Vec<_>>(),
             "trajectory": tr,
         }));
     }
+    let genome_path = genome.path.display();
     let doc = serde_json::json!({
-        "program": "fuzzymotiv",
+        "program": PROGRAM,
         "version": fuzzymotiv::VERSION,
-        "genome": genome_path.display().to_string(),
+        "genome": genome_path.to_string(),
         "config": source_name,
         "seed": exp.seed(),
         "note": "poses[t] is the pose at the start of step t (poses[0] = home, poses[steps] = the end); sensors[t], motors[t], speeds[t] and collisions[t] belong to step t",
@@ -333,25 +306,21 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     )?;
     let pairs: Vec<_> = trials
         .iter()
-        .map(|(r, _, tr)| (exp.arenas()[*r].room(), tr))
+        .map(|(r, _, run)| (exp.arenas()[*r].room(), &run.trajectory))
         .collect();
+    let title = format!("Replay of {genome_path} (seed {})", exp.seed());
     write_figure_at(
         &dir.join(format!("{stem}.svg")),
-        &trajectories_svg(
-            &format!("Replay of {} (seed {})", genome_path.display(), exp.seed()),
-            &pairs,
-        ),
+        &trajectories_svg(&title, &pairs),
         args.png,
     )?;
     let about = format!(
-        "genome {} · config {} · seed {} · motivations (C, H, O, E) = {} · {} steps per trial",
-        genome_path.display(),
-        source_name,
+        "genome {genome_path} · config {source_name} · seed {} · motivations (C, H, O, E) = {} · {} steps per trial",
         exp.seed(),
-        xs(&exp),
+        xs(exp),
         exp.trial_params().steps
     );
-    write_atomic(out, replay_page("fuzzymotiv replay", &about, &exp, &trials))?;
+    write_atomic(out, replay_page("fuzzymotiv replay", &about, exp, trials))?;
     eprintln!("wrote {}", out.display());
     Ok(())
 }

@@ -9,16 +9,14 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::config::{EnergyMode, Training};
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::fitness::FitnessTerms;
 use fuzzymotiv::fuzzy::label_name;
-use fuzzymotiv::modelling::AemReport;
+use fuzzymotiv::modelling::InstanceRun;
 use fuzzymotiv::sensor::SENSOR_LAYOUT;
-use fuzzymotiv::trial::Trajectory;
 use serde_json::{Value, json};
 
-use crate::inputs::Loaded;
-use crate::reproduce::Setting;
-use crate::run::{Finished, aem_for_room, resolved_toml, robot_for_room};
+use crate::inputs::{Loaded, resolved_toml};
+use crate::records::{Finished, RoomRow};
+use crate::study::Setting;
 use crate::svg::{
     SomRoom, best_paths_svg, colour, esc, fitness_svg, membership_svg, som_svg, terms_svg,
     trajectories_svg,
@@ -122,19 +120,13 @@ fn action_letter(a: fuzzymotiv::aem::Action) -> char {
     }
 }
 
-/// The fitness terms of a recorded trial and its F under the experiment's motivations.
-pub fn trajectory_terms(exp: &Experiment, room: usize, tr: &Trajectory) -> (FitnessTerms, f64) {
-    let terms = FitnessTerms::measure(&exp.arenas()[room], exp.trial_params(), exp.homing(), tr);
-    (terms, exp.fuzzy_fitness(&terms))
-}
-
 /// Compact replay data of one trial (positions to 0.1 mm, angles and motors to 3 decimals,
 /// sensors to integers; actions and collisions as one character per step).
-pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, tr: &Trajectory) -> Value {
+pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, run: &InstanceRun) -> Value {
     let r = exp.arenas()[room].room();
     let pts =
         |p: &[fuzzymotiv::geom::Vec2]| p.iter().map(|v| [r1(v.x), r1(v.y)]).collect::<Vec<_>>();
-    let (terms, f) = trajectory_terms(exp, room, tr);
+    let (tr, terms, f) = (&run.trajectory, run.terms, run.f);
     let zone = r.home_zone;
     json!({
         "room": r.name,
@@ -258,11 +250,42 @@ pub fn reproduce_page(
         &fitness_svg(&panels),
         "Fitness evolution of both settings (on a multi-seed study, each setting's median seed): best F (red) and mean F (blue) of the population in every generation; the shaded band spans the population's minimum to maximum F.",
     );
+    overview_table(&mut page, sections);
+    page.push(claims);
+    for s in sections {
+        let _ = writeln!(
+            page.body,
+            "<h2 id=\"{}\">Setting: {}</h2>\n<p class=\"meta\">{}{}</p>",
+            s.id,
+            esc(&s.title),
+            esc(&setting_line(&s.loaded.experiment)),
+            s.link.as_ref().map_or(String::new(), |l| format!(
+                " · its run directory's own report: <a href=\"{}\">{}</a>",
+                esc(l),
+                esc(l)
+            ))
+        );
+        if let Some(spread) = s.spread {
+            let _ = writeln!(
+                page.body,
+                "<h3 id=\"{}-seeds\">Over all seeds</h3>\n{spread}",
+                s.id
+            );
+        }
+        page.push(&toc(s.id));
+        render_section(&mut page, s, 3);
+    }
+    page.finish()
+}
+
+/// The headline numbers of every setting: mean % exploration, % recognition and % battery,
+/// with the paper's beside them.
+fn overview_table(page: &mut Page, sections: &[Section<'_>]) {
     page.push("<table><tr><th>setting</th><th>mean % optimal exploration</th><th>mean % recognition</th><th>mean % battery usage</th></tr>\n");
     for s in sections {
         let rows = &s.done.rows;
         let n = rows.len().max(1) as f64;
-        let mean = |f: &dyn Fn(&crate::run::RoomRow) -> f64| rows.iter().map(f).sum::<f64>() / n;
+        let mean = |f: &dyn Fn(&RoomRow) -> f64| rows.iter().map(f).sum::<f64>() / n;
         let paper = s.paper.map(|p| {
             let m = |k: usize| {
                 p.paper.iter().map(|r| [r.2, r.3, r.4][k]).sum::<f64>() / p.paper.len() as f64
@@ -295,31 +318,6 @@ pub fn reproduce_page(
     page.push(
         "</table>\n<p class=\"caption\">Means over the rooms (and over the seeds, on a multi-seed study) of each setting.</p>\n",
     );
-    page.push(claims);
-    for s in sections {
-        let _ = writeln!(
-            page.body,
-            "<h2 id=\"{}\">Setting: {}</h2>\n<p class=\"meta\">{}{}</p>",
-            s.id,
-            esc(&s.title),
-            esc(&setting_line(&s.loaded.experiment)),
-            s.link.as_ref().map_or(String::new(), |l| format!(
-                " · its run directory's own report: <a href=\"{}\">{}</a>",
-                esc(l),
-                esc(l)
-            ))
-        );
-        if let Some(spread) = s.spread {
-            let _ = writeln!(
-                page.body,
-                "<h3 id=\"{}-seeds\">Over all seeds</h3>\n{spread}",
-                s.id
-            );
-        }
-        page.push(&toc(s.id));
-        render_section(&mut page, s, 3);
-    }
-    page.finish()
 }
 
 /// A replay page for trajectories replayed by `fuzzymotiv replay`.
@@ -327,7 +325,7 @@ pub fn replay_page(
     title: &str,
     about: &str,
     exp: &Experiment,
-    trials: &[(usize, String, Trajectory)],
+    trials: &[(usize, String, InstanceRun)],
 ) -> String {
     let mut page = Page::new(title.to_string());
     let _ = writeln!(
@@ -346,7 +344,7 @@ pub fn replay_page(
     );
     let pairs: Vec<_> = trials
         .iter()
-        .map(|(r, _, tr)| (exp.arenas()[*r].room(), tr))
+        .map(|(r, _, run)| (exp.arenas()[*r].room(), &run.trajectory))
         .collect();
     figure(
         &mut page,
@@ -452,6 +450,46 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
 
     // Per-room table.
     heading(page, level, s.id, "rooms", "Results per room");
+    rooms_table(page, s);
+
+    // Fuzzy fitness.
+    heading(
+        page,
+        level,
+        s.id,
+        "fuzzy",
+        "Fuzzy fitness of the best robot",
+    );
+    fuzzy_part(page, s);
+
+    // Paths and replay.
+    heading(page, level, s.id, "paths", "Paths and replay");
+    paths_part(page, s);
+
+    // Room recognition.
+    heading(
+        page,
+        level,
+        s.id,
+        "aem",
+        "Room recognition (action-based environment modelling)",
+    );
+    aem_part(page, s, &names);
+
+    // Configuration.
+    heading(page, level, s.id, "config", "Configuration");
+    let _ = writeln!(
+        page.body,
+        "<p>The fully resolved configuration (every key, with the seed); run it again with <code>fuzzymotiv run config.resolved.toml</code>. Wall time of this run: {:.2} s.</p>\n<details><summary>config.resolved.toml</summary><pre class=\"config\">{}</pre></details>",
+        done.wall_seconds,
+        esc(&resolved_toml(&s.loaded.raw))
+    );
+}
+
+/// The per-room table, with the paper's values on the reproduce page.
+fn rooms_table(page: &mut Page, s: &Section<'_>) {
+    let exp = &s.loaded.experiment;
+    let done = s.done;
     page.push("<table><tr><th>room</th><th>average fitness</th><th>% optimal exploration</th><th>% recognition</th><th>% battery usage</th><th>% homing</th></tr>\n");
     for r in &done.rows {
         let p = s
@@ -487,22 +525,19 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
             ""
         }
     );
+}
 
-    // Fuzzy fitness.
-    heading(
-        page,
-        level,
-        s.id,
-        "fuzzy",
-        "Fuzzy fitness of the best robot",
-    );
-    fuzzy_part(page, s);
-
-    // Paths and replay.
-    heading(page, level, s.id, "paths", "Paths and replay");
+/// The best robot's paths (its room-modelling runs) and their replay.
+fn paths_part(page: &mut Page, s: &Section<'_>) {
+    let exp = &s.loaded.experiment;
+    let done = s.done;
     figure(
         page,
-        &best_paths_svg(&format!("Best robot, {}", s.title), exp, &done.trajectories),
+        &best_paths_svg(
+            &format!("Best robot, {}", s.title),
+            exp,
+            &done.trajectories(),
+        ),
         "Each room to scale, seen from above: green circle and line = home pose (start of every trial), red line = the best robot's path in its room-modelling run (the run whose actions became the room's stored instance), filled circle = where it ended.",
     );
     page.push(
@@ -517,35 +552,15 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     );
     let rooms = (0..exp.arenas().len())
         .map(|r| {
-            let (evo, _) = robot_for_room(&done.evolutions, r);
-            replay_room(exp, r, &evo.run.label, &done.trajectories[r])
+            let (evo, _) = done.robot_for_room(r);
+            replay_room(exp, r, &evo.run.label, done.instance(r))
         })
         .collect();
     page.replay(exp, rooms);
-
-    // Room recognition.
-    heading(
-        page,
-        level,
-        s.id,
-        "aem",
-        "Room recognition (action-based environment modelling)",
-    );
-    aem_part(page, s, &names);
-
-    // Configuration.
-    heading(page, level, s.id, "config", "Configuration");
-    let _ = writeln!(
-        page.body,
-        "<p>The fully resolved configuration (every key, with the seed); run it again with <code>fuzzymotiv run config.resolved.toml</code>. Wall time of this run: {:.2} s.</p>\n<details><summary>config.resolved.toml</summary><pre class=\"config\">{}</pre></details>",
-        done.wall_seconds,
-        esc(&resolved_toml(&s.loaded.raw))
-    );
 }
 
-fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
-    let exp = &s.loaded.experiment;
-    let done = s.done;
+/// The motivations as bars, the terms and how F is computed, the membership functions.
+fn fuzzy_intro(page: &mut Page, exp: &Experiment) {
     let m = exp.motivations();
     page.push("<p>The robot's <b>motivations</b> X weight the four fitness terms Y it is measured on:</p>\n<div class=\"bars\">\n");
     for (name, v, colour) in [
@@ -584,6 +599,11 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
         &membership_svg(exp.fuzzy().peaks(), &names),
         "Triangular membership functions: each value belongs to at most two neighbouring labels, and its memberships add up to 1.",
     );
+}
+
+fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
+    let exp = &s.loaded.experiment;
+    fuzzy_intro(page, exp);
     page.push(
         "<p>The best robot of the last generation, as the GA evaluated it (one trial per room, \
          with noise). F is its fitness in that room; the robot's overall fitness is the mean F over \
@@ -591,45 +611,12 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
     );
     page.push("<table><tr><th>room</th><th>a</th><th>g</th><th>l</th><th>b</th><th>F</th><th class=\"left\">firing rules</th></tr>\n");
     for r in 0..exp.arenas().len() {
-        let (evo, k) = robot_for_room(&done.evolutions, r);
+        let (evo, k) = s.done.robot_for_room(r);
         let score = &evo.evaluations[evo.best].per_room[k];
         let y = exp.fuzzy_inputs(&score.terms);
         let ex = exp.fuzzy().explain(exp.motivations(), y);
         let t = score.terms;
-        let mut rules = String::from(
-            "<table><tr><th>rule</th><th class=\"left\">if …</th><th>w</th><th>f</th><th>w·f</th></tr>",
-        );
-        let mut sum_wf = 0.0;
-        for rule in &ex.rules {
-            let cond = ["a", "g", "l", "b"]
-                .iter()
-                .zip(&rule.label_names)
-                .map(|(i, n)| format!("{i} is {n}"))
-                .collect::<Vec<_>>()
-                .join(" and ");
-            sum_wf += rule.weight * rule.output;
-            let _ = write!(
-                rules,
-                "<tr><td>{}</td><td class=\"rule-if\">{}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td></tr>",
-                rule.number,
-                esc(&cond),
-                rule.weight,
-                rule.output,
-                rule.weight * rule.output
-            );
-        }
-        let _ = write!(
-            rules,
-            "<tr><th colspan=\"2\" class=\"left\">Σ</th><th>{:.4}</th><th></th><th>{sum_wf:.4}</th></tr></table><p class=\"note\">F = Σ w·f / Σ w = {sum_wf:.4} / {:.4} = {:.4}; inputs Y = ({:.3}, {:.3}, {:.3}, {:.3}), motivations X = {}.</p>",
-            ex.weight_sum,
-            ex.weight_sum,
-            ex.fitness,
-            y[0],
-            y[1],
-            y[2],
-            y[3],
-            xs(exp)
-        );
+        let rules = rules_html(exp, &ex, y);
         let _ = writeln!(
             page.body,
             "<tr><td>{}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td><b>{:.4}</b></td><td class=\"left\"><details><summary>{} rules</summary>{rules}</details></td></tr>",
@@ -643,7 +630,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
         );
     }
     page.push("</table>\n");
-    for evo in &done.evolutions {
+    for evo in &s.done.evolutions {
         let e = &evo.evaluations[evo.best];
         let _ = writeln!(
             page.body,
@@ -700,10 +687,10 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
             "Each room's r-node on the line of SOM nodes, with the window of nodes a test run's winner must fall in for that room to be a candidate; dots are the winners of the test runs, coloured by the room the robot was really in.",
         );
     }
-    confusion_table(page, exp, &done.aem, names);
+    confusion_table(page, exp, done, names);
 }
 
-fn confusion_table(page: &mut Page, exp: &Experiment, aem: &[AemReport], names: &[String]) {
+fn confusion_table(page: &mut Page, exp: &Experiment, done: &Finished, names: &[String]) {
     page.push(
         "<h4>Confusion matrix</h4>\n<table class=\"cm\"><tr><th>true room ↓ / recognised as →</th>",
     );
@@ -717,7 +704,7 @@ fn confusion_table(page: &mut Page, exp: &Experiment, aem: &[AemReport], names: 
     }
     page.push("<th>not recognised</th><th>% correct</th></tr>\n");
     for (r, n) in names.iter().enumerate() {
-        let rep = aem_for_room(aem, r);
+        let rep = done.aem_for_room(r);
         let counts = &rep.confusion.counts[r];
         let total: u32 = counts.iter().sum();
         let _ = write!(
@@ -790,4 +777,43 @@ fn files_list() -> String {
     }
     s.push_str("</ul>\n");
     s
+}
+
+/// One room's firing rules as an HTML table, with the sums that give F.
+fn rules_html(exp: &Experiment, ex: &fuzzymotiv::fuzzy::Explanation, y: [f64; 4]) -> String {
+    let mut rules = String::from(
+        "<table><tr><th>rule</th><th class=\"left\">if …</th><th>w</th><th>f</th><th>w·f</th></tr>",
+    );
+    let mut sum_wf = 0.0;
+    for rule in &ex.rules {
+        let cond = ["a", "g", "l", "b"]
+            .iter()
+            .zip(&rule.label_names)
+            .map(|(i, n)| format!("{i} is {n}"))
+            .collect::<Vec<_>>()
+            .join(" and ");
+        sum_wf += rule.weight * rule.output;
+        let _ = write!(
+            rules,
+            "<tr><td>{}</td><td class=\"rule-if\">{}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td></tr>",
+            rule.number,
+            esc(&cond),
+            rule.weight,
+            rule.output,
+            rule.weight * rule.output
+        );
+    }
+    let _ = write!(
+        rules,
+        "<tr><th colspan=\"2\" class=\"left\">Σ</th><th>{:.4}</th><th></th><th>{sum_wf:.4}</th></tr></table><p class=\"note\">F = Σ w·f / Σ w = {sum_wf:.4} / {:.4} = {:.4}; inputs Y = ({:.3}, {:.3}, {:.3}, {:.3}), motivations X = {}.</p>",
+        ex.weight_sum,
+        ex.weight_sum,
+        ex.fitness,
+        y[0],
+        y[1],
+        y[2],
+        y[3],
+        xs(exp)
+    );
+    rules
 }

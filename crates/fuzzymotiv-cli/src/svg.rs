@@ -77,11 +77,7 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
                     format!(
                         "{:.1},{:.1} ",
                         x(g),
-                        y(if pick == 0 {
-                            r.stats.best
-                        } else {
-                            r.stats.mean
-                        })
+                        y(if pick == 0 { r.stats.max } else { r.stats.mean })
                     )
                 })
                 .collect();
@@ -114,12 +110,12 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
 
 /// Every room of the experiment with the best robot's path in it (`trajectories[r]` for room
 /// `r`), as [`trajectories_svg`] draws them.
-pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[Trajectory]) -> String {
+pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[&Trajectory]) -> String {
     let pairs: Vec<_> = exp
         .arenas()
         .iter()
         .map(|a| a.room())
-        .zip(trajectories)
+        .zip(trajectories.iter().copied())
         .collect();
     trajectories_svg(title, &pairs)
 }
@@ -158,6 +154,32 @@ fn zone_outline(room: &Room) -> Vec<fuzzymotiv::geom::Vec2> {
 /// Length of a step marker's heading tick in the trajectory figures (px).
 const TICK: f64 = 3.0;
 
+/// Millimetres of a room to pixels of its panel: x to the right from `x_off`, y up in the
+/// room and down in SVG.
+struct Projection {
+    x_off: f64,
+    lo: fuzzymotiv::geom::Vec2,
+    hi: fuzzymotiv::geom::Vec2,
+    scale: f64,
+}
+
+impl Projection {
+    fn x(&self, x: f64) -> f64 {
+        self.x_off + (x - self.lo.x) * self.scale
+    }
+
+    fn y(&self, y: f64) -> f64 {
+        40.0 + (self.hi.y - y) * self.scale
+    }
+
+    fn polygon(&self, pts: &[fuzzymotiv::geom::Vec2]) -> String {
+        pts.iter()
+            .map(|p| format!("{:.1},{:.1}", self.x(p.x), self.y(p.y)))
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+}
+
 /// Rooms drawn to scale side by side, each with its home zone, the path with a marker per
 /// executed step, the home pose and the end point (ringed when the trial ended at home).
 pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
@@ -170,86 +192,15 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         let (lo, hi) = room.bounds();
         let (w, h) = ((hi.x - lo.x) * scale, (hi.y - lo.y) * scale);
         max_h = max_h.max(h);
-        let tx = |x: f64| x_off + (x - lo.x) * scale;
-        // y up in the room, down in SVG.
-        let ty = |y: f64| 40.0 + (hi.y - y) * scale;
-        let poly = |pts: &[fuzzymotiv::geom::Vec2]| {
-            pts.iter()
-                .map(|p| format!("{:.1},{:.1}", tx(p.x), ty(p.y)))
-                .collect::<Vec<_>>()
-                .join(" ")
+        let p = Projection {
+            x_off,
+            lo,
+            hi,
+            scale,
         };
-        let _ = writeln!(
-            parts,
-            r##"<polygon points="{}" fill="#fafafa" stroke="#222" stroke-width="2"/>"##,
-            poly(&room.outline)
-        );
-        for o in &room.obstacles {
-            let _ = writeln!(
-                parts,
-                r##"<polygon points="{}" fill="#888" stroke="#222"/>"##,
-                poly(o)
-            );
-        }
-        let _ = writeln!(
-            parts,
-            r##"<polygon points="{}" fill="#1f77b4" fill-opacity="0.10" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##,
-            poly(&zone_outline(room))
-        );
-        let executed = tr.executed();
-        let path: String = tr.poses[..=executed]
-            .iter()
-            .map(|p| format!("{:.1},{:.1} ", tx(p.x), ty(p.y)))
-            .collect();
-        let _ = writeln!(
-            parts,
-            r##"<polyline points="{path}" fill="none" stroke="#d62728" stroke-width="1"/>"##
-        );
-        // One marker per executed step: a short tick along the heading after the step, so
-        // turns on the spot show as several ticks on one point.
-        let ticks: String = tr.poses[1..=executed]
-            .iter()
-            .map(|p| {
-                format!(
-                    "M{:.1} {:.1}l{:.1} {:.1}",
-                    tx(p.x),
-                    ty(p.y),
-                    TICK * p.heading.cos(),
-                    -TICK * p.heading.sin()
-                )
-            })
-            .collect();
-        let _ = writeln!(
-            parts,
-            r##"<path d="{ticks}" stroke="#7f1d1d" stroke-width="0.8" fill="none"/>"##
-        );
-        let home = room.home;
-        let r = 27.5 * scale;
-        let _ = writeln!(
-            parts,
-            r##"<circle cx="{:.1}" cy="{:.1}" r="{r:.1}" fill="none" stroke="#2ca02c" stroke-width="2"/><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#2ca02c" stroke-width="2"/>"##,
-            tx(home.x),
-            ty(home.y),
-            tx(home.x),
-            ty(home.y),
-            tx(home.x + 2.0 * 27.5 * home.heading.cos()),
-            ty(home.y + 2.0 * 27.5 * home.heading.sin())
-        );
-        if let Some(end) = tr.poses.last() {
-            let at_home = executed < tr.len();
-            let _ = writeln!(
-                parts,
-                r##"<circle cx="{:.1}" cy="{:.1}" r="{r:.1}" fill="#d62728" fill-opacity="0.5" stroke="{}" stroke-width="1.5"><title>{}</title></circle>"##,
-                tx(end.x),
-                ty(end.y),
-                if at_home { "#000" } else { "none" },
-                if at_home {
-                    format!("back in the home zone after step {executed}: the trial ended")
-                } else {
-                    format!("end of the trial after {} steps", tr.len())
-                }
-            );
-        }
+        draw_room(&mut parts, room, &p);
+        draw_path(&mut parts, tr, &p);
+        draw_home_and_end(&mut parts, room, tr, &p);
         let _ = writeln!(
             parts,
             r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
@@ -293,6 +244,90 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     s.push_str(&parts);
     s.push_str("</svg>\n");
     s
+}
+
+/// A room's outline, obstacles and home zone.
+fn draw_room(parts: &mut String, room: &Room, p: &Projection) {
+    let _ = writeln!(
+        parts,
+        r##"<polygon points="{}" fill="#fafafa" stroke="#222" stroke-width="2"/>"##,
+        p.polygon(&room.outline)
+    );
+    for o in &room.obstacles {
+        let _ = writeln!(
+            parts,
+            r##"<polygon points="{}" fill="#888" stroke="#222"/>"##,
+            p.polygon(o)
+        );
+    }
+    let _ = writeln!(
+        parts,
+        r##"<polygon points="{}" fill="#1f77b4" fill-opacity="0.10" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##,
+        p.polygon(&zone_outline(room))
+    );
+}
+
+/// The path of the executed steps, with a tick per step.
+fn draw_path(parts: &mut String, tr: &Trajectory, p: &Projection) {
+    let executed = tr.executed();
+    let path: String = tr.poses[..=executed]
+        .iter()
+        .map(|q| format!("{:.1},{:.1} ", p.x(q.x), p.y(q.y)))
+        .collect();
+    let _ = writeln!(
+        parts,
+        r##"<polyline points="{path}" fill="none" stroke="#d62728" stroke-width="1"/>"##
+    );
+    // One marker per executed step: a short tick along the heading after the step, so
+    // turns on the spot show as several ticks on one point.
+    let ticks: String = tr.poses[1..=executed]
+        .iter()
+        .map(|q| {
+            format!(
+                "M{:.1} {:.1}l{:.1} {:.1}",
+                p.x(q.x),
+                p.y(q.y),
+                TICK * q.heading.cos(),
+                -TICK * q.heading.sin()
+            )
+        })
+        .collect();
+    let _ = writeln!(
+        parts,
+        r##"<path d="{ticks}" stroke="#7f1d1d" stroke-width="0.8" fill="none"/>"##
+    );
+}
+
+/// The home pose (circle and heading) and the end of the trial (ringed when it ended at home).
+fn draw_home_and_end(parts: &mut String, room: &Room, tr: &Trajectory, p: &Projection) {
+    let home = room.home;
+    let r = 27.5 * p.scale;
+    let _ = writeln!(
+        parts,
+        r##"<circle cx="{:.1}" cy="{:.1}" r="{r:.1}" fill="none" stroke="#2ca02c" stroke-width="2"/><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#2ca02c" stroke-width="2"/>"##,
+        p.x(home.x),
+        p.y(home.y),
+        p.x(home.x),
+        p.y(home.y),
+        p.x(home.x + 2.0 * 27.5 * home.heading.cos()),
+        p.y(home.y + 2.0 * 27.5 * home.heading.sin())
+    );
+    if let Some(end) = tr.poses.last() {
+        let executed = tr.executed();
+        let at_home = executed < tr.len();
+        let _ = writeln!(
+            parts,
+            r##"<circle cx="{:.1}" cy="{:.1}" r="{r:.1}" fill="#d62728" fill-opacity="0.5" stroke="{}" stroke-width="1.5"><title>{}</title></circle>"##,
+            p.x(end.x),
+            p.y(end.y),
+            if at_home { "#000" } else { "none" },
+            if at_home {
+                format!("back in the home zone after step {executed}: the trial ended")
+            } else {
+                format!("end of the trial after {} steps", tr.len())
+            }
+        );
+    }
 }
 
 /// The frame of one per-generation panel over the plot area `(x0, x1, y0, y1)` of a figure
@@ -467,6 +502,20 @@ pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
         "fitness value y (a, g, l or b)",
         "μ(y)",
     );
+    membership_triangles(&mut s, peaks, names, (lo, hi), &x, &y);
+    s.push_str("</svg>\n");
+    s
+}
+
+/// One triangle per label (the outer ones open to the range's ends), named at its peak.
+fn membership_triangles(
+    s: &mut String,
+    peaks: &[f64],
+    names: &[String],
+    (lo, hi): (f64, f64),
+    x: &dyn Fn(f64) -> f64,
+    y: &dyn Fn(f64) -> f64,
+) {
     for (k, &p) in peaks.iter().enumerate() {
         let left = if k == 0 { lo } else { peaks[k - 1] };
         let right = if k + 1 == peaks.len() {
@@ -498,8 +547,6 @@ pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
             esc(name)
         );
     }
-    s.push_str("</svg>\n");
-    s
 }
 
 /// One room's place on a SOM line: its r-node and the winners of its test runs.
@@ -545,6 +592,28 @@ pub fn som_svg(title: &str, nodes: usize, threshold: usize, rooms: &[SomRoom<'_>
         r#"<text x="{x0}" y="18" font-weight="bold">{}</text>"#,
         esc(title)
     );
+    som_instances(&mut s, rooms, nodes, threshold, line_y, &x);
+    som_axis(&mut s, nodes, line_y, (x0, x1), &x);
+    som_winners(&mut s, rooms, nodes, line_y, &x);
+    let _ = writeln!(
+        s,
+        r##"<text x="{x0}" y="{:.0}" fill="#555">SOM node index (0–{}). Marker: a room's stored instance (r-node), band: ±{threshold} nodes; dots: winners of test runs, coloured by true room.</text>"##,
+        h - 10.0,
+        nodes.saturating_sub(1)
+    );
+    s.push_str("</svg>\n");
+    s
+}
+
+/// Each room's r-node on the SOM line, with its threshold band and label.
+fn som_instances(
+    s: &mut String,
+    rooms: &[SomRoom<'_>],
+    nodes: usize,
+    threshold: usize,
+    line_y: f64,
+    x: &dyn Fn(f64) -> f64,
+) {
     for (k, r) in rooms.iter().enumerate() {
         let c = colour(k);
         let (a, b) = (
@@ -571,6 +640,16 @@ pub fn som_svg(title: &str, nodes: usize, threshold: usize, rooms: &[SomRoom<'_>
             xr = x(r.r_node as f64)
         );
     }
+}
+
+/// The SOM line with node ticks.
+fn som_axis(
+    s: &mut String,
+    nodes: usize,
+    line_y: f64,
+    (x0, x1): (f64, f64),
+    x: &dyn Fn(f64) -> f64,
+) {
     let _ = writeln!(
         s,
         r##"<line x1="{x0}" x2="{x1}" y1="{line_y}" y2="{line_y}" stroke="#222" stroke-width="2"/>"##
@@ -589,6 +668,16 @@ pub fn som_svg(title: &str, nodes: usize, threshold: usize, rooms: &[SomRoom<'_>
             xn = x(n as f64)
         );
     }
+}
+
+/// The test runs' winners, stacked below their node, coloured by true room.
+fn som_winners(
+    s: &mut String,
+    rooms: &[SomRoom<'_>],
+    nodes: usize,
+    line_y: f64,
+    x: &dyn Fn(f64) -> f64,
+) {
     let mut stack = vec![0usize; nodes.max(1)];
     for (k, r) in rooms.iter().enumerate() {
         for &n in &r.winners {
@@ -603,14 +692,6 @@ pub fn som_svg(title: &str, nodes: usize, threshold: usize, rooms: &[SomRoom<'_>
             );
         }
     }
-    let _ = writeln!(
-        s,
-        r##"<text x="{x0}" y="{:.0}" fill="#555">SOM node index (0–{}). Marker: a room's stored instance (r-node), band: ±{threshold} nodes; dots: winners of test runs, coloured by true room.</text>"##,
-        h - 10.0,
-        nodes.saturating_sub(1)
-    );
-    s.push_str("</svg>\n");
-    s
 }
 
 /// One sweep setting with its mean outcomes over rooms and replicates.
@@ -679,103 +760,9 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
             ox + pw / 2.0
         );
         if ternary {
-            let side = pw - 70.0;
-            let (x0, y0) = (ox + 35.0, 40.0 + side * 0.866);
-            let corner = |c: f64, h: f64, e: f64| {
-                let sum = c + h + e;
-                let (h, e) = if sum > 0.0 {
-                    (h / sum, e / sum)
-                } else {
-                    (0.0, 0.0)
-                };
-                (x0 + side * (h + 0.5 * e), y0 - side * 0.866 * e)
-            };
-            let (a, b, c) = (
-                corner(1.0, 0.0, 0.0),
-                corner(0.0, 1.0, 0.0),
-                corner(0.0, 0.0, 1.0),
-            );
-            let _ = writeln!(
-                s,
-                r##"<polygon points="{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}" fill="none" stroke="#444"/><text x="{:.1}" y="{:.1}" text-anchor="end">C=1</text><text x="{:.1}" y="{:.1}">H=1</text><text x="{:.1}" y="{:.1}" text-anchor="middle">E=1</text>"##,
-                a.0,
-                a.1,
-                b.0,
-                b.1,
-                c.0,
-                c.1,
-                a.0 - 4.0,
-                a.1 + 12.0,
-                b.0 + 4.0,
-                b.1 + 12.0,
-                c.0,
-                c.1 - 6.0
-            );
-            for p in points {
-                let m = p.motivations;
-                let (x, y) = corner(m[0], m[1], m[3]);
-                match p.values[k] {
-                    Some(v) => {
-                        let _ = writeln!(
-                            s,
-                            r##"<circle cx="{x:.1}" cy="{y:.1}" r="7" fill="{}" stroke="#333" stroke-width="0.5"><title>{}: {v:.1}</title></circle>"##,
-                            value_colour(v),
-                            esc(&p.label)
-                        );
-                    }
-                    None => {
-                        let _ = writeln!(
-                            s,
-                            r##"<circle cx="{x:.1}" cy="{y:.1}" r="3" fill="#ccc"/>"##
-                        );
-                    }
-                }
-            }
-            // Colour key.
-            for i in 0..=10 {
-                let v = i as f64 * 10.0;
-                let _ = writeln!(
-                    s,
-                    r#"<rect x="{:.1}" y="{:.1}" width="20" height="6" fill="{}"/>"#,
-                    ox + 40.0 + 22.0 * i as f64,
-                    height - 42.0,
-                    value_colour(v)
-                );
-            }
-            let _ = writeln!(
-                s,
-                r#"<text x="{:.1}" y="{:.1}">0</text><text x="{:.1}" y="{:.1}">100</text>"#,
-                ox + 40.0,
-                height - 24.0,
-                ox + 250.0,
-                height - 24.0
-            );
+            ternary_panel(&mut s, points, k, ox, pw, height);
         } else {
-            for (i, p) in points.iter().enumerate() {
-                let y = 40.0 + 22.0 * i as f64;
-                let m = p.motivations;
-                let _ = writeln!(
-                    s,
-                    r#"<text x="{:.1}" y="{:.1}">({},{},{},{})</text>"#,
-                    ox + 8.0,
-                    y + 12.0,
-                    m[0],
-                    m[1],
-                    m[2],
-                    m[3]
-                );
-                if let Some(v) = p.values[k] {
-                    let w = 160.0 * (v / 100.0).clamp(0.0, 1.0);
-                    let _ = writeln!(
-                        s,
-                        r##"<rect x="{:.1}" y="{y:.1}" width="{w:.1}" height="15" fill="{}"/><text x="{:.1}" y="{:.1}">{v:.1}</text>"##,
-                        ox + 130.0,
-                        value_colour(v),
-                        ox + 134.0 + w,
-                        y + 12.0
-                    );
-                }
-            }
+            bars_panel(&mut s, points, k, ox);
         }
     }
     let _ = writeln!(
@@ -785,6 +772,111 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
     );
     s.push_str("</svg>\n");
     s
+}
+
+/// Panel `k` of [`sweep_summary_svg`] for many settings: each a point on the (C, H, E)
+/// simplex coloured by outcome `k`, with a colour key.
+fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw: f64, height: f64) {
+    let side = pw - 70.0;
+    let (x0, y0) = (ox + 35.0, 40.0 + side * 0.866);
+    let corner = |c: f64, h: f64, e: f64| {
+        let sum = c + h + e;
+        let (h, e) = if sum > 0.0 {
+            (h / sum, e / sum)
+        } else {
+            (0.0, 0.0)
+        };
+        (x0 + side * (h + 0.5 * e), y0 - side * 0.866 * e)
+    };
+    let (a, b, c) = (
+        corner(1.0, 0.0, 0.0),
+        corner(0.0, 1.0, 0.0),
+        corner(0.0, 0.0, 1.0),
+    );
+    let _ = writeln!(
+        s,
+        r##"<polygon points="{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}" fill="none" stroke="#444"/><text x="{:.1}" y="{:.1}" text-anchor="end">C=1</text><text x="{:.1}" y="{:.1}">H=1</text><text x="{:.1}" y="{:.1}" text-anchor="middle">E=1</text>"##,
+        a.0,
+        a.1,
+        b.0,
+        b.1,
+        c.0,
+        c.1,
+        a.0 - 4.0,
+        a.1 + 12.0,
+        b.0 + 4.0,
+        b.1 + 12.0,
+        c.0,
+        c.1 - 6.0
+    );
+    for p in points {
+        let m = p.motivations;
+        let (x, y) = corner(m[0], m[1], m[3]);
+        match p.values[k] {
+            Some(v) => {
+                let _ = writeln!(
+                    s,
+                    r##"<circle cx="{x:.1}" cy="{y:.1}" r="7" fill="{}" stroke="#333" stroke-width="0.5"><title>{}: {v:.1}</title></circle>"##,
+                    value_colour(v),
+                    esc(&p.label)
+                );
+            }
+            None => {
+                let _ = writeln!(
+                    s,
+                    r##"<circle cx="{x:.1}" cy="{y:.1}" r="3" fill="#ccc"/>"##
+                );
+            }
+        }
+    }
+    // Colour key.
+    for i in 0..=10 {
+        let v = i as f64 * 10.0;
+        let _ = writeln!(
+            s,
+            r#"<rect x="{:.1}" y="{:.1}" width="20" height="6" fill="{}"/>"#,
+            ox + 40.0 + 22.0 * i as f64,
+            height - 42.0,
+            value_colour(v)
+        );
+    }
+    let _ = writeln!(
+        s,
+        r#"<text x="{:.1}" y="{:.1}">0</text><text x="{:.1}" y="{:.1}">100</text>"#,
+        ox + 40.0,
+        height - 24.0,
+        ox + 250.0,
+        height - 24.0
+    );
+}
+
+/// Panel `k` of [`sweep_summary_svg`] for a few settings: one labelled bar each.
+fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
+    for (i, p) in points.iter().enumerate() {
+        let y = 40.0 + 22.0 * i as f64;
+        let m = p.motivations;
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}">({},{},{},{})</text>"#,
+            ox + 8.0,
+            y + 12.0,
+            m[0],
+            m[1],
+            m[2],
+            m[3]
+        );
+        if let Some(v) = p.values[k] {
+            let w = 160.0 * (v / 100.0).clamp(0.0, 1.0);
+            let _ = writeln!(
+                s,
+                r##"<rect x="{:.1}" y="{y:.1}" width="{w:.1}" height="15" fill="{}"/><text x="{:.1}" y="{:.1}">{v:.1}</text>"##,
+                ox + 130.0,
+                value_colour(v),
+                ox + 134.0 + w,
+                y + 12.0
+            );
+        }
+    }
 }
 
 #[cfg(test)]

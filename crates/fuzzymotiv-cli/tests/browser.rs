@@ -17,7 +17,7 @@ use serde_json::{Value, json};
 
 mod common;
 
-use common::ok;
+use common::{Fm, SMALL, ok};
 
 const CHROMIUM: &str = "/usr/bin/chromium";
 const CHROMEDRIVER: &str = "/usr/bin/chromedriver";
@@ -285,19 +285,6 @@ impl Drop for Driver {
     }
 }
 
-const SMALL: [&str; 10] = [
-    "--set",
-    "ga.population=10",
-    "--set",
-    "ga.generations=3",
-    "--set",
-    "trial.steps=100",
-    "--set",
-    "aem.epochs=20",
-    "--set",
-    "aem.test_runs=2",
-];
-
 /// The page loaded without script errors, console errors or network requests, with `widgets`
 /// replay widgets.
 fn check_page_health(driver: &Driver, widgets: u64, what: &str) {
@@ -320,9 +307,10 @@ fn report_page_runs_and_replays_in_chromium() {
     let cfg = dir.path().join("small.toml");
     std::fs::write(&cfg, "name = \"browser-test\"\nseed = 11\n").unwrap();
     let out = dir.path().join("run");
-    let mut args = vec!["run", cfg.to_str().unwrap(), "--out", out.to_str().unwrap()];
-    args.extend_from_slice(&SMALL);
-    ok(&args);
+    Fm::new(["run", cfg.to_str().unwrap()])
+        .out(&out)
+        .sets(&SMALL)
+        .ok();
     let report = out.join("report.html");
     assert!(report.is_file(), "run wrote no report.html");
 
@@ -406,15 +394,10 @@ fn report_page_runs_and_replays_in_chromium() {
 
     // The reproduce page: one widget per setting.
     let results = dir.path().join("results");
-    let mut args = vec![
-        "reproduce",
-        "--seeds",
-        "2",
-        "--out",
-        results.to_str().unwrap(),
-    ];
-    args.extend_from_slice(&SMALL);
-    ok(&args);
+    Fm::new(["reproduce", "--seeds", "2"])
+        .out(&results)
+        .sets(&SMALL)
+        .ok();
     driver.open(&results.join("report.html"));
     check_page_health(&driver, 2, "reproduce report");
     std::fs::write(

@@ -5,7 +5,7 @@ use std::process::Output;
 
 mod common;
 
-use common::{bin, ok, repo, run, stderr, stdout};
+use common::{Fm, SMALL, bin, ok, repo, run, stderr, stdout};
 
 #[test]
 fn fuzzy_prints_the_spec_worked_values() {
@@ -310,27 +310,10 @@ fn reproduce_quick_writes_every_documented_file() {
     let dir = tempfile::tempdir().unwrap();
     // A quick look has its own default directory: it never lands in a full study's `results`.
     let out = dir.path().join("results-quick");
-    let o = in_dir(
-        dir.path(),
-        &[
-            "reproduce",
-            "--quick",
-            "--seed",
-            "5",
-            "--seeds",
-            "2",
-            "--set",
-            "ga.population=10",
-            "--set",
-            "ga.generations=3",
-            "--set",
-            "trial.steps=100",
-            "--set",
-            "aem.epochs=20",
-            "--set",
-            "aem.test_runs=2",
-        ],
-    );
+    let o = Fm::new(["reproduce", "--quick", "--seed", "5", "--seeds", "2"])
+        .sets(&SMALL)
+        .in_dir(dir.path())
+        .run();
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!dir.path().join("results").exists());
     for f in [
@@ -567,6 +550,14 @@ fn replay_rejects_bad_input_with_exit_2() {
     std::fs::write(&garbage, "{ not json").unwrap();
     let short = dir.path().join("short.json");
     std::fs::write(&short, r#"{"shape": {"hidden": 6}, "weights": [0.5, 1.0]}"#).unwrap();
+    let typo = dir.path().join("typo.json");
+    std::fs::write(
+        &typo,
+        r#"{"shape": {"hidden": 6}, "weights": [0.5, "1.0"]}"#,
+    )
+    .unwrap();
+    let shapeless = dir.path().join("shapeless.json");
+    std::fs::write(&shapeless, r#"{"weights": [0.5]}"#).unwrap();
     let empty_dir = dir.path().join("empty");
     std::fs::create_dir(&empty_dir).unwrap();
     let page = dir.path().join("x/replay.html");
@@ -576,6 +567,8 @@ fn replay_rejects_bad_input_with_exit_2() {
         (vec![empty_dir.to_str().unwrap()], "config.resolved.toml"),
         (vec![garbage.to_str().unwrap()], "not valid JSON"),
         (vec![short.to_str().unwrap()], "68"),
+        (vec![typo.to_str().unwrap()], "field `weights[1]`"),
+        (vec![shapeless.to_str().unwrap()], "missing field `shape`"),
         (
             vec![out.to_str().unwrap(), "--room", "attic"],
             "not a room of the config",
@@ -991,14 +984,10 @@ fn tables_carry_their_provenance() {
     let dir = tempfile::tempdir().unwrap();
     let cfg = repo().join("configs/tiny.toml");
     let out = dir.path().join("t");
-    ok(&[
-        "run",
-        cfg.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "ga.generations=2",
-    ]);
+    Fm::new(["run", cfg.to_str().unwrap()])
+        .out(&out)
+        .sets(&["ga.generations=2"])
+        .ok();
     let table = std::fs::read_to_string(out.join("table.md")).unwrap();
     assert!(
         table.contains(&format!("fuzzymotiv {}", env!("CARGO_PKG_VERSION"))),

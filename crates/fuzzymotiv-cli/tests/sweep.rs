@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 mod common;
 
-use common::{bin, ok, run};
+use common::{Fm, bin, ok, run};
 
 const SWEEP: &str = r#"
 name = "t"
@@ -248,25 +248,17 @@ fn simplex_sweep_covers_the_grid() {
 fn orientation_study_runs_from_one_command() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("orientation");
-    let o = run(&[
-        "reproduce",
-        "--orientation",
-        "--quick",
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "ga.population=8",
-        "--set",
-        "ga.generations=2",
-        "--set",
-        "trial.steps=100",
-        "--set",
-        "aem.epochs=10",
-        "--set",
-        "aem.test_runs=2",
-        "--set",
-        "sweep.replicates=1",
-    ]);
+    let o = Fm::new(["reproduce", "--orientation", "--quick"])
+        .out(&out)
+        .sets(&[
+            "ga.population=8",
+            "ga.generations=2",
+            "trial.steps=100",
+            "aem.epochs=10",
+            "aem.test_runs=2",
+            "sweep.replicates=1",
+        ])
+        .run();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let agg = std::fs::read_to_string(out.join("aggregate.csv")).unwrap();
     assert_eq!(agg.lines().count(), 1 + 3 * 5, "{agg}");
@@ -327,4 +319,108 @@ fn editing_a_room_file_changes_the_job_id() {
     assert_eq!(before, id(&f));
     std::fs::write(dir.path().join("box.toml"), room(500)).unwrap();
     assert_ne!(before, id(&f));
+}
+
+/// Regression: results.csv was written by hand without CSV escaping, so a room named
+/// `a, "b"` or a swept string value (`robot.motion = "wheels"`, whose setting holds quotes)
+/// broke its rows; and two columns were named `homing` (the motivation weight and the homing
+/// result). Now every cell goes through the csv crate, every column name is unique, and each
+/// swept key has its own `grid.KEY` column.
+#[test]
+fn results_csv_is_escaped_and_its_columns_are_unique() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("odd.toml"),
+        "name = 'a, \"b\"'\noutline = [[0,0],[600,0],[600,500],[0,500]]\nhome = { x = 100, y = 100, heading_deg = 0 }\n",
+    )
+    .unwrap();
+    let f = dir.path().join("s.toml");
+    std::fs::write(
+        &f,
+        r#"seed = 3
+rooms = ["H", "odd.toml"]
+[ga]
+population = 6
+generations = 2
+[trial]
+steps = 60
+[aem]
+epochs = 5
+test_runs = 1
+[sweep]
+motivations = [[0.8, 0.1, 0.0, 0.1]]
+[sweep.grid]
+"robot.motion" = ["actions", "wheels"]
+"trial.noise" = [0.06]
+"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    ok(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let text = results(&out);
+    let table = fuzzymotiv_cli::records::SweepResults::read(&out.join("results.csv")).unwrap();
+    assert_eq!(table.grid, ["robot.motion", "trial.noise"]);
+    assert_eq!(table.rows.len(), 2 * 2, "{text}");
+    let header = text.lines().next().unwrap();
+    let names: Vec<&str> = header.split(',').collect();
+    let unique: std::collections::BTreeSet<&str> = names.iter().copied().collect();
+    assert_eq!(unique.len(), names.len(), "duplicate column in {header}");
+    for name in [
+        "homing",
+        "homing_pct",
+        "grid.robot.motion",
+        "grid.trial.noise",
+    ] {
+        assert!(names.contains(&name), "{name} missing in {header}");
+    }
+    let rooms: std::collections::BTreeSet<&str> =
+        table.rows.iter().map(|r| r.room.as_str()).collect();
+    assert_eq!(rooms, ["H", "a, \"b\""].into_iter().collect());
+    let motions: Vec<&str> = table.rows.iter().map(|r| r.grid[0].as_str()).collect();
+    assert_eq!(motions, ["actions", "actions", "wheels", "wheels"]);
+    assert!(table.rows.iter().all(|r| r.grid[1] == "0.06"));
+    assert!(table.rows[2].setting.contains("robot.motion=\"wheels\""));
+    assert!(table.rows.iter().all(|r| r.values[0].is_some()));
+    let agg = std::fs::read_to_string(out.join("aggregate.csv")).unwrap();
+    assert!(agg.contains("\"a, \"\"b\"\"\""), "{agg}");
+}
+
+/// A job's summary.json with a missing or malformed field stops `merge` with exit code 2 and
+/// a message naming the file and the field (no NaN or "?" in the results).
+#[test]
+fn merge_names_the_bad_field_of_a_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("s.toml");
+    std::fs::write(
+        &f,
+        "rooms = [\"H\", \"square\"]\n[ga]\npopulation = 6\ngenerations = 2\n[trial]\nsteps = 60\n[aem]\nepochs = 5\ntest_runs = 1\n[sweep]\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    ok(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let job = std::fs::read_dir(out.join("jobs"))
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    let summary = job.join("summary.json");
+    let good = std::fs::read_to_string(&summary).unwrap();
+    for (bad, field) in [
+        (
+            good.replace("\"average_fitness\"", "\"avg_fitness\""),
+            "missing field `average_fitness`",
+        ),
+        (
+            good.replacen("\"curiosity\": 0.8", "\"curiosity\": \"high\"", 1),
+            "`motivations.curiosity`",
+        ),
+    ] {
+        assert_ne!(bad, good);
+        std::fs::write(&summary, &bad).unwrap();
+        let o = run(&["merge", out.to_str().unwrap()]);
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{e}");
+        assert!(e.contains("summary.json") && e.contains(field), "{e}");
+    }
 }

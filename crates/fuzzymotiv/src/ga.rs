@@ -176,15 +176,13 @@ pub fn mutate<R: Rng + ?Sized>(genome: &mut [f64], params: &GaParams, rng: &mut 
 /// Summary of one generation's fitness values.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct Stats {
-    /// Highest.
-    pub best: f64,
     /// Mean.
     pub mean: f64,
     /// Population standard deviation.
     pub std: f64,
     /// Lowest.
     pub min: f64,
-    /// Highest (same as `best`).
+    /// Highest: the best individual's fitness (higher is better).
     pub max: f64,
 }
 
@@ -200,7 +198,6 @@ impl Stats {
         let min = values.iter().copied().fold(f64::INFINITY, f64::min);
         let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         Stats {
-            best: max,
             mean,
             std: var.sqrt(),
             min,
@@ -245,19 +242,19 @@ mod tests {
         let f = |g: &Genome| -g.iter().map(|x| (x - 1.0) * (x - 1.0)).sum::<f64>();
         let mut rng = rng_from_seed(11);
         let mut pop = initial_population(&p, 5, &mut rng);
-        let first = Stats::of(&pop.iter().map(f).collect::<Vec<_>>()).best;
+        let first = Stats::of(&pop.iter().map(f).collect::<Vec<_>>()).max;
         for _ in 0..40 {
             let fit: Vec<f64> = pop.iter().map(f).collect();
             pop = next_generation(&pop, &fit, &p, &mut rng);
         }
-        let last = Stats::of(&pop.iter().map(f).collect::<Vec<_>>()).best;
+        let last = Stats::of(&pop.iter().map(f).collect::<Vec<_>>()).max;
         assert!(last > first, "{first} -> {last}");
     }
 
     #[test]
     fn stats_by_hand() {
         let s = Stats::of(&[1.0, 2.0, 3.0, 4.0]);
-        assert_eq!((s.best, s.mean, s.min, s.max), (4.0, 2.5, 1.0, 4.0));
+        assert_eq!((s.mean, s.min, s.max), (2.5, 1.0, 4.0));
         assert!((s.std - 1.25f64.sqrt()).abs() < 1e-15);
     }
 }

@@ -6,42 +6,54 @@ use serde::{Deserialize, Serialize};
 
 use crate::aem::environment_vector;
 use crate::experiment::{Experiment, Run};
-use crate::fitness::FitnessTerms;
+use crate::fitness::{FitnessTerms, TermsRecorder};
 use crate::recognition::{Confusion, Recognizer};
 use crate::rng::rng_from_seed;
 use crate::som::SomError;
+use crate::trial::{Trajectory, simulate};
 
 impl Experiment {
-    /// The full trajectory of `genome` in `room` on the AEM instance stream of `run` (the very
-    /// run whose actions became the room's stored instance): for figures and replays.
-    pub fn instance_trajectory(
-        &self,
-        genome: &[f64],
-        run: &Run,
-        room: usize,
-    ) -> crate::trial::Trajectory {
+    /// The room-modelling run of `genome` in `room` on the AEM instance stream of `run` (the
+    /// very run whose actions become the room's stored instance): its whole trajectory, its
+    /// terms and F. Replays and figures use it; [`Experiment::environment_modelling`] returns
+    /// the ones it ran.
+    pub fn instance_run(&self, genome: &[f64], run: &Run, room: usize) -> InstanceRun {
+        let arena = &self.arenas[room];
         let seed = self.streams().aem_instance(run.tag, self.room_key(room));
         let mut rng = rng_from_seed(seed);
-        crate::trial::run_trial(
-            &self.arenas[room],
+        let mut obs = (
+            TermsRecorder::new(arena, &self.trial, self.homing),
+            Trajectory::starting_at(arena.room().home, self.trial.steps),
+        );
+        simulate(
+            arena,
             &mut self.controller(genome),
             &self.trial,
             &mut rng,
-        )
+            &mut obs,
+        );
+        let terms = obs.0.finish();
+        InstanceRun {
+            trajectory: obs.1,
+            f: self.fuzzy_fitness(&terms),
+            terms,
+        }
     }
 
     /// Action-based environment modelling with one robot: an instance run per room, SOM
     /// training, then `test_runs` recognition tests per room (docs/model.md §9–§10). With AEM disabled
-    /// the test runs still measure exploration, homing and battery, and nothing is recognised.
+    /// the instance runs are still made (for figures) and the test runs still measure
+    /// exploration, homing and battery, but nothing is recognised.
     pub fn environment_modelling(&self, genome: &[f64], run: &Run) -> Result<AemReport, SomError> {
         let rooms = self.arenas.len();
+        let instances: Vec<InstanceRun> = (0..rooms)
+            .into_par_iter()
+            .map(|r| self.instance_run(genome, run, r))
+            .collect();
         let recognizer = if self.aem.enabled {
-            let vectors: Vec<Vec<f64>> = (0..rooms)
-                .into_par_iter()
-                .map(|r| {
-                    let seed = self.streams().aem_instance(run.tag, self.room_key(r));
-                    environment_vector(&self.trial(genome, r, seed).1, self.aem.encoder)
-                })
+            let vectors: Vec<Vec<f64>> = instances
+                .iter()
+                .map(|i| environment_vector(&i.trajectory.actions, self.aem.encoder))
                 .collect();
             let mut som_rng = rng_from_seed(self.streams().som(run.tag));
             Some(Recognizer::train(
@@ -53,34 +65,14 @@ impl Experiment {
         } else {
             None
         };
-        let tests: Vec<(usize, AemTest)> = (0..rooms)
-            .flat_map(|r| (0..self.aem.test_runs).map(move |t| (r, t)))
-            .collect::<Vec<_>>()
-            .into_par_iter()
-            .map(|(r, t)| {
-                let seed = self.streams().aem_test(run.tag, self.room_key(r), t);
-                let (terms, actions) = self.trial(genome, r, seed);
-                let (answer, winner) = match &recognizer {
-                    Some(rec) => {
-                        let v = environment_vector(&actions, self.aem.encoder);
-                        (rec.recognise(&v)?, Some(rec.som.winner(&v)?))
-                    }
-                    None => (None, None),
-                };
-                Ok((
-                    r,
-                    AemTest {
-                        terms,
-                        answer,
-                        winner,
-                    },
-                ))
-            })
-            .collect::<Result<_, SomError>>()?;
+        let tests = self.recognition_tests(genome, run, recognizer.as_ref())?;
         let mut confusion = Confusion::new(rooms);
-        let mut per_room: Vec<AemRoom> = (0..rooms)
-            .map(|r| AemRoom {
+        let mut per_room: Vec<AemRoom> = instances
+            .into_iter()
+            .enumerate()
+            .map(|(r, instance)| AemRoom {
                 room: self.arenas[r].room().name.clone(),
+                instance,
                 r_node: recognizer.as_ref().map(|rec| rec.instances[r].r_node),
                 tests: Vec::new(),
                 correct: 0,
@@ -108,6 +100,40 @@ impl Experiment {
             som_nodes: recognizer.as_ref().map_or(0, |rec| rec.som.nodes()),
         })
     }
+
+    /// `test_runs` test runs per room of `genome` on the AEM test streams of `run`, each with
+    /// its terms and (when a recognizer is given) its answer and SOM winner: (room, test).
+    fn recognition_tests(
+        &self,
+        genome: &[f64],
+        run: &Run,
+        recognizer: Option<&Recognizer>,
+    ) -> Result<Vec<(usize, AemTest)>, SomError> {
+        (0..self.arenas.len())
+            .flat_map(|r| (0..self.aem.test_runs).map(move |t| (r, t)))
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|(r, t)| {
+                let seed = self.streams().aem_test(run.tag, self.room_key(r), t);
+                let (terms, actions) = self.trial(genome, r, seed);
+                let (answer, winner) = match recognizer {
+                    Some(rec) => {
+                        let v = environment_vector(&actions, self.aem.encoder);
+                        (rec.recognise(&v)?, Some(rec.som.winner(&v)?))
+                    }
+                    None => (None, None),
+                };
+                Ok((
+                    r,
+                    AemTest {
+                        terms,
+                        answer,
+                        winner,
+                    },
+                ))
+            })
+            .collect()
+    }
 }
 
 /// One AEM test run.
@@ -121,11 +147,24 @@ pub struct AemTest {
     pub winner: Option<usize>,
 }
 
+/// The room-modelling run of one robot in one room (see [`Experiment::instance_run`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct InstanceRun {
+    /// The whole trial, step by step.
+    pub trajectory: Trajectory,
+    /// Its terms (`l` = 0).
+    pub terms: FitnessTerms,
+    /// Its F under the experiment's motivations.
+    pub f: f64,
+}
+
 /// AEM results for one room.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AemRoom {
     /// Room name.
     pub room: String,
+    /// The robot's room-modelling run here: its actions are the room's stored instance.
+    pub instance: InstanceRun,
     /// The instance's r-node (none with AEM disabled).
     pub r_node: Option<usize>,
     /// The test runs.
@@ -151,4 +190,39 @@ pub struct AemReport {
     pub confusion: Confusion,
     /// Number of SOM nodes.
     pub som_nodes: usize,
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::experiment::testing::experiment;
+    use crate::fitness::FitnessTerms;
+
+    /// The room-modelling runs environment modelling returns are the instance runs (the ones
+    /// whose actions became the stored instances), with the terms their trajectories measure.
+    #[test]
+    fn modelling_returns_its_instance_runs() {
+        let exp = experiment(&[]);
+        let run = exp.runs().remove(0);
+        let genome = exp.initial_population(&run).remove(0);
+        let report = exp.environment_modelling(&genome, &run).unwrap();
+        for (r, room) in report.rooms.iter().enumerate() {
+            let again = exp.instance_run(&genome, &run, r);
+            assert_eq!(room.instance, again);
+            let (terms, actions) = exp.trial(
+                &genome,
+                r,
+                exp.streams().aem_instance(run.tag, exp.room_key(r)),
+            );
+            assert_eq!(room.instance.terms, terms);
+            assert_eq!(room.instance.trajectory.actions, actions);
+            let measured = FitnessTerms::measure(
+                &exp.arenas()[r],
+                exp.trial_params(),
+                exp.homing(),
+                &room.instance.trajectory,
+            );
+            assert_eq!(room.instance.terms, measured);
+            assert_eq!(room.instance.f, exp.fuzzy_fitness(&terms));
+        }
+    }
 }

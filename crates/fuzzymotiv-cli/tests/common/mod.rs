@@ -39,3 +39,76 @@ pub fn stderr(o: &Output) -> String {
 pub fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
+
+/// Small GA, trials and AEM sizes (`--set` values) for tests that need a quick run.
+pub const SMALL: [&str; 5] = [
+    "ga.population=10",
+    "ga.generations=3",
+    "trial.steps=100",
+    "aem.epochs=20",
+    "aem.test_runs=2",
+];
+
+/// A command line of the binary being built, e.g.
+/// `Fm::new(["run", cfg]).out(&dir).sets(&SMALL).ok()`.
+pub struct Fm {
+    cmd: Command,
+    shown: Vec<String>,
+}
+
+impl Fm {
+    /// `fuzzymotiv ARGS…`.
+    pub fn new<S: AsRef<std::ffi::OsStr>>(args: impl IntoIterator<Item = S>) -> Fm {
+        let mut fm = Fm {
+            cmd: bin(),
+            shown: Vec::new(),
+        };
+        for a in args {
+            fm = fm.arg(a);
+        }
+        fm
+    }
+
+    /// One more argument.
+    pub fn arg(mut self, a: impl AsRef<std::ffi::OsStr>) -> Fm {
+        self.shown.push(a.as_ref().to_string_lossy().into_owned());
+        self.cmd.arg(a);
+        self
+    }
+
+    /// `--out DIR`.
+    pub fn out(self, dir: &Path) -> Fm {
+        self.arg("--out").arg(dir)
+    }
+
+    /// `--set KEY=VALUE` for each of `sets`.
+    pub fn sets(mut self, sets: &[&str]) -> Fm {
+        for s in sets {
+            self = self.arg("--set").arg(s);
+        }
+        self
+    }
+
+    /// Runs in `dir` instead of the current directory.
+    pub fn in_dir(mut self, dir: &Path) -> Fm {
+        self.cmd.current_dir(dir);
+        self
+    }
+
+    /// Runs it and returns what it did.
+    pub fn run(mut self) -> Output {
+        self.cmd.output().expect("binary runs")
+    }
+
+    /// Runs it and asserts it succeeded.
+    pub fn ok(self) -> Output {
+        let shown = self.shown.join(" ");
+        let o = self.run();
+        assert!(
+            o.status.success(),
+            "fuzzymotiv {shown} failed: {}",
+            stderr(&o)
+        );
+        o
+    }
+}

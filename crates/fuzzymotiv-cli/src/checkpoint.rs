@@ -1,0 +1,152 @@
+//! `checkpoint.json`: what a killed run needs to continue (in the run's staging directory,
+//! removed when the run finishes).
+
+use std::path::Path;
+
+use fuzzymotiv::evolution::{GenerationRecord, GenerationState};
+use fuzzymotiv::experiment::{Experiment, Run};
+use serde::{Deserialize, Serialize};
+
+use crate::error::CliError;
+use crate::files::{io_err, write_atomic};
+
+/// File name of the checkpoint inside the staging directory.
+pub const CHECKPOINT: &str = "checkpoint.json";
+
+/// What a killed run needs to continue: per run of the protocol, the history so far and the
+/// next population (floats stored as their exact bit patterns). The random streams are
+/// derived per generation, so no generator state needs saving.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Checkpoint {
+    /// Format version.
+    pub format: u32,
+    /// Program version that wrote it.
+    pub version: String,
+    /// Wall time (s) of the run so far, over all sessions.
+    #[serde(default)]
+    pub wall_seconds: f64,
+    /// One entry per run.
+    pub runs: Vec<CheckpointRun>,
+}
+
+/// One run's saved state.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct CheckpointRun {
+    /// Run label.
+    pub label: String,
+    /// Whether the last generation has been evaluated (then `population` is the final one).
+    pub done: bool,
+    /// Per-generation records so far (floats printed by serde_json round-trip exactly).
+    pub history: Vec<GenerationRecord>,
+    /// Genomes to evaluate next (or the final population), as f64 bits.
+    pub population: Vec<Vec<u64>>,
+}
+
+impl CheckpointRun {
+    /// The saved state of an evolution after a generation.
+    pub fn from_state(label: &str, state: &GenerationState<'_>) -> Self {
+        let (done, pop) = match state.next {
+            Some(next) => (false, next),
+            None => (true, state.population),
+        };
+        CheckpointRun {
+            label: label.to_string(),
+            done,
+            history: state.history.to_vec(),
+            population: pop
+                .iter()
+                .map(|g| g.iter().map(|v| v.to_bits()).collect())
+                .collect(),
+        }
+    }
+
+    /// The saved population as floats.
+    pub fn population_f64(&self) -> Vec<Vec<f64>> {
+        self.population
+            .iter()
+            .map(|g| g.iter().map(|&b| f64::from_bits(b)).collect())
+            .collect()
+    }
+}
+
+impl Checkpoint {
+    /// No generation done yet.
+    pub fn fresh(runs: &[Run]) -> Self {
+        Checkpoint {
+            format: 1,
+            version: fuzzymotiv::VERSION.to_string(),
+            wall_seconds: 0.0,
+            runs: runs
+                .iter()
+                .map(|r| CheckpointRun {
+                    label: r.label.clone(),
+                    ..Default::default()
+                })
+                .collect(),
+        }
+    }
+
+    /// Reads the checkpoint at `path` and checks it against the experiment (no file: a fresh
+    /// start).
+    pub fn load(path: &Path, runs: &[Run], exp: &Experiment) -> Result<Self, CliError> {
+        if !path.is_file() {
+            // Killed before the first generation finished: start over.
+            return Ok(Self::fresh(runs));
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| io_err(path, e))?;
+        let cp: Checkpoint = serde_json::from_str(&text).map_err(|e| {
+            CliError::input(format!(
+                "{}: not a fuzzymotiv checkpoint: {e}",
+                path.display()
+            ))
+        })?;
+        let ok = cp.runs.len() == runs.len()
+            && cp.runs.iter().zip(runs).all(|(c, r)| {
+                c.label == r.label
+                    && if c.done {
+                        c.history.len() == exp.ga().generations
+                            && c.population.len() == exp.ga().population
+                    } else {
+                        c.history.len() < exp.ga().generations
+                    }
+                    && c.population
+                        .iter()
+                        .all(|g| g.len() == exp.shape().genome_len())
+                    && (c.history.is_empty() || c.population.len() == exp.ga().population)
+            });
+        if !ok {
+            return Err(CliError::input(format!(
+                "{}: the checkpoint does not match the run's config (runs, sizes); start the run again without --resume",
+                path.display()
+            )));
+        }
+        Ok(cp)
+    }
+
+    /// Says where a resumed run continues.
+    pub fn resume_note(&self, out: &Path, generations: usize) -> String {
+        match self.runs.iter().find(|r| !r.done) {
+            Some(r) => format!(
+                "resuming {} at generation {}/{generations}{} ({} generation(s) were done, {:.1} s)",
+                out.display(),
+                r.history.len() + 1,
+                if self.runs.len() > 1 {
+                    format!(" of the robot of {}", r.label)
+                } else {
+                    String::new()
+                },
+                r.history.len(),
+                self.wall_seconds
+            ),
+            None => format!(
+                "resuming {}: evolution finished, writing the results",
+                out.display()
+            ),
+        }
+    }
+
+    /// Writes the checkpoint (atomically).
+    pub fn save(&self, path: &Path) -> Result<(), CliError> {
+        write_atomic(path, serde_json::to_vec(self).expect("serialisable"))
+    }
+}

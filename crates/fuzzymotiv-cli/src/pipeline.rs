@@ -1,0 +1,309 @@
+//! The shared pipeline of the commands: evolve (with a checkpoint after every generation),
+//! model the rooms, write a run directory's records, figures and report; and run a sweep's
+//! jobs.
+
+use std::path::Path;
+use std::time::Instant;
+
+use fuzzymotiv::config::Training;
+use fuzzymotiv::evolution::{Evolution, GenerationState};
+use fuzzymotiv::experiment::{Experiment, Run};
+use fuzzymotiv::modelling::AemReport;
+use indicatif::ProgressBar;
+
+use crate::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun};
+use crate::error::CliError;
+use crate::files::{StagedDir, io_err, write_atomic};
+use crate::inputs::{Loaded, resolved_toml};
+use crate::png::write_figure;
+use crate::progress::Progress;
+use crate::records::{
+    BestGenome, Finished, GenerationRow, RecognitionTable, RunSummary, to_csv, to_json,
+};
+use crate::report;
+use crate::svg::{best_paths_svg, fitness_svg, terms_svg};
+use crate::sweep_plan::Sweep;
+use crate::tables::{provenance_line, table_markdown};
+
+/// Configures rayon's global pool.
+pub fn set_threads(threads: Option<usize>) -> Result<(), CliError> {
+    if let Some(n) = threads {
+        if n == 0 {
+            return Err(CliError::input("--threads must be at least 1"));
+        }
+        // A second call (e.g. in-process tests) keeps the first pool; results do not depend on it.
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global();
+    }
+    Ok(())
+}
+
+/// What is about to run, said before the first generation (which may take long).
+pub fn start_line(exp: &Experiment, out: &Path) -> String {
+    format!(
+        "{}: seed {}, {} × {} generations of {} robots, {} room(s) × {} steps per trial → {}",
+        exp.name(),
+        exp.seed(),
+        exp.runs().len(),
+        exp.ga().generations,
+        exp.ga().population,
+        exp.arenas().len(),
+        exp.trial_params().steps,
+        out.display()
+    )
+}
+
+/// Runs a loaded config and writes its run directory `out` (atomically), with `report.html`
+/// and the figures (and their PNGs with `png`). After every generation a checkpoint is written
+/// into the staging directory; with `resume`, an interrupted run continues from its last
+/// checkpoint and ends with the same files.
+pub fn execute(
+    loaded: &Loaded,
+    out: &Path,
+    progress: &Progress,
+    resume: bool,
+    png: bool,
+) -> Result<Finished, CliError> {
+    execute_with(loaded, out, progress, resume, png, &mut |_| {})
+}
+
+/// [`execute`], calling `hook` after every generation once its checkpoint is saved (the Python
+/// bindings report progress and stop on Ctrl-C there; a hook that unwinds leaves the staging
+/// directory resumable).
+pub fn execute_with(
+    loaded: &Loaded,
+    out: &Path,
+    progress: &Progress,
+    resume: bool,
+    png: bool,
+    hook: &mut dyn FnMut(&GenerationState<'_>),
+) -> Result<Finished, CliError> {
+    let exp = &loaded.experiment;
+    let staged = if resume {
+        StagedDir::reopen(out)?
+    } else {
+        let staged = StagedDir::new(out)?;
+        staged.write("config.resolved.toml", resolved_toml(&loaded.raw))?;
+        staged
+    };
+    let mut session = Session::open(&staged, exp, out, progress, resume)?;
+    let evolutions = exp
+        .runs()
+        .iter()
+        .enumerate()
+        .map(|(k, run)| session.evolve(exp, run, k, progress, hook))
+        .collect::<Result<Vec<_>, _>>()?;
+    staged.write("generations.csv", to_csv(&GenerationRow::all(&evolutions)))?;
+    let aem = model_rooms(exp, &evolutions)?;
+    let done = Finished::new(exp, evolutions, aem, session.wall_seconds());
+    write_run(&staged, loaded, &done, png)?;
+    staged.commit()?;
+    Ok(done)
+}
+
+/// Environment modelling of every evolution's best robot.
+pub fn model_rooms(exp: &Experiment, evolutions: &[Evolution]) -> Result<Vec<AemReport>, CliError> {
+    evolutions
+        .iter()
+        .map(|evo| exp.environment_modelling(&evo.population[evo.best], &evo.run))
+        .collect::<Result<_, _>>()
+        .map_err(|e| CliError::runtime(format!("environment modelling failed: {e}")))
+}
+
+/// A run being evolved in a staging directory: its checkpoint and its wall time.
+struct Session<'a> {
+    staged: &'a StagedDir,
+    checkpoint: Checkpoint,
+    /// Wall time of earlier sessions (before a resume): it counts too.
+    earlier_seconds: f64,
+    start: Instant,
+}
+
+impl<'a> Session<'a> {
+    /// A fresh session, or the one a checkpoint continues.
+    fn open(
+        staged: &'a StagedDir,
+        exp: &Experiment,
+        out: &Path,
+        progress: &Progress,
+        resume: bool,
+    ) -> Result<Session<'a>, CliError> {
+        let runs = exp.runs();
+        let checkpoint = if resume {
+            let cp = Checkpoint::load(&staged.path(CHECKPOINT), &runs, exp)?;
+            progress.note(&cp.resume_note(out, exp.ga().generations));
+            cp
+        } else {
+            Checkpoint::fresh(&runs)
+        };
+        Ok(Session {
+            staged,
+            earlier_seconds: checkpoint.wall_seconds,
+            checkpoint,
+            start: Instant::now(),
+        })
+    }
+
+    fn wall_seconds(&self) -> f64 {
+        self.earlier_seconds + self.start.elapsed().as_secs_f64()
+    }
+
+    /// Evolves run `k` from where the checkpoint left it, saving the checkpoint after every
+    /// generation.
+    fn evolve(
+        &mut self,
+        exp: &Experiment,
+        run: &Run,
+        k: usize,
+        progress: &Progress,
+        hook: &mut dyn FnMut(&GenerationState<'_>),
+    ) -> Result<Evolution, CliError> {
+        let saved = self.checkpoint.runs[k].clone();
+        progress.skip(saved.history.len());
+        if saved.done {
+            return Ok(exp.finished(run, saved.population_f64(), saved.history));
+        }
+        let population = if saved.population.is_empty() {
+            exp.initial_population(run)
+        } else {
+            saved.population_f64()
+        };
+        let mut write_error = None;
+        let mut on_generation = |state: &GenerationState<'_>| {
+            let (g, best) = (state.history.len(), state.record().stats.max);
+            progress.generation(&run.label, g, exp.ga().generations, best);
+            if let Err(e) = self.save(k, &run.label, state) {
+                write_error.get_or_insert(e);
+            }
+            hook(state);
+        };
+        let done = saved.history.len();
+        let evo = exp.evolve_from(run, done, population, saved.history, &mut on_generation);
+        write_error.map_or(Ok(evo), Err)
+    }
+
+    fn save(&mut self, k: usize, label: &str, state: &GenerationState<'_>) -> Result<(), CliError> {
+        self.checkpoint.runs[k] = CheckpointRun::from_state(label, state);
+        self.checkpoint.wall_seconds = self.wall_seconds();
+        self.checkpoint.save(&self.staged.path(CHECKPOINT))
+    }
+}
+
+/// The records, figures and report of a finished run; the checkpoint goes.
+fn write_run(
+    staged: &StagedDir,
+    loaded: &Loaded,
+    done: &Finished,
+    png: bool,
+) -> Result<(), CliError> {
+    let exp = &loaded.experiment;
+    staged.write(
+        "best_genome.json",
+        to_json(&BestGenome::of(exp, &done.evolutions)),
+    )?;
+    staged.write("recognition.csv", RecognitionTable::of(exp, done).to_csv())?;
+    staged.write(
+        "table.md",
+        table_markdown(&done.rows) + &provenance_line(loaded),
+    )?;
+    write_run_figures(staged, exp, done, png)?;
+    staged.write("summary.json", to_json(&RunSummary::of(exp, done)))?;
+    let checkpoint = staged.path(CHECKPOINT);
+    std::fs::remove_file(&checkpoint).map_err(|e| io_err(&checkpoint, e))?;
+    staged.write("report.html", report::run_page(loaded, done))
+}
+
+/// `fitness.svg`, `terms.svg` and `trajectories.svg` (with PNGs when `png`).
+fn write_run_figures(
+    staged: &StagedDir,
+    exp: &Experiment,
+    done: &Finished,
+    png: bool,
+) -> Result<(), CliError> {
+    let setting = format!(
+        "{} (C,H,O,E) = {:?}",
+        exp.name(),
+        exp.motivations().as_array()
+    );
+    let panels: Vec<_> = done
+        .evolutions
+        .iter()
+        .map(|e| {
+            let title = match exp.training() {
+                Training::AllRooms => setting.clone(),
+                Training::PerRoom => format!("{}: robot evolved in {}", exp.name(), e.run.label),
+            };
+            (title, e.history.clone())
+        })
+        .collect();
+    write_figure(staged, "fitness", &fitness_svg(&panels), png)?;
+    write_figure(staged, "terms", &terms_svg(&panels), png)?;
+    let title = format!(
+        "Best robot, {} (C, H, O, E) = {:?}",
+        exp.name(),
+        exp.motivations().as_array()
+    );
+    let paths = best_paths_svg(&title, exp, &done.trajectories());
+    write_figure(staged, "trajectories", &paths, png)
+}
+
+/// Runs the `selected` jobs of `sweep` into `out/jobs/ID/`, skipping finished ones. On a
+/// terminal a bar counts jobs; otherwise each job prints plain progress lines (not with `quiet`).
+pub fn run_jobs(
+    sweep: &Sweep,
+    text: &str,
+    selected: &[usize],
+    out: &Path,
+    quiet: bool,
+) -> Result<(), CliError> {
+    let terminal = std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let jobs_dir = out.join("jobs");
+    std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
+    write_atomic(&out.join("plan.jsonl"), sweep.plan_jsonl())?;
+    write_atomic(&out.join("sweep.toml"), text)?;
+    let bar = if terminal && !quiet {
+        ProgressBar::new(selected.len() as u64)
+    } else {
+        ProgressBar::hidden()
+    };
+    let (mut ran, mut skipped) = (0, 0);
+    for &k in selected {
+        let job = &sweep.jobs[k];
+        let dir = jobs_dir.join(&job.id);
+        bar.set_message(job.key.clone());
+        if dir.join("DONE").is_file() {
+            skipped += 1;
+            bar.inc(1);
+            continue;
+        }
+        let loaded = sweep.load_job(job)?;
+        let resume = StagedDir::staging_path(&dir).join(CHECKPOINT).is_file();
+        let progress = if terminal || quiet {
+            Progress::hidden()
+        } else {
+            let p = Progress::new(&loaded.experiment, 1, false);
+            p.set_prefix(&format!(
+                "job {} ({}/{} here) {} seed {}",
+                job.id,
+                ran + skipped + 1,
+                selected.len(),
+                job.key,
+                job.seed
+            ));
+            p
+        };
+        execute(&loaded, &dir, &progress, resume, false)?;
+        write_atomic(&dir.join("job.json"), to_json(job))?;
+        write_atomic(&dir.join("DONE"), "")?;
+        ran += 1;
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    eprintln!(
+        "{ran} jobs run, {skipped} already done, {} in this selection, {} in the plan",
+        selected.len(),
+        sweep.jobs.len()
+    );
+    Ok(())
+}

@@ -1,0 +1,1252 @@
+//! The output model: one serde type per file that `run`, `reproduce` and `sweep` write and
+//! read back, the in-memory outcome of a run they are made from, and the readers. A reader
+//! that meets a missing or malformed field fails with an input error (exit code 2) naming the
+//! file and the field.
+//!
+//! The JSON files were first written from JSON maps, whose keys come out sorted: the structs
+//! of those files declare their fields in alphabetical order so that the bytes stay the same.
+//! CSV cells keep their fixed decimals through [`Fixed`].
+//!
+//! | file | type |
+//! |---|---|
+//! | run `summary.json` | [`RunSummary`] |
+//! | `best_genome.json` | [`BestGenome`] |
+//! | `generations.csv` | [`GenerationRow`] |
+//! | `recognition.csv` | [`RecognitionTable`] |
+//! | reproduce `summary.json` | [`StudySummary`] (ablation: [`AblationSummary`]) |
+//! | sweep `plan.jsonl`, `jobs/ID/job.json` | [`Job`] |
+//! | sweep `results.csv` | [`SweepResults`] |
+//! | sweep `aggregate.csv` | [`AggregateRow`] |
+
+use std::fmt;
+use std::path::Path;
+
+use fuzzymotiv::config::Training;
+use fuzzymotiv::evolution::{Evolution, GenerationRecord};
+use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::fuzzy::Motivations;
+use fuzzymotiv::modelling::{AemReport, InstanceRun};
+use fuzzymotiv::trial::Trajectory;
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use crate::error::CliError;
+
+/// The `program` field of every JSON file.
+pub const PROGRAM: &str = "fuzzymotiv";
+
+/// A float written with `D` decimals (a CSV cell), read back as any float.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Fixed<const D: usize>(pub f64);
+
+impl<const D: usize> Serialize for Fixed<D> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(&format_args!("{:.*}", D, self.0))
+    }
+}
+
+impl<'de, const D: usize> Deserialize<'de> for Fixed<D> {
+    fn deserialize<De: Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
+        f64::deserialize(d).map(Fixed)
+    }
+}
+
+impl<const D: usize> fmt::Display for Fixed<D> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:.*}", D, self.0)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// In memory: what a finished run produced.
+
+/// Everything a finished run produced; the run directory's files are written from it.
+pub struct Finished {
+    /// One evolution per run of the protocol.
+    pub evolutions: Vec<Evolution>,
+    /// One AEM report per evolution (with the best robot's room-modelling runs).
+    pub aem: Vec<AemReport>,
+    /// The per-room table.
+    pub rows: Vec<RoomRow>,
+    /// Wall time (s).
+    pub wall_seconds: f64,
+}
+
+impl Finished {
+    /// The outcome of `evolutions` and their environment modelling `aem`, with the per-room
+    /// table.
+    pub fn new(
+        exp: &Experiment,
+        evolutions: Vec<Evolution>,
+        aem: Vec<AemReport>,
+        wall_seconds: f64,
+    ) -> Finished {
+        let mut done = Finished {
+            evolutions,
+            aem,
+            rows: Vec::new(),
+            wall_seconds,
+        };
+        done.rows = (0..exp.arenas().len())
+            .map(|r| RoomRow::of(&done, r))
+            .collect();
+        done
+    }
+
+    /// The evolution whose best robot stands for room `r` (the one robot of all-rooms training,
+    /// or the room's own robot), and the room's position among that evolution's rooms.
+    pub fn robot_for_room(&self, r: usize) -> (&Evolution, usize) {
+        match self.evolutions.len() {
+            1 => (&self.evolutions[0], r),
+            _ => (&self.evolutions[r], 0),
+        }
+    }
+
+    /// The AEM report of the robot that stands for room `r` (see [`Finished::robot_for_room`]).
+    pub fn aem_for_room(&self, r: usize) -> &AemReport {
+        if self.aem.len() == 1 {
+            &self.aem[0]
+        } else {
+            &self.aem[r]
+        }
+    }
+
+    /// The room-modelling run of room `r`'s robot in room `r` (the run whose actions became the
+    /// room's stored instance): for figures and the replay.
+    pub fn instance(&self, r: usize) -> &InstanceRun {
+        &self.aem_for_room(r).rooms[r].instance
+    }
+
+    /// The trajectories of [`Finished::instance`], one per room.
+    pub fn trajectories(&self) -> Vec<&Trajectory> {
+        (0..self.rows.len())
+            .map(|r| &self.instance(r).trajectory)
+            .collect()
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// A run directory.
+
+/// One row of `generations.csv`: the population's F and mean terms in one generation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GenerationRow {
+    /// Generation index, from 0.
+    pub generation: usize,
+    /// F of the best individual (the population's maximum).
+    pub best: Fixed<9>,
+    /// Mean F.
+    pub mean: Fixed<9>,
+    /// Population standard deviation of F.
+    pub std: Fixed<9>,
+    /// Lowest F.
+    pub min: Fixed<9>,
+    /// Highest F (equal to `best`).
+    pub max: Fixed<9>,
+    /// Population mean of the exploration term a.
+    pub a: Fixed<9>,
+    /// Population mean of the homing term g.
+    pub g: Fixed<9>,
+    /// Population mean of the orientation term l.
+    pub l: Fixed<9>,
+    /// Population mean of the battery term b.
+    pub b: Fixed<9>,
+    /// The run's label: `all`, or the room a per-room robot was evolved in.
+    pub room: String,
+}
+
+impl GenerationRow {
+    /// The row of `rec` in run `run`.
+    pub fn of(rec: &GenerationRecord, run: &str) -> GenerationRow {
+        let (s, t) = (rec.stats, rec.terms);
+        GenerationRow {
+            generation: rec.generation,
+            best: Fixed(s.max),
+            mean: Fixed(s.mean),
+            std: Fixed(s.std),
+            min: Fixed(s.min),
+            max: Fixed(s.max),
+            a: Fixed(t.a),
+            g: Fixed(t.g),
+            l: Fixed(t.l),
+            b: Fixed(t.b),
+            room: run.to_string(),
+        }
+    }
+
+    /// Every generation of every evolution, in order.
+    pub fn all(evolutions: &[Evolution]) -> Vec<GenerationRow> {
+        evolutions
+            .iter()
+            .flat_map(|e| e.history.iter().map(|r| GenerationRow::of(r, &e.run.label)))
+            .collect()
+    }
+}
+
+/// One row of the per-room table (docs/model.md §10): `summary.json`'s `rooms`, `table.md`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RoomRow {
+    /// Mean F of the final population in this room.
+    pub average_fitness: f64,
+    /// Mean 100·b over the test runs.
+    pub battery_pct: f64,
+    /// Mean 100·a over the test runs.
+    pub exploration_pct: f64,
+    /// Mean 100·g over the test runs (% homing).
+    pub homing: f64,
+    /// The room instance's r-node, when AEM ran.
+    pub r_node: Option<usize>,
+    /// Correct recognitions in %, when AEM ran.
+    pub recognition_pct: Option<f64>,
+    /// Room name.
+    pub room: String,
+}
+
+impl RoomRow {
+    /// Room `r`'s row: all-rooms training uses the one robot everywhere, per-room training
+    /// each room's own robot.
+    fn of(done: &Finished, r: usize) -> RoomRow {
+        let (evo, k) = done.robot_for_room(r);
+        let a = &done.aem_for_room(r).rooms[r];
+        RoomRow {
+            room: a.room.clone(),
+            average_fitness: evo.mean_room_fitness(k),
+            exploration_pct: a.exploration_pct,
+            recognition_pct: a.recognition_pct,
+            battery_pct: a.battery_pct,
+            homing: a.homing_pct,
+            r_node: a.r_node,
+        }
+    }
+}
+
+/// The motivations X = (C, H, O, E) as files record them.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct MotivationsRecord {
+    /// Curiosity C.
+    pub curiosity: f64,
+    /// Energy E.
+    pub energy: f64,
+    /// Homing H.
+    pub homing: f64,
+    /// Orientation O.
+    pub orientation: f64,
+}
+
+impl MotivationsRecord {
+    /// The record of `m`.
+    pub fn of(m: &Motivations) -> MotivationsRecord {
+        MotivationsRecord {
+            curiosity: m.curiosity,
+            energy: m.energy,
+            homing: m.homing,
+            orientation: m.orientation,
+        }
+    }
+
+    /// (C, H, O, E).
+    pub fn as_array(&self) -> [f64; 4] {
+        [self.curiosity, self.homing, self.orientation, self.energy]
+    }
+}
+
+/// The population's best and mean F in one generation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct GenerationStat {
+    /// Best F (the population's maximum).
+    pub best: f64,
+    /// Mean F.
+    pub mean: f64,
+}
+
+impl GenerationStat {
+    /// The stat of `rec`.
+    pub fn of(rec: &GenerationRecord) -> GenerationStat {
+        GenerationStat {
+            best: rec.stats.max,
+            mean: rec.stats.mean,
+        }
+    }
+}
+
+/// One evolution in a run's `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunRecord {
+    /// Fitness of the best final individual.
+    pub best_fitness: f64,
+    /// The first generation.
+    pub first_generation: GenerationStat,
+    /// The last generation.
+    pub last_generation: GenerationStat,
+    /// The run's label.
+    pub run: String,
+}
+
+/// A run directory's `summary.json` (also the Python bindings' `summary`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunSummary {
+    /// GA generations.
+    pub generations: usize,
+    /// The motivations.
+    pub motivations: MotivationsRecord,
+    /// The experiment's name.
+    pub name: String,
+    /// GA population.
+    pub population: usize,
+    /// Always `fuzzymotiv`.
+    pub program: String,
+    /// The per-room table.
+    pub rooms: Vec<RoomRow>,
+    /// One entry per evolution.
+    pub runs: Vec<RunRecord>,
+    /// Base seed.
+    pub seed: u64,
+    /// Steps per trial.
+    pub steps: usize,
+    /// All-rooms or per-room training.
+    pub training: Training,
+    /// Program version.
+    pub version: String,
+    /// Wall time (s), over all sessions of a resumed run.
+    pub wall_seconds: f64,
+}
+
+impl RunSummary {
+    /// The summary of a finished run.
+    pub fn of(exp: &Experiment, done: &Finished) -> RunSummary {
+        let runs = done
+            .evolutions
+            .iter()
+            .map(|evo| RunRecord {
+                run: evo.run.label.clone(),
+                first_generation: GenerationStat::of(evo.history.first().expect("a generation")),
+                last_generation: GenerationStat::of(evo.history.last().expect("a generation")),
+                best_fitness: evo.evaluations[evo.best].fitness,
+            })
+            .collect();
+        RunSummary {
+            program: PROGRAM.into(),
+            version: fuzzymotiv::VERSION.into(),
+            name: exp.name().into(),
+            seed: exp.seed(),
+            motivations: MotivationsRecord::of(exp.motivations()),
+            training: exp.training(),
+            population: exp.ga().population,
+            generations: exp.ga().generations,
+            steps: exp.trial_params().steps,
+            rooms: done.rows.clone(),
+            runs,
+            wall_seconds: done.wall_seconds,
+        }
+    }
+}
+
+/// The network's shape in `best_genome.json`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ShapeRecord {
+    /// Hidden units.
+    pub hidden: usize,
+    /// Inputs (8).
+    #[serde(default = "eight")]
+    pub inputs: usize,
+    /// Outputs (2).
+    #[serde(default = "two")]
+    pub outputs: usize,
+}
+
+fn eight() -> usize {
+    8
+}
+
+fn two() -> usize {
+    2
+}
+
+/// The terms and F of the best robot in one room, as the GA evaluated it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RoomTerms {
+    /// Exploration.
+    pub a: f64,
+    /// Battery.
+    pub b: f64,
+    /// F in this room.
+    pub f: f64,
+    /// Homing.
+    pub g: f64,
+    /// Orientation.
+    pub l: f64,
+    /// Room name.
+    pub room: String,
+}
+
+/// The best robot of one evolution in `best_genome.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GenomeRun {
+    /// Its fitness (mean F over its rooms).
+    pub fitness: f64,
+    /// The generation it belongs to (the last).
+    pub generation: usize,
+    /// Its index in that generation.
+    pub individual: usize,
+    /// The run's label.
+    pub run: String,
+    /// Its terms per room.
+    pub terms: Vec<RoomTerms>,
+    /// Its network weights.
+    pub weights: Vec<f64>,
+}
+
+/// `best_genome.json`: the best robot of the first evolution at the top level, every
+/// evolution's in `runs`. `replay` needs only `shape.hidden` and `weights` (and `seed`, `runs`
+/// when present), so a hand-written genome file may leave the rest out.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BestGenome {
+    /// Fitness of the top-level robot.
+    #[serde(default)]
+    pub fitness: f64,
+    /// How the weights are laid out.
+    #[serde(default)]
+    pub layout: String,
+    /// Always `fuzzymotiv`.
+    #[serde(default)]
+    pub program: String,
+    /// The top-level robot's run label.
+    #[serde(default)]
+    pub run: String,
+    /// Every evolution's best robot.
+    #[serde(default)]
+    pub runs: Vec<GenomeRun>,
+    /// Base seed of the run that evolved it.
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// The network's shape.
+    pub shape: ShapeRecord,
+    /// The top-level robot's terms per room.
+    #[serde(default)]
+    pub terms: Vec<RoomTerms>,
+    /// Program version.
+    #[serde(default)]
+    pub version: String,
+    /// The top-level robot's weights.
+    pub weights: Vec<f64>,
+}
+
+/// The layout of the weights in a genome.
+pub const GENOME_LAYOUT: &str =
+    "per hidden unit [bias, 8 input weights], then per output [bias, hidden weights]";
+
+impl BestGenome {
+    /// The best robots of a finished run.
+    pub fn of(exp: &Experiment, evolutions: &[Evolution]) -> BestGenome {
+        let names = exp.room_names();
+        let runs: Vec<GenomeRun> = evolutions
+            .iter()
+            .map(|evo| {
+                let e = &evo.evaluations[evo.best];
+                GenomeRun {
+                    run: evo.run.label.clone(),
+                    generation: evo.history.len() - 1,
+                    individual: evo.best,
+                    fitness: e.fitness,
+                    terms: evo
+                        .run
+                        .rooms
+                        .iter()
+                        .zip(&e.per_room)
+                        .map(|(&r, s)| RoomTerms {
+                            room: names[r].clone(),
+                            f: s.f,
+                            a: s.terms.a,
+                            g: s.terms.g,
+                            l: s.terms.l,
+                            b: s.terms.b,
+                        })
+                        .collect(),
+                    weights: evo.population[evo.best].clone(),
+                }
+            })
+            .collect();
+        let first = runs[0].clone();
+        let shape = exp.shape();
+        BestGenome {
+            program: PROGRAM.into(),
+            version: fuzzymotiv::VERSION.into(),
+            seed: Some(exp.seed()),
+            shape: ShapeRecord {
+                hidden: shape.hidden,
+                inputs: shape.inputs,
+                outputs: shape.outputs,
+            },
+            layout: GENOME_LAYOUT.into(),
+            run: first.run,
+            fitness: first.fitness,
+            terms: first.terms,
+            weights: first.weights,
+            runs,
+        }
+    }
+}
+
+/// One row of `recognition.csv`: a room's test runs and what they were recognised as.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecognitionRow {
+    /// The room the robot was in.
+    pub room: String,
+    /// Test runs in it.
+    pub test_runs: u32,
+    /// Correct recognitions.
+    pub correct: u32,
+    /// % recognition (written with one decimal; none with AEM disabled).
+    pub recognition_pct: Option<f64>,
+    /// Test runs recognised as each room (columns `as_ROOM`, in the table's room order).
+    pub recognised_as: Vec<u32>,
+    /// Test runs not recognised.
+    pub not_recognised: u32,
+}
+
+/// `recognition.csv`: one row per room, one `as_ROOM` column per room.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecognitionTable {
+    /// The rooms, in column order.
+    pub rooms: Vec<String>,
+    /// One row per room.
+    pub rows: Vec<RecognitionRow>,
+}
+
+impl RecognitionTable {
+    /// The confusion counts of a finished run (each room's robot's counts in its room).
+    pub fn of(exp: &Experiment, done: &Finished) -> RecognitionTable {
+        let rows = done
+            .rows
+            .iter()
+            .enumerate()
+            .map(|(r, row)| {
+                let confusion = &done.aem_for_room(r).confusion;
+                let counts = &confusion.counts[r];
+                let (as_rooms, not) = counts.split_at(counts.len() - 1);
+                RecognitionRow {
+                    room: row.room.clone(),
+                    test_runs: counts.iter().sum(),
+                    correct: confusion.correct(r),
+                    recognition_pct: row.recognition_pct,
+                    recognised_as: as_rooms.to_vec(),
+                    not_recognised: not[0],
+                }
+            })
+            .collect();
+        RecognitionTable {
+            rooms: exp.room_names(),
+            rows,
+        }
+    }
+
+    fn header(&self) -> Vec<String> {
+        let mut h: Vec<String> = ["room", "test_runs", "correct", "recognition_pct"]
+            .map(String::from)
+            .to_vec();
+        h.extend(self.rooms.iter().map(|n| format!("as_{n}")));
+        h.push("not_recognised".into());
+        h
+    }
+
+    /// The file's text.
+    pub fn to_csv(&self) -> String {
+        let mut w = csv_writer();
+        write_row(&mut w, self.header());
+        for r in &self.rows {
+            let mut cells = vec![
+                r.room.clone(),
+                r.test_runs.to_string(),
+                r.correct.to_string(),
+                r.recognition_pct
+                    .map_or(String::new(), |p| Fixed::<1>(p).to_string()),
+            ];
+            cells.extend(r.recognised_as.iter().map(u32::to_string));
+            cells.push(r.not_recognised.to_string());
+            write_row(&mut w, cells);
+        }
+        csv_text(w)
+    }
+
+    /// Reads `recognition.csv`.
+    pub fn read(path: &Path) -> Result<RecognitionTable, CliError> {
+        let table = CsvTable::read(path)?;
+        let rooms: Vec<String> = table
+            .headers
+            .iter()
+            .filter_map(|h| h.strip_prefix("as_").map(String::from))
+            .collect();
+        let rows = (0..table.rows.len())
+            .map(|i| {
+                Ok(RecognitionRow {
+                    room: table.get(i, "room")?,
+                    test_runs: table.get(i, "test_runs")?,
+                    correct: table.get(i, "correct")?,
+                    recognition_pct: table.get_opt(i, "recognition_pct")?,
+                    recognised_as: rooms
+                        .iter()
+                        .map(|n| table.get(i, &format!("as_{n}")))
+                        .collect::<Result<_, _>>()?,
+                    not_recognised: table.get(i, "not_recognised")?,
+                })
+            })
+            .collect::<Result<_, CliError>>()?;
+        Ok(RecognitionTable { rooms, rows })
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// A `reproduce` directory.
+
+/// A row of a study's tables in `summary.json`: means (or standard deviations) over seeds, or
+/// one seed's values; none where a value is missing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TableRow {
+    /// Average fitness.
+    pub average_fitness: Option<f64>,
+    /// % battery usage.
+    pub battery_pct: Option<f64>,
+    /// % optimal exploration.
+    pub exploration_pct: Option<f64>,
+    /// % homing.
+    pub homing: Option<f64>,
+    /// % recognition.
+    pub recognition_pct: Option<f64>,
+    /// Room name.
+    pub room: String,
+}
+
+impl TableRow {
+    /// One seed's row.
+    pub fn of(r: &RoomRow) -> TableRow {
+        TableRow {
+            room: r.room.clone(),
+            average_fitness: Some(r.average_fitness),
+            exploration_pct: Some(r.exploration_pct),
+            recognition_pct: r.recognition_pct,
+            battery_pct: Some(r.battery_pct),
+            homing: Some(r.homing),
+        }
+    }
+}
+
+/// One seed of a setting in `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SeedSummary {
+    /// Per robot, its confusion counts (`counts[true room][answer]`, the last answer "not
+    /// recognised").
+    pub confusion: Vec<Vec<Vec<u32>>>,
+    /// The first generation.
+    pub first_generation: GenerationStat,
+    /// The last generation.
+    pub last_generation: GenerationStat,
+    /// The seed's table.
+    pub rows: Vec<TableRow>,
+    /// Its run directory, relative to the study.
+    pub run_dir: String,
+    /// The seed.
+    pub seed: u64,
+}
+
+/// One setting of the study in `summary.json`: `rows`, `first_generation` and
+/// `last_generation` are means over seeds; `std` and `per_seed` give the spread.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SettingSummary {
+    /// Mean over seeds of the first generation.
+    pub first_generation: GenerationStat,
+    /// GA generations.
+    pub generations: usize,
+    /// Mean over seeds of the last generation.
+    pub last_generation: GenerationStat,
+    /// The seed whose figures are shown.
+    pub median_seed: u64,
+    /// The setting's motivations.
+    pub motivations: MotivationsRecord,
+    /// The setting's name.
+    pub name: String,
+    /// Every seed.
+    pub per_seed: Vec<SeedSummary>,
+    /// GA population.
+    pub population: usize,
+    /// Means over seeds.
+    pub rows: Vec<TableRow>,
+    /// Standard deviations over seeds.
+    pub std: Vec<TableRow>,
+}
+
+/// One of the paper's claims and whether the study shows it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClaimRecord {
+    /// The claim in words.
+    pub claim: String,
+    /// The numbers behind the verdict.
+    pub evidence: String,
+    /// Whether the study shows it.
+    pub holds: bool,
+}
+
+/// `reproduce`'s `summary.json` (read by `scripts/seeds_table.py`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StudySummary {
+    /// The paper's claims.
+    pub claims: Vec<ClaimRecord>,
+    /// GA generations.
+    pub generations: usize,
+    /// `--set` overrides.
+    pub overrides: Vec<String>,
+    /// GA population.
+    pub population: usize,
+    /// Always `fuzzymotiv`.
+    pub program: String,
+    /// Whether `--quick`.
+    pub quick: bool,
+    /// `--seed`.
+    pub seed: u64,
+    /// The study's seeds.
+    pub seeds: Vec<u64>,
+    /// The two settings.
+    pub settings: Vec<SettingSummary>,
+    /// Program version.
+    pub version: String,
+    /// Wall time (s).
+    pub wall_seconds: f64,
+}
+
+/// One variant of the ablation in its `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct VariantSummary {
+    /// The paper's claims under this variant.
+    pub claims: Vec<ClaimRecord>,
+    /// The variant's name (its directory).
+    pub name: String,
+    /// What it switches back, in words.
+    pub switched_back: String,
+}
+
+/// `reproduce --ablation`'s `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AblationSummary {
+    /// GA generations.
+    pub generations: usize,
+    /// `--set` overrides.
+    pub overrides: Vec<String>,
+    /// GA population.
+    pub population: usize,
+    /// Always `fuzzymotiv`.
+    pub program: String,
+    /// Whether `--quick`.
+    pub quick: bool,
+    /// `--seed`.
+    pub seed: u64,
+    /// The study's seeds.
+    pub seeds: Vec<u64>,
+    /// Every variant.
+    pub variants: Vec<VariantSummary>,
+    /// Program version.
+    pub version: String,
+    /// Wall time (s).
+    pub wall_seconds: f64,
+}
+
+// ---------------------------------------------------------------------------------------------
+// A sweep directory.
+
+/// One job of a sweep: a line of `plan.jsonl`, and `jobs/ID/job.json`.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Job {
+    /// Position in the plan (stable for a given sweep file).
+    pub index: usize,
+    /// Hash of the fully resolved config (16 hex digits).
+    pub id: String,
+    /// The job's key: its point and replicate, e.g. `C=0.8,H=0.1,O=0,E=0.1;rep=0`.
+    pub key: String,
+    /// The key without the replicate: jobs with equal settings share it.
+    pub setting: String,
+    /// Replicate number.
+    pub replicate: usize,
+    /// Seed derived from the base seed and the key.
+    pub seed: u64,
+    /// The `--set` overrides that make this job's config from the base.
+    pub overrides: Vec<String>,
+}
+
+impl Job {
+    /// The job's swept `[sweep.grid]` values: every override but the motivations and the seed,
+    /// as (key, TOML value).
+    pub fn grid_values(&self) -> Vec<(&str, &str)> {
+        self.overrides
+            .iter()
+            .filter_map(|o| o.split_once('='))
+            .filter(|(k, _)| *k != "seed" && !k.starts_with("motivations."))
+            .collect()
+    }
+
+    /// Reads `plan.jsonl`.
+    pub fn read_plan(path: &Path) -> Result<Vec<Job>, CliError> {
+        let text = read_text(path, "the plan (is this a sweep directory?)")?;
+        text.lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty())
+            .map(|(i, l)| parse_json(l, &format!("{}: line {}", path.display(), i + 1)))
+            .collect()
+    }
+}
+
+/// The result columns of `results.csv` and `aggregate.csv`, in order.
+pub const METRICS: [&str; 5] = [
+    "average_fitness",
+    "exploration_pct",
+    "recognition_pct",
+    "battery_pct",
+    "homing_pct",
+];
+
+/// Prefix of the `results.csv` columns of `[sweep.grid]` keys.
+pub const GRID_PREFIX: &str = "grid.";
+
+/// One row of `results.csv`: one room of one job.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepResultRow {
+    /// The job's id.
+    pub job_id: String,
+    /// The job's plan index.
+    pub index: usize,
+    /// The job's setting (its point without the replicate).
+    pub setting: String,
+    /// Replicate number.
+    pub replicate: usize,
+    /// The job's seed.
+    pub seed: u64,
+    /// The job's resolved motivations.
+    pub motivations: MotivationsRecord,
+    /// The value of every swept `[sweep.grid]` key, in [`SweepResults::grid`] order (numbers
+    /// as written in the sweep file, strings unquoted).
+    pub grid: Vec<String>,
+    /// Room name.
+    pub room: String,
+    /// The room's row of the job's table, in [`METRICS`] order (six decimals).
+    pub values: [Option<f64>; 5],
+}
+
+/// `results.csv`: the columns `job_id, index, setting, replicate, seed, curiosity, homing,
+/// orientation, energy` (the motivation weights), one `grid.KEY` column per swept key,
+/// `room`, then the results [`METRICS`].
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SweepResults {
+    /// The swept `[sweep.grid]` keys, in column order.
+    pub grid: Vec<String>,
+    /// One row per (job, room).
+    pub rows: Vec<SweepResultRow>,
+}
+
+const RESULT_HEAD: [&str; 9] = [
+    "job_id",
+    "index",
+    "setting",
+    "replicate",
+    "seed",
+    "curiosity",
+    "homing",
+    "orientation",
+    "energy",
+];
+
+impl SweepResults {
+    fn header(&self) -> Vec<String> {
+        let mut h: Vec<String> = RESULT_HEAD.map(String::from).to_vec();
+        h.extend(self.grid.iter().map(|k| format!("{GRID_PREFIX}{k}")));
+        h.push("room".into());
+        h.extend(METRICS.map(String::from));
+        h
+    }
+
+    /// The file's text (CSV-escaped where a cell needs it).
+    pub fn to_csv(&self) -> String {
+        let mut w = csv_writer();
+        write_row(&mut w, self.header());
+        for r in &self.rows {
+            let mut cells = vec![
+                r.job_id.clone(),
+                r.index.to_string(),
+                r.setting.clone(),
+                r.replicate.to_string(),
+                r.seed.to_string(),
+            ];
+            cells.extend(r.motivations.as_array().map(|v| v.to_string()));
+            cells.extend(r.grid.iter().cloned());
+            cells.push(r.room.clone());
+            cells.extend(
+                r.values
+                    .map(|v| v.map_or(String::new(), |v| Fixed::<6>(v).to_string())),
+            );
+            write_row(&mut w, cells);
+        }
+        csv_text(w)
+    }
+
+    /// Reads `results.csv`.
+    pub fn read(path: &Path) -> Result<SweepResults, CliError> {
+        let t = CsvTable::read(path)?;
+        let grid: Vec<String> = t
+            .headers
+            .iter()
+            .filter_map(|h| h.strip_prefix(GRID_PREFIX).map(String::from))
+            .collect();
+        let rows = (0..t.rows.len())
+            .map(|i| {
+                Ok(SweepResultRow {
+                    job_id: t.get(i, "job_id")?,
+                    index: t.get(i, "index")?,
+                    setting: t.get(i, "setting")?,
+                    replicate: t.get(i, "replicate")?,
+                    seed: t.get(i, "seed")?,
+                    motivations: MotivationsRecord {
+                        curiosity: t.get(i, "curiosity")?,
+                        homing: t.get(i, "homing")?,
+                        orientation: t.get(i, "orientation")?,
+                        energy: t.get(i, "energy")?,
+                    },
+                    grid: grid
+                        .iter()
+                        .map(|k| t.get(i, &format!("{GRID_PREFIX}{k}")))
+                        .collect::<Result<_, _>>()?,
+                    room: t.get(i, "room")?,
+                    values: [
+                        t.get_opt(i, METRICS[0])?,
+                        t.get_opt(i, METRICS[1])?,
+                        t.get_opt(i, METRICS[2])?,
+                        t.get_opt(i, METRICS[3])?,
+                        t.get_opt(i, METRICS[4])?,
+                    ],
+                })
+            })
+            .collect::<Result<_, CliError>>()?;
+        Ok(SweepResults { grid, rows })
+    }
+}
+
+/// One row of `aggregate.csv`: mean and standard deviation over a setting's replicates in one
+/// room (six decimals; empty where no replicate has a value).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AggregateRow {
+    /// The setting.
+    pub setting: String,
+    /// Room name.
+    pub room: String,
+    /// Replicates.
+    pub n: usize,
+    /// Mean average fitness.
+    pub average_fitness_mean: Option<Fixed<6>>,
+    /// Its standard deviation.
+    pub average_fitness_std: Option<Fixed<6>>,
+    /// Mean % exploration.
+    pub exploration_pct_mean: Option<Fixed<6>>,
+    /// Its standard deviation.
+    pub exploration_pct_std: Option<Fixed<6>>,
+    /// Mean % recognition.
+    pub recognition_pct_mean: Option<Fixed<6>>,
+    /// Its standard deviation.
+    pub recognition_pct_std: Option<Fixed<6>>,
+    /// Mean % battery usage.
+    pub battery_pct_mean: Option<Fixed<6>>,
+    /// Its standard deviation.
+    pub battery_pct_std: Option<Fixed<6>>,
+    /// Mean % homing.
+    pub homing_pct_mean: Option<Fixed<6>>,
+    /// Its standard deviation.
+    pub homing_pct_std: Option<Fixed<6>>,
+}
+
+impl AggregateRow {
+    /// The row of (`setting`, `room`) with `n` replicates and per metric (mean, std).
+    pub fn new(
+        setting: &str,
+        room: &str,
+        n: usize,
+        stats: [(Option<f64>, Option<f64>); 5],
+    ) -> AggregateRow {
+        let [f, e, r, b, h] = stats.map(|(m, s)| (m.map(Fixed), s.map(Fixed)));
+        AggregateRow {
+            setting: setting.into(),
+            room: room.into(),
+            n,
+            average_fitness_mean: f.0,
+            average_fitness_std: f.1,
+            exploration_pct_mean: e.0,
+            exploration_pct_std: e.1,
+            recognition_pct_mean: r.0,
+            recognition_pct_std: r.1,
+            battery_pct_mean: b.0,
+            battery_pct_std: b.1,
+            homing_pct_mean: h.0,
+            homing_pct_std: h.1,
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing and reading.
+
+/// `value` as pretty JSON with a final newline (the JSON files' format).
+pub fn to_json(value: &impl Serialize) -> String {
+    serde_json::to_string_pretty(value).expect("records serialise") + "\n"
+}
+
+/// `rows` as CSV with a header from the field names (nothing for no rows).
+pub fn to_csv<T: Serialize>(rows: &[T]) -> String {
+    let mut w = csv_writer();
+    for r in rows {
+        w.serialize(r).expect("records serialise");
+    }
+    csv_text(w)
+}
+
+fn csv_writer() -> csv::Writer<Vec<u8>> {
+    csv::WriterBuilder::new()
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_writer(Vec::new())
+}
+
+fn write_row(w: &mut csv::Writer<Vec<u8>>, cells: Vec<String>) {
+    w.write_record(&cells).expect("writing to memory");
+}
+
+fn csv_text(w: csv::Writer<Vec<u8>>) -> String {
+    let bytes = w.into_inner().expect("writing to memory");
+    String::from_utf8(bytes).expect("cells are text")
+}
+
+fn read_text(path: &Path, what: &str) -> Result<String, CliError> {
+    std::fs::read_to_string(path)
+        .map_err(|e| CliError::input(format!("{}: cannot read {what}: {e}", path.display())))
+}
+
+/// Reads a JSON record file; a missing or malformed field is an input error naming the file
+/// and the field.
+pub fn read_json<T: DeserializeOwned>(path: &Path) -> Result<T, CliError> {
+    let text = read_text(path, "the file")?;
+    parse_json(&text, &path.display().to_string())
+}
+
+/// Parses JSON text from `source` (a file name, maybe with a line) into a record.
+pub fn parse_json<T: DeserializeOwned>(text: &str, source: &str) -> Result<T, CliError> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    let value: T = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let field = e.path().to_string();
+        let inner = e.into_inner();
+        if inner.classify() != serde_json::error::Category::Data {
+            CliError::input(format!("{source}: not valid JSON: {inner}"))
+        } else if field == "." {
+            CliError::input(format!("{source}: {inner}"))
+        } else {
+            CliError::input(format!("{source}: field `{field}`: {inner}"))
+        }
+    })?;
+    de.end()
+        .map_err(|e| CliError::input(format!("{source}: not valid JSON: {e}")))?;
+    Ok(value)
+}
+
+/// Reads a CSV record file into rows of `T`; a missing or malformed cell is an input error
+/// naming the file, the line and the column.
+pub fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>, CliError> {
+    let text = read_text(path, "the file")?;
+    let mut rdr = csv::Reader::from_reader(text.as_bytes());
+    let headers = rdr.headers().map_err(|e| csv_error(path, None, e))?.clone();
+    rdr.deserialize()
+        .map(|r| r.map_err(|e| csv_error(path, Some(&headers), e)))
+        .collect()
+}
+
+fn csv_error(path: &Path, headers: Option<&csv::StringRecord>, e: csv::Error) -> CliError {
+    let at = e
+        .position()
+        .map_or(String::new(), |p| format!(" line {}:", p.line()));
+    let message = match e.kind() {
+        csv::ErrorKind::Deserialize { err, .. } => {
+            let column = err
+                .field()
+                .and_then(|k| headers.and_then(|h| h.get(k as usize)));
+            match column {
+                Some(c) => format!("field `{c}`: {}", err.kind()),
+                None => err.kind().to_string(),
+            }
+        }
+        _ => e.to_string(),
+    };
+    CliError::input(format!("{}:{at} {message}", path.display()))
+}
+
+/// A CSV file read as text cells, looked up by column name (for files whose columns depend
+/// on the run: `recognition.csv`, `results.csv`).
+struct CsvTable {
+    path: String,
+    headers: Vec<String>,
+    rows: Vec<csv::StringRecord>,
+}
+
+impl CsvTable {
+    fn read(path: &Path) -> Result<CsvTable, CliError> {
+        let text = read_text(path, "the file")?;
+        let mut rdr = csv::Reader::from_reader(text.as_bytes());
+        let headers = rdr
+            .headers()
+            .map_err(|e| csv_error(path, None, e))?
+            .iter()
+            .map(String::from)
+            .collect();
+        let rows = rdr
+            .records()
+            .collect::<Result<_, _>>()
+            .map_err(|e| csv_error(path, None, e))?;
+        Ok(CsvTable {
+            path: path.display().to_string(),
+            headers,
+            rows,
+        })
+    }
+
+    /// The line of row `row` in the file.
+    fn line(&self, row: usize) -> u64 {
+        self.rows[row]
+            .position()
+            .map_or(row as u64 + 2, |p| p.line())
+    }
+
+    fn cell(&self, row: usize, column: &str) -> Result<&str, CliError> {
+        let k = self
+            .headers
+            .iter()
+            .position(|h| h == column)
+            .ok_or_else(|| CliError::input(format!("{}: no column `{column}`", self.path)))?;
+        self.rows[row].get(k).ok_or_else(|| {
+            CliError::input(format!(
+                "{}: line {}: field `{column}` is missing",
+                self.path,
+                self.line(row)
+            ))
+        })
+    }
+
+    fn get<T: std::str::FromStr>(&self, row: usize, column: &str) -> Result<T, CliError> {
+        let text = self.cell(row, column)?;
+        text.parse().map_err(|_| {
+            let what = if std::any::type_name::<T>().starts_with('f') {
+                "number"
+            } else {
+                "whole number"
+            };
+            CliError::input(format!(
+                "{}: line {}: field `{column}`: `{text}` is not a {what}",
+                self.path,
+                self.line(row)
+            ))
+        })
+    }
+
+    fn get_opt<T: std::str::FromStr>(
+        &self,
+        row: usize,
+        column: &str,
+    ) -> Result<Option<T>, CliError> {
+        if self.cell(row, column)?.is_empty() {
+            Ok(None)
+        } else {
+            self.get(row, column).map(Some)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// CSV records keep their fixed decimals when written and come back as written.
+    #[test]
+    fn csv_records_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let row = |g: usize| GenerationRow {
+            generation: g,
+            best: Fixed(0.5),
+            mean: Fixed(0.25),
+            std: Fixed(0.125),
+            min: Fixed(0.0),
+            max: Fixed(0.5),
+            a: Fixed(1.0),
+            g: Fixed(0.75),
+            l: Fixed(0.0),
+            b: Fixed(1.0 / 3.0),
+            room: "a, \"b\"".into(),
+        };
+        let text = to_csv(&[row(0), row(1)]);
+        assert_eq!(
+            text.lines().nth(1).unwrap(),
+            "0,0.500000000,0.250000000,0.125000000,0.000000000,0.500000000,1.000000000,0.750000000,0.000000000,0.333333333,\"a, \"\"b\"\"\""
+        );
+        let path = dir.path().join("generations.csv");
+        std::fs::write(&path, &text).unwrap();
+        let back: Vec<GenerationRow> = read_csv(&path).unwrap();
+        assert_eq!(back[1].room, "a, \"b\"");
+        assert_eq!(back[1].b.0, 0.333333333);
+
+        let table = RecognitionTable {
+            rooms: vec!["H".into(), "T".into()],
+            rows: vec![RecognitionRow {
+                room: "H".into(),
+                test_runs: 5,
+                correct: 4,
+                recognition_pct: Some(80.0),
+                recognised_as: vec![4, 0],
+                not_recognised: 1,
+            }],
+        };
+        let text = table.to_csv();
+        assert_eq!(
+            text,
+            "room,test_runs,correct,recognition_pct,as_H,as_T,not_recognised\nH,5,4,80.0,4,0,1\n"
+        );
+        let path = dir.path().join("recognition.csv");
+        std::fs::write(&path, &text).unwrap();
+        assert_eq!(RecognitionTable::read(&path).unwrap(), table);
+    }
+
+    /// A malformed cell names the file, the line and the column.
+    #[test]
+    fn bad_cells_name_their_column() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("generations.csv");
+        std::fs::write(
+            &path,
+            "generation,best,mean,std,min,max,a,g,l,b,room\n0,0.5,oops,0,0,0.5,1,1,0,1,all\n",
+        )
+        .unwrap();
+        let e = read_csv::<GenerationRow>(&path).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(
+            e.to_string().contains("line 2") && e.to_string().contains("field `mean`"),
+            "{e}"
+        );
+        let path = dir.path().join("recognition.csv");
+        std::fs::write(
+            &path,
+            "room,test_runs,correct,recognition_pct,as_H,not_recognised\nH,5,x,,4,1\n",
+        )
+        .unwrap();
+        let e = RecognitionTable::read(&path).unwrap_err();
+        assert!(e.to_string().contains("field `correct`"), "{e}");
+    }
+
+    /// A JSON record with a value of the wrong type names the field's path.
+    #[test]
+    fn bad_json_fields_are_named() {
+        let e =
+            parse_json::<BestGenome>(r#"{"shape": {"hidden": "six"}, "weights": []}"#, "g.json")
+                .unwrap_err();
+        assert!(
+            e.to_string().starts_with("g.json: field `shape.hidden`: "),
+            "{e}"
+        );
+        let e = parse_json::<BestGenome>("{", "g.json").unwrap_err();
+        assert!(e.to_string().contains("not valid JSON"), "{e}");
+    }
+}

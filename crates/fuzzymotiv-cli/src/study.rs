@@ -1,0 +1,332 @@
+//! The paper's study (docs/model.md §10): its two settings with the paper's tables, the
+//! ablation's variants, a setting's runs over seeds with their statistics, and the paper's
+//! claims tested on them.
+
+use crate::inputs::Loaded;
+use crate::records::{
+    ClaimRecord, Finished, GenerationStat, MotivationsRecord, RoomRow, SeedSummary, SettingSummary,
+    TableRow,
+};
+
+/// A built-in setting of the study with the paper's table.
+pub struct Setting {
+    /// Run directory name.
+    pub name: &'static str,
+    /// Figure/file tag.
+    pub tag: &'static str,
+    /// Built-in config.
+    pub config: &'static str,
+    /// The paper's table: room, average fitness, % exploration, % recognition, % battery.
+    pub paper: [(&'static str, f64, f64, f64, f64); 5],
+}
+
+/// The paper's two settings (Tables 1 and 2).
+pub const SETTINGS: [Setting; 2] = [
+    Setting {
+        name: "high-curiosity",
+        tag: "high_curiosity",
+        config: include_str!("../../../configs/high-curiosity.toml"),
+        paper: [
+            ("H", 0.6421, 93.84, 80.00, 79.19),
+            ("T", 0.6686, 91.77, 100.00, 78.45),
+            ("L", 0.6507, 97.04, 100.00, 79.58),
+            ("square", 0.6699, 99.88, 100.00, 79.56),
+            ("rectangle", 0.6377, 95.29, 100.00, 79.88),
+        ],
+    },
+    Setting {
+        name: "low-curiosity",
+        tag: "low_curiosity",
+        config: include_str!("../../../configs/low-curiosity.toml"),
+        paper: [
+            ("H", 0.2465, 54.66, 20.00, 57.90),
+            ("T", 0.2694, 57.84, 0.00, 59.66),
+            ("L", 0.2707, 57.93, 0.00, 59.67),
+            ("square", 0.3274, 80.63, 100.00, 74.64),
+            ("rectangle", 0.267, 57.70, 0.00, 59.60),
+        ],
+    },
+];
+
+/// A variant of the study: the default model, or one modelling choice switched back.
+pub struct Variant {
+    /// Directory and table name.
+    pub name: &'static str,
+    /// What it switches back, in words.
+    pub what: &'static str,
+    /// Config overrides.
+    pub sets: &'static [&'static str],
+    /// Use the first release's rooms (rooms/first-release/) instead of the paper's.
+    pub first_release_rooms: bool,
+}
+
+/// The default model: the paper's robot, rooms and home zone.
+pub const DEFAULT_MODEL: Variant = Variant {
+    name: "default",
+    what: "the paper's robot (actions, end at home, escape homing, the paper's rooms)",
+    sets: &[],
+    first_release_rooms: false,
+};
+
+/// The ablation: the default model, then each new modelling choice switched back alone.
+pub const ABLATION: [Variant; 5] = [
+    DEFAULT_MODEL,
+    Variant {
+        name: "wheels",
+        what: "robot.motion = \"wheels\" (continuous differential drive)",
+        sets: &["robot.motion=\"wheels\""],
+        first_release_rooms: false,
+    },
+    Variant {
+        name: "no-end-at-home",
+        what: "trial.end_at_home = false (every trial runs all T steps)",
+        sets: &["trial.end_at_home=false"],
+        first_release_rooms: false,
+    },
+    Variant {
+        name: "distance-homing",
+        what: "fitness.homing = \"distance\" (no escape condition)",
+        sets: &["fitness.homing=\"distance\""],
+        first_release_rooms: false,
+    },
+    Variant {
+        name: "first-release-rooms",
+        what: "the first release's rooms (rooms/first-release/)",
+        sets: &[],
+        first_release_rooms: true,
+    },
+];
+
+/// The first release's five rooms (the files in rooms/first-release/, built into the binary).
+pub const FIRST_RELEASE_ROOMS: [(&str, &str); 5] = [
+    ("H", include_str!("../../../rooms/first-release/H.toml")),
+    ("T", include_str!("../../../rooms/first-release/T.toml")),
+    ("L", include_str!("../../../rooms/first-release/L.toml")),
+    (
+        "square",
+        include_str!("../../../rooms/first-release/square.toml"),
+    ),
+    (
+        "rectangle",
+        include_str!("../../../rooms/first-release/rectangle.toml"),
+    ),
+];
+
+/// One setting's runs, one per seed.
+pub struct SettingRuns<'a> {
+    /// The setting.
+    pub setting: &'a Setting,
+    /// Its seeds.
+    pub seeds: Vec<u64>,
+    /// Per seed, the config.
+    pub loaded: Vec<Loaded>,
+    /// Per seed, the results.
+    pub finished: Vec<Finished>,
+}
+
+impl SettingRuns<'_> {
+    /// The seed whose mean F over rooms is the median (the lower median for an even count):
+    /// the robot the figures show.
+    pub fn median(&self) -> usize {
+        let score = |k: usize| {
+            let rows = &self.finished[k].rows;
+            rows.iter().map(|r| r.average_fitness).sum::<f64>() / rows.len().max(1) as f64
+        };
+        let mut order: Vec<usize> = (0..self.seeds.len()).collect();
+        order.sort_by(|&a, &b| score(a).total_cmp(&score(b)).then(a.cmp(&b)));
+        order[(order.len() - 1) / 2]
+    }
+
+    /// "seed S" or "median seed S of N".
+    pub fn median_label(&self) -> String {
+        let seed = self.seeds[self.median()];
+        if self.seeds.len() == 1 {
+            format!("seed {seed}")
+        } else {
+            format!("median seed {seed} of {}", self.seeds.len())
+        }
+    }
+}
+
+/// Mean and sample standard deviation (0 for one value).
+pub fn mean_std(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    if values.len() < 2 {
+        return (mean, 0.0);
+    }
+    let var = values.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / (n - 1.0);
+    (mean, var.sqrt())
+}
+
+/// The table's five columns of a room row.
+pub fn metrics(r: &RoomRow) -> [Option<f64>; 5] {
+    [
+        Some(r.average_fitness),
+        Some(r.exploration_pct),
+        r.recognition_pct,
+        Some(r.battery_pct),
+        Some(r.homing),
+    ]
+}
+
+/// Per room and column, mean and std over seeds (none where a seed has no value).
+pub fn room_stats(study: &SettingRuns<'_>, room: usize) -> [Option<(f64, f64)>; 5] {
+    std::array::from_fn(|c| {
+        let values: Option<Vec<f64>> = study
+            .finished
+            .iter()
+            .map(|f| metrics(&f.rows[room])[c])
+            .collect();
+        values.map(|v| mean_std(&v))
+    })
+}
+
+pub fn paper_row(setting: &Setting, room: &str) -> Option<[f64; 4]> {
+    setting
+        .paper
+        .iter()
+        .find(|p| p.0 == room)
+        .map(|p| [p.1, p.2, p.3, p.4])
+}
+
+impl SettingRuns<'_> {
+    /// The setting in `summary.json`: the documented fields (rows, first and last generation)
+    /// are means over seeds; `std` and `per_seed` give the spread.
+    pub fn summary(&self) -> SettingSummary {
+        let exp = &self.loaded[0].experiment;
+        let rows = &self.finished[0].rows;
+        let stats: Vec<_> = (0..rows.len()).map(|i| room_stats(self, i)).collect();
+        let table = |std: bool| -> Vec<TableRow> {
+            rows.iter()
+                .zip(&stats)
+                .map(|(r, s)| {
+                    let pick = |c: usize| s[c].map(|(m, sd)| if std { sd } else { m });
+                    TableRow {
+                        room: r.room.clone(),
+                        average_fitness: pick(0),
+                        exploration_pct: pick(1),
+                        recognition_pct: pick(2),
+                        battery_pct: pick(3),
+                        homing: pick(4),
+                    }
+                })
+                .collect()
+        };
+        let stat = |last: bool| GenerationStat {
+            best: generation_stat(self, last, true),
+            mean: generation_stat(self, last, false),
+        };
+        SettingSummary {
+            name: self.setting.name.into(),
+            motivations: MotivationsRecord::of(exp.motivations()),
+            rows: table(false),
+            std: table(true),
+            first_generation: stat(false),
+            last_generation: stat(true),
+            population: exp.ga().population,
+            generations: exp.ga().generations,
+            median_seed: self.seeds[self.median()],
+            per_seed: self.per_seed(),
+        }
+    }
+
+    fn per_seed(&self) -> Vec<SeedSummary> {
+        self.seeds
+            .iter()
+            .zip(&self.finished)
+            .map(|(&seed, f)| {
+                let h = &f.evolutions[0].history;
+                SeedSummary {
+                    seed,
+                    run_dir: format!("{}/seed-{seed}", self.setting.name),
+                    rows: f.rows.iter().map(TableRow::of).collect(),
+                    first_generation: GenerationStat::of(&h[0]),
+                    last_generation: GenerationStat::of(&h[h.len() - 1]),
+                    confusion: f.aem.iter().map(|a| a.confusion.counts.clone()).collect(),
+                }
+            })
+            .collect()
+    }
+}
+
+/// Mean of table column `c` (see [`metrics`]) over rooms and seeds; none if a value is missing.
+pub fn grand_mean(study: &SettingRuns<'_>, c: usize) -> Option<f64> {
+    let values: Option<Vec<f64>> = study
+        .finished
+        .iter()
+        .flat_map(|f| f.rows.iter().map(move |r| metrics(r)[c]))
+        .collect();
+    values.map(|v| mean_std(&v).0)
+}
+
+/// Mean % exploration, % recognition and % battery over rooms and seeds.
+pub fn overall(study: &SettingRuns<'_>) -> [Option<f64>; 3] {
+    [
+        grand_mean(study, 1),
+        grand_mean(study, 2),
+        grand_mean(study, 3),
+    ]
+}
+
+/// Mean over seeds of the population's best (`best`) or mean F in the first or the last
+/// generation.
+pub fn generation_stat(study: &SettingRuns<'_>, last: bool, best: bool) -> f64 {
+    let v: Vec<f64> = study
+        .finished
+        .iter()
+        .map(|f| {
+            let h = &f.evolutions[0].history;
+            let rec = if last { &h[h.len() - 1] } else { &h[0] };
+            if best { rec.stats.max } else { rec.stats.mean }
+        })
+        .collect();
+    mean_std(&v).0
+}
+
+/// The paper's claims (high vs low curiosity, and Fig. 6's fitness curves) on means over
+/// rooms and seeds: `studies[0]` is high curiosity, `studies[1]` low curiosity.
+pub fn claims(studies: &[SettingRuns<'_>]) -> Vec<ClaimRecord> {
+    let (hc, lc) = (&studies[0], &studies[1]);
+    let compare = |claim: &'static str, c: usize, more: bool| {
+        let (h, l) = (grand_mean(hc, c), grand_mean(lc, c));
+        let holds = matches!((h, l), (Some(h), Some(l)) if if more { h > l } else { h < l });
+        let show = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.1} %"));
+        ClaimRecord {
+            claim: claim.into(),
+            holds,
+            evidence: format!("high {} vs low {}", show(h), show(l)),
+        }
+    };
+    let first = [
+        generation_stat(hc, false, false),
+        generation_stat(lc, false, false),
+    ];
+    let last = [
+        generation_stat(hc, true, false),
+        generation_stat(lc, true, false),
+    ];
+    vec![
+        compare("high curiosity explores more than low curiosity", 1, true),
+        compare("high curiosity uses more battery", 3, true),
+        compare("high curiosity recognises rooms better", 2, true),
+        compare(
+            "high curiosity returns home less (lower % homing)",
+            4,
+            false,
+        ),
+        ClaimRecord {
+            claim: "first-generation mean F about 0.1 (between 0.05 and 0.15)".into(),
+            holds: first.iter().all(|f| (0.05..=0.15).contains(f)),
+            evidence: format!("high {:.3}, low {:.3}", first[0], first[1]),
+        },
+        ClaimRecord {
+            claim: "mean F rises over the generations".into(),
+            holds: last[0] > first[0] && last[1] > first[1],
+            evidence: format!(
+                "high {:.3} → {:.3}, low {:.3} → {:.3}",
+                first[0], last[0], first[1], last[1]
+            ),
+        },
+    ]
+}

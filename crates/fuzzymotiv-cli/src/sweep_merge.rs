@@ -1,0 +1,208 @@
+//! Merging a sweep directory: every finished job's `summary.json` into `results.csv`, the
+//! mean ± std over replicates into `aggregate.csv` and `aggregate.md`, and `summary.svg`.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use crate::error::CliError;
+use crate::files::write_atomic;
+use crate::records::{
+    AggregateRow, Job, METRICS, RunSummary, SweepResultRow, SweepResults, read_json, to_csv,
+};
+use crate::svg::{SettingPoint, sweep_summary_svg};
+
+/// Writes `results.csv`, `aggregate.csv`, `aggregate.md` and `summary.svg` of the sweep
+/// directory `dir`; prints the Markdown table.
+pub fn merge_dir(dir: &Path) -> Result<(), CliError> {
+    let jobs = Job::read_plan(&dir.join("plan.jsonl"))?;
+    let (results, missing) = collect_results(dir, &jobs)?;
+    write_atomic(&dir.join("results.csv"), results.to_csv())?;
+    let groups = group_by_setting_and_room(&results.rows);
+    let aggregate: Vec<AggregateRow> = groups
+        .iter()
+        .map(|((setting, room), members)| {
+            AggregateRow::new(setting, room, members.len(), metric_stats(members))
+        })
+        .collect();
+    write_atomic(&dir.join("aggregate.csv"), aggregate_csv(&aggregate))?;
+    let md = aggregate_markdown(&groups);
+    write_atomic(&dir.join("aggregate.md"), &md)?;
+    write_atomic(
+        &dir.join("summary.svg"),
+        sweep_summary_svg(&setting_points(&groups)),
+    )?;
+    print!("{md}");
+    eprintln!(
+        "merged {} jobs ({} rows) into {}; {missing} of {} jobs not finished",
+        jobs.len() - missing,
+        results.rows.len(),
+        dir.join("results.csv").display(),
+        jobs.len()
+    );
+    Ok(())
+}
+
+/// The rows of every finished job (one per room), and the number of unfinished jobs.
+fn collect_results(dir: &Path, jobs: &[Job]) -> Result<(SweepResults, usize), CliError> {
+    let mut results = SweepResults::default();
+    for job in jobs {
+        for (key, _) in job.grid_values() {
+            if !results.grid.iter().any(|k| k == key) {
+                results.grid.push(key.to_string());
+            }
+        }
+    }
+    let mut missing = 0;
+    for job in jobs {
+        let job_dir = dir.join("jobs").join(&job.id);
+        if !job_dir.join("DONE").is_file() {
+            missing += 1;
+            continue;
+        }
+        let summary: RunSummary = read_json(&job_dir.join("summary.json"))?;
+        let values = job.grid_values();
+        let grid: Vec<String> = results
+            .grid
+            .iter()
+            .map(|k| {
+                values
+                    .iter()
+                    .find(|(key, _)| key == k)
+                    .map_or(String::new(), |(_, v)| cell_of_toml(v))
+            })
+            .collect();
+        for r in &summary.rooms {
+            results.rows.push(SweepResultRow {
+                job_id: job.id.clone(),
+                index: job.index,
+                setting: job.setting.clone(),
+                replicate: job.replicate,
+                seed: job.seed,
+                motivations: summary.motivations,
+                grid: grid.clone(),
+                room: r.room.clone(),
+                values: [
+                    Some(r.average_fitness),
+                    Some(r.exploration_pct),
+                    r.recognition_pct,
+                    Some(r.battery_pct),
+                    Some(r.homing),
+                ],
+            });
+        }
+    }
+    Ok((results, missing))
+}
+
+/// A TOML value as a CSV cell: strings without their quotes, anything else as written.
+fn cell_of_toml(text: &str) -> String {
+    match toml::from_str::<toml::Table>(&format!("v = {text}")) {
+        Ok(t) => match t.get("v") {
+            Some(toml::Value::String(s)) => s.clone(),
+            _ => text.to_string(),
+        },
+        Err(_) => text.to_string(),
+    }
+}
+
+type Groups<'a> = Vec<((String, String), Vec<&'a SweepResultRow>)>;
+
+/// The rows per (setting, room), in plan order.
+fn group_by_setting_and_room(rows: &[SweepResultRow]) -> Groups<'_> {
+    let mut groups: Groups<'_> = Vec::new();
+    for r in rows {
+        let key = (r.setting.clone(), r.room.clone());
+        match groups.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, v)) => v.push(r),
+            None => groups.push((key, vec![r])),
+        }
+    }
+    groups
+}
+
+/// Per metric, mean and std over the rows that have a value.
+fn metric_stats(members: &[&SweepResultRow]) -> [(Option<f64>, Option<f64>); 5] {
+    std::array::from_fn(|k| {
+        let vals: Vec<f64> = members.iter().filter_map(|r| r.values[k]).collect();
+        mean_std(&vals)
+    })
+}
+
+fn aggregate_csv(rows: &[AggregateRow]) -> String {
+    if rows.is_empty() {
+        // No finished job yet: the header alone.
+        let mut h = String::from("setting,room,n");
+        for m in METRICS {
+            let _ = write!(h, ",{m}_mean,{m}_std");
+        }
+        return h + "\n";
+    }
+    to_csv(rows)
+}
+
+fn aggregate_markdown(groups: &Groups<'_>) -> String {
+    let mut md = String::from("| setting | room | n |");
+    for m in METRICS {
+        let _ = write!(md, " {m} |");
+    }
+    md.push_str("\n|---|---|---|");
+    md.push_str(&"---|".repeat(METRICS.len()));
+    md.push('\n');
+    for ((setting, room), members) in groups {
+        let _ = write!(md, "| {setting} | {room} | {} |", members.len());
+        for (mean, std) in metric_stats(members) {
+            let _ = write!(md, " {} ± {} |", fmt_short(mean), fmt_short(std));
+        }
+        md.push('\n');
+    }
+    md
+}
+
+/// Per setting (in plan order), its motivations and the mean of every outcome over its rooms
+/// and replicates, for `summary.svg`.
+fn setting_points(groups: &Groups<'_>) -> Vec<SettingPoint> {
+    let mut per_setting: Vec<(String, [f64; 4], [Vec<f64>; 5])> = Vec::new();
+    for ((setting, _), members) in groups {
+        let entry = match per_setting.iter().position(|(s, _, _)| s == setting) {
+            Some(i) => &mut per_setting[i],
+            None => {
+                let m = members[0].motivations.as_array();
+                per_setting.push((setting.clone(), m, Default::default()));
+                per_setting.last_mut().expect("just pushed")
+            }
+        };
+        for r in members {
+            for (k, v) in r.values.iter().enumerate() {
+                if let Some(v) = v {
+                    entry.2[k].push(*v);
+                }
+            }
+        }
+    }
+    per_setting
+        .into_iter()
+        .map(|(label, motivations, vals)| SettingPoint {
+            label,
+            motivations,
+            values: std::array::from_fn(|k| mean_std(&vals[k + 1]).0),
+        })
+        .collect()
+}
+
+fn mean_std(v: &[f64]) -> (Option<f64>, Option<f64>) {
+    if v.is_empty() {
+        return (None, None);
+    }
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let std = if v.len() > 1 {
+        (v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0)).sqrt()
+    } else {
+        0.0
+    };
+    (Some(mean), Some(std))
+}
+
+fn fmt_short(v: Option<f64>) -> String {
+    v.map_or("n/a".into(), |v| format!("{v:.2}"))
+}

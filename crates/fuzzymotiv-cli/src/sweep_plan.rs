@@ -1,0 +1,371 @@
+//! Sweep files: `plan` expands a `[sweep]` table into a stable list of jobs.
+//!
+//! A job's seed derives from the base seed and the job's key (its motivation point, grid values
+//! and replicate), never from its position in a shard, and its id is a hash of its fully
+//! resolved config, so any batch scheduler can run any subset in any order.
+
+use std::collections::{BTreeMap, HashSet};
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::config::RawConfig;
+use fuzzymotiv::seed::{Streams, hash_str};
+use serde::Deserialize;
+
+use crate::error::CliError;
+use crate::inputs::{Loaded, resolve};
+use crate::records::Job;
+
+/// The `[sweep]` table.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSweep {
+    /// Replicates (seeds) per point; default 1.
+    #[serde(default = "one")]
+    replicates: usize,
+    /// Explicit motivation points (C, H, O, E).
+    #[serde(default)]
+    motivations: Vec<[f64; 4]>,
+    /// All motivation points on a simplex grid.
+    #[serde(default)]
+    simplex: Option<RawSimplex>,
+    /// Cartesian product over other config keys: dotted key → list of values.
+    #[serde(default)]
+    grid: toml::Table,
+}
+
+fn one() -> usize {
+    1
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSimplex {
+    /// Grid step, e.g. 0.1 (1/step must be an integer).
+    step: f64,
+    /// Motivations held fixed, e.g. { orientation = 0.0 }; the others vary.
+    #[serde(default)]
+    fixed: BTreeMap<String, f64>,
+}
+
+/// Most jobs one sweep file may plan.
+const MAX_JOBS: usize = 100_000;
+
+const MOTIVATIONS: [&str; 4] = ["curiosity", "homing", "orientation", "energy"];
+
+/// A parsed sweep: the base config text, where it came from and the jobs.
+pub struct Sweep {
+    base_text: String,
+    source: String,
+    base_dir: PathBuf,
+    /// The jobs, in plan order.
+    pub jobs: Vec<Job>,
+}
+
+fn err(source: &str, field: &str, reason: impl Into<String>) -> CliError {
+    CliError::input(format!("{source}: field `{field}`: {}", reason.into()))
+}
+
+fn fmt_value(v: f64) -> String {
+    // Shortest representation that round-trips, always with a decimal point for TOML floats.
+    let s = format!("{v:?}");
+    if s.contains('.') || s.contains('e') {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+impl Sweep {
+    /// Reads a sweep file and expands its jobs (each validated as a config).
+    pub fn load(path: &Path) -> Result<Sweep, CliError> {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            CliError::input(format!("{}: cannot read sweep file: {e}", path.display()))
+        })?;
+        let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Self::parse_str(&text, &path.display().to_string(), &base_dir)
+    }
+
+    /// Parses a sweep document; room files are relative to `base_dir`.
+    pub fn parse_str(text: &str, source: &str, base_dir: &Path) -> Result<Sweep, CliError> {
+        let (raw, base_text) = split_sweep(text, source)?;
+        let base = RawConfig::parse(&base_text, source, &[])?;
+        if raw.replicates == 0 || raw.replicates > 100_000 {
+            return Err(err(
+                source,
+                "sweep.replicates",
+                format!("must be in 1..=100000, got {}", raw.replicates),
+            ));
+        }
+        let points = motivation_points(&raw, source)?;
+        let combos = grid_combinations(&raw.grid, source)?;
+        let planned = points
+            .len()
+            .saturating_mul(combos.len())
+            .saturating_mul(raw.replicates);
+        if planned > MAX_JOBS {
+            return Err(err(
+                source,
+                "sweep",
+                format!(
+                    "{planned} jobs planned; at most {MAX_JOBS} per sweep file (split it, or use a coarser step)"
+                ),
+            ));
+        }
+        let mut sweep = Sweep {
+            base_text,
+            source: source.to_string(),
+            base_dir: base_dir.to_path_buf(),
+            jobs: Vec::new(),
+        };
+        let mut seen = HashSet::new();
+        for point in &points {
+            for combo in &combos {
+                let (setting, overrides) = setting_of(point.as_ref(), combo);
+                // The same point listed twice (e.g. explicitly and by the simplex): once.
+                if seen.insert(setting.clone()) {
+                    sweep.add_replicates(&setting, &overrides, raw.replicates, base.seed)?;
+                }
+            }
+        }
+        // Validate every job now, so a bad point fails before anything runs.
+        for job in &sweep.jobs {
+            sweep.load_job(job)?;
+        }
+        Ok(sweep)
+    }
+
+    /// Adds the `replicates` jobs of one setting, each with its seed derived from its key.
+    fn add_replicates(
+        &mut self,
+        setting: &str,
+        overrides: &[String],
+        replicates: usize,
+        base_seed: u64,
+    ) -> Result<(), CliError> {
+        for rep in 0..replicates {
+            let key = format!("{setting};rep={rep}");
+            // Keep the derived seed in 0..2^53: exact in TOML (signed 64-bit) and in JSON read
+            // as doubles (JavaScript, jq).
+            let seed = Streams::new(base_seed).sweep_job(&key);
+            let mut sets = overrides.to_vec();
+            sets.push(format!("seed={seed}"));
+            let source = format!("{} (job {key})", self.source);
+            let raw = RawConfig::parse(&self.base_text, &source, &sets)?;
+            // The id covers the resolved config and the contents of its room files, so an
+            // edited room file is a new job rather than a finished one.
+            let mut resolved = raw.to_toml();
+            for room in &raw.rooms {
+                if let Ok(text) = std::fs::read_to_string(self.base_dir.join(room)) {
+                    resolved.push_str(&text);
+                }
+            }
+            self.jobs.push(Job {
+                index: self.jobs.len(),
+                id: format!("{:016x}", hash_str(&resolved)),
+                key,
+                setting: setting.to_string(),
+                replicate: rep,
+                seed,
+                overrides: sets,
+            });
+        }
+        Ok(())
+    }
+
+    /// The validated config of a job.
+    pub fn load_job(&self, job: &Job) -> Result<Loaded, CliError> {
+        let source = format!("{} (job {})", self.source, job.key);
+        let raw = RawConfig::parse(&self.base_text, &source, &job.overrides)?;
+        resolve(raw, &self.base_dir, &source)
+    }
+
+    /// The plan as JSON lines.
+    pub fn plan_jsonl(&self) -> String {
+        self.jobs
+            .iter()
+            .map(|j| serde_json::to_string(j).expect("records serialise") + "\n")
+            .collect()
+    }
+}
+
+/// The `[sweep]` table and the rest of the document (the base config) as TOML text.
+fn split_sweep(text: &str, source: &str) -> Result<(RawSweep, String), CliError> {
+    let mut table: toml::Table = toml::from_str(text).map_err(|e| {
+        err(
+            source,
+            "(document)",
+            format!("not valid TOML: {}", e.message().trim()),
+        )
+    })?;
+    let sweep_value = table.remove("sweep").ok_or_else(|| {
+        err(
+            source,
+            "sweep",
+            "a sweep file needs a [sweep] table (replicates, motivations, simplex, grid)",
+        )
+    })?;
+    let sweep: RawSweep = sweep_value
+        .try_into()
+        .map_err(|e: toml::de::Error| err(source, "sweep", e.message().trim().to_string()))?;
+    Ok((sweep, toml::to_string(&table).expect("a table serialises")))
+}
+
+/// The motivation points (explicit, then the simplex's), or one "no point" when none.
+fn motivation_points(sweep: &RawSweep, source: &str) -> Result<Vec<Option<[f64; 4]>>, CliError> {
+    let mut points: Vec<[f64; 4]> = sweep.motivations.clone();
+    if let Some(simplex) = &sweep.simplex {
+        points.extend(simplex_points(simplex, source)?);
+    }
+    Ok(if points.is_empty() {
+        vec![None]
+    } else {
+        points.into_iter().map(Some).collect()
+    })
+}
+
+/// Every combination of the `[sweep.grid]` values, as (key, value) lists in key order.
+fn grid_combinations(
+    grid: &toml::Table,
+    source: &str,
+) -> Result<Vec<Vec<(String, toml::Value)>>, CliError> {
+    let mut combos: Vec<Vec<(String, toml::Value)>> = vec![Vec::new()];
+    for (key, values) in grid {
+        let list = values.as_array().filter(|a| !a.is_empty()).ok_or_else(|| {
+            err(
+                source,
+                &format!("sweep.grid.{key}"),
+                "must be a non-empty list of values",
+            )
+        })?;
+        combos = combos
+            .into_iter()
+            .flat_map(|c| {
+                list.iter().map(move |v| {
+                    let mut c = c.clone();
+                    c.push((key.clone(), v.clone()));
+                    c
+                })
+            })
+            .collect();
+    }
+    Ok(combos)
+}
+
+/// A setting's name (e.g. `C=0.8,H=0.1,O=0,E=0.1;trial.noise=0.06`, or `base`) and its
+/// `--set` overrides.
+fn setting_of(point: Option<&[f64; 4]>, combo: &[(String, toml::Value)]) -> (String, Vec<String>) {
+    let mut overrides = Vec::new();
+    let mut parts = Vec::new();
+    if let Some(p) = point {
+        for (k, v) in MOTIVATIONS.iter().zip(p) {
+            overrides.push(format!("motivations.{k}={}", fmt_value(*v)));
+        }
+        parts.push(format!("C={},H={},O={},E={}", p[0], p[1], p[2], p[3]));
+    }
+    for (k, v) in combo {
+        overrides.push(format!("{k}={v}"));
+        parts.push(format!("{k}={v}"));
+    }
+    let setting = if parts.is_empty() {
+        "base".to_string()
+    } else {
+        parts.join(";")
+    };
+    (setting, overrides)
+}
+
+/// The motivation points of a simplex grid.
+fn simplex_points(s: &RawSimplex, source: &str) -> Result<Vec<[f64; 4]>, CliError> {
+    let n = simplex_divisions(s.step, source)?;
+    let fixed = fixed_units(s, n, source)?;
+    let fixed_units: usize = fixed.iter().flatten().sum();
+    if fixed_units > n {
+        return Err(err(
+            source,
+            "sweep.simplex.fixed",
+            "fixed motivations sum to more than 1",
+        ));
+    }
+    let free: Vec<usize> = (0..4).filter(|&i| fixed[i].is_none()).collect();
+    let mut units = fixed.map(|f| f.unwrap_or(0));
+    let mut out = Vec::new();
+    spread_units(&free, n - fixed_units, &mut units, n, &mut out);
+    if out.is_empty() {
+        return Err(err(
+            source,
+            "sweep.simplex",
+            "no motivation point sums to 1 with these fixed values",
+        ));
+    }
+    Ok(out)
+}
+
+/// 1/step, checked to be a whole number ≤ 100.
+fn simplex_divisions(step: f64, source: &str) -> Result<usize, CliError> {
+    let field = "sweep.simplex.step";
+    if !(step.is_finite() && step > 0.0 && step <= 1.0) {
+        return Err(err(source, field, format!("must be in (0, 1], got {step}")));
+    }
+    let n = (1.0 / step).round();
+    if ((1.0 / step) - n).abs() > 1e-9 || n > 100.0 {
+        return Err(err(
+            source,
+            field,
+            format!("1/step must be a whole number ≤ 100 (e.g. 0.1, 0.05), got step {step}"),
+        ));
+    }
+    Ok(n as usize)
+}
+
+/// The fixed motivations in steps of 1/n, per motivation (none where free).
+fn fixed_units(s: &RawSimplex, n: usize, source: &str) -> Result<[Option<usize>; 4], CliError> {
+    let mut fixed = [None; 4];
+    for (k, v) in &s.fixed {
+        let field = format!("sweep.simplex.fixed.{k}");
+        let i = MOTIVATIONS.iter().position(|m| m == k).ok_or_else(|| {
+            err(
+                source,
+                &field,
+                "not a motivation; use curiosity, homing, orientation or energy",
+            )
+        })?;
+        let units = v * n as f64;
+        if !(0.0..=1.0).contains(v) || (units - units.round()).abs() > 1e-9 {
+            return Err(err(
+                source,
+                &field,
+                format!("must be a multiple of the step in [0, 1], got {v}"),
+            ));
+        }
+        fixed[i] = Some(units.round() as usize);
+    }
+    Ok(fixed)
+}
+
+/// Every way to spread `left` units over the `free` motivations (the first free one from most
+/// to fewest), pushing each point (units / n).
+fn spread_units(
+    free: &[usize],
+    left: usize,
+    units: &mut [usize; 4],
+    n: usize,
+    out: &mut Vec<[f64; 4]>,
+) {
+    match free {
+        [] => {
+            if left == 0 {
+                out.push(units.map(|u| u as f64 / n as f64));
+            }
+        }
+        [last] => {
+            units[*last] = left;
+            out.push(units.map(|u| u as f64 / n as f64));
+        }
+        [first, rest @ ..] => {
+            for u in (0..=left).rev() {
+                units[*first] = u;
+                spread_units(rest, left - u, units, n, out);
+            }
+        }
+    }
+}

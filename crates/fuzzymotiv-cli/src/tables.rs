@@ -1,0 +1,261 @@
+//! Tables: the run's per-room table, a study's tables (means ± std with the paper's values,
+//! every seed's values), the paper's claims and the ablation, as Markdown, CSV and HTML. They
+//! read records only.
+
+use std::fmt::Write as _;
+
+use fuzzymotiv::config::Training;
+
+use crate::inputs::Loaded;
+use crate::records::{ClaimRecord, RoomRow};
+use crate::study::{SettingRuns, Variant, metrics, paper_row, room_stats};
+use crate::svg::esc;
+
+/// The per-room table as Markdown.
+pub fn table_markdown(rows: &[RoomRow]) -> String {
+    let mut s = String::from(
+        "| room | average fitness | % optimal exploration | % recognition | % battery usage | % homing |\n|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "| {} | {:.3} | {:.1} | {} | {:.1} | {:.1} |",
+            r.room,
+            r.average_fitness,
+            r.exploration_pct,
+            r.recognition_pct
+                .map_or("n/a".to_string(), |p| format!("{p:.0}")),
+            r.battery_pct,
+            r.homing
+        );
+    }
+    s
+}
+
+/// Where a table came from, as a Markdown line below it: program version, seed, GA size, trial
+/// length and training (so a small trial run and a paper-scale one never look alike).
+pub fn provenance_line(loaded: &Loaded) -> String {
+    let exp = &loaded.experiment;
+    format!(
+        "\nfuzzymotiv {} · seed {} · GA {} robots × {} generations · {} steps per trial · training {}\n",
+        fuzzymotiv::VERSION,
+        exp.seed(),
+        exp.ga().population,
+        exp.ga().generations,
+        exp.trial_params().steps,
+        match loaded.raw.training {
+            Training::AllRooms => "all-rooms",
+            Training::PerRoom => "per-room",
+        },
+    )
+}
+
+/// What produced a table: version, seeds, GA size, quick or not.
+pub struct Provenance {
+    /// The study's seeds.
+    pub seeds: Vec<u64>,
+    /// GA population.
+    pub population: usize,
+    /// GA generations.
+    pub generations: usize,
+    /// Whether `--quick`.
+    pub quick: bool,
+}
+
+impl Provenance {
+    /// The provenance of a study of `seeds` whose first config is `loaded`.
+    pub fn new(seeds: &[u64], loaded: &Loaded, quick: bool) -> Provenance {
+        Provenance {
+            seeds: seeds.to_vec(),
+            population: loaded.experiment.ga().population,
+            generations: loaded.experiment.ga().generations,
+            quick,
+        }
+    }
+
+    /// The provenance as one line.
+    pub fn line(&self) -> String {
+        let seeds: Vec<String> = self.seeds.iter().map(u64::to_string).collect();
+        format!(
+            "fuzzymotiv {} · {} seed{} ({}) · GA {} × {}{}",
+            fuzzymotiv::VERSION,
+            self.seeds.len(),
+            if self.seeds.len() == 1 { "" } else { "s" },
+            seeds.join(", "),
+            self.population,
+            self.generations,
+            if self.quick { " · quick" } else { "" }
+        )
+    }
+}
+
+/// The study's table with the paper's values beside the means: (Markdown with a per-seed
+/// table below, CSV of mean/std/paper per room, CSV of every seed's rows).
+pub fn study_table(study: &SettingRuns<'_>, prov: &Provenance) -> (String, String, String) {
+    const DIGITS: [usize; 5] = [4, 1, 0, 1, 1];
+    let mut md = format!(
+        "{}\n\nMean ± std over seeds (the paper's value in brackets).\n\n| room | average fitness | % optimal exploration | % recognition | % battery usage | % homing |\n|---|---|---|---|---|---|\n",
+        prov.line()
+    );
+    let mut csv = String::from(
+        "room,seeds,average_fitness,average_fitness_std,paper_average_fitness,exploration_pct,exploration_pct_std,paper_exploration_pct,recognition_pct,recognition_pct_std,paper_recognition_pct,battery_pct,battery_pct_std,paper_battery_pct,homing_pct,homing_pct_std\n",
+    );
+    let rows = &study.finished[0].rows;
+    for (i, row) in rows.iter().enumerate() {
+        let stats = room_stats(study, i);
+        let paper = paper_row(study.setting, &row.room);
+        let _ = write!(md, "| {} |", row.room);
+        let _ = write!(csv, "{},{}", row.room, study.seeds.len());
+        for (c, stat) in stats.iter().enumerate() {
+            let p = paper.and_then(|p| p.get(c).copied());
+            let d = DIGITS[c];
+            let cell = stat.map_or("n/a".to_string(), |(m, s)| format!("{m:.d$} ± {s:.d$}"));
+            let paper_cell = p.map_or(String::new(), |p| {
+                format!(" ({p:.prec$})", prec = d.clamp(2, 4))
+            });
+            let _ = write!(md, " {cell}{paper_cell} |");
+            let (m, s) = stat.map_or((String::new(), String::new()), |(m, s)| {
+                (format!("{m:.6}"), format!("{s:.6}"))
+            });
+            let _ = write!(csv, ",{m},{s}");
+            if c < 4 {
+                let _ = write!(csv, ",{}", p.map_or(String::new(), |p| p.to_string()));
+            }
+        }
+        md.push('\n');
+        csv.push('\n');
+    }
+    md.push_str("\nPer seed:\n\n| room | seed | average fitness | % optimal exploration | % recognition | % battery usage | % homing |\n|---|---|---|---|---|---|---|\n");
+    let mut seeds_csv = String::from(
+        "room,seed,average_fitness,exploration_pct,recognition_pct,battery_pct,homing_pct\n",
+    );
+    for (i, row) in rows.iter().enumerate() {
+        for (seed, f) in study.seeds.iter().zip(&study.finished) {
+            let values = metrics(&f.rows[i]);
+            let _ = write!(md, "| {} | {seed} |", row.room);
+            let _ = write!(seeds_csv, "{},{seed}", row.room);
+            for (c, v) in values.iter().enumerate() {
+                let d = DIGITS[c];
+                let _ = write!(md, " {} |", v.map_or("n/a".into(), |v| format!("{v:.d$}")));
+                let _ = write!(
+                    seeds_csv,
+                    ",{}",
+                    v.map_or(String::new(), |v| format!("{v:.6}"))
+                );
+            }
+            md.push('\n');
+            seeds_csv.push('\n');
+        }
+    }
+    (md, csv, seeds_csv)
+}
+
+/// "holds" or "fails".
+pub fn mark(holds: bool) -> &'static str {
+    if holds { "holds" } else { "fails" }
+}
+
+/// The claims as (Markdown, CSV).
+pub fn claims_table(claims: &[ClaimRecord], prov: &Provenance) -> (String, String) {
+    let mut md = format!(
+        "{}\n\nThe paper's claims, on means over rooms and seeds.\n\n| claim | verdict | evidence |\n|---|---|---|\n",
+        prov.line()
+    );
+    let mut csv = String::from("claim,holds,evidence\n");
+    for c in claims {
+        let _ = writeln!(md, "| {} | {} | {} |", c.claim, mark(c.holds), c.evidence);
+        let _ = writeln!(csv, "\"{}\",{},\"{}\"", c.claim, c.holds, c.evidence);
+    }
+    (md, csv)
+}
+
+/// The claims as an HTML table for the report page.
+pub fn claims_html(claims: &[ClaimRecord]) -> String {
+    let mut html = String::from(
+        "<h2 id=\"claims\">The paper's claims</h2>\n<table><tr><th>claim</th><th>verdict</th><th>evidence (means over rooms and seeds)</th></tr>\n",
+    );
+    for c in claims {
+        let _ = writeln!(
+            html,
+            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+            esc(&c.claim),
+            mark(c.holds),
+            esc(&c.evidence)
+        );
+    }
+    html.push_str("</table>\n");
+    html
+}
+
+/// The ablation table: one row per variant, one column per claim, as (Markdown, CSV).
+pub fn ablation_table(
+    rows: &[(&Variant, Vec<ClaimRecord>)],
+    prov: &Provenance,
+) -> (String, String) {
+    let mut md = format!(
+        "{}\n\nWhich of the paper's claims hold when one modelling choice is switched back (means over rooms and seeds; each variant's own tables are in its directory).\n\n| variant | switched back |",
+        prov.line()
+    );
+    let mut csv = String::from("variant");
+    for c in &rows[0].1 {
+        let _ = write!(md, " {} |", c.claim);
+        let _ = write!(csv, ",\"{}\"", c.claim);
+    }
+    md.push_str("\n|---|---|");
+    md.push_str(&"---|".repeat(rows[0].1.len()));
+    md.push('\n');
+    csv.push('\n');
+    for (v, claims) in rows {
+        let _ = write!(md, "| {} | {} |", v.name, v.what);
+        let _ = write!(csv, "{}", v.name);
+        for c in claims {
+            let _ = write!(md, " {} ({}) |", mark(c.holds), c.evidence);
+            let _ = write!(csv, ",{}", c.holds);
+        }
+        md.push('\n');
+        csv.push('\n');
+    }
+    (md, csv)
+}
+
+/// The report's spread table of one setting: mean ± std over seeds and the range, per room.
+pub fn spread_html(study: &SettingRuns<'_>) -> String {
+    let mut html = String::from(
+        "<table><tr><th>room</th><th>average fitness</th><th>% optimal exploration</th><th>% recognition</th><th>% battery usage</th><th>% homing</th></tr>\n",
+    );
+    for (i, row) in study.finished[0].rows.iter().enumerate() {
+        let _ = write!(html, "<tr><td>{}</td>", esc(&row.room));
+        for (c, stat) in room_stats(study, i).iter().enumerate() {
+            let values: Vec<f64> = study
+                .finished
+                .iter()
+                .filter_map(|f| metrics(&f.rows[i])[c])
+                .collect();
+            let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let d = if c == 0 { 3 } else { 1 };
+            let _ = write!(
+                html,
+                "<td>{}</td>",
+                stat.map_or("n/a".into(), |(m, s)| format!(
+                    "{m:.d$} ± {s:.d$} <span class=\"paper\">[{lo:.d$}–{hi:.d$}]</span>"
+                ))
+            );
+        }
+        html.push_str("</tr>\n");
+    }
+    html.push_str("</table>\n");
+    let _ = writeln!(
+        html,
+        "<p class=\"caption\">Mean ± standard deviation over {} seeds ({}), with the range in brackets. The figures and the detailed sections below show the {}.</p>",
+        study.seeds.len(),
+        study
+            .seeds
+            .iter()
+            .map(u64::to_string)
+            .collect::<Vec<_>>()
+            .join(", "),
+        study.median_label()
+    );
+    html
+}
