@@ -45,14 +45,65 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// What `fuzzymotiv bench --json` prints (fields in the order serde_json's map sorts them).
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
+pub struct BenchReport {
+    /// Motion model measured.
+    pub motion: String,
+    /// Population size of the population measurement.
+    pub population: usize,
+    /// Whole-population evaluations per repetition.
+    pub population_evaluations: usize,
+    /// Executed robot-steps of one repetition of the population measurement.
+    pub population_robot_steps: usize,
+    /// Their rate (median repetition).
+    pub population_robot_steps_per_sec: f64,
+    /// Median seconds of the population measurement.
+    pub population_seconds: f64,
+    /// Repetitions.
+    pub repeat: usize,
+    /// Executed robot-steps of one repetition of the single-robot measurement.
+    pub robot_steps: usize,
+    /// Their rate (median repetition).
+    pub robot_steps_per_sec: f64,
+    /// Room measured.
+    pub room: String,
+    /// Median seconds of the single-robot measurement.
+    pub seconds: f64,
+    /// Always "median".
+    pub statistic: String,
+    /// Threads of the population measurement.
+    pub threads: usize,
+    /// Steps of one trial.
+    #[serde(skip)]
+    pub trial_steps: usize,
+    /// fuzzymotiv's version.
+    pub version: String,
+}
+
 /// Entry point of `fuzzymotiv bench`.
 pub fn bench(args: BenchArgs) -> Result<(), CliError> {
-    crate::run::set_threads(args.threads)?;
+    crate::pipeline::set_threads(args.threads)?;
     if args.steps == 0 || args.repeat == 0 || args.population < 2 {
         return Err(CliError::input(
             "--steps and --repeat must be ≥ 1 and --population ≥ 2",
         ));
     }
+    let exp = bench_experiment(&args)?;
+    let report = measure(&exp, &args);
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).expect("serialisable")
+        );
+    } else {
+        print_report(&report);
+    }
+    Ok(())
+}
+
+/// The experiment measured: one room, the population size asked for, no AEM.
+fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
     let sets = vec![
         format!("rooms=[{}]", toml::Value::String(args.room.clone())),
         format!("ga.population={}", args.population),
@@ -67,81 +118,88 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
         let raw = fuzzymotiv::config::RawConfig::parse("", "bench", &sets)?;
         resolve(raw, std::path::Path::new("."), "--room")?
     };
-    let exp: Experiment = loaded.experiment;
+    Ok(loaded.experiment)
+}
+
+/// Times `work` `repeat` times; returns the median seconds and the executed robot-steps of one
+/// repetition (every repetition does the same work).
+fn timed(repeat: usize, mut work: impl FnMut() -> usize) -> (f64, usize) {
+    let mut seconds = Vec::new();
+    let mut steps = 0;
+    for _ in 0..repeat {
+        let t0 = Instant::now();
+        steps = work();
+        seconds.push(t0.elapsed().as_secs_f64());
+    }
+    (median(seconds), steps)
+}
+
+/// The two measurements: one robot on one thread, whole trials until `steps` are done; then
+/// whole populations in parallel (each takes only milliseconds: enough of them to cover
+/// `steps`). Only executed steps count (idle steps are not work).
+fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
     let run = &exp.runs()[0];
     let population = exp.initial_population(run);
     let trial_steps = exp.trial_params().steps;
-    // Single robot, single thread: whole trials of the paper's length until `steps` are done.
-    let trials = args.steps.div_ceil(trial_steps);
-    // Every repetition does the same work; its executed steps (idle steps are not work) are
-    // counted by the evaluations themselves.
-    let mut single = Vec::new();
     let mut sink = 0.0;
-    let mut robot_steps = 0;
-    for _ in 0..args.repeat {
-        let t0 = Instant::now();
-        robot_steps = 0;
-        for k in 0..trials {
-            let e = exp.evaluate(&population[k % population.len()], run, 0, k);
-            sink += e.fitness;
-            robot_steps += e.executed();
-        }
-        single.push(t0.elapsed().as_secs_f64());
-    }
-    // One population evaluation takes only milliseconds: time enough of them to cover `steps`.
+    let trials = args.steps.div_ceil(trial_steps);
+    let (seconds, robot_steps) = timed(args.repeat, || {
+        (0..trials)
+            .map(|k| {
+                let e = exp.evaluate(&population[k % population.len()], run, 0, k);
+                sink += e.fitness;
+                e.executed()
+            })
+            .sum()
+    });
     let evaluations = args.steps.div_ceil(population.len() * trial_steps);
-    let mut pop = Vec::new();
-    let mut pop_steps = 0;
-    for _ in 0..args.repeat {
-        let t0 = Instant::now();
-        pop_steps = 0;
-        for _ in 0..evaluations {
-            let evals = exp.evaluate_population(&population, run, 0);
-            sink += evals[0].fitness;
-            pop_steps += evals.iter().map(|e| e.executed()).sum::<usize>();
-        }
-        pop.push(t0.elapsed().as_secs_f64());
-    }
-    let seconds = median(single);
-    let pop_seconds = median(pop);
-    let threads = rayon::current_num_threads();
+    let (pop_seconds, pop_steps) = timed(args.repeat, || {
+        (0..evaluations)
+            .map(|_| {
+                let evals = exp.evaluate_population(&population, run, 0);
+                sink += evals[0].fitness;
+                evals.iter().map(|e| e.executed()).sum::<usize>()
+            })
+            .sum()
+    });
     std::hint::black_box(sink);
-    if args.json {
-        let doc = serde_json::json!({
-            "room": exp.arenas()[0].room().name,
-            "motion": args.motion,
-            "robot_steps": robot_steps,
-            "seconds": seconds,
-            "robot_steps_per_sec": robot_steps as f64 / seconds,
-            "population": population.len(),
-            "population_evaluations": evaluations,
-            "population_robot_steps": pop_steps,
-            "population_seconds": pop_seconds,
-            "population_robot_steps_per_sec": pop_steps as f64 / pop_seconds,
-            "threads": threads,
-            "repeat": args.repeat,
-            "statistic": "median",
-            "version": fuzzymotiv::VERSION,
-        });
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&doc).expect("serialisable")
-        );
-    } else {
-        println!(
-            "room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({robot_steps} executed steps, median {:.3} s of {})",
-            exp.arenas()[0].room().name,
-            args.motion,
-            robot_steps as f64 / seconds / 1e6,
-            seconds,
-            args.repeat
-        );
-        println!(
-            "population {} x {trial_steps} steps, {evaluations} evaluations, {threads} threads: {:.3} M robot-steps/s (median {:.3} s)",
-            population.len(),
-            pop_steps as f64 / pop_seconds / 1e6,
-            pop_seconds
-        );
+    BenchReport {
+        motion: args.motion.clone(),
+        population: population.len(),
+        population_evaluations: evaluations,
+        population_robot_steps: pop_steps,
+        population_robot_steps_per_sec: pop_steps as f64 / pop_seconds,
+        population_seconds: pop_seconds,
+        repeat: args.repeat,
+        robot_steps,
+        robot_steps_per_sec: robot_steps as f64 / seconds,
+        room: exp.arenas()[0].room().name.clone(),
+        seconds,
+        statistic: "median".to_string(),
+        threads: rayon::current_num_threads(),
+        trial_steps,
+        version: fuzzymotiv::VERSION.to_string(),
     }
-    Ok(())
+}
+
+/// The report as two lines of text.
+fn print_report(r: &BenchReport) {
+    println!(
+        "room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({} executed steps, median {:.3} s of {})",
+        r.room,
+        r.motion,
+        r.robot_steps_per_sec / 1e6,
+        r.robot_steps,
+        r.seconds,
+        r.repeat
+    );
+    println!(
+        "population {} x {} steps, {} evaluations, {} threads: {:.3} M robot-steps/s (median {:.3} s)",
+        r.population,
+        r.trial_steps,
+        r.population_evaluations,
+        r.threads,
+        r.population_robot_steps_per_sec / 1e6,
+        r.population_seconds
+    );
 }

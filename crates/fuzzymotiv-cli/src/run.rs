@@ -11,7 +11,7 @@ use crate::progress::Progress;
 use crate::tables::table_markdown;
 
 /// `bench` sets its threads here too.
-pub use crate::pipeline::set_threads;
+use crate::pipeline::set_threads;
 
 /// Arguments of `fuzzymotiv run`.
 #[derive(clap::Args)]
