@@ -54,6 +54,11 @@ impl Vec2 {
     #[inline]
     pub fn rotate(self, theta: f64) -> Self {
         let (s, c) = crate::math::sin_cos(theta);
+        self.rotate_by(s, c)
+    }
+    /// This vector rotated by the angle whose sine is `s` and cosine `c`.
+    #[inline]
+    pub fn rotate_by(self, s: f64, c: f64) -> Self {
         Self::new(c * self.x - s * self.y, s * self.x + c * self.y)
     }
     /// Whether both coordinates are finite.
@@ -386,15 +391,17 @@ mod tests {
         assert_eq!(degenerate.dist_to(Vec2::new(4.0, 5.0)), 5.0);
     }
 
+    /// Walls of every kind for the prepared-segment tests: axis-aligned, oblique, a point.
+    const TEST_WALLS: [Segment; 4] = [
+        Segment::new(Vec2::new(0.0, 0.0), Vec2::new(900.0, 0.0)),
+        Segment::new(Vec2::new(200.0, 300.0), Vec2::new(700.0, 300.0)),
+        Segment::new(Vec2::new(13.7, 451.2), Vec2::new(388.1, 97.3)),
+        Segment::new(Vec2::new(5.0, 5.0), Vec2::new(5.0, 5.0)),
+    ];
+
     #[test]
     fn prepared_ray_hits_equal_ray_hit_bit_for_bit() {
-        let walls = [
-            Segment::new(Vec2::new(0.0, 0.0), Vec2::new(900.0, 0.0)),
-            Segment::new(Vec2::new(200.0, 300.0), Vec2::new(700.0, 300.0)),
-            Segment::new(Vec2::new(13.7, 451.2), Vec2::new(388.1, 97.3)),
-            Segment::new(Vec2::new(5.0, 5.0), Vec2::new(5.0, 5.0)),
-        ];
-        for w in &walls {
+        for w in &TEST_WALLS {
             let pw = PreparedSegment::new(w);
             for i in 0..3000 {
                 let o = Vec2::new((i * 37 % 1000) as f64 * 0.93, (i * 53 % 700) as f64 * 0.71);
@@ -411,13 +418,7 @@ mod tests {
 
     #[test]
     fn prepared_distance_matches_the_dividing_one() {
-        let walls = [
-            Segment::new(Vec2::new(0.0, 0.0), Vec2::new(900.0, 0.0)),
-            Segment::new(Vec2::new(200.0, 300.0), Vec2::new(700.0, 300.0)),
-            Segment::new(Vec2::new(13.7, 451.2), Vec2::new(388.1, 97.3)),
-            Segment::new(Vec2::new(5.0, 5.0), Vec2::new(5.0, 5.0)),
-        ];
-        for w in &walls {
+        for w in &TEST_WALLS {
             let pw = PreparedSegment::new(w);
             for i in 0..2000 {
                 let p = Vec2::new(

@@ -58,11 +58,6 @@ impl Eyes {
         }
     }
 
-    /// The rays turned to a heading whose sine is `s` and cosine `c`.
-    pub fn turned(&self, s: f64, c: f64) -> TurnedRays {
-        self.body.turned(s, c)
-    }
-
     /// The rays turned to compass direction `dir` (0..12).
     #[inline]
     pub fn on_compass(&self, dir: usize) -> &TurnedRays {
@@ -96,14 +91,14 @@ impl Eyes {
     ) -> [f64; INPUTS] {
         let mut out = [0.0; INPUTS];
         for (s, o) in out.iter_mut().enumerate() {
-            let origin = pos + facing.turn(self.body.origins[s], |t| t.origins[s]);
+            let origin = pos + facing.origin(&self.body, s);
             let mut nearest = [f64::INFINITY; N];
             // Turned only when a wall is in range (with `Facing::Angle`, most sensors see none).
             let mut dirs = None;
             for &k in near {
                 let wall = &walls[k as usize];
                 if wall.dist2_to(origin) <= self.range2 {
-                    let dirs = dirs.get_or_insert_with(|| facing.turn_all(&self.body.dirs[s], s));
+                    let dirs = dirs.get_or_insert_with(|| facing.dirs(&self.body, s));
                     wall.lower_ray_hits(origin, &dirs[..N], &mut nearest);
                 }
             }
@@ -135,37 +130,32 @@ pub enum Facing<'a> {
 }
 
 impl Facing<'_> {
-    /// The body-frame vector `v` turned to this heading (`table` picks it from turned rays).
+    /// Sensor `s`'s origin relative to the body centre, turned to this heading (`body`: the
+    /// rays at heading 0).
     #[inline]
-    fn turn(self, v: Vec2, table: impl Fn(&TurnedRays) -> Vec2) -> Vec2 {
+    fn origin(self, body: &TurnedRays, s: usize) -> Vec2 {
         match self {
-            Facing::Compass(t) => table(t),
-            Facing::Angle { sin, cos } => rotate(v, sin, cos),
+            Facing::Compass(t) => t.origins[s],
+            Facing::Angle { sin, cos } => body.origins[s].rotate_by(sin, cos),
         }
     }
 
-    /// Sensor `s`'s body-frame ray directions `dirs` turned to this heading.
+    /// Sensor `s`'s ray directions turned to this heading.
     #[inline]
-    fn turn_all(self, dirs: &[Vec2; 3], s: usize) -> [Vec2; 3] {
+    fn dirs(self, body: &TurnedRays, s: usize) -> [Vec2; 3] {
         match self {
             Facing::Compass(t) => t.dirs[s],
-            Facing::Angle { sin, cos } => dirs.map(|d| rotate(d, sin, cos)),
+            Facing::Angle { sin, cos } => body.dirs[s].map(|d| d.rotate_by(sin, cos)),
         }
     }
-}
-
-/// `v` rotated by the angle whose sine is `s` and cosine `c`.
-#[inline]
-fn rotate(v: Vec2, s: f64, c: f64) -> Vec2 {
-    Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
 }
 
 impl TurnedRays {
     /// These rays turned by the rotation with sine `s` and cosine `c`.
     fn turned(&self, s: f64, c: f64) -> TurnedRays {
         TurnedRays {
-            origins: self.origins.map(|v| rotate(v, s, c)),
-            dirs: self.dirs.map(|d| d.map(|v| rotate(v, s, c))),
+            origins: self.origins.map(|v| v.rotate_by(s, c)),
+            dirs: self.dirs.map(|d| d.map(|v| v.rotate_by(s, c))),
         }
     }
 }
@@ -181,10 +171,15 @@ mod tests {
         let compass = Compass::new(0.3);
         let eyes = Eyes::new(SensorModel::Sampled, &compass);
         for k in 0..12 {
-            let fresh = eyes.turned(compass.sin[k], compass.cos[k]);
-            let table = eyes.on_compass(k);
-            assert_eq!(fresh.origins, table.origins);
-            assert_eq!(fresh.dirs, table.dirs);
+            let (sin, cos) = (compass.sin[k], compass.cos[k]);
+            let (fresh, table) = (
+                Facing::Angle { sin, cos },
+                Facing::Compass(eyes.on_compass(k)),
+            );
+            for s in 0..INPUTS {
+                assert_eq!(fresh.origin(&eyes.body, s), table.origin(&eyes.body, s));
+                assert_eq!(fresh.dirs(&eyes.body, s), table.dirs(&eyes.body, s));
+            }
         }
     }
 
