@@ -48,22 +48,22 @@ total_ir() {
 N1="$STEPS"; N2=$((2 * STEPS))
 # Enki's workload (the first release's H room, every trial all T steps) with the wheels model and
 # with the actions model; `fuzzymotiv bench --room H` measures the paper's H room, whose home
-# corner keeps random robots near walls (about 4 500 Ir per step for either model).
-WHEELS=(--room "$ROOT/rooms/first-release/H.toml" --motion wheels --set trial.end_at_home=false)
-ACTIONS=(--room "$ROOT/rooms/first-release/H.toml" --motion actions --set trial.end_at_home=false)
-echo "== callgrind: fuzzymotiv bench --steps $N1 and $N2, wheels and actions" >&2
-FM1=$(total_ir fm1 "$FM" bench "${WHEELS[@]}" --steps "$N1" --repeat 1 --population 2 --threads 1 --json)
-FM2=$(total_ir fm2 "$FM" bench "${WHEELS[@]}" --steps "$N2" --repeat 1 --population 2 --threads 1 --json)
-FA1=$(total_ir fa1 "$FM" bench "${ACTIONS[@]}" --steps "$N1" --repeat 1 --population 2 --threads 1 --json)
-FA2=$(total_ir fa2 "$FM" bench "${ACTIONS[@]}" --steps "$N2" --repeat 1 --population 2 --threads 1 --json)
-# The study's workload: the paper's H room with the default model (home in a corner).
-PAPER=(--room H --motion actions)
-FP1=$(total_ir fp1 "$FM" bench "${PAPER[@]}" --steps "$N1" --repeat 1 --population 2 --threads 1 --json)
-FP2=$(total_ir fp2 "$FM" bench "${PAPER[@]}" --steps "$N2" --repeat 1 --population 2 --threads 1 --json)
-# Executed robot-steps of each run, as bench counted them (idle steps are not work).
+# corner keeps random robots near walls (the study's workload).
+FR_H="$ROOT/rooms/first-release/H.toml"
+# workload NAME BENCH-ARGS...: prints "Ir(N1) Ir(N2) executed-steps(N1) executed-steps(N2)".
+# Executed robot-steps are counted by bench itself (idle steps are not work).
+workload() {
+    local name="$1"; shift
+    local ir1 ir2
+    ir1=$(total_ir "${name}1" "$FM" bench "$@" --steps "$N1" --repeat 1 --population 2 --threads 1 --json) || exit 1
+    ir2=$(total_ir "${name}2" "$FM" bench "$@" --steps "$N2" --repeat 1 --population 2 --threads 1 --json) || exit 1
+    echo "$ir1 $ir2 $(executed "${name}1") $(executed "${name}2")"
+}
 executed() { python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(d["robot_steps"] + d["population_robot_steps"])' "$TMP/$1.stdout"; }
-SW1=$(executed fm1); SW2=$(executed fm2); SA1=$(executed fa1); SA2=$(executed fa2)
-SP1=$(executed fp1); SP2=$(executed fp2)
+echo "== callgrind: fuzzymotiv bench --steps $N1 and $N2, wheels and actions" >&2
+WHEELS=$(workload fm --room "$FR_H" --motion wheels --set trial.end_at_home=false)
+ACTIONS=$(workload fa --room "$FR_H" --motion actions --set trial.end_at_home=false)
+PAPER=$(workload fp --room H --motion actions)
 EN1=""; EN2=""
 if [ "$WITH_ENKI" -eq 1 ]; then
     echo "== callgrind: khepera_h --steps $N1 and $N2" >&2
@@ -71,48 +71,44 @@ if [ "$WITH_ENKI" -eq 1 ]; then
     EN2=$(total_ir en2 "$ENKI" --steps "$N2" --repeat 1)
 fi
 
-python3 - "$N1" "$N2" "$FM1" "$FM2" "$EN1" "$EN2" "$HERE/callgrind.json" "$ROOT" \
-    "$SW1" "$SW2" "$FA1" "$FA2" "$SA1" "$SA2" "$FP1" "$FP2" "$SP1" "$SP2" <<'PY'
+python3 - "$N1" "$N2" "$EN1" "$EN2" "$HERE/callgrind.json" "$WHEELS" "$ACTIONS" "$PAPER" <<'PY'
 import datetime, json, os, subprocess, sys
-n1, n2, fm1, fm2 = (int(x) for x in sys.argv[1:5])
-en1, en2, out, root = sys.argv[5:9]
-fm_steps1, fm_steps2, fa1, fa2, fa_steps1, fa_steps2 = (int(x) for x in sys.argv[9:15])
-fp1, fp2, fp_steps1, fp_steps2 = (int(x) for x in sys.argv[15:19])
+n1, n2 = int(sys.argv[1]), int(sys.argv[2])
+en1, en2, out = sys.argv[3:6]
 trial = 400
 steps = lambda n: -(-n // trial) * trial
+bench = f"--steps {n1} --repeat 1 --population 2 --threads 1"
+
+def workload(args, measured):
+    """One workload's record from "Ir(N1) Ir(N2) steps(N1) steps(N2)"."""
+    ir1, ir2, s1, s2 = (int(x) for x in measured.split())
+    return {
+        "command": f"fuzzymotiv bench {args} {bench}",
+        "total_ir": ir1, "robot_steps": s1,
+        "ir_per_robot_step": ir1 / s1,
+        "second_run": {"steps_arg": n2, "total_ir": ir2, "robot_steps": s2},
+        "marginal_ir_per_robot_step": (ir2 - ir1) / (s2 - s1),
+    }
+
+first = "--room rooms/first-release/H.toml"
+wheels = workload(f"{first} --motion wheels --set trial.end_at_home=false", sys.argv[6])
+actions = workload(f"{first} --motion actions --set trial.end_at_home=false", sys.argv[7])
+paper = workload("--room H --motion actions", sys.argv[8])
 doc = {
     "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
     "fuzzymotiv_source": os.environ.get("FM_SOURCE", ""),
     "valgrind": subprocess.run(["valgrind", "--version"], capture_output=True,
                                text=True).stdout.strip(),
-    "fuzzymotiv_actions": {
-        "command": f"fuzzymotiv bench --room rooms/first-release/H.toml --motion actions --set trial.end_at_home=false --steps {n1} --repeat 1 --population 2 --threads 1",
-        "total_ir": fa1, "robot_steps": fa_steps1,
-        "ir_per_robot_step": fa1 / fa_steps1,
-        "second_run": {"steps_arg": n2, "total_ir": fa2, "robot_steps": fa_steps2},
-        "marginal_ir_per_robot_step": (fa2 - fa1) / (fa_steps2 - fa_steps1),
-    },
-    "fuzzymotiv_actions_paper_h": {
-        "command": f"fuzzymotiv bench --room H --motion actions --steps {n1} --repeat 1 --population 2 --threads 1",
-        "total_ir": fp1, "robot_steps": fp_steps1,
-        "ir_per_robot_step": fp1 / fp_steps1,
-        "second_run": {"steps_arg": n2, "total_ir": fp2, "robot_steps": fp_steps2},
-        "marginal_ir_per_robot_step": (fp2 - fp1) / (fp_steps2 - fp_steps1),
-    },
-    "fuzzymotiv": {
-        "command": f"fuzzymotiv bench --room rooms/first-release/H.toml --motion wheels --set trial.end_at_home=false --steps {n1} --repeat 1 --population 2 --threads 1",
-        "total_ir": fm1, "robot_steps": fm_steps1,
-        "ir_per_robot_step": fm1 / fm_steps1,
-        "second_run": {"steps_arg": n2, "total_ir": fm2, "robot_steps": fm_steps2},
-        "marginal_ir_per_robot_step": (fm2 - fm1) / (fm_steps2 - fm_steps1),
-    },
+    "fuzzymotiv_actions": actions,
+    "fuzzymotiv_actions_paper_h": paper,
+    "fuzzymotiv": wheels,
 }
-print(f"fuzzymotiv wheels:  {fm1:,} Ir / {fm_steps1:,} robot-steps = {fm1 / fm_steps1:,.0f} Ir per robot-step"
-      f" (marginal, start-up cancelled: {(fm2 - fm1) / (fm_steps2 - fm_steps1):,.0f})")
-print(f"fuzzymotiv actions: {fa1:,} Ir / {fa_steps1:,} executed robot-steps = {fa1 / fa_steps1:,.0f} Ir per robot-step"
-      f" (marginal: {(fa2 - fa1) / (fa_steps2 - fa_steps1):,.0f})")
-print(f"fuzzymotiv actions, the paper's H room (the study's workload): {fp1 / fp_steps1:,.0f} Ir per robot-step"
-      f" (marginal: {(fp2 - fp1) / (fp_steps2 - fp_steps1):,.0f})")
+for label, w in [("wheels: ", wheels), ("actions:", actions)]:
+    print(f"fuzzymotiv {label} {w['total_ir']:,} Ir / {w['robot_steps']:,} executed robot-steps"
+          f" = {w['ir_per_robot_step']:,.0f} Ir per robot-step"
+          f" (marginal, start-up cancelled: {w['marginal_ir_per_robot_step']:,.0f})")
+print(f"fuzzymotiv actions, the paper's H room (the study's workload): {paper['ir_per_robot_step']:,.0f} Ir per robot-step"
+      f" (marginal: {paper['marginal_ir_per_robot_step']:,.0f})")
 if en1:
     en1, en2 = int(en1), int(en2)
     e_steps1, e_steps2 = steps(n1), steps(n2)
@@ -124,7 +120,7 @@ if en1:
         "marginal_ir_per_robot_step": marginal,
         "note": "each 400-step trial also runs 1 zero-speed World::step to refresh the sensors",
     }
-    fm_marg = doc["fuzzymotiv"]["marginal_ir_per_robot_step"]
+    fm_marg = wheels["marginal_ir_per_robot_step"]
     doc["ratio_enki_over_fuzzymotiv_marginal"] = marginal / fm_marg
     print(f"Enki:       {en1:,} Ir / {e_steps1:,} robot-steps = {en1 / e_steps1:,.0f} Ir per robot-step"
           f" (marginal: {marginal:,.0f})")
