@@ -82,7 +82,9 @@ pub use crate::math::logistic;
 #[derive(Debug, Clone)]
 pub struct Mlp {
     shape: MlpShape,
-    weights: Vec<f64>,
+    /// The output layer's weights, as the genome lays them out: per output `[bias, hidden
+    /// weights]`.
+    out_weights: Vec<f64>,
     /// The hidden layer's weights by input: the biases, then for each input its weight into
     /// every hidden unit (so a sensor that reads 0 is skipped as a whole row).
     by_input: Vec<f64>,
@@ -110,7 +112,7 @@ impl Mlp {
                     .collect();
                 Self {
                     shape,
-                    weights: genome.to_vec(),
+                    out_weights: out_w.to_vec(),
                     by_input,
                     hidden: vec![0.0; shape.hidden],
                     idle_out: output_layer(out_w, &idle_hidden),
@@ -171,15 +173,14 @@ impl Controller for Mlp {
         if inputs.iter().all(|&x| x == 0.0) {
             return self.idle_out;
         }
-        let out_w = &self.weights[self.shape.hidden * (INPUTS + 1)..];
         if self.shape.hidden == 6 {
-            return step_fixed::<6>(&self.by_input, out_w, inputs);
+            return step_fixed::<6>(&self.by_input, &self.out_weights, inputs);
         }
         hidden_sums(&self.by_input, inputs, &mut self.hidden);
         for h in &mut self.hidden {
             *h = logistic(*h);
         }
-        output_layer(out_w, &self.hidden)
+        output_layer(&self.out_weights, &self.hidden)
     }
 }
 
