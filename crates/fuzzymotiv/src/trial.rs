@@ -157,9 +157,7 @@ pub struct Arena {
     walls: Vec<Segment>,
     /// The walls prepared for division-free culling tests (same order as `walls`).
     prepared: Vec<PreparedSegment>,
-    origin: Vec2,
-    cols: usize,
-    rows: usize,
+    grid: Grid,
     cell_start: Vec<u32>,
     cell_walls: Vec<u32>,
     reachable: Vec<bool>,
@@ -200,9 +198,7 @@ impl Arena {
         Arena {
             prepared: walls.iter().map(PreparedSegment::new).collect(),
             walls,
-            origin: lo,
-            cols: grid.cols,
-            rows: grid.rows,
+            grid,
             reachable_count: reachable.iter().filter(|&&r| r).count(),
             reachable,
             cell_start,
@@ -228,21 +224,22 @@ impl Arena {
 
     /// Number of cells of the exploration grid.
     pub fn cell_count(&self) -> usize {
-        self.cols * self.rows
+        self.grid.cells()
     }
 
     /// Grid size `(columns, rows)`.
     pub fn grid(&self) -> (usize, usize) {
-        (self.cols, self.rows)
+        (self.grid.cols, self.grid.rows)
     }
 
     /// The grid cell containing `p` (clamped to the grid).
     #[inline]
     pub fn cell_of(&self, p: Vec2) -> usize {
+        let g = &self.grid;
         // Clamped to ≥ 0 first, so truncation equals floor.
-        let i = ((p.x - self.origin.x) / CELL).clamp(0.0, (self.cols - 1) as f64) as usize;
-        let j = ((p.y - self.origin.y) / CELL).clamp(0.0, (self.rows - 1) as f64) as usize;
-        j * self.cols + i
+        let i = ((p.x - g.origin.x) / CELL).clamp(0.0, (g.cols - 1) as f64) as usize;
+        let j = ((p.y - g.origin.y) / CELL).clamp(0.0, (g.rows - 1) as f64) as usize;
+        j * g.cols + i
     }
 
     /// Cells whose centre the robot's centre can occupy, connected to home (docs/model.md §7).
@@ -371,6 +368,7 @@ impl Arena {
 }
 
 /// The 50 mm cells over a room's bounding box, row by row from `origin`.
+#[derive(Debug, Clone)]
 struct Grid {
     origin: Vec2,
     cols: usize,
