@@ -189,17 +189,12 @@ fn setting_points(groups: &Groups<'_>) -> Vec<SettingPoint> {
         .collect()
 }
 
+/// Mean and sample standard deviation ([`crate::study::mean_std`]); none for no values.
 fn mean_std(v: &[f64]) -> (Option<f64>, Option<f64>) {
     if v.is_empty() {
         return (None, None);
     }
-    let n = v.len() as f64;
-    let mean = v.iter().sum::<f64>() / n;
-    let std = if v.len() > 1 {
-        (v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (n - 1.0)).sqrt()
-    } else {
-        0.0
-    };
+    let (mean, std) = crate::study::mean_std(v);
     (Some(mean), Some(std))
 }
 
