@@ -31,6 +31,7 @@ pub mod fuzzy;
 pub mod ga;
 pub mod geom;
 pub mod math;
+pub mod memo;
 pub mod modelling;
 pub mod noise;
 pub mod params;

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 use crate::aem::Action;
 use crate::controller::{Controller, INPUTS};
 use crate::geom::{PreparedSegment, Segment, Vec2};
+use crate::memo::{Owner, Sight};
 use crate::noise::{perturb, perturb_sensors};
 use crate::params::{FieldError, check};
 use crate::rng::Rng;
@@ -167,7 +168,13 @@ pub struct Arena {
     near_reach: f64,
     compass: Compass,
     eyes: Eyes,
+    /// This arena's number (shared by its clones) in the [`crate::memo`] of each thread, or
+    /// `None` when its poses are not remembered.
+    memo: Option<u64>,
 }
+
+/// The next [`Arena`] number for [`crate::memo`].
+static ARENAS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
 
 impl Arena {
     /// Prepares `room` for trials with `params` (sensor model and body decide the culling reach).
@@ -209,7 +216,22 @@ impl Arena {
             near_reach: near_reach + 1e-6,
             compass,
             eyes: Eyes::new(params.sensor_model, &compass),
+            // Only whole-number sensor values fit the memo (docs/model.md §3).
+            memo: (params.sensor_model == SensorModel::Sampled)
+                .then(|| ARENAS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)),
         }
+    }
+
+    /// Whether this arena's poses are remembered ([`crate::memo`]; `sampled` sensors only).
+    pub fn remembers(&self) -> bool {
+        self.memo.is_some()
+    }
+
+    /// The same arena, its poses never remembered: every step casts its rays (the results are
+    /// the same; this is for tests and measurements).
+    pub fn without_memo(mut self) -> Arena {
+        self.memo = None;
+        self
     }
 
     /// The room.
@@ -354,6 +376,63 @@ impl Arena {
         let facing = Facing::Compass(self.eyes.on_compass(dir));
         self.eyes
             .read(pos, facing, &self.prepared, self.near_list(near))
+    }
+
+    /// What a robot centred at `pos` facing compass direction `dir` (`actions` motion), in grid
+    /// cell `cell`, sees, and whether a straight move of `step` mm would overlap a wall;
+    /// remembered per pose (see [`crate::memo`]) when the cell has walls near it.
+    #[inline]
+    pub fn sight(&self, pos: Vec2, dir: usize, cell: usize, step: f64) -> Sight {
+        if self.cell_list(cell).is_empty() {
+            return Sight::CLEAR;
+        }
+        match self.memo {
+            Some(arena) => {
+                let owner = Owner {
+                    arena,
+                    step: step.to_bits(),
+                };
+                let sight =
+                    crate::memo::recall(owner, pos, dir, || self.look(pos, dir, cell, step));
+                // The next step starts from one of four poses: straight on, or turned here.
+                let ahead = self.straight_on(pos, dir, step);
+                crate::memo::prefetch(
+                    owner,
+                    &[
+                        (ahead, dir),
+                        (pos, (dir + 1) % 12),
+                        (pos, (dir + 11) % 12),
+                        (pos, (dir + 6) % 12),
+                    ],
+                );
+                sight
+            }
+            None => self.look(pos, dir, cell, step),
+        }
+    }
+
+    /// Where a straight move of `step` mm takes a robot centred at `pos` facing compass
+    /// direction `dir` (as [`Motion::execute`] computes it).
+    #[inline]
+    fn straight_on(&self, pos: Vec2, dir: usize, step: f64) -> Vec2 {
+        let here = Pose {
+            x: pos.x,
+            y: pos.y,
+            heading: self.compass.heading[dir],
+        };
+        Motion::execute(here, dir, Action::Straight, step, &self.compass)
+            .0
+            .position()
+    }
+
+    /// [`Arena::sight`], computed: the sensors cast, the straight move tested.
+    fn look(&self, pos: Vec2, dir: usize, cell: usize, step: f64) -> Sight {
+        let near = self.near_walls_in(pos, cell);
+        let ahead = self.straight_on(pos, dir, step);
+        Sight {
+            sensors: self.read_sensors_on_compass(pos, dir, &near),
+            blocked: ahead != pos && self.overlaps_near(ahead, &near),
+        }
     }
 
     /// Whether a body centred at `p` overlaps one of the `near` walls (computed for a point
@@ -624,10 +703,19 @@ impl Walk {
         R: Rng + ?Sized,
     {
         let (motion, v_max) = (params.robot.motion, params.robot.v_max);
-        let near = arena.near_walls_in(self.pose.position(), self.cell);
-        let mut sensors = match motion {
-            Motion::Actions => arena.read_sensors_on_compass(self.pose.position(), self.dir, &near),
-            Motion::Wheels => arena.read_sensors_near(&self.pose, &near),
+        let pos = self.pose.position();
+        let (mut sensors, walls) = match motion {
+            Motion::Actions => {
+                let sight = arena.sight(pos, self.dir, self.cell, params.straight_step());
+                (sight.sensors, Walls::Straight(sight.blocked))
+            }
+            Motion::Wheels => {
+                let near = arena.near_walls_in(pos, self.cell);
+                (
+                    arena.read_sensors_near(&self.pose, &near),
+                    Walls::Near(near),
+                )
+            }
         };
         perturb_sensors(&mut sensors, params.noise, SENSOR_MAX, rng);
         // Most readings are 0 in open floor; 0 / 1023 is exactly 0, so skip the division.
@@ -639,7 +727,7 @@ impl Walk {
             perturb(speeds[1], params.noise, rng),
         ];
         let action = motion.label(motors, noisy, v_max, params.action_tolerance);
-        let collided = self.execute(action, noisy, arena, params, &near);
+        let collided = self.execute(action, noisy, arena, params, &walls);
         let inside = arena.room.home_zone.contains(self.pose.position());
         self.escaped |= !inside;
         let step = Step {
@@ -659,7 +747,7 @@ impl Walk {
     }
 
     /// Moves by `action` (`actions` motion) or the `noisy` wheel speeds (`wheels`); a move
-    /// into a wall is undone, its heading change kept. Returns whether it collided.
+    /// into one of the `walls` is undone, its heading change kept. Returns whether it collided.
     #[inline(always)]
     fn execute(
         &mut self,
@@ -667,7 +755,7 @@ impl Walk {
         noisy: [f64; 2],
         arena: &Arena,
         params: &TrialParams,
-        near: &NearWalls,
+        walls: &Walls,
     ) -> bool {
         let pose = self.pose;
         let (candidate, next_dir) = match params.robot.motion {
@@ -686,7 +774,12 @@ impl Walk {
         self.dir = next_dir;
         // A turn on the spot cannot collide: the position is the previous, wall-free one.
         let moved = candidate.x != pose.x || candidate.y != pose.y;
-        let collided = moved && arena.overlaps_near(candidate.position(), near);
+        let collided = moved
+            && match walls {
+                // `actions` motion moves only straight on, so the candidate is the move tested.
+                Walls::Straight(blocked) => *blocked,
+                Walls::Near(near) => arena.overlaps_near(candidate.position(), near),
+            };
         if collided {
             // Position (and so cell) unchanged; the heading change is kept.
             self.pose.heading = candidate.heading;
@@ -698,6 +791,14 @@ impl Walk {
         }
         collided
     }
+}
+
+/// What a step knows of the walls in its way.
+enum Walls {
+    /// `actions` motion: whether a straight move is blocked ([`Arena::sight`]).
+    Straight(bool),
+    /// `wheels` motion: the walls near the robot, to test the move against.
+    Near(NearWalls),
 }
 
 /// Everything recorded in a trial, one entry per step (idle steps included).

@@ -36,6 +36,26 @@ proptest! {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Remembered sightings change nothing: a trial reads exactly what a trial that casts every
+    /// ray reads, the first time a pose is seen and every time after, in every room.
+    #[test]
+    fn the_memo_changes_nothing(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2) {
+        let params = TrialParams { steps: 300, noise, ..TrialParams::default() };
+        let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
+        let casting = arena.clone().without_memo();
+        prop_assert!(arena.remembers() && !casting.remembers());
+        let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(seed, scale)).unwrap();
+        let cast = run_trial(&casting, &mut mlp, &params, &mut rng_from_seed(seed ^ 1));
+        for _ in 0..2 {
+            let remembered = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(seed ^ 1));
+            prop_assert_eq!(&remembered, &cast);
+        }
+    }
+}
+
+proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
 
     /// With `actions` motion every heading stays on the 30° grid from home and every step moves
