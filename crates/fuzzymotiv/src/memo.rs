@@ -54,32 +54,36 @@ pub struct Owner {
 
 /// `sight` remembered for `owner`'s pose (`pos`, compass direction `dir`), or computed by
 /// `look` and remembered. `look` must return sensor values that are whole numbers in 0–1023.
+///
+/// Then asks the processor to fetch the slots of the poses `next` into cache (the poses the
+/// caller may recall next), so that their lookup does not wait on memory: a table is larger than
+/// the caches, and a lookup is otherwise a cache miss.
 #[inline]
-pub fn recall(owner: Owner, pos: Vec2, dir: usize, look: impl FnOnce() -> Sight) -> Sight {
+pub fn recall(
+    owner: Owner,
+    pos: Vec2,
+    dir: usize,
+    next: &[(Vec2, usize)],
+    look: impl FnOnce() -> Sight,
+) -> Sight {
     let key = Key::new(pos, dir);
     MEMO.with(|memo| {
         let mut memo = memo.borrow_mut();
-        let slot = memo.table(owner).slot(&key);
-        if let Some(sight) = slot.read(&key) {
-            return sight;
-        }
-        let sight = look();
-        *slot = Slot::new(&key, &sight);
-        sight
-    })
-}
-
-/// Asks the processor to fetch the slots of `owner`'s `poses` into cache, so that a later
-/// [`recall`] of one of them does not wait on memory (a table lookup is otherwise a cache miss).
-#[inline]
-pub fn prefetch(owner: Owner, poses: &[(Vec2, usize)]) {
-    MEMO.with(|memo| {
-        let mut memo = memo.borrow_mut();
         let table = memo.table(owner);
-        for &(pos, dir) in poses {
+        let slot = table.slot(&key);
+        let sight = match slot.read(&key) {
+            Some(sight) => sight,
+            None => {
+                let sight = look();
+                *slot = Slot::new(&key, &sight);
+                sight
+            }
+        };
+        for &(pos, dir) in next {
             touch(table.slot(&Key::new(pos, dir)));
         }
-    });
+        sight
+    })
 }
 
 /// Prefetches `slot` into every cache level.
@@ -245,7 +249,7 @@ mod tests {
         for round in 0..2 {
             let mut computed = 0;
             for (k, &(p, dir)) in poses.iter().enumerate() {
-                let got = recall(owner, p, dir, || {
+                let got = recall(owner, p, dir, &[], || {
                     computed += 1;
                     sight(k as u16)
                 });
@@ -261,7 +265,7 @@ mod tests {
         // Another owner does not see these poses.
         let other = Owner { arena: 2, ..owner };
         let mut computed = false;
-        recall(other, poses[0].0, poses[0].1, || {
+        recall(other, poses[0].0, poses[0].1, &[], || {
             computed = true;
             Sight::CLEAR
         });
@@ -274,9 +278,9 @@ mod tests {
         let owner = Owner { arena: 3, step: 0 };
         let p = Vec2::new(123.456, 78.9);
         let q = Vec2::new(f64::from_bits(p.x.to_bits() + 1), p.y);
-        assert_eq!(recall(owner, p, 4, || sight(1)), sight(1));
-        assert_eq!(recall(owner, q, 4, || sight(2)), sight(2));
-        assert_eq!(recall(owner, p, 5, || sight(3)), sight(3));
-        assert_eq!(recall(owner, p, 4, || unreachable!()), sight(1));
+        assert_eq!(recall(owner, p, 4, &[], || sight(1)), sight(1));
+        assert_eq!(recall(owner, q, 4, &[], || sight(2)), sight(2));
+        assert_eq!(recall(owner, p, 5, &[], || sight(3)), sight(3));
+        assert_eq!(recall(owner, p, 4, &[], || unreachable!()), sight(1));
     }
 }

@@ -392,20 +392,14 @@ impl Arena {
                     arena,
                     step: step.to_bits(),
                 };
-                let sight =
-                    crate::memo::recall(owner, pos, dir, || self.look(pos, dir, cell, step));
                 // The next step starts from one of four poses: straight on, or turned here.
-                let ahead = self.straight_on(pos, dir, step);
-                crate::memo::prefetch(
-                    owner,
-                    &[
-                        (ahead, dir),
-                        (pos, (dir + 1) % 12),
-                        (pos, (dir + 11) % 12),
-                        (pos, (dir + 6) % 12),
-                    ],
-                );
-                sight
+                let next = [
+                    (self.straight_on(pos, dir, step), dir),
+                    (pos, (dir + 1) % 12),
+                    (pos, (dir + 11) % 12),
+                    (pos, (dir + 6) % 12),
+                ];
+                crate::memo::recall(owner, pos, dir, &next, || self.look(pos, dir, cell, step))
             }
             None => self.look(pos, dir, cell, step),
         }
