@@ -54,7 +54,7 @@ pub struct BenchReport {
     pub population: usize,
     /// Whole-population evaluations per repetition.
     pub population_evaluations: usize,
-    /// Executed robot-steps of one repetition of the population measurement.
+    /// Executed robot-steps of a repetition of the population measurement (median).
     pub population_robot_steps: usize,
     /// Their rate (median repetition).
     pub population_robot_steps_per_sec: f64,
@@ -62,7 +62,7 @@ pub struct BenchReport {
     pub population_seconds: f64,
     /// Repetitions.
     pub repeat: usize,
-    /// Executed robot-steps of one repetition of the single-robot measurement.
+    /// Executed robot-steps of a repetition of the single-robot measurement (median).
     pub robot_steps: usize,
     /// Their rate (median repetition).
     pub robot_steps_per_sec: f64,
@@ -121,17 +121,18 @@ fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
     Ok(loaded.experiment)
 }
 
-/// Times `work` `repeat` times; returns the median seconds and the executed robot-steps of one
-/// repetition (every repetition does the same work).
-fn timed(repeat: usize, mut work: impl FnMut() -> usize) -> (f64, usize) {
+/// Times `work(r)` for each repetition `r` of `repeat`; returns the median seconds and the median
+/// executed robot-steps of a repetition. Each repetition runs new trials (new random streams), so
+/// no repetition finds its poses already remembered by an earlier one ([`fuzzymotiv::memo`]).
+fn timed(repeat: usize, mut work: impl FnMut(usize) -> usize) -> (f64, usize) {
     let mut seconds = Vec::new();
-    let mut steps = 0;
-    for _ in 0..repeat {
+    let mut steps = Vec::new();
+    for r in 0..repeat {
         let t0 = Instant::now();
-        steps = work();
+        steps.push(work(r) as f64);
         seconds.push(t0.elapsed().as_secs_f64());
     }
-    (median(seconds), steps)
+    (median(seconds), median(steps) as usize)
 }
 
 /// The two measurements: one robot on one thread, whole trials until `steps` are done; then
@@ -143,20 +144,21 @@ fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
     let trial_steps = exp.trial_params().steps;
     let mut sink = 0.0;
     let trials = args.steps.div_ceil(trial_steps);
-    let (seconds, robot_steps) = timed(args.repeat, || {
+    let (seconds, robot_steps) = timed(args.repeat, |r| {
         (0..trials)
             .map(|k| {
-                let e = exp.evaluate(&population[k % population.len()], run, 0, k);
+                let e = exp.evaluate(&population[k % population.len()], run, r, k);
                 sink += e.fitness;
                 e.executed()
             })
             .sum()
     });
     let evaluations = args.steps.div_ceil(population.len() * trial_steps);
-    let (pop_seconds, pop_steps) = timed(args.repeat, || {
+    let (pop_seconds, pop_steps) = timed(args.repeat, |r| {
         (0..evaluations)
-            .map(|_| {
-                let evals = exp.evaluate_population(&population, run, 0);
+            .map(|e| {
+                // A generation number of its own: fresh noise, as each generation of a run has.
+                let evals = exp.evaluate_population(&population, run, r * evaluations + e);
                 sink += evals[0].fitness;
                 evals.iter().map(|e| e.executed()).sum::<usize>()
             })
