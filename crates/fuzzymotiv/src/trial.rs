@@ -392,37 +392,38 @@ impl Arena {
                     arena,
                     step: step.to_bits(),
                 };
-                // The next step starts from one of four poses: straight on, or turned here.
+                // The next step starts where one of the four actions takes the robot.
                 let next = [
-                    (self.straight_on(pos, dir, step), dir),
-                    (pos, (dir + 1) % 12),
-                    (pos, (dir + 11) % 12),
-                    (pos, (dir + 6) % 12),
-                ];
+                    Action::Straight,
+                    Action::Left30,
+                    Action::Right30,
+                    Action::Turn180,
+                ]
+                .map(|a| self.after(pos, dir, a, step));
                 crate::memo::recall(owner, pos, dir, &next, || self.look(pos, dir, cell, step))
             }
             None => self.look(pos, dir, cell, step),
         }
     }
 
-    /// Where a straight move of `step` mm takes a robot centred at `pos` facing compass
-    /// direction `dir` (as [`Motion::execute`] computes it).
+    /// The position and compass direction that `action` (a straight move of `step` mm, or a
+    /// turn) takes a robot centred at `pos` facing compass direction `dir` to, as
+    /// [`Motion::execute`] computes them.
     #[inline]
-    fn straight_on(&self, pos: Vec2, dir: usize, step: f64) -> Vec2 {
+    fn after(&self, pos: Vec2, dir: usize, action: Action, step: f64) -> (Vec2, usize) {
         let here = Pose {
             x: pos.x,
             y: pos.y,
             heading: self.compass.heading[dir],
         };
-        Motion::execute(here, dir, Action::Straight, step, &self.compass)
-            .0
-            .position()
+        let (pose, dir) = Motion::execute(here, dir, action, step, &self.compass);
+        (pose.position(), dir)
     }
 
     /// [`Arena::sight`], computed: the sensors cast, the straight move tested.
     fn look(&self, pos: Vec2, dir: usize, cell: usize, step: f64) -> Sight {
         let near = self.near_walls_in(pos, cell);
-        let ahead = self.straight_on(pos, dir, step);
+        let (ahead, _) = self.after(pos, dir, Action::Straight, step);
         Sight {
             sensors: self.read_sensors_on_compass(pos, dir, &near),
             blocked: ahead != pos && self.overlaps_near(ahead, &near),
