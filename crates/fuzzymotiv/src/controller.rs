@@ -77,6 +77,7 @@ impl MlpShape {
 /// Logistic function 1 / (1 + e^(−x)), with the project's own `exp` (error bound and range:
 /// [`crate::math::logistic`]).
 pub use crate::math::logistic;
+use crate::math::logistic_lanes;
 
 /// The feed-forward logistic MLP whose weights are the genome.
 #[derive(Debug, Clone)]
@@ -146,7 +147,8 @@ fn hidden_sums(by_input: &[f64], inputs: &[f64; INPUTS], sums: &mut [f64]) {
 
 /// The network with `H` hidden units known at compile time: the same arithmetic in the same
 /// order as the general path (so identical results), with fixed trip counts the compiler
-/// unrolls and vectorises.
+/// unrolls and vectorises, and each layer's logistic units done together
+/// ([`logistic_lanes`]: the scalar function's bits).
 #[inline]
 fn step_fixed<const H: usize>(
     by_input: &[f64],
@@ -155,16 +157,16 @@ fn step_fixed<const H: usize>(
 ) -> [f64; OUTPUTS] {
     let mut hidden = [0.0; H];
     hidden_sums(&by_input[..H * (INPUTS + 1)], inputs, &mut hidden);
-    let hidden = hidden.map(logistic);
+    let hidden = logistic_lanes(hidden);
     let mut out = [0.0; OUTPUTS];
     for (o, w) in out.iter_mut().zip(out_w.chunks_exact(H + 1)) {
         let mut s = w[0];
         for k in 0..H {
             s += w[k + 1] * hidden[k];
         }
-        *o = logistic(s);
+        *o = s;
     }
-    out
+    logistic_lanes(out)
 }
 
 impl Controller for Mlp {
