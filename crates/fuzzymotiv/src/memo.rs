@@ -52,37 +52,14 @@ pub struct Owner {
     pub step: u64,
 }
 
-/// `sight` remembered for `owner`'s pose (`pos`, compass direction `dir`), or computed by
-/// `look` and remembered. `look` must return sensor values that are whole numbers in 0–1023.
-///
-/// Then asks the processor to fetch the slots of the poses `next` into cache (the poses the
-/// caller may recall next), so that their lookup does not wait on memory: a table is larger than
-/// the caches, and a lookup is otherwise a cache miss.
-#[inline]
-pub fn recall(
-    owner: Owner,
-    pos: Vec2,
-    dir: usize,
-    next: &[(Vec2, usize)],
-    look: impl FnOnce() -> Sight,
-) -> Sight {
-    let key = Key::new(pos, dir);
-    MEMO.with(|memo| {
-        let mut memo = memo.borrow_mut();
-        let table = memo.table(owner);
-        let slot = table.slot(&key);
-        let sight = match slot.read(&key) {
-            Some(sight) => sight,
-            None => {
-                let sight = look();
-                *slot = Slot::new(&key, &sight);
-                sight
-            }
-        };
-        for &(pos, dir) in next {
-            touch(table.slot(&Key::new(pos, dir)));
-        }
-        sight
+/// Runs `f` with this thread's table for `owner` (made, or taken over from the oldest owner, if
+/// it has none), borrowed for as long as `f` runs: a trial takes it once, not once per step.
+/// `f` gets `None` if the thread's tables are already borrowed (a trial run from inside another
+/// trial's step): it then computes every sight, with the same results.
+pub fn with_table<T>(owner: Owner, f: impl FnOnce(Option<&mut Table>) -> T) -> T {
+    MEMO.with(|memo| match memo.try_borrow_mut() {
+        Ok(mut memo) => f(Some(memo.table(owner))),
+        Err(_) => f(None),
     })
 }
 
@@ -134,13 +111,44 @@ impl Memo {
     }
 }
 
-/// The poses of one owner.
-struct Table {
+/// The poses of one owner, in one thread ([`with_table`]).
+pub struct Table {
     owner: Owner,
     slots: Vec<Slot>,
 }
 
 impl Table {
+    /// The sight remembered for the pose (`pos`, compass direction `dir`), or computed by
+    /// `look` and remembered. `look` must return sensor values that are whole numbers in
+    /// 0–1023.
+    ///
+    /// Then asks the processor to fetch the slots of the poses `next` into cache (the poses the
+    /// caller may ask for next), so that their lookup does not wait on memory: a table is larger
+    /// than the caches, and a lookup is otherwise a cache miss.
+    #[inline]
+    pub fn recall(
+        &mut self,
+        pos: Vec2,
+        dir: usize,
+        next: &[(Vec2, usize)],
+        look: impl FnOnce() -> Sight,
+    ) -> Sight {
+        let key = Key::new(pos, dir);
+        let slot = self.slot(&key);
+        let sight = match slot.read(&key) {
+            Some(sight) => sight,
+            None => {
+                let sight = look();
+                *slot = Slot::new(&key, &sight);
+                sight
+            }
+        };
+        for &(pos, dir) in next {
+            touch(self.slot(&Key::new(pos, dir)));
+        }
+        sight
+    }
+
     /// The slot `key` hashes to.
     #[inline]
     fn slot(&mut self, key: &Key) -> &mut Slot {
@@ -219,6 +227,30 @@ impl Slot {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// One lookup in this thread's table for `owner`.
+    fn recall(
+        owner: Owner,
+        pos: Vec2,
+        dir: usize,
+        next: &[(Vec2, usize)],
+        look: impl FnOnce() -> Sight,
+    ) -> Sight {
+        with_table(owner, |table| {
+            table.expect("not borrowed").recall(pos, dir, next, look)
+        })
+    }
+
+    /// A table asked for while this thread's tables are borrowed is refused, not shared.
+    #[test]
+    fn a_nested_borrow_gets_no_table() {
+        let owner = Owner { arena: 4, step: 0 };
+        with_table(owner, |outer| {
+            assert!(outer.is_some());
+            with_table(owner, |inner| assert!(inner.is_none()));
+        });
+        with_table(owner, |again| assert!(again.is_some()));
+    }
 
     fn sight(k: u16) -> Sight {
         let mut sensors = [0.0; INPUTS];

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 use crate::aem::Action;
 use crate::controller::{Controller, INPUTS};
 use crate::geom::{PreparedSegment, Segment, Vec2};
-use crate::memo::{Owner, Sight};
+use crate::memo::{Owner, Sight, Table};
 use crate::noise::{perturb, perturb_sensors};
 use crate::params::{FieldError, check};
 use crate::rng::Rng;
@@ -378,20 +378,33 @@ impl Arena {
             .read(pos, facing, &self.prepared, self.near_list(near))
     }
 
+    /// The [`crate::memo`] owner of this arena's poses for straight moves of `step` mm, or
+    /// `None` when its poses are not remembered.
+    pub fn memo_owner(&self, step: f64) -> Option<Owner> {
+        self.memo.map(|arena| Owner {
+            arena,
+            step: step.to_bits(),
+        })
+    }
+
     /// What a robot centred at `pos` facing compass direction `dir` (`actions` motion), in grid
     /// cell `cell`, sees, and whether a straight move of `step` mm would overlap a wall;
-    /// remembered per pose (see [`crate::memo`]) when the cell has walls near it.
+    /// remembered in `memo` (this arena's table for `step`, from [`Arena::memo_owner`]) when the
+    /// cell has walls near it, computed every time without one.
     #[inline]
-    pub fn sight(&self, pos: Vec2, dir: usize, cell: usize, step: f64) -> Sight {
+    pub fn sight(
+        &self,
+        memo: Option<&mut Table>,
+        pos: Vec2,
+        dir: usize,
+        cell: usize,
+        step: f64,
+    ) -> Sight {
         if self.cell_list(cell).is_empty() {
             return Sight::CLEAR;
         }
-        match self.memo {
-            Some(arena) => {
-                let owner = Owner {
-                    arena,
-                    step: step.to_bits(),
-                };
+        match memo {
+            Some(table) => {
                 // The next step starts where one of the four actions takes the robot.
                 let next = [
                     Action::Straight,
@@ -400,7 +413,7 @@ impl Arena {
                     Action::Turn180,
                 ]
                 .map(|a| self.after(pos, dir, a, step));
-                crate::memo::recall(owner, pos, dir, &next, || self.look(pos, dir, cell, step))
+                table.recall(pos, dir, &next, || self.look(pos, dir, cell, step))
             }
             None => self.look(pos, dir, cell, step),
         }
@@ -647,6 +660,32 @@ where
     R: Rng + ?Sized,
     O: StepObserver + ?Sized,
 {
+    let owner = match params.robot.motion {
+        Motion::Actions => arena.memo_owner(params.straight_step()),
+        Motion::Wheels => None,
+    };
+    match owner {
+        Some(owner) => crate::memo::with_table(owner, |table| {
+            walk_trial(arena, controller, params, rng, observer, table)
+        }),
+        None => walk_trial(arena, controller, params, rng, observer, None),
+    }
+}
+
+/// [`simulate`], with the arena's [`crate::memo`] table for the trial's poses, or none.
+fn walk_trial<C, R, O>(
+    arena: &Arena,
+    controller: &mut C,
+    params: &TrialParams,
+    rng: &mut R,
+    observer: &mut O,
+    mut memo: Option<&mut Table>,
+) -> Pose
+where
+    C: Controller + ?Sized,
+    R: Rng + ?Sized,
+    O: StepObserver + ?Sized,
+{
     let mut walk = Walk {
         pose: arena.room.home,
         cell: arena.cell_of(arena.room.home.position()),
@@ -655,7 +694,7 @@ where
     };
     let mut t = 0;
     while t < params.steps {
-        let (step, home) = walk.step(t, arena, controller, params, rng);
+        let (step, home) = walk.step(t, arena, controller, params, rng, memo.as_deref_mut());
         observer.observe(&step);
         t += 1;
         if params.end_at_home && home {
@@ -682,8 +721,9 @@ struct Walk {
 impl Walk {
     /// Step `t`: read the sensors (with noise), run the network, add wheel noise, label the
     /// step and move by the motion model, undoing the move (keeping the heading change) if the
-    /// body would overlap a wall. Returns the step's record and whether the robot, having
-    /// escaped, is back in the home zone.
+    /// body would overlap a wall. `memo` is the trial's table of remembered sights, if any
+    /// (`actions` motion). Returns the step's record and whether the robot, having escaped, is
+    /// back in the home zone.
     #[inline(always)]
     fn step<C, R>(
         &mut self,
@@ -692,6 +732,7 @@ impl Walk {
         controller: &mut C,
         params: &TrialParams,
         rng: &mut R,
+        memo: Option<&mut Table>,
     ) -> (Step, bool)
     where
         C: Controller + ?Sized,
@@ -701,7 +742,8 @@ impl Walk {
         let pos = self.pose.position();
         let (mut sensors, walls) = match motion {
             Motion::Actions => {
-                let sight = arena.sight(pos, self.dir, self.cell, params.straight_step());
+                let step = params.straight_step();
+                let sight = arena.sight(memo, pos, self.dir, self.cell, step);
                 (sight.sensors, Walls::Straight(sight.blocked))
             }
             Motion::Wheels => {
