@@ -257,8 +257,9 @@ pub fn logistic_lanes<const L: usize>(x: [f64; L]) -> [f64; L] {
         let p = r + r * r * (0.5 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0))));
         hi + (lo + hi * p)
     });
-    // |k| ≤ 708 · 128 / ln 2 < 1023 · 128, so the shifted sum is `(k >> 7) + 0x3ff` in 1..2046,
-    // a normal exponent, shifted logically (arithmetic 64-bit shifts have no vector form here).
+    // |k| ≤ 130 743 (708 · 128 / ln 2, rounded) < 1023 · 128, so the shifted sum is
+    // `(k >> 7) + 0x3ff` in 1..=2044, a normal exponent, shifted logically (arithmetic 64-bit
+    // shifts have no vector form here).
     let scale = k.map(|k| f64::from_bits((((k + 0x3ff * 128) as u64) >> 7) << 52));
     std::array::from_fn(|l| 1.0 / (1.0 + y[l] * scale[l]))
 }

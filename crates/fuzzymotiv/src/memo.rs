@@ -55,7 +55,7 @@ pub struct Owner {
 /// Runs `f` with this thread's table for `owner` (made, or taken over from the oldest owner, if
 /// it has none), borrowed for as long as `f` runs: a trial takes it once, not once per step.
 /// `f` gets `None` if the thread's tables are already borrowed (a trial run from inside another
-/// trial's step): it then computes every sight, with the same results.
+/// trial, by its controller or observer): it then computes every sight, with the same results.
 pub fn with_table<T>(owner: Owner, f: impl FnOnce(Option<&mut Table>) -> T) -> T {
     MEMO.with(|memo| match memo.try_borrow_mut() {
         Ok(mut memo) => f(Some(memo.table(owner))),
@@ -118,6 +118,11 @@ pub struct Table {
 }
 
 impl Table {
+    /// Whose poses this table holds.
+    pub fn owner(&self) -> Owner {
+        self.owner
+    }
+
     /// The sight remembered for the pose (`pos`, compass direction `dir`), or computed by
     /// `look` and remembered. `look` must return sensor values that are whole numbers in
     /// 0–1023.

@@ -392,7 +392,7 @@ impl Arena {
     /// remembered in `memo` (this arena's table for `step`, from [`Arena::memo_owner`]) when the
     /// cell has walls near it, computed every time without one.
     #[inline]
-    pub fn sight(
+    pub(crate) fn sight(
         &self,
         memo: Option<&mut Table>,
         pos: Vec2,
@@ -405,6 +405,11 @@ impl Arena {
         }
         match memo {
             Some(table) => {
+                debug_assert_eq!(
+                    Some(table.owner()),
+                    self.memo_owner(step),
+                    "another's table"
+                );
                 // The next step starts where one of the four actions takes the robot.
                 let next = [
                     Action::Straight,
