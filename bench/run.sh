@@ -8,7 +8,7 @@
 #   N  robot-steps of each single-robot measurement (default 2000000; whole 400-step trials)
 #   K  alternating rounds: fuzzymotiv then Enki, K times each (default 5)
 #   R  repetitions inside each run; each run reports its median (default 1)
-#   P  repetitions of each population measurement (default 21; one is 200 x 400 steps)
+#   P  repetitions of each population measurement (default 101; one is 200 x 400 steps, ~10 ms)
 # FUZZYMOTIV_REV=HEAD measures the last commit instead of the working tree (built from
 # `git archive` under target/bench/); FUZZYMOTIV_BIN=path measures an existing binary.
 # Prints a table and writes bench/results.json with every raw number.
@@ -20,7 +20,7 @@ ROOT="$(cd "$HERE/.." && pwd)"
 STEPS="${STEPS:-2000000}"
 ROUNDS="${ROUNDS:-5}"
 REPEAT="${REPEAT:-1}"
-POP_REPEAT="${POP_REPEAT:-21}"
+POP_REPEAT="${POP_REPEAT:-101}"
 NO_INSTALL="${NO_INSTALL:-0}"
 while [ $# -gt 0 ]; do
     case "$1" in
