@@ -10,9 +10,10 @@
 //!     --target-dir target/native    # with AVX2: four lanes per instruction
 //! ```
 //!
-//! Measured 2026-11-22 on the 2-core EPYC VM, three runs: one robot at a time 81–90 ns, four in
-//! lockstep 58–67 ns with the default target (SSE2, two lanes per instruction: about 1.4×); with
-//! AVX2 82–86 ns against 45–50 ns (about 1.75×). The network is about 30 % of a study's time.
+//! Measured 2026-11-22 on the 2-core EPYC VM: with the default target (SSE2, two lanes per
+//! instruction; three runs) one robot at a time took 81–90 ns, four in lockstep 58–67 ns (about
+//! 1.4×); with AVX2 (two runs) 82–86 ns against 45–50 ns (about 1.75×). The network is about
+//! 30 % of a study's time.
 use fuzzymotiv::controller::{Controller, Mlp, MlpShape};
 use fuzzymotiv::math::logistic_lanes;
 use fuzzymotiv::rng::{rng_from_seed, uniform};
