@@ -187,13 +187,29 @@ fn pow2(k: i64) -> f64 {
 /// of `e^r − 1` (truncation error < 6·10⁻¹⁹).
 #[inline]
 fn exp_parts(x: f64) -> (f64, i64) {
-    let kd = (x * INV_LN2_N + TO_INT) - TO_INT;
-    let r = (x - kd * LN2_HI_N) - kd * LN2_LO_N;
-    let k = kd as i64;
+    let (k, r) = reduce(x);
+    (table_poly(k, r), k >> 7)
+}
+
+/// `x = k · ln 2 / 128 + r` for `|x| ≤ 746`: `k` the integer nearest `x · 128 / ln 2`, `r` the
+/// remainder, taken off in two parts.
+#[inline(always)]
+fn reduce(x: f64) -> (i64, f64) {
+    let t = x * INV_LN2_N + TO_INT;
+    let kd = t - TO_INT;
+    // `t` is an integer in [2⁵², 2⁵³), as `TO_INT` is: their bit patterns differ by `kd`, which
+    // gives `kd as i64` without a float-to-integer conversion (which has no vector form in SSE2).
+    let k = t.to_bits() as i64 - TO_INT.to_bits() as i64;
+    (k, (x - kd * LN2_HI_N) - kd * LN2_LO_N)
+}
+
+/// `2^(j/128) · e^r` for `j = k mod 128`, from the table and the polynomial.
+#[inline(always)]
+fn table_poly(k: i64, r: f64) -> f64 {
     let (hi, lo) = EXP2_TABLE[(k & 127) as usize];
     let (hi, lo) = (f64::from_bits(hi), f64::from_bits(lo));
     let p = r + r * r * (0.5 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0))));
-    (hi + (lo + hi * p), k >> 7)
+    hi + (lo + hi * p)
 }
 
 /// `e^x`, within 1 ulp of libm's for every normal result (table-driven, no division: see
@@ -244,23 +260,12 @@ pub fn logistic_lanes<const L: usize>(x: [f64; L]) -> [f64; L] {
     if !x.iter().all(|v| v.abs() <= 708.0) {
         return x.map(logistic);
     }
-    let t = x.map(|v| -v * INV_LN2_N + TO_INT);
-    let kd = t.map(|t| t - TO_INT);
-    // `t` is an integer in [2⁵², 2⁵³), as `TO_INT` is: their bit patterns differ by `kd`, which
-    // is `kd as i64` without a float-to-integer conversion (which has no vector form here).
-    let k = t.map(|t| t.to_bits() as i64 - TO_INT.to_bits() as i64);
-    let r: [f64; L] = std::array::from_fn(|l| (-x[l] - kd[l] * LN2_HI_N) - kd[l] * LN2_LO_N);
-    let y: [f64; L] = std::array::from_fn(|l| {
-        let (hi, lo) = EXP2_TABLE[(k[l] & 127) as usize];
-        let (hi, lo) = (f64::from_bits(hi), f64::from_bits(lo));
-        let r = r[l];
-        let p = r + r * r * (0.5 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0))));
-        hi + (lo + hi * p)
-    });
+    let parts = x.map(|v| reduce(-v));
+    let y = parts.map(|(k, r)| table_poly(k, r));
     // |k| ≤ 130 743 (708 · 128 / ln 2, rounded) < 1023 · 128, so the shifted sum is
     // `(k >> 7) + 0x3ff` in 1..=2044, a normal exponent, shifted logically (arithmetic 64-bit
     // shifts have no vector form here).
-    let scale = k.map(|k| f64::from_bits((((k + 0x3ff * 128) as u64) >> 7) << 52));
+    let scale = parts.map(|(k, _)| f64::from_bits((((k + 0x3ff * 128) as u64) >> 7) << 52));
     std::array::from_fn(|l| 1.0 / (1.0 + y[l] * scale[l]))
 }
 
