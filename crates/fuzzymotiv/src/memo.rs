@@ -14,8 +14,14 @@
 //! (an arena and a step length); a slot is overwritten by the next pose that hashes to it. The
 //! sensor values are whole numbers in 0–1023 (the `sampled` sensor model), which is what lets an
 //! entry fit in 32 bytes; the caller must not use the memo for other values.
+//!
+//! Lookups land all over a table, so with ordinary 4 KiB pages most of them also missed the
+//! processor's address cache (TLB). Each table is therefore one 2 MiB block on a 2 MiB boundary,
+//! which Linux is asked to back with a single transparent huge page ([`Slots`]).
 
+use std::alloc::{Layout, alloc, dealloc, handle_alloc_error};
 use std::cell::RefCell;
+use std::ptr::NonNull;
 
 use crate::controller::INPUTS;
 use crate::geom::Vec2;
@@ -98,7 +104,7 @@ impl Memo {
         if self.tables.len() < TABLES {
             self.tables.push(Table {
                 owner,
-                slots: vec![Slot::EMPTY; SLOTS],
+                slots: Slots::new(),
             });
             return self.tables.last_mut().expect("just pushed");
         }
@@ -114,7 +120,7 @@ impl Memo {
 /// The poses of one owner, in one thread ([`with_table`]).
 pub struct Table {
     owner: Owner,
-    slots: Vec<Slot>,
+    slots: Slots,
 }
 
 impl Table {
@@ -163,6 +169,71 @@ impl Table {
         &mut self.slots[(h >> (64 - SLOTS.trailing_zeros())) as usize]
     }
 }
+
+/// A table's [`SLOTS`] slots: one block of [`Slots::BYTES`] (2 MiB) aligned to its size, so
+/// that it is exactly one huge page, which Linux is asked for (`madvise(MADV_HUGEPAGE)`) before
+/// the block is first written. Where the advice is refused or unknown (another system,
+/// transparent huge pages switched off) the block is ordinary memory: only speed differs.
+struct Slots(NonNull<Slot>);
+
+impl Slots {
+    /// The block's size in bytes.
+    const BYTES: usize = SLOTS * std::mem::size_of::<Slot>();
+    const LAYOUT: Layout = match Layout::from_size_align(Slots::BYTES, Slots::BYTES) {
+        Ok(layout) => layout,
+        Err(_) => panic!("SLOTS slots make a power-of-two block"),
+    };
+
+    /// A block of empty slots.
+    fn new() -> Slots {
+        // SAFETY: the layout's size is not zero.
+        let block = unsafe { alloc(Slots::LAYOUT) };
+        let Some(block) = NonNull::new(block.cast::<Slot>()) else {
+            handle_alloc_error(Slots::LAYOUT)
+        };
+        advise_huge_page(block.cast(), Slots::BYTES);
+        // The first write faults the pages in, after the advice.
+        for k in 0..SLOTS {
+            // SAFETY: the block holds SLOTS slots (its layout), aligned for `Slot`.
+            unsafe { block.add(k).write(Slot::EMPTY) };
+        }
+        Slots(block)
+    }
+}
+
+impl std::ops::Deref for Slots {
+    type Target = [Slot];
+    fn deref(&self) -> &[Slot] {
+        // SAFETY: the block holds SLOTS initialised slots for as long as `self` lives.
+        unsafe { std::slice::from_raw_parts(self.0.as_ptr(), SLOTS) }
+    }
+}
+
+impl std::ops::DerefMut for Slots {
+    fn deref_mut(&mut self) -> &mut [Slot] {
+        // SAFETY: as in `deref`, and `&mut self` makes this the only reference.
+        unsafe { std::slice::from_raw_parts_mut(self.0.as_ptr(), SLOTS) }
+    }
+}
+
+impl Drop for Slots {
+    fn drop(&mut self) {
+        // SAFETY: the block was allocated in `Slots::new` with this layout.
+        unsafe { dealloc(self.0.as_ptr().cast(), Slots::LAYOUT) }
+    }
+}
+
+/// Asks Linux to back `len` bytes at `block` with transparent huge pages.
+#[cfg(target_os = "linux")]
+fn advise_huge_page(block: NonNull<u8>, len: usize) {
+    // SAFETY: advice only: the range is one allocation of ours, and madvise changes no data in
+    // it. A refusal (huge pages switched off) is harmless, so its result is not needed.
+    unsafe { libc::madvise(block.as_ptr().cast(), len, libc::MADV_HUGEPAGE) };
+}
+
+/// No advice on other systems.
+#[cfg(not(target_os = "linux"))]
+fn advise_huge_page(_: NonNull<u8>, _: usize) {}
 
 /// A pose: the bits of its position and its compass direction plus one (0 marks an empty slot).
 struct Key {
@@ -244,6 +315,21 @@ mod tests {
         with_table(owner, |table| {
             table.expect("not borrowed").recall(pos, dir, next, look)
         })
+    }
+
+    /// A table's slots are one block aligned to its size, empty, and each can be written.
+    #[test]
+    fn slots_are_one_aligned_block() {
+        let mut slots = Slots::new();
+        assert_eq!(slots.len(), SLOTS);
+        assert_eq!(slots.as_ptr() as usize % Slots::BYTES, 0);
+        assert_eq!(Slots::BYTES, 2 << 20);
+        let key = Key::new(Vec2::new(1.5, -2.0), 3);
+        assert!(slots.iter().all(|s| s.read(&key).is_none()));
+        let last = SLOTS - 1;
+        slots[last] = Slot::new(&key, &sight(5));
+        assert_eq!(slots[last].read(&key), Some(sight(5)));
+        assert!(slots[0].read(&key).is_none());
     }
 
     /// A table asked for while this thread's tables are borrowed is refused, not shared.
