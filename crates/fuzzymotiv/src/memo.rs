@@ -52,7 +52,7 @@ impl Sight {
 /// Whose poses a table holds: an arena (by its id) and the length of a straight move.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Owner {
-    /// A number unique to the arena (and its clones, which are equal to it).
+    /// The arena's number, the same for equal arenas (see [`crate::trial::Arena`]'s `memo`).
     pub arena: u64,
     /// The bits of the straight-move length (mm).
     pub step: u64,

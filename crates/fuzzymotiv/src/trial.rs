@@ -168,13 +168,33 @@ pub struct Arena {
     near_reach: f64,
     compass: Compass,
     eyes: Eyes,
-    /// This arena's number (shared by its clones) in the [`crate::memo`] of each thread, or
-    /// `None` when its poses are not remembered.
+    /// This arena's number in the [`crate::memo`] of each thread (shared by its clones and by
+    /// equal arenas, [`memo_number`]), or `None` when its poses are not remembered.
     memo: Option<u64>,
 }
 
-/// The next [`Arena`] number for [`crate::memo`].
-static ARENAS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+/// The arenas numbered so far for [`crate::memo`], by their full `Debug` text: equal arenas
+/// (the same room prepared with the same parameters, in several runs or experiments) get the
+/// same number, and so share their tables, which they may: a sight is a function of the arena
+/// and the pose alone, and `Debug` writes every field, floats to the last bit.
+static ARENAS: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+
+/// The [`crate::memo`] number of `arena` (whose own number is not yet set): 1 for the first
+/// distinct arena, 2 for the second, and so on.
+fn memo_number(arena: &Arena) -> u64 {
+    let text = format!("{arena:?}");
+    let mut known = ARENAS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let k = match known.iter().position(|t| *t == text) {
+        Some(k) => k,
+        None => {
+            known.push(text);
+            known.len() - 1
+        }
+    };
+    k as u64 + 1
+}
 
 impl Arena {
     /// Prepares `room` for trials with `params` (sensor model and body decide the culling reach).
@@ -202,7 +222,7 @@ impl Arena {
         let list = |k: usize| &cell_walls[cell_start[k] as usize..cell_start[k + 1] as usize];
         let reachable = grid.reachable(&valid, room.home.position(), radius, &walls, list);
         let compass = Compass::new(room.home.heading);
-        Arena {
+        let arena = Arena {
             prepared: walls.iter().map(PreparedSegment::new).collect(),
             walls,
             grid,
@@ -216,10 +236,11 @@ impl Arena {
             near_reach: near_reach + 1e-6,
             compass,
             eyes: Eyes::new(params.sensor_model, &compass),
-            // Only whole-number sensor values fit the memo (docs/model.md §3).
-            memo: (params.sensor_model == SensorModel::Sampled)
-                .then(|| ARENAS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)),
-        }
+            memo: None,
+        };
+        // Only whole-number sensor values fit the memo (docs/model.md §3).
+        let memo = (params.sensor_model == SensorModel::Sampled).then(|| memo_number(&arena));
+        Arena { memo, ..arena }
     }
 
     /// Whether this arena's poses are remembered ([`crate::memo`]; `sampled` sensors only).
@@ -1139,5 +1160,26 @@ mod tests {
         assert_eq!((tr.poses[2].x, tr.collisions[1]), (32.0, false));
         assert_eq!((tr.poses[3].x, tr.collisions[2]), (32.0, true));
         assert_eq!(tr.poses[3].heading, std::f64::consts::PI);
+    }
+
+    /// Equal arenas share a memo number (and so their tables); a different room or body does not.
+    #[test]
+    fn equal_arenas_share_their_memo_number() {
+        let params = TrialParams::default();
+        let h = || Arena::new(Room::builtin("H").unwrap(), &params);
+        assert!(h().memo.is_some());
+        assert_eq!(h().memo, h().memo);
+        assert_ne!(h().memo, square().memo);
+        let wider = TrialParams {
+            robot: crate::robot::Khepera {
+                radius: params.robot.radius + 1.0,
+                ..params.robot
+            },
+            ..params
+        };
+        assert_ne!(
+            h().memo,
+            Arena::new(Room::builtin("H").unwrap(), &wider).memo
+        );
     }
 }
