@@ -282,16 +282,14 @@ pub fn run_jobs(
         let progress = if terminal || quiet {
             Progress::hidden()
         } else {
-            let p = Progress::new(&loaded.experiment, 1, false);
-            p.set_prefix(&format!(
+            Progress::new(&loaded.experiment, 1, false).named(&format!(
                 "job {} ({}/{} here) {} seed {}",
                 job.id,
                 ran + skipped + 1,
                 selected.len(),
                 job.key,
                 job.seed
-            ));
-            p
+            ))
         };
         execute(&loaded, &dir, &progress, resume, false)?;
         write_atomic(&dir.join("job.json"), to_json(job))?;
@@ -306,4 +304,106 @@ pub fn run_jobs(
         sweep.jobs.len()
     );
     Ok(())
+}
+
+/// Runs `job` on every item, as many at a time as the thread pool has threads (one at a time
+/// with `--threads 1`). Each run also evaluates its populations in parallel, so a thread whose
+/// run waits (at the end of a generation, while it trains its maps or writes its files) helps
+/// the others. Results come in item order and do not depend on the timing: items are
+/// independent. After an error no new item starts; the first error in item order is returned.
+pub fn run_concurrently<T, R>(
+    items: &[T],
+    job: impl Fn(&T) -> Result<R, CliError> + Sync,
+) -> Result<Vec<R>, CliError>
+where
+    T: Sync,
+    R: Send,
+{
+    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+    let next = AtomicUsize::new(0);
+    let failed = AtomicBool::new(false);
+    let results: Vec<std::sync::Mutex<Option<Result<R, CliError>>>> =
+        items.iter().map(|_| Default::default()).collect();
+    let lanes = rayon::current_num_threads().clamp(1, items.len().max(1));
+    (0..lanes).into_par_iter().for_each(|_| {
+        while !failed.load(Ordering::Relaxed) {
+            let k = next.fetch_add(1, Ordering::Relaxed);
+            let Some(item) = items.get(k) else { break };
+            let result = job(item);
+            failed.fetch_or(result.is_err(), Ordering::Relaxed);
+            *results[k]
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner) = Some(result);
+        }
+    });
+    results
+        .into_iter()
+        .filter_map(|r| r.into_inner().unwrap_or_else(|e| e.into_inner()))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pool(threads: usize) -> rayon::ThreadPool {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+    }
+
+    /// Results come in item order whatever the number of threads, and the items really run
+    /// side by side when there are threads for it.
+    #[test]
+    fn runs_come_back_in_item_order() {
+        let items: Vec<u64> = (0..9).collect();
+        for threads in [1, 2, 4] {
+            let at_once = std::sync::atomic::AtomicUsize::new(0);
+            let most = std::sync::atomic::AtomicUsize::new(0);
+            let got = pool(threads).install(|| {
+                run_concurrently(&items, |&k| {
+                    let now = at_once.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+                    most.fetch_max(now, std::sync::atomic::Ordering::SeqCst);
+                    std::thread::sleep(std::time::Duration::from_millis(20));
+                    at_once.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
+                    Ok(k * k)
+                })
+            });
+            assert_eq!(
+                got.unwrap(),
+                items.iter().map(|k| k * k).collect::<Vec<_>>()
+            );
+            let most = most.into_inner();
+            assert!(most <= threads, "{most} at once on {threads} threads");
+            assert!(
+                threads == 1 || most >= 2,
+                "never two at once on {threads} threads"
+            );
+        }
+    }
+
+    /// The first error in item order is returned; no item starts after an error.
+    #[test]
+    fn the_first_error_in_item_order_is_returned() {
+        let items: Vec<usize> = (0..40).collect();
+        let started = std::sync::atomic::AtomicUsize::new(0);
+        let got = pool(2).install(|| {
+            run_concurrently(&items, |&k| {
+                started.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                if k == 3 || k == 5 {
+                    Err(CliError::runtime(format!("item {k} failed")))
+                } else {
+                    Ok(k)
+                }
+            })
+        });
+        let message = got.expect_err("an error").to_string();
+        assert!(message.contains("item 3 failed"), "{message}");
+        assert!(
+            started.into_inner() < items.len(),
+            "items started after the error"
+        );
+    }
 }

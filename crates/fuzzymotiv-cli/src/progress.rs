@@ -1,8 +1,9 @@
 //! Progress on stderr: a bar on a terminal; otherwise (SLURM, `nohup`, `| tee`) one plain line
 //! every few seconds; nothing with `--quiet`.
 
-use std::cell::Cell;
 use std::io::IsTerminal;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
@@ -11,19 +12,33 @@ use indicatif::{ProgressBar, ProgressStyle};
 /// Seconds between two plain progress lines.
 const PLAIN_INTERVAL: Duration = Duration::from_secs(5);
 
-/// Progress over all generations of one or more experiments.
+/// Progress over all generations of one or more experiments, or a view of it for one run
+/// ([`Progress::named`]); runs may go on side by side, each with its own view.
 pub struct Progress {
+    shared: Arc<Shared>,
+    /// The run this view is for, e.g. `high-curiosity seed 1` (none for the whole).
+    name: Option<String>,
+}
+
+/// What the views of one progress share.
+struct Shared {
     bar: ProgressBar,
     /// Plain lines instead of a bar (stderr is not a terminal).
     plain: bool,
     quiet: bool,
-    prefix: std::cell::RefCell<String>,
     total: u64,
     /// Generations counted so far, and those done before a resume (not timed here).
-    pos: Cell<u64>,
-    skipped: Cell<u64>,
+    pos: AtomicU64,
+    skipped: AtomicU64,
     start: Instant,
-    last_line: Cell<Option<Instant>>,
+    last_line: Mutex<Option<Instant>>,
+    /// The names of the runs going on, shown before the bar.
+    running: Mutex<Vec<String>>,
+}
+
+/// The lock, also after a panic elsewhere (progress is only shown, never relied on).
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 impl Progress {
@@ -44,97 +59,114 @@ impl Progress {
             bar.enable_steady_tick(Duration::from_millis(500));
             bar
         };
-        Self {
-            bar,
-            plain,
-            quiet,
-            prefix: Default::default(),
-            total,
-            pos: Cell::new(0),
-            skipped: Cell::new(0),
-            start: Instant::now(),
-            last_line: Cell::new(None),
-        }
+        Self::with_bar(bar, plain, quiet, total)
     }
 
     /// No output at all (e.g. a sweep's jobs under the sweep's own bar).
     pub fn hidden() -> Self {
-        Self {
-            bar: ProgressBar::hidden(),
-            plain: false,
-            quiet: true,
-            prefix: Default::default(),
-            total: 0,
-            pos: Cell::new(0),
-            skipped: Cell::new(0),
+        Self::with_bar(ProgressBar::hidden(), false, true, 0)
+    }
+
+    fn with_bar(bar: ProgressBar, plain: bool, quiet: bool, total: u64) -> Self {
+        let shared = Shared {
+            bar,
+            plain,
+            quiet,
+            total,
+            pos: AtomicU64::new(0),
+            skipped: AtomicU64::new(0),
             start: Instant::now(),
-            last_line: Cell::new(None),
+            last_line: Mutex::new(None),
+            running: Mutex::new(Vec::new()),
+        };
+        Self {
+            shared: Arc::new(shared),
+            name: None,
         }
     }
 
-    /// Names what is running, e.g. `high-curiosity seed 1`.
-    pub fn set_prefix(&self, prefix: &str) {
-        self.bar.set_prefix(prefix.to_string());
-        *self.prefix.borrow_mut() = prefix.to_string();
+    /// A view for one run, named e.g. `high-curiosity seed 1`: its plain lines start with the
+    /// name, and the bar shows it (with the other runs going on) for as long as the view lives.
+    pub fn named(&self, name: &str) -> Progress {
+        let mut running = lock(&self.shared.running);
+        running.push(name.to_string());
+        self.shared.bar.set_prefix(running.join(" + "));
+        Progress {
+            shared: Arc::clone(&self.shared),
+            name: Some(name.to_string()),
+        }
     }
 
     /// A one-line note on stderr (unless quiet), above the bar.
     pub fn note(&self, message: &str) {
-        if !self.quiet {
-            self.bar.suspend(|| eprintln!("{message}"));
+        if !self.shared.quiet {
+            self.shared.bar.suspend(|| eprintln!("{message}"));
         }
     }
 
     /// Generations done before a resume.
     pub fn skip(&self, n: usize) {
-        self.bar.inc(n as u64);
-        self.pos.set(self.pos.get() + n as u64);
-        self.skipped.set(self.skipped.get() + n as u64);
+        self.shared.bar.inc(n as u64);
+        self.shared.pos.fetch_add(n as u64, Ordering::Relaxed);
+        self.shared.skipped.fetch_add(n as u64, Ordering::Relaxed);
     }
 
     /// Generation `g` (1-based) of `of` of run `run` finished with best F `best`.
     pub fn generation(&self, run: &str, g: usize, of: usize, best: f64) {
-        self.bar.inc(1);
-        self.bar.set_message(format!("best F {best:.3}"));
-        self.pos.set(self.pos.get() + 1);
-        if self.quiet || !self.plain {
+        let shared = &self.shared;
+        shared.bar.inc(1);
+        shared.bar.set_message(format!("best F {best:.3}"));
+        shared.pos.fetch_add(1, Ordering::Relaxed);
+        if shared.quiet || !shared.plain {
             return;
         }
         let now = Instant::now();
-        let due = self
-            .last_line
-            .get()
-            .is_none_or(|t| now - t >= PLAIN_INTERVAL);
+        let mut last_line = lock(&shared.last_line);
+        let due = last_line.is_none_or(|t| now - t >= PLAIN_INTERVAL);
         if g == 1 || g == of || due {
-            self.last_line.set(Some(now));
+            *last_line = Some(now);
             eprintln!("{}", self.line(run, g, of, best));
         }
     }
 
     fn line(&self, run: &str, g: usize, of: usize, best: f64) -> String {
-        let elapsed = self.start.elapsed().as_secs_f64();
-        let timed = (self.pos.get() - self.skipped.get()) as f64;
-        let left = self.total.saturating_sub(self.pos.get()) as f64;
+        let shared = &self.shared;
+        let elapsed = shared.start.elapsed().as_secs_f64();
+        let pos = shared.pos.load(Ordering::Relaxed);
+        let timed = (pos - shared.skipped.load(Ordering::Relaxed)) as f64;
+        let left = shared.total.saturating_sub(pos) as f64;
         let eta = if timed > 0.0 {
             clock(elapsed / timed * left)
         } else {
             "?".to_string()
         };
-        let prefix = self.prefix.borrow();
+        let name = self.name.as_deref().unwrap_or("");
         let run = if run.is_empty() || run == "all" {
             String::new()
         } else {
             format!(", robot of {run}")
         };
         format!(
-            "{prefix}{run}: generation {g}/{of}, best F {best:.3}, elapsed {}, ETA {eta}",
+            "{name}{run}: generation {g}/{of}, best F {best:.3}, elapsed {}, ETA {eta}",
             clock(elapsed)
         )
     }
 
     /// Removes the bar.
     pub fn finish(&self) {
-        self.bar.finish_and_clear();
+        self.shared.bar.finish_and_clear();
+    }
+}
+
+impl Drop for Progress {
+    /// A run's view leaves the bar's list of runs going on.
+    fn drop(&mut self) {
+        let Some(name) = &self.name else { return };
+        let mut running = lock(&self.shared.running);
+        if let Some(k) = running.iter().position(|r| r == name) {
+            running.remove(k);
+        }
+        self.shared.bar.set_prefix(running.join(" + "));
     }
 }
 

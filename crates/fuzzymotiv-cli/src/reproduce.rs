@@ -10,7 +10,7 @@ use crate::args::OutputArgs;
 use crate::error::CliError;
 use crate::files::{OutState, StagedDir, check_out, write_atomic};
 use crate::inputs::{Loaded, resolve, resolved_toml};
-use crate::pipeline::{execute, run_jobs, set_threads, start_line};
+use crate::pipeline::{execute, run_concurrently, run_jobs, set_threads, start_line};
 use crate::png::write_figure_at;
 use crate::progress::Progress;
 use crate::records::{
@@ -140,7 +140,8 @@ fn load_settings(
         .collect()
 }
 
-/// Evolves every (setting, seed) of a variant into `dir/SETTING/seed-S/`.
+/// Evolves every (setting, seed) of a variant into `dir/SETTING/seed-S/`, as many runs at a
+/// time as there are threads ([`run_concurrently`]).
 fn run_study<'a>(
     args: &ReproduceArgs,
     seeds: &[u64],
@@ -149,23 +150,28 @@ fn run_study<'a>(
     progress: &Progress,
     label: &str,
 ) -> Result<Vec<SettingRuns<'a>>, CliError> {
-    let mut studies = Vec::new();
-    for (setting, loaded) in SETTINGS.iter().zip(loaded) {
-        let mut finished = Vec::new();
-        for (seed, l) in seeds.iter().zip(&loaded) {
-            progress.set_prefix(&format!("{label}{} seed {seed}", setting.name));
-            let run_dir = dir.join(setting.name).join(format!("seed-{seed}"));
-            progress.note(&start_line(&l.experiment, &run_dir));
-            finished.push(execute(l, &run_dir, progress, false, args.png)?);
-        }
-        studies.push(SettingRuns {
+    let runs: Vec<(&Setting, u64, &Loaded)> = SETTINGS
+        .iter()
+        .zip(&loaded)
+        .flat_map(|(setting, loaded)| seeds.iter().zip(loaded).map(move |(&s, l)| (setting, s, l)))
+        .collect();
+    let finished = run_concurrently(&runs, |&(setting, seed, l)| {
+        let progress = progress.named(&format!("{label}{} seed {seed}", setting.name));
+        let run_dir = dir.join(setting.name).join(format!("seed-{seed}"));
+        progress.note(&start_line(&l.experiment, &run_dir));
+        execute(l, &run_dir, &progress, false, args.png)
+    })?;
+    let mut finished = finished.into_iter();
+    Ok(SETTINGS
+        .iter()
+        .zip(loaded)
+        .map(|(setting, loaded)| SettingRuns {
             setting,
             seeds: seeds.to_vec(),
+            finished: finished.by_ref().take(seeds.len()).collect(),
             loaded,
-            finished,
-        });
-    }
-    Ok(studies)
+        })
+        .collect())
 }
 
 /// Entry point of `fuzzymotiv reproduce`.

@@ -71,8 +71,7 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
     else {
         return Ok(());
     };
-    let progress = Progress::new(&loaded.experiment, 1, args.output.quiet);
-    progress.set_prefix(&format!(
+    let progress = Progress::new(&loaded.experiment, 1, args.output.quiet).named(&format!(
         "{} seed {}",
         loaded.experiment.name(),
         loaded.experiment.seed()

@@ -305,6 +305,44 @@ fn bench_json_has_the_documented_keys() {
     }
 }
 
+/// The study runs as many (setting, seed) runs at a time as it has threads: its tables, and
+/// every run's records, are the same bytes with one thread (one run at a time) and with three
+/// (three of its four runs at once, and each population evaluated in parallel).
+#[test]
+fn reproduce_results_do_not_depend_on_thread_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = |threads: &str| {
+        let out = dir.path().join(format!("threads-{threads}"));
+        let o = Fm::new(["reproduce", "--quick", "--seeds", "2", "--threads", threads])
+            .sets(&SMALL)
+            .out(&out)
+            .run();
+        assert!(o.status.success(), "{}", stderr(&o));
+        out
+    };
+    let (one, three) = (study("1"), study("3"));
+    let second = fuzzymotiv::seed::study_seed(1, 1);
+    let mut files = vec![
+        "table1.csv".to_string(),
+        "table2.csv".into(),
+        "claims.csv".into(),
+    ];
+    for setting in ["high-curiosity", "low-curiosity"] {
+        for seed in [1, second] {
+            for f in ["generations.csv", "best_genome.json", "recognition.csv"] {
+                files.push(format!("{setting}/seed-{seed}/{f}"));
+            }
+        }
+    }
+    for f in files {
+        assert_eq!(
+            std::fs::read(one.join(&f)).unwrap(),
+            std::fs::read(three.join(&f)).unwrap(),
+            "{f} differs"
+        );
+    }
+}
+
 #[test]
 fn reproduce_quick_writes_every_documented_file() {
     let dir = tempfile::tempdir().unwrap();
