@@ -248,8 +248,9 @@ fn write_run_figures(
     write_figure(staged, "trajectories", &paths, png)
 }
 
-/// Runs the `selected` jobs of `sweep` into `out/jobs/ID/`, skipping finished ones. On a
-/// terminal a bar counts jobs; otherwise each job prints plain progress lines (not with `quiet`).
+/// Runs the `selected` jobs of `sweep` into `out/jobs/ID/`, skipping finished ones, as many at
+/// a time as there are threads ([`run_concurrently`]). On a terminal a bar counts jobs;
+/// otherwise each job prints plain progress lines (not with `quiet`).
 pub fn run_jobs(
     sweep: &Sweep,
     text: &str,
@@ -267,16 +268,18 @@ pub fn run_jobs(
     } else {
         ProgressBar::hidden()
     };
-    let (mut ran, mut skipped) = (0, 0);
-    for &k in selected {
+    let todo: Vec<usize> = selected
+        .iter()
+        .copied()
+        .filter(|&k| !jobs_dir.join(&sweep.jobs[k].id).join("DONE").is_file())
+        .collect();
+    let skipped = selected.len() - todo.len();
+    bar.inc(skipped as u64);
+    let numbered: Vec<(usize, usize)> = todo.iter().copied().enumerate().collect();
+    run_concurrently(&numbered, |&(n, k)| {
         let job = &sweep.jobs[k];
         let dir = jobs_dir.join(&job.id);
         bar.set_message(job.key.clone());
-        if dir.join("DONE").is_file() {
-            skipped += 1;
-            bar.inc(1);
-            continue;
-        }
         let loaded = sweep.load_job(job)?;
         let resume = StagedDir::staging_path(&dir).join(CHECKPOINT).is_file();
         let progress = if terminal || quiet {
@@ -285,7 +288,7 @@ pub fn run_jobs(
             Progress::new(&loaded.experiment, 1, false).named(&format!(
                 "job {} ({}/{} here) {} seed {}",
                 job.id,
-                ran + skipped + 1,
+                skipped + n + 1,
                 selected.len(),
                 job.key,
                 job.seed
@@ -294,12 +297,13 @@ pub fn run_jobs(
         execute(&loaded, &dir, &progress, resume, false)?;
         write_atomic(&dir.join("job.json"), to_json(job))?;
         write_atomic(&dir.join("DONE"), "")?;
-        ran += 1;
         bar.inc(1);
-    }
+        Ok(())
+    })?;
     bar.finish_and_clear();
     eprintln!(
-        "{ran} jobs run, {skipped} already done, {} in this selection, {} in the plan",
+        "{} jobs run, {skipped} already done, {} in this selection, {} in the plan",
+        todo.len(),
         selected.len(),
         sweep.jobs.len()
     );
