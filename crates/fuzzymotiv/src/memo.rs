@@ -17,7 +17,7 @@
 //!
 //! Lookups land all over a table, so with ordinary 4 KiB pages most of them also missed the
 //! processor's address cache (TLB). Each table is therefore one 2 MiB block on a 2 MiB boundary,
-//! which Linux is asked to back with a single transparent huge page ([`Slots`]).
+//! which Linux is asked to back with a single transparent huge page.
 
 use std::alloc::{Layout, alloc, dealloc, handle_alloc_error};
 use std::cell::RefCell;
