@@ -1,8 +1,10 @@
 //! The shared pipeline of the commands: evolve (with a checkpoint after every generation),
-//! model the rooms, write a run directory's records, figures and report; and run a sweep's
-//! jobs.
+//! model the rooms, write a run directory's records, figures and report; and run a study's runs
+//! or a sweep's jobs side by side.
 
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
 use fuzzymotiv::config::Training;
@@ -18,7 +20,7 @@ use crate::inputs::{Loaded, resolved_toml};
 use crate::png::write_figure;
 use crate::progress::Progress;
 use crate::records::{
-    BestGenome, Finished, GenerationRow, RecognitionTable, RunSummary, to_csv, to_json,
+    BestGenome, Finished, GenerationRow, Job, RecognitionTable, RunSummary, to_csv, to_json,
 };
 use crate::report;
 use crate::svg::{best_paths_svg, fitness_svg, terms_svg};
@@ -278,25 +280,17 @@ pub fn run_jobs(
     let numbered: Vec<(usize, usize)> = todo.iter().copied().enumerate().collect();
     run_concurrently(&numbered, |&(n, k)| {
         let job = &sweep.jobs[k];
-        let dir = jobs_dir.join(&job.id);
         bar.set_message(job.key.clone());
-        let loaded = sweep.load_job(job)?;
-        let resume = StagedDir::staging_path(&dir).join(CHECKPOINT).is_file();
-        let progress = if terminal || quiet {
-            Progress::hidden()
-        } else {
-            Progress::new(&loaded.experiment, 1, false).named(&format!(
-                "job {} ({}/{} here) {} seed {}",
+        let show = !(terminal || quiet);
+        let line = show.then(|| {
+            format!(
+                "job {} ({}/{} here)",
                 job.id,
                 skipped + n + 1,
-                selected.len(),
-                job.key,
-                job.seed
-            ))
-        };
-        execute(&loaded, &dir, &progress, resume, false)?;
-        write_atomic(&dir.join("job.json"), to_json(job))?;
-        write_atomic(&dir.join("DONE"), "")?;
+                selected.len()
+            )
+        });
+        run_job(sweep, job, &jobs_dir.join(&job.id), line)?;
         bar.inc(1);
         Ok(())
     })?;
@@ -310,11 +304,28 @@ pub fn run_jobs(
     Ok(())
 }
 
+/// Runs one job of a sweep into `dir` (resuming it if a checkpoint is there) and marks it
+/// `DONE`; with `line` (e.g. `job ID (3/8 here)`), prints plain progress lines under that name.
+fn run_job(sweep: &Sweep, job: &Job, dir: &Path, line: Option<String>) -> Result<(), CliError> {
+    let loaded = sweep.load_job(job)?;
+    let resume = StagedDir::staging_path(dir).join(CHECKPOINT).is_file();
+    let progress = match line {
+        Some(line) => Progress::new(&loaded.experiment, 1, false)
+            .named(&format!("{line} {} seed {}", job.key, job.seed)),
+        None => Progress::hidden(),
+    };
+    execute(&loaded, dir, &progress, resume, false)?;
+    write_atomic(&dir.join("job.json"), to_json(job))?;
+    write_atomic(&dir.join("DONE"), "")
+}
+
 /// Runs `job` on every item, as many at a time as the thread pool has threads (one at a time
-/// with `--threads 1`). Each run also evaluates its populations in parallel, so a thread whose
-/// run waits (at the end of a generation, while it trains its maps or writes its files) helps
-/// the others. Results come in item order and do not depend on the timing: items are
-/// independent. After an error no new item starts; the first error in item order is returned.
+/// with `--threads 1`): one lane per thread ([`rayon::broadcast`]), each taking the next item
+/// until none is left. Each item (a run) also evaluates its populations in parallel, so a thread
+/// whose own run waits at the end of a generation takes work from the others, and no core idles
+/// while one run trains its maps or writes its files. Results come in item order and do not
+/// depend on the timing: items are independent. After an error or a panic no new item starts;
+/// the first error in item order is returned (a panic goes on once the lanes have stopped).
 pub fn run_concurrently<T, R>(
     items: &[T],
     job: impl Fn(&T) -> Result<R, CliError> + Sync,
@@ -323,28 +334,35 @@ where
     T: Sync,
     R: Send,
 {
-    use rayon::prelude::*;
-    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
     let next = AtomicUsize::new(0);
-    let failed = AtomicBool::new(false);
-    let results: Vec<std::sync::Mutex<Option<Result<R, CliError>>>> =
+    let stop = AtomicBool::new(false);
+    let results: Vec<Mutex<Option<Result<R, CliError>>>> =
         items.iter().map(|_| Default::default()).collect();
-    let lanes = rayon::current_num_threads().clamp(1, items.len().max(1));
-    (0..lanes).into_par_iter().for_each(|_| {
-        while !failed.load(Ordering::Relaxed) {
+    rayon::broadcast(|_| {
+        let _on_panic = StopOnPanic(&stop);
+        while !stop.load(Ordering::Relaxed) {
             let k = next.fetch_add(1, Ordering::Relaxed);
             let Some(item) = items.get(k) else { break };
             let result = job(item);
-            failed.fetch_or(result.is_err(), Ordering::Relaxed);
-            *results[k]
-                .lock()
-                .unwrap_or_else(std::sync::PoisonError::into_inner) = Some(result);
+            stop.fetch_or(result.is_err(), Ordering::Relaxed);
+            *results[k].lock().unwrap_or_else(PoisonError::into_inner) = Some(result);
         }
     });
     results
         .into_iter()
-        .filter_map(|r| r.into_inner().unwrap_or_else(|e| e.into_inner()))
+        .filter_map(|r| r.into_inner().unwrap_or_else(PoisonError::into_inner))
         .collect()
+}
+
+/// Tells the other lanes of [`run_concurrently`] to start nothing new when its lane panics.
+struct StopOnPanic<'a>(&'a AtomicBool);
+
+impl Drop for StopOnPanic<'_> {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            self.0.store(true, Ordering::Relaxed);
+        }
+    }
 }
 
 #[cfg(test)]
@@ -409,5 +427,26 @@ mod tests {
             started.into_inner() < items.len(),
             "items started after the error"
         );
+    }
+
+    /// A panic in one lane stops the others from starting new items, then goes on.
+    #[test]
+    fn a_panic_stops_new_items() {
+        let items: Vec<usize> = (0..40).collect();
+        let started = AtomicUsize::new(0);
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            pool(2).install(|| {
+                run_concurrently(&items, |&k| {
+                    started.fetch_add(1, Ordering::SeqCst);
+                    assert_ne!(k, 2, "item 2 panics");
+                    // Long enough to outlast the panic hook (a backtrace takes a while).
+                    std::thread::sleep(std::time::Duration::from_millis(50));
+                    Ok(k)
+                })
+            })
+        }));
+        assert!(outcome.is_err(), "the panic goes on");
+        let started = started.into_inner();
+        assert!(started < items.len(), "all {started} items started");
     }
 }

@@ -18,6 +18,8 @@ pub struct Progress {
     shared: Arc<Shared>,
     /// The run this view is for, e.g. `high-curiosity seed 1` (none for the whole).
     name: Option<String>,
+    /// When this view last printed a plain line.
+    last_line: Mutex<Option<Instant>>,
 }
 
 /// What the views of one progress share.
@@ -31,7 +33,6 @@ struct Shared {
     pos: AtomicU64,
     skipped: AtomicU64,
     start: Instant,
-    last_line: Mutex<Option<Instant>>,
     /// The names of the runs going on, shown before the bar.
     running: Mutex<Vec<String>>,
 }
@@ -76,24 +77,26 @@ impl Progress {
             pos: AtomicU64::new(0),
             skipped: AtomicU64::new(0),
             start: Instant::now(),
-            last_line: Mutex::new(None),
             running: Mutex::new(Vec::new()),
         };
         Self {
             shared: Arc::new(shared),
             name: None,
+            last_line: Mutex::new(None),
         }
     }
 
     /// A view for one run, named e.g. `high-curiosity seed 1`: its plain lines start with the
-    /// name, and the bar shows it (with the other runs going on) for as long as the view lives.
+    /// name (one every few seconds for each run), and the bar shows it (with the other runs
+    /// going on) for as long as the view lives.
     pub fn named(&self, name: &str) -> Progress {
         let mut running = lock(&self.shared.running);
         running.push(name.to_string());
-        self.shared.bar.set_prefix(running.join(" + "));
+        self.shared.bar.set_prefix(bar_prefix(&running));
         Progress {
             shared: Arc::clone(&self.shared),
             name: Some(name.to_string()),
+            last_line: Mutex::new(None),
         }
     }
 
@@ -120,8 +123,8 @@ impl Progress {
         if shared.quiet || !shared.plain {
             return;
         }
+        let mut last_line = lock(&self.last_line);
         let now = Instant::now();
-        let mut last_line = lock(&shared.last_line);
         let due = last_line.is_none_or(|t| now - t >= PLAIN_INTERVAL);
         if g == 1 || g == of || due {
             *last_line = Some(now);
@@ -166,7 +169,16 @@ impl Drop for Progress {
         if let Some(k) = running.iter().position(|r| r == name) {
             running.remove(k);
         }
-        self.shared.bar.set_prefix(running.join(" + "));
+        self.shared.bar.set_prefix(bar_prefix(&running));
+    }
+}
+
+/// The bar's prefix for the runs going on: their names, or the first and how many more when
+/// there are more than two (the bar keeps its room on the line).
+fn bar_prefix(running: &[String]) -> String {
+    match running {
+        [first, _, _, ..] => format!("{first} + {} more", running.len() - 1),
+        _ => running.join(" + "),
     }
 }
 
@@ -177,5 +189,34 @@ fn clock(seconds: f64) -> String {
         format!("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
     } else {
         format!("{}:{:02}", s / 60, s % 60)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bar names one or two runs going on; with more, the first and how many more.
+    #[test]
+    fn the_bar_names_the_runs_going_on() {
+        let names = |n: usize| (1..=n).map(|k| format!("seed {k}")).collect::<Vec<_>>();
+        assert_eq!(bar_prefix(&names(0)), "");
+        assert_eq!(bar_prefix(&names(1)), "seed 1");
+        assert_eq!(bar_prefix(&names(2)), "seed 1 + seed 2");
+        assert_eq!(bar_prefix(&names(5)), "seed 1 + 4 more");
+    }
+
+    /// A view leaves the list when dropped; views of the same name come and go one by one.
+    #[test]
+    fn views_leave_the_list_when_dropped() {
+        let all = Progress::hidden();
+        let a = all.named("a");
+        let b = all.named("b");
+        let a2 = all.named("a");
+        drop(a);
+        assert_eq!(*lock(&all.shared.running), ["b", "a"]);
+        drop(a2);
+        drop(b);
+        assert!(lock(&all.shared.running).is_empty());
     }
 }

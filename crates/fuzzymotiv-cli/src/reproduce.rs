@@ -46,7 +46,8 @@ pub struct ReproduceArgs {
     /// A fast look: GA 30 × 30 instead of the paper's 200 × 200.
     #[arg(long)]
     pub quick: bool,
-    /// Worker threads [default: all cores]; results do not depend on it.
+    /// Worker threads [default: all cores]; up to this many (setting, seed) runs go on at once,
+    /// sharing them; results do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
     /// Run the orientation study instead (configs/orientation-study.toml): does rewarding

@@ -53,7 +53,8 @@ pub struct SweepArgs {
     /// JOB_COMPLETION_INDEX (Kubernetes) or an HTCondor $(Process) passed in the environment.
     #[arg(long, value_name = "VAR")]
     pub index_from_env: Option<String>,
-    /// Worker threads per job [default: all cores]; results do not depend on it.
+    /// Worker threads [default: all cores]; up to this many jobs run at once, sharing them;
+    /// results do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
     /// No progress lines on stderr.

@@ -49,7 +49,7 @@ impl Sight {
     };
 }
 
-/// Whose poses a table holds: an arena (by its id) and the length of a straight move.
+/// Whose poses a table holds: an arena (by its number) and the length of a straight move.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Owner {
     /// The arena's number, the same for equal arenas (see [`crate::trial::Arena`]'s `memo`).
@@ -215,6 +215,12 @@ impl std::ops::DerefMut for Slots {
         unsafe { std::slice::from_raw_parts_mut(self.0.as_ptr(), SLOTS) }
     }
 }
+
+// SAFETY: a `Slots` owns its block alone, as a `Box<[Slot]>` would, and hands out references
+// to it only through `&self` and `&mut self`; `Slot` is plain data.
+unsafe impl Send for Slots {}
+// SAFETY: as for `Send`: shared access is through `&self` only, which gives `&[Slot]`.
+unsafe impl Sync for Slots {}
 
 impl Drop for Slots {
     fn drop(&mut self) {

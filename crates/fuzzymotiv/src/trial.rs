@@ -5,6 +5,8 @@
 //! allocation-free step loop, reporting each step to a [`StepObserver`]; [`run_trial`] records a
 //! whole [`Trajectory`].
 
+use std::collections::HashMap;
+
 use serde::{Deserialize, Serialize};
 
 use crate::aem::Action;
@@ -175,25 +177,21 @@ pub struct Arena {
 
 /// The arenas numbered so far for [`crate::memo`], by their full `Debug` text: equal arenas
 /// (the same room prepared with the same parameters, in several runs or experiments) get the
-/// same number, and so share their tables, which they may: a sight is a function of the arena
-/// and the pose alone, and `Debug` writes every field, floats to the last bit.
-static ARENAS: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+/// same number, and so share their tables, which they may: a sight is a function of the arena,
+/// the pose and the length of a straight move (kept apart, in [`Owner`]), and `Debug` writes
+/// every field, floats to the last bit. Entries are never removed (one per distinct arena, tens
+/// of KB each for the built-in rooms).
+static ARENAS: std::sync::Mutex<Option<HashMap<String, u64>>> = std::sync::Mutex::new(None);
 
 /// The [`crate::memo`] number of `arena` (whose own number is not yet set): 1 for the first
 /// distinct arena, 2 for the second, and so on.
 fn memo_number(arena: &Arena) -> u64 {
-    let text = format!("{arena:?}");
     let mut known = ARENAS
         .lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
-    let k = match known.iter().position(|t| *t == text) {
-        Some(k) => k,
-        None => {
-            known.push(text);
-            known.len() - 1
-        }
-    };
-    k as u64 + 1
+    let known = known.get_or_insert_with(HashMap::new);
+    let next = known.len() as u64 + 1;
+    *known.entry(format!("{arena:?}")).or_insert(next)
 }
 
 impl Arena {
