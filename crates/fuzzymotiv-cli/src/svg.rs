@@ -69,7 +69,7 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
             s,
             r##"<polygon points="{band}" fill="#9ecae1" fill-opacity="0.4" stroke="none"/>"##
         );
-        for (series, colour, pick) in [("best", "#d62728", 0usize), ("mean", "#1f77b4", 1)] {
+        for (colour, pick) in [(BEST, 0usize), (MEAN, 1)] {
             let pts: String = hist
                 .iter()
                 .enumerate()
@@ -85,27 +85,45 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
                 s,
                 r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8"/>"#
             );
-            let ly = y1 + 14.0 + 16.0 * pick as f64;
-            let _ = writeln!(
-                s,
-                r#"<line x1="{}" x2="{}" y1="{ly}" y2="{ly}" stroke="{colour}" stroke-width="2"/><text x="{}" y="{}">{series} F</text>"#,
-                x0 + 10.0,
-                x0 + 30.0,
-                x0 + 35.0,
-                ly + 4.0
-            );
         }
-        let _ = writeln!(
-            s,
-            r##"<rect x="{}" y="{}" width="20" height="10" fill="#9ecae1" fill-opacity="0.4"/><text x="{}" y="{}">min–max band</text>"##,
-            x0 + 10.0,
-            y1 + 41.0,
-            x0 + 35.0,
-            y1 + 50.0
-        );
+        fitness_legend(&mut s, x1, y0);
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// Colours of the best and mean F curves.
+const BEST: &str = "#d62728";
+const MEAN: &str = "#1f77b4";
+
+/// The legend of a fitness panel whose plot area ends at `x1` (right) and `y0` (bottom): at the
+/// bottom right, on a white box, since the curves rise at the left and run near the top, and
+/// below them there is only the band.
+fn fitness_legend(s: &mut String, x1: f64, y0: f64) {
+    let (lx, ly) = (x1 - 135.0, y0 - 62.0);
+    let _ = writeln!(
+        s,
+        r##"<rect x="{lx}" y="{ly}" width="125" height="54" fill="white" fill-opacity="0.85" stroke="#ccc"/>"##
+    );
+    for (k, (series, colour)) in [("best", BEST), ("mean", MEAN)].into_iter().enumerate() {
+        let row = ly + 12.0 + 16.0 * k as f64;
+        let _ = writeln!(
+            s,
+            r#"<line x1="{}" x2="{}" y1="{row}" y2="{row}" stroke="{colour}" stroke-width="2"/><text x="{}" y="{}">{series} F</text>"#,
+            lx + 8.0,
+            lx + 28.0,
+            lx + 33.0,
+            row + 4.0
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<rect x="{}" y="{}" width="20" height="10" fill="#9ecae1" fill-opacity="0.4"/><text x="{}" y="{}">min–max band</text>"##,
+        lx + 8.0,
+        ly + 39.0,
+        lx + 33.0,
+        ly + 48.0
+    );
 }
 
 /// Every room of the experiment with the best robot's path in it (`trajectories[r]` for room
