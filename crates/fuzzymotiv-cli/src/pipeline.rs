@@ -278,11 +278,11 @@ pub fn run_jobs(
     let skipped = selected.len() - todo.len();
     bar.inc(skipped as u64);
     let numbered: Vec<(usize, usize)> = todo.iter().copied().enumerate().collect();
+    let plain_lines = !(terminal || quiet);
     run_concurrently(&numbered, |&(n, k)| {
         let job = &sweep.jobs[k];
         bar.set_message(job.key.clone());
-        let show = !(terminal || quiet);
-        let line = show.then(|| {
+        let line = plain_lines.then(|| {
             format!(
                 "job {} ({}/{} here)",
                 job.id,
@@ -382,14 +382,14 @@ mod tests {
     fn runs_come_back_in_item_order() {
         let items: Vec<u64> = (0..9).collect();
         for threads in [1, 2, 4] {
-            let at_once = std::sync::atomic::AtomicUsize::new(0);
-            let most = std::sync::atomic::AtomicUsize::new(0);
+            let at_once = AtomicUsize::new(0);
+            let most = AtomicUsize::new(0);
             let got = pool(threads).install(|| {
                 run_concurrently(&items, |&k| {
-                    let now = at_once.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-                    most.fetch_max(now, std::sync::atomic::Ordering::SeqCst);
+                    let now = at_once.fetch_add(1, Ordering::SeqCst) + 1;
+                    most.fetch_max(now, Ordering::SeqCst);
                     std::thread::sleep(std::time::Duration::from_millis(20));
-                    at_once.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
+                    at_once.fetch_sub(1, Ordering::SeqCst);
                     Ok(k * k)
                 })
             });
@@ -410,10 +410,10 @@ mod tests {
     #[test]
     fn the_first_error_in_item_order_is_returned() {
         let items: Vec<usize> = (0..40).collect();
-        let started = std::sync::atomic::AtomicUsize::new(0);
+        let started = AtomicUsize::new(0);
         let got = pool(2).install(|| {
             run_concurrently(&items, |&k| {
-                started.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                started.fetch_add(1, Ordering::SeqCst);
                 if k == 3 || k == 5 {
                     Err(CliError::runtime(format!("item {k} failed")))
                 } else {

@@ -67,7 +67,7 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
         }
         let _ = writeln!(
             s,
-            r##"<polygon points="{band}" fill="#9ecae1" fill-opacity="0.4" stroke="none"/>"##
+            r#"<polygon points="{band}" fill="{BAND}" fill-opacity="0.4" stroke="none"/>"#
         );
         for (colour, pick) in [(BEST, 0usize), (MEAN, 1)] {
             let pts: String = hist
@@ -92,9 +92,10 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
     s
 }
 
-/// Colours of the best and mean F curves.
+/// Colours of the best and mean F curves and of the min–max band.
 const BEST: &str = "#d62728";
 const MEAN: &str = "#1f77b4";
+const BAND: &str = "#9ecae1";
 
 /// The legend of a fitness panel whose plot area ends at `x1` (right) and `y0` (bottom): at the
 /// bottom right, on a white box, since the curves rise at the left and run near the top, and
@@ -118,7 +119,7 @@ fn fitness_legend(s: &mut String, x1: f64, y0: f64) {
     }
     let _ = writeln!(
         s,
-        r##"<rect x="{}" y="{}" width="20" height="10" fill="#9ecae1" fill-opacity="0.4"/><text x="{}" y="{}">min–max band</text>"##,
+        r#"<rect x="{}" y="{}" width="20" height="10" fill="{BAND}" fill-opacity="0.4"/><text x="{}" y="{}">min–max band</text>"#,
         lx + 8.0,
         ly + 39.0,
         lx + 33.0,

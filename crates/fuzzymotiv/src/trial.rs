@@ -6,6 +6,7 @@
 //! whole [`Trajectory`].
 
 use std::collections::HashMap;
+use std::sync::{LazyLock, Mutex, PoisonError};
 
 use serde::{Deserialize, Serialize};
 
@@ -181,15 +182,12 @@ pub struct Arena {
 /// the pose and the length of a straight move (kept apart, in [`Owner`]), and `Debug` writes
 /// every field, floats to the last bit. Entries are never removed (one per distinct arena, tens
 /// of KB each for the built-in rooms).
-static ARENAS: std::sync::Mutex<Option<HashMap<String, u64>>> = std::sync::Mutex::new(None);
+static ARENAS: LazyLock<Mutex<HashMap<String, u64>>> = LazyLock::new(Default::default);
 
 /// The [`crate::memo`] number of `arena` (whose own number is not yet set): 1 for the first
 /// distinct arena, 2 for the second, and so on.
 fn memo_number(arena: &Arena) -> u64 {
-    let mut known = ARENAS
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
-    let known = known.get_or_insert_with(HashMap::new);
+    let mut known = ARENAS.lock().unwrap_or_else(PoisonError::into_inner);
     let next = known.len() as u64 + 1;
     *known.entry(format!("{arena:?}")).or_insert(next)
 }
