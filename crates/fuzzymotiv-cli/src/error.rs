@@ -1,12 +1,25 @@
-//! The CLI's error: bad input (exit code 2) or a failure while running (exit code 1).
+//! The CLI's error: bad input (exit code 2) or a failure while running (exit code 1), which
+//! may be a file-system failure ([`CliError::io`]).
 
 use std::fmt;
+
+/// What kind of failure a [`CliError`] is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ErrorKind {
+    /// Bad input from the user (a config, a room file, an option, an output directory that
+    /// must not be replaced): exit code 2.
+    Input,
+    /// A failure while running: exit code 1.
+    Runtime,
+    /// A file-system failure (reading or writing a named path): exit code 1.
+    Io,
+}
 
 /// An error with the exit code it deserves.
 #[derive(Debug)]
 pub struct CliError {
     message: String,
-    input: bool,
+    kind: ErrorKind,
 }
 
 impl CliError {
@@ -14,21 +27,34 @@ impl CliError {
     pub fn input(message: impl Into<String>) -> Self {
         Self {
             message: message.into(),
-            input: true,
+            kind: ErrorKind::Input,
         }
     }
 
-    /// A failure while running (I/O and the like): exit code 1.
+    /// A failure while running: exit code 1.
     pub fn runtime(message: impl Into<String>) -> Self {
         Self {
             message: message.into(),
-            input: false,
+            kind: ErrorKind::Runtime,
         }
+    }
+
+    /// A file-system failure: exit code 1 (in Python both a `FuzzymotivError` and an `OSError`).
+    pub fn io(message: impl Into<String>) -> Self {
+        Self {
+            message: message.into(),
+            kind: ErrorKind::Io,
+        }
+    }
+
+    /// What kind of failure this is.
+    pub fn kind(&self) -> ErrorKind {
+        self.kind
     }
 
     /// The process exit code.
     pub fn exit_code(&self) -> u8 {
-        if self.input { 2 } else { 1 }
+        if self.kind == ErrorKind::Input { 2 } else { 1 }
     }
 }
 

@@ -16,7 +16,7 @@ pub fn write_atomic(path: &Path, contents: impl AsRef<[u8]>) -> Result<(), CliEr
 
 /// An I/O failure naming the path.
 pub fn io_err(path: &Path, e: std::io::Error) -> CliError {
-    CliError::runtime(format!("{}: {e}", path.display()))
+    CliError::io(format!("{}: {e}", path.display()))
 }
 
 /// A run directory being written: files go into `<dir>.partial/`, which is renamed to `<dir>`
