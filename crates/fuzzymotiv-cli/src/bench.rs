@@ -92,14 +92,13 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     let exp = bench_experiment(&args)?;
     let report = measure(&exp, &args);
     if args.json {
-        println!(
+        crate::outln!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
-        );
+        )
     } else {
-        print_report(&report);
+        print_report(&report)
     }
-    Ok(())
 }
 
 /// The experiment measured: one room, the population size asked for, no AEM.
@@ -185,8 +184,8 @@ fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
 }
 
 /// The report as two lines of text.
-fn print_report(r: &BenchReport) {
-    println!(
+fn print_report(r: &BenchReport) -> Result<(), CliError> {
+    crate::outln!(
         "room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({} executed steps, median {:.3} s of {})",
         r.room,
         r.motion,
@@ -194,8 +193,8 @@ fn print_report(r: &BenchReport) {
         r.robot_steps,
         r.seconds,
         r.repeat
-    );
-    println!(
+    )?;
+    crate::outln!(
         "population {} x {} steps, {} evaluations, {} threads: {:.3} M robot-steps/s (median {:.3} s)",
         r.population,
         r.trial_steps,
@@ -203,5 +202,5 @@ fn print_report(r: &BenchReport) {
         r.threads,
         r.population_robot_steps_per_sec / 1e6,
         r.population_seconds
-    );
+    )
 }

@@ -13,6 +13,10 @@ use crate::files::{io_err, write_atomic};
 /// File name of the checkpoint inside the staging directory.
 pub const CHECKPOINT: &str = "checkpoint.json";
 
+/// File name of a finished run's last checkpoint (every run done: the final population and
+/// every generation's record, exact), from which the run is read back.
+pub const POPULATION: &str = "population.json";
+
 /// What a killed run needs to continue: per run of the protocol, the history so far and the
 /// next population (floats stored as their exact bit patterns). The random streams are
 /// derived per generation, so no generator state needs saving.

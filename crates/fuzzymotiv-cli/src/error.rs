@@ -13,6 +13,9 @@ pub enum ErrorKind {
     Runtime,
     /// A file-system failure (reading or writing a named path): exit code 1.
     Io,
+    /// Standard output was closed by its reader (`| head -1`): the command ends quietly with
+    /// exit code 141, as a program killed by SIGPIPE does.
+    ClosedStdout,
 }
 
 /// An error with the exit code it deserves.
@@ -47,6 +50,14 @@ impl CliError {
         }
     }
 
+    /// Standard output was closed by its reader: no message, exit code 141.
+    pub fn closed_stdout() -> Self {
+        Self {
+            message: "standard output closed".into(),
+            kind: ErrorKind::ClosedStdout,
+        }
+    }
+
     /// What kind of failure this is.
     pub fn kind(&self) -> ErrorKind {
         self.kind
@@ -54,7 +65,11 @@ impl CliError {
 
     /// The process exit code.
     pub fn exit_code(&self) -> u8 {
-        if self.kind == ErrorKind::Input { 2 } else { 1 }
+        match self.kind {
+            ErrorKind::Input => 2,
+            ErrorKind::Runtime | ErrorKind::Io => 1,
+            ErrorKind::ClosedStdout => 141,
+        }
     }
 }
 

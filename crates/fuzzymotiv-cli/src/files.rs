@@ -3,15 +3,24 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::CliError;
+use crate::note;
 
 /// Writes `contents` to `path` via a temporary file in the same directory and a rename.
 pub fn write_atomic(path: &Path, contents: impl AsRef<[u8]>) -> Result<(), CliError> {
-    let tmp = path.with_extension(format!(
+    let tmp = tmp_path(path);
+    if let Err(e) = std::fs::write(&tmp, contents) {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(io_err(&tmp, e));
+    }
+    std::fs::rename(&tmp, path).map_err(|e| io_err(path, e))
+}
+
+/// The temporary name a file is written under before it is renamed to `path`.
+fn tmp_path(path: &Path) -> PathBuf {
+    path.with_extension(format!(
         "{}.tmp",
         path.extension().and_then(|e| e.to_str()).unwrap_or("")
-    ));
-    std::fs::write(&tmp, contents).map_err(|e| io_err(&tmp, e))?;
-    std::fs::rename(&tmp, path).map_err(|e| io_err(path, e))
+    ))
 }
 
 /// An I/O failure naming the path.
@@ -93,22 +102,39 @@ impl StagedDir {
 }
 
 /// Whether `dir` may be replaced by a new output: it does not exist, is an empty directory, or
-/// holds an earlier run's `summary.json` or `config.resolved.toml`.
+/// is one of our outputs ([`is_ours`]). Anything else (a file, a device, a directory of the
+/// user's) is never replaced, even with `--force`.
 pub fn ensure_replaceable(dir: &Path) -> Result<(), CliError> {
-    if !dir.exists() {
+    let Ok(meta) = std::fs::symlink_metadata(dir) else {
         return Ok(());
-    }
-    let empty = is_empty_dir(dir);
-    let ours = dir.join("summary.json").is_file() || dir.join("config.resolved.toml").is_file();
-    if dir.is_dir() && (empty || ours) {
+    };
+    if meta.is_dir() && (is_empty_dir(dir) || is_ours(dir)) {
         Ok(())
     } else {
         Err(CliError::input(format!(
-            "{}: exists and is not a fuzzymotiv output directory, so it will not be replaced; choose another --out (or remove it yourself)",
+            "{}: exists and is not a fuzzymotiv output directory, so it will not be replaced \
+             (not even with --force); choose another --out (or remove it yourself)",
             dir.display()
         )))
     }
 }
+
+/// Whether `dir` is one of our output directories: a run (`summary.json` or
+/// `config.resolved.toml`), a study (`identity.json`) or a sweep (`plan.jsonl`).
+pub fn is_ours(dir: &Path) -> bool {
+    [
+        "summary.json",
+        "config.resolved.toml",
+        IDENTITY,
+        "plan.jsonl",
+    ]
+    .iter()
+    .any(|f| dir.join(f).is_file())
+}
+
+/// The file naming what a study's output directory holds (its command and every run's
+/// resolved config), written first, so that the same command finds and resumes it.
+pub const IDENTITY: &str = "identity.json";
 
 /// What an output directory (`--out DIR`) already holds, found before any work starts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -131,7 +157,7 @@ pub type Identity = [(String, String)];
 /// fuzzymotiv output is never replaced.
 pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, CliError> {
     refuse_current_dir(dir)?;
-    if dir.exists() && !dir.is_dir() {
+    if std::fs::symlink_metadata(dir).is_ok_and(|m| !m.is_dir()) {
         return Err(CliError::input(format!(
             "--out {}: is a file, not a directory; choose another --out",
             dir.display()
@@ -142,12 +168,19 @@ pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, Cli
         if matches(&staging, id) {
             return Ok(OutState::Unfinished);
         }
+        let how = if staging.join("config.resolved.toml").is_file() {
+            format!(
+                "continue it with `fuzzymotiv run --resume {}`, or ",
+                dir.display()
+            )
+        } else {
+            "continue it with the command that started it, or ".to_string()
+        };
         return Err(CliError::input(format!(
             "--out {}: {} holds an unfinished output of another run or command (a checkpoint); \
-             continue a run with `fuzzymotiv run --resume {}`, or pass --force to discard it",
+             {how}pass --force to discard it and start this one",
             dir.display(),
             staging.display(),
-            dir.display()
         )));
     }
     if !dir.exists() || is_empty_dir(dir) {
@@ -158,7 +191,7 @@ pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, Cli
         return Ok(OutState::Done);
     }
     if force {
-        eprintln!("note: --force: {} will be replaced", dir.display());
+        note!("note: --force: {} will be replaced", dir.display());
         return Ok(OutState::Fresh);
     }
     Err(CliError::input(format!(
@@ -169,7 +202,7 @@ pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, Cli
 }
 
 /// Whether every identity file under `dir` has exactly the expected contents.
-fn matches(dir: &Path, id: &Identity) -> bool {
+pub fn matches(dir: &Path, id: &Identity) -> bool {
     !id.is_empty()
         && id.iter().all(|(name, want)| {
             std::fs::read_to_string(dir.join(name)).is_ok_and(|have| have == *want)
@@ -181,7 +214,7 @@ fn is_empty_dir(dir: &Path) -> bool {
 }
 
 /// `--out .` (or any directory holding the current one) cannot be replaced atomically: refused.
-fn refuse_current_dir(dir: &Path) -> Result<(), CliError> {
+pub fn refuse_current_dir(dir: &Path) -> Result<(), CliError> {
     let (Ok(here), Ok(out)) = (std::env::current_dir(), std::path::absolute(dir)) else {
         return Ok(());
     };
@@ -193,6 +226,81 @@ fn refuse_current_dir(dir: &Path) -> Result<(), CliError> {
              beside and then renamed into place, so give a new directory, e.g. --out results",
             dir.display()
         )));
+    }
+    Ok(())
+}
+
+/// What a set of output files (a replay, an FLL export) already is, checked before writing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FilesState {
+    /// Every file already holds exactly these bytes: nothing to write.
+    Same,
+    /// Write them (none exists, or `--force` replaces regular files that differ).
+    Write,
+}
+
+/// Checks the files an output would write (`path`, bytes, and the option that named it):
+/// something that is not a regular file (a directory, a device, a FIFO, a symbolic link) is
+/// never replaced, not even with `force`; a regular file with other contents is replaced only
+/// with `force`; when every file already holds the same bytes there is nothing to do.
+pub fn check_files(
+    files: &[(PathBuf, Vec<u8>)],
+    option: &str,
+    force: bool,
+) -> Result<FilesState, CliError> {
+    let mut same = true;
+    for (path, bytes) in files {
+        let Ok(meta) = std::fs::symlink_metadata(path) else {
+            same = false;
+            continue;
+        };
+        if !meta.is_file() {
+            let what = if meta.is_dir() {
+                "a directory"
+            } else if meta.is_symlink() {
+                "a symbolic link"
+            } else {
+                "not a regular file (a device, FIFO or socket)"
+            };
+            return Err(CliError::input(format!(
+                "{option} {}: is {what}, which is never replaced (not even with --force); \
+                 give the path of a new or regular file",
+                path.display()
+            )));
+        }
+        if std::fs::read(path).is_ok_and(|have| have == *bytes) {
+            continue;
+        }
+        same = false;
+        if !force {
+            return Err(CliError::input(format!(
+                "{option} {}: the file exists with other contents and is kept; pass --force to \
+                 replace it, or choose another {option}",
+                path.display()
+            )));
+        }
+    }
+    Ok(if same {
+        FilesState::Same
+    } else {
+        FilesState::Write
+    })
+}
+
+/// Writes a checked set of files: every one to its temporary name first, then each renamed into
+/// place, so a failure leaves no file half-written.
+pub fn write_files(files: &[(PathBuf, Vec<u8>)]) -> Result<(), CliError> {
+    let tmps: Vec<PathBuf> = files.iter().map(|(p, _)| tmp_path(p)).collect();
+    for ((_, bytes), tmp) in files.iter().zip(&tmps) {
+        if let Err(e) = std::fs::write(tmp, bytes) {
+            for t in &tmps {
+                let _ = std::fs::remove_file(t);
+            }
+            return Err(io_err(tmp, e));
+        }
+    }
+    for ((path, _), tmp) in files.iter().zip(&tmps) {
+        std::fs::rename(tmp, path).map_err(|e| io_err(path, e))?;
     }
     Ok(())
 }

@@ -8,6 +8,7 @@ use fuzzymotiv::fuzzy::Motivations;
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 
 use crate::error::CliError;
+use crate::note;
 
 /// Reads and validates a room file.
 pub fn load_room_file(path: &Path) -> Result<Room, CliError> {
@@ -75,7 +76,7 @@ fn normalise_motivations(raw: &mut RawConfig, source: &str) {
         raw.motivations.orientation = n.orientation;
         raw.motivations.energy = n.energy;
         SAID.call_once(|| {
-            eprintln!(
+            note!(
                 "note: {source}: motivations summed to {sum}, normalised to (C, H, O, E) = {:?}",
                 n.as_array()
             );

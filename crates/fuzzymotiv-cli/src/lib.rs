@@ -16,6 +16,7 @@
 pub mod args;
 pub mod bench;
 pub mod checkpoint;
+pub mod console;
 pub mod error;
 pub mod files;
 pub mod inputs;

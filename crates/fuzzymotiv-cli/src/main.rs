@@ -1,6 +1,6 @@
 //! `fuzzymotiv`: evolve Khepera controllers under fuzzy motivations, from the command line.
 
-use fuzzymotiv_cli::{bench, error, inputs, replay, reproduce, run, sweep};
+use fuzzymotiv_cli::{bench, error, inputs, note, outln, replay, reproduce, run, sweep};
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -55,10 +55,12 @@ struct FuzzyArgs {
     /// Also list the firing rules with their labels, weights and outputs.
     #[arg(long, requires = "fitness")]
     explain: bool,
-    /// Write the 625-rule TSK of these motivations as a fuzzylite FLL file.
+    /// Write the 625-rule TSK of these motivations as a fuzzylite FLL file (`-`: standard
+    /// output). The same file again is left as it is; another file there is kept unless --force.
     #[arg(long, value_name = "FILE")]
     export_fll: Option<PathBuf>,
-    /// Overwrite an existing --export-fll FILE.
+    /// Replace an existing --export-fll FILE with other contents (only a regular file: a
+    /// directory, device or link is never replaced).
     #[arg(long, requires = "export_fll")]
     force: bool,
 }
@@ -85,8 +87,10 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader has gone (`| head -1`): end quietly, as a program killed by SIGPIPE.
+        Err(e) if e.kind() == error::ErrorKind::ClosedStdout => ExitCode::from(e.exit_code()),
         Err(e) => {
-            eprintln!("error: {e}");
+            note!("error: {e}");
             ExitCode::from(e.exit_code())
         }
     }
@@ -130,7 +134,7 @@ fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
     let (m, sum) = Motivations::normalised(x[0], x[1], x[2], x[3])
         .map_err(|e| CliError::input(format!("--motivations: {e}")))?;
     if let Some(sum) = sum {
-        eprintln!(
+        note!(
             "note: --motivations summed to {sum}, normalised to (C, H, O, E) = {:?}",
             m.as_array()
         );
@@ -139,9 +143,9 @@ fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
     if let Some(fitness) = &args.fitness {
         let y = parse_four(fitness, "--fitness", ["a", "g", "l", "b"])?;
         let f = tsk.evaluate(&m, y);
-        println!("{f:.12}");
+        outln!("{f:.12}")?;
         if args.explain {
-            print!("{}", tsk.explain(&m, y));
+            fuzzymotiv_cli::out!("{}", tsk.explain(&m, y))?;
         }
     }
     if let Some(path) = &args.export_fll {
@@ -150,23 +154,33 @@ fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Writes the FLL engine to `path` (`-`: standard output) through the output guard.
 fn export_fll(
     path: &std::path::Path,
     tsk: &fuzzymotiv::fuzzy::TskFitness,
     m: &fuzzymotiv::fuzzy::Motivations,
     force: bool,
 ) -> Result<(), CliError> {
-    if path.exists() && !force {
-        return Err(CliError::input(format!(
-            "--export-fll {}: the file exists; add --force to overwrite it",
-            path.display()
-        )));
+    use fuzzymotiv_cli::files::{FilesState, check_files, write_files};
+    let stdout = path.as_os_str() == "-";
+    let name = match path.file_stem() {
+        Some(s) if !stdout => s.to_string_lossy().into_owned(),
+        _ => "fuzzymotiv".into(),
+    };
+    let text = fuzzymotiv::fll::to_fll(tsk, m, &name);
+    if stdout {
+        return fuzzymotiv_cli::out!("{text}");
     }
-    let name = path
-        .file_stem()
-        .map_or("fuzzymotiv".into(), |s| s.to_string_lossy().into_owned());
-    fuzzymotiv_cli::files::write_atomic(path, fuzzymotiv::fll::to_fll(tsk, m, &name))?;
-    eprintln!(
+    let files = [(path.to_path_buf(), text.into_bytes())];
+    if check_files(&files, "--export-fll", force)? == FilesState::Same {
+        note!(
+            "{} already holds this engine; nothing to do",
+            path.display()
+        );
+        return Ok(());
+    }
+    write_files(&files)?;
+    note!(
         "wrote {} ({} rules, fuzzylite FLL)",
         path.display(),
         tsk.rule_count()
@@ -177,23 +191,22 @@ fn export_fll(
 fn rooms(args: RoomsArgs) -> Result<(), CliError> {
     use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
     if args.check.is_empty() {
-        println!(
+        outln!(
             "{:<10} {:>10} {:>10}  home (x mm, y mm, heading °)",
-            "room", "area m²", "perim. m"
-        );
+            "room",
+            "area m²",
+            "perim. m"
+        )?;
         for name in BUILTIN_ROOMS {
             let r = Room::builtin(name).expect("built-in");
-            print_room(&r);
+            print_room("", &r)?;
         }
         return Ok(());
     }
     let mut failures = Vec::new();
     for path in &args.check {
         match inputs::load_room_file(path) {
-            Ok(r) => {
-                print!("ok  {}: ", path.display());
-                print_room(&r);
-            }
+            Ok(r) => print_room(&format!("ok  {}: ", path.display()), &r)?,
             Err(e) => failures.push(e.to_string()),
         }
     }
@@ -204,14 +217,14 @@ fn rooms(args: RoomsArgs) -> Result<(), CliError> {
     }
 }
 
-fn print_room(r: &fuzzymotiv::room::Room) {
-    println!(
-        "{:<10} {:>10.3} {:>10.3}  ({}, {}, {})",
+fn print_room(prefix: &str, r: &fuzzymotiv::room::Room) -> Result<(), CliError> {
+    outln!(
+        "{prefix}{:<10} {:>10.3} {:>10.3}  ({}, {}, {})",
         r.name,
         r.area() / 1e6,
         r.perimeter() / 1e3,
         r.home.x,
         r.home.y,
         r.home.heading.to_degrees().round()
-    );
+    )
 }

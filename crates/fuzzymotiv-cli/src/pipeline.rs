@@ -13,14 +13,18 @@ use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::modelling::AemReport;
 use indicatif::ProgressBar;
 
-use crate::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun};
+use crate::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
 use crate::error::CliError;
-use crate::files::{StagedDir, io_err, write_atomic};
+use crate::files::{
+    StagedDir, ensure_replaceable, io_err, matches, refuse_current_dir, write_atomic,
+};
 use crate::inputs::{Loaded, resolved_toml};
-use crate::png::write_figure;
+use crate::note;
+use crate::png::{add_missing_pngs, write_figure};
 use crate::progress::Progress;
 use crate::records::{
-    BestGenome, Finished, GenerationRow, Job, RecognitionTable, RunSummary, to_csv, to_json,
+    BestGenome, Finished, GenerationRow, Job, RecognitionTable, RunSummary, read_json, to_csv,
+    to_json,
 };
 use crate::report;
 use crate::svg::{best_paths_svg, fitness_svg, terms_svg};
@@ -102,6 +106,56 @@ pub fn execute_with(
     write_run(&staged, loaded, &done, png)?;
     staged.commit()?;
     Ok(done)
+}
+
+/// Runs a loaded config into the run directory `out` whatever it holds: a finished run of the
+/// same resolved config is read back (its final population, [`POPULATION`], re-evaluated and its
+/// rooms modelled again: the same [`Finished`], with PNGs added when `png`), an unfinished one
+/// resumes from its checkpoint, anything else starts afresh. A study's runs go through here, so
+/// the same `reproduce` command continues a killed study. The caller has checked `out` belongs
+/// to this output.
+pub fn execute_or_resume(
+    loaded: &Loaded,
+    out: &Path,
+    progress: &Progress,
+    png: bool,
+) -> Result<Finished, CliError> {
+    let id = [(
+        "config.resolved.toml".to_string(),
+        resolved_toml(&loaded.raw),
+    )];
+    if matches(out, &id) && out.join("summary.json").is_file() && out.join(POPULATION).is_file() {
+        let done = read_back(&loaded.experiment, out, progress)?;
+        if png {
+            add_missing_pngs(out)?;
+        }
+        return Ok(done);
+    }
+    let resume = matches(&StagedDir::staging_path(out), &id);
+    execute(loaded, out, progress, resume, png)
+}
+
+/// A finished run directory read back: its final population and history ([`POPULATION`])
+/// evaluated again and its rooms modelled again, which gives the run's [`Finished`] exactly.
+pub fn read_back(exp: &Experiment, dir: &Path, progress: &Progress) -> Result<Finished, CliError> {
+    let runs = exp.runs();
+    let saved = Checkpoint::load(&dir.join(POPULATION), &runs, exp)?;
+    if saved.runs.iter().any(|r| !r.done) {
+        return Err(CliError::input(format!(
+            "{}: not the population of a finished run",
+            dir.join(POPULATION).display()
+        )));
+    }
+    progress.skip(saved.runs.iter().map(|r| r.history.len()).sum());
+    progress.note(&format!("{} is finished: read back", dir.display()));
+    let evolutions: Vec<Evolution> = runs
+        .iter()
+        .zip(saved.runs)
+        .map(|(run, r)| exp.finished(run, r.population_f64(), r.history))
+        .collect();
+    let aem = model_rooms(exp, &evolutions)?;
+    let summary: RunSummary = read_json(&dir.join("summary.json"))?;
+    Ok(Finished::new(exp, evolutions, aem, summary.wall_seconds))
 }
 
 /// Environment modelling of every evolution's best robot.
@@ -188,11 +242,31 @@ impl<'a> Session<'a> {
     fn save(&mut self, k: usize, label: &str, state: &GenerationState<'_>) -> Result<(), CliError> {
         self.checkpoint.runs[k] = CheckpointRun::from_state(label, state);
         self.checkpoint.wall_seconds = self.wall_seconds();
-        self.checkpoint.save(&self.staged.path(CHECKPOINT))
+        self.checkpoint.save(&self.staged.path(CHECKPOINT))?;
+        abort_point();
+        Ok(())
     }
 }
 
-/// The records, figures and report of a finished run; the checkpoint goes.
+/// For kill tests only: with `FUZZYMOTIV_TEST_ABORT_AFTER=N` in the environment, the process
+/// aborts (as `kill -9` would: no clean-up) once N generations have been checkpointed in it,
+/// counted over all its runs. A deterministic kill point, unlike a timer.
+fn abort_point() {
+    static LIMIT: std::sync::LazyLock<Option<usize>> = std::sync::LazyLock::new(|| {
+        std::env::var("FUZZYMOTIV_TEST_ABORT_AFTER")
+            .ok()
+            .and_then(|v| v.parse().ok())
+    });
+    static SAVED: AtomicUsize = AtomicUsize::new(0);
+    if let Some(limit) = *LIMIT
+        && SAVED.fetch_add(1, Ordering::SeqCst) + 1 >= limit
+    {
+        std::process::abort();
+    }
+}
+
+/// The records, figures and report of a finished run; the checkpoint stays as the final
+/// population.
 fn write_run(
     staged: &StagedDir,
     loaded: &Loaded,
@@ -211,7 +285,12 @@ fn write_run(
     )?;
     write_run_figures(staged, exp, done, png)?;
     staged.write("summary.json", to_json(&RunSummary::of(exp, done)))?;
+    // The last checkpoint holds the final population: kept as `population.json`, without the
+    // wall time (which is in summary.json), so that it is the same bytes for the same run.
     let checkpoint = staged.path(CHECKPOINT);
+    let mut last: Checkpoint = read_json(&checkpoint)?;
+    last.wall_seconds = 0.0;
+    last.save(&staged.path(POPULATION))?;
     std::fs::remove_file(&checkpoint).map_err(|e| io_err(&checkpoint, e))?;
     staged.write("report.html", report::run_page(loaded, done))
 }
@@ -259,7 +338,9 @@ pub fn run_jobs(
     selected: &[usize],
     out: &Path,
     quiet: bool,
+    force: bool,
 ) -> Result<(), CliError> {
+    open_sweep_dir(sweep, out, force)?;
     let terminal = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let jobs_dir = out.join("jobs");
     std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
@@ -295,12 +376,122 @@ pub fn run_jobs(
         Ok(())
     })?;
     bar.finish_and_clear();
-    eprintln!(
+    note!(
         "{} jobs run, {skipped} already done, {} in this selection, {} in the plan",
         todo.len(),
         selected.len(),
         sweep.jobs.len()
     );
+    Ok(())
+}
+
+/// The files of a sweep directory besides its job folders (written by `sweep` and `merge`).
+const SWEEP_FILES: [&str; 7] = [
+    "plan.jsonl",
+    "sweep.toml",
+    "results.csv",
+    "aggregate.csv",
+    "aggregate.md",
+    "summary.svg",
+    "summary.png",
+];
+
+/// Checks a sweep's `--out` before any work. A sweep directory belongs to its plan: the same
+/// plan (another shard or array task, or the same command again) goes on; a plan that only adds
+/// jobs (more replicates or points, no id clash) keeps the finished ones; any other plan, or
+/// another kind of output, is refused unless `force`, which removes the old sweep's own files
+/// and job folders (or the other output), never a file of the user's. A directory that is not
+/// a fuzzymotiv output, a file, and the current directory are refused.
+fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError> {
+    refuse_current_dir(out)?;
+    let Ok(meta) = std::fs::symlink_metadata(out) else {
+        return Ok(());
+    };
+    if !meta.is_dir() {
+        return Err(CliError::input(format!(
+            "--out {}: is a file, not a directory; choose another --out",
+            out.display()
+        )));
+    }
+    let plan = out.join("plan.jsonl");
+    if !plan.is_file() {
+        ensure_replaceable(out)?;
+        if out.read_dir().is_ok_and(|mut d| d.next().is_none()) {
+            return Ok(());
+        }
+        if !force {
+            return Err(CliError::input(format!(
+                "--out {}: holds another fuzzymotiv output (a run or a study), not a sweep; it is \
+                 kept. Choose another --out, or pass --force to replace it",
+                out.display()
+            )));
+        }
+        note!("note: --force: {} will be replaced", out.display());
+        return std::fs::remove_dir_all(out).map_err(|e| io_err(out, e));
+    }
+    let old = Job::read_plan(&plan)?;
+    if force {
+        note!(
+            "note: --force: the sweep in {} will be replaced",
+            out.display()
+        );
+        return remove_sweep(out, &old);
+    }
+    match plan_conflict(&old, &sweep.jobs) {
+        None => Ok(()),
+        Some(why) => Err(CliError::input(format!(
+            "--out {}: holds a sweep of another plan ({why}); its results are kept. Choose \
+             another --out, pass --force to replace that sweep, or run the sweep file that made it \
+             ({})",
+            out.display(),
+            out.join("sweep.toml").display()
+        ))),
+    }
+}
+
+/// Why the plan `new` cannot take over a sweep directory of the plan `old`, if it cannot: it
+/// must hold every old job (by id) with the same key and seed; it may add jobs.
+fn plan_conflict(old: &[Job], new: &[Job]) -> Option<String> {
+    let missing: Vec<&Job> = old
+        .iter()
+        .filter(|o| !new.iter().any(|n| n.id == o.id))
+        .collect();
+    if let Some(first) = missing.first() {
+        return Some(format!(
+            "{} of its {} jobs are not in this plan, e.g. `{}`",
+            missing.len(),
+            old.len(),
+            first.key
+        ));
+    }
+    old.iter().find_map(|o| {
+        let n = new.iter().find(|n| n.id == o.id)?;
+        (n.key != o.key || n.seed != o.seed || n.overrides != o.overrides)
+            .then(|| format!("job {} is `{}` there but `{}` here", o.id, o.key, n.key))
+    })
+}
+
+/// Removes a sweep's own files and its jobs' folders (and their staging folders) from `out`;
+/// anything else in it stays.
+fn remove_sweep(out: &Path, jobs: &[Job]) -> Result<(), CliError> {
+    let jobs_dir = out.join("jobs");
+    for job in jobs {
+        let dir = jobs_dir.join(&job.id);
+        for d in [StagedDir::staging_path(&dir), dir] {
+            if d.is_dir() {
+                std::fs::remove_dir_all(&d).map_err(|e| io_err(&d, e))?;
+            }
+        }
+    }
+    if jobs_dir.read_dir().is_ok_and(|mut d| d.next().is_none()) {
+        std::fs::remove_dir(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
+    }
+    for name in SWEEP_FILES {
+        let f = out.join(name);
+        if f.is_file() {
+            std::fs::remove_file(&f).map_err(|e| io_err(&f, e))?;
+        }
+    }
     Ok(())
 }
 

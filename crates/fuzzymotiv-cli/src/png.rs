@@ -14,6 +14,7 @@ use resvg::usvg::{self, fontdb};
 
 use crate::error::CliError;
 use crate::files::{StagedDir, io_err, write_atomic};
+use crate::note;
 
 /// PNG pixels per SVG pixel: 2 gives crisp figures on high-density screens and in print.
 const PNG_SCALE: f32 = 2.0;
@@ -44,7 +45,7 @@ fn fonts() -> Arc<fontdb::Database> {
                 .or_else(|| families.first().cloned());
             match pick {
                 Some(family) => db.set_sans_serif_family(family),
-                None => eprintln!(
+                None => note!(
                     "note: no system fonts found, so the PNG figures have no text; install a font package (e.g. fonts-dejavu-core)"
                 ),
             }
@@ -95,6 +96,38 @@ pub fn write_figure_at(path: &std::path::Path, svg: &str, png: bool) -> Result<(
         let bytes = svg_to_png(svg).map_err(|e| io_err(&out, std::io::Error::other(e)))?;
         write_atomic(&out, bytes)?;
     }
+    Ok(())
+}
+
+/// `--png` on a finished output: writes `X.png` beside every `X.svg` under `dir` (and its
+/// subdirectories) that has none, and nothing else. Returns how many were written.
+pub fn add_missing_pngs(dir: &std::path::Path) -> Result<usize, CliError> {
+    let mut written = 0;
+    let entries = std::fs::read_dir(dir).map_err(|e| io_err(dir, e))?;
+    let mut paths: Vec<_> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    paths.sort();
+    for path in paths {
+        let meta = std::fs::symlink_metadata(&path).map_err(|e| io_err(&path, e))?;
+        if meta.is_dir() {
+            written += add_missing_pngs(&path)?;
+        } else if meta.is_file()
+            && path.extension().is_some_and(|e| e == "svg")
+            && !path.with_extension("png").exists()
+        {
+            let svg = std::fs::read_to_string(&path).map_err(|e| io_err(&path, e))?;
+            let out = path.with_extension("png");
+            let bytes = svg_to_png(&svg).map_err(|e| io_err(&out, std::io::Error::other(e)))?;
+            write_atomic(&out, bytes)?;
+            written += 1;
+        }
+    }
+    Ok(written)
+}
+
+/// `--png` on a finished output: the PNGs it lacks, and nothing else; says how many.
+pub fn add_pngs(dir: &std::path::Path) -> Result<(), CliError> {
+    let n = add_missing_pngs(dir)?;
+    note!("--png: {n} PNG figure(s) added to {}", dir.display());
     Ok(())
 }
 

@@ -1,6 +1,7 @@
 //! Progress on stderr: a bar on a terminal; otherwise (SLURM, `nohup`, `| tee`) one plain line
 //! every few seconds; nothing with `--quiet`.
 
+use crate::note;
 use std::io::IsTerminal;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
@@ -103,7 +104,7 @@ impl Progress {
     /// A one-line note on stderr (unless quiet), above the bar.
     pub fn note(&self, message: &str) {
         if !self.shared.quiet {
-            self.shared.bar.suspend(|| eprintln!("{message}"));
+            self.shared.bar.suspend(|| note!("{message}"));
         }
     }
 
@@ -128,7 +129,7 @@ impl Progress {
         let due = last_line.is_none_or(|t| now - t >= PLAIN_INTERVAL);
         if g == 1 || g == of || due {
             *last_line = Some(now);
-            eprintln!("{}", self.line(run, g, of, best));
+            note!("{}", self.line(run, g, of, best));
         }
     }
 

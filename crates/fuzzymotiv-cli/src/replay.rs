@@ -16,9 +16,10 @@ use fuzzymotiv::modelling::InstanceRun;
 use fuzzymotiv::trial::Trajectory;
 
 use crate::error::CliError;
-use crate::files::{io_err, num, write_atomic};
+use crate::files::{FilesState, check_files, io_err, num, write_files};
 use crate::inputs::{load_config, resolve, room_entry};
-use crate::png::write_figure_at;
+use crate::note;
+use crate::png::svg_to_png;
 use crate::records::{BestGenome, PROGRAM, read_json};
 use crate::report::{replay_page, xs};
 use crate::svg::trajectories_svg;
@@ -50,6 +51,10 @@ pub struct ReplayArgs {
     /// Also write STEM.png beside STEM.svg.
     #[arg(long)]
     pub png: bool,
+    /// Replace existing files of these names that hold something else (only regular files:
+    /// a directory, device or link is never replaced). The same replay again changes nothing.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// A genome read from `best_genome.json`, checked.
@@ -155,7 +160,7 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         .map_or("(built-in defaults)".to_string(), |p| {
             p.display().to_string()
         });
-    eprintln!(
+    note!(
         "config: {source_name}{}",
         if config_path.is_none() {
             " (no config beside the genome; --config FILE replays under the run's own)"
@@ -227,7 +232,7 @@ fn replay_trials(
             Training::PerRoom => match genome.runs.iter().find(|(label, _)| label == name) {
                 Some((_, w)) => (&runs[r], w),
                 None => {
-                    eprintln!(
+                    note!(
                         "note: no robot was evolved in room {name}; replaying the genome's main robot"
                     );
                     (&runs[r], &genome.weights)
@@ -247,7 +252,8 @@ fn replay_trials(
     Ok(trials)
 }
 
-/// Writes the replay's CSV per room, JSON, figure and page.
+/// Writes the replay's CSV per room, JSON, figure and page, through the output guard: the same
+/// replay again changes nothing; other files of those names are kept unless `--force`.
 fn write_replay(
     args: &ReplayArgs,
     exp: &Experiment,
@@ -256,21 +262,16 @@ fn write_replay(
     trials: &[(usize, String, InstanceRun)],
 ) -> Result<(), CliError> {
     let out = &args.out;
-    let dir = out
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-    std::fs::create_dir_all(&dir).map_err(|e| io_err(&dir, e))?;
-    let stem = out
-        .file_stem()
-        .map_or("replay".to_string(), |s| s.to_string_lossy().into_owned());
+    let (dir, stem) = out_parts(out)?;
+    let mut files = Vec::new();
+    let mut lines = Vec::new();
     let mut rooms_json = Vec::new();
     for (r, label, run) in trials {
         let name = &exp.arenas()[*r].room().name;
         let csv = dir.join(format!("{stem}-{}.csv", file_tag(name)));
-        write_atomic(&csv, trajectory_csv(&run.trajectory))?;
+        files.push((csv.clone(), trajectory_csv(&run.trajectory).into_bytes()));
         let (tr, terms) = (&run.trajectory, run.terms);
-        println!(
+        lines.push(format!(
             "{name}: a = {:.3}, g = {:.3}, b = {:.3}, F = {:.4}, {} collisions → {}",
             terms.a,
             terms.g,
@@ -278,7 +279,7 @@ fn write_replay(
             run.f,
             tr.collisions.iter().filter(|&&c| c).count(),
             csv.display()
-        );
+        ));
         rooms_json.push(serde_json::json!({
             "room": name,
             "run": label,
@@ -300,27 +301,63 @@ fn write_replay(
         "note": "poses[t] is the pose at the start of step t (poses[0] = home, poses[steps] = the end); sensors[t], motors[t], speeds[t] and collisions[t] belong to step t",
         "rooms": rooms_json,
     });
-    write_atomic(
-        &dir.join(format!("{stem}.json")),
-        serde_json::to_string(&doc).expect("serialisable") + "\n",
-    )?;
+    files.push((
+        dir.join(format!("{stem}.json")),
+        (serde_json::to_string(&doc).expect("serialisable") + "\n").into_bytes(),
+    ));
     let pairs: Vec<_> = trials
         .iter()
         .map(|(r, _, run)| (exp.arenas()[*r].room(), &run.trajectory))
         .collect();
     let title = format!("Replay of {genome_path} (seed {})", exp.seed());
-    write_figure_at(
-        &dir.join(format!("{stem}.svg")),
-        &trajectories_svg(&title, &pairs),
-        args.png,
-    )?;
+    let svg = trajectories_svg(&title, &pairs);
+    let svg_path = dir.join(format!("{stem}.svg"));
+    if args.png {
+        let png_path = svg_path.with_extension("png");
+        let png = svg_to_png(&svg).map_err(|e| io_err(&png_path, std::io::Error::other(e)))?;
+        files.push((png_path, png));
+    }
+    files.push((svg_path, svg.into_bytes()));
     let about = format!(
         "genome {genome_path} · config {source_name} · seed {} · motivations (C, H, O, E) = {} · {} steps per trial",
         exp.seed(),
         xs(exp),
         exp.trial_params().steps
     );
-    write_atomic(out, replay_page("fuzzymotiv replay", &about, exp, trials))?;
-    eprintln!("wrote {}", out.display());
+    let page = replay_page("fuzzymotiv replay", &about, exp, trials);
+    files.push((out.clone(), page.into_bytes()));
+    let state = check_files(&files, "--out", args.force)?;
+    if state == FilesState::Write {
+        std::fs::create_dir_all(&dir).map_err(|e| io_err(&dir, e))?;
+        write_files(&files)?;
+    }
+    for line in &lines {
+        crate::outln!("{line}")?;
+    }
+    if state == FilesState::Same {
+        note!("{} already holds this replay; nothing to do", out.display());
+    } else {
+        note!("wrote {}", out.display());
+    }
     Ok(())
+}
+
+/// The directory and file stem of `--out FILE`; a directory is refused (the replay is a page
+/// with files beside it, e.g. --out DIR/replay.html).
+fn out_parts(out: &Path) -> Result<(PathBuf, String), CliError> {
+    if out.is_dir() || out.as_os_str().to_string_lossy().ends_with('/') {
+        return Err(CliError::input(format!(
+            "--out {}: is a directory; give the replay page's file name, e.g. --out {}",
+            out.display(),
+            out.join("replay.html").display()
+        )));
+    }
+    let dir = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let stem = out
+        .file_stem()
+        .map_or("replay".to_string(), |s| s.to_string_lossy().into_owned());
+    Ok((dir, stem))
 }

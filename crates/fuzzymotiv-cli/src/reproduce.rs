@@ -8,10 +8,11 @@ use fuzzymotiv::seed::Streams;
 
 use crate::args::OutputArgs;
 use crate::error::CliError;
-use crate::files::{OutState, StagedDir, check_out, write_atomic};
+use crate::files::{IDENTITY, OutState, StagedDir, check_out, matches, write_atomic};
 use crate::inputs::{Loaded, resolve, resolved_toml};
-use crate::pipeline::{execute, run_concurrently, run_jobs, set_threads, start_line};
-use crate::png::write_figure_at;
+use crate::note;
+use crate::pipeline::{execute_or_resume, run_concurrently, run_jobs, set_threads, start_line};
+use crate::png::{add_pngs, write_figure_at};
 use crate::progress::Progress;
 use crate::records::{
     AblationSummary, ClaimRecord, PROGRAM, StudySummary, VariantSummary, to_json,
@@ -160,7 +161,7 @@ fn run_study<'a>(
         let progress = progress.named(&format!("{label}{} seed {seed}", setting.name));
         let run_dir = dir.join(setting.name).join(format!("seed-{seed}"));
         progress.note(&start_line(&l.experiment, &run_dir));
-        execute(l, &run_dir, &progress, false, args.png)
+        execute_or_resume(l, &run_dir, &progress, args.png)
     })?;
     let mut finished = finished.into_iter();
     Ok(SETTINGS
@@ -188,10 +189,9 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     let seeds = study_seeds(&args);
     let loaded = load_settings(&args, &seeds, &DEFAULT_MODEL)?;
     let out = args.out_dir();
-    if !fresh_out(&args, &out, &identity(&[(&DEFAULT_MODEL, &loaded)]))? {
+    let Some(staged) = open_out(&args, &out, &[(&DEFAULT_MODEL, &loaded)])? else {
         return Ok(());
-    }
-    let staged = StagedDir::new(&out)?;
+    };
     let progress = Progress::new(
         &loaded[0][0].experiment,
         SETTINGS.len() * seeds.len(),
@@ -199,9 +199,10 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     );
     let studies = run_study(&args, &seeds, loaded, &staged.staging, &progress, "")?;
     progress.finish();
-    let claims = write_study(&args, &staged.staging, &studies, start)?;
-    print_claims(&claims);
-    commit(staged, start)
+    let (claims, tables) = write_study(&args, &staged.staging, &studies, start)?;
+    commit(staged, start)?;
+    crate::out!("{tables}")?;
+    print_claims(&claims)
 }
 
 fn study_seeds(args: &ReproduceArgs) -> Vec<u64> {
@@ -220,10 +221,9 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         .collect::<Result<Vec<_>, CliError>>()?;
     let out = args.out_dir();
     let variants: Vec<_> = ABLATION.iter().zip(&loaded).collect();
-    if !fresh_out(args, &out, &identity(&variants))? {
+    let Some(staged) = open_out(args, &out, &variants)? else {
         return Ok(());
-    }
-    let staged = StagedDir::new(&out)?;
+    };
     let progress = Progress::new(
         &loaded[0][0][0].experiment,
         ABLATION.len() * SETTINGS.len() * seeds.len(),
@@ -234,7 +234,7 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         let dir = staged.staging.join(variant.name);
         let label = format!("{} · ", variant.name);
         let studies = run_study(args, &seeds, loaded, &dir, &progress, &label)?;
-        let claims = write_study(args, &dir, &studies, Instant::now())?;
+        let (claims, _) = write_study(args, &dir, &studies, Instant::now())?;
         rows.push((variant, claims));
     }
     progress.finish();
@@ -262,14 +262,14 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;
-    println!("{md}");
-    commit(staged, start)
+    commit(staged, start)?;
+    crate::outln!("{md}")
 }
 
 /// Renames the staged output into place and says where it went and how long it took.
 fn commit(staged: StagedDir, start: Instant) -> Result<(), CliError> {
     let out = staged.commit()?;
-    eprintln!(
+    note!(
         "wrote {} ({:.1} s)",
         out.display(),
         start.elapsed().as_secs_f64()
@@ -277,8 +277,8 @@ fn commit(staged: StagedDir, start: Instant) -> Result<(), CliError> {
     Ok(())
 }
 
-/// What makes a study "the same": every run's resolved config, by its path in the output.
-fn identity(variants: &[(&Variant, &Vec<Vec<Loaded>>)]) -> Vec<(String, String)> {
+/// Every run of a study by its path in the output, with its resolved config.
+fn run_configs(variants: &[(&Variant, &Vec<Vec<Loaded>>)]) -> Vec<(String, String)> {
     let prefix = |v: &Variant| {
         if variants.len() == 1 {
             String::new()
@@ -309,23 +309,60 @@ fn identity(variants: &[(&Variant, &Vec<Vec<Loaded>>)]) -> Vec<(String, String)>
         .collect()
 }
 
-/// Checks `--out` before any work: false when it already holds this very study (nothing to
-/// do); an unfinished study cannot be resumed and is replaced only with `--force`.
-fn fresh_out(args: &ReproduceArgs, out: &Path, id: &[(String, String)]) -> Result<bool, CliError> {
-    match check_out(out, id, args.output.force)? {
+/// What makes a study "the same": [`IDENTITY`] naming the kind of study and every run's
+/// resolved config, written before the first run starts.
+fn identity(args: &ReproduceArgs, runs: &[(String, String)]) -> Vec<(String, String)> {
+    let kind = if args.ablation { "ablation" } else { "study" };
+    let runs: serde_json::Map<String, serde_json::Value> = runs
+        .iter()
+        .map(|(path, config)| (path.clone(), config.clone().into()))
+        .collect();
+    let doc = serde_json::json!({ "program": PROGRAM, "output": kind, "runs": runs });
+    vec![(IDENTITY.to_string(), to_json(&doc))]
+}
+
+/// Checks `--out` before any work and opens its staging directory: `None` when it already
+/// holds this very study (nothing to do but the missing PNGs with `--png`); an unfinished study
+/// of the same configs is reopened (its finished runs are read back, the others resume); another
+/// study is replaced only with `--force`.
+fn open_out(
+    args: &ReproduceArgs,
+    out: &Path,
+    variants: &[(&Variant, &Vec<Vec<Loaded>>)],
+) -> Result<Option<StagedDir>, CliError> {
+    let runs = run_configs(variants);
+    let id = identity(args, &runs);
+    // A study written before identity.json existed is recognised by its runs' configs.
+    let legacy = !out.join(IDENTITY).exists() && matches(out, &runs);
+    let state = match check_out(out, &id, args.output.force)? {
+        OutState::Fresh if legacy && !args.output.force => OutState::Done,
+        state => state,
+    };
+    match state {
         OutState::Done => {
-            eprintln!(
+            note!(
                 "{} already holds this study, finished (same resolved configs); nothing to do. --force runs it again",
                 out.display()
             );
-            Ok(false)
+            if args.png {
+                add_pngs(out)?;
+            }
+            Ok(None)
         }
-        OutState::Unfinished => Err(CliError::input(format!(
-            "{}: an unfinished study of this command is in {}; reproduce cannot resume it: pass --force to discard it and start over",
-            out.display(),
-            StagedDir::staging_path(out).display()
-        ))),
-        OutState::Fresh => Ok(true),
+        OutState::Unfinished => {
+            note!(
+                "resuming the unfinished study in {}: finished runs are read back, the others continue",
+                StagedDir::staging_path(out).display()
+            );
+            Ok(Some(StagedDir::reopen(out)?))
+        }
+        OutState::Fresh => {
+            let staged = StagedDir::new(out)?;
+            for (name, text) in &id {
+                staged.write(name, text)?;
+            }
+            Ok(Some(staged))
+        }
     }
 }
 
@@ -335,12 +372,14 @@ fn rows_exp(args: &ReproduceArgs, seeds: &[u64]) -> Result<Loaded, CliError> {
 }
 
 /// Tables, figures, claims, `report.html` and `summary.json` of a study in `dir`.
+/// Returns the claims and the tables to print once the study is in place.
 fn write_study(
     args: &ReproduceArgs,
     dir: &Path,
     studies: &[SettingRuns<'_>],
     start: Instant,
-) -> Result<Vec<ClaimRecord>, CliError> {
+) -> Result<(Vec<ClaimRecord>, String), CliError> {
+    let mut printed = String::new();
     let provenance = Provenance::new(&studies[0].seeds, &studies[0].loaded[0], args.quick);
     let mut panels = Vec::new();
     for (k, study) in studies.iter().enumerate() {
@@ -349,8 +388,8 @@ fn write_study(
         write_atomic(&dir.join(format!("table{}.csv", k + 1)), &csv)?;
         write_atomic(&dir.join(format!("table{}_seeds.csv", k + 1)), &seeds_csv)?;
         if !args.ablation {
-            println!(
-                "Table {} — {} (C, H, O, E) = {:?}\n{md}",
+            printed += &format!(
+                "Table {} — {} (C, H, O, E) = {:?}\n{md}\n",
                 k + 1,
                 study.setting.name,
                 study.loaded[study.median()]
@@ -385,7 +424,7 @@ fn write_study(
         wall_seconds,
     };
     write_atomic(&dir.join("summary.json"), to_json(&summary))?;
-    Ok(claims)
+    Ok((claims, printed))
 }
 
 /// The setting's trajectories figure (its median seed's best robot); returns its panel of the
@@ -463,10 +502,11 @@ fn page(
     )
 }
 
-fn print_claims(claims: &[ClaimRecord]) {
+fn print_claims(claims: &[ClaimRecord]) -> Result<(), CliError> {
     for c in claims {
-        println!("{}: {} ({})", c.claim, mark(c.holds), c.evidence);
+        crate::outln!("{}: {} ({})", c.claim, mark(c.holds), c.evidence)?;
     }
+    Ok(())
 }
 
 /// The orientation study: a built-in sweep (three motivation settings × seeds, online
@@ -495,14 +535,21 @@ fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
         std::path::Path::new("."),
     )?;
     let all: Vec<usize> = (0..sweep.jobs.len()).collect();
-    eprintln!(
+    note!(
         "orientation study: {} jobs into {}",
         all.len(),
         out.display()
     );
-    run_jobs(&sweep, &text, &all, &out, args.output.quiet)?;
+    run_jobs(
+        &sweep,
+        &text,
+        &all,
+        &out,
+        args.output.quiet,
+        args.output.force,
+    )?;
     merge_dir(&out)?;
-    eprintln!(
+    note!(
         "orientation study done in {:.1} s",
         start.elapsed().as_secs_f64()
     );

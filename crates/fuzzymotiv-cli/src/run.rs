@@ -6,7 +6,9 @@ use crate::args::OutputArgs;
 use crate::error::CliError;
 use crate::files::{OutState, StagedDir, check_out};
 use crate::inputs::{Loaded, load_config, resolved_toml};
+use crate::note;
 use crate::pipeline::{execute, start_line};
+use crate::png::add_pngs;
 use crate::progress::Progress;
 use crate::tables::table_markdown;
 
@@ -45,8 +47,8 @@ pub struct RunArgs {
 
 /// What `run` is asked to do.
 enum Target {
-    /// Nothing: the run is already there.
-    Done,
+    /// Nothing (but the missing PNGs with `--png`): the run is already there.
+    Done(PathBuf),
     /// Run (or resume) `loaded` into `out`.
     Run {
         loaded: Box<Loaded>,
@@ -63,13 +65,14 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
         (None, Some(config)) => config_target(config, &args)?,
         (None, None) => return Err(CliError::input("give a CONFIG file or --resume DIR")),
     };
-    let Target::Run {
-        loaded,
-        out,
-        resume,
-    } = target
-    else {
-        return Ok(());
+    let (loaded, out, resume) = match target {
+        Target::Run {
+            loaded,
+            out,
+            resume,
+        } => (loaded, out, resume),
+        Target::Done(dir) if args.png => return add_pngs(&dir),
+        Target::Done(_) => return Ok(()),
     };
     let progress = Progress::new(&loaded.experiment, 1, args.output.quiet).named(&format!(
         "{} seed {}",
@@ -79,8 +82,8 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
     progress.note(&start_line(&loaded.experiment, &out));
     let done = execute(&loaded, &out, &progress, resume, args.png)?;
     progress.finish();
-    print!("{}", table_markdown(&done.rows));
-    eprintln!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
+    crate::out!("{}", table_markdown(&done.rows))?;
+    note!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
     Ok(())
 }
 
@@ -90,8 +93,8 @@ fn resume_target(dir: &Path) -> Result<Target, CliError> {
     let cfg = staging.join("config.resolved.toml");
     if !cfg.is_file() {
         if dir.join("summary.json").is_file() {
-            eprintln!("{} is already complete; nothing to resume", dir.display());
-            return Ok(Target::Done);
+            note!("{} is already complete; nothing to resume", dir.display());
+            return Ok(Target::Done(dir.to_path_buf()));
         }
         return Err(CliError::input(format!(
             "--resume {}: no interrupted run there ({} not found); start it with `fuzzymotiv run CONFIG --out {}`",
@@ -121,11 +124,11 @@ fn config_target(config: &Path, args: &RunArgs) -> Result<Target, CliError> {
     )];
     let resume = match check_out(&out, &id, args.output.force)? {
         OutState::Done => {
-            eprintln!(
+            note!(
                 "{} already holds this run, finished (same resolved config); nothing to do. --force runs it again",
                 out.display()
             );
-            return Ok(Target::Done);
+            return Ok(Target::Done(out));
         }
         OutState::Unfinished => true,
         OutState::Fresh => false,

@@ -4,8 +4,9 @@
 use std::path::PathBuf;
 
 use crate::error::CliError;
-use crate::files::{io_err, write_atomic};
+use crate::files::{FilesState, check_files, io_err, write_atomic, write_files};
 use crate::pipeline::{run_jobs, set_threads};
+use crate::png::{add_pngs, svg_to_png};
 use crate::sweep_merge::merge_dir;
 use crate::sweep_plan::Sweep;
 
@@ -17,20 +18,27 @@ pub struct PlanArgs {
     /// Print only the number of jobs (to size an array job).
     #[arg(long)]
     pub count: bool,
-    /// Write the plan to this file instead of stdout.
+    /// Write the plan to this file instead of stdout (the same plan again changes nothing;
+    /// another file there is kept unless --force).
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Replace another --out file (only a regular file).
+    #[arg(long, requires = "out")]
+    pub force: bool,
 }
 
 /// Entry point of `fuzzymotiv plan`.
 pub fn plan(args: PlanArgs) -> Result<(), CliError> {
     let sweep = Sweep::load(&args.sweep)?;
     if args.count {
-        println!("{}", sweep.jobs.len());
+        crate::outln!("{}", sweep.jobs.len())?;
     } else if let Some(out) = args.out {
-        write_atomic(&out, sweep.plan_jsonl())?;
+        let files = [(out, sweep.plan_jsonl().into_bytes())];
+        if check_files(&files, "--out", args.force)? == FilesState::Write {
+            write_files(&files)?;
+        }
     } else {
-        print!("{}", sweep.plan_jsonl());
+        crate::out!("{}", sweep.plan_jsonl())?;
     }
     Ok(())
 }
@@ -60,6 +68,10 @@ pub struct SweepArgs {
     /// No progress lines on stderr.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Replace the sweep (or other fuzzymotiv output) in --out and start over: the old sweep's
+    /// own files and job folders are removed, never another file.
+    #[arg(long)]
+    pub force: bool,
 }
 
 fn select(args: &SweepArgs, n: usize) -> Result<Vec<usize>, CliError> {
@@ -107,7 +119,7 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     let sweep = Sweep::load(&args.sweep)?;
     let selected = select(&args, sweep.jobs.len())?;
     let text = std::fs::read_to_string(&args.sweep).map_err(|e| io_err(&args.sweep, e))?;
-    run_jobs(&sweep, &text, &selected, &args.out, args.quiet)
+    run_jobs(&sweep, &text, &selected, &args.out, args.quiet, args.force)
 }
 
 /// Arguments of `fuzzymotiv merge`.
@@ -115,9 +127,21 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
 pub struct MergeArgs {
     /// A sweep output directory (with plan.jsonl and jobs/).
     pub dir: PathBuf,
+    /// Also write summary.png beside summary.svg (and the PNGs the jobs' figures lack).
+    #[arg(long)]
+    pub png: bool,
 }
 
 /// Entry point of `fuzzymotiv merge`.
 pub fn merge(args: MergeArgs) -> Result<(), CliError> {
-    merge_dir(&args.dir)
+    merge_dir(&args.dir)?;
+    if args.png {
+        let svg = args.dir.join("summary.svg");
+        let png = svg.with_extension("png");
+        let text = std::fs::read_to_string(&svg).map_err(|e| io_err(&svg, e))?;
+        let bytes = svg_to_png(&text).map_err(|e| io_err(&png, std::io::Error::other(e)))?;
+        write_atomic(&png, bytes)?;
+        add_pngs(&args.dir)?;
+    }
+    Ok(())
 }

@@ -6,6 +6,7 @@ use std::path::Path;
 
 use crate::error::CliError;
 use crate::files::write_atomic;
+use crate::note;
 use crate::records::{
     AggregateRow, Job, METRICS, RunSummary, SweepResultRow, SweepResults, read_json, to_csv,
 };
@@ -31,8 +32,8 @@ pub fn merge_dir(dir: &Path) -> Result<(), CliError> {
         &dir.join("summary.svg"),
         sweep_summary_svg(&setting_points(&groups)),
     )?;
-    print!("{md}");
-    eprintln!(
+    crate::out!("{md}")?;
+    note!(
         "merged {} jobs ({} rows) into {}; {missing} of {} jobs not finished",
         jobs.len() - missing,
         results.rows.len(),

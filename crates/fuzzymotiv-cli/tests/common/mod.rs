@@ -89,6 +89,12 @@ impl Fm {
         self
     }
 
+    /// Sets an environment variable of the command.
+    pub fn env(mut self, key: &str, value: &str) -> Fm {
+        self.cmd.env(key, value);
+        self
+    }
+
     /// Runs in `dir` instead of the current directory.
     pub fn in_dir(mut self, dir: &Path) -> Fm {
         self.cmd.current_dir(dir);

@@ -1,0 +1,55 @@
+//! The terminal: results on standard output, notes on standard error, and neither ever panics
+//! (`println!` and `eprintln!` panic when the stream is closed or full).
+//!
+//! A closed standard output (`fuzzymotiv plan BIG.toml | head -1`) ends the command quietly
+//! with a non-zero status, as `grep` does ([`ErrorKind::ClosedStdout`]); another write failure
+//! (a full disk) is an error naming standard output. A closed standard error only drops notes
+//! and progress lines: the command goes on.
+//!
+//! [`ErrorKind::ClosedStdout`]: crate::error::ErrorKind::ClosedStdout
+
+use std::fmt::Arguments;
+use std::io::Write;
+
+use crate::error::CliError;
+
+/// Writes to standard output; a failure becomes a [`CliError`] (see the module docs).
+pub fn write_out(args: Arguments<'_>) -> Result<(), CliError> {
+    let mut out = std::io::stdout().lock();
+    out.write_fmt(args)
+        .and_then(|()| out.flush())
+        .map_err(stdout_error)
+}
+
+/// Writes to standard error, ignoring failures (a closed stderr drops the note).
+pub fn write_err(args: Arguments<'_>) {
+    let _ = std::io::stderr().lock().write_fmt(args);
+}
+
+/// A failed write to standard output.
+pub fn stdout_error(e: std::io::Error) -> CliError {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        CliError::closed_stdout()
+    } else {
+        CliError::io(format!("standard output: {e}"))
+    }
+}
+
+/// `print!` that returns an error instead of panicking: `out!("{x}")?`.
+#[macro_export]
+macro_rules! out {
+    ($($arg:tt)*) => { $crate::console::write_out(format_args!($($arg)*)) };
+}
+
+/// `println!` that returns an error instead of panicking: `outln!("{x}")?`.
+#[macro_export]
+macro_rules! outln {
+    () => { $crate::console::write_out(format_args!("\n")) };
+    ($($arg:tt)*) => { $crate::console::write_out(format_args!("{}\n", format_args!($($arg)*))) };
+}
+
+/// `eprintln!` that never panics: a closed or full stderr drops the line.
+#[macro_export]
+macro_rules! note {
+    ($($arg:tt)*) => { $crate::console::write_err(format_args!("{}\n", format_args!($($arg)*))) };
+}
