@@ -95,6 +95,16 @@ def test_finding_1_finished_run_is_read_back_not_run_again(tiny, uninterrupted):
     same_result(first, fm.run(tiny, SMALL), wall_time=False)
 
 
+def test_finding_1_per_room_run_without_aem_is_read_back_too(tiny, tmp_path):
+    overrides = dict(SMALL, training="per-room", **{"aem.enabled": False})
+    out = tmp_path / "per-room"
+    first = fm.run(tiny, overrides, out=out)
+    assert list(first.best_genomes) == ["H", "square", "U"]
+    assert first.rooms["recognition_pct"].isna().all()
+    again = fm.run(tiny, overrides, out=out)
+    same_result(first, again)
+
+
 def test_finding_1_cli_run_directory_is_read_back(cli, tiny, uninterrupted, tmp_path):
     first, _ = uninterrupted
     out = tmp_path / "cli"
