@@ -16,8 +16,10 @@ array([0.263309, 1.      ])
 >>> tr["sensors"].shape
 (50, 8)
 
-Errors in the input (configs, room files, motivations, overrides) raise
-:class:`FuzzymotivError`, a ``ValueError`` carrying the message the CLI prints.
+Errors in the input (configs, room files, motivations, overrides, NaN or infinite numbers,
+an ``out`` directory that must not be replaced) raise :class:`FuzzymotivError`, a
+``ValueError`` carrying the message the CLI prints; file-system failures raise
+:class:`FuzzymotivOSError`, both a ``FuzzymotivError`` and an ``OSError``.
 """
 
 from __future__ import annotations
@@ -31,10 +33,11 @@ import numpy as np
 
 from . import _fuzzymotiv as _native
 from ._fuzzymotiv import VERSION as __version__
-from ._fuzzymotiv import FuzzymotivError
+from ._fuzzymotiv import FuzzymotivError, FuzzymotivOSError
 
 __all__ = [
     "FuzzymotivError",
+    "FuzzymotivOSError",
     "RunResult",
     "export_fll",
     "fuzzy_fitness",
@@ -86,6 +89,8 @@ def fuzzy_fitness(
     ``{"fitness", "weight_sum", "rules", "text"}`` whose ``rules`` are the firing rules
     (number, labels, label names, weight w, output f); for an array, a list of such dicts.
     ``peaks`` and ``coefficients`` (``"linear"``, ``"ratio"`` or a list) default to the paper's.
+    NaN or infinite values anywhere raise :class:`FuzzymotivError` naming the argument, the
+    position and the value (as the CLI refuses them).
 
     >>> round(fuzzy_fitness([.8, .1, 0, .1], [.95, .5, 0, .79]), 6)
     0.79722
@@ -107,9 +112,10 @@ def fuzzy_fitness(
             raise FuzzymotivError(
                 f"terms: expected an n × 4 array of (a, g, l, b), got shape {y.shape}"
             )
+        many = _native.fuzzy_fitness_many(x, np.ascontiguousarray(y), pk, coef)  # checks every row
         if explain:
             return [_native.explain(x, row.tolist(), pk, coef) for row in y]
-        return _native.fuzzy_fitness_many(x, np.ascontiguousarray(y), pk, coef)
+        return many
     raise FuzzymotivError(f"terms: expected a vector of 4 or an n × 4 array, got shape {y.shape}")
 
 
@@ -222,8 +228,9 @@ class RunResult:
 
     Attributes:
         generations: per generation (and run), the columns of ``generations.csv``
-            (``generation, best, mean, std, min, max, a, g, l, b, room``): a pandas DataFrame
-            when pandas is installed, else a dict of numpy arrays.
+            (``generation, best, mean, std, min, max, a, g, l, b, room``) with the values
+            that file holds (9 decimals), with or without ``out``: a pandas DataFrame when
+            pandas is installed, else a dict of numpy arrays.
         rooms: the per-room table (``room, average_fitness, exploration_pct,
             recognition_pct, battery_pct, homing_pct, r_node``), DataFrame or dict.
         best_genome: the best robot's weights (numpy array; the first run's for per-room
@@ -232,7 +239,7 @@ class RunResult:
         trajectories: per room, the best robot's room-modelling path (``x``, ``y``,
             ``heading`` arrays), as drawn in the report.
         summary: ``summary.json`` as a dict.
-        out: the run directory written, or None.
+        out: the run directory (written, resumed or read back), or None.
     """
 
     def __init__(self, native: dict, out: Optional[Path]):
@@ -285,18 +292,27 @@ def run(
     *,
     seed: Optional[int] = None,
     progress: Any = None,
+    force: bool = False,
 ) -> RunResult:
     """Evolve controllers as ``fuzzymotiv run`` does and return a :class:`RunResult`.
 
     ``config`` is a config file path or TOML text (None: the built-in defaults); ``overrides``
     a dict of dotted keys, the same as ``--set`` (``{"ga.generations": 20, "rooms": ["H"]}``);
-    ``seed`` overrides the base seed. ``threads`` sizes the worker pool (results do not depend
-    on it). ``out`` also writes the usual run directory (``generations.csv``, ``summary.json``,
-    figures, ``report.html``, ...). ``progress`` is a callable ``(done, total, best_F)`` called
-    after every generation, or True for a tqdm bar.
+    ``seed`` overrides the base seed (a whole number from 0 to 2^53 − 1). ``threads`` sizes
+    the worker pool (1 to 1024; results do not depend on it). ``progress`` is a callable
+    ``(done, total, best_F)`` called after every generation, or True for a tqdm bar.
 
-    The run releases the GIL; Ctrl-C raises KeyboardInterrupt after the current generation
-    (with ``out``, the interrupted run can be continued by ``fuzzymotiv run --resume OUT``).
+    ``out`` also writes the usual run directory (``generations.csv``, ``summary.json``,
+    figures, ``report.html``, ...), by the rules of ``fuzzymotiv run --out``: the same config
+    (the same resolved config) on a finished directory runs nothing and returns the result read
+    back from it (equal to what the run returned); on an unfinished one (``OUT.partial/``, left
+    by Ctrl-C, a failing callback or a killed process) it resumes from the last generation and
+    ends with the files of an uninterrupted run. Another run's results or another kind of output
+    there raise :class:`FuzzymotivError` unless ``force=True`` (which replaces them, or
+    discards the unfinished run); a directory that is not a fuzzymotiv output is never
+    replaced, and ``out`` cannot be the current directory.
+
+    The run releases the GIL; Ctrl-C raises KeyboardInterrupt after the current generation.
     Same config and seed → the same numbers as the CLI.
 
     >>> res = run("configs/tiny.toml", {"ga.generations": 3})  # doctest: +SKIP
@@ -304,11 +320,11 @@ def run(
     """
     path, text = _config_args(config)
     sets = _sets(overrides)
-    if seed is not None:
-        sets.append(f"seed={int(seed)}")
     out_path = None if out is None else os.fspath(out)
+    if out_path == "":
+        raise FuzzymotivError("out: an empty path; give a directory, e.g. out=\"runs/tiny\"")
     native = _native.run(
-        path, text, sets, threads, out_path, _progress_callback(progress)
+        path, text, sets, threads, out_path, _progress_callback(progress), seed, bool(force)
     )
     return RunResult(native, None if out_path is None else Path(out_path))
 
@@ -329,7 +345,8 @@ def simulate(
     mL, mR), ``action`` (T labels: the executed actions), ``idle`` (T booleans: steps after
     the trial ended at home), ``energy`` (T), ``escaped`` (T booleans: out of the home zone
     yet), ``collision`` (T booleans); and the fitness terms ``a``, ``g``, ``l``, ``b`` with
-    ``F`` under the config's motivations.
+    ``F`` under the config's motivations. ``seed`` is a whole number from 0 to 2^53 − 1; NaN
+    or infinite weights raise :class:`FuzzymotivError`.
 
     >>> tr = simulate(np.zeros(68), "H", seed=3, overrides={"trial.steps": 20})
     >>> tr["x"].shape, tr["sensors"].shape, str(tr["action"][0])
@@ -337,4 +354,4 @@ def simulate(
     """
     path, text = _config_args(config)
     weights = np.asarray(genome, dtype=np.float64).ravel().tolist()
-    return _native.simulate(weights, os.fspath(room), int(seed), path, text, _sets(overrides))
+    return _native.simulate(weights, os.fspath(room), seed, path, text, _sets(overrides))

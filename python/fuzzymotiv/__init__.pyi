@@ -18,6 +18,9 @@ FloatArray = npt.NDArray[np.float64]
 class FuzzymotivError(ValueError):
     """Bad input: the message is the one the CLI prints (file, field, what is wrong)."""
 
+class FuzzymotivOSError(FuzzymotivError, OSError):
+    """A file-system failure (reading or writing a named path); the message is the CLI's."""
+
 class FiringRule(TypedDict):
     number: int
     labels: list[int]
@@ -111,7 +114,12 @@ def run(
     *,
     seed: Optional[int] = ...,
     progress: Union[None, bool, Callable[[int, int, float], Any]] = ...,
-) -> RunResult: ...
+    force: bool = ...,
+) -> RunResult:
+    """Evolve as ``fuzzymotiv run``. With ``out``, the directory follows ``fuzzymotiv run --out``:
+    the same finished run is read back (nothing runs), an unfinished one (``OUT.partial/``) is
+    resumed, another run's results raise FuzzymotivError unless ``force=True``; a directory that
+    is not a fuzzymotiv output is never replaced."""
 
 class Trajectory(TypedDict):
     x: FloatArray

@@ -16,16 +16,24 @@ use fuzzymotiv::evolution::{Evolution, GenerationState};
 use fuzzymotiv::fuzzy::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::trial::Trajectory;
-use fuzzymotiv_cli::error::CliError;
-use fuzzymotiv_cli::inputs::{Loaded, load_config, load_room_file, resolve};
+use fuzzymotiv_cli::checkpoint::{CHECKPOINT, Checkpoint};
+use fuzzymotiv_cli::error::{CliError, ErrorKind};
+use fuzzymotiv_cli::files::{OutState, StagedDir, check_out};
+use fuzzymotiv_cli::inputs::{
+    Loaded, load_config, load_room_file, parse_seed, resolve, resolved_toml,
+};
 use fuzzymotiv_cli::pipeline;
-use fuzzymotiv_cli::records::{Finished, RoomRow, RunSummary};
+use fuzzymotiv_cli::records::{
+    BestGenome, Finished, Fixed, GenerationRow, RoomRow, RunSummary, read_csv, read_json,
+};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::create_exception;
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyBool, PyDict, PyList, PyTuple, PyType};
+use rayon::prelude::*;
 
 create_exception!(
     _fuzzymotiv,
@@ -34,14 +42,130 @@ create_exception!(
     "Bad input (config, room file, motivations, ...): the message is the CLI's, naming the file, the field and what is wrong."
 );
 
-/// A CLI error as a Python exception: bad input → `FuzzymotivError` (a `ValueError`), a
-/// failure while running → `RuntimeError`; the message is what the CLI prints after `error:`.
+/// `FuzzymotivOSError(FuzzymotivError, OSError)`: a file-system failure, created when the
+/// module is loaded (an exception with two bases cannot be declared with `create_exception!`).
+static OS_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+
+fn os_error_type(py: Python<'_>) -> PyResult<&Py<PyType>> {
+    OS_ERROR.get_or_try_init(py, || {
+        let bases = PyTuple::new(
+            py,
+            [
+                py.get_type::<FuzzymotivError>(),
+                py.get_type::<PyOSError>(),
+            ],
+        )?;
+        let namespace = PyDict::new(py);
+        namespace.set_item("__module__", "fuzzymotiv")?;
+        namespace.set_item(
+            "__doc__",
+            "A file-system failure (reading or writing a named path): both a FuzzymotivError and an OSError; the message is the CLI's.",
+        )?;
+        let t = py
+            .import("builtins")?
+            .getattr("type")?
+            .call1(("FuzzymotivOSError", bases, namespace))?
+            .cast_into::<PyType>()?;
+        Ok(t.unbind())
+    })
+}
+
+/// A CLI error as a Python exception, with the message the CLI prints after `error:`: bad
+/// input → `FuzzymotivError` (a `ValueError`); a file-system failure → `FuzzymotivOSError`
+/// (a `FuzzymotivError` and an `OSError`); another failure while running → `RuntimeError`.
 fn py_err(e: CliError) -> PyErr {
-    if e.exit_code() == 2 {
-        FuzzymotivError::new_err(e.to_string())
-    } else {
-        PyRuntimeError::new_err(e.to_string())
+    match e.kind() {
+        ErrorKind::Input => FuzzymotivError::new_err(e.to_string()),
+        ErrorKind::Runtime => PyRuntimeError::new_err(e.to_string()),
+        ErrorKind::Io => Python::attach(|py| match os_error_type(py) {
+            Ok(t) => PyErr::from_type(t.bind(py).clone(), e.to_string()),
+            Err(err) => err,
+        }),
     }
+}
+
+/// A float as Python spells it (`nan`, `inf`, `-inf`, `0.5`).
+fn py_float(v: f64) -> String {
+    if v.is_nan() {
+        "nan".into()
+    } else if v.is_infinite() {
+        if v > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        format!("{v:?}")
+    }
+}
+
+/// NaN or ±inf in `values` refused, as the CLI refuses them (`parse_four`): the argument, the
+/// position (`position(k)`) and the value, then what is expected.
+fn finite(
+    arg: &str,
+    values: &[f64],
+    position: impl Fn(usize) -> String,
+    usage: &str,
+) -> PyResult<()> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(k) => Err(input_err(format!(
+            "{arg}: `{}` ({}) is not a finite number; {usage}",
+            py_float(values[k]),
+            position(k)
+        ))),
+    }
+}
+
+const MOTIVATION_NAMES: [&str; 4] = ["C", "H", "O", "E"];
+const TERM_NAMES: [&str; 4] = ["a", "g", "l", "b"];
+
+fn terms_finite(terms: &[f64; 4]) -> PyResult<()> {
+    finite(
+        "terms",
+        terms,
+        |k| TERM_NAMES[k].into(),
+        "expected four numbers (a, g, l, b)",
+    )
+}
+
+/// The largest `threads`: more threads than this are surely a mistake (results do not depend
+/// on the number).
+const MAX_THREADS: i64 = 1024;
+
+/// A whole number from a Python object (an `int`, a numpy integer; not a bool or a float), as
+/// text, or the object's repr when it is not one.
+fn whole_number(obj: &Bound<'_, PyAny>) -> Result<i128, String> {
+    let repr = || obj.repr().map_or_else(|_| "?".into(), |r| r.to_string());
+    if obj.is_instance_of::<PyBool>() {
+        return Err(repr());
+    }
+    match obj.call_method0("__index__") {
+        Ok(i) => i
+            .str()
+            .map_err(|_| repr())?
+            .to_string()
+            .parse()
+            .map_err(|_| repr()),
+        Err(_) => Err(repr()),
+    }
+}
+
+/// `threads`: a whole number from 1 to [`MAX_THREADS`].
+fn threads_arg(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<usize>> {
+    let Some(obj) = obj else { return Ok(None) };
+    match whole_number(obj) {
+        Ok(n) if n < 1 => Err(input_err(format!("threads must be at least 1, got {n}"))),
+        Ok(n) if n > MAX_THREADS as i128 => Err(input_err(format!(
+            "threads must be at most {MAX_THREADS}, got {n}"
+        ))),
+        Ok(n) => Ok(Some(n as usize)),
+        Err(repr) => Err(input_err(format!(
+            "threads must be a whole number from 1 to {MAX_THREADS}, got {repr}"
+        ))),
+    }
+}
+
+/// `seed`: a whole number from 0 to 2^53 − 1, with the CLI's message (`--seed`) otherwise.
+fn seed_arg(obj: &Bound<'_, PyAny>) -> PyResult<u64> {
+    let text = whole_number(obj).map_or_else(|repr| repr, |n| n.to_string());
+    parse_seed(&text).map_err(|m| input_err(format!("seed: {m}")))
 }
 
 fn input_err(message: impl Into<String>) -> PyErr {
@@ -51,6 +175,12 @@ fn input_err(message: impl Into<String>) -> PyErr {
 /// Motivations as the CLI reads them: a sum within 1e-3 of 1 is normalised (silently here;
 /// the normalised values are what is used).
 fn motivations(x: [f64; 4]) -> PyResult<Motivations> {
+    finite(
+        "motivations",
+        &x,
+        |k| MOTIVATION_NAMES[k].into(),
+        "expected four numbers (C, H, O, E)",
+    )?;
     Motivations::normalised(x[0], x[1], x[2], x[3])
         .map(|(m, _)| m)
         .map_err(|e| input_err(format!("motivations: {e}")))
@@ -59,6 +189,12 @@ fn motivations(x: [f64; 4]) -> PyResult<Motivations> {
 /// The TSK from optional peaks and coefficients (`"linear"`, `"ratio"` or a list).
 fn tsk(peaks: Option<Vec<f64>>, coefficients: Option<&Bound<'_, PyAny>>) -> PyResult<TskFitness> {
     let peaks = peaks.unwrap_or_else(|| fuzzymotiv::fuzzy::PAPER_PEAKS.to_vec());
+    finite(
+        "peaks",
+        &peaks,
+        |k| format!("peak {k}"),
+        "expected increasing numbers in [0, 1]",
+    )?;
     let result = match coefficients {
         None => TskFitness::with_scheme(peaks, CoefficientScheme::Linear),
         Some(c) => {
@@ -77,6 +213,12 @@ fn tsk(peaks: Option<Vec<f64>>, coefficients: Option<&Bound<'_, PyAny>>) -> PyRe
                 let values: Vec<f64> = c.extract().map_err(|_| {
                     input_err("coefficients: expected \"linear\", \"ratio\" or a list of numbers")
                 })?;
+                finite(
+                    "coefficients",
+                    &values,
+                    |k| format!("coefficient {k}"),
+                    "expected \"linear\", \"ratio\" or a list of numbers",
+                )?;
                 TskFitness::new(peaks, values)
             }
         }
@@ -94,6 +236,7 @@ fn fuzzy_fitness_one(
     coefficients: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<f64> {
     let x = self::motivations(motivations)?;
+    terms_finite(&terms)?;
     Ok(tsk(peaks, coefficients)?.evaluate(&x, terms))
 }
 
@@ -116,6 +259,13 @@ fn fuzzy_fitness_many<'py>(
         )));
     }
     let view = terms.as_array();
+    if let Some(((i, j), v)) = view.indexed_iter().find(|(_, v)| !v.is_finite()) {
+        return Err(input_err(format!(
+            "terms: `{}` (row {i}, {}) is not a finite number; expected an n × 4 array of (a, g, l, b)",
+            py_float(*v),
+            TERM_NAMES[j]
+        )));
+    }
     let out: Vec<f64> = view
         .rows()
         .into_iter()
@@ -136,6 +286,7 @@ fn explain<'py>(
     coefficients: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let x = self::motivations(motivations)?;
+    terms_finite(&terms)?;
     let e = tsk(peaks, coefficients)?.explain(&x, terms);
     let d = PyDict::new(py);
     d.set_item("fitness", e.fitness)?;
@@ -261,26 +412,49 @@ fn load(
 /// Marker payload of a run stopped by Ctrl-C or a failing progress callback.
 struct Cancelled;
 
-/// What a run returns to Python (plain Rust data, built without the GIL).
+/// What a run returns to Python (plain Rust data, built without the GIL). A fresh run and a
+/// finished run directory read back give equal values.
 struct RunOutput {
-    /// Per generation and run: the record and the run's label.
-    generations: Vec<(fuzzymotiv::evolution::GenerationRecord, String)>,
+    /// The rows of `generations.csv`, as written there (9 decimals).
+    generations: Vec<GenerationRow>,
     rows: Vec<RoomRow>,
     best: Vec<(String, Vec<f64>)>,
     summary: String,
     /// Per room: name and the best robot's room-modelling path (x, y, heading).
     paths: Vec<(String, Vec<[f64; 3]>)>,
-    shape: (usize, usize),
+    hidden: usize,
+}
+
+/// A generation row's floats as `generations.csv` holds them (written with 9 decimals and
+/// read back), so a run returns the same numbers whether or not it wrote a directory, and a
+/// finished directory read back returns them too.
+fn as_written(row: GenerationRow) -> GenerationRow {
+    let w = |x: Fixed<9>| Fixed(x.to_string().parse().expect("a printed float"));
+    GenerationRow {
+        best: w(row.best),
+        mean: w(row.mean),
+        std: w(row.std),
+        min: w(row.min),
+        max: w(row.max),
+        a: w(row.a),
+        g: w(row.g),
+        l: w(row.l),
+        b: w(row.b),
+        ..row
+    }
+}
+
+fn poses(t: &Trajectory) -> Vec<[f64; 3]> {
+    t.poses.iter().map(|p| [p.x, p.y, p.heading]).collect()
 }
 
 fn output(loaded: &Loaded, done: Finished) -> RunOutput {
     let exp = &loaded.experiment;
     let summary = RunSummary::of(exp, &done);
     RunOutput {
-        generations: done
-            .evolutions
-            .iter()
-            .flat_map(|e| e.history.iter().map(|r| (*r, e.run.label.clone())))
+        generations: GenerationRow::all(&done.evolutions)
+            .into_iter()
+            .map(as_written)
             .collect(),
         best: done
             .evolutions
@@ -292,24 +466,75 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
             .room_names()
             .into_iter()
             .zip(done.trajectories())
-            .map(|(n, t)| (n, t.poses.iter().map(|p| [p.x, p.y, p.heading]).collect()))
+            .map(|(n, t)| (n, poses(t)))
             .collect(),
-        shape: (exp.shape().hidden, exp.shape().genome_len()),
+        hidden: exp.shape().hidden,
         rows: done.rows,
     }
 }
 
-/// The run itself (no GIL): in memory, or through the CLI's writer into `out`.
+/// The result of the finished run in `dir` (of `loaded`'s resolved config), read back from its
+/// files: `generations.csv`, `summary.json` (the per-room table), `best_genome.json`; the
+/// trajectories are the best robots' room-modelling runs again (the very runs the report
+/// draws: [`Finished::instance`]).
+fn read_back(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
+    let exp = &loaded.experiment;
+    let generations: Vec<GenerationRow> = read_csv(&dir.join("generations.csv"))?;
+    let summary: RunSummary = read_json(&dir.join("summary.json"))?;
+    let genome_file = dir.join("best_genome.json");
+    let genome: BestGenome = read_json(&genome_file)?;
+    let runs = exp.runs();
+    let fits = genome.runs.len() == runs.len()
+        && genome
+            .runs
+            .iter()
+            .zip(&runs)
+            .all(|(g, run)| g.run == run.label && g.weights.len() == exp.shape().genome_len());
+    if !fits {
+        return Err(CliError::input(format!(
+            "{}: its robots do not match the run's config (runs, network size); run again with force=True",
+            genome_file.display()
+        )));
+    }
+    let paths = exp
+        .room_names()
+        .into_par_iter()
+        .enumerate()
+        .map(|(r, name)| {
+            // As `Finished::robot_for_room`: the one robot, or room r's own.
+            let k = if runs.len() == 1 { 0 } else { r };
+            let instance = exp.instance_run(&genome.runs[k].weights, &runs[k], r);
+            (name, poses(&instance.trajectory))
+        })
+        .collect();
+    Ok(RunOutput {
+        generations,
+        rows: summary.rooms.clone(),
+        best: genome
+            .runs
+            .into_iter()
+            .map(|g| (g.run, g.weights))
+            .collect(),
+        summary: serde_json::to_string(&summary).expect("serialisable"),
+        paths,
+        hidden: exp.shape().hidden,
+    })
+}
+
+/// The run itself (no GIL): in memory; or through the CLI's writer into `dir` (fresh or
+/// resumed, as `check_out` found it); or a finished `dir` read back.
 fn execute(
     loaded: &Loaded,
-    out: Option<&Path>,
+    out: Option<(&Path, OutState)>,
     hook: &mut dyn FnMut(&GenerationState<'_>),
 ) -> Result<RunOutput, CliError> {
     let exp = &loaded.experiment;
     let done = match out {
-        Some(dir) => {
+        Some((dir, OutState::Done)) => return read_back(loaded, dir),
+        Some((dir, state)) => {
             let progress = fuzzymotiv_cli::progress::Progress::hidden();
-            pipeline::execute_with(loaded, dir, &progress, false, false, hook)?
+            let resume = state == OutState::Unfinished;
+            pipeline::execute_with(loaded, dir, &progress, resume, false, hook)?
         }
         None => {
             let start = Instant::now();
@@ -322,23 +547,48 @@ fn execute(
     Ok(output(loaded, done))
 }
 
+/// Generations an unfinished run in `dir` has done already (its checkpoint), so that progress
+/// counts on from there.
+fn generations_done(loaded: &Loaded, dir: &Path) -> usize {
+    let exp = &loaded.experiment;
+    let path = StagedDir::staging_path(dir).join(CHECKPOINT);
+    Checkpoint::load(&path, &exp.runs(), exp)
+        .map_or(0, |cp| cp.runs.iter().map(|r| r.history.len()).sum())
+}
+
 /// Evolves as `fuzzymotiv run` does. Returns a dict of plain columns; see `fuzzymotiv.run`.
+/// With `out`, the directory is checked as `fuzzymotiv run --out` checks it: the same finished
+/// run is read back, an unfinished one resumed, another output replaced only with `force`.
 #[pyfunction]
-#[pyo3(signature = (config_path=None, config_text=None, sets=Vec::new(), threads=None, out=None, progress=None))]
+#[pyo3(signature = (config_path=None, config_text=None, sets=Vec::new(), threads=None, out=None, progress=None, seed=None, force=false))]
+#[allow(clippy::too_many_arguments)]
 fn run<'py>(
     py: Python<'py>,
     config_path: Option<PathBuf>,
     config_text: Option<String>,
     sets: Vec<String>,
-    threads: Option<usize>,
+    threads: Option<Bound<'py, PyAny>>,
     out: Option<PathBuf>,
     progress: Option<Py<PyAny>>,
+    seed: Option<Bound<'py, PyAny>>,
+    force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    if threads == Some(0) {
-        return Err(input_err("threads must be at least 1"));
-    }
+    let threads = threads_arg(threads.as_ref())?;
+    let seed = seed.as_ref().map(seed_arg).transpose()?;
     let loaded =
-        load(config_path.as_deref(), config_text.as_deref(), &sets, None).map_err(py_err)?;
+        load(config_path.as_deref(), config_text.as_deref(), &sets, seed).map_err(py_err)?;
+    let out = match out {
+        None => None,
+        Some(dir) => {
+            // The identity of a run: its resolved config, as `fuzzymotiv run` checks it.
+            let id = [(
+                "config.resolved.toml".to_string(),
+                resolved_toml(&loaded.raw),
+            )];
+            let state = check_out(&dir, &id, force).map_err(py_err)?;
+            Some((dir, state))
+        }
+    };
     let pool = match threads {
         Some(n) => Some(
             rayon::ThreadPoolBuilder::new()
@@ -348,13 +598,21 @@ fn run<'py>(
         ),
         None => None,
     };
+    let already = match &out {
+        Some((dir, OutState::Unfinished)) => generations_done(&loaded, dir),
+        _ => 0,
+    };
     let control = Control::default();
     let result = std::thread::scope(|s| {
         let worker = s.spawn(|| {
             let body = || {
-                let mut hook = control.hook(&progress, &loaded);
+                let mut hook = control.hook(&progress, &loaded, already);
                 catch_unwind(AssertUnwindSafe(|| {
-                    execute(&loaded, out.as_deref(), &mut hook)
+                    execute(
+                        &loaded,
+                        out.as_ref().map(|(d, st)| (d.as_path(), *st)),
+                        &mut hook,
+                    )
                 }))
             };
             let r = match &pool {
@@ -387,9 +645,10 @@ impl Control {
         &'a self,
         progress: &'a Option<Py<PyAny>>,
         loaded: &Loaded,
+        already: usize,
     ) -> impl FnMut(&GenerationState<'_>) + 'a {
         let total = loaded.experiment.runs().len() * loaded.experiment.ga().generations;
-        let mut done = 0usize;
+        let mut done = already;
         move |state: &GenerationState<'_>| {
             done += 1;
             if let Some(cb) = progress {
@@ -486,43 +745,40 @@ fn run_dict(py: Python<'_>, o: RunOutput) -> PyResult<Bound<'_, PyDict>> {
     }
     d.set_item("trajectories", paths)?;
     d.set_item("summary_json", o.summary)?;
-    d.set_item("hidden", o.shape.0)?;
+    d.set_item("hidden", o.hidden)?;
     Ok(d)
 }
 
 /// The columns of `generations.csv`.
 fn generations_dict<'py>(
     py: Python<'py>,
-    generations: &[(fuzzymotiv::evolution::GenerationRecord, String)],
+    generations: &[GenerationRow],
 ) -> PyResult<Bound<'py, PyDict>> {
     let g = PyDict::new(py);
-    let col = |f: &dyn Fn(&fuzzymotiv::evolution::GenerationRecord) -> f64| {
-        PyArray1::from_vec(py, generations.iter().map(|(r, _)| f(r)).collect())
+    let col = |f: &dyn Fn(&GenerationRow) -> Fixed<9>| {
+        PyArray1::from_vec(py, generations.iter().map(|r| f(r).0).collect())
     };
     g.set_item(
         "generation",
         PyArray1::from_vec(
             py,
-            generations
-                .iter()
-                .map(|(r, _)| r.generation as i64)
-                .collect(),
+            generations.iter().map(|r| r.generation as i64).collect(),
         ),
     )?;
-    g.set_item("best", col(&|r| r.stats.max))?;
-    g.set_item("mean", col(&|r| r.stats.mean))?;
-    g.set_item("std", col(&|r| r.stats.std))?;
-    g.set_item("min", col(&|r| r.stats.min))?;
-    g.set_item("max", col(&|r| r.stats.max))?;
-    g.set_item("a", col(&|r| r.terms.a))?;
-    g.set_item("g", col(&|r| r.terms.g))?;
-    g.set_item("l", col(&|r| r.terms.l))?;
-    g.set_item("b", col(&|r| r.terms.b))?;
+    g.set_item("best", col(&|r| r.best))?;
+    g.set_item("mean", col(&|r| r.mean))?;
+    g.set_item("std", col(&|r| r.std))?;
+    g.set_item("min", col(&|r| r.min))?;
+    g.set_item("max", col(&|r| r.max))?;
+    g.set_item("a", col(&|r| r.a))?;
+    g.set_item("g", col(&|r| r.g))?;
+    g.set_item("l", col(&|r| r.l))?;
+    g.set_item("b", col(&|r| r.b))?;
     g.set_item(
         "room",
         generations
             .iter()
-            .map(|(_, l)| l.clone())
+            .map(|r| r.room.clone())
             .collect::<Vec<_>>(),
     )?;
     Ok(g)
@@ -558,16 +814,18 @@ fn simulate<'py>(
     py: Python<'py>,
     genome: Vec<f64>,
     room: String,
-    seed: u64,
+    seed: Bound<'py, PyAny>,
     config_path: Option<PathBuf>,
     config_text: Option<String>,
     sets: Vec<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    if seed > i64::MAX as u64 {
-        return Err(input_err(format!(
-            "seed must be in 0 ..= 2^63 - 1, got {seed}"
-        )));
-    }
+    let seed = seed_arg(&seed)?;
+    finite(
+        "genome",
+        &genome,
+        |k| format!("weight {k}"),
+        "expected the network's weights",
+    )?;
     let loaded = load(
         config_path.as_deref(),
         config_text.as_deref(),
@@ -650,6 +908,8 @@ fn numpy_strings<'py>(py: Python<'py>, items: &[&str]) -> PyResult<Bound<'py, Py
 #[pymodule]
 fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("FuzzymotivError", m.py().get_type::<FuzzymotivError>())?;
+    m.add("FuzzymotivOSError", os_error_type(m.py())?.bind(m.py()))?;
+    m.add("MAX_THREADS", MAX_THREADS)?;
     m.add("VERSION", fuzzymotiv::VERSION)?;
     m.add_function(wrap_pyfunction!(fuzzy_fitness_one, m)?)?;
     m.add_function(wrap_pyfunction!(fuzzy_fitness_many, m)?)?;
