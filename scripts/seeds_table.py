@@ -5,14 +5,24 @@ Usage: scripts/seeds_table.py results-s1 results-s2 ...   (prints Markdown table
 
 Refuses (exit status 1) to average studies of different kinds: quick and full runs, other GA sizes, or
 other program versions, and names the file and the field of a summary.json that lacks one it needs.
-The field names are those of `StudySummary` in crates/fuzzymotiv-cli/src/records.rs.
+The field names are those of `StudySummary` in crates/fuzzymotiv-cli/src/records.rs; a summary written
+before % homing was named `homing_pct` (it was `homing`, like the motivation weight) is read too.
 """
 import json
 import statistics
 import sys
 
 COLS = [("average_fitness", "average fitness", 3), ("exploration_pct", "% optimal exploration", 1),
-        ("recognition_pct", "% recognition", 0), ("battery_pct", "% battery usage", 1), ("homing", "% homing", 1)]
+        ("recognition_pct", "% recognition", 0), ("battery_pct", "% battery usage", 1), ("homing_pct", "% homing", 1)]
+
+OLD_NAMES = {"homing_pct": "homing"}
+
+
+def cell(row, key):
+    """`row[key]`, or its value under the old name; KeyError if neither is there."""
+    if key not in row and OLD_NAMES.get(key) in row:
+        return row[OLD_NAMES[key]]
+    return row[key]
 
 
 SETTING_FIELDS = ("name", "motivations", "population", "generations", "rows", "first_generation", "last_generation")
@@ -36,7 +46,7 @@ def missing_field(summary):
                     return f"settings[{k}].{gen}.{key}"
         for i, row in enumerate(setting["rows"]):
             for key in ["room"] + [c[0] for c in COLS]:
-                if key not in row:
+                if key not in row and OLD_NAMES.get(key) not in row:
                     return f"settings[{k}].rows[{i}].{key}"
     return None
 
@@ -84,7 +94,7 @@ def main(dirs):
         for i, row in enumerate(rows[0]):
             cells = []
             for key, _, p in COLS:
-                vals = [r[i][key] for r in rows if r[i][key] is not None]
+                vals = [cell(r[i], key) for r in rows if cell(r[i], key) is not None]
                 mean = statistics.mean(vals)
                 std = statistics.stdev(vals) if len(vals) > 1 else 0.0
                 cells.append(f"{mean:.{p}f} ± {std:.{p}f}")

@@ -166,7 +166,7 @@ pub fn metrics(r: &RoomRow) -> [Option<f64>; 5] {
         Some(r.exploration_pct),
         r.recognition_pct,
         Some(r.battery_pct),
-        Some(r.homing),
+        Some(r.homing_pct),
     ]
 }
 
@@ -208,7 +208,7 @@ impl SettingRuns<'_> {
                         exploration_pct: pick(1),
                         recognition_pct: pick(2),
                         battery_pct: pick(3),
-                        homing: pick(4),
+                        homing_pct: pick(4),
                     }
                 })
                 .collect()

@@ -86,7 +86,7 @@ fn collect_results(dir: &Path, jobs: &[Job]) -> Result<(SweepResults, usize), Cl
                     Some(r.exploration_pct),
                     r.recognition_pct,
                     Some(r.battery_pct),
-                    Some(r.homing),
+                    Some(r.homing_pct),
                 ],
             });
         }

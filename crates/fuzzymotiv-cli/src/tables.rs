@@ -26,7 +26,7 @@ pub fn table_markdown(rows: &[RoomRow]) -> String {
             r.recognition_pct
                 .map_or("n/a".to_string(), |p| format!("{p:.0}")),
             r.battery_pct,
-            r.homing
+            r.homing_pct
         );
     }
     s
