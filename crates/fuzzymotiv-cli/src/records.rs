@@ -600,8 +600,9 @@ impl RecognitionTable {
 // ---------------------------------------------------------------------------------------------
 // A `reproduce` directory.
 
-/// A row of a study's tables in `summary.json`: means (or standard deviations) over seeds, or
-/// one seed's values; none where a value is missing.
+/// A row of a study's tables in `summary.json`: means (or sample standard deviations, n − 1)
+/// over seeds, or one seed's values; none where a value is missing (and a standard deviation
+/// of one seed).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TableRow {
     /// Average fitness.
@@ -673,7 +674,7 @@ pub struct SettingSummary {
     pub population: usize,
     /// Means over seeds.
     pub rows: Vec<TableRow>,
-    /// Standard deviations over seeds.
+    /// Sample standard deviations (n − 1) over seeds; none (`null`) with one seed.
     pub std: Vec<TableRow>,
 }
 
@@ -928,8 +929,9 @@ impl SweepResults {
     }
 }
 
-/// One row of `aggregate.csv`: mean and standard deviation over a setting's replicates in one
-/// room (six decimals; empty where no replicate has a value).
+/// One row of `aggregate.csv`: mean and sample standard deviation (n − 1) over a setting's
+/// replicates in one room (six decimals). A mean is empty where no replicate has a value, a
+/// standard deviation where fewer than two have one (n = 1 has no spread to show).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AggregateRow {
     /// The setting.
@@ -940,28 +942,28 @@ pub struct AggregateRow {
     pub n: usize,
     /// Mean average fitness.
     pub average_fitness_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub average_fitness_std: Option<Fixed<6>>,
     /// Mean % exploration.
     pub exploration_pct_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub exploration_pct_std: Option<Fixed<6>>,
     /// Mean % recognition.
     pub recognition_pct_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub recognition_pct_std: Option<Fixed<6>>,
     /// Mean % battery usage.
     pub battery_pct_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub battery_pct_std: Option<Fixed<6>>,
     /// Mean % homing.
     pub homing_pct_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub homing_pct_std: Option<Fixed<6>>,
 }
 
 impl AggregateRow {
-    /// The row of (`setting`, `room`) with `n` replicates and per metric (mean, std).
+    /// The row of (`setting`, `room`) with `n` replicates and per metric (mean, sample std).
     pub fn new(
         setting: &str,
         room: &str,

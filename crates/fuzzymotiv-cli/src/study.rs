@@ -148,7 +148,8 @@ impl SettingRuns<'_> {
     }
 }
 
-/// Mean and sample standard deviation (0 for one value).
+/// Mean and sample standard deviation (divided by n − 1; 0 for one value, which the tables
+/// show as a dash).
 pub fn mean_std(values: &[f64]) -> (f64, f64) {
     let n = values.len() as f64;
     let mean = values.iter().sum::<f64>() / n;
@@ -201,7 +202,11 @@ impl SettingRuns<'_> {
             rows.iter()
                 .zip(&stats)
                 .map(|(r, s)| {
-                    let pick = |c: usize| s[c].map(|(m, sd)| if std { sd } else { m });
+                    // One seed has no spread: its std is none, not 0.
+                    let pick = |c: usize| match s[c] {
+                        Some((_, sd)) if std => (self.seeds.len() > 1).then_some(sd),
+                        stat => stat.map(|(m, _)| m),
+                    };
                     TableRow {
                         room: r.room.clone(),
                         average_fitness: pick(0),
