@@ -1,18 +1,36 @@
 #!/usr/bin/env python3
-"""Mean ± std over several `fuzzymotiv reproduce` output directories (one per seed).
+"""Mean ± sample std (n − 1) over several `fuzzymotiv reproduce` output directories (one per seed).
 
 Usage: scripts/seeds_table.py results-s1 results-s2 ...   (prints Markdown tables)
 
 Refuses (exit status 1) to average studies of different kinds: quick and full runs, other GA sizes, or
 other program versions, and names the file and the field of a summary.json that lacks one it needs.
-The field names are those of `StudySummary` in crates/fuzzymotiv-cli/src/records.rs.
+The field names are those of `StudySummary` in crates/fuzzymotiv-cli/src/records.rs; a summary written
+before % homing was named `homing_pct` (it was `homing`, like the motivation weight) is read too.
 """
 import json
 import statistics
 import sys
 
 COLS = [("average_fitness", "average fitness", 3), ("exploration_pct", "% optimal exploration", 1),
-        ("recognition_pct", "% recognition", 0), ("battery_pct", "% battery usage", 1), ("homing", "% homing", 1)]
+        ("recognition_pct", "% recognition", 0), ("battery_pct", "% battery usage", 1), ("homing_pct", "% homing", 1)]
+
+OLD_NAMES = {"homing_pct": "homing"}
+
+
+def cell(row, key):
+    """`row[key]`, or its value under the old name; KeyError if neither is there."""
+    if key not in row and OLD_NAMES.get(key) in row:
+        return row[OLD_NAMES[key]]
+    return row[key]
+
+
+def mean_std(vals, p):
+    """`mean ± std` with p decimals; the std is the sample one (n − 1), a dash for one value."""
+    if not vals:
+        return "n/a"
+    mean = statistics.mean(vals)
+    return f"{mean:.{p}f} ± " + (f"{statistics.stdev(vals):.{p}f}" if len(vals) > 1 else "—")
 
 
 SETTING_FIELDS = ("name", "motivations", "population", "generations", "rows", "first_generation", "last_generation")
@@ -36,7 +54,7 @@ def missing_field(summary):
                     return f"settings[{k}].{gen}.{key}"
         for i, row in enumerate(setting["rows"]):
             for key in ["room"] + [c[0] for c in COLS]:
-                if key not in row:
+                if key not in row and OLD_NAMES.get(key) not in row:
                     return f"settings[{k}].rows[{i}].{key}"
     return None
 
@@ -84,17 +102,16 @@ def main(dirs):
         for i, row in enumerate(rows[0]):
             cells = []
             for key, _, p in COLS:
-                vals = [r[i][key] for r in rows if r[i][key] is not None]
-                mean = statistics.mean(vals)
-                std = statistics.stdev(vals) if len(vals) > 1 else 0.0
-                cells.append(f"{mean:.{p}f} ± {std:.{p}f}")
+                vals = [cell(r[i], key) for r in rows if cell(r[i], key) is not None]
+                cells.append(mean_std(vals, p))
             print(f"| {row['room']} | " + " | ".join(cells) + " |")
+        print("\nMean ± std over the studies (std: the sample standard deviation, n − 1; — for one value).")
         firsts = [s["settings"][k]["first_generation"]["mean"] for s in summaries]
         lasts = [s["settings"][k]["last_generation"]["mean"] for s in summaries]
         bests = [s["settings"][k]["last_generation"]["best"] for s in summaries]
-        print(f"\nmean F of the population: first generation {statistics.mean(firsts):.3f} ± {statistics.stdev(firsts) if len(firsts) > 1 else 0:.3f}, "
-              f"last generation {statistics.mean(lasts):.3f} ± {statistics.stdev(lasts) if len(lasts) > 1 else 0:.3f}; "
-              f"best F in the last generation {statistics.mean(bests):.3f} ± {statistics.stdev(bests) if len(bests) > 1 else 0:.3f}\n")
+        print(f"\nmean F of the population: first generation {mean_std(firsts, 3)}, "
+              f"last generation {mean_std(lasts, 3)}; "
+              f"best F in the last generation {mean_std(bests, 3)}\n")
     print("wall time per reproduce (s): " + ", ".join(f"{s['wall_seconds']:.1f}" for s in summaries))
 
 

@@ -801,7 +801,7 @@ fn rooms_dict<'py>(py: Python<'py>, rows: &[RoomRow]) -> PyResult<Bound<'py, PyD
         rcol(&|r| r.recognition_pct.unwrap_or(f64::NAN)),
     )?;
     rooms.set_item("battery_pct", rcol(&|r| r.battery_pct))?;
-    rooms.set_item("homing_pct", rcol(&|r| r.homing))?;
+    rooms.set_item("homing_pct", rcol(&|r| r.homing_pct))?;
     rooms.set_item("r_node", rows.iter().map(|r| r.r_node).collect::<Vec<_>>())?;
     Ok(rooms)
 }

@@ -192,8 +192,10 @@ pub struct RoomRow {
     pub battery_pct: f64,
     /// Mean 100·a over the test runs.
     pub exploration_pct: f64,
-    /// Mean 100·g over the test runs (% homing).
-    pub homing: f64,
+    /// Mean 100·g over the test runs (% homing). Earlier files call it `homing`, like the
+    /// motivation weight; that name is still read, so their sweeps keep merging.
+    #[serde(alias = "homing")]
+    pub homing_pct: f64,
     /// The room instance's r-node, when AEM ran.
     pub r_node: Option<usize>,
     /// Correct recognitions in %, when AEM ran.
@@ -214,7 +216,7 @@ impl RoomRow {
             exploration_pct: a.exploration_pct,
             recognition_pct: a.recognition_pct,
             battery_pct: a.battery_pct,
-            homing: a.homing_pct,
+            homing_pct: a.homing_pct,
             r_node: a.r_node,
         }
     }
@@ -598,8 +600,9 @@ impl RecognitionTable {
 // ---------------------------------------------------------------------------------------------
 // A `reproduce` directory.
 
-/// A row of a study's tables in `summary.json`: means (or standard deviations) over seeds, or
-/// one seed's values; none where a value is missing.
+/// A row of a study's tables in `summary.json`: means (or sample standard deviations, n − 1)
+/// over seeds, or one seed's values; none where a value is missing (and a standard deviation
+/// of one seed).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TableRow {
     /// Average fitness.
@@ -608,8 +611,9 @@ pub struct TableRow {
     pub battery_pct: Option<f64>,
     /// % optimal exploration.
     pub exploration_pct: Option<f64>,
-    /// % homing.
-    pub homing: Option<f64>,
+    /// % homing (read also under its old name `homing`).
+    #[serde(alias = "homing")]
+    pub homing_pct: Option<f64>,
     /// % recognition.
     pub recognition_pct: Option<f64>,
     /// Room name.
@@ -625,7 +629,7 @@ impl TableRow {
             exploration_pct: Some(r.exploration_pct),
             recognition_pct: r.recognition_pct,
             battery_pct: Some(r.battery_pct),
-            homing: Some(r.homing),
+            homing_pct: Some(r.homing_pct),
         }
     }
 }
@@ -670,7 +674,7 @@ pub struct SettingSummary {
     pub population: usize,
     /// Means over seeds.
     pub rows: Vec<TableRow>,
-    /// Standard deviations over seeds.
+    /// Sample standard deviations (n − 1) over seeds; none (`null`) with one seed.
     pub std: Vec<TableRow>,
 }
 
@@ -925,8 +929,9 @@ impl SweepResults {
     }
 }
 
-/// One row of `aggregate.csv`: mean and standard deviation over a setting's replicates in one
-/// room (six decimals; empty where no replicate has a value).
+/// One row of `aggregate.csv`: mean and sample standard deviation (n − 1) over a setting's
+/// replicates in one room (six decimals). A mean is empty where no replicate has a value, a
+/// standard deviation where fewer than two have one (n = 1 has no spread to show).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AggregateRow {
     /// The setting.
@@ -937,28 +942,28 @@ pub struct AggregateRow {
     pub n: usize,
     /// Mean average fitness.
     pub average_fitness_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub average_fitness_std: Option<Fixed<6>>,
     /// Mean % exploration.
     pub exploration_pct_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub exploration_pct_std: Option<Fixed<6>>,
     /// Mean % recognition.
     pub recognition_pct_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub recognition_pct_std: Option<Fixed<6>>,
     /// Mean % battery usage.
     pub battery_pct_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub battery_pct_std: Option<Fixed<6>>,
     /// Mean % homing.
     pub homing_pct_mean: Option<Fixed<6>>,
-    /// Its standard deviation.
+    /// Its sample standard deviation (n − 1).
     pub homing_pct_std: Option<Fixed<6>>,
 }
 
 impl AggregateRow {
-    /// The row of (`setting`, `room`) with `n` replicates and per metric (mean, std).
+    /// The row of (`setting`, `room`) with `n` replicates and per metric (mean, sample std).
     pub fn new(
         setting: &str,
         room: &str,
@@ -1234,6 +1239,29 @@ mod tests {
         .unwrap();
         let e = RecognitionTable::read(&path).unwrap_err();
         assert!(e.to_string().contains("field `correct`"), "{e}");
+    }
+
+    /// Finding 9: the homing result is `homing_pct` (the weight keeps `homing`); a room row or
+    /// a study's table row written under the old name `homing` reads the same.
+    #[test]
+    fn finding_9_old_homing_key_reads_as_homing_pct() {
+        let row = RoomRow {
+            average_fitness: 0.5,
+            battery_pct: 90.0,
+            exploration_pct: 80.0,
+            homing_pct: 62.5,
+            r_node: Some(3),
+            recognition_pct: None,
+            room: "H".into(),
+        };
+        let new = to_json(&row);
+        assert!(new.contains("\"homing_pct\": 62.5") && !new.contains("\"homing\""));
+        let old = new.replace("\"homing_pct\"", "\"homing\"");
+        assert_eq!(parse_json::<RoomRow>(&old, "old").unwrap(), row);
+        assert_eq!(parse_json::<RoomRow>(&new, "new").unwrap(), row);
+        let table = TableRow::of(&row);
+        let old = to_json(&table).replace("\"homing_pct\"", "\"homing\"");
+        assert_eq!(parse_json::<TableRow>(&old, "old").unwrap(), table);
     }
 
     /// A JSON record with a value of the wrong type names the field's path.

@@ -512,7 +512,7 @@ fn rooms_table(page: &mut Page, s: &Section<'_>) {
             paper(p.map(|p| p.3), 0),
             r.battery_pct,
             paper(p.map(|p| p.4), 2),
-            r.homing
+            r.homing_pct
         );
     }
     let _ = writeln!(

@@ -148,7 +148,8 @@ impl SettingRuns<'_> {
     }
 }
 
-/// Mean and sample standard deviation (0 for one value).
+/// Mean and sample standard deviation (divided by n − 1; 0 for one value, which the tables
+/// show as a dash).
 pub fn mean_std(values: &[f64]) -> (f64, f64) {
     let n = values.len() as f64;
     let mean = values.iter().sum::<f64>() / n;
@@ -166,7 +167,7 @@ pub fn metrics(r: &RoomRow) -> [Option<f64>; 5] {
         Some(r.exploration_pct),
         r.recognition_pct,
         Some(r.battery_pct),
-        Some(r.homing),
+        Some(r.homing_pct),
     ]
 }
 
@@ -201,14 +202,18 @@ impl SettingRuns<'_> {
             rows.iter()
                 .zip(&stats)
                 .map(|(r, s)| {
-                    let pick = |c: usize| s[c].map(|(m, sd)| if std { sd } else { m });
+                    // One seed has no spread: its std is none, not 0.
+                    let pick = |c: usize| match s[c] {
+                        Some((_, sd)) if std => (self.seeds.len() > 1).then_some(sd),
+                        stat => stat.map(|(m, _)| m),
+                    };
                     TableRow {
                         room: r.room.clone(),
                         average_fitness: pick(0),
                         exploration_pct: pick(1),
                         recognition_pct: pick(2),
                         battery_pct: pick(3),
-                        homing: pick(4),
+                        homing_pct: pick(4),
                     }
                 })
                 .collect()

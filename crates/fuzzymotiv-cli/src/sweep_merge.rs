@@ -1,5 +1,6 @@
 //! Merging a sweep directory: every finished job's `summary.json` into `results.csv`, the
-//! mean ± std over replicates into `aggregate.csv` and `aggregate.md`, and `summary.svg`.
+//! mean ± sample std (n − 1) over replicates into `aggregate.csv` and `aggregate.md`, and
+//! `summary.svg`. A std over one value is an empty cell in CSV and a dash in Markdown.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -11,6 +12,7 @@ use crate::records::{
     AggregateRow, Job, METRICS, RunSummary, SweepResultRow, SweepResults, read_json, to_csv,
 };
 use crate::svg::{SettingPoint, sweep_summary_svg};
+use crate::tables::STD_IS_SAMPLE;
 
 /// Writes `results.csv`, `aggregate.csv`, `aggregate.md` and `summary.svg` of the sweep
 /// directory `dir`; prints the Markdown table.
@@ -87,7 +89,7 @@ fn collect_results(dir: &Path, jobs: &[Job]) -> Result<(SweepResults, usize), Cl
                     Some(r.exploration_pct),
                     r.recognition_pct,
                     Some(r.battery_pct),
-                    Some(r.homing),
+                    Some(r.homing_pct),
                 ],
             });
         }
@@ -121,7 +123,7 @@ fn group_by_setting_and_room(rows: &[SweepResultRow]) -> Groups<'_> {
     groups
 }
 
-/// Per metric, mean and std over the rows that have a value.
+/// Per metric, mean and sample std over the rows that have a value (see [`mean_std`]).
 fn metric_stats(members: &[&SweepResultRow]) -> [(Option<f64>, Option<f64>); 5] {
     std::array::from_fn(|k| {
         let vals: Vec<f64> = members.iter().filter_map(|r| r.values[k]).collect();
@@ -152,10 +154,19 @@ fn aggregate_markdown(groups: &Groups<'_>) -> String {
     for ((setting, room), members) in groups {
         let _ = write!(md, "| {setting} | {room} | {} |", members.len());
         for (mean, std) in metric_stats(members) {
-            let _ = write!(md, " {} ± {} |", fmt_short(mean), fmt_short(std));
+            let cell = match (mean, std) {
+                (None, _) => "n/a".to_string(),
+                (Some(m), None) => format!("{m:.2} ± —"),
+                (Some(m), Some(s)) => format!("{m:.2} ± {s:.2}"),
+            };
+            let _ = write!(md, " {cell} |");
         }
         md.push('\n');
     }
+    let _ = writeln!(
+        md,
+        "\nMean ± std over a setting's replicates that have a value ({STD_IS_SAMPLE})."
+    );
     md
 }
 
@@ -190,15 +201,12 @@ fn setting_points(groups: &Groups<'_>) -> Vec<SettingPoint> {
         .collect()
 }
 
-/// Mean and sample standard deviation ([`crate::study::mean_std`]); none for no values.
+/// Mean and sample standard deviation ([`crate::study::mean_std`], divided by n − 1): no mean
+/// for no values, no std for fewer than two (one value has no spread).
 fn mean_std(v: &[f64]) -> (Option<f64>, Option<f64>) {
     if v.is_empty() {
         return (None, None);
     }
     let (mean, std) = crate::study::mean_std(v);
-    (Some(mean), Some(std))
-}
-
-fn fmt_short(v: Option<f64>) -> String {
-    v.map_or("n/a".into(), |v| format!("{v:.2}"))
+    (Some(mean), (v.len() > 1).then_some(std))
 }

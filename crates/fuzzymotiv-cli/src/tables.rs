@@ -26,10 +26,24 @@ pub fn table_markdown(rows: &[RoomRow]) -> String {
             r.recognition_pct
                 .map_or("n/a".to_string(), |p| format!("{p:.0}")),
             r.battery_pct,
-            r.homing
+            r.homing_pct
         );
     }
     s
+}
+
+/// What the ± of every table means, for its caption: the standard deviation is the sample
+/// one ([`crate::study::mean_std`], divided by n − 1), and one value has none.
+pub const STD_IS_SAMPLE: &str = "std: the sample standard deviation, n − 1; — for one value";
+
+/// `mean ± std` with `d` decimals over `n` values: the std an em dash for one value (no spread
+/// to show, where the sample std is undefined).
+pub fn mean_std_cell(mean: f64, std: f64, n: usize, d: usize) -> String {
+    if n < 2 {
+        format!("{mean:.d$} ± —")
+    } else {
+        format!("{mean:.d$} ± {std:.d$}")
+    }
 }
 
 /// Where a table came from, as a Markdown line below it: program version, seed, GA size, trial
@@ -94,13 +108,14 @@ impl Provenance {
 pub fn study_table(study: &SettingRuns<'_>, prov: &Provenance) -> (String, String, String) {
     const DIGITS: [usize; 5] = [4, 1, 0, 1, 1];
     let mut md = format!(
-        "{}\n\nMean ± std over seeds (the paper's value in brackets).\n\n| room | average fitness | % optimal exploration | % recognition | % battery usage | % homing |\n|---|---|---|---|---|---|\n",
+        "{}\n\nMean ± std over seeds ({STD_IS_SAMPLE}); the paper's value in brackets.\n\n| room | average fitness | % optimal exploration | % recognition | % battery usage | % homing |\n|---|---|---|---|---|---|\n",
         prov.line()
     );
     let mut csv = String::from(
         "room,seeds,average_fitness,average_fitness_std,paper_average_fitness,exploration_pct,exploration_pct_std,paper_exploration_pct,recognition_pct,recognition_pct_std,paper_recognition_pct,battery_pct,battery_pct_std,paper_battery_pct,homing_pct,homing_pct_std\n",
     );
     let rows = &study.finished[0].rows;
+    let n = study.seeds.len();
     for (i, row) in rows.iter().enumerate() {
         let stats = room_stats(study, i);
         let paper = paper_row(study.setting, &row.room);
@@ -109,13 +124,19 @@ pub fn study_table(study: &SettingRuns<'_>, prov: &Provenance) -> (String, Strin
         for (c, stat) in stats.iter().enumerate() {
             let p = paper.and_then(|p| p.get(c).copied());
             let d = DIGITS[c];
-            let cell = stat.map_or("n/a".to_string(), |(m, s)| format!("{m:.d$} ± {s:.d$}"));
+            let cell = stat.map_or("n/a".to_string(), |(m, s)| mean_std_cell(m, s, n, d));
             let paper_cell = p.map_or(String::new(), |p| {
                 format!(" ({p:.prec$})", prec = d.clamp(2, 4))
             });
             let _ = write!(md, " {cell}{paper_cell} |");
+            // One seed's std is an empty cell, like a missing value.
             let (m, s) = stat.map_or((String::new(), String::new()), |(m, s)| {
-                (format!("{m:.6}"), format!("{s:.6}"))
+                let s = if n < 2 {
+                    String::new()
+                } else {
+                    format!("{s:.6}")
+                };
+                (format!("{m:.6}"), s)
             });
             let _ = write!(csv, ",{m},{s}");
             if c < 4 {
@@ -218,8 +239,10 @@ pub fn ablation_table(
     (md, csv)
 }
 
-/// The report's spread table of one setting: mean ± std over seeds and the range, per room.
+/// The report's spread table of one setting: mean ± sample std over seeds and the range, per
+/// room.
 pub fn spread_html(study: &SettingRuns<'_>) -> String {
+    let n = study.seeds.len();
     let mut html = String::from(
         "<table><tr><th>room</th><th>average fitness</th><th>% optimal exploration</th><th>% recognition</th><th>% battery usage</th><th>% homing</th></tr>\n",
     );
@@ -238,7 +261,8 @@ pub fn spread_html(study: &SettingRuns<'_>) -> String {
                 html,
                 "<td>{}</td>",
                 stat.map_or("n/a".into(), |(m, s)| format!(
-                    "{m:.d$} ± {s:.d$} <span class=\"paper\">[{lo:.d$}–{hi:.d$}]</span>"
+                    "{} <span class=\"paper\">[{lo:.d$}–{hi:.d$}]</span>",
+                    mean_std_cell(m, s, n, d)
                 ))
             );
         }
@@ -247,8 +271,8 @@ pub fn spread_html(study: &SettingRuns<'_>) -> String {
     html.push_str("</table>\n");
     let _ = writeln!(
         html,
-        "<p class=\"caption\">Mean ± standard deviation over {} seeds ({}), with the range in brackets. The figures and the detailed sections below show the {}.</p>",
-        study.seeds.len(),
+        "<p class=\"caption\">Mean ± standard deviation over {} seeds ({}), with the range in brackets ({STD_IS_SAMPLE}). The figures and the detailed sections below show the {}.</p>",
+        n,
         study
             .seeds
             .iter()

@@ -421,7 +421,7 @@ fn reproduce_quick_writes_every_documented_file() {
         "exploration_pct",
         "recognition_pct",
         "battery_pct",
-        "homing",
+        "homing_pct",
     ] {
         assert!(!row[k].is_null(), "row lacks {k}");
     }
