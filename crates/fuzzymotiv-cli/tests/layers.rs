@@ -28,6 +28,7 @@ fn import_map() -> BTreeMap<String, BTreeSet<String>> {
                     .chars()
                     .take_while(|c| c.is_alphanumeric() || *c == '_')
                     .collect();
+                let module = macro_home(module);
                 if !module.is_empty() && module != name {
                     uses.insert(module);
                 }
@@ -49,6 +50,14 @@ fn import_map() -> BTreeMap<String, BTreeSet<String>> {
         map.insert(name, uses);
     }
     map
+}
+
+/// The module that defines a `#[macro_export]` macro (named at the crate root), else `name`.
+fn macro_home(name: String) -> String {
+    match name.as_str() {
+        "out" | "outln" | "note" => "console".to_string(),
+        _ => name,
+    }
 }
 
 /// A circle through `m`, if any (depth-first search).
