@@ -22,7 +22,7 @@ use crate::study::{
     ABLATION, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns, Variant, claims,
     overall,
 };
-use crate::svg::{best_paths_svg, fitness_svg};
+use crate::svg::{FitnessPanel, best_paths_svg, fitness_panels_svg};
 use crate::sweep_merge::merge_dir;
 use crate::sweep_plan::Sweep;
 use crate::tables::{
@@ -400,7 +400,11 @@ fn write_study(
         }
         panels.push(write_setting_figure(args, dir, study)?);
     }
-    write_figure_at(&dir.join("fitness.svg"), &fitness_svg(&panels), args.png)?;
+    write_figure_at(
+        &dir.join("fitness.svg"),
+        &fitness_panels_svg(&panels),
+        args.png,
+    )?;
     let claims = claims(studies);
     let (md, csv) = claims_table(&claims, &provenance);
     write_atomic(&dir.join("claims.md"), &md)?;
@@ -428,12 +432,12 @@ fn write_study(
 }
 
 /// The setting's trajectories figure (its median seed's best robot); returns its panel of the
-/// study's fitness figure.
+/// study's fitness figure (medians and inter-quartile bands over seeds).
 fn write_setting_figure(
     args: &ReproduceArgs,
     dir: &Path,
     study: &SettingRuns<'_>,
-) -> Result<(String, Vec<fuzzymotiv::evolution::GenerationRecord>), CliError> {
+) -> Result<FitnessPanel, CliError> {
     let m = study.median();
     let exp = &study.loaded[m].experiment;
     let title = format!(
@@ -451,17 +455,9 @@ fn write_setting_figure(
         ),
         args.png,
     )?;
-    // Panels are narrow: the setting and "median of N seeds" only.
-    let panel = if study.seeds.len() == 1 {
-        format!("{} {:?}", study.setting.name, exp.motivations().as_array())
-    } else {
-        format!(
-            "{}, median of {} seeds",
-            study.setting.name,
-            study.seeds.len()
-        )
-    };
-    Ok((panel, study.finished[m].evolutions[0].history.clone()))
+    // The legend says what is drawn over how many seeds.
+    let panel = format!("{} {:?}", study.setting.name, exp.motivations().as_array());
+    Ok(study.fitness_panel(&panel))
 }
 
 /// The study's report page.

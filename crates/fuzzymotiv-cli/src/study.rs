@@ -7,6 +7,7 @@ use crate::records::{
     ClaimRecord, Finished, GenerationStat, MotivationsRecord, RoomRow, SeedSummary, SettingSummary,
     TableRow,
 };
+use crate::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
 
 /// A built-in setting of the study with the paper's table.
 pub struct Setting {
@@ -148,6 +149,21 @@ impl SettingRuns<'_> {
     }
 }
 
+/// The `q`-quantile (0 ≤ q ≤ 1) of `values` by linear interpolation between order statistics:
+/// sorted ascending and counted from 0, the value at rank h = (n − 1) q, interpolated between
+/// ranks ⌊h⌋ and ⌈h⌉ (Hyndman and Fan's type 7, the default of R and NumPy). The median of an
+/// even count is the mean of the middle two; one value is every quantile. NaN for no values.
+pub fn quantile(values: &[f64], q: f64) -> f64 {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    let h = (v.len() - 1) as f64 * q.clamp(0.0, 1.0);
+    let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
+    v[lo] + (h - lo as f64) * (v[hi] - v[lo])
+}
+
 /// Mean and sample standard deviation (divided by n − 1; 0 for one value, which the tables
 /// show as a dash).
 pub fn mean_std(values: &[f64]) -> (f64, f64) {
@@ -233,6 +249,58 @@ impl SettingRuns<'_> {
             generations: exp.ga().generations,
             median_seed: self.seeds[self.median()],
             per_seed: self.per_seed(),
+        }
+    }
+
+    /// Per generation, the 25th, 50th and 75th percentiles ([`quantile`]) over seeds of the
+    /// population's best F (`best`) or mean F, up to the shortest run's last generation.
+    pub fn quartiles_per_generation(&self, best: bool) -> Vec<[f64; 3]> {
+        let histories: Vec<_> = self
+            .finished
+            .iter()
+            .map(|f| &f.evolutions[0].history)
+            .collect();
+        let generations = histories.iter().map(|h| h.len()).min().unwrap_or(0);
+        (0..generations)
+            .map(|g| {
+                let v: Vec<f64> = histories
+                    .iter()
+                    .map(|h| {
+                        let stats = h[g].stats;
+                        if best { stats.max } else { stats.mean }
+                    })
+                    .collect();
+                [quantile(&v, 0.25), quantile(&v, 0.5), quantile(&v, 0.75)]
+            })
+            .collect()
+    }
+
+    /// The setting's panel of the study's fitness figure: per generation the median over seeds
+    /// of the best and of the mean F, each with its inter-quartile band over seeds (none for
+    /// one seed, whose curves are drawn as they are).
+    pub fn fitness_panel(&self, title: &str) -> FitnessPanel {
+        let (best, mean) = (
+            self.quartiles_per_generation(true),
+            self.quartiles_per_generation(false),
+        );
+        let n = self.seeds.len();
+        let median = |q: &[[f64; 3]]| q.iter().map(|v| v[1]).collect::<Vec<_>>();
+        let band = |q: &[[f64; 3]]| q.iter().map(|v| (v[0], v[2])).collect::<Vec<_>>();
+        if n == 1 {
+            return FitnessPanel {
+                title: title.to_string(),
+                best: (median(&best), "best F".into()),
+                mean: (median(&mean), "mean F".into()),
+                bands: Vec::new(),
+                band_label: String::new(),
+            };
+        }
+        FitnessPanel {
+            title: title.to_string(),
+            best: (median(&best), format!("median of best F over {n} seeds")),
+            mean: (median(&mean), format!("median of mean F over {n} seeds")),
+            bands: vec![(band(&best), BEST_BAND), (band(&mean), MEAN_BAND)],
+            band_label: "IQR over seeds (25th–75th percentile)".into(),
         }
     }
 

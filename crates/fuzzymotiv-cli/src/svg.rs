@@ -19,7 +19,13 @@ pub fn esc(s: &str) -> String {
 /// A generous estimate of the width (px) of `text` at 12 px sans-serif (bold or not): wide
 /// enough for DejaVu Sans, the widest of the fonts the PNGs use.
 pub fn text_width(text: &str, bold: bool) -> f64 {
-    text.chars().count() as f64 * if bold { 8.0 } else { 7.2 }
+    text_width_at(text, bold, 12.0)
+}
+
+/// [`text_width`] at a font size of `size` px: 0.62 × size per character (0.68 bold), more
+/// than DejaVu Sans's average advance.
+pub fn text_width_at(text: &str, bold: bool, size: f64) -> f64 {
+    text.chars().count() as f64 * size * if bold { 0.68 } else { 0.62 }
 }
 
 /// Colours for rooms (and other categories), in order; cycles after ten.
@@ -33,98 +39,261 @@ pub fn colour(k: usize) -> &'static str {
     PALETTE[k % PALETTE.len()]
 }
 
-/// One panel per setting: best and mean F per generation, with the min–max band.
+/// Axis ticks at round numbers: every multiple of `step` in a range, where `step` is 1, 2 or
+/// 5 × 10^k.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ticks {
+    /// Distance between ticks.
+    pub step: f64,
+    /// The ticks, ascending.
+    pub values: Vec<f64>,
+}
+
+impl Ticks {
+    /// Ticks over `[lo, hi]`, about `target` intervals (the smallest 1, 2, 5 × 10^k step not
+    /// shorter than `(hi − lo) / target`); `integer` keeps the step at least 1 (generations,
+    /// node indices). An empty or non-finite range gets the one tick `lo`.
+    pub fn nice(lo: f64, hi: f64, target: usize, integer: bool) -> Ticks {
+        if !(lo.is_finite() && hi.is_finite()) || hi <= lo {
+            return Ticks {
+                step: 1.0,
+                values: vec![lo],
+            };
+        }
+        let raw = (hi - lo) / target.max(1) as f64;
+        let magnitude = 10f64.powf(raw.log10().floor());
+        let mut step = [1.0, 2.0, 5.0, 10.0]
+            .iter()
+            .map(|m| m * magnitude)
+            .find(|&s| s >= raw * (1.0 - 1e-9))
+            .unwrap_or(10.0 * magnitude);
+        if integer {
+            step = step.max(1.0);
+        }
+        let first = (lo / step - 1e-9).ceil() as i64;
+        let last = (hi / step + 1e-9).floor() as i64;
+        let values = (first..=last).map(|k| k as f64 * step).collect();
+        Ticks { step, values }
+    }
+
+    /// A tick's label, with as many decimals as the step needs ("0.2", "50", "1.0").
+    pub fn label(&self, v: f64) -> String {
+        let decimals = (-self.step.log10().floor()).max(0.0) as usize;
+        let text = format!("{v:.decimals$}");
+        // No "-0" for a tick at zero.
+        if text
+            .trim_start_matches('-')
+            .chars()
+            .all(|c| c == '0' || c == '.')
+        {
+            text.trim_start_matches('-').to_string()
+        } else {
+            text
+        }
+    }
+}
+
+/// One panel of [`fitness_panels_svg`]: curves per generation with shaded bands.
+pub struct FitnessPanel {
+    /// Panel title.
+    pub title: String,
+    /// The best F per generation (red) and its legend text.
+    pub best: (Vec<f64>, String),
+    /// The mean F per generation (blue) and its legend text.
+    pub mean: (Vec<f64>, String),
+    /// Shaded bands, `(low, high)` per generation, each with its colour.
+    pub bands: Vec<(Vec<(f64, f64)>, &'static str)>,
+    /// The bands' legend text (one entry for all of them).
+    pub band_label: String,
+}
+
+impl FitnessPanel {
+    /// One run's panel: the population's best and mean F, and its min–max band.
+    pub fn of_run(title: &str, hist: &[GenerationRecord]) -> FitnessPanel {
+        FitnessPanel {
+            title: title.to_string(),
+            best: (hist.iter().map(|r| r.stats.max).collect(), "best F".into()),
+            mean: (hist.iter().map(|r| r.stats.mean).collect(), "mean F".into()),
+            bands: vec![(
+                hist.iter().map(|r| (r.stats.min, r.stats.max)).collect(),
+                BAND,
+            )],
+            band_label: "population min–max".into(),
+        }
+    }
+}
+
+/// One panel per run: best and mean F per generation, with the population's min–max band.
 pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
-    let (pw, ph) = (420.0, 300.0);
-    let (ml, mr, mt, mb) = (50.0, 15.0, 30.0, 40.0);
-    let width = pw * panels.len() as f64;
+    let panels: Vec<FitnessPanel> = panels
+        .iter()
+        .map(|(title, hist)| FitnessPanel::of_run(title, hist))
+        .collect();
+    fitness_panels_svg(&panels)
+}
+
+/// Fitness panels side by side: per generation the best F (red) and the mean F (blue) with
+/// their shaded bands; ticks at round numbers; the legend under each panel's x axis.
+pub fn fitness_panels_svg(panels: &[FitnessPanel]) -> String {
+    let (ml, mr, mt) = (50.0, 15.0, 30.0);
+    let plot_h = 230.0;
+    let y0 = mt + plot_h;
+    let widths: Vec<f64> = panels
+        .iter()
+        // The title is centred over the plot area, which is off the panel's centre.
+        .map(|p| 420f64.max(text_width(&p.title, true) + ml - mr + 10.0))
+        .collect();
+    let legends: Vec<Vec<(LegendMark, &str)>> = panels
+        .iter()
+        .map(|p| {
+            let mut entries = vec![
+                (LegendMark::Line(BEST), p.best.1.as_str()),
+                (LegendMark::Line(MEAN), p.mean.1.as_str()),
+            ];
+            if !p.bands.is_empty() {
+                let colours = p.bands.iter().map(|b| b.1).collect();
+                entries.push((LegendMark::Bands(colours), p.band_label.as_str()));
+            }
+            entries
+        })
+        .collect();
+    let legend_top = y0 + 54.0;
+    let rows = widths
+        .iter()
+        .zip(&legends)
+        .map(|(w, l)| legend_rows(l, w - ml - mr))
+        .max()
+        .unwrap_or(1);
+    let ph = legend_top + 16.0 * (rows - 1) as f64 + 10.0;
+    let width: f64 = widths.iter().sum::<f64>().max(1.0);
     let mut s = String::new();
     let _ = writeln!(
         s,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{ph}" viewBox="0 0 {width} {ph}" font-family="sans-serif" font-size="12">"#
     );
     let _ = writeln!(s, r#"<rect width="{width}" height="{ph}" fill="white"/>"#);
-    for (p, (name, hist)) in panels.iter().enumerate() {
-        let ox = p as f64 * pw;
-        let (x0, x1, y0, y1) = (ox + ml, ox + pw - mr, ph - mb, mt);
-        let n = hist.len().max(2) as f64 - 1.0;
+    let mut ox = 0.0;
+    for ((panel, pw), legend) in panels.iter().zip(&widths).zip(&legends) {
+        let (x0, x1, y1) = (ox + ml, ox + pw - mr, mt);
+        let generations = panel.best.0.len();
+        let n = generations.max(2) as f64 - 1.0;
         let x = |g: usize| x0 + (x1 - x0) * g as f64 / n;
         let y = |f: f64| y0 + (y1 - y0) * f.clamp(0.0, 1.0);
         panel_frame(
             &mut s,
-            name,
+            &panel.title,
             (x0, x1, y0, y1),
-            ph,
-            hist.len(),
+            generations,
             "fuzzy fitness F",
         );
-        let mut band = String::new();
-        for (g, r) in hist.iter().enumerate() {
-            let _ = write!(band, "{:.1},{:.1} ", x(g), y(r.stats.max));
+        for (band, colour) in &panel.bands {
+            // One closed outline: along the highs, back along the lows.
+            let mut d = String::new();
+            for (g, (_, hi)) in band.iter().enumerate() {
+                let _ = write!(
+                    d,
+                    "{}{:.1},{:.1}",
+                    if g == 0 { 'M' } else { 'L' },
+                    x(g),
+                    y(*hi)
+                );
+            }
+            for (g, (lo, _)) in band.iter().enumerate().rev() {
+                let _ = write!(d, "L{:.1},{:.1}", x(g), y(*lo));
+            }
+            let _ = writeln!(
+                s,
+                r#"<path d="{d}Z" fill="{colour}" fill-opacity="0.45" stroke="none"/>"#
+            );
         }
-        for (g, r) in hist.iter().enumerate().rev() {
-            let _ = write!(band, "{:.1},{:.1} ", x(g), y(r.stats.min));
-        }
-        let _ = writeln!(
-            s,
-            r#"<polygon points="{band}" fill="{BAND}" fill-opacity="0.4" stroke="none"/>"#
-        );
-        for (colour, pick) in [(BEST, 0usize), (MEAN, 1)] {
-            let pts: String = hist
+        for (values, colour) in [(&panel.best.0, BEST), (&panel.mean.0, MEAN)] {
+            let pts: String = values
                 .iter()
                 .enumerate()
-                .map(|(g, r)| {
-                    format!(
-                        "{:.1},{:.1} ",
-                        x(g),
-                        y(if pick == 0 { r.stats.max } else { r.stats.mean })
-                    )
-                })
+                .map(|(g, &f)| format!("{:.1},{:.1} ", x(g), y(f)))
                 .collect();
             let _ = writeln!(
                 s,
-                r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8"/>"#
+                r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8" stroke-linejoin="round"/>"#
             );
         }
-        fitness_legend(&mut s, x1, y0);
+        draw_legend(&mut s, legend, (x0, x1), legend_top);
+        ox += pw;
     }
     s.push_str("</svg>\n");
     s
 }
 
-/// Colours of the best and mean F curves and of the min–max band.
+/// Colours of the best and mean F curves, of the run's min–max band and of the bands around
+/// the best and the mean over seeds.
 const BEST: &str = "#d62728";
 const MEAN: &str = "#1f77b4";
 const BAND: &str = "#9ecae1";
+/// The band around the best F over seeds.
+pub const BEST_BAND: &str = "#f4a6a6";
+/// The band around the mean F over seeds.
+pub const MEAN_BAND: &str = "#9ecae1";
 
-/// The legend of a fitness panel whose plot area ends at `x1` (right) and `y0` (bottom): at the
-/// bottom right, on a white box, since the curves rise at the left and run near the top, and
-/// below them there is only the band.
-fn fitness_legend(s: &mut String, x1: f64, y0: f64) {
-    let (lx, ly) = (x1 - 135.0, y0 - 62.0);
-    let _ = writeln!(
-        s,
-        r##"<rect x="{lx}" y="{ly}" width="125" height="54" fill="white" fill-opacity="0.85" stroke="#ccc"/>"##
-    );
-    for (k, (series, colour)) in [("best", BEST), ("mean", MEAN)].into_iter().enumerate() {
-        let row = ly + 12.0 + 16.0 * k as f64;
-        let _ = writeln!(
-            s,
-            r#"<line x1="{}" x2="{}" y1="{row}" y2="{row}" stroke="{colour}" stroke-width="2"/><text x="{}" y="{}">{series} F</text>"#,
-            lx + 8.0,
-            lx + 28.0,
-            lx + 33.0,
-            row + 4.0
-        );
+/// A legend entry's mark: a line of a colour, or swatches of band colours.
+enum LegendMark {
+    Line(&'static str),
+    Bands(Vec<&'static str>),
+}
+
+/// Width of a legend entry: a 20 px mark, a gap, the text, and room before the next entry.
+fn legend_entry_width(text: &str) -> f64 {
+    26.0 + text_width(text, false) + 14.0
+}
+
+/// Rows a legend needs when its entries flow left to right in `width` px.
+fn legend_rows(entries: &[(LegendMark, &str)], width: f64) -> usize {
+    let (mut rows, mut used) = (1, 0.0);
+    for (_, text) in entries {
+        let w = legend_entry_width(text);
+        if used > 0.0 && used + w > width {
+            rows += 1;
+            used = 0.0;
+        }
+        used += w;
     }
-    let _ = writeln!(
-        s,
-        r#"<rect x="{}" y="{}" width="20" height="10" fill="{BAND}" fill-opacity="0.4"/><text x="{}" y="{}">min–max band</text>"#,
-        lx + 8.0,
-        ly + 39.0,
-        lx + 33.0,
-        ly + 48.0
-    );
+    rows
+}
+
+/// A legend flowing left to right from `x0`, wrapping before `x1`, its first row's text
+/// baseline at `top`.
+fn draw_legend(s: &mut String, entries: &[(LegendMark, &str)], (x0, x1): (f64, f64), top: f64) {
+    let (mut x, mut y) = (x0, top);
+    for (mark, text) in entries {
+        let w = legend_entry_width(text);
+        if x > x0 && x + w > x1 {
+            x = x0;
+            y += 16.0;
+        }
+        match mark {
+            LegendMark::Line(colour) => {
+                let _ = writeln!(
+                    s,
+                    r#"<line x1="{x}" x2="{}" y1="{}" y2="{}" stroke="{colour}" stroke-width="2"/>"#,
+                    x + 20.0,
+                    y - 4.0,
+                    y - 4.0
+                );
+            }
+            LegendMark::Bands(colours) => {
+                let sw = 20.0 / colours.len().max(1) as f64;
+                for (k, colour) in colours.iter().enumerate() {
+                    let _ = writeln!(
+                        s,
+                        r#"<rect x="{:.1}" y="{}" width="{sw:.1}" height="10" fill="{colour}" fill-opacity="0.45"/>"#,
+                        x + sw * k as f64,
+                        y - 9.0
+                    );
+                }
+            }
+        }
+        let _ = writeln!(s, r#"<text x="{}" y="{y}">{}</text>"#, x + 26.0, esc(text));
+        x += w;
+    }
 }
 
 /// Every room of the experiment with the best robot's path in it (`trajectories[r]` for room
@@ -137,37 +306,6 @@ pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[&Trajectory
         .zip(trajectories.iter().copied())
         .collect();
     trajectories_svg(title, &pairs)
-}
-
-/// The part of a room's home zone on its floor, as a polygon: the zone's circle sampled every
-/// 3°, keeping the points inside the room, closed through the centre when part of the circle
-/// lies outside (a zone centred on a corner becomes the paper's quarter circle).
-fn zone_outline(room: &Room) -> Vec<fuzzymotiv::geom::Vec2> {
-    use fuzzymotiv::geom::Vec2;
-    let zone = room.home_zone;
-    let circle: Vec<Vec2> = (0..120)
-        .map(|i| {
-            let a = i as f64 * std::f64::consts::TAU / 120.0;
-            Vec2::new(
-                zone.centre.x + zone.radius * a.cos(),
-                zone.centre.y + zone.radius * a.sin(),
-            )
-        })
-        .collect();
-    let inside: Vec<bool> = circle.iter().map(|&p| room.contains(p)).collect();
-    if inside.iter().all(|&i| i) {
-        return circle;
-    }
-    // Start just after an outside point so the kept arc is contiguous.
-    let start = (0..circle.len()).find(|&i| !inside[i]).unwrap_or(0);
-    let mut out = vec![zone.centre];
-    out.extend(
-        (1..=circle.len())
-            .map(|k| (start + k) % circle.len())
-            .filter(|&i| inside[i])
-            .map(|i| circle[i]),
-    );
-    out
 }
 
 /// Length of a step marker's heading tick in the trajectory figures (px).
@@ -211,8 +349,10 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         let (lo, hi) = room.bounds();
         let (w, h) = ((hi.x - lo.x) * scale, (hi.y - lo.y) * scale);
         max_h = max_h.max(h);
+        // A room narrower than its name is centred in a slot as wide as the name.
+        let slot = w.max(text_width(&room.name, false));
         let p = Projection {
-            x_off,
+            x_off: x_off + (slot - w) / 2.0,
             lo,
             hi,
             scale,
@@ -223,15 +363,15 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         let _ = writeln!(
             parts,
             r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
-            x_off + w / 2.0,
+            x_off + slot / 2.0,
             40.0 + h + 16.0,
             esc(&room.name)
         );
-        x_off += w + pad;
+        x_off += slot + pad;
     }
     // Title, caption and scale bar each get a line of their own, and the figure is wide enough
     // for the longest text, so nothing is clipped or overprinted, whatever the number of rooms.
-    let caption = "green: home pose; blue quarter: home zone; red: path, a tick per step; filled circle: the end (ringed: back home)";
+    let caption = "green: home pose; blue: home zone; red: path, a tick per step; filled circle: the end (ringed: back home)";
     let width = x_off
         .max(2.0 * pad + text_width(title, true))
         .max(2.0 * pad + text_width(caption, false));
@@ -265,12 +405,28 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     s
 }
 
-/// A room's outline, obstacles and home zone.
+/// A room's outline, home zone and obstacles. The zone is its disc clipped to the room's
+/// outline (a quarter disc for a zone centred on a corner, a half disc on a straight wall,
+/// whatever is left for any other place); obstacles are drawn over it.
 fn draw_room(parts: &mut String, room: &Room, p: &Projection) {
+    let outline = p.polygon(&room.outline);
     let _ = writeln!(
         parts,
-        r##"<polygon points="{}" fill="#fafafa" stroke="#222" stroke-width="2"/>"##,
-        p.polygon(&room.outline)
+        r##"<polygon points="{outline}" fill="#fafafa" stroke="#222" stroke-width="2"/>"##
+    );
+    let zone = room.home_zone;
+    let circle = format!(
+        r#"cx="{:.1}" cy="{:.1}" r="{:.1}""#,
+        p.x(zone.centre.x),
+        p.y(zone.centre.y),
+        zone.radius * p.scale
+    );
+    // Figures are inlined side by side in one report page, which is one id space: the clip's
+    // id is a hash of its outline, so equal ids name equal clips.
+    let id = format!("room-{:016x}", fnv1a(&outline));
+    let _ = writeln!(
+        parts,
+        r##"<clipPath id="{id}"><polygon points="{outline}"/></clipPath><circle {circle} clip-path="url(#{id})" fill="#1f77b4" fill-opacity="0.10" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##
     );
     for o in &room.obstacles {
         let _ = writeln!(
@@ -279,11 +435,13 @@ fn draw_room(parts: &mut String, room: &Room, p: &Projection) {
             p.polygon(o)
         );
     }
-    let _ = writeln!(
-        parts,
-        r##"<polygon points="{}" fill="#1f77b4" fill-opacity="0.10" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##,
-        p.polygon(&zone_outline(room))
-    );
+}
+
+/// FNV-1a, 64 bits: a fixed hash (the same on every platform and run).
+fn fnv1a(text: &str) -> u64 {
+    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
 }
 
 /// The path of the executed steps, with a tick per step.
@@ -349,14 +507,13 @@ fn draw_home_and_end(parts: &mut String, room: &Room, tr: &Trajectory, p: &Proje
     }
 }
 
-/// The frame of one per-generation panel over the plot area `(x0, x1, y0, y1)` of a figure
-/// `height` tall: title, grid lines at 0, 0.2, …, 1, axes, axis labels and the first and last
-/// generation.
+/// The frame of one per-generation panel over the plot area `(x0, x1, y0, y1)`: title, grid
+/// lines and labels at round values of F (0, 0.2, …, 1), axes, round generation numbers on
+/// the x axis and the axis labels (the x label's baseline 32 px below the axis).
 fn panel_frame(
     s: &mut String,
     name: &str,
     (x0, x1, y0, y1): (f64, f64, f64, f64),
-    height: f64,
     generations: usize,
     y_label: &str,
 ) {
@@ -367,13 +524,14 @@ fn panel_frame(
         (x0 + x1) / 2.0,
         esc(name)
     );
-    for k in 0..=5 {
-        let f = k as f64 / 5.0;
+    let y_ticks = Ticks::nice(0.0, 1.0, 5, false);
+    for &f in &y_ticks.values {
         let _ = writeln!(
             s,
-            r##"<line x1="{x0}" x2="{x1}" y1="{yy:.1}" y2="{yy:.1}" stroke="#ddd"/><text x="{}" y="{:.1}" text-anchor="end">{f:.1}</text>"##,
-            x0 - 4.0,
+            r##"<line x1="{x0}" x2="{x1}" y1="{yy:.1}" y2="{yy:.1}" stroke="#ddd"/><text x="{}" y="{:.1}" text-anchor="end">{}</text>"##,
+            x0 - 6.0,
             y(f) + 4.0,
+            y_ticks.label(f),
             yy = y(f)
         );
     }
@@ -381,30 +539,35 @@ fn panel_frame(
         s,
         r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
     );
-    axis_labels(s, (x0, x1, y0, y1), height, "generation", y_label);
-    let _ = writeln!(
-        s,
-        r#"<text x="{x0}" y="{}" text-anchor="start">0</text><text x="{x1}" y="{}" text-anchor="end">{}</text>"#,
-        y0 + 16.0,
-        y0 + 16.0,
-        generations.saturating_sub(1)
-    );
+    let last = generations.saturating_sub(1);
+    let n = last.max(1) as f64;
+    let x_ticks = Ticks::nice(0.0, last as f64, 6, true);
+    for &g in &x_ticks.values {
+        let xx = x0 + (x1 - x0) * g / n;
+        let _ = writeln!(
+            s,
+            r##"<line x1="{xx:.1}" x2="{xx:.1}" y1="{y0}" y2="{}" stroke="#000"/><text x="{xx:.1}" y="{}" text-anchor="middle">{}</text>"##,
+            y0 + 4.0,
+            y0 + 17.0,
+            x_ticks.label(g)
+        );
+    }
+    axis_labels(s, (x0, x1, y0, y1), y0 + 32.0, "generation", y_label);
 }
 
-/// The x-axis label under a plot area `(x0, x1, y0, y1)` of a figure `height` tall, and the
-/// y-axis label turned along the left edge.
+/// The x-axis label under a plot area `(x0, x1, y0, y1)`, its baseline at `x_label_y`, and
+/// the y-axis label turned along the left edge.
 fn axis_labels(
     s: &mut String,
     (x0, x1, y0, y1): (f64, f64, f64, f64),
-    height: f64,
+    x_label_y: f64,
     x: &str,
     y: &str,
 ) {
     let _ = writeln!(
         s,
-        r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#,
+        r#"<text x="{}" y="{x_label_y}" text-anchor="middle">{}</text>"#,
         (x0 + x1) / 2.0,
-        height - 8.0,
         esc(x)
     );
     let (cx, cy) = (x0 - 36.0, (y0 + y1) / 2.0);
@@ -420,9 +583,14 @@ type TermOf = fn(&GenerationRecord) -> f64;
 
 /// One panel per run: the population means of the fitness terms a, g, l, b per generation.
 pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
-    let (pw, ph) = (520.0, 300.0);
-    let (ml, mr, mt, mb) = (50.0, 115.0, 30.0, 40.0);
-    let width = pw * panels.len() as f64;
+    let ph = 300.0;
+    let (ml, mr, mt, mb) = (50.0, 135.0, 30.0, 40.0);
+    let widths: Vec<f64> = panels
+        .iter()
+        // The title is centred over the plot area, left of the panel's centre.
+        .map(|(title, _)| 520f64.max(text_width(title, true) + mr - ml + 10.0))
+        .collect();
+    let width: f64 = widths.iter().sum::<f64>().max(1.0);
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -435,8 +603,8 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
         ("l recognition", "#8c564b", |r| r.terms.l),
         ("b battery", "#ff7f0e", |r| r.terms.b),
     ];
-    for (p, (name, hist)) in panels.iter().enumerate() {
-        let ox = p as f64 * pw;
+    let mut ox = 0.0;
+    for ((name, hist), pw) in panels.iter().zip(&widths) {
         let (x0, x1, y0, y1) = (ox + ml, ox + pw - mr, ph - mb, mt);
         let n = hist.len().max(2) as f64 - 1.0;
         let x = |g: usize| x0 + (x1 - x0) * g as f64 / n;
@@ -445,7 +613,6 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
             &mut s,
             name,
             (x0, x1, y0, y1),
-            ph,
             hist.len(),
             "population mean",
         );
@@ -457,7 +624,7 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
                 .collect();
             let _ = writeln!(
                 s,
-                r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8"/>"#
+                r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8" stroke-linejoin="round"/>"#
             );
             let (lx, ly) = (x1 + 10.0, y1 + 10.0 + 16.0 * k as f64);
             let _ = writeln!(
@@ -468,6 +635,7 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
                 ly + 4.0
             );
         }
+        ox += pw;
     }
     s.push_str("</svg>\n");
     s
@@ -475,8 +643,8 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
 
 /// The triangular membership functions μ(y) of the fuzzy labels (V.L. … V.H. by default).
 pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
-    let (w, h) = (420.0, 205.0);
-    let (x0, x1, y0, y1) = (50.0, w - 15.0, h - 40.0, 48.0);
+    let (w, h) = (420.0, 214.0);
+    let (x0, x1, y0, y1) = (50.0, w - 15.0, h - 49.0, 48.0);
     let (lo, hi) = (
         peaks.first().copied().unwrap_or(0.0).min(0.0),
         peaks.last().copied().unwrap_or(1.0).max(1.0),
@@ -498,26 +666,33 @@ pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
         s,
         r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
     );
-    for m in [0.0, 0.5, 1.0] {
+    let y_ticks = Ticks::nice(0.0, 1.0, 2, false);
+    for &m in &y_ticks.values {
         let _ = writeln!(
             s,
-            r#"<text x="{}" y="{:.1}" text-anchor="end">{m}</text>"#,
+            r##"<line x1="{}" x2="{x0}" y1="{yy:.1}" y2="{yy:.1}" stroke="#000"/><text x="{}" y="{:.1}" text-anchor="end">{}</text>"##,
             x0 - 4.0,
-            y(m) + 4.0
+            x0 - 6.0,
+            y(m) + 4.0,
+            y_ticks.label(m),
+            yy = y(m)
         );
     }
-    for v in [0.0, 0.25, 0.5, 0.75, 1.0] {
+    let x_ticks = Ticks::nice(lo, hi, 5, false);
+    for &v in &x_ticks.values {
         let _ = writeln!(
             s,
-            r#"<text x="{:.1}" y="{}" text-anchor="middle">{v}</text>"#,
-            x(v),
-            y0 + 15.0
+            r##"<line x1="{xx:.1}" x2="{xx:.1}" y1="{y0}" y2="{}" stroke="#000"/><text x="{xx:.1}" y="{}" text-anchor="middle">{}</text>"##,
+            y0 + 4.0,
+            y0 + 19.0,
+            x_ticks.label(v),
+            xx = x(v)
         );
     }
     axis_labels(
         &mut s,
         (x0, x1, y0, y1),
-        h,
+        h - 8.0,
         "fitness value y (a, g, l or b)",
         "μ(y)",
     );
@@ -557,12 +732,21 @@ fn membership_triangles(
             x(right),
             y(mr)
         );
+        // Named above the peak; the labels at the ends of the range start or end there, so
+        // they stay inside the plot and clear of the y axis's tick labels.
         let name = names.get(k).map_or("", String::as_str);
+        let half = text_width(name, true) / 2.0;
+        let (lx, anchor) = if x(p) - half < x(lo) {
+            (x(lo) + 2.0, "start")
+        } else if x(p) + half > x(hi) {
+            (x(hi), "end")
+        } else {
+            (x(p), "middle")
+        };
         let _ = writeln!(
             s,
-            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle" fill="{c}" font-weight="bold">{}</text>"#,
-            x(p),
-            y(1.0) - 5.0,
+            r#"<text x="{lx:.1}" y="{:.1}" text-anchor="{anchor}" fill="{c}" font-weight="bold">{}</text>"#,
+            y(1.0) - 6.0,
             esc(name)
         );
     }
@@ -597,7 +781,7 @@ pub fn som_svg(title: &str, nodes: usize, threshold: usize, rooms: &[SomRoom<'_>
         })
         .max()
         .unwrap_or(0);
-    let h = line_y + 40.0 + 9.0 * max_dots as f64 + 30.0;
+    let h = line_y + 40.0 + 9.0 * max_dots as f64 + 46.0;
     let last = nodes.saturating_sub(1).max(1) as f64;
     let x = |n: f64| x0 + (x1 - x0) * n / last;
     let mut s = String::new();
@@ -614,14 +798,25 @@ pub fn som_svg(title: &str, nodes: usize, threshold: usize, rooms: &[SomRoom<'_>
     som_instances(&mut s, rooms, nodes, threshold, line_y, &x);
     som_axis(&mut s, nodes, line_y, (x0, x1), &x);
     som_winners(&mut s, rooms, nodes, line_y, &x);
+    // The caption in two lines, each shorter than the figure is wide.
     let _ = writeln!(
         s,
-        r##"<text x="{x0}" y="{:.0}" fill="#555">SOM node index (0–{}). Marker: a room's stored instance (r-node), band: ±{threshold} nodes; dots: winners of test runs, coloured by true room.</text>"##,
-        h - 10.0,
+        r##"<text x="{x0}" y="{:.0}" fill="#555">SOM node index (0–{}). Marker: a room's stored instance (r-node); band: ±{threshold} nodes around it.</text>"##,
+        h - 26.0,
         nodes.saturating_sub(1)
+    );
+    let _ = writeln!(
+        s,
+        r##"<text x="{x0}" y="{:.0}" fill="#555">Dots: the winning nodes of the test runs, coloured by the room each run was in.</text>"##,
+        h - 10.0,
     );
     s.push_str("</svg>\n");
     s
+}
+
+/// The last node's index on a SOM line of `nodes` nodes (at least 1, so the line has a length).
+fn last_node(nodes: usize) -> f64 {
+    nodes.saturating_sub(1).max(1) as f64
 }
 
 /// Each room's r-node on the SOM line, with its threshold band and label.
@@ -647,16 +842,22 @@ fn som_instances(
             (x(b) - x(a)).max(1.0)
         );
         let ly = 40.0 + 16.0 * k as f64;
+        let xr = x(r.r_node as f64);
+        // The label right of its marker line, or left of it where it would pass the right
+        // end of the line.
+        let label = format!("{} (r-node {})", r.name, r.r_node);
+        let (lx, anchor) = if xr + 4.0 + text_width(&label, true) > x(last_node(nodes)) + 30.0 {
+            (xr - 4.0, "end")
+        } else {
+            (xr + 4.0, "start")
+        };
         let _ = writeln!(
             s,
-            r#"<line x1="{xr:.1}" x2="{xr:.1}" y1="{:.1}" y2="{:.1}" stroke="{c}" stroke-width="1.5"/><circle cx="{xr:.1}" cy="{line_y}" r="5" fill="{c}"/><text x="{:.1}" y="{:.1}" fill="{c}" font-weight="bold">{} (r-node {})</text>"#,
+            r#"<line x1="{xr:.1}" x2="{xr:.1}" y1="{:.1}" y2="{:.1}" stroke="{c}" stroke-width="1.5"/><circle cx="{xr:.1}" cy="{line_y}" r="5" fill="{c}"/><text x="{lx:.1}" y="{:.1}" text-anchor="{anchor}" fill="{c}" font-weight="bold">{}</text>"#,
             ly + 2.0,
             line_y,
-            x(r.r_node as f64) + 4.0,
             ly,
-            esc(r.name),
-            r.r_node,
-            xr = x(r.r_node as f64)
+            esc(&label),
         );
     }
 }
@@ -673,18 +874,16 @@ fn som_axis(
         s,
         r##"<line x1="{x0}" x2="{x1}" y1="{line_y}" y2="{line_y}" stroke="#222" stroke-width="2"/>"##
     );
-    let step = if nodes > 64 { 16 } else { 8 };
-    for n in (0..nodes)
-        .step_by(step)
-        .chain(std::iter::once(nodes.saturating_sub(1)))
-    {
+    let ticks = Ticks::nice(0.0, last_node(nodes), 10, true);
+    for &n in &ticks.values {
         let _ = writeln!(
             s,
-            r##"<line x1="{xn:.1}" x2="{xn:.1}" y1="{}" y2="{}" stroke="#222"/><text x="{xn:.1}" y="{}" text-anchor="middle" fill="#555">{n}</text>"##,
+            r##"<line x1="{xn:.1}" x2="{xn:.1}" y1="{}" y2="{}" stroke="#222"/><text x="{xn:.1}" y="{}" text-anchor="middle" fill="#555">{}</text>"##,
             line_y - 4.0,
             line_y + 4.0,
             line_y + 18.0,
-            xn = x(n as f64)
+            ticks.label(n),
+            xn = x(n)
         );
     }
 }
@@ -787,7 +986,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
     let _ = writeln!(
         s,
         r##"<text x="8" y="{:.0}" fill="#555">Means over rooms and replicates per motivation setting (C, H, O, E).</text>"##,
-        height - 2.0
+        height - 6.0
     );
     s.push_str("</svg>\n");
     s
@@ -797,7 +996,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
 /// simplex coloured by outcome `k`, with a colour key.
 fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw: f64, height: f64) {
     let side = pw - 70.0;
-    let (x0, y0) = (ox + 35.0, 40.0 + side * 0.866);
+    let (x0, y0) = (ox + 35.0, 46.0 + side * 0.866);
     let corner = |c: f64, h: f64, e: f64| {
         let sum = c + h + e;
         let (h, e) = if sum > 0.0 {
@@ -821,12 +1020,12 @@ fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw:
         b.1,
         c.0,
         c.1,
-        a.0 - 4.0,
-        a.1 + 12.0,
-        b.0 + 4.0,
-        b.1 + 12.0,
+        a.0 - 8.0,
+        a.1 + 14.0,
+        b.0 + 8.0,
+        b.1 + 14.0,
         c.0,
-        c.1 - 6.0
+        c.1 - 10.0
     );
     for p in points {
         let m = p.motivations;
@@ -859,18 +1058,43 @@ fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw:
             value_colour(v)
         );
     }
-    let _ = writeln!(
-        s,
-        r#"<text x="{:.1}" y="{:.1}">0</text><text x="{:.1}" y="{:.1}">100</text>"#,
-        ox + 40.0,
-        height - 24.0,
-        ox + 250.0,
-        height - 24.0
-    );
+    // The key's scale: value v at ox + 50 + 2.2 v (the swatches' centres), labelled at round
+    // values.
+    let ticks = Ticks::nice(0.0, 100.0, 5, true);
+    for &v in &ticks.values {
+        let _ = writeln!(
+            s,
+            r##"<line x1="{xv:.1}" x2="{xv:.1}" y1="{:.1}" y2="{:.1}" stroke="#333"/><text x="{xv:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
+            height - 36.0,
+            height - 33.0,
+            height - 22.0,
+            ticks.label(v),
+            xv = ox + 50.0 + 2.2 * v
+        );
+    }
 }
 
-/// Panel `k` of [`sweep_summary_svg`] for a few settings: one labelled bar each.
+/// Panel `k` of [`sweep_summary_svg`] for a few settings: one labelled bar each, over a scale
+/// from 0 to 100 with ticks at round values.
 fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
+    let axis_y = 40.0 + 22.0 * points.len() as f64;
+    let _ = writeln!(
+        s,
+        r##"<line x1="{:.1}" x2="{:.1}" y1="{axis_y:.1}" y2="{axis_y:.1}" stroke="#333"/>"##,
+        ox + 130.0,
+        ox + 290.0
+    );
+    let ticks = Ticks::nice(0.0, 100.0, 5, true);
+    for &v in &ticks.values {
+        let _ = writeln!(
+            s,
+            r##"<line x1="{xv:.1}" x2="{xv:.1}" y1="{axis_y:.1}" y2="{:.1}" stroke="#333"/><text x="{xv:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
+            axis_y + 3.0,
+            axis_y + 14.0,
+            ticks.label(v),
+            xv = ox + 130.0 + 1.6 * v
+        );
+    }
     for (i, p) in points.iter().enumerate() {
         let y = 40.0 + 22.0 * i as f64;
         let m = p.motivations;
@@ -901,69 +1125,395 @@ fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use fuzzymotiv::evolution::GenerationRecord;
+    use fuzzymotiv::ga::Stats;
     use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 
-    /// Text boxes `(x0, x1, y0, y1)` of every `<text>` of a figure (estimated widths).
-    fn text_boxes(svg: &str) -> Vec<(f64, f64, f64, f64, String)> {
-        let attr = |el: &str, name: &str| -> Option<String> {
-            let start = el.find(&format!(" {name}=\""))? + name.len() + 3;
-            Some(el[start..].split('"').next()?.to_string())
-        };
+    /// An attribute's value in an element's start tag (`head`: the text after `<name`).
+    fn attr(head: &str, name: &str) -> Option<String> {
+        let start = head.find(&format!(" {name}=\""))? + name.len() + 3;
+        Some(head[start..].split('"').next()?.to_string())
+    }
+
+    /// XML text content back to characters (the escapes [`esc`] writes).
+    fn unescape(s: &str) -> String {
+        s.replace("&lt;", "<")
+            .replace("&gt;", ">")
+            .replace("&quot;", "\"")
+            .replace("&amp;", "&")
+    }
+
+    /// An estimated text box: `(left, right, top, bottom)` and the text.
+    type TextBox = (f64, f64, f64, f64, String);
+
+    /// The estimated box of every `<text>` of a figure, from its x, y, font-size (else the
+    /// root's), font-weight, text-anchor and content: 0.62 × size per character (0.68 bold,
+    /// [`text_width_at`]), from a full size above the baseline to a quarter below it
+    /// (descenders). Text turned by `rotate(-90 x y)` about its own anchor (the y-axis labels)
+    /// is turned with it; any other transform fails the test.
+    fn text_boxes(svg: &str) -> Vec<TextBox> {
+        let root = svg.split('>').next().unwrap();
+        let root_size: f64 = attr(root, "font-size").unwrap().parse().unwrap();
         svg.split("<text")
             .skip(1)
             .map(|el| {
                 let (head, rest) = el.split_once('>').unwrap();
-                let content = rest.split("</text>").next().unwrap().to_string();
-                let x: f64 = attr(head, "x").unwrap().parse().unwrap();
-                let y: f64 = attr(head, "y").unwrap().parse().unwrap();
-                let w = text_width(&content, head.contains("bold"));
-                let x0 = match attr(head, "text-anchor").as_deref() {
-                    Some("middle") => x - w / 2.0,
-                    Some("end") => x - w,
-                    _ => x,
+                let content = unescape(rest.split("</text>").next().unwrap());
+                let num = |name: &str| -> f64 { attr(head, name).unwrap().parse().unwrap() };
+                let (x, y) = (num("x"), num("y"));
+                let size = attr(head, "font-size").map_or(root_size, |v| v.parse().unwrap());
+                let bold = attr(head, "font-weight").is_some_and(|w| w == "bold");
+                let w = text_width_at(&content, bold, size);
+                let (a, b) = match attr(head, "text-anchor").as_deref() {
+                    Some("middle") => (-w / 2.0, w / 2.0),
+                    Some("end") => (-w, 0.0),
+                    _ => (0.0, w),
                 };
-                (x0, x0 + w, y - 12.0, y + 3.0, content)
+                match attr(head, "transform") {
+                    None => (x + a, x + b, y - size, y + 0.25 * size, content),
+                    Some(t) => {
+                        assert_eq!(t, format!("rotate(-90 {x} {y})"), "unhandled transform");
+                        // Turned a quarter left about (x, y): along the text is up the page.
+                        (x - size, x + 0.25 * size, y - b, y - a, content)
+                    }
+                }
             })
             .collect()
     }
 
-    /// Every trajectory figure lays out cleanly with 1 to 8 rooms: each text inside the figure,
-    /// no two texts overlapping (title, room names, caption, scale bar label).
-    #[test]
-    fn trajectory_figures_lay_out_cleanly_with_1_to_8_rooms() {
-        let rooms: Vec<Room> = (0..8)
-            .map(|k| Room::builtin(BUILTIN_ROOMS[k % BUILTIN_ROOMS.len()]).unwrap())
+    /// Asserts every text of `svg` lies inside its viewBox and no two texts overlap.
+    fn assert_texts_fit(svg: &str, what: &str) {
+        let root = svg.split('>').next().unwrap();
+        let vb: Vec<f64> = attr(root, "viewBox")
+            .unwrap()
+            .split_whitespace()
+            .map(|v| v.parse().unwrap())
             .collect();
+        let boxes = text_boxes(svg);
+        assert!(!boxes.is_empty(), "{what}: no text");
+        for b in &boxes {
+            assert!(
+                b.0 >= vb[0] && b.1 <= vb[0] + vb[2] && b.2 >= vb[1] && b.3 <= vb[1] + vb[3],
+                "{what}: `{}` outside the viewBox {vb:?}: {b:?}",
+                b.4
+            );
+        }
+        for (i, a) in boxes.iter().enumerate() {
+            for b in &boxes[i + 1..] {
+                let apart = a.1 <= b.0 || b.1 <= a.0 || a.3 <= b.2 || b.3 <= a.2;
+                assert!(apart, "{what}: `{}` overlaps `{}`: {a:?} {b:?}", a.4, b.4);
+            }
+        }
+    }
+
+    /// A made-up evolution of `n` generations: F rising, the population minimum jumping.
+    fn history(n: usize, seed: usize) -> Vec<GenerationRecord> {
+        (0..n)
+            .map(|g| {
+                let t = g as f64 / n.max(1) as f64;
+                let best = 0.5 + 0.4 * t + 0.01 * seed as f64;
+                let mean = 0.1 + 0.6 * t + 0.02 * ((g + seed) % 3) as f64;
+                GenerationRecord {
+                    generation: g,
+                    stats: Stats {
+                        mean,
+                        std: 0.1,
+                        min: if g % 2 == 0 { 0.1 } else { mean - 0.05 },
+                        max: best,
+                    },
+                    terms: Default::default(),
+                }
+            })
+            .collect()
+    }
+
+    /// Built-in rooms, a room with its home on a wall, and the U room (home in an arm, its
+    /// zone crossing two walls).
+    fn rooms(n: usize) -> Vec<Room> {
+        let wall = Room::from_toml_str(
+            "name = \"home-on-a-wall\"\noutline = [[0,0],[800,0],[800,500],[0,500]]\nhome = { x = 400, y = 40, heading_deg = 90 }\n",
+            "wall.toml",
+        )
+        .unwrap();
+        let u = Room::from_toml_str(include_str!("../../../rooms/U.toml"), "rooms/U.toml").unwrap();
+        let mut all: Vec<Room> = BUILTIN_ROOMS
+            .iter()
+            .map(|name| Room::builtin(name).unwrap())
+            .collect();
+        all.insert(1, wall);
+        all.insert(3, u);
+        (0..n).map(|k| all[k % all.len()].clone()).collect()
+    }
+
+    #[test]
+    fn finding_8_axis_ticks_at_round_numbers() {
+        let t = Ticks::nice(0.0, 199.0, 6, true);
+        assert_eq!(t.values, [0.0, 50.0, 100.0, 150.0]);
+        let t = Ticks::nice(0.0, 1.0, 5, false);
+        let labels: Vec<_> = t.values.iter().map(|&v| t.label(v)).collect();
+        assert_eq!(labels, ["0.0", "0.2", "0.4", "0.6", "0.8", "1.0"]);
+        assert_eq!(
+            Ticks::nice(0.0, 4.0, 6, true).values,
+            [0.0, 1.0, 2.0, 3.0, 4.0]
+        );
+        assert_eq!(Ticks::nice(0.0, 0.0, 6, true).values, [0.0]);
+        let t = Ticks::nice(0.0, 127.0, 10, true);
+        assert_eq!(t.step, 20.0);
+        assert_eq!(t.label(120.0), "120");
+        // Any range: a step of 1, 2 or 5 × 10^k, ticks its multiples inside the range.
+        for (lo, hi) in [
+            (0.0, 29.0),
+            (0.0, 7.0),
+            (-3.0, 0.37),
+            (0.02, 0.09),
+            (0.0, 2e4),
+        ] {
+            for target in [2, 5, 10] {
+                let t = Ticks::nice(lo, hi, target, false);
+                let m = t.step / 10f64.powf(t.step.log10().floor());
+                assert!(
+                    [1.0, 2.0, 5.0].iter().any(|r| (m - r).abs() < 1e-9),
+                    "{lo}..{hi}: step {}",
+                    t.step
+                );
+                assert!(!t.values.is_empty() && t.values.len() <= target + 1);
+                for &v in &t.values {
+                    assert!(v >= lo - 1e-12 && v <= hi + 1e-12);
+                    assert!(((v / t.step).round() * t.step - v).abs() < 1e-9);
+                }
+            }
+        }
+        // The figures' axes: a 200-generation run is labelled 0, 50, 100, 150, not 0 and 199.
+        let svg = fitness_svg(&[("run".into(), history(200, 0))]);
+        let texts: Vec<String> = text_boxes(&svg).into_iter().map(|b| b.4).collect();
+        for label in ["0", "50", "100", "150", "0.0", "0.2", "1.0"] {
+            assert!(texts.iter().any(|t| t == label), "no tick {label}");
+        }
+        assert!(!texts.iter().any(|t| t == "199"));
+        let svg = terms_svg(&[("run".into(), history(30, 0))]);
+        let texts: Vec<String> = text_boxes(&svg).into_iter().map(|b| b.4).collect();
+        for label in ["0", "5", "10", "15", "20", "25"] {
+            assert!(texts.iter().any(|t| t == label), "terms: no tick {label}");
+        }
+    }
+
+    #[test]
+    fn finding_8_home_zone_is_the_disc_within_the_room() {
+        let all = rooms(7);
+        for room in &all {
+            let tr = Trajectory {
+                poses: vec![room.home],
+                ..Default::default()
+            };
+            let svg = trajectories_svg("t", &[(room, &tr)]);
+            assert!(svg.contains("blue: home zone") && !svg.contains("quarter"));
+            // Rendered: blue inside both the disc and the room, nowhere else.
+            let png = crate::png::svg_to_png(&svg).unwrap();
+            let pixmap = resvg::tiny_skia::Pixmap::decode_png(&png).unwrap();
+            let (lo, hi) = room.bounds();
+            let scale = 0.3;
+            let slot = ((hi.x - lo.x) * scale).max(text_width(&room.name, false));
+            let x_off = 20.0 + (slot - (hi.x - lo.x) * scale) / 2.0;
+            let blue = |x: f64, y: f64| {
+                let px = (2.0 * (x_off + (x - lo.x) * scale)).round() as u32;
+                let py = (2.0 * (40.0 + (hi.y - y) * scale)).round() as u32;
+                let c = pixmap.pixel(px, py).unwrap();
+                i32::from(c.blue()) - i32::from(c.red()) > 8
+            };
+            let zone = room.home_zone;
+            // Points on a ring inside the zone's rim, clear of walls, home marker and the
+            // zone's dashed edge.
+            for k in 0..36 {
+                let a = k as f64 * std::f64::consts::TAU / 36.0;
+                let r = 0.75 * zone.radius;
+                let p = fuzzymotiv::geom::Vec2::new(
+                    zone.centre.x + r * a.cos(),
+                    zone.centre.y + r * a.sin(),
+                );
+                let clear = room.contains(p)
+                    && fuzzymotiv::geom::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)
+                    && p.dist(room.home.position()) > 40.0;
+                if clear {
+                    assert!(
+                        blue(p.x, p.y),
+                        "{}: ({:.0}, {:.0}) in zone and room, not blue",
+                        room.name,
+                        p.x,
+                        p.y
+                    );
+                }
+            }
+            // Inside the disc but outside the room (beyond a wall): not blue.
+            for k in 0..36 {
+                let a = k as f64 * std::f64::consts::TAU / 36.0;
+                let r = 0.9 * zone.radius;
+                let p = fuzzymotiv::geom::Vec2::new(
+                    zone.centre.x + r * a.cos(),
+                    zone.centre.y + r * a.sin(),
+                );
+                let (plo, phi) = room.bounds();
+                let beyond = !room.contains(p)
+                    && fuzzymotiv::geom::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)
+                    && p.x > plo.x - 50.0
+                    && p.y < phi.y + 50.0;
+                if beyond {
+                    assert!(
+                        !blue(p.x, p.y),
+                        "{}: ({:.0}, {:.0}) outside the room but blue",
+                        room.name,
+                        p.x,
+                        p.y
+                    );
+                }
+            }
+            // Outside the disc, inside the room (towards the room's far corner): not blue.
+            let far = if zone.centre.dist(hi) > zone.centre.dist(lo) {
+                hi
+            } else {
+                lo
+            };
+            let d = far - zone.centre;
+            let p = zone.centre + d * ((zone.radius + 30.0) / d.x.hypot(d.y));
+            if room.contains(p) {
+                assert!(!blue(p.x, p.y), "{}: outside the zone but blue", room.name);
+            }
+        }
+    }
+
+    #[test]
+    fn finding_8_study_fitness_draws_median_and_iqr_over_seeds() {
+        use crate::study::quantile;
+        assert_eq!(quantile(&[3.0, 1.0, 2.0], 0.5), 2.0);
+        assert_eq!(quantile(&[4.0, 1.0, 2.0, 3.0], 0.5), 2.5);
+        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0, 5.0], 0.25), 2.0);
+        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0], 0.25), 1.75);
+        assert_eq!(quantile(&[7.0], 0.75), 7.0);
+        // The drawing: medians as lines, the IQR bands as closed paths, the legend saying so.
+        let best: Vec<f64> = (0..10).map(|g| 0.5 + 0.03 * g as f64).collect();
+        let mean: Vec<f64> = (0..10).map(|g| 0.1 + 0.05 * g as f64).collect();
+        let panel = FitnessPanel {
+            title: "high-curiosity [0.8, 0.1, 0.0, 0.1]".into(),
+            best: (best.clone(), "median of best F over 5 seeds".into()),
+            mean: (mean.clone(), "median of mean F over 5 seeds".into()),
+            bands: vec![
+                (
+                    best.iter().map(|b| (b - 0.05, b + 0.02)).collect(),
+                    BEST_BAND,
+                ),
+                (
+                    mean.iter().map(|m| (m - 0.04, m + 0.04)).collect(),
+                    MEAN_BAND,
+                ),
+            ],
+            band_label: "IQR over seeds (25th–75th percentile)".into(),
+        };
+        let svg = fitness_panels_svg(&[panel]);
+        for text in [
+            "median of best F over 5 seeds",
+            "median of mean F over 5 seeds",
+            "IQR over seeds (25th–75th percentile)",
+        ] {
+            assert!(svg.contains(text), "legend lacks {text}");
+        }
+        assert_eq!(
+            svg.matches(r#"fill-opacity="0.45" stroke="none""#).count(),
+            2
+        );
+        assert_eq!(svg.matches("<polyline").count(), 2);
+        assert_texts_fit(&svg, "study fitness");
+    }
+
+    /// Every figure the program makes, at 1, 2, 5 and 8 rooms (panels, settings), with long
+    /// titles: each text inside the viewBox, no two texts overlapping.
+    #[test]
+    fn finding_8_no_text_clipped_or_overlapping_at_1_to_8_rooms() {
         let title = "Replay of runs/high-curiosity/best_genome.json (seed 9007199254740991)";
-        for n in 1..=8 {
-            let trs: Vec<Trajectory> = rooms[..n]
+        let names: Vec<String> = fuzzymotiv::fuzzy::PAPER_LABEL_NAMES
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        assert_texts_fit(
+            &membership_svg(&[0.0, 0.25, 0.5, 0.75, 1.0], &names),
+            "membership",
+        );
+        for n in [1, 2, 5, 8] {
+            let rooms = rooms(n);
+            let trs: Vec<Trajectory> = rooms
                 .iter()
                 .map(|r| Trajectory {
                     poses: vec![r.home],
                     ..Default::default()
                 })
                 .collect();
-            let pairs: Vec<_> = rooms[..n].iter().zip(&trs).collect();
-            let svg = trajectories_svg(title, &pairs);
-            let head = svg.split('>').next().unwrap();
-            let attr = |name: &str| -> f64 {
-                let value = head.split(&format!(" {name}=\"")).nth(1).unwrap();
-                value.split('"').next().unwrap().parse().unwrap()
-            };
-            let (width, height) = (attr("width"), attr("height"));
-            let boxes = text_boxes(&svg);
-            for b in &boxes {
-                assert!(
-                    b.0 >= 0.0 && b.1 <= width && b.2 >= 0.0 && b.3 <= height,
-                    "{n} rooms: `{}` outside {width}×{height}: {b:?}",
-                    b.4
+            let pairs: Vec<_> = rooms.iter().zip(&trs).collect();
+            assert_texts_fit(
+                &trajectories_svg(title, &pairs),
+                &format!("trajectories, {n} rooms"),
+            );
+            // Per-room training: a panel per room, titled by the report's longest form.
+            let panels: Vec<(String, Vec<GenerationRecord>)> = rooms
+                .iter()
+                .enumerate()
+                .map(|(k, r)| {
+                    (
+                        format!(
+                            "high-curiosity (C,H,O,E) = [0.8, 0.1, 0.0, 0.1]: robot evolved in {}",
+                            r.name
+                        ),
+                        history([1, 2, 7, 30, 200][k % 5], k),
+                    )
+                })
+                .collect();
+            assert_texts_fit(&fitness_svg(&panels), &format!("fitness, {n} panels"));
+            assert_texts_fit(&terms_svg(&panels), &format!("terms, {n} panels"));
+            for nodes in [2, 16, 128] {
+                let som: Vec<SomRoom<'_>> = rooms
+                    .iter()
+                    .enumerate()
+                    .map(|(k, r)| SomRoom {
+                        name: &r.name,
+                        r_node: [nodes - 1, 0, nodes / 2, nodes - 2][k % 4],
+                        winners: vec![nodes - 1, k % nodes, nodes - 1],
+                    })
+                    .collect();
+                let title = "The rooms on the SOM line of the robot evolved in home-on-a-wall";
+                assert_texts_fit(
+                    &som_svg(title, nodes, 3, &som),
+                    &format!("SOM, {n} rooms, {nodes} nodes"),
                 );
             }
-            for (i, a) in boxes.iter().enumerate() {
-                for b in &boxes[i + 1..] {
-                    let apart = a.1 <= b.0 || b.1 <= a.0 || a.3 <= b.2 || b.3 <= a.2;
-                    assert!(apart, "{n} rooms: `{}` overlaps `{}`", a.4, b.4);
-                }
+            let points: Vec<SettingPoint> = (0..n)
+                .map(|k| SettingPoint {
+                    label: format!("setting-{k}"),
+                    motivations: [0.5, 0.25, 0.0, 0.25],
+                    values: [Some(100.0), Some(12.5 * k as f64), None, Some(0.0)],
+                })
+                .collect();
+            assert_texts_fit(
+                &sweep_summary_svg(&points),
+                &format!("sweep summary, {n} settings"),
+            );
+        }
+    }
+
+    /// Renders every `*.svg` in `$FIGS_DIR` to a PNG beside it with the program's renderer, to
+    /// look at figures that only appear inline in report pages:
+    /// `FIGS_DIR=/tmp/x cargo test -p fuzzymotiv-cli --lib svg -- --ignored`.
+    #[test]
+    #[ignore]
+    fn render_svgs_in_figs_dir() {
+        let Ok(dir) = std::env::var("FIGS_DIR") else {
+            return;
+        };
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "svg") {
+                let svg = std::fs::read_to_string(&path).unwrap();
+                std::fs::write(
+                    path.with_extension("png"),
+                    crate::png::svg_to_png(&svg).unwrap(),
+                )
+                .unwrap();
             }
         }
     }
