@@ -403,3 +403,21 @@ pub fn claims(studies: &[SettingRuns<'_>]) -> Vec<ClaimRecord> {
         },
     ]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::quantile;
+
+    /// The study's fitness figure's medians and quartiles over seeds (finding 8): linear
+    /// interpolation between order statistics.
+    #[test]
+    fn finding_8_quantiles_over_seeds_interpolate_linearly() {
+        assert_eq!(quantile(&[3.0, 1.0, 2.0], 0.5), 2.0);
+        assert_eq!(quantile(&[4.0, 1.0, 2.0, 3.0], 0.5), 2.5);
+        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0, 5.0], 0.25), 2.0);
+        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0], 0.25), 1.75);
+        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0], 0.75), 3.25);
+        assert_eq!(quantile(&[7.0], 0.75), 7.0);
+        assert!(quantile(&[], 0.5).is_nan());
+    }
+}

@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::evolution::GenerationRecord;
 use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::geom::{Vec2, point_in_polygon};
 use fuzzymotiv::room::Room;
 use fuzzymotiv::trial::Trajectory;
 
@@ -405,29 +406,40 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     s
 }
 
-/// A room's outline, home zone and obstacles. The zone is its disc clipped to the room's
+/// A room's outline, home zone and obstacles. The zone is its disc within the room's
 /// outline (a quarter disc for a zone centred on a corner, a half disc on a straight wall,
-/// whatever is left for any other place); obstacles are drawn over it.
+/// whatever is left for any other place), its rim dashed where it runs inside the room;
+/// obstacles are drawn over it.
 fn draw_room(parts: &mut String, room: &Room, p: &Projection) {
-    let outline = p.polygon(&room.outline);
     let _ = writeln!(
         parts,
-        r##"<polygon points="{outline}" fill="#fafafa" stroke="#222" stroke-width="2"/>"##
+        r##"<polygon points="{}" fill="#fafafa" stroke="#222" stroke-width="2"/>"##,
+        p.polygon(&room.outline)
     );
-    let zone = room.home_zone;
-    let circle = format!(
-        r#"cx="{:.1}" cy="{:.1}" r="{:.1}""#,
-        p.x(zone.centre.x),
-        p.y(zone.centre.y),
-        zone.radius * p.scale
-    );
-    // Figures are inlined side by side in one report page, which is one id space: the clip's
-    // id is a hash of its outline, so equal ids name equal clips.
-    let id = format!("room-{:016x}", fnv1a(&outline));
-    let _ = writeln!(
-        parts,
-        r##"<clipPath id="{id}"><polygon points="{outline}"/></clipPath><circle {circle} clip-path="url(#{id})" fill="#1f77b4" fill-opacity="0.10" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##
-    );
+    let (floor, rim) = zone_within(room);
+    if floor.len() >= 3 {
+        let _ = writeln!(
+            parts,
+            r##"<polygon points="{}" fill="#1f77b4" fill-opacity="0.10" stroke="none"/>"##,
+            p.polygon(&floor)
+        );
+    }
+    let d: String = rim
+        .iter()
+        .map(|run| {
+            let pts: Vec<String> = run
+                .iter()
+                .map(|q| format!("{:.1},{:.1}", p.x(q.x), p.y(q.y)))
+                .collect();
+            format!("M{}", pts.join("L"))
+        })
+        .collect();
+    if !d.is_empty() {
+        let _ = writeln!(
+            parts,
+            r##"<path d="{d}" fill="none" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##
+        );
+    }
     for o in &room.obstacles {
         let _ = writeln!(
             parts,
@@ -437,11 +449,63 @@ fn draw_room(parts: &mut String, room: &Room, p: &Projection) {
     }
 }
 
-/// FNV-1a, 64 bits: a fixed hash (the same on every platform and run).
-fn fnv1a(text: &str) -> u64 {
-    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
+/// Sides of the polygon standing for the home zone's circle in the figures (every 1.5°).
+const ZONE_SIDES: usize = 240;
+
+/// The home zone within the room, in mm: the room's outline clipped to the zone's disc (a
+/// 240-gon; Sutherland–Hodgman, exact for a convex clip region and any simple outline; where
+/// the result falls apart in pieces they are joined by zero-width seams along the rim, which
+/// the unstroked fill does not show), and the runs of the rim inside the outline.
+fn zone_within(room: &Room) -> (Vec<Vec2>, Vec<Vec<Vec2>>) {
+    let zone = room.home_zone;
+    let circle: Vec<Vec2> = (0..ZONE_SIDES)
+        .map(|i| {
+            let a = i as f64 * std::f64::consts::TAU / ZONE_SIDES as f64;
+            Vec2::new(
+                zone.centre.x + zone.radius * a.cos(),
+                zone.centre.y + zone.radius * a.sin(),
+            )
+        })
+        .collect();
+    // The circle runs counter-clockwise: inside its edge a → b means on the left.
+    let mut poly = room.outline.clone();
+    for (k, &a) in circle.iter().enumerate() {
+        let b = circle[(k + 1) % circle.len()];
+        let side = |q: Vec2| (b - a).cross(q - a);
+        let mut out = Vec::with_capacity(poly.len() + 2);
+        for (i, &cur) in poly.iter().enumerate() {
+            let prev = poly[(i + poly.len() - 1) % poly.len()];
+            let (sc, sp) = (side(cur), side(prev));
+            if (sc >= 0.0) != (sp >= 0.0) {
+                out.push(prev + (cur - prev) * (sp / (sp - sc)));
+            }
+            if sc >= 0.0 {
+                out.push(cur);
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            break;
+        }
+    }
+    // The rim's runs of sides inside the outline, each from its first point to its last, so
+    // the dashes run on along a run (a path's dashes restart at every move).
+    let n = circle.len();
+    let inside: Vec<bool> = (0..n)
+        .map(|k| point_in_polygon(&room.outline, (circle[k] + circle[(k + 1) % n]) * 0.5))
+        .collect();
+    let mut rim: Vec<Vec<Vec2>> = Vec::new();
+    let start = (0..n).find(|&k| !inside[k]).map_or(0, |k| k + 1);
+    for k in (start..start + n).map(|k| k % n) {
+        if !inside[k] {
+            continue;
+        }
+        if k == start % n || !inside[(k + n - 1) % n] || rim.is_empty() {
+            rim.push(vec![circle[k]]);
+        }
+        rim.last_mut().expect("a run").push(circle[(k + 1) % n]);
+    }
+    (poly, rim)
 }
 
 /// The path of the executed steps, with a tick per step.
@@ -1382,13 +1446,7 @@ mod tests {
 
     #[test]
     fn finding_8_study_fitness_draws_median_and_iqr_over_seeds() {
-        use crate::study::quantile;
-        assert_eq!(quantile(&[3.0, 1.0, 2.0], 0.5), 2.0);
-        assert_eq!(quantile(&[4.0, 1.0, 2.0, 3.0], 0.5), 2.5);
-        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0, 5.0], 0.25), 2.0);
-        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0], 0.25), 1.75);
-        assert_eq!(quantile(&[7.0], 0.75), 7.0);
-        // The drawing: medians as lines, the IQR bands as closed paths, the legend saying so.
+        // (The quantiles: study.rs's tests.) The drawing: medians as lines, the IQR bands as closed paths, the legend saying so.
         let best: Vec<f64> = (0..10).map(|g| 0.5 + 0.03 * g as f64).collect();
         let mean: Vec<f64> = (0..10).map(|g| 0.1 + 0.05 * g as f64).collect();
         let panel = FitnessPanel {
