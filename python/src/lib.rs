@@ -16,7 +16,7 @@ use fuzzymotiv::evolution::{Evolution, GenerationState};
 use fuzzymotiv::fuzzy::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::trial::Trajectory;
-use fuzzymotiv_cli::checkpoint::{CHECKPOINT, Checkpoint};
+use fuzzymotiv_cli::checkpoint::{CHECKPOINT, Checkpoint, POPULATION};
 use fuzzymotiv_cli::error::{CliError, ErrorKind};
 use fuzzymotiv_cli::files::{OutState, StagedDir, check_out};
 use fuzzymotiv_cli::inputs::{
@@ -77,7 +77,7 @@ fn py_err(e: CliError) -> PyErr {
     match e.kind() {
         ErrorKind::Input => FuzzymotivError::new_err(e.to_string()),
         ErrorKind::Runtime => PyRuntimeError::new_err(e.to_string()),
-        ErrorKind::Io => Python::attach(|py| match os_error_type(py) {
+        ErrorKind::Io | ErrorKind::ClosedStdout => Python::attach(|py| match os_error_type(py) {
             Ok(t) => PyErr::from_type(t.bind(py).clone(), e.to_string()),
             Err(err) => err,
         }),
@@ -415,7 +415,8 @@ struct Cancelled;
 /// What a run returns to Python (plain Rust data, built without the GIL). A fresh run and a
 /// finished run directory read back give equal values.
 struct RunOutput {
-    /// The rows of `generations.csv`, as written there (9 decimals).
+    /// The rows of `generations.csv` (exact; 9 decimals when read back from a directory that
+    /// an older build wrote, which has no `population.json`).
     generations: Vec<GenerationRow>,
     rows: Vec<RoomRow>,
     best: Vec<(String, Vec<f64>)>,
@@ -423,25 +424,6 @@ struct RunOutput {
     /// Per room: name and the best robot's room-modelling path (x, y, heading).
     paths: Vec<(String, Vec<[f64; 3]>)>,
     hidden: usize,
-}
-
-/// A generation row's floats as `generations.csv` holds them (written with 9 decimals and
-/// read back), so a run returns the same numbers whether or not it wrote a directory, and a
-/// finished directory read back returns them too.
-fn as_written(row: GenerationRow) -> GenerationRow {
-    let w = |x: Fixed<9>| Fixed(x.to_string().parse().expect("a printed float"));
-    GenerationRow {
-        best: w(row.best),
-        mean: w(row.mean),
-        std: w(row.std),
-        min: w(row.min),
-        max: w(row.max),
-        a: w(row.a),
-        g: w(row.g),
-        l: w(row.l),
-        b: w(row.b),
-        ..row
-    }
 }
 
 fn poses(t: &Trajectory) -> Vec<[f64; 3]> {
@@ -452,10 +434,7 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
     let exp = &loaded.experiment;
     let summary = RunSummary::of(exp, &done);
     RunOutput {
-        generations: GenerationRow::all(&done.evolutions)
-            .into_iter()
-            .map(as_written)
-            .collect(),
+        generations: GenerationRow::all(&done.evolutions),
         best: done
             .evolutions
             .iter()
@@ -473,11 +452,12 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
     }
 }
 
-/// The result of the finished run in `dir` (of `loaded`'s resolved config), read back from its
-/// files: `generations.csv`, `summary.json` (the per-room table), `best_genome.json`; the
+/// The result of a finished run in `dir` that an older build wrote (no `population.json`, so
+/// not [`pipeline::read_back`]), read back from its files: `generations.csv` (9 decimals),
+/// `summary.json` (the per-room table), `best_genome.json`; the
 /// trajectories are the best robots' room-modelling runs again (the very runs the report
 /// draws: [`Finished::instance`]).
-fn read_back(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
+fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
     let exp = &loaded.experiment;
     let generations: Vec<GenerationRow> = read_csv(&dir.join("generations.csv"))?;
     let summary: RunSummary = read_json(&dir.join("summary.json"))?;
@@ -530,7 +510,10 @@ fn execute(
 ) -> Result<RunOutput, CliError> {
     let exp = &loaded.experiment;
     let done = match out {
-        Some((dir, OutState::Done)) => return read_back(loaded, dir),
+        Some((dir, OutState::Done)) if dir.join(POPULATION).is_file() => {
+            pipeline::read_back(exp, dir, &fuzzymotiv_cli::progress::Progress::hidden())?
+        }
+        Some((dir, OutState::Done)) => return read_back_files(loaded, dir),
         Some((dir, state)) => {
             let progress = fuzzymotiv_cli::progress::Progress::hidden();
             let resume = state == OutState::Unfinished;
