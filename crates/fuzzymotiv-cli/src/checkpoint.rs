@@ -120,7 +120,7 @@ impl Checkpoint {
             });
         if !ok {
             return Err(CliError::input(format!(
-                "{}: the checkpoint does not match the run's config (runs, sizes); start the run again without --resume",
+                "{}: the checkpoint does not match the run's config (runs, sizes); pass --force to discard it and start the run over",
                 path.display()
             )));
         }

@@ -6,21 +6,30 @@ use crate::error::CliError;
 use crate::note;
 
 /// Writes `contents` to `path` via a temporary file in the same directory and a rename.
+/// The temporary file is new (a unique `.tmpXXXXXX` name, created exclusively, so no other
+/// file, link or concurrent writer's file is ever written through) and is removed on failure.
 pub fn write_atomic(path: &Path, contents: impl AsRef<[u8]>) -> Result<(), CliError> {
-    let tmp = tmp_path(path);
-    if let Err(e) = std::fs::write(&tmp, contents) {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(io_err(&tmp, e));
-    }
-    std::fs::rename(&tmp, path).map_err(|e| io_err(path, e))
+    temp_with(path, contents.as_ref())?
+        .persist(path)
+        .map_err(|e| io_err(path, e.error))?;
+    Ok(())
 }
 
-/// The temporary name a file is written under before it is renamed to `path`.
-fn tmp_path(path: &Path) -> PathBuf {
-    path.with_extension(format!(
-        "{}.tmp",
-        path.extension().and_then(|e| e.to_str()).unwrap_or("")
-    ))
+/// A new temporary file beside `path` holding `bytes` (deleted when dropped unless persisted).
+fn temp_with(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, CliError> {
+    use std::io::Write;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".tmp")
+        .tempfile_in(dir)
+        .map_err(|e| io_err(path, e))?;
+    tmp.write_all(bytes)
+        .and_then(|()| tmp.flush())
+        .map_err(|e| io_err(path, e))?;
+    Ok(tmp)
 }
 
 /// An I/O failure naming the path.
@@ -69,8 +78,8 @@ impl StagedDir {
     pub fn new(dir: &Path) -> Result<Self, CliError> {
         ensure_replaceable(dir)?;
         let staging = Self::staging_path(dir);
-        if staging.exists() {
-            std::fs::remove_dir_all(&staging).map_err(|e| io_err(&staging, e))?;
+        if std::fs::symlink_metadata(&staging).is_ok() {
+            remove_ours(&staging)?;
         }
         std::fs::create_dir_all(&staging).map_err(|e| io_err(&staging, e))?;
         Ok(Self {
@@ -94,7 +103,7 @@ impl StagedDir {
     pub fn commit(self) -> Result<PathBuf, CliError> {
         ensure_replaceable(&self.dir)?;
         if self.dir.exists() {
-            std::fs::remove_dir_all(&self.dir).map_err(|e| io_err(&self.dir, e))?;
+            remove_ours(&self.dir)?;
         }
         std::fs::rename(&self.staging, &self.dir).map_err(|e| io_err(&self.dir, e))?;
         Ok(self.dir)
@@ -132,6 +141,100 @@ pub fn is_ours(dir: &Path) -> bool {
     .any(|f| dir.join(f).is_file())
 }
 
+/// The names of the files our outputs write (besides `*.svg` and `*.png` figures and `.tmp*`
+/// temporary files): anything else in a directory about to be replaced is the user's.
+const OUR_FILES: [&str; 27] = [
+    "config.resolved.toml",
+    "generations.csv",
+    "best_genome.json",
+    "population.json",
+    "recognition.csv",
+    "table.md",
+    "summary.json",
+    "report.html",
+    "checkpoint.json",
+    "job.json",
+    "DONE",
+    IDENTITY,
+    "table1.md",
+    "table1.csv",
+    "table1_seeds.csv",
+    "table2.md",
+    "table2.csv",
+    "table2_seeds.csv",
+    "claims.md",
+    "claims.csv",
+    "ablation.md",
+    "ablation.csv",
+    "plan.jsonl",
+    "sweep.toml",
+    "results.csv",
+    "aggregate.csv",
+    "aggregate.md",
+];
+
+/// The files under `dir` (recursively; a symbolic link counts as one, never followed) that none
+/// of our outputs writes.
+pub fn foreign_files(dir: &Path) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return found;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        let name = entry.file_name().to_string_lossy().into_owned();
+        match std::fs::symlink_metadata(&path) {
+            Ok(m) if m.is_dir() => found.extend(foreign_files(&path)),
+            Ok(m) if m.is_file() && is_our_file(&name) => {}
+            _ => found.push(path),
+        }
+    }
+    found
+}
+
+fn is_our_file(name: &str) -> bool {
+    OUR_FILES.contains(&name)
+        || name.ends_with(".svg")
+        || name.ends_with(".png")
+        || name.starts_with(".tmp")
+}
+
+/// Refuses, before any work, to replace a directory that holds a file of the user's (see
+/// [`foreign_files`]), even with `--force`.
+pub fn ensure_only_ours(dir: &Path) -> Result<(), CliError> {
+    if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
+        return Err(CliError::input(format!(
+            "{}: is a symbolic link, which is never replaced (not even with --force); choose \
+             another --out",
+            dir.display()
+        )));
+    }
+    let foreign = foreign_files(dir);
+    if foreign.is_empty() {
+        return Ok(());
+    }
+    let shown: Vec<String> = foreign
+        .iter()
+        .take(3)
+        .map(|p| p.display().to_string())
+        .collect();
+    Err(CliError::input(format!(
+        "{}: holds {} file(s) that fuzzymotiv did not write ({}{}), which are never deleted, not \
+         even with --force; move them elsewhere, or choose another --out",
+        dir.display(),
+        foreign.len(),
+        shown.join(", "),
+        if foreign.len() > 3 { ", …" } else { "" }
+    )))
+}
+
+/// Removes one of our directories (a run, a study, a job, a staging directory) unless it holds a
+/// file of the user's ([`ensure_only_ours`]).
+pub fn remove_ours(dir: &Path) -> Result<(), CliError> {
+    ensure_only_ours(dir)?;
+    std::fs::remove_dir_all(dir).map_err(|e| io_err(dir, e))
+}
+
 /// The file naming what a study's output directory holds (its command and every run's
 /// resolved config), written first, so that the same command finds and resumes it.
 pub const IDENTITY: &str = "identity.json";
@@ -164,6 +267,9 @@ pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, Cli
         )));
     }
     let staging = StagedDir::staging_path(dir);
+    if force && std::fs::symlink_metadata(&staging).is_ok() {
+        ensure_only_ours(&staging)?;
+    }
     if staging.exists() && !force {
         if matches(&staging, id) {
             return Ok(OutState::Unfinished);
@@ -191,6 +297,7 @@ pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, Cli
         return Ok(OutState::Done);
     }
     if force {
+        ensure_only_ours(dir)?;
         note!("note: --force: {} will be replaced", dir.display());
         return Ok(OutState::Fresh);
     }
@@ -248,6 +355,15 @@ pub fn check_files(
     option: &str,
     force: bool,
 ) -> Result<FilesState, CliError> {
+    for (k, (path, _)) in files.iter().enumerate() {
+        if files[..k].iter().any(|(p, _)| p == path) {
+            return Err(CliError::input(format!(
+                "{option}: two of the files to write would both be {}; choose another {option} \
+                 (e.g. a name ending in .html for a page)",
+                path.display()
+            )));
+        }
+    }
     let mut same = true;
     for (path, bytes) in files {
         let Ok(meta) = std::fs::symlink_metadata(path) else {
@@ -287,20 +403,15 @@ pub fn check_files(
     })
 }
 
-/// Writes a checked set of files: every one to its temporary name first, then each renamed into
-/// place, so a failure leaves no file half-written.
+/// Writes a checked set of files: every one to a new temporary file first (all of them, so a
+/// full disk fails before any file is replaced), then each renamed into place.
 pub fn write_files(files: &[(PathBuf, Vec<u8>)]) -> Result<(), CliError> {
-    let tmps: Vec<PathBuf> = files.iter().map(|(p, _)| tmp_path(p)).collect();
-    for ((_, bytes), tmp) in files.iter().zip(&tmps) {
-        if let Err(e) = std::fs::write(tmp, bytes) {
-            for t in &tmps {
-                let _ = std::fs::remove_file(t);
-            }
-            return Err(io_err(tmp, e));
-        }
-    }
-    for ((path, _), tmp) in files.iter().zip(&tmps) {
-        std::fs::rename(tmp, path).map_err(|e| io_err(path, e))?;
+    let tmps = files
+        .iter()
+        .map(|(path, bytes)| temp_with(path, bytes))
+        .collect::<Result<Vec<_>, _>>()?;
+    for ((path, _), tmp) in files.iter().zip(tmps) {
+        tmp.persist(path).map_err(|e| io_err(path, e.error))?;
     }
     Ok(())
 }

@@ -16,7 +16,8 @@ use indicatif::ProgressBar;
 use crate::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
 use crate::error::CliError;
 use crate::files::{
-    StagedDir, ensure_replaceable, io_err, matches, refuse_current_dir, write_atomic,
+    StagedDir, ensure_replaceable, foreign_files, io_err, matches, refuse_current_dir, remove_ours,
+    write_atomic,
 };
 use crate::inputs::{Loaded, resolved_toml};
 use crate::note;
@@ -187,7 +188,14 @@ impl<'a> Session<'a> {
     ) -> Result<Session<'a>, CliError> {
         let runs = exp.runs();
         let checkpoint = if resume {
-            let cp = Checkpoint::load(&staged.path(CHECKPOINT), &runs, exp)?;
+            // Killed after the last checkpoint became population.json: the evolution is done.
+            let (cp, last) = (staged.path(CHECKPOINT), staged.path(POPULATION));
+            let path = if !cp.is_file() && last.is_file() {
+                last
+            } else {
+                cp
+            };
+            let cp = Checkpoint::load(&path, &runs, exp)?;
             progress.note(&cp.resume_note(out, exp.ga().generations));
             cp
         } else {
@@ -342,10 +350,12 @@ pub fn run_jobs(
 ) -> Result<(), CliError> {
     open_sweep_dir(sweep, out, force)?;
     let terminal = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let jobs_dir = out.join("jobs");
-    std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
+    // The plan first: it is what makes the directory a sweep for the tasks that start with this.
+    std::fs::create_dir_all(out).map_err(|e| io_err(out, e))?;
     write_atomic(&out.join("plan.jsonl"), sweep.plan_jsonl())?;
     write_atomic(&out.join("sweep.toml"), text)?;
+    let jobs_dir = out.join("jobs");
+    std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
     let bar = if terminal && !quiet {
         ProgressBar::new(selected.len() as u64)
     } else {
@@ -415,10 +425,10 @@ fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError
     }
     let plan = out.join("plan.jsonl");
     if !plan.is_file() {
-        ensure_replaceable(out)?;
-        if out.read_dir().is_ok_and(|mut d| d.next().is_none()) {
+        if starting_sweep(out) {
             return Ok(());
         }
+        ensure_replaceable(out)?;
         if !force {
             return Err(CliError::input(format!(
                 "--out {}: holds another fuzzymotiv output (a run or a study), not a sweep; it is \
@@ -427,9 +437,20 @@ fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError
             )));
         }
         note!("note: --force: {} will be replaced", out.display());
-        return std::fs::remove_dir_all(out).map_err(|e| io_err(out, e));
+        return remove_ours(out);
     }
     let old = Job::read_plan(&plan)?;
+    let conflict = plan_conflict(&old, &sweep.jobs);
+    let same_plan = conflict.is_none() && old.len() == sweep.jobs.len();
+    if force && same_plan {
+        // Safe in an array script whose every task passes --force: nothing is lost.
+        note!(
+            "note: --force: the sweep in {} has this very plan; its finished jobs are kept \
+             (remove the directory yourself to run them again)",
+            out.display()
+        );
+        return Ok(());
+    }
     if force {
         note!(
             "note: --force: the sweep in {} will be replaced",
@@ -437,7 +458,7 @@ fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError
         );
         return remove_sweep(out, &old);
     }
-    match plan_conflict(&old, &sweep.jobs) {
+    match conflict {
         None => Ok(()),
         Some(why) => Err(CliError::input(format!(
             "--out {}: holds a sweep of another plan ({why}); its results are kept. Choose \
@@ -447,6 +468,18 @@ fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError
             out.join("sweep.toml").display()
         ))),
     }
+}
+
+/// Whether `out` is a sweep directory another task is just starting (no plan yet; only a `jobs/`
+/// folder of job folders and temporary files), which this task joins.
+fn starting_sweep(out: &Path) -> bool {
+    let Ok(entries) = out.read_dir() else {
+        return false;
+    };
+    entries.flatten().all(|e| {
+        let name = e.file_name().to_string_lossy().into_owned();
+        name.starts_with(".tmp") || (name == "jobs" && foreign_files(&e.path()).is_empty())
+    })
 }
 
 /// Why the plan `new` cannot take over a sweep directory of the plan `old`, if it cannot: it
@@ -475,11 +508,21 @@ fn plan_conflict(old: &[Job], new: &[Job]) -> Option<String> {
 /// anything else in it stays.
 fn remove_sweep(out: &Path, jobs: &[Job]) -> Result<(), CliError> {
     let jobs_dir = out.join("jobs");
+    let plan = out.join("plan.jsonl");
+    if let Some(bad) = jobs.iter().find(|j| !is_job_id(&j.id)) {
+        return Err(CliError::input(format!(
+            "{}: job {} has the id `{}`, which is not 16 hexadecimal digits: not a plan that \
+             fuzzymotiv wrote, so nothing is removed",
+            plan.display(),
+            bad.index,
+            bad.id
+        )));
+    }
     for job in jobs {
         let dir = jobs_dir.join(&job.id);
         for d in [StagedDir::staging_path(&dir), dir] {
             if d.is_dir() {
-                std::fs::remove_dir_all(&d).map_err(|e| io_err(&d, e))?;
+                remove_ours(&d)?;
             }
         }
     }
@@ -495,17 +538,24 @@ fn remove_sweep(out: &Path, jobs: &[Job]) -> Result<(), CliError> {
     Ok(())
 }
 
+/// A job id as plans hold them: 16 lowercase hexadecimal digits (never a path).
+fn is_job_id(id: &str) -> bool {
+    id.len() == 16
+        && id
+            .bytes()
+            .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
+}
+
 /// Runs one job of a sweep into `dir` (resuming it if a checkpoint is there) and marks it
 /// `DONE`; with `line` (e.g. `job ID (3/8 here)`), prints plain progress lines under that name.
 fn run_job(sweep: &Sweep, job: &Job, dir: &Path, line: Option<String>) -> Result<(), CliError> {
     let loaded = sweep.load_job(job)?;
-    let resume = StagedDir::staging_path(dir).join(CHECKPOINT).is_file();
     let progress = match line {
         Some(line) => Progress::new(&loaded.experiment, 1, false)
             .named(&format!("{line} {} seed {}", job.key, job.seed)),
         None => Progress::hidden(),
     };
-    execute(&loaded, dir, &progress, resume, false)?;
+    execute_or_resume(&loaded, dir, &progress, false)?;
     write_atomic(&dir.join("job.json"), to_json(job))?;
     write_atomic(&dir.join("DONE"), "")
 }

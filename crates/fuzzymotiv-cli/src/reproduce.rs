@@ -333,10 +333,14 @@ fn open_out(
     let runs = run_configs(variants);
     let id = identity(args, &runs);
     // A study written before identity.json existed is recognised by its runs' configs.
-    let legacy = !out.join(IDENTITY).exists() && matches(out, &runs);
-    let state = match check_out(out, &id, args.output.force)? {
-        OutState::Fresh if legacy && !args.output.force => OutState::Done,
-        state => state,
+    let legacy = !args.output.force
+        && !out.join(IDENTITY).exists()
+        && out.join("summary.json").is_file()
+        && matches(out, &runs);
+    let state = if legacy {
+        OutState::Done
+    } else {
+        check_out(out, &id, args.output.force)?
     };
     match state {
         OutState::Done => {
@@ -545,6 +549,9 @@ fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
         args.output.force,
     )?;
     merge_dir(&out)?;
+    if args.png {
+        add_pngs(&out)?;
+    }
     note!(
         "orientation study done in {:.1} s",
         start.elapsed().as_secs_f64()

@@ -61,15 +61,30 @@ fn strip_wall(v: &mut serde_json::Value) {
 
 /// A small study's command line into `out`.
 fn study(out: &Path) -> Fm {
-    Fm::new(["reproduce", "--quick", "--seeds", "2", "--quiet"])
-        .out(out)
-        .sets(&["ga.population=10", "ga.generations=4", "trial.steps=150"])
+    // One thread: the runs go one after another, so the kill points below fall in the first
+    // run, between runs and in the last one whatever the machine.
+    Fm::new([
+        "reproduce",
+        "--quick",
+        "--seeds",
+        "2",
+        "--quiet",
+        "--threads",
+        "1",
+    ])
+    .out(out)
+    .sets(&["ga.population=10", "ga.generations=4", "trial.steps=150"])
 }
 
 /// The command, aborted after `n` checkpointed generations.
 fn aborted(cmd: Fm, n: usize) -> Output {
+    use std::os::unix::process::ExitStatusExt;
     let o = cmd.env("FUZZYMOTIV_TEST_ABORT_AFTER", &n.to_string()).run();
-    assert!(!o.status.success(), "not aborted after {n} generations");
+    assert_eq!(
+        o.status.signal(),
+        Some(6),
+        "not aborted after {n} generations"
+    );
     o
 }
 
@@ -104,8 +119,9 @@ fn finding_3_reproduce_resumes_with_the_same_command() {
     let reference = dir.path().join("reference");
     study(&reference).ok();
     let out = dir.path().join("killed");
-    // 2 settings × 2 seeds × 4 generations = 16 generations in all: kill inside the first run,
-    // between runs, and in the last one.
+    // 2 settings × 2 seeds × 4 generations = 16 generations, run one after another: the kills
+    // fall inside the first run, inside the third (the first two then finished: read back) and
+    // inside the last.
     for n in [3, 6, 5] {
         aborted(study(&out), n);
         assert!(!out.exists(), "a killed study is not in place");
@@ -552,4 +568,133 @@ fn finding_8_png_on_a_finished_output_adds_only_the_pngs() {
     let names: Vec<String> = added.iter().map(|(p, _)| p.display().to_string()).collect();
     assert_eq!(names, ["fitness.png", "terms.png", "trajectories.png"]);
     assert!(before.iter().all(|f| after.contains(f)), "a file changed");
+}
+
+/// Review of the guard: a file named like a temporary file, or a link there, is never written
+/// through; a directory holding a file of the user's beside our `summary.json` is not deleted by
+/// `--force`; nor is a `DIR.partial` of the user's; a plan whose ids are paths removes nothing.
+#[test]
+fn force_never_deletes_or_writes_through_a_file_of_the_users() {
+    let dir = tempfile::tempdir().unwrap();
+    let keep = dir.path().join("keep.txt");
+    std::fs::write(&keep, "important").unwrap();
+    for name in ["hc.fll.tmp", ".tmp", "hc.tmp"] {
+        let _ = std::os::unix::fs::symlink(&keep, dir.path().join(name));
+    }
+    let fll = dir.path().join("hc.fll");
+    Fm::new(["fuzzy", "--motivations", ".8,.1,0,.1", "--export-fll"])
+        .arg(&fll)
+        .ok();
+    assert_eq!(std::fs::read_to_string(&keep).unwrap(), "important");
+    assert!(std::fs::symlink_metadata(&fll).unwrap().is_file());
+
+    let cfg = repo().join("configs/tiny.toml");
+    let proj = dir.path().join("proj");
+    std::fs::create_dir(&proj).unwrap();
+    std::fs::write(proj.join("summary.json"), "{}").unwrap();
+    std::fs::write(proj.join("thesis.tex"), "mine").unwrap();
+    let o = Fm::new(["run", cfg.to_str().unwrap(), "--force"])
+        .out(&proj)
+        .sets(&SMALL)
+        .run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("thesis.tex"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(proj.join("thesis.tex")).unwrap(),
+        "mine"
+    );
+
+    let res = dir.path().join("res");
+    let partial = dir.path().join("res.partial");
+    std::fs::create_dir(&partial).unwrap();
+    std::fs::write(partial.join("notes.txt"), "mine").unwrap();
+    let o = Fm::new(["run", cfg.to_str().unwrap(), "--force"])
+        .out(&res)
+        .sets(&SMALL)
+        .run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(partial.join("notes.txt")).unwrap(),
+        "mine"
+    );
+
+    let sweep = dir.path().join("sweep");
+    std::fs::create_dir_all(sweep.join("jobs")).unwrap();
+    std::fs::write(
+        sweep.join("plan.jsonl"),
+        r#"{"index":0,"id":"../../keep","key":"k","setting":"s","replicate":0,"seed":1,"overrides":[]}"#,
+    )
+    .unwrap();
+    let o = Fm::new([
+        "sweep",
+        repo().join("configs/sweep-small.toml").to_str().unwrap(),
+    ])
+    .out(&sweep)
+    .arg("--force")
+    .run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("16 hexadecimal digits"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(keep.is_file());
+}
+
+/// Review of the guard: sweep array tasks started at the same moment on a new `--out` all run
+/// (none takes the half-made directory of another for a foreign one), and together they give
+/// the results of the whole sweep.
+#[test]
+fn array_tasks_started_together_share_a_new_sweep_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo().join("configs/sweep-small.toml"))
+        .unwrap()
+        .replace("population = 40", "population = 4")
+        .replace("generations = 40", "generations = 1")
+        .replace("replicates = 3", "replicates = 2");
+    let file = dir.path().join("s.toml");
+    std::fs::write(&file, text).unwrap();
+    let out = dir.path().join("out");
+    let children: Vec<_> = (0..6)
+        .map(|i| {
+            bin()
+                .args(["sweep", file.to_str().unwrap(), "--quiet", "--threads", "1"])
+                .arg("--out")
+                .arg(&out)
+                .args(["--index", &i.to_string()])
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    for c in children {
+        let o = c.wait_with_output().unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let done = std::fs::read_dir(out.join("jobs"))
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().join("DONE").is_file())
+        .count();
+    assert_eq!(done, 6);
+}
+
+/// Review of the guard: `replay --out` whose name is that of one of the replay's own files is
+/// refused before anything is written.
+#[test]
+fn replay_out_named_like_its_own_files_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let run_dir = dir.path().join("run");
+    Fm::new(["run", cfg.to_str().unwrap()])
+        .out(&run_dir)
+        .sets(&SMALL)
+        .ok();
+    for name in ["r.json", "r.svg"] {
+        let before = tree(dir.path());
+        let o = Fm::new(["replay", run_dir.to_str().unwrap(), "--room", "H", "--out"])
+            .arg(dir.path().join(name))
+            .run();
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
+        assert_eq!(tree(dir.path()), before, "{name}");
+    }
 }
