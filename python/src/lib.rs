@@ -18,7 +18,7 @@ use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::trial::Trajectory;
 use fuzzymotiv_cli::checkpoint::{CHECKPOINT, Checkpoint, POPULATION};
 use fuzzymotiv_cli::error::{CliError, ErrorKind};
-use fuzzymotiv_cli::files::{OutState, StagedDir, check_out};
+use fuzzymotiv_cli::files::{OutState, PYTHON, StagedDir, check_out_as};
 use fuzzymotiv_cli::inputs::{
     Loaded, load_config, load_room_file, parse_seed, resolve, resolved_toml,
 };
@@ -568,7 +568,7 @@ fn run<'py>(
                 "config.resolved.toml".to_string(),
                 resolved_toml(&loaded.raw),
             )];
-            let state = check_out(&dir, &id, force).map_err(py_err)?;
+            let state = check_out_as(&dir, &id, force, &PYTHON).map_err(py_err)?;
             Some((dir, state))
         }
     };

@@ -115,6 +115,13 @@ def test_finding_1_cli_run_directory_is_read_back(cli, tiny, uninterrupted, tmp_
     same_result(again, first, wall_time=False)
 
 
+def python_spelling(message):
+    """A guard message of Python's, in the CLI's words (`out` → `--out`, `force=True` →
+    `--force`)."""
+    text = str(message).replace("force=True", "--force").replace("another out", "another --out")
+    return "--" + text if text.startswith("out ") else text
+
+
 def test_finding_1_another_run_is_kept_unless_force(cli, tiny, tmp_path):
     out = tmp_path / "x"
     run_cli(cli, "run", tiny, "--out", out, *sets(OTHER))
@@ -124,13 +131,20 @@ def test_finding_1_another_run_is_kept_unless_force(cli, tiny, tmp_path):
         fm.run(tiny, SMALL, out=out)
     assert "holds the results of a different run" in str(e.value)
     assert stamps(out) == before
-    # The CLI's message, word for word.
+    # The CLI's message, word for word, but for Python's spelling of the options.
     p = run_cli(cli, "run", tiny, "--out", out, *sets(SMALL), check=False)
-    assert p.returncode == 2 and p.stderr.strip() == f"error: {e.value}"
-    # force=True replaces them.
+    assert p.returncode == 2 and p.stderr.strip() == f"error: {python_spelling(e.value)}"
+    assert "force=True" in str(e.value) and "--force" not in str(e.value)
+    # force=True never deletes a file fuzzymotiv did not write...
+    with pytest.raises(fm.FuzzymotivError) as e:
+        fm.run(tiny, SMALL, out=out, force=True)
+    assert "notes.txt" in str(e.value)
+    assert stamps(out) == before
+    # ... and replaces the run once that file is gone.
+    (out / "notes.txt").unlink()
     res = fm.run(tiny, SMALL, out=out, force=True)
     assert json.loads((out / "summary.json").read_text())["generations"] == 4
-    assert res.summary["generations"] == 4 and not (out / "notes.txt").exists()
+    assert res.summary["generations"] == 4
 
 
 def test_finding_1_another_kind_of_output_is_kept_unless_force(tiny, tmp_path):
@@ -204,7 +218,7 @@ def test_finding_1_unfinished_run_of_another_config_is_kept_unless_force(cli, ti
     assert "holds an unfinished output of another run" in str(e.value)
     assert (tmp_path / "run.partial" / "checkpoint.json").read_bytes() == checkpoint
     p = run_cli(cli, "run", tiny, "--out", out, *sets(SMALL), check=False)
-    assert p.returncode == 2 and p.stderr.strip() == f"error: {e.value}"
+    assert p.returncode == 2 and p.stderr.strip() == f"error: {python_spelling(e.value)}"
     res = fm.run(tiny, SMALL, out=out, force=True)
     assert res.summary["generations"] == 4 and not (tmp_path / "run.partial").exists()
 

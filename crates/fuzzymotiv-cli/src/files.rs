@@ -257,8 +257,66 @@ pub type Identity = [(String, String)];
 /// Checks `--out DIR` before any work: it must not be the current directory (or hold it), nor a
 /// file; an earlier output of another run (another resolved config, or another kind of output)
 /// and an unfinished one (a checkpoint) are replaced only with `force`; anything that is not a
-/// fuzzymotiv output is never replaced.
+/// fuzzymotiv output is never replaced. Messages name the CLI's options.
 pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, CliError> {
+    check_out_as(dir, id, force, &CLI)
+}
+
+/// How a front names the output options in messages.
+#[derive(Debug, Clone, Copy)]
+pub struct Spelling {
+    /// The output directory option, e.g. `--out`.
+    pub out: &'static str,
+    /// The replace option, e.g. `--force`.
+    pub force: &'static str,
+}
+
+/// The command line's `--out` and `--force`.
+pub const CLI: Spelling = Spelling {
+    out: "--out",
+    force: "--force",
+};
+
+/// Python's `out` and `force=True` (`fm.run(..., out=DIR, force=True)`).
+pub const PYTHON: Spelling = Spelling {
+    out: "out",
+    force: "force=True",
+};
+
+impl Spelling {
+    /// A guard message (written with the CLI's options) in this front's words.
+    fn respell(&self, e: CliError) -> CliError {
+        let text = e
+            .to_string()
+            .replace("--force", self.force)
+            .replace("--out", self.out);
+        CliError::input(text)
+    }
+}
+
+/// [`check_out`], with messages (and the `--force` note) naming the options as `spelling` does.
+pub fn check_out_as(
+    dir: &Path,
+    id: &Identity,
+    force: bool,
+    spelling: &Spelling,
+) -> Result<OutState, CliError> {
+    let (state, replacing) = out_state(dir, id, force).map_err(|e| match e.kind() {
+        crate::error::ErrorKind::Input => spelling.respell(e),
+        _ => e,
+    })?;
+    if replacing {
+        note!(
+            "note: {}: {} will be replaced",
+            spelling.force,
+            dir.display()
+        );
+    }
+    Ok(state)
+}
+
+/// The state of `dir` for [`check_out`], and whether `--force` replaces something there.
+fn out_state(dir: &Path, id: &Identity, force: bool) -> Result<(OutState, bool), CliError> {
     refuse_current_dir(dir)?;
     if std::fs::symlink_metadata(dir).is_ok_and(|m| !m.is_dir()) {
         return Err(CliError::input(format!(
@@ -272,7 +330,7 @@ pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, Cli
     }
     if staging.exists() && !force {
         if matches(&staging, id) {
-            return Ok(OutState::Unfinished);
+            return Ok((OutState::Unfinished, false));
         }
         let how = if staging.join("config.resolved.toml").is_file() {
             format!(
@@ -290,16 +348,15 @@ pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, Cli
         )));
     }
     if !dir.exists() || is_empty_dir(dir) {
-        return Ok(OutState::Fresh);
+        return Ok((OutState::Fresh, false));
     }
     ensure_replaceable(dir)?;
     if matches(dir, id) && dir.join("summary.json").is_file() && !force {
-        return Ok(OutState::Done);
+        return Ok((OutState::Done, false));
     }
     if force {
         ensure_only_ours(dir)?;
-        note!("note: --force: {} will be replaced", dir.display());
-        return Ok(OutState::Fresh);
+        return Ok((OutState::Fresh, true));
     }
     Err(CliError::input(format!(
         "--out {}: holds the results of a different run (another config, seed, size or \

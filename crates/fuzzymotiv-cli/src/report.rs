@@ -202,13 +202,15 @@ pub fn run_page(loaded: &Loaded, done: &Finished) -> String {
     page.finish()
 }
 
-/// `report.html` of `reproduce`: both settings, with the paper's values beside ours.
+/// `report.html` of `reproduce`: both settings, with the paper's values beside ours; `fitness`
+/// is the study's fitness figure (medians and inter-quartile bands over seeds, `fitness.svg`).
 pub fn reproduce_page(
     sections: &[Section<'_>],
     provenance: &str,
     overrides: &[String],
     wall: f64,
     claims: &str,
+    fitness: &str,
 ) -> String {
     let mut page = Page::new("fuzzymotiv — the paper's study reproduced");
     let _ = writeln!(
@@ -235,20 +237,11 @@ pub fn reproduce_page(
     }
     page.push("</nav>\n");
     // Overview: both settings' fitness curves side by side, then the headline numbers.
-    let panels: Vec<_> = sections
-        .iter()
-        .map(|s| {
-            (
-                format!("{} (C,H,O,E) = {}", s.id, xs(&s.loaded.experiment)),
-                s.done.evolutions[0].history.clone(),
-            )
-        })
-        .collect();
     page.push("<h2 id=\"overview\">Overview</h2>\n");
     figure(
         &mut page,
-        &fitness_svg(&panels),
-        "Fitness evolution of both settings (on a multi-seed study, each setting's median seed): best F (red) and mean F (blue) of the population in every generation; the shaded band spans the population's minimum to maximum F.",
+        fitness,
+        "Fitness evolution of both settings over all seeds: in every generation, the median over seeds of the population's best F (red) and of its mean F (blue), each with its inter-quartile band (25th to 75th percentile over seeds); with one seed, that seed's curves.",
     );
     overview_table(&mut page, sections);
     page.push(claims);

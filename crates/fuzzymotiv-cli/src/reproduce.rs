@@ -404,11 +404,8 @@ fn write_study(
         }
         panels.push(write_setting_figure(args, dir, study)?);
     }
-    write_figure_at(
-        &dir.join("fitness.svg"),
-        &fitness_panels_svg(&panels),
-        args.png,
-    )?;
+    let fitness = fitness_panels_svg(&panels);
+    write_figure_at(&dir.join("fitness.svg"), &fitness, args.png)?;
     let claims = claims(studies);
     let (md, csv) = claims_table(&claims, &provenance);
     write_atomic(&dir.join("claims.md"), &md)?;
@@ -416,7 +413,7 @@ fn write_study(
     let wall_seconds = start.elapsed().as_secs_f64();
     write_atomic(
         &dir.join("report.html"),
-        page(args, studies, &provenance, &claims, wall_seconds),
+        page(args, studies, &provenance, &claims, wall_seconds, &fitness),
     )?;
     let summary = StudySummary {
         program: PROGRAM.into(),
@@ -471,6 +468,7 @@ fn page(
     provenance: &Provenance,
     claims: &[ClaimRecord],
     wall_seconds: f64,
+    fitness: &str,
 ) -> String {
     let spreads: Vec<String> = studies.iter().map(spread_html).collect();
     let sections: Vec<Section<'_>> = studies
@@ -499,6 +497,7 @@ fn page(
         &args.sets,
         wall_seconds,
         &claims_html(claims),
+        fitness,
     )
 }
 
