@@ -1385,15 +1385,20 @@ mod tests {
                 i32::from(c.blue()) - i32::from(c.red()) > 8
             };
             let zone = room.home_zone;
+            // 36 points on a circle of `f` times the zone's radius around its centre.
+            let ring = |f: f64| {
+                (0..36).map(move |k| {
+                    let a = k as f64 * std::f64::consts::TAU / 36.0;
+                    let r = f * zone.radius;
+                    fuzzymotiv::geom::Vec2::new(
+                        zone.centre.x + r * a.cos(),
+                        zone.centre.y + r * a.sin(),
+                    )
+                })
+            };
             // Points on a ring inside the zone's rim, clear of walls, home marker and the
             // zone's dashed edge.
-            for k in 0..36 {
-                let a = k as f64 * std::f64::consts::TAU / 36.0;
-                let r = 0.75 * zone.radius;
-                let p = fuzzymotiv::geom::Vec2::new(
-                    zone.centre.x + r * a.cos(),
-                    zone.centre.y + r * a.sin(),
-                );
+            for p in ring(0.75) {
                 let clear = room.contains(p)
                     && fuzzymotiv::geom::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)
                     && p.dist(room.home.position()) > 40.0;
@@ -1408,13 +1413,7 @@ mod tests {
                 }
             }
             // Inside the disc but outside the room (beyond a wall): not blue.
-            for k in 0..36 {
-                let a = k as f64 * std::f64::consts::TAU / 36.0;
-                let r = 0.9 * zone.radius;
-                let p = fuzzymotiv::geom::Vec2::new(
-                    zone.centre.x + r * a.cos(),
-                    zone.centre.y + r * a.sin(),
-                );
+            for p in ring(0.9) {
                 let (plo, phi) = room.bounds();
                 let beyond = !room.contains(p)
                     && fuzzymotiv::geom::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)

@@ -59,6 +59,24 @@ fn strip_wall(v: &mut serde_json::Value) {
     }
 }
 
+/// `configs/tiny.toml` run with the `SMALL` sizes into `out`.
+fn tiny_run(out: &Path) {
+    let cfg = repo().join("configs/tiny.toml");
+    Fm::new(["run", cfg.to_str().unwrap()])
+        .out(out)
+        .sets(&SMALL)
+        .ok();
+}
+
+/// `configs/sweep-small.toml` with another GA size and number of replicates.
+fn small_sweep(population: usize, generations: usize, replicates: usize) -> String {
+    std::fs::read_to_string(repo().join("configs/sweep-small.toml"))
+        .unwrap()
+        .replace("population = 40", &format!("population = {population}"))
+        .replace("generations = 40", &format!("generations = {generations}"))
+        .replace("replicates = 3", &format!("replicates = {replicates}"))
+}
+
 /// A small study's command line into `out`.
 fn study(out: &Path) -> Fm {
     // One thread: the runs go one after another, so the kill points below fall in the first
@@ -189,11 +207,7 @@ fn finding_3_ablation_resumes_with_the_same_command() {
 #[test]
 fn finding_4_sweep_out_is_protected() {
     let dir = tempfile::tempdir().unwrap();
-    let base = std::fs::read_to_string(repo().join("configs/sweep-small.toml"))
-        .unwrap()
-        .replace("population = 40", "population = 6")
-        .replace("generations = 40", "generations = 2")
-        .replace("replicates = 3", "replicates = 1");
+    let base = small_sweep(6, 2, 1);
     let write = |name: &str, text: &str| {
         let p = dir.path().join(name);
         std::fs::write(&p, text).unwrap();
@@ -227,11 +241,7 @@ fn finding_4_sweep_out_is_protected() {
     }
     // A run directory: refused without --force.
     let run_dir = dir.path().join("run");
-    let cfg = repo().join("configs/tiny.toml");
-    Fm::new(["run", cfg.to_str().unwrap()])
-        .out(&run_dir)
-        .sets(&SMALL)
-        .ok();
+    tiny_run(&run_dir);
     let before = tree(&run_dir);
     let o = go(&one, &run_dir, &[]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
@@ -284,12 +294,8 @@ fn finding_4_sweep_out_is_protected() {
 #[test]
 fn finding_5_replay_never_overwrites_without_force() {
     let dir = tempfile::tempdir().unwrap();
-    let cfg = repo().join("configs/tiny.toml");
     let run_dir = dir.path().join("run");
-    Fm::new(["run", cfg.to_str().unwrap()])
-        .out(&run_dir)
-        .sets(&SMALL)
-        .ok();
+    tiny_run(&run_dir);
     let out = dir.path().join("rp");
     let page = out.join("replay.html");
     let replay = |extra: &[&str]| {
@@ -450,16 +456,8 @@ fn printing_commands(dir: &Path) -> Vec<Vec<String>> {
 
 /// A finished run and sweep in `dir` for [`printing_commands`].
 fn prepare(dir: &Path) {
-    let cfg = repo().join("configs/tiny.toml");
-    Fm::new(["run", cfg.to_str().unwrap()])
-        .out(&dir.join("run"))
-        .sets(&SMALL)
-        .ok();
-    let sweep = std::fs::read_to_string(repo().join("configs/sweep-small.toml"))
-        .unwrap()
-        .replace("population = 40", "population = 4")
-        .replace("generations = 40", "generations = 1")
-        .replace("replicates = 3", "replicates = 1");
+    tiny_run(&dir.join("run"));
+    let sweep = small_sweep(4, 1, 1);
     let file = dir.join("sweep.toml");
     std::fs::write(&file, sweep).unwrap();
     Fm::new(["sweep", file.to_str().unwrap(), "--quiet"])
@@ -647,11 +645,7 @@ fn force_never_deletes_or_writes_through_a_file_of_the_users() {
 #[test]
 fn array_tasks_started_together_share_a_new_sweep_directory() {
     let dir = tempfile::tempdir().unwrap();
-    let text = std::fs::read_to_string(repo().join("configs/sweep-small.toml"))
-        .unwrap()
-        .replace("population = 40", "population = 4")
-        .replace("generations = 40", "generations = 1")
-        .replace("replicates = 3", "replicates = 2");
+    let text = small_sweep(4, 1, 2);
     let file = dir.path().join("s.toml");
     std::fs::write(&file, text).unwrap();
     let out = dir.path().join("out");
@@ -683,12 +677,8 @@ fn array_tasks_started_together_share_a_new_sweep_directory() {
 #[test]
 fn replay_out_named_like_its_own_files_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let cfg = repo().join("configs/tiny.toml");
     let run_dir = dir.path().join("run");
-    Fm::new(["run", cfg.to_str().unwrap()])
-        .out(&run_dir)
-        .sets(&SMALL)
-        .ok();
+    tiny_run(&run_dir);
     for name in ["r.json", "r.svg"] {
         let before = tree(dir.path());
         let o = Fm::new(["replay", run_dir.to_str().unwrap(), "--room", "H", "--out"])
