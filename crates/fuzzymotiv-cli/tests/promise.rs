@@ -509,6 +509,27 @@ fn finding_6_full_stdout_is_a_one_line_error() {
             "--export-fll".into(),
             "-".into(),
         ],
+        [
+            "fuzzy",
+            "--motivations",
+            ".8,.1,0,.1",
+            "--fitness",
+            "1,.25,0,0",
+            "--explain",
+        ]
+        .map(String::from)
+        .to_vec(),
+        [
+            "bench",
+            "--steps",
+            "50",
+            "--repeat",
+            "1",
+            "--population",
+            "4",
+        ]
+        .map(String::from)
+        .to_vec(),
     ] {
         let out = dir.path().join("out.txt");
         let o = Command::new("sh")
