@@ -20,7 +20,7 @@ use fuzzymotiv_cli::checkpoint::{CHECKPOINT, Checkpoint, POPULATION};
 use fuzzymotiv_cli::error::{CliError, ErrorKind};
 use fuzzymotiv_cli::files::{OutState, PYTHON, StagedDir, check_out_as};
 use fuzzymotiv_cli::inputs::{
-    Loaded, load_config, load_room_file, parse_seed, resolve, resolved_toml,
+    Loaded, load_config, load_room_file, parse_seed, resolve, run_identity,
 };
 use fuzzymotiv_cli::pipeline;
 use fuzzymotiv_cli::records::{
@@ -563,11 +563,8 @@ fn run<'py>(
     let out = match out {
         None => None,
         Some(dir) => {
-            // The identity of a run: its resolved config, as `fuzzymotiv run` checks it.
-            let id = [(
-                "config.resolved.toml".to_string(),
-                resolved_toml(&loaded.raw),
-            )];
+            // The identity of a run, as `fuzzymotiv run` checks it.
+            let id = run_identity(&loaded.raw);
             let state = check_out_as(&dir, &id, force, &PYTHON).map_err(py_err)?;
             Some((dir, state))
         }

@@ -138,6 +138,12 @@ pub fn resolved_toml(raw: &RawConfig) -> String {
     )
 }
 
+/// What makes an output directory "the same run": its `config.resolved.toml` holds exactly
+/// [`resolved_toml`] of the config (the identity [`crate::files::check_out`] compares).
+pub fn run_identity(raw: &RawConfig) -> Vec<(String, String)> {
+    vec![("config.resolved.toml".to_string(), resolved_toml(raw))]
+}
+
 /// A room to replay in `loaded`'s setting, as a config entry: a room of the config, a built-in
 /// room, or a room file (made absolute). `option` names the choice in the error (`--room`).
 pub fn room_entry(option: &str, want: &str, loaded: &Loaded) -> Result<String, CliError> {

@@ -19,7 +19,7 @@ use crate::files::{
     StagedDir, ensure_replaceable, foreign_files, io_err, matches, refuse_current_dir, remove_ours,
     write_atomic,
 };
-use crate::inputs::{Loaded, resolved_toml};
+use crate::inputs::{Loaded, resolved_toml, run_identity};
 use crate::note;
 use crate::png::{add_missing_pngs, write_figure};
 use crate::progress::Progress;
@@ -121,10 +121,7 @@ pub fn execute_or_resume(
     progress: &Progress,
     png: bool,
 ) -> Result<Finished, CliError> {
-    let id = [(
-        "config.resolved.toml".to_string(),
-        resolved_toml(&loaded.raw),
-    )];
+    let id = run_identity(&loaded.raw);
     if matches(out, &id) && out.join("summary.json").is_file() && out.join(POPULATION).is_file() {
         let done = read_back(&loaded.experiment, out, progress)?;
         if png {

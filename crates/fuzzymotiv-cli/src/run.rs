@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use crate::args::OutputArgs;
 use crate::error::CliError;
 use crate::files::{OutState, StagedDir, check_out};
-use crate::inputs::{Loaded, load_config, resolved_toml};
+use crate::inputs::{Loaded, load_config, run_identity};
 use crate::note;
 use crate::pipeline::{execute, start_line};
 use crate::png::add_pngs;
@@ -118,11 +118,7 @@ fn config_target(config: &Path, args: &RunArgs) -> Result<Target, CliError> {
         .out
         .clone()
         .unwrap_or_else(|| Path::new("runs").join(&loaded.raw.name));
-    let id = [(
-        "config.resolved.toml".to_string(),
-        resolved_toml(&loaded.raw),
-    )];
-    let resume = match check_out(&out, &id, args.output.force)? {
+    let resume = match check_out(&out, &run_identity(&loaded.raw), args.output.force)? {
         OutState::Done => {
             note!(
                 "{} already holds this run, finished (same resolved config); nothing to do. --force runs it again",
