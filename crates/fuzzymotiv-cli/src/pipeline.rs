@@ -104,7 +104,7 @@ pub fn execute_with(
     staged.write("generations.csv", to_csv(&GenerationRow::all(&evolutions)))?;
     let aem = model_rooms(exp, &evolutions)?;
     let done = Finished::new(exp, evolutions, aem, session.wall_seconds());
-    write_run(&staged, loaded, &done, png)?;
+    write_run(&staged, loaded, &done, png, &session.checkpoint)?;
     staged.commit()?;
     Ok(done)
 }
@@ -277,6 +277,7 @@ fn write_run(
     loaded: &Loaded,
     done: &Finished,
     png: bool,
+    last: &Checkpoint,
 ) -> Result<(), CliError> {
     let exp = &loaded.experiment;
     staged.write(
@@ -290,13 +291,19 @@ fn write_run(
     )?;
     write_run_figures(staged, exp, done, png)?;
     staged.write("summary.json", to_json(&RunSummary::of(exp, done)))?;
-    // The last checkpoint holds the final population: kept as `population.json`, without the
-    // wall time (which is in summary.json), so that it is the same bytes for the same run.
+    // The last checkpoint (in memory: the file may already be gone, when a run killed after
+    // this step resumes from population.json) holds the final population: kept as
+    // `population.json`, without the wall time (which is in summary.json), so that it is the
+    // same bytes for the same run.
+    Checkpoint {
+        wall_seconds: 0.0,
+        ..last.clone()
+    }
+    .save(&staged.path(POPULATION))?;
     let checkpoint = staged.path(CHECKPOINT);
-    let mut last: Checkpoint = read_json(&checkpoint)?;
-    last.wall_seconds = 0.0;
-    last.save(&staged.path(POPULATION))?;
-    std::fs::remove_file(&checkpoint).map_err(|e| io_err(&checkpoint, e))?;
+    if checkpoint.exists() {
+        std::fs::remove_file(&checkpoint).map_err(|e| io_err(&checkpoint, e))?;
+    }
     staged.write("report.html", report::run_page(loaded, done))
 }
 

@@ -709,3 +709,28 @@ fn replay_out_named_like_its_own_files_is_refused() {
         assert_eq!(tree(dir.path()), before, "{name}");
     }
 }
+
+/// A run killed after its last checkpoint became `population.json` but before the directory was
+/// renamed into place (the staging directory holds every file but no checkpoint) finishes with
+/// the same command, without evolving again, and ends with the files of an uninterrupted run.
+#[test]
+fn killed_between_population_and_commit_finishes() {
+    let dir = tempfile::tempdir().unwrap();
+    let reference = dir.path().join("reference");
+    tiny_run(&reference);
+    let out = dir.path().join("killed");
+    let staging = dir.path().join("killed.partial");
+    std::fs::create_dir(&staging).unwrap();
+    for (path, bytes) in tree(&reference) {
+        std::fs::write(staging.join(path), bytes).unwrap();
+    }
+    std::fs::remove_file(staging.join("report.html")).unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let o = Fm::new(["run", cfg.to_str().unwrap()])
+        .out(&out)
+        .sets(&SMALL)
+        .ok();
+    assert!(stderr(&o).contains("evolution finished"), "{}", stderr(&o));
+    assert!(!staging.exists());
+    assert_eq!(results(&out), results(&reference));
+}
