@@ -130,30 +130,29 @@ fn killed_sweep_finishes_with_identical_results() {
     std::fs::write(&f, text).unwrap();
     let f = f.to_str().unwrap();
     let reference = dir.path().join("reference");
-    let t0 = std::time::Instant::now();
     ok(&["sweep", f, "--out", reference.to_str().unwrap()]);
-    // Kill points are fractions of an uninterrupted sweep's time, so the test does not depend
-    // on the machine's speed.
-    let whole = t0.elapsed().as_millis() as u64;
+    // Deterministic kill points: the process aborts (as `kill -9` would) once this many
+    // generations are checkpointed. One thread, so jobs go one after another (8 jobs × 25
+    // generations): inside the first job, at the end of the second, inside later ones.
     let killed = dir.path().join("killed");
     let mut kills = 0;
-    for fraction in [15u64, 30, 20, 35, 25] {
-        let delay = whole * fraction / 100;
-        let mut child = bin()
-            .args(["sweep", f, "--out", killed.to_str().unwrap()])
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::null())
-            .spawn()
+    for n in [10u32, 40, 23, 60] {
+        let o = bin()
+            .args([
+                "sweep",
+                f,
+                "--out",
+                killed.to_str().unwrap(),
+                "--threads",
+                "1",
+            ])
+            .env("FUZZYMOTIV_TEST_ABORT_AFTER", n.to_string())
+            .output()
             .unwrap();
-        std::thread::sleep(std::time::Duration::from_millis(delay));
-        if child.try_wait().unwrap().is_none() {
-            child.kill().unwrap();
-            kills += 1;
-        }
-        child.wait().unwrap();
+        assert!(!o.status.success(), "not killed after {n} generations");
+        kills += 1;
     }
     ok(&["sweep", f, "--out", killed.to_str().unwrap()]);
-    assert!(kills >= 2, "the sweep finished too fast to be killed");
     assert_eq!(results(&reference), results(&killed), "after {kills} kills");
 }
 
