@@ -22,10 +22,12 @@ fn temp_with(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, CliEr
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".tmp")
-        .tempfile_in(dir)
-        .map_err(|e| io_err(path, e))?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".tmp");
+    // As `std::fs::write` creates files: 0o666 less the umask (a temporary file would be 0o600).
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| io_err(path, e))?;
     tmp.write_all(bytes)
         .and_then(|()| tmp.flush())
         .map_err(|e| io_err(path, e))?;

@@ -734,3 +734,32 @@ fn killed_between_population_and_commit_finishes() {
     assert!(!staging.exists());
     assert_eq!(results(&out), results(&reference));
 }
+
+/// Output files get the usual permissions (0o666 less the umask, as a plain write gives them),
+/// not a temporary file's 0o600: results in a shared directory stay readable by the group.
+#[test]
+fn output_files_are_readable_as_plain_writes_make_them() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let o = Command::new("sh")
+        .arg("-c")
+        .arg("umask 022; exec \"$@\"")
+        .arg("sh")
+        .arg(env!("CARGO_BIN_EXE_fuzzymotiv"))
+        .args(["run", repo().join("configs/tiny.toml").to_str().unwrap()])
+        .arg("--out")
+        .arg(&out)
+        .args(SMALL.iter().flat_map(|s| ["--set", s]))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (path, _) in tree(&out) {
+        let mode = std::fs::metadata(out.join(&path))
+            .unwrap()
+            .permissions()
+            .mode()
+            & 0o777;
+        assert_eq!(mode, 0o644, "{path:?}");
+    }
+}
