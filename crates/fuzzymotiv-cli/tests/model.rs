@@ -36,6 +36,92 @@ fn first_release_model_reproduces_its_golden() {
     }
 }
 
+/// The files of a run that are pinned by the goldens.
+const PINNED: [&str; 4] = [
+    "generations.csv",
+    "best_genome.json",
+    "recognition.csv",
+    "population.json",
+];
+
+fn default_golden() -> std::path::PathBuf {
+    repo().join("crates/fuzzymotiv-cli/tests/golden/default")
+}
+
+/// Asserts that `dir` holds the pinned files of `golden` byte for byte.
+fn assert_pinned(golden: &std::path::Path, dir: &std::path::Path, files: &[&str], what: &str) {
+    for file in files {
+        let want = std::fs::read_to_string(golden.join(file)).unwrap();
+        let got = std::fs::read_to_string(dir.join(file)).unwrap();
+        assert!(want == got, "{file} differs from the golden ({what})");
+    }
+}
+
+/// The default model (the paper's robot) gives its golden's results byte for byte, on 1 and 2
+/// threads (tests/golden/default/README.md says how the golden was made).
+#[test]
+fn default_model_reproduces_its_golden() {
+    let golden = default_golden();
+    let out = tempfile::tempdir().unwrap();
+    for threads in ["1", "2"] {
+        let dir = out.path().join(format!("run-{threads}"));
+        ok(&[
+            "run",
+            golden.join("config.toml").to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+            "--threads",
+            threads,
+        ]);
+        assert_pinned(&golden, &dir, &PINNED, &format!("{threads} threads"));
+    }
+}
+
+/// A small study of the default model gives its golden's tables and claims byte for byte.
+#[test]
+fn default_study_reproduces_its_golden() {
+    let golden = default_golden().join("study");
+    let out = tempfile::tempdir().unwrap();
+    let dir = out.path().join("study");
+    let mut args = vec!["reproduce", "--quick", "--seeds", "2", "--quiet"];
+    args.extend(["--out", dir.to_str().unwrap()]);
+    for set in [
+        "ga.population=10",
+        "ga.generations=4",
+        "trial.steps=150",
+        "aem.epochs=50",
+        "aem.test_runs=3",
+    ] {
+        args.extend(["--set", set]);
+    }
+    ok(&args);
+    let files = [
+        "table1.csv",
+        "table2.csv",
+        "table1_seeds.csv",
+        "table2_seeds.csv",
+        "claims.csv",
+    ];
+    assert_pinned(&golden, &dir, &files, "study");
+}
+
+/// A checkpoint written by an earlier build (tests/golden/default/checkpoint/: the golden's run
+/// killed after its second generation) still resumes, to the golden's files.
+#[test]
+fn a_checkpoint_of_an_earlier_build_resumes() {
+    let golden = default_golden();
+    let out = tempfile::tempdir().unwrap();
+    let dir = out.path().join("run");
+    let staging = out.path().join("run.partial");
+    std::fs::create_dir(&staging).unwrap();
+    for file in ["checkpoint.json", "config.resolved.toml"] {
+        std::fs::copy(golden.join("checkpoint").join(file), staging.join(file)).unwrap();
+    }
+    let o = ok(&["run", "--resume", dir.to_str().unwrap()]);
+    assert!(stderr(&o).contains("at generation 3/4"), "{}", stderr(&o));
+    assert_pinned(&golden, &dir, &PINNED, "resumed");
+}
+
 /// The default model differs from the first release's on the same rooms (so the switches are
 /// real), and the resolved config records the new keys with their defaults.
 #[test]
