@@ -5,14 +5,15 @@
 //! config and seed. The Python layer (`fuzzymotiv/__init__.py`) adds pandas, tqdm and the
 //! friendlier signatures.
 
-use std::panic::{AssertUnwindSafe, catch_unwind, resume_unwind};
+use std::ops::ControlFlow;
+use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use fuzzymotiv::config::{OrientationMode, RawConfig};
-use fuzzymotiv::evolution::{Evolution, GenerationState};
+use fuzzymotiv::evolution::{Evolution, GenerationState, Observer};
 use fuzzymotiv::fuzzy::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::trial::Trajectory;
@@ -409,9 +410,6 @@ fn load(
     }
 }
 
-/// Marker payload of a run stopped by Ctrl-C or a failing progress callback.
-struct Cancelled;
-
 /// What a run returns to Python (plain Rust data, built without the GIL). A fresh run and a
 /// finished run directory read back give equal values.
 struct RunOutput {
@@ -506,7 +504,7 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
 fn execute(
     loaded: &Loaded,
     out: Option<(&Path, OutState)>,
-    hook: &mut dyn FnMut(&GenerationState<'_>),
+    hook: &mut Observer<'_>,
 ) -> Result<RunOutput, CliError> {
     let exp = &loaded.experiment;
     let done = match out {
@@ -521,8 +519,14 @@ fn execute(
         }
         None => {
             let start = Instant::now();
-            let evolutions: Vec<Evolution> =
-                exp.runs().iter().map(|run| exp.evolve(run, hook)).collect();
+            let evolutions = exp
+                .runs()
+                .iter()
+                .map(|run| exp.evolve(run, hook))
+                .collect::<Result<Vec<Evolution>, _>>()
+                .map_err(|s| {
+                    CliError::runtime(format!("run cancelled after generation {}", s.generation))
+                })?;
             let aem = pipeline::model_rooms(exp, &evolutions)?;
             Finished::new(exp, evolutions, aem, start.elapsed().as_secs_f64())
         }
@@ -626,7 +630,7 @@ impl Control {
         progress: &'a Option<Py<PyAny>>,
         loaded: &Loaded,
         already: usize,
-    ) -> impl FnMut(&GenerationState<'_>) + 'a {
+    ) -> impl FnMut(&GenerationState<'_>) -> ControlFlow<()> + 'a {
         let total = loaded.experiment.runs().len() * loaded.experiment.ga().generations;
         let mut done = already;
         move |state: &GenerationState<'_>| {
@@ -640,7 +644,9 @@ impl Control {
                 }
             }
             if self.cancel.load(Ordering::SeqCst) {
-                resume_unwind(Box::new(Cancelled));
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
             }
         }
     }
@@ -666,8 +672,8 @@ impl Control {
         }
     }
 
-    /// The run's output, or why there is none: Ctrl-C, the callback's error, a cancelled run,
-    /// a CLI error, or a panic (a bug).
+    /// The run's output, or why there is none: Ctrl-C, the callback's error (both stop the run
+    /// by breaking its observer), a CLI error, or a panic (a bug).
     fn outcome(
         &self,
         result: std::thread::Result<Result<RunOutput, CliError>>,
@@ -680,9 +686,6 @@ impl Control {
         }
         match result {
             Ok(r) => r.map_err(py_err),
-            Err(payload) if payload.is::<Cancelled>() => {
-                Err(PyRuntimeError::new_err("run cancelled"))
-            }
             Err(payload) => {
                 let msg = payload
                     .downcast_ref::<String>()

@@ -2,13 +2,14 @@
 //! model the rooms, write a run directory's records, figures and report; and run a study's runs
 //! or a sweep's jobs side by side.
 
+use std::ops::ControlFlow;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
 use fuzzymotiv::config::Training;
-use fuzzymotiv::evolution::{Evolution, GenerationState};
+use fuzzymotiv::evolution::{Evolution, GenerationState, Observer};
 use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::modelling::AemReport;
 use indicatif::ProgressBar;
@@ -72,19 +73,21 @@ pub fn execute(
     resume: bool,
     png: bool,
 ) -> Result<Finished, CliError> {
-    execute_with(loaded, out, progress, resume, png, &mut |_| {})
+    execute_with(loaded, out, progress, resume, png, &mut |_| {
+        ControlFlow::Continue(())
+    })
 }
 
-/// [`execute`], calling `hook` after every generation once its checkpoint is saved (the Python
-/// bindings report progress and stop on Ctrl-C there; a hook that unwinds leaves the staging
-/// directory resumable).
+/// [`execute`], calling the observer `hook` after every generation once its checkpoint is saved
+/// (the Python bindings report progress there, and stop on Ctrl-C by breaking: the run then ends
+/// with an error and its staging directory is resumable).
 pub fn execute_with(
     loaded: &Loaded,
     out: &Path,
     progress: &Progress,
     resume: bool,
     png: bool,
-    hook: &mut dyn FnMut(&GenerationState<'_>),
+    hook: &mut Observer<'_>,
 ) -> Result<Finished, CliError> {
     let exp = &loaded.experiment;
     let staged = if resume {
@@ -218,7 +221,7 @@ impl<'a> Session<'a> {
         run: &Run,
         k: usize,
         progress: &Progress,
-        hook: &mut dyn FnMut(&GenerationState<'_>),
+        hook: &mut Observer<'_>,
     ) -> Result<Evolution, CliError> {
         let saved = self.checkpoint.runs[k].clone();
         progress.skip(saved.history.len());
@@ -230,18 +233,27 @@ impl<'a> Session<'a> {
         } else {
             saved.population_f64()
         };
+        // A checkpoint that cannot be written stops the run (its error is returned).
         let mut write_error = None;
         let mut on_generation = |state: &GenerationState<'_>| {
             let (g, best) = (state.history.len(), state.record().stats.max);
             progress.generation(&run.label, g, exp.ga().generations, best);
             if let Err(e) = self.save(k, &run.label, state) {
-                write_error.get_or_insert(e);
+                write_error = Some(e);
+                return ControlFlow::Break(());
             }
-            hook(state);
+            hook(state)
         };
         let done = saved.history.len();
         let evo = exp.evolve_from(run, done, population, saved.history, &mut on_generation);
-        write_error.map_or(Ok(evo), Err)
+        match (evo, write_error) {
+            (_, Some(e)) => Err(e),
+            (Ok(evo), None) => Ok(evo),
+            (Err(stopped), None) => Err(CliError::runtime(format!(
+                "the run was stopped after generation {}; the same command resumes it",
+                stopped.generation
+            ))),
+        }
     }
 
     fn save(&mut self, k: usize, label: &str, state: &GenerationState<'_>) -> Result<(), CliError> {

@@ -1,6 +1,8 @@
 //! Evolution: the initial population, breeding and the generation loop of a run, resumable from
 //! any generation because every random stream is derived from (run, generation, individual, room).
 
+use std::ops::ControlFlow;
+
 use serde::{Deserialize, Serialize};
 
 use crate::evaluation::Evaluation;
@@ -52,53 +54,64 @@ impl Experiment {
         next_generation(population, &fitness, &self.ga, &mut rng)
     }
 
-    /// Evolves one run from scratch, calling `on_generation` after each generation.
+    /// Evolves one run from scratch, calling the observer `on_generation` after each generation
+    /// (to report progress, save a checkpoint, or stop the run: [`ControlFlow::Break`]).
     pub fn evolve(
         &self,
         run: &Run,
-        on_generation: &mut dyn FnMut(&GenerationState<'_>),
-    ) -> Evolution {
+        on_generation: &mut Observer<'_>,
+    ) -> Result<Evolution, Stopped> {
         let population = self.initial_population(run);
         self.evolve_from(run, 0, population, Vec::new(), on_generation)
     }
 
     /// Continues a run at `generation` with `population` (not yet evaluated) and the records of
     /// the generations before it; the result equals an uninterrupted [`Experiment::evolve`],
-    /// because every random stream is derived from (run, generation, individual, room).
+    /// because every random stream is derived from (run, generation, individual, room). When the
+    /// observer breaks after a generation that is not the last, the run stops there:
+    /// [`Stopped`] holds what [`Experiment::evolve_from`] needs to continue it.
     pub fn evolve_from(
         &self,
         run: &Run,
         generation: usize,
         mut population: Vec<Genome>,
         mut history: Vec<GenerationRecord>,
-        on_generation: &mut dyn FnMut(&GenerationState<'_>),
-    ) -> Evolution {
+        on_generation: &mut Observer<'_>,
+    ) -> Result<Evolution, Stopped> {
         let mut g = generation;
         loop {
             let evals = self.evaluate_population(&population, run, g);
             history.push(self.generation_record(g, &evals));
             if g + 1 >= self.ga.generations {
-                on_generation(&GenerationState {
+                // The last generation: the evolution is complete whatever the observer says.
+                let _ = on_generation(&GenerationState {
                     history: &history,
                     population: &population,
                     next: None,
                 });
                 let best =
                     crate::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
-                return Evolution {
+                return Ok(Evolution {
                     run: run.clone(),
                     history,
                     population,
                     evaluations: evals,
                     best,
-                };
+                });
             }
             let next = self.breed(&population, &evals, run, g);
-            on_generation(&GenerationState {
+            let flow = on_generation(&GenerationState {
                 history: &history,
                 population: &population,
                 next: Some(&next),
             });
+            if flow.is_break() {
+                return Err(Stopped {
+                    generation: g + 1,
+                    population: next,
+                    history,
+                });
+            }
             population = next;
             g += 1;
         }
@@ -134,6 +147,21 @@ pub struct GenerationRecord {
     pub stats: Stats,
     /// Population means of a, g, l, b.
     pub terms: FitnessTerms,
+}
+
+/// An observer of an evolution, called after every generation: it returns
+/// [`ControlFlow::Break`] to stop the run there (stopping is data, not a panic).
+pub type Observer<'a> = dyn FnMut(&GenerationState<'_>) -> ControlFlow<()> + 'a;
+
+/// An evolution stopped by its observer: what [`Experiment::evolve_from`] continues it from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stopped {
+    /// The next generation's index (the generations before it are in `history`).
+    pub generation: usize,
+    /// The next generation's genomes, not yet evaluated.
+    pub population: Vec<Genome>,
+    /// The records of the generations done.
+    pub history: Vec<GenerationRecord>,
 }
 
 /// Where an evolution stands after a generation: enough to checkpoint it.
@@ -182,7 +210,17 @@ impl Evolution {
 
 #[cfg(test)]
 mod tests {
+    use std::ops::ControlFlow;
+
+    use super::Evolution;
     use crate::experiment::testing::{ORIENTED, experiment};
+    use crate::experiment::{Experiment, Run};
+
+    /// The whole evolution of `run`, with an observer that never stops it.
+    fn whole(exp: &Experiment, run: &Run) -> Evolution {
+        exp.evolve(run, &mut |_| ControlFlow::Continue(()))
+            .expect("never stopped")
+    }
 
     /// With O = 0, online mode computes nothing extra and gives byte-identical evolutions.
     #[test]
@@ -190,8 +228,8 @@ mod tests {
         let off = experiment(&[]);
         let on = experiment(&["fitness.orientation=\"online\""]);
         let run = &off.runs()[0];
-        let a = off.evolve(run, &mut |_| {});
-        let b = on.evolve(run, &mut |_| {});
+        let a = whole(&off, run);
+        let b = whole(&on, run);
         assert_eq!(a.history, b.history);
         assert_eq!(a.population, b.population);
         assert_eq!(a.evaluations, b.evaluations);
@@ -204,8 +242,8 @@ mod tests {
         sets.push("ga.population=40");
         let exp = experiment(&sets);
         let run = &exp.runs()[0];
-        let x = exp.evolve(run, &mut |_| {});
-        let y = exp.evolve(run, &mut |_| {});
+        let x = whole(&exp, run);
+        let y = whole(&exp, run);
         assert_eq!(x.history, y.history);
         assert!(
             x.history.iter().any(|h| h.terms.l > 0.0),
@@ -219,16 +257,54 @@ mod tests {
         let exp = experiment(&[]);
         let run = &exp.runs()[0];
         let mut saved = None;
-        let full = exp.evolve(run, &mut |s| {
-            if s.history.len() == 2 {
-                saved = Some((s.history.to_vec(), s.next.unwrap().to_vec()));
-            }
-        });
+        let full = exp
+            .evolve(run, &mut |s| {
+                if s.history.len() == 2 {
+                    saved = Some((s.history.to_vec(), s.next.unwrap().to_vec()));
+                }
+                ControlFlow::Continue(())
+            })
+            .unwrap();
         let (history, next) = saved.unwrap();
-        let resumed = exp.evolve_from(run, history.len(), next, history, &mut |_| {});
+        let resumed = exp
+            .evolve_from(run, history.len(), next, history, &mut |_| {
+                ControlFlow::Continue(())
+            })
+            .unwrap();
         assert_eq!(full.history, resumed.history);
         assert_eq!(full.evaluations, resumed.evaluations);
         let rebuilt = exp.finished(run, full.population.clone(), full.history.clone());
         assert_eq!(rebuilt.evaluations, full.evaluations);
+    }
+
+    /// An observer that breaks stops the run after that generation; continuing from what it
+    /// returns gives the uninterrupted evolution.
+    #[test]
+    fn a_breaking_observer_stops_the_run_and_it_continues_exactly() {
+        let exp = experiment(&[]);
+        let run = &exp.runs()[0];
+        let full = whole(&exp, run);
+        let stopped = exp
+            .evolve(run, &mut |s| {
+                if s.history.len() == 2 {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            })
+            .expect_err("stopped after generation 2");
+        assert_eq!(stopped.generation, 2);
+        assert_eq!(stopped.history, full.history[..2]);
+        let resumed = exp
+            .evolve_from(
+                run,
+                stopped.generation,
+                stopped.population,
+                stopped.history,
+                &mut |_| ControlFlow::Continue(()),
+            )
+            .unwrap();
+        assert_eq!(resumed.history, full.history);
+        assert_eq!(resumed.population, full.population);
     }
 }
