@@ -9,8 +9,10 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::config::{EnergyMode, Training};
 use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::fitness::Homing;
 use fuzzymotiv::fuzzy::label_name;
 use fuzzymotiv::modelling::InstanceRun;
+use fuzzymotiv::robot::Motion;
 use fuzzymotiv::sensor::SENSOR_LAYOUT;
 use serde_json::{Value, json};
 
@@ -572,13 +574,28 @@ fn fuzzy_intro(page: &mut Page, exp: &Experiment) {
         EnergyMode::Use => "the fuzzy input is b itself (energy is \"the opposite of laziness\")",
         EnergyMode::Conserve => "with <code>energy = \"conserve\"</code> the fuzzy input is 1 − b",
     };
+    // As docs/model.md §7 defines g and b for this experiment's homing and motion models.
+    let homing = match exp.homing() {
+        Homing::Escape => {
+            "if the robot left the home zone during the trial, else 0 (a robot that never leaves home has not homed)"
+        }
+        Homing::Distance => "whether or not the robot left the home zone",
+    };
+    let usage = match exp.trial_params().robot.motion {
+        Motion::Actions => {
+            "the executed steps divided by the trial's steps: every action (a move or a turn) uses one unit, a step after the trial ended at home none"
+        }
+        Motion::Wheels => {
+            "the mean over the trial's steps of (|sL| + |sR|) / (2·v_max), the commanded wheel speeds as a fraction of the maximum (1 = always full speed)"
+        }
+    };
     let _ = writeln!(
         page.body,
         "</div>\n<dl class=\"terms\">\
 <dt>a</dt><dd><b>exploration</b>: the 50 mm grid cells the robot's centre entered, divided by the optimum (what a robot at full speed that never revisits a cell could reach, at most every reachable cell).</dd>\
-<dt>g</dt><dd><b>homing</b>: 1 − (distance from home at the end) / (largest distance from home to a corner of the room).</dd>\
+<dt>g</dt><dd><b>homing</b>: 1 − (distance from home at the end) / (largest distance from home to a corner of the room), {homing}.</dd>\
 <dt>l</dt><dd><b>orientation (recognition)</b>: 0 during evolution in the paper (O = 0); with online orientation, the share of rooms the robot recognised.</dd>\
-<dt>b</dt><dd><b>battery usage</b>: the mean wheel speed as a fraction of the maximum (1 = always full speed); {battery}.</dd></dl>\
+<dt>b</dt><dd><b>battery usage</b>: {usage}; {battery}.</dd></dl>\
 <p><b>How F is computed.</b> Each term y is described by fuzzy labels, very low (V.L.) to very high (V.H.) by default, with the membership functions below. A rule takes one label per term, e.g. \"if a is H and g is L and l is V.L. and b is H\"; with {labels} labels there are {labels}⁴ = {rules} rules. A rule fires with strength w = the smallest membership of its four labels, and proposes f = C·a·c(label of a) + H·g·c(label of g) + O·l·c(label of l) + E·b·c(label of b), where c = {:?} rises with the label. The fitness is the weighted mean <b>F = Σ w·f / Σ w</b>; since every value lies between two label peaks, at most 16 rules fire at once.</p>",
         exp.fuzzy().coefficients(),
         labels = exp.fuzzy().labels(),

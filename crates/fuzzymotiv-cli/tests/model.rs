@@ -169,3 +169,30 @@ fn bad_model_keys_name_the_field() {
         assert!(stderr(&o).contains(field), "{set}: {}", stderr(&o));
     }
 }
+
+/// The report explains g and b as the run's own model defines them (docs/model.md §7): the
+/// escape rule and per-action energy by default; distance homing and wheel speeds when switched.
+#[test]
+fn report_explains_g_and_b_for_its_model() {
+    let cfg = repo().join("configs/tiny.toml");
+    let out = tempfile::tempdir().unwrap();
+    let page = |name: &str, sets: &[&str]| {
+        let dir = out.path().join(name);
+        let mut args = vec!["run", cfg.to_str().unwrap(), "--out", dir.to_str().unwrap()];
+        for s in SMALL.iter().chain(sets) {
+            args.extend(["--set", s]);
+        }
+        ok(&args);
+        std::fs::read_to_string(dir.join("report.html")).unwrap()
+    };
+    let default = page("default", &[]);
+    assert!(default.contains("if the robot left the home zone during the trial, else 0"));
+    assert!(default.contains("every action (a move or a turn) uses one unit"));
+    assert!(!default.contains("wheel speed"));
+    let first = page(
+        "first-release",
+        &["robot.motion=\"wheels\"", "fitness.homing=\"distance\""],
+    );
+    assert!(first.contains("whether or not the robot left the home zone"));
+    assert!(first.contains("(|sL| + |sR|) / (2·v_max)"));
+}
