@@ -31,7 +31,7 @@ pub mod fuzzy;
 pub mod ga;
 pub mod geom;
 pub mod math;
-pub mod memo;
+pub(crate) mod memo;
 pub mod modelling;
 pub mod noise;
 pub mod params;

@@ -239,7 +239,7 @@ impl Arena {
         Arena { memo, ..arena }
     }
 
-    /// Whether this arena's poses are remembered ([`crate::memo`]; `sampled` sensors only).
+    /// Whether this arena's poses are remembered (the per-thread memo of sightings; `sampled` sensors only).
     pub fn remembers(&self) -> bool {
         self.memo.is_some()
     }
@@ -395,7 +395,7 @@ impl Arena {
             .read(pos, facing, &self.prepared, self.near_list(near))
     }
 
-    /// The [`crate::memo`] owner of this arena's poses for straight moves of `step` mm, or
+    /// The memo owner of this arena's poses for straight moves of `step` mm, or
     /// `None` when its poses are not remembered.
     pub fn memo_owner(&self, step: f64) -> Option<Owner> {
         self.memo.map(|arena| Owner {
