@@ -163,89 +163,9 @@ impl AemParams {
     }
 }
 
-/// The action taken in one control step, derived from the two motor outputs.
-///
-/// Its chain-code step ([`Action::chain_step`]) is the heading change in units of 30°.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-pub enum Action {
-    /// Both wheels forward at about the same speed; heading change 0.
-    Straight,
-    /// Right wheel faster than the left by more than the tolerance; heading change +30°.
-    Left30,
-    /// Left wheel faster than the right by more than the tolerance; heading change −30°.
-    Right30,
-    /// Both wheels backwards; heading change 180°.
-    Turn180,
-}
-
-impl Action {
-    /// Classifies one control step from the motor outputs `m_left`, `m_right` ∈ [0, 1].
-    ///
-    /// With signed speeds `sL = 2·m_left − 1` and `sR = 2·m_right − 1`: both `< 0` → `Turn180`;
-    /// else `sR − sL > tolerance` → `Left30`; else `sL − sR > tolerance` → `Right30`; else
-    /// `Straight`. Comparisons are strict, so a difference exactly equal to `tolerance` is
-    /// `Straight`. `tolerance` is in signed-speed units (range [−1, 1]); the project default is
-    /// 0.25 (config key `aem.action_tolerance`). NaN inputs fail every comparison and give
-    /// `Straight`.
-    pub fn from_motors(m_left: f64, m_right: f64, tolerance: f64) -> Action {
-        Action::from_speeds(2.0 * m_left - 1.0, 2.0 * m_right - 1.0, tolerance)
-    }
-
-    /// Classifies wheel speeds given as fractions of `v_max`, `s_left`, `s_right` (nominally in
-    /// [−1, 1]; noise may take them a little beyond): both `< 0` → `Turn180`; else
-    /// `sR − sL > tolerance` → `Left30`; else `sL − sR > tolerance` → `Right30`; else
-    /// `Straight` (see [`Action::from_motors`]).
-    ///
-    /// ```
-    /// use fuzzymotiv::aem::Action;
-    /// assert_eq!(Action::from_speeds(-0.1, -0.9, 0.25), Action::Turn180);
-    /// assert_eq!(Action::from_speeds(0.2, 0.6, 0.25), Action::Left30);
-    /// assert_eq!(Action::from_speeds(0.9, 0.8, 0.25), Action::Straight);
-    /// ```
-    #[inline]
-    pub fn from_speeds(s_left: f64, s_right: f64, tolerance: f64) -> Action {
-        if s_left < 0.0 && s_right < 0.0 {
-            Action::Turn180
-        } else if s_right - s_left > tolerance {
-            Action::Left30
-        } else if s_left - s_right > tolerance {
-            Action::Right30
-        } else {
-            Action::Straight
-        }
-    }
-
-    /// A short lowercase name: `"straight"`, `"left30"`, `"right30"` or `"turn180"`.
-    pub fn label(self) -> &'static str {
-        match self {
-            Action::Straight => "straight",
-            Action::Left30 => "left30",
-            Action::Right30 => "right30",
-            Action::Turn180 => "turn180",
-        }
-    }
-
-    /// The change of the chain code in 30° units: Straight 0, Left30 +1, Right30 −1, Turn180 +6.
-    pub fn chain_step(self) -> i32 {
-        match self {
-            Action::Straight => 0,
-            Action::Left30 => 1,
-            Action::Right30 => -1,
-            Action::Turn180 => 6,
-        }
-    }
-
-    /// The raw symbol value used by [`Encoder::Symbols`]: Straight 0, Left30 1/3,
-    /// Right30 2/3, Turn180 1.
-    pub fn symbol_value(self) -> f64 {
-        match self {
-            Action::Straight => 0.0,
-            Action::Left30 => 1.0 / 3.0,
-            Action::Right30 => 2.0 / 3.0,
-            Action::Turn180 => 1.0,
-        }
-    }
-}
+/// The action taken in one control step: defined with the robot's motion ([`crate::robot`]),
+/// re-exported here where the chain code and the environment vectors use it.
+pub use crate::robot::Action;
 
 /// How a sequence of actions becomes an environment vector (one element per action).
 ///

@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 /// Number of network inputs (the eight IR sensors).
-pub const INPUTS: usize = 8;
+pub const INPUTS: usize = crate::sensor::SENSORS;
 /// Number of network outputs (left and right motor).
 pub const OUTPUTS: usize = 2;
 

@@ -23,8 +23,8 @@ use std::alloc::{Layout, alloc, dealloc, handle_alloc_error};
 use std::cell::RefCell;
 use std::ptr::NonNull;
 
-use crate::controller::INPUTS;
 use crate::geom::Vec2;
+use crate::sensor::SENSORS as INPUTS;
 
 /// Entries per table (2¹⁶: 2 MiB).
 pub const SLOTS: usize = 1 << 16;

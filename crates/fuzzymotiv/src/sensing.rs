@@ -7,9 +7,9 @@
 //! longest ray cannot change the sensor's value, so it is skipped; the others are tested
 //! against every ray of the sensor at once ([`PreparedSegment::lower_ray_hits`]).
 
-use crate::controller::INPUTS;
 use crate::geom::{PreparedSegment, Vec2};
 use crate::robot::Compass;
+use crate::sensor::SENSORS as INPUTS;
 use crate::sensor::{RayMount, SENSOR_MAX, SensorModel, ray_count, rays};
 
 /// The sensors' rays turned to one heading: each sensor's origin relative to the body centre

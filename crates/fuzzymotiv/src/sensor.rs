@@ -15,8 +15,11 @@ pub struct SensorMount {
     pub facing_deg: f64,
 }
 
+/// The number of IR sensors (the controller's inputs).
+pub const SENSORS: usize = 8;
+
 /// The classic Khepera simulator layout (docs/model.md §3), sensors 0–7.
-pub const SENSOR_LAYOUT: [SensorMount; 8] = [
+pub const SENSOR_LAYOUT: [SensorMount; SENSORS] = [
     SensorMount {
         x: 9.5,
         y: 23.0,

@@ -10,13 +10,13 @@ use std::sync::{LazyLock, Mutex, PoisonError};
 
 use serde::{Deserialize, Serialize};
 
-use crate::aem::Action;
 use crate::controller::{Controller, INPUTS};
 use crate::geom::{PreparedSegment, Segment, Vec2};
 use crate::memo::{Owner, Sight, Table};
 use crate::noise::{perturb, perturb_sensors};
 use crate::params::{FieldError, check};
 use crate::rng::Rng;
+use crate::robot::Action;
 use crate::robot::{Compass, Khepera, Motion, Pose, drive};
 use crate::room::Room;
 use crate::sensing::{Eyes, Facing};
