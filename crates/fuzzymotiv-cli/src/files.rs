@@ -59,7 +59,8 @@ impl StagedDir {
         dir.with_file_name(name)
     }
 
-    /// Reopens an existing staging directory (to resume an interrupted run).
+    /// Reopens an existing staging directory (to resume an interrupted run), removing the
+    /// temporary files that a killed process left in it (they would end up in the output).
     pub fn reopen(dir: &Path) -> Result<Self, CliError> {
         let staging = Self::staging_path(dir);
         if !staging.is_dir() {
@@ -68,6 +69,7 @@ impl StagedDir {
                 staging.display()
             )));
         }
+        remove_stale_temporaries(&staging)?;
         Ok(Self {
             dir: dir.to_path_buf(),
             staging,
@@ -110,6 +112,26 @@ impl StagedDir {
         std::fs::rename(&self.staging, &self.dir).map_err(|e| io_err(&self.dir, e))?;
         Ok(self.dir)
     }
+}
+
+/// Removes, under one of our staging directories, the temporary files (`.tmp*`, only ever
+/// written by [`write_atomic`] and [`write_files`]) of a process that was killed mid-write.
+fn remove_stale_temporaries(dir: &Path) -> Result<(), CliError> {
+    for entry in std::fs::read_dir(dir)
+        .map_err(|e| io_err(dir, e))?
+        .flatten()
+    {
+        let path = entry.path();
+        let Ok(meta) = std::fs::symlink_metadata(&path) else {
+            continue;
+        };
+        if meta.is_dir() {
+            remove_stale_temporaries(&path)?;
+        } else if meta.is_file() && entry.file_name().to_string_lossy().starts_with(".tmp") {
+            std::fs::remove_file(&path).map_err(|e| io_err(&path, e))?;
+        }
+    }
+    Ok(())
 }
 
 /// Whether `dir` may be replaced by a new output: it does not exist, is an empty directory, or

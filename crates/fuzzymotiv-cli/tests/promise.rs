@@ -77,6 +77,21 @@ fn small_sweep(population: usize, generations: usize, replicates: usize) -> Stri
         .replace("replicates = 3", &format!("replicates = {replicates}"))
 }
 
+/// Asserts that two outputs hold the same results ([`results`]), naming the files that differ
+/// (not dumping their bytes).
+fn assert_same_results(got: &Path, want: &Path) {
+    let (got, want) = (results(got), results(want));
+    let names = |r: &[(PathBuf, Vec<u8>)]| r.iter().map(|(p, _)| p.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&got), names(&want), "not the same files");
+    let differ: Vec<&PathBuf> = got
+        .iter()
+        .zip(&want)
+        .filter(|(a, b)| a.1 != b.1)
+        .map(|(a, _)| &a.0)
+        .collect();
+    assert!(differ.is_empty(), "these files differ: {differ:?}");
+}
+
 /// A small study's command line into `out`.
 fn study(out: &Path) -> Fm {
     // One thread: the runs go one after another, so the kill points below fall in the first
@@ -150,7 +165,7 @@ fn finding_3_reproduce_resumes_with_the_same_command() {
         "{}",
         stderr(&o)
     );
-    assert_eq!(results(&out), results(&reference));
+    assert_same_results(&out, &reference);
     assert_eq!(
         stdout(&o),
         stdout(&study(dir.path().join("again").as_path()).ok())
@@ -198,7 +213,7 @@ fn finding_3_ablation_resumes_with_the_same_command() {
     let out = dir.path().join("killed");
     aborted(ablation(&out), 7);
     ablation(&out).ok();
-    assert_eq!(results(&out), results(&reference));
+    assert_same_results(&out, &reference);
 }
 
 /// Finding 4: `sweep --out` is protected: a directory of the user's, a run directory and the
@@ -711,8 +726,9 @@ fn replay_out_named_like_its_own_files_is_refused() {
 }
 
 /// A run killed after its last checkpoint became `population.json` but before the directory was
-/// renamed into place (the staging directory holds every file but no checkpoint) finishes with
-/// the same command, without evolving again, and ends with the files of an uninterrupted run.
+/// renamed into place (the staging directory holds every file but no checkpoint, and a temporary
+/// file it was writing) finishes with the same command, without evolving again, and ends with
+/// exactly the files of an uninterrupted run.
 #[test]
 fn killed_between_population_and_commit_finishes() {
     let dir = tempfile::tempdir().unwrap();
@@ -725,6 +741,8 @@ fn killed_between_population_and_commit_finishes() {
         std::fs::write(staging.join(path), bytes).unwrap();
     }
     std::fs::remove_file(staging.join("report.html")).unwrap();
+    // A temporary file the killed process was writing: it must not end up in the output.
+    std::fs::write(staging.join(".tmpAb12Cd"), "half a checkpoint").unwrap();
     let cfg = repo().join("configs/tiny.toml");
     let o = Fm::new(["run", cfg.to_str().unwrap()])
         .out(&out)
@@ -732,7 +750,7 @@ fn killed_between_population_and_commit_finishes() {
         .ok();
     assert!(stderr(&o).contains("evolution finished"), "{}", stderr(&o));
     assert!(!staging.exists());
-    assert_eq!(results(&out), results(&reference));
+    assert_same_results(&out, &reference);
 }
 
 /// Output files get the usual permissions (0o666 less the umask, as a plain write gives them),
