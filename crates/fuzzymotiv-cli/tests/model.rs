@@ -26,14 +26,8 @@ fn first_release_model_reproduces_its_golden() {
         "--set",
         "fitness.homing=\"distance\"",
     ]);
-    for file in ["generations.csv", "best_genome.json", "recognition.csv"] {
-        let want = std::fs::read_to_string(golden.join(file)).unwrap();
-        let got = std::fs::read_to_string(dir.join(file)).unwrap();
-        assert!(
-            want == got,
-            "{file} differs from the first release's golden"
-        );
-    }
+    let files = ["generations.csv", "best_genome.json", "recognition.csv"];
+    assert_pinned(&golden, &dir, &files, "the first release's model");
 }
 
 /// The files of a run that are pinned by the goldens.

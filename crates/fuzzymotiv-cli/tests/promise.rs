@@ -405,6 +405,26 @@ fn finding_2_fll_export_never_replaces_a_non_regular_file() {
     assert!(!dir.path().join("-").exists());
 }
 
+/// Commands that print to standard output and write no file.
+const EXPLAIN: [&str; 6] = [
+    "fuzzy",
+    "--motivations",
+    ".8,.1,0,.1",
+    "--fitness",
+    "1,.25,0,0",
+    "--explain",
+];
+const FLL_TO_STDOUT: [&str; 5] = ["fuzzy", "--motivations", ".8,.1,0,.1", "--export-fll", "-"];
+const BENCH: [&str; 7] = [
+    "bench",
+    "--steps",
+    "50",
+    "--repeat",
+    "1",
+    "--population",
+    "4",
+];
+
 /// Every command that prints to standard output, with small sizes; `dir` holds a finished run
 /// (`run`) and a finished sweep (`sweep`).
 fn printing_commands(dir: &Path) -> Vec<Vec<String>> {
@@ -423,24 +443,9 @@ fn printing_commands(dir: &Path) -> Vec<Vec<String>> {
         vec!["rooms"],
         vec!["plan", &sweep_file],
         vec!["plan", &sweep_file, "--count"],
-        vec![
-            "fuzzy",
-            "--motivations",
-            ".8,.1,0,.1",
-            "--fitness",
-            "1,.25,0,0",
-            "--explain",
-        ],
-        vec!["fuzzy", "--motivations", ".8,.1,0,.1", "--export-fll", "-"],
-        vec![
-            "bench",
-            "--steps",
-            "50",
-            "--repeat",
-            "1",
-            "--population",
-            "4",
-        ],
+        EXPLAIN.to_vec(),
+        FLL_TO_STDOUT.to_vec(),
+        BENCH.to_vec(),
         vec!["merge", &d("sweep")],
         vec!["--help"],
         vec!["--version"],
@@ -517,34 +522,9 @@ fn finding_6_full_stdout_is_a_one_line_error() {
     for args in [
         vec!["rooms".to_string()],
         vec!["plan".into(), sweep_file.display().to_string()],
-        vec![
-            "fuzzy".into(),
-            "--motivations".into(),
-            ".8,.1,0,.1".into(),
-            "--export-fll".into(),
-            "-".into(),
-        ],
-        [
-            "fuzzy",
-            "--motivations",
-            ".8,.1,0,.1",
-            "--fitness",
-            "1,.25,0,0",
-            "--explain",
-        ]
-        .map(String::from)
-        .to_vec(),
-        [
-            "bench",
-            "--steps",
-            "50",
-            "--repeat",
-            "1",
-            "--population",
-            "4",
-        ]
-        .map(String::from)
-        .to_vec(),
+        FLL_TO_STDOUT.map(String::from).to_vec(),
+        EXPLAIN.map(String::from).to_vec(),
+        BENCH.map(String::from).to_vec(),
     ] {
         let out = dir.path().join("out.txt");
         let o = Command::new("sh")
