@@ -342,12 +342,7 @@ pub fn check_out_as(
 /// The state of `dir` for [`check_out`], and whether `--force` replaces something there.
 fn out_state(dir: &Path, id: &Identity, force: bool) -> Result<(OutState, bool), CliError> {
     refuse_current_dir(dir)?;
-    if std::fs::symlink_metadata(dir).is_ok_and(|m| !m.is_dir()) {
-        return Err(CliError::input(format!(
-            "--out {}: is a file, not a directory; choose another --out",
-            dir.display()
-        )));
-    }
+    refuse_non_directory(dir)?;
     let staging = StagedDir::staging_path(dir);
     if force && std::fs::symlink_metadata(&staging).is_ok() {
         ensure_only_ours(&staging)?;
@@ -399,6 +394,17 @@ pub fn matches(dir: &Path, id: &Identity) -> bool {
 
 fn is_empty_dir(dir: &Path) -> bool {
     dir.read_dir().is_ok_and(|mut d| d.next().is_none())
+}
+
+/// `--out DIR` naming something that is not a directory (a file, a link, a device): refused.
+pub fn refuse_non_directory(dir: &Path) -> Result<(), CliError> {
+    if std::fs::symlink_metadata(dir).is_ok_and(|m| !m.is_dir()) {
+        return Err(CliError::input(format!(
+            "--out {}: is a file, not a directory; choose another --out",
+            dir.display()
+        )));
+    }
+    Ok(())
 }
 
 /// `--out .` (or any directory holding the current one) cannot be replaced atomically: refused.

@@ -17,8 +17,8 @@ use indicatif::ProgressBar;
 use crate::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
 use crate::error::CliError;
 use crate::files::{
-    StagedDir, ensure_replaceable, foreign_files, io_err, matches, refuse_current_dir, remove_ours,
-    write_atomic,
+    StagedDir, ensure_replaceable, foreign_files, io_err, matches, refuse_current_dir,
+    refuse_non_directory, remove_ours, write_atomic,
 };
 use crate::inputs::{Loaded, resolved_toml, run_identity};
 use crate::note;
@@ -430,14 +430,9 @@ const SWEEP_FILES: [&str; 7] = [
 /// a fuzzymotiv output, a file, and the current directory are refused.
 fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError> {
     refuse_current_dir(out)?;
-    let Ok(meta) = std::fs::symlink_metadata(out) else {
+    refuse_non_directory(out)?;
+    if !out.exists() {
         return Ok(());
-    };
-    if !meta.is_dir() {
-        return Err(CliError::input(format!(
-            "--out {}: is a file, not a directory; choose another --out",
-            out.display()
-        )));
     }
     let plan = out.join("plan.jsonl");
     if !plan.is_file() {

@@ -12,20 +12,20 @@ fn first_release_model_reproduces_its_golden() {
     let golden = repo().join("crates/fuzzymotiv-cli/tests/golden/first-release");
     let out = tempfile::tempdir().unwrap();
     let dir = out.path().join("run");
-    ok(&[
-        "run",
-        golden.join("config.toml").to_str().unwrap(),
-        "--out",
-        dir.to_str().unwrap(),
-        "--threads",
-        "2",
-        "--set",
-        "robot.motion=\"wheels\"",
-        "--set",
-        "trial.end_at_home=false",
-        "--set",
-        "fitness.homing=\"distance\"",
-    ]);
+    run_golden(
+        &golden,
+        &dir,
+        &[
+            "--threads",
+            "2",
+            "--set",
+            "robot.motion=\"wheels\"",
+            "--set",
+            "trial.end_at_home=false",
+            "--set",
+            "fitness.homing=\"distance\"",
+        ],
+    );
     let files = ["generations.csv", "best_genome.json", "recognition.csv"];
     assert_pinned(&golden, &dir, &files, "the first release's model");
 }
@@ -40,6 +40,19 @@ const PINNED: [&str; 4] = [
 
 fn default_golden() -> std::path::PathBuf {
     repo().join("crates/fuzzymotiv-cli/tests/golden/default")
+}
+
+/// `fuzzymotiv run GOLDEN/config.toml --out DIR EXTRA…`, asserted to succeed.
+fn run_golden(golden: &std::path::Path, dir: &std::path::Path, extra: &[&str]) {
+    let config = golden.join("config.toml");
+    let mut args = vec![
+        "run",
+        config.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    ok(&args);
 }
 
 /// Asserts that `dir` holds the pinned files of `golden` byte for byte.
@@ -59,14 +72,7 @@ fn default_model_reproduces_its_golden() {
     let out = tempfile::tempdir().unwrap();
     for threads in ["1", "2"] {
         let dir = out.path().join(format!("run-{threads}"));
-        ok(&[
-            "run",
-            golden.join("config.toml").to_str().unwrap(),
-            "--out",
-            dir.to_str().unwrap(),
-            "--threads",
-            threads,
-        ]);
+        run_golden(&golden, &dir, &["--threads", threads]);
         assert_pinned(&golden, &dir, &PINNED, &format!("{threads} threads"));
     }
 }
