@@ -13,7 +13,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use fuzzymotiv::config::{OrientationMode, RawConfig};
-use fuzzymotiv::evolution::{Evolution, GenerationState, Observer};
+use fuzzymotiv::evolution::{GenerationState, Observer};
+use fuzzymotiv::outcome::RunError;
 use fuzzymotiv::fuzzy::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::trial::Trajectory;
@@ -432,9 +433,9 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
     let exp = &loaded.experiment;
     let summary = RunSummary::of(exp, &done);
     RunOutput {
-        generations: GenerationRow::all(&done.evolutions),
+        generations: GenerationRow::all(&done.outcome.evolutions),
         best: done
-            .evolutions
+            .outcome.evolutions
             .iter()
             .map(|e| (e.run.label.clone(), e.population[e.best].clone()))
             .collect(),
@@ -479,8 +480,7 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
         .into_par_iter()
         .enumerate()
         .map(|(r, name)| {
-            // As `Finished::robot_for_room`: the one robot, or room r's own.
-            let k = if runs.len() == 1 { 0 } else { r };
+            let (k, _) = exp.robot_for_room(r);
             let instance = exp.instance_run(&genome.runs[k].weights, &runs[k], r);
             (name, poses(&instance.trajectory))
         })
@@ -519,16 +519,14 @@ fn execute(
         }
         None => {
             let start = Instant::now();
-            let evolutions = exp
-                .runs()
-                .iter()
-                .map(|run| exp.evolve(run, hook))
-                .collect::<Result<Vec<Evolution>, _>>()
-                .map_err(|s| {
-                    CliError::runtime(format!("run cancelled after generation {}", s.generation))
-                })?;
-            let aem = pipeline::model_rooms(exp, &evolutions)?;
-            Finished::new(exp, evolutions, aem, start.elapsed().as_secs_f64())
+            let outcome = exp.run(&mut |_, state| hook(state)).map_err(|e| match e {
+                RunError::Interrupted(i) => CliError::runtime(format!(
+                    "run cancelled after generation {}",
+                    i.stopped.generation
+                )),
+                e => CliError::runtime(e.to_string()),
+            })?;
+            Finished::new(exp, outcome, start.elapsed().as_secs_f64())
         }
     };
     Ok(output(loaded, done))

@@ -3,8 +3,9 @@
 
 use std::path::Path;
 
-use fuzzymotiv::evolution::{GenerationRecord, GenerationState};
+use fuzzymotiv::evolution::{GenerationRecord, GenerationState, Stopped};
 use fuzzymotiv::experiment::{Experiment, Run};
+use fuzzymotiv::outcome::Start;
 use serde::{Deserialize, Serialize};
 
 use crate::error::CliError;
@@ -61,6 +62,26 @@ impl CheckpointRun {
                 .iter()
                 .map(|g| g.iter().map(|v| v.to_bits()).collect())
                 .collect(),
+        }
+    }
+
+    /// Where the library's run continues this evolution ([`Experiment::run_from`]).
+    ///
+    /// [`Experiment::run_from`]: fuzzymotiv::experiment::Experiment::run_from
+    pub fn start(&self) -> Start {
+        let population = self.population_f64();
+        let history = self.history.clone();
+        match (self.done, population.is_empty()) {
+            (true, _) => Start::Finished {
+                population,
+                history,
+            },
+            (false, true) => Start::Fresh,
+            (false, false) => Start::Continue(Stopped {
+                generation: history.len(),
+                population,
+                history,
+            }),
         }
     }
 

@@ -81,6 +81,12 @@ impl fmt::Display for CliError {
 
 /// A config or room file that cannot be used ([`fuzzymotiv::config::ConfigError`] and
 /// [`fuzzymotiv::room::RoomError`] are this one type).
+impl From<fuzzymotiv::setup::SetupError> for CliError {
+    fn from(e: fuzzymotiv::setup::SetupError) -> Self {
+        CliError::input(e.to_string())
+    }
+}
+
 impl From<fuzzymotiv::params::FieldError> for CliError {
     fn from(e: fuzzymotiv::params::FieldError) -> Self {
         CliError::input(e.to_string())

@@ -2,10 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::config::{ConfigError, RawConfig};
+use fuzzymotiv::config::RawConfig;
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::fuzzy::Motivations;
 use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::setup::{RoomFile, RoomFiles, Setup, parse_room_file};
 
 use crate::error::CliError;
 use crate::note;
@@ -14,15 +14,7 @@ use crate::note;
 pub fn load_room_file(path: &Path) -> Result<Room, CliError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| CliError::input(format!("{}: cannot read room file: {e}", path.display())))?;
-    if let Err(e) = toml::from_str::<toml::Table>(&text) {
-        return Err(CliError::input(format!(
-            "{}: not valid TOML{}: {}",
-            path.display(),
-            fuzzymotiv::config::at_line(&text, e.span()),
-            e.message().trim()
-        )));
-    }
-    Ok(Room::from_toml_str(&text, &path.display().to_string())?)
+    Ok(parse_room_file(&text, &path.display().to_string())?)
 }
 
 /// A config ready to run: the raw document (room paths made absolute) and the experiment.
@@ -33,55 +25,47 @@ pub struct Loaded {
     pub experiment: Experiment,
 }
 
-/// Loads rooms named in `raw.rooms`: built-in names, or room files relative to `base_dir`.
-pub fn resolve(mut raw: RawConfig, base_dir: &Path, source: &str) -> Result<Loaded, CliError> {
-    let mut rooms = Vec::with_capacity(raw.rooms.len());
-    for (i, entry) in raw.rooms.clone().iter().enumerate() {
-        if let Some(r) = Room::builtin(entry) {
-            rooms.push(r);
-            continue;
-        }
-        let path = base_dir.join(entry);
+/// Room files of a config: paths relative to the config file's folder, recorded absolute.
+struct RoomDir<'a>(&'a Path);
+
+impl RoomFiles for RoomDir<'_> {
+    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        let path = self.0.join(entry);
         if !path.is_file() {
-            return Err(ConfigError {
-                source_name: source.to_string(),
-                field: format!("rooms[{i}]"),
-                reason: format!(
-                    "\"{entry}\" is neither a built-in room ({}) nor a room file (looked for {})",
-                    BUILTIN_ROOMS.join(", "),
-                    path.display()
-                ),
-            }
-            .into());
+            return Ok(None);
         }
-        rooms.push(load_room_file(&path)?);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| format!("{}: cannot read room file: {e}", path.display()))?;
+        let source_name = path.display().to_string();
         let abs: PathBuf = path.canonicalize().unwrap_or(path);
-        raw.rooms[i] = abs.display().to_string();
+        Ok(Some(RoomFile {
+            text,
+            source_name,
+            entry: abs.display().to_string(),
+        }))
     }
-    normalise_motivations(&mut raw, source);
-    let experiment = Experiment::new(&raw, rooms, source)?;
-    Ok(Loaded { raw, experiment })
+
+    fn looked_for(&self, entry: &str) -> String {
+        self.0.join(entry).display().to_string()
+    }
 }
 
-/// docs/model.md §8: motivations summing to within 1e-3 of 1 are normalised (the resolved config records
-/// the normalised values), and the program says so once; farther off is left to validation.
-fn normalise_motivations(raw: &mut RawConfig, source: &str) {
+/// Loads rooms named in `raw.rooms` (built-in names, or room files relative to `base_dir`) and
+/// validates the config: the library's [`Setup::resolve`], its notes said once per process.
+pub fn resolve(raw: RawConfig, base_dir: &Path, source: &str) -> Result<Loaded, CliError> {
     static SAID: std::sync::Once = std::sync::Once::new();
-    let m = raw.motivations;
-    if let Ok((n, Some(sum))) =
-        Motivations::normalised(m.curiosity, m.homing, m.orientation, m.energy)
-    {
-        raw.motivations.curiosity = n.curiosity;
-        raw.motivations.homing = n.homing;
-        raw.motivations.orientation = n.orientation;
-        raw.motivations.energy = n.energy;
+    let setup = Setup::resolve(raw, source, &RoomDir(base_dir))?;
+    if !setup.notes.is_empty() {
         SAID.call_once(|| {
-            note!(
-                "note: {source}: motivations summed to {sum}, normalised to (C, H, O, E) = {:?}",
-                n.as_array()
-            );
+            for line in &setup.notes {
+                note!("note: {line}");
+            }
         });
     }
+    Ok(Loaded {
+        raw: setup.raw,
+        experiment: setup.experiment,
+    })
 }
 
 /// Reads a config file (or the built-in defaults for `None`) with overrides.

@@ -9,9 +9,9 @@ use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
 use fuzzymotiv::config::Training;
-use fuzzymotiv::evolution::{Evolution, GenerationState, Observer};
-use fuzzymotiv::experiment::{Experiment, Run};
-use fuzzymotiv::modelling::AemReport;
+use fuzzymotiv::evolution::{GenerationState, Observer};
+use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::outcome::{Outcome, RunError};
 use indicatif::ProgressBar;
 
 use crate::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
@@ -98,15 +98,10 @@ pub fn execute_with(
         staged
     };
     let mut session = Session::open(&staged, exp, out, progress, resume)?;
-    let evolutions = exp
-        .runs()
-        .iter()
-        .enumerate()
-        .map(|(k, run)| session.evolve(exp, run, k, progress, hook))
-        .collect::<Result<Vec<_>, _>>()?;
-    staged.write("generations.csv", to_csv(&GenerationRow::all(&evolutions)))?;
-    let aem = model_rooms(exp, &evolutions)?;
-    let done = Finished::new(exp, evolutions, aem, session.wall_seconds());
+    let outcome = session.run(exp, progress, hook)?;
+    let generations = GenerationRow::all(&outcome.evolutions);
+    staged.write("generations.csv", to_csv(&generations))?;
+    let done = Finished::new(exp, outcome, session.wall_seconds());
     write_run(&staged, loaded, &done, png, &session.checkpoint)?;
     staged.commit()?;
     Ok(done)
@@ -149,23 +144,12 @@ pub fn read_back(exp: &Experiment, dir: &Path, progress: &Progress) -> Result<Fi
     }
     progress.skip(saved.runs.iter().map(|r| r.history.len()).sum());
     progress.note(&format!("{} is finished: read back", dir.display()));
-    let evolutions: Vec<Evolution> = runs
-        .iter()
-        .zip(saved.runs)
-        .map(|(run, r)| exp.finished(run, r.population_f64(), r.history))
-        .collect();
-    let aem = model_rooms(exp, &evolutions)?;
+    let starts = saved.runs.iter().map(CheckpointRun::start).collect();
+    let outcome = exp
+        .run_from(starts, &mut |_, _| ControlFlow::Continue(()))
+        .map_err(|e| CliError::runtime(e.to_string()))?;
     let summary: RunSummary = read_json(&dir.join("summary.json"))?;
-    Ok(Finished::new(exp, evolutions, aem, summary.wall_seconds))
-}
-
-/// Environment modelling of every evolution's best robot.
-pub fn model_rooms(exp: &Experiment, evolutions: &[Evolution]) -> Result<Vec<AemReport>, CliError> {
-    evolutions
-        .iter()
-        .map(|evo| exp.environment_modelling(&evo.population[evo.best], &evo.run))
-        .collect::<Result<_, _>>()
-        .map_err(|e| CliError::runtime(format!("environment modelling failed: {e}")))
+    Ok(Finished::new(exp, outcome, summary.wall_seconds))
 }
 
 /// A run being evolved in a staging directory: its checkpoint and its wall time.
@@ -213,46 +197,40 @@ impl<'a> Session<'a> {
         self.earlier_seconds + self.start.elapsed().as_secs_f64()
     }
 
-    /// Evolves run `k` from where the checkpoint left it, saving the checkpoint after every
-    /// generation.
-    fn evolve(
+    /// Runs the experiment from where the checkpoint left it (the library's
+    /// [`Experiment::run_from`]), saving the checkpoint after every generation.
+    fn run(
         &mut self,
         exp: &Experiment,
-        run: &Run,
-        k: usize,
         progress: &Progress,
         hook: &mut Observer<'_>,
-    ) -> Result<Evolution, CliError> {
-        let saved = self.checkpoint.runs[k].clone();
-        progress.skip(saved.history.len());
-        if saved.done {
-            return Ok(exp.finished(run, saved.population_f64(), saved.history));
+    ) -> Result<Outcome, CliError> {
+        let runs = exp.runs();
+        let mut starts = Vec::with_capacity(runs.len());
+        for saved in &self.checkpoint.runs {
+            progress.skip(saved.history.len());
+            starts.push(saved.start());
         }
-        let population = if saved.population.is_empty() {
-            exp.initial_population(run)
-        } else {
-            saved.population_f64()
-        };
         // A checkpoint that cannot be written stops the run (its error is returned).
         let mut write_error = None;
-        let mut on_generation = |state: &GenerationState<'_>| {
+        let mut on_generation = |k: usize, state: &GenerationState<'_>| {
             let (g, best) = (state.history.len(), state.record().stats.max);
-            progress.generation(&run.label, g, exp.ga().generations, best);
-            if let Err(e) = self.save(k, &run.label, state) {
+            progress.generation(&runs[k].label, g, exp.ga().generations, best);
+            if let Err(e) = self.save(k, &runs[k].label, state) {
                 write_error = Some(e);
                 return ControlFlow::Break(());
             }
             hook(state)
         };
-        let done = saved.history.len();
-        let evo = exp.evolve_from(run, done, population, saved.history, &mut on_generation);
-        match (evo, write_error) {
+        let outcome = exp.run_from(starts, &mut on_generation);
+        match (outcome, write_error) {
             (_, Some(e)) => Err(e),
-            (Ok(evo), None) => Ok(evo),
-            (Err(stopped), None) => Err(CliError::runtime(format!(
+            (Ok(outcome), None) => Ok(outcome),
+            (Err(RunError::Interrupted(i)), None) => Err(CliError::runtime(format!(
                 "the run was stopped after generation {}; the same command resumes it",
-                stopped.generation
+                i.stopped.generation
             ))),
+            (Err(e), None) => Err(CliError::runtime(e.to_string())),
         }
     }
 
@@ -294,7 +272,7 @@ fn write_run(
     let exp = &loaded.experiment;
     staged.write(
         "best_genome.json",
-        to_json(&BestGenome::of(exp, &done.evolutions)),
+        to_json(&BestGenome::of(exp, &done.outcome.evolutions)),
     )?;
     staged.write("recognition.csv", RecognitionTable::of(exp, done).to_csv())?;
     staged.write(
@@ -332,6 +310,7 @@ fn write_run_figures(
         exp.motivations().as_array()
     );
     let panels: Vec<_> = done
+        .outcome
         .evolutions
         .iter()
         .map(|e| {

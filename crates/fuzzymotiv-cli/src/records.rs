@@ -25,7 +25,7 @@ use fuzzymotiv::config::Training;
 use fuzzymotiv::evolution::{Evolution, GenerationRecord};
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::fuzzy::Motivations;
-use fuzzymotiv::modelling::{AemReport, InstanceRun};
+use fuzzymotiv::outcome::Outcome;
 use fuzzymotiv::trial::Trajectory;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -62,10 +62,9 @@ impl<const D: usize> fmt::Display for Fixed<D> {
 
 /// Everything a finished run produced; the run directory's files are written from it.
 pub struct Finished {
-    /// One evolution per run of the protocol.
-    pub evolutions: Vec<Evolution>,
-    /// One AEM report per evolution (with the best robot's room-modelling runs).
-    pub aem: Vec<AemReport>,
+    /// The evolutions and the modelling of their best robots (which robot stands for which
+    /// room is the library's rule: [`Outcome::robot_for_room`]).
+    pub outcome: Outcome,
     /// The per-room table.
     pub rows: Vec<RoomRow>,
     /// Wall time (s).
@@ -73,55 +72,21 @@ pub struct Finished {
 }
 
 impl Finished {
-    /// The outcome of `evolutions` and their environment modelling `aem`, with the per-room
-    /// table.
-    pub fn new(
-        exp: &Experiment,
-        evolutions: Vec<Evolution>,
-        aem: Vec<AemReport>,
-        wall_seconds: f64,
-    ) -> Finished {
-        let mut done = Finished {
-            evolutions,
-            aem,
-            rows: Vec::new(),
-            wall_seconds,
-        };
-        done.rows = (0..exp.arenas().len())
-            .map(|r| RoomRow::of(&done, r))
+    /// The outcome of a run with its per-room table.
+    pub fn new(exp: &Experiment, outcome: Outcome, wall_seconds: f64) -> Finished {
+        let rows = (0..exp.arenas().len())
+            .map(|r| RoomRow::of(&outcome, r))
             .collect();
-        done
-    }
-
-    /// The evolution whose best robot stands for room `r` (the one robot of all-rooms training,
-    /// or the room's own robot), and the room's position among that evolution's rooms.
-    pub fn robot_for_room(&self, r: usize) -> (&Evolution, usize) {
-        match self.evolutions.len() {
-            1 => (&self.evolutions[0], r),
-            _ => (&self.evolutions[r], 0),
+        Finished {
+            outcome,
+            rows,
+            wall_seconds,
         }
     }
 
-    /// The AEM report of the robot that stands for room `r` (see [`Finished::robot_for_room`]).
-    pub fn aem_for_room(&self, r: usize) -> &AemReport {
-        if self.aem.len() == 1 {
-            &self.aem[0]
-        } else {
-            &self.aem[r]
-        }
-    }
-
-    /// The room-modelling run of room `r`'s robot in room `r` (the run whose actions became the
-    /// room's stored instance): for figures and the replay.
-    pub fn instance(&self, r: usize) -> &InstanceRun {
-        &self.aem_for_room(r).rooms[r].instance
-    }
-
-    /// The trajectories of [`Finished::instance`], one per room.
+    /// The trajectories of the best robots' room-modelling runs, one per room.
     pub fn trajectories(&self) -> Vec<&Trajectory> {
-        (0..self.rows.len())
-            .map(|r| &self.instance(r).trajectory)
-            .collect()
+        self.outcome.trajectories()
     }
 }
 
@@ -207,9 +172,9 @@ pub struct RoomRow {
 impl RoomRow {
     /// Room `r`'s row: all-rooms training uses the one robot everywhere, per-room training
     /// each room's own robot.
-    fn of(done: &Finished, r: usize) -> RoomRow {
-        let (evo, k) = done.robot_for_room(r);
-        let a = &done.aem_for_room(r).rooms[r];
+    fn of(outcome: &Outcome, r: usize) -> RoomRow {
+        let (evo, k) = outcome.robot_for_room(r);
+        let a = &outcome.aem_for_room(r).rooms[r];
         RoomRow {
             room: a.room.clone(),
             average_fitness: evo.mean_room_fitness(k),
@@ -317,6 +282,7 @@ impl RunSummary {
     /// The summary of a finished run.
     pub fn of(exp: &Experiment, done: &Finished) -> RunSummary {
         let runs = done
+            .outcome
             .evolutions
             .iter()
             .map(|evo| RunRecord {
@@ -523,7 +489,7 @@ impl RecognitionTable {
             .iter()
             .enumerate()
             .map(|(r, row)| {
-                let confusion = &done.aem_for_room(r).confusion;
+                let confusion = &done.outcome.aem_for_room(r).confusion;
                 let counts = &confusion.counts[r];
                 let (as_rooms, not) = counts.split_at(counts.len() - 1);
                 RecognitionRow {

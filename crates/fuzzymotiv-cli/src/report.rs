@@ -428,6 +428,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     // Fitness evolution.
     heading(page, level, s.id, "fitness", "Fitness evolution");
     let panels: Vec<_> = done
+        .outcome
         .evolutions
         .iter()
         .map(|e| (label(e), e.history.clone()))
@@ -547,8 +548,8 @@ fn paths_part(page: &mut Page, s: &Section<'_>) {
     );
     let rooms = (0..exp.arenas().len())
         .map(|r| {
-            let (evo, _) = done.robot_for_room(r);
-            replay_room(exp, r, &evo.run.label, done.instance(r))
+            let (evo, _) = done.outcome.robot_for_room(r);
+            replay_room(exp, r, &evo.run.label, done.outcome.instance(r))
         })
         .collect();
     page.replay(exp, rooms);
@@ -621,7 +622,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
     );
     page.push("<table><tr><th>room</th><th>a</th><th>g</th><th>l</th><th>b</th><th>F</th><th class=\"left\">firing rules</th></tr>\n");
     for r in 0..exp.arenas().len() {
-        let (evo, k) = s.done.robot_for_room(r);
+        let (evo, k) = s.done.outcome.robot_for_room(r);
         let score = &evo.evaluations[evo.best].per_room[k];
         let y = exp.fuzzy_inputs(&score.terms);
         let ex = exp.fuzzy().explain(exp.motivations(), y);
@@ -640,7 +641,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
         );
     }
     page.push("</table>\n");
-    for evo in &s.done.evolutions {
+    for evo in &s.done.outcome.evolutions {
         let e = &evo.evaluations[evo.best];
         let _ = writeln!(
             page.body,
@@ -656,7 +657,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
 fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
     let exp = &s.loaded.experiment;
     let done = s.done;
-    if !exp.aem().enabled || done.aem.iter().all(|a| a.som_nodes == 0) {
+    if !exp.aem().enabled || done.outcome.modelling.iter().all(|a| a.som_nodes == 0) {
         page.push("<p>Room recognition was not run (<code>aem.enabled = false</code>).</p>\n");
         return;
     }
@@ -672,7 +673,7 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
         exp.aem().som.nodes,
         exp.aem().threshold
     );
-    for (k, rep) in done.aem.iter().enumerate() {
+    for (k, rep) in done.outcome.modelling.iter().enumerate() {
         let rooms: Vec<SomRoom<'_>> = rep
             .rooms
             .iter()
@@ -688,7 +689,7 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
             Training::AllRooms => "The rooms on the SOM line".to_string(),
             Training::PerRoom => format!(
                 "The rooms on the SOM line of the robot evolved in {}",
-                done.evolutions[k].run.label
+                done.outcome.evolutions[k].run.label
             ),
         };
         figure(
@@ -714,7 +715,7 @@ fn confusion_table(page: &mut Page, exp: &Experiment, done: &Finished, names: &[
     }
     page.push("<th>not recognised</th><th>% correct</th></tr>\n");
     for (r, n) in names.iter().enumerate() {
-        let rep = done.aem_for_room(r);
+        let rep = done.outcome.aem_for_room(r);
         let counts = &rep.confusion.counts[r];
         let total: u32 = counts.iter().sum();
         let _ = write!(

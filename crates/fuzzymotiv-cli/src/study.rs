@@ -258,7 +258,7 @@ impl SettingRuns<'_> {
         let histories: Vec<_> = self
             .finished
             .iter()
-            .map(|f| &f.evolutions[0].history)
+            .map(|f| &f.outcome.evolutions[0].history)
             .collect();
         let generations = histories.iter().map(|h| h.len()).min().unwrap_or(0);
         (0..generations)
@@ -309,14 +309,19 @@ impl SettingRuns<'_> {
             .iter()
             .zip(&self.finished)
             .map(|(&seed, f)| {
-                let h = &f.evolutions[0].history;
+                let h = &f.outcome.evolutions[0].history;
                 SeedSummary {
                     seed,
                     run_dir: format!("{}/seed-{seed}", self.setting.name),
                     rows: f.rows.iter().map(TableRow::of).collect(),
                     first_generation: GenerationStat::of(&h[0]),
                     last_generation: GenerationStat::of(&h[h.len() - 1]),
-                    confusion: f.aem.iter().map(|a| a.confusion.counts.clone()).collect(),
+                    confusion: f
+                        .outcome
+                        .modelling
+                        .iter()
+                        .map(|a| a.confusion.counts.clone())
+                        .collect(),
                 }
             })
             .collect()
@@ -349,7 +354,7 @@ pub fn generation_stat(study: &SettingRuns<'_>, last: bool, best: bool) -> f64 {
         .finished
         .iter()
         .map(|f| {
-            let h = &f.evolutions[0].history;
+            let h = &f.outcome.evolutions[0].history;
             let rec = if last { &h[h.len() - 1] } else { &h[0] };
             if best { rec.stats.max } else { rec.stats.mean }
         })

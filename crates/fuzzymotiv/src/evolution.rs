@@ -1,5 +1,34 @@
 //! Evolution: the initial population, breeding and the generation loop of a run, resumable from
 //! any generation because every random stream is derived from (run, generation, individual, room).
+//!
+//! The loop is three public steps, so a custom loop (another optimiser's, Python's ask/tell)
+//! can drive it: [`Experiment::initial_population`] (ask), [`Experiment::evaluate_population`]
+//! (evaluate: F and the terms per individual), [`Experiment::breed`] (tell: needs only F).
+//! [`Experiment::evolve`] is exactly these steps, with an observer after every generation:
+//!
+//! ```
+//! use fuzzymotiv::config::RawConfig;
+//! use fuzzymotiv::setup::{BuiltinRoomsOnly, Setup};
+//! use std::ops::ControlFlow;
+//!
+//! let sets = ["ga.population=6", "ga.generations=2", "trial.steps=50"].map(String::from);
+//! let raw = RawConfig::parse("rooms = [\"H\", \"T\"]", "example", &sets).unwrap();
+//! let exp = Setup::resolve(raw, "example", &BuiltinRoomsOnly).unwrap().experiment;
+//! let run = &exp.runs()[0];
+//! let mut population = exp.initial_population(run);
+//! let mut history = Vec::new();
+//! for generation in 0..2 {
+//!     let evals = exp.evaluate_population(&population, run, generation);
+//!     let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
+//!     history.push(exp.generation_record(generation, &evals));
+//!     if generation + 1 < 2 {
+//!         population = exp.breed(&population, &fitness, run, generation);
+//!     }
+//! }
+//! let evolved = exp.evolve(run, &mut |_| ControlFlow::Continue(())).unwrap();
+//! assert_eq!(evolved.history, history);
+//! assert_eq!(evolved.population, population);
+//! ```
 
 use std::ops::ControlFlow;
 
@@ -41,17 +70,17 @@ impl Experiment {
         }
     }
 
-    /// Breeds generation `generation + 1` from an evaluated generation.
+    /// Breeds generation `generation + 1` from generation `generation` and its fitness F (one
+    /// value per individual, higher is better): all that selection needs.
     pub fn breed(
         &self,
         population: &[Genome],
-        evals: &[Evaluation],
+        fitness: &[f64],
         run: &Run,
         generation: usize,
     ) -> Vec<Genome> {
-        let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
         let mut rng = rng_from_seed(self.streams().breeding(run.tag, generation));
-        next_generation(population, &fitness, &self.ga, &mut rng)
+        next_generation(population, fitness, &self.ga, &mut rng)
     }
 
     /// Evolves one run from scratch, calling the observer `on_generation` after each generation
@@ -99,7 +128,8 @@ impl Experiment {
                     best,
                 });
             }
-            let next = self.breed(&population, &evals, run, g);
+            let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
+            let next = self.breed(&population, &fitness, run, g);
             let flow = on_generation(&GenerationState {
                 history: &history,
                 population: &population,

@@ -179,15 +179,19 @@ impl Default for RawMotivations {
 }
 
 impl RawMotivations {
-    /// The validated motivations; an error names `motivations.NAME` or `motivations`.
+    /// The validated motivations, normalised as [`Motivations::normalised`] says (as the
+    /// error text promises); an error names `motivations.NAME` or `motivations`.
     pub fn validated(&self) -> Result<Motivations, crate::params::FieldError> {
-        Motivations::new(self.curiosity, self.homing, self.orientation, self.energy).map_err(|e| {
-            let field = match &e {
-                FuzzyError::MotivationOutOfRange { name, .. } => format!("motivations.{name}"),
-                _ => "motivations".to_string(),
-            };
-            crate::params::FieldError::new(field, e.to_string())
-        })
+        let (c, h, o, e) = (self.curiosity, self.homing, self.orientation, self.energy);
+        Motivations::normalised(c, h, o, e)
+            .map(|(m, _)| m)
+            .map_err(|e| {
+                let field = match &e {
+                    FuzzyError::MotivationOutOfRange { name, .. } => format!("motivations.{name}"),
+                    _ => "motivations".to_string(),
+                };
+                crate::params::FieldError::new(field, e.to_string())
+            })
     }
 }
 

@@ -6,16 +6,58 @@
 //! combination of curiosity, homing, orientation and energy; the best robot's action sequences
 //! then model and recognise rooms (action-based environment modelling).
 //!
+//! A whole experiment in a few lines: two built-in rooms, a small population, a few
+//! generations; then the best robot's F and the room modelling's recognition test.
+//!
 //! ```
-//! use fuzzymotiv::fuzzy::{Motivations, TskFitness};
+//! use fuzzymotiv::{BuiltinRoomsOnly, RawConfig, Setup};
+//! use std::ops::ControlFlow;
+//!
+//! let config = r#"
+//!     rooms = ["H", "square"]
+//!     seed = 7
+//!     [ga]
+//!     population = 8
+//!     generations = 3
+//!     [trial]
+//!     steps = 100
+//!     [motivations]  # the paper's high-curiosity setting
+//!     curiosity = 0.8
+//!     homing = 0.1
+//!     orientation = 0.0
+//!     energy = 0.1
+//! "#;
+//! let raw = RawConfig::parse(config, "example", &[]).unwrap();
+//! let setup = Setup::resolve(raw, "example", &BuiltinRoomsOnly).unwrap();
+//! let exp = &setup.experiment;
+//! let outcome = exp
+//!     .run(&mut |_run, state| {
+//!         println!("generation {}: best F {:.3}", state.history.len(), state.record().stats.max);
+//!         ControlFlow::Continue(())
+//!     })
+//!     .unwrap();
+//! let evolution = &outcome.evolutions[0];
+//! println!("best robot: F = {:.3}", evolution.evaluations[evolution.best].fitness);
+//! for (r, room) in exp.room_names().iter().enumerate() {
+//!     let modelled = &outcome.aem_for_room(r).rooms[r];
+//!     let pct = modelled.recognition_pct.unwrap_or(0.0);
+//!     println!("{room}: recognised in {pct:.0} % of {} test runs", modelled.tests.len());
+//! }
+//! assert_eq!(evolution.history.len(), 3);
+//! ```
+//!
+//! The pieces stay usable alone: [`trial::run_trial`] runs a controller in a room,
+//! [`fuzzy::TskFitness::evaluate`] combines fitness terms,
+//!
+//! ```
+//! use fuzzymotiv::{Motivations, TskFitness};
 //! let x = Motivations::new(0.8, 0.1, 0.0, 0.1).unwrap();
 //! let f = TskFitness::paper().evaluate(&x, [0.95, 0.5, 0.0, 0.79]);
 //! assert!((f - 0.797220).abs() < 1e-6);
 //! ```
 //!
-//! The pieces stay usable alone: [`trial::run_trial`] runs a controller in a room,
-//! [`fuzzy::TskFitness::evaluate`] combines fitness terms, [`ga::next_generation`] breeds, and
-//! [`experiment::Experiment`] ties them together as the paper does.
+//! [`ga::next_generation`] breeds, and [`Experiment`] ties them together as the paper does
+//! ([`evolution`] shows the loop as ask/evaluate/tell steps a custom optimiser can drive).
 
 #![warn(missing_docs)]
 
@@ -34,6 +76,7 @@ pub mod math;
 pub(crate) mod memo;
 pub mod modelling;
 pub mod noise;
+pub mod outcome;
 pub mod params;
 pub mod recognition;
 pub mod rng;
@@ -42,8 +85,18 @@ pub mod room;
 pub mod seed;
 pub mod sensing;
 pub mod sensor;
+pub mod setup;
 pub mod som;
 pub mod trial;
+
+pub use config::RawConfig;
+pub use evolution::{Evolution, GenerationRecord, GenerationState, Observer, Stopped};
+pub use experiment::{Experiment, Run};
+pub use fuzzy::{Motivations, TskFitness};
+pub use outcome::{Interrupted, Outcome, RunError, RunObserver, Start};
+pub use params::FieldError;
+pub use room::Room;
+pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError};
 
 /// The program version, written into every run directory.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -1,0 +1,253 @@
+//! The experiment's entry: a raw config and where its room files come from → the validated
+//! [`Experiment`], the config as resolved (room files named as found, motivations normalised)
+//! and the notes a front end should show. The library reads no files: a front end passes a
+//! [`RoomFiles`] that does (the CLI reads them relative to the config file).
+//!
+//! ```
+//! use fuzzymotiv::config::RawConfig;
+//! use fuzzymotiv::setup::{BuiltinRoomsOnly, Setup};
+//!
+//! let sets = ["motivations.curiosity=0.8".to_string(), "motivations.homing=0.1001".to_string()];
+//! let raw = RawConfig::parse("rooms = [\"H\", \"square\"]", "example", &sets).unwrap();
+//! let setup = Setup::resolve(raw, "example", &BuiltinRoomsOnly).unwrap();
+//! assert_eq!(setup.experiment.room_names(), ["H", "square"]);
+//! // The sum 1.0001 is within 0.001 of 1: normalised, and the notes say so.
+//! assert!(setup.notes[0].contains("normalised"));
+//! assert!((setup.experiment.motivations().as_array().iter().sum::<f64>() - 1.0).abs() < 1e-12);
+//! ```
+
+use crate::config::{RawConfig, at_line};
+use crate::experiment::Experiment;
+use crate::fuzzy::{Motivations, RawMotivations};
+use crate::params::FieldError;
+use crate::room::{BUILTIN_ROOMS, Room};
+
+/// A room file as a front end found it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoomFile {
+    /// The file's text (TOML, docs/model.md §4).
+    pub text: String,
+    /// The name its errors give it (usually the path).
+    pub source_name: String,
+    /// The config entry to record in the resolved config (e.g. the absolute path), so that
+    /// the resolved config finds the same file from anywhere.
+    pub entry: String,
+}
+
+/// Where the room entries of a config that are not built-in names come from.
+pub trait RoomFiles {
+    /// The room file that the config entry `entry` names, or `None` when there is no such file;
+    /// `Err` (a whole message, naming the file) when it exists but cannot be read.
+    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String>;
+
+    /// Where `entry` was looked for, for the error when [`RoomFiles::find`] found nothing.
+    fn looked_for(&self, entry: &str) -> String;
+}
+
+/// No room files: every room must be a built-in one (`H`, `T`, `L`, `square`, `rectangle`).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct BuiltinRoomsOnly;
+
+impl RoomFiles for BuiltinRoomsOnly {
+    fn find(&self, _entry: &str) -> Result<Option<RoomFile>, String> {
+        Ok(None)
+    }
+
+    fn looked_for(&self, entry: &str) -> String {
+        format!("no room files are read here, not even {entry}")
+    }
+}
+
+/// What keeps a config from becoming an experiment.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SetupError {
+    /// A value of the config or of a room file: the source, the field, what is wrong.
+    #[error(transparent)]
+    Field(#[from] FieldError),
+    /// A room file that is not TOML, or that cannot be read (the message names the file).
+    #[error("{0}")]
+    RoomFile(String),
+}
+
+/// A config made ready to run.
+#[derive(Debug, Clone)]
+pub struct Setup {
+    /// The config as resolved: room files as [`RoomFile::entry`] names them, motivations
+    /// normalised (what a front end records, e.g. `config.resolved.toml`).
+    pub raw: RawConfig,
+    /// The validated experiment.
+    pub experiment: Experiment,
+    /// What a front end should tell its user (e.g. that the motivations were normalised).
+    pub notes: Vec<String>,
+}
+
+impl Setup {
+    /// Resolves `raw` (read from `source_name`): built-in rooms by name, other entries through
+    /// `files`; motivations summing to within 0.001 of 1 normalised (docs/model.md §8); then
+    /// the whole config validated into an [`Experiment`].
+    pub fn resolve(
+        mut raw: RawConfig,
+        source_name: &str,
+        files: &dyn RoomFiles,
+    ) -> Result<Setup, SetupError> {
+        let mut rooms = Vec::with_capacity(raw.rooms.len());
+        for (i, entry) in raw.rooms.iter_mut().enumerate() {
+            rooms.push(resolve_room(i, entry, source_name, files)?);
+        }
+        let notes = raw
+            .motivations
+            .normalise()
+            .map(|(sum, m)| {
+                format!(
+                    "{source_name}: motivations summed to {sum}, normalised to (C, H, O, E) = {:?}",
+                    m.as_array()
+                )
+            })
+            .into_iter()
+            .collect();
+        let experiment = Experiment::new(&raw, rooms, source_name)?;
+        Ok(Setup {
+            raw,
+            experiment,
+            notes,
+        })
+    }
+}
+
+/// Room `i` of a config: a built-in room, or the room file `files` finds (its entry then
+/// rewritten as the file asks).
+fn resolve_room(
+    i: usize,
+    entry: &mut String,
+    source_name: &str,
+    files: &dyn RoomFiles,
+) -> Result<Room, SetupError> {
+    if let Some(room) = Room::builtin(entry) {
+        return Ok(room);
+    }
+    let Some(file) = files.find(entry).map_err(SetupError::RoomFile)? else {
+        let reason = format!(
+            "\"{entry}\" is neither a built-in room ({}) nor a room file (looked for {})",
+            BUILTIN_ROOMS.join(", "),
+            files.looked_for(entry)
+        );
+        return Err(FieldError::new(format!("rooms[{i}]"), reason)
+            .in_source(source_name)
+            .into());
+    };
+    let room = parse_room_file(&file.text, &file.source_name)?;
+    *entry = file.entry;
+    Ok(room)
+}
+
+/// Parses and validates a room file's text: a TOML syntax error names the line, a wrong or
+/// missing value its field (as [`Room::from_toml_str`]).
+pub fn parse_room_file(text: &str, source_name: &str) -> Result<Room, SetupError> {
+    if let Err(e) = toml::from_str::<toml::Table>(text) {
+        return Err(SetupError::RoomFile(format!(
+            "{source_name}: not valid TOML{}: {}",
+            at_line(text, e.span()),
+            e.message().trim()
+        )));
+    }
+    Ok(Room::from_toml_str(text, source_name)?)
+}
+
+impl RawMotivations {
+    /// docs/model.md §8: motivations summing to within 0.001 of 1 (but not within 1e-9) are
+    /// divided by their sum; returns the original sum and the normalised motivations then.
+    /// Values farther off are left as they are, for validation to refuse.
+    pub fn normalise(&mut self) -> Option<(f64, Motivations)> {
+        let (m, sum) =
+            Motivations::normalised(self.curiosity, self.homing, self.orientation, self.energy)
+                .ok()?;
+        let sum = sum?;
+        self.curiosity = m.curiosity;
+        self.homing = m.homing;
+        self.orientation = m.orientation;
+        self.energy = m.energy;
+        Some((sum, m))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct OneFile(&'static str);
+
+    impl RoomFiles for OneFile {
+        fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+            Ok((entry == "mine.toml").then(|| RoomFile {
+                text: self.0.to_string(),
+                source_name: "mine.toml".into(),
+                entry: "/abs/mine.toml".into(),
+            }))
+        }
+
+        fn looked_for(&self, entry: &str) -> String {
+            format!("/abs/{entry}")
+        }
+    }
+
+    const BOX: &str = "name = \"box\"\noutline = [[0, 0], [400, 0], [400, 400], [0, 400]]\nhome = { x = 200, y = 200, heading_deg = 0 }\n";
+
+    fn raw(rooms: &str) -> RawConfig {
+        RawConfig::parse(&format!("rooms = {rooms}"), "c.toml", &[]).unwrap()
+    }
+
+    /// A room file found by the front end is read, and the resolved config names it as asked.
+    #[test]
+    fn room_files_come_from_the_front_end() {
+        let setup = Setup::resolve(raw("[\"H\", \"mine.toml\"]"), "c.toml", &OneFile(BOX)).unwrap();
+        assert_eq!(setup.raw.rooms, ["H", "/abs/mine.toml"]);
+        assert_eq!(setup.experiment.room_names(), ["H", "box"]);
+        assert!(setup.notes.is_empty());
+    }
+
+    /// A room that is neither built in nor found names its entry and where it was looked for.
+    #[test]
+    fn a_missing_room_names_its_entry() {
+        let e = Setup::resolve(raw("[\"H\", \"nope.toml\"]"), "c.toml", &OneFile(BOX)).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.starts_with("c.toml: field `rooms[1]`: \"nope.toml\" is neither"),
+            "{text}"
+        );
+        assert!(text.contains("looked for /abs/nope.toml"), "{text}");
+    }
+
+    /// A room file that is not TOML names its line.
+    #[test]
+    fn a_broken_room_file_names_its_line() {
+        let e =
+            Setup::resolve(raw("[\"mine.toml\"]"), "c.toml", &OneFile("name = \n")).unwrap_err();
+        assert!(matches!(e, SetupError::RoomFile(_)));
+        assert!(
+            e.to_string()
+                .starts_with("mine.toml: not valid TOML (line 1"),
+            "{e}"
+        );
+    }
+
+    /// Motivations a little off 1 are normalised (and said); far off is an error.
+    #[test]
+    fn motivations_are_normalised_once_and_said() {
+        let mut m = RawMotivations {
+            curiosity: 0.3333,
+            homing: 0.3333,
+            orientation: 0.0,
+            energy: 0.3333,
+        };
+        let (sum, n) = m.normalise().unwrap();
+        assert!((sum - 0.9999).abs() < 1e-12);
+        assert_eq!(m.curiosity, n.curiosity);
+        assert_eq!(m.normalise(), None, "already normalised");
+        let mut far = RawMotivations {
+            curiosity: 0.5,
+            ..m
+        };
+        assert_eq!(far.normalise(), None);
+        assert_eq!(far.curiosity, 0.5, "left for validation to refuse");
+    }
+}
