@@ -12,12 +12,12 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use fuzzymotiv::config::{OrientationMode, RawConfig};
-use fuzzymotiv::evolution::{GenerationState, Observer};
-use fuzzymotiv::outcome::RunError;
-use fuzzymotiv::fuzzy::{CoefficientScheme, Motivations, TskFitness};
-use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
-use fuzzymotiv::trial::Trajectory;
+use fuzzymotiv::experiment::config::{OrientationMode, RawConfig};
+use fuzzymotiv::experiment::evolution::{GenerationState, Observer};
+use fuzzymotiv::experiment::outcome::RunError;
+use fuzzymotiv::fitness::fuzzy::{CoefficientScheme, Motivations, TskFitness};
+use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::simulation::trial::Trajectory;
 use fuzzymotiv_cli::checkpoint::{CHECKPOINT, Checkpoint, POPULATION};
 use fuzzymotiv_cli::error::{CliError, ErrorKind};
 use fuzzymotiv_cli::files::{OutState, PYTHON, StagedDir, check_out_as};
@@ -190,7 +190,7 @@ fn motivations(x: [f64; 4]) -> PyResult<Motivations> {
 
 /// The TSK from optional peaks and coefficients (`"linear"`, `"ratio"` or a list).
 fn tsk(peaks: Option<Vec<f64>>, coefficients: Option<&Bound<'_, PyAny>>) -> PyResult<TskFitness> {
-    let peaks = peaks.unwrap_or_else(|| fuzzymotiv::fuzzy::PAPER_PEAKS.to_vec());
+    let peaks = peaks.unwrap_or_else(|| fuzzymotiv::fitness::fuzzy::PAPER_PEAKS.to_vec());
     finite(
         "peaks",
         &peaks,
@@ -326,7 +326,7 @@ fn export_fll(
             .and_then(|p| p.file_stem())
             .map_or("fuzzymotiv".into(), |s| s.to_string_lossy().into_owned())
     });
-    let text = fuzzymotiv::fll::to_fll(&t, &x, &name);
+    let text = fuzzymotiv::fitness::fll::to_fll(&t, &x, &name);
     if let Some(path) = path {
         if path.exists() && !force {
             return Err(input_err(format!(
@@ -341,7 +341,7 @@ fn export_fll(
 
 fn room_dict<'py>(py: Python<'py>, r: &Room) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    let pts = |p: &[fuzzymotiv::geom::Vec2]| -> PyResult<Bound<'py, PyAny>> {
+    let pts = |p: &[fuzzymotiv::simulation::geom::Vec2]| -> PyResult<Bound<'py, PyAny>> {
         let flat: Vec<f64> = p.iter().flat_map(|v| [v.x, v.y]).collect();
         let a = Array2::from_shape_vec((p.len(), 2), flat).expect("n × 2");
         Ok(a.into_pyarray(py).into_any())

@@ -3,7 +3,7 @@
 use std::time::Instant;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::room::Room;
+use fuzzymotiv::simulation::room::Room;
 
 use crate::error::CliError;
 use crate::inputs::{load_config, resolve};
@@ -114,7 +114,7 @@ fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
     let loaded = if Room::builtin(&args.room).is_some() {
         load_config(None, &sets, None)?
     } else {
-        let raw = fuzzymotiv::config::RawConfig::parse("", "bench", &sets)?;
+        let raw = fuzzymotiv::experiment::config::RawConfig::parse("", "bench", &sets)?;
         resolve(raw, std::path::Path::new("."), "--room")?
     };
     Ok(loaded.experiment)
@@ -122,7 +122,7 @@ fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
 
 /// Times `work(r)` for each repetition `r` of `repeat`; returns the median seconds and the median
 /// executed robot-steps of a repetition. Each repetition runs new trials (new random streams), so
-/// no repetition finds its poses already remembered by an earlier one ([`fuzzymotiv::memo`]).
+/// no repetition finds its poses already remembered by an earlier one ([`fuzzymotiv::simulation::memo`]).
 fn timed(repeat: usize, mut work: impl FnMut(usize) -> usize) -> (f64, usize) {
     let mut seconds = Vec::new();
     let mut steps = Vec::new();

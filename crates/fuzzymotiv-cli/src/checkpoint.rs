@@ -3,9 +3,9 @@
 
 use std::path::Path;
 
-use fuzzymotiv::evolution::{GenerationRecord, GenerationState, Stopped};
+use fuzzymotiv::experiment::evolution::{GenerationRecord, GenerationState, Stopped};
+use fuzzymotiv::experiment::outcome::Start;
 use fuzzymotiv::experiment::{Experiment, Run};
-use fuzzymotiv::outcome::Start;
 use serde::{Deserialize, Serialize};
 
 use crate::error::CliError;

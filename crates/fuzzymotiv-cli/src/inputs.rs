@@ -2,10 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::config::RawConfig;
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
-use fuzzymotiv::setup::{RoomFile, RoomFiles, Setup, parse_room_file};
+use fuzzymotiv::experiment::config::RawConfig;
+use fuzzymotiv::experiment::setup::{RoomFile, RoomFiles, Setup, parse_room_file};
+use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
 
 use crate::error::CliError;
 use crate::note;
@@ -98,7 +98,7 @@ pub fn load_config(
 
 /// The largest seed: 2^53 − 1, so every seed is exact in JSON for tools that read numbers as
 /// doubles (JavaScript, jq).
-pub const MAX_SEED: u64 = fuzzymotiv::config::MAX_SEED;
+pub const MAX_SEED: u64 = fuzzymotiv::experiment::config::MAX_SEED;
 
 /// Parses `--seed`: a whole number from 0 to 2^53 − 1, with a plain message otherwise.
 pub fn parse_seed(text: &str) -> Result<u64, String> {

@@ -129,7 +129,7 @@ fn parse_four(text: &str, option: &str, names: [&str; 4]) -> Result<[f64; 4], Cl
 }
 
 fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
-    use fuzzymotiv::fuzzy::{Motivations, TskFitness};
+    use fuzzymotiv::fitness::fuzzy::{Motivations, TskFitness};
     let x = parse_four(&args.motivations, "--motivations", ["C", "H", "O", "E"])?;
     let (m, sum) = Motivations::normalised(x[0], x[1], x[2], x[3])
         .map_err(|e| CliError::input(format!("--motivations: {e}")))?;
@@ -157,8 +157,8 @@ fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
 /// Writes the FLL engine to `path` (`-`: standard output) through the output guard.
 fn export_fll(
     path: &std::path::Path,
-    tsk: &fuzzymotiv::fuzzy::TskFitness,
-    m: &fuzzymotiv::fuzzy::Motivations,
+    tsk: &fuzzymotiv::fitness::fuzzy::TskFitness,
+    m: &fuzzymotiv::fitness::fuzzy::Motivations,
     force: bool,
 ) -> Result<(), CliError> {
     use fuzzymotiv_cli::files::{FilesState, check_files, write_files};
@@ -167,7 +167,7 @@ fn export_fll(
         Some(s) if !stdout => s.to_string_lossy().into_owned(),
         _ => "fuzzymotiv".into(),
     };
-    let text = fuzzymotiv::fll::to_fll(tsk, m, &name);
+    let text = fuzzymotiv::fitness::fll::to_fll(tsk, m, &name);
     if stdout {
         return fuzzymotiv_cli::out!("{text}");
     }
@@ -189,7 +189,7 @@ fn export_fll(
 }
 
 fn rooms(args: RoomsArgs) -> Result<(), CliError> {
-    use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+    use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
     if args.check.is_empty() {
         outln!(
             "{:<10} {:>10} {:>10}  home (x mm, y mm, heading °)",
@@ -217,7 +217,7 @@ fn rooms(args: RoomsArgs) -> Result<(), CliError> {
     }
 }
 
-fn print_room(prefix: &str, r: &fuzzymotiv::room::Room) -> Result<(), CliError> {
+fn print_room(prefix: &str, r: &fuzzymotiv::simulation::room::Room) -> Result<(), CliError> {
     outln!(
         "{prefix}{:<10} {:>10.3} {:>10.3}  ({}, {}, {})",
         r.name,

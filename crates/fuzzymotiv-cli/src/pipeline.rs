@@ -8,10 +8,10 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
-use fuzzymotiv::config::Training;
-use fuzzymotiv::evolution::{GenerationState, Observer};
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::outcome::{Outcome, RunError};
+use fuzzymotiv::experiment::config::Training;
+use fuzzymotiv::experiment::evolution::{GenerationState, Observer};
+use fuzzymotiv::experiment::outcome::{Outcome, RunError};
 use indicatif::ProgressBar;
 
 use crate::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};

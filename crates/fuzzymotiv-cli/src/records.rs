@@ -21,12 +21,12 @@
 use std::fmt;
 use std::path::Path;
 
-use fuzzymotiv::config::Training;
-use fuzzymotiv::evolution::{Evolution, GenerationRecord};
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::fuzzy::Motivations;
-use fuzzymotiv::outcome::Outcome;
-use fuzzymotiv::trial::Trajectory;
+use fuzzymotiv::experiment::config::Training;
+use fuzzymotiv::experiment::evolution::{Evolution, GenerationRecord};
+use fuzzymotiv::experiment::outcome::Outcome;
+use fuzzymotiv::fitness::fuzzy::Motivations;
+use fuzzymotiv::simulation::trial::Trajectory;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 

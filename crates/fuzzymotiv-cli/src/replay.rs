@@ -9,11 +9,11 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::config::{OrientationMode, Training};
-use fuzzymotiv::controller::MlpShape;
+use fuzzymotiv::experiment::config::{OrientationMode, Training};
+use fuzzymotiv::experiment::modelling::InstanceRun;
 use fuzzymotiv::experiment::{Experiment, Run};
-use fuzzymotiv::modelling::InstanceRun;
-use fuzzymotiv::trial::Trajectory;
+use fuzzymotiv::simulation::controller::MlpShape;
+use fuzzymotiv::simulation::trial::Trajectory;
 
 use crate::error::CliError;
 use crate::files::{FilesState, check_files, io_err, num, write_files};

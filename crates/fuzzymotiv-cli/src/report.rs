@@ -7,13 +7,13 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::config::{EnergyMode, Training};
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::fitness::Homing;
-use fuzzymotiv::fuzzy::label_name;
-use fuzzymotiv::modelling::InstanceRun;
-use fuzzymotiv::robot::Motion;
-use fuzzymotiv::sensor::SENSOR_LAYOUT;
+use fuzzymotiv::experiment::config::{EnergyMode, Training};
+use fuzzymotiv::experiment::modelling::InstanceRun;
+use fuzzymotiv::fitness::fuzzy::label_name;
+use fuzzymotiv::fitness::terms::Homing;
+use fuzzymotiv::simulation::robot::Motion;
+use fuzzymotiv::simulation::sensor::SENSOR_LAYOUT;
 use serde_json::{Value, json};
 
 use crate::inputs::{Loaded, resolved_toml};
@@ -112,8 +112,8 @@ fn r3(v: f64) -> f64 {
 }
 
 /// One letter per action: S straight, L left30, R right30, T turn180.
-fn action_letter(a: fuzzymotiv::aem::Action) -> char {
-    use fuzzymotiv::aem::Action::*;
+fn action_letter(a: fuzzymotiv::modelling::aem::Action) -> char {
+    use fuzzymotiv::modelling::aem::Action::*;
     match a {
         Straight => 'S',
         Left30 => 'L',
@@ -126,8 +126,9 @@ fn action_letter(a: fuzzymotiv::aem::Action) -> char {
 /// sensors to integers; actions and collisions as one character per step).
 pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, run: &InstanceRun) -> Value {
     let r = exp.arenas()[room].room();
-    let pts =
-        |p: &[fuzzymotiv::geom::Vec2]| p.iter().map(|v| [r1(v.x), r1(v.y)]).collect::<Vec<_>>();
+    let pts = |p: &[fuzzymotiv::simulation::geom::Vec2]| {
+        p.iter().map(|v| [r1(v.x), r1(v.y)]).collect::<Vec<_>>()
+    };
     let (tr, terms, f) = (&run.trajectory, run.terms, run.f);
     let zone = r.home_zone;
     json!({
@@ -148,7 +149,7 @@ pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, run: &Instanc
         "i": tr.idle.iter().map(|&i| if i { '1' } else { '0' }).collect::<String>(),
         "c": tr.collisions.iter().map(|&c| if c { '1' } else { '0' }).collect::<String>(),
         "terms": {"a": r3(terms.a), "g": r3(terms.g), "l": r3(terms.l), "b": r3(terms.b)},
-        "online_l": exp.orientation() == fuzzymotiv::config::OrientationMode::Online && exp.motivations().orientation > 0.0,
+        "online_l": exp.orientation() == fuzzymotiv::experiment::config::OrientationMode::Online && exp.motivations().orientation > 0.0,
         "f": r3(f),
     })
 }
@@ -420,7 +421,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     let exp = &s.loaded.experiment;
     let done = s.done;
     let names = exp.room_names();
-    let label = |evo: &fuzzymotiv::evolution::Evolution| match exp.training() {
+    let label = |evo: &fuzzymotiv::experiment::evolution::Evolution| match exp.training() {
         Training::AllRooms => s.title.clone(),
         Training::PerRoom => format!("{}: robot evolved in {}", s.title, evo.run.label),
     };
@@ -791,7 +792,11 @@ fn files_list() -> String {
 }
 
 /// One room's firing rules as an HTML table, with the sums that give F.
-fn rules_html(exp: &Experiment, ex: &fuzzymotiv::fuzzy::Explanation, y: [f64; 4]) -> String {
+fn rules_html(
+    exp: &Experiment,
+    ex: &fuzzymotiv::fitness::fuzzy::Explanation,
+    y: [f64; 4],
+) -> String {
     let mut rules = String::from(
         "<table><tr><th>rule</th><th class=\"left\">if …</th><th>w</th><th>f</th><th>w·f</th></tr>",
     );

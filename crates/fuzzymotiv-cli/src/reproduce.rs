@@ -3,8 +3,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use fuzzymotiv::config::RawConfig;
-use fuzzymotiv::seed::Streams;
+use fuzzymotiv::experiment::config::RawConfig;
+use fuzzymotiv::random::seed::Streams;
 
 use crate::args::OutputArgs;
 use crate::error::CliError;
@@ -118,7 +118,10 @@ fn load_one(
     raw.rooms.clear();
     for (name, text) in FIRST_RELEASE_ROOMS {
         let file = format!("rooms/first-release/{name}.toml");
-        rooms.push(fuzzymotiv::room::Room::from_toml_str(text, &file).map_err(CliError::from)?);
+        rooms.push(
+            fuzzymotiv::simulation::room::Room::from_toml_str(text, &file)
+                .map_err(CliError::from)?,
+        );
         raw.rooms.push(file);
     }
     let experiment = fuzzymotiv::experiment::Experiment::new(&raw, rooms, &source)?;
@@ -525,7 +528,7 @@ fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
     if !sets.is_empty() {
         // Apply overrides to the document (config keys and sweep keys alike).
         let mut table: toml::Table = toml::from_str(&text).expect("built-in sweep is valid TOML");
-        fuzzymotiv::config::apply_sets(&mut table, &sets)?;
+        fuzzymotiv::experiment::config::apply_sets(&mut table, &sets)?;
         text = toml::to_string(&table).expect("a table serialises");
     }
     let sweep = Sweep::parse_str(

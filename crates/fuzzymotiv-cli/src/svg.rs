@@ -3,11 +3,11 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::evolution::GenerationRecord;
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::geom::{Vec2, point_in_polygon};
-use fuzzymotiv::room::Room;
-use fuzzymotiv::trial::Trajectory;
+use fuzzymotiv::experiment::evolution::GenerationRecord;
+use fuzzymotiv::simulation::geom::{Vec2, point_in_polygon};
+use fuzzymotiv::simulation::room::Room;
+use fuzzymotiv::simulation::trial::Trajectory;
 
 /// Escapes text for XML/HTML content and attribute values.
 pub fn esc(s: &str) -> String {
@@ -316,8 +316,8 @@ const TICK: f64 = 3.0;
 /// room and down in SVG.
 struct Projection {
     x_off: f64,
-    lo: fuzzymotiv::geom::Vec2,
-    hi: fuzzymotiv::geom::Vec2,
+    lo: fuzzymotiv::simulation::geom::Vec2,
+    hi: fuzzymotiv::simulation::geom::Vec2,
     scale: f64,
 }
 
@@ -330,7 +330,7 @@ impl Projection {
         40.0 + (self.hi.y - y) * self.scale
     }
 
-    fn polygon(&self, pts: &[fuzzymotiv::geom::Vec2]) -> String {
+    fn polygon(&self, pts: &[fuzzymotiv::simulation::geom::Vec2]) -> String {
         pts.iter()
             .map(|p| format!("{:.1},{:.1}", self.x(p.x), self.y(p.y)))
             .collect::<Vec<_>>()
@@ -1189,9 +1189,9 @@ fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fuzzymotiv::evolution::GenerationRecord;
-    use fuzzymotiv::ga::Stats;
-    use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
+    use fuzzymotiv::evolution::ga::Stats;
+    use fuzzymotiv::experiment::evolution::GenerationRecord;
+    use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
 
     /// An attribute's value in an element's start tag (`head`: the text after `<name`).
     fn attr(head: &str, name: &str) -> Option<String> {
@@ -1390,7 +1390,7 @@ mod tests {
                 (0..36).map(move |k| {
                     let a = k as f64 * std::f64::consts::TAU / 36.0;
                     let r = f * zone.radius;
-                    fuzzymotiv::geom::Vec2::new(
+                    fuzzymotiv::simulation::geom::Vec2::new(
                         zone.centre.x + r * a.cos(),
                         zone.centre.y + r * a.sin(),
                     )
@@ -1400,7 +1400,8 @@ mod tests {
             // zone's dashed edge.
             for p in ring(0.75) {
                 let clear = room.contains(p)
-                    && fuzzymotiv::geom::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)
+                    && fuzzymotiv::simulation::geom::edges(&room.outline)
+                        .all(|e| e.dist_to(p) > 15.0)
                     && p.dist(room.home.position()) > 40.0;
                 if clear {
                     assert!(
@@ -1416,7 +1417,8 @@ mod tests {
             for p in ring(0.9) {
                 let (plo, phi) = room.bounds();
                 let beyond = !room.contains(p)
-                    && fuzzymotiv::geom::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)
+                    && fuzzymotiv::simulation::geom::edges(&room.outline)
+                        .all(|e| e.dist_to(p) > 15.0)
                     && p.x > plo.x - 50.0
                     && p.y < phi.y + 50.0;
                 if beyond {
@@ -1485,7 +1487,7 @@ mod tests {
     #[test]
     fn finding_8_no_text_clipped_or_overlapping_at_1_to_8_rooms() {
         let title = "Replay of runs/high-curiosity/best_genome.json (seed 9007199254740991)";
-        let names: Vec<String> = fuzzymotiv::fuzzy::PAPER_LABEL_NAMES
+        let names: Vec<String> = fuzzymotiv::fitness::fuzzy::PAPER_LABEL_NAMES
             .iter()
             .map(|s| s.to_string())
             .collect();

@@ -7,8 +7,8 @@
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::config::RawConfig;
-use fuzzymotiv::seed::{Streams, hash_str};
+use fuzzymotiv::experiment::config::RawConfig;
+use fuzzymotiv::random::seed::{Streams, hash_str};
 use serde::Deserialize;
 
 use crate::error::CliError;

@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::config::Training;
+use fuzzymotiv::experiment::config::Training;
 
 use crate::inputs::Loaded;
 use crate::records::{ClaimRecord, RoomRow};

@@ -321,7 +321,7 @@ fn reproduce_results_do_not_depend_on_thread_count() {
         out
     };
     let (one, three) = (study("1"), study("3"));
-    let second = fuzzymotiv::seed::study_seed(1, 1);
+    let second = fuzzymotiv::random::seed::study_seed(1, 1);
     let mut files = vec![
         "table1.csv".to_string(),
         "table2.csv".into(),
@@ -370,7 +370,7 @@ fn reproduce_quick_writes_every_documented_file() {
     ] {
         assert!(out.join(f).is_file(), "missing {f}");
     }
-    let second = fuzzymotiv::seed::study_seed(5, 1);
+    let second = fuzzymotiv::random::seed::study_seed(5, 1);
     for seed in [5, second] {
         for f in [
             "high-curiosity/SEED/generations.csv",

@@ -14,11 +14,11 @@
 //! instruction; three runs) one robot at a time took 81–90 ns, four in lockstep 58–67 ns (about
 //! 1.4×); with AVX2 (two runs) 82–86 ns against 45–50 ns (about 1.75×). The network is about
 //! 30 % of a study's time.
-use fuzzymotiv::controller::{Controller, Mlp, MlpShape};
-use fuzzymotiv::math::logistic_lanes;
-use fuzzymotiv::rng::{rng_from_seed, uniform};
-use fuzzymotiv::room::Room;
-use fuzzymotiv::trial::{Arena, Step, StepObserver, TrialParams, simulate};
+use fuzzymotiv::random::rng::{rng_from_seed, uniform};
+use fuzzymotiv::simulation::controller::{Controller, Mlp, MlpShape};
+use fuzzymotiv::simulation::math::logistic_lanes;
+use fuzzymotiv::simulation::room::Room;
+use fuzzymotiv::simulation::trial::{Arena, Step, StepObserver, TrialParams, simulate};
 use std::time::Instant;
 
 const L: usize = 4;

@@ -1,22 +1,29 @@
 //! The facade: a validated [`Experiment`] built once from a [`RawConfig`] and its rooms, with
 //! its protocol ([`Experiment::runs`]), random streams and fuzzy fitness. Evaluation
-//! ([`crate::evaluation`]), evolution ([`crate::evolution`], [`Experiment::evolve`]) and room
-//! modelling ([`crate::modelling`], [`Experiment::environment_modelling`]) are methods of
+//! ([`crate::experiment::evaluation`]), evolution ([`crate::experiment::evolution`], [`Experiment::evolve`]) and room
+//! modelling ([`crate::experiment::modelling`], [`Experiment::environment_modelling`]) are methods of
 //! `Experiment` written beside their own types.
+
+pub mod config;
+pub mod evaluation;
+pub mod evolution;
+pub mod modelling;
+pub mod outcome;
+pub mod setup;
 
 use serde::{Deserialize, Serialize};
 
-use crate::aem::AemParams;
-use crate::config::{ConfigError, EnergyMode, OrientationMode, RawConfig, Training};
-use crate::controller::MlpShape;
-use crate::fitness::{FitnessTerms, Homing};
-use crate::fuzzy::{Motivations, TskFitness};
-use crate::ga::GaParams;
+use crate::evolution::ga::GaParams;
+use crate::experiment::config::{ConfigError, EnergyMode, OrientationMode, RawConfig, Training};
+use crate::fitness::fuzzy::{Motivations, TskFitness};
+use crate::fitness::terms::{FitnessTerms, Homing};
+use crate::modelling::aem::AemParams;
 use crate::params::{FieldError, check};
-use crate::robot::KHEPERA_RADIUS;
-use crate::room::Room;
-use crate::seed::{Streams, hash_str};
-use crate::trial::{Arena, TrialParams};
+use crate::random::seed::{Streams, hash_str};
+use crate::simulation::controller::MlpShape;
+use crate::simulation::robot::KHEPERA_RADIUS;
+use crate::simulation::room::Room;
+use crate::simulation::trial::{Arena, TrialParams};
 
 /// A validated experiment: its fields are private (read through the accessors below), so their
 /// invariants hold and nothing downstream re-checks these values.
@@ -270,7 +277,7 @@ pub struct Run {
 #[cfg(test)]
 pub(crate) mod testing {
     use super::*;
-    use crate::room::BUILTIN_ROOMS;
+    use crate::simulation::room::BUILTIN_ROOMS;
 
     pub(crate) fn experiment(extra: &[&str]) -> Experiment {
         let mut sets: Vec<String> = [
@@ -304,7 +311,7 @@ pub(crate) mod testing {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::room::BUILTIN_ROOMS;
+    use crate::simulation::room::BUILTIN_ROOMS;
 
     /// The empty config validates to each validated type's own defaults (written once).
     #[test]

@@ -61,42 +61,24 @@
 
 #![warn(missing_docs)]
 
-pub mod aem;
-pub mod config;
-pub mod controller;
-pub mod evaluation;
 pub mod evolution;
 pub mod experiment;
 pub mod fitness;
-pub mod fll;
-pub mod fuzzy;
-pub mod ga;
-pub mod geom;
-pub mod math;
-pub(crate) mod memo;
 pub mod modelling;
-pub mod noise;
-pub mod outcome;
 pub mod params;
-pub mod recognition;
-pub mod rng;
-pub mod robot;
-pub mod room;
-pub mod seed;
-pub mod sensing;
-pub mod sensor;
-pub mod setup;
-pub mod som;
-pub mod trial;
+pub mod random;
+pub mod simulation;
 
-pub use config::RawConfig;
-pub use evolution::{Evolution, GenerationRecord, GenerationState, Observer, Stopped};
+pub use experiment::config::RawConfig;
+pub use experiment::evolution::{Evolution, GenerationRecord, GenerationState, Observer, Stopped};
+pub use experiment::outcome::{Interrupted, Outcome, RunError, RunObserver, Start};
+pub use experiment::setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError};
 pub use experiment::{Experiment, Run};
-pub use fuzzy::{Motivations, TskFitness};
-pub use outcome::{Interrupted, Outcome, RunError, RunObserver, Start};
+pub use fitness::fuzzy::{Motivations, TskFitness};
+pub use fitness::terms::FitnessTerms;
 pub use params::FieldError;
-pub use room::Room;
-pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError};
+pub use simulation::room::Room;
+pub use simulation::trial::{Arena, Trajectory};
 
 /// The program version, written into every run directory.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

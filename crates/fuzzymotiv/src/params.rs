@@ -1,7 +1,7 @@
 //! The one error type of every value read from a user's input (config or room file): the source,
 //! the field and what is wrong. Each parameter section is checked beside its own type
-//! ([`crate::ga::GaParams::validate`], [`crate::trial::TrialParams::from_raw`],
-//! [`crate::aem::AemParams::from_raw`], …) and [`crate::experiment::Experiment::new`] composes
+//! ([`crate::evolution::ga::GaParams::validate`], [`crate::simulation::trial::TrialParams::from_raw`],
+//! [`crate::modelling::aem::AemParams::from_raw`], …) and [`crate::experiment::Experiment::new`] composes
 //! the checks, naming the source.
 
 /// A value that cannot be used: the file (or other source), the field and the reason.

@@ -2,9 +2,9 @@
 //! fields, NaN/inf, huge numbers, self-intersecting outlines, unknown keys, …) must end in a
 //! typed error naming a field — never a panic.
 
-use fuzzymotiv::config::RawConfig;
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::room::Room;
+use fuzzymotiv::experiment::config::RawConfig;
+use fuzzymotiv::simulation::room::Room;
 use proptest::prelude::*;
 
 const KEYS: &[&str] = &[
@@ -164,8 +164,8 @@ proptest! {
         match Room::from_toml_str(&text, "fuzz-room.toml") {
             Ok(room) => {
                 // A valid room must be usable by the simulator.
-                let params = fuzzymotiv::trial::TrialParams { steps: 20, ..Default::default() };
-                let arena = fuzzymotiv::trial::Arena::new(room, &params);
+                let params = fuzzymotiv::simulation::trial::TrialParams { steps: 20, ..Default::default() };
+                let arena = fuzzymotiv::simulation::trial::Arena::new(room, &params);
                 prop_assert!(arena.reachable_cells() <= arena.cell_count());
             }
             Err(e) => prop_assert!(!e.field.is_empty() && !e.reason.is_empty()),

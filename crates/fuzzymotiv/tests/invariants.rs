@@ -1,11 +1,11 @@
 //! Property tests of the simulator's invariants and value-stability (golden) tests.
 
-use fuzzymotiv::aem::Action;
-use fuzzymotiv::controller::{Mlp, MlpShape};
-use fuzzymotiv::rng::{Rng, rng_from_seed, standard_normal, uniform01};
-use fuzzymotiv::robot::{Khepera, Motion, wrap_angle};
-use fuzzymotiv::room::{BUILTIN_ROOMS, Room};
-use fuzzymotiv::trial::{Arena, TrialParams, run_trial};
+use fuzzymotiv::modelling::aem::Action;
+use fuzzymotiv::random::rng::{Rng, rng_from_seed, standard_normal, uniform01};
+use fuzzymotiv::simulation::controller::{Mlp, MlpShape};
+use fuzzymotiv::simulation::robot::{Khepera, Motion, wrap_angle};
+use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::simulation::trial::{Arena, TrialParams, run_trial};
 use proptest::prelude::*;
 
 fn genome(seed: u64, scale: f64) -> Vec<f64> {

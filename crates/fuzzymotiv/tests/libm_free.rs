@@ -11,12 +11,12 @@ use std::collections::{HashMap, HashSet};
 use std::hint::black_box;
 use std::process::Command;
 
-use fuzzymotiv::controller::{Mlp, MlpShape};
-use fuzzymotiv::fitness::{Homing, TermsRecorder};
-use fuzzymotiv::rng::{Rng64, rng_from_seed};
-use fuzzymotiv::robot::{Khepera, Motion, Pose};
-use fuzzymotiv::room::Room;
-use fuzzymotiv::trial::{Arena, TrialParams, simulate};
+use fuzzymotiv::fitness::terms::{Homing, TermsRecorder};
+use fuzzymotiv::random::rng::{Rng64, rng_from_seed};
+use fuzzymotiv::simulation::controller::{Mlp, MlpShape};
+use fuzzymotiv::simulation::robot::{Khepera, Motion, Pose};
+use fuzzymotiv::simulation::room::Room;
+use fuzzymotiv::simulation::trial::{Arena, TrialParams, simulate};
 
 /// libm functions that must not be reached from the step loop (`fmod`, reached by
 /// `wrap_angle` for |θ| ≥ 2π only, is exact by definition, so the same on every platform).

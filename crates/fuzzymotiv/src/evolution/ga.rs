@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::params::{BIG, FieldError, check, unit};
-use crate::rng::{Rng, index, standard_normal, uniform, uniform01};
+use crate::random::rng::{Rng, index, standard_normal, uniform, uniform01};
 
 /// A genome: the controller's weights.
 pub type Genome = Vec<f64>;
@@ -209,7 +209,7 @@ impl Stats {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::rng_from_seed;
+    use crate::random::rng::rng_from_seed;
 
     #[test]
     fn elites_survive_and_sizes_hold() {

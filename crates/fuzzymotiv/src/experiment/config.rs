@@ -1,10 +1,10 @@
 //! Experiment configuration: the raw TOML document (every key has the default of docs/model.md, unknown keys
 //! are rejected), `--set key=value` overrides, and validation into [`crate::experiment::Experiment`].
 //! Each section's raw struct is declared beside the validated type it turns into (`[trial]` in
-//! [`crate::trial`], `[aem]` in [`crate::aem`], …) and re-exported here.
+//! [`crate::simulation::trial`], `[aem]` in [`crate::modelling::aem`], …) and re-exported here.
 //!
 //! ```
-//! use fuzzymotiv::config::RawConfig;
+//! use fuzzymotiv::experiment::config::RawConfig;
 //! let raw = RawConfig::parse("", "empty.toml", &["ga.population=20".to_string()]).unwrap();
 //! assert_eq!(raw.ga.population, 20);
 //! assert_eq!(raw.trial.steps, 400);
@@ -12,22 +12,22 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::aem::RawAem;
-pub use crate::controller::RawNetwork;
-use crate::fitness::Homing;
-pub use crate::fuzzy::{Coefficients, RawFuzzy, RawMotivations};
-use crate::ga::GaParams;
+use crate::evolution::ga::GaParams;
+pub use crate::fitness::fuzzy::{Coefficients, RawFuzzy, RawMotivations};
+use crate::fitness::terms::Homing;
+pub use crate::modelling::aem::RawAem;
 use crate::params::FieldError;
-use crate::robot::Khepera;
-use crate::room::{BUILTIN_ROOMS, field_from_toml_message};
-pub use crate::trial::RawTrial;
+pub use crate::simulation::controller::RawNetwork;
+use crate::simulation::robot::Khepera;
+use crate::simulation::room::{BUILTIN_ROOMS, field_from_toml_message};
+pub use crate::simulation::trial::RawTrial;
 
 /// The largest base seed, 2^53 − 1: every seed (and every seed derived from it for a sweep) is
 /// then exact as a JSON number, also for tools that read numbers as doubles (JavaScript, jq).
 pub const MAX_SEED: u64 = (1 << 53) - 1;
 
 /// A configuration that cannot be used: the file, the field and what is wrong (the same type
-/// as a room file's [`crate::room::RoomError`]).
+/// as a room file's [`crate::simulation::room::RoomError`]).
 pub type ConfigError = FieldError;
 
 /// How populations are trained over rooms (docs/model.md §10).

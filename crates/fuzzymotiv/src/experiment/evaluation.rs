@@ -4,15 +4,15 @@
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::aem::{Action, environment_vector};
-use crate::config::OrientationMode;
-use crate::controller::Mlp;
+use crate::evolution::ga::Genome;
+use crate::experiment::config::OrientationMode;
 use crate::experiment::{Experiment, Run};
-use crate::fitness::{FitnessTerms, TermsRecorder};
-use crate::ga::Genome;
-use crate::recognition::nearest_unique;
-use crate::rng::rng_from_seed;
-use crate::trial::{ActionLog, simulate};
+use crate::fitness::terms::{FitnessTerms, TermsRecorder};
+use crate::modelling::aem::{Action, environment_vector};
+use crate::modelling::recognition::nearest_unique;
+use crate::random::rng::rng_from_seed;
+use crate::simulation::controller::Mlp;
+use crate::simulation::trial::{ActionLog, simulate};
 
 impl Experiment {
     /// The controller of `genome` (its length is the validated shape's).
@@ -192,7 +192,7 @@ mod tests {
             let seed = exp.streams().online(run.tag, g, i, exp.room_key(r));
             assert_ne!(seed, exp.eval_seed(run, g, i, r));
             let v = environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder);
-            if crate::recognition::nearest_unique(&first, &v).unwrap() == Some(k) {
+            if crate::modelling::recognition::nearest_unique(&first, &v).unwrap() == Some(k) {
                 correct += 1;
             }
         }

@@ -7,8 +7,8 @@
 //! [`Experiment::evolve`] is exactly these steps, with an observer after every generation:
 //!
 //! ```
-//! use fuzzymotiv::config::RawConfig;
-//! use fuzzymotiv::setup::{BuiltinRoomsOnly, Setup};
+//! use fuzzymotiv::experiment::config::RawConfig;
+//! use fuzzymotiv::experiment::setup::{BuiltinRoomsOnly, Setup};
 //! use std::ops::ControlFlow;
 //!
 //! let sets = ["ga.population=6", "ga.generations=2", "trial.steps=50"].map(String::from);
@@ -34,11 +34,11 @@ use std::ops::ControlFlow;
 
 use serde::{Deserialize, Serialize};
 
-use crate::evaluation::Evaluation;
+use crate::evolution::ga::{Genome, Stats, initial_population, next_generation};
+use crate::experiment::evaluation::Evaluation;
 use crate::experiment::{Experiment, Run};
-use crate::fitness::FitnessTerms;
-use crate::ga::{Genome, Stats, initial_population, next_generation};
-use crate::rng::rng_from_seed;
+use crate::fitness::terms::FitnessTerms;
+use crate::random::rng::rng_from_seed;
 
 impl Experiment {
     /// The initial population of a run.
@@ -118,8 +118,9 @@ impl Experiment {
                     population: &population,
                     next: None,
                 });
-                let best =
-                    crate::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
+                let best = crate::evolution::ga::ranking(
+                    &evals.iter().map(|e| e.fitness).collect::<Vec<_>>(),
+                )[0];
                 return Ok(Evolution {
                     run: run.clone(),
                     history,
@@ -157,7 +158,8 @@ impl Experiment {
     ) -> Evolution {
         let last = history.len().saturating_sub(1);
         let evals = self.evaluate_population(&population, run, last);
-        let best = crate::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
+        let best =
+            crate::evolution::ga::ranking(&evals.iter().map(|e| e.fitness).collect::<Vec<_>>())[0];
         Evolution {
             run: run.clone(),
             history,

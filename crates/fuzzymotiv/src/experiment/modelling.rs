@@ -4,13 +4,13 @@
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::aem::environment_vector;
 use crate::experiment::{Experiment, Run};
-use crate::fitness::{FitnessTerms, TermsRecorder};
-use crate::recognition::{Confusion, Recognizer};
-use crate::rng::rng_from_seed;
-use crate::som::SomError;
-use crate::trial::{Trajectory, simulate};
+use crate::fitness::terms::{FitnessTerms, TermsRecorder};
+use crate::modelling::aem::environment_vector;
+use crate::modelling::recognition::{Confusion, Recognizer};
+use crate::modelling::som::SomError;
+use crate::random::rng::rng_from_seed;
+use crate::simulation::trial::{Trajectory, simulate};
 
 impl Experiment {
     /// The room-modelling run of `genome` in `room` on the AEM instance stream of `run` (the
@@ -195,7 +195,7 @@ pub struct AemReport {
 #[cfg(test)]
 mod tests {
     use crate::experiment::testing::experiment;
-    use crate::fitness::FitnessTerms;
+    use crate::fitness::terms::FitnessTerms;
 
     /// The room-modelling runs environment modelling returns are the instance runs (the ones
     /// whose actions became the stored instances), with the terms their trajectories measure.

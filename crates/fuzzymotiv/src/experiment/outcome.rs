@@ -5,13 +5,13 @@
 
 use std::ops::ControlFlow;
 
-use crate::config::Training;
-use crate::evolution::{Evolution, GenerationRecord, GenerationState, Stopped};
+use crate::evolution::ga::Genome;
 use crate::experiment::Experiment;
-use crate::ga::Genome;
-use crate::modelling::{AemReport, InstanceRun};
-use crate::som::SomError;
-use crate::trial::Trajectory;
+use crate::experiment::config::Training;
+use crate::experiment::evolution::{Evolution, GenerationRecord, GenerationState, Stopped};
+use crate::experiment::modelling::{AemReport, InstanceRun};
+use crate::modelling::som::SomError;
+use crate::simulation::trial::Trajectory;
 
 /// An observer of a whole experiment: called after every generation with the index of the
 /// evolution (in [`Experiment::runs`]) and where it stands; [`ControlFlow::Break`] stops the

@@ -4,8 +4,8 @@
 //! [`RoomFiles`] that does (the CLI reads them relative to the config file).
 //!
 //! ```
-//! use fuzzymotiv::config::RawConfig;
-//! use fuzzymotiv::setup::{BuiltinRoomsOnly, Setup};
+//! use fuzzymotiv::experiment::config::RawConfig;
+//! use fuzzymotiv::experiment::setup::{BuiltinRoomsOnly, Setup};
 //!
 //! let sets = ["motivations.curiosity=0.8".to_string(), "motivations.homing=0.1001".to_string()];
 //! let raw = RawConfig::parse("rooms = [\"H\", \"square\"]", "example", &sets).unwrap();
@@ -16,11 +16,11 @@
 //! assert!((setup.experiment.motivations().as_array().iter().sum::<f64>() - 1.0).abs() < 1e-12);
 //! ```
 
-use crate::config::{RawConfig, at_line};
 use crate::experiment::Experiment;
-use crate::fuzzy::{Motivations, RawMotivations};
+use crate::experiment::config::{RawConfig, at_line};
+use crate::fitness::fuzzy::{Motivations, RawMotivations};
 use crate::params::FieldError;
-use crate::room::{BUILTIN_ROOMS, Room};
+use crate::simulation::room::{BUILTIN_ROOMS, Room};
 
 /// A room file as a front end found it.
 #[derive(Debug, Clone, PartialEq)]

@@ -11,8 +11,8 @@
 //! shortest round-trip form, so every coefficient reads back to the same `f64`.
 //!
 //! ```
-//! use fuzzymotiv::fll::to_fll;
-//! use fuzzymotiv::fuzzy::{Motivations, TskFitness};
+//! use fuzzymotiv::fitness::fll::to_fll;
+//! use fuzzymotiv::fitness::fuzzy::{Motivations, TskFitness};
 //! let text = to_fll(&TskFitness::paper(), &Motivations::HIGH_CURIOSITY, "high_curiosity");
 //! assert_eq!(text.matches("\n  rule: ").count(), 625);
 //! assert!(text.contains("term: r10 Linear 0.8 0.025 0 0 0"));
@@ -20,7 +20,7 @@
 
 use std::fmt::Write as _;
 
-use crate::fuzzy::{INPUT_NAMES, Motivations, TskFitness};
+use crate::fitness::fuzzy::{INPUT_NAMES, Motivations, TskFitness};
 
 /// Name of the FLL output variable.
 pub const OUTPUT_NAME: &str = "F";
@@ -152,7 +152,7 @@ pub fn to_fll(tsk: &TskFitness, motivations: &Motivations, name: &str) -> String
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fuzzy::CoefficientScheme;
+    use crate::fitness::fuzzy::CoefficientScheme;
 
     /// Evaluates an FLL text the way fuzzylite does, from the text alone (terms, rules,
     /// `Linear` coefficients), for the shapes `to_fll` writes.
@@ -235,7 +235,7 @@ mod tests {
     fn coefficients_round_trip() {
         let x = Motivations::new(0.3, 0.2, 0.1, 0.4).unwrap();
         let tsk = TskFitness::new(
-            crate::fuzzy::PAPER_PEAKS.to_vec(),
+            crate::fitness::fuzzy::PAPER_PEAKS.to_vec(),
             vec![0.1, 1.0 / 3.0, 0.5, 2.0 / 3.0, 0.9],
         )
         .unwrap();

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::trial::{Arena, CELL, Step, StepObserver, Trajectory, TrialParams};
+use crate::simulation::trial::{Arena, CELL, Step, StepObserver, Trajectory, TrialParams};
 
 /// The four fitness values Y = (a, g, l, b), each in [0, 1], higher is better for the fuzzy
 /// combination (with `energy = "use"`).
@@ -71,7 +71,7 @@ pub struct TermsRecorder<'a> {
     battery: f64,
     steps: usize,
     executed: usize,
-    last: crate::robot::Pose,
+    last: crate::simulation::robot::Pose,
     escaped: bool,
     homing: Homing,
     optimum: usize,
@@ -146,11 +146,11 @@ impl StepObserver for TermsRecorder<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::controller::{Controller, INPUTS};
-    use crate::rng::rng_from_seed;
-    use crate::robot::{Khepera, Motion};
-    use crate::room::Room;
-    use crate::trial::run_trial;
+    use crate::random::rng::rng_from_seed;
+    use crate::simulation::controller::{Controller, INPUTS};
+    use crate::simulation::robot::{Khepera, Motion};
+    use crate::simulation::room::Room;
+    use crate::simulation::trial::run_trial;
 
     /// A controller that plays a fixed list of motor outputs, then repeats the last one.
     struct Script(Vec<[f64; 2]>, usize);
@@ -262,7 +262,7 @@ mod tests {
         assert!(
             tr.actions[27..]
                 .iter()
-                .all(|&a| a == crate::aem::Action::Straight)
+                .all(|&a| a == crate::modelling::aem::Action::Straight)
         );
         assert!(tr.energy[27..].iter().all(|&e| e == 0.0));
         assert_eq!(t.b, 27.0 / 400.0);
@@ -319,7 +319,7 @@ mod tests {
                 &mut rng_from_seed(9),
             );
             let mut rec = TermsRecorder::new(&arena, &params, Homing::Escape);
-            crate::trial::simulate(
+            crate::simulation::trial::simulate(
                 &arena,
                 &mut Script(vec![[0.9, 0.7]], 0),
                 &params,

@@ -7,8 +7,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::modelling::som::SomParams;
 use crate::params::{BIG, FieldError, check};
-use crate::som::SomParams;
 
 /// Default signed-speed difference (fractions of `v_max`) separating a turn from a straight
 /// step.
@@ -163,9 +163,9 @@ impl AemParams {
     }
 }
 
-/// The action taken in one control step: defined with the robot's motion ([`crate::robot`]),
+/// The action taken in one control step: defined with the robot's motion ([`crate::simulation::robot`]),
 /// re-exported here where the chain code and the environment vectors use it.
-pub use crate::robot::Action;
+pub use crate::simulation::robot::Action;
 
 /// How a sequence of actions becomes an environment vector (one element per action).
 ///

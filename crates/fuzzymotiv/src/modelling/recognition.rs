@@ -1,8 +1,8 @@
 //! Room recognition from environment vectors: SOM r-node gating plus nearest stored vector
 //! (docs/model.md §9), a plain 1-nearest-neighbour for the online mode (docs/model.md §10), and confusion counts.
 
-use crate::rng::Rng;
-use crate::som::{Som, SomError, SomParams, sq_dist};
+use crate::modelling::som::{Som, SomError, SomParams, sq_dist};
+use crate::random::rng::Rng;
 
 /// One stored room instance: its environment vector and its winning SOM node (r-node).
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -208,7 +208,7 @@ impl Confusion {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::rng_from_seed;
+    use crate::random::rng::rng_from_seed;
 
     /// A 1-D map with 10 nodes whose weights are 0, 1, …, 9.
     fn line_som() -> Som {

@@ -4,7 +4,7 @@
 //! lowest index) and the neighbourhood is Gaussian in node index. Width and learning rate decay
 //! geometrically over the epochs. Training is deterministic for a given generator state.
 
-use crate::rng::{Rng, shuffle, uniform};
+use crate::random::rng::{Rng, shuffle, uniform};
 
 /// Training parameters of the SOM. Defaults: 128 nodes, 1000 epochs, σ 32 → 1, α 0.5 → 0.01.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -311,7 +311,7 @@ impl Som {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::{rng_from_seed, uniform};
+    use crate::random::rng::{rng_from_seed, uniform};
 
     fn clusters(seed: u64) -> (Vec<Vec<f64>>, Vec<usize>) {
         let centres = [

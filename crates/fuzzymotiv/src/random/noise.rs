@@ -1,12 +1,12 @@
 //! The one place values are perturbed: the paper's "6 %" multiplicative noise (docs/model.md §3).
 
-use crate::rng::{Rng, uniform};
+use crate::random::rng::{Rng, uniform};
 
 /// Multiplies `value` by a draw from U(1 − level, 1 + level). With `level == 0` nothing is
 /// drawn and the value is returned unchanged, so noise-free trials are exactly repeatable.
 ///
 /// ```
-/// use fuzzymotiv::{noise::perturb, rng::rng_from_seed};
+/// use fuzzymotiv::random::{noise::perturb, rng::rng_from_seed};
 /// let mut rng = rng_from_seed(1);
 /// assert_eq!(perturb(100.0, 0.0, &mut rng), 100.0);
 /// let v = perturb(100.0, 0.06, &mut rng);

@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 /// Number of network inputs (the eight IR sensors).
-pub const INPUTS: usize = crate::sensor::SENSORS;
+pub const INPUTS: usize = crate::simulation::sensor::SENSORS;
 /// Number of network outputs (left and right motor).
 pub const OUTPUTS: usize = 2;
 
@@ -67,7 +67,7 @@ impl MlpShape {
     /// weights]`. 68 for the paper's 8-6-2.
     ///
     /// ```
-    /// assert_eq!(fuzzymotiv::controller::MlpShape::with_hidden(6).genome_len(), 68);
+    /// assert_eq!(fuzzymotiv::simulation::controller::MlpShape::with_hidden(6).genome_len(), 68);
     /// ```
     pub fn genome_len(&self) -> usize {
         self.hidden * (self.inputs + 1) + self.outputs * (self.hidden + 1)
@@ -75,9 +75,9 @@ impl MlpShape {
 }
 
 /// Logistic function 1 / (1 + e^(−x)), with the project's own `exp` (error bound and range:
-/// [`crate::math::logistic`]).
-pub use crate::math::logistic;
-use crate::math::logistic_lanes;
+/// [`crate::simulation::math::logistic`]).
+pub use crate::simulation::math::logistic;
+use crate::simulation::math::logistic_lanes;
 
 /// The feed-forward logistic MLP whose weights are the genome.
 #[derive(Debug, Clone)]
@@ -206,18 +206,18 @@ mod tests {
 
     #[test]
     fn fixed_and_general_paths_agree_bit_for_bit() {
-        let mut rng = crate::rng::rng_from_seed(4);
+        let mut rng = crate::random::rng::rng_from_seed(4);
         for hidden in [5, 6, 7] {
             let shape = MlpShape::with_hidden(hidden);
             let g: Vec<f64> = (0..shape.genome_len())
-                .map(|_| crate::rng::uniform(&mut rng, -5.0, 5.0))
+                .map(|_| crate::random::rng::uniform(&mut rng, -5.0, 5.0))
                 .collect();
             let mut m = Mlp::from_genome(shape, &g).unwrap();
             for i in 0..50 {
                 // Input 0: open floor (all sensors 0), the cached idle path.
                 let x: [f64; 8] = std::array::from_fn(|_| match i {
                     0 => 0.0,
-                    _ => crate::rng::uniform01(&mut rng),
+                    _ => crate::random::rng::uniform01(&mut rng),
                 });
                 let fast = m.step(&x);
                 // The general loop, written out.

@@ -19,7 +19,7 @@
 //! | [`logistic`] | all `f64` | ≤ 4 ulp from `1/(1 + libm exp(−x))` (an `exp` error of 1 ulp is up to 2 ulp of the quotient) |
 //!
 //! ```
-//! use fuzzymotiv::math;
+//! use fuzzymotiv::simulation::math;
 //! assert_eq!(math::exp(0.0), 1.0);
 //! assert!((math::exp(1.0) - std::f64::consts::E).abs() <= f64::EPSILON * 3.0);
 //! let (s, c) = math::sin_cos(std::f64::consts::FRAC_PI_6);

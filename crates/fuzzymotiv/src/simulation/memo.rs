@@ -23,8 +23,8 @@ use std::alloc::{Layout, alloc, dealloc, handle_alloc_error};
 use std::cell::RefCell;
 use std::ptr::NonNull;
 
-use crate::geom::Vec2;
-use crate::sensor::SENSORS as INPUTS;
+use crate::simulation::geom::Vec2;
+use crate::simulation::sensor::SENSORS as INPUTS;
 
 /// Entries per table (2¹⁶: 2 MiB).
 pub const SLOTS: usize = 1 << 16;
@@ -52,7 +52,7 @@ impl Sight {
 /// Whose poses a table holds: an arena (by its number) and the length of a straight move.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Owner {
-    /// The arena's number, the same for equal arenas (see [`crate::trial::Arena`]'s `memo`).
+    /// The arena's number, the same for equal arenas (see [`crate::simulation::trial::Arena`]'s `memo`).
     pub arena: u64,
     /// The bits of the straight-move length (mm).
     pub step: u64,

@@ -3,9 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::geom::Vec2;
-use crate::math;
 use crate::params::{FieldError, check};
+use crate::simulation::geom::Vec2;
+use crate::simulation::math;
 
 /// Where the robot is: centre `(x, y)` in mm and `heading` in radians (counter-clockwise from +x,
 /// wrapped to (−π, π]).
@@ -39,7 +39,7 @@ impl Pose {
 /// Wraps an angle to (−π, π].
 ///
 /// ```
-/// use fuzzymotiv::robot::wrap_angle;
+/// use fuzzymotiv::simulation::robot::wrap_angle;
 /// use std::f64::consts::PI;
 /// assert!((wrap_angle(3.0 * PI / 2.0) + PI / 2.0).abs() < 1e-12);
 /// ```
@@ -95,7 +95,7 @@ impl Khepera {
         )?;
         // The sensor mounts are fixed (docs/model.md §3): they must sit inside the body, and a
         // body far larger than the sensors' reach would be blind.
-        let mounts = crate::sensor::SENSOR_LAYOUT
+        let mounts = crate::simulation::sensor::SENSOR_LAYOUT
             .iter()
             .map(|m| m.x.hypot(m.y))
             .fold(0.0, f64::max);
@@ -120,8 +120,8 @@ impl Khepera {
 /// How the network's two motor commands move the robot (config `[robot] motion`).
 ///
 /// ```
-/// use fuzzymotiv::robot::Action;
-/// use fuzzymotiv::robot::{Compass, Motion, Pose};
+/// use fuzzymotiv::simulation::robot::Action;
+/// use fuzzymotiv::simulation::robot::{Compass, Motion, Pose};
 /// let compass = Compass::new(0.0);
 /// let home = Pose::new(40.0, 40.0, 0.0);
 /// // A straight action moves 8 mm along the heading; a turn rotates on the spot.
@@ -280,7 +280,7 @@ impl Default for Khepera {
 /// equal).
 ///
 /// ```
-/// use fuzzymotiv::robot::{Pose, drive};
+/// use fuzzymotiv::simulation::robot::{Pose, drive};
 /// // Both wheels at 80 mm/s for 0.1 s: 8 mm straight ahead.
 /// let p = drive(Pose::new(0.0, 0.0, 0.0), 80.0, 80.0, 53.0, 0.1);
 /// assert_eq!((p.x, p.y, p.heading), (8.0, 0.0, 0.0));
@@ -295,7 +295,7 @@ pub fn drive(pose: Pose, s_left: f64, s_right: f64, wheel_base: f64, dt: f64) ->
     let dtheta = (s_right - s_left) / wheel_base * dt;
     let half = 0.5 * dtheta;
     // Chord length of the arc: v·dt·sin(half)/half (→ v·dt as half → 0).
-    // The project's own sin/cos (≤ 1 ulp, |x| ≤ 10⁶: see `crate::math`), not libm's.
+    // The project's own sin/cos (≤ 1 ulp, |x| ≤ 10⁶: see `crate::simulation::math`), not libm's.
     let sinc = if half.abs() < 1e-6 {
         1.0 - half * half / 6.0
     } else {
@@ -344,7 +344,7 @@ impl Action {
     /// `Straight` (see [`Action::from_motors`]).
     ///
     /// ```
-    /// use fuzzymotiv::robot::Action;
+    /// use fuzzymotiv::simulation::robot::Action;
     /// assert_eq!(Action::from_speeds(-0.1, -0.9, 0.25), Action::Turn180);
     /// assert_eq!(Action::from_speeds(0.2, 0.6, 0.25), Action::Left30);
     /// assert_eq!(Action::from_speeds(0.9, 0.8, 0.25), Action::Straight);
@@ -382,7 +382,7 @@ impl Action {
         }
     }
 
-    /// The raw symbol value used by [`crate::aem::Encoder::Symbols`]: Straight 0, Left30 1/3,
+    /// The raw symbol value used by [`crate::modelling::aem::Encoder::Symbols`]: Straight 0, Left30 1/3,
     /// Right30 2/3, Turn180 1.
     pub fn symbol_value(self) -> f64 {
         match self {

@@ -1,7 +1,7 @@
 //! Rooms: walls as polygons, the home pose, the five built-in rooms (docs/model.md §4) and room files.
 //!
 //! ```
-//! use fuzzymotiv::room::Room;
+//! use fuzzymotiv::simulation::room::Room;
 //! let h = Room::builtin("H").unwrap();
 //! assert_eq!(h.area(), 2.0 * 200.0 * 800.0 + 400.0 * 240.0);
 //! assert_eq!(h.walls().len(), 12);
@@ -9,11 +9,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::geom::{
+use crate::params::FieldError;
+use crate::simulation::geom::{
     Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area,
 };
-use crate::params::FieldError;
-use crate::robot::{KHEPERA_RADIUS, Pose};
+use crate::simulation::robot::{KHEPERA_RADIUS, Pose};
 
 /// Largest coordinate magnitude accepted in room files (mm): rooms up to 20 m across.
 pub const MAX_COORD: f64 = 1e4;
@@ -43,7 +43,7 @@ pub struct Room {
 /// escaped robot whose centre is inside it again has come home.
 ///
 /// ```
-/// use fuzzymotiv::{geom::Vec2, room::HomeZone};
+/// use fuzzymotiv::simulation::{geom::Vec2, room::HomeZone};
 /// let zone = HomeZone { centre: Vec2::new(0.0, 0.0), radius: 160.0 };
 /// assert!(zone.contains(Vec2::new(40.0, 40.0)));
 /// assert!(!zone.contains(Vec2::new(120.0, 120.0)));
@@ -73,7 +73,7 @@ pub const HOME_ZONE_RADIUS: f64 = 160.0;
 pub const BUILTIN_HOME: (f64, f64) = (40.0, 40.0);
 
 /// A room that cannot be used, with the file (or built-in name), the field (e.g. `outline` or
-/// `home.x`) and the reason: the same type as a config's [`crate::config::ConfigError`].
+/// `home.x`) and the reason: the same type as a config's [`crate::experiment::config::ConfigError`].
 pub type RoomError = crate::params::FieldError;
 
 #[derive(Deserialize)]

@@ -7,10 +7,10 @@
 //! longest ray cannot change the sensor's value, so it is skipped; the others are tested
 //! against every ray of the sensor at once ([`PreparedSegment::lower_ray_hits`]).
 
-use crate::geom::{PreparedSegment, Vec2};
-use crate::robot::Compass;
-use crate::sensor::SENSORS as INPUTS;
-use crate::sensor::{RayMount, SENSOR_MAX, SensorModel, ray_count, rays};
+use crate::simulation::geom::{PreparedSegment, Vec2};
+use crate::simulation::robot::Compass;
+use crate::simulation::sensor::SENSORS as INPUTS;
+use crate::simulation::sensor::{RayMount, SENSOR_MAX, SensorModel, ray_count, rays};
 
 /// The sensors' rays turned to one heading: each sensor's origin relative to the body centre
 /// and its ray directions, in the world frame.
@@ -163,7 +163,7 @@ impl TurnedRays {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::Segment;
+    use crate::simulation::geom::Segment;
 
     /// The compass table holds exactly the products a per-step turn computes.
     #[test]

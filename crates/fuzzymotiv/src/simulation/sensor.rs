@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::geom::Vec2;
+use crate::simulation::geom::Vec2;
 
 /// Where one sensor sits on the body, in the robot frame (x forward, y left).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -121,7 +121,7 @@ impl RayMount {
     /// The ray's value for a wall at distance `d` along it (`f64::INFINITY` for none).
     ///
     /// ```
-    /// use fuzzymotiv::sensor::{SensorModel, rays};
+    /// use fuzzymotiv::simulation::sensor::{SensorModel, rays};
     /// let axis = rays(SensorModel::Sampled)[2][0];
     /// assert_eq!(axis.value(15.0), 750.0); // first sample at or beyond 15 mm is 20 mm
     /// assert_eq!(axis.value(58.0), 40.0);

@@ -10,17 +10,17 @@ use std::sync::{LazyLock, Mutex, PoisonError};
 
 use serde::{Deserialize, Serialize};
 
-use crate::controller::{Controller, INPUTS};
-use crate::geom::{PreparedSegment, Segment, Vec2};
-use crate::memo::{Owner, Sight, Table};
-use crate::noise::{perturb, perturb_sensors};
 use crate::params::{FieldError, check};
-use crate::rng::Rng;
-use crate::robot::Action;
-use crate::robot::{Compass, Khepera, Motion, Pose, drive};
-use crate::room::Room;
-use crate::sensing::{Eyes, Facing};
-use crate::sensor::{SENSOR_MAX, SensorModel, sensing_reach};
+use crate::random::noise::{perturb, perturb_sensors};
+use crate::random::rng::Rng;
+use crate::simulation::controller::{Controller, INPUTS};
+use crate::simulation::geom::{PreparedSegment, Segment, Vec2};
+use crate::simulation::memo::{Owner, Sight, Table};
+use crate::simulation::robot::Action;
+use crate::simulation::robot::{Compass, Khepera, Motion, Pose, drive};
+use crate::simulation::room::Room;
+use crate::simulation::sensing::{Eyes, Facing};
+use crate::simulation::sensor::{SENSOR_MAX, SensorModel, sensing_reach};
 
 /// Side of a grid cell (mm): the exploration grid of docs/model.md §7 and the wall-culling grid.
 pub const CELL: f64 = 50.0;
@@ -57,7 +57,7 @@ impl Default for TrialParams {
             sensor_model: SensorModel::Sampled,
             robot: Khepera::default(),
             end_at_home: true,
-            action_tolerance: crate::aem::DEFAULT_ACTION_TOLERANCE,
+            action_tolerance: crate::modelling::aem::DEFAULT_ACTION_TOLERANCE,
         }
     }
 }
@@ -171,12 +171,12 @@ pub struct Arena {
     near_reach: f64,
     compass: Compass,
     eyes: Eyes,
-    /// This arena's number in the [`crate::memo`] of each thread (shared by its clones and by
+    /// This arena's number in the [`crate::simulation::memo`] of each thread (shared by its clones and by
     /// equal arenas, [`memo_number`]), or `None` when its poses are not remembered.
     memo: Option<u64>,
 }
 
-/// The arenas numbered so far for [`crate::memo`], by their full `Debug` text: equal arenas
+/// The arenas numbered so far for [`crate::simulation::memo`], by their full `Debug` text: equal arenas
 /// (the same room prepared with the same parameters, in several runs or experiments) get the
 /// same number, and so share their tables, which they may: a sight is a function of the arena,
 /// the pose and the length of a straight move (kept apart, in [`Owner`]), and `Debug` writes
@@ -184,7 +184,7 @@ pub struct Arena {
 /// of KB each for the built-in rooms).
 static ARENAS: LazyLock<Mutex<HashMap<String, u64>>> = LazyLock::new(Default::default);
 
-/// The [`crate::memo`] number of `arena` (whose own number is not yet set): 1 for the first
+/// The [`crate::simulation::memo`] number of `arena` (whose own number is not yet set): 1 for the first
 /// distinct arena, 2 for the second, and so on.
 fn memo_number(arena: &Arena) -> u64 {
     let mut known = ARENAS.lock().unwrap_or_else(PoisonError::into_inner);
@@ -368,7 +368,7 @@ impl Arena {
         if near.is_empty() {
             return [0.0; INPUTS];
         }
-        let (sin, cos) = crate::math::sin_cos(pose.heading);
+        let (sin, cos) = crate::simulation::math::sin_cos(pose.heading);
         let facing = Facing::Angle { sin, cos };
         self.eyes.read(
             pose.position(),
@@ -687,14 +687,14 @@ where
         Motion::Wheels => None,
     };
     match owner {
-        Some(owner) => crate::memo::with_table(owner, |table| {
+        Some(owner) => crate::simulation::memo::with_table(owner, |table| {
             walk_trial(arena, controller, params, rng, observer, table)
         }),
         None => walk_trial(arena, controller, params, rng, observer, None),
     }
 }
 
-/// [`simulate`], with the arena's [`crate::memo`] table for the trial's poses, or none.
+/// [`simulate`], with the arena's [`crate::simulation::memo`] table for the trial's poses, or none.
 fn walk_trial<C, R, O>(
     arena: &Arena,
     controller: &mut C,
@@ -982,7 +982,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::rng_from_seed;
+    use crate::random::rng::rng_from_seed;
 
     struct Fixed([f64; 2]);
     impl Controller for Fixed {
@@ -1167,7 +1167,7 @@ mod tests {
         assert_eq!(h().memo, h().memo);
         assert_ne!(h().memo, square().memo);
         let wider = TrialParams {
-            robot: crate::robot::Khepera {
+            robot: crate::simulation::robot::Khepera {
                 radius: params.robot.radius + 1.0,
                 ..params.robot
             },

@@ -1,0 +1,5 @@
+//! The genetic algorithm's operators on genomes and fitness values: the initial population,
+//! selection, elitism, crossover and mutation. The generation loop that drives them is
+//! [`crate::experiment::evolution`].
+
+pub mod ga;
