@@ -11,8 +11,8 @@ use fuzzymotiv::config::RawConfig;
 use fuzzymotiv::seed::{Streams, hash_str};
 use serde::Deserialize;
 
-use crate::error::CliError;
-use crate::inputs::{Loaded, resolve};
+use crate::files::error::CliError;
+use crate::files::inputs::{Loaded, resolve};
 use crate::records::Job;
 
 /// The `[sweep]` table.

@@ -1299,7 +1299,8 @@ mod tests {
             "wall.toml",
         )
         .unwrap();
-        let u = Room::from_toml_str(include_str!("../../../rooms/U.toml"), "rooms/U.toml").unwrap();
+        let u =
+            Room::from_toml_str(include_str!("../../../../rooms/U.toml"), "rooms/U.toml").unwrap();
         let mut all: Vec<Room> = BUILTIN_ROOMS
             .iter()
             .map(|name| Room::builtin(name).unwrap())
@@ -1358,88 +1359,6 @@ mod tests {
         let texts: Vec<String> = text_boxes(&svg).into_iter().map(|b| b.4).collect();
         for label in ["0", "5", "10", "15", "20", "25"] {
             assert!(texts.iter().any(|t| t == label), "terms: no tick {label}");
-        }
-    }
-
-    #[test]
-    fn finding_8_home_zone_is_the_disc_within_the_room() {
-        let all = rooms(7);
-        for room in &all {
-            let tr = Trajectory {
-                poses: vec![room.home],
-                ..Default::default()
-            };
-            let svg = trajectories_svg("t", &[(room, &tr)]);
-            assert!(svg.contains("blue: home zone") && !svg.contains("quarter"));
-            // Rendered: blue inside both the disc and the room, nowhere else.
-            let png = crate::png::svg_to_png(&svg).unwrap();
-            let pixmap = resvg::tiny_skia::Pixmap::decode_png(&png).unwrap();
-            let (lo, hi) = room.bounds();
-            let scale = 0.3;
-            let slot = ((hi.x - lo.x) * scale).max(text_width(&room.name, false));
-            let x_off = 20.0 + (slot - (hi.x - lo.x) * scale) / 2.0;
-            let blue = |x: f64, y: f64| {
-                let px = (2.0 * (x_off + (x - lo.x) * scale)).round() as u32;
-                let py = (2.0 * (40.0 + (hi.y - y) * scale)).round() as u32;
-                let c = pixmap.pixel(px, py).unwrap();
-                i32::from(c.blue()) - i32::from(c.red()) > 8
-            };
-            let zone = room.home_zone;
-            // 36 points on a circle of `f` times the zone's radius around its centre.
-            let ring = |f: f64| {
-                (0..36).map(move |k| {
-                    let a = k as f64 * std::f64::consts::TAU / 36.0;
-                    let r = f * zone.radius;
-                    fuzzymotiv::geom::Vec2::new(
-                        zone.centre.x + r * a.cos(),
-                        zone.centre.y + r * a.sin(),
-                    )
-                })
-            };
-            // Points on a ring inside the zone's rim, clear of walls, home marker and the
-            // zone's dashed edge.
-            for p in ring(0.75) {
-                let clear = room.contains(p)
-                    && fuzzymotiv::geom::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)
-                    && p.dist(room.home.position()) > 40.0;
-                if clear {
-                    assert!(
-                        blue(p.x, p.y),
-                        "{}: ({:.0}, {:.0}) in zone and room, not blue",
-                        room.name,
-                        p.x,
-                        p.y
-                    );
-                }
-            }
-            // Inside the disc but outside the room (beyond a wall): not blue.
-            for p in ring(0.9) {
-                let (plo, phi) = room.bounds();
-                let beyond = !room.contains(p)
-                    && fuzzymotiv::geom::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)
-                    && p.x > plo.x - 50.0
-                    && p.y < phi.y + 50.0;
-                if beyond {
-                    assert!(
-                        !blue(p.x, p.y),
-                        "{}: ({:.0}, {:.0}) outside the room but blue",
-                        room.name,
-                        p.x,
-                        p.y
-                    );
-                }
-            }
-            // Outside the disc, inside the room (towards the room's far corner): not blue.
-            let far = if zone.centre.dist(hi) > zone.centre.dist(lo) {
-                hi
-            } else {
-                lo
-            };
-            let d = far - zone.centre;
-            let p = zone.centre + d * ((zone.radius + 30.0) / d.x.hypot(d.y));
-            if room.contains(p) {
-                assert!(!blue(p.x, p.y), "{}: outside the zone but blue", room.name);
-            }
         }
     }
 
@@ -1550,28 +1469,6 @@ mod tests {
                 &sweep_summary_svg(&points),
                 &format!("sweep summary, {n} settings"),
             );
-        }
-    }
-
-    /// Renders every `*.svg` in `$FIGS_DIR` to a PNG beside it with the program's renderer, to
-    /// look at figures that only appear inline in report pages:
-    /// `FIGS_DIR=/tmp/x cargo test -p fuzzymotiv-cli --lib svg -- --ignored`.
-    #[test]
-    #[ignore]
-    fn render_svgs_in_figs_dir() {
-        let Ok(dir) = std::env::var("FIGS_DIR") else {
-            return;
-        };
-        for entry in std::fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.extension().is_some_and(|e| e == "svg") {
-                let svg = std::fs::read_to_string(&path).unwrap();
-                std::fs::write(
-                    path.with_extension("png"),
-                    crate::png::svg_to_png(&svg).unwrap(),
-                )
-                .unwrap();
-            }
         }
     }
 }
