@@ -15,14 +15,15 @@ use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::modelling::InstanceRun;
 use fuzzymotiv::trial::Trajectory;
 
-use crate::error::CliError;
-use crate::files::{FilesState, check_files, io_err, num, write_files};
-use crate::inputs::{load_config, resolve, room_entry};
-use crate::note;
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, num, write_files};
+use fuzzymotiv_io::files::inputs::{load_config, resolve, room_entry};
+use fuzzymotiv_io::note;
+use fuzzymotiv_io::records::{BestGenome, PROGRAM, read_json};
+use fuzzymotiv_io::render::report::{replay_page, xs};
+use fuzzymotiv_io::render::svg::trajectories_svg;
+
 use crate::png::svg_to_png;
-use crate::records::{BestGenome, PROGRAM, read_json};
-use crate::report::{replay_page, xs};
-use crate::svg::trajectories_svg;
 
 /// Arguments of `fuzzymotiv replay`.
 #[derive(clap::Args)]
@@ -42,7 +43,7 @@ pub struct ReplayArgs {
     pub room: Option<String>,
     /// Base seed of the replay's noise [default: the run's seed, so the run's own paths]: a
     /// whole number from 0 to 2^53 − 1.
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::inputs::parse_seed)]
+    #[arg(long, allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_seed)]
     pub seed: Option<u64>,
     /// The replay page to write; the trajectories go beside it as STEM.json, STEM-ROOM.csv and
     /// the figure as STEM.svg.
@@ -332,7 +333,7 @@ fn write_replay(
         write_files(&files)?;
     }
     for line in &lines {
-        crate::outln!("{line}")?;
+        fuzzymotiv_io::outln!("{line}")?;
     }
     if state == FilesState::Same {
         note!("{} already holds this replay; nothing to do", out.display());
