@@ -45,23 +45,15 @@ struct Edge {
     import: String,
 }
 
-/// The crates read: a prefix of module paths, the source folder, and which path roots name
-/// which crate in that source.
-fn crates() -> Vec<(&'static str, PathBuf, Vec<(&'static str, &'static str)>)> {
-    let cli = Path::new(env!("CARGO_MANIFEST_DIR"));
-    vec![
-        (
-            "io",
-            cli.join("../fuzzymotiv-io/src"),
-            vec![("crate", "io")],
-        ),
-        (
-            "cli",
-            cli.join("src"),
-            vec![("crate", "cli"), ("fuzzymotiv_io", "io")],
-        ),
-    ]
-}
+/// Which path roots name which crate (by its module prefix) in a crate's code.
+type Roots = &'static [(&'static str, &'static str)];
+
+/// The crates read: the prefix of their module paths, their source folder (from this crate's
+/// folder), and the path roots of their code.
+const CRATES: [(&str, &str, Roots); 2] = [
+    ("io", "../fuzzymotiv-io/src", &[("crate", "io")]),
+    ("cli", "src", &[("crate", "cli"), ("fuzzymotiv_io", "io")]),
+];
 
 /// Every `.rs` file under `dir`, with its module path (`lib.rs`/`main.rs`: the crate root,
 /// `mod.rs`: its folder).
@@ -172,9 +164,10 @@ fn resolve(path: &[String], known: &BTreeSet<String>) -> Option<String> {
 fn import_edges() -> (Vec<Edge>, BTreeMap<String, PathBuf>) {
     let mut files = BTreeMap::new();
     let mut roots = Vec::new();
-    for (prefix, dir, names) in crates() {
+    for (prefix, dir, names) in CRATES {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
         for (module, path) in modules(prefix, &dir) {
-            roots.push((module.clone(), names.clone()));
+            roots.push((module.clone(), names));
             files.insert(module, path);
         }
     }
@@ -183,7 +176,7 @@ fn import_edges() -> (Vec<Edge>, BTreeMap<String, PathBuf>) {
     for (module, names) in roots {
         let path = &files[&module];
         let text = code(path);
-        for (root, crate_prefix) in names {
+        for &(root, crate_prefix) in names {
             let marker = format!("{root}::");
             for (at, _) in text.match_indices(&marker) {
                 let before = text[..at].chars().next_back();

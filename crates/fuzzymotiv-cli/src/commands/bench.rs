@@ -122,7 +122,8 @@ fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
 
 /// Times `work(r)` for each repetition `r` of `repeat`; returns the median seconds and the median
 /// executed robot-steps of a repetition. Each repetition runs new trials (new random streams), so
-/// no repetition finds its poses already remembered by an earlier one ([`fuzzymotiv::memo`]).
+/// no repetition finds its poses already remembered by an earlier one (the library's memo of
+/// sightings).
 fn timed(repeat: usize, mut work: impl FnMut(usize) -> usize) -> (f64, usize) {
     let mut seconds = Vec::new();
     let mut steps = Vec::new();

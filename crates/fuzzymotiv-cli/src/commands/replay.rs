@@ -253,18 +253,15 @@ fn replay_trials(
     Ok(trials)
 }
 
-/// Writes the replay's CSV per room, JSON, figure and page, through the output guard: the same
-/// replay again changes nothing; other files of those names are kept unless `--force`.
-fn write_replay(
-    args: &ReplayArgs,
+/// Per room of the replay: its trajectory's CSV file (`DIR/STEM-ROOM.csv`, added to `files`),
+/// and returned the line printed for it and its entry in the replay's JSON.
+fn room_files(
     exp: &Experiment,
-    genome: &SavedGenome,
-    source_name: &str,
+    dir: &Path,
+    stem: &str,
     trials: &[(usize, String, InstanceRun)],
-) -> Result<(), CliError> {
-    let out = &args.out;
-    let (dir, stem) = out_parts(out)?;
-    let mut files = Vec::new();
+    files: &mut Vec<(PathBuf, Vec<u8>)>,
+) -> (Vec<String>, Vec<serde_json::Value>) {
     let mut lines = Vec::new();
     let mut rooms_json = Vec::new();
     for (r, label, run) in trials {
@@ -292,6 +289,22 @@ fn write_replay(
             "trajectory": tr,
         }));
     }
+    (lines, rooms_json)
+}
+
+/// Writes the replay's CSV per room, JSON, figure and page, through the output guard: the same
+/// replay again changes nothing; other files of those names are kept unless `--force`.
+fn write_replay(
+    args: &ReplayArgs,
+    exp: &Experiment,
+    genome: &SavedGenome,
+    source_name: &str,
+    trials: &[(usize, String, InstanceRun)],
+) -> Result<(), CliError> {
+    let out = &args.out;
+    let (dir, stem) = out_parts(out)?;
+    let mut files = Vec::new();
+    let (lines, rooms_json) = room_files(exp, &dir, &stem, trials, &mut files);
     let genome_path = genome.path.display();
     let doc = serde_json::json!({
         "program": PROGRAM,

@@ -144,20 +144,7 @@ pub fn fitness_panels_svg(panels: &[FitnessPanel]) -> String {
         // The title is centred over the plot area, which is off the panel's centre.
         .map(|p| 420f64.max(text_width(&p.title, true) + ml - mr + 10.0))
         .collect();
-    let legends: Vec<Vec<(LegendMark, &str)>> = panels
-        .iter()
-        .map(|p| {
-            let mut entries = vec![
-                (LegendMark::Line(BEST), p.best.1.as_str()),
-                (LegendMark::Line(MEAN), p.mean.1.as_str()),
-            ];
-            if !p.bands.is_empty() {
-                let colours = p.bands.iter().map(|b| b.1).collect();
-                entries.push((LegendMark::Bands(colours), p.band_label.as_str()));
-            }
-            entries
-        })
-        .collect();
+    let legends: Vec<Vec<(LegendMark, &str)>> = panels.iter().map(fitness_legend).collect();
     let legend_top = y0 + 54.0;
     let rows = widths
         .iter()
@@ -187,42 +174,66 @@ pub fn fitness_panels_svg(panels: &[FitnessPanel]) -> String {
             generations,
             "fuzzy fitness F",
         );
-        for (band, colour) in &panel.bands {
-            // One closed outline: along the highs, back along the lows.
-            let mut d = String::new();
-            for (g, (_, hi)) in band.iter().enumerate() {
-                let _ = write!(
-                    d,
-                    "{}{:.1},{:.1}",
-                    if g == 0 { 'M' } else { 'L' },
-                    x(g),
-                    y(*hi)
-                );
-            }
-            for (g, (lo, _)) in band.iter().enumerate().rev() {
-                let _ = write!(d, "L{:.1},{:.1}", x(g), y(*lo));
-            }
-            let _ = writeln!(
-                s,
-                r#"<path d="{d}Z" fill="{colour}" fill-opacity="0.45" stroke="none"/>"#
-            );
-        }
-        for (values, colour) in [(&panel.best.0, BEST), (&panel.mean.0, MEAN)] {
-            let pts: String = values
-                .iter()
-                .enumerate()
-                .map(|(g, &f)| format!("{:.1},{:.1} ", x(g), y(f)))
-                .collect();
-            let _ = writeln!(
-                s,
-                r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8" stroke-linejoin="round"/>"#
-            );
-        }
+        draw_fitness_curves(&mut s, panel, x, y);
         draw_legend(&mut s, legend, (x0, x1), legend_top);
         ox += pw;
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// A fitness panel's legend: the best and the mean F curves, and its bands (one entry).
+fn fitness_legend(p: &FitnessPanel) -> Vec<(LegendMark, &str)> {
+    let mut entries = vec![
+        (LegendMark::Line(BEST), p.best.1.as_str()),
+        (LegendMark::Line(MEAN), p.mean.1.as_str()),
+    ];
+    if !p.bands.is_empty() {
+        let colours = p.bands.iter().map(|b| b.1).collect();
+        entries.push((LegendMark::Bands(colours), p.band_label.as_str()));
+    }
+    entries
+}
+
+/// A fitness panel's shaded bands, then its best and mean F curves, at `x(generation)` and
+/// `y(F)`.
+fn draw_fitness_curves(
+    s: &mut String,
+    panel: &FitnessPanel,
+    x: impl Fn(usize) -> f64,
+    y: impl Fn(f64) -> f64,
+) {
+    for (band, colour) in &panel.bands {
+        // One closed outline: along the highs, back along the lows.
+        let mut d = String::new();
+        for (g, (_, hi)) in band.iter().enumerate() {
+            let _ = write!(
+                d,
+                "{}{:.1},{:.1}",
+                if g == 0 { 'M' } else { 'L' },
+                x(g),
+                y(*hi)
+            );
+        }
+        for (g, (lo, _)) in band.iter().enumerate().rev() {
+            let _ = write!(d, "L{:.1},{:.1}", x(g), y(*lo));
+        }
+        let _ = writeln!(
+            s,
+            r#"<path d="{d}Z" fill="{colour}" fill-opacity="0.45" stroke="none"/>"#
+        );
+    }
+    for (values, colour) in [(&panel.best.0, BEST), (&panel.mean.0, MEAN)] {
+        let pts: String = values
+            .iter()
+            .enumerate()
+            .map(|(g, &f)| format!("{:.1},{:.1} ", x(g), y(f)))
+            .collect();
+        let _ = writeln!(
+            s,
+            r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8" stroke-linejoin="round"/>"#
+        );
+    }
 }
 
 /// Colours of the best and mean F curves, of the run's min–max band and of the bands around
