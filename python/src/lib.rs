@@ -500,8 +500,9 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
     })
 }
 
-/// The run itself (no GIL): in memory; or through the CLI's writer into `dir` (fresh or
-/// resumed, as `check_out` found it); or a finished `dir` read back.
+/// The run itself (no GIL): in memory; or through the CLI's run-directory writer
+/// (`fuzzymotiv_io`) into `dir` (fresh or resumed, as `check_out` found it); or a finished `dir`
+/// read back.
 fn execute(
     loaded: &Loaded,
     out: Option<(&Path, OutState)>,
