@@ -1,8 +1,8 @@
 //! The native part of the `fuzzymotiv` Python package (`fuzzymotiv._fuzzymotiv`).
 //!
 //! Thin: configs are loaded, runs executed and run directories written by the very code of the
-//! `fuzzymotiv` binary (the `fuzzymotiv-cli` library), so results equal the CLI's for the same
-//! config and seed. The Python layer (`fuzzymotiv/__init__.py`) adds pandas, tqdm and the
+//! `fuzzymotiv` binary (the `fuzzymotiv-io` library it shares), so results equal the CLI's for
+//! the same config and seed. The Python layer (`fuzzymotiv/__init__.py`) adds pandas, tqdm and the
 //! friendlier signatures.
 
 use std::ops::ControlFlow;
@@ -18,14 +18,15 @@ use fuzzymotiv::experiment::outcome::RunError;
 use fuzzymotiv::fitness::fuzzy::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::simulation::trial::Trajectory;
-use fuzzymotiv_cli::checkpoint::{CHECKPOINT, Checkpoint, POPULATION};
-use fuzzymotiv_cli::error::{CliError, ErrorKind};
-use fuzzymotiv_cli::files::{OutState, PYTHON, StagedDir, check_out_as};
-use fuzzymotiv_cli::inputs::{
+use fuzzymotiv_io::files::error::{CliError, ErrorKind};
+use fuzzymotiv_io::files::guard::{OutState, PYTHON, StagedDir, check_out_as};
+use fuzzymotiv_io::files::inputs::{
     Loaded, load_config, load_room_file, parse_seed, resolve, run_identity,
 };
-use fuzzymotiv_cli::pipeline;
-use fuzzymotiv_cli::records::{
+use fuzzymotiv_io::pipeline::progress::NoProgress;
+use fuzzymotiv_io::pipeline::run_dir;
+use fuzzymotiv_io::records::checkpoint::{CHECKPOINT, Checkpoint, POPULATION};
+use fuzzymotiv_io::records::{
     BestGenome, Finished, Fixed, GenerationRow, RoomRow, RunSummary, read_csv, read_json,
 };
 use numpy::ndarray::Array2;
@@ -334,7 +335,7 @@ fn export_fll(
                 path.display()
             )));
         }
-        fuzzymotiv_cli::files::write_atomic(&path, &text).map_err(py_err)?;
+        fuzzymotiv_io::files::guard::write_atomic(&path, &text).map_err(py_err)?;
     }
     Ok(text)
 }
@@ -452,7 +453,7 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
 }
 
 /// The result of a finished run in `dir` that an older build wrote (no `population.json`, so
-/// not [`pipeline::read_back`]), read back from its files: `generations.csv` (9 decimals),
+/// not [`run_dir::read_back`]), read back from its files: `generations.csv` (9 decimals),
 /// `summary.json` (the per-room table), `best_genome.json`; the
 /// trajectories are the best robots' room-modelling runs again (the very runs the report
 /// draws: [`Finished::instance`]).
@@ -499,8 +500,9 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
     })
 }
 
-/// The run itself (no GIL): in memory; or through the CLI's writer into `dir` (fresh or
-/// resumed, as `check_out` found it); or a finished `dir` read back.
+/// The run itself (no GIL): in memory; or through the CLI's run-directory writer
+/// (`fuzzymotiv_io`) into `dir` (fresh or resumed, as `check_out` found it); or a finished `dir`
+/// read back.
 fn execute(
     loaded: &Loaded,
     out: Option<(&Path, OutState)>,
@@ -509,13 +511,12 @@ fn execute(
     let exp = &loaded.experiment;
     let done = match out {
         Some((dir, OutState::Done)) if dir.join(POPULATION).is_file() => {
-            pipeline::read_back(exp, dir, &fuzzymotiv_cli::progress::Progress::hidden())?
+            run_dir::read_back(exp, dir, &NoProgress)?
         }
         Some((dir, OutState::Done)) => return read_back_files(loaded, dir),
         Some((dir, state)) => {
-            let progress = fuzzymotiv_cli::progress::Progress::hidden();
             let resume = state == OutState::Unfinished;
-            pipeline::execute_with(loaded, dir, &progress, resume, false, hook)?
+            run_dir::execute_with(loaded, dir, &NoProgress, resume, None, hook)?
         }
         None => {
             let start = Instant::now();
@@ -814,7 +815,7 @@ fn simulate<'py>(
         Some(seed),
     )
     .map_err(py_err)?;
-    let entry = fuzzymotiv_cli::inputs::room_entry("room", &room, &loaded).map_err(py_err)?;
+    let entry = fuzzymotiv_io::files::inputs::room_entry("room", &room, &loaded).map_err(py_err)?;
     let mut raw = loaded.raw.clone();
     raw.rooms = vec![entry];
     // As `replay`: neither recognition nor online orientation changes a trajectory.

@@ -1,5 +1,5 @@
-//! Figures as files: every SVG, and with `--png` a PNG beside it, rasterised in pure Rust by
-//! `resvg`.
+//! PNG figures for `--png`, rasterised in pure Rust by `resvg`: the [`Rasterise`] that the
+//! figure writers of `fuzzymotiv_io` ([`fuzzymotiv_io::render::figures`]) are given.
 //!
 //! Text needs a font. The system's fonts are loaded once (`fontdb`'s `load_system_fonts`: the
 //! usual font directories and fontconfig's configuration); the generic `sans-serif` family of
@@ -12,9 +12,9 @@ use std::sync::{Arc, OnceLock};
 
 use resvg::usvg::{self, fontdb};
 
-use crate::error::CliError;
-use crate::files::{StagedDir, io_err, write_atomic};
-use crate::note;
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::note;
+use fuzzymotiv_io::render::figures::{Rasterise, add_missing_pngs};
 
 /// PNG pixels per SVG pixel: 2 gives crisp figures on high-density screens and in print.
 const PNG_SCALE: f32 = 2.0;
@@ -78,55 +78,23 @@ pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, String> {
         .map_err(|e| format!("PNG encoding failed: {e}"))
 }
 
-/// Writes `STEM.svg` into a staged directory, and `STEM.png` beside it when `png`.
-pub fn write_figure(staged: &StagedDir, stem: &str, svg: &str, png: bool) -> Result<(), CliError> {
-    staged.write(&format!("{stem}.svg"), svg)?;
-    if png {
-        let bytes = svg_to_png(svg).map_err(|e| CliError::runtime(format!("{stem}.png: {e}")))?;
-        staged.write(&format!("{stem}.png"), bytes)?;
+/// The resvg rasteriser ([`svg_to_png`]) for the writers of `fuzzymotiv_io`.
+pub struct Resvg;
+
+impl Rasterise for Resvg {
+    fn png(&self, svg: &str) -> Result<Vec<u8>, String> {
+        svg_to_png(svg)
     }
-    Ok(())
 }
 
-/// Writes an SVG file at `path` (any location), and the PNG beside it when `png`.
-pub fn write_figure_at(path: &std::path::Path, svg: &str, png: bool) -> Result<(), CliError> {
-    write_atomic(path, svg)?;
-    if png {
-        let out = path.with_extension("png");
-        let bytes = svg_to_png(svg).map_err(|e| io_err(&out, std::io::Error::other(e)))?;
-        write_atomic(&out, bytes)?;
-    }
-    Ok(())
-}
-
-/// `--png` on a finished output: writes `X.png` beside every `X.svg` under `dir` (and its
-/// subdirectories) that has none, and nothing else. Returns how many were written.
-pub fn add_missing_pngs(dir: &std::path::Path) -> Result<usize, CliError> {
-    let mut written = 0;
-    let entries = std::fs::read_dir(dir).map_err(|e| io_err(dir, e))?;
-    let mut paths: Vec<_> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    paths.sort();
-    for path in paths {
-        let meta = std::fs::symlink_metadata(&path).map_err(|e| io_err(&path, e))?;
-        if meta.is_dir() {
-            written += add_missing_pngs(&path)?;
-        } else if meta.is_file()
-            && path.extension().is_some_and(|e| e == "svg")
-            && !path.with_extension("png").exists()
-        {
-            let svg = std::fs::read_to_string(&path).map_err(|e| io_err(&path, e))?;
-            let out = path.with_extension("png");
-            let bytes = svg_to_png(&svg).map_err(|e| io_err(&out, std::io::Error::other(e)))?;
-            write_atomic(&out, bytes)?;
-            written += 1;
-        }
-    }
-    Ok(written)
+/// The rasteriser for `--png`: resvg with it, none without.
+pub fn rasteriser(png: bool) -> Option<&'static dyn Rasterise> {
+    png.then_some(&Resvg as &dyn Rasterise)
 }
 
 /// `--png` on a finished output: the PNGs it lacks, and nothing else; says how many.
 pub fn add_pngs(dir: &std::path::Path) -> Result<(), CliError> {
-    let n = add_missing_pngs(dir)?;
+    let n = add_missing_pngs(dir, &Resvg)?;
     note!("--png: {n} PNG figure(s) added to {}", dir.display());
     Ok(())
 }
@@ -134,6 +102,9 @@ pub fn add_pngs(dir: &std::path::Path) -> Result<(), CliError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
+    use fuzzymotiv::simulation::trial::Trajectory;
+    use fuzzymotiv_io::render::svg::{text_width, trajectories_svg};
 
     #[test]
     fn a_small_svg_becomes_a_png_of_twice_its_size() {
@@ -148,5 +119,125 @@ mod tests {
     #[test]
     fn broken_svg_is_an_error_not_a_panic() {
         assert!(svg_to_png("<svg").is_err());
+    }
+
+    /// Built-in rooms, a room with its home on a wall, and the U room (home in an arm, its
+    /// zone crossing two walls).
+    fn rooms(n: usize) -> Vec<Room> {
+        let wall = Room::from_toml_str(
+            "name = \"home-on-a-wall\"\noutline = [[0,0],[800,0],[800,500],[0,500]]\nhome = { x = 400, y = 40, heading_deg = 90 }\n",
+            "wall.toml",
+        )
+        .unwrap();
+        let u = Room::from_toml_str(include_str!("../../../rooms/U.toml"), "rooms/U.toml").unwrap();
+        let mut all: Vec<Room> = BUILTIN_ROOMS
+            .iter()
+            .map(|name| Room::builtin(name).unwrap())
+            .collect();
+        all.insert(1, wall);
+        all.insert(3, u);
+        (0..n).map(|k| all[k % all.len()].clone()).collect()
+    }
+
+    #[test]
+    fn finding_8_home_zone_is_the_disc_within_the_room() {
+        let all = rooms(7);
+        for room in &all {
+            let tr = Trajectory {
+                poses: vec![room.home],
+                ..Default::default()
+            };
+            let svg = trajectories_svg("t", &[(room, &tr)]);
+            assert!(svg.contains("blue: home zone") && !svg.contains("quarter"));
+            // Rendered: blue inside both the disc and the room, nowhere else.
+            let png = svg_to_png(&svg).unwrap();
+            let pixmap = resvg::tiny_skia::Pixmap::decode_png(&png).unwrap();
+            let (lo, hi) = room.bounds();
+            let scale = 0.3;
+            let slot = ((hi.x - lo.x) * scale).max(text_width(&room.name, false));
+            let x_off = 20.0 + (slot - (hi.x - lo.x) * scale) / 2.0;
+            let blue = |x: f64, y: f64| {
+                let px = (2.0 * (x_off + (x - lo.x) * scale)).round() as u32;
+                let py = (2.0 * (40.0 + (hi.y - y) * scale)).round() as u32;
+                let c = pixmap.pixel(px, py).unwrap();
+                i32::from(c.blue()) - i32::from(c.red()) > 8
+            };
+            let zone = room.home_zone;
+            // 36 points on a circle of `f` times the zone's radius around its centre.
+            let ring = |f: f64| {
+                (0..36).map(move |k| {
+                    let a = k as f64 * std::f64::consts::TAU / 36.0;
+                    let r = f * zone.radius;
+                    fuzzymotiv::simulation::geom::Vec2::new(
+                        zone.centre.x + r * a.cos(),
+                        zone.centre.y + r * a.sin(),
+                    )
+                })
+            };
+            // Points on a ring inside the zone's rim, clear of walls, home marker and the
+            // zone's dashed edge.
+            for p in ring(0.75) {
+                let clear = room.contains(p)
+                    && fuzzymotiv::simulation::geom::edges(&room.outline)
+                        .all(|e| e.dist_to(p) > 15.0)
+                    && p.dist(room.home.position()) > 40.0;
+                if clear {
+                    assert!(
+                        blue(p.x, p.y),
+                        "{}: ({:.0}, {:.0}) in zone and room, not blue",
+                        room.name,
+                        p.x,
+                        p.y
+                    );
+                }
+            }
+            // Inside the disc but outside the room (beyond a wall): not blue.
+            for p in ring(0.9) {
+                let (plo, phi) = room.bounds();
+                let beyond = !room.contains(p)
+                    && fuzzymotiv::simulation::geom::edges(&room.outline)
+                        .all(|e| e.dist_to(p) > 15.0)
+                    && p.x > plo.x - 50.0
+                    && p.y < phi.y + 50.0;
+                if beyond {
+                    assert!(
+                        !blue(p.x, p.y),
+                        "{}: ({:.0}, {:.0}) outside the room but blue",
+                        room.name,
+                        p.x,
+                        p.y
+                    );
+                }
+            }
+            // Outside the disc, inside the room (towards the room's far corner): not blue.
+            let far = if zone.centre.dist(hi) > zone.centre.dist(lo) {
+                hi
+            } else {
+                lo
+            };
+            let d = far - zone.centre;
+            let p = zone.centre + d * ((zone.radius + 30.0) / d.x.hypot(d.y));
+            if room.contains(p) {
+                assert!(!blue(p.x, p.y), "{}: outside the zone but blue", room.name);
+            }
+        }
+    }
+
+    /// Renders every `*.svg` in `$FIGS_DIR` to a PNG beside it with the program's renderer, to
+    /// look at figures that only appear inline in report pages:
+    /// `FIGS_DIR=/tmp/x cargo test -p fuzzymotiv-cli --bin fuzzymotiv png -- --ignored`.
+    #[test]
+    #[ignore]
+    fn render_svgs_in_figs_dir() {
+        let Ok(dir) = std::env::var("FIGS_DIR") else {
+            return;
+        };
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "svg") {
+                let svg = std::fs::read_to_string(&path).unwrap();
+                std::fs::write(path.with_extension("png"), svg_to_png(&svg).unwrap()).unwrap();
+            }
+        }
     }
 }

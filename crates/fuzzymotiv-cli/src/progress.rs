@@ -1,13 +1,16 @@
 //! Progress on stderr: a bar on a terminal; otherwise (SLURM, `nohup`, `| tee`) one plain line
-//! every few seconds; nothing with `--quiet`.
+//! every few seconds; nothing with `--quiet`. [`Progress`] shows runs (the pipeline's
+//! [`RunProgress`]), [`JobsProgress`] a sweep's jobs ([`SweepProgress`]).
 
-use crate::note;
+use fuzzymotiv_io::note;
 use std::io::IsTerminal;
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError};
 use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv_io::pipeline::progress::{RunProgress, SweepProgress};
+use fuzzymotiv_io::records::Job;
 use indicatif::{ProgressBar, ProgressStyle};
 
 /// Seconds between two plain progress lines.
@@ -162,6 +165,20 @@ impl Progress {
     }
 }
 
+impl RunProgress for Progress {
+    fn note(&self, message: &str) {
+        Progress::note(self, message);
+    }
+
+    fn skip(&self, n: usize) {
+        Progress::skip(self, n);
+    }
+
+    fn generation(&self, run: &str, g: usize, of: usize, best: f64) {
+        Progress::generation(self, run, g, of, best);
+    }
+}
+
 impl Drop for Progress {
     /// A run's view leaves the bar's list of runs going on.
     fn drop(&mut self) {
@@ -171,6 +188,77 @@ impl Drop for Progress {
             running.remove(k);
         }
         self.shared.bar.set_prefix(bar_prefix(&running));
+    }
+}
+
+/// Progress of a sweep's jobs: on a terminal a bar counting jobs (showing the key of the one
+/// started last); otherwise each job's plain progress lines, under its name (`job ID (3/8 here)
+/// KEY seed S`); nothing with `--quiet`.
+pub struct JobsProgress {
+    /// Stderr is a terminal.
+    terminal: bool,
+    quiet: bool,
+    /// The bar over the selected jobs (hidden but on a terminal), from [`SweepProgress::begin`].
+    bar: OnceLock<ProgressBar>,
+    /// How many jobs are selected.
+    selected: AtomicUsize,
+}
+
+impl JobsProgress {
+    /// Progress of a sweep's jobs, none with `quiet`.
+    pub fn new(quiet: bool) -> Self {
+        Self {
+            terminal: std::io::stderr().is_terminal(),
+            quiet,
+            bar: OnceLock::new(),
+            selected: AtomicUsize::new(0),
+        }
+    }
+}
+
+impl SweepProgress for JobsProgress {
+    fn begin(&self, selected: usize, skipped: usize) {
+        let bar = if self.terminal && !self.quiet {
+            ProgressBar::new(selected as u64)
+        } else {
+            ProgressBar::hidden()
+        };
+        bar.inc(skipped as u64);
+        self.selected.store(selected, Ordering::Relaxed);
+        let _ = self.bar.set(bar);
+    }
+
+    fn job(&self, job: &Job, nth: usize, exp: &Experiment) -> Box<dyn RunProgress + '_> {
+        if let Some(bar) = self.bar.get() {
+            bar.set_message(job.key.clone());
+        }
+        let plain_lines = !(self.terminal || self.quiet);
+        let line = plain_lines.then(|| {
+            format!(
+                "job {} ({}/{} here)",
+                job.id,
+                nth,
+                self.selected.load(Ordering::Relaxed)
+            )
+        });
+        Box::new(match line {
+            Some(line) => {
+                Progress::new(exp, 1, false).named(&format!("{line} {} seed {}", job.key, job.seed))
+            }
+            None => Progress::hidden(),
+        })
+    }
+
+    fn job_done(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.inc(1);
+        }
+    }
+
+    fn end(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.finish_and_clear();
+        }
     }
 }
 

@@ -10,7 +10,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use fuzzymotiv_cli::records::{AggregateRow, SweepResults, read_csv};
+use fuzzymotiv_io::records::{AggregateRow, SweepResults, read_csv};
 use serde_json::Value;
 
 mod common;
@@ -323,7 +323,7 @@ fn finding_9_n_equals_1_shows_a_dash() {
 #[test]
 fn finding_9_tables_say_sample_std() {
     // The statistic itself: divided by n − 1, not n.
-    let (mean, std) = fuzzymotiv_cli::study::mean_std(&[1.0, 2.0, 3.0, 4.0]);
+    let (mean, std) = fuzzymotiv_io::render::study::mean_std(&[1.0, 2.0, 3.0, 4.0]);
     assert_eq!(mean, 2.5);
     assert!((std - (5.0f64 / 3.0).sqrt()).abs() < 1e-15, "{std}");
     const SAYS: &str = "sample standard deviation, n − 1";

@@ -75,7 +75,9 @@ fn path_head(path: &str) -> String {
             .collect()
     };
     let first = ident(path);
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("src").join(&first);
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("src")
+        .join(&first);
     if first.is_empty() || !folder.is_dir() {
         return first;
     }

@@ -2,18 +2,17 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::args::OutputArgs;
-use crate::error::CliError;
-use crate::files::{OutState, StagedDir, check_out};
-use crate::inputs::{Loaded, load_config, run_identity};
-use crate::note;
-use crate::pipeline::{execute, start_line};
-use crate::png::add_pngs;
-use crate::progress::Progress;
-use crate::tables::table_markdown;
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::guard::{OutState, StagedDir, check_out};
+use fuzzymotiv_io::files::inputs::{Loaded, load_config, run_identity};
+use fuzzymotiv_io::note;
+use fuzzymotiv_io::pipeline::lanes::set_threads;
+use fuzzymotiv_io::pipeline::run_dir::{execute, start_line};
+use fuzzymotiv_io::render::tables::table_markdown;
 
-/// `bench` sets its threads here too.
-use crate::pipeline::set_threads;
+use crate::args::OutputArgs;
+use crate::png::{add_pngs, rasteriser};
+use crate::progress::Progress;
 
 /// Arguments of `fuzzymotiv run`.
 #[derive(clap::Args)]
@@ -80,9 +79,9 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
         loaded.experiment.seed()
     ));
     progress.note(&start_line(&loaded.experiment, &out));
-    let done = execute(&loaded, &out, &progress, resume, args.png)?;
+    let done = execute(&loaded, &out, &progress, resume, rasteriser(args.png))?;
     progress.finish();
-    crate::out!("{}", table_markdown(&done.rows))?;
+    fuzzymotiv_io::out!("{}", table_markdown(&done.rows))?;
     note!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
     Ok(())
 }

@@ -6,12 +6,12 @@
 //! (a full disk) is an error naming standard output. A closed standard error only drops notes
 //! and progress lines: the command goes on.
 //!
-//! [`ErrorKind::ClosedStdout`]: crate::error::ErrorKind::ClosedStdout
+//! [`ErrorKind::ClosedStdout`]: crate::files::error::ErrorKind::ClosedStdout
 
 use std::fmt::Arguments;
 use std::io::Write;
 
-use crate::error::CliError;
+use crate::files::error::CliError;
 
 /// Writes to standard output; a failure becomes a [`CliError`] (see the module docs).
 pub fn write_out(args: Arguments<'_>) -> Result<(), CliError> {
@@ -38,18 +38,18 @@ pub fn stdout_error(e: std::io::Error) -> CliError {
 /// `print!` that returns an error instead of panicking: `out!("{x}")?`.
 #[macro_export]
 macro_rules! out {
-    ($($arg:tt)*) => { $crate::console::write_out(format_args!($($arg)*)) };
+    ($($arg:tt)*) => { $crate::files::console::write_out(format_args!($($arg)*)) };
 }
 
 /// `println!` that returns an error instead of panicking: `outln!("{x}")?`.
 #[macro_export]
 macro_rules! outln {
-    () => { $crate::console::write_out(format_args!("\n")) };
-    ($($arg:tt)*) => { $crate::console::write_out(format_args!("{}\n", format_args!($($arg)*))) };
+    () => { $crate::files::console::write_out(format_args!("\n")) };
+    ($($arg:tt)*) => { $crate::files::console::write_out(format_args!("{}\n", format_args!($($arg)*))) };
 }
 
 /// `eprintln!` that never panics: a closed or full stderr drops the line.
 #[macro_export]
 macro_rules! note {
-    ($($arg:tt)*) => { $crate::console::write_err(format_args!("{}\n", format_args!($($arg)*))) };
+    ($($arg:tt)*) => { $crate::files::console::write_err(format_args!("{}\n", format_args!($($arg)*))) };
 }

@@ -6,10 +6,10 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::experiment::config::Training;
 
-use crate::inputs::Loaded;
+use crate::files::inputs::Loaded;
 use crate::records::{ClaimRecord, RoomRow};
-use crate::study::{SettingRuns, Variant, metrics, paper_row, room_stats};
-use crate::svg::esc;
+use crate::render::study::{SettingRuns, Variant, metrics, paper_row, room_stats};
+use crate::render::svg::esc;
 
 /// The per-room table as Markdown.
 pub fn table_markdown(rows: &[RoomRow]) -> String {
@@ -33,7 +33,7 @@ pub fn table_markdown(rows: &[RoomRow]) -> String {
 }
 
 /// What the ± of every table means, for its caption: the standard deviation is the sample
-/// one ([`crate::study::mean_std`], divided by n − 1), and one value has none.
+/// one ([`crate::render::study::mean_std`], divided by n − 1), and one value has none.
 pub const STD_IS_SAMPLE: &str = "std: the sample standard deviation, n − 1; — for one value";
 
 /// `mean ± std` with `d` decimals over `n` values: the std an em dash for one value (no spread

@@ -144,20 +144,7 @@ pub fn fitness_panels_svg(panels: &[FitnessPanel]) -> String {
         // The title is centred over the plot area, which is off the panel's centre.
         .map(|p| 420f64.max(text_width(&p.title, true) + ml - mr + 10.0))
         .collect();
-    let legends: Vec<Vec<(LegendMark, &str)>> = panels
-        .iter()
-        .map(|p| {
-            let mut entries = vec![
-                (LegendMark::Line(BEST), p.best.1.as_str()),
-                (LegendMark::Line(MEAN), p.mean.1.as_str()),
-            ];
-            if !p.bands.is_empty() {
-                let colours = p.bands.iter().map(|b| b.1).collect();
-                entries.push((LegendMark::Bands(colours), p.band_label.as_str()));
-            }
-            entries
-        })
-        .collect();
+    let legends: Vec<Vec<(LegendMark, &str)>> = panels.iter().map(fitness_legend).collect();
     let legend_top = y0 + 54.0;
     let rows = widths
         .iter()
@@ -187,42 +174,66 @@ pub fn fitness_panels_svg(panels: &[FitnessPanel]) -> String {
             generations,
             "fuzzy fitness F",
         );
-        for (band, colour) in &panel.bands {
-            // One closed outline: along the highs, back along the lows.
-            let mut d = String::new();
-            for (g, (_, hi)) in band.iter().enumerate() {
-                let _ = write!(
-                    d,
-                    "{}{:.1},{:.1}",
-                    if g == 0 { 'M' } else { 'L' },
-                    x(g),
-                    y(*hi)
-                );
-            }
-            for (g, (lo, _)) in band.iter().enumerate().rev() {
-                let _ = write!(d, "L{:.1},{:.1}", x(g), y(*lo));
-            }
-            let _ = writeln!(
-                s,
-                r#"<path d="{d}Z" fill="{colour}" fill-opacity="0.45" stroke="none"/>"#
-            );
-        }
-        for (values, colour) in [(&panel.best.0, BEST), (&panel.mean.0, MEAN)] {
-            let pts: String = values
-                .iter()
-                .enumerate()
-                .map(|(g, &f)| format!("{:.1},{:.1} ", x(g), y(f)))
-                .collect();
-            let _ = writeln!(
-                s,
-                r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8" stroke-linejoin="round"/>"#
-            );
-        }
+        draw_fitness_curves(&mut s, panel, x, y);
         draw_legend(&mut s, legend, (x0, x1), legend_top);
         ox += pw;
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// A fitness panel's legend: the best and the mean F curves, and its bands (one entry).
+fn fitness_legend(p: &FitnessPanel) -> Vec<(LegendMark, &str)> {
+    let mut entries = vec![
+        (LegendMark::Line(BEST), p.best.1.as_str()),
+        (LegendMark::Line(MEAN), p.mean.1.as_str()),
+    ];
+    if !p.bands.is_empty() {
+        let colours = p.bands.iter().map(|b| b.1).collect();
+        entries.push((LegendMark::Bands(colours), p.band_label.as_str()));
+    }
+    entries
+}
+
+/// A fitness panel's shaded bands, then its best and mean F curves, at `x(generation)` and
+/// `y(F)`.
+fn draw_fitness_curves(
+    s: &mut String,
+    panel: &FitnessPanel,
+    x: impl Fn(usize) -> f64,
+    y: impl Fn(f64) -> f64,
+) {
+    for (band, colour) in &panel.bands {
+        // One closed outline: along the highs, back along the lows.
+        let mut d = String::new();
+        for (g, (_, hi)) in band.iter().enumerate() {
+            let _ = write!(
+                d,
+                "{}{:.1},{:.1}",
+                if g == 0 { 'M' } else { 'L' },
+                x(g),
+                y(*hi)
+            );
+        }
+        for (g, (lo, _)) in band.iter().enumerate().rev() {
+            let _ = write!(d, "L{:.1},{:.1}", x(g), y(*lo));
+        }
+        let _ = writeln!(
+            s,
+            r#"<path d="{d}Z" fill="{colour}" fill-opacity="0.45" stroke="none"/>"#
+        );
+    }
+    for (values, colour) in [(&panel.best.0, BEST), (&panel.mean.0, MEAN)] {
+        let pts: String = values
+            .iter()
+            .enumerate()
+            .map(|(g, &f)| format!("{:.1},{:.1} ", x(g), y(f)))
+            .collect();
+        let _ = writeln!(
+            s,
+            r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8" stroke-linejoin="round"/>"#
+        );
+    }
 }
 
 /// Colours of the best and mean F curves, of the run's min–max band and of the bands around
@@ -1299,7 +1310,8 @@ mod tests {
             "wall.toml",
         )
         .unwrap();
-        let u = Room::from_toml_str(include_str!("../../../rooms/U.toml"), "rooms/U.toml").unwrap();
+        let u =
+            Room::from_toml_str(include_str!("../../../../rooms/U.toml"), "rooms/U.toml").unwrap();
         let mut all: Vec<Room> = BUILTIN_ROOMS
             .iter()
             .map(|name| Room::builtin(name).unwrap())
@@ -1358,90 +1370,6 @@ mod tests {
         let texts: Vec<String> = text_boxes(&svg).into_iter().map(|b| b.4).collect();
         for label in ["0", "5", "10", "15", "20", "25"] {
             assert!(texts.iter().any(|t| t == label), "terms: no tick {label}");
-        }
-    }
-
-    #[test]
-    fn finding_8_home_zone_is_the_disc_within_the_room() {
-        let all = rooms(7);
-        for room in &all {
-            let tr = Trajectory {
-                poses: vec![room.home],
-                ..Default::default()
-            };
-            let svg = trajectories_svg("t", &[(room, &tr)]);
-            assert!(svg.contains("blue: home zone") && !svg.contains("quarter"));
-            // Rendered: blue inside both the disc and the room, nowhere else.
-            let png = crate::png::svg_to_png(&svg).unwrap();
-            let pixmap = resvg::tiny_skia::Pixmap::decode_png(&png).unwrap();
-            let (lo, hi) = room.bounds();
-            let scale = 0.3;
-            let slot = ((hi.x - lo.x) * scale).max(text_width(&room.name, false));
-            let x_off = 20.0 + (slot - (hi.x - lo.x) * scale) / 2.0;
-            let blue = |x: f64, y: f64| {
-                let px = (2.0 * (x_off + (x - lo.x) * scale)).round() as u32;
-                let py = (2.0 * (40.0 + (hi.y - y) * scale)).round() as u32;
-                let c = pixmap.pixel(px, py).unwrap();
-                i32::from(c.blue()) - i32::from(c.red()) > 8
-            };
-            let zone = room.home_zone;
-            // 36 points on a circle of `f` times the zone's radius around its centre.
-            let ring = |f: f64| {
-                (0..36).map(move |k| {
-                    let a = k as f64 * std::f64::consts::TAU / 36.0;
-                    let r = f * zone.radius;
-                    fuzzymotiv::simulation::geom::Vec2::new(
-                        zone.centre.x + r * a.cos(),
-                        zone.centre.y + r * a.sin(),
-                    )
-                })
-            };
-            // Points on a ring inside the zone's rim, clear of walls, home marker and the
-            // zone's dashed edge.
-            for p in ring(0.75) {
-                let clear = room.contains(p)
-                    && fuzzymotiv::simulation::geom::edges(&room.outline)
-                        .all(|e| e.dist_to(p) > 15.0)
-                    && p.dist(room.home.position()) > 40.0;
-                if clear {
-                    assert!(
-                        blue(p.x, p.y),
-                        "{}: ({:.0}, {:.0}) in zone and room, not blue",
-                        room.name,
-                        p.x,
-                        p.y
-                    );
-                }
-            }
-            // Inside the disc but outside the room (beyond a wall): not blue.
-            for p in ring(0.9) {
-                let (plo, phi) = room.bounds();
-                let beyond = !room.contains(p)
-                    && fuzzymotiv::simulation::geom::edges(&room.outline)
-                        .all(|e| e.dist_to(p) > 15.0)
-                    && p.x > plo.x - 50.0
-                    && p.y < phi.y + 50.0;
-                if beyond {
-                    assert!(
-                        !blue(p.x, p.y),
-                        "{}: ({:.0}, {:.0}) outside the room but blue",
-                        room.name,
-                        p.x,
-                        p.y
-                    );
-                }
-            }
-            // Outside the disc, inside the room (towards the room's far corner): not blue.
-            let far = if zone.centre.dist(hi) > zone.centre.dist(lo) {
-                hi
-            } else {
-                lo
-            };
-            let d = far - zone.centre;
-            let p = zone.centre + d * ((zone.radius + 30.0) / d.x.hypot(d.y));
-            if room.contains(p) {
-                assert!(!blue(p.x, p.y), "{}: outside the zone but blue", room.name);
-            }
         }
     }
 
@@ -1552,28 +1480,6 @@ mod tests {
                 &sweep_summary_svg(&points),
                 &format!("sweep summary, {n} settings"),
             );
-        }
-    }
-
-    /// Renders every `*.svg` in `$FIGS_DIR` to a PNG beside it with the program's renderer, to
-    /// look at figures that only appear inline in report pages:
-    /// `FIGS_DIR=/tmp/x cargo test -p fuzzymotiv-cli --lib svg -- --ignored`.
-    #[test]
-    #[ignore]
-    fn render_svgs_in_figs_dir() {
-        let Ok(dir) = std::env::var("FIGS_DIR") else {
-            return;
-        };
-        for entry in std::fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.extension().is_some_and(|e| e == "svg") {
-                let svg = std::fs::read_to_string(&path).unwrap();
-                std::fs::write(
-                    path.with_extension("png"),
-                    crate::png::svg_to_png(&svg).unwrap(),
-                )
-                .unwrap();
-            }
         }
     }
 }

@@ -11,8 +11,8 @@ use fuzzymotiv::experiment::config::RawConfig;
 use fuzzymotiv::random::seed::{Streams, hash_str};
 use serde::Deserialize;
 
-use crate::error::CliError;
-use crate::inputs::{Loaded, resolve};
+use crate::files::error::CliError;
+use crate::files::inputs::{Loaded, resolve};
 use crate::records::Job;
 
 /// The `[sweep]` table.

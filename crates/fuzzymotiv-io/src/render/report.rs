@@ -16,10 +16,10 @@ use fuzzymotiv::simulation::robot::Motion;
 use fuzzymotiv::simulation::sensor::SENSOR_LAYOUT;
 use serde_json::{Value, json};
 
-use crate::inputs::{Loaded, resolved_toml};
+use crate::files::inputs::{Loaded, resolved_toml};
 use crate::records::{Finished, RoomRow};
-use crate::study::Setting;
-use crate::svg::{
+use crate::render::study::Setting;
+use crate::render::svg::{
     SomRoom, best_paths_svg, colour, esc, fitness_svg, membership_svg, som_svg, terms_svg,
     trajectories_svg,
 };

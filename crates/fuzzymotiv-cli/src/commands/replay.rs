@@ -15,14 +15,15 @@ use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::simulation::controller::MlpShape;
 use fuzzymotiv::simulation::trial::Trajectory;
 
-use crate::error::CliError;
-use crate::files::{FilesState, check_files, io_err, num, write_files};
-use crate::inputs::{load_config, resolve, room_entry};
-use crate::note;
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, num, write_files};
+use fuzzymotiv_io::files::inputs::{load_config, resolve, room_entry};
+use fuzzymotiv_io::note;
+use fuzzymotiv_io::records::{BestGenome, PROGRAM, read_json};
+use fuzzymotiv_io::render::report::{replay_page, xs};
+use fuzzymotiv_io::render::svg::trajectories_svg;
+
 use crate::png::svg_to_png;
-use crate::records::{BestGenome, PROGRAM, read_json};
-use crate::report::{replay_page, xs};
-use crate::svg::trajectories_svg;
 
 /// Arguments of `fuzzymotiv replay`.
 #[derive(clap::Args)]
@@ -42,7 +43,7 @@ pub struct ReplayArgs {
     pub room: Option<String>,
     /// Base seed of the replay's noise [default: the run's seed, so the run's own paths]: a
     /// whole number from 0 to 2^53 − 1.
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::inputs::parse_seed)]
+    #[arg(long, allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_seed)]
     pub seed: Option<u64>,
     /// The replay page to write; the trajectories go beside it as STEM.json, STEM-ROOM.csv and
     /// the figure as STEM.svg.
@@ -252,18 +253,15 @@ fn replay_trials(
     Ok(trials)
 }
 
-/// Writes the replay's CSV per room, JSON, figure and page, through the output guard: the same
-/// replay again changes nothing; other files of those names are kept unless `--force`.
-fn write_replay(
-    args: &ReplayArgs,
+/// Per room of the replay: its trajectory's CSV file (`DIR/STEM-ROOM.csv`, added to `files`),
+/// and returned the line printed for it and its entry in the replay's JSON.
+fn room_files(
     exp: &Experiment,
-    genome: &SavedGenome,
-    source_name: &str,
+    dir: &Path,
+    stem: &str,
     trials: &[(usize, String, InstanceRun)],
-) -> Result<(), CliError> {
-    let out = &args.out;
-    let (dir, stem) = out_parts(out)?;
-    let mut files = Vec::new();
+    files: &mut Vec<(PathBuf, Vec<u8>)>,
+) -> (Vec<String>, Vec<serde_json::Value>) {
     let mut lines = Vec::new();
     let mut rooms_json = Vec::new();
     for (r, label, run) in trials {
@@ -291,6 +289,22 @@ fn write_replay(
             "trajectory": tr,
         }));
     }
+    (lines, rooms_json)
+}
+
+/// Writes the replay's CSV per room, JSON, figure and page, through the output guard: the same
+/// replay again changes nothing; other files of those names are kept unless `--force`.
+fn write_replay(
+    args: &ReplayArgs,
+    exp: &Experiment,
+    genome: &SavedGenome,
+    source_name: &str,
+    trials: &[(usize, String, InstanceRun)],
+) -> Result<(), CliError> {
+    let out = &args.out;
+    let (dir, stem) = out_parts(out)?;
+    let mut files = Vec::new();
+    let (lines, rooms_json) = room_files(exp, &dir, &stem, trials, &mut files);
     let genome_path = genome.path.display();
     let doc = serde_json::json!({
         "program": PROGRAM,
@@ -332,7 +346,7 @@ fn write_replay(
         write_files(&files)?;
     }
     for line in &lines {
-        crate::outln!("{line}")?;
+        fuzzymotiv_io::outln!("{line}")?;
     }
     if state == FilesState::Same {
         note!("{} already holds this replay; nothing to do", out.display());

@@ -5,8 +5,8 @@ use std::time::Instant;
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::simulation::room::Room;
 
-use crate::error::CliError;
-use crate::inputs::{load_config, resolve};
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::inputs::{load_config, resolve};
 
 /// Arguments of `fuzzymotiv bench`.
 #[derive(clap::Args)]
@@ -83,7 +83,7 @@ pub struct BenchReport {
 
 /// Entry point of `fuzzymotiv bench`.
 pub fn bench(args: BenchArgs) -> Result<(), CliError> {
-    crate::pipeline::set_threads(args.threads)?;
+    fuzzymotiv_io::pipeline::lanes::set_threads(args.threads)?;
     if args.steps == 0 || args.repeat == 0 || args.population < 2 {
         return Err(CliError::input(
             "--steps and --repeat must be ≥ 1 and --population ≥ 2",
@@ -92,7 +92,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     let exp = bench_experiment(&args)?;
     let report = measure(&exp, &args);
     if args.json {
-        crate::outln!(
+        fuzzymotiv_io::outln!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
         )
@@ -122,7 +122,8 @@ fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
 
 /// Times `work(r)` for each repetition `r` of `repeat`; returns the median seconds and the median
 /// executed robot-steps of a repetition. Each repetition runs new trials (new random streams), so
-/// no repetition finds its poses already remembered by an earlier one ([`fuzzymotiv::simulation::memo`]).
+/// no repetition finds its poses already remembered by an earlier one (the library's memo of
+/// sightings).
 fn timed(repeat: usize, mut work: impl FnMut(usize) -> usize) -> (f64, usize) {
     let mut seconds = Vec::new();
     let mut steps = Vec::new();
@@ -185,7 +186,7 @@ fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
 
 /// The report as two lines of text.
 fn print_report(r: &BenchReport) -> Result<(), CliError> {
-    crate::outln!(
+    fuzzymotiv_io::outln!(
         "room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({} executed steps, median {:.3} s of {})",
         r.room,
         r.motion,
@@ -194,7 +195,7 @@ fn print_report(r: &BenchReport) -> Result<(), CliError> {
         r.seconds,
         r.repeat
     )?;
-    crate::outln!(
+    fuzzymotiv_io::outln!(
         "population {} x {} steps, {} evaluations, {} threads: {:.3} M robot-steps/s (median {:.3} s)",
         r.population,
         r.trial_steps,

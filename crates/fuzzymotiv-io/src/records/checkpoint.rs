@@ -8,8 +8,8 @@ use fuzzymotiv::experiment::outcome::Start;
 use fuzzymotiv::experiment::{Experiment, Run};
 use serde::{Deserialize, Serialize};
 
-use crate::error::CliError;
-use crate::files::{io_err, write_atomic};
+use crate::files::error::CliError;
+use crate::files::guard::{io_err, write_atomic};
 
 /// File name of the checkpoint inside the staging directory.
 pub const CHECKPOINT: &str = "checkpoint.json";

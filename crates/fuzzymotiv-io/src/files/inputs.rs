@@ -7,7 +7,7 @@ use fuzzymotiv::experiment::config::RawConfig;
 use fuzzymotiv::experiment::setup::{RoomFile, RoomFiles, Setup, parse_room_file};
 use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
 
-use crate::error::CliError;
+use crate::files::error::CliError;
 use crate::note;
 
 /// Reads and validates a room file.
@@ -123,7 +123,7 @@ pub fn resolved_toml(raw: &RawConfig) -> String {
 }
 
 /// What makes an output directory "the same run": its `config.resolved.toml` holds exactly
-/// [`resolved_toml`] of the config (the identity [`crate::files::check_out`] compares).
+/// [`resolved_toml`] of the config (the identity [`crate::files::guard::check_out`] compares).
 pub fn run_identity(raw: &RawConfig) -> Vec<(String, String)> {
     vec![("config.resolved.toml".to_string(), resolved_toml(raw))]
 }
@@ -141,7 +141,7 @@ pub fn room_entry(option: &str, want: &str, loaded: &Loaded) -> Result<String, C
         load_room_file(path)?;
         let abs = path
             .canonicalize()
-            .map_err(|e| crate::files::io_err(path, e))?;
+            .map_err(|e| crate::files::guard::io_err(path, e))?;
         Ok(abs.display().to_string())
     } else {
         Err(CliError::input(format!(

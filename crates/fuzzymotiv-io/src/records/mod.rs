@@ -30,7 +30,9 @@ use fuzzymotiv::simulation::trial::Trajectory;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::error::CliError;
+use crate::files::error::CliError;
+
+pub mod checkpoint;
 
 /// The `program` field of every JSON file.
 pub const PROGRAM: &str = "fuzzymotiv";

@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::error::CliError;
+use crate::files::error::CliError;
 use crate::note;
 
 /// Writes `contents` to `path` via a temporary file in the same directory and a rename.
@@ -326,7 +326,7 @@ pub fn check_out_as(
     spelling: &Spelling,
 ) -> Result<OutState, CliError> {
     let (state, replacing) = out_state(dir, id, force).map_err(|e| match e.kind() {
-        crate::error::ErrorKind::Input => spelling.respell(e),
+        crate::files::error::ErrorKind::Input => spelling.respell(e),
         _ => e,
     })?;
     if replacing {

@@ -3,12 +3,15 @@
 
 use std::path::PathBuf;
 
-use crate::error::CliError;
-use crate::files::{FilesState, check_files, io_err, write_atomic, write_files};
-use crate::pipeline::{run_jobs, set_threads};
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_atomic, write_files};
+use fuzzymotiv_io::pipeline::lanes::set_threads;
+use fuzzymotiv_io::pipeline::sweep_jobs::run_jobs;
+use fuzzymotiv_io::pipeline::sweep_merge::merge_dir;
+use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
+
 use crate::png::{add_pngs, svg_to_png};
-use crate::sweep_merge::merge_dir;
-use crate::sweep_plan::Sweep;
+use crate::progress::JobsProgress;
 
 /// Arguments of `fuzzymotiv plan`.
 #[derive(clap::Args)]
@@ -31,14 +34,14 @@ pub struct PlanArgs {
 pub fn plan(args: PlanArgs) -> Result<(), CliError> {
     let sweep = Sweep::load(&args.sweep)?;
     if args.count {
-        crate::outln!("{}", sweep.jobs.len())?;
+        fuzzymotiv_io::outln!("{}", sweep.jobs.len())?;
     } else if let Some(out) = args.out {
         let files = [(out, sweep.plan_jsonl().into_bytes())];
         if check_files(&files, "--out", args.force)? == FilesState::Write {
             write_files(&files)?;
         }
     } else {
-        crate::out!("{}", sweep.plan_jsonl())?;
+        fuzzymotiv_io::out!("{}", sweep.plan_jsonl())?;
     }
     Ok(())
 }
@@ -119,7 +122,8 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     let sweep = Sweep::load(&args.sweep)?;
     let selected = select(&args, sweep.jobs.len())?;
     let text = std::fs::read_to_string(&args.sweep).map_err(|e| io_err(&args.sweep, e))?;
-    run_jobs(&sweep, &text, &selected, &args.out, args.quiet, args.force)
+    let progress = JobsProgress::new(args.quiet);
+    run_jobs(&sweep, &text, &selected, &args.out, args.force, &progress)
 }
 
 /// Arguments of `fuzzymotiv merge`.

@@ -6,28 +6,34 @@ use std::time::Instant;
 use fuzzymotiv::experiment::config::RawConfig;
 use fuzzymotiv::random::seed::Streams;
 
-use crate::args::OutputArgs;
-use crate::error::CliError;
-use crate::files::{IDENTITY, OutState, StagedDir, check_out, matches, write_atomic};
-use crate::inputs::{Loaded, resolve, resolved_toml};
-use crate::note;
-use crate::pipeline::{execute_or_resume, run_concurrently, run_jobs, set_threads, start_line};
-use crate::png::{add_pngs, write_figure_at};
-use crate::progress::Progress;
-use crate::records::{
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::guard::{
+    IDENTITY, OutState, StagedDir, check_out, matches, write_atomic,
+};
+use fuzzymotiv_io::files::inputs::{Loaded, resolve, resolved_toml};
+use fuzzymotiv_io::note;
+use fuzzymotiv_io::pipeline::lanes::{run_concurrently, set_threads};
+use fuzzymotiv_io::pipeline::run_dir::{execute_or_resume, start_line};
+use fuzzymotiv_io::pipeline::sweep_jobs::run_jobs;
+use fuzzymotiv_io::pipeline::sweep_merge::merge_dir;
+use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
+use fuzzymotiv_io::records::{
     AblationSummary, ClaimRecord, PROGRAM, StudySummary, VariantSummary, to_json,
 };
-use crate::report::{Section, reproduce_page};
-use crate::study::{
+use fuzzymotiv_io::render::figures::write_figure_at;
+use fuzzymotiv_io::render::report::{Section, reproduce_page};
+use fuzzymotiv_io::render::study::{
     ABLATION, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns, Variant, claims,
     overall,
 };
-use crate::svg::{FitnessPanel, best_paths_svg, fitness_panels_svg};
-use crate::sweep_merge::merge_dir;
-use crate::sweep_plan::Sweep;
-use crate::tables::{
+use fuzzymotiv_io::render::svg::{FitnessPanel, best_paths_svg, fitness_panels_svg};
+use fuzzymotiv_io::render::tables::{
     Provenance, ablation_table, claims_html, claims_table, mark, spread_html, study_table,
 };
+
+use crate::args::OutputArgs;
+use crate::png::{add_pngs, rasteriser};
+use crate::progress::{JobsProgress, Progress};
 
 /// Arguments of `fuzzymotiv reproduce`.
 #[derive(clap::Args)]
@@ -164,7 +170,7 @@ fn run_study<'a>(
         let progress = progress.named(&format!("{label}{} seed {seed}", setting.name));
         let run_dir = dir.join(setting.name).join(format!("seed-{seed}"));
         progress.note(&start_line(&l.experiment, &run_dir));
-        execute_or_resume(l, &run_dir, &progress, args.png)
+        execute_or_resume(l, &run_dir, &progress, rasteriser(args.png))
     })?;
     let mut finished = finished.into_iter();
     Ok(SETTINGS
@@ -204,7 +210,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     progress.finish();
     let (claims, tables) = write_study(&args, &staged.staging, &studies, start)?;
     commit(staged, start)?;
-    crate::out!("{tables}")?;
+    fuzzymotiv_io::out!("{tables}")?;
     print_claims(&claims)
 }
 
@@ -266,7 +272,7 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
     };
     staged.write("summary.json", to_json(&summary))?;
     commit(staged, start)?;
-    crate::outln!("{md}")
+    fuzzymotiv_io::outln!("{md}")
 }
 
 /// Renames the staged output into place and says where it went and how long it took.
@@ -408,7 +414,7 @@ fn write_study(
         panels.push(write_setting_figure(args, dir, study)?);
     }
     let fitness = fitness_panels_svg(&panels);
-    write_figure_at(&dir.join("fitness.svg"), &fitness, args.png)?;
+    write_figure_at(&dir.join("fitness.svg"), &fitness, rasteriser(args.png))?;
     let claims = claims(studies);
     let (md, csv) = claims_table(&claims, &provenance);
     write_atomic(&dir.join("claims.md"), &md)?;
@@ -457,7 +463,7 @@ fn write_setting_figure(
             exp,
             &study.finished[m].trajectories(),
         ),
-        args.png,
+        rasteriser(args.png),
     )?;
     // The legend says what is drawn over how many seeds.
     let panel = format!("{} {:?}", study.setting.name, exp.motivations().as_array());
@@ -506,7 +512,7 @@ fn page(
 
 fn print_claims(claims: &[ClaimRecord]) -> Result<(), CliError> {
     for c in claims {
-        crate::outln!("{}: {} ({})", c.claim, mark(c.holds), c.evidence)?;
+        fuzzymotiv_io::outln!("{}: {} ({})", c.claim, mark(c.holds), c.evidence)?;
     }
     Ok(())
 }
@@ -516,7 +522,7 @@ fn print_claims(claims: &[ClaimRecord]) -> Result<(), CliError> {
 fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
     let start = Instant::now();
     let out = args.out_dir();
-    let mut text = include_str!("../../../configs/orientation-study.toml").to_string();
+    let mut text = include_str!("../../../../configs/orientation-study.toml").to_string();
     let mut sets: Vec<String> = Vec::new();
     sets.push(format!("seed={}", args.seed()));
     if args.quick {
@@ -547,8 +553,8 @@ fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
         &text,
         &all,
         &out,
-        args.output.quiet,
         args.output.force,
+        &JobsProgress::new(args.output.quiet),
     )?;
     merge_dir(&out)?;
     if args.png {

@@ -5,14 +5,14 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::error::CliError;
-use crate::files::write_atomic;
+use crate::files::error::CliError;
+use crate::files::guard::write_atomic;
 use crate::note;
 use crate::records::{
     AggregateRow, Job, METRICS, RunSummary, SweepResultRow, SweepResults, read_json, to_csv,
 };
-use crate::svg::{SettingPoint, sweep_summary_svg};
-use crate::tables::STD_IS_SAMPLE;
+use crate::render::svg::{SettingPoint, sweep_summary_svg};
+use crate::render::tables::STD_IS_SAMPLE;
 
 /// Writes `results.csv`, `aggregate.csv`, `aggregate.md` and `summary.svg` of the sweep
 /// directory `dir`; prints the Markdown table.
@@ -201,12 +201,12 @@ fn setting_points(groups: &Groups<'_>) -> Vec<SettingPoint> {
         .collect()
 }
 
-/// Mean and sample standard deviation ([`crate::study::mean_std`], divided by n − 1): no mean
+/// Mean and sample standard deviation ([`crate::render::study::mean_std`], divided by n − 1): no mean
 /// for no values, no std for fewer than two (one value has no spread).
 fn mean_std(v: &[f64]) -> (Option<f64>, Option<f64>) {
     if v.is_empty() {
         return (None, None);
     }
-    let (mean, std) = crate::study::mean_std(v);
+    let (mean, std) = crate::render::study::mean_std(v);
     (Some(mean), (v.len() > 1).then_some(std))
 }

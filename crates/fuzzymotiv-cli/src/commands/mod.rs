@@ -1,0 +1,10 @@
+//! The commands, one module each (`sweep` holds `plan`, `sweep` and `merge`): each turns its
+//! arguments into calls of `fuzzymotiv` and `fuzzymotiv_io`, and shows the outcome.
+
+pub mod bench;
+pub mod fuzzy;
+pub mod replay;
+pub mod reproduce;
+pub mod rooms;
+pub mod run;
+pub mod sweep;

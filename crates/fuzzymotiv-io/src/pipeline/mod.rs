@@ -1,0 +1,11 @@
+//! The shared pipeline: a run directory ([`run_dir`]: evolve with a checkpoint per generation,
+//! model the rooms, write the records, figures and report; read a finished one back), a
+//! sweep's plan ([`sweep_plan`]), jobs ([`sweep_jobs`]) and merge ([`sweep_merge`]), runs or
+//! jobs side by side ([`lanes`]), and the progress all of it reports ([`progress`]).
+
+pub mod lanes;
+pub mod progress;
+pub mod run_dir;
+pub mod sweep_jobs;
+pub mod sweep_merge;
+pub mod sweep_plan;

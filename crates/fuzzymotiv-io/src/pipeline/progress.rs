@@ -1,0 +1,50 @@
+//! The progress the pipeline reports while it runs, and how it is shown is the caller's: the
+//! command line draws a bar or plain lines on stderr (its `progress.rs`), the Python bindings
+//! show nothing here ([`NoProgress`]) and report generations through their observer instead.
+
+use fuzzymotiv::experiment::Experiment;
+
+use crate::records::Job;
+
+/// Progress of one run (or of several, for a view that counts them together): what
+/// [`run_dir`](super::run_dir) reports as it evolves, resumes and reads back.
+pub trait RunProgress {
+    /// A one-line note, e.g. that a run resumes from its checkpoint or was read back.
+    fn note(&self, message: &str);
+    /// `n` generations that were done before (a resume, a finished run read back).
+    fn skip(&self, n: usize);
+    /// Generation `g` (1-based) of `of` of the run labelled `run` finished with best F `best`.
+    fn generation(&self, run: &str, g: usize, of: usize, best: f64);
+}
+
+/// Progress of a sweep's jobs: what [`run_jobs`](super::sweep_jobs::run_jobs) reports. Jobs
+/// run side by side, so it is shared between threads.
+pub trait SweepProgress: Sync {
+    /// `selected` jobs are selected, of which `skipped` were already done; the others run now.
+    fn begin(&self, selected: usize, skipped: usize);
+    /// The progress of `job`, the `nth` (1-based) of the selection, about to run `exp`.
+    fn job(&self, job: &Job, nth: usize, exp: &Experiment) -> Box<dyn RunProgress + '_>;
+    /// A job has finished.
+    fn job_done(&self);
+    /// The last job has finished.
+    fn end(&self);
+}
+
+/// Progress that shows nothing.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoProgress;
+
+impl RunProgress for NoProgress {
+    fn note(&self, _message: &str) {}
+    fn skip(&self, _n: usize) {}
+    fn generation(&self, _run: &str, _g: usize, _of: usize, _best: f64) {}
+}
+
+impl SweepProgress for NoProgress {
+    fn begin(&self, _selected: usize, _skipped: usize) {}
+    fn job(&self, _job: &Job, _nth: usize, _exp: &Experiment) -> Box<dyn RunProgress + '_> {
+        Box::new(NoProgress)
+    }
+    fn job_done(&self) {}
+    fn end(&self) {}
+}

@@ -1,0 +1,226 @@
+//! A sweep's jobs run into `DIR/jobs/ID/` (each a run directory, [`super::run_dir`]), and
+//! the sweep directory they share: who may run in it, and what `--force` removes.
+
+use std::path::Path;
+
+use crate::files::error::CliError;
+use crate::files::guard::{
+    StagedDir, ensure_replaceable, foreign_files, io_err, refuse_current_dir, refuse_non_directory,
+    remove_ours, write_atomic,
+};
+use crate::note;
+use crate::pipeline::lanes::run_concurrently;
+use crate::pipeline::progress::SweepProgress;
+use crate::pipeline::run_dir::execute_or_resume;
+use crate::pipeline::sweep_plan::Sweep;
+use crate::records::{Job, to_json};
+
+/// Runs the `selected` jobs of `sweep` into `out/jobs/ID/`, skipping finished ones, as many at
+/// a time as there are threads ([`run_concurrently`]), reporting to `progress` (the command
+/// line: on a terminal a bar counts jobs; otherwise each job prints plain progress lines).
+pub fn run_jobs(
+    sweep: &Sweep,
+    text: &str,
+    selected: &[usize],
+    out: &Path,
+    force: bool,
+    progress: &dyn SweepProgress,
+) -> Result<(), CliError> {
+    open_sweep_dir(sweep, out, force)?;
+    // The plan first: it is what makes the directory a sweep for the tasks that start with this.
+    std::fs::create_dir_all(out).map_err(|e| io_err(out, e))?;
+    write_atomic(&out.join("plan.jsonl"), sweep.plan_jsonl())?;
+    write_atomic(&out.join("sweep.toml"), text)?;
+    let jobs_dir = out.join("jobs");
+    std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
+    let todo: Vec<usize> = selected
+        .iter()
+        .copied()
+        .filter(|&k| !jobs_dir.join(&sweep.jobs[k].id).join("DONE").is_file())
+        .collect();
+    let skipped = selected.len() - todo.len();
+    progress.begin(selected.len(), skipped);
+    let numbered: Vec<(usize, usize)> = todo.iter().copied().enumerate().collect();
+    run_concurrently(&numbered, |&(n, k)| {
+        let job = &sweep.jobs[k];
+        run_job(
+            sweep,
+            job,
+            &jobs_dir.join(&job.id),
+            progress,
+            skipped + n + 1,
+        )?;
+        progress.job_done();
+        Ok(())
+    })?;
+    progress.end();
+    note!(
+        "{} jobs run, {skipped} already done, {} in this selection, {} in the plan",
+        todo.len(),
+        selected.len(),
+        sweep.jobs.len()
+    );
+    Ok(())
+}
+
+/// The files of a sweep directory besides its job folders (written by `sweep` and `merge`).
+const SWEEP_FILES: [&str; 7] = [
+    "plan.jsonl",
+    "sweep.toml",
+    "results.csv",
+    "aggregate.csv",
+    "aggregate.md",
+    "summary.svg",
+    "summary.png",
+];
+
+/// Checks a sweep's `--out` before any work. A sweep directory belongs to its plan: the same
+/// plan (another shard or array task, or the same command again) goes on; a plan that only adds
+/// jobs (more replicates or points, no id clash) keeps the finished ones; any other plan, or
+/// another kind of output, is refused unless `force`, which removes the old sweep's own files
+/// and job folders (or the other output), never a file of the user's. A directory that is not
+/// a fuzzymotiv output, a file, and the current directory are refused.
+fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError> {
+    refuse_current_dir(out)?;
+    refuse_non_directory(out)?;
+    if !out.exists() {
+        return Ok(());
+    }
+    let plan = out.join("plan.jsonl");
+    if !plan.is_file() {
+        if starting_sweep(out) {
+            return Ok(());
+        }
+        ensure_replaceable(out)?;
+        if !force {
+            return Err(CliError::input(format!(
+                "--out {}: holds another fuzzymotiv output (a run or a study), not a sweep; it is \
+                 kept. Choose another --out, or pass --force to replace it",
+                out.display()
+            )));
+        }
+        note!("note: --force: {} will be replaced", out.display());
+        return remove_ours(out);
+    }
+    let old = Job::read_plan(&plan)?;
+    let conflict = plan_conflict(&old, &sweep.jobs);
+    let same_plan = conflict.is_none() && old.len() == sweep.jobs.len();
+    if force && same_plan {
+        // Safe in an array script whose every task passes --force: nothing is lost.
+        note!(
+            "note: --force: the sweep in {} has this very plan; its finished jobs are kept \
+             (remove the directory yourself to run them again)",
+            out.display()
+        );
+        return Ok(());
+    }
+    if force {
+        note!(
+            "note: --force: the sweep in {} will be replaced",
+            out.display()
+        );
+        return remove_sweep(out, &old);
+    }
+    match conflict {
+        None => Ok(()),
+        Some(why) => Err(CliError::input(format!(
+            "--out {}: holds a sweep of another plan ({why}); its results are kept. Choose \
+             another --out, pass --force to replace that sweep, or run the sweep file that made it \
+             ({})",
+            out.display(),
+            out.join("sweep.toml").display()
+        ))),
+    }
+}
+
+/// Whether `out` is a sweep directory another task is just starting (no plan yet; only a `jobs/`
+/// folder of job folders and temporary files), which this task joins.
+fn starting_sweep(out: &Path) -> bool {
+    let Ok(entries) = out.read_dir() else {
+        return false;
+    };
+    entries.flatten().all(|e| {
+        let name = e.file_name().to_string_lossy().into_owned();
+        name.starts_with(".tmp") || (name == "jobs" && foreign_files(&e.path()).is_empty())
+    })
+}
+
+/// Why the plan `new` cannot take over a sweep directory of the plan `old`, if it cannot: it
+/// must hold every old job (by id) with the same key and seed; it may add jobs.
+fn plan_conflict(old: &[Job], new: &[Job]) -> Option<String> {
+    let missing: Vec<&Job> = old
+        .iter()
+        .filter(|o| !new.iter().any(|n| n.id == o.id))
+        .collect();
+    if let Some(first) = missing.first() {
+        return Some(format!(
+            "{} of its {} jobs are not in this plan, e.g. `{}`",
+            missing.len(),
+            old.len(),
+            first.key
+        ));
+    }
+    old.iter().find_map(|o| {
+        let n = new.iter().find(|n| n.id == o.id)?;
+        (n.key != o.key || n.seed != o.seed || n.overrides != o.overrides)
+            .then(|| format!("job {} is `{}` there but `{}` here", o.id, o.key, n.key))
+    })
+}
+
+/// Removes a sweep's own files and its jobs' folders (and their staging folders) from `out`;
+/// anything else in it stays.
+fn remove_sweep(out: &Path, jobs: &[Job]) -> Result<(), CliError> {
+    let jobs_dir = out.join("jobs");
+    let plan = out.join("plan.jsonl");
+    if let Some(bad) = jobs.iter().find(|j| !is_job_id(&j.id)) {
+        return Err(CliError::input(format!(
+            "{}: job {} has the id `{}`, which is not 16 hexadecimal digits: not a plan that \
+             fuzzymotiv wrote, so nothing is removed",
+            plan.display(),
+            bad.index,
+            bad.id
+        )));
+    }
+    for job in jobs {
+        let dir = jobs_dir.join(&job.id);
+        for d in [StagedDir::staging_path(&dir), dir] {
+            if d.is_dir() {
+                remove_ours(&d)?;
+            }
+        }
+    }
+    if jobs_dir.read_dir().is_ok_and(|mut d| d.next().is_none()) {
+        std::fs::remove_dir(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
+    }
+    for name in SWEEP_FILES {
+        let f = out.join(name);
+        if f.is_file() {
+            std::fs::remove_file(&f).map_err(|e| io_err(&f, e))?;
+        }
+    }
+    Ok(())
+}
+
+/// A job id as plans hold them: 16 lowercase hexadecimal digits (never a path).
+fn is_job_id(id: &str) -> bool {
+    id.len() == 16
+        && id
+            .bytes()
+            .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
+}
+
+/// Runs one job of a sweep into `dir` (resuming it if a checkpoint is there) and marks it
+/// `DONE`, reporting to the progress `progress` gives it as the `nth` job of the selection.
+fn run_job(
+    sweep: &Sweep,
+    job: &Job,
+    dir: &Path,
+    progress: &dyn SweepProgress,
+    nth: usize,
+) -> Result<(), CliError> {
+    let loaded = sweep.load_job(job)?;
+    let progress = progress.job(job, nth, &loaded.experiment);
+    execute_or_resume(&loaded, dir, &*progress, None)?;
+    write_atomic(&dir.join("job.json"), to_json(job))?;
+    write_atomic(&dir.join("DONE"), "")
+}
