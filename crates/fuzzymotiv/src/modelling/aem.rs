@@ -10,9 +10,7 @@ use serde::{Deserialize, Serialize};
 use crate::modelling::som::SomParams;
 use crate::params::{BIG, FieldError, check};
 
-/// Default signed-speed difference (fractions of `v_max`) separating a turn from a straight
-/// step.
-pub const DEFAULT_ACTION_TOLERANCE: f64 = 0.25;
+pub use crate::simulation::robot::DEFAULT_ACTION_TOLERANCE;
 
 /// Validated AEM parameters.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

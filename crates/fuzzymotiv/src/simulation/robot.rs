@@ -7,6 +7,10 @@ use crate::params::{FieldError, check};
 use crate::simulation::geom::Vec2;
 use crate::simulation::math;
 
+/// Default signed-speed difference (fractions of `v_max`) separating a turn from a straight
+/// step (config key `aem.action_tolerance`).
+pub const DEFAULT_ACTION_TOLERANCE: f64 = 0.25;
+
 /// Where the robot is: centre `(x, y)` in mm and `heading` in radians (counter-clockwise from +x,
 /// wrapped to (−π, π]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -57,7 +57,7 @@ impl Default for TrialParams {
             sensor_model: SensorModel::Sampled,
             robot: Khepera::default(),
             end_at_home: true,
-            action_tolerance: crate::modelling::aem::DEFAULT_ACTION_TOLERANCE,
+            action_tolerance: crate::simulation::robot::DEFAULT_ACTION_TOLERANCE,
         }
     }
 }
