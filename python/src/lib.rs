@@ -445,7 +445,7 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
             .zip(done.trajectories())
             .map(|(n, t)| (n, poses(t)))
             .collect(),
-        hidden: exp.shape().hidden,
+        hidden: exp.shape().hidden(),
         rows: done.rows,
     }
 }
@@ -474,6 +474,10 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
             genome_file.display()
         )));
     }
+    let networks = (genome.runs.iter())
+        .map(|g| exp.network(&g.weights))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| CliError::input(format!("{}: {e}", genome_file.display())))?;
     let paths = exp
         .room_names()
         .into_par_iter()
@@ -481,7 +485,7 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
         .map(|(r, name)| {
             // As `Finished::robot_for_room`: the one robot, or room r's own.
             let k = if runs.len() == 1 { 0 } else { r };
-            let instance = exp.instance_run(&genome.runs[k].weights, &runs[k], r);
+            let instance = exp.instance_run(&networks[k], &runs[k], r);
             (name, poses(&instance.trajectory))
         })
         .collect();
@@ -495,7 +499,7 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
             .collect(),
         summary: serde_json::to_string(&summary).expect("serialisable"),
         paths,
-        hidden: exp.shape().hidden,
+        hidden: exp.shape().hidden(),
     })
 }
 
@@ -631,7 +635,7 @@ impl Control {
         loaded: &Loaded,
         already: usize,
     ) -> impl FnMut(&GenerationState<'_>) -> ControlFlow<()> + 'a {
-        let total = loaded.experiment.runs().len() * loaded.experiment.ga().generations;
+        let total = loaded.experiment.runs().len() * loaded.experiment.ga().generations();
         let mut done = already;
         move |state: &GenerationState<'_>| {
             done += 1;
@@ -830,12 +834,13 @@ fn simulate<'py>(
         return Err(input_err(format!(
             "genome: {} weights, but an 8-{}-2 network needs {want} (network.hidden = {})",
             genome.len(),
-            exp.shape().hidden,
-            exp.shape().hidden
+            exp.shape().hidden(),
+            exp.shape().hidden()
         )));
     }
+    let network = exp.network(&genome).map_err(|e| input_err(e.to_string()))?;
     let run = exp.runs().remove(0);
-    let instance = py.detach(|| exp.instance_run(&genome, &run, 0));
+    let instance = py.detach(|| exp.instance_run(&network, &run, 0));
     let d = trajectory_dict(py, &instance.trajectory)?;
     let terms = instance.terms;
     d.set_item("a", terms.a)?;

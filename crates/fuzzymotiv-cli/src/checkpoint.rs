@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use fuzzymotiv::evolution::{GenerationRecord, GenerationState};
+use fuzzymotiv::evolution::{GenerationRecord, GenerationState, Population};
 use fuzzymotiv::experiment::{Experiment, Run};
 use serde::{Deserialize, Serialize};
 
@@ -64,12 +64,13 @@ impl CheckpointRun {
         }
     }
 
-    /// The saved population as floats.
-    pub fn population_f64(&self) -> Vec<Vec<f64>> {
-        self.population
-            .iter()
+    /// The saved population as floats, checked against the experiment's network.
+    pub fn population(&self, exp: &Experiment) -> Result<Population, CliError> {
+        let genomes = (self.population.iter())
             .map(|g| g.iter().map(|&b| f64::from_bits(b)).collect())
-            .collect()
+            .collect();
+        exp.population(genomes)
+            .map_err(|e| CliError::input(format!("the checkpoint's population: {e}")))
     }
 }
 
@@ -108,15 +109,15 @@ impl Checkpoint {
             && cp.runs.iter().zip(runs).all(|(c, r)| {
                 c.label == r.label
                     && if c.done {
-                        c.history.len() == exp.ga().generations
-                            && c.population.len() == exp.ga().population
+                        c.history.len() == exp.ga().generations()
+                            && c.population.len() == exp.ga().population()
                     } else {
-                        c.history.len() < exp.ga().generations
+                        c.history.len() < exp.ga().generations()
                     }
                     && c.population
                         .iter()
                         .all(|g| g.len() == exp.shape().genome_len())
-                    && (c.history.is_empty() || c.population.len() == exp.ga().population)
+                    && (c.history.is_empty() || c.population.len() == exp.ga().population())
             });
         if !ok {
             return Err(CliError::input(format!(

@@ -71,10 +71,10 @@ fn normalise_motivations(raw: &mut RawConfig, source: &str) {
     if let Ok((n, Some(sum))) =
         Motivations::normalised(m.curiosity, m.homing, m.orientation, m.energy)
     {
-        raw.motivations.curiosity = n.curiosity;
-        raw.motivations.homing = n.homing;
-        raw.motivations.orientation = n.orientation;
-        raw.motivations.energy = n.energy;
+        raw.motivations.curiosity = n.curiosity();
+        raw.motivations.homing = n.homing();
+        raw.motivations.orientation = n.orientation();
+        raw.motivations.energy = n.energy();
         SAID.call_once(|| {
             note!(
                 "note: {source}: motivations summed to {sum}, normalised to (C, H, O, E) = {:?}",

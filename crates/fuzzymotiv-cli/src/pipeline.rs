@@ -54,10 +54,10 @@ pub fn start_line(exp: &Experiment, out: &Path) -> String {
         exp.name(),
         exp.seed(),
         exp.runs().len(),
-        exp.ga().generations,
-        exp.ga().population,
+        exp.ga().generations(),
+        exp.ga().population(),
         exp.arenas().len(),
-        exp.trial_params().steps,
+        exp.trial_params().steps(),
         out.display()
     )
 }
@@ -152,8 +152,8 @@ pub fn read_back(exp: &Experiment, dir: &Path, progress: &Progress) -> Result<Fi
     let evolutions: Vec<Evolution> = runs
         .iter()
         .zip(saved.runs)
-        .map(|(run, r)| exp.finished(run, r.population_f64(), r.history))
-        .collect();
+        .map(|(run, r)| Ok(exp.finished(run, r.population(exp)?, r.history)))
+        .collect::<Result<_, CliError>>()?;
     let aem = model_rooms(exp, &evolutions)?;
     let summary: RunSummary = read_json(&dir.join("summary.json"))?;
     Ok(Finished::new(exp, evolutions, aem, summary.wall_seconds))
@@ -163,7 +163,13 @@ pub fn read_back(exp: &Experiment, dir: &Path, progress: &Progress) -> Result<Fi
 pub fn model_rooms(exp: &Experiment, evolutions: &[Evolution]) -> Result<Vec<AemReport>, CliError> {
     evolutions
         .iter()
-        .map(|evo| exp.environment_modelling(&evo.population[evo.best], &evo.run))
+        .map(|evo| {
+            let best = exp
+                .network(&evo.population[evo.best])
+                .map_err(|e| e.to_string())?;
+            exp.environment_modelling(&best, &evo.run)
+                .map_err(|e| e.to_string())
+        })
         .collect::<Result<_, _>>()
         .map_err(|e| CliError::runtime(format!("environment modelling failed: {e}")))
 }
@@ -196,7 +202,7 @@ impl<'a> Session<'a> {
                 cp
             };
             let cp = Checkpoint::load(&path, &runs, exp)?;
-            progress.note(&cp.resume_note(out, exp.ga().generations));
+            progress.note(&cp.resume_note(out, exp.ga().generations()));
             cp
         } else {
             Checkpoint::fresh(&runs)
@@ -226,18 +232,18 @@ impl<'a> Session<'a> {
         let saved = self.checkpoint.runs[k].clone();
         progress.skip(saved.history.len());
         if saved.done {
-            return Ok(exp.finished(run, saved.population_f64(), saved.history));
+            return Ok(exp.finished(run, saved.population(exp)?, saved.history));
         }
         let population = if saved.population.is_empty() {
             exp.initial_population(run)
         } else {
-            saved.population_f64()
+            saved.population(exp)?
         };
         // A checkpoint that cannot be written stops the run (its error is returned).
         let mut write_error = None;
         let mut on_generation = |state: &GenerationState<'_>| {
             let (g, best) = (state.history.len(), state.record().stats.max);
-            progress.generation(&run.label, g, exp.ga().generations, best);
+            progress.generation(&run.label, g, exp.ga().generations(), best);
             if let Err(e) = self.save(k, &run.label, state) {
                 write_error = Some(e);
                 return ControlFlow::Break(());

@@ -16,9 +16,9 @@ pub use crate::aem::RawAem;
 pub use crate::controller::RawNetwork;
 use crate::fitness::Homing;
 pub use crate::fuzzy::{Coefficients, RawFuzzy, RawMotivations};
-use crate::ga::GaParams;
+pub use crate::ga::RawGa;
 use crate::params::FieldError;
-use crate::robot::Khepera;
+pub use crate::robot::RawRobot;
 use crate::room::{BUILTIN_ROOMS, field_from_toml_message};
 pub use crate::trial::RawTrial;
 
@@ -90,11 +90,11 @@ pub struct RawConfig {
     /// Motivations X.
     pub motivations: RawMotivations,
     /// GA parameters.
-    pub ga: GaParams,
+    pub ga: RawGa,
     /// Trial parameters.
     pub trial: RawTrial,
     /// Robot body.
-    pub robot: Khepera,
+    pub robot: RawRobot,
     /// Network shape.
     pub network: RawNetwork,
     /// Membership peaks and coefficients.
@@ -113,9 +113,9 @@ impl Default for RawConfig {
             rooms: BUILTIN_ROOMS.iter().map(|s| s.to_string()).collect(),
             training: Training::AllRooms,
             motivations: RawMotivations::default(),
-            ga: GaParams::default(),
+            ga: RawGa::default(),
             trial: RawTrial::default(),
-            robot: Khepera::default(),
+            robot: RawRobot::default(),
             network: RawNetwork::default(),
             fuzzy: RawFuzzy::default(),
             fitness: RawFitness::default(),

@@ -5,6 +5,7 @@ use std::ops::ControlFlow;
 
 use serde::{Deserialize, Serialize};
 
+use crate::controller::{GenomeError, Mlp, MlpShape};
 use crate::evaluation::Evaluation;
 use crate::experiment::{Experiment, Run};
 use crate::fitness::FitnessTerms;
@@ -13,9 +14,28 @@ use crate::rng::rng_from_seed;
 
 impl Experiment {
     /// The initial population of a run.
-    pub fn initial_population(&self, run: &Run) -> Vec<Genome> {
+    pub fn initial_population(&self, run: &Run) -> Population {
         let mut rng = rng_from_seed(self.streams().initial_population(run.tag));
-        initial_population(&self.ga, self.shape.genome_len(), &mut rng)
+        Population {
+            shape: self.shape,
+            genomes: initial_population(&self.ga, self.shape.genome_len(), &mut rng),
+        }
+    }
+
+    /// `genomes` checked as a population of this experiment's network: at least one genome,
+    /// each of the network's length ([`crate::controller::MlpShape::genome_len`]).
+    pub fn population(&self, genomes: Vec<Genome>) -> Result<Population, PopulationError> {
+        if genomes.is_empty() {
+            return Err(PopulationError::Empty);
+        }
+        for (index, genome) in genomes.iter().enumerate() {
+            (self.shape.check(genome))
+                .map_err(|source| PopulationError::Genome { index, source })?;
+        }
+        Ok(Population {
+            shape: self.shape,
+            genomes,
+        })
     }
 
     /// Statistics of an evaluated generation.
@@ -44,14 +64,17 @@ impl Experiment {
     /// Breeds generation `generation + 1` from an evaluated generation.
     pub fn breed(
         &self,
-        population: &[Genome],
+        population: &Population,
         evals: &[Evaluation],
         run: &Run,
         generation: usize,
-    ) -> Vec<Genome> {
+    ) -> Population {
         let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
         let mut rng = rng_from_seed(self.streams().breeding(run.tag, generation));
-        next_generation(population, &fitness, &self.ga, &mut rng)
+        Population {
+            shape: population.shape,
+            genomes: next_generation(population, &fitness, &self.ga, &mut rng),
+        }
     }
 
     /// Evolves one run from scratch, calling the observer `on_generation` after each generation
@@ -74,7 +97,7 @@ impl Experiment {
         &self,
         run: &Run,
         generation: usize,
-        mut population: Vec<Genome>,
+        mut population: Population,
         mut history: Vec<GenerationRecord>,
         on_generation: &mut Observer<'_>,
     ) -> Result<Evolution, Stopped> {
@@ -82,7 +105,7 @@ impl Experiment {
         loop {
             let evals = self.evaluate_population(&population, run, g);
             history.push(self.generation_record(g, &evals));
-            if g + 1 >= self.ga.generations {
+            if g + 1 >= self.ga.generations() {
                 // The last generation: the evolution is complete whatever the observer says.
                 let _ = on_generation(&GenerationState {
                     history: &history,
@@ -94,7 +117,7 @@ impl Experiment {
                 return Ok(Evolution {
                     run: run.clone(),
                     history,
-                    population,
+                    population: population.genomes,
                     evaluations: evals,
                     best,
                 });
@@ -103,7 +126,7 @@ impl Experiment {
             let flow = on_generation(&GenerationState {
                 history: &history,
                 population: &population,
-                next: Some(&next),
+                next: Some(&next[..]),
             });
             if flow.is_break() {
                 return Err(Stopped {
@@ -122,7 +145,7 @@ impl Experiment {
     pub fn finished(
         &self,
         run: &Run,
-        population: Vec<Genome>,
+        population: Population,
         history: Vec<GenerationRecord>,
     ) -> Evolution {
         let last = history.len().saturating_sub(1);
@@ -131,7 +154,7 @@ impl Experiment {
         Evolution {
             run: run.clone(),
             history,
-            population,
+            population: population.genomes,
             evaluations: evals,
             best,
         }
@@ -159,7 +182,7 @@ pub struct Stopped {
     /// The next generation's index (the generations before it are in `history`).
     pub generation: usize,
     /// The next generation's genomes, not yet evaluated.
-    pub population: Vec<Genome>,
+    pub population: Population,
     /// The records of the generations done.
     pub history: Vec<GenerationRecord>,
 }
@@ -180,6 +203,56 @@ impl GenerationState<'_> {
     pub fn record(&self) -> &GenerationRecord {
         self.history.last().expect("at least one generation")
     }
+}
+
+/// A population checked against an experiment's network ([`Experiment::population`],
+/// [`Experiment::initial_population`], [`Experiment::breed`]): at least one genome, each of the
+/// network's length, so evaluating it cannot fail. Read it as a slice of genomes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Population {
+    shape: MlpShape,
+    genomes: Vec<Genome>,
+}
+
+impl Population {
+    /// The shape of the network the genomes are weights of.
+    pub fn shape(&self) -> MlpShape {
+        self.shape
+    }
+
+    /// The network of genome `k` (panics if there is no genome `k`, as indexing does).
+    pub fn network(&self, k: usize) -> Mlp {
+        Mlp::of_checked(self.shape, &self.genomes[k])
+    }
+
+    /// The genomes.
+    pub fn into_genomes(self) -> Vec<Genome> {
+        self.genomes
+    }
+}
+
+impl std::ops::Deref for Population {
+    type Target = [Genome];
+
+    fn deref(&self) -> &[Genome] {
+        &self.genomes
+    }
+}
+
+/// Genomes that are not a population of an experiment's network ([`Experiment::population`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum PopulationError {
+    /// No genome at all.
+    #[error("a population needs at least one genome, got none")]
+    Empty,
+    /// A genome of the wrong length.
+    #[error("genome {index} of the population: {source}")]
+    Genome {
+        /// Its index in the population.
+        index: usize,
+        /// Its length and the network's.
+        source: GenomeError,
+    },
 }
 
 /// The outcome of one evolution.
@@ -266,6 +339,7 @@ mod tests {
             })
             .unwrap();
         let (history, next) = saved.unwrap();
+        let next = exp.population(next).unwrap();
         let resumed = exp
             .evolve_from(run, history.len(), next, history, &mut |_| {
                 ControlFlow::Continue(())
@@ -273,7 +347,8 @@ mod tests {
             .unwrap();
         assert_eq!(full.history, resumed.history);
         assert_eq!(full.evaluations, resumed.evaluations);
-        let rebuilt = exp.finished(run, full.population.clone(), full.history.clone());
+        let last = exp.population(full.population.clone()).unwrap();
+        let rebuilt = exp.finished(run, last, full.history.clone());
         assert_eq!(rebuilt.evaluations, full.evaluations);
     }
 
