@@ -382,4 +382,36 @@ mod tests {
         assert_eq!(resumed.history, full.history);
         assert_eq!(resumed.population, full.population);
     }
+
+    /// A genome of the wrong length is an error naming both lengths, never a panic: as a
+    /// network, and as a member of a population (which must not be empty either).
+    #[test]
+    fn wrong_genomes_are_errors() {
+        use super::PopulationError;
+        use crate::controller::GenomeError;
+        let exp = experiment(&[]);
+        let e = exp.network(&[0.5; 67]).unwrap_err();
+        assert_eq!(
+            e,
+            GenomeError {
+                hidden: 6,
+                expected: 68,
+                actual: 67
+            }
+        );
+        assert_eq!(
+            e.to_string(),
+            "a genome of the 8-6-2 network has 68 weights, got 67"
+        );
+        assert_eq!(exp.population(Vec::new()), Err(PopulationError::Empty));
+        let e = exp
+            .population(vec![vec![0.0; 68], vec![0.0; 69]])
+            .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "genome 1 of the population: a genome of the 8-6-2 network has 68 weights, got 69"
+        );
+        let fine = exp.population(vec![vec![0.0; 68]; 3]).unwrap();
+        assert_eq!((fine.len(), fine.shape()), (3, exp.shape()));
+    }
 }
