@@ -224,7 +224,11 @@ fn replay_trials(
     genome: &SavedGenome,
 ) -> Result<Vec<(usize, String, InstanceRun)>, CliError> {
     let runs = exp.runs();
-    let want_len = MlpShape::with_hidden(genome.hidden).genome_len();
+    let in_file =
+        |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome.path.display()));
+    let want_len = MlpShape::with_hidden(genome.hidden)
+        .map_err(|e| in_file(&e))?
+        .genome_len();
     let mut trials = Vec::new();
     for r in 0..exp.arenas().len() {
         let name = &exp.arenas()[r].room().name;
@@ -248,7 +252,8 @@ fn replay_trials(
                 genome.hidden
             )));
         }
-        trials.push((r, run.label.clone(), exp.instance_run(weights, run, r)));
+        let network = exp.network(weights).map_err(|e| in_file(&e))?;
+        trials.push((r, run.label.clone(), exp.instance_run(&network, run, r)));
     }
     Ok(trials)
 }
@@ -336,7 +341,7 @@ fn write_replay(
         "genome {genome_path} · config {source_name} · seed {} · motivations (C, H, O, E) = {} · {} steps per trial",
         exp.seed(),
         xs(exp),
-        exp.trial_params().steps
+        exp.trial_params().steps()
     );
     let page = replay_page("fuzzymotiv replay", &about, exp, trials);
     files.push((out.clone(), page.into_bytes()));

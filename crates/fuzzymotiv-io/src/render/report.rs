@@ -58,8 +58,8 @@ impl Page {
         let trial = &exp.trial_params();
         self.replays.push(json!({
             "robot": {
-                "radius": trial.robot.radius,
-                "dt": trial.dt,
+                "radius": trial.robot().radius(),
+                "dt": trial.dt(),
                 "ray": RAY_MM,
                 "sensors": SENSOR_LAYOUT.iter().map(|m| [m.x, m.y, m.facing_deg]).collect::<Vec<_>>(),
             },
@@ -149,7 +149,7 @@ pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, run: &Instanc
         "i": tr.idle.iter().map(|&i| if i { '1' } else { '0' }).collect::<String>(),
         "c": tr.collisions.iter().map(|&c| if c { '1' } else { '0' }).collect::<String>(),
         "terms": {"a": r3(terms.a), "g": r3(terms.g), "l": r3(terms.l), "b": r3(terms.b)},
-        "online_l": exp.orientation() == fuzzymotiv::experiment::config::OrientationMode::Online && exp.motivations().orientation > 0.0,
+        "online_l": exp.orientation() == fuzzymotiv::experiment::config::OrientationMode::Online && exp.motivations().orientation() > 0.0,
         "f": r3(f),
     })
 }
@@ -360,7 +360,10 @@ pub fn xs(exp: &Experiment) -> String {
     let m = exp.motivations();
     format!(
         "({}, {}, {}, {})",
-        m.curiosity, m.homing, m.orientation, m.energy
+        m.curiosity(),
+        m.homing(),
+        m.orientation(),
+        m.energy()
     )
 }
 
@@ -373,9 +376,9 @@ fn setting_line(exp: &Experiment) -> String {
             Training::AllRooms => "one robot evolved in all rooms",
             Training::PerRoom => "one robot evolved per room",
         },
-        exp.ga().population,
-        exp.ga().generations,
-        exp.trial_params().steps
+        exp.ga().population(),
+        exp.ga().generations(),
+        exp.trial_params().steps()
     )
 }
 
@@ -515,7 +518,7 @@ fn rooms_table(page: &mut Page, s: &Section<'_>) {
     let _ = writeln!(
         page.body,
         "</table>\n<p class=\"caption\"><b>average fitness</b>: mean F of the final generation's population in that room. The other columns come from {} test runs of the best robot per room (fresh noise each): <b>% optimal exploration</b> = mean 100·a, <b>% recognition</b> = share of test runs whose room was recognised correctly, <b>% battery usage</b> = mean 100·b, <b>% homing</b> = mean 100·g.{}</p>",
-        exp.aem().test_runs,
+        exp.aem().test_runs(),
         if s.paper.is_some() {
             " Grey: the paper's value (Tables 1 and 2)."
         } else {
@@ -561,10 +564,10 @@ fn fuzzy_intro(page: &mut Page, exp: &Experiment) {
     let m = exp.motivations();
     page.push("<p>The robot's <b>motivations</b> X weight the four fitness terms Y it is measured on:</p>\n<div class=\"bars\">\n");
     for (name, v, colour) in [
-        ("curiosity C", m.curiosity, "#2ca02c"),
-        ("homing H", m.homing, "#9467bd"),
-        ("orientation O", m.orientation, "#8c564b"),
-        ("energy E", m.energy, "#ff7f0e"),
+        ("curiosity C", m.curiosity(), "#2ca02c"),
+        ("homing H", m.homing(), "#9467bd"),
+        ("orientation O", m.orientation(), "#8c564b"),
+        ("energy E", m.energy(), "#ff7f0e"),
     ] {
         let _ = writeln!(
             page.body,
@@ -583,7 +586,7 @@ fn fuzzy_intro(page: &mut Page, exp: &Experiment) {
         }
         Homing::Distance => "whether or not the robot left the home zone",
     };
-    let usage = match exp.trial_params().robot.motion {
+    let usage = match exp.trial_params().robot().motion() {
         Motion::Actions => {
             "the executed steps divided by the trial's steps: every action (a move or a turn) uses one unit, a step after the trial ended at home none"
         }
@@ -658,7 +661,7 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
 fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
     let exp = &s.loaded.experiment;
     let done = s.done;
-    if !exp.aem().enabled || done.outcome.modelling.iter().all(|a| a.som_nodes == 0) {
+    if !exp.aem().enabled() || done.outcome.modelling.iter().all(|a| a.som_nodes == 0) {
         page.push("<p>Room recognition was not run (<code>aem.enabled = false</code>).</p>\n");
         return;
     }
@@ -671,8 +674,8 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
          some node; rooms whose r-node lies within {} nodes of it are candidates, and the candidate \
          whose stored vector is nearest is the answer (no candidate = not recognised). Rooms whose \
          paths look alike get nearby r-nodes and are easily confused.</p>",
-        exp.aem().som.nodes,
-        exp.aem().threshold
+        exp.aem().som().nodes(),
+        exp.aem().threshold()
     );
     for (k, rep) in done.outcome.modelling.iter().enumerate() {
         let rooms: Vec<SomRoom<'_>> = rep
@@ -695,7 +698,7 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
         };
         figure(
             page,
-            &som_svg(&title, rep.som_nodes, exp.aem().threshold, &rooms),
+            &som_svg(&title, rep.som_nodes, exp.aem().threshold(), &rooms),
             "Each room's r-node on the line of SOM nodes, with the window of nodes a test run's winner must fall in for that room to be a candidate; dots are the winners of the test runs, coloured by the room the robot was really in.",
         );
     }
@@ -749,7 +752,7 @@ fn confusion_table(page: &mut Page, exp: &Experiment, done: &Finished, names: &[
     let _ = writeln!(
         page.body,
         "</table>\n<p class=\"caption\">Counts of test runs ({} per room, fresh noise each): row = the room the robot was in, column = the room it was recognised as. The diagonal (green outline) counts correct answers. The same numbers are in <code>recognition.csv</code>.</p>",
-        exp.aem().test_runs
+        exp.aem().test_runs()
     );
 }
 

@@ -246,8 +246,8 @@ impl SettingRuns<'_> {
             std: table(true),
             first_generation: stat(false),
             last_generation: stat(true),
-            population: exp.ga().population,
-            generations: exp.ga().generations,
+            population: exp.ga().population(),
+            generations: exp.ga().generations(),
             median_seed: self.seeds[self.median()],
             per_seed: self.per_seed(),
         }

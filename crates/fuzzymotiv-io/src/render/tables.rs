@@ -54,9 +54,9 @@ pub fn provenance_line(loaded: &Loaded) -> String {
         "\nfuzzymotiv {} · seed {} · GA {} robots × {} generations · {} steps per trial · training {}\n",
         fuzzymotiv::VERSION,
         exp.seed(),
-        exp.ga().population,
-        exp.ga().generations,
-        exp.trial_params().steps,
+        exp.ga().population(),
+        exp.ga().generations(),
+        exp.trial_params().steps(),
         match loaded.raw.training {
             Training::AllRooms => "all-rooms",
             Training::PerRoom => "per-room",
@@ -81,8 +81,8 @@ impl Provenance {
     pub fn new(seeds: &[u64], loaded: &Loaded, quick: bool) -> Provenance {
         Provenance {
             seeds: seeds.to_vec(),
-            population: loaded.experiment.ga().population,
-            generations: loaded.experiment.ga().generations,
+            population: loaded.experiment.ga().population(),
+            generations: loaded.experiment.ga().generations(),
             quick,
         }
     }
