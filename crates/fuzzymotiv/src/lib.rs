@@ -70,7 +70,9 @@ pub mod random;
 pub mod simulation;
 
 pub use experiment::config::RawConfig;
-pub use experiment::evolution::{Evolution, GenerationRecord, GenerationState, Observer, Stopped};
+pub use experiment::evolution::{
+    Evolution, GenerationRecord, GenerationState, Observer, Population, Stopped,
+};
 pub use experiment::outcome::{Interrupted, Outcome, RunError, RunObserver, Start};
 pub use experiment::setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError};
 pub use experiment::{Experiment, Run};

@@ -226,7 +226,11 @@ fn replay_trials(
     genome: &SavedGenome,
 ) -> Result<Vec<(usize, String, InstanceRun)>, CliError> {
     let runs = exp.runs();
-    let want_len = MlpShape::with_hidden(genome.hidden).genome_len();
+    let in_file =
+        |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome.path.display()));
+    let want_len = MlpShape::with_hidden(genome.hidden)
+        .map_err(|e| in_file(&e))?
+        .genome_len();
     let mut trials = Vec::new();
     for r in 0..exp.arenas().len() {
         let name = &exp.arenas()[r].room().name;
@@ -250,7 +254,8 @@ fn replay_trials(
                 genome.hidden
             )));
         }
-        trials.push((r, run.label.clone(), exp.instance_run(weights, run, r)));
+        let network = exp.network(weights).map_err(|e| in_file(&e))?;
+        trials.push((r, run.label.clone(), exp.instance_run(&network, run, r)));
     }
     Ok(trials)
 }

@@ -32,10 +32,10 @@ pub fn start_line(exp: &Experiment, out: &Path) -> String {
         exp.name(),
         exp.seed(),
         exp.runs().len(),
-        exp.ga().generations,
-        exp.ga().population,
+        exp.ga().generations(),
+        exp.ga().population(),
         exp.arenas().len(),
-        exp.trial_params().steps,
+        exp.trial_params().steps(),
         out.display()
     )
 }
@@ -126,7 +126,9 @@ pub fn read_back(
     }
     progress.skip(saved.runs.iter().map(|r| r.history.len()).sum());
     progress.note(&format!("{} is finished: read back", dir.display()));
-    let starts = saved.runs.iter().map(CheckpointRun::start).collect();
+    let starts = (saved.runs.iter())
+        .map(|r| r.start(exp))
+        .collect::<Result<_, _>>()?;
     let outcome = exp
         .run_from(starts, &mut |_, _| ControlFlow::Continue(()))
         .map_err(|e| CliError::runtime(e.to_string()))?;
@@ -162,7 +164,7 @@ impl<'a> Session<'a> {
                 cp
             };
             let cp = Checkpoint::load(&path, &runs, exp)?;
-            progress.note(&cp.resume_note(out, exp.ga().generations));
+            progress.note(&cp.resume_note(out, exp.ga().generations()));
             cp
         } else {
             Checkpoint::fresh(&runs)
@@ -191,13 +193,13 @@ impl<'a> Session<'a> {
         let mut starts = Vec::with_capacity(runs.len());
         for saved in &self.checkpoint.runs {
             progress.skip(saved.history.len());
-            starts.push(saved.start());
+            starts.push(saved.start(exp)?);
         }
         // A checkpoint that cannot be written stops the run (its error is returned).
         let mut write_error = None;
         let mut on_generation = |k: usize, state: &GenerationState<'_>| {
             let (g, best) = (state.history.len(), state.record().stats.max);
-            progress.generation(&runs[k].label, g, exp.ga().generations, best);
+            progress.generation(&runs[k].label, g, exp.ga().generations(), best);
             if let Err(e) = self.save(k, &runs[k].label, state) {
                 write_error = Some(e);
                 return ControlFlow::Break(());

@@ -245,10 +245,10 @@ impl MotivationsRecord {
     /// The record of `m`.
     pub fn of(m: &Motivations) -> MotivationsRecord {
         MotivationsRecord {
-            curiosity: m.curiosity,
-            energy: m.energy,
-            homing: m.homing,
-            orientation: m.orientation,
+            curiosity: m.curiosity(),
+            energy: m.energy(),
+            homing: m.homing(),
+            orientation: m.orientation(),
         }
     }
 
@@ -340,9 +340,9 @@ impl RunSummary {
             seed: exp.seed(),
             motivations: MotivationsRecord::of(exp.motivations()),
             training: exp.training(),
-            population: exp.ga().population,
-            generations: exp.ga().generations,
-            steps: exp.trial_params().steps,
+            population: exp.ga().population(),
+            generations: exp.ga().generations(),
+            steps: exp.trial_params().steps(),
             rooms: done.rows.clone(),
             runs,
             wall_seconds: done.wall_seconds,
@@ -482,9 +482,9 @@ impl BestGenome {
             version: fuzzymotiv::VERSION.into(),
             seed: Some(exp.seed()),
             shape: ShapeRecord {
-                hidden: shape.hidden,
-                inputs: shape.inputs,
-                outputs: shape.outputs,
+                hidden: shape.hidden(),
+                inputs: shape.inputs(),
+                outputs: shape.outputs(),
             },
             layout: GENOME_LAYOUT.into(),
             run: first.run,
