@@ -4,8 +4,8 @@
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::evolution::population::Population;
 use crate::experiment::config::OrientationMode;
-use crate::experiment::evolution::Population;
 use crate::experiment::{Experiment, Run};
 use crate::fitness::terms::{FitnessTerms, TermsRecorder};
 use crate::modelling::aem::{Action, environment_vector};

@@ -35,11 +35,11 @@ use std::ops::ControlFlow;
 use serde::{Deserialize, Serialize};
 
 use crate::evolution::ga::{Genome, Stats, initial_population, next_generation};
+pub use crate::evolution::population::{Population, PopulationError};
 use crate::experiment::evaluation::Evaluation;
 use crate::experiment::{Experiment, Run};
 use crate::fitness::terms::FitnessTerms;
 use crate::random::rng::rng_from_seed;
-use crate::simulation::controller::{GenomeError, Mlp, MlpShape};
 
 impl Experiment {
     /// The initial population of a run.
@@ -252,64 +252,6 @@ impl GenerationState<'_> {
     pub fn record(&self) -> &GenerationRecord {
         self.history.last().expect("at least one generation")
     }
-}
-
-/// A population checked against an experiment's network ([`Experiment::population`],
-/// [`Experiment::initial_population`], [`Experiment::breed`]): at least one genome, each of the
-/// network's length, so evaluating it cannot fail. Read it as a slice of genomes.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Population {
-    shape: MlpShape,
-    genomes: Vec<Genome>,
-}
-
-impl Population {
-    /// The shape of the network the genomes are weights of.
-    pub fn shape(&self) -> MlpShape {
-        self.shape
-    }
-
-    /// The network of genome `k` (panics if there is no genome `k`, as indexing does).
-    pub fn network(&self, k: usize) -> Mlp {
-        Mlp::of_checked(self.shape, &self.genomes[k])
-    }
-
-    /// The genomes.
-    pub fn into_genomes(self) -> Vec<Genome> {
-        self.genomes
-    }
-}
-
-impl std::ops::Deref for Population {
-    type Target = [Genome];
-
-    fn deref(&self) -> &[Genome] {
-        &self.genomes
-    }
-}
-
-/// Genomes that are not a population of an experiment's network ([`Experiment::population`]).
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-pub enum PopulationError {
-    /// No genome at all.
-    #[error("a population needs at least one genome, got none")]
-    Empty,
-    /// A genome of the wrong length.
-    #[error("genome {index} of the population: {source}")]
-    Genome {
-        /// Its index in the population.
-        index: usize,
-        /// Its length and the network's.
-        source: GenomeError,
-    },
-    /// Fitness values given for breeding, not one per genome.
-    #[error("{got} fitness values for a population of {expected} genomes (one per genome)")]
-    Fitness {
-        /// The population's size.
-        expected: usize,
-        /// The number of fitness values given.
-        got: usize,
-    },
 }
 
 /// The outcome of one evolution.
