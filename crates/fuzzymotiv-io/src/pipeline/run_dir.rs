@@ -16,6 +16,7 @@ use crate::files::guard::{StagedDir, io_err, matches};
 use crate::files::inputs::{Loaded, resolved_toml, run_identity};
 use crate::pipeline::progress::RunProgress;
 use crate::records::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
+use crate::records::context::RenderContext;
 use crate::records::{
     BestGenome, Finished, GenerationRow, RecognitionTable, RunSummary, read_json, to_csv, to_json,
 };
@@ -253,6 +254,7 @@ fn write_run(
     last: &Checkpoint,
 ) -> Result<(), CliError> {
     let exp = &loaded.experiment;
+    let ctx = RenderContext::of(loaded);
     staged.write(
         "best_genome.json",
         to_json(&BestGenome::of(exp, &done.outcome.evolutions)),
@@ -260,9 +262,9 @@ fn write_run(
     staged.write("recognition.csv", RecognitionTable::of(exp, done).to_csv())?;
     staged.write(
         "table.md",
-        table_markdown(&done.rows) + &provenance_line(loaded),
+        table_markdown(&done.rows) + &provenance_line(&ctx),
     )?;
-    write_run_figures(staged, exp, done, png)?;
+    write_run_figures(staged, &ctx, done, png)?;
     staged.write("summary.json", to_json(&RunSummary::of(exp, done)))?;
     // The last checkpoint (in memory: the file may already be gone, when a run killed after
     // this step resumes from population.json) holds the final population: kept as
@@ -277,29 +279,25 @@ fn write_run(
     if checkpoint.exists() {
         std::fs::remove_file(&checkpoint).map_err(|e| io_err(&checkpoint, e))?;
     }
-    staged.write("report.html", report::run_page(loaded, done))
+    staged.write("report.html", report::run_page(&ctx, done))
 }
 
 /// `fitness.svg`, `terms.svg` and `trajectories.svg` (with PNGs when `png`).
 fn write_run_figures(
     staged: &StagedDir,
-    exp: &Experiment,
+    ctx: &RenderContext,
     done: &Finished,
     png: Option<&dyn Rasterise>,
 ) -> Result<(), CliError> {
-    let setting = format!(
-        "{} (C,H,O,E) = {:?}",
-        exp.name(),
-        exp.motivations().as_array()
-    );
+    let setting = format!("{} (C,H,O,E) = {:?}", ctx.name, ctx.motivations.as_array());
     let panels: Vec<_> = done
         .outcome
         .evolutions
         .iter()
         .map(|e| {
-            let title = match exp.training() {
+            let title = match ctx.training {
                 Training::AllRooms => setting.clone(),
-                Training::PerRoom => format!("{}: robot evolved in {}", exp.name(), e.run.label),
+                Training::PerRoom => format!("{}: robot evolved in {}", ctx.name, e.run.label),
             };
             (title, e.history.clone())
         })
@@ -308,9 +306,9 @@ fn write_run_figures(
     write_figure(staged, "terms", &terms_svg(&panels), png)?;
     let title = format!(
         "Best robot, {} (C, H, O, E) = {:?}",
-        exp.name(),
-        exp.motivations().as_array()
+        ctx.name,
+        ctx.motivations.as_array()
     );
-    let paths = best_paths_svg(&title, exp, &done.trajectories());
+    let paths = best_paths_svg(&title, &ctx.rooms, &done.trajectories());
     write_figure(staged, "trajectories", &paths, png)
 }

@@ -2,10 +2,9 @@
 //! ablation's variants, a setting's runs over seeds with their statistics, and the paper's
 //! claims tested on them.
 
-use crate::files::inputs::Loaded;
+use crate::records::context::RenderContext;
 use crate::records::{
-    ClaimRecord, Finished, GenerationStat, MotivationsRecord, RoomRow, SeedSummary, SettingSummary,
-    TableRow,
+    ClaimRecord, Finished, GenerationStat, RoomRow, SeedSummary, SettingSummary, TableRow,
 };
 use crate::render::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
 
@@ -119,8 +118,8 @@ pub struct SettingRuns<'a> {
     pub setting: &'a Setting,
     /// Its seeds.
     pub seeds: Vec<u64>,
-    /// Per seed, the config.
-    pub loaded: Vec<Loaded>,
+    /// Per seed, the run's setting.
+    pub contexts: Vec<RenderContext>,
     /// Per seed, the results.
     pub finished: Vec<Finished>,
 }
@@ -212,7 +211,7 @@ impl SettingRuns<'_> {
     /// The setting in `summary.json`: the documented fields (rows, first and last generation)
     /// are means over seeds; `std` and `per_seed` give the spread.
     pub fn summary(&self) -> SettingSummary {
-        let exp = &self.loaded[0].experiment;
+        let ctx = &self.contexts[0];
         let rows = &self.finished[0].rows;
         let stats: Vec<_> = (0..rows.len()).map(|i| room_stats(self, i)).collect();
         let table = |std: bool| -> Vec<TableRow> {
@@ -241,13 +240,13 @@ impl SettingRuns<'_> {
         };
         SettingSummary {
             name: self.setting.name.into(),
-            motivations: MotivationsRecord::of(exp.motivations()),
+            motivations: ctx.motivations,
             rows: table(false),
             std: table(true),
             first_generation: stat(false),
             last_generation: stat(true),
-            population: exp.ga().population(),
-            generations: exp.ga().generations(),
+            population: ctx.population,
+            generations: ctx.generations,
             median_seed: self.seeds[self.median()],
             per_seed: self.per_seed(),
         }
