@@ -63,13 +63,8 @@ struct ActionCounts([usize; 4]);
 impl StepObserver for ActionCounts {
     #[inline]
     fn observe(&mut self, s: &Step) {
-        if !s.idle {
-            let k = Descriptors::ACTIONS
-                .iter()
-                .position(|&a| a == s.action)
-                .expect("one of the four actions");
-            self.0[k] += 1;
-        }
+        // `Action`'s declaration order is `Descriptors::ACTIONS`' (a test checks it).
+        self.0[s.action as usize] += usize::from(!s.idle);
     }
 }
 
@@ -171,6 +166,14 @@ impl Experiment {
 mod tests {
     use crate::experiment::testing::{ORIENTED, experiment};
     use crate::simulation::trial::run_trial;
+
+    /// `Action as usize` indexes `Descriptors::ACTIONS`.
+    #[test]
+    fn action_order() {
+        for (k, a) in super::Descriptors::ACTIONS.iter().enumerate() {
+            assert_eq!(*a as usize, k);
+        }
+    }
 
     /// The described evaluation is the GA's evaluation, bit for bit, off-line and online; the
     /// descriptors are those of the recorded trajectory on the same stream.
