@@ -27,7 +27,7 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
-from typing import Any, Callable, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Mapping, NamedTuple, Optional, Sequence, Union
 
 import numpy as np
 
@@ -36,8 +36,13 @@ from ._fuzzymotiv import VERSION as __version__
 from ._fuzzymotiv import FuzzymotivError, FuzzymotivOSError
 
 __all__ = [
+    "DESCRIPTORS",
+    "Best",
+    "Evaluation",
     "FuzzymotivError",
     "FuzzymotivOSError",
+    "GA",
+    "Problem",
     "RunResult",
     "export_fll",
     "fuzzy_fitness",
@@ -355,3 +360,222 @@ def simulate(
     path, text = _config_args(config)
     weights = np.asarray(genome, dtype=np.float64).ravel().tolist()
     return _native.simulate(weights, os.fspath(room), seed, path, text, _sets(overrides))
+
+
+DESCRIPTORS = tuple(_native.Problem.descriptor_names())
+"""The behaviour descriptors :meth:`Problem.evaluate` can return (docs/model.md §7): final
+``x``, ``y`` (normalised to the room's bounding box), the terms ``a``, ``g``, ``b``, and the
+fractions of the executed steps that were ``straight``, ``left30``, ``right30``, ``turn180``."""
+
+
+def _float_array(arg: str, value: Any, ndim: int, what: str) -> np.ndarray:
+    """``value`` as a C-contiguous float64 array of ``ndim`` dimensions, or FuzzymotivError."""
+    try:
+        a = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise FuzzymotivError(f"{arg}: expected {what} of numbers ({e})") from None
+    if a.ndim != ndim:
+        raise FuzzymotivError(f"{arg}: expected {what}, got an array of shape {a.shape}")
+    return np.ascontiguousarray(a)
+
+
+class Evaluation(NamedTuple):
+    """What :meth:`Problem.evaluate` returns (numpy arrays)."""
+
+    fitness: np.ndarray
+    """F per genome, shape ``(pop,)``: the mean over the rooms of the TSK fitness; higher is
+    better (in [0, 1])."""
+    terms: np.ndarray
+    """The fitness terms a, g, l, b per genome and room, shape ``(pop, rooms, 4)``."""
+    descriptors: Optional[np.ndarray]
+    """The chosen descriptors per genome and room, shape ``(pop, rooms, D)``, or None when
+    none were asked for."""
+
+
+class Problem:
+    """One evolution's fitness function for any optimiser: the validated experiment of a
+    config, evaluated in batches.
+
+    ``config`` and ``overrides`` are :func:`run`'s (a file or TOML text; dotted keys as
+    ``--set``); ``seed`` overrides the config's seed. With ``training = "per-room"`` there is
+    one problem per room: ``room=NAME``. ``threads`` sizes the pool that evaluates (results do
+    not depend on it; None: all cores).
+
+    Attributes: ``genome_size`` (weights per genome), ``rooms`` (the rooms each genome is
+    evaluated in), ``motivations`` (C, H, O, E), ``seed``, ``run`` (``"all"`` or the room),
+    ``population`` and ``generations`` (the config's GA sizes), ``hidden``, ``steps``.
+
+    >>> p = Problem(overrides={"rooms": ["H", "T"], "trial.steps": 50})
+    >>> p.genome_size, p.rooms
+    (68, ['H', 'T'])
+    >>> ev = p.evaluate(np.zeros((3, p.genome_size)), descriptors=["x", "y"])
+    >>> ev.fitness.shape, ev.terms.shape, ev.descriptors.shape
+    ((3,), (3, 2, 4), (3, 2, 2))
+    """
+
+    def __init__(
+        self,
+        config: Union[str, os.PathLike, None] = None,
+        overrides: Any = None,
+        *,
+        room: Optional[str] = None,
+        threads: Optional[int] = None,
+        seed: Optional[int] = None,
+    ):
+        path, text = _config_args(config)
+        self._native = _native.Problem(path, text, _sets(overrides), room, threads, seed)
+        self.genome_size: int = self._native.genome_size
+        self.rooms: list = self._native.rooms
+        self.motivations: tuple = self._native.motivations
+        self.seed: int = self._native.seed
+        self.run: str = self._native.label
+        self.population, self.generations = self._native.ga_sizes
+        self.hidden: int = self._native.hidden
+        self.steps: int = self._native.steps
+
+    def evaluate(
+        self,
+        genomes: Any,
+        *,
+        generation: int = 0,
+        seed: Optional[int] = None,
+        descriptors: Union[None, bool, str, Sequence[str]] = None,
+    ) -> Evaluation:
+        """Evaluate a ``(pop, genome_size)`` array of genomes: :class:`Evaluation` of numpy
+        arrays ``fitness`` (pop,) — F, higher is better —, ``terms`` (pop, rooms, 4) and
+        ``descriptors`` (pop, rooms, D).
+
+        Genome i of ``generation`` g runs on the noise streams the built-in GA gives individual
+        i of generation g (seed, run, g, i, room; ``seed=None``: the problem's seed), so
+        evaluating generation g's population gives the F that :func:`run` logged for it, and
+        the same call gives the same bytes on any number of threads. The GIL is released.
+
+        ``descriptors``: None (default: none computed), True (all of :data:`DESCRIPTORS`), or
+        names from it, in the order wanted. Wrong shapes, NaN or infinite weights raise
+        :class:`FuzzymotivError` naming the argument.
+        """
+        g = _float_array("genomes", genomes, 2, f"a (population, {self.genome_size}) array")
+        if descriptors is None or descriptors is False:
+            describe, names = False, None
+        elif descriptors is True:
+            describe, names = True, None
+        elif isinstance(descriptors, str):
+            describe, names = True, [descriptors]
+        else:
+            describe, names = True, [str(d) for d in descriptors]
+        fitness, terms, desc, _ = self._native.evaluate(g, generation, seed, describe, names)
+        return Evaluation(fitness, terms, desc)
+
+    def __repr__(self) -> str:
+        return (
+            f"<Problem run {self.run!r} rooms {self.rooms} genome_size {self.genome_size} "
+            f"seed {self.seed}>"
+        )
+
+
+class Best(NamedTuple):
+    """The best genome told to a :class:`GA` so far."""
+
+    genome: np.ndarray
+    fitness: float
+    generation: int
+
+
+class GA:
+    """The built-in genetic algorithm (docs/model.md §6) as ask/tell steps.
+
+    ``ga.ask()`` gives the current generation's genomes (``(pop, genome_size)``);
+    ``ga.tell(F, terms=None)`` takes their F (higher is better; ``terms`` only feed the
+    logged means of a, g, l, b) and breeds the next generation. Asking, evaluating with
+    ``problem.evaluate(genomes, generation=ga.generation, seed=ga.seed)`` and telling is
+    exactly :func:`run`'s evolution: ``ga.history`` equals its ``generations``.
+
+    ``seed`` (None: the problem's) seeds the initial population and breeding; ``genomes``
+    warm-starts from given genomes instead of the random initial population (any number of
+    them; later generations have the config's population size). ``ga.state`` is a plain,
+    versioned dict (JSON types, floats exact) and :meth:`GA.from_state` restores it.
+
+    >>> p = Problem(overrides={"rooms": ["H"], "aem.enabled": False, "ga.population": 6,
+    ...                        "trial.steps": 50})
+    >>> ga = GA(p)
+    >>> for _ in range(2):
+    ...     genomes = ga.ask()
+    ...     ev = p.evaluate(genomes, generation=ga.generation, seed=ga.seed)
+    ...     ga.tell(ev.fitness, ev.terms)
+    >>> ga.generation, ga.best.fitness == max(ga.history["best"])
+    (2, True)
+    """
+
+    def __init__(self, problem: Problem, seed: Optional[int] = None, *, genomes: Any = None):
+        if not isinstance(problem, Problem):
+            raise FuzzymotivError(f"problem: expected a fuzzymotiv.Problem, got {type(problem).__name__}")
+        self.problem = problem
+        start = None
+        if genomes is not None:
+            start = _float_array("genomes", genomes, 2, f"a (population, {problem.genome_size}) array")
+        self._native = _native.GA(problem._native, seed, start)
+
+    def ask(self) -> np.ndarray:
+        """The current generation's genomes, ``(pop, genome_size)`` (the same until tell)."""
+        return self._native.ask()
+
+    def tell(self, fitness: Any, terms: Any = None) -> None:
+        """F of the genomes of :meth:`ask` (higher is better), optionally their terms
+        ``(pop, rooms, 4)``; breeds the next generation."""
+        f = _float_array("F", fitness, 1, "one value per genome")
+        t = None if terms is None else _float_array("terms", terms, 3, "a (pop, rooms, 4) array")
+        self._native.tell(f, t)
+
+    @property
+    def generation(self) -> int:
+        """The generation :meth:`ask` returns (tells so far)."""
+        return self._native.generation
+
+    @property
+    def seed(self) -> int:
+        """The base seed of the GA's streams; evaluate with it to match :func:`run`."""
+        return self._native.seed
+
+    @property
+    def best(self) -> Optional[Best]:
+        """The best genome told so far (its F and generation), or None before any tell."""
+        b = self._native.best
+        return None if b is None else Best(*b)
+
+    @property
+    def history(self) -> Any:
+        """Per generation told, ``generations.csv``'s columns (a DataFrame with pandas, else a
+        dict of arrays); a, g, l, b are NaN where tell had no terms."""
+        return _frame(self._native.history)
+
+    @property
+    def state(self) -> dict:
+        """Everything needed to continue: a plain dict (``format``, ``version``, the resolved
+        ``config``, ``run``, ``seed``, ``generation``, ``population``, ``history``, ``best``)
+        of JSON types; ``json.dumps`` and back restores it exactly."""
+        return json.loads(self._native.state_json())
+
+    @classmethod
+    def from_state(cls, state: Mapping, problem: Optional[Problem] = None) -> "GA":
+        """A GA from :attr:`state`; ``problem`` (optional) must be made from the same config;
+        without it one is made from the state's config."""
+        if not isinstance(state, Mapping):
+            raise FuzzymotivError(f"state: expected the dict of GA.state, got {type(state).__name__}")
+        try:
+            text = json.dumps(dict(state), allow_nan=False)
+        except (TypeError, ValueError) as e:
+            raise FuzzymotivError(f"state: not a GA state ({e})") from None
+        if problem is None:
+            run = state.get("run")
+            config = state.get("config")
+            if not isinstance(config, str) or not isinstance(run, str):
+                raise FuzzymotivError("state: not a GA state (no config or run)")
+            problem = Problem(config + "\n", room=None if run == "all" else run)
+        self = cls.__new__(cls)
+        self.problem = problem
+        self._native = _native.GA.from_state_json(text, problem._native)
+        return self
+
+    def __repr__(self) -> str:
+        best = "none" if self.best is None else f"{self.best.fitness:.4f}"
+        return f"<GA generation {self.generation} seed {self.seed} best F {best}>"

@@ -2,7 +2,7 @@
 
 import os
 from pathlib import Path
-from typing import Any, Callable, Literal, Mapping, Optional, Sequence, TypedDict, Union, overload
+from typing import Any, Callable, Literal, Mapping, NamedTuple, Optional, Sequence, TypedDict, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -147,3 +147,72 @@ def simulate(
     config: Config = ...,
     overrides: Overrides = ...,
 ) -> Trajectory: ...
+
+DESCRIPTORS: tuple[str, ...]
+
+class Evaluation(NamedTuple):
+    fitness: FloatArray
+    terms: FloatArray
+    descriptors: Optional[FloatArray]
+
+class Problem:
+    genome_size: int
+    rooms: list[str]
+    motivations: tuple[float, float, float, float]
+    seed: int
+    run: str
+    population: int
+    generations: int
+    hidden: int
+    steps: int
+    def __init__(
+        self,
+        config: Config = ...,
+        overrides: Overrides = ...,
+        *,
+        room: Optional[str] = ...,
+        threads: Optional[int] = ...,
+        seed: Optional[int] = ...,
+    ) -> None: ...
+    def evaluate(
+        self,
+        genomes: Any,
+        *,
+        generation: int = ...,
+        seed: Optional[int] = ...,
+        descriptors: Union[None, bool, str, Sequence[str]] = ...,
+    ) -> Evaluation: ...
+
+class Best(NamedTuple):
+    genome: FloatArray
+    fitness: float
+    generation: int
+
+class GAState(TypedDict):
+    format: str
+    version: int
+    config: str
+    run: str
+    seed: int
+    generation: int
+    population: list[list[float]]
+    history: list[dict[str, Any]]
+    best: Optional[dict[str, Any]]
+
+class GA:
+    problem: Problem
+    def __init__(self, problem: Problem, seed: Optional[int] = ..., *, genomes: Any = ...) -> None: ...
+    def ask(self) -> FloatArray: ...
+    def tell(self, fitness: Any, terms: Any = ...) -> None: ...
+    @property
+    def generation(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def best(self) -> Optional[Best]: ...
+    @property
+    def history(self) -> Any: ...
+    @property
+    def state(self) -> GAState: ...
+    @classmethod
+    def from_state(cls, state: Mapping[str, Any], problem: Optional[Problem] = ...) -> GA: ...

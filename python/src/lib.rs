@@ -38,6 +38,9 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyDict, PyList, PyTuple, PyType};
 use rayon::prelude::*;
 
+mod ga;
+mod problem;
+
 create_exception!(
     _fuzzymotiv,
     FuzzymotivError,
@@ -906,5 +909,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rooms, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_class::<problem::Problem>()?;
+    m.add_class::<ga::Ga>()?;
     Ok(())
 }

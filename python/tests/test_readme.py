@@ -18,3 +18,13 @@ def test_readme_python_session(repo, tmp_path, monkeypatch):
     runner.run(test)
     assert runner.failures == 0 and runner.tries >= 8
     assert (tmp_path / "hc.fll").is_file()
+
+
+def test_readme_own_optimiser(repo, monkeypatch, capsys):
+    """The README's "Use your own optimiser" loop runs as written and improves F."""
+    text = (repo / "README.md").read_text()
+    section = text.split("\n### Use your own optimiser\n", 1)[1].split("\n## ", 1)[0]
+    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    monkeypatch.chdir(repo)
+    exec(compile(code, "README.md (Use your own optimiser)", "exec"), {})
+    assert re.fullmatch(r"F \d\.\d{3} -> \d\.\d{3}\n", capsys.readouterr().out)

@@ -5,6 +5,7 @@
 //! `Experiment` written beside their own types.
 
 pub mod config;
+pub mod descriptors;
 pub mod evaluation;
 pub mod evolution;
 pub mod modelling;

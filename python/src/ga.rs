@@ -1,0 +1,417 @@
+//! `fm.GA`: the built-in genetic algorithm as ask/tell steps over the library's public steps
+//! (`initial_population`, `generation_record`, `breed`), so that ask → `Problem.evaluate` →
+//! tell is exactly `fm.run`'s evolution; its state is a plain, versioned dict.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use fuzzymotiv::evolution::ga::{Genome, Stats, ranking};
+use fuzzymotiv::evolution::population::Population;
+use fuzzymotiv::experiment::config::RawConfig;
+use fuzzymotiv::experiment::evaluation::{Evaluation, RoomScore};
+use fuzzymotiv::experiment::evolution::GenerationRecord;
+use fuzzymotiv::experiment::{Experiment, Run};
+use fuzzymotiv::fitness::terms::FitnessTerms;
+use fuzzymotiv_io::files::inputs::resolve;
+use numpy::{
+    PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods,
+};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde::{Deserialize, Serialize};
+
+use crate::problem::{Problem, genomes_arg, population_array};
+use crate::{input_err, py_err, py_float, seed_arg};
+
+/// What `GA.state` holds (`format`, `version`): the next population, the records so far and
+/// the best genome told, with the resolved config, so that a state restores on its own.
+const FORMAT: &str = "fuzzymotiv.GA";
+const VERSION: u32 = 1;
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct State {
+    format: String,
+    version: u32,
+    /// The resolved config (with the GA's seed), as TOML.
+    config: String,
+    /// The run's label (`all` or the room of a per-room run).
+    run: String,
+    seed: u64,
+    /// The generation `ask` returns next.
+    generation: usize,
+    /// Its genomes (not yet evaluated).
+    population: Vec<Genome>,
+    history: Vec<Row>,
+    best: Option<Best>,
+}
+
+/// A generation's record; the mean terms are `None` when `tell` was given none.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Row {
+    generation: usize,
+    mean: f64,
+    std: f64,
+    min: f64,
+    max: f64,
+    terms: Option<[f64; 4]>,
+}
+
+/// The best genome told so far (the first of the highest F).
+#[derive(Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Best {
+    genome: Genome,
+    fitness: f64,
+    generation: usize,
+}
+
+/// The native GA (`fuzzymotiv.GA` wraps it).
+#[pyclass(module = "fuzzymotiv._fuzzymotiv", name = "GA")]
+pub struct Ga {
+    exp: Arc<Experiment>,
+    run: Run,
+    config: String,
+    generation: usize,
+    population: Population,
+    history: Vec<GenerationRecord>,
+    best: Option<Best>,
+}
+
+/// Numbers that must be finite (`F`, terms), or an error naming `arg` and the position.
+fn finite_values<'a>(
+    arg: &str,
+    values: impl Iterator<Item = (String, &'a f64)>,
+    usage: &str,
+) -> PyResult<()> {
+    for (at, v) in values {
+        if !v.is_finite() {
+            return Err(input_err(format!(
+                "{arg}: `{}` ({at}) is not a finite number; {usage}",
+                py_float(*v)
+            )));
+        }
+    }
+    Ok(())
+}
+
+impl Ga {
+    fn record(
+        &self,
+        fitness: &[f64],
+        terms: Option<&[[f64; 4]]>,
+        rooms: usize,
+    ) -> GenerationRecord {
+        match terms {
+            Some(terms) => {
+                let evals: Vec<Evaluation> = fitness
+                    .iter()
+                    .zip(terms.chunks(rooms))
+                    .map(|(&f, t)| Evaluation {
+                        fitness: f,
+                        per_room: t
+                            .iter()
+                            .map(|&[a, g, l, b]| RoomScore {
+                                f: 0.0,
+                                terms: FitnessTerms { a, g, l, b },
+                                executed: 0,
+                            })
+                            .collect(),
+                    })
+                    .collect();
+                self.exp.generation_record(self.generation, &evals)
+            }
+            None => GenerationRecord {
+                generation: self.generation,
+                stats: Stats::of(fitness),
+                terms: FitnessTerms {
+                    a: f64::NAN,
+                    g: f64::NAN,
+                    l: f64::NAN,
+                    b: f64::NAN,
+                },
+            },
+        }
+    }
+}
+
+#[pymethods]
+impl Ga {
+    #[new]
+    #[pyo3(signature = (problem, seed=None, genomes=None))]
+    fn new(
+        problem: Bound<'_, Problem>,
+        seed: Option<Bound<'_, PyAny>>,
+        genomes: Option<PyReadonlyArray2<'_, f64>>,
+    ) -> PyResult<Ga> {
+        let problem = problem.get();
+        let seed = seed.as_ref().map(seed_arg).transpose()?;
+        let exp = problem.experiment_for(seed)?;
+        let run = problem.run().clone();
+        let population = match genomes {
+            Some(g) => {
+                let p = genomes_arg("genomes", &g, &exp)?;
+                if p.is_empty() {
+                    return Err(input_err(
+                        "genomes: an empty population; give at least one genome",
+                    ));
+                }
+                p
+            }
+            None => exp.initial_population(&run),
+        };
+        Ok(Ga {
+            config: problem.config_toml(exp.seed()),
+            exp,
+            run,
+            generation: 0,
+            population,
+            history: Vec::new(),
+            best: None,
+        })
+    }
+
+    /// The genomes of the current generation (the same until `tell`).
+    fn ask<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        population_array(py, &self.population, self.exp.shape().genome_len())
+    }
+
+    /// F of the asked genomes (higher is better), and optionally their terms `(pop, rooms,
+    /// 4)` for the logged means; breeds the next generation.
+    #[pyo3(signature = (fitness, terms=None))]
+    fn tell(
+        &mut self,
+        fitness: PyReadonlyArray1<'_, f64>,
+        terms: Option<PyReadonlyArray3<'_, f64>>,
+    ) -> PyResult<()> {
+        let n = self.population.len();
+        let f = fitness.as_array().to_vec();
+        if f.len() != n {
+            return Err(input_err(format!(
+                "F: expected {n} values (one per genome of ask()), got {}",
+                f.len()
+            )));
+        }
+        finite_values(
+            "F",
+            f.iter()
+                .enumerate()
+                .map(|(i, v)| (format!("individual {i}"), v)),
+            "expected the F of each genome of ask()",
+        )?;
+        let rooms = self.run.rooms.len();
+        let terms: Option<Vec<[f64; 4]>> = match terms {
+            None => None,
+            Some(t) => {
+                let shape = t.shape();
+                if shape != [n, rooms, 4] {
+                    return Err(input_err(format!(
+                        "terms: expected shape ({n}, {rooms}, 4) (genomes, rooms, a g l b), got {shape:?}"
+                    )));
+                }
+                let view = t.as_array();
+                finite_values(
+                    "terms",
+                    view.indexed_iter()
+                        .map(|((i, r, k), v)| (format!("individual {i}, room {r}, term {k}"), v)),
+                    "expected the terms problem.evaluate returned",
+                )?;
+                Some(
+                    view.as_standard_layout()
+                        .as_slice()
+                        .expect("standard layout")
+                        .chunks(4)
+                        .map(|c| [c[0], c[1], c[2], c[3]])
+                        .collect(),
+                )
+            }
+        };
+        let record = self.record(&f, terms.as_deref(), rooms);
+        let top = ranking(&f)[0];
+        if self.best.as_ref().is_none_or(|b| f[top] > b.fitness) {
+            self.best = Some(Best {
+                genome: self.population[top].clone(),
+                fitness: f[top],
+                generation: self.generation,
+            });
+        }
+        let next = self
+            .exp
+            .breed(&self.population, &f, &self.run, self.generation)
+            .map_err(|e| input_err(format!("F: {e}")))?;
+        self.history.push(record);
+        self.population = next;
+        self.generation += 1;
+        Ok(())
+    }
+
+    /// The generation `ask` returns (the number of `tell`s so far).
+    #[getter]
+    fn generation(&self) -> usize {
+        self.generation
+    }
+
+    /// The base seed of the GA's streams (initial population, breeding; evaluate with it).
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.exp.seed()
+    }
+
+    /// `(genome, F, generation)` of the best genome told so far, or None.
+    #[getter]
+    fn best<'py>(&self, py: Python<'py>) -> Option<(Bound<'py, PyArray1<f64>>, f64, usize)> {
+        self.best.as_ref().map(|b| {
+            (
+                PyArray1::from_vec(py, b.genome.clone()),
+                b.fitness,
+                b.generation,
+            )
+        })
+    }
+
+    /// The records of the generations told, as `generations.csv`'s columns.
+    #[getter]
+    fn history<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        let h = &self.history;
+        let col = |f: &dyn Fn(&GenerationRecord) -> f64| {
+            PyArray1::from_vec(py, h.iter().map(f).collect())
+        };
+        d.set_item(
+            "generation",
+            PyArray1::from_vec(py, h.iter().map(|r| r.generation as i64).collect()),
+        )?;
+        d.set_item("best", col(&|r| r.stats.max))?;
+        d.set_item("mean", col(&|r| r.stats.mean))?;
+        d.set_item("std", col(&|r| r.stats.std))?;
+        d.set_item("min", col(&|r| r.stats.min))?;
+        d.set_item("max", col(&|r| r.stats.max))?;
+        d.set_item("a", col(&|r| r.terms.a))?;
+        d.set_item("g", col(&|r| r.terms.g))?;
+        d.set_item("l", col(&|r| r.terms.l))?;
+        d.set_item("b", col(&|r| r.terms.b))?;
+        d.set_item("room", vec![self.run.label.clone(); h.len()])?;
+        Ok(d)
+    }
+
+    /// The state as JSON text (`fuzzymotiv.GA.state` parses it into a dict).
+    fn state_json(&self) -> String {
+        let state = State {
+            format: FORMAT.into(),
+            version: VERSION,
+            config: self.config.clone(),
+            run: self.run.label.clone(),
+            seed: self.exp.seed(),
+            generation: self.generation,
+            population: self.population.to_vec(),
+            history: self
+                .history
+                .iter()
+                .map(|r| Row {
+                    generation: r.generation,
+                    mean: r.stats.mean,
+                    std: r.stats.std,
+                    min: r.stats.min,
+                    max: r.stats.max,
+                    terms: Some(r.terms.as_array()).filter(|t| t.iter().all(|v| v.is_finite())),
+                })
+                .collect(),
+            best: self.best.clone(),
+        };
+        serde_json::to_string(&state).expect("finite numbers serialise")
+    }
+
+    /// A GA from `state_json`'s text, with `problem`'s experiment when given (its config must
+    /// be the state's), else with the state's own config.
+    #[staticmethod]
+    #[pyo3(signature = (text, problem=None))]
+    fn from_state_json(text: &str, problem: Option<Bound<'_, Problem>>) -> PyResult<Ga> {
+        let state: State = serde_json::from_str(text)
+            .map_err(|e| input_err(format!("state: not a GA state ({e})")))?;
+        if state.format != FORMAT || state.version != VERSION {
+            return Err(input_err(format!(
+                "state: format {:?} version {} is not {FORMAT:?} version {VERSION}; it was written by another version of fuzzymotiv",
+                state.format, state.version
+            )));
+        }
+        let (exp, run) = match problem {
+            Some(p) => {
+                let p = p.get();
+                if p.config_toml(state.seed) != state.config || p.run().label != state.run {
+                    return Err(input_err(
+                        "problem: its config or run is not the state's; pass the problem the GA was made with, or none (the state's config is used)",
+                    ));
+                }
+                (p.experiment_for(Some(state.seed))?, p.run().clone())
+            }
+            None => {
+                let source = "(GA state)";
+                let raw =
+                    RawConfig::parse(&state.config, source, &[]).map_err(|e| py_err(e.into()))?;
+                let exp = resolve(raw, Path::new("."), source)
+                    .map_err(py_err)?
+                    .experiment;
+                let run = exp
+                    .runs()
+                    .into_iter()
+                    .find(|r| r.label == state.run)
+                    .ok_or_else(|| {
+                        input_err(format!("state: run {:?} is not in its config", state.run))
+                    })?;
+                (Arc::new(exp), run)
+            }
+        };
+        let len = exp.shape().genome_len();
+        if state.population.is_empty() {
+            return Err(input_err("state: an empty population"));
+        }
+        let genomes = state
+            .population
+            .iter()
+            .chain(state.best.iter().map(|b| &b.genome));
+        for (i, g) in genomes.enumerate() {
+            if g.len() != len || g.iter().any(|v| !v.is_finite()) {
+                return Err(input_err(format!(
+                    "state: genome {i} is not {len} finite weights"
+                )));
+            }
+        }
+        if state.history.len() != state.generation {
+            return Err(input_err(format!(
+                "state: {} records for generation {}; expected one per generation told",
+                state.history.len(),
+                state.generation
+            )));
+        }
+        let history = state
+            .history
+            .iter()
+            .map(|r| {
+                let [a, g, l, b] = r.terms.unwrap_or([f64::NAN; 4]);
+                GenerationRecord {
+                    generation: r.generation,
+                    stats: Stats {
+                        mean: r.mean,
+                        std: r.std,
+                        min: r.min,
+                        max: r.max,
+                    },
+                    terms: FitnessTerms { a, g, l, b },
+                }
+            })
+            .collect();
+        let population = exp
+            .population(state.population)
+            .map_err(|e| input_err(format!("state: {e}")))?;
+        Ok(Ga {
+            config: state.config,
+            exp,
+            run,
+            generation: state.generation,
+            population,
+            history,
+            best: state.best,
+        })
+    }
+}
