@@ -8,9 +8,10 @@ use std::path::{Path, PathBuf};
 
 /// The subsystems, lowest first: a file may import from its own folder or from a folder
 /// before it, never from one after it.
-const LAYERS: [&str; 7] = [
+const LAYERS: [&str; 8] = [
     "params",
     "random",
+    "statistics",
     "simulation",
     "fitness",
     "evolution",
