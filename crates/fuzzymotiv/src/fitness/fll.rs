@@ -107,7 +107,7 @@ pub fn to_fll(tsk: &TskFitness, motivations: &Motivations, name: &str) -> String
     let _ = writeln!(
         s,
         "  description: fuzzymotiv {} TSK motivation fitness, (C,H,O,E) = ({},{},{},{}), {} rules",
-        crate::VERSION,
+        env!("CARGO_PKG_VERSION"),
         num(x[0]),
         num(x[1]),
         num(x[2]),
