@@ -38,6 +38,8 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyDict, PyList, PyTuple, PyType};
 use rayon::prelude::*;
 
+mod stats;
+
 create_exception!(
     _fuzzymotiv,
     FuzzymotivError,
@@ -436,7 +438,8 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
     RunOutput {
         generations: GenerationRow::all(&done.outcome.evolutions),
         best: done
-            .outcome.evolutions
+            .outcome
+            .evolutions
             .iter()
             .map(|e| (e.run.label.clone(), e.population[e.best].clone()))
             .collect(),
@@ -900,5 +903,6 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rooms, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    stats::register(m)?;
     Ok(())
 }
