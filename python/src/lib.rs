@@ -438,8 +438,7 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
     RunOutput {
         generations: GenerationRow::all(&done.outcome.evolutions),
         best: done
-            .outcome
-            .evolutions
+            .outcome.evolutions
             .iter()
             .map(|e| (e.run.label.clone(), e.population[e.best].clone()))
             .collect(),
