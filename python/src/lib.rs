@@ -438,7 +438,8 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
     RunOutput {
         generations: GenerationRow::all(&done.outcome.evolutions),
         best: done
-            .outcome.evolutions
+            .outcome
+            .evolutions
             .iter()
             .map(|e| (e.run.label.clone(), e.population[e.best].clone()))
             .collect(),
@@ -449,7 +450,7 @@ fn output(loaded: &Loaded, done: Finished) -> RunOutput {
             .zip(done.trajectories())
             .map(|(n, t)| (n, poses(t)))
             .collect(),
-        hidden: exp.shape().hidden,
+        hidden: exp.shape().hidden(),
         rows: done.rows,
     }
 }
@@ -478,13 +479,17 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
             genome_file.display()
         )));
     }
+    let networks = (genome.runs.iter())
+        .map(|g| exp.network(&g.weights))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| CliError::input(format!("{}: {e}", genome_file.display())))?;
     let paths = exp
         .room_names()
         .into_par_iter()
         .enumerate()
         .map(|(r, name)| {
             let (k, _) = exp.robot_for_room(r);
-            let instance = exp.instance_run(&genome.runs[k].weights, &runs[k], r);
+            let instance = exp.instance_run(&networks[k], &runs[k], r);
             (name, poses(&instance.trajectory))
         })
         .collect();
@@ -498,7 +503,7 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
             .collect(),
         summary: serde_json::to_string(&summary).expect("serialisable"),
         paths,
-        hidden: exp.shape().hidden,
+        hidden: exp.shape().hidden(),
     })
 }
 
@@ -632,7 +637,7 @@ impl Control {
         loaded: &Loaded,
         already: usize,
     ) -> impl FnMut(&GenerationState<'_>) -> ControlFlow<()> + 'a {
-        let total = loaded.experiment.runs().len() * loaded.experiment.ga().generations;
+        let total = loaded.experiment.runs().len() * loaded.experiment.ga().generations();
         let mut done = already;
         move |state: &GenerationState<'_>| {
             done += 1;
@@ -831,12 +836,13 @@ fn simulate<'py>(
         return Err(input_err(format!(
             "genome: {} weights, but an 8-{}-2 network needs {want} (network.hidden = {})",
             genome.len(),
-            exp.shape().hidden,
-            exp.shape().hidden
+            exp.shape().hidden(),
+            exp.shape().hidden()
         )));
     }
     let run = exp.runs().remove(0);
-    let instance = py.detach(|| exp.instance_run(&genome, &run, 0));
+    let network = exp.network(&genome).map_err(|e| input_err(e.to_string()))?;
+    let instance = py.detach(|| exp.instance_run(&network, &run, 0));
     let d = trajectory_dict(py, &instance.trajectory)?;
     let terms = instance.terms;
     d.set_item("a", terms.a)?;

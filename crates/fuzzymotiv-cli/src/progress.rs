@@ -49,7 +49,7 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 impl Progress {
     /// Progress over all generations of `settings` experiments like `exp`.
     pub fn new(exp: &Experiment, settings: usize, quiet: bool) -> Self {
-        let total = (exp.runs().len() * exp.ga().generations * settings) as u64;
+        let total = (exp.runs().len() * exp.ga().generations() * settings) as u64;
         let plain = !std::io::stderr().is_terminal();
         let bar = if quiet || plain {
             ProgressBar::hidden()

@@ -14,11 +14,13 @@
 //! instruction; three runs) one robot at a time took 81–90 ns, four in lockstep 58–67 ns (about
 //! 1.4×); with AVX2 (two runs) 82–86 ns against 45–50 ns (about 1.75×). The network is about
 //! 30 % of a study's time.
+use fuzzymotiv::modelling::aem::DEFAULT_ACTION_TOLERANCE;
 use fuzzymotiv::random::rng::{rng_from_seed, uniform};
 use fuzzymotiv::simulation::controller::{Controller, Mlp, MlpShape};
 use fuzzymotiv::simulation::math::logistic_lanes;
+use fuzzymotiv::simulation::robot::RawRobot;
 use fuzzymotiv::simulation::room::Room;
-use fuzzymotiv::simulation::trial::{Arena, Step, StepObserver, TrialParams, simulate};
+use fuzzymotiv::simulation::trial::{Arena, RawTrial, Step, StepObserver, TrialParams, simulate};
 use std::time::Instant;
 
 const L: usize = 4;
@@ -98,12 +100,14 @@ fn gather(xs: &[[f64; 8]]) -> [[f64; L]; 8] {
 }
 
 fn main() {
-    let params = TrialParams {
+    let trial = RawTrial {
         end_at_home: false,
-        ..TrialParams::default()
+        ..RawTrial::default()
     };
+    let params = TrialParams::from_raw(&trial, &RawRobot::default(), DEFAULT_ACTION_TOLERANCE)
+        .expect("valid parameters");
     let arena = Arena::new(Room::builtin("H").unwrap(), &params);
-    let shape = MlpShape::with_hidden(H);
+    let shape = MlpShape::with_hidden(H).expect("a valid hidden layer");
     let mut rng = rng_from_seed(7);
     let robots = 64;
     let genomes: Vec<Vec<f64>> = (0..robots)
@@ -119,7 +123,6 @@ fn main() {
         simulate(
             &arena,
             &mut Mlp::from_genome(shape, g).unwrap(),
-            &params,
             &mut rng_from_seed(r as u64),
             &mut obs,
         );

@@ -58,18 +58,18 @@ impl Experiment {
         check_name(&raw.name)?;
         check_rooms(&rooms)?;
         let motivations = raw.motivations.validated()?;
-        raw.ga.validate()?;
-        let trial = TrialParams::from_raw(&raw.trial, raw.robot, raw.aem.action_tolerance)?;
+        let ga = GaParams::from_raw(&raw.ga)?;
+        let trial = TrialParams::from_raw(&raw.trial, &raw.robot, raw.aem.action_tolerance)?;
         let shape = raw.network.shape()?;
         let fuzzy = raw.fuzzy.validated()?;
-        let aem = AemParams::from_raw(&raw.aem, trial.steps, rooms.len())?;
+        let aem = AemParams::from_raw(&raw.aem, trial.steps(), rooms.len())?;
         check(
             raw.fitness.orientation != OrientationMode::Online
                 || (rooms.len() >= 2 && raw.training == Training::AllRooms),
             "fitness.orientation",
             || "\"online\" needs training = \"all-rooms\" with at least 2 rooms".into(),
         )?;
-        check_clearance(&rooms, trial.robot.radius)?;
+        check_clearance(&rooms, trial.robot().radius())?;
         let arenas = rooms.into_iter().map(|r| Arena::new(r, &trial)).collect();
         Ok(Experiment {
             name: raw.name.clone(),
@@ -78,7 +78,7 @@ impl Experiment {
             training: raw.training,
             motivations,
             fuzzy,
-            ga: raw.ga,
+            ga,
             trial,
             shape,
             energy: raw.fitness.energy,
@@ -324,7 +324,7 @@ mod tests {
         assert_eq!(exp.trial_params(), &TrialParams::default());
         assert_eq!(exp.aem(), &AemParams::default());
         assert_eq!(exp.ga(), &GaParams::default());
-        assert_eq!(exp.shape(), MlpShape::with_hidden(MlpShape::DEFAULT_HIDDEN));
+        assert_eq!(exp.shape(), MlpShape::default());
         assert_eq!(exp.motivations(), &Motivations::HIGH_CURIOSITY);
         assert_eq!(exp.fuzzy(), &TskFitness::paper());
         assert_eq!((exp.name(), exp.seed()), ("experiment", 1));

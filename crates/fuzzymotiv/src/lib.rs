@@ -57,7 +57,7 @@
 //! ```
 //!
 //! [`evolution::ga::next_generation`] breeds, and [`Experiment`] ties them together as the paper does
-//! ([`evolution`] shows the loop as ask/evaluate/tell steps a custom optimiser can drive).
+//! ([`experiment::evolution`] shows the loop as ask/evaluate/tell steps a custom optimiser can drive).
 
 #![warn(missing_docs)]
 
@@ -71,7 +71,9 @@ pub mod simulation;
 pub mod statistics;
 
 pub use experiment::config::RawConfig;
-pub use experiment::evolution::{Evolution, GenerationRecord, GenerationState, Observer, Stopped};
+pub use experiment::evolution::{
+    Evolution, GenerationRecord, GenerationState, Observer, Population, Stopped,
+};
 pub use experiment::outcome::{Interrupted, Outcome, RunError, RunObserver, Start};
 pub use experiment::setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError};
 pub use experiment::{Experiment, Run};

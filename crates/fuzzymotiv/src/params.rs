@@ -1,6 +1,6 @@
 //! The one error type of every value read from a user's input (config or room file): the source,
 //! the field and what is wrong. Each parameter section is checked beside its own type
-//! ([`crate::evolution::ga::GaParams::validate`], [`crate::simulation::trial::TrialParams::from_raw`],
+//! ([`crate::evolution::ga::GaParams::from_raw`], [`crate::simulation::trial::TrialParams::from_raw`],
 //! [`crate::modelling::aem::AemParams::from_raw`], …) and [`crate::experiment::Experiment::new`] composes
 //! the checks, naming the source.
 

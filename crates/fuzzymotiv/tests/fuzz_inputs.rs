@@ -164,7 +164,8 @@ proptest! {
         match Room::from_toml_str(&text, "fuzz-room.toml") {
             Ok(room) => {
                 // A valid room must be usable by the simulator.
-                let params = fuzzymotiv::simulation::trial::TrialParams { steps: 20, ..Default::default() };
+                let raw = fuzzymotiv::simulation::trial::RawTrial { steps: 20, ..Default::default() };
+                let params = fuzzymotiv::simulation::trial::TrialParams::from_raw(&raw, &Default::default(), 0.25).unwrap();
                 let arena = fuzzymotiv::simulation::trial::Arena::new(room, &params);
                 prop_assert!(arena.reachable_cells() <= arena.cell_count());
             }

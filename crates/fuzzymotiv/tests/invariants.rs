@@ -1,12 +1,21 @@
 //! Property tests of the simulator's invariants and value-stability (golden) tests.
 
-use fuzzymotiv::modelling::aem::Action;
+use fuzzymotiv::modelling::aem::{Action, DEFAULT_ACTION_TOLERANCE};
 use fuzzymotiv::random::rng::{Rng, rng_from_seed, standard_normal, uniform01};
 use fuzzymotiv::simulation::controller::{Mlp, MlpShape};
-use fuzzymotiv::simulation::robot::{Khepera, Motion, wrap_angle};
+use fuzzymotiv::simulation::robot::{Motion, RawRobot, wrap_angle};
 use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
-use fuzzymotiv::simulation::trial::{Arena, TrialParams, run_trial};
+use fuzzymotiv::simulation::trial::{Arena, RawTrial, TrialParams, run_trial};
 use proptest::prelude::*;
+
+/// Checked parameters: `trial`, a robot of `motion` and the default action tolerance.
+fn params(trial: RawTrial, motion: Motion) -> TrialParams {
+    let robot = RawRobot {
+        motion,
+        ..RawRobot::default()
+    };
+    TrialParams::from_raw(&trial, &robot, DEFAULT_ACTION_TOLERANCE).unwrap()
+}
 
 fn genome(seed: u64, scale: f64) -> Vec<f64> {
     let mut rng = rng_from_seed(seed);
@@ -22,14 +31,13 @@ proptest! {
     #[test]
     fn robot_never_overlaps_a_wall(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2, wheels in any::<bool>()) {
         let motion = if wheels { Motion::Wheels } else { Motion::Actions };
-        let robot = Khepera { motion, ..Khepera::default() };
-        let params = TrialParams { steps: 300, noise, robot, ..TrialParams::default() };
+        let params = params(RawTrial { steps: 300, noise, ..RawTrial::default() }, motion);
         let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
-        let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(seed, scale)).unwrap();
-        let tr = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(seed ^ 1));
+        let mut mlp = Mlp::from_genome(MlpShape::default(), &genome(seed, scale)).unwrap();
+        let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed ^ 1));
         for p in &tr.poses {
             let clearance = arena.walls().iter().map(|w| w.dist_to(p.position())).fold(f64::INFINITY, f64::min);
-            prop_assert!(clearance >= params.robot.radius, "pose {p:?} is {clearance} mm from a wall");
+            prop_assert!(clearance >= params.robot().radius(), "pose {p:?} is {clearance} mm from a wall");
             prop_assert!(arena.room().contains(p.position()));
         }
     }
@@ -42,14 +50,14 @@ proptest! {
     /// ray reads, the first time a pose is seen and every time after, in every room.
     #[test]
     fn the_memo_changes_nothing(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2) {
-        let params = TrialParams { steps: 300, noise, ..TrialParams::default() };
+        let params = params(RawTrial { steps: 300, noise, ..RawTrial::default() }, Motion::Actions);
         let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
         let casting = arena.clone().without_memo();
         prop_assert!(arena.remembers() && !casting.remembers());
-        let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(seed, scale)).unwrap();
-        let cast = run_trial(&casting, &mut mlp, &params, &mut rng_from_seed(seed ^ 1));
+        let mut mlp = Mlp::from_genome(MlpShape::default(), &genome(seed, scale)).unwrap();
+        let cast = run_trial(&casting, &mut mlp, &mut rng_from_seed(seed ^ 1));
         for _ in 0..2 {
-            let remembered = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(seed ^ 1));
+            let remembered = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed ^ 1));
             prop_assert_eq!(&remembered, &cast);
         }
     }
@@ -62,10 +70,10 @@ proptest! {
     /// the centre by 0 or exactly v_max·dt = 8 mm, for random controllers in every room.
     #[test]
     fn actions_stay_on_the_grid(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2) {
-        let params = TrialParams { steps: 300, noise, ..TrialParams::default() };
+        let params = params(RawTrial { steps: 300, noise, ..RawTrial::default() }, Motion::Actions);
         let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
-        let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(seed, scale)).unwrap();
-        let tr = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(seed ^ 1));
+        let mut mlp = Mlp::from_genome(MlpShape::default(), &genome(seed, scale)).unwrap();
+        let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed ^ 1));
         let home = arena.room().home.heading;
         for (t, w) in tr.poses.windows(2).enumerate() {
             let k = wrap_angle(w[1].heading - home) / (std::f64::consts::PI / 6.0);
@@ -94,8 +102,8 @@ fn robot_never_overlaps_an_obstacle() {
     let params = TrialParams::default();
     let arena = Arena::new(room, &params);
     for seed in 0..40 {
-        let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(seed, 3.0)).unwrap();
-        let tr = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(seed));
+        let mut mlp = Mlp::from_genome(MlpShape::default(), &genome(seed, 3.0)).unwrap();
+        let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed));
         for p in &tr.poses {
             assert!(
                 arena
@@ -123,23 +131,20 @@ fn random_streams_are_value_stable() {
 /// first release's H room; noise on): sensor → network → noise → arc kinematics.
 #[test]
 fn short_wheels_trajectory_is_value_stable() {
-    let params = TrialParams {
+    let trial = RawTrial {
         steps: 60,
         end_at_home: false,
-        robot: Khepera {
-            motion: Motion::Wheels,
-            ..Khepera::default()
-        },
-        ..TrialParams::default()
+        ..RawTrial::default()
     };
+    let params = params(trial, Motion::Wheels);
     let room = Room::from_toml_str(
         include_str!("../../../rooms/first-release/H.toml"),
         "H.toml",
     )
     .unwrap();
     let arena = Arena::new(room, &params);
-    let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(7, 2.0)).unwrap();
-    let tr = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(7));
+    let mut mlp = Mlp::from_genome(MlpShape::default(), &genome(7, 2.0)).unwrap();
+    let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(7));
     let last = tr.poses.last().unwrap();
     let collisions = tr.collisions.iter().filter(|&&c| c).count();
     let got = format!(
@@ -156,8 +161,8 @@ fn short_wheels_trajectory_is_value_stable() {
 fn actions_trajectory_is_value_stable() {
     let params = TrialParams::default();
     let arena = Arena::new(Room::builtin("H").unwrap(), &params);
-    let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome(14, 3.0)).unwrap();
-    let tr = run_trial(&arena, &mut mlp, &params, &mut rng_from_seed(14));
+    let mut mlp = Mlp::from_genome(MlpShape::default(), &genome(14, 3.0)).unwrap();
+    let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(14));
     let last = tr.poses.last().unwrap();
     let collisions = tr.collisions.iter().filter(|&&c| c).count();
     let count = |a: Action| tr.actions.iter().filter(|&&x| x == a).count();

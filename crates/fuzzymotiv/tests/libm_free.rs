@@ -12,11 +12,12 @@ use std::hint::black_box;
 use std::process::Command;
 
 use fuzzymotiv::fitness::terms::{Homing, TermsRecorder};
+use fuzzymotiv::modelling::aem::DEFAULT_ACTION_TOLERANCE;
 use fuzzymotiv::random::rng::{Rng64, rng_from_seed};
 use fuzzymotiv::simulation::controller::{Mlp, MlpShape};
-use fuzzymotiv::simulation::robot::{Khepera, Motion, Pose};
+use fuzzymotiv::simulation::robot::{Motion, Pose, RawRobot};
 use fuzzymotiv::simulation::room::Room;
-use fuzzymotiv::simulation::trial::{Arena, TrialParams, simulate};
+use fuzzymotiv::simulation::trial::{Arena, RawTrial, TrialParams, simulate};
 
 /// libm functions that must not be reached from the step loop (`fmod`, reached by
 /// `wrap_angle` for |θ| ≥ 2π only, is exact by definition, so the same on every platform).
@@ -27,9 +28,9 @@ const LIBM: &[&str] = &[
 ];
 
 #[inline(never)]
-fn step_loop(arena: &Arena, mlp: &mut Mlp, params: &TrialParams, rng: &mut Rng64) -> Pose {
-    let mut rec = TermsRecorder::new(arena, params, Homing::Escape);
-    let pose = simulate(arena, mlp, params, rng, &mut rec);
+fn step_loop(arena: &Arena, mlp: &mut Mlp, rng: &mut Rng64) -> Pose {
+    let mut rec = TermsRecorder::new(arena, Homing::Escape);
+    let pose = simulate(arena, mlp, rng, &mut rec);
     black_box(rec.finish());
     pose
 }
@@ -135,25 +136,26 @@ fn libm_reached(d: &Disassembly, slots: &HashMap<u64, String>, root: &str) -> Ve
 #[test]
 fn the_step_loop_calls_no_libm_function() {
     // Run both probes so that they are kept and their code is real.
-    let params = TrialParams {
+    let trial = RawTrial {
         steps: 50,
-        ..TrialParams::default()
+        ..RawTrial::default()
     };
-    let arena = Arena::new(Room::builtin("H").unwrap(), &params);
+    let params = |motion| {
+        let robot = RawRobot {
+            motion,
+            ..RawRobot::default()
+        };
+        TrialParams::from_raw(&trial, &robot, DEFAULT_ACTION_TOLERANCE).unwrap()
+    };
+    let arena = |motion| Arena::new(Room::builtin("H").unwrap(), &params(motion));
     let genome: Vec<f64> = (0..68)
         .map(|k| ((k * 37 % 17) as f64 - 8.0) / 4.0)
         .collect();
-    let mut mlp = Mlp::from_genome(MlpShape::with_hidden(6), &genome).unwrap();
+    let mut mlp = Mlp::from_genome(MlpShape::default(), &genome).unwrap();
     // Both motion models run (the check below is static: it follows every call either takes).
-    black_box(step_loop(&arena, &mut mlp, &params, &mut rng_from_seed(1)));
-    let wheels = TrialParams {
-        robot: Khepera {
-            motion: Motion::Wheels,
-            ..Khepera::default()
-        },
-        ..params
-    };
-    black_box(step_loop(&arena, &mut mlp, &wheels, &mut rng_from_seed(1)));
+    for motion in [Motion::Actions, Motion::Wheels] {
+        black_box(step_loop(&arena(motion), &mut mlp, &mut rng_from_seed(1)));
+    }
     black_box(control_probe(1.5));
 
     let d = disassemble();

@@ -141,13 +141,13 @@ fn timed(repeat: usize, mut work: impl FnMut(usize) -> usize) -> (f64, usize) {
 fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
     let run = &exp.runs()[0];
     let population = exp.initial_population(run);
-    let trial_steps = exp.trial_params().steps;
+    let trial_steps = exp.trial_params().steps();
     let mut sink = 0.0;
     let trials = args.steps.div_ceil(trial_steps);
     let (seconds, robot_steps) = timed(args.repeat, |r| {
         (0..trials)
             .map(|k| {
-                let e = exp.evaluate(&population[k % population.len()], run, r, k);
+                let e = exp.evaluate(&population.network(k % population.len()), run, r, k);
                 sink += e.fitness;
                 e.executed()
             })

@@ -19,6 +19,7 @@ use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, num, write_files};
 use fuzzymotiv_io::files::inputs::{load_config, resolve, room_entry};
 use fuzzymotiv_io::note;
+use fuzzymotiv_io::records::context::RenderContext;
 use fuzzymotiv_io::records::{BestGenome, PROGRAM, read_json};
 use fuzzymotiv_io::render::report::{replay_page, xs};
 use fuzzymotiv_io::render::svg::trajectories_svg;
@@ -187,9 +188,10 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     // rooms); neither changes a trajectory.
     raw.aem.enabled = false;
     raw.fitness.orientation = OrientationMode::Offline;
-    let exp = resolve(raw, Path::new("."), &source_name)?.experiment;
-    let trials = replay_trials(&exp, &genome)?;
-    write_replay(&args, &exp, &genome, &source_name, &trials)
+    let loaded = resolve(raw, Path::new("."), &source_name)?;
+    let trials = replay_trials(&loaded.experiment, &genome)?;
+    let ctx = RenderContext::of(&loaded);
+    write_replay(&args, &ctx, &genome, &source_name, &trials)
 }
 
 /// The genome file and the config beside it (a run directory's, or one next to the file).
@@ -224,7 +226,11 @@ fn replay_trials(
     genome: &SavedGenome,
 ) -> Result<Vec<(usize, String, InstanceRun)>, CliError> {
     let runs = exp.runs();
-    let want_len = MlpShape::with_hidden(genome.hidden).genome_len();
+    let in_file =
+        |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome.path.display()));
+    let want_len = MlpShape::with_hidden(genome.hidden)
+        .map_err(|e| in_file(&e))?
+        .genome_len();
     let mut trials = Vec::new();
     for r in 0..exp.arenas().len() {
         let name = &exp.arenas()[r].room().name;
@@ -248,7 +254,8 @@ fn replay_trials(
                 genome.hidden
             )));
         }
-        trials.push((r, run.label.clone(), exp.instance_run(weights, run, r)));
+        let network = exp.network(weights).map_err(|e| in_file(&e))?;
+        trials.push((r, run.label.clone(), exp.instance_run(&network, run, r)));
     }
     Ok(trials)
 }
@@ -256,7 +263,7 @@ fn replay_trials(
 /// Per room of the replay: its trajectory's CSV file (`DIR/STEM-ROOM.csv`, added to `files`),
 /// and returned the line printed for it and its entry in the replay's JSON.
 fn room_files(
-    exp: &Experiment,
+    ctx: &RenderContext,
     dir: &Path,
     stem: &str,
     trials: &[(usize, String, InstanceRun)],
@@ -265,7 +272,7 @@ fn room_files(
     let mut lines = Vec::new();
     let mut rooms_json = Vec::new();
     for (r, label, run) in trials {
-        let name = &exp.arenas()[*r].room().name;
+        let name = &ctx.rooms[*r].name;
         let csv = dir.join(format!("{stem}-{}.csv", file_tag(name)));
         files.push((csv.clone(), trajectory_csv(&run.trajectory).into_bytes()));
         let (tr, terms) = (&run.trajectory, run.terms);
@@ -296,7 +303,7 @@ fn room_files(
 /// replay again changes nothing; other files of those names are kept unless `--force`.
 fn write_replay(
     args: &ReplayArgs,
-    exp: &Experiment,
+    ctx: &RenderContext,
     genome: &SavedGenome,
     source_name: &str,
     trials: &[(usize, String, InstanceRun)],
@@ -304,14 +311,14 @@ fn write_replay(
     let out = &args.out;
     let (dir, stem) = out_parts(out)?;
     let mut files = Vec::new();
-    let (lines, rooms_json) = room_files(exp, &dir, &stem, trials, &mut files);
+    let (lines, rooms_json) = room_files(ctx, &dir, &stem, trials, &mut files);
     let genome_path = genome.path.display();
     let doc = serde_json::json!({
         "program": PROGRAM,
         "version": fuzzymotiv::VERSION,
         "genome": genome_path.to_string(),
         "config": source_name,
-        "seed": exp.seed(),
+        "seed": ctx.seed,
         "note": "poses[t] is the pose at the start of step t (poses[0] = home, poses[steps] = the end); sensors[t], motors[t], speeds[t] and collisions[t] belong to step t",
         "rooms": rooms_json,
     });
@@ -321,9 +328,9 @@ fn write_replay(
     ));
     let pairs: Vec<_> = trials
         .iter()
-        .map(|(r, _, run)| (exp.arenas()[*r].room(), &run.trajectory))
+        .map(|(r, _, run)| (&ctx.rooms[*r], &run.trajectory))
         .collect();
-    let title = format!("Replay of {genome_path} (seed {})", exp.seed());
+    let title = format!("Replay of {genome_path} (seed {})", ctx.seed);
     let svg = trajectories_svg(&title, &pairs);
     let svg_path = dir.join(format!("{stem}.svg"));
     if args.png {
@@ -334,11 +341,11 @@ fn write_replay(
     files.push((svg_path, svg.into_bytes()));
     let about = format!(
         "genome {genome_path} · config {source_name} · seed {} · motivations (C, H, O, E) = {} · {} steps per trial",
-        exp.seed(),
-        xs(exp),
-        exp.trial_params().steps
+        ctx.seed,
+        xs(ctx),
+        ctx.steps
     );
-    let page = replay_page("fuzzymotiv replay", &about, exp, trials);
+    let page = replay_page("fuzzymotiv replay", &about, ctx, trials);
     files.push((out.clone(), page.into_bytes()));
     let state = check_files(&files, "--out", args.force)?;
     if state == FilesState::Write {

@@ -17,6 +17,7 @@ use fuzzymotiv_io::pipeline::run_dir::{execute_or_resume, start_line};
 use fuzzymotiv_io::pipeline::sweep_jobs::run_jobs;
 use fuzzymotiv_io::pipeline::sweep_merge::merge_dir;
 use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
+use fuzzymotiv_io::records::context::RenderContext;
 use fuzzymotiv_io::records::{
     AblationSummary, ClaimRecord, PROGRAM, StudySummary, VariantSummary, to_json,
 };
@@ -180,7 +181,7 @@ fn run_study<'a>(
             setting,
             seeds: seeds.to_vec(),
             finished: finished.by_ref().take(seeds.len()).collect(),
-            loaded,
+            contexts: loaded.iter().map(RenderContext::of).collect(),
         })
         .collect())
 }
@@ -247,7 +248,11 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         rows.push((variant, claims));
     }
     progress.finish();
-    let prov = Provenance::new(&seeds, &rows_exp(args, &seeds)?, args.quick);
+    let prov = Provenance::new(
+        &seeds,
+        &RenderContext::of(&rows_exp(args, &seeds)?),
+        args.quick,
+    );
     let (md, csv) = ablation_table(&rows, &prov);
     staged.write("ablation.md", &md)?;
     staged.write("ablation.csv", &csv)?;
@@ -393,7 +398,7 @@ fn write_study(
     start: Instant,
 ) -> Result<(Vec<ClaimRecord>, String), CliError> {
     let mut printed = String::new();
-    let provenance = Provenance::new(&studies[0].seeds, &studies[0].loaded[0], args.quick);
+    let provenance = Provenance::new(&studies[0].seeds, &studies[0].contexts[0], args.quick);
     let mut panels = Vec::new();
     for (k, study) in studies.iter().enumerate() {
         let (md, csv, seeds_csv) = study_table(study, &provenance);
@@ -405,10 +410,7 @@ fn write_study(
                 "Table {} — {} (C, H, O, E) = {:?}\n{md}\n",
                 k + 1,
                 study.setting.name,
-                study.loaded[study.median()]
-                    .experiment
-                    .motivations()
-                    .as_array(),
+                study.contexts[study.median()].motivations.as_array(),
             );
         }
         panels.push(write_setting_figure(args, dir, study)?);
@@ -450,24 +452,24 @@ fn write_setting_figure(
     study: &SettingRuns<'_>,
 ) -> Result<FitnessPanel, CliError> {
     let m = study.median();
-    let exp = &study.loaded[m].experiment;
+    let ctx = &study.contexts[m];
     let title = format!(
         "{} (C,H,O,E) = {:?}, {}",
         study.setting.name,
-        exp.motivations().as_array(),
+        ctx.motivations.as_array(),
         study.median_label()
     );
     write_figure_at(
         &dir.join(format!("trajectories_{}.svg", study.setting.tag)),
         &best_paths_svg(
             &format!("Best robot, {title}"),
-            exp,
+            &ctx.rooms,
             &study.finished[m].trajectories(),
         ),
         rasteriser(args.png),
     )?;
     // The legend says what is drawn over how many seeds.
-    let panel = format!("{} {:?}", study.setting.name, exp.motivations().as_array());
+    let panel = format!("{} {:?}", study.setting.name, ctx.motivations.as_array());
     Ok(study.fitness_panel(&panel))
 }
 
@@ -489,7 +491,7 @@ fn page(
             Section {
                 id: study.setting.name,
                 title: format!("{} ({})", study.setting.name, study.median_label()),
-                loaded: &study.loaded[m],
+                ctx: &study.contexts[m],
                 done: &study.finished[m],
                 paper: Some(study.setting),
                 link: Some(format!(

@@ -16,6 +16,7 @@ use crate::files::guard::{StagedDir, io_err, matches};
 use crate::files::inputs::{Loaded, resolved_toml, run_identity};
 use crate::pipeline::progress::RunProgress;
 use crate::records::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
+use crate::records::context::RenderContext;
 use crate::records::{
     BestGenome, Finished, GenerationRow, RecognitionTable, RunSummary, read_json, to_csv, to_json,
 };
@@ -31,10 +32,10 @@ pub fn start_line(exp: &Experiment, out: &Path) -> String {
         exp.name(),
         exp.seed(),
         exp.runs().len(),
-        exp.ga().generations,
-        exp.ga().population,
+        exp.ga().generations(),
+        exp.ga().population(),
         exp.arenas().len(),
-        exp.trial_params().steps,
+        exp.trial_params().steps(),
         out.display()
     )
 }
@@ -125,7 +126,9 @@ pub fn read_back(
     }
     progress.skip(saved.runs.iter().map(|r| r.history.len()).sum());
     progress.note(&format!("{} is finished: read back", dir.display()));
-    let starts = saved.runs.iter().map(CheckpointRun::start).collect();
+    let starts = (saved.runs.iter())
+        .map(|r| r.start(exp))
+        .collect::<Result<_, _>>()?;
     let outcome = exp
         .run_from(starts, &mut |_, _| ControlFlow::Continue(()))
         .map_err(|e| CliError::runtime(e.to_string()))?;
@@ -161,7 +164,7 @@ impl<'a> Session<'a> {
                 cp
             };
             let cp = Checkpoint::load(&path, &runs, exp)?;
-            progress.note(&cp.resume_note(out, exp.ga().generations));
+            progress.note(&cp.resume_note(out, exp.ga().generations()));
             cp
         } else {
             Checkpoint::fresh(&runs)
@@ -190,13 +193,13 @@ impl<'a> Session<'a> {
         let mut starts = Vec::with_capacity(runs.len());
         for saved in &self.checkpoint.runs {
             progress.skip(saved.history.len());
-            starts.push(saved.start());
+            starts.push(saved.start(exp)?);
         }
         // A checkpoint that cannot be written stops the run (its error is returned).
         let mut write_error = None;
         let mut on_generation = |k: usize, state: &GenerationState<'_>| {
             let (g, best) = (state.history.len(), state.record().stats.max);
-            progress.generation(&runs[k].label, g, exp.ga().generations, best);
+            progress.generation(&runs[k].label, g, exp.ga().generations(), best);
             if let Err(e) = self.save(k, &runs[k].label, state) {
                 write_error = Some(e);
                 return ControlFlow::Break(());
@@ -251,6 +254,7 @@ fn write_run(
     last: &Checkpoint,
 ) -> Result<(), CliError> {
     let exp = &loaded.experiment;
+    let ctx = RenderContext::of(loaded);
     staged.write(
         "best_genome.json",
         to_json(&BestGenome::of(exp, &done.outcome.evolutions)),
@@ -258,9 +262,9 @@ fn write_run(
     staged.write("recognition.csv", RecognitionTable::of(exp, done).to_csv())?;
     staged.write(
         "table.md",
-        table_markdown(&done.rows) + &provenance_line(loaded),
+        table_markdown(&done.rows) + &provenance_line(&ctx),
     )?;
-    write_run_figures(staged, exp, done, png)?;
+    write_run_figures(staged, &ctx, done, png)?;
     staged.write("summary.json", to_json(&RunSummary::of(exp, done)))?;
     // The last checkpoint (in memory: the file may already be gone, when a run killed after
     // this step resumes from population.json) holds the final population: kept as
@@ -275,29 +279,25 @@ fn write_run(
     if checkpoint.exists() {
         std::fs::remove_file(&checkpoint).map_err(|e| io_err(&checkpoint, e))?;
     }
-    staged.write("report.html", report::run_page(loaded, done))
+    staged.write("report.html", report::run_page(&ctx, done))
 }
 
 /// `fitness.svg`, `terms.svg` and `trajectories.svg` (with PNGs when `png`).
 fn write_run_figures(
     staged: &StagedDir,
-    exp: &Experiment,
+    ctx: &RenderContext,
     done: &Finished,
     png: Option<&dyn Rasterise>,
 ) -> Result<(), CliError> {
-    let setting = format!(
-        "{} (C,H,O,E) = {:?}",
-        exp.name(),
-        exp.motivations().as_array()
-    );
+    let setting = format!("{} (C,H,O,E) = {:?}", ctx.name, ctx.motivations.as_array());
     let panels: Vec<_> = done
         .outcome
         .evolutions
         .iter()
         .map(|e| {
-            let title = match exp.training() {
+            let title = match ctx.training {
                 Training::AllRooms => setting.clone(),
-                Training::PerRoom => format!("{}: robot evolved in {}", exp.name(), e.run.label),
+                Training::PerRoom => format!("{}: robot evolved in {}", ctx.name, e.run.label),
             };
             (title, e.history.clone())
         })
@@ -306,9 +306,9 @@ fn write_run_figures(
     write_figure(staged, "terms", &terms_svg(&panels), png)?;
     let title = format!(
         "Best robot, {} (C, H, O, E) = {:?}",
-        exp.name(),
-        exp.motivations().as_array()
+        ctx.name,
+        ctx.motivations.as_array()
     );
-    let paths = best_paths_svg(&title, exp, &done.trajectories());
+    let paths = best_paths_svg(&title, &ctx.rooms, &done.trajectories());
     write_figure(staged, "trajectories", &paths, png)
 }

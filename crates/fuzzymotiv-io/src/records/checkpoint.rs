@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use fuzzymotiv::experiment::evolution::{GenerationRecord, GenerationState, Stopped};
+use fuzzymotiv::experiment::evolution::{GenerationRecord, GenerationState, Population, Stopped};
 use fuzzymotiv::experiment::outcome::Start;
 use fuzzymotiv::experiment::{Experiment, Run};
 use serde::{Deserialize, Serialize};
@@ -65,32 +65,37 @@ impl CheckpointRun {
         }
     }
 
-    /// Where the library's run continues this evolution ([`Experiment::run_from`]).
+    /// Where the library's run continues this evolution ([`Experiment::run_from`]); the
+    /// saved population is checked against the experiment's network.
     ///
     /// [`Experiment::run_from`]: fuzzymotiv::experiment::Experiment::run_from
-    pub fn start(&self) -> Start {
-        let population = self.population_f64();
+    pub fn start(&self, exp: &Experiment) -> Result<Start, CliError> {
+        if self.population.is_empty() && !self.done {
+            return Ok(Start::Fresh);
+        }
+        let population = self.population(exp)?;
         let history = self.history.clone();
-        match (self.done, population.is_empty()) {
-            (true, _) => Start::Finished {
+        Ok(if self.done {
+            Start::Finished {
                 population,
                 history,
-            },
-            (false, true) => Start::Fresh,
-            (false, false) => Start::Continue(Stopped {
+            }
+        } else {
+            Start::Continue(Stopped {
                 generation: history.len(),
                 population,
                 history,
-            }),
-        }
+            })
+        })
     }
 
-    /// The saved population as floats.
-    pub fn population_f64(&self) -> Vec<Vec<f64>> {
-        self.population
-            .iter()
+    /// The saved population as floats, checked against the experiment's network.
+    pub fn population(&self, exp: &Experiment) -> Result<Population, CliError> {
+        let genomes = (self.population.iter())
             .map(|g| g.iter().map(|&b| f64::from_bits(b)).collect())
-            .collect()
+            .collect();
+        exp.population(genomes)
+            .map_err(|e| CliError::input(format!("the checkpoint's population: {e}")))
     }
 }
 
@@ -129,15 +134,15 @@ impl Checkpoint {
             && cp.runs.iter().zip(runs).all(|(c, r)| {
                 c.label == r.label
                     && if c.done {
-                        c.history.len() == exp.ga().generations
-                            && c.population.len() == exp.ga().population
+                        c.history.len() == exp.ga().generations()
+                            && c.population.len() == exp.ga().population()
                     } else {
-                        c.history.len() < exp.ga().generations
+                        c.history.len() < exp.ga().generations()
                     }
                     && c.population
                         .iter()
                         .all(|g| g.len() == exp.shape().genome_len())
-                    && (c.history.is_empty() || c.population.len() == exp.ga().population)
+                    && (c.history.is_empty() || c.population.len() == exp.ga().population())
             });
         if !ok {
             return Err(CliError::input(format!(

@@ -25,7 +25,8 @@ use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::config::Training;
 use fuzzymotiv::experiment::evolution::{Evolution, GenerationRecord};
 use fuzzymotiv::experiment::outcome::Outcome;
-use fuzzymotiv::fitness::fuzzy::Motivations;
+use fuzzymotiv::fitness::fuzzy::{Explanation, Motivations};
+use fuzzymotiv::fitness::terms::FitnessTerms;
 use fuzzymotiv::simulation::trial::Trajectory;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -33,6 +34,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::files::error::CliError;
 
 pub mod checkpoint;
+pub mod context;
 
 /// The `program` field of every JSON file.
 pub const PROGRAM: &str = "fuzzymotiv";
@@ -69,19 +71,22 @@ pub struct Finished {
     pub outcome: Outcome,
     /// The per-room table.
     pub rows: Vec<RoomRow>,
+    /// Per room, the fuzzy fitness of the robot standing for it, rule by rule.
+    pub fuzzy: Vec<RoomFuzzy>,
     /// Wall time (s).
     pub wall_seconds: f64,
 }
 
 impl Finished {
-    /// The outcome of a run with its per-room table.
+    /// The outcome of a run with its per-room table and fuzzy fitness explained.
     pub fn new(exp: &Experiment, outcome: Outcome, wall_seconds: f64) -> Finished {
-        let rows = (0..exp.arenas().len())
-            .map(|r| RoomRow::of(&outcome, r))
-            .collect();
+        let rooms = 0..exp.arenas().len();
+        let rows = rooms.clone().map(|r| RoomRow::of(&outcome, r)).collect();
+        let fuzzy = rooms.map(|r| RoomFuzzy::of(exp, &outcome, r)).collect();
         Finished {
             outcome,
             rows,
+            fuzzy,
             wall_seconds,
         }
     }
@@ -189,6 +194,40 @@ impl RoomRow {
     }
 }
 
+/// The fuzzy fitness of the robot that stands for one room ([`Outcome::robot_for_room`]), in
+/// that room, as the GA evaluated it in the last generation (one trial, with noise): its terms,
+/// the fuzzy inputs Y they give and the rules that fired (docs/model.md §8).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoomFuzzy {
+    /// Room name.
+    pub room: String,
+    /// The measured terms a, g, l, b.
+    pub terms: FitnessTerms,
+    /// F in this room.
+    pub f: f64,
+    /// The fuzzy inputs Y (b or 1 − b by the energy mode), before clamping.
+    pub inputs: [f64; 4],
+    /// The firing rules and the sums that give F.
+    pub explanation: Explanation,
+}
+
+impl RoomFuzzy {
+    /// Room `r`'s: the library's [`Experiment::fuzzy_inputs`] and explanation of its robot's
+    /// terms.
+    fn of(exp: &Experiment, outcome: &Outcome, r: usize) -> RoomFuzzy {
+        let (evo, k) = outcome.robot_for_room(r);
+        let score = &evo.evaluations[evo.best].per_room[k];
+        let inputs = exp.fuzzy_inputs(&score.terms);
+        RoomFuzzy {
+            room: exp.arenas()[r].room().name.clone(),
+            terms: score.terms,
+            f: score.f,
+            inputs,
+            explanation: exp.fuzzy().explain(exp.motivations(), inputs),
+        }
+    }
+}
+
 /// The motivations X = (C, H, O, E) as files record them.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MotivationsRecord {
@@ -206,10 +245,10 @@ impl MotivationsRecord {
     /// The record of `m`.
     pub fn of(m: &Motivations) -> MotivationsRecord {
         MotivationsRecord {
-            curiosity: m.curiosity,
-            energy: m.energy,
-            homing: m.homing,
-            orientation: m.orientation,
+            curiosity: m.curiosity(),
+            energy: m.energy(),
+            homing: m.homing(),
+            orientation: m.orientation(),
         }
     }
 
@@ -301,9 +340,9 @@ impl RunSummary {
             seed: exp.seed(),
             motivations: MotivationsRecord::of(exp.motivations()),
             training: exp.training(),
-            population: exp.ga().population,
-            generations: exp.ga().generations,
-            steps: exp.trial_params().steps,
+            population: exp.ga().population(),
+            generations: exp.ga().generations(),
+            steps: exp.trial_params().steps(),
             rooms: done.rows.clone(),
             runs,
             wall_seconds: done.wall_seconds,
@@ -443,9 +482,9 @@ impl BestGenome {
             version: fuzzymotiv::VERSION.into(),
             seed: Some(exp.seed()),
             shape: ShapeRecord {
-                hidden: shape.hidden,
-                inputs: shape.inputs,
-                outputs: shape.outputs,
+                hidden: shape.hidden(),
+                inputs: shape.inputs(),
+                outputs: shape.outputs(),
             },
             layout: GENOME_LAYOUT.into(),
             run: first.run,

@@ -1,9 +1,12 @@
-//! Rendering, from records only: tables ([`tables`]), the paper's study with its statistics
+//! Rendering, from records and a run's [`RenderContext`](crate::records::context::RenderContext)
+//! only, never the live experiment: tables ([`tables`]), the paper's study with its statistics
 //! and claims ([`study`]), hand-written SVG figures ([`svg`]) written as files with an optional
-//! PNG beside them ([`figures`]), and the self-contained report page ([`report`]).
+//! PNG beside them ([`figures`]), the fitness terms in words ([`terms`]) and the self-contained
+//! report page ([`report`]).
 
 pub mod figures;
 pub mod report;
 pub mod study;
 pub mod svg;
 pub mod tables;
+pub mod terms;

@@ -7,22 +7,19 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::config::{EnergyMode, Training};
+use fuzzymotiv::experiment::config::Training;
 use fuzzymotiv::experiment::modelling::InstanceRun;
-use fuzzymotiv::fitness::fuzzy::label_name;
-use fuzzymotiv::fitness::terms::Homing;
-use fuzzymotiv::simulation::robot::Motion;
 use fuzzymotiv::simulation::sensor::SENSOR_LAYOUT;
 use serde_json::{Value, json};
 
-use crate::files::inputs::{Loaded, resolved_toml};
-use crate::records::{Finished, RoomRow};
+use crate::records::context::RenderContext;
+use crate::records::{Finished, RoomFuzzy, RoomRow};
 use crate::render::study::Setting;
 use crate::render::svg::{
     SomRoom, best_paths_svg, colour, esc, fitness_svg, membership_svg, som_svg, terms_svg,
     trajectories_svg,
 };
+use crate::render::terms::{NAMES, html, terms};
 
 const CSS: &str = include_str!("report/report.css");
 const SCRIPT: &str = include_str!("report/replay.js");
@@ -53,13 +50,12 @@ impl Page {
     }
 
     /// Adds a replay widget for the given rooms (from [`replay_room`]) at this point of the page.
-    pub fn replay(&mut self, exp: &Experiment, rooms: Vec<Value>) {
+    pub fn replay(&mut self, ctx: &RenderContext, rooms: Vec<Value>) {
         let k = self.replays.len();
-        let trial = &exp.trial_params();
         self.replays.push(json!({
             "robot": {
-                "radius": trial.robot.radius,
-                "dt": trial.dt,
+                "radius": ctx.robot_radius,
+                "dt": ctx.dt,
                 "ray": RAY_MM,
                 "sensors": SENSOR_LAYOUT.iter().map(|m| [m.x, m.y, m.facing_deg]).collect::<Vec<_>>(),
             },
@@ -124,8 +120,8 @@ fn action_letter(a: fuzzymotiv::modelling::aem::Action) -> char {
 
 /// Compact replay data of one trial (positions to 0.1 mm, angles and motors to 3 decimals,
 /// sensors to integers; actions and collisions as one character per step).
-pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, run: &InstanceRun) -> Value {
-    let r = exp.arenas()[room].room();
+pub fn replay_room(ctx: &RenderContext, room: usize, run_label: &str, run: &InstanceRun) -> Value {
+    let r = &ctx.rooms[room];
     let pts = |p: &[fuzzymotiv::simulation::geom::Vec2]| {
         p.iter().map(|v| [r1(v.x), r1(v.y)]).collect::<Vec<_>>()
     };
@@ -149,7 +145,7 @@ pub fn replay_room(exp: &Experiment, room: usize, run_label: &str, run: &Instanc
         "i": tr.idle.iter().map(|&i| if i { '1' } else { '0' }).collect::<String>(),
         "c": tr.collisions.iter().map(|&c| if c { '1' } else { '0' }).collect::<String>(),
         "terms": {"a": r3(terms.a), "g": r3(terms.g), "l": r3(terms.l), "b": r3(terms.b)},
-        "online_l": exp.orientation() == fuzzymotiv::experiment::config::OrientationMode::Online && exp.motivations().orientation > 0.0,
+        "online_l": ctx.online_orientation(),
         "f": r3(f),
     })
 }
@@ -160,8 +156,8 @@ pub struct Section<'a> {
     pub id: &'a str,
     /// Heading of the section (reproduce) or of the page (run).
     pub title: String,
-    /// The config and experiment.
-    pub loaded: &'a Loaded,
+    /// The run's setting.
+    pub ctx: &'a RenderContext,
     /// The results.
     pub done: &'a Finished,
     /// The paper's values, for the reproduce page.
@@ -176,23 +172,22 @@ pub struct Section<'a> {
 }
 
 /// `report.html` of a run directory.
-pub fn run_page(loaded: &Loaded, done: &Finished) -> String {
-    let exp = &loaded.experiment;
-    let mut page = Page::new(format!("fuzzymotiv run report — {}", exp.name()));
+pub fn run_page(ctx: &RenderContext, done: &Finished) -> String {
+    let mut page = Page::new(format!("fuzzymotiv run report — {}", ctx.name));
     let _ = writeln!(
         page.body,
         "<h1>Run report: {}</h1>\n<p class=\"meta\">fuzzymotiv {} · seed {} · wall time {:.2} s · {}</p>",
-        esc(exp.name()),
+        esc(&ctx.name),
         fuzzymotiv::VERSION,
-        exp.seed(),
+        ctx.seed,
         done.wall_seconds,
-        esc(&setting_line(exp))
+        esc(&setting_line(ctx))
     );
     page.push(&intro());
     let section = Section {
         id: "run",
-        title: exp.name().to_string(),
-        loaded,
+        title: ctx.name.clone(),
+        ctx,
         done,
         paper: None,
         link: None,
@@ -254,7 +249,7 @@ pub fn reproduce_page(
             "<h2 id=\"{}\">Setting: {}</h2>\n<p class=\"meta\">{}{}</p>",
             s.id,
             esc(&s.title),
-            esc(&setting_line(&s.loaded.experiment)),
+            esc(&setting_line(s.ctx)),
             s.link.as_ref().map_or(String::new(), |l| format!(
                 " · its run directory's own report: <a href=\"{}\">{}</a>",
                 esc(l),
@@ -320,7 +315,7 @@ fn overview_table(page: &mut Page, sections: &[Section<'_>]) {
 pub fn replay_page(
     title: &str,
     about: &str,
-    exp: &Experiment,
+    ctx: &RenderContext,
     trials: &[(usize, String, InstanceRun)],
 ) -> String {
     let mut page = Page::new(title.to_string());
@@ -340,7 +335,7 @@ pub fn replay_page(
     );
     let pairs: Vec<_> = trials
         .iter()
-        .map(|(r, _, run)| (exp.arenas()[*r].room(), &run.trajectory))
+        .map(|(r, _, run)| (&ctx.rooms[*r], &run.trajectory))
         .collect();
     figure(
         &mut page,
@@ -349,43 +344,49 @@ pub fn replay_page(
     );
     let rooms = trials
         .iter()
-        .map(|(r, label, tr)| replay_room(exp, *r, label, tr))
+        .map(|(r, label, tr)| replay_room(ctx, *r, label, tr))
         .collect();
-    page.replay(exp, rooms);
+    page.replay(ctx, rooms);
     page.finish()
 }
 
 /// The motivations as "(C, H, O, E)" numbers.
-pub fn xs(exp: &Experiment) -> String {
-    let m = exp.motivations();
+pub fn xs(ctx: &RenderContext) -> String {
+    let m = &ctx.motivations;
     format!(
         "({}, {}, {}, {})",
         m.curiosity, m.homing, m.orientation, m.energy
     )
 }
 
-fn setting_line(exp: &Experiment) -> String {
+fn setting_line(ctx: &RenderContext) -> String {
     format!(
         "motivations (C, H, O, E) = {} · rooms {} · {} · population {} × {} generations · {} steps per trial",
-        xs(exp),
-        exp.room_names().join(", "),
-        match exp.training() {
+        xs(ctx),
+        ctx.room_names().join(", "),
+        match ctx.training {
             Training::AllRooms => "one robot evolved in all rooms",
             Training::PerRoom => "one robot evolved per room",
         },
-        exp.ga().population,
-        exp.ga().generations,
-        exp.trial_params().steps
+        ctx.population,
+        ctx.generations,
+        ctx.steps
     )
 }
 
 fn intro() -> String {
-    "<p>A population of simulated Khepera robots, each controlled by a small neural network, is \
-     evolved by a genetic algorithm. A robot's fitness F combines four measured fitness terms \
-     (exploration a, homing g, recognition l, battery b) through a fuzzy rule base weighted by the \
-     robot's <i>motivations</i> (curiosity C, homing H, orientation O, energy E). The best robot of \
-     the last generation is then asked to recognise rooms from its own sequence of actions.</p>\n"
-        .to_string()
+    let names: Vec<String> = NAMES
+        .iter()
+        .map(|(symbol, name, _)| format!("{name} {symbol}"))
+        .collect();
+    format!(
+        "<p>A population of simulated Khepera robots, each controlled by a small neural network, is \
+         evolved by a genetic algorithm. A robot's fitness F combines four measured fitness terms \
+         ({}) through a fuzzy rule base weighted by the \
+         robot's <i>motivations</i> (curiosity C, homing H, orientation O, energy E). The best robot of \
+         the last generation is then asked to recognise rooms from its own sequence of actions.</p>\n",
+        names.join(", ")
+    )
 }
 
 fn toc(id: &str) -> String {
@@ -418,10 +419,9 @@ fn heading(page: &mut Page, level: u8, id: &str, part: &str, text: &str) {
 }
 
 fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
-    let exp = &s.loaded.experiment;
     let done = s.done;
-    let names = exp.room_names();
-    let label = |evo: &fuzzymotiv::experiment::evolution::Evolution| match exp.training() {
+    let names = s.ctx.room_names();
+    let label = |evo: &fuzzymotiv::experiment::evolution::Evolution| match s.ctx.training {
         Training::AllRooms => s.title.clone(),
         Training::PerRoom => format!("{}: robot evolved in {}", s.title, evo.run.label),
     };
@@ -479,13 +479,12 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
         page.body,
         "<p>The fully resolved configuration (every key, with the seed); run it again with <code>fuzzymotiv run config.resolved.toml</code>. Wall time of this run: {:.2} s.</p>\n<details><summary>config.resolved.toml</summary><pre class=\"config\">{}</pre></details>",
         done.wall_seconds,
-        esc(&resolved_toml(&s.loaded.raw))
+        esc(&s.ctx.config_text)
     );
 }
 
 /// The per-room table, with the paper's values on the reproduce page.
 fn rooms_table(page: &mut Page, s: &Section<'_>) {
-    let exp = &s.loaded.experiment;
     let done = s.done;
     page.push("<table><tr><th>room</th><th>average fitness</th><th>% optimal exploration</th><th>% recognition</th><th>% battery usage</th><th>% homing</th></tr>\n");
     for r in &done.rows {
@@ -515,7 +514,7 @@ fn rooms_table(page: &mut Page, s: &Section<'_>) {
     let _ = writeln!(
         page.body,
         "</table>\n<p class=\"caption\"><b>average fitness</b>: mean F of the final generation's population in that room. The other columns come from {} test runs of the best robot per room (fresh noise each): <b>% optimal exploration</b> = mean 100·a, <b>% recognition</b> = share of test runs whose room was recognised correctly, <b>% battery usage</b> = mean 100·b, <b>% homing</b> = mean 100·g.{}</p>",
-        exp.aem().test_runs,
+        s.ctx.aem.test_runs,
         if s.paper.is_some() {
             " Grey: the paper's value (Tables 1 and 2)."
         } else {
@@ -526,13 +525,12 @@ fn rooms_table(page: &mut Page, s: &Section<'_>) {
 
 /// The best robot's paths (its room-modelling runs) and their replay.
 fn paths_part(page: &mut Page, s: &Section<'_>) {
-    let exp = &s.loaded.experiment;
-    let done = s.done;
+    let (ctx, done) = (s.ctx, s.done);
     figure(
         page,
         &best_paths_svg(
             &format!("Best robot, {}", s.title),
-            exp,
+            &ctx.rooms,
             &done.trajectories(),
         ),
         "Each room to scale, seen from above: green circle and line = home pose (start of every trial), red line = the best robot's path in its room-modelling run (the run whose actions became the room's stored instance), filled circle = where it ended.",
@@ -547,18 +545,18 @@ fn paths_part(page: &mut Page, s: &Section<'_>) {
          room recognition works with. The strip under the room shows the actions of all steps; \
          click it, drag the slider or use the arrow keys to move in time.</p>\n",
     );
-    let rooms = (0..exp.arenas().len())
+    let rooms = (0..ctx.rooms.len())
         .map(|r| {
             let (evo, _) = done.outcome.robot_for_room(r);
-            replay_room(exp, r, &evo.run.label, done.outcome.instance(r))
+            replay_room(ctx, r, &evo.run.label, done.outcome.instance(r))
         })
         .collect();
-    page.replay(exp, rooms);
+    page.replay(ctx, rooms);
 }
 
 /// The motivations as bars, the terms and how F is computed, the membership functions.
-fn fuzzy_intro(page: &mut Page, exp: &Experiment) {
-    let m = exp.motivations();
+fn fuzzy_intro(page: &mut Page, ctx: &RenderContext) {
+    let m = &ctx.motivations;
     page.push("<p>The robot's <b>motivations</b> X weight the four fitness terms Y it is measured on:</p>\n<div class=\"bars\">\n");
     for (name, v, colour) in [
         ("curiosity C", m.curiosity, "#2ca02c"),
@@ -572,73 +570,54 @@ fn fuzzy_intro(page: &mut Page, exp: &Experiment) {
             100.0 * v
         );
     }
-    let battery = match exp.energy() {
-        EnergyMode::Use => "the fuzzy input is b itself (energy is \"the opposite of laziness\")",
-        EnergyMode::Conserve => "with <code>energy = \"conserve\"</code> the fuzzy input is 1 − b",
-    };
-    // As docs/model.md §7 defines g and b for this experiment's homing and motion models.
-    let homing = match exp.homing() {
-        Homing::Escape => {
-            "if the robot left the home zone during the trial, else 0 (a robot that never leaves home has not homed)"
-        }
-        Homing::Distance => "whether or not the robot left the home zone",
-    };
-    let usage = match exp.trial_params().robot.motion {
-        Motion::Actions => {
-            "the executed steps divided by the trial's steps: every action (a move or a turn) uses one unit, a step after the trial ended at home none"
-        }
-        Motion::Wheels => {
-            "the mean over the trial's steps of (|sL| + |sR|) / (2·v_max), the commanded wheel speeds as a fraction of the maximum (1 = always full speed)"
-        }
-    };
+    // The terms as this run's homing, motion and energy modes define them (docs/model.md §7).
+    page.push("</div>\n<dl class=\"terms\">");
+    for t in terms(ctx.homing, ctx.motion, ctx.energy) {
+        let _ = write!(
+            page.body,
+            "<dt>{}</dt><dd><b>{}</b>: {}</dd>",
+            t.symbol,
+            esc(t.title),
+            html(&t.definition.join(" "))
+        );
+    }
+    let fuzzy = &ctx.fuzzy;
+    let labels = fuzzy.label_names.len();
     let _ = writeln!(
         page.body,
-        "</div>\n<dl class=\"terms\">\
-<dt>a</dt><dd><b>exploration</b>: the 50 mm grid cells the robot's centre entered, divided by the optimum (what a robot at full speed that never revisits a cell could reach, at most every reachable cell).</dd>\
-<dt>g</dt><dd><b>homing</b>: 1 − (distance from home at the end) / (largest distance from home to a corner of the room), {homing}.</dd>\
-<dt>l</dt><dd><b>orientation (recognition)</b>: 0 during evolution in the paper (O = 0); with online orientation, the share of rooms the robot recognised.</dd>\
-<dt>b</dt><dd><b>battery usage</b>: {usage}; {battery}.</dd></dl>\
+        "</dl>\
 <p><b>How F is computed.</b> Each term y is described by fuzzy labels, very low (V.L.) to very high (V.H.) by default, with the membership functions below. A rule takes one label per term, e.g. \"if a is H and g is L and l is V.L. and b is H\"; with {labels} labels there are {labels}⁴ = {rules} rules. A rule fires with strength w = the smallest membership of its four labels, and proposes f = C·a·c(label of a) + H·g·c(label of g) + O·l·c(label of l) + E·b·c(label of b), where c = {:?} rises with the label. The fitness is the weighted mean <b>F = Σ w·f / Σ w</b>; since every value lies between two label peaks, at most 16 rules fire at once.</p>",
-        exp.fuzzy().coefficients(),
-        labels = exp.fuzzy().labels(),
-        rules = exp.fuzzy().rule_count(),
+        fuzzy.coefficients,
+        rules = fuzzy.rule_count,
     );
-    let names: Vec<String> = (0..exp.fuzzy().labels())
-        .map(|k| label_name(k, exp.fuzzy().labels()))
-        .collect();
     figure(
         page,
-        &membership_svg(exp.fuzzy().peaks(), &names),
+        &membership_svg(&fuzzy.peaks, &fuzzy.label_names),
         "Triangular membership functions: each value belongs to at most two neighbouring labels, and its memberships add up to 1.",
     );
 }
 
 fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
-    let exp = &s.loaded.experiment;
-    fuzzy_intro(page, exp);
+    fuzzy_intro(page, s.ctx);
     page.push(
         "<p>The best robot of the last generation, as the GA evaluated it (one trial per room, \
          with noise). F is its fitness in that room; the robot's overall fitness is the mean F over \
          its rooms. Open a row's rules to see how F came about.</p>\n",
     );
     page.push("<table><tr><th>room</th><th>a</th><th>g</th><th>l</th><th>b</th><th>F</th><th class=\"left\">firing rules</th></tr>\n");
-    for r in 0..exp.arenas().len() {
-        let (evo, k) = s.done.outcome.robot_for_room(r);
-        let score = &evo.evaluations[evo.best].per_room[k];
-        let y = exp.fuzzy_inputs(&score.terms);
-        let ex = exp.fuzzy().explain(exp.motivations(), y);
-        let t = score.terms;
-        let rules = rules_html(exp, &ex, y);
+    for room in &s.done.fuzzy {
+        let t = room.terms;
+        let rules = rules_html(s.ctx, room);
         let _ = writeln!(
             page.body,
             "<tr><td>{}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td><b>{:.4}</b></td><td class=\"left\"><details><summary>{} rules</summary>{rules}</details></td></tr>",
-            esc(&exp.arenas()[r].room().name),
+            esc(&room.room),
             t.a,
             t.g,
             t.l,
             t.b,
-            score.f,
-            ex.rules.len()
+            room.f,
+            room.explanation.rules.len()
         );
     }
     page.push("</table>\n");
@@ -656,9 +635,8 @@ fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
 }
 
 fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
-    let exp = &s.loaded.experiment;
-    let done = s.done;
-    if !exp.aem().enabled || done.outcome.modelling.iter().all(|a| a.som_nodes == 0) {
+    let (ctx, done) = (s.ctx, s.done);
+    if !ctx.aem.enabled || done.outcome.modelling.iter().all(|a| a.som_nodes == 0) {
         page.push("<p>Room recognition was not run (<code>aem.enabled = false</code>).</p>\n");
         return;
     }
@@ -671,8 +649,7 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
          some node; rooms whose r-node lies within {} nodes of it are candidates, and the candidate \
          whose stored vector is nearest is the answer (no candidate = not recognised). Rooms whose \
          paths look alike get nearby r-nodes and are easily confused.</p>",
-        exp.aem().som.nodes,
-        exp.aem().threshold
+        ctx.aem.som_nodes, ctx.aem.threshold
     );
     for (k, rep) in done.outcome.modelling.iter().enumerate() {
         let rooms: Vec<SomRoom<'_>> = rep
@@ -686,7 +663,7 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
                 })
             })
             .collect();
-        let title = match exp.training() {
+        let title = match ctx.training {
             Training::AllRooms => "The rooms on the SOM line".to_string(),
             Training::PerRoom => format!(
                 "The rooms on the SOM line of the robot evolved in {}",
@@ -695,14 +672,14 @@ fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
         };
         figure(
             page,
-            &som_svg(&title, rep.som_nodes, exp.aem().threshold, &rooms),
+            &som_svg(&title, rep.som_nodes, ctx.aem.threshold, &rooms),
             "Each room's r-node on the line of SOM nodes, with the window of nodes a test run's winner must fall in for that room to be a candidate; dots are the winners of the test runs, coloured by the room the robot was really in.",
         );
     }
-    confusion_table(page, exp, done, names);
+    confusion_table(page, ctx, done, names);
 }
 
-fn confusion_table(page: &mut Page, exp: &Experiment, done: &Finished, names: &[String]) {
+fn confusion_table(page: &mut Page, ctx: &RenderContext, done: &Finished, names: &[String]) {
     page.push(
         "<h4>Confusion matrix</h4>\n<table class=\"cm\"><tr><th>true room ↓ / recognised as →</th>",
     );
@@ -749,7 +726,7 @@ fn confusion_table(page: &mut Page, exp: &Experiment, done: &Finished, names: &[
     let _ = writeln!(
         page.body,
         "</table>\n<p class=\"caption\">Counts of test runs ({} per room, fresh noise each): row = the room the robot was in, column = the room it was recognised as. The diagonal (green outline) counts correct answers. The same numbers are in <code>recognition.csv</code>.</p>",
-        exp.aem().test_runs
+        ctx.aem.test_runs
     );
 }
 
@@ -792,11 +769,8 @@ fn files_list() -> String {
 }
 
 /// One room's firing rules as an HTML table, with the sums that give F.
-fn rules_html(
-    exp: &Experiment,
-    ex: &fuzzymotiv::fitness::fuzzy::Explanation,
-    y: [f64; 4],
-) -> String {
+fn rules_html(ctx: &RenderContext, room: &RoomFuzzy) -> String {
+    let (ex, y) = (&room.explanation, room.inputs);
     let mut rules = String::from(
         "<table><tr><th>rule</th><th class=\"left\">if …</th><th>w</th><th>f</th><th>w·f</th></tr>",
     );
@@ -829,7 +803,7 @@ fn rules_html(
         y[1],
         y[2],
         y[3],
-        xs(exp)
+        xs(ctx)
     );
     rules
 }

@@ -2,12 +2,12 @@
 //! ablation's variants, a setting's runs over seeds with their statistics, and the paper's
 //! claims tested on them.
 
-use crate::files::inputs::Loaded;
 use fuzzymotiv::statistics::{self, Expect, Settings};
 
+use crate::records::context::RenderContext;
 use crate::records::{
-    ClaimRecord, ClaimStats, Finished, GenerationStat, MotivationsRecord, RoomRow, SeedSummary,
-    SettingSummary, TableRow,
+    ClaimRecord, ClaimStats, Finished, GenerationStat, RoomRow, SeedSummary, SettingSummary,
+    TableRow,
 };
 use crate::render::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
 
@@ -121,8 +121,8 @@ pub struct SettingRuns<'a> {
     pub setting: &'a Setting,
     /// Its seeds.
     pub seeds: Vec<u64>,
-    /// Per seed, the config.
-    pub loaded: Vec<Loaded>,
+    /// Per seed, the run's setting.
+    pub contexts: Vec<RenderContext>,
     /// Per seed, the results.
     pub finished: Vec<Finished>,
 }
@@ -214,7 +214,7 @@ impl SettingRuns<'_> {
     /// The setting in `summary.json`: the documented fields (rows, first and last generation)
     /// are means over seeds; `std` and `per_seed` give the spread.
     pub fn summary(&self) -> SettingSummary {
-        let exp = &self.loaded[0].experiment;
+        let ctx = &self.contexts[0];
         let rows = &self.finished[0].rows;
         let stats: Vec<_> = (0..rows.len()).map(|i| room_stats(self, i)).collect();
         let table = |std: bool| -> Vec<TableRow> {
@@ -243,13 +243,13 @@ impl SettingRuns<'_> {
         };
         SettingSummary {
             name: self.setting.name.into(),
-            motivations: MotivationsRecord::of(exp.motivations()),
+            motivations: ctx.motivations,
             rows: table(false),
             std: table(true),
             first_generation: stat(false),
             last_generation: stat(true),
-            population: exp.ga().population,
-            generations: exp.ga().generations,
+            population: ctx.population,
+            generations: ctx.generations,
             median_seed: self.seeds[self.median()],
             per_seed: self.per_seed(),
         }

@@ -3,7 +3,6 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::evolution::GenerationRecord;
 use fuzzymotiv::simulation::geom::{Vec2, point_in_polygon};
 use fuzzymotiv::simulation::room::Room;
@@ -310,13 +309,8 @@ fn draw_legend(s: &mut String, entries: &[(LegendMark, &str)], (x0, x1): (f64, f
 
 /// Every room of the experiment with the best robot's path in it (`trajectories[r]` for room
 /// `r`), as [`trajectories_svg`] draws them.
-pub fn best_paths_svg(title: &str, exp: &Experiment, trajectories: &[&Trajectory]) -> String {
-    let pairs: Vec<_> = exp
-        .arenas()
-        .iter()
-        .map(|a| a.room())
-        .zip(trajectories.iter().copied())
-        .collect();
+pub fn best_paths_svg(title: &str, rooms: &[Room], trajectories: &[&Trajectory]) -> String {
+    let pairs: Vec<_> = rooms.iter().zip(trajectories.iter().copied()).collect();
     trajectories_svg(title, &pairs)
 }
 

@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::experiment::config::Training;
 
-use crate::files::inputs::Loaded;
+use crate::records::context::RenderContext;
 use crate::records::{ClaimRecord, RoomRow};
 use crate::render::study::{SettingRuns, Variant, metrics, paper_row, room_stats};
 use crate::render::svg::esc;
@@ -48,16 +48,15 @@ pub fn mean_std_cell(mean: f64, std: f64, n: usize, d: usize) -> String {
 
 /// Where a table came from, as a Markdown line below it: program version, seed, GA size, trial
 /// length and training (so a small trial run and a paper-scale one never look alike).
-pub fn provenance_line(loaded: &Loaded) -> String {
-    let exp = &loaded.experiment;
+pub fn provenance_line(ctx: &RenderContext) -> String {
     format!(
         "\nfuzzymotiv {} · seed {} · GA {} robots × {} generations · {} steps per trial · training {}\n",
         fuzzymotiv::VERSION,
-        exp.seed(),
-        exp.ga().population,
-        exp.ga().generations,
-        exp.trial_params().steps,
-        match loaded.raw.training {
+        ctx.seed,
+        ctx.population,
+        ctx.generations,
+        ctx.steps,
+        match ctx.training {
             Training::AllRooms => "all-rooms",
             Training::PerRoom => "per-room",
         },
@@ -77,12 +76,12 @@ pub struct Provenance {
 }
 
 impl Provenance {
-    /// The provenance of a study of `seeds` whose first config is `loaded`.
-    pub fn new(seeds: &[u64], loaded: &Loaded, quick: bool) -> Provenance {
+    /// The provenance of a study of `seeds` whose first run's setting is `ctx`.
+    pub fn new(seeds: &[u64], ctx: &RenderContext, quick: bool) -> Provenance {
         Provenance {
             seeds: seeds.to_vec(),
-            population: loaded.experiment.ga().population,
-            generations: loaded.experiment.ga().generations,
+            population: ctx.population,
+            generations: ctx.generations,
             quick,
         }
     }

@@ -9,31 +9,62 @@ use crate::random::rng::{Rng, index, standard_normal, uniform, uniform01};
 /// A genome: the controller's weights.
 pub type Genome = Vec<f64>;
 
-/// GA parameters, `[ga]` in a config (docs/model.md §6 defaults); [`GaParams::validate`] checks
-/// the ranges below.
+/// `[ga]` in a config, as written (docs/model.md §6 defaults): see [`GaParams`] for each
+/// field's unit, default and range; [`GaParams::from_raw`] checks them.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct GaParams {
-    /// Population size (individuals); default 200; range 2..=10⁶.
+pub struct RawGa {
+    /// [`GaParams::population`].
     pub population: usize,
-    /// Generations; default 200; range 1..=10⁶.
+    /// [`GaParams::generations`].
     pub generations: usize,
-    /// Best individuals copied unchanged into the next generation; default 2; below `population`.
+    /// [`GaParams::elite`].
     pub elite: usize,
-    /// Parents are drawn uniformly from this best fraction of the population; default 0.2;
-    /// range (0, 1].
+    /// [`GaParams::parent_fraction`].
     pub parent_fraction: f64,
-    /// Probability of one-point crossover per child; default 0.5; range [0, 1].
+    /// [`GaParams::crossover`].
     pub crossover: f64,
-    /// Per-gene mutation probability; default 0.01; range [0, 1].
+    /// [`GaParams::mutation_rate`].
     pub mutation_rate: f64,
-    /// Standard deviation of the Gaussian mutation (weight units); default 0.5; ≥ 0, finite.
+    /// [`GaParams::mutation_sigma`].
     pub mutation_sigma: f64,
-    /// Genes are clamped to [−limit, limit] (weight units); default 5; range (0, 10⁶].
+    /// [`GaParams::weight_limit`].
     pub weight_limit: f64,
-    /// Initial genes are drawn from U(−init_range, init_range); default 1; range
-    /// [0, `weight_limit`].
+    /// [`GaParams::init_range`].
     pub init_range: f64,
+}
+
+impl Default for RawGa {
+    fn default() -> Self {
+        let d = GaParams::default();
+        Self {
+            population: d.population,
+            generations: d.generations,
+            elite: d.elite,
+            parent_fraction: d.parent_fraction,
+            crossover: d.crossover,
+            mutation_rate: d.mutation_rate,
+            mutation_sigma: d.mutation_sigma,
+            weight_limit: d.weight_limit,
+            init_range: d.init_range,
+        }
+    }
+}
+
+/// Checked GA parameters (docs/model.md §6): built by [`GaParams::from_raw`] (or
+/// [`GaParams::default`]), read through the accessors, each documented with its unit, default
+/// and range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GaParams {
+    population: usize,
+    generations: usize,
+    elite: usize,
+    parent_fraction: f64,
+    crossover: f64,
+    mutation_rate: f64,
+    mutation_sigma: f64,
+    weight_limit: f64,
+    init_range: f64,
 }
 
 impl Default for GaParams {
@@ -53,57 +84,119 @@ impl Default for GaParams {
 }
 
 impl GaParams {
-    /// Checks every field against the range documented on it, naming the first field out of
-    /// range as `ga.FIELD`.
-    pub fn validate(&self) -> Result<(), FieldError> {
+    /// Population size (individuals); default 200; range 2..=10⁶.
+    pub fn population(&self) -> usize {
+        self.population
+    }
+
+    /// Generations; default 200; range 1..=10⁶.
+    pub fn generations(&self) -> usize {
+        self.generations
+    }
+
+    /// Best individuals copied unchanged into the next generation; default 2; below
+    /// `population`.
+    pub fn elite(&self) -> usize {
+        self.elite
+    }
+
+    /// Parents are drawn uniformly from this best fraction of the population; default 0.2;
+    /// range (0, 1].
+    pub fn parent_fraction(&self) -> f64 {
+        self.parent_fraction
+    }
+
+    /// Probability of one-point crossover per child; default 0.5; range [0, 1].
+    pub fn crossover(&self) -> f64 {
+        self.crossover
+    }
+
+    /// Per-gene mutation probability; default 0.01; range [0, 1].
+    pub fn mutation_rate(&self) -> f64 {
+        self.mutation_rate
+    }
+
+    /// Standard deviation of the Gaussian mutation (weight units); default 0.5; ≥ 0, finite.
+    pub fn mutation_sigma(&self) -> f64 {
+        self.mutation_sigma
+    }
+
+    /// Genes are clamped to [−limit, limit] (weight units); default 5; range (0, 10⁶].
+    pub fn weight_limit(&self) -> f64 {
+        self.weight_limit
+    }
+
+    /// Initial genes are drawn from U(−init_range, init_range); default 1; range
+    /// [0, `weight_limit`].
+    pub fn init_range(&self) -> f64 {
+        self.init_range
+    }
+}
+
+impl GaParams {
+    /// Checks `[ga]` against the ranges documented on the accessors, naming the first field
+    /// out of range as `ga.FIELD`.
+    pub fn from_raw(raw: &RawGa) -> Result<GaParams, FieldError> {
+        check((2..=BIG).contains(&raw.population), "ga.population", || {
+            format!("must be an integer in 2..={BIG}, got {}", raw.population)
+        })?;
         check(
-            (2..=BIG).contains(&self.population),
-            "ga.population",
-            || format!("must be an integer in 2..={BIG}, got {}", self.population),
-        )?;
-        check(
-            (1..=BIG).contains(&self.generations),
+            (1..=BIG).contains(&raw.generations),
             "ga.generations",
-            || format!("must be an integer in 1..={BIG}, got {}", self.generations),
+            || format!("must be an integer in 1..={BIG}, got {}", raw.generations),
         )?;
-        check(self.elite < self.population, "ga.elite", || {
+        check(raw.elite < raw.population, "ga.elite", || {
             format!(
                 "must be smaller than ga.population ({}), got {}",
-                self.population, self.elite
+                raw.population, raw.elite
             )
         })?;
         check(
-            self.parent_fraction.is_finite()
-                && self.parent_fraction > 0.0
-                && self.parent_fraction <= 1.0,
+            raw.parent_fraction.is_finite()
+                && raw.parent_fraction > 0.0
+                && raw.parent_fraction <= 1.0,
             "ga.parent_fraction",
-            || format!("must be in (0, 1], got {}", self.parent_fraction),
+            || format!("must be in (0, 1], got {}", raw.parent_fraction),
         )?;
-        check(unit(self.crossover), "ga.crossover", || {
-            format!("must be a probability in [0, 1], got {}", self.crossover)
+        check(unit(raw.crossover), "ga.crossover", || {
+            format!("must be a probability in [0, 1], got {}", raw.crossover)
         })?;
-        check(unit(self.mutation_rate), "ga.mutation_rate", || {
-            format!(
-                "must be a probability in [0, 1], got {}",
-                self.mutation_rate
-            )
+        check(unit(raw.mutation_rate), "ga.mutation_rate", || {
+            format!("must be a probability in [0, 1], got {}", raw.mutation_rate)
         })?;
+        Self::check_weights(raw)?;
+        Ok(GaParams {
+            population: raw.population,
+            generations: raw.generations,
+            elite: raw.elite,
+            parent_fraction: raw.parent_fraction,
+            crossover: raw.crossover,
+            mutation_rate: raw.mutation_rate,
+            mutation_sigma: raw.mutation_sigma,
+            weight_limit: raw.weight_limit,
+            init_range: raw.init_range,
+        })
+    }
+
+    /// The checks of the fields in weight units: `mutation_sigma`, `weight_limit`,
+    /// `init_range`.
+    fn check_weights(raw: &RawGa) -> Result<(), FieldError> {
         check(
-            self.mutation_sigma.is_finite() && self.mutation_sigma >= 0.0,
+            raw.mutation_sigma.is_finite() && raw.mutation_sigma >= 0.0,
             "ga.mutation_sigma",
-            || format!("must be a finite number ≥ 0, got {}", self.mutation_sigma),
+            || format!("must be a finite number ≥ 0, got {}", raw.mutation_sigma),
         )?;
         check(
-            self.weight_limit.is_finite() && self.weight_limit > 0.0 && self.weight_limit <= 1e6,
+            raw.weight_limit.is_finite() && raw.weight_limit > 0.0 && raw.weight_limit <= 1e6,
             "ga.weight_limit",
-            || format!("must be in (0, 1e6], got {}", self.weight_limit),
+            || format!("must be in (0, 1e6], got {}", raw.weight_limit),
         )?;
         check(
-            self.init_range.is_finite()
-                && self.init_range >= 0.0
-                && self.init_range <= self.weight_limit,
+            raw.init_range.is_finite()
+                && raw.init_range >= 0.0
+                && raw.init_range <= raw.weight_limit,
             "ga.init_range",
-            || format!("must be in [0, ga.weight_limit], got {}", self.init_range),
+            || format!("must be in [0, ga.weight_limit], got {}", raw.init_range),
         )
     }
 }
@@ -213,10 +306,11 @@ mod tests {
 
     #[test]
     fn elites_survive_and_sizes_hold() {
-        let p = GaParams {
+        let p = GaParams::from_raw(&RawGa {
             population: 10,
-            ..GaParams::default()
-        };
+            ..RawGa::default()
+        })
+        .unwrap();
         let mut rng = rng_from_seed(5);
         let pop = initial_population(&p, 4, &mut rng);
         let fit: Vec<f64> = (0..10).map(|i| i as f64).collect();
@@ -235,10 +329,11 @@ mod tests {
     #[test]
     fn ga_climbs_a_simple_function() {
         // Maximise −Σ(g − 1)²: the GA must get closer to all-ones.
-        let p = GaParams {
+        let p = GaParams::from_raw(&RawGa {
             population: 30,
-            ..GaParams::default()
-        };
+            ..RawGa::default()
+        })
+        .unwrap();
         let f = |g: &Genome| -g.iter().map(|x| (x - 1.0) * (x - 1.0)).sum::<f64>();
         let mut rng = rng_from_seed(11);
         let mut pop = initial_population(&p, 5, &mut rng);

@@ -12,13 +12,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::evolution::ga::GaParams;
+pub use crate::evolution::ga::RawGa;
 pub use crate::fitness::fuzzy::{Coefficients, RawFuzzy, RawMotivations};
 use crate::fitness::terms::Homing;
 pub use crate::modelling::aem::RawAem;
 use crate::params::FieldError;
 pub use crate::simulation::controller::RawNetwork;
-use crate::simulation::robot::Khepera;
+pub use crate::simulation::robot::RawRobot;
 use crate::simulation::room::{BUILTIN_ROOMS, field_from_toml_message};
 pub use crate::simulation::trial::RawTrial;
 
@@ -90,11 +90,11 @@ pub struct RawConfig {
     /// Motivations X.
     pub motivations: RawMotivations,
     /// GA parameters.
-    pub ga: GaParams,
+    pub ga: RawGa,
     /// Trial parameters.
     pub trial: RawTrial,
     /// Robot body.
-    pub robot: Khepera,
+    pub robot: RawRobot,
     /// Network shape.
     pub network: RawNetwork,
     /// Membership peaks and coefficients.
@@ -113,9 +113,9 @@ impl Default for RawConfig {
             rooms: BUILTIN_ROOMS.iter().map(|s| s.to_string()).collect(),
             training: Training::AllRooms,
             motivations: RawMotivations::default(),
-            ga: GaParams::default(),
+            ga: RawGa::default(),
             trial: RawTrial::default(),
-            robot: Khepera::default(),
+            robot: RawRobot::default(),
             network: RawNetwork::default(),
             fuzzy: RawFuzzy::default(),
             fitness: RawFitness::default(),

@@ -4,34 +4,36 @@
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::evolution::ga::Genome;
+use crate::evolution::population::Population;
 use crate::experiment::config::OrientationMode;
 use crate::experiment::{Experiment, Run};
 use crate::fitness::terms::{FitnessTerms, TermsRecorder};
 use crate::modelling::aem::{Action, environment_vector};
 use crate::modelling::recognition::nearest_unique;
 use crate::random::rng::rng_from_seed;
-use crate::simulation::controller::Mlp;
+use crate::simulation::controller::{GenomeError, Mlp};
 use crate::simulation::trial::{ActionLog, simulate};
 
 impl Experiment {
-    /// The controller of `genome` (its length is the validated shape's).
-    pub(crate) fn controller(&self, genome: &[f64]) -> Mlp {
-        Mlp::from_genome(self.shape, genome).expect("genome length matches the validated shape")
+    /// The experiment's network for `genome`: an error when its length is not the network's
+    /// ([`crate::simulation::controller::MlpShape::genome_len`]).
+    pub fn network(&self, genome: &[f64]) -> Result<Mlp, GenomeError> {
+        Mlp::from_genome(self.shape, genome)
     }
 
-    /// Runs one trial of `genome` in `room` with the random stream `seed`; returns the terms
+    /// Runs one trial of `network` in `room` with the random stream `seed`; returns the terms
     /// (`l` = 0) and the action labels.
-    pub fn trial(&self, genome: &[f64], room: usize, seed: u64) -> (FitnessTerms, Vec<Action>) {
-        let (terms, actions, _) = self.recorded_trial(genome, room, seed, true);
+    pub fn trial(&self, network: &Mlp, room: usize, seed: u64) -> (FitnessTerms, Vec<Action>) {
+        let (terms, actions, _) = self.recorded_trial(&mut network.clone(), room, seed, true);
         (terms, actions)
     }
 
     /// One trial: its terms (`l` = 0), its actions (when `actions`, else none) and the number of
-    /// steps it executed before it ended (the rest were idle).
+    /// steps it executed before it ended (the rest were idle). The network's state carries
+    /// nothing from one trial to the next, so one network serves every trial of an individual.
     fn recorded_trial(
         &self,
-        genome: &[f64],
+        network: &mut Mlp,
         room: usize,
         seed: u64,
         actions: bool,
@@ -39,16 +41,15 @@ impl Experiment {
         let arena = &self.arenas[room];
         let mut rng = rng_from_seed(seed);
         let mut obs = (
-            TermsRecorder::new(arena, &self.trial, self.homing),
+            TermsRecorder::new(arena, self.homing),
             ActionLog {
-                actions: Vec::with_capacity(if actions { self.trial.steps } else { 0 }),
+                actions: Vec::with_capacity(if actions { self.trial.steps() } else { 0 }),
             },
         );
-        let mut controller = self.controller(genome);
         if actions {
-            simulate(arena, &mut controller, &self.trial, &mut rng, &mut obs);
+            simulate(arena, network, &mut rng, &mut obs);
         } else {
-            simulate(arena, &mut controller, &self.trial, &mut rng, &mut obs.0);
+            simulate(arena, network, &mut rng, &mut obs.0);
         }
         (obs.0.finish(), obs.1.actions, obs.0.executed())
     }
@@ -60,23 +61,34 @@ impl Experiment {
             .evaluation(run.tag, generation, individual, self.room_key(room))
     }
 
-    /// Evaluates one individual of generation `generation` in the rooms of `run`.
+    /// Evaluates one individual (its network) of generation `generation` in the rooms of `run`.
     pub fn evaluate(
         &self,
-        genome: &[f64],
+        network: &Mlp,
+        run: &Run,
+        generation: usize,
+        individual: usize,
+    ) -> Evaluation {
+        self.evaluate_with(&mut network.clone(), run, generation, individual)
+    }
+
+    /// [`Experiment::evaluate`], running `network` itself.
+    fn evaluate_with(
+        &self,
+        network: &mut Mlp,
         run: &Run,
         generation: usize,
         individual: usize,
     ) -> Evaluation {
         let online =
-            self.orientation == OrientationMode::Online && self.motivations.orientation > 0.0;
+            self.orientation == OrientationMode::Online && self.motivations.orientation() > 0.0;
         let mut per_room = Vec::with_capacity(run.rooms.len());
         let mut first_vectors = Vec::new();
         for &r in &run.rooms {
             let seed = self.eval_seed(run, generation, individual, r);
-            let (terms, actions, executed) = self.recorded_trial(genome, r, seed, online);
+            let (terms, actions, executed) = self.recorded_trial(network, r, seed, online);
             if online {
-                first_vectors.push(environment_vector(&actions, self.aem.encoder));
+                first_vectors.push(environment_vector(&actions, self.aem.encoder()));
             }
             per_room.push(RoomScore {
                 f: 0.0,
@@ -91,8 +103,8 @@ impl Experiment {
                 let seed = self
                     .streams()
                     .online(run.tag, generation, individual, self.room_key(r));
-                let (_, actions) = self.trial(genome, r, seed);
-                let v = environment_vector(&actions, self.aem.encoder);
+                let (_, actions, _) = self.recorded_trial(network, r, seed, true);
+                let v = environment_vector(&actions, self.aem.encoder());
                 if nearest_unique(&first_vectors, &v).ok().flatten() == Some(k) {
                     correct += 1;
                 }
@@ -112,14 +124,17 @@ impl Experiment {
     /// Evaluates a population in parallel (results in index order, independent of threads).
     pub fn evaluate_population(
         &self,
-        population: &[Genome],
+        population: &Population,
         run: &Run,
         generation: usize,
     ) -> Vec<Evaluation> {
         population
             .par_iter()
             .enumerate()
-            .map(|(i, g)| self.evaluate(g, run, generation, i))
+            .map(|(i, g)| {
+                let mut network = Mlp::of_checked(population.shape(), g);
+                self.evaluate_with(&mut network, run, generation, i)
+            })
             .collect()
     }
 }
@@ -176,7 +191,7 @@ mod tests {
     fn online_orientation_equals_offline_nearest_neighbour() {
         let exp = experiment(&ORIENTED);
         let run = &exp.runs()[0];
-        let genome = &exp.initial_population(run)[3];
+        let genome = &exp.initial_population(run).network(3);
         let (g, i) = (2usize, 3usize);
         let eval = exp.evaluate(genome, run, g, i);
         let first: Vec<Vec<f64>> = run
@@ -184,14 +199,14 @@ mod tests {
             .iter()
             .map(|&r| {
                 let seed = exp.eval_seed(run, g, i, r);
-                environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder)
+                environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder())
             })
             .collect();
         let mut correct = 0;
         for (k, &r) in run.rooms.iter().enumerate() {
             let seed = exp.streams().online(run.tag, g, i, exp.room_key(r));
             assert_ne!(seed, exp.eval_seed(run, g, i, r));
-            let v = environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder);
+            let v = environment_vector(&exp.trial(genome, r, seed).1, exp.aem.encoder());
             if crate::modelling::recognition::nearest_unique(&first, &v).unwrap() == Some(k) {
                 correct += 1;
             }

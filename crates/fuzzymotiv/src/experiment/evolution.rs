@@ -22,12 +22,12 @@
 //!     let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
 //!     history.push(exp.generation_record(generation, &evals));
 //!     if generation + 1 < 2 {
-//!         population = exp.breed(&population, &fitness, run, generation);
+//!         population = exp.breed(&population, &fitness, run, generation).unwrap();
 //!     }
 //! }
 //! let evolved = exp.evolve(run, &mut |_| ControlFlow::Continue(())).unwrap();
 //! assert_eq!(evolved.history, history);
-//! assert_eq!(evolved.population, population);
+//! assert_eq!(evolved.population, population.into_genomes());
 //! ```
 
 use std::ops::ControlFlow;
@@ -35,6 +35,7 @@ use std::ops::ControlFlow;
 use serde::{Deserialize, Serialize};
 
 use crate::evolution::ga::{Genome, Stats, initial_population, next_generation};
+pub use crate::evolution::population::{Population, PopulationError};
 use crate::experiment::evaluation::Evaluation;
 use crate::experiment::{Experiment, Run};
 use crate::fitness::terms::FitnessTerms;
@@ -42,9 +43,28 @@ use crate::random::rng::rng_from_seed;
 
 impl Experiment {
     /// The initial population of a run.
-    pub fn initial_population(&self, run: &Run) -> Vec<Genome> {
+    pub fn initial_population(&self, run: &Run) -> Population {
         let mut rng = rng_from_seed(self.streams().initial_population(run.tag));
-        initial_population(&self.ga, self.shape.genome_len(), &mut rng)
+        Population {
+            shape: self.shape,
+            genomes: initial_population(&self.ga, self.shape.genome_len(), &mut rng),
+        }
+    }
+
+    /// `genomes` checked as a population of this experiment's network: at least one genome,
+    /// each of the network's length ([`crate::simulation::controller::MlpShape::genome_len`]).
+    pub fn population(&self, genomes: Vec<Genome>) -> Result<Population, PopulationError> {
+        if genomes.is_empty() {
+            return Err(PopulationError::Empty);
+        }
+        for (index, genome) in genomes.iter().enumerate() {
+            (self.shape.check(genome))
+                .map_err(|source| PopulationError::Genome { index, source })?;
+        }
+        Ok(Population {
+            shape: self.shape,
+            genomes,
+        })
     }
 
     /// Statistics of an evaluated generation.
@@ -74,13 +94,33 @@ impl Experiment {
     /// value per individual, higher is better): all that selection needs.
     pub fn breed(
         &self,
-        population: &[Genome],
+        population: &Population,
         fitness: &[f64],
         run: &Run,
         generation: usize,
-    ) -> Vec<Genome> {
+    ) -> Result<Population, PopulationError> {
+        if fitness.len() != population.len() {
+            return Err(PopulationError::Fitness {
+                expected: population.len(),
+                got: fitness.len(),
+            });
+        }
+        Ok(self.offspring(population, fitness, run, generation))
+    }
+
+    /// [`Experiment::breed`] of a population and its own fitness values (one per genome).
+    fn offspring(
+        &self,
+        population: &Population,
+        fitness: &[f64],
+        run: &Run,
+        generation: usize,
+    ) -> Population {
         let mut rng = rng_from_seed(self.streams().breeding(run.tag, generation));
-        next_generation(population, fitness, &self.ga, &mut rng)
+        Population {
+            shape: population.shape,
+            genomes: next_generation(population, fitness, &self.ga, &mut rng),
+        }
     }
 
     /// Evolves one run from scratch, calling the observer `on_generation` after each generation
@@ -103,7 +143,7 @@ impl Experiment {
         &self,
         run: &Run,
         generation: usize,
-        mut population: Vec<Genome>,
+        mut population: Population,
         mut history: Vec<GenerationRecord>,
         on_generation: &mut Observer<'_>,
     ) -> Result<Evolution, Stopped> {
@@ -111,7 +151,7 @@ impl Experiment {
         loop {
             let evals = self.evaluate_population(&population, run, g);
             history.push(self.generation_record(g, &evals));
-            if g + 1 >= self.ga.generations {
+            if g + 1 >= self.ga.generations() {
                 // The last generation: the evolution is complete whatever the observer says.
                 let _ = on_generation(&GenerationState {
                     history: &history,
@@ -124,17 +164,17 @@ impl Experiment {
                 return Ok(Evolution {
                     run: run.clone(),
                     history,
-                    population,
+                    population: population.genomes,
                     evaluations: evals,
                     best,
                 });
             }
             let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
-            let next = self.breed(&population, &fitness, run, g);
+            let next = self.offspring(&population, &fitness, run, g);
             let flow = on_generation(&GenerationState {
                 history: &history,
                 population: &population,
-                next: Some(&next),
+                next: Some(&next[..]),
             });
             if flow.is_break() {
                 return Err(Stopped {
@@ -153,7 +193,7 @@ impl Experiment {
     pub fn finished(
         &self,
         run: &Run,
-        population: Vec<Genome>,
+        population: Population,
         history: Vec<GenerationRecord>,
     ) -> Evolution {
         let last = history.len().saturating_sub(1);
@@ -163,7 +203,7 @@ impl Experiment {
         Evolution {
             run: run.clone(),
             history,
-            population,
+            population: population.genomes,
             evaluations: evals,
             best,
         }
@@ -191,7 +231,7 @@ pub struct Stopped {
     /// The next generation's index (the generations before it are in `history`).
     pub generation: usize,
     /// The next generation's genomes, not yet evaluated.
-    pub population: Vec<Genome>,
+    pub population: Population,
     /// The records of the generations done.
     pub history: Vec<GenerationRecord>,
 }
@@ -298,6 +338,7 @@ mod tests {
             })
             .unwrap();
         let (history, next) = saved.unwrap();
+        let next = exp.population(next).unwrap();
         let resumed = exp
             .evolve_from(run, history.len(), next, history, &mut |_| {
                 ControlFlow::Continue(())
@@ -305,7 +346,8 @@ mod tests {
             .unwrap();
         assert_eq!(full.history, resumed.history);
         assert_eq!(full.evaluations, resumed.evaluations);
-        let rebuilt = exp.finished(run, full.population.clone(), full.history.clone());
+        let last = exp.population(full.population.clone()).unwrap();
+        let rebuilt = exp.finished(run, last, full.history.clone());
         assert_eq!(rebuilt.evaluations, full.evaluations);
     }
 
@@ -338,5 +380,37 @@ mod tests {
             .unwrap();
         assert_eq!(resumed.history, full.history);
         assert_eq!(resumed.population, full.population);
+    }
+
+    /// A genome of the wrong length is an error naming both lengths, never a panic: as a
+    /// network, and as a member of a population (which must not be empty either).
+    #[test]
+    fn wrong_genomes_are_errors() {
+        use super::PopulationError;
+        use crate::simulation::controller::GenomeError;
+        let exp = experiment(&[]);
+        let e = exp.network(&[0.5; 67]).unwrap_err();
+        assert_eq!(
+            e,
+            GenomeError {
+                hidden: 6,
+                expected: 68,
+                actual: 67
+            }
+        );
+        assert_eq!(
+            e.to_string(),
+            "a genome of the 8-6-2 network has 68 weights, got 67"
+        );
+        assert_eq!(exp.population(Vec::new()), Err(PopulationError::Empty));
+        let e = exp
+            .population(vec![vec![0.0; 68], vec![0.0; 69]])
+            .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "genome 1 of the population: a genome of the 8-6-2 network has 68 weights, got 69"
+        );
+        let fine = exp.population(vec![vec![0.0; 68]; 3]).unwrap();
+        assert_eq!((fine.len(), fine.shape()), (3, exp.shape()));
     }
 }

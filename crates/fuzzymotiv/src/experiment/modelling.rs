@@ -10,28 +10,23 @@ use crate::modelling::aem::environment_vector;
 use crate::modelling::recognition::{Confusion, Recognizer};
 use crate::modelling::som::SomError;
 use crate::random::rng::rng_from_seed;
+use crate::simulation::controller::Mlp;
 use crate::simulation::trial::{Trajectory, simulate};
 
 impl Experiment {
-    /// The room-modelling run of `genome` in `room` on the AEM instance stream of `run` (the
+    /// The room-modelling run of `network` in `room` on the AEM instance stream of `run` (the
     /// very run whose actions become the room's stored instance): its whole trajectory, its
     /// terms and F. Replays and figures use it; [`Experiment::environment_modelling`] returns
     /// the ones it ran.
-    pub fn instance_run(&self, genome: &[f64], run: &Run, room: usize) -> InstanceRun {
+    pub fn instance_run(&self, network: &Mlp, run: &Run, room: usize) -> InstanceRun {
         let arena = &self.arenas[room];
         let seed = self.streams().aem_instance(run.tag, self.room_key(room));
         let mut rng = rng_from_seed(seed);
         let mut obs = (
-            TermsRecorder::new(arena, &self.trial, self.homing),
-            Trajectory::starting_at(arena.room().home, self.trial.steps),
+            TermsRecorder::new(arena, self.homing),
+            Trajectory::starting_at(arena.room().home, self.trial.steps()),
         );
-        simulate(
-            arena,
-            &mut self.controller(genome),
-            &self.trial,
-            &mut rng,
-            &mut obs,
-        );
+        simulate(arena, &mut network.clone(), &mut rng, &mut obs);
         let terms = obs.0.finish();
         InstanceRun {
             trajectory: obs.1,
@@ -40,32 +35,32 @@ impl Experiment {
         }
     }
 
-    /// Action-based environment modelling with one robot: an instance run per room, SOM
+    /// Action-based environment modelling with one robot (its network): an instance run per room, SOM
     /// training, then `test_runs` recognition tests per room (docs/model.md §9–§10). With AEM disabled
     /// the instance runs are still made (for figures) and the test runs still measure
     /// exploration, homing and battery, but nothing is recognised.
-    pub fn environment_modelling(&self, genome: &[f64], run: &Run) -> Result<AemReport, SomError> {
+    pub fn environment_modelling(&self, network: &Mlp, run: &Run) -> Result<AemReport, SomError> {
         let rooms = self.arenas.len();
         let instances: Vec<InstanceRun> = (0..rooms)
             .into_par_iter()
-            .map(|r| self.instance_run(genome, run, r))
+            .map(|r| self.instance_run(network, run, r))
             .collect();
-        let recognizer = if self.aem.enabled {
+        let recognizer = if self.aem.enabled() {
             let vectors: Vec<Vec<f64>> = instances
                 .iter()
-                .map(|i| environment_vector(&i.trajectory.actions, self.aem.encoder))
+                .map(|i| environment_vector(&i.trajectory.actions, self.aem.encoder()))
                 .collect();
             let mut som_rng = rng_from_seed(self.streams().som(run.tag));
             Some(Recognizer::train(
                 &vectors,
-                &self.aem.som,
-                self.aem.threshold,
+                self.aem.som(),
+                self.aem.threshold(),
                 &mut som_rng,
             )?)
         } else {
             None
         };
-        let tests = self.recognition_tests(genome, run, recognizer.as_ref())?;
+        let tests = self.recognition_tests(network, run, recognizer.as_ref())?;
         let mut confusion = Confusion::new(rooms);
         let mut per_room: Vec<AemRoom> = instances
             .into_iter()
@@ -101,24 +96,24 @@ impl Experiment {
         })
     }
 
-    /// `test_runs` test runs per room of `genome` on the AEM test streams of `run`, each with
+    /// `test_runs` test runs per room of `network` on the AEM test streams of `run`, each with
     /// its terms and (when a recognizer is given) its answer and SOM winner: (room, test).
     fn recognition_tests(
         &self,
-        genome: &[f64],
+        network: &Mlp,
         run: &Run,
         recognizer: Option<&Recognizer>,
     ) -> Result<Vec<(usize, AemTest)>, SomError> {
         (0..self.arenas.len())
-            .flat_map(|r| (0..self.aem.test_runs).map(move |t| (r, t)))
+            .flat_map(|r| (0..self.aem.test_runs()).map(move |t| (r, t)))
             .collect::<Vec<_>>()
             .into_par_iter()
             .map(|(r, t)| {
                 let seed = self.streams().aem_test(run.tag, self.room_key(r), t);
-                let (terms, actions) = self.trial(genome, r, seed);
+                let (terms, actions) = self.trial(network, r, seed);
                 let (answer, winner) = match recognizer {
                     Some(rec) => {
-                        let v = environment_vector(&actions, self.aem.encoder);
+                        let v = environment_vector(&actions, self.aem.encoder());
                         (rec.recognise(&v)?, Some(rec.som.winner(&v)?))
                     }
                     None => (None, None),
@@ -203,7 +198,7 @@ mod tests {
     fn modelling_returns_its_instance_runs() {
         let exp = experiment(&[]);
         let run = exp.runs().remove(0);
-        let genome = exp.initial_population(&run).remove(0);
+        let genome = exp.initial_population(&run).network(0);
         let report = exp.environment_modelling(&genome, &run).unwrap();
         for (r, room) in report.rooms.iter().enumerate() {
             let again = exp.instance_run(&genome, &run, r);
@@ -215,12 +210,8 @@ mod tests {
             );
             assert_eq!(room.instance.terms, terms);
             assert_eq!(room.instance.trajectory.actions, actions);
-            let measured = FitnessTerms::measure(
-                &exp.arenas()[r],
-                exp.trial_params(),
-                exp.homing(),
-                &room.instance.trajectory,
-            );
+            let measured =
+                FitnessTerms::measure(&exp.arenas()[r], exp.homing(), &room.instance.trajectory);
             assert_eq!(room.instance.terms, measured);
             assert_eq!(room.instance.f, exp.fuzzy_fitness(&terms));
         }

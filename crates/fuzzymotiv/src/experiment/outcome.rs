@@ -5,12 +5,14 @@
 
 use std::ops::ControlFlow;
 
-use crate::evolution::ga::Genome;
 use crate::experiment::Experiment;
 use crate::experiment::config::Training;
-use crate::experiment::evolution::{Evolution, GenerationRecord, GenerationState, Stopped};
+use crate::experiment::evolution::{
+    Evolution, GenerationRecord, GenerationState, Population, Stopped,
+};
 use crate::experiment::modelling::{AemReport, InstanceRun};
 use crate::modelling::som::SomError;
+use crate::simulation::controller::GenomeError;
 use crate::simulation::trial::Trajectory;
 
 /// An observer of a whole experiment: called after every generation with the index of the
@@ -30,7 +32,7 @@ pub enum Start {
     /// generation is evaluated again, which gives the same evaluations).
     Finished {
         /// The final generation.
-        population: Vec<Genome>,
+        population: Population,
         /// Every generation's record.
         history: Vec<GenerationRecord>,
     },
@@ -69,6 +71,9 @@ pub enum RunError {
         /// The number of starts given.
         got: usize,
     },
+    /// An evolution's best genome does not fit the experiment's network.
+    #[error("environment modelling: {0}")]
+    Genome(#[from] GenomeError),
     /// Environment modelling failed.
     #[error("environment modelling failed: {0}")]
     Modelling(#[from] SomError),
@@ -126,11 +131,13 @@ impl Experiment {
     }
 
     /// Environment modelling of every evolution's best robot.
-    pub fn model_rooms(&self, evolutions: &[Evolution]) -> Result<Vec<AemReport>, SomError> {
-        evolutions
-            .iter()
-            .map(|evo| self.environment_modelling(&evo.population[evo.best], &evo.run))
-            .collect()
+    pub fn model_rooms(&self, evolutions: &[Evolution]) -> Result<Vec<AemReport>, RunError> {
+        let mut reports = Vec::with_capacity(evolutions.len());
+        for evo in evolutions {
+            let best = self.network(&evo.population[evo.best])?;
+            reports.push(self.environment_modelling(&best, &evo.run)?);
+        }
+        Ok(reports)
     }
 
     /// Which evolution's best robot stands for room `r`, and the room's position among that
@@ -212,7 +219,7 @@ mod tests {
         let first = &whole.evolutions[0];
         let mut starts = vec![Start::Fresh; 5];
         starts[0] = Start::Finished {
-            population: first.population.clone(),
+            population: exp.population(first.population.clone()).unwrap(),
             history: first.history.clone(),
         };
         starts[1] = Start::Continue(i.stopped);

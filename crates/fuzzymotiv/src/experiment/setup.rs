@@ -162,10 +162,7 @@ impl RawMotivations {
             Motivations::normalised(self.curiosity, self.homing, self.orientation, self.energy)
                 .ok()?;
         let sum = sum?;
-        self.curiosity = m.curiosity;
-        self.homing = m.homing;
-        self.orientation = m.orientation;
-        self.energy = m.energy;
+        [self.curiosity, self.homing, self.orientation, self.energy] = m.as_array();
         Some((sum, m))
     }
 }
@@ -241,7 +238,7 @@ mod tests {
         };
         let (sum, n) = m.normalise().unwrap();
         assert!((sum - 0.9999).abs() < 1e-12);
-        assert_eq!(m.curiosity, n.curiosity);
+        assert_eq!(m.curiosity, n.curiosity());
         assert_eq!(m.normalise(), None, "already normalised");
         let mut far = RawMotivations {
             curiosity: 0.5,

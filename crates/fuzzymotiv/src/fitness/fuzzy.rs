@@ -136,19 +136,15 @@ pub enum FuzzyError {
 /// Motivations `X = (C, H, O, E)`: curiosity `C`, homing `H`, orientation `O`
 /// and energy `E`. Dimensionless weights, each in `[0, 1]`, summing to 1.
 ///
-/// Build with [`Motivations::new`], which validates; the fields are public for
-/// reading, and a value built by hand skips validation (evaluation then never
-/// panics but may return a fitness outside `[0, 1]`).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+/// Built only by checking: [`Motivations::new`], [`Motivations::normalised`],
+/// [`RawMotivations::validated`], or the paper's settings ([`Motivations::HIGH_CURIOSITY`],
+/// [`Motivations::LOW_CURIOSITY`]); read through the accessors.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Motivations {
-    /// Curiosity `C`: weight of exploration fitness `a`.
-    pub curiosity: f64,
-    /// Homing `H`: weight of homing fitness `g`.
-    pub homing: f64,
-    /// Orientation `O`: weight of orientation/recognition fitness `l`.
-    pub orientation: f64,
-    /// Energy `E`: weight of battery fitness `b`.
-    pub energy: f64,
+    curiosity: f64,
+    homing: f64,
+    orientation: f64,
+    energy: f64,
 }
 
 /// `[motivations]` in a config, as written: X = (C, H, O, E), each in [0, 1], summing to 1;
@@ -314,6 +310,26 @@ impl Motivations {
         }
         let [c, h, o, e] = [curiosity, homing, orientation, energy].map(|v| v / sum);
         Self::new(c, h, o, e).map(|m| (m, Some(sum)))
+    }
+
+    /// Curiosity `C`: weight of exploration fitness `a`.
+    pub fn curiosity(&self) -> f64 {
+        self.curiosity
+    }
+
+    /// Homing `H`: weight of homing fitness `g`.
+    pub fn homing(&self) -> f64 {
+        self.homing
+    }
+
+    /// Orientation `O`: weight of orientation/recognition fitness `l`.
+    pub fn orientation(&self) -> f64 {
+        self.orientation
+    }
+
+    /// Energy `E`: weight of battery fitness `b`.
+    pub fn energy(&self) -> f64 {
+        self.energy
     }
 
     /// The motivations as `[C, H, O, E]`, matching the order of `Y = [a, g, l, b]`.

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::simulation::trial::{Arena, CELL, Step, StepObserver, Trajectory, TrialParams};
+use crate::simulation::trial::{Arena, CELL, Step, StepObserver, Trajectory};
 
 /// The four fitness values Y = (a, g, l, b), each in [0, 1], higher is better for the fuzzy
 /// combination (with `energy = "use"`).
@@ -39,14 +39,9 @@ impl FitnessTerms {
         [self.a, self.g, self.l, self.b]
     }
 
-    /// Measures the terms of a recorded trajectory (`l` = 0).
-    pub fn measure(
-        arena: &Arena,
-        params: &TrialParams,
-        homing: Homing,
-        trajectory: &Trajectory,
-    ) -> FitnessTerms {
-        let mut rec = TermsRecorder::new(arena, params, homing);
+    /// Measures the terms of a trajectory recorded in `arena` (`l` = 0).
+    pub fn measure(arena: &Arena, homing: Homing, trajectory: &Trajectory) -> FitnessTerms {
+        let mut rec = TermsRecorder::new(arena, homing);
         for s in trajectory.steps() {
             rec.observe(&s);
         }
@@ -55,10 +50,11 @@ impl FitnessTerms {
 }
 
 /// `optimum = min(reachable, floor(T·v_max·dt / 50) + 1)`: the cells a full-speed robot that
-/// never revisits a cell could enter.
-pub fn exploration_optimum(arena: &Arena, params: &TrialParams) -> usize {
+/// never revisits a cell could enter, with the arena's parameters.
+pub fn exploration_optimum(arena: &Arena) -> usize {
+    let params = arena.params();
     let by_speed =
-        (params.steps as f64 * params.robot.v_max * params.dt / CELL).floor() as usize + 1;
+        (params.steps() as f64 * params.robot().v_max() * params.dt() / CELL).floor() as usize + 1;
     arena.reachable_cells().min(by_speed).max(1)
 }
 
@@ -78,8 +74,8 @@ pub struct TermsRecorder<'a> {
 }
 
 impl<'a> TermsRecorder<'a> {
-    /// A recorder for a trial starting at home (the home cell counts as visited).
-    pub fn new(arena: &'a Arena, params: &TrialParams, homing: Homing) -> Self {
+    /// A recorder for a trial in `arena` starting at home (the home cell counts as visited).
+    pub fn new(arena: &'a Arena, homing: Homing) -> Self {
         let home = arena.room().home;
         let mut visited = vec![false; arena.cell_count()];
         visited[arena.cell_of(home.position())] = true;
@@ -93,7 +89,7 @@ impl<'a> TermsRecorder<'a> {
             last: home,
             escaped: false,
             homing,
-            optimum: exploration_optimum(arena, params),
+            optimum: exploration_optimum(arena),
         }
     }
 
@@ -146,11 +142,12 @@ impl StepObserver for TermsRecorder<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::modelling::aem::DEFAULT_ACTION_TOLERANCE;
     use crate::random::rng::rng_from_seed;
     use crate::simulation::controller::{Controller, INPUTS};
-    use crate::simulation::robot::{Khepera, Motion};
+    use crate::simulation::robot::{Motion, RawRobot};
     use crate::simulation::room::Room;
-    use crate::simulation::trial::run_trial;
+    use crate::simulation::trial::{RawTrial, TrialParams, run_trial};
 
     /// A controller that plays a fixed list of motor outputs, then repeats the last one.
     struct Script(Vec<[f64; 2]>, usize);
@@ -162,16 +159,22 @@ mod tests {
         }
     }
 
+    /// Checked parameters from the raw `[trial]` and the motion model.
+    fn checked(trial: RawTrial, motion: Motion) -> TrialParams {
+        let robot = RawRobot {
+            motion,
+            ..RawRobot::default()
+        };
+        TrialParams::from_raw(&trial, &robot, DEFAULT_ACTION_TOLERANCE).unwrap()
+    }
+
     fn params(motion: Motion, steps: usize) -> TrialParams {
-        TrialParams {
+        let trial = RawTrial {
             noise: 0.0,
             steps,
-            robot: Khepera {
-                motion,
-                ..Khepera::default()
-            },
-            ..TrialParams::default()
-        }
+            ..RawTrial::default()
+        };
+        checked(trial, motion)
     }
 
     fn measure(
@@ -181,13 +184,8 @@ mod tests {
         script: Vec<[f64; 2]>,
     ) -> (FitnessTerms, Trajectory) {
         let arena = Arena::new(Room::builtin(room).unwrap(), params);
-        let tr = run_trial(
-            &arena,
-            &mut Script(script, 0),
-            params,
-            &mut rng_from_seed(3),
-        );
-        (FitnessTerms::measure(&arena, params, homing, &tr), tr)
+        let tr = run_trial(&arena, &mut Script(script, 0), &mut rng_from_seed(3));
+        (FitnessTerms::measure(&arena, homing, &tr), tr)
     }
 
     const STRAIGHT: [f64; 2] = [1.0, 1.0];
@@ -274,10 +272,14 @@ mod tests {
         // Cells of x = 40 … 200 on the bottom row: 0, 1, 2, 3, 4.
         assert_eq!(t.a, 5.0 / 65.0);
         // Without end_at_home the robot drives on to the far wall.
-        let p = TrialParams {
-            end_at_home: false,
-            ..params(Motion::Actions, 400)
-        };
+        let p = checked(
+            RawTrial {
+                noise: 0.0,
+                end_at_home: false,
+                ..RawTrial::default()
+            },
+            Motion::Actions,
+        );
         let mut script = vec![STRAIGHT; 20];
         script.push(BACK);
         script.extend([STRAIGHT; 400]);
@@ -304,31 +306,23 @@ mod tests {
     #[test]
     fn recorder_and_trajectory_agree() {
         for motion in [Motion::Actions, Motion::Wheels] {
-            let params = TrialParams {
-                robot: Khepera {
-                    motion,
-                    ..Khepera::default()
-                },
-                ..TrialParams::default()
-            };
+            let params = checked(RawTrial::default(), motion);
             let arena = Arena::new(Room::builtin("H").unwrap(), &params);
             let tr = run_trial(
                 &arena,
                 &mut Script(vec![[0.9, 0.7]], 0),
-                &params,
                 &mut rng_from_seed(9),
             );
-            let mut rec = TermsRecorder::new(&arena, &params, Homing::Escape);
+            let mut rec = TermsRecorder::new(&arena, Homing::Escape);
             crate::simulation::trial::simulate(
                 &arena,
                 &mut Script(vec![[0.9, 0.7]], 0),
-                &params,
                 &mut rng_from_seed(9),
                 &mut rec,
             );
             assert_eq!(
                 rec.finish(),
-                FitnessTerms::measure(&arena, &params, Homing::Escape, &tr)
+                FitnessTerms::measure(&arena, Homing::Escape, &tr)
             );
         }
     }

@@ -7,28 +7,22 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::modelling::som::SomParams;
-use crate::params::{BIG, FieldError, check};
+use crate::modelling::som::{RawSom, SomParams};
+use crate::params::{FieldError, check};
 
 pub use crate::simulation::robot::DEFAULT_ACTION_TOLERANCE;
 
-/// Validated AEM parameters.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// Checked AEM parameters (`[aem]` in a config, docs/model.md §9), built by
+/// [`AemParams::from_raw`] (or [`AemParams::default`]). The action tolerance of `[aem]` labels
+/// every step of a trial, so it lives in the trial's parameters
+/// ([`crate::simulation::trial::TrialParams::action_tolerance`]).
+#[derive(Debug, Clone, PartialEq)]
 pub struct AemParams {
-    /// Whether AEM runs after evolution; default true (needs at least 2 rooms).
-    pub enabled: bool,
-    /// Action sequence → vector encoding; default `chain-code`.
-    pub encoder: Encoder,
-    /// SOM training parameters (defaults [`SomParams::default`]); nodes in 1..=100000 with
-    /// nodes × `trial.steps` ≤ 5·10⁷, epochs in 1..=10⁶, widths and rates finite and > 0.
-    pub som: SomParams,
-    /// r-node gate (nodes); default 10.
-    pub threshold: usize,
-    /// Test runs per room; default 10; range 1..=100000.
-    pub test_runs: usize,
-    /// Action classification tolerance (fractions of `v_max`); default 0.25
-    /// ([`DEFAULT_ACTION_TOLERANCE`]); range [0, 2].
-    pub action_tolerance: f64,
+    enabled: bool,
+    encoder: Encoder,
+    som: SomParams,
+    threshold: usize,
+    test_runs: usize,
 }
 
 impl Default for AemParams {
@@ -39,8 +33,35 @@ impl Default for AemParams {
             som: SomParams::default(),
             threshold: 10,
             test_runs: 10,
-            action_tolerance: DEFAULT_ACTION_TOLERANCE,
         }
+    }
+}
+
+impl AemParams {
+    /// Whether AEM runs after evolution; default true (needs at least 2 rooms).
+    pub fn enabled(&self) -> bool {
+        self.enabled
+    }
+
+    /// Action sequence → vector encoding; default `chain-code`.
+    pub fn encoder(&self) -> Encoder {
+        self.encoder
+    }
+
+    /// SOM training parameters (defaults [`SomParams::default`]; ranges on its accessors),
+    /// with nodes × `trial.steps` ≤ 5·10⁷.
+    pub fn som(&self) -> &SomParams {
+        &self.som
+    }
+
+    /// r-node gate (nodes); default 10.
+    pub fn threshold(&self) -> usize {
+        self.threshold
+    }
+
+    /// Test runs per room; default 10; range 1..=100000.
+    pub fn test_runs(&self) -> usize {
+        self.test_runs
     }
 }
 
@@ -61,7 +82,7 @@ pub struct RawAem {
     pub threshold: usize,
     /// [`AemParams::test_runs`].
     pub test_runs: usize,
-    /// [`AemParams::action_tolerance`].
+    /// [`crate::simulation::trial::TrialParams::action_tolerance`] (checked with the trial).
     pub action_tolerance: f64,
     /// [`SomParams::sigma_start`].
     pub sigma_start: f64,
@@ -79,55 +100,44 @@ impl Default for RawAem {
         Self {
             enabled: d.enabled,
             encoder: d.encoder,
-            som_nodes: d.som.nodes,
-            epochs: d.som.epochs,
+            som_nodes: d.som.nodes(),
+            epochs: d.som.epochs(),
             threshold: d.threshold,
             test_runs: d.test_runs,
-            action_tolerance: d.action_tolerance,
-            sigma_start: d.som.sigma_start,
-            sigma_end: d.som.sigma_end,
-            rate_start: d.som.rate_start,
-            rate_end: d.som.rate_end,
+            action_tolerance: DEFAULT_ACTION_TOLERANCE,
+            sigma_start: d.som.sigma_start(),
+            sigma_end: d.som.sigma_end(),
+            rate_start: d.som.rate_start(),
+            rate_end: d.som.rate_end(),
+        }
+    }
+}
+
+impl RawAem {
+    /// The SOM's parameters as given here.
+    pub fn som(&self) -> RawSom {
+        RawSom {
+            nodes: self.som_nodes,
+            epochs: self.epochs,
+            sigma_start: self.sigma_start,
+            sigma_end: self.sigma_end,
+            rate_start: self.rate_start,
+            rate_end: self.rate_end,
         }
     }
 }
 
 impl AemParams {
-    /// Validates `[aem]` for trials of `steps` steps in `rooms` rooms.
+    /// Checks `[aem]` for trials of `steps` steps in `rooms` rooms (the SOM's fields by
+    /// [`SomParams::from_raw`]; `action_tolerance` is the trial's,
+    /// [`crate::simulation::trial::TrialParams::from_raw`]).
     pub fn from_raw(a: &RawAem, steps: usize, rooms: usize) -> Result<AemParams, FieldError> {
-        check(
-            (1..=100_000).contains(&a.som_nodes),
-            "aem.som_nodes",
-            || format!("must be in 1..=100000, got {}", a.som_nodes),
-        )?;
-        check((1..=BIG).contains(&a.epochs), "aem.epochs", || {
-            format!("must be in 1..={BIG}, got {}", a.epochs)
-        })?;
+        let som = SomParams::from_raw(&a.som())?;
         check(
             (1..=100_000).contains(&a.test_runs),
             "aem.test_runs",
             || format!("must be in 1..=100000, got {}", a.test_runs),
         )?;
-        check(
-            a.action_tolerance.is_finite() && (0.0..=2.0).contains(&a.action_tolerance),
-            "aem.action_tolerance",
-            || {
-                format!(
-                    "must be in [0, 2] (signed-speed units), got {}",
-                    a.action_tolerance
-                )
-            },
-        )?;
-        for (name, v) in [
-            ("aem.sigma_start", a.sigma_start),
-            ("aem.sigma_end", a.sigma_end),
-            ("aem.rate_start", a.rate_start),
-            ("aem.rate_end", a.rate_end),
-        ] {
-            check(v.is_finite() && v > 0.0, name, || {
-                format!("must be a finite number > 0, got {v}")
-            })?;
-        }
         check(
             !a.enabled || steps.saturating_mul(a.som_nodes) <= 50_000_000,
             "aem.som_nodes",
@@ -146,17 +156,9 @@ impl AemParams {
         Ok(AemParams {
             enabled: a.enabled,
             encoder: a.encoder,
-            som: SomParams {
-                nodes: a.som_nodes,
-                epochs: a.epochs,
-                sigma_start: a.sigma_start,
-                sigma_end: a.sigma_end,
-                rate_start: a.rate_start,
-                rate_end: a.rate_end,
-            },
+            som,
             threshold: a.threshold,
             test_runs: a.test_runs,
-            action_tolerance: a.action_tolerance,
         })
     }
 }

@@ -220,12 +220,13 @@ mod tests {
         let vectors: Vec<Vec<f64>> = (0..4)
             .map(|r| (0..20).map(|t| (t * (r + 1)) as f64 / 12.0).collect())
             .collect();
-        let p = SomParams {
+        let p = SomParams::from_raw(&crate::modelling::som::RawSom {
             nodes: 32,
             epochs: 100,
             sigma_start: 8.0,
-            ..SomParams::default()
-        };
+            ..Default::default()
+        })
+        .unwrap();
         let rec = Recognizer::train(&vectors, &p, 10, &mut rng_from_seed(5)).unwrap();
         assert_eq!(rec.instances.len(), 4);
         for (i, v) in vectors.iter().enumerate() {

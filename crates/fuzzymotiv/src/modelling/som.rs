@@ -4,23 +4,55 @@
 //! lowest index) and the neighbourhood is Gaussian in node index. Width and learning rate decay
 //! geometrically over the epochs. Training is deterministic for a given generator state.
 
+use crate::params::{BIG, FieldError, check};
 use crate::random::rng::{Rng, shuffle, uniform};
 
-/// Training parameters of the SOM. Defaults: 128 nodes, 1000 epochs, σ 32 → 1, α 0.5 → 0.01.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct SomParams {
-    /// Number of nodes on the line (default 128); must be ≥ 1.
+/// The most nodes a map may have.
+pub const MAX_NODES: usize = 100_000;
+
+/// The SOM's training parameters as given (in a config, the `[aem]` keys `som_nodes`,
+/// `epochs`, `sigma_start`, `sigma_end`, `rate_start`, `rate_end`): see [`SomParams`] for each
+/// one's unit, default and range; [`SomParams::from_raw`] checks them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RawSom {
+    /// [`SomParams::nodes`].
     pub nodes: usize,
-    /// Number of epochs; each presents every training vector once (default 1000); must be ≥ 1.
+    /// [`SomParams::epochs`].
     pub epochs: usize,
-    /// Neighbourhood width σ at the first epoch, in node-index units (default 32); > 0, finite.
+    /// [`SomParams::sigma_start`].
     pub sigma_start: f64,
-    /// Neighbourhood width σ at the last epoch, in node-index units (default 1); > 0, finite.
+    /// [`SomParams::sigma_end`].
     pub sigma_end: f64,
-    /// Learning rate α at the first epoch (default 0.5); > 0, finite.
+    /// [`SomParams::rate_start`].
     pub rate_start: f64,
-    /// Learning rate α at the last epoch (default 0.01); > 0, finite.
+    /// [`SomParams::rate_end`].
     pub rate_end: f64,
+}
+
+impl Default for RawSom {
+    fn default() -> Self {
+        let d = SomParams::default();
+        RawSom {
+            nodes: d.nodes,
+            epochs: d.epochs,
+            sigma_start: d.sigma_start,
+            sigma_end: d.sigma_end,
+            rate_start: d.rate_start,
+            rate_end: d.rate_end,
+        }
+    }
+}
+
+/// Checked training parameters of the SOM, built by [`SomParams::from_raw`] (or
+/// [`SomParams::default`]: 128 nodes, 1000 epochs, σ 32 → 1, α 0.5 → 0.01).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SomParams {
+    nodes: usize,
+    epochs: usize,
+    sigma_start: f64,
+    sigma_end: f64,
+    rate_start: f64,
+    rate_end: f64,
 }
 
 impl Default for SomParams {
@@ -37,27 +69,67 @@ impl Default for SomParams {
 }
 
 impl SomParams {
-    /// Checks the parameters: `nodes ≥ 1`, `epochs ≥ 1`, all widths and rates finite and > 0.
-    pub fn validate(&self) -> Result<(), SomError> {
-        if self.nodes == 0 {
-            return Err(SomError::InvalidParams("nodes must be at least 1".into()));
-        }
-        if self.epochs == 0 {
-            return Err(SomError::InvalidParams("epochs must be at least 1".into()));
-        }
+    /// Checks the parameters, the one rule for them wherever they come from: `nodes` in
+    /// 1..=100000, `epochs` in 1..=10⁶, widths and rates finite and > 0. An error names the
+    /// `[aem]` key that sets the value (`aem.som_nodes`, `aem.epochs`, `aem.sigma_start`, …).
+    pub fn from_raw(raw: &RawSom) -> Result<SomParams, FieldError> {
+        check(
+            (1..=MAX_NODES).contains(&raw.nodes),
+            "aem.som_nodes",
+            || format!("must be in 1..={MAX_NODES}, got {}", raw.nodes),
+        )?;
+        check((1..=BIG).contains(&raw.epochs), "aem.epochs", || {
+            format!("must be in 1..={BIG}, got {}", raw.epochs)
+        })?;
         for (name, v) in [
-            ("sigma_start", self.sigma_start),
-            ("sigma_end", self.sigma_end),
-            ("rate_start", self.rate_start),
-            ("rate_end", self.rate_end),
+            ("aem.sigma_start", raw.sigma_start),
+            ("aem.sigma_end", raw.sigma_end),
+            ("aem.rate_start", raw.rate_start),
+            ("aem.rate_end", raw.rate_end),
         ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(SomError::InvalidParams(format!(
-                    "{name} must be finite and > 0, got {v}"
-                )));
-            }
+            check(v.is_finite() && v > 0.0, name, || {
+                format!("must be a finite number > 0, got {v}")
+            })?;
         }
-        Ok(())
+        Ok(SomParams {
+            nodes: raw.nodes,
+            epochs: raw.epochs,
+            sigma_start: raw.sigma_start,
+            sigma_end: raw.sigma_end,
+            rate_start: raw.rate_start,
+            rate_end: raw.rate_end,
+        })
+    }
+
+    /// Number of nodes on the line; default 128; range 1..=100000.
+    pub fn nodes(&self) -> usize {
+        self.nodes
+    }
+
+    /// Number of epochs, each presenting every training vector once; default 1000; range
+    /// 1..=10⁶.
+    pub fn epochs(&self) -> usize {
+        self.epochs
+    }
+
+    /// Neighbourhood width σ at the first epoch, in node-index units; default 32; > 0, finite.
+    pub fn sigma_start(&self) -> f64 {
+        self.sigma_start
+    }
+
+    /// Neighbourhood width σ at the last epoch, in node-index units; default 1; > 0, finite.
+    pub fn sigma_end(&self) -> f64 {
+        self.sigma_end
+    }
+
+    /// Learning rate α at the first epoch; default 0.5; > 0, finite.
+    pub fn rate_start(&self) -> f64 {
+        self.rate_start
+    }
+
+    /// Learning rate α at the last epoch; default 0.01; > 0, finite.
+    pub fn rate_end(&self) -> f64 {
+        self.rate_end
     }
 
     /// The geometric schedule value at epoch `e`: `start·(end/start)^(e/(epochs−1))`
@@ -96,7 +168,8 @@ pub enum SomError {
         /// Index of the element within the vector.
         element: usize,
     },
-    /// Invalid training parameters (see [`SomParams::validate`]).
+    /// Training parameters that do not fit the data (a map of `nodes × dim` weights too large
+    /// to count).
     #[error("invalid SOM parameters: {0}")]
     InvalidParams(String),
     /// A map whose stored weights do not match its node count and dimension (e.g. a
@@ -168,13 +241,12 @@ impl Som {
     /// schedule ([`SomParams::schedule`]), presents every vector once in an order shuffled with
     /// `rng`, and updates every node `w_j += α·h_j·(x − w_j)` with
     /// `h_j = exp(−(j − winner)²/(2σ²))`. Errors: empty data, zero or mismatched lengths,
-    /// non-finite values, invalid parameters.
+    /// non-finite values, a map too large to count its weights.
     pub fn train<R: Rng + ?Sized>(
         data: &[Vec<f64>],
         params: &SomParams,
         rng: &mut R,
     ) -> Result<Som, SomError> {
-        params.validate()?;
         let first = data.first().ok_or(SomError::EmptyData)?;
         let dim = first.len();
         if dim == 0 {
@@ -337,13 +409,18 @@ mod tests {
         (data, labels)
     }
 
+    /// Checked parameters from `raw`.
+    fn checked(raw: RawSom) -> SomParams {
+        SomParams::from_raw(&raw).unwrap()
+    }
+
     fn small_params() -> SomParams {
-        SomParams {
+        checked(RawSom {
             nodes: 20,
             epochs: 200,
             sigma_start: 5.0,
-            ..SomParams::default()
-        }
+            ..RawSom::default()
+        })
     }
 
     #[test]
@@ -378,13 +455,13 @@ mod tests {
     #[test]
     fn init_within_range_and_constant_dims() {
         let data = vec![vec![1.0, 5.0, 2.0], vec![3.0, 5.0, 4.0]];
-        let p = SomParams {
+        let p = checked(RawSom {
             nodes: 8,
             epochs: 1,
             rate_start: 1e-300,
             rate_end: 1e-300,
-            ..SomParams::default()
-        };
+            ..RawSom::default()
+        });
         let som = Som::train(&data, &p, &mut rng_from_seed(0)).unwrap();
         for j in 0..8 {
             let w = som.weights(j);
@@ -408,11 +485,11 @@ mod tests {
     #[test]
     fn single_node_and_ties() {
         let data = vec![vec![1.0, 2.0]];
-        let p = SomParams {
+        let p = checked(RawSom {
             nodes: 1,
             epochs: 1,
-            ..SomParams::default()
-        };
+            ..RawSom::default()
+        });
         let som = Som::train(&data, &p, &mut rng_from_seed(0)).unwrap();
         assert_eq!(som.winner(&[100.0, -3.0]).unwrap(), 0);
         // Identical nodes: tie → lowest index.
@@ -448,38 +525,46 @@ mod tests {
                 element: 1
             })
         );
-        for bad in [
-            SomParams {
-                nodes: 0,
-                ..p.clone()
-            },
-            SomParams {
-                epochs: 0,
-                ..p.clone()
-            },
-            SomParams {
-                sigma_end: 0.0,
-                ..p.clone()
-            },
-            SomParams {
-                rate_start: f64::NAN,
-                ..p.clone()
-            },
-            SomParams {
-                rate_end: -0.1,
-                ..p.clone()
-            },
+        let raw = RawSom::default();
+        for (bad, field) in [
+            (RawSom { nodes: 0, ..raw }, "aem.som_nodes"),
+            (
+                RawSom {
+                    nodes: 100_001,
+                    ..raw
+                },
+                "aem.som_nodes",
+            ),
+            (RawSom { epochs: 0, ..raw }, "aem.epochs"),
+            (
+                RawSom {
+                    sigma_end: 0.0,
+                    ..raw
+                },
+                "aem.sigma_end",
+            ),
+            (
+                RawSom {
+                    rate_start: f64::NAN,
+                    ..raw
+                },
+                "aem.rate_start",
+            ),
+            (
+                RawSom {
+                    rate_end: -0.1,
+                    ..raw
+                },
+                "aem.rate_end",
+            ),
         ] {
-            assert!(matches!(
-                Som::train(&[vec![1.0]], &bad, &mut rng),
-                Err(SomError::InvalidParams(_))
-            ));
+            assert_eq!(SomParams::from_raw(&bad).unwrap_err().field, field);
         }
-        let small = SomParams {
+        let small = checked(RawSom {
             nodes: 4,
             epochs: 2,
-            ..p.clone()
-        };
+            ..raw
+        });
         let som = Som::train(&[vec![1.0, 2.0]], &small, &mut rng).unwrap();
         assert_eq!(
             som.winner(&[1.0]),

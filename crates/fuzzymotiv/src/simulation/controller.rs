@@ -14,14 +14,20 @@ pub trait Controller {
 }
 
 /// The shape of the MLP: 8 inputs → `hidden` logistic units → 2 logistic outputs, with biases.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+/// Built only by checking ([`MlpShape::with_hidden`], [`RawNetwork::shape`]) or as the paper's
+/// ([`MlpShape::default`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MlpShape {
-    /// Inputs (8).
-    pub inputs: usize,
-    /// Hidden units; default 6 ([`MlpShape::DEFAULT_HIDDEN`]); range 1..=1024.
-    pub hidden: usize,
-    /// Outputs (2).
-    pub outputs: usize,
+    hidden: usize,
+}
+
+impl Default for MlpShape {
+    /// The paper's 8-6-2 network.
+    fn default() -> Self {
+        MlpShape {
+            hidden: MlpShape::DEFAULT_HIDDEN,
+        }
+    }
 }
 
 /// `[network]` in a config, as written.
@@ -41,12 +47,9 @@ impl Default for RawNetwork {
 }
 
 impl RawNetwork {
-    /// The validated shape.
+    /// The checked shape ([`MlpShape::with_hidden`]).
     pub fn shape(&self) -> Result<MlpShape, crate::params::FieldError> {
-        crate::params::check((1..=1024).contains(&self.hidden), "network.hidden", || {
-            format!("must be in 1..=1024, got {}", self.hidden)
-        })?;
-        Ok(MlpShape::with_hidden(self.hidden))
+        MlpShape::with_hidden(self.hidden)
     }
 }
 
@@ -54,24 +57,83 @@ impl MlpShape {
     /// The paper's hidden layer: 6 units.
     pub const DEFAULT_HIDDEN: usize = 6;
 
-    /// The shape with `hidden` hidden units.
-    pub fn with_hidden(hidden: usize) -> Self {
-        Self {
-            inputs: INPUTS,
-            hidden,
-            outputs: OUTPUTS,
-        }
+    /// The most hidden units a network may have.
+    pub const MAX_HIDDEN: usize = 1024;
+
+    /// The shape with `hidden` hidden units, in 1..=[`MlpShape::MAX_HIDDEN`]; an error names
+    /// `network.hidden`.
+    ///
+    /// ```
+    /// use fuzzymotiv::simulation::controller::MlpShape;
+    /// assert_eq!(MlpShape::with_hidden(6).unwrap(), MlpShape::default());
+    /// assert_eq!(MlpShape::with_hidden(0).unwrap_err().field, "network.hidden");
+    /// ```
+    pub fn with_hidden(hidden: usize) -> Result<MlpShape, crate::params::FieldError> {
+        crate::params::check(
+            (1..=Self::MAX_HIDDEN).contains(&hidden),
+            "network.hidden",
+            || format!("must be in 1..={}, got {hidden}", Self::MAX_HIDDEN),
+        )?;
+        Ok(MlpShape { hidden })
+    }
+
+    /// Inputs: the eight IR sensors ([`INPUTS`]).
+    pub fn inputs(&self) -> usize {
+        INPUTS
+    }
+
+    /// Hidden units; default 6 ([`MlpShape::DEFAULT_HIDDEN`]); range 1..=1024.
+    pub fn hidden(&self) -> usize {
+        self.hidden
+    }
+
+    /// Outputs: the two motors ([`OUTPUTS`]).
+    pub fn outputs(&self) -> usize {
+        OUTPUTS
     }
 
     /// Genome length: per hidden unit `[bias, 8 weights]`, then per output `[bias, hidden
     /// weights]`. 68 for the paper's 8-6-2.
     ///
     /// ```
-    /// assert_eq!(fuzzymotiv::simulation::controller::MlpShape::with_hidden(6).genome_len(), 68);
+    /// assert_eq!(fuzzymotiv::simulation::controller::MlpShape::default().genome_len(), 68);
     /// ```
     pub fn genome_len(&self) -> usize {
-        self.hidden * (self.inputs + 1) + self.outputs * (self.hidden + 1)
+        self.hidden * (INPUTS + 1) + OUTPUTS * (self.hidden + 1)
     }
+}
+
+impl MlpShape {
+    /// `Ok` when `genome` has this network's length.
+    pub(crate) fn check(&self, genome: &[f64]) -> Result<(), GenomeError> {
+        if genome.len() == self.genome_len() {
+            Ok(())
+        } else {
+            Err(GenomeError {
+                hidden: self.hidden,
+                expected: self.genome_len(),
+                actual: genome.len(),
+            })
+        }
+    }
+}
+
+/// A genome whose length is not its network's ([`Mlp::from_genome`]).
+///
+/// ```
+/// use fuzzymotiv::simulation::controller::{Mlp, MlpShape};
+/// let e = Mlp::from_genome(MlpShape::default(), &[0.0; 67]).unwrap_err();
+/// assert_eq!(e.to_string(), "a genome of the 8-6-2 network has 68 weights, got 67");
+/// ```
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("a genome of the 8-{hidden}-2 network has {expected} weights, got {actual}")]
+pub struct GenomeError {
+    /// The network's hidden units.
+    pub hidden: usize,
+    /// The network's genome length ([`MlpShape::genome_len`]).
+    pub expected: usize,
+    /// The genome's length.
+    pub actual: usize,
 }
 
 /// Logistic function 1 / (1 + e^(−x)), with the project's own `exp` (error bound and range:
@@ -98,27 +160,31 @@ pub struct Mlp {
 }
 
 impl Mlp {
-    /// A network from a genome laid out as [`MlpShape::genome_len`] describes; `None` when the
-    /// length does not match.
-    pub fn from_genome(shape: MlpShape, genome: &[f64]) -> Option<Self> {
-        (genome.len() == shape.genome_len() && shape.inputs == INPUTS && shape.outputs == OUTPUTS)
-            .then(|| {
-                let (hidden_w, out_w) = genome.split_at(shape.hidden * (INPUTS + 1));
-                let idle_hidden: Vec<f64> = hidden_w
-                    .chunks_exact(INPUTS + 1)
-                    .map(|w| logistic(w[0]))
-                    .collect();
-                let by_input = (0..=INPUTS)
-                    .flat_map(|k| hidden_w.chunks_exact(INPUTS + 1).map(move |w| w[k]))
-                    .collect();
-                Self {
-                    shape,
-                    out_weights: out_w.to_vec(),
-                    by_input,
-                    hidden: vec![0.0; shape.hidden],
-                    idle_out: output_layer(out_w, &idle_hidden),
-                }
-            })
+    /// A network from a genome laid out as [`MlpShape::genome_len`] describes; an error when
+    /// the length does not match.
+    pub fn from_genome(shape: MlpShape, genome: &[f64]) -> Result<Self, GenomeError> {
+        shape.check(genome)?;
+        Ok(Self::of_checked(shape, genome))
+    }
+
+    /// The network of `genome`, whose length is `shape`'s (checked by the caller).
+    pub(crate) fn of_checked(shape: MlpShape, genome: &[f64]) -> Self {
+        debug_assert_eq!(genome.len(), shape.genome_len());
+        let (hidden_w, out_w) = genome.split_at(shape.hidden * (INPUTS + 1));
+        let idle_hidden: Vec<f64> = hidden_w
+            .chunks_exact(INPUTS + 1)
+            .map(|w| logistic(w[0]))
+            .collect();
+        let by_input = (0..=INPUTS)
+            .flat_map(|k| hidden_w.chunks_exact(INPUTS + 1).map(move |w| w[k]))
+            .collect();
+        Self {
+            shape,
+            out_weights: out_w.to_vec(),
+            by_input,
+            hidden: vec![0.0; shape.hidden],
+            idle_out: output_layer(out_w, &idle_hidden),
+        }
     }
 
     /// The network's shape.
@@ -208,7 +274,7 @@ mod tests {
     fn fixed_and_general_paths_agree_bit_for_bit() {
         let mut rng = crate::random::rng::rng_from_seed(4);
         for hidden in [5, 6, 7] {
-            let shape = MlpShape::with_hidden(hidden);
+            let shape = MlpShape::with_hidden(hidden).unwrap();
             let g: Vec<f64> = (0..shape.genome_len())
                 .map(|_| crate::random::rng::uniform(&mut rng, -5.0, 5.0))
                 .collect();
@@ -238,16 +304,17 @@ mod tests {
 
     #[test]
     fn zero_genome_outputs_half() {
-        let shape = MlpShape::with_hidden(6);
+        let shape = MlpShape::default();
         let mut m = Mlp::from_genome(shape, &vec![0.0; 68]).unwrap();
         assert_eq!(m.step(&[1.0; 8]), [0.5, 0.5]);
-        assert!(Mlp::from_genome(shape, &[0.0; 67]).is_none());
+        let e = Mlp::from_genome(shape, &[0.0; 67]).unwrap_err();
+        assert_eq!((e.expected, e.actual), (68, 67));
     }
 
     #[test]
     fn hand_computed_output() {
         // One hidden unit: bias 0, weight 1 on input 0 → logistic(1). Output 0: bias -1, w 2.
-        let shape = MlpShape::with_hidden(1);
+        let shape = MlpShape::with_hidden(1).unwrap();
         let mut g = vec![0.0; shape.genome_len()];
         g[1] = 1.0; // hidden unit, input 0
         g[9] = -1.0; // output 0 bias

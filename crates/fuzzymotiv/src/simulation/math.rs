@@ -260,13 +260,26 @@ pub fn logistic_lanes<const L: usize>(x: [f64; L]) -> [f64; L] {
     if !x.iter().all(|v| v.abs() <= 708.0) {
         return x.map(logistic);
     }
-    let parts = x.map(|v| reduce(-v));
-    let y = parts.map(|(k, r)| table_poly(k, r));
+    // Plain loops over the lanes, not `array::map`: whether a map's closure is inlined into
+    // the network's step depends on how the crate is split into codegen units, and one that is
+    // not costs a fifth of the step loop's time.
+    let (mut k, mut r) = ([0i64; L], [0.0; L]);
+    for l in 0..L {
+        (k[l], r[l]) = reduce(-x[l]);
+    }
+    let mut y = [0.0; L];
+    for l in 0..L {
+        y[l] = table_poly(k[l], r[l]);
+    }
     // |k| ≤ 130 743 (708 · 128 / ln 2, rounded) < 1023 · 128, so the shifted sum is
     // `(k >> 7) + 0x3ff` in 1..=2044, a normal exponent, shifted logically (arithmetic 64-bit
     // shifts have no vector form here).
-    let scale = parts.map(|(k, _)| f64::from_bits((((k + 0x3ff * 128) as u64) >> 7) << 52));
-    std::array::from_fn(|l| 1.0 / (1.0 + y[l] * scale[l]))
+    let mut out = [0.0; L];
+    for l in 0..L {
+        let scale = f64::from_bits((((k[l] + 0x3ff * 128) as u64) >> 7) << 52);
+        out[l] = 1.0 / (1.0 + y[l] * scale);
+    }
+    out
 }
 
 const S1: f64 = f64::from_bits(0xbfc5_5555_5555_5549);

@@ -11,7 +11,8 @@
 //! A lookup returns exactly the bits the computation returned, so results are identical with or
 //! without the memo, whatever the number of threads, the table size or what was evicted. Each
 //! thread keeps a direct-mapped table of [`SLOTS`] entries for each of its last [`TABLES`] owners
-//! (an arena and a step length); a slot is overwritten by the next pose that hashes to it. The
+//! (an arena and a step length); a slot is overwritten by the next pose that hashes to it. A
+//! table whose arena is gone is the first to be taken over by a new owner. The
 //! sensor values are whole numbers in 0–1023 (the `sampled` sensor model), which is what lets an
 //! entry fit in 32 bytes; the caller must not use the memo for other values.
 //!
@@ -58,13 +59,19 @@ pub struct Owner {
     pub step: u64,
 }
 
-/// Runs `f` with this thread's table for `owner` (made, or taken over from the oldest owner, if
-/// it has none), borrowed for as long as `f` runs: a trial takes it once, not once per step.
-/// `f` gets `None` if the thread's tables are already borrowed (a trial run from inside another
-/// trial, by its controller or observer): it then computes every sight, with the same results.
-pub fn with_table<T>(owner: Owner, f: impl FnOnce(Option<&mut Table>) -> T) -> T {
+/// Runs `f` with this thread's table for `owner` (made, or taken over from an owner whose arena
+/// is gone — `live(number)` false — or else from the oldest owner, if it has none), borrowed for
+/// as long as `f` runs: a trial takes it once, not once per step. `live` is asked only when
+/// the thread has no table for `owner`. `f` gets `None` if the thread's tables are already
+/// borrowed (a trial run from inside another trial, by its controller or observer): it then
+/// computes every sight, with the same results.
+pub fn with_table<T>(
+    owner: Owner,
+    live: fn(u64) -> bool,
+    f: impl FnOnce(Option<&mut Table>) -> T,
+) -> T {
     MEMO.with(|memo| match memo.try_borrow_mut() {
-        Ok(mut memo) => f(Some(memo.table(owner))),
+        Ok(mut memo) => f(Some(memo.table(owner, live))),
         Err(_) => f(None),
     })
 }
@@ -95,21 +102,29 @@ struct Memo {
 }
 
 impl Memo {
-    /// `owner`'s table, made (or taken over from the oldest owner) if it has none.
+    /// `owner`'s table; if it has none, the table of an arena no longer `live` is taken over
+    /// (emptied), else a new one is made, else the oldest owner's is taken over.
     #[inline]
-    fn table(&mut self, owner: Owner) -> &mut Table {
+    fn table(&mut self, owner: Owner, live: fn(u64) -> bool) -> &mut Table {
         if let Some(k) = self.tables.iter().position(|t| t.owner == owner) {
             return &mut self.tables[k];
         }
-        if self.tables.len() < TABLES {
-            self.tables.push(Table {
-                owner,
-                slots: Slots::new(),
-            });
-            return self.tables.last_mut().expect("just pushed");
-        }
-        let k = self.next;
-        self.next = (k + 1) % TABLES;
+        let free = self.tables.iter().position(|t| !live(t.owner.arena));
+        let k = match free {
+            Some(k) => k,
+            None if self.tables.len() < TABLES => {
+                self.tables.push(Table {
+                    owner,
+                    slots: Slots::new(),
+                });
+                return self.tables.last_mut().expect("just pushed");
+            }
+            None => {
+                let k = self.next;
+                self.next = (k + 1) % TABLES;
+                k
+            }
+        };
         let table = &mut self.tables[k];
         table.owner = owner;
         table.slots.fill(Slot::EMPTY);
@@ -318,9 +333,11 @@ mod tests {
         next: &[(Vec2, usize)],
         look: impl FnOnce() -> Sight,
     ) -> Sight {
-        with_table(owner, |table| {
-            table.expect("not borrowed").recall(pos, dir, next, look)
-        })
+        with_table(
+            owner,
+            |_| true,
+            |table| table.expect("not borrowed").recall(pos, dir, next, look),
+        )
     }
 
     /// A table's slots are one block aligned to its size, empty, and each can be written.
@@ -342,11 +359,12 @@ mod tests {
     #[test]
     fn a_nested_borrow_gets_no_table() {
         let owner = Owner { arena: 4, step: 0 };
-        with_table(owner, |outer| {
+        let live: fn(u64) -> bool = |_| true;
+        with_table(owner, live, |outer| {
             assert!(outer.is_some());
-            with_table(owner, |inner| assert!(inner.is_none()));
+            with_table(owner, live, |inner| assert!(inner.is_none()));
         });
-        with_table(owner, |again| assert!(again.is_some()));
+        with_table(owner, live, |again| assert!(again.is_some()));
     }
 
     fn sight(k: u16) -> Sight {
@@ -411,5 +429,42 @@ mod tests {
         assert_eq!(recall(owner, q, 4, &[], || sight(2)), sight(2));
         assert_eq!(recall(owner, p, 5, &[], || sight(3)), sight(3));
         assert_eq!(recall(owner, p, 4, &[], || unreachable!()), sight(1));
+    }
+
+    /// A table whose arena is gone is taken over by the next new owner, emptied, before any
+    /// new table is made: the tables of dropped arenas do not pile up.
+    #[test]
+    fn a_gone_arenas_table_is_taken_over() {
+        let gone = Owner {
+            arena: 1 << 40,
+            step: 0,
+        };
+        let tables = || MEMO.with(|m| m.borrow().tables.len());
+        let p = Vec2::new(1.0, 2.0);
+        with_table(
+            gone,
+            |_| true,
+            |t| {
+                t.unwrap().recall(p, 0, &[], || sight(1));
+            },
+        );
+        let before = tables();
+        for k in 1..=3 * TABLES as u64 {
+            let next = Owner {
+                arena: (1 << 40) + k,
+                step: 0,
+            };
+            // No earlier owner's arena is alive: each new owner takes a table over.
+            with_table(
+                next,
+                |_| false,
+                |t| {
+                    let t = t.unwrap();
+                    assert_eq!(t.owner(), next);
+                    assert_eq!(t.recall(p, 0, &[], || sight(2)), sight(2), "emptied");
+                },
+            );
+            assert_eq!(tables(), before);
+        }
     }
 }

@@ -70,32 +70,78 @@ pub fn wrap_angle(theta: f64) -> f64 {
     t
 }
 
-/// Physical parameters of the Khepera I and its motion model (`[robot]` in a config; see
-/// docs/model.md). All lengths in mm, speeds in mm/s.
+/// `[robot]` in a config, as written: see [`Khepera`] for each field's unit, default and
+/// range; [`Khepera::from_raw`] checks them.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
-pub struct Khepera {
-    /// Body radius (mm); default 27.5 (diameter 55 mm); range [r, 80] where r ≈ 25.1 mm is
-    /// the IR sensors' distance from the centre.
+pub struct RawRobot {
+    /// [`Khepera::radius`].
     pub radius: f64,
-    /// Distance between the wheels (mm); default 53 (used by `wheels` motion only); range
-    /// (0, 1000].
+    /// [`Khepera::wheel_base`].
     pub wheel_base: f64,
-    /// Maximum wheel speed (mm/s); default 80; > 0, finite. With `actions` motion a straight
-    /// step moves `v_max · dt` (8 mm by default).
+    /// [`Khepera::v_max`].
     pub v_max: f64,
-    /// How the network's motor commands move the robot; default `"actions"` (the paper's).
+    /// [`Khepera::motion`].
     pub motion: Motion,
 }
 
+impl Default for RawRobot {
+    fn default() -> Self {
+        let d = Khepera::default();
+        Self {
+            radius: d.radius,
+            wheel_base: d.wheel_base,
+            v_max: d.v_max,
+            motion: d.motion,
+        }
+    }
+}
+
+/// Physical parameters of the Khepera I and its motion model, checked (see docs/model.md):
+/// built by [`Khepera::from_raw`] (or [`Khepera::default`]). All lengths in mm, speeds in mm/s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Khepera {
+    radius: f64,
+    wheel_base: f64,
+    v_max: f64,
+    motion: Motion,
+}
+
 impl Khepera {
-    /// Checks the body against the ranges documented on its fields, naming the first field out
-    /// of range as `robot.FIELD`.
-    pub fn validate(&self) -> Result<(), FieldError> {
+    /// Body radius (mm); default 27.5 (diameter 55 mm); range [r, 80] where r ≈ 25.1 mm is
+    /// the IR sensors' distance from the centre.
+    #[inline]
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// Distance between the wheels (mm); default 53 (used by `wheels` motion only); range
+    /// (0, 1000].
+    #[inline]
+    pub fn wheel_base(&self) -> f64 {
+        self.wheel_base
+    }
+
+    /// Maximum wheel speed (mm/s); default 80; > 0, finite. With `actions` motion a straight
+    /// step moves `v_max · dt` (8 mm by default).
+    #[inline]
+    pub fn v_max(&self) -> f64 {
+        self.v_max
+    }
+
+    /// How the network's motor commands move the robot; default `"actions"` (the paper's).
+    #[inline]
+    pub fn motion(&self) -> Motion {
+        self.motion
+    }
+
+    /// Checks `[robot]` against the ranges documented on the accessors, naming the first
+    /// field out of range as `robot.FIELD`.
+    pub fn from_raw(raw: &RawRobot) -> Result<Khepera, FieldError> {
         check(
-            self.v_max.is_finite() && self.v_max > 0.0,
+            raw.v_max.is_finite() && raw.v_max > 0.0,
             "robot.v_max",
-            || format!("must be a speed > 0 (mm/s), got {}", self.v_max),
+            || format!("must be a speed > 0 (mm/s), got {}", raw.v_max),
         )?;
         // The sensor mounts are fixed (docs/model.md §3): they must sit inside the body, and a
         // body far larger than the sensors' reach would be blind.
@@ -104,20 +150,26 @@ impl Khepera {
             .map(|m| m.x.hypot(m.y))
             .fold(0.0, f64::max);
         check(
-            self.radius.is_finite() && self.radius >= mounts && self.radius <= 80.0,
+            raw.radius.is_finite() && raw.radius >= mounts && raw.radius <= 80.0,
             "robot.radius",
             || {
                 format!(
                     "must be in [{mounts:.2}, 80] mm (the IR sensors sit {mounts:.2} mm from the centre and see 58 mm), got {}",
-                    self.radius
+                    raw.radius
                 )
             },
         )?;
         check(
-            self.wheel_base.is_finite() && self.wheel_base > 0.0 && self.wheel_base <= 1000.0,
+            raw.wheel_base.is_finite() && raw.wheel_base > 0.0 && raw.wheel_base <= 1000.0,
             "robot.wheel_base",
-            || format!("must be in (0, 1000] mm, got {}", self.wheel_base),
-        )
+            || format!("must be in (0, 1000] mm, got {}", raw.wheel_base),
+        )?;
+        Ok(Khepera {
+            radius: raw.radius,
+            wheel_base: raw.wheel_base,
+            v_max: raw.v_max,
+            motion: raw.motion,
+        })
     }
 }
 

@@ -87,7 +87,7 @@ pub const SIDE_SAMPLES: [(f64, f64); 5] = [
 pub const LINEAR_RANGE: f64 = 50.0;
 
 /// How a sensor turns wall distances into a value in [0, 1023].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SensorModel {
     /// Three rays (axis, ±24.2°) read through the classic simulator's sample tables (default).

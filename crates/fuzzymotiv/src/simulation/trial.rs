@@ -6,7 +6,8 @@
 //! whole [`Trajectory`].
 
 use std::collections::HashMap;
-use std::sync::{LazyLock, Mutex, PoisonError};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, LazyLock, Mutex, MutexGuard, PoisonError, Weak};
 
 use serde::{Deserialize, Serialize};
 
@@ -17,7 +18,7 @@ use crate::simulation::controller::{Controller, INPUTS};
 use crate::simulation::geom::{PreparedSegment, Segment, Vec2};
 use crate::simulation::memo::{Owner, Sight, Table};
 use crate::simulation::robot::Action;
-use crate::simulation::robot::{Compass, Khepera, Motion, Pose, drive};
+use crate::simulation::robot::{Compass, Khepera, Motion, Pose, RawRobot, drive};
 use crate::simulation::room::Room;
 use crate::simulation::sensing::{Eyes, Facing};
 use crate::simulation::sensor::{SENSOR_MAX, SensorModel, sensing_reach};
@@ -25,27 +26,18 @@ use crate::simulation::sensor::{SENSOR_MAX, SensorModel, sensing_reach};
 /// Side of a grid cell (mm): the exploration grid of docs/model.md §7 and the wall-culling grid.
 pub const CELL: f64 = 50.0;
 
-/// Parameters of a trial (docs/model.md, "Robot", "Noise" and "Home zone").
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// Checked parameters of a trial (docs/model.md, "Robot", "Noise" and "Home zone"), built by
+/// [`TrialParams::from_raw`] (or [`TrialParams::default`]); read through the accessors, each
+/// documented with its unit, default and range.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrialParams {
-    /// Steps per trial `T`; default 400; range 1..=10⁷.
-    pub steps: usize,
-    /// Control step (s); default 0.1; range (0, 10], and one step must move the robot less than
-    /// its radius ([`TrialParams::max_step`]).
-    pub dt: f64,
-    /// Multiplicative noise level on sensors and wheels; default 0.06 (the paper's 6 %); range
-    /// [0, 0.5]; 0 disables it.
-    pub noise: f64,
-    /// IR response model; default `sampled`.
-    pub sensor_model: SensorModel,
-    /// The robot's body and motion model.
-    pub robot: Khepera,
-    /// End the trial when the robot, having escaped the home zone, is back inside it; the
-    /// remaining steps are idle. Default true.
-    pub end_at_home: bool,
-    /// Signed-speed difference (fractions of `v_max`) separating a turn from a straight step
-    /// in the action labels; default 0.25 (config `aem.action_tolerance`).
-    pub action_tolerance: f64,
+    steps: usize,
+    dt: f64,
+    noise: f64,
+    sensor_model: SensorModel,
+    robot: Khepera,
+    end_at_home: bool,
+    action_tolerance: f64,
 }
 
 impl Default for TrialParams {
@@ -93,11 +85,11 @@ impl Default for RawTrial {
 }
 
 impl TrialParams {
-    /// Validates `[trial]` with the robot body (`[robot]`, checked here too) and the action
-    /// tolerance (`aem.action_tolerance`, checked with the AEM parameters).
+    /// Checks `[trial]` with the robot body (`[robot]`, [`Khepera::from_raw`]) and the action
+    /// tolerance (`aem.action_tolerance`), naming the first field out of range.
     pub fn from_raw(
         t: &RawTrial,
-        robot: Khepera,
+        robot: &RawRobot,
         action_tolerance: f64,
     ) -> Result<TrialParams, FieldError> {
         check((1..=10_000_000).contains(&t.steps), "trial.steps", || {
@@ -118,7 +110,7 @@ impl TrialParams {
                 )
             },
         )?;
-        robot.validate()?;
+        let robot = Khepera::from_raw(robot)?;
         let trial = TrialParams {
             steps: t.steps,
             dt: t.dt,
@@ -128,36 +120,89 @@ impl TrialParams {
             end_at_home: t.end_at_home,
             action_tolerance,
         };
-        check(trial.max_step() < robot.radius, "trial.dt", || {
+        check(trial.max_step() < robot.radius(), "trial.dt", || {
             format!(
                 "one step may move the robot {:.1} mm (robot.v_max × trial.dt × (1 + trial.noise)), which must stay below the body radius {} mm so it cannot pass through walls; use a smaller dt or v_max",
                 trial.max_step(),
-                robot.radius
+                robot.radius()
             )
         })?;
+        check(
+            action_tolerance.is_finite() && (0.0..=2.0).contains(&action_tolerance),
+            "aem.action_tolerance",
+            || format!("must be in [0, 2] (signed-speed units), got {action_tolerance}"),
+        )?;
         Ok(trial)
     }
-}
 
-impl TrialParams {
+    /// Steps per trial `T`; default 400; range 1..=10⁷.
+    #[inline]
+    pub fn steps(&self) -> usize {
+        self.steps
+    }
+
+    /// Control step (s); default 0.1; range (0, 10], and one step must move the robot less than
+    /// its radius ([`TrialParams::max_step`]).
+    #[inline]
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// Multiplicative noise level on sensors and wheels; default 0.06 (the paper's 6 %); range
+    /// [0, 0.5]; 0 disables it.
+    #[inline]
+    pub fn noise(&self) -> f64 {
+        self.noise
+    }
+
+    /// IR response model; default `sampled`.
+    #[inline]
+    pub fn sensor_model(&self) -> SensorModel {
+        self.sensor_model
+    }
+
+    /// The robot's body and motion model.
+    #[inline]
+    pub fn robot(&self) -> &Khepera {
+        &self.robot
+    }
+
+    /// End the trial when the robot, having escaped the home zone, is back inside it; the
+    /// remaining steps are idle. Default true.
+    #[inline]
+    pub fn end_at_home(&self) -> bool {
+        self.end_at_home
+    }
+
+    /// Signed-speed difference (fractions of `v_max`) separating a turn from a straight step
+    /// in the action labels; default 0.25 (config `aem.action_tolerance`); range [0, 2].
+    #[inline]
+    pub fn action_tolerance(&self) -> f64 {
+        self.action_tolerance
+    }
+
     /// Longest distance the centre can move in one step (mm), noise included.
     pub fn max_step(&self) -> f64 {
-        match self.robot.motion {
+        match self.robot.motion() {
             Motion::Actions => self.straight_step(),
-            Motion::Wheels => self.robot.v_max * self.dt * (1.0 + self.noise),
+            Motion::Wheels => self.robot.v_max() * self.dt * (1.0 + self.noise),
         }
     }
 
     /// Length of a straight action (mm): `v_max · dt`, 8 mm by default.
+    #[inline]
     pub fn straight_step(&self) -> f64 {
-        self.robot.v_max * self.dt
+        self.robot.v_max() * self.dt
     }
 }
 
-/// A room prepared for fast trials.
+/// A room prepared for fast trials with the parameters it keeps ([`Arena::params`]): every
+/// trial in it ([`simulate`], [`run_trial`]) runs with them, so the walls culled for its reach
+/// are the walls its robot can touch.
 #[derive(Debug, Clone)]
 pub struct Arena {
     room: Room,
+    params: TrialParams,
     walls: Vec<Segment>,
     /// The walls prepared for division-free culling tests (same order as `walls`).
     prepared: Vec<PreparedSegment>,
@@ -171,29 +216,116 @@ pub struct Arena {
     near_reach: f64,
     compass: Compass,
     eyes: Eyes,
-    /// This arena's number in the [`crate::simulation::memo`] of each thread (shared by its clones and by
-    /// equal arenas, [`memo_number`]), or `None` when its poses are not remembered.
-    memo: Option<u64>,
+    /// This arena's number in the [`crate::simulation::memo`] of each thread, shared with its clones and
+    /// with every arena of the same [`SightKey`] ([`MemoClaim::of`]), or `None` when its poses
+    /// are not remembered.
+    memo: Option<Arc<MemoClaim>>,
 }
 
-/// The arenas numbered so far for [`crate::simulation::memo`], by their full `Debug` text: equal arenas
-/// (the same room prepared with the same parameters, in several runs or experiments) get the
-/// same number, and so share their tables, which they may: a sight is a function of the arena,
-/// the pose and the length of a straight move (kept apart, in [`Owner`]), and `Debug` writes
-/// every field, floats to the last bit. Entries are never removed (one per distinct arena, tens
-/// of KB each for the built-in rooms).
-static ARENAS: LazyLock<Mutex<HashMap<String, u64>>> = LazyLock::new(Default::default);
+/// Everything a sight ([`Arena::sight`]) reads of an arena, to the bit: the walls, the grid
+/// they are culled to, the compass (the home heading), the sensor model, the body radius and
+/// the culling reach (the length of a straight move is the table's, [`Owner::step`]). Arenas
+/// with equal keys see the same from every pose, so they may share their memo tables; arenas
+/// with different keys never do.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+struct SightKey {
+    /// Each wall's end points, `[a.x, a.y, b.x, b.y]`.
+    walls: Vec<[u64; 4]>,
+    /// The grid's origin `[x, y]`, columns and rows.
+    grid: [u64; 4],
+    heading: u64,
+    sensor_model: SensorModel,
+    radius: u64,
+    near_reach: u64,
+}
 
-/// The [`crate::simulation::memo`] number of `arena` (whose own number is not yet set): 1 for the first
-/// distinct arena, 2 for the second, and so on.
-fn memo_number(arena: &Arena) -> u64 {
-    let mut known = ARENAS.lock().unwrap_or_else(PoisonError::into_inner);
-    let next = known.len() as u64 + 1;
-    *known.entry(format!("{arena:?}")).or_insert(next)
+impl SightKey {
+    /// The key of `arena`.
+    fn of(arena: &Arena) -> SightKey {
+        let g = &arena.grid;
+        SightKey {
+            walls: (arena.walls.iter())
+                .map(|w| [w.a.x, w.a.y, w.b.x, w.b.y].map(f64::to_bits))
+                .collect(),
+            grid: [
+                g.origin.x.to_bits(),
+                g.origin.y.to_bits(),
+                g.cols as u64,
+                g.rows as u64,
+            ],
+            heading: arena.room.home.heading.to_bits(),
+            sensor_model: arena.params.sensor_model,
+            radius: arena.radius.to_bits(),
+            near_reach: arena.near_reach.to_bits(),
+        }
+    }
+}
+
+/// A memo number in use, held by the arenas of one [`SightKey`] (and their clones): when the
+/// last of them goes, so does the number's entry in [`REGISTRY`]. Numbers are never given
+/// twice, so a table of a number no arena holds any more is never looked at again; threads
+/// take such tables over first ([`memo_live`]).
+#[derive(Debug)]
+struct MemoClaim {
+    number: u64,
+    key: SightKey,
+}
+
+/// The memo numbers of the arenas alive, by [`SightKey`]: arenas equal in every bit a sight
+/// reads (the same room prepared with the same parameters, in several runs or experiments at
+/// once) get the same number, and so share their tables. An entry goes when its last arena
+/// does ([`MemoClaim`]'s `Drop`), so the registry holds only the keys of arenas alive.
+static REGISTRY: LazyLock<Mutex<Registry>> = LazyLock::new(Default::default);
+
+/// Each key's memo number and the claim that holds it.
+type Registry = HashMap<SightKey, (u64, Weak<MemoClaim>)>;
+
+/// The next memo number to give (numbers start at 1 and are never reused).
+static NEXT_NUMBER: AtomicU64 = AtomicU64::new(1);
+
+/// The registry, locked (a panic elsewhere while it was held leaves it consistent: every
+/// change is one map operation).
+fn registry() -> MutexGuard<'static, Registry> {
+    REGISTRY.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+impl MemoClaim {
+    /// The claim of the arenas of `key`: the one held by a live arena of the same key, or a
+    /// new number.
+    fn of(key: SightKey) -> Arc<MemoClaim> {
+        let mut known = registry();
+        if let Some(claim) = known.get(&key).and_then(|(_, weak)| weak.upgrade()) {
+            return claim;
+        }
+        let number = NEXT_NUMBER.fetch_add(1, Ordering::Relaxed);
+        let claim = Arc::new(MemoClaim {
+            number,
+            key: key.clone(),
+        });
+        known.insert(key, (number, Arc::downgrade(&claim)));
+        claim
+    }
+}
+
+impl Drop for MemoClaim {
+    fn drop(&mut self) {
+        let mut known = registry();
+        // A new claim may already have replaced this one (made between the last arena's
+        // going and this drop): its entry stays.
+        if known.get(&self.key).is_some_and(|(n, _)| *n == self.number) {
+            known.remove(&self.key);
+        }
+    }
+}
+
+/// Whether memo number `number` is held by an arena alive (the others' tables are free).
+fn memo_live(number: u64) -> bool {
+    registry().values().any(|(n, _)| *n == number)
 }
 
 impl Arena {
-    /// Prepares `room` for trials with `params` (sensor model and body decide the culling reach).
+    /// Prepares `room` for trials with `params`, which the arena keeps: the sensor model, the
+    /// body and the longest step decide the culling reach.
     pub fn new(room: Room, params: &TrialParams) -> Arena {
         let walls = room.walls();
         let (lo, hi) = room.bounds();
@@ -202,7 +334,7 @@ impl Arena {
             cols: (((hi.x - lo.x) / CELL).ceil() as usize).max(1),
             rows: (((hi.y - lo.y) / CELL).ceil() as usize).max(1),
         };
-        let radius = params.robot.radius;
+        let radius = params.robot.radius();
         let near_reach = sensing_reach(params.sensor_model).max(radius + params.max_step());
         // A wall can matter to a robot in a cell if it is within reach of some point of the cell.
         let (cell_start, cell_walls) = grid.cull(
@@ -228,6 +360,7 @@ impl Arena {
             cell_walls,
             d_max: room.max_home_distance(),
             room,
+            params: *params,
             radius,
             near_reach: near_reach + 1e-6,
             compass,
@@ -235,8 +368,14 @@ impl Arena {
             memo: None,
         };
         // Only whole-number sensor values fit the memo (docs/model.md §3).
-        let memo = (params.sensor_model == SensorModel::Sampled).then(|| memo_number(&arena));
+        let memo = (params.sensor_model == SensorModel::Sampled)
+            .then(|| MemoClaim::of(SightKey::of(&arena)));
         Arena { memo, ..arena }
+    }
+
+    /// The trial parameters the arena was prepared with, which every trial in it runs with.
+    pub fn params(&self) -> &TrialParams {
+        &self.params
     }
 
     /// Whether this arena's poses are remembered (the per-thread memo of sightings; `sampled` sensors only).
@@ -395,18 +534,18 @@ impl Arena {
             .read(pos, facing, &self.prepared, self.near_list(near))
     }
 
-    /// The memo owner of this arena's poses for straight moves of `step` mm, or
-    /// `None` when its poses are not remembered.
-    pub fn memo_owner(&self, step: f64) -> Option<Owner> {
-        self.memo.map(|arena| Owner {
-            arena,
-            step: step.to_bits(),
+    /// The memo owner of this arena's poses for its straight moves ([`TrialParams::straight_step`]),
+    /// or `None` when its poses are not remembered.
+    pub(crate) fn memo_owner(&self) -> Option<Owner> {
+        self.memo.as_ref().map(|claim| Owner {
+            arena: claim.number,
+            step: self.params.straight_step().to_bits(),
         })
     }
 
     /// What a robot centred at `pos` facing compass direction `dir` (`actions` motion), in grid
     /// cell `cell`, sees, and whether a straight move of `step` mm would overlap a wall;
-    /// remembered in `memo` (this arena's table for `step`, from [`Arena::memo_owner`]) when the
+    /// remembered in `memo` (this arena's table, from [`Arena::memo_owner`]) when the
     /// cell has walls near it, computed every time without one.
     #[inline]
     pub(crate) fn sight(
@@ -422,11 +561,7 @@ impl Arena {
         }
         match memo {
             Some(table) => {
-                debug_assert_eq!(
-                    Some(table.owner()),
-                    self.memo_owner(step),
-                    "another's table"
-                );
+                debug_assert_eq!(Some(table.owner()), self.memo_owner(), "another's table");
                 // The next step starts where one of the four actions takes the robot.
                 let next = [
                     Action::Straight,
@@ -664,33 +799,27 @@ impl<A: StepObserver, B: StepObserver> StepObserver for (A, B) {
     }
 }
 
-/// Runs one trial from the room's home pose, reporting each of the `T` steps to `observer`.
-/// Returns the final pose. Per step: read sensors, add sensor noise, run the network, add
-/// wheel noise, label the step and move by the motion model ([`Motion`]), and undo the move
-/// (keeping the heading change) if the body would overlap a wall. With `end_at_home`, the trial
-/// ends after the first step that brings an escaped robot back into the home zone; the rest
-/// of the `T` steps are reported as idle.
-pub fn simulate<C, R, O>(
-    arena: &Arena,
-    controller: &mut C,
-    params: &TrialParams,
-    rng: &mut R,
-    observer: &mut O,
-) -> Pose
+/// Runs one trial from the room's home pose with the arena's parameters ([`Arena::params`]),
+/// reporting each of the `T` steps to `observer`. Returns the final pose. Per step: read
+/// sensors, add sensor noise, run the network, add wheel noise, label the step and move by the
+/// motion model ([`Motion`]), and undo the move (keeping the heading change) if the body would
+/// overlap a wall. With `end_at_home`, the trial ends after the first step that brings an
+/// escaped robot back into the home zone; the rest of the `T` steps are reported as idle.
+pub fn simulate<C, R, O>(arena: &Arena, controller: &mut C, rng: &mut R, observer: &mut O) -> Pose
 where
     C: Controller + ?Sized,
     R: Rng + ?Sized,
     O: StepObserver + ?Sized,
 {
-    let owner = match params.robot.motion {
-        Motion::Actions => arena.memo_owner(params.straight_step()),
+    let owner = match arena.params.robot.motion() {
+        Motion::Actions => arena.memo_owner(),
         Motion::Wheels => None,
     };
     match owner {
-        Some(owner) => crate::simulation::memo::with_table(owner, |table| {
-            walk_trial(arena, controller, params, rng, observer, table)
+        Some(owner) => crate::simulation::memo::with_table(owner, memo_live, |table| {
+            walk_trial(arena, controller, rng, observer, table)
         }),
-        None => walk_trial(arena, controller, params, rng, observer, None),
+        None => walk_trial(arena, controller, rng, observer, None),
     }
 }
 
@@ -698,7 +827,6 @@ where
 fn walk_trial<C, R, O>(
     arena: &Arena,
     controller: &mut C,
-    params: &TrialParams,
     rng: &mut R,
     observer: &mut O,
     mut memo: Option<&mut Table>,
@@ -708,6 +836,7 @@ where
     R: Rng + ?Sized,
     O: StepObserver + ?Sized,
 {
+    let params = &arena.params;
     let mut walk = Walk {
         pose: arena.room.home,
         cell: arena.cell_of(arena.room.home.position()),
@@ -760,7 +889,7 @@ impl Walk {
         C: Controller + ?Sized,
         R: Rng + ?Sized,
     {
-        let (motion, v_max) = (params.robot.motion, params.robot.v_max);
+        let (motion, v_max) = (params.robot.motion(), params.robot.v_max());
         let pos = self.pose.position();
         let (mut sensors, walls) = match motion {
             Motion::Actions => {
@@ -817,7 +946,7 @@ impl Walk {
         walls: &Walls,
     ) -> bool {
         let pose = self.pose;
-        let (candidate, next_dir) = match params.robot.motion {
+        let (candidate, next_dir) = match params.robot.motion() {
             Motion::Actions => Motion::execute(
                 pose,
                 self.dir,
@@ -826,7 +955,7 @@ impl Walk {
                 &arena.compass,
             ),
             Motion::Wheels => {
-                let (wheel_base, dt) = (params.robot.wheel_base, params.dt);
+                let (wheel_base, dt) = (params.robot.wheel_base(), params.dt);
                 (drive(pose, noisy[0], noisy[1], wheel_base, dt), self.dir)
             }
         };
@@ -963,19 +1092,14 @@ impl StepObserver for ActionLog {
     }
 }
 
-/// Runs a trial and records its whole trajectory.
-pub fn run_trial<C, R>(
-    arena: &Arena,
-    controller: &mut C,
-    params: &TrialParams,
-    rng: &mut R,
-) -> Trajectory
+/// Runs a trial (with the arena's parameters) and records its whole trajectory.
+pub fn run_trial<C, R>(arena: &Arena, controller: &mut C, rng: &mut R) -> Trajectory
 where
     C: Controller + ?Sized,
     R: Rng + ?Sized,
 {
-    let mut tr = Trajectory::starting_at(arena.room.home, params.steps);
-    simulate(arena, controller, params, rng, &mut tr);
+    let mut tr = Trajectory::starting_at(arena.room.home, arena.params.steps);
+    simulate(arena, controller, rng, &mut tr);
     tr
 }
 
@@ -1068,7 +1192,8 @@ mod tests {
             noise: 0.0,
             ..TrialParams::default()
         };
-        let tr = run_trial(&a, &mut Fixed([1.0, 1.0]), &params, &mut rng_from_seed(1));
+        let a = Arena::new(a.room.clone(), &params);
+        let tr = run_trial(&a, &mut Fixed([1.0, 1.0]), &mut rng_from_seed(1));
         // 400 steps × 8 mm would be 3.2 m; the wall stops the robot at x = 40 + 91·8 = 768,
         // short of 800 − 27.5; every later straight action collides and stays.
         let last = tr.poses.last().unwrap();
@@ -1095,7 +1220,8 @@ mod tests {
                 steps: 1,
                 ..noiseless()
             };
-            let tr = run_trial(&a, &mut Fixed(motors), &p, &mut rng_from_seed(1));
+            let a = Arena::new(a.room.clone(), &p);
+            let tr = run_trial(&a, &mut Fixed(motors), &mut rng_from_seed(1));
             (tr.poses[1], tr.actions[0])
         };
         let (p, act) = one([1.0, 1.0]);
@@ -1124,7 +1250,8 @@ mod tests {
                 if self.0 <= 3 { [0.3, 0.9] } else { [1.0, 1.0] }
             }
         }
-        let tr = run_trial(&a, &mut Seq(0), &p, &mut rng_from_seed(1));
+        let a = Arena::new(a.room.clone(), &p);
+        let tr = run_trial(&a, &mut Seq(0), &mut rng_from_seed(1));
         let end = tr.poses[4];
         assert!(
             (end.x - 40.0).abs() < 1e-12 && (end.y - 48.0).abs() < 1e-12,
@@ -1150,7 +1277,8 @@ mod tests {
             steps: 3,
             ..noiseless()
         };
-        let tr = run_trial(&a, &mut Back(true), &p, &mut rng_from_seed(1));
+        let a = Arena::new(a.room.clone(), &p);
+        let tr = run_trial(&a, &mut Back(true), &mut rng_from_seed(1));
         assert_eq!(tr.actions[0], Action::Turn180);
         // 40 → 32 is still ≥ 27.5 from the wall; 32 → 24 is not.
         assert_eq!((tr.poses[2].x, tr.collisions[1]), (32.0, false));
@@ -1158,24 +1286,127 @@ mod tests {
         assert_eq!(tr.poses[3].heading, std::f64::consts::PI);
     }
 
-    /// Equal arenas share a memo number (and so their tables); a different room or body does not.
+    /// The memo number of `arena`, if it has one.
+    fn number(arena: &Arena) -> Option<u64> {
+        arena.memo.as_ref().map(|claim| claim.number)
+    }
+
+    /// Equal arenas share a memo number (and so their tables), also when they differ only in
+    /// what a sight does not read (the number of steps); a different room, body or sensor
+    /// model does not, and a different step length does not share a table.
     #[test]
     fn equal_arenas_share_their_memo_number() {
         let params = TrialParams::default();
-        let h = || Arena::new(Room::builtin("H").unwrap(), &params);
-        assert!(h().memo.is_some());
-        assert_eq!(h().memo, h().memo);
-        assert_ne!(h().memo, square().memo);
-        let wider = TrialParams {
-            robot: crate::simulation::robot::Khepera {
-                radius: params.robot.radius + 1.0,
-                ..params.robot
-            },
+        let h = |params: &TrialParams| Arena::new(Room::builtin("H").unwrap(), params);
+        let first = h(&params);
+        assert!(number(&first).is_some());
+        assert_eq!(number(&first), number(&h(&params)));
+        assert_eq!(number(&first), number(&first.clone()));
+        let longer = TrialParams {
+            steps: 1000,
             ..params
         };
-        assert_ne!(
-            h().memo,
-            Arena::new(Room::builtin("H").unwrap(), &wider).memo
+        assert_eq!(number(&first), number(&h(&longer)));
+        assert_ne!(number(&first), number(&square()));
+        let raw = RawTrial::default();
+        let wider = RawRobot {
+            radius: params.robot.radius() + 1.0,
+            ..RawRobot::default()
+        };
+        let faster = RawRobot {
+            v_max: 100.0,
+            ..RawRobot::default()
+        };
+        let other =
+            |robot| h(&TrialParams::from_raw(&raw, &robot, params.action_tolerance).unwrap());
+        // A wider body reads other sights: another number.
+        let wide = other(wider);
+        assert!(number(&wide).is_some());
+        assert_ne!(number(&first), number(&wide));
+        assert_ne!(first.memo_owner(), wide.memo_owner());
+        // A longer straight move (the sensors reach farther than it) has the same sights but
+        // other next poses: the same number, another table.
+        assert_ne!(first.memo_owner(), other(faster).memo_owner());
+        let linear = TrialParams {
+            sensor_model: SensorModel::Linear,
+            ..params
+        };
+        assert_eq!(number(&h(&linear)), None);
+    }
+
+    /// Two arenas with different parameters never share a table: whatever they ran before, a
+    /// trial reads exactly what the same arena without a memo reads.
+    #[test]
+    fn arenas_with_different_params_never_share_a_table() {
+        let room = Room::builtin("T").unwrap();
+        let slow = TrialParams {
+            noise: 0.0,
+            ..TrialParams::default()
+        };
+        let wide = TrialParams::from_raw(
+            &RawTrial {
+                noise: 0.0,
+                ..RawTrial::default()
+            },
+            &RawRobot {
+                radius: 40.0,
+                ..RawRobot::default()
+            },
+            slow.action_tolerance,
+        )
+        .unwrap();
+        let arenas = [Arena::new(room.clone(), &slow), Arena::new(room, &wide)];
+        assert_ne!(arenas[0].memo_owner(), arenas[1].memo_owner());
+        let run = |a: &Arena| run_trial(a, &mut Fixed([0.9, 0.8]), &mut rng_from_seed(2));
+        // Each arena's memo warmed by the other's trials, then compared with casting.
+        for (a, b) in [(0, 1), (1, 0), (0, 1)] {
+            run(&arenas[a]);
+            let remembered = run(&arenas[b]);
+            let cast = run(&arenas[b].clone().without_memo());
+            assert_eq!(remembered, cast);
+        }
+    }
+
+    /// An arena's registry entry goes with its last arena: making and dropping many distinct
+    /// arenas leaves the registry as it was, and a later equal arena gets a fresh number.
+    #[test]
+    fn dropped_arenas_leave_the_registry() {
+        let registered = |key: &SightKey| registry().contains_key(key);
+        let before = registry().len();
+        let mut last = None;
+        for k in 0..500 {
+            // Squares of a size no other test uses (other tests run at the same time).
+            let side = 900.0 + k as f64 * 0.5;
+            let text = format!(
+                "name='s{k}'\noutline=[[0,0],[{side},0],[{side},{side}],[0,{side}]]\nhome={{x=100,y=100,heading_deg=0}}\n"
+            );
+            let room = Room::from_toml_str(&text, "square.toml").unwrap();
+            let arena = Arena::new(room, &TrialParams::default());
+            let key = SightKey::of(&arena);
+            assert!(registered(&key));
+            let again = arena.clone();
+            drop(arena);
+            assert!(registered(&key), "a clone still holds it");
+            last = number(&again);
+            drop(again);
+            assert!(!registered(&key), "square {k} still registered");
+        }
+        // Other tests' arenas come and go meanwhile, but not 500 of them.
+        assert!(registry().len() < before + 100, "{}", registry().len());
+        let number_then = last.unwrap();
+        let side = 900.0 + 499.0 * 0.5;
+        let text = format!(
+            "name='s499'\noutline=[[0,0],[{side},0],[{side},{side}],[0,{side}]]\nhome={{x=100,y=100,heading_deg=0}}\n"
         );
+        let again = Arena::new(
+            Room::from_toml_str(&text, "square.toml").unwrap(),
+            &TrialParams::default(),
+        );
+        assert!(
+            number(&again).unwrap() > number_then,
+            "numbers are not reused"
+        );
+        assert!(!memo_live(number_then));
+        assert!(memo_live(number(&again).unwrap()));
     }
 }

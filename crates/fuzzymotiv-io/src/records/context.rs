@@ -1,0 +1,127 @@
+//! What the pages and figures say about a run besides its results: its name, seed, rooms,
+//! sizes, model choices and resolved config, copied once out of the experiment
+//! ([`RenderContext::of`]), so that rendering reads records and this, never the live
+//! experiment.
+
+use fuzzymotiv::experiment::config::{EnergyMode, OrientationMode, Training};
+use fuzzymotiv::fitness::fuzzy::label_name;
+use fuzzymotiv::fitness::terms::Homing;
+use fuzzymotiv::simulation::robot::Motion;
+use fuzzymotiv::simulation::room::Room;
+
+use crate::files::inputs::{Loaded, resolved_toml};
+use crate::records::MotivationsRecord;
+
+/// A run's setting as the report, the figures and the tables show it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderContext {
+    /// The experiment's name.
+    pub name: String,
+    /// Base seed.
+    pub seed: u64,
+    /// The rooms, in order (their geometry is drawn).
+    pub rooms: Vec<Room>,
+    /// All-rooms or per-room training.
+    pub training: Training,
+    /// GA population.
+    pub population: usize,
+    /// GA generations.
+    pub generations: usize,
+    /// Steps per trial (T).
+    pub steps: usize,
+    /// Robot body radius (mm), for the replay.
+    pub robot_radius: f64,
+    /// Step length (s), for the replay.
+    pub dt: f64,
+    /// The motivations X = (C, H, O, E).
+    pub motivations: MotivationsRecord,
+    /// The TSK's rule base.
+    pub fuzzy: FuzzySetting,
+    /// Whether the fuzzy input of b is b or 1 − b.
+    pub energy: EnergyMode,
+    /// How g is measured.
+    pub homing: Homing,
+    /// The motion model.
+    pub motion: Motion,
+    /// When l is measured.
+    pub orientation: OrientationMode,
+    /// Room recognition.
+    pub aem: AemSetting,
+    /// The resolved config (`config.resolved.toml`).
+    pub config_text: String,
+}
+
+/// The TSK rule base (docs/model.md §8) as the report describes it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FuzzySetting {
+    /// The label peaks.
+    pub peaks: Vec<f64>,
+    /// The coefficients c, one per label.
+    pub coefficients: Vec<f64>,
+    /// The label names, lowest first.
+    pub label_names: Vec<String>,
+    /// Number of rules (labels⁴).
+    pub rule_count: usize,
+}
+
+/// Room recognition's sizes (docs/model.md §9).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AemSetting {
+    /// Whether it runs.
+    pub enabled: bool,
+    /// SOM nodes.
+    pub som_nodes: usize,
+    /// Candidate window (nodes).
+    pub threshold: usize,
+    /// Test runs per room.
+    pub test_runs: usize,
+}
+
+impl RenderContext {
+    /// The setting of a loaded config.
+    pub fn of(loaded: &Loaded) -> RenderContext {
+        let exp = &loaded.experiment;
+        let (trial, tsk, aem) = (exp.trial_params(), exp.fuzzy(), exp.aem());
+        RenderContext {
+            name: exp.name().to_string(),
+            seed: exp.seed(),
+            rooms: exp.arenas().iter().map(|a| a.room().clone()).collect(),
+            training: exp.training(),
+            population: exp.ga().population(),
+            generations: exp.ga().generations(),
+            steps: trial.steps(),
+            robot_radius: trial.robot().radius(),
+            dt: trial.dt(),
+            motivations: MotivationsRecord::of(exp.motivations()),
+            fuzzy: FuzzySetting {
+                peaks: tsk.peaks().to_vec(),
+                coefficients: tsk.coefficients().to_vec(),
+                label_names: (0..tsk.labels())
+                    .map(|k| label_name(k, tsk.labels()))
+                    .collect(),
+                rule_count: tsk.rule_count(),
+            },
+            energy: exp.energy(),
+            homing: exp.homing(),
+            motion: trial.robot().motion(),
+            orientation: exp.orientation(),
+            aem: AemSetting {
+                enabled: aem.enabled(),
+                som_nodes: aem.som().nodes(),
+                threshold: aem.threshold(),
+                test_runs: aem.test_runs(),
+            },
+            config_text: resolved_toml(&loaded.raw),
+        }
+    }
+
+    /// The room names, in order.
+    pub fn room_names(&self) -> Vec<String> {
+        self.rooms.iter().map(|r| r.name.clone()).collect()
+    }
+
+    /// Whether l is measured during evolution (online orientation with O > 0).
+    pub fn online_orientation(&self) -> bool {
+        self.orientation == OrientationMode::Online && self.motivations.orientation > 0.0
+    }
+}
