@@ -112,6 +112,9 @@ fn default_study_reproduces_its_golden() {
 fn claims_are_recomputed_from_the_records(dir: &std::path::Path) {
     let read = |p: std::path::PathBuf| std::fs::read_to_string(p).unwrap();
     let (md, csv) = (read(dir.join("claims.md")), read(dir.join("claims.csv")));
+    // Per room, exploratory and Holm-adjusted: four claims × five rooms.
+    assert!(md.contains("Per room (exploratory"), "{md}");
+    assert_eq!(md.matches("| high curiosity ").count(), 4 + 4 * 5, "{md}");
     ok(&["claims", dir.to_str().unwrap()]);
     assert_eq!(read(dir.join("claims.md")), md, "the same tables again");
     assert_eq!(read(dir.join("claims.csv")), csv);

@@ -724,6 +724,28 @@ pub struct ClaimStats {
     /// The smallest difference detectable with 80 % power at `alpha` with these seeds; none
     /// for one seed.
     pub mdd: Option<f64>,
+    /// Per room, the same test (exploratory: p-values Holm-adjusted over the claim's rooms).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rooms: Vec<RoomClaimStats>,
+}
+
+/// One room's paired comparison of a claim.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RoomClaimStats {
+    /// The room.
+    pub room: String,
+    /// Mean over seeds of high − low in this room.
+    pub difference: f64,
+    /// Lower bound of its 95 % percentile bootstrap interval.
+    pub ci_low: f64,
+    /// Upper bound of the interval.
+    pub ci_high: f64,
+    /// Two-sided sign-flip permutation p-value.
+    pub p: f64,
+    /// `p` Holm-adjusted over the claim's rooms.
+    pub p_holm: f64,
+    /// The verdict on the Holm-adjusted p-value.
+    pub verdict: String,
 }
 
 /// `reproduce`'s `summary.json` (read by `scripts/seeds_table.py`).

@@ -2,12 +2,12 @@
 //! ablation's variants, a setting's runs over seeds with their statistics, and the paper's
 //! claims tested on them.
 
-use fuzzymotiv::statistics::{self, Expect, Settings};
+use fuzzymotiv::statistics::{self, Expect, Settings, Verdict};
 
 use crate::records::context::RenderContext;
 use crate::records::{
-    ClaimRecord, ClaimStats, Finished, GenerationStat, RoomRow, SeedSummary, SettingSummary,
-    TableRow,
+    ClaimRecord, ClaimStats, Finished, GenerationStat, RoomClaimStats, RoomRow, SeedSummary,
+    SettingSummary, TableRow,
 };
 use crate::render::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
 
@@ -431,6 +431,7 @@ fn compare_claim(
         alpha,
         verdict: s.verdict(expect).label().into(),
         mdd: s.mdd,
+        rooms: room_claims(hc, lc, column, expect, &options),
     });
     ClaimRecord {
         claim: claim.into(),
@@ -438,6 +439,47 @@ fn compare_claim(
         evidence,
         stats,
     }
+}
+
+/// Per room, the paired comparison of `column` (exploratory): p-values Holm-adjusted over
+/// the rooms ([`statistics::holm`]) and the verdict on the adjusted p. Rooms where a value is
+/// missing are left out.
+fn room_claims(
+    hc: &SettingSummary,
+    lc: &SettingSummary,
+    column: Column,
+    expect: Expect,
+    options: &Settings,
+) -> Vec<RoomClaimStats> {
+    let values = |s: &SettingSummary, r: usize| -> Option<Vec<f64>> {
+        s.per_seed
+            .iter()
+            .map(|seed| column(seed.rows.get(r)?))
+            .collect()
+    };
+    let rooms = hc.rows.len();
+    let tested: Vec<_> = (0..rooms)
+        .filter_map(|r| {
+            let c = statistics::paired(&values(hc, r)?, &values(lc, r)?, options).ok()?;
+            Some((hc.rows[r].room.clone(), c))
+        })
+        .collect();
+    let p: Vec<f64> = tested.iter().map(|(_, c)| c.p).collect();
+    tested
+        .into_iter()
+        .zip(statistics::holm(&p))
+        .map(|((room, c), p_holm)| RoomClaimStats {
+            room,
+            difference: c.difference,
+            ci_low: c.ci_low,
+            ci_high: c.ci_high,
+            p: c.p,
+            p_holm,
+            verdict: Verdict::of(c.difference, p_holm, expect, options.alpha)
+                .label()
+                .into(),
+        })
+        .collect()
 }
 
 /// The mean over seeds of the first (or the last) generation's mean F.

@@ -257,7 +257,27 @@ pub fn claims_table(claims: &[ClaimRecord], prov: &Provenance) -> (String, Strin
             c.evidence
         );
     }
+    md.push_str(&room_claims_md(claims));
     (md, csv)
+}
+
+/// The per-room comparisons as a Markdown table (empty without any).
+fn room_claims_md(claims: &[ClaimRecord]) -> String {
+    let mut md = String::from(
+        "\nPer room (exploratory: each claim's p-values Holm-adjusted over its rooms, the verdict on the adjusted p):\n\n| claim | room | high − low [95 % CI] | p | Holm p | verdict |\n|---|---|---|---|---|---|\n",
+    );
+    let mut any = false;
+    for c in claims {
+        for r in c.stats.iter().flat_map(|s| &s.rooms) {
+            any = true;
+            let _ = writeln!(
+                md,
+                "| {} | {} | {:+.1} [{:+.1}, {:+.1}] | {:.4} | {:.4} | {} |",
+                c.claim, r.room, r.difference, r.ci_low, r.ci_high, r.p, r.p_holm, r.verdict
+            );
+        }
+    }
+    if any { md } else { String::new() }
 }
 
 /// The claims as an HTML table for the report page.
