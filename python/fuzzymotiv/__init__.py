@@ -34,6 +34,7 @@ import numpy as np
 from . import _fuzzymotiv as _native
 from ._fuzzymotiv import VERSION as __version__
 from ._fuzzymotiv import FuzzymotivError, FuzzymotivOSError
+from . import stats
 
 __all__ = [
     "DESCRIPTORS",
@@ -50,6 +51,7 @@ __all__ = [
     "rooms",
     "run",
     "simulate",
+    "stats",
     "__version__",
 ]
 

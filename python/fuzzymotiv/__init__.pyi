@@ -7,6 +7,8 @@ from typing import Any, Callable, Literal, Mapping, NamedTuple, Optional, Sequen
 import numpy as np
 import numpy.typing as npt
 
+from . import stats as stats
+
 __version__: str
 
 Motivations = Union[Sequence[float], Mapping[str, float]]

@@ -40,6 +40,7 @@ use rayon::prelude::*;
 
 mod ga;
 mod problem;
+mod stats;
 
 create_exception!(
     _fuzzymotiv,
@@ -911,5 +912,6 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_class::<problem::Problem>()?;
     m.add_class::<ga::Ga>()?;
+    stats::register(m)?;
     Ok(())
 }

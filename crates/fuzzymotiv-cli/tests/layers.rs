@@ -15,10 +15,11 @@ use std::path::{Path, PathBuf};
 
 /// The layers, lowest first: a module path, standing for the module and everything in it,
 /// and its layer. A module imports only from its own layer and the ones below it.
-const LAYERS: [(&str, usize); 18] = [
+const LAYERS: [(&str, usize); 19] = [
     // fuzzymotiv, the library: the pipeline's subsystems
     ("lib::params", 0),     // FieldError: the one error of every input
     ("lib::random", 0),     // seeded streams, noise
+    ("lib::statistics", 0), // tests, intervals and verdicts over seeds (uses random only)
     ("lib::simulation", 1), // geometry, rooms, robot, sensors, controller, trials
     ("lib::fitness", 2),    // terms a, g, l, b; the TSK; FLL
     ("lib::evolution", 3),  // the GA's operators

@@ -103,6 +103,46 @@ fn default_study_reproduces_its_golden() {
         "claims.csv",
     ];
     assert_pinned(&golden, &dir, &files, "study");
+    claims_are_recomputed_from_the_records(&dir);
+}
+
+/// `claims DIR` recomputes a finished study's claims from its summary.json: at the study's α
+/// the same files (left alone); at another α, other verdicts, refused over the study's files
+/// unless --force, written to --out.
+fn claims_are_recomputed_from_the_records(dir: &std::path::Path) {
+    let read = |p: std::path::PathBuf| std::fs::read_to_string(p).unwrap();
+    let (md, csv) = (read(dir.join("claims.md")), read(dir.join("claims.csv")));
+    // Per room, exploratory and Holm-adjusted: four claims × five rooms.
+    assert!(md.contains("Per room (exploratory"), "{md}");
+    assert_eq!(md.matches("| high curiosity ").count(), 4 + 4 * 5, "{md}");
+    ok(&["claims", dir.to_str().unwrap()]);
+    assert_eq!(read(dir.join("claims.md")), md, "the same tables again");
+    assert_eq!(read(dir.join("claims.csv")), csv);
+    // Two seeds: the smallest p is 2/4, so only an α above 1/2 lets a claim be shown.
+    let refused = run(&["claims", dir.to_str().unwrap(), "--alpha", "0.6"]);
+    assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
+    assert_eq!(read(dir.join("claims.csv")), csv, "kept without --force");
+    let other = dir.with_file_name("claims-0.6");
+    let o = ok(&[
+        "claims",
+        dir.to_str().unwrap(),
+        "--alpha",
+        "0.6",
+        "--out",
+        other.to_str().unwrap(),
+    ]);
+    let at = read(other.join("claims.md"));
+    assert!(at.contains("at p < α = 0.6") && stdout(&o) == at, "{at}");
+    assert!(!md.contains("smallest two-sided p is 2/2^2 = 0.5000 (1/16 for five seeds), below"));
+    assert!(
+        at.contains("smallest two-sided p is 2/2^2 = 0.5000 (1/16 for five seeds), below α = 0.6")
+    );
+    let bad = run(&["claims", dir.to_str().unwrap(), "--alpha", "1.5"]);
+    assert!(
+        stderr(&bad).contains("--alpha must be between 0 and 1"),
+        "{}",
+        stderr(&bad)
+    );
 }
 
 /// A checkpoint written by an earlier build (tests/golden/default/checkpoint/: the golden's run

@@ -68,6 +68,7 @@ pub mod modelling;
 pub mod params;
 pub mod random;
 pub mod simulation;
+pub mod statistics;
 
 pub use experiment::config::RawConfig;
 pub use experiment::evolution::{

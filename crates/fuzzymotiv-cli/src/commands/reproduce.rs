@@ -24,12 +24,12 @@ use fuzzymotiv_io::records::{
 use fuzzymotiv_io::render::figures::write_figure_at;
 use fuzzymotiv_io::render::report::{Section, reproduce_page};
 use fuzzymotiv_io::render::study::{
-    ABLATION, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns, Variant, claims,
-    overall,
+    ABLATION, CLAIMS_ALPHA, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns,
+    Variant, claims, overall,
 };
 use fuzzymotiv_io::render::svg::{FitnessPanel, best_paths_svg, fitness_panels_svg};
 use fuzzymotiv_io::render::tables::{
-    Provenance, ablation_table, claims_html, claims_table, mark, spread_html, study_table,
+    Provenance, ablation_table, claims_html, claims_table, spread_html, study_table, verdict,
 };
 
 use crate::args::OutputArgs;
@@ -417,7 +417,8 @@ fn write_study(
     }
     let fitness = fitness_panels_svg(&panels);
     write_figure_at(&dir.join("fitness.svg"), &fitness, rasteriser(args.png))?;
-    let claims = claims(studies);
+    let settings: Vec<_> = studies.iter().map(SettingRuns::summary).collect();
+    let claims = claims(&settings, CLAIMS_ALPHA);
     let (md, csv) = claims_table(&claims, &provenance);
     write_atomic(&dir.join("claims.md"), &md)?;
     write_atomic(&dir.join("claims.csv"), &csv)?;
@@ -435,7 +436,7 @@ fn write_study(
         population: provenance.population,
         generations: provenance.generations,
         overrides: args.sets.clone(),
-        settings: studies.iter().map(SettingRuns::summary).collect(),
+        settings,
         claims: claims.clone(),
         wall_seconds,
     };
@@ -514,7 +515,7 @@ fn page(
 
 fn print_claims(claims: &[ClaimRecord]) -> Result<(), CliError> {
     for c in claims {
-        fuzzymotiv_io::outln!("{}: {} ({})", c.claim, mark(c.holds), c.evidence)?;
+        fuzzymotiv_io::outln!("{}: {} ({})", c.claim, verdict(c), c.evidence)?;
     }
     Ok(())
 }

@@ -692,8 +692,60 @@ pub struct ClaimRecord {
     pub claim: String,
     /// The numbers behind the verdict.
     pub evidence: String,
-    /// Whether the study shows it.
+    /// Whether the study shows it: for a comparison, its verdict is "holds".
     pub holds: bool,
+    /// A comparison's statistics over seeds (high − low curiosity, paired by seed); none for
+    /// the checks of Fig. 6's curves and in files written before them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stats: Option<ClaimStats>,
+}
+
+/// The statistics of a comparison claim over seeds: see `fuzzymotiv::statistics` for the
+/// methods (paired sign-flip permutation test, percentile bootstrap interval, minimum
+/// detectable difference by the normal approximation).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClaimStats {
+    /// Paired seeds.
+    pub seeds: usize,
+    /// Mean over seeds of high − low (per seed, each setting's mean over rooms).
+    pub difference: f64,
+    /// Lower bound of its 95 % percentile bootstrap interval.
+    pub ci_low: f64,
+    /// Upper bound of the interval.
+    pub ci_high: f64,
+    /// Two-sided sign-flip permutation p-value.
+    pub p: f64,
+    /// The smallest p-value this many seeds can give (2 / 2^seeds).
+    pub min_p: f64,
+    /// The significance level of the verdict.
+    pub alpha: f64,
+    /// "holds", "opposite" or "not significant".
+    pub verdict: String,
+    /// The smallest difference detectable with 80 % power at `alpha` with these seeds; none
+    /// for one seed.
+    pub mdd: Option<f64>,
+    /// Per room, the same test (exploratory: p-values Holm-adjusted over the claim's rooms).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rooms: Vec<RoomClaimStats>,
+}
+
+/// One room's paired comparison of a claim.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RoomClaimStats {
+    /// The room.
+    pub room: String,
+    /// Mean over seeds of high − low in this room.
+    pub difference: f64,
+    /// Lower bound of its 95 % percentile bootstrap interval.
+    pub ci_low: f64,
+    /// Upper bound of the interval.
+    pub ci_high: f64,
+    /// Two-sided sign-flip permutation p-value.
+    pub p: f64,
+    /// `p` Holm-adjusted over the claim's rooms.
+    pub p_holm: f64,
+    /// The verdict on the Holm-adjusted p-value.
+    pub verdict: String,
 }
 
 /// `reproduce`'s `summary.json` (read by `scripts/seeds_table.py`).

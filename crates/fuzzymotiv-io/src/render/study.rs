@@ -2,9 +2,12 @@
 //! ablation's variants, a setting's runs over seeds with their statistics, and the paper's
 //! claims tested on them.
 
+use fuzzymotiv::statistics::{self, Expect, Settings, Verdict};
+
 use crate::records::context::RenderContext;
 use crate::records::{
-    ClaimRecord, Finished, GenerationStat, RoomRow, SeedSummary, SettingSummary, TableRow,
+    ClaimRecord, ClaimStats, Finished, GenerationStat, RoomClaimStats, RoomRow, SeedSummary,
+    SettingSummary, TableRow,
 };
 use crate::render::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
 
@@ -362,41 +365,176 @@ pub fn generation_stat(study: &SettingRuns<'_>, last: bool, best: bool) -> f64 {
     mean_std(&v).0
 }
 
-/// The paper's claims (high vs low curiosity, and Fig. 6's fitness curves) on means over
-/// rooms and seeds: `studies[0]` is high curiosity, `studies[1]` low curiosity.
-pub fn claims(studies: &[SettingRuns<'_>]) -> Vec<ClaimRecord> {
-    let (hc, lc) = (&studies[0], &studies[1]);
-    let compare = |claim: &'static str, c: usize, more: bool| {
-        let (h, l) = (grand_mean(hc, c), grand_mean(lc, c));
-        let holds = matches!((h, l), (Some(h), Some(l)) if if more { h > l } else { h < l });
-        let show = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.1} %"));
-        ClaimRecord {
-            claim: claim.into(),
-            holds,
-            evidence: format!("high {} vs low {}", show(h), show(l)),
-        }
+/// A column of a seed's table (see [`TableRow`]).
+type Column = fn(&TableRow) -> Option<f64>;
+
+/// Per seed, the mean over rooms of `column`; none if a value is missing.
+pub fn seed_means(setting: &SettingSummary, column: Column) -> Option<Vec<f64>> {
+    setting
+        .per_seed
+        .iter()
+        .map(|s| {
+            let values: Option<Vec<f64>> = s.rows.iter().map(column).collect();
+            values.map(|v| mean_std(&v).0)
+        })
+        .collect()
+}
+
+/// The mean of `column` over rooms and seeds (as the tables show it); none if a value is
+/// missing.
+fn grand_mean_of(setting: &SettingSummary, column: Column) -> Option<f64> {
+    let values: Option<Vec<f64>> = setting
+        .per_seed
+        .iter()
+        .flat_map(|s| s.rows.iter().map(column))
+        .collect();
+    values.map(|v| mean_std(&v).0)
+}
+
+/// The significance level of the claims unless told otherwise (`claims --alpha`).
+pub const CLAIMS_ALPHA: f64 = 0.05;
+
+/// A comparison claim, high against low curiosity on `column`, paired by seed
+/// ([`statistics::paired`] on each seed's mean over rooms, resampling seeded by the study's
+/// first seed): the verdict at `alpha`, the effect, its interval, p and the minimum detectable
+/// difference.
+fn compare_claim(
+    settings: &[SettingSummary],
+    claim: &str,
+    column: Column,
+    expect: Expect,
+    alpha: f64,
+) -> ClaimRecord {
+    let (hc, lc) = (&settings[0], &settings[1]);
+    let show = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.1} %"));
+    let evidence = format!(
+        "high {} vs low {}",
+        show(grand_mean_of(hc, column)),
+        show(grand_mean_of(lc, column))
+    );
+    let options = Settings {
+        alpha,
+        seed: hc.per_seed.first().map_or(0, |s| s.seed),
+        ..Settings::default()
     };
-    let first = [
-        generation_stat(hc, false, false),
-        generation_stat(lc, false, false),
-    ];
-    let last = [
-        generation_stat(hc, true, false),
-        generation_stat(lc, true, false),
-    ];
+    let stats = match (seed_means(hc, column), seed_means(lc, column)) {
+        (Some(a), Some(b)) => statistics::paired(&a, &b, &options).ok(),
+        _ => None,
+    };
+    let stats = stats.map(|s| ClaimStats {
+        seeds: hc.per_seed.len(),
+        difference: s.difference,
+        ci_low: s.ci_low,
+        ci_high: s.ci_high,
+        p: s.p,
+        min_p: s.min_p,
+        alpha,
+        verdict: s.verdict(expect).label().into(),
+        mdd: s.mdd,
+        rooms: room_claims(hc, lc, column, expect, &options),
+    });
+    ClaimRecord {
+        claim: claim.into(),
+        holds: stats.as_ref().is_some_and(|s| s.verdict == "holds"),
+        evidence,
+        stats,
+    }
+}
+
+/// Per room, the paired comparison of `column` (exploratory): p-values Holm-adjusted over
+/// the rooms ([`statistics::holm`]) and the verdict on the adjusted p. Rooms where a value is
+/// missing are left out.
+fn room_claims(
+    hc: &SettingSummary,
+    lc: &SettingSummary,
+    column: Column,
+    expect: Expect,
+    options: &Settings,
+) -> Vec<RoomClaimStats> {
+    let values = |s: &SettingSummary, r: usize| -> Option<Vec<f64>> {
+        s.per_seed
+            .iter()
+            .map(|seed| column(seed.rows.get(r)?))
+            .collect()
+    };
+    let rooms = hc.rows.len();
+    let tested: Vec<_> = (0..rooms)
+        .filter_map(|r| {
+            let c = statistics::paired(&values(hc, r)?, &values(lc, r)?, options).ok()?;
+            Some((hc.rows[r].room.clone(), c))
+        })
+        .collect();
+    let p: Vec<f64> = tested.iter().map(|(_, c)| c.p).collect();
+    tested
+        .into_iter()
+        .zip(statistics::holm(&p))
+        .map(|((room, c), p_holm)| RoomClaimStats {
+            room,
+            difference: c.difference,
+            ci_low: c.ci_low,
+            ci_high: c.ci_high,
+            p: c.p,
+            p_holm,
+            verdict: Verdict::of(c.difference, p_holm, expect, options.alpha)
+                .label()
+                .into(),
+        })
+        .collect()
+}
+
+/// The mean over seeds of the first (or the last) generation's mean F.
+fn mean_f(setting: &SettingSummary, last: bool) -> f64 {
+    let v: Vec<f64> = setting
+        .per_seed
+        .iter()
+        .map(|s| {
+            if last {
+                s.last_generation.mean
+            } else {
+                s.first_generation.mean
+            }
+        })
+        .collect();
+    mean_std(&v).0
+}
+
+/// The paper's claims from a study's records (`settings[0]` high curiosity, `settings[1]`
+/// low, as in `summary.json`): high vs low curiosity, each tested at level `alpha` (paired
+/// over seeds, see `fuzzymotiv::statistics`), and Fig. 6's fitness curves on means over
+/// seeds.
+pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
+    let (hc, lc) = (&settings[0], &settings[1]);
+    let first = [mean_f(hc, false), mean_f(lc, false)];
+    let last = [mean_f(hc, true), mean_f(lc, true)];
+    let compare = |claim: &str, column: Column, expect: Expect| {
+        compare_claim(settings, claim, column, expect, alpha)
+    };
     vec![
-        compare("high curiosity explores more than low curiosity", 1, true),
-        compare("high curiosity uses more battery", 3, true),
-        compare("high curiosity recognises rooms better", 2, true),
+        compare(
+            "high curiosity explores more than low curiosity",
+            |r| r.exploration_pct,
+            Expect::Higher,
+        ),
+        compare(
+            "high curiosity uses more battery",
+            |r| r.battery_pct,
+            Expect::Higher,
+        ),
+        compare(
+            "high curiosity recognises rooms better",
+            |r| r.recognition_pct,
+            Expect::Higher,
+        ),
         compare(
             "high curiosity returns home less (lower % homing)",
-            4,
-            false,
+            |r| r.homing_pct,
+            Expect::Lower,
         ),
         ClaimRecord {
             claim: "first-generation mean F about 0.1 (between 0.05 and 0.15)".into(),
             holds: first.iter().all(|f| (0.05..=0.15).contains(f)),
             evidence: format!("high {:.3}, low {:.3}", first[0], first[1]),
+            stats: None,
         },
         ClaimRecord {
             claim: "mean F rises over the generations".into(),
@@ -405,6 +543,7 @@ pub fn claims(studies: &[SettingRuns<'_>]) -> Vec<ClaimRecord> {
                 "high {:.3} → {:.3}, low {:.3} → {:.3}",
                 first[0], last[0], first[1], last[1]
             ),
+            stats: None,
         },
     ]
 }

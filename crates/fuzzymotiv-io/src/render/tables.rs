@@ -175,34 +175,127 @@ pub fn mark(holds: bool) -> &'static str {
     if holds { "holds" } else { "fails" }
 }
 
-/// The claims as (Markdown, CSV).
+/// A claim's verdict: a comparison's ("holds", "opposite", "not significant"), else
+/// [`mark`].
+pub fn verdict(c: &ClaimRecord) -> &str {
+    c.stats.as_ref().map_or(mark(c.holds), |s| &s.verdict)
+}
+
+/// The claims' method, and the note on the smallest p-value their seeds can give.
+fn claims_method(claims: &[ClaimRecord]) -> String {
+    let Some(s) = claims.iter().find_map(|c| c.stats.as_ref()) else {
+        return "The paper's claims, on means over rooms and seeds.".into();
+    };
+    let reach = if s.min_p < s.alpha {
+        format!("below α = {}", s.alpha)
+    } else {
+        format!(
+            "not below α = {}, so no claim can be shown with {} seeds, whatever its size",
+            s.alpha, s.seeds
+        )
+    };
+    format!(
+        "The paper's claims. High against low curiosity: per seed, each setting's mean over \
+         rooms; the settings share each seed's random streams, so the design is paired. The \
+         effect is the mean over seeds of high − low (points), with a 95 % percentile bootstrap \
+         interval (10 000 resamples); p is two-sided, from a sign-flip permutation test over \
+         seeds (all 2^n sign patterns up to 16 seeds); a claim holds, or its opposite does, \
+         only at p < α = {alpha}. MDD is the smallest difference these seeds would detect with \
+         80 % power at α ((z₁₋α/₂ + z₀.₈) · sd/√n of the per-seed differences, a normal \
+         approximation). The last two rows check Fig. 6's curves on means over seeds.\n\n\
+         Note: with {n} paired seeds the smallest two-sided p is 2/2^{n} = {min_p:.4} (1/16 \
+         for five seeds), {reach}.",
+        alpha = s.alpha,
+        n = s.seeds,
+        min_p = s.min_p,
+    )
+}
+
+/// The statistics cells of a claim (difference with interval, p, MDD), dashes without them.
+fn claim_cells(c: &ClaimRecord) -> [String; 3] {
+    match &c.stats {
+        Some(s) => [
+            format!("{:+.1} [{:+.1}, {:+.1}]", s.difference, s.ci_low, s.ci_high),
+            format!("{:.4}", s.p),
+            s.mdd.map_or("—".into(), |m| format!("{m:.1}")),
+        ],
+        None => ["—".into(), "—".into(), "—".into()],
+    }
+}
+
+/// The claims as (Markdown, CSV): verdict, high − low with its 95 % interval, p, the minimum
+/// detectable difference and the means behind them (CSV: empty cells for Fig. 6's checks).
 pub fn claims_table(claims: &[ClaimRecord], prov: &Provenance) -> (String, String) {
     let mut md = format!(
-        "{}\n\nThe paper's claims, on means over rooms and seeds.\n\n| claim | verdict | evidence |\n|---|---|---|\n",
-        prov.line()
+        "{}\n\n{}\n\n| claim | verdict | high − low [95 % CI] | p | MDD | evidence |\n|---|---|---|---|---|---|\n",
+        prov.line(),
+        claims_method(claims)
     );
-    let mut csv = String::from("claim,holds,evidence\n");
+    let mut csv = String::from("claim,holds,verdict,difference,ci_low,ci_high,p,mdd,evidence\n");
     for c in claims {
-        let _ = writeln!(md, "| {} | {} | {} |", c.claim, mark(c.holds), c.evidence);
-        let _ = writeln!(csv, "\"{}\",{},\"{}\"", c.claim, c.holds, c.evidence);
+        let [diff, p, mdd] = claim_cells(c);
+        let _ = writeln!(
+            md,
+            "| {} | {} | {diff} | {p} | {mdd} | {} |",
+            c.claim,
+            verdict(c),
+            c.evidence
+        );
+        let num = |v: Option<f64>| v.map_or(String::new(), |v| v.to_string());
+        let s = c.stats.as_ref();
+        let _ = writeln!(
+            csv,
+            "\"{}\",{},{},{},{},{},{},{},\"{}\"",
+            c.claim,
+            c.holds,
+            verdict(c),
+            num(s.map(|s| s.difference)),
+            num(s.map(|s| s.ci_low)),
+            num(s.map(|s| s.ci_high)),
+            num(s.map(|s| s.p)),
+            num(s.and_then(|s| s.mdd)),
+            c.evidence
+        );
     }
+    md.push_str(&room_claims_md(claims));
     (md, csv)
+}
+
+/// The per-room comparisons as a Markdown table (empty without any).
+fn room_claims_md(claims: &[ClaimRecord]) -> String {
+    let mut md = String::from(
+        "\nPer room (exploratory: each claim's p-values Holm-adjusted over its rooms, the verdict on the adjusted p):\n\n| claim | room | high − low [95 % CI] | p | Holm p | verdict |\n|---|---|---|---|---|---|\n",
+    );
+    let mut any = false;
+    for c in claims {
+        for r in c.stats.iter().flat_map(|s| &s.rooms) {
+            any = true;
+            let _ = writeln!(
+                md,
+                "| {} | {} | {:+.1} [{:+.1}, {:+.1}] | {:.4} | {:.4} | {} |",
+                c.claim, r.room, r.difference, r.ci_low, r.ci_high, r.p, r.p_holm, r.verdict
+            );
+        }
+    }
+    if any { md } else { String::new() }
 }
 
 /// The claims as an HTML table for the report page.
 pub fn claims_html(claims: &[ClaimRecord]) -> String {
     let mut html = String::from(
-        "<h2 id=\"claims\">The paper's claims</h2>\n<table><tr><th>claim</th><th>verdict</th><th>evidence (means over rooms and seeds)</th></tr>\n",
+        "<h2 id=\"claims\">The paper's claims</h2>\n<table><tr><th>claim</th><th>verdict</th><th>high − low [95 % CI]</th><th>p</th><th>MDD</th><th>evidence (means over rooms and seeds)</th></tr>\n",
     );
     for c in claims {
+        let [diff, p, mdd] = claim_cells(c);
         let _ = writeln!(
             html,
-            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td>{}</td><td>{diff}</td><td>{p}</td><td>{mdd}</td><td>{}</td></tr>",
             esc(&c.claim),
-            mark(c.holds),
+            verdict(c),
             esc(&c.evidence)
         );
     }
+    let _ = writeln!(html, "<p>{}</p>", esc(&claims_method(claims)));
     html.push_str("</table>\n");
     html
 }
@@ -229,7 +322,7 @@ pub fn ablation_table(
         let _ = write!(md, "| {} | {} |", v.name, v.what);
         let _ = write!(csv, "{}", v.name);
         for c in claims {
-            let _ = write!(md, " {} ({}) |", mark(c.holds), c.evidence);
+            let _ = write!(md, " {} ({}) |", verdict(c), c.evidence);
             let _ = write!(csv, ",{}", c.holds);
         }
         md.push('\n');
