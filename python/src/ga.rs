@@ -150,15 +150,7 @@ impl Ga {
         let exp = problem.experiment_for(seed)?;
         let run = problem.run().clone();
         let population = match genomes {
-            Some(g) => {
-                let p = genomes_arg("genomes", &g, &exp)?;
-                if p.is_empty() {
-                    return Err(input_err(
-                        "genomes: an empty population; give at least one genome",
-                    ));
-                }
-                p
-            }
+            Some(g) => genomes_arg("genomes", &g, &exp)?,
             None => exp.initial_population(&run),
         };
         Ok(Ga {

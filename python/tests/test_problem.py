@@ -236,7 +236,7 @@ def test_bad_arguments(problem):
     with pytest.raises(fm.FuzzymotivError, match="F: expected one value per genome"):
         ga.tell(np.zeros((12, 1)))
     assert ga.generation == 0  # nothing was told
-    with pytest.raises(fm.FuzzymotivError, match="genomes: an empty population"):
+    with pytest.raises(fm.FuzzymotivError, match="genomes: a population needs at least one genome"):
         fm.GA(problem, genomes=np.zeros((0, 68)))
     with pytest.raises(fm.FuzzymotivError, match="genomes: expected a"):
         fm.GA(problem, genomes=np.zeros((2, 5)))
