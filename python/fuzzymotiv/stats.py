@@ -64,8 +64,8 @@ def paired(
     "lower": the claim that a is higher or lower than b), ``verdict`` ("holds", "opposite" or
     "not significant").
     """
-    return _native.stats_paired(
-        _floats("a", a), _floats("b", b), alpha=alpha, confidence=confidence, power=power,
+    return _native.stats_compare(
+        "paired", _floats("a", a), _floats("b", b), alpha=alpha, confidence=confidence, power=power,
         bootstrap_resamples=bootstrap_resamples, permutation_resamples=permutation_resamples,
         seed=seed, expect=expect,
     )
@@ -88,8 +88,8 @@ def unpaired(
     Returns the dict of :func:`paired` with ``design`` "unpaired" and ``n_a``, ``n_b``
     instead of ``n``.
     """
-    return _native.stats_unpaired(
-        _floats("a", a), _floats("b", b), alpha=alpha, confidence=confidence, power=power,
+    return _native.stats_compare(
+        "unpaired", _floats("a", a), _floats("b", b), alpha=alpha, confidence=confidence, power=power,
         bootstrap_resamples=bootstrap_resamples, permutation_resamples=permutation_resamples,
         seed=seed, expect=expect,
     )

@@ -37,6 +37,7 @@ use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyDict, PyList, PyTuple, PyType};
 use rayon::prelude::*;
+use rayon::{ThreadPool, ThreadPoolBuilder};
 
 mod ga;
 mod problem;
@@ -155,6 +156,18 @@ fn whole_number(obj: &Bound<'_, PyAny>) -> Result<i128, String> {
 }
 
 /// `threads`: a whole number from 1 to [`MAX_THREADS`].
+/// `threads=`: a pool of that many threads to run in, or `None` for rayon's global pool.
+pub(crate) fn thread_pool(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<ThreadPool>> {
+    threads_arg(obj)?
+        .map(|n| {
+            ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))
+        })
+        .transpose()
+}
+
 fn threads_arg(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<usize>> {
     let Some(obj) = obj else { return Ok(None) };
     match whole_number(obj) {
@@ -568,7 +581,7 @@ fn run<'py>(
     seed: Option<Bound<'py, PyAny>>,
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let threads = threads_arg(threads.as_ref())?;
+    let pool = thread_pool(threads.as_ref())?;
     let seed = seed.as_ref().map(seed_arg).transpose()?;
     let loaded =
         load(config_path.as_deref(), config_text.as_deref(), &sets, seed).map_err(py_err)?;
@@ -580,15 +593,6 @@ fn run<'py>(
             let state = check_out_as(&dir, &id, force, &PYTHON).map_err(py_err)?;
             Some((dir, state))
         }
-    };
-    let pool = match threads {
-        Some(n) => Some(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?,
-        ),
-        None => None,
     };
     let already = match &out {
         Some((dir, OutState::Unfinished)) => generations_done(&loaded, dir),

@@ -21,7 +21,7 @@ use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 
-use crate::{input_err, load, py_err, py_float, seed_arg, threads_arg, whole_number};
+use crate::{input_err, load, py_err, py_float, seed_arg, thread_pool, whole_number};
 
 /// Distinct seeds whose experiments a problem keeps (besides its own).
 const SEEDS_KEPT: usize = 4;
@@ -171,7 +171,7 @@ impl Problem {
         threads: Option<Bound<'_, PyAny>>,
         seed: Option<Bound<'_, PyAny>>,
     ) -> PyResult<Problem> {
-        let threads = threads_arg(threads.as_ref())?;
+        let pool = thread_pool(threads.as_ref())?;
         let seed = seed.as_ref().map(seed_arg).transpose()?;
         let loaded =
             load(config_path.as_deref(), config_text.as_deref(), &sets, seed).map_err(py_err)?;
@@ -200,15 +200,6 @@ impl Problem {
                     )));
                 }
             },
-        };
-        let pool = match threads {
-            Some(n) => Some(
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(n)
-                    .build()
-                    .map_err(|e| PyRuntimeError::new_err(e.to_string()))?,
-            ),
-            None => None,
         };
         Ok(Problem {
             raw: loaded.raw,

@@ -63,33 +63,16 @@ fn comparison_dict<'py>(
     Ok(d)
 }
 
-/// The settings from the keyword arguments.
-fn settings(
-    alpha: f64,
-    confidence: f64,
-    power: f64,
-    bootstrap_resamples: usize,
-    permutation_resamples: usize,
-    seed: u64,
-) -> Settings {
-    Settings {
-        alpha,
-        confidence,
-        power,
-        bootstrap_resamples,
-        permutation_resamples,
-        seed,
-    }
-}
-
-/// Paired comparison (one pair per seed): `fuzzymotiv::statistics::paired`.
+/// A paired (`design = "paired"`, one pair per seed: `fuzzymotiv::statistics::paired`) or
+/// unpaired (`"unpaired"`, independent samples: `fuzzymotiv::statistics::unpaired`) comparison.
 #[pyfunction]
-#[pyo3(signature = (a, b, *, alpha=0.05, confidence=0.95, power=0.8,
+#[pyo3(signature = (design, a, b, *, alpha=0.05, confidence=0.95, power=0.8,
     bootstrap_resamples=statistics::BOOTSTRAP_RESAMPLES,
     permutation_resamples=statistics::PERMUTATION_RESAMPLES, seed=0, expect=None))]
 #[allow(clippy::too_many_arguments)]
-fn stats_paired<'py>(
+fn stats_compare<'py>(
     py: Python<'py>,
+    design: &str,
     a: Vec<f64>,
     b: Vec<f64>,
     alpha: f64,
@@ -100,50 +83,26 @@ fn stats_paired<'py>(
     seed: u64,
     expect: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let compare = match design {
+        "paired" => statistics::paired,
+        "unpaired" => statistics::unpaired,
+        other => {
+            return Err(FuzzymotivError::new_err(format!(
+                "design must be \"paired\" or \"unpaired\", got {other:?}"
+            )));
+        }
+    };
     let expect = expect_of(expect)?;
-    let s = settings(
+    let settings = Settings {
         alpha,
         confidence,
         power,
         bootstrap_resamples,
         permutation_resamples,
         seed,
-    );
+    };
     let c = py
-        .detach(|| statistics::paired(&a, &b, &s))
-        .map_err(stats_err)?;
-    comparison_dict(py, &c, expect)
-}
-
-/// Unpaired comparison (independent samples): `fuzzymotiv::statistics::unpaired`.
-#[pyfunction]
-#[pyo3(signature = (a, b, *, alpha=0.05, confidence=0.95, power=0.8,
-    bootstrap_resamples=statistics::BOOTSTRAP_RESAMPLES,
-    permutation_resamples=statistics::PERMUTATION_RESAMPLES, seed=0, expect=None))]
-#[allow(clippy::too_many_arguments)]
-fn stats_unpaired<'py>(
-    py: Python<'py>,
-    a: Vec<f64>,
-    b: Vec<f64>,
-    alpha: f64,
-    confidence: f64,
-    power: f64,
-    bootstrap_resamples: usize,
-    permutation_resamples: usize,
-    seed: u64,
-    expect: Option<&str>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let expect = expect_of(expect)?;
-    let s = settings(
-        alpha,
-        confidence,
-        power,
-        bootstrap_resamples,
-        permutation_resamples,
-        seed,
-    );
-    let c = py
-        .detach(|| statistics::unpaired(&a, &b, &s))
+        .detach(|| compare(&a, &b, &settings))
         .map_err(stats_err)?;
     comparison_dict(py, &c, expect)
 }
@@ -156,8 +115,7 @@ fn stats_holm(p: Vec<f64>) -> Vec<f64> {
 
 /// Adds the statistics functions to the native module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(stats_paired, m)?)?;
-    m.add_function(wrap_pyfunction!(stats_unpaired, m)?)?;
+    m.add_function(wrap_pyfunction!(stats_compare, m)?)?;
     m.add_function(wrap_pyfunction!(stats_holm, m)?)?;
     Ok(())
 }
