@@ -54,7 +54,7 @@ impl RoomFiles for BuiltinRoomsOnly {
     }
 
     fn looked_for(&self, entry: &str) -> String {
-        format!("no room files are read here, not even {entry}")
+        format!("no file: only built-in rooms are read here, {entry} is none of them")
     }
 }
 
