@@ -101,12 +101,12 @@ def main():
     bin_, sweep, work = sys.argv[1], Path(sys.argv[2]).resolve(), Path(sys.argv[3]).resolve()
     local = work / "local"
     fm(bin_, "sweep", sweep, "--out", local, "--quiet")
-    fm(bin_, "merge", local, "--quiet")
+    fm(bin_, "merge", local)
     want = (local / "results.csv").read_bytes()
     for engine in (kubernetes, htcondor):
         out = work / engine.__name__
         print(engine(bin_, sweep, out))
-        fm(bin_, "merge", out, "--quiet")
+        fm(bin_, "merge", out)
         if (out / "results.csv").read_bytes() != want:
             fail(f"{engine.__name__}: results.csv differs from the local sweep ({local})")
         print(f"{engine.__name__}: results.csv equals the local sweep's byte for byte")
