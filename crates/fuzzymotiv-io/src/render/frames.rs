@@ -106,12 +106,10 @@ pub fn gif(room: &Room, track: Track<'_>, opts: FrameOptions, delay: u16) -> Res
     let painter = Painter::new(room, track, opts)?;
     let size = opts.size();
     let mut pixmap = Pixmap::new(size, size).expect("size checked");
-    let mut rgb = vec![0u8; size as usize * size as usize * 3];
     let mut writer = GifWriter::new(size, size, delay)?;
     for t in opts.frame_poses(track.poses.len()) {
         painter.draw(t, &mut pixmap);
-        rgb_of(&pixmap, &mut rgb);
-        writer.push(&rgb)?;
+        writer.push_rgba(pixmap.data())?;
     }
     writer.finish()
 }

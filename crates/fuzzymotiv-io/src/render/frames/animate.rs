@@ -156,18 +156,35 @@ impl GifWriter {
 
     /// Adds a frame: RGB bytes, `width · height · 3` of them.
     pub fn push(&mut self, rgb: &[u8]) -> Result<(), String> {
-        let (w, h) = (self.width, self.height);
-        if rgb.len() != w * h * 3 {
-            return Err(format!("a frame of {w} × {h} RGB pixels has {} bytes, got {}", w * h * 3, rgb.len()));
+        self.push_pixels(rgb, 3)
+    }
+
+    /// Adds a frame of opaque RGBA bytes (a pixmap's), `width · height · 4` of them.
+    pub fn push_rgba(&mut self, rgba: &[u8]) -> Result<(), String> {
+        self.push_pixels(rgba, 4)
+    }
+
+    /// Adds a frame of `channels` bytes per pixel (RGB first); only the rectangle that changed
+    /// since the previous frame is stored.
+    fn push_pixels(&mut self, px: &[u8], channels: usize) -> Result<(), String> {
+        let (w, h, c) = (self.width, self.height, channels);
+        if px.len() != w * h * c {
+            return Err(format!(
+                "a frame of {w} × {h} pixels has {} bytes, got {}",
+                w * h * c,
+                px.len()
+            ));
         }
         let (x0, y0, x1, y1) = match &self.previous {
-            None => (0, 0, w, h),
-            Some(prev) => changed(prev, rgb, w, h).unwrap_or((0, 0, 1, 1)),
+            Some(prev) if prev.len() == px.len() => {
+                changed(prev, px, w, h, c).unwrap_or((0, 0, 1, 1))
+            }
+            _ => (0, 0, w, h),
         };
         let mut indices = Vec::with_capacity((x1 - x0) * (y1 - y0));
         for y in y0..y1 {
-            let row = &rgb[3 * (y * w + x0)..3 * (y * w + x1)];
-            indices.extend(row.chunks_exact(3).map(|p| palette_index([p[0], p[1], p[2]])));
+            let row = &px[c * (y * w + x0)..c * (y * w + x1)];
+            indices.extend(row.chunks_exact(c).map(|p| palette_index([p[0], p[1], p[2]])));
         }
         let frame = Frame {
             delay: self.delay,
@@ -182,8 +199,8 @@ impl GifWriter {
         self.flush()?;
         self.pending = Some(frame);
         match &mut self.previous {
-            Some(prev) => prev.copy_from_slice(rgb),
-            None => self.previous = Some(rgb.to_vec()),
+            Some(prev) if prev.len() == px.len() => prev.copy_from_slice(px),
+            _ => self.previous = Some(px.to_vec()),
         }
         Ok(())
     }
@@ -206,18 +223,19 @@ impl GifWriter {
 }
 
 /// The smallest rectangle `(x0, y0, x1, y1)` (ends excluded) holding every pixel that differs
-/// between two RGB frames, or `None` when they are equal.
-fn changed(a: &[u8], b: &[u8], w: usize, h: usize) -> Option<(usize, usize, usize, usize)> {
-    let row = |y: usize| 3 * y * w..3 * (y + 1) * w;
+/// between two frames of `c` bytes per pixel, or `None` when they are equal.
+fn changed(a: &[u8], b: &[u8], w: usize, h: usize, c: usize) -> Option<(usize, usize, usize, usize)> {
+    let row = |y: usize| c * y * w..c * (y + 1) * w;
     let y0 = (0..h).find(|&y| a[row(y)] != b[row(y)])?;
     let y1 = (y0..h).rev().find(|&y| a[row(y)] != b[row(y)])? + 1;
     let (mut x0, mut x1) = (w, 0);
     for y in y0..y1 {
         let (ra, rb) = (&a[row(y)], &b[row(y)]);
-        if let Some(x) = (0..x0).find(|&x| ra[3 * x..3 * x + 3] != rb[3 * x..3 * x + 3]) {
+        let differs = |x: &usize| ra[c * x..c * x + c] != rb[c * x..c * x + c];
+        if let Some(x) = (0..x0).find(differs) {
             x0 = x;
         }
-        if let Some(x) = (x1..w).rev().find(|&x| ra[3 * x..3 * x + 3] != rb[3 * x..3 * x + 3]) {
+        if let Some(x) = (x1..w).rev().find(differs) {
             x1 = x + 1;
         }
     }
@@ -251,9 +269,9 @@ mod tests {
         let (w, h) = (5, 4);
         let a = vec![0u8; w * h * 3];
         let mut b = a.clone();
-        assert_eq!(changed(&a, &b, w, h), None);
+        assert_eq!(changed(&a, &b, w, h, 3), None);
         b[3 * (w + 1)] = 9; // (1, 1)
         b[3 * (2 * w + 3) + 2] = 9; // (3, 2)
-        assert_eq!(changed(&a, &b, w, h), Some((1, 1, 4, 3)));
+        assert_eq!(changed(&a, &b, w, h, 3), Some((1, 1, 4, 3)));
     }
 }
