@@ -15,9 +15,12 @@ use fuzzymotiv_io::files::guard::{FilesState, PYTHON, check_files_as, write_file
 use fuzzymotiv_io::files::inputs::{resolve, room_entry};
 use fuzzymotiv_io::render::frames::animate::{GifWriter, delay_of};
 use fuzzymotiv_io::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
-use fuzzymotiv_io::render::frames::{self, FrameOptions, Frames, Track};
+use fuzzymotiv_io::render::frames::{FrameOptions, Frames, Track, gif_of_frames, render};
 use numpy::ndarray::Array4;
-use numpy::{IntoPyArray, PyArray4, PyReadonlyArray2, PyReadonlyArray4, PyUntypedArrayMethods};
+use numpy::{
+    IntoPyArray, PyArray4, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray4,
+    PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -34,9 +37,11 @@ struct Columns {
 
 fn columns(d: &Bound<'_, PyDict>) -> PyResult<Columns> {
     let get = |k: &str| -> PyResult<Vec<f64>> {
-        d.get_item(k)?
-            .ok_or_else(|| input_err(format!("trajectory: no `{k}` column")))?
-            .extract()
+        let column = d
+            .get_item(k)?
+            .ok_or_else(|| input_err(format!("trajectory: no `{k}` column")))?;
+        let a: PyReadonlyArray1<'_, f64> = column.extract()?;
+        Ok(a.as_array().to_vec())
     };
     let (x, y, heading) = (get("x")?, get("y")?, get("heading")?);
     if y.len() != x.len() || heading.len() != x.len() {
@@ -59,7 +64,17 @@ fn columns(d: &Bound<'_, PyDict>) -> PyResult<Columns> {
         Some(s) => {
             let a: PyReadonlyArray2<'_, f64> = s.extract()?;
             let rows = a.as_array();
-            Some(rows.outer_iter().map(|r| std::array::from_fn(|k| r[k])).collect())
+            if rows.ncols() != 8 {
+                return Err(input_err(format!(
+                    "trajectory: sensors has {} columns; expected the 8 IR readings per step",
+                    rows.ncols()
+                )));
+            }
+            Some(
+                rows.outer_iter()
+                    .map(|r| std::array::from_fn(|k| r[k]))
+                    .collect(),
+            )
         }
     };
     let actions = match d.get_item("action")?.filter(|v| !v.is_none()) {
@@ -105,7 +120,8 @@ impl Setting {
     /// first), and, as `replay` and `fm.simulate`, no recognition or online orientation.
     fn experiment(&self) -> PyResult<Experiment> {
         let path = self.config_path.as_deref();
-        let loaded = load(path, self.config_text.as_deref(), &self.sets, self.seed).map_err(py_err)?;
+        let loaded =
+            load(path, self.config_text.as_deref(), &self.sets, self.seed).map_err(py_err)?;
         let want = match &self.room {
             Some(r) => r.clone(),
             None => loaded.experiment.room_names()[0].clone(),
@@ -115,7 +131,9 @@ impl Setting {
         raw.rooms = vec![entry];
         raw.aem.enabled = false;
         raw.fitness.orientation = OrientationMode::Offline;
-        Ok(resolve(raw, Path::new("."), "(frames)").map_err(py_err)?.experiment)
+        Ok(resolve(raw, Path::new("."), "(frames)")
+            .map_err(py_err)?
+            .experiment)
     }
 }
 
@@ -160,11 +178,12 @@ fn draw(
             actions: c.actions.as_deref(),
             idle: c.idle.as_deref(),
         };
-        py.detach(|| frames::render(room, track, opts)).map_err(fail)
+        py.detach(|| render(room, track, opts)).map_err(fail)
     } else {
         let genome: Vec<f64> = source.extract()?;
         let tr = run_genome(py, &exp, &genome)?;
-        py.detach(|| frames::render(room, Track::of(&tr), opts)).map_err(fail)
+        py.detach(|| render(room, Track::of(&tr), opts))
+            .map_err(fail)
     }
 }
 
@@ -266,8 +285,11 @@ pub(crate) fn save_gif<'py>(
             seed,
         };
         let f = draw(py, source, &setting, options(size, stride)?)?;
-        let bytes = py.detach(|| frames::gif_of_frames(&f, delay));
-        (bytes.map_err(|e| input_err(format!("frames: {e}")))?, f.len())
+        let bytes = py.detach(|| gif_of_frames(&f, delay));
+        (
+            bytes.map_err(|e| input_err(format!("frames: {e}")))?,
+            f.len(),
+        )
     };
     let files = [(path, bytes)];
     if check_files_as(&files, "path", force, &PYTHON).map_err(py_err)? == FilesState::Write {

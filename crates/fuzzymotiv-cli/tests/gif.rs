@@ -31,7 +31,12 @@ fn replay_gif_writes_one_gif_per_room_through_the_guard() {
         .ok();
     let page = tmp.path().join("r/replay.html");
     let replay = |extra: &[&str]| {
-        let fm = Fm::new(["replay".as_ref(), run.as_os_str(), "--out".as_ref(), page.as_os_str()]);
+        let fm = Fm::new([
+            "replay".as_ref(),
+            run.as_os_str(),
+            "--out".as_ref(),
+            page.as_os_str(),
+        ]);
         extra.iter().fold(fm, |fm, a| fm.arg(a)).run()
     };
     let o = replay(&["--gif", "--size", "96", "--stride", "10"]);
@@ -42,7 +47,10 @@ fn replay_gif_writes_one_gif_per_room_through_the_guard() {
         .filter(|p| p.extension().is_some_and(|e| e == "gif"))
         .collect();
     gifs.sort();
-    let names: Vec<_> = gifs.iter().map(|p| p.file_name().unwrap().to_owned()).collect();
+    let names: Vec<_> = gifs
+        .iter()
+        .map(|p| p.file_name().unwrap().to_owned())
+        .collect();
     assert_eq!(names, ["replay-H.gif", "replay-U.gif", "replay-square.gif"]);
     for g in &gifs {
         // 100 steps: poses 0, 10, …, 100.
@@ -68,16 +76,33 @@ fn bad_gif_options_are_named() {
     let tmp = tempfile::tempdir().unwrap();
     let genome = tmp.path().join("g.json");
     let weights = vec!["0.1"; 68].join(",");
-    std::fs::write(&genome, format!(r#"{{"shape": {{"hidden": 6}}, "weights": [{weights}]}}"#))
-        .unwrap();
+    std::fs::write(
+        &genome,
+        format!(r#"{{"shape": {{"hidden": 6}}, "weights": [{weights}]}}"#),
+    )
+    .unwrap();
     let out = tmp.path().join("replay.html");
     for (args, want) in [
-        (&["--gif", "--size", "10"][..], "--size: must be a frame side in 64..=2048 pixels, got 10"),
-        (&["--gif", "--stride", "0"][..], "--stride: must be a whole number ≥ 1"),
-        (&["--gif", "--fps", "0"][..], "--fps: must be a frame rate in [0.01, 50]"),
+        (
+            &["--gif", "--size", "10"][..],
+            "--size: must be a frame side in 64..=2048 pixels, got 10",
+        ),
+        (
+            &["--gif", "--stride", "0"][..],
+            "--stride: must be a whole number ≥ 1",
+        ),
+        (
+            &["--gif", "--fps", "0"][..],
+            "--fps: must be a frame rate in [0.01, 50]",
+        ),
         (&["--size", "100"][..], "--gif"),
     ] {
-        let fm = Fm::new(["replay".as_ref(), genome.as_os_str(), "--out".as_ref(), out.as_os_str()]);
+        let fm = Fm::new([
+            "replay".as_ref(),
+            genome.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]);
         let o = args.iter().fold(fm, |fm, a| fm.arg(a)).run();
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
         assert!(stderr(&o).contains(want), "{args:?}: {}", stderr(&o));

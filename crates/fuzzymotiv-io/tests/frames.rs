@@ -42,7 +42,11 @@ fn pixel(frames: &Frames, k: usize, (x, y): (u32, u32)) -> [u8; 3] {
 }
 
 fn count(frames: &Frames, k: usize, rgb: [u8; 3]) -> usize {
-    frames.frame(k).chunks_exact(3).filter(|p| **p == rgb).count()
+    frames
+        .frame(k)
+        .chunks_exact(3)
+        .filter(|p| **p == rgb)
+        .count()
 }
 
 fn target_dir() -> PathBuf {
@@ -53,7 +57,10 @@ fn save_png(frames: &Frames, k: usize, name: &str) {
     let file = std::fs::File::create(target_dir().join(name)).unwrap();
     let mut enc = png::Encoder::new(file, frames.width, frames.height);
     enc.set_color(png::ColorType::Rgb);
-    enc.write_header().unwrap().write_image_data(frames.frame(k)).unwrap();
+    enc.write_header()
+        .unwrap()
+        .write_image_data(frames.frame(k))
+        .unwrap();
 }
 
 #[test]
@@ -72,18 +79,31 @@ fn frames_show_the_body_heading_and_path() {
         let centre = view.pixel(p.position()).unwrap();
         assert_eq!(pixel(&frames, t, centre), BODY, "body at step {t}");
         let ahead = p.position() + Vec2::from_angle(p.heading) * (27.5 * 0.75);
-        assert_eq!(pixel(&frames, t, view.pixel(ahead).unwrap()), HEADING, "heading at step {t}");
+        assert_eq!(
+            pixel(&frames, t, view.pixel(ahead).unwrap()),
+            HEADING,
+            "heading at step {t}"
+        );
     }
     // No path at home; a long one at the end; the step counter in the header.
     assert_eq!(count(&frames, 0, PATH), 0);
-    assert!(count(&frames, 400, PATH) > 150, "{}", count(&frames, 400, PATH));
+    assert!(
+        count(&frames, 400, PATH) > 150,
+        "{}",
+        count(&frames, 400, PATH)
+    );
     assert!(count(&frames, 200, PATH) < count(&frames, 400, PATH));
     assert!(count(&frames, 200, TEXT) > 50);
     // A pose the robot left long ago is on the path.
     let (t_old, p_old) = (100, tr.poses[100].position());
-    let far = tr.poses[400].position().dist(p_old) > 60.0 && tr.poses[200].position().dist(p_old) > 60.0;
+    let far =
+        tr.poses[400].position().dist(p_old) > 60.0 && tr.poses[200].position().dist(p_old) > 60.0;
     if far {
-        assert_eq!(pixel(&frames, 400, view.pixel(p_old).unwrap()), PATH, "pose {t_old}");
+        assert_eq!(
+            pixel(&frames, 400, view.pixel(p_old).unwrap()),
+            PATH,
+            "pose {t_old}"
+        );
     }
 }
 
@@ -104,14 +124,20 @@ fn the_bytes_do_not_depend_on_threads() {
     let (room, tr) = trial("L");
     let opts = FrameOptions::new(160, 3).unwrap();
     let on = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
         pool.install(|| render(&room, Track::of(&tr), opts).unwrap())
     };
     let one = on(1);
     assert_eq!(one, on(2));
     assert_eq!(one, on(3));
     let delay = delay_of(25.0).unwrap();
-    assert_eq!(gif(&room, Track::of(&tr), opts, delay), gif(&room, Track::of(&tr), opts, delay));
+    assert_eq!(
+        gif(&room, Track::of(&tr), opts, delay),
+        gif(&room, Track::of(&tr), opts, delay)
+    );
 }
 
 /// Decodes a GIF, composing its frames on the canvas: the palette indices of every frame.
@@ -169,14 +195,30 @@ fn bad_tracks_are_named() {
     let err = render(&room, track(&[]), opts).unwrap_err();
     assert!(err.starts_with("x: no poses"), "{err}");
     static NAN: [Pose; 2] = [
-        Pose { x: 0.0, y: 0.0, heading: 0.0 },
-        Pose { x: 0.0, y: 0.0, heading: f64::NAN },
+        Pose {
+            x: 0.0,
+            y: 0.0,
+            heading: 0.0,
+        },
+        Pose {
+            x: 0.0,
+            y: 0.0,
+            heading: f64::NAN,
+        },
     ];
     let err = render(&room, track(&NAN), opts).unwrap_err();
-    assert!(err.starts_with("heading[1]: `NaN` is not a finite number"), "{err}");
+    assert!(
+        err.starts_with("heading[1]: `NaN` is not a finite number"),
+        "{err}"
+    );
     let one = [Pose::new(room.home.x, room.home.y, 0.0)];
     let sensors = [[0.0; 8]; 3];
-    let t = Track { poses: &one, sensors: Some(&sensors), actions: None, idle: None };
+    let t = Track {
+        poses: &one,
+        sensors: Some(&sensors),
+        actions: None,
+        idle: None,
+    };
     let err = render(&room, t, opts).unwrap_err();
     assert!(err.starts_with("sensors: 3 rows for 1 poses"), "{err}");
     // One pose alone is one frame.

@@ -208,9 +208,10 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     let loaded = resolve(raw, Path::new("."), &source_name)?;
     let trials = replay_trials(&loaded.experiment, &genome)?;
     let ctx = RenderContext::of(&loaded);
-    let gifs = match args.gif {
-        true => Some(gif_options(&args, loaded.experiment.trial_params())?),
-        false => None,
+    let gifs = if args.gif {
+        Some(gif_options(&args, loaded.experiment.trial_params())?)
+    } else {
+        None
     };
     write_replay(&args, &ctx, &genome, &source_name, &trials, gifs)
 }
@@ -367,7 +368,9 @@ fn write_replay(
         Some(gifs) => room_gifs(ctx, &dir, &stem, trials, gifs)?,
         None => Vec::new(),
     };
-    let gif_names: Vec<String> = (gif_files.iter()).map(|(p, _)| p.display().to_string()).collect();
+    let gif_names: Vec<String> = (gif_files.iter())
+        .map(|(p, _)| p.display().to_string())
+        .collect();
     files.extend(gif_files);
     let genome_path = genome.path.display();
     files.push((

@@ -83,15 +83,13 @@ pub fn render(room: &Room, track: Track<'_>, opts: FrameOptions) -> Result<Frame
     let size = opts.size();
     let n = size as usize * size as usize * 3;
     let mut rgb = vec![0u8; n * poses.len()];
-    rgb.par_chunks_mut(n)
-        .zip(poses.par_iter())
-        .for_each_init(
-            || Pixmap::new(size, size).expect("size checked"),
-            |pixmap, (out, &t)| {
-                painter.draw(t, pixmap);
-                rgb_of(pixmap, out);
-            },
-        );
+    rgb.par_chunks_mut(n).zip(poses.par_iter()).for_each_init(
+        || Pixmap::new(size, size).expect("size checked"),
+        |pixmap, (out, &t)| {
+            painter.draw(t, pixmap);
+            rgb_of(pixmap, out);
+        },
+    );
     Ok(Frames {
         width: size,
         height: size,
@@ -102,7 +100,12 @@ pub fn render(room: &Room, track: Track<'_>, opts: FrameOptions) -> Result<Frame
 
 /// The animated GIF of `track` in `room`, `delay` hundredths of a second per frame
 /// ([`animate::delay_of`]), drawn and encoded one frame at a time.
-pub fn gif(room: &Room, track: Track<'_>, opts: FrameOptions, delay: u16) -> Result<Vec<u8>, String> {
+pub fn gif(
+    room: &Room,
+    track: Track<'_>,
+    opts: FrameOptions,
+    delay: u16,
+) -> Result<Vec<u8>, String> {
     let painter = Painter::new(room, track, opts)?;
     let size = opts.size();
     let mut pixmap = Pixmap::new(size, size).expect("size checked");

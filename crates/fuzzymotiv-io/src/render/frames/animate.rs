@@ -75,10 +75,11 @@ static QUANTISER: LazyLock<Quantiser> = LazyLock::new(|| {
     let nearest = (0..1usize << 15)
         .map(|b| {
             let centre = [b >> 10, (b >> 5) & 31, b & 31].map(|v| (v * 8 + 4) as i32);
-            let dist = |c: &[u8; 3]| -> i32 {
-                (0..3).map(|k| (i32::from(c[k]) - centre[k]).pow(2)).sum()
-            };
-            (0..pal.len()).min_by_key(|&i| dist(&pal[i])).expect("256 colours") as u8
+            let dist =
+                |c: &[u8; 3]| -> i32 { (0..3).map(|k| (i32::from(c[k]) - centre[k]).pow(2)).sum() };
+            (0..pal.len())
+                .min_by_key(|&i| dist(&pal[i]))
+                .expect("256 colours") as u8
         })
         .collect();
     let mut by_bucket: Vec<([u8; 3], u8, usize)> = (pal.iter().enumerate())
@@ -137,7 +138,9 @@ impl GifWriter {
     /// A GIF of `width × height` frames shown `delay` hundredths of a second each.
     pub fn new(width: u32, height: u32, delay: u16) -> Result<GifWriter, String> {
         let (Ok(w), Ok(h)) = (u16::try_from(width), u16::try_from(height)) else {
-            return Err(format!("frames of {width} × {height} pixels are too large for a GIF (65535 at most)"));
+            return Err(format!(
+                "frames of {width} × {height} pixels are too large for a GIF (65535 at most)"
+            ));
         };
         let flat: Vec<u8> = PALETTE.iter().flatten().copied().collect();
         let mut encoder = Encoder::new(Vec::new(), w, h, &flat).map_err(|e| e.to_string())?;
@@ -184,7 +187,10 @@ impl GifWriter {
         let mut indices = Vec::with_capacity((x1 - x0) * (y1 - y0));
         for y in y0..y1 {
             let row = &px[c * (y * w + x0)..c * (y * w + x1)];
-            indices.extend(row.chunks_exact(c).map(|p| palette_index([p[0], p[1], p[2]])));
+            indices.extend(
+                row.chunks_exact(c)
+                    .map(|p| palette_index([p[0], p[1], p[2]])),
+            );
         }
         let frame = Frame {
             delay: self.delay,
@@ -224,7 +230,13 @@ impl GifWriter {
 
 /// The smallest rectangle `(x0, y0, x1, y1)` (ends excluded) holding every pixel that differs
 /// between two frames of `c` bytes per pixel, or `None` when they are equal.
-fn changed(a: &[u8], b: &[u8], w: usize, h: usize, c: usize) -> Option<(usize, usize, usize, usize)> {
+fn changed(
+    a: &[u8],
+    b: &[u8],
+    w: usize,
+    h: usize,
+    c: usize,
+) -> Option<(usize, usize, usize, usize)> {
     let row = |y: usize| c * y * w..c * (y + 1) * w;
     let y0 = (0..h).find(|&y| a[row(y)] != b[row(y)])?;
     let y1 = (y0..h).rev().find(|&y| a[row(y)] != b[row(y)])? + 1;
@@ -254,7 +266,12 @@ mod tests {
         }
         // Another colour maps to a near one.
         let near = PALETTE[usize::from(palette_index([250, 10, 10]))];
-        assert!(near.iter().zip([250u8, 10, 10]).all(|(a, b)| a.abs_diff(b) < 40), "{near:?}");
+        assert!(
+            near.iter()
+                .zip([250u8, 10, 10])
+                .all(|(a, b)| a.abs_diff(b) < 40),
+            "{near:?}"
+        );
     }
 
     #[test]

@@ -49,7 +49,11 @@ fn polygon(view: &View, poly: &[Vec2]) -> Option<Path> {
     let mut pb = PathBuilder::new();
     for (k, p) in poly.iter().enumerate() {
         let (x, y) = view.point(*p);
-        if k == 0 { pb.move_to(x, y) } else { pb.line_to(x, y) }
+        if k == 0 {
+            pb.move_to(x, y)
+        } else {
+            pb.line_to(x, y)
+        }
     }
     pb.close();
     pb.finish()
@@ -114,7 +118,13 @@ impl<'a> Painter<'a> {
                 bg.stroke_path(&p, &paint(WALL), &stroke(1.2 * k, LineCap::Butt), id, None);
             }
         }
-        bg.stroke_path(&outline, &paint(WALL), &stroke(2.5 * k, LineCap::Butt), id, None);
+        bg.stroke_path(
+            &outline,
+            &paint(WALL),
+            &stroke(2.5 * k, LineCap::Butt),
+            id,
+            None,
+        );
     }
 
     /// Draws the frame of pose `t` into `frame` (a pixmap of the frame's size).
@@ -136,7 +146,11 @@ impl<'a> Painter<'a> {
         let mut pb = PathBuilder::with_capacity(t + 1, t + 1);
         for (k, p) in self.track.poses[..=t].iter().enumerate() {
             let (x, y) = self.view.point(p.position());
-            if k == 0 { pb.move_to(x, y) } else { pb.line_to(x, y) }
+            if k == 0 {
+                pb.move_to(x, y)
+            } else {
+                pb.line_to(x, y)
+            }
         }
         if let Some(path) = pb.finish() {
             let s = stroke(1.6 * self.k, LineCap::Round);
@@ -162,7 +176,13 @@ impl<'a> Painter<'a> {
             let width = (1.0 + 3.0 * (v / SENSOR_MAX).clamp(0.0, 1.0) as f32) * self.k;
             if let Some(path) = pb.finish() {
                 let s = stroke(width, LineCap::Butt);
-                frame.stroke_path(&path, &paint(ray_colour(v)), &s, Transform::identity(), None);
+                frame.stroke_path(
+                    &path,
+                    &paint(ray_colour(v)),
+                    &s,
+                    Transform::identity(),
+                    None,
+                );
             }
         }
     }
@@ -206,12 +226,23 @@ impl<'a> Painter<'a> {
         let right = text_width(action, s);
         let step = format!("step {t}/{last}");
         let fits = |text: &str| text_width(text, s) + right + 4 * pad <= size;
-        let left = [format!("{}: {step}", self.room.name), step, format!("{t}/{last}")]
-            .into_iter()
-            .find(|l| fits(l))
-            .unwrap_or_default();
+        let left = [
+            format!("{}: {step}", self.room.name),
+            step,
+            format!("{t}/{last}"),
+        ]
+        .into_iter()
+        .find(|l| fits(l))
+        .unwrap_or_default();
         let data = frame.data_mut();
         draw_text(data, size, (pad, pad), &left, s, TEXT);
-        draw_text(data, size, (size.saturating_sub(right + pad), pad), action, s, colour);
+        draw_text(
+            data,
+            size,
+            (size.saturating_sub(right + pad), pad),
+            action,
+            s,
+            colour,
+        );
     }
 }

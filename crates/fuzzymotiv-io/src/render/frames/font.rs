@@ -151,7 +151,10 @@ mod tests {
     fn every_glyph_is_five_by_eight_and_unique() {
         for (c, rows) in GLYPHS {
             assert!(rows.iter().all(|r| r.len() == GLYPH_W), "{c:?}");
-            assert!(rows.iter().all(|r| r.bytes().all(|b| b == b'#' || b == b'.')));
+            assert!(
+                rows.iter()
+                    .all(|r| r.bytes().all(|b| b == b'#' || b == b'.'))
+            );
             assert_eq!(GLYPHS.iter().filter(|(g, _)| *g == c).count(), 1, "{c:?}");
         }
         for c in ('0'..='9').chain('a'..='z').chain('A'..='Z') {

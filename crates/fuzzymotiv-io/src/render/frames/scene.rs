@@ -335,7 +335,11 @@ mod tests {
             actions: None,
             idle: None,
         };
-        assert!(t.check().unwrap_err().starts_with("sensors: 3 rows for 2 poses"));
+        assert!(
+            t.check()
+                .unwrap_err()
+                .starts_with("sensors: 3 rows for 2 poses")
+        );
         let bad = [Pose {
             x: f64::NAN,
             y: 0.0,
