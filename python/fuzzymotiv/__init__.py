@@ -25,6 +25,7 @@ an ``out`` directory that must not be replaced) raise :class:`FuzzymotivError`, 
 from __future__ import annotations
 
 import json
+import operator
 import os
 from pathlib import Path
 from typing import Any, Callable, Mapping, NamedTuple, Optional, Sequence, Union
@@ -46,10 +47,12 @@ __all__ = [
     "Problem",
     "RunResult",
     "export_fll",
+    "frames",
     "fuzzy_fitness",
     "load_room",
     "rooms",
     "run",
+    "save_gif",
     "simulate",
     "stats",
     "__version__",
@@ -362,6 +365,124 @@ def simulate(
     path, text = _config_args(config)
     weights = np.asarray(genome, dtype=np.float64).ravel().tolist()
     return _native.simulate(weights, os.fspath(room), seed, path, text, _sets(overrides))
+
+
+def _rollout(source: Any) -> Any:
+    """A trajectory dict with its columns as the native code takes them (x, y, heading as
+    float64 vectors; sensors as a float64 (n, 8) array; action and idle as lists), or the
+    genome as a list of floats."""
+    if not isinstance(source, Mapping):
+        return np.asarray(source, dtype=np.float64).ravel().tolist()
+    cols: dict = {}
+    for key in ("x", "y", "heading"):
+        if key not in source:
+            raise FuzzymotivError(
+                f"trajectory: no `{key}` column; expected a dict like fm.simulate's "
+                "(x, y, heading, and optionally sensors, action, idle)"
+            )
+        cols[key] = _float_array(f"trajectory['{key}']", source[key], 1, "a vector")
+    sensors = source.get("sensors")
+    if sensors is not None:
+        a = _float_array("trajectory['sensors']", sensors, 2, "a (T, 8) array")
+        if a.shape[1:] != (8,):
+            raise FuzzymotivError(
+                f"trajectory['sensors']: expected a (T, 8) array of IR readings, got shape {a.shape}"
+            )
+        cols["sensors"] = a
+    if source.get("action") is not None:
+        cols["action"] = [str(a) for a in np.asarray(source["action"]).ravel()]
+    if source.get("idle") is not None:
+        cols["idle"] = [bool(i) for i in np.asarray(source["idle"]).ravel()]
+    return cols
+
+
+def _whole(arg: str, value: Any) -> int:
+    try:
+        return operator.index(value)
+    except TypeError:
+        raise FuzzymotivError(f"{arg}: expected a whole number, got {value!r}") from None
+
+
+def _room_arg(source: Any, room: Any) -> Optional[str]:
+    if room is None and isinstance(source, Mapping) and source.get("room") is not None:
+        room = source["room"]
+    return None if room is None else os.fspath(room)
+
+
+def frames(
+    trajectory_or_genome: Any,
+    room: Union[str, os.PathLike, None] = None,
+    *,
+    size: int = 320,
+    stride: int = 1,
+    config: Union[str, os.PathLike, None] = None,
+    overrides: Any = None,
+    seed: Optional[int] = None,
+) -> np.ndarray:
+    """Frames of a rollout as a ``(T, H, W, 3)`` uint8 array (RGB, ``H = W = size``): the room,
+    home zone, the path so far, the robot's body and heading, its eight IR rays (grey and thin
+    when they read nothing, red and thick near a wall), the step counter and the action taken —
+    the frames of ``fuzzymotiv replay --gif``.
+
+    ``trajectory_or_genome`` is a dict shaped like :func:`simulate`'s result — only ``x``,
+    ``y``, ``heading`` (T + 1 poses) are required; ``sensors`` (T or T + 1 rows of 8),
+    ``action`` (labels) and ``idle`` are drawn when present — or a genome, run first exactly as
+    ``simulate(genome, room, seed, config, overrides)`` (``seed=None``: the config's seed).
+    ``room`` is a room of the config, a built-in room or a room file; None means the dict's
+    ``room``, else the config's first room. The config also gives the robot's size and sensor
+    model. A frame is drawn at poses 0, ``stride``, 2·``stride``, … and at the last pose, so
+    ``frames[-1]`` is always where the rollout ends (``stride=len(x)`` draws only the first and
+    the last). ``size`` is 64 to 2048 pixels. Same input → the same bytes.
+
+    >>> tr = simulate(np.zeros(68), "H", seed=3, overrides={"trial.steps": 20})
+    >>> frames(tr, size=96, stride=5).shape
+    (5, 96, 96, 3)
+    """
+    path, text = _config_args(config)
+    return _native.frames(
+        _rollout(trajectory_or_genome), _room_arg(trajectory_or_genome, room),
+        _whole("size", size), _whole("stride", stride), seed, path, text, _sets(overrides),
+    )
+
+
+def save_gif(
+    frames_or_trajectory: Any,
+    path: Union[str, os.PathLike],
+    *,
+    fps: float = 25.0,
+    force: bool = False,
+    room: Union[str, os.PathLike, None] = None,
+    size: int = 320,
+    stride: int = 1,
+    config: Union[str, os.PathLike, None] = None,
+    overrides: Any = None,
+    seed: Optional[int] = None,
+) -> int:
+    """Write an animated GIF (looping; the last frame held for a second) to ``path`` and return
+    its number of frames.
+
+    ``frames_or_trajectory`` is a ``(T, H, W, 3)`` uint8 array (e.g. from :func:`frames`), or
+    anything :func:`frames` takes, drawn with its ``room``, ``size``, ``stride``, ``config``,
+    ``overrides`` and ``seed``. Colours are mapped to one fixed 256-colour palette that holds
+    the frames' own colours exactly. ``fps`` is 0.01 to 50. The file is written atomically;
+    a file with other contents is kept unless ``force=True`` (the same bytes again: nothing to
+    do), and a directory, link or device is never replaced.
+    """
+    if isinstance(frames_or_trajectory, np.ndarray) and frames_or_trajectory.ndim == 4:
+        a = frames_or_trajectory
+        if a.dtype != np.uint8:
+            raise FuzzymotivError(
+                f"frames: expected a (T, H, W, 3) uint8 array, got dtype {a.dtype}"
+            )
+        source: Any = np.ascontiguousarray(a)
+    else:
+        source = _rollout(frames_or_trajectory)
+    cfg_path, text = _config_args(config)
+    return _native.save_gif(
+        source, os.fspath(path), float(fps), bool(force),
+        _room_arg(frames_or_trajectory, room), _whole("size", size), _whole("stride", stride),
+        seed, cfg_path, text, _sets(overrides),
+    )
 
 
 DESCRIPTORS = tuple(_native.Problem.descriptor_names())

@@ -150,6 +150,35 @@ def simulate(
     overrides: Overrides = ...,
 ) -> Trajectory: ...
 
+def frames(
+    trajectory_or_genome: Union[Mapping[str, Any], npt.ArrayLike],
+    room: Union[str, os.PathLike[str], None] = ...,
+    *,
+    size: int = ...,
+    stride: int = ...,
+    config: Config = ...,
+    overrides: Overrides = ...,
+    seed: Optional[int] = ...,
+) -> npt.NDArray[np.uint8]:
+    """(T, H, W, 3) uint8 frames of a trajectory dict (x, y, heading; optionally sensors,
+    action, idle) or of a genome run as ``simulate`` runs it."""
+
+def save_gif(
+    frames_or_trajectory: Union[npt.NDArray[np.uint8], Mapping[str, Any], npt.ArrayLike],
+    path: Union[str, os.PathLike[str]],
+    *,
+    fps: float = ...,
+    force: bool = ...,
+    room: Union[str, os.PathLike[str], None] = ...,
+    size: int = ...,
+    stride: int = ...,
+    config: Config = ...,
+    overrides: Overrides = ...,
+    seed: Optional[int] = ...,
+) -> int:
+    """Write an animated GIF of frames or of a rollout through the output guard; returns the
+    number of frames."""
+
 DESCRIPTORS: tuple[str, ...]
 
 class Evaluation(NamedTuple):

@@ -39,6 +39,7 @@ use pyo3::types::{PyBool, PyDict, PyList, PyTuple, PyType};
 use rayon::prelude::*;
 use rayon::{ThreadPool, ThreadPoolBuilder};
 
+mod frames;
 mod ga;
 mod problem;
 mod stats;
@@ -914,6 +915,8 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rooms, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(frames::frames, m)?)?;
+    m.add_function(wrap_pyfunction!(frames::save_gif, m)?)?;
     m.add_class::<problem::Problem>()?;
     m.add_class::<ga::Ga>()?;
     stats::register(m)?;

@@ -4,7 +4,8 @@
 //! The trial uses the experiment's room-modelling stream (docs/model.md §9: the run whose actions became
 //! a room's stored instance), so `replay RUN_DIR` redraws exactly the paths of the run's
 //! `report.html`; `--seed N` replays under another base seed. Same genome, room and seed → the
-//! same trajectory, byte for byte.
+//! same trajectory, byte for byte. `--gif` adds an animated GIF per room
+//! ([`fuzzymotiv_io::render::frames`]).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -13,7 +14,8 @@ use fuzzymotiv::experiment::config::{OrientationMode, Training};
 use fuzzymotiv::experiment::modelling::InstanceRun;
 use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::simulation::controller::MlpShape;
-use fuzzymotiv::simulation::trial::Trajectory;
+use fuzzymotiv::simulation::trial::{Trajectory, TrialParams};
+use rayon::prelude::*;
 
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, num, write_files};
@@ -21,6 +23,8 @@ use fuzzymotiv_io::files::inputs::{load_config, resolve, room_entry};
 use fuzzymotiv_io::note;
 use fuzzymotiv_io::records::context::RenderContext;
 use fuzzymotiv_io::records::{BestGenome, PROGRAM, read_json};
+use fuzzymotiv_io::render::frames::animate::delay_of;
+use fuzzymotiv_io::render::frames::{self, FrameOptions, Track};
 use fuzzymotiv_io::render::report::{replay_page, xs};
 use fuzzymotiv_io::render::svg::trajectories_svg;
 
@@ -53,6 +57,19 @@ pub struct ReplayArgs {
     /// Also write STEM.png beside STEM.svg.
     #[arg(long)]
     pub png: bool,
+    /// Also write an animated GIF per room, STEM-ROOM.gif: the room, home zone, the path so
+    /// far, body and heading, IR rays, step counter and action label.
+    #[arg(long)]
+    pub gif: bool,
+    /// Side of the GIFs' square frames (pixels, 64 to 2048).
+    #[arg(long, value_name = "PIXELS", default_value_t = 320, requires = "gif")]
+    pub size: u32,
+    /// A GIF frame every N steps (the last pose always gets one).
+    #[arg(long, value_name = "N", default_value_t = 1, requires = "gif")]
+    pub stride: usize,
+    /// GIF frames per second (0.01 to 50; the last frame is held for a second).
+    #[arg(long, value_name = "FPS", default_value_t = 25.0, requires = "gif")]
+    pub fps: f64,
     /// Replace existing files of these names that hold something else (only regular files:
     /// a directory, device or link is never replaced). The same replay again changes nothing.
     #[arg(long)]
@@ -191,7 +208,41 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     let loaded = resolve(raw, Path::new("."), &source_name)?;
     let trials = replay_trials(&loaded.experiment, &genome)?;
     let ctx = RenderContext::of(&loaded);
-    write_replay(&args, &ctx, &genome, &source_name, &trials)
+    let gifs = if args.gif {
+        Some(gif_options(&args, loaded.experiment.trial_params())?)
+    } else {
+        None
+    };
+    write_replay(&args, &ctx, &genome, &source_name, &trials, gifs)
+}
+
+/// The frame options and delay of `--gif` (`--size`, `--stride`, `--fps`), for the trial's robot.
+fn gif_options(args: &ReplayArgs, trial: &TrialParams) -> Result<(FrameOptions, u16), CliError> {
+    let opts = FrameOptions::new(args.size, args.stride)
+        .map_err(|(name, why)| CliError::input(format!("--{name}: {why}")))?;
+    let delay = delay_of(args.fps).map_err(|why| CliError::input(format!("--fps: {why}")))?;
+    Ok((opts.for_trial(trial), delay))
+}
+
+/// The animated GIF of every room's replay, `DIR/STEM-ROOM.gif`, drawn side by side on
+/// rayon's pool (the bytes do not depend on it).
+fn room_gifs(
+    ctx: &RenderContext,
+    dir: &Path,
+    stem: &str,
+    trials: &[(usize, String, InstanceRun)],
+    (opts, delay): (FrameOptions, u16),
+) -> Result<Vec<(PathBuf, Vec<u8>)>, CliError> {
+    trials
+        .par_iter()
+        .map(|(r, _, run)| {
+            let room = &ctx.rooms[*r];
+            let path = dir.join(format!("{stem}-{}.gif", file_tag(&room.name)));
+            let bytes = frames::gif(room, Track::of(&run.trajectory), opts, delay)
+                .map_err(|e| CliError::runtime(format!("{}: {e}", path.display())))?;
+            Ok((path, bytes))
+        })
+        .collect()
 }
 
 /// The genome file and the config beside it (a run directory's, or one next to the file).
@@ -307,24 +358,24 @@ fn write_replay(
     genome: &SavedGenome,
     source_name: &str,
     trials: &[(usize, String, InstanceRun)],
+    gifs: Option<(FrameOptions, u16)>,
 ) -> Result<(), CliError> {
     let out = &args.out;
     let (dir, stem) = out_parts(out)?;
     let mut files = Vec::new();
     let (lines, rooms_json) = room_files(ctx, &dir, &stem, trials, &mut files);
+    let gif_files = match gifs {
+        Some(gifs) => room_gifs(ctx, &dir, &stem, trials, gifs)?,
+        None => Vec::new(),
+    };
+    let gif_names: Vec<String> = (gif_files.iter())
+        .map(|(p, _)| p.display().to_string())
+        .collect();
+    files.extend(gif_files);
     let genome_path = genome.path.display();
-    let doc = serde_json::json!({
-        "program": PROGRAM,
-        "version": fuzzymotiv::VERSION,
-        "genome": genome_path.to_string(),
-        "config": source_name,
-        "seed": ctx.seed,
-        "note": "poses[t] is the pose at the start of step t (poses[0] = home, poses[steps] = the end); sensors[t], motors[t], speeds[t] and collisions[t] belong to step t",
-        "rooms": rooms_json,
-    });
     files.push((
         dir.join(format!("{stem}.json")),
-        (serde_json::to_string(&doc).expect("serialisable") + "\n").into_bytes(),
+        replay_json(&genome_path.to_string(), source_name, ctx, rooms_json),
     ));
     let pairs: Vec<_> = trials
         .iter()
@@ -360,7 +411,29 @@ fn write_replay(
     } else {
         note!("wrote {}", out.display());
     }
+    if !gif_names.is_empty() {
+        note!("GIFs: {}", gif_names.join(", "));
+    }
     Ok(())
+}
+
+/// The replay's JSON document: program, genome, config, seed and every room's trajectory.
+fn replay_json(
+    genome: &str,
+    source_name: &str,
+    ctx: &RenderContext,
+    rooms_json: Vec<serde_json::Value>,
+) -> Vec<u8> {
+    let doc = serde_json::json!({
+        "program": PROGRAM,
+        "version": fuzzymotiv::VERSION,
+        "genome": genome,
+        "config": source_name,
+        "seed": ctx.seed,
+        "note": "poses[t] is the pose at the start of step t (poses[0] = home, poses[steps] = the end); sensors[t], motors[t], speeds[t] and collisions[t] belong to step t",
+        "rooms": rooms_json,
+    });
+    (serde_json::to_string(&doc).expect("serialisable") + "\n").into_bytes()
 }
 
 /// The directory and file stem of `--out FILE`; a directory is refused (the replay is a page

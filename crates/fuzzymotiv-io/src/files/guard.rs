@@ -490,6 +490,20 @@ pub fn check_files(
     })
 }
 
+/// [`check_files`], with messages naming the options as `spelling` does (Python's
+/// `force=True`).
+pub fn check_files_as(
+    files: &[(PathBuf, Vec<u8>)],
+    option: &str,
+    force: bool,
+    spelling: &Spelling,
+) -> Result<FilesState, CliError> {
+    check_files(files, option, force).map_err(|e| match e.kind() {
+        crate::files::error::ErrorKind::Input => spelling.respell(e),
+        _ => e,
+    })
+}
+
 /// Writes a checked set of files: every one to a new temporary file first (all of them, so a
 /// full disk fails before any file is replaced), then each renamed into place.
 pub fn write_files(files: &[(PathBuf, Vec<u8>)]) -> Result<(), CliError> {

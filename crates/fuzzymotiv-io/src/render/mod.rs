@@ -1,10 +1,11 @@
 //! Rendering, from records and a run's [`RenderContext`](crate::records::context::RenderContext)
 //! only, never the live experiment: tables ([`tables`]), the paper's study with its statistics
 //! and claims ([`study`]), hand-written SVG figures ([`svg`]) written as files with an optional
-//! PNG beside them ([`figures`]), the fitness terms in words ([`terms`]) and the self-contained
-//! report page ([`report`]).
+//! PNG beside them ([`figures`]), the fitness terms in words ([`terms`]), the self-contained
+//! report page ([`report`]) and rollout frames and GIFs drawn in pure Rust ([`frames`]).
 
 pub mod figures;
+pub mod frames;
 pub mod report;
 pub mod study;
 pub mod svg;

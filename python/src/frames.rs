@@ -1,0 +1,299 @@
+//! `fm.frames` and `fm.save_gif`: rollout frames and animated GIFs, drawn by the rasteriser of
+//! `fuzzymotiv-io` (`render::frames`, the one `fuzzymotiv replay --gif` uses).
+//!
+//! A rollout is a trajectory (the columns of `fm.simulate`'s dict: `x`, `y`, `heading`, and
+//! optionally `sensors`, `action`, `idle`) or a genome, run here exactly as `fm.simulate` runs
+//! it. The room and the robot's body and sensors come from the config.
+
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::experiment::config::OrientationMode;
+use fuzzymotiv::simulation::robot::{Action, Pose};
+use fuzzymotiv::simulation::trial::Trajectory;
+use fuzzymotiv_io::files::guard::{FilesState, PYTHON, check_files_as, write_files};
+use fuzzymotiv_io::files::inputs::{resolve, room_entry};
+use fuzzymotiv_io::render::frames::animate::{GifWriter, delay_of};
+use fuzzymotiv_io::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
+use fuzzymotiv_io::render::frames::{FrameOptions, Frames, Track, gif_of_frames, render};
+use numpy::ndarray::Array4;
+use numpy::{
+    IntoPyArray, PyArray4, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray4,
+    PyUntypedArrayMethods,
+};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::{input_err, load, py_err, seed_arg};
+
+/// The columns of a trajectory dict, as the Python layer hands them over (float64 arrays, a
+/// list of action labels, a list of booleans).
+struct Columns {
+    poses: Vec<Pose>,
+    sensors: Option<Vec<[f64; 8]>>,
+    actions: Option<Vec<Action>>,
+    idle: Option<Vec<bool>>,
+}
+
+fn columns(d: &Bound<'_, PyDict>) -> PyResult<Columns> {
+    let get = |k: &str| -> PyResult<Vec<f64>> {
+        let column = d
+            .get_item(k)?
+            .ok_or_else(|| input_err(format!("trajectory: no `{k}` column")))?;
+        let a: PyReadonlyArray1<'_, f64> = column.extract()?;
+        Ok(a.as_array().to_vec())
+    };
+    let (x, y, heading) = (get("x")?, get("y")?, get("heading")?);
+    if y.len() != x.len() || heading.len() != x.len() {
+        return Err(input_err(format!(
+            "trajectory: x, y and heading have {}, {} and {} values; one per pose in each",
+            x.len(),
+            y.len(),
+            heading.len()
+        )));
+    }
+    let poses = (0..x.len())
+        .map(|t| Pose {
+            x: x[t],
+            y: y[t],
+            heading: heading[t],
+        })
+        .collect();
+    let sensors = match d.get_item("sensors")?.filter(|v| !v.is_none()) {
+        None => None,
+        Some(s) => {
+            let a: PyReadonlyArray2<'_, f64> = s.extract()?;
+            let rows = a.as_array();
+            if rows.ncols() != 8 {
+                return Err(input_err(format!(
+                    "trajectory: sensors has {} columns; expected the 8 IR readings per step",
+                    rows.ncols()
+                )));
+            }
+            Some(
+                rows.outer_iter()
+                    .map(|r| std::array::from_fn(|k| r[k]))
+                    .collect(),
+            )
+        }
+    };
+    let actions = match d.get_item("action")?.filter(|v| !v.is_none()) {
+        None => None,
+        Some(a) => Some(action_labels(a.extract()?)?),
+    };
+    let idle = match d.get_item("idle")?.filter(|v| !v.is_none()) {
+        None => None,
+        Some(i) => Some(i.extract()?),
+    };
+    Ok(Columns {
+        poses,
+        sensors,
+        actions,
+        idle,
+    })
+}
+
+fn action_labels(labels: Vec<String>) -> PyResult<Vec<Action>> {
+    (labels.iter().enumerate())
+        .map(|(t, l)| {
+            action_named(l).ok_or_else(|| {
+                input_err(format!(
+                    "trajectory: action[{t}] is `{l}`; expected straight, left30, right30 or turn180"
+                ))
+            })
+        })
+        .collect()
+}
+
+/// Where a rollout comes from: the config (`fm.run`'s `config` and `overrides`), the room and,
+/// for a genome, the base seed.
+pub(crate) struct Setting {
+    config_path: Option<PathBuf>,
+    config_text: Option<String>,
+    sets: Vec<String>,
+    room: Option<String>,
+    seed: Option<u64>,
+}
+
+impl Setting {
+    /// The experiment of the rollout: the config with its one room (`room`, else the config's
+    /// first), and, as `replay` and `fm.simulate`, no recognition or online orientation.
+    fn experiment(&self) -> PyResult<Experiment> {
+        let path = self.config_path.as_deref();
+        let loaded =
+            load(path, self.config_text.as_deref(), &self.sets, self.seed).map_err(py_err)?;
+        let want = match &self.room {
+            Some(r) => r.clone(),
+            None => loaded.experiment.room_names()[0].clone(),
+        };
+        let entry = room_entry("room", &want, &loaded).map_err(py_err)?;
+        let mut raw = loaded.raw.clone();
+        raw.rooms = vec![entry];
+        raw.aem.enabled = false;
+        raw.fitness.orientation = OrientationMode::Offline;
+        Ok(resolve(raw, Path::new("."), "(frames)")
+            .map_err(py_err)?
+            .experiment)
+    }
+}
+
+/// Runs `genome` in the setting's room (as `fm.simulate`).
+fn run_genome(py: Python<'_>, exp: &Experiment, genome: &[f64]) -> PyResult<Trajectory> {
+    if let Some(k) = genome.iter().position(|v| !v.is_finite()) {
+        return Err(input_err(format!(
+            "genome: `{}` (weight {k}) is not a finite number; expected the network's weights",
+            genome[k]
+        )));
+    }
+    let want = exp.shape().genome_len();
+    if genome.len() != want {
+        return Err(input_err(format!(
+            "genome: {} weights, but an 8-{}-2 network needs {want} (network.hidden = {})",
+            genome.len(),
+            exp.shape().hidden(),
+            exp.shape().hidden()
+        )));
+    }
+    let run = exp.runs().remove(0);
+    let network = exp.network(genome).map_err(|e| input_err(e.to_string()))?;
+    Ok(py.detach(|| exp.instance_run(&network, &run, 0)).trajectory)
+}
+
+/// The frames of a trajectory dict or a genome, drawn without the GIL.
+fn draw(
+    py: Python<'_>,
+    source: &Bound<'_, PyAny>,
+    setting: &Setting,
+    opts: FrameOptions,
+) -> PyResult<Frames> {
+    let exp = setting.experiment()?;
+    let opts = opts.for_trial(exp.trial_params());
+    let room = exp.arenas()[0].room();
+    let fail = |e: String| input_err(format!("trajectory: {e}"));
+    if let Ok(d) = source.cast::<PyDict>() {
+        let c = columns(d)?;
+        let track = Track {
+            poses: &c.poses,
+            sensors: c.sensors.as_deref(),
+            actions: c.actions.as_deref(),
+            idle: c.idle.as_deref(),
+        };
+        py.detach(|| render(room, track, opts)).map_err(fail)
+    } else {
+        let genome: Vec<f64> = source.extract()?;
+        let tr = run_genome(py, &exp, &genome)?;
+        py.detach(|| render(room, Track::of(&tr), opts))
+            .map_err(fail)
+    }
+}
+
+/// The frame options of `size` and `stride` (any whole numbers: the error names a bad one).
+fn options(size: i64, stride: i64) -> PyResult<FrameOptions> {
+    // Out-of-range values keep their own number in the message.
+    let bad = |name: &str, v: i64| {
+        let why = match name {
+            "size" => format!("must be a frame side in {MIN_SIZE}..={MAX_SIZE} pixels, got {v}"),
+            _ => format!("must be a whole number ≥ 1 (1 = a frame per step), got {v}"),
+        };
+        input_err(format!("{name}: {why}"))
+    };
+    let size = u32::try_from(size).map_err(|_| bad("size", size))?;
+    let stride = usize::try_from(stride).map_err(|_| bad("stride", stride))?;
+    FrameOptions::new(size, stride).map_err(|(name, why)| input_err(format!("{name}: {why}")))
+}
+
+/// `(T, H, W, 3)` uint8 frames of a trajectory dict or a genome (`fm.frames`).
+#[pyfunction]
+#[pyo3(signature = (source, room=None, size=320, stride=1, seed=None, config_path=None, config_text=None, sets=Vec::new()))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn frames<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+    room: Option<String>,
+    size: i64,
+    stride: i64,
+    seed: Option<Bound<'py, PyAny>>,
+    config_path: Option<PathBuf>,
+    config_text: Option<String>,
+    sets: Vec<String>,
+) -> PyResult<Bound<'py, PyArray4<u8>>> {
+    let seed = seed.map(|s| seed_arg(&s)).transpose()?;
+    let setting = Setting {
+        config_path,
+        config_text,
+        sets,
+        room,
+        seed,
+    };
+    let f = draw(py, source, &setting, options(size, stride)?)?;
+    let (h, w) = (f.height as usize, f.width as usize);
+    let a = Array4::from_shape_vec((f.len(), h, w, 3), f.rgb).expect("T × H × W × 3");
+    Ok(a.into_pyarray(py))
+}
+
+/// The GIF of `(T, H, W, 3)` uint8 frames.
+fn gif_of_array(py: Python<'_>, a: &PyReadonlyArray4<'_, u8>, delay: u16) -> PyResult<Vec<u8>> {
+    let shape = a.shape().to_vec();
+    if shape[0] == 0 || shape[3] != 3 {
+        return Err(input_err(format!(
+            "frames: an array of shape {shape:?}; expected (T, H, W, 3) with T ≥ 1 (RGB, uint8)"
+        )));
+    }
+    let view = a.as_array();
+    let flat: Vec<u8> = view.iter().copied().collect();
+    let (w, h) = (shape[2] as u32, shape[1] as u32);
+    let n = shape[1] * shape[2] * 3;
+    py.detach(|| {
+        let mut writer = GifWriter::new(w, h, delay)?;
+        for frame in flat.chunks_exact(n) {
+            writer.push(frame)?;
+        }
+        writer.finish()
+    })
+    .map_err(|e| input_err(format!("frames: {e}")))
+}
+
+/// Writes the animated GIF of frames (an array) or of a rollout to `path` through the output
+/// guard (`fm.save_gif`); returns the number of frames.
+#[pyfunction]
+#[pyo3(signature = (source, path, fps=25.0, force=false, room=None, size=320, stride=1, seed=None, config_path=None, config_text=None, sets=Vec::new()))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn save_gif<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyAny>,
+    path: PathBuf,
+    fps: f64,
+    force: bool,
+    room: Option<String>,
+    size: i64,
+    stride: i64,
+    seed: Option<Bound<'py, PyAny>>,
+    config_path: Option<PathBuf>,
+    config_text: Option<String>,
+    sets: Vec<String>,
+) -> PyResult<usize> {
+    let delay = delay_of(fps).map_err(|e| input_err(format!("fps: {e}")))?;
+    let (bytes, count) = if let Ok(a) = source.extract::<PyReadonlyArray4<'_, u8>>() {
+        (gif_of_array(py, &a, delay)?, a.shape()[0])
+    } else {
+        let seed = seed.map(|s| seed_arg(&s)).transpose()?;
+        let setting = Setting {
+            config_path,
+            config_text,
+            sets,
+            room,
+            seed,
+        };
+        let f = draw(py, source, &setting, options(size, stride)?)?;
+        let bytes = py.detach(|| gif_of_frames(&f, delay));
+        (
+            bytes.map_err(|e| input_err(format!("frames: {e}")))?,
+            f.len(),
+        )
+    };
+    let files = [(path, bytes)];
+    if check_files_as(&files, "path", force, &PYTHON).map_err(py_err)? == FilesState::Write {
+        write_files(&files).map_err(py_err)?;
+    }
+    Ok(count)
+}
