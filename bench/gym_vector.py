@@ -7,7 +7,8 @@ Needs `pip install ./python gymnasium` (a release build of the extension). The v
 the paper's trials (T = 400, `motion = "actions"`, end at home) with uniformly random motor
 outputs, reward "end", float32 spaces, next-step autoreset; every step returns the full `info`
 (a, g, l, b, pose, t, room, action and their masks). The actions are drawn before timing.
-Reported: robot-steps per second = num_envs x vector steps / wall time (best of 3 rounds).
+Reported: robot-steps per CPU second = num_envs x vector steps / process CPU time (best of 3
+rounds; the process runs one thread, so this is the rate on one core, whatever the load).
 """
 
 import argparse
@@ -22,15 +23,17 @@ from fuzzymotiv.gym import KheperaVectorEnv
 
 
 def best_rate(step, n_per_call, seconds, rounds=3):
-    """Best of `rounds` rounds of calling `step` for about `seconds`: items per second."""
+    """Best of `rounds` rounds of calling `step` for about `seconds` of this process's CPU
+    time: items per CPU second (on a shared machine wall time counts the other processes too;
+    the process is single-threaded, so its CPU time is its time on one core)."""
     best = 0.0
     for _ in range(rounds):
-        calls, start = 0, time.perf_counter()
+        calls, start = 0, time.process_time()
         while True:
             for _ in range(200):
                 step()
             calls += 200
-            elapsed = time.perf_counter() - start
+            elapsed = time.process_time() - start
             if elapsed >= seconds:
                 break
         best = max(best, calls * n_per_call / elapsed)

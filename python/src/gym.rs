@@ -182,12 +182,14 @@ fn actions(n: usize, arg: &Bound<'_, PyAny>) -> PyResult<Vec<Act>> {
         )));
     }
     (a.as_array().iter())
-        .map(|&k| match usize::try_from(k).ok().and_then(|k| ACTIONS.get(k)) {
-            Some(&a) => Ok(Act::Action(a)),
-            None => Err(input_err(format!(
-                "actions: {k} is not an action (0 straight, 1 left30, 2 right30, 3 turn180)"
-            ))),
-        })
+        .map(
+            |&k| match usize::try_from(k).ok().and_then(|k| ACTIONS.get(k)) {
+                Some(&a) => Ok(Act::Action(a)),
+                None => Err(input_err(format!(
+                    "actions: {k} is not an action (0 straight, 1 left30, 2 right30, 3 turn180)"
+                ))),
+            },
+        )
         .collect()
 }
 
@@ -217,8 +219,8 @@ impl GymCore {
         if rooms.is_empty() || num_envs == 0 {
             return Err(input_err("room: at least one room and one env are needed"));
         }
-        let loaded = load(config_path.as_deref(), config_text.as_deref(), &sets, None)
-            .map_err(py_err)?;
+        let loaded =
+            load(config_path.as_deref(), config_text.as_deref(), &sets, None).map_err(py_err)?;
         let slots = (rooms.iter())
             .map(|r| {
                 let exp = single_room(&loaded, r)?;
@@ -237,7 +239,13 @@ impl GymCore {
             let episode = core.episode(0, i as u64);
             let chooser = rng_from_seed(i as u64);
             let (room, ended, last_f) = (0, false, 0.0);
-            (core.envs).push(Env { room, episode, chooser, ended, last_f });
+            (core.envs).push(Env {
+                room,
+                episode,
+                chooser,
+                ended,
+                last_f,
+            });
         }
         Ok(core)
     }
@@ -339,11 +347,25 @@ impl Out {
         }
     }
 
-    fn push(&mut self, env: &mut Env, reward: f64, (terminated, truncated): (bool, bool), action: i64) {
+    fn push(
+        &mut self,
+        env: &mut Env,
+        reward: f64,
+        (terminated, truncated): (bool, bool),
+        action: i64,
+    ) {
         self.obs.push(env.episode.observe());
         let terms = env.episode.terms();
         let pose = env.episode.run().pose();
-        let values = [terms.a, terms.g, terms.l, terms.b, pose.x, pose.y, pose.heading];
+        let values = [
+            terms.a,
+            terms.g,
+            terms.l,
+            terms.b,
+            pose.x,
+            pose.y,
+            pose.heading,
+        ];
         for (column, v) in self.info.iter_mut().zip(values) {
             column.push(v);
         }
@@ -383,9 +405,14 @@ impl Out {
 /// The motor outputs of the network of `genome` (the library's `Mlp`, `hidden` units) for
 /// `inputs` (8 values in [0, 1]): what it gives the simulator.
 #[pyfunction]
-pub(crate) fn network_outputs(genome: Vec<f64>, hidden: usize, inputs: [f64; 8]) -> PyResult<[f64; 2]> {
+pub(crate) fn network_outputs(
+    genome: Vec<f64>,
+    hidden: usize,
+    inputs: [f64; 8],
+) -> PyResult<[f64; 2]> {
     let shape = fuzzymotiv::simulation::controller::MlpShape::with_hidden(hidden)
         .map_err(|e| input_err(format!("hidden: {e}")))?;
-    let mut net = Mlp::from_genome(shape, &genome).map_err(|e| input_err(format!("genome: {e}")))?;
+    let mut net =
+        Mlp::from_genome(shape, &genome).map_err(|e| input_err(format!("genome: {e}")))?;
     Ok(net.step(&inputs))
 }
