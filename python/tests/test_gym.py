@@ -181,3 +181,10 @@ def test_readme_gymnasium_section(repo, monkeypatch, capsys):
         exec(compile(code, f"README.md (Gymnasium, block {k})", "exec"), {})
     out = capsys.readouterr().out
     assert re.search(r"F = \d\.\d+", out), out
+
+
+def test_module_doctests():
+    import doctest
+
+    failures, tried = doctest.testmod(fmgym)
+    assert failures == 0 and tried >= 3
