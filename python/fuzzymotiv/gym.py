@@ -159,9 +159,12 @@ class KheperaEnv(gym.Env):
         self._trace = {"x": [info["x"]], "y": [info["y"]], "heading": [info["heading"]],
                        "sensors": [], "action": []}
         self._last_obs = obs[0]
+        self._over = False
         return obs[0], info
 
     def step(self, action: Any) -> tuple:
+        if getattr(self, "_over", True):
+            raise FuzzymotivError("step: no episode is running; call reset() first")
         if self._discrete:
             actions = np.array([int(action)], dtype=np.int64)
         else:
@@ -171,6 +174,7 @@ class KheperaEnv(gym.Env):
         info = self._info(info)
         self._record(seen, info)
         self._last_obs = obs[0]
+        self._over = bool(terminated[0] or truncated[0])
         return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), info
 
     def _info(self, native: dict) -> dict:

@@ -118,6 +118,13 @@ def test_bad_arguments_raise_fuzzymotiv_error():
         env.step(np.array([np.nan, 0.5]))
     with pytest.raises(fm.FuzzymotivError, match="room"):
         env.reset(options={"room": "nowhere"})
+    env.reset(seed=1)
+    done = False
+    while not done:
+        *_, terminated, truncated, _ = env.step(np.array([1.0, 0.2]))
+        done = terminated or truncated
+    with pytest.raises(fm.FuzzymotivError, match="reset"):
+        env.step(np.array([1.0, 1.0]))
 
 
 def test_vector_env_steps_like_single_envs_and_autoresets_next_step():
