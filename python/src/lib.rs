@@ -12,7 +12,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use fuzzymotiv::experiment::config::{OrientationMode, RawConfig};
+use fuzzymotiv::experiment::config::RawConfig;
 use fuzzymotiv::experiment::evolution::{GenerationState, Observer};
 use fuzzymotiv::experiment::outcome::RunError;
 use fuzzymotiv::fitness::fuzzy::{CoefficientScheme, Motivations, TskFitness};
@@ -41,6 +41,7 @@ use rayon::{ThreadPool, ThreadPoolBuilder};
 
 mod frames;
 mod ga;
+mod gym;
 mod problem;
 mod stats;
 
@@ -829,15 +830,8 @@ fn simulate<'py>(
         Some(seed),
     )
     .map_err(py_err)?;
-    let entry = fuzzymotiv_io::files::inputs::room_entry("room", &room, &loaded).map_err(py_err)?;
-    let mut raw = loaded.raw.clone();
-    raw.rooms = vec![entry];
     // As `replay`: neither recognition nor online orientation changes a trajectory.
-    raw.aem.enabled = false;
-    raw.fitness.orientation = OrientationMode::Offline;
-    let exp = resolve(raw, Path::new("."), "(simulate)")
-        .map_err(py_err)?
-        .experiment;
+    let exp = gym::single_room(&loaded, &room)?;
     let want = exp.shape().genome_len();
     if genome.len() != want {
         return Err(input_err(format!(
@@ -919,6 +913,8 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(frames::save_gif, m)?)?;
     m.add_class::<problem::Problem>()?;
     m.add_class::<ga::Ga>()?;
+    m.add_class::<gym::GymCore>()?;
+    m.add_function(wrap_pyfunction!(gym::network_outputs, m)?)?;
     stats::register(m)?;
     Ok(())
 }

@@ -6,6 +6,7 @@
 
 pub mod config;
 pub mod descriptors;
+pub mod episodes;
 pub mod evaluation;
 pub mod evolution;
 pub mod modelling;

@@ -10,4 +10,5 @@ pub mod robot;
 pub mod room;
 pub(crate) mod sensing;
 pub mod sensor;
+pub mod stepper;
 pub mod trial;

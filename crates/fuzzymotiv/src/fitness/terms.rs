@@ -1,6 +1,8 @@
 //! The fitness terms (docs/model.md, "Fitness terms"): exploration `a`, homing `g`,
 //! orientation `l`, battery `b`.
 
+use std::borrow::Borrow;
+
 use serde::{Deserialize, Serialize};
 
 use crate::simulation::trial::{Arena, CELL, Step, StepObserver, Trajectory};
@@ -58,10 +60,12 @@ pub fn exploration_optimum(arena: &Arena) -> usize {
     arena.reachable_cells().min(by_speed).max(1)
 }
 
-/// Accumulates the terms step by step (used inside evaluation without storing a trajectory).
+/// Accumulates the terms step by step (used inside evaluation without storing a trajectory)
+/// in an arena `A`: `&Arena`, or an owning handle such as `Arc<Arena>` (for a trial driven
+/// from outside, [`crate::fitness::episode::Episode`]).
 #[derive(Debug, Clone)]
-pub struct TermsRecorder<'a> {
-    arena: &'a Arena,
+pub struct TermsRecorder<A: Borrow<Arena>> {
+    arena: A,
     visited: Vec<bool>,
     visited_count: usize,
     battery: f64,
@@ -73,12 +77,14 @@ pub struct TermsRecorder<'a> {
     optimum: usize,
 }
 
-impl<'a> TermsRecorder<'a> {
+impl<A: Borrow<Arena>> TermsRecorder<A> {
     /// A recorder for a trial in `arena` starting at home (the home cell counts as visited).
-    pub fn new(arena: &'a Arena, homing: Homing) -> Self {
-        let home = arena.room().home;
-        let mut visited = vec![false; arena.cell_count()];
-        visited[arena.cell_of(home.position())] = true;
+    pub fn new(arena: A, homing: Homing) -> Self {
+        let a = arena.borrow();
+        let home = a.room().home;
+        let mut visited = vec![false; a.cell_count()];
+        visited[a.cell_of(home.position())] = true;
+        let optimum = exploration_optimum(a);
         Self {
             arena,
             visited,
@@ -89,7 +95,7 @@ impl<'a> TermsRecorder<'a> {
             last: home,
             escaped: false,
             homing,
-            optimum: exploration_optimum(arena),
+            optimum,
         }
     }
 
@@ -106,11 +112,12 @@ impl<'a> TermsRecorder<'a> {
     /// The terms so far (`l` = 0).
     pub fn finish(&self) -> FitnessTerms {
         let a = (self.visited_count as f64 / self.optimum as f64).clamp(0.0, 1.0);
-        let home = self.arena.room().home.position();
+        let arena = self.arena.borrow();
+        let home = arena.room().home.position();
         let g = if self.homing == Homing::Escape && !self.escaped {
             0.0
         } else {
-            (1.0 - self.last.position().dist(home) / self.arena.d_max()).clamp(0.0, 1.0)
+            (1.0 - self.last.position().dist(home) / arena.d_max()).clamp(0.0, 1.0)
         };
         let b = if self.steps == 0 {
             0.0
@@ -121,12 +128,12 @@ impl<'a> TermsRecorder<'a> {
     }
 }
 
-impl StepObserver for TermsRecorder<'_> {
+impl<A: Borrow<Arena>> StepObserver for TermsRecorder<A> {
     #[inline]
     fn observe(&mut self, s: &Step) {
         let k = s
             .cell
-            .unwrap_or_else(|| self.arena.cell_of(s.pose.position()));
+            .unwrap_or_else(|| self.arena.borrow().cell_of(s.pose.position()));
         if !self.visited[k] {
             self.visited[k] = true;
             self.visited_count += 1;

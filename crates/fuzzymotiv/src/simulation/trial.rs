@@ -837,15 +837,10 @@ where
     O: StepObserver + ?Sized,
 {
     let params = &arena.params;
-    let mut walk = Walk {
-        pose: arena.room.home,
-        cell: arena.cell_of(arena.room.home.position()),
-        dir: 0,
-        escaped: false,
-    };
+    let mut walk = Walk::at_home(arena);
     let mut t = 0;
     while t < params.steps {
-        let (step, home) = walk.step(t, arena, controller, params, rng, memo.as_deref_mut());
+        let (step, home) = walk.step(t, arena, controller, rng, memo.as_deref_mut());
         observer.observe(&step);
         t += 1;
         if params.end_at_home && home {
@@ -853,13 +848,15 @@ where
         }
     }
     for t in t..params.steps {
-        observer.observe(&Step::idle(t, walk.pose, Some(walk.cell), walk.escaped));
+        observer.observe(&walk.idle(t));
     }
     walk.pose
 }
 
-/// Where a robot is during a trial.
-struct Walk {
+/// Where a robot is during a trial (shared by [`simulate`] and the public stepper
+/// [`crate::simulation::stepper::TrialRun`]: both take exactly these steps).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Walk {
     pose: Pose,
     /// The grid cell of `pose`.
     cell: usize,
@@ -869,19 +866,47 @@ struct Walk {
     escaped: bool,
 }
 
+/// What the first half of a step ([`Walk::sense`]) read: the sensor values (noise included)
+/// and what the move will be tested against.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Sensed {
+    pub(crate) sensors: [f64; INPUTS],
+    walls: Walls,
+}
+
 impl Walk {
-    /// Step `t`: read the sensors (with noise), run the network, add wheel noise, label the
-    /// step and move by the motion model, undoing the move (keeping the heading change) if the
-    /// body would overlap a wall. `memo` is the trial's table of remembered sights, if any
-    /// (`actions` motion). Returns the step's record and whether the robot, having escaped, is
-    /// back in the home zone.
+    /// At the room's home pose, not yet escaped.
+    #[inline]
+    pub(crate) fn at_home(arena: &Arena) -> Walk {
+        Walk {
+            pose: arena.room.home,
+            cell: arena.cell_of(arena.room.home.position()),
+            dir: 0,
+            escaped: false,
+        }
+    }
+
+    /// The pose now.
+    #[inline]
+    pub(crate) fn pose(&self) -> Pose {
+        self.pose
+    }
+
+    /// The idle step `t` at the pose now (after the trial ended at home).
+    #[inline]
+    pub(crate) fn idle(&self, t: usize) -> Step {
+        Step::idle(t, self.pose, Some(self.cell), self.escaped)
+    }
+
+    /// Step `t`: [`Walk::sense`], run the network on the sensors / 1023, then [`Walk::act`].
+    /// Returns the step's record and whether the robot, having escaped, is back in the home
+    /// zone.
     #[inline(always)]
     fn step<C, R>(
         &mut self,
         t: usize,
         arena: &Arena,
         controller: &mut C,
-        params: &TrialParams,
         rng: &mut R,
         memo: Option<&mut Table>,
     ) -> (Step, bool)
@@ -889,9 +914,21 @@ impl Walk {
         C: Controller + ?Sized,
         R: Rng + ?Sized,
     {
-        let (motion, v_max) = (params.robot.motion(), params.robot.v_max());
+        let sensed = self.sense(arena, rng, memo);
+        let motors = controller.step(&inputs_of(&sensed.sensors));
+        self.act(t, arena, &sensed, motors, None, rng)
+    }
+
+    /// The first half of a step: read the sensors and add their noise. `memo` is the trial's
+    /// table of remembered sights, if any (`actions` motion; a pure cache).
+    #[inline(always)]
+    pub(crate) fn sense<R>(&self, arena: &Arena, rng: &mut R, memo: Option<&mut Table>) -> Sensed
+    where
+        R: Rng + ?Sized,
+    {
+        let params = &arena.params;
         let pos = self.pose.position();
-        let (mut sensors, walls) = match motion {
+        let (mut sensors, walls) = match params.robot.motion() {
             Motion::Actions => {
                 let step = params.straight_step();
                 let sight = arena.sight(memo, pos, self.dir, self.cell, step);
@@ -906,21 +943,45 @@ impl Walk {
             }
         };
         perturb_sensors(&mut sensors, params.noise, SENSOR_MAX, rng);
-        // Most readings are 0 in open floor; 0 / 1023 is exactly 0, so skip the division.
-        let inputs = sensors.map(|v| if v == 0.0 { 0.0 } else { v / SENSOR_MAX });
-        let motors = controller.step(&inputs);
+        Sensed { sensors, walls }
+    }
+
+    /// The second half of step `t`, given the motor outputs `motors`: add wheel noise, label
+    /// the step (or take `forced`, an action chosen from outside, with `actions` motion) and
+    /// move by the motion model, undoing the move (keeping the heading change) if the body
+    /// would overlap a wall. Returns the step's record and whether the robot, having escaped,
+    /// is back in the home zone.
+    #[inline(always)]
+    pub(crate) fn act<R>(
+        &mut self,
+        t: usize,
+        arena: &Arena,
+        sensed: &Sensed,
+        motors: [f64; 2],
+        forced: Option<Action>,
+        rng: &mut R,
+    ) -> (Step, bool)
+    where
+        R: Rng + ?Sized,
+    {
+        let params = &arena.params;
+        let (motion, v_max) = (params.robot.motion(), params.robot.v_max());
         let speeds = motors.map(|m| (2.0 * m - 1.0) * v_max);
         let noisy = [
             perturb(speeds[0], params.noise, rng),
             perturb(speeds[1], params.noise, rng),
         ];
-        let action = motion.label(motors, noisy, v_max, params.action_tolerance);
-        let collided = self.execute(action, noisy, arena, params, &walls);
+        let labelled = || motion.label(motors, noisy, v_max, params.action_tolerance);
+        let action = match (forced, motion) {
+            (Some(a), Motion::Actions) => a,
+            _ => labelled(),
+        };
+        let collided = self.execute(action, noisy, arena, params, &sensed.walls);
         let inside = arena.room.home_zone.contains(self.pose.position());
         self.escaped |= !inside;
         let step = Step {
             t,
-            sensors,
+            sensors: sensed.sensors,
             motors,
             speeds,
             pose: self.pose,
@@ -981,7 +1042,15 @@ impl Walk {
     }
 }
 
+/// The network's inputs: the sensor values / 1023 ([`SENSOR_MAX`]).
+#[inline(always)]
+pub(crate) fn inputs_of(sensors: &[f64; INPUTS]) -> [f64; INPUTS] {
+    // Most readings are 0 in open floor; 0 / 1023 is exactly 0, so skip the division.
+    sensors.map(|v| if v == 0.0 { 0.0 } else { v / SENSOR_MAX })
+}
+
 /// What a step knows of the walls in its way.
+#[derive(Debug, Clone, Copy)]
 enum Walls {
     /// `actions` motion: whether a straight move is blocked ([`Arena::sight`]).
     Straight(bool),

@@ -1,0 +1,289 @@
+"""Gymnasium environments of the Khepera trial (``pip install fuzzymotiv[gym]``).
+
+``import fuzzymotiv.gym`` registers:
+
+* ``fuzzymotiv/Khepera-v0``: observation ``Box(0, 1, (8,))`` — the eight IR sensors / 1023,
+  noise included (what the network reads); action ``Box(0, 1, (2,))`` — the two motor outputs
+  ``mL, mR`` the network gives the simulator (clipped to [0, 1]);
+* ``fuzzymotiv/KheperaDiscrete-v0``: the same with ``Discrete(4)`` actions, executed as given
+  (0 ``straight``, 1 ``left30``, 2 ``right30``, 3 ``turn180``; ``motion = "actions"``).
+
+The step is the library's own (``fuzzymotiv::simulation::stepper::TrialRun``): the same
+sensors, noise streams, motion model and end at home as :func:`fuzzymotiv.simulate`. An episode
+is the trial ``fm.simulate(genome, room, seed)`` runs: reset with ``seed=S`` in room ``R`` and
+drive it with the genome's network outputs, and you get that trajectory, bit for bit (with
+``dtype=np.float64``; float32 observations are rounded).
+
+``room=`` is a room name (of the config or built in), a room file, or a list of them: each
+reset draws one from the env's seeded ``np_random`` (``options={"room": NAME}`` picks one).
+Each reset's trial runs under base seed ``seed`` when given, else one drawn from ``np_random``.
+
+Reward (``reward=``): ``"end"`` (default) gives the TSK fitness F of the trial at its last step
+and 0 before — F of the terms a, g, b with l = 0 (orientation is measured across rooms), under
+the config's motivations, exactly as ``fm.simulate`` reports it; ``"per-step"`` gives the
+change of F of the terms so far at each step (F of an empty trial counted as 0), so an
+episode's rewards add up to its F (up to rounding). ``terminated`` is True when the trial ends
+at home (``trial.end_at_home``), ``truncated`` at ``T`` = ``trial.steps``. ``info`` holds the
+terms so far ``a``, ``g``, ``l``, ``b``, the pose ``x``, ``y`` (mm), ``heading`` (rad), the
+step count ``t``, the ``room`` and the executed ``action``.
+
+:class:`KheperaVectorEnv` steps all its environments in Rust in one call. It follows
+Gymnasium 1.x's **next-step autoreset** (``metadata["autoreset_mode"] ==
+AutoresetMode.NEXT_STEP``): the step after an env's episode ended resets that env (a new room
+and seed drawn from a stream of its seed) and ignores its action, returning the new first
+observation with reward 0 and ``terminated = truncated = False``.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Callable, Optional, Sequence, Union
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from . import FuzzymotivError, _config_args, _sets
+from . import _fuzzymotiv as _native
+
+ACTIONS = ("straight", "left30", "right30", "turn180")
+"""The actions of the ``Discrete(4)`` variant, by index."""
+
+_SEED_BOUND = 2**53
+
+RoomArg = Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]]]
+
+
+def _rooms(room: Any) -> list:
+    if isinstance(room, (str, os.PathLike)):
+        return [os.fspath(room)]
+    rooms = [os.fspath(r) for r in room]
+    if not rooms:
+        raise FuzzymotivError("room: expected a room name or file, or a non-empty list of them")
+    return rooms
+
+
+def _dtype(dtype: Any) -> np.dtype:
+    d = np.dtype(dtype)
+    if d not in (np.dtype(np.float32), np.dtype(np.float64)):
+        raise FuzzymotivError(f"dtype: expected np.float32 or np.float64, got {d}")
+    return d
+
+
+def _core(room: Any, num_envs: int, config: Any, overrides: Any, reward: str, dtype: np.dtype) -> Any:
+    path, text = _config_args(config)
+    return _native.GymCore(
+        _rooms(room), num_envs, path, text, _sets(overrides), reward, dtype == np.float64
+    )
+
+
+def _spaces(dtype: np.dtype, discrete: bool) -> tuple:
+    obs = spaces.Box(0.0, 1.0, (8,), dtype)
+    act = spaces.Discrete(4) if discrete else spaces.Box(0.0, 1.0, (2,), dtype)
+    return obs, act
+
+
+def network(genome: Any) -> Callable[[Any], np.ndarray]:
+    """The network of ``genome`` (its weights, the library's own MLP, ``8-h-2`` with ``h`` from
+    the length): a function from an observation (8 inputs in [0, 1]) to the two motor outputs
+    the network gives the simulator — the action that replays :func:`fuzzymotiv.simulate`."""
+    weights = np.asarray(genome, dtype=np.float64).ravel()
+    hidden, rest = divmod(len(weights) - 2, 11)
+    if rest or hidden < 1:
+        raise FuzzymotivError(
+            f"genome: {len(weights)} weights is no 8-h-2 network's length (11·h + 2)"
+        )
+    w = weights.tolist()
+
+    def outputs(obs: Any) -> np.ndarray:
+        inputs = [float(v) for v in np.asarray(obs, dtype=np.float64).ravel()]
+        return np.array(_native.network_outputs(w, hidden, inputs))
+
+    return outputs
+
+
+class KheperaEnv(gym.Env):
+    """One Khepera trial as a Gymnasium environment (see the module's docs).
+
+    >>> env = KheperaEnv("H", overrides={"trial.steps": 5})
+    >>> obs, info = env.reset(seed=1)
+    >>> obs.shape, obs.dtype, info["room"]
+    ((8,), dtype('float32'), 'H')
+    """
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 10}
+
+    def __init__(
+        self,
+        room: RoomArg = "H",
+        *,
+        config: Union[str, "os.PathLike[str]", None] = None,
+        overrides: Any = None,
+        reward: str = "end",
+        dtype: Any = np.float32,
+        discrete: bool = False,
+        render_mode: Optional[str] = None,
+        size: int = 256,
+    ) -> None:
+        if render_mode not in (None, "rgb_array"):
+            raise FuzzymotivError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
+        self._dtype = _dtype(dtype)
+        self._room_args = _rooms(room)
+        self._core = _core(self._room_args, 1, config, overrides, reward, self._dtype)
+        self.observation_space, self.action_space = _spaces(self._dtype, discrete)
+        self.rooms: list = list(self._core.room_names)
+        self.max_steps: int = self._core.max_steps
+        self.render_mode = render_mode
+        self.size = size
+        self._discrete = discrete
+        self._room = 0
+        self._trace: dict = {}
+
+    def reset(
+        self, *, seed: Optional[int] = None, options: Optional[dict] = None
+    ) -> tuple:
+        super().reset(seed=seed)
+        room = (options or {}).get("room")
+        if room is None:
+            self._room = int(self.np_random.integers(len(self.rooms)))
+        elif room in self.rooms:
+            self._room = self.rooms.index(room)
+        else:
+            raise FuzzymotivError(f"options['room']: {room!r} is not one of {self.rooms}")
+        base = seed if seed is not None else int(self.np_random.integers(_SEED_BOUND))
+        self._core.reset_one(0, self._room, base)
+        obs, info = self._core.state()
+        info = self._info(info)
+        self._trace = {"x": [info["x"]], "y": [info["y"]], "heading": [info["heading"]],
+                       "sensors": [], "action": []}
+        self._last_obs = obs[0]
+        self._over = False
+        return obs[0], info
+
+    def step(self, action: Any) -> tuple:
+        if getattr(self, "_over", True):
+            raise FuzzymotivError("step: no episode is running; call reset() first")
+        if self._discrete:
+            actions = np.array([int(action)], dtype=np.int64)
+        else:
+            actions = np.asarray(action, dtype=np.float64).reshape(1, 2)
+        seen = self._last_obs
+        obs, reward, terminated, truncated, info = self._core.step(actions)
+        info = self._info(info)
+        self._record(seen, info)
+        self._last_obs = obs[0]
+        self._over = bool(terminated[0] or truncated[0])
+        return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), info
+
+    def _info(self, native: dict) -> dict:
+        info = {k: float(native[k][0]) for k in ("a", "g", "l", "b", "x", "y", "heading")}
+        info["t"] = int(native["t"][0])
+        info["room"] = self.rooms[int(native["room"][0])]
+        action = int(native["action"][0])
+        if action >= 0:
+            info["action"] = ACTIONS[action]
+        return info
+
+    def _record(self, seen: np.ndarray, info: dict) -> None:
+        for k in ("x", "y", "heading"):
+            self._trace[k].append(info[k])
+        self._trace["sensors"].append(np.asarray(seen, dtype=np.float64) * 1023.0)
+        self._trace["action"].append(info.get("action", "straight"))
+
+    def trajectory(self) -> dict:
+        """The episode so far, shaped like :func:`fuzzymotiv.simulate`'s result: ``x``,
+        ``y``, ``heading`` (steps + 1 poses), ``sensors`` (steps × 8, 0–1023; rounded when the
+        env is float32) and ``action`` (labels)."""
+        t = self._trace
+        sensors = np.array(t["sensors"], dtype=np.float64).reshape(-1, 8)
+        return {
+            "x": np.array(t["x"]),
+            "y": np.array(t["y"]),
+            "heading": np.array(t["heading"]),
+            "sensors": sensors,
+            "action": np.array(t["action"], dtype=str),
+        }
+
+    def render(self) -> Optional[np.ndarray]:
+        """With ``render_mode="rgb_array"``: the frame of the episode so far, ``(H, W, 3)``
+        uint8, drawn by :func:`fuzzymotiv.frames`."""
+        if self.render_mode != "rgb_array":
+            return None
+        import fuzzymotiv
+
+        frames = getattr(fuzzymotiv, "frames", None)
+        if frames is None:
+            raise FuzzymotivError("render: fuzzymotiv.frames is not available in this build")
+        room = self._room_args[self._room] if len(self._room_args) > 1 else self._room_args[0]
+        return np.asarray(frames(self.trajectory(), room, size=self.size)[-1])
+
+
+class KheperaVectorEnv(VectorEnv):
+    """``num_envs`` Khepera trials stepped together in Rust (one call per step), with
+    next-step autoreset (see the module's docs). ``reset(seed=S)`` seeds env ``i`` with
+    ``S + i`` (its trial's base seed; its room drawn from the vector env's ``np_random``)."""
+
+    metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
+
+    def __init__(
+        self,
+        num_envs: int = 64,
+        room: RoomArg = "H",
+        *,
+        config: Union[str, "os.PathLike[str]", None] = None,
+        overrides: Any = None,
+        reward: str = "end",
+        dtype: Any = np.float32,
+        discrete: bool = False,
+    ) -> None:
+        if int(num_envs) < 1:
+            raise FuzzymotivError(f"num_envs: expected a whole number >= 1, got {num_envs!r}")
+        self.num_envs = int(num_envs)
+        self._dtype = _dtype(dtype)
+        self._core = _core(room, self.num_envs, config, overrides, reward, self._dtype)
+        self._discrete = discrete
+        self.single_observation_space, self.single_action_space = _spaces(self._dtype, discrete)
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self.rooms: list = list(self._core.room_names)
+        self.max_steps: int = self._core.max_steps
+        self.render_mode = None
+
+    def reset(
+        self, *, seed: Union[int, Sequence[Optional[int]], None] = None, options: Optional[dict] = None
+    ) -> tuple:
+        first = seed if isinstance(seed, (int, np.integer)) or seed is None else None
+        super().reset(seed=first)
+        if seed is None or isinstance(seed, (int, np.integer)):
+            seeds: list = [None if seed is None else int(seed) + i for i in range(self.num_envs)]
+        else:
+            seeds = list(seed)
+            if len(seeds) != self.num_envs:
+                raise FuzzymotivError(f"seed: expected {self.num_envs} seeds, got {len(seeds)}")
+        for i, s in enumerate(seeds):
+            room = int(self.np_random.integers(len(self.rooms)))
+            base = s if s is not None else int(self.np_random.integers(_SEED_BOUND))
+            self._core.reset_one(i, room, base)
+        return self._core.state()
+
+    def step(self, actions: Any) -> tuple:
+        if self._discrete:
+            a = np.asarray(actions, dtype=np.int64).reshape(self.num_envs)
+        else:
+            a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, 2)
+        return self._core.step(a)
+
+
+gym.register(
+    id="fuzzymotiv/Khepera-v0",
+    entry_point="fuzzymotiv.gym:KheperaEnv",
+    vector_entry_point="fuzzymotiv.gym:KheperaVectorEnv",
+)
+gym.register(
+    id="fuzzymotiv/KheperaDiscrete-v0",
+    entry_point="fuzzymotiv.gym:KheperaEnv",
+    vector_entry_point="fuzzymotiv.gym:KheperaVectorEnv",
+    kwargs={"discrete": True},
+)

@@ -1,0 +1,418 @@
+//! The native side of `fuzzymotiv.gym`: `GymCore`, N Khepera trials stepped in Rust in one
+//! call (the library's [`Episode`]: its step, noise streams and fitness terms), for the
+//! Gymnasium env (N = 1) and the vector env.
+//!
+//! Each trial is the room-modelling instance run that `fm.simulate(genome, room, seed)` runs
+//! (the experiment of that one room, [`single_room`], its instance stream under base seed
+//! `seed`): driven by the genome's network outputs, the same trajectory, terms and F.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use fuzzymotiv::experiment::config::OrientationMode;
+use fuzzymotiv::experiment::{Experiment, Run};
+use fuzzymotiv::fitness::episode::Episode;
+use fuzzymotiv::random::rng::{Rng, Rng64, index, rng_from_seed};
+use fuzzymotiv::random::seed::{JSON_EXACT, derive};
+use fuzzymotiv::simulation::controller::{Controller, INPUTS, Mlp};
+use fuzzymotiv::simulation::robot::Action;
+use fuzzymotiv::simulation::trial::Arena;
+use fuzzymotiv_io::files::inputs::{Loaded, resolve, room_entry};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+
+use crate::{input_err, load, py_err};
+
+/// The experiment of one trial in `room` (a room of the config, a built-in room or a room
+/// file), as `fuzzymotiv replay --room ROOM` and `fm.simulate` build it: that room only, and
+/// neither recognition nor online orientation (they change no trajectory).
+pub(crate) fn single_room(loaded: &Loaded, room: &str) -> PyResult<Experiment> {
+    let entry = room_entry("room", room, loaded).map_err(py_err)?;
+    let mut raw = loaded.raw.clone();
+    raw.rooms = vec![entry];
+    raw.aem.enabled = false;
+    raw.fitness.orientation = OrientationMode::Offline;
+    Ok(resolve(raw, Path::new("."), "(simulate)")
+        .map_err(py_err)?
+        .experiment)
+}
+
+/// One room an env may be reset into.
+struct Slot {
+    exp: Arc<Experiment>,
+    arena: Arc<Arena>,
+    run: Run,
+}
+
+/// One env: its trial, the stream its next rooms and seeds are drawn from (autoreset), and
+/// whether its trial ended at the last step (`NEXT_STEP` autoreset: the next step resets it).
+struct Env {
+    room: usize,
+    episode: Episode<Arc<Arena>, Rng64>,
+    chooser: Rng64,
+    ended: bool,
+    /// F of the terms after the last step (per-step reward).
+    last_f: f64,
+}
+
+/// What the reward is: F at the end, or the change of F of the terms so far.
+#[derive(Clone, Copy, PartialEq)]
+enum Reward {
+    End,
+    PerStep,
+}
+
+/// N trials in one or more rooms, stepped together (`fuzzymotiv.gym`'s envs wrap it).
+#[pyclass(module = "fuzzymotiv._fuzzymotiv", name = "GymCore")]
+pub struct GymCore {
+    slots: Vec<Slot>,
+    envs: Vec<Env>,
+    reward: Reward,
+    float64: bool,
+}
+
+impl GymCore {
+    /// A trial in slot `room` under base seed `base`.
+    fn episode(&self, room: usize, base: u64) -> Episode<Arc<Arena>, Rng64> {
+        let s = &self.slots[room];
+        s.exp.episode(s.arena.clone(), base, &s.run, 0)
+    }
+
+    /// Env `i`'s next episode, its room and base seed drawn from its chooser (autoreset).
+    fn autoreset(&mut self, i: usize) {
+        let chooser = &mut self.envs[i].chooser;
+        let room = index(chooser, self.slots.len());
+        let base = chooser.next_u64() & JSON_EXACT;
+        let episode = self.episode(room, base);
+        let env = &mut self.envs[i];
+        (env.room, env.episode, env.ended, env.last_f) = (room, episode, false, 0.0);
+    }
+
+    /// Observations as a `(N, 8)` array of IR / 1023 in the env's dtype.
+    fn obs_array<'py>(&self, py: Python<'py>, obs: Vec<[f64; INPUTS]>) -> Bound<'py, PyAny> {
+        let n = obs.len();
+        let flat = obs.into_iter().flatten().map(|v| v / 1023.0);
+        if self.float64 {
+            let a = Array2::from_shape_vec((n, INPUTS), flat.collect()).expect("N × 8");
+            a.into_pyarray(py).into_any()
+        } else {
+            let a = Array2::from_shape_vec((n, INPUTS), flat.map(|v| v as f32).collect())
+                .expect("N × 8");
+            a.into_pyarray(py).into_any()
+        }
+    }
+
+    /// One step of env `i` (`NEXT_STEP` autoreset: an env whose trial ended is reset instead,
+    /// its action ignored). Returns the reward, terminated, truncated and the executed action's
+    /// index (-1 for a reset).
+    fn step_one(&mut self, i: usize, act: Act) -> (f64, bool, bool, i64) {
+        if self.envs[i].ended {
+            self.autoreset(i);
+            return (0.0, false, false, -1);
+        }
+        let (reward, slots) = (self.reward, &self.slots);
+        let env = &mut self.envs[i];
+        let step = match act {
+            Act::Motors(m) => env.episode.step(m),
+            Act::Action(a) => env.episode.step_action(a),
+        };
+        let action = ACTIONS.iter().position(|&a| a == step.action).unwrap_or(0) as i64;
+        let over = env.episode.is_over();
+        let home = env.episode.run().ended_at_home();
+        let f = match (reward, over) {
+            (Reward::PerStep, _) | (Reward::End, true) => {
+                slots[env.room].exp.fuzzy_fitness(&env.episode.terms())
+            }
+            _ => 0.0,
+        };
+        let r = match reward {
+            Reward::End => f,
+            Reward::PerStep => f - env.last_f,
+        };
+        env.last_f = f;
+        env.ended = over;
+        (r, home, over && !home, action)
+    }
+}
+
+/// One env's action.
+#[derive(Clone, Copy)]
+enum Act {
+    Motors([f64; 2]),
+    Action(Action),
+}
+
+/// The four actions of the `Discrete(4)` variant, in order.
+const ACTIONS: [Action; 4] = [
+    Action::Straight,
+    Action::Left30,
+    Action::Right30,
+    Action::Turn180,
+];
+
+/// The actions of a step: `(N, 2)` motor outputs (clipped to [0, 1]) or `(N,)` action indices.
+fn actions(n: usize, arg: &Bound<'_, PyAny>) -> PyResult<Vec<Act>> {
+    if let Ok(a) = arg.extract::<PyReadonlyArray2<'_, f64>>() {
+        if a.shape() != [n, 2] {
+            return Err(input_err(format!(
+                "actions: expected shape ({n}, 2) (two motor outputs per env), got {:?}",
+                a.shape()
+            )));
+        }
+        let a = a.as_array();
+        return (0..n)
+            .map(|i| {
+                let m = [a[[i, 0]], a[[i, 1]]];
+                if m.iter().any(|v| v.is_nan()) {
+                    return Err(input_err(format!("actions: env {i}'s motor output is NaN")));
+                }
+                Ok(Act::Motors(m.map(|v| v.clamp(0.0, 1.0))))
+            })
+            .collect();
+    }
+    let a: PyReadonlyArray1<'_, i64> = arg.extract().map_err(|_| {
+        input_err("actions: expected a float64 array (N, 2) or an int64 array (N,)")
+    })?;
+    if a.len() != n {
+        return Err(input_err(format!(
+            "actions: expected {n} action indices, got {}",
+            a.len()
+        )));
+    }
+    (a.as_array().iter())
+        .map(
+            |&k| match usize::try_from(k).ok().and_then(|k| ACTIONS.get(k)) {
+                Some(&a) => Ok(Act::Action(a)),
+                None => Err(input_err(format!(
+                    "actions: {k} is not an action (0 straight, 1 left30, 2 right30, 3 turn180)"
+                ))),
+            },
+        )
+        .collect()
+}
+
+#[pymethods]
+impl GymCore {
+    /// `num_envs` trials, each in one of `rooms` (room names or files), under the config.
+    #[new]
+    #[pyo3(signature = (rooms, num_envs, config_path=None, config_text=None, sets=Vec::new(), reward="end", float64=false))]
+    fn new(
+        rooms: Vec<String>,
+        num_envs: usize,
+        config_path: Option<PathBuf>,
+        config_text: Option<String>,
+        sets: Vec<String>,
+        reward: &str,
+        float64: bool,
+    ) -> PyResult<Self> {
+        let reward = match reward {
+            "end" => Reward::End,
+            "per-step" | "per_step" => Reward::PerStep,
+            r => {
+                return Err(input_err(format!(
+                    "reward: expected \"end\" or \"per-step\", got {r:?}"
+                )));
+            }
+        };
+        if rooms.is_empty() || num_envs == 0 {
+            return Err(input_err("room: at least one room and one env are needed"));
+        }
+        let loaded =
+            load(config_path.as_deref(), config_text.as_deref(), &sets, None).map_err(py_err)?;
+        let slots = (rooms.iter())
+            .map(|r| {
+                let exp = single_room(&loaded, r)?;
+                let (arena, run) = (Arc::new(exp.arenas()[0].clone()), exp.runs().remove(0));
+                let exp = Arc::new(exp);
+                Ok(Slot { exp, arena, run })
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        let mut core = GymCore {
+            slots,
+            envs: Vec::with_capacity(num_envs),
+            reward,
+            float64,
+        };
+        for i in 0..num_envs {
+            let episode = core.episode(0, i as u64);
+            let chooser = rng_from_seed(i as u64);
+            let (room, ended, last_f) = (0, false, 0.0);
+            (core.envs).push(Env {
+                room,
+                episode,
+                chooser,
+                ended,
+                last_f,
+            });
+        }
+        Ok(core)
+    }
+
+    /// Number of envs.
+    #[getter]
+    fn num_envs(&self) -> usize {
+        self.envs.len()
+    }
+
+    /// Steps per trial `T`.
+    #[getter]
+    fn max_steps(&self) -> usize {
+        self.slots[0].exp.trial_params().steps()
+    }
+
+    /// The rooms' names, in slot order.
+    #[getter]
+    fn room_names(&self) -> Vec<String> {
+        (self.slots.iter())
+            .map(|s| s.arena.room().name.clone())
+            .collect()
+    }
+
+    /// Starts env `i`'s trial in slot `room` under base seed `seed` (the instance run
+    /// `fm.simulate(genome, room, seed)` runs); its later autoresets draw rooms and seeds from
+    /// a stream of `seed`. `state()` then gives its first observation.
+    fn reset_one(&mut self, i: usize, room: usize, seed: u64) -> PyResult<()> {
+        if i >= self.envs.len() || room >= self.slots.len() {
+            return Err(input_err(format!("reset: no env {i} or room slot {room}")));
+        }
+        let episode = self.episode(room, seed);
+        let chooser = rng_from_seed(derive(seed, &[0x6779_6d]));
+        self.envs[i] = Env {
+            room,
+            episode,
+            chooser,
+            ended: false,
+            last_f: 0.0,
+        };
+        Ok(())
+    }
+
+    /// Steps every env once: `actions` is `(N, 2)` float64 motor outputs or `(N,)` int64
+    /// action indices. Returns `(obs, reward, terminated, truncated, info)`, arrays over the
+    /// envs; `info` holds `a`, `g`, `l`, `b`, `x`, `y`, `heading`, `t` and `room` (the slot).
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        actions: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyTuple>> {
+        let n = self.envs.len();
+        let acts = self::actions(n, actions)?;
+        let mut out = Out::with_capacity(n);
+        py.detach(|| {
+            for (i, act) in acts.into_iter().enumerate() {
+                let (r, term, trunc, action) = self.step_one(i, act);
+                out.push(&mut self.envs[i], r, (term, trunc), action);
+            }
+        });
+        out.into_py(py, self)
+    }
+
+    /// The envs now: `(obs, info)` as `step` gives them (for `reset`; `action` -1).
+    fn state<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        let mut out = Out::with_capacity(self.envs.len());
+        for env in &mut self.envs {
+            out.push(env, 0.0, (false, false), -1);
+        }
+        let t = out.into_py(py, self)?;
+        PyTuple::new(py, [t.get_item(0)?, t.get_item(4)?])
+    }
+}
+
+/// A step's results over the envs, gathered without the GIL.
+struct Out {
+    obs: Vec<[f64; INPUTS]>,
+    reward: Vec<f64>,
+    terminated: Vec<bool>,
+    truncated: Vec<bool>,
+    /// a, g, l, b, x, y, heading per env.
+    info: [Vec<f64>; 7],
+    t: Vec<i64>,
+    room: Vec<i64>,
+    action: Vec<i64>,
+}
+
+impl Out {
+    fn with_capacity(n: usize) -> Out {
+        Out {
+            obs: Vec::with_capacity(n),
+            reward: Vec::with_capacity(n),
+            terminated: Vec::with_capacity(n),
+            truncated: Vec::with_capacity(n),
+            info: std::array::from_fn(|_| Vec::with_capacity(n)),
+            t: Vec::with_capacity(n),
+            room: Vec::with_capacity(n),
+            action: Vec::with_capacity(n),
+        }
+    }
+
+    fn push(
+        &mut self,
+        env: &mut Env,
+        reward: f64,
+        (terminated, truncated): (bool, bool),
+        action: i64,
+    ) {
+        self.obs.push(env.episode.observe());
+        let terms = env.episode.terms();
+        let pose = env.episode.run().pose();
+        let values = [
+            terms.a,
+            terms.g,
+            terms.l,
+            terms.b,
+            pose.x,
+            pose.y,
+            pose.heading,
+        ];
+        for (column, v) in self.info.iter_mut().zip(values) {
+            column.push(v);
+        }
+        self.reward.push(reward);
+        self.terminated.push(terminated);
+        self.truncated.push(truncated);
+        self.t.push(env.episode.run().t() as i64);
+        self.room.push(env.room as i64);
+        self.action.push(action);
+    }
+
+    fn into_py<'py>(self, py: Python<'py>, core: &GymCore) -> PyResult<Bound<'py, PyTuple>> {
+        let info = PyDict::new(py);
+        let names = ["a", "g", "l", "b", "x", "y", "heading"];
+        for (name, column) in names.into_iter().zip(self.info) {
+            info.set_item(name, PyArray1::from_vec(py, column))?;
+        }
+        info.set_item("t", PyArray1::from_vec(py, self.t))?;
+        info.set_item("room", PyArray1::from_vec(py, self.room))?;
+        info.set_item("action", PyArray1::from_vec(py, self.action))?;
+        // Gymnasium's vector info convention: `_key` says which envs have `key` (all do).
+        let all = PyArray1::from_vec(py, vec![true; self.reward.len()]);
+        for name in names.into_iter().chain(["t", "room", "action"]) {
+            info.set_item(format!("_{name}"), &all)?;
+        }
+        let items: [Bound<'py, PyAny>; 5] = [
+            core.obs_array(py, self.obs),
+            PyArray1::from_vec(py, self.reward).into_any(),
+            PyArray1::from_vec(py, self.terminated).into_any(),
+            PyArray1::from_vec(py, self.truncated).into_any(),
+            info.into_any(),
+        ];
+        PyTuple::new(py, items)
+    }
+}
+
+/// The motor outputs of the network of `genome` (the library's `Mlp`, `hidden` units) for
+/// `inputs` (8 values in [0, 1]): what it gives the simulator.
+#[pyfunction]
+pub(crate) fn network_outputs(
+    genome: Vec<f64>,
+    hidden: usize,
+    inputs: [f64; 8],
+) -> PyResult<[f64; 2]> {
+    let shape = fuzzymotiv::simulation::controller::MlpShape::with_hidden(hidden)
+        .map_err(|e| input_err(format!("hidden: {e}")))?;
+    let mut net =
+        Mlp::from_genome(shape, &genome).map_err(|e| input_err(format!("genome: {e}")))?;
+    Ok(net.step(&inputs))
+}
