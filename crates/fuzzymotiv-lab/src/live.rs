@@ -12,7 +12,6 @@ use fuzzymotiv_io::records::Finished;
 use serde_json::{Value, json};
 
 use crate::limits::{PATH_POINTS, PATHS_EVERY};
-use crate::runs::RunEntry;
 
 /// A path as the page draws it: at most [`PATH_POINTS`] points `[x, y]` (mm), the first home
 /// and the last the robot's final position.
@@ -28,17 +27,27 @@ pub fn path_points(t: &Trajectory) -> Vec<[f64; 2]> {
     points
 }
 
+/// Where a run's events go (the run's entry in the lab's list).
+pub trait Shows {
+    /// A generation's record.
+    fn push_generation(&self, g: Value);
+    /// The current best robot's paths.
+    fn set_paths(&self, p: Value);
+    /// Whether someone asked to stop the run.
+    fn is_cancelled(&self) -> bool;
+}
+
 /// The observer of a lab run: reports every generation to `entry`, stops when it is cancelled.
 pub struct Live<'a> {
     exp: &'a Experiment,
-    entry: &'a RunEntry,
+    entry: &'a dyn Shows,
     /// The evolution (of the protocol's runs) going on: counted from generation 0s seen.
     run: usize,
     started: bool,
 }
 
 impl<'a> Live<'a> {
-    pub fn new(exp: &'a Experiment, entry: &'a RunEntry) -> Self {
+    pub fn new(exp: &'a Experiment, entry: &'a dyn Shows) -> Self {
         Self {
             exp,
             entry,

@@ -18,7 +18,7 @@ use tokio::sync::watch;
 
 use crate::errors::ApiError;
 use crate::limits::{MAX_FORGOTTEN, MAX_QUEUED};
-use crate::live::{Live, result};
+use crate::live::{Live, Shows, result};
 use crate::settings::Settings;
 
 /// The folder of the lab's run directories, under its directory.
@@ -88,17 +88,6 @@ impl RunEntry {
         self.lock().0
     }
 
-    pub fn push_generation(&self, g: Value) {
-        self.update(|s| s.1.generations.push(g));
-    }
-
-    pub fn set_paths(&self, p: Value) {
-        self.update(|s| {
-            s.1.paths = Some(p);
-            s.1.paths_version += 1;
-        });
-    }
-
     fn end(&self, status: Status, result: Option<Value>, error: Option<String>) {
         self.update(|s| {
             s.0 = status;
@@ -113,6 +102,23 @@ impl RunEntry {
 
     pub fn is_cancelled(&self) -> bool {
         self.cancel.load(Ordering::SeqCst)
+    }
+}
+
+impl Shows for RunEntry {
+    fn push_generation(&self, g: Value) {
+        self.update(|s| s.1.generations.push(g));
+    }
+
+    fn set_paths(&self, p: Value) {
+        self.update(|s| {
+            s.1.paths = Some(p);
+            s.1.paths_version += 1;
+        });
+    }
+
+    fn is_cancelled(&self) -> bool {
+        RunEntry::is_cancelled(self)
     }
 }
 
