@@ -96,6 +96,7 @@ fn draw_room(d: &Driver) {
     let summary = d.find_xpath("//summary[normalize-space()='Draw a room']").expect("Draw a room");
     d.cmd("POST", &format!("/element/{summary}/click"), json!({}));
     let editor = d.element("#room-editor");
+    d.script("document.getElementById('room-editor').scrollIntoView({block: 'center'});");
     let w = d.script("return document.getElementById('room-editor').getBoundingClientRect().width;");
     let w = w.as_f64().unwrap();
     let at = |x: f64, y: f64| ((x + 100.0) * w / 1400.0 - w / 2.0, (1300.0 - y) * w / 1400.0 - w / 2.0);

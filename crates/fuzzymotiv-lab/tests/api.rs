@@ -46,10 +46,19 @@ fn request(addr: SocketAddr, method: &str, path: &str, extra: &[String], body: &
         head += &format!("{h}\r\n");
     }
     head += &format!("Content-Type: application/json\r\nContent-Length: {}\r\n\r\n", body.len());
+    s.set_read_timeout(Some(std::time::Duration::from_secs(120)))
+        .unwrap();
     s.write_all(head.as_bytes()).unwrap();
-    s.write_all(body.as_bytes()).unwrap();
+    // A body the server refuses (413) may be cut short: what it answered is still read.
+    let _ = s.write_all(body.as_bytes());
     let mut raw = Vec::new();
-    s.read_to_end(&mut raw).unwrap();
+    let mut buf = [0u8; 65536];
+    while let Ok(n) = s.read(&mut buf) {
+        if n == 0 {
+            break;
+        }
+        raw.extend_from_slice(&buf[..n]);
+    }
     let text = String::from_utf8_lossy(&raw).into_owned();
     let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
     let head = head.to_lowercase();
@@ -134,7 +143,7 @@ fn requests_without_the_token_or_with_another_host_are_refused() {
     let first = request(addr, "GET", &format!("/?token={}", c.lab.token()), &[], "");
     assert_eq!(first.status, 303);
     assert!(first.head.contains("set-cookie: fuzzymotiv_lab_"));
-    assert!(first.head.contains("location: /\r\n"));
+    assert!(first.head.lines().any(|l| l.trim() == "location: /"), "{}", first.head);
     let cookie = format!("Cookie: fuzzymotiv_lab_{}={}", addr.port(), c.lab.token());
     let page = request(addr, "GET", "/", &[cookie], "");
     assert_eq!(page.status, 200);
