@@ -40,7 +40,10 @@ impl LabProcess {
             .strip_prefix("fuzzymotiv lab: ")
             .unwrap_or_else(|| panic!("no address printed: {line:?}"))
             .to_string();
-        assert!(url.starts_with("http://127.0.0.1:") && url.contains("/?token="), "{url}");
+        assert!(
+            url.starts_with("http://127.0.0.1:") && url.contains("/?token="),
+            "{url}"
+        );
         LabProcess { child, url }
     }
 }
@@ -88,31 +91,58 @@ fn labelled(d: &Driver, label: &str) -> String {
 
 fn type_into(d: &Driver, element: &str, text: &str) {
     d.cmd("POST", &format!("/element/{element}/clear"), json!({}));
-    d.cmd("POST", &format!("/element/{element}/value"), json!({ "text": text }));
+    d.cmd(
+        "POST",
+        &format!("/element/{element}/value"),
+        json!({ "text": text }),
+    );
 }
 
 /// Draws a 1 m × 0.8 m room with its home, names it and saves it.
 fn draw_room(d: &Driver) {
-    let summary = d.find_xpath("//summary[normalize-space()='Draw a room']").expect("Draw a room");
+    let summary = d
+        .find_xpath("//summary[normalize-space()='Draw a room']")
+        .expect("Draw a room");
     d.cmd("POST", &format!("/element/{summary}/click"), json!({}));
     let editor = d.element("#room-editor");
     d.script("document.getElementById('room-editor').scrollIntoView({block: 'center'});");
-    let w = d.script("return document.getElementById('room-editor').getBoundingClientRect().width;");
+    let w =
+        d.script("return document.getElementById('room-editor').getBoundingClientRect().width;");
     let w = w.as_f64().unwrap();
-    let at = |x: f64, y: f64| ((x + 100.0) * w / 1400.0 - w / 2.0, (1300.0 - y) * w / 1400.0 - w / 2.0);
+    let at = |x: f64, y: f64| {
+        (
+            (x + 100.0) * w / 1400.0 - w / 2.0,
+            (1300.0 - y) * w / 1400.0 - w / 2.0,
+        )
+    };
     for (x, y) in [(0.0, 0.0), (1000.0, 0.0), (1000.0, 800.0), (0.0, 800.0)] {
         let (dx, dy) = at(x, y);
         click_at(d, &editor, dx, dy);
     }
-    let home = d.find_xpath("//select[@id='draw-mode']/option[normalize-space()='Home']").unwrap();
+    let home = d
+        .find_xpath("//select[@id='draw-mode']/option[normalize-space()='Home']")
+        .unwrap();
     d.cmd("POST", &format!("/element/{home}/click"), json!({}));
     let (dx, dy) = at(300.0, 400.0);
     click_at(d, &editor, dx, dy);
     type_into(d, &labelled(d, "Room name"), "drawn1");
     d.click_button("Save room");
-    let msg = wait_for(d, 20, "the room saved", "var m = document.getElementById('room-message').textContent; return m ? m : null;");
-    assert!(msg.as_str().unwrap().starts_with("Saved as drawn1.toml"), "{msg}");
-    wait_for(d, 10, "the drawn room listed", "return document.getElementById('room-drawn1.toml');");
+    let msg = wait_for(
+        d,
+        20,
+        "the room saved",
+        "var m = document.getElementById('room-message').textContent; return m ? m : null;",
+    );
+    assert!(
+        msg.as_str().unwrap().starts_with("Saved as drawn1.toml"),
+        "{msg}"
+    );
+    wait_for(
+        d,
+        10,
+        "the drawn room listed",
+        "return document.getElementById('room-drawn1.toml');",
+    );
 }
 
 #[test]
@@ -123,45 +153,90 @@ fn the_lab_evolves_stops_saves_and_compares_in_chromium() {
     let mut d = Driver::start();
     d.new_session(&tmp.path().join("chromium-profile"));
     d.goto(&lab.url);
-    wait_for(&d, 30, "the page", "return document.querySelectorAll('#room-choices .thumb').length >= 5;");
+    wait_for(
+        &d,
+        30,
+        "the page",
+        "return document.querySelectorAll('#room-choices .thumb').length >= 5;",
+    );
 
     // A slider: homing up; the four weights still sum to 1.
     let homing = labelled(&d, "Homing H");
-    d.cmd("POST", &format!("/element/{homing}/value"), json!({"text": "\u{E014}".repeat(10)}));
+    d.cmd(
+        "POST",
+        &format!("/element/{homing}/value"),
+        json!({"text": "\u{E014}".repeat(10)}),
+    );
     let x = d.script("return ['curiosity','homing','orientation','energy'].map(function (n) { return +document.getElementById('value-' + n).textContent; });");
     let x: Vec<f64> = serde_json::from_value(x).unwrap();
     assert!(x[1] > 0.15, "the homing slider did not move: {x:?}");
     assert!((x.iter().sum::<f64>() - 1.0).abs() < 0.011, "{x:?}");
     d.click_button("Explain F");
-    wait_for(&d, 10, "F explained", "return document.getElementById('explain-f');");
+    wait_for(
+        &d,
+        10,
+        "F explained",
+        "return document.getElementById('explain-f');",
+    );
 
     draw_room(&d);
 
     // Evolve on the quick preset (30 × 30, the five rooms and the drawn one).
-    assert_eq!(d.script("return document.getElementById('ga-preset').value;"), "quick");
+    assert_eq!(
+        d.script("return document.getElementById('ga-preset').value;"),
+        "quick"
+    );
     d.click_button("Evolve");
     let grow = "var l = document.getElementById('fitness-chart-best'); return l ? +l.getAttribute('data-points') : 0;";
     wait_for(&d, 60, "a first generation", grow);
-    wait_for(&d, 60, "a path drawn", "return document.querySelectorAll('#paths .robot-path').length >= 6;");
-    let later = wait_for(&d, 120, "the curve to grow", &grow.replace("? +l", "&& +l.getAttribute('data-points') >= 3 ? +l"));
+    wait_for(
+        &d,
+        60,
+        "a path drawn",
+        "return document.querySelectorAll('#paths .robot-path').length >= 6;",
+    );
+    let later = wait_for(
+        &d,
+        120,
+        "the curve to grow",
+        &grow.replace("? +l", "&& +l.getAttribute('data-points') >= 3 ? +l"),
+    );
     assert!(later.as_u64().unwrap() >= 3);
-    wait_for(&d, 600, "the run to finish", "return window.labTimes.finished;");
+    wait_for(
+        &d,
+        600,
+        "the run to finish",
+        "return window.labTimes.finished;",
+    );
     let t = d.script("return window.labTimes;");
     let first = t["firstGeneration"].as_f64().unwrap() - t["evolve"].as_f64().unwrap();
     let done = t["finished"].as_f64().unwrap() - t["evolve"].as_f64().unwrap();
-    eprintln!("lab timing (quick preset 30 × 30, 6 rooms, --threads 2): Evolve → first generation drawn {:.0} ms, → finished run {:.0} ms", first, done);
+    eprintln!(
+        "lab timing (quick preset 30 × 30, 6 rooms, --threads 2): Evolve → first generation drawn {:.0} ms, → finished run {:.0} ms",
+        first, done
+    );
     let status = d.script("return document.getElementById('run-status').textContent;");
     assert!(status.as_str().unwrap().ends_with("finished"), "{status}");
 
     d.click_button("Save as run directory");
-    let saved = wait_for(&d, 30, "saved", "var m = document.getElementById('save-message').textContent; return m ? m : null;");
+    let saved = wait_for(
+        &d,
+        30,
+        "saved",
+        "var m = document.getElementById('save-message').textContent; return m ? m : null;",
+    );
     assert!(saved.as_str().unwrap().starts_with("Saved: "), "{saved}");
     let id = d.script("return document.getElementById('save-name').value;");
     let saved_dir = tmp.path().join("lab/saved").join(id.as_str().unwrap());
     assert!(saved_dir.join("summary.json").is_file() && saved_dir.join("report.html").is_file());
 
     d.click_button("Compare");
-    wait_for(&d, 30, "the comparison", "return document.querySelectorAll('#compare-out table').length >= 3;");
+    wait_for(
+        &d,
+        30,
+        "the comparison",
+        "return document.querySelectorAll('#compare-out table').length >= 3;",
+    );
     d.script("window.scrollTo(0, 0);");
     let shot = target_dir().join("lab-screenshot.png");
     std::fs::write(&shot, d.full_page_png()).unwrap();
@@ -169,9 +244,19 @@ fn the_lab_evolves_stops_saves_and_compares_in_chromium() {
 
     // Another run, stopped after its first generation.
     d.click_button("Evolve");
-    wait_for(&d, 60, "a first generation", "return window.labTimes.firstGeneration !== undefined;");
+    wait_for(
+        &d,
+        60,
+        "a first generation",
+        "return window.labTimes.firstGeneration !== undefined;",
+    );
     d.click_button("Stop");
-    let status = wait_for(&d, 30, "the run stopped", "var s = document.getElementById('run-status').textContent; return /stopped$/.test(s) ? s : null;");
+    let status = wait_for(
+        &d,
+        30,
+        "the run stopped",
+        "var s = document.getElementById('run-status').textContent; return /stopped$/.test(s) ? s : null;",
+    );
     assert!(status.as_str().unwrap().contains("stopped"));
     let console = d.console_errors();
     assert!(console.is_empty(), "console errors: {console:?}");

@@ -94,8 +94,10 @@ async fn explain(body: Bytes) -> Result<Json<Value>, ApiError> {
         )));
     }
     let x = TskFitness::paper().explain(&m, req.fitness);
-    Ok(Json(json!({ "fitness": x.fitness, "rules": x.rules, "weight_sum": x.weight_sum,
-        "motivations": m.as_array() })))
+    Ok(Json(
+        json!({ "fitness": x.fitness, "rules": x.rules, "weight_sum": x.weight_sum,
+        "motivations": m.as_array() }),
+    ))
 }
 
 async fn room_list(State(s): Shared) -> Json<Value> {
@@ -131,19 +133,27 @@ async fn run_start(State(s): Shared, body: Bytes) -> Result<Response, ApiError> 
     Ok((StatusCode::CREATED, Json(json!({ "id": entry.id }))).into_response())
 }
 
-async fn run_detail(State(s): Shared, UrlPath(id): UrlPath<String>) -> Result<Json<Value>, ApiError> {
+async fn run_detail(
+    State(s): Shared,
+    UrlPath(id): UrlPath<String>,
+) -> Result<Json<Value>, ApiError> {
     let e = s.runs.get(&id).ok_or_else(|| no_run(&id))?;
     let (status, shown) = &*e.lock();
-    Ok(Json(json!({ "id": e.id, "about": e.about, "status": status,
+    Ok(Json(
+        json!({ "id": e.id, "about": e.about, "status": status,
         "generations": shown.generations, "paths": shown.paths, "result": shown.result,
-        "error": shown.error, "settings": e.settings })))
+        "error": shown.error, "settings": e.settings }),
+    ))
 }
 
 fn no_run(id: &str) -> ApiError {
     ApiError::not_found(format!("no run `{id}` in this lab"))
 }
 
-async fn run_cancel(State(s): Shared, UrlPath(id): UrlPath<String>) -> Result<Json<Value>, ApiError> {
+async fn run_cancel(
+    State(s): Shared,
+    UrlPath(id): UrlPath<String>,
+) -> Result<Json<Value>, ApiError> {
     let status = s.runs.cancel(&id)?;
     Ok(Json(json!({ "id": id, "status": status })))
 }
@@ -187,7 +197,10 @@ impl Cursor {
         if self.ended || *self.closing.borrow() {
             return None;
         }
-        let mut changed = self.changed.take().unwrap_or_else(|| self.entry.subscribe());
+        let mut changed = self
+            .changed
+            .take()
+            .unwrap_or_else(|| self.entry.subscribe());
         loop {
             changed.borrow_and_update();
             let events = self.pending();
@@ -247,7 +260,9 @@ async fn run_save(
     }
     let entry = s.runs.get(&id).ok_or_else(|| no_run(&id))?;
     if entry.status() != Status::Finished {
-        return Err(ApiError::conflict(format!("run `{id}` has not finished: nothing to save")));
+        return Err(ApiError::conflict(format!(
+            "run `{id}` has not finished: nothing to save"
+        )));
     }
     let (from, to) = (s.runs.run_dir(&id), s.dir.join("saved").join(&req.name));
     let dest = tokio::task::spawn_blocking(move || save_copy(&from, &to))
@@ -273,7 +288,10 @@ fn save_copy(from: &Path, to: &Path) -> Result<String, ApiError> {
     match check_out_as(to, &id, false, &SAVE).map_err(|e| ApiError::conflict(e.to_string()))? {
         OutState::Done => return Ok(to.display().to_string()),
         OutState::Unfinished => {
-            return Err(ApiError::conflict(format!("{} is being written", to.display())));
+            return Err(ApiError::conflict(format!(
+                "{} is being written",
+                to.display()
+            )));
         }
         OutState::Fresh => {}
     }
@@ -300,8 +318,17 @@ async fn run_config(State(s): Shared, UrlPath(id): UrlPath<String>) -> Result<Re
             .map_err(|e| ApiError::not_found(e.to_string()))?,
     };
     let disposition = format!("attachment; filename=\"{id}.toml\"");
-    Ok(([(header::CONTENT_TYPE, "text/plain; charset=utf-8".to_string()),
-         (header::CONTENT_DISPOSITION, disposition)], text).into_response())
+    Ok((
+        [
+            (
+                header::CONTENT_TYPE,
+                "text/plain; charset=utf-8".to_string(),
+            ),
+            (header::CONTENT_DISPOSITION, disposition),
+        ],
+        text,
+    )
+        .into_response())
 }
 
 /// A finished run's `report.html` (the replay widget), with a policy that lets its inline
@@ -323,7 +350,10 @@ struct CompareQuery {
     b: String,
 }
 
-async fn compare(State(s): Shared, q: Result<Query<CompareQuery>, axum::extract::rejection::QueryRejection>) -> Result<Json<Value>, ApiError> {
+async fn compare(
+    State(s): Shared,
+    q: Result<Query<CompareQuery>, axum::extract::rejection::QueryRejection>,
+) -> Result<Json<Value>, ApiError> {
     let Query(q) = q.map_err(|e| ApiError::bad(format!("query: {e} (expected ?a=RUN&b=RUN)")))?;
     let runs = s.runs.clone();
     let v = tokio::task::spawn_blocking(move || crate::compare::compare(&runs, &q.a, &q.b))

@@ -25,13 +25,18 @@ fn side(e: &RunEntry) -> Result<Value, ApiError> {
             e.id
         )));
     }
-    Ok(json!({ "id": e.id, "about": e.about, "generations": shown.generations,
-               "result": shown.result, "paths": shown.paths }))
+    Ok(
+        json!({ "id": e.id, "about": e.about, "generations": shown.generations,
+               "result": shown.result, "paths": shown.paths }),
+    )
 }
 
 /// Per room name, the value of `measure` in a side's table.
 fn values(side: &Value, measure: &str) -> Vec<(String, f64)> {
-    let rows = side["result"]["rows"].as_array().cloned().unwrap_or_default();
+    let rows = side["result"]["rows"]
+        .as_array()
+        .cloned()
+        .unwrap_or_default();
     rows.iter()
         .filter_map(|r| Some((r["room"].as_str()?.to_string(), r[measure].as_f64()?)))
         .collect()

@@ -76,7 +76,9 @@ pub fn parse_body<T: DeserializeOwned>(body: &[u8]) -> Result<T, ApiError> {
         let path = e.path().to_string();
         let inner = e.into_inner();
         if path == "." || path.is_empty() {
-            ApiError::bad(format!("request body: not valid JSON of this request: {inner}"))
+            ApiError::bad(format!(
+                "request body: not valid JSON of this request: {inner}"
+            ))
         } else {
             ApiError::bad(format!("request body: field `{path}`: {inner}"))
         }

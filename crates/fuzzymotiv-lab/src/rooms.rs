@@ -57,9 +57,12 @@ fn room_text(req: &RoomRequest) -> Result<(String, String), ApiError> {
     match (&req.room, &req.toml) {
         (Some(room), None) => {
             let name = room.get("name").and_then(|n| n.as_str()).unwrap_or("");
-            let text = toml::to_string(room).map_err(|e| {
+            let bad = |e: &dyn std::fmt::Display| {
                 ApiError::bad(format!("drawn room `{name}`: cannot be a room file: {e}"))
-            })?;
+            };
+            // Through a TOML value, so that tables come after plain keys.
+            let value = toml::Value::try_from(room).map_err(|e| bad(&e))?;
+            let text = toml::to_string(&value).map_err(|e| bad(&e))?;
             Ok((text, format!("drawn room `{name}`")))
         }
         (None, Some(text)) => Ok((text.clone(), "uploaded room file".to_string())),

@@ -204,9 +204,8 @@ impl Runs {
             let n = self.count.fetch_add(1, Ordering::SeqCst) + 1;
             let id = format!("{name}-seed{seed}-{n}");
             let out = self.dir.join(RUN_DIR).join(&id);
-            let taken = self.get(&id).is_some()
-                || out.exists()
-                || StagedDir::staging_path(&out).exists();
+            let taken =
+                self.get(&id).is_some() || out.exists() || StagedDir::staging_path(&out).exists();
             if !taken {
                 return id;
             }
@@ -235,7 +234,11 @@ impl Runs {
     fn forget_old(&self) {
         let mut list = self.list();
         let gone = |e: &Arc<RunEntry>| matches!(e.status(), Status::Stopped | Status::Failed);
-        let mut extra = list.iter().filter(|e| gone(e)).count().saturating_sub(MAX_FORGOTTEN);
+        let mut extra = list
+            .iter()
+            .filter(|e| gone(e))
+            .count()
+            .saturating_sub(MAX_FORGOTTEN);
         list.retain(|e| {
             let drop_it = extra > 0 && gone(e);
             extra -= usize::from(drop_it);
@@ -292,7 +295,11 @@ impl Runs {
         let mut hook = |s: &GenerationState<'_>| live.on_generation(s);
         let done = execute_with(&loaded, &out, &NoProgress, false, None, &mut hook);
         match done {
-            Ok(done) => entry.end(Status::Finished, Some(result(&loaded.experiment, &done)), None),
+            Ok(done) => entry.end(
+                Status::Finished,
+                Some(result(&loaded.experiment, &done)),
+                None,
+            ),
             Err(e) => {
                 // A stopped run's staging folder is the lab's own: nothing of it is kept.
                 let _ = std::fs::remove_dir_all(StagedDir::staging_path(&out));

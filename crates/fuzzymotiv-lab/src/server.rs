@@ -72,7 +72,10 @@ impl Lab {
     /// Binds, starts the server and the run worker, and returns once it listens.
     pub fn start(opts: LabOptions) -> Result<Lab, CliError> {
         std::fs::create_dir_all(&opts.dir).map_err(|e| io(&opts.dir.display().to_string(), e))?;
-        let dir = opts.dir.canonicalize().map_err(|e| io(&opts.dir.display().to_string(), e))?;
+        let dir = opts
+            .dir
+            .canonicalize()
+            .map_err(|e| io(&opts.dir.display().to_string(), e))?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(opts.threads.unwrap_or(0))
             .thread_name(|i| format!("lab-run-{i}"))
@@ -85,7 +88,9 @@ impl Lab {
             .map_err(|e| io("the async runtime", e))?;
         let listener = std::net::TcpListener::bind((opts.bind, opts.port))
             .map_err(|e| io(&format!("--bind {} --port {}", opts.bind, opts.port), e))?;
-        listener.set_nonblocking(true).map_err(|e| io("listener", e))?;
+        listener
+            .set_nonblocking(true)
+            .map_err(|e| io("listener", e))?;
         let addr = listener.local_addr().map_err(|e| io("listener", e))?;
         let token = random_token().map_err(|e| io("the access token", e))?;
         let access = Arc::new(Access {
@@ -117,7 +122,16 @@ impl Lab {
             }))
         });
         let server = server.map_err(|e| io("listener", e))?;
-        Ok(Lab { addr, token, dir, runtime, closing, runs, worker: Some(worker), server: Some(server) })
+        Ok(Lab {
+            addr,
+            token,
+            dir,
+            runtime,
+            closing,
+            runs,
+            worker: Some(worker),
+            server: Some(server),
+        })
     }
 
     /// The address it listens on.

@@ -72,7 +72,10 @@ impl Settings {
         use toml::{Table, Value};
         let mut doc = Table::new();
         doc.insert("name".into(), Value::String(self.name.clone()));
-        doc.insert("seed".into(), Value::Integer(self.seed.min(i64::MAX as u64) as i64));
+        doc.insert(
+            "seed".into(),
+            Value::Integer(self.seed.min(i64::MAX as u64) as i64),
+        );
         if let Some(rooms) = &self.rooms {
             let list = rooms.iter().map(|r| Value::String(r.clone())).collect();
             doc.insert("rooms".into(), Value::Array(list));
@@ -90,7 +93,10 @@ impl Settings {
         doc.insert("motivations".into(), Value::Table(x));
         let mut ga = Table::new();
         ga.insert("population".into(), Value::Integer(self.population as i64));
-        ga.insert("generations".into(), Value::Integer(self.generations as i64));
+        ga.insert(
+            "generations".into(),
+            Value::Integer(self.generations as i64),
+        );
         doc.insert("ga".into(), Value::Table(ga));
         if let Some(steps) = self.steps {
             let trial = Table::from_iter([("steps".to_string(), Value::Integer(steps as i64))]);

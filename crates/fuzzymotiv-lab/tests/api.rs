@@ -45,7 +45,10 @@ fn request(addr: SocketAddr, method: &str, path: &str, extra: &[String], body: &
     for h in extra {
         head += &format!("{h}\r\n");
     }
-    head += &format!("Content-Type: application/json\r\nContent-Length: {}\r\n\r\n", body.len());
+    head += &format!(
+        "Content-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+        body.len()
+    );
     s.set_read_timeout(Some(std::time::Duration::from_secs(120)))
         .unwrap();
     s.write_all(head.as_bytes()).unwrap();
@@ -95,7 +98,13 @@ impl Client {
         request(self.lab.addr(), "GET", path, &self.auth(), "")
     }
     fn post(&self, path: &str, body: &Value) -> Answer {
-        request(self.lab.addr(), "POST", path, &self.auth(), &body.to_string())
+        request(
+            self.lab.addr(),
+            "POST",
+            path,
+            &self.auth(),
+            &body.to_string(),
+        )
     }
     fn post_raw(&self, path: &str, body: &str) -> Answer {
         request(self.lab.addr(), "POST", path, &self.auth(), body)
@@ -133,7 +142,13 @@ fn requests_without_the_token_or_with_another_host_are_refused() {
     let none = request(addr, "GET", "/api/runs", &[], "");
     assert_eq!(none.status, 401);
     assert!(none.json()["error"].as_str().unwrap().contains("token"));
-    let wrong = request(addr, "GET", "/api/runs", &["x-fuzzymotiv-token: 00".into()], "");
+    let wrong = request(
+        addr,
+        "GET",
+        "/api/runs",
+        &["x-fuzzymotiv-token: 00".into()],
+        "",
+    );
     assert_eq!(wrong.status, 401);
     // DNS rebinding: the right token, another name.
     let mut rebound = c.auth();
@@ -143,12 +158,19 @@ fn requests_without_the_token_or_with_another_host_are_refused() {
     let first = request(addr, "GET", &format!("/?token={}", c.lab.token()), &[], "");
     assert_eq!(first.status, 303);
     assert!(first.head.contains("set-cookie: fuzzymotiv_lab_"));
-    assert!(first.head.lines().any(|l| l.trim() == "location: /"), "{}", first.head);
+    assert!(
+        first.head.lines().any(|l| l.trim() == "location: /"),
+        "{}",
+        first.head
+    );
     let cookie = format!("Cookie: fuzzymotiv_lab_{}={}", addr.port(), c.lab.token());
     let page = request(addr, "GET", "/", &[cookie], "");
     assert_eq!(page.status, 200);
     assert!(page.body.contains("<title>fuzzymotiv lab</title>"));
-    assert!(page.head.contains("content-security-policy: default-src 'self'"));
+    assert!(
+        page.head
+            .contains("content-security-policy: default-src 'self'")
+    );
     assert!(c.get("/lab.js").body.contains("EventSource"));
 }
 
@@ -157,24 +179,51 @@ fn bad_input_gets_400_or_413_naming_the_field() {
     let c = Client::start();
     let a = c.post_raw("/api/runs", "{\"motivations\": ");
     assert_eq!(a.status, 400);
-    assert!(a.json()["error"].as_str().unwrap().starts_with("request body"));
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .starts_with("request body")
+    );
     let mut s = small(3, 1);
     s["population"] = json!("many");
     let a = c.post("/api/runs", &s);
     assert_eq!(a.status, 400);
-    assert!(a.json()["error"].as_str().unwrap().contains("field `population`"), "{}", a.body);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `population`"),
+        "{}",
+        a.body
+    );
     let mut s = small(3, 1);
     s["population"] = json!(100000);
-    let e = c.post("/api/runs", &s).json()["error"].as_str().unwrap().to_string();
+    let e = c.post("/api/runs", &s).json()["error"]
+        .as_str()
+        .unwrap()
+        .to_string();
     assert!(e.contains("lab settings: field `ga.population`"), "{e}");
     let mut s = small(3, 1);
     s["motivations"]["curiosity"] = json!(0.9);
     let a = c.post("/api/runs", &s);
     assert_eq!(a.status, 400);
-    assert!(a.json()["error"].as_str().unwrap().contains("lab settings: field `motivations"), "{}", a.body);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("lab settings: field `motivations"),
+        "{}",
+        a.body
+    );
     let mut s = small(3, 1);
     s["rooms"] = json!(["../../etc/passwd"]);
-    assert!(c.post("/api/runs", &s).json()["error"].as_str().unwrap().contains("field `rooms[0]`"));
+    assert!(
+        c.post("/api/runs", &s).json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `rooms[0]`")
+    );
     let big = format!("{{\"name\": \"{}\"}}", "x".repeat(100_000));
     assert_eq!(c.post_raw("/api/runs", &big).status, 413);
     // A drawn room with two corners: the text of `rooms --check`, naming the drawn room.
@@ -184,7 +233,13 @@ fn bad_input_gets_400_or_413_naming_the_field() {
     assert_eq!(a.status, 400);
     let p = a.json();
     assert_eq!(p["field"], "outline");
-    assert!(p["error"].as_str().unwrap().starts_with("drawn room `bad`: field `outline`: needs at least 3 points"), "{p}");
+    assert!(
+        p["error"]
+            .as_str()
+            .unwrap()
+            .starts_with("drawn room `bad`: field `outline`: needs at least 3 points"),
+        "{p}"
+    );
     assert_eq!(c.get("/api/runs/nope").status, 404);
     assert_eq!(c.get("/api/compare?a=x").status, 400);
 }
@@ -198,15 +253,31 @@ fn a_drawn_room_is_saved_once_and_used_by_a_run() {
     assert_eq!(a.status, 200, "{}", a.body);
     assert_eq!(a.json()["entry"], "box.toml");
     assert!(c.lab.dir().join("rooms/box.toml").is_file());
-    assert_eq!(c.post("/api/rooms", &room).status, 200, "the same room again is fine");
+    assert_eq!(
+        c.post("/api/rooms", &room).status,
+        200,
+        "the same room again is fine"
+    );
     let mut other = room.clone();
     other["room"]["home"]["x"] = json!(300);
-    assert_eq!(c.post("/api/rooms", &other).status, 409, "another room of that name is kept");
+    assert_eq!(
+        c.post("/api/rooms", &other).status,
+        409,
+        "another room of that name is kept"
+    );
     let list = c.get("/api/rooms").json();
-    assert!(list.as_array().unwrap().iter().any(|r| r["entry"] == "box.toml"));
+    assert!(
+        list.as_array()
+            .unwrap()
+            .iter()
+            .any(|r| r["entry"] == "box.toml")
+    );
     let mut s = small(2, 3);
     s["rooms"] = json!(["H", "box.toml"]);
-    let id = c.post("/api/runs", &s).json()["id"].as_str().unwrap().to_string();
+    let id = c.post("/api/runs", &s).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
     let end = events(&c, &id).pop().unwrap();
     assert_eq!(end.1["status"], "finished", "{}", end.1);
 }
@@ -217,12 +288,23 @@ fn two_clients_stream_a_run_and_a_long_run_is_cancelled() {
     let a = c.post("/api/runs", &small(4, 1));
     assert_eq!(a.status, 201, "{}", a.body);
     let id = a.json()["id"].as_str().unwrap().to_string();
-    let long = c.post("/api/runs", &small(400, 2)).json()["id"].as_str().unwrap().to_string();
+    let long = c.post("/api/runs", &small(400, 2)).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
     let list = c.get("/api/runs").json();
-    let queued = list.as_array().unwrap().iter().find(|r| r["id"] == long.as_str()).unwrap();
+    let queued = list
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["id"] == long.as_str())
+        .unwrap();
     // Waiting behind the first run (position 1 or 2, as the worker may not have taken it yet).
     assert_eq!(queued["status"], "queued");
-    assert!(matches!(queued["queue_position"].as_u64(), Some(1 | 2)), "{queued}");
+    assert!(
+        matches!(queued["queue_position"].as_u64(), Some(1 | 2)),
+        "{queued}"
+    );
     let (one, two) = std::thread::scope(|s| {
         let h = s.spawn(|| events(&c, &id));
         (events(&c, &id), h.join().unwrap())
@@ -232,9 +314,19 @@ fn two_clients_stream_a_run_and_a_long_run_is_cancelled() {
     assert_eq!(gens.len(), 4);
     assert!(one.iter().any(|(e, _)| e == "paths"));
     let (end, data) = one.last().unwrap();
-    assert_eq!((end.as_str(), data["status"].as_str()), ("end", Some("finished")));
+    assert_eq!(
+        (end.as_str(), data["status"].as_str()),
+        ("end", Some("finished"))
+    );
     assert_eq!(data["result"]["rows"].as_array().unwrap().len(), 2);
-    assert!(c.lab.dir().join("runs").join(&id).join("summary.json").is_file());
+    assert!(
+        c.lab
+            .dir()
+            .join("runs")
+            .join(&id)
+            .join("summary.json")
+            .is_file()
+    );
     // The long run: wait for its first generation, cancel it from this client.
     let mut stream = TcpStream::connect(c.lab.addr()).unwrap();
     let head = format!(
@@ -254,7 +346,10 @@ fn two_clients_stream_a_run_and_a_long_run_is_cancelled() {
     assert_eq!(a.status, 200);
     let end = events(&c, &long).pop().unwrap();
     assert_eq!(end.1["status"], "stopped");
-    let gens = c.get(&format!("/api/runs/{long}")).json()["generations"].as_array().unwrap().len();
+    let gens = c.get(&format!("/api/runs/{long}")).json()["generations"]
+        .as_array()
+        .unwrap()
+        .len();
     assert!(gens < 400, "stopped early ({gens} generations)");
     let runs = c.lab.dir().join("runs");
     assert!(!runs.join(&long).exists() && !runs.join(format!("{long}.partial")).exists());
@@ -263,7 +358,10 @@ fn two_clients_stream_a_run_and_a_long_run_is_cancelled() {
 #[test]
 fn a_lab_run_gives_the_generations_of_fuzzymotiv_run_and_saves_as_a_run_directory() {
     let c = Client::start();
-    let id = c.post("/api/runs", &small(3, 5)).json()["id"].as_str().unwrap().to_string();
+    let id = c.post("/api/runs", &small(3, 5)).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
     assert_eq!(events(&c, &id).pop().unwrap().1["status"], "finished");
     // "Download config", then what `fuzzymotiv run config.toml` does with it.
     let config = c.get(&format!("/api/runs/{id}/config.toml"));
@@ -277,19 +375,45 @@ fn a_lab_run_gives_the_generations_of_fuzzymotiv_run_and_saves_as_a_run_director
     fuzzymotiv_io::pipeline::run_dir::execute(&loaded, &out, &progress, false, None).unwrap();
     let lab_dir = c.lab.dir().join("runs").join(&id);
     let read = |p: &Path| std::fs::read(p).unwrap();
-    assert_eq!(read(&lab_dir.join("generations.csv")), read(&out.join("generations.csv")));
-    assert_eq!(read(&lab_dir.join("population.json")), read(&out.join("population.json")));
+    assert_eq!(
+        read(&lab_dir.join("generations.csv")),
+        read(&out.join("generations.csv"))
+    );
+    assert_eq!(
+        read(&lab_dir.join("population.json")),
+        read(&out.join("population.json"))
+    );
     // Save as run directory: once; again is fine; another run is never put there.
     let a = c.post(&format!("/api/runs/{id}/save"), &json!({ "name": "mine" }));
     assert_eq!(a.status, 200, "{}", a.body);
     let saved = c.lab.dir().join("saved/mine");
-    assert_eq!(read(&saved.join("generations.csv")), read(&out.join("generations.csv")));
-    assert_eq!(c.post(&format!("/api/runs/{id}/save"), &json!({ "name": "mine" })).status, 200);
-    let other = c.post("/api/runs", &small(2, 6)).json()["id"].as_str().unwrap().to_string();
+    assert_eq!(
+        read(&saved.join("generations.csv")),
+        read(&out.join("generations.csv"))
+    );
+    assert_eq!(
+        c.post(&format!("/api/runs/{id}/save"), &json!({ "name": "mine" }))
+            .status,
+        200
+    );
+    let other = c.post("/api/runs", &small(2, 6)).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
     assert_eq!(events(&c, &other).pop().unwrap().1["status"], "finished");
-    let a = c.post(&format!("/api/runs/{other}/save"), &json!({ "name": "mine" }));
+    let a = c.post(
+        &format!("/api/runs/{other}/save"),
+        &json!({ "name": "mine" }),
+    );
     assert_eq!(a.status, 409, "{}", a.body);
-    assert_eq!(c.post(&format!("/api/runs/{other}/save"), &json!({ "name": "../x" })).status, 400);
+    assert_eq!(
+        c.post(
+            &format!("/api/runs/{other}/save"),
+            &json!({ "name": "../x" })
+        )
+        .status,
+        400
+    );
     // Compare the two, with the library's statistics.
     let cmp = c.get(&format!("/api/compare?a={id}&b={other}")).json();
     assert_eq!(cmp["tests"].as_array().unwrap().len(), 4);
@@ -301,7 +425,13 @@ fn a_lab_run_gives_the_generations_of_fuzzymotiv_run_and_saves_as_a_run_director
     let mut opts = LabOptions::new(dir);
     opts.port = 0;
     let again = Lab::start(opts).unwrap();
-    let list = request(again.addr(), "GET", "/api/runs", &[format!("x-fuzzymotiv-token: {}", again.token())], "");
+    let list = request(
+        again.addr(),
+        "GET",
+        "/api/runs",
+        &[format!("x-fuzzymotiv-token: {}", again.token())],
+        "",
+    );
     assert!(list.body.contains(&id) && list.body.contains(&other));
     drop(keep);
 }

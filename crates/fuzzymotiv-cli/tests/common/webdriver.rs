@@ -273,7 +273,9 @@ impl Driver {
     pub fn find_xpath(&self, xpath: &str) -> Option<String> {
         let id = self.session.as_ref()?;
         let body = json!({"using": "xpath", "value": xpath});
-        let v = self.http("POST", &format!("/session/{id}/element"), Some(&body)).ok()?;
+        let v = self
+            .http("POST", &format!("/session/{id}/element"), Some(&body))
+            .ok()?;
         v["value"][ELEMENT].as_str().map(str::to_string)
     }
 
@@ -301,4 +303,3 @@ impl Drop for Driver {
         let _ = self.child.wait();
     }
 }
-
