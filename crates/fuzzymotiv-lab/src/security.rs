@@ -59,7 +59,7 @@ impl Access {
             .map(|(_, v)| v)
     }
 
-    fn header_token<'h>(headers: &'h HeaderMap) -> Option<&'h str> {
+    fn header_token(headers: &HeaderMap) -> Option<&str> {
         headers.get(TOKEN_HEADER).and_then(|v| v.to_str().ok())
     }
 
