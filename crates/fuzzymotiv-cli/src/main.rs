@@ -11,7 +11,7 @@ use clap::{Parser, Subcommand};
 use fuzzymotiv_io::files::error::ErrorKind;
 use fuzzymotiv_io::note;
 
-use crate::commands::{bench, claims, fuzzy, replay, reproduce, rooms, run, sweep};
+use crate::commands::{bench, claims, fuzzy, lab, replay, reproduce, rooms, run, sweep};
 
 /// Evolutionary behaviour learning for a simulated Khepera robot under fuzzy motivations.
 #[derive(Parser)]
@@ -48,6 +48,9 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Merge a sweep directory into results.csv, aggregate tables and summary plots.
     Merge(sweep::MergeArgs),
+    /// Start the lab: a local web page to set the motivations, draw rooms, evolve live and
+    /// compare runs.
+    Lab(lab::LabArgs),
 }
 
 fn main() -> ExitCode {
@@ -63,6 +66,7 @@ fn main() -> ExitCode {
         Command::Plan(args) => sweep::plan(args),
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),
+        Command::Lab(args) => lab::lab(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 
 /// The layers, lowest first: a module path, standing for the module and everything in it,
 /// and its layer. A module imports only from its own layer and the ones below it.
-const LAYERS: [(&str, usize); 19] = [
+const LAYERS: [(&str, usize); 31] = [
     // fuzzymotiv, the library: the pipeline's subsystems
     ("lib::params", 0),     // FieldError: the one error of every input
     ("lib::random", 0),     // seeded streams, noise
@@ -32,12 +32,25 @@ const LAYERS: [(&str, usize); 19] = [
     ("io::render", 9),    // tables, the study's statistics, SVG figures, the report
     ("io::pipeline", 10), // run directory, sweep plan/jobs/merge, lanes, progress
     ("io", 11),           // the crate root (module declarations)
+    // fuzzymotiv-lab: the browser lab (a library the binary starts)
+    ("lab::limits", 12),   // the documented limits
+    ("lab::errors", 12),   // the handlers' error (status + the CLI's message)
+    ("lab::assets", 12),   // the embedded page, script and style
+    ("lab::rooms", 13),    // built-in, drawn and uploaded rooms, checked and saved
+    ("lab::security", 13), // token, Host check, security headers
+    ("lab::live", 13),     // a run's events: generations, paths, result
+    ("lab::settings", 14), // the page's settings → the CLI's config checks
+    ("lab::runs", 15),     // the run list, the queue and the worker
+    ("lab::compare", 16),  // two runs side by side, the library's statistics
+    ("lab::api", 17),      // the routes
+    ("lab::server", 18),   // start and stop
+    ("lab", 19),           // the crate root
     // fuzzymotiv-cli
-    ("cli::args", 12),     // clap options shared by commands
-    ("cli::png", 12),      // the resvg rasteriser
-    ("cli::progress", 12), // indicatif progress
-    ("cli::commands", 13), // one module per command
-    ("cli", 14),           // main.rs: parse the arguments, dispatch
+    ("cli::args", 20),     // clap options shared by commands
+    ("cli::png", 20),      // the resvg rasteriser
+    ("cli::progress", 20), // indicatif progress
+    ("cli::commands", 21), // one module per command
+    ("cli", 22),           // main.rs: parse the arguments, dispatch
 ];
 
 /// The macros exported at the crate root, by the module that defines them.
@@ -61,7 +74,7 @@ type Roots = &'static [(&'static str, &'static str)];
 
 /// The crates read: the prefix of their module paths, their source folder (from this crate's
 /// folder), and the path roots of their code.
-const CRATES: [(&str, &str, Roots); 3] = [
+const CRATES: [(&str, &str, Roots); 4] = [
     ("lib", "../fuzzymotiv/src", &[("crate", "lib")]),
     (
         "io",
@@ -69,10 +82,20 @@ const CRATES: [(&str, &str, Roots); 3] = [
         &[("crate", "io"), ("fuzzymotiv", "lib")],
     ),
     (
+        "lab",
+        "../fuzzymotiv-lab/src",
+        &[
+            ("crate", "lab"),
+            ("fuzzymotiv_io", "io"),
+            ("fuzzymotiv", "lib"),
+        ],
+    ),
+    (
         "cli",
         "src",
         &[
             ("crate", "cli"),
+            ("fuzzymotiv_lab", "lab"),
             ("fuzzymotiv_io", "io"),
             ("fuzzymotiv", "lib"),
         ],

@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod claims;
 pub mod fuzzy;
+pub mod lab;
 pub mod replay;
 pub mod reproduce;
 pub mod rooms;

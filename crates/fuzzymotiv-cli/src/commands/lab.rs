@@ -1,0 +1,77 @@
+//! `fuzzymotiv lab`: the browser lab (the `fuzzymotiv-lab` crate), started and stopped.
+
+use std::net::IpAddr;
+use std::path::PathBuf;
+
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::{note, outln};
+use fuzzymotiv_lab::{Lab, LabOptions};
+
+/// Arguments of `fuzzymotiv lab`.
+#[derive(clap::Args)]
+pub struct LabArgs {
+    /// TCP port (0: any free port).
+    #[arg(long, default_value_t = 8765)]
+    port: u16,
+    /// Directory of the lab: its runs (DIR/runs/), drawn rooms (DIR/rooms/) and saved run
+    /// directories (DIR/saved/). Everything the lab writes stays under it.
+    #[arg(long, value_name = "DIR", default_value = "lab")]
+    dir: PathBuf,
+    /// Worker threads of a run [default: all cores]; further runs wait in a queue.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Open the page in the default browser (where there is none, the address is printed).
+    #[arg(long)]
+    open: bool,
+    /// Interface to listen on [default: 127.0.0.1, this machine only]. Another address lets
+    /// other machines reach the lab: anyone with the token can run experiments and write
+    /// under --dir, and the traffic (token included) is not encrypted.
+    #[arg(long, value_name = "ADDR")]
+    bind: Option<IpAddr>,
+}
+
+/// Entry point of `fuzzymotiv lab`.
+pub fn lab(args: LabArgs) -> Result<(), CliError> {
+    let mut opts = LabOptions::new(args.dir);
+    opts.port = args.port;
+    opts.threads = args.threads;
+    if let Some(bind) = args.bind {
+        if !bind.is_loopback() {
+            note!(
+                "note: --bind {bind}: other machines can reach the lab; anyone with its token can run experiments and write under its directory, and HTTP is not encrypted"
+            );
+        }
+        opts.bind = bind;
+    }
+    let lab = Lab::start(opts)?;
+    outln!("fuzzymotiv lab: {}", lab.url())?;
+    note!(
+        "the lab writes under {}; Ctrl-C stops it (runs going on are stopped)",
+        lab.dir().display()
+    );
+    if args.open {
+        open_browser(&lab.url());
+    }
+    lab.wait_for_ctrl_c();
+    note!("lab stopped");
+    Ok(())
+}
+
+/// Opens `url` with the desktop's opener, if there is one.
+fn open_browser(url: &str) {
+    let opener = if cfg!(target_os = "macos") {
+        "open"
+    } else if cfg!(windows) {
+        "explorer"
+    } else {
+        "xdg-open"
+    };
+    let started = std::process::Command::new(opener)
+        .arg(url)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn();
+    if started.is_err() {
+        note!("no browser to open ({opener} not found): open the address above");
+    }
+}

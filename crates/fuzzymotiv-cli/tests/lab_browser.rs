@@ -1,0 +1,263 @@
+//! The lab in headless Chromium (WebDriver): a person's path through the page, clicking only
+//! visible, labelled controls. Moves a slider, draws and saves a room, presses Evolve on the
+//! quick preset, sees the fitness curve grow and a path drawn, waits for the end, saves the run,
+//! compares, starts another run and stops it. Prints the time from pressing Evolve to the first
+//! generation drawn and to the finished run, and saves `target/lab-screenshot.png`.
+//!
+//! Needs the Debian packages `chromium` and `chromium-driver` (`.ci/run` installs them).
+
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+
+mod common;
+
+use common::webdriver::{Driver, ELEMENT, require_browser, target_dir};
+
+/// `fuzzymotiv lab` on a free port; stopped on drop.
+struct LabProcess {
+    child: Child,
+    url: String,
+}
+
+impl LabProcess {
+    fn start(dir: &std::path::Path) -> LabProcess {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_fuzzymotiv"))
+            .args(["lab", "--port", "0", "--threads", "2", "--dir"])
+            .arg(dir)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("fuzzymotiv lab starts");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().unwrap())
+            .read_line(&mut line)
+            .unwrap();
+        let url = line
+            .trim()
+            .strip_prefix("fuzzymotiv lab: ")
+            .unwrap_or_else(|| panic!("no address printed: {line:?}"))
+            .to_string();
+        assert!(
+            url.starts_with("http://127.0.0.1:") && url.contains("/?token="),
+            "{url}"
+        );
+        LabProcess { child, url }
+    }
+}
+
+impl Drop for LabProcess {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Waits (up to `secs`) until the script returns something truthy; returns it.
+fn wait_for(d: &Driver, secs: u64, what: &str, script: &str) -> Value {
+    let deadline = Instant::now() + Duration::from_secs(secs);
+    loop {
+        let v = d.script(script);
+        if !(v.is_null() || v == false || v == 0) {
+            return v;
+        }
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// Clicks inside `element` at `(dx, dy)` CSS pixels from its centre (WebDriver actions).
+fn click_at(d: &Driver, element: &str, dx: f64, dy: f64) {
+    let origin = json!({ ELEMENT: element });
+    d.cmd("POST", "/actions", json!({"actions": [{"type": "pointer", "id": "mouse",
+        "parameters": {"pointerType": "mouse"}, "actions": [
+            {"type": "pointerMove", "origin": origin, "x": dx.round() as i64, "y": dy.round() as i64},
+            {"type": "pointerDown", "button": 0}, {"type": "pointerUp", "button": 0}]}]}));
+}
+
+/// The control labelled `label` (a `<label>` holding it or naming it).
+fn labelled(d: &Driver, label: &str) -> String {
+    let xpath = format!(
+        "//label[normalize-space()='{label}']/following-sibling::input[1] | //label[starts-with(normalize-space(), '{label}')]/input | //label[starts-with(normalize-space(), '{label}')]/select"
+    );
+    let e = d
+        .find_xpath(&xpath)
+        .unwrap_or_else(|| panic!("no control labelled `{label}`"));
+    assert!(d.displayed(&e), "`{label}` is not visible");
+    e
+}
+
+fn type_into(d: &Driver, element: &str, text: &str) {
+    d.cmd("POST", &format!("/element/{element}/clear"), json!({}));
+    d.cmd(
+        "POST",
+        &format!("/element/{element}/value"),
+        json!({ "text": text }),
+    );
+}
+
+/// Draws a 1 m × 0.8 m room with its home, names it and saves it.
+fn draw_room(d: &Driver) {
+    let summary = d
+        .find_xpath("//summary[normalize-space()='Draw a room']")
+        .expect("Draw a room");
+    d.cmd("POST", &format!("/element/{summary}/click"), json!({}));
+    let editor = d.element("#room-editor");
+    d.script("document.getElementById('room-editor').scrollIntoView({block: 'center'});");
+    let w =
+        d.script("return document.getElementById('room-editor').getBoundingClientRect().width;");
+    let w = w.as_f64().unwrap();
+    let at = |x: f64, y: f64| {
+        (
+            (x + 100.0) * w / 1400.0 - w / 2.0,
+            (1300.0 - y) * w / 1400.0 - w / 2.0,
+        )
+    };
+    for (x, y) in [(0.0, 0.0), (1000.0, 0.0), (1000.0, 800.0), (0.0, 800.0)] {
+        let (dx, dy) = at(x, y);
+        click_at(d, &editor, dx, dy);
+    }
+    let home = d
+        .find_xpath("//select[@id='draw-mode']/option[normalize-space()='Home']")
+        .unwrap();
+    d.cmd("POST", &format!("/element/{home}/click"), json!({}));
+    let (dx, dy) = at(300.0, 400.0);
+    click_at(d, &editor, dx, dy);
+    type_into(d, &labelled(d, "Room name"), "drawn1");
+    d.click_button("Save room");
+    let msg = wait_for(
+        d,
+        20,
+        "the room saved",
+        "var m = document.getElementById('room-message').textContent; return m ? m : null;",
+    );
+    assert!(
+        msg.as_str().unwrap().starts_with("Saved as drawn1.toml"),
+        "{msg}"
+    );
+    wait_for(
+        d,
+        10,
+        "the drawn room listed",
+        "return document.getElementById('room-drawn1.toml');",
+    );
+}
+
+#[test]
+fn the_lab_evolves_stops_saves_and_compares_in_chromium() {
+    require_browser();
+    let tmp = tempfile::tempdir().unwrap();
+    let lab = LabProcess::start(&tmp.path().join("lab"));
+    let mut d = Driver::start();
+    d.new_session(&tmp.path().join("chromium-profile"));
+    d.goto(&lab.url);
+    wait_for(
+        &d,
+        30,
+        "the page",
+        "return document.querySelectorAll('#room-choices .thumb').length >= 5;",
+    );
+
+    // A slider: homing up; the four weights still sum to 1.
+    let homing = labelled(&d, "Homing H");
+    d.cmd(
+        "POST",
+        &format!("/element/{homing}/value"),
+        json!({"text": "\u{E014}".repeat(10)}),
+    );
+    let x = d.script("return ['curiosity','homing','orientation','energy'].map(function (n) { return +document.getElementById('value-' + n).textContent; });");
+    let x: Vec<f64> = serde_json::from_value(x).unwrap();
+    assert!(x[1] > 0.15, "the homing slider did not move: {x:?}");
+    assert!((x.iter().sum::<f64>() - 1.0).abs() < 0.011, "{x:?}");
+    d.click_button("Explain F");
+    wait_for(
+        &d,
+        10,
+        "F explained",
+        "return document.getElementById('explain-f');",
+    );
+
+    draw_room(&d);
+
+    // Evolve on the quick preset (30 × 30, the five rooms and the drawn one).
+    assert_eq!(
+        d.script("return document.getElementById('ga-preset').value;"),
+        "quick"
+    );
+    d.click_button("Evolve");
+    let grow = "var l = document.getElementById('fitness-chart-best'); return l ? +l.getAttribute('data-points') : 0;";
+    wait_for(&d, 60, "a first generation", grow);
+    wait_for(
+        &d,
+        60,
+        "a path drawn",
+        "return document.querySelectorAll('#paths .robot-path').length >= 6;",
+    );
+    let later = wait_for(
+        &d,
+        120,
+        "the curve to grow",
+        &grow.replace("? +l", "&& +l.getAttribute('data-points') >= 3 ? +l"),
+    );
+    assert!(later.as_u64().unwrap() >= 3);
+    wait_for(
+        &d,
+        600,
+        "the run to finish",
+        "return window.labTimes.finished;",
+    );
+    let t = d.script("return window.labTimes;");
+    let first = t["firstGeneration"].as_f64().unwrap() - t["evolve"].as_f64().unwrap();
+    let done = t["finished"].as_f64().unwrap() - t["evolve"].as_f64().unwrap();
+    eprintln!(
+        "lab timing (quick preset 30 × 30, 6 rooms, --threads 2): Evolve → first generation drawn {:.0} ms, → finished run {:.0} ms",
+        first, done
+    );
+    let status = d.script("return document.getElementById('run-status').textContent;");
+    assert!(status.as_str().unwrap().ends_with("finished"), "{status}");
+
+    d.click_button("Save as run directory");
+    let saved = wait_for(
+        &d,
+        30,
+        "saved",
+        "var m = document.getElementById('save-message').textContent; return m ? m : null;",
+    );
+    assert!(saved.as_str().unwrap().starts_with("Saved: "), "{saved}");
+    let id = d.script("return document.getElementById('save-name').value;");
+    let saved_dir = tmp.path().join("lab/saved").join(id.as_str().unwrap());
+    assert!(saved_dir.join("summary.json").is_file() && saved_dir.join("report.html").is_file());
+
+    d.click_button("Compare");
+    wait_for(
+        &d,
+        30,
+        "the comparison",
+        "return document.querySelectorAll('#compare-out table').length >= 3;",
+    );
+    d.script("window.scrollTo(0, 0);");
+    let shot = target_dir().join("lab-screenshot.png");
+    std::fs::write(&shot, d.full_page_png()).unwrap();
+    eprintln!("screenshot: {}", shot.display());
+
+    // Another run, stopped after its first generation.
+    d.click_button("Evolve");
+    wait_for(
+        &d,
+        60,
+        "a first generation",
+        "return window.labTimes.firstGeneration !== undefined;",
+    );
+    d.click_button("Stop");
+    let status = wait_for(
+        &d,
+        30,
+        "the run stopped",
+        "var s = document.getElementById('run-status').textContent; return /stopped$/.test(s) ? s : null;",
+    );
+    assert!(status.as_str().unwrap().contains("stopped"));
+    let console = d.console_errors();
+    assert!(console.is_empty(), "console errors: {console:?}");
+}

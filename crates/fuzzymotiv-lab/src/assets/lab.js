@@ -1,0 +1,415 @@
+// fuzzymotiv lab: the page's script. Plain JavaScript and SVG; talks to its own server only.
+'use strict';
+
+const NAMES = ['curiosity', 'homing', 'orientation', 'energy'];
+const LETTERS = ['C', 'H', 'O', 'E'];
+const SVGNS = 'http://www.w3.org/2000/svg';
+const COLORS = { best: '#c33', mean: '#36c', a: '#2a6', g: '#c80', l: '#86c', b: '#088' };
+const lab = {
+  x: [0.8, 0.1, 0.0, 0.1], info: null, rooms: [], chosen: new Set(['H', 'T', 'L', 'square', 'rectangle']),
+  run: null, source: null, gens: [], times: {}, draw: { outline: [], obstacles: [], home: null, current: -1 },
+};
+window.labTimes = lab.times;
+
+const $ = (id) => document.getElementById(id);
+function el(tag, attrs, parent) {
+  const e = document.createElementNS(SVGNS, tag);
+  for (const k in attrs || {}) e.setAttribute(k, attrs[k]);
+  if (parent) parent.appendChild(e);
+  return e;
+}
+function html(tag, text, parent) {
+  const e = document.createElement(tag);
+  if (text !== undefined) e.textContent = text;
+  if (parent) parent.appendChild(e);
+  return e;
+}
+function showError(msg) {
+  const bar = $('error-bar');
+  bar.textContent = msg;
+  bar.hidden = !msg;
+}
+async function api(method, url, body) {
+  const opts = { method, headers: {} };
+  if (body !== undefined) { opts.body = JSON.stringify(body); opts.headers['content-type'] = 'application/json'; }
+  const r = await fetch(url, opts);
+  const data = await r.json().catch(() => ({}));
+  if (!r.ok) { const e = new Error(data.error || r.statusText); e.data = data; e.status = r.status; throw e; }
+  return data;
+}
+
+// ---- 1. Motivations -------------------------------------------------------------------------
+function buildSliders() {
+  const box = $('sliders');
+  NAMES.forEach((name, i) => {
+    const row = html('div', undefined, box);
+    row.className = 'slider';
+    const label = html('label', `${name[0].toUpperCase() + name.slice(1)} ${LETTERS[i]}`, row);
+    label.htmlFor = `slider-${name}`;
+    const input = html('input', undefined, row);
+    Object.assign(input, { type: 'range', min: 0, max: 1, step: 0.01, id: `slider-${name}` });
+    input.setAttribute('aria-label', `${name} ${LETTERS[i]}`);
+    const out = html('output', '', row);
+    out.id = `value-${name}`;
+    input.addEventListener('input', () => setWeight(i, Number(input.value)));
+  });
+  showWeights();
+}
+function setWeight(i, v) {
+  const rest = lab.x.reduce((s, w, k) => (k === i ? s : s + w), 0);
+  const left = 1 - v;
+  lab.x = lab.x.map((w, k) => (k === i ? v : rest > 1e-9 ? (w / rest) * left : left / 3));
+  lab.x = lab.x.map((w) => Math.round(w * 1000) / 1000);
+  const drift = 1 - lab.x.reduce((s, w) => s + w, 0);
+  const fix = lab.x.findIndex((w, k) => k !== i && w + drift >= 0);
+  if (fix >= 0) lab.x[fix] = Math.round((lab.x[fix] + drift) * 1000) / 1000;
+  showWeights();
+}
+function showWeights() {
+  NAMES.forEach((name, i) => {
+    $(`slider-${name}`).value = lab.x[i];
+    $(`value-${name}`).textContent = lab.x[i].toFixed(2);
+  });
+}
+function drawMembership(peaks) {
+  const svg = $('membership');
+  svg.replaceChildren();
+  const X = (v) => 20 + v * 280, Y = (m) => 90 - m * 70;
+  el('line', { x1: X(0), y1: Y(0), x2: X(1), y2: Y(0), stroke: '#999' }, svg);
+  peaks.forEach((p, k) => {
+    const lo = k > 0 ? peaks[k - 1] : p, hi = k < peaks.length - 1 ? peaks[k + 1] : p;
+    const pts = [[lo, k > 0 ? 0 : 1], [p, 1], [hi, k < peaks.length - 1 ? 0 : 1]];
+    el('polyline', { points: pts.map(([v, m]) => `${X(v)},${Y(m)}`).join(' '), fill: 'none',
+      stroke: ['#c33', '#c80', '#2a6', '#36c', '#86c'][k % 5], 'stroke-width': 2 }, svg);
+    el('text', { x: X(p), y: 105, 'font-size': 10, 'text-anchor': 'middle' }, svg).textContent = p;
+  });
+}
+async function explainF() {
+  const y = ['a', 'g', 'l', 'b'].map((k) => Number($(`explain-${k}`).value));
+  try {
+    const r = await api('POST', '/api/explain', { motivations: lab.x, fitness: y });
+    const out = $('explain-out');
+    out.replaceChildren();
+    html('p', `F = ${r.fitness.toFixed(6)} from ${r.rules.length} firing rule(s) (Σw = ${r.weight_sum.toFixed(4)})`, out).id = 'explain-f';
+    const t = html('table', undefined, out);
+    const head = html('tr', undefined, t);
+    ['rule', 'a is', 'g is', 'l is', 'b is', 'w', 'f'].forEach((h) => html('th', h, head));
+    r.rules.slice(0, 16).forEach((rule) => {
+      const tr = html('tr', undefined, t);
+      [rule.number, ...rule.label_names, rule.weight.toFixed(4), rule.output.toFixed(4)].forEach((v) => html('td', String(v), tr));
+    });
+    showError('');
+  } catch (e) { showError(e.message); }
+}
+
+// ---- 2. Rooms -------------------------------------------------------------------------------
+function roomSvg(room, svg, pad) {
+  const xs = room.outline.map((p) => p.x), ys = room.outline.map((p) => p.y);
+  const [x0, x1, y0, y1] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
+  pad = pad || 40;
+  svg.setAttribute('viewBox', `${x0 - pad} ${-(y1 + pad)} ${x1 - x0 + 2 * pad} ${y1 - y0 + 2 * pad}`);
+  const pts = (poly) => poly.map((p) => `${p.x},${-p.y}`).join(' ');
+  el('polygon', { points: pts(room.outline), fill: '#f6f6f0', stroke: '#333', 'stroke-width': 8 }, svg);
+  room.obstacles.forEach((o) => el('polygon', { points: pts(o), fill: '#999', stroke: '#333', 'stroke-width': 4 }, svg));
+  const z = room.home_zone;
+  el('circle', { cx: z.centre.x, cy: -z.centre.y, r: z.radius, fill: 'none', stroke: '#2a6', 'stroke-dasharray': '12 8', 'stroke-width': 4 }, svg);
+  el('circle', { cx: room.home.x, cy: -room.home.y, r: 28, fill: '#2a6' }, svg);
+  return svg;
+}
+async function loadRooms() {
+  lab.rooms = await api('GET', '/api/rooms');
+  const box = $('room-choices');
+  box.replaceChildren();
+  lab.rooms.forEach((r) => {
+    const d = html('div', undefined, box);
+    d.className = 'thumb';
+    roomSvg(r.room, el('svg', { role: 'img', 'aria-label': `room ${r.room.name}` }, d));
+    const label = html('label', undefined, d);
+    const cb = html('input', undefined, label);
+    Object.assign(cb, { type: 'checkbox', checked: lab.chosen.has(r.entry), id: `room-${r.entry}` });
+    cb.addEventListener('change', () => { if (cb.checked) lab.chosen.add(r.entry); else lab.chosen.delete(r.entry); });
+    label.appendChild(document.createTextNode(` ${r.room.name}${r.builtin ? '' : ' (drawn)'}`));
+  });
+}
+function editorPoint(ev) {
+  const svg = $('room-editor');
+  const pt = svg.createSVGPoint();
+  pt.x = ev.clientX; pt.y = ev.clientY;
+  const p = pt.matrixTransform(svg.getScreenCTM().inverse());
+  return [Math.round(p.x / 100) * 100, Math.round((1200 - p.y) / 100) * 100];
+}
+function drawEditor(bad) {
+  const svg = $('room-editor'), d = lab.draw;
+  svg.replaceChildren();
+  for (let v = 0; v <= 1200; v += 100) {
+    el('line', { x1: v, y1: 0, x2: v, y2: 1200, stroke: '#eee', 'stroke-width': 3 }, svg);
+    el('line', { x1: 0, y1: v, x2: 1200, y2: v, stroke: '#eee', 'stroke-width': 3 }, svg);
+  }
+  const pts = (poly) => poly.map(([x, y]) => `${x},${1200 - y}`).join(' ');
+  const polys = [['outline', d.outline, '#333', '#f6f6f0'], ...d.obstacles.map((o, k) => [`obstacles[${k}].outline`, o, '#333', '#999'])];
+  polys.forEach(([field, poly, stroke, fill]) => {
+    const wrong = bad && bad.field && bad.field.startsWith(field);
+    el('polygon', { points: pts(poly), fill, 'fill-opacity': 0.6, stroke: wrong ? '#d00' : stroke, 'stroke-width': wrong ? 12 : 6 }, svg);
+    poly.forEach(([x, y], k) => el('circle', { cx: x, cy: 1200 - y, r: 14, fill: wrong ? '#d00' : '#333' }, svg));
+    if (wrong && poly.length) {
+      const [x, y] = poly[poly.length - 1];
+      const t = el('text', { x: x + 20, y: 1200 - y - 20, 'font-size': 44, fill: '#d00' }, svg);
+      t.textContent = bad.error.split(': ').slice(-1)[0].slice(0, 60);
+    }
+  });
+  if (d.home) el('circle', { cx: d.home[0], cy: 1200 - d.home[1], r: 30, fill: '#2a6' }, svg);
+}
+function drawnRoom() {
+  const d = lab.draw;
+  const room = { name: $('room-name').value, outline: d.outline,
+    home: d.home ? { x: d.home[0], y: d.home[1], heading_deg: Number($('home-heading').value) } : { x: 0, y: 0, heading_deg: 0 } };
+  if (d.obstacles.length) room.obstacles = d.obstacles.filter((o) => o.length).map((o) => ({ outline: o }));
+  return room;
+}
+async function checkRoom(save, body) {
+  const msg = $('room-message');
+  try {
+    const r = await api('POST', '/api/rooms', body || { room: drawnRoom(), save });
+    msg.className = 'ok';
+    msg.textContent = save ? `Saved as ${r.entry}: it is now in the room list.` : `Room ${r.room.name} is valid.`;
+    drawEditor();
+    if (save) { lab.chosen.add(r.entry); await loadRooms(); }
+  } catch (e) {
+    msg.className = 'error';
+    msg.textContent = e.message;
+    drawEditor(e.data);
+  }
+}
+function setupEditor() {
+  const svg = $('room-editor');
+  svg.addEventListener('click', (ev) => {
+    const p = editorPoint(ev), d = lab.draw, mode = $('draw-mode').value;
+    if (mode === 'home') d.home = p;
+    else if (mode === 'obstacle') {
+      if (d.current < 0) { d.obstacles.push([]); d.current = d.obstacles.length - 1; }
+      d.obstacles[d.current].push(p);
+    } else d.outline.push(p);
+    drawEditor();
+  });
+  $('new-obstacle').addEventListener('click', () => { lab.draw.obstacles.push([]); lab.draw.current = lab.draw.obstacles.length - 1; $('draw-mode').value = 'obstacle'; });
+  $('undo-vertex').addEventListener('click', () => {
+    const d = lab.draw, mode = $('draw-mode').value;
+    if (mode === 'obstacle' && d.current >= 0) d.obstacles[d.current].pop(); else if (mode === 'outline') d.outline.pop(); else d.home = null;
+    drawEditor();
+  });
+  $('clear-room').addEventListener('click', () => { lab.draw = { outline: [], obstacles: [], home: null, current: -1 }; drawEditor(); });
+  $('check-room').addEventListener('click', () => checkRoom(false));
+  $('save-room').addEventListener('click', () => checkRoom(true));
+  $('room-file').addEventListener('change', async (ev) => {
+    const f = ev.target.files[0];
+    if (!f) return;
+    if (f.size > (lab.info ? lab.info.limits.body_bytes : 65536)) { $('room-message').textContent = 'The file is larger than the lab accepts.'; return; }
+    await checkRoom(true, { toml: await f.text(), save: true });
+  });
+  drawEditor();
+}
+
+// ---- 3. Evolve ------------------------------------------------------------------------------
+function chart(svg, series, yMax) {
+  svg.replaceChildren();
+  const n = Math.max(2, ...series.map((s) => s.values.length));
+  const X = (i) => 30 + (i / (n - 1)) * 360, Y = (v) => 185 - (v / yMax) * 170;
+  el('line', { x1: 30, y1: 185, x2: 390, y2: 185, stroke: '#999' }, svg);
+  el('line', { x1: 30, y1: 15, x2: 30, y2: 185, stroke: '#999' }, svg);
+  el('text', { x: 4, y: 20, 'font-size': 10 }, svg).textContent = yMax.toFixed(1);
+  el('text', { x: 380, y: 198, 'font-size': 10 }, svg).textContent = String(n - 1);
+  series.forEach((s, k) => {
+    const line = el('polyline', { points: s.values.map((v, i) => `${X(i)},${Y(v)}`).join(' '), fill: 'none', stroke: s.color, 'stroke-width': 2 }, svg);
+    line.id = `${svg.id}-${s.name}`;
+    line.setAttribute('data-points', String(s.values.length));
+    el('text', { x: 40 + k * 50, y: 12, 'font-size': 10, fill: s.color }, svg).textContent = s.name;
+  });
+}
+function drawCharts(gens, fit, terms) {
+  const best = gens.map((g) => g.best), mean = gens.map((g) => g.mean);
+  chart(fit, [{ name: 'best', values: best, color: COLORS.best }, { name: 'mean', values: mean, color: COLORS.mean }],
+    Math.max(1, ...best) * 1.05);
+  chart(terms, ['a', 'g', 'l', 'b'].map((k) => ({ name: k, values: gens.map((g) => g[k]), color: COLORS[k] })), 1);
+}
+function drawPaths(box, paths) {
+  box.replaceChildren();
+  if (!paths) return;
+  paths.rooms.forEach((p) => {
+    const room = lab.rooms.find((r) => r.room.name === p.room);
+    const d = html('div', undefined, box);
+    d.className = 'thumb';
+    const svg = el('svg', { role: 'img', 'aria-label': `path in ${p.room}` }, d);
+    if (room) roomSvg(room.room, svg);
+    const line = el('polyline', { points: p.points.map(([x, y]) => `${x},${-y}`).join(' '), fill: 'none', stroke: '#c33', 'stroke-width': 6 }, svg);
+    line.setAttribute('class', 'robot-path');
+    html('div', `${p.room}${p.f !== undefined ? `, F = ${p.f.toFixed(3)}` : ''}`, d);
+  });
+}
+function gaPreset() {
+  const v = $('ga-preset').value, sizes = { quick: [30, 30], medium: [80, 80], paper: [200, 200] }[v];
+  if (sizes) { $('population').value = sizes[0]; $('generations').value = sizes[1]; }
+}
+function settings() {
+  return { name: $('run-name').value, seed: Number($('seed').value),
+    motivations: { curiosity: lab.x[0], homing: lab.x[1], orientation: lab.x[2], energy: lab.x[3] },
+    population: Number($('population').value), generations: Number($('generations').value),
+    motion: $('motion').value, rooms: lab.rooms.filter((r) => lab.chosen.has(r.entry)).map((r) => r.entry) };
+}
+async function evolve() {
+  try {
+    lab.times.evolve = performance.now();
+    delete lab.times.firstGeneration; delete lab.times.finished;
+    const r = await api('POST', '/api/runs', settings());
+    follow(r.id);
+    showError('');
+  } catch (e) { showError(e.message); }
+}
+function follow(id) {
+  if (lab.source) lab.source.close();
+  lab.run = id; lab.gens = [];
+  $('result').hidden = true;
+  $('stop').disabled = false;
+  $('run-status').textContent = `Run ${id}: waiting…`;
+  drawCharts([], $('fitness-chart'), $('terms-chart'));
+  $('paths').replaceChildren();
+  const src = new EventSource(`/api/runs/${encodeURIComponent(id)}/events`);
+  lab.source = src;
+  src.addEventListener('generation', (ev) => {
+    const g = JSON.parse(ev.data);
+    lab.gens.push(g);
+    drawCharts(lab.gens, $('fitness-chart'), $('terms-chart'));
+    if (lab.times.firstGeneration === undefined) lab.times.firstGeneration = performance.now();
+    $('run-status').textContent = `Run ${id}: generation ${g.generation + 1}, best F ${g.best.toFixed(3)}`;
+  });
+  src.addEventListener('paths', (ev) => {
+    const p = JSON.parse(ev.data);
+    $('paths-title').textContent = `Paths of the best robot (generation ${p.generation + 1}${p.final ? ', final' : ''})`;
+    drawPaths($('paths'), p);
+  });
+  src.addEventListener('end', (ev) => {
+    src.close();
+    const end = JSON.parse(ev.data);
+    lab.times.finished = performance.now();
+    $('stop').disabled = true;
+    $('run-status').textContent = `Run ${id}: ${end.status}${end.error ? ` (${end.error})` : ''}`;
+    if (end.status === 'finished') showResult(id, end.result);
+    refreshRuns();
+  });
+}
+function table(rows, parent) {
+  const cols = ['room', 'exploration_pct', 'homing_pct', 'battery_pct', 'recognition_pct', 'average_fitness'];
+  const heads = ['room', '% exploration', '% homing', '% battery', '% recognition', 'mean F'];
+  const t = html('table', undefined, parent);
+  const tr = html('tr', undefined, t);
+  heads.forEach((h) => html('th', h, tr));
+  rows.forEach((r) => {
+    const row = html('tr', undefined, t);
+    cols.forEach((c) => html('td', typeof r[c] === 'number' ? r[c].toFixed(c === 'average_fitness' ? 3 : 1) : (r[c] ?? '—'), row));
+  });
+  return t;
+}
+function showResult(id, result) {
+  $('result').hidden = false;
+  const box = $('result-table');
+  box.replaceChildren();
+  table(result.rows, box);
+  html('p', `Wall time ${result.wall_seconds.toFixed(1)} s.`, box);
+  $('save-name').value = id;
+  $('download-config').href = `/api/runs/${encodeURIComponent(id)}/config.toml`;
+  $('open-report').href = `/runs/${encodeURIComponent(id)}/report.html`;
+  $('save-message').textContent = '';
+}
+async function saveRun() {
+  try {
+    const r = await api('POST', `/api/runs/${encodeURIComponent(lab.run)}/save`, { name: $('save-name').value });
+    $('save-message').className = 'ok';
+    $('save-message').textContent = `Saved: ${r.saved}`;
+  } catch (e) { $('save-message').className = 'error'; $('save-message').textContent = e.message; }
+}
+
+// ---- 4. Runs and comparison -----------------------------------------------------------------
+async function refreshRuns() {
+  let runs;
+  try { runs = await api('GET', '/api/runs'); } catch (e) { return; }
+  const body = $('run-list').querySelector('tbody');
+  body.replaceChildren();
+  runs.slice().reverse().forEach((r) => {
+    const tr = html('tr', undefined, body);
+    const m = Array.isArray(r.about.motivations) ? r.about.motivations : NAMES.map((k) => r.about.motivations[k]);
+    html('td', r.id, tr);
+    html('td', `(${m.map((v) => Number(v).toFixed(2)).join(', ')})`, tr);
+    html('td', `${r.about.population} × ${r.about.generations}`, tr);
+    html('td', r.status + (r.queue_position ? ` (queue ${r.queue_position})` : ''), tr);
+    const td = html('td', undefined, tr);
+    if (r.status === 'running' || r.status === 'queued') {
+      const b = html('button', 'Stop', td);
+      b.addEventListener('click', () => api('POST', `/api/runs/${encodeURIComponent(r.id)}/cancel`).then(refreshRuns));
+    } else if (r.status === 'finished') {
+      const b = html('button', 'Show', td);
+      b.addEventListener('click', () => follow(r.id));
+    }
+  });
+  const done = runs.filter((r) => r.status === 'finished').map((r) => r.id);
+  ['compare-a', 'compare-b'].forEach((sel, k) => {
+    const s = $(sel), keep = s.value;
+    s.replaceChildren();
+    done.forEach((id) => { const o = html('option', id, s); o.value = id; });
+    s.value = done.includes(keep) ? keep : done[Math.max(0, done.length - 1 - k)] || '';
+  });
+}
+async function compare() {
+  const out = $('compare-out');
+  try {
+    const a = $('compare-a').value, b = $('compare-b').value;
+    const r = await api('GET', `/api/compare?a=${encodeURIComponent(a)}&b=${encodeURIComponent(b)}`);
+    out.replaceChildren();
+    const grid = html('div', undefined, out);
+    grid.className = 'compare';
+    [r.a, r.b].forEach((side, k) => {
+      const col = html('div', undefined, grid);
+      html('h3', `${k ? 'B' : 'A'}: ${side.id}`, col);
+      const svg = el('svg', { viewBox: '0 0 400 200', role: 'img', 'aria-label': `fitness of ${side.id}` }, col);
+      svg.id = `compare-fit-${k}`;
+      const t = el('svg', { viewBox: '0 0 400 200' });
+      drawCharts(side.generations, svg, t);
+      table(side.result.rows, col);
+      const paths = html('div', undefined, col);
+      paths.className = 'thumbs';
+      drawPaths(paths, side.paths);
+    });
+    html('h3', 'Differences A − B over rooms (library statistics, paired over rooms)', out);
+    const t = html('table', undefined, out);
+    const head = html('tr', undefined, t);
+    ['measure', 'rooms', 'A', 'B', 'A − B', '95 % interval', 'p', 'verdict'].forEach((h) => html('th', h, head));
+    r.tests.forEach((c) => {
+      const tr = html('tr', undefined, t);
+      const f = (v) => (typeof v === 'number' ? v.toFixed(3) : '—');
+      [c.measure, c.rooms, f(c.mean_a), f(c.mean_b), f(c.difference), c.error ? c.error : `[${f(c.ci_low)}, ${f(c.ci_high)}]`, f(c.p), c.verdict || '—']
+        .forEach((v) => html('td', String(v), tr));
+    });
+    html('p', r.note, out).className = 'hint';
+    showError('');
+  } catch (e) { showError(e.message); }
+}
+
+// ---- start ----------------------------------------------------------------------------------
+async function start() {
+  buildSliders();
+  lab.info = await api('GET', '/api/info');
+  drawMembership(lab.info.peaks);
+  $('preset-high').addEventListener('click', () => { lab.x = [0.8, 0.1, 0, 0.1]; showWeights(); });
+  $('preset-low').addEventListener('click', () => { lab.x = [0.5, 0.3, 0, 0.2]; showWeights(); });
+  $('explain-button').addEventListener('click', explainF);
+  $('ga-preset').addEventListener('change', gaPreset);
+  ['population', 'generations'].forEach((id) => $(id).addEventListener('input', () => { $('ga-preset').value = 'custom'; }));
+  $('evolve').addEventListener('click', evolve);
+  $('stop').addEventListener('click', () => lab.run && api('POST', `/api/runs/${encodeURIComponent(lab.run)}/cancel`).catch((e) => showError(e.message)));
+  $('save-run').addEventListener('click', saveRun);
+  $('compare-button').addEventListener('click', compare);
+  setupEditor();
+  await loadRooms();
+  drawCharts([], $('fitness-chart'), $('terms-chart'));
+  await refreshRuns();
+  setInterval(refreshRuns, 2000);
+}
+document.addEventListener('DOMContentLoaded', () => start().catch((e) => showError(e.message)));

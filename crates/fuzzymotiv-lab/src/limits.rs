@@ -1,0 +1,24 @@
+//! The documented limits of the lab: what one request may ask for (README, "Lab").
+
+/// Largest request body (bytes): settings, a room, a comparison. Larger bodies get HTTP 413.
+pub const MAX_BODY: usize = 64 * 1024;
+/// Largest GA population a run of the lab may ask for (the paper's is 200).
+pub const MAX_POPULATION: usize = 400;
+/// Most generations a run of the lab may ask for (the paper's is 200).
+pub const MAX_GENERATIONS: usize = 400;
+/// Most rooms in one run.
+pub const MAX_ROOMS: usize = 10;
+/// Most steps of one trial (the default is 1000).
+pub const MAX_STEPS: usize = 5000;
+/// Most vertices of a drawn room (outline and obstacles together).
+pub const MAX_ROOM_VERTICES: usize = 400;
+/// Most rooms kept under `DIR/rooms/`.
+pub const MAX_SAVED_ROOMS: usize = 200;
+/// Most runs waiting in the queue; more are refused (HTTP 503) until some finish.
+pub const MAX_QUEUED: usize = 64;
+/// Stopped or failed runs remembered in the list (finished runs are on disk and stay).
+pub const MAX_FORGOTTEN: usize = 32;
+/// A live run sends the current best robot's paths every this many generations.
+pub const PATHS_EVERY: usize = 5;
+/// Most points of a path sent to the page.
+pub const PATH_POINTS: usize = 400;

@@ -1,0 +1,185 @@
+//! Starting and stopping the lab: the listener, the access guard, the run worker.
+
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::thread::JoinHandle;
+
+use fuzzymotiv_io::files::error::CliError;
+use tokio::sync::watch;
+
+use crate::api::{AppState, router};
+use crate::runs::Runs;
+use crate::security::{Access, guard, random_token};
+
+/// How to start a lab.
+#[derive(Debug, Clone)]
+pub struct LabOptions {
+    /// Everything the lab writes goes under it (created if missing).
+    pub dir: PathBuf,
+    /// TCP port; 0 picks a free one.
+    pub port: u16,
+    /// Interface to listen on; default 127.0.0.1 (this machine only).
+    pub bind: IpAddr,
+    /// Threads of a run (as `fuzzymotiv run --threads`); default all cores.
+    pub threads: Option<usize>,
+}
+
+impl LabOptions {
+    /// Loopback, port 8765, all cores.
+    pub fn new(dir: PathBuf) -> Self {
+        Self {
+            dir,
+            port: 8765,
+            bind: IpAddr::V4(Ipv4Addr::LOCALHOST),
+            threads: None,
+        }
+    }
+}
+
+/// A running lab.
+pub struct Lab {
+    addr: SocketAddr,
+    token: String,
+    dir: PathBuf,
+    runtime: tokio::runtime::Runtime,
+    closing: watch::Sender<bool>,
+    runs: Arc<Runs>,
+    worker: Option<JoinHandle<()>>,
+    server: Option<tokio::task::JoinHandle<()>>,
+}
+
+fn io(what: &str, e: impl std::fmt::Display) -> CliError {
+    CliError::io(format!("{what}: {e}"))
+}
+
+/// The `Host` values the lab answers to.
+fn hosts(addr: SocketAddr) -> Vec<String> {
+    let port = addr.port();
+    let mut hosts = vec![addr.to_string()];
+    if addr.ip().is_loopback() {
+        hosts.extend([
+            format!("127.0.0.1:{port}"),
+            format!("localhost:{port}"),
+            format!("[::1]:{port}"),
+        ]);
+    }
+    hosts.dedup();
+    hosts
+}
+
+impl Lab {
+    /// Binds, starts the server and the run worker, and returns once it listens.
+    pub fn start(opts: LabOptions) -> Result<Lab, CliError> {
+        std::fs::create_dir_all(&opts.dir).map_err(|e| io(&opts.dir.display().to_string(), e))?;
+        let dir = opts
+            .dir
+            .canonicalize()
+            .map_err(|e| io(&opts.dir.display().to_string(), e))?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(opts.threads.unwrap_or(0))
+            .thread_name(|i| format!("lab-run-{i}"))
+            .build()
+            .map_err(|e| CliError::input(format!("--threads: {e}")))?;
+        let runtime = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(2)
+            .enable_all()
+            .build()
+            .map_err(|e| io("the async runtime", e))?;
+        let listener = std::net::TcpListener::bind((opts.bind, opts.port))
+            .map_err(|e| io(&format!("--bind {} --port {}", opts.bind, opts.port), e))?;
+        listener
+            .set_nonblocking(true)
+            .map_err(|e| io("listener", e))?;
+        let addr = listener.local_addr().map_err(|e| io("listener", e))?;
+        let token = random_token().map_err(|e| io("the access token", e))?;
+        let access = Arc::new(Access {
+            token: token.clone(),
+            hosts: hosts(addr),
+            cookie: format!("fuzzymotiv_lab_{}", addr.port()),
+        });
+        let runs = Arc::new(Runs::open(&dir));
+        let (closing, closed) = watch::channel(false);
+        let state = Arc::new(AppState {
+            dir: dir.clone(),
+            runs: runs.clone(),
+            closing: closed.clone(),
+        });
+        let app = router(state).layer(axum::middleware::from_fn_with_state(access, guard));
+        let worker_runs = runs.clone();
+        let worker = std::thread::Builder::new()
+            .name("lab-worker".into())
+            .spawn(move || worker_runs.work(&pool))
+            .map_err(|e| io("the run worker", e))?;
+        let server = runtime.block_on(async move {
+            let listener = tokio::net::TcpListener::from_std(listener)?;
+            let mut stop = closed;
+            let serve = axum::serve(listener, app).with_graceful_shutdown(async move {
+                let _ = stop.wait_for(|c| *c).await;
+            });
+            Ok::<_, std::io::Error>(tokio::spawn(async move {
+                let _ = serve.await;
+            }))
+        });
+        let server = server.map_err(|e| io("listener", e))?;
+        Ok(Lab {
+            addr,
+            token,
+            dir,
+            runtime,
+            closing,
+            runs,
+            worker: Some(worker),
+            server: Some(server),
+        })
+    }
+
+    /// The address it listens on.
+    pub fn addr(&self) -> SocketAddr {
+        self.addr
+    }
+
+    /// The access token.
+    pub fn token(&self) -> &str {
+        &self.token
+    }
+
+    /// The lab's directory (absolute).
+    pub fn dir(&self) -> &std::path::Path {
+        &self.dir
+    }
+
+    /// The address to open, with the token.
+    pub fn url(&self) -> String {
+        format!("http://{}/?token={}", self.addr, self.token)
+    }
+
+    /// Serves until Ctrl-C, then stops (runs cancelled).
+    pub fn wait_for_ctrl_c(self) {
+        let _ = self.runtime.block_on(tokio::signal::ctrl_c());
+        self.stop();
+    }
+
+    /// Stops: cancels every run (a running one after its generation), closes the event
+    /// streams and the server, and waits for the worker.
+    pub fn stop(mut self) {
+        self.shutdown();
+    }
+
+    fn shutdown(&mut self) {
+        let _ = self.closing.send(true);
+        self.runs.close();
+        if let Some(server) = self.server.take() {
+            let _ = self.runtime.block_on(server);
+        }
+        if let Some(worker) = self.worker.take() {
+            let _ = worker.join();
+        }
+    }
+}
+
+impl Drop for Lab {
+    fn drop(&mut self) {
+        self.shutdown();
+    }
+}

@@ -1,0 +1,160 @@
+//! What the page asks a run to be: its settings (JSON) → a config document → the library's
+//! checks (`Setup::resolve`, through `fuzzymotiv_io::files::inputs::resolve`), so that every
+//! bad value gets the CLI's message naming its field.
+
+use std::path::Path;
+
+use fuzzymotiv::experiment::config::RawConfig;
+use fuzzymotiv::simulation::room::Room;
+use fuzzymotiv_io::files::inputs::{Loaded, resolve};
+use serde::{Deserialize, Serialize};
+
+use crate::errors::ApiError;
+use crate::limits::{MAX_GENERATIONS, MAX_POPULATION, MAX_ROOMS, MAX_STEPS};
+use crate::rooms::{ROOM_DIR, valid_room_name};
+
+/// The source name of settings in error messages.
+pub const SOURCE: &str = "lab settings";
+
+/// The motivations X = (C, H, O, E) as the page's sliders set them.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotivationSliders {
+    pub curiosity: f64,
+    pub homing: f64,
+    pub orientation: f64,
+    pub energy: f64,
+}
+
+/// A run's settings as the page sends them; every key but the motivations is optional (the
+/// config defaults of docs/model.md).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Settings {
+    /// The run's name (the config's `name`); default "lab".
+    #[serde(default = "default_name")]
+    pub name: String,
+    /// Base seed; default 1.
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    pub motivations: MotivationSliders,
+    /// GA population (`ga.population`); default 30 (the quick preset).
+    #[serde(default = "default_size")]
+    pub population: usize,
+    /// GA generations (`ga.generations`); default 30.
+    #[serde(default = "default_size")]
+    pub generations: usize,
+    /// `robot.motion`: "actions" or "wheels"; default the config's.
+    #[serde(default)]
+    pub motion: Option<String>,
+    /// `trial.steps`; default the config's (1000).
+    #[serde(default)]
+    pub steps: Option<usize>,
+    /// Built-in room names, or rooms saved in the lab (`NAME.toml`); default all five
+    /// built-in rooms.
+    #[serde(default)]
+    pub rooms: Option<Vec<String>>,
+}
+
+fn default_name() -> String {
+    "lab".into()
+}
+fn default_seed() -> u64 {
+    1
+}
+fn default_size() -> usize {
+    30
+}
+
+impl Settings {
+    /// The settings as a config document (TOML), read by the CLI's parser.
+    fn document(&self) -> String {
+        use toml::{Table, Value};
+        let mut doc = Table::new();
+        doc.insert("name".into(), Value::String(self.name.clone()));
+        doc.insert(
+            "seed".into(),
+            Value::Integer(self.seed.min(i64::MAX as u64) as i64),
+        );
+        if let Some(rooms) = &self.rooms {
+            let list = rooms.iter().map(|r| Value::String(r.clone())).collect();
+            doc.insert("rooms".into(), Value::Array(list));
+        }
+        let m = self.motivations;
+        let mut x = Table::new();
+        for (k, v) in [
+            ("curiosity", m.curiosity),
+            ("homing", m.homing),
+            ("orientation", m.orientation),
+            ("energy", m.energy),
+        ] {
+            x.insert(k.into(), Value::Float(v));
+        }
+        doc.insert("motivations".into(), Value::Table(x));
+        let mut ga = Table::new();
+        ga.insert("population".into(), Value::Integer(self.population as i64));
+        ga.insert(
+            "generations".into(),
+            Value::Integer(self.generations as i64),
+        );
+        doc.insert("ga".into(), Value::Table(ga));
+        if let Some(steps) = self.steps {
+            let trial = Table::from_iter([("steps".to_string(), Value::Integer(steps as i64))]);
+            doc.insert("trial".into(), Value::Table(trial));
+        }
+        if let Some(motion) = &self.motion {
+            let robot = Table::from_iter([("motion".to_string(), Value::String(motion.clone()))]);
+            doc.insert("robot".into(), Value::Table(robot));
+        }
+        toml::to_string(&doc).unwrap_or_default()
+    }
+
+    /// The lab's own limits (the library accepts larger runs; a shared server does not).
+    fn check_limits(&self) -> Result<(), ApiError> {
+        let over = |field: &str, got: usize, max: usize| {
+            ApiError::bad(format!(
+                "{SOURCE}: field `{field}`: {got} is more than the lab allows ({max}; run larger experiments with `fuzzymotiv run`)"
+            ))
+        };
+        if self.population > MAX_POPULATION {
+            return Err(over("ga.population", self.population, MAX_POPULATION));
+        }
+        if self.generations > MAX_GENERATIONS {
+            return Err(over("ga.generations", self.generations, MAX_GENERATIONS));
+        }
+        if let Some(steps) = self.steps.filter(|&s| s > MAX_STEPS) {
+            return Err(over("trial.steps", steps, MAX_STEPS));
+        }
+        let rooms = self.rooms.as_deref().unwrap_or_default();
+        if rooms.len() > MAX_ROOMS {
+            return Err(over("rooms", rooms.len(), MAX_ROOMS));
+        }
+        Ok(())
+    }
+
+    /// The rooms must be built-in or saved in the lab: no path reaches outside its directory.
+    fn check_rooms(&self, dir: &Path) -> Result<(), ApiError> {
+        for (i, entry) in self.rooms.iter().flatten().enumerate() {
+            if Room::builtin(entry).is_some() {
+                continue;
+            }
+            let stem = entry.strip_suffix(".toml").unwrap_or("");
+            if !valid_room_name(stem) || !dir.join(ROOM_DIR).join(entry).is_file() {
+                return Err(ApiError::bad(format!(
+                    "{SOURCE}: field `rooms[{i}]`: `{entry}` is neither a built-in room (H, T, L, square, rectangle) nor a room saved in the lab (NAME.toml, see the room list)"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks the settings and resolves them into a config ready to run (room files from
+    /// `DIR/rooms/`).
+    pub fn load(&self, dir: &Path) -> Result<Loaded, ApiError> {
+        self.check_limits()?;
+        self.check_rooms(dir)?;
+        let raw = RawConfig::parse(&self.document(), SOURCE, &[])
+            .map_err(|e| ApiError::bad(e.to_string()))?;
+        Ok(resolve(raw, &dir.join(ROOM_DIR), SOURCE)?)
+    }
+}

@@ -1,0 +1,437 @@
+//! The lab's HTTP API against a server on an ephemeral port: the access guard (token, Host),
+//! bad input (400/413 with the CLI's field-naming messages), a run started, streamed to two
+//! clients and finished, a run cancelled, save, and the same generations as `fuzzymotiv run`.
+
+use std::io::{Read, Write};
+use std::net::{SocketAddr, TcpStream};
+use std::path::Path;
+
+use fuzzymotiv_lab::{Lab, LabOptions};
+use serde_json::{Value, json};
+
+/// An answer: status, head (lower-cased) and body (de-chunked).
+struct Answer {
+    status: u16,
+    head: String,
+    body: String,
+}
+
+impl Answer {
+    fn json(&self) -> Value {
+        serde_json::from_str(&self.body).unwrap_or_else(|e| panic!("{e}: {}", self.body))
+    }
+}
+
+fn unchunk(mut body: &str) -> String {
+    let mut out = String::new();
+    while let Some((size, rest)) = body.split_once("\r\n") {
+        let n = usize::from_str_radix(size.trim(), 16).unwrap_or(0);
+        if n == 0 || rest.len() < n {
+            break;
+        }
+        out.push_str(&rest[..n]);
+        body = rest[n..].trim_start_matches("\r\n");
+    }
+    out
+}
+
+/// One HTTP/1.1 request (connection closed after it) with `extra` header lines.
+fn request(addr: SocketAddr, method: &str, path: &str, extra: &[String], body: &str) -> Answer {
+    let mut s = TcpStream::connect(addr).expect("connect");
+    let mut head = format!("{method} {path} HTTP/1.1\r\nConnection: close\r\n");
+    if !extra.iter().any(|h| h.to_lowercase().starts_with("host:")) {
+        head += &format!("Host: {addr}\r\n");
+    }
+    for h in extra {
+        head += &format!("{h}\r\n");
+    }
+    head += &format!(
+        "Content-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+        body.len()
+    );
+    s.set_read_timeout(Some(std::time::Duration::from_secs(120)))
+        .unwrap();
+    s.write_all(head.as_bytes()).unwrap();
+    // A body the server refuses (413) may be cut short: what it answered is still read.
+    let _ = s.write_all(body.as_bytes());
+    let mut raw = Vec::new();
+    let mut buf = [0u8; 65536];
+    while let Ok(n) = s.read(&mut buf) {
+        if n == 0 {
+            break;
+        }
+        raw.extend_from_slice(&buf[..n]);
+    }
+    let text = String::from_utf8_lossy(&raw).into_owned();
+    let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
+    let head = head.to_lowercase();
+    let status = head[9..12].parse().unwrap();
+    let body = if head.contains("transfer-encoding: chunked") {
+        unchunk(body)
+    } else {
+        body.to_string()
+    };
+    Answer { status, head, body }
+}
+
+/// A lab in a temporary directory, with a client that sends its token.
+struct Client {
+    lab: Lab,
+    _tmp: tempfile::TempDir,
+}
+
+impl Client {
+    fn start() -> Client {
+        let tmp = tempfile::tempdir().unwrap();
+        let mut opts = LabOptions::new(tmp.path().join("lab"));
+        opts.port = 0;
+        opts.threads = Some(2);
+        Client {
+            lab: Lab::start(opts).expect("lab starts"),
+            _tmp: tmp,
+        }
+    }
+    fn auth(&self) -> Vec<String> {
+        vec![format!("x-fuzzymotiv-token: {}", self.lab.token())]
+    }
+    fn get(&self, path: &str) -> Answer {
+        request(self.lab.addr(), "GET", path, &self.auth(), "")
+    }
+    fn post(&self, path: &str, body: &Value) -> Answer {
+        request(
+            self.lab.addr(),
+            "POST",
+            path,
+            &self.auth(),
+            &body.to_string(),
+        )
+    }
+    fn post_raw(&self, path: &str, body: &str) -> Answer {
+        request(self.lab.addr(), "POST", path, &self.auth(), body)
+    }
+}
+
+/// A run of a few seconds: small GA, short trials, two rooms.
+fn small(generations: usize, seed: u64) -> Value {
+    json!({ "name": "t", "seed": seed, "population": 6, "generations": generations,
+            "steps": 100, "rooms": ["H", "square"],
+            "motivations": { "curiosity": 0.5, "homing": 0.3, "orientation": 0.0, "energy": 0.2 } })
+}
+
+/// The events of a run's stream, read to its end: (event, data).
+fn events(c: &Client, id: &str) -> Vec<(String, Value)> {
+    let a = c.get(&format!("/api/runs/{id}/events"));
+    assert_eq!(a.status, 200, "{}", a.body);
+    assert!(a.head.contains("text/event-stream"));
+    let mut out = Vec::new();
+    let mut event = String::new();
+    for line in a.body.lines() {
+        if let Some(e) = line.strip_prefix("event: ") {
+            event = e.to_string();
+        } else if let Some(d) = line.strip_prefix("data: ") {
+            out.push((event.clone(), serde_json::from_str(d).unwrap()));
+        }
+    }
+    out
+}
+
+#[test]
+fn requests_without_the_token_or_with_another_host_are_refused() {
+    let c = Client::start();
+    let addr = c.lab.addr();
+    let none = request(addr, "GET", "/api/runs", &[], "");
+    assert_eq!(none.status, 401);
+    assert!(none.json()["error"].as_str().unwrap().contains("token"));
+    let wrong = request(
+        addr,
+        "GET",
+        "/api/runs",
+        &["x-fuzzymotiv-token: 00".into()],
+        "",
+    );
+    assert_eq!(wrong.status, 401);
+    // DNS rebinding: the right token, another name.
+    let mut rebound = c.auth();
+    rebound.push("Host: evil.example:80".into());
+    assert_eq!(request(addr, "GET", "/api/runs", &rebound, "").status, 403);
+    // The token in the address sets a cookie and leads to the page without it.
+    let first = request(addr, "GET", &format!("/?token={}", c.lab.token()), &[], "");
+    assert_eq!(first.status, 303);
+    assert!(first.head.contains("set-cookie: fuzzymotiv_lab_"));
+    assert!(
+        first.head.lines().any(|l| l.trim() == "location: /"),
+        "{}",
+        first.head
+    );
+    let cookie = format!("Cookie: fuzzymotiv_lab_{}={}", addr.port(), c.lab.token());
+    let page = request(addr, "GET", "/", &[cookie], "");
+    assert_eq!(page.status, 200);
+    assert!(page.body.contains("<title>fuzzymotiv lab</title>"));
+    assert!(
+        page.head
+            .contains("content-security-policy: default-src 'self'")
+    );
+    assert!(c.get("/lab.js").body.contains("EventSource"));
+}
+
+#[test]
+fn bad_input_gets_400_or_413_naming_the_field() {
+    let c = Client::start();
+    let a = c.post_raw("/api/runs", "{\"motivations\": ");
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .starts_with("request body")
+    );
+    let mut s = small(3, 1);
+    s["population"] = json!("many");
+    let a = c.post("/api/runs", &s);
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `population`"),
+        "{}",
+        a.body
+    );
+    let mut s = small(3, 1);
+    s["population"] = json!(100000);
+    let e = c.post("/api/runs", &s).json()["error"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("lab settings: field `ga.population`"), "{e}");
+    let mut s = small(3, 1);
+    s["motivations"]["curiosity"] = json!(0.9);
+    let a = c.post("/api/runs", &s);
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("lab settings: field `motivations"),
+        "{}",
+        a.body
+    );
+    let mut s = small(3, 1);
+    s["rooms"] = json!(["../../etc/passwd"]);
+    assert!(
+        c.post("/api/runs", &s).json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `rooms[0]`")
+    );
+    let big = format!("{{\"name\": \"{}\"}}", "x".repeat(100_000));
+    assert_eq!(c.post_raw("/api/runs", &big).status, 413);
+    // A drawn room with two corners: the text of `rooms --check`, naming the drawn room.
+    let room = json!({ "room": { "name": "bad", "outline": [[0, 0], [500, 0]],
+                       "home": { "x": 100, "y": 100, "heading_deg": 0 } } });
+    let a = c.post("/api/rooms", &room);
+    assert_eq!(a.status, 400);
+    let p = a.json();
+    assert_eq!(p["field"], "outline");
+    assert!(
+        p["error"]
+            .as_str()
+            .unwrap()
+            .starts_with("drawn room `bad`: field `outline`: needs at least 3 points"),
+        "{p}"
+    );
+    assert_eq!(c.get("/api/runs/nope").status, 404);
+    assert_eq!(c.get("/api/compare?a=x").status, 400);
+}
+
+#[test]
+fn a_drawn_room_is_saved_once_and_used_by_a_run() {
+    let c = Client::start();
+    let room = json!({ "save": true, "room": { "name": "box", "outline": [[0, 0], [800, 0], [800, 600], [0, 600]],
+                       "home": { "x": 200, "y": 300, "heading_deg": 0 } } });
+    let a = c.post("/api/rooms", &room);
+    assert_eq!(a.status, 200, "{}", a.body);
+    assert_eq!(a.json()["entry"], "box.toml");
+    assert!(c.lab.dir().join("rooms/box.toml").is_file());
+    assert_eq!(
+        c.post("/api/rooms", &room).status,
+        200,
+        "the same room again is fine"
+    );
+    let mut other = room.clone();
+    other["room"]["home"]["x"] = json!(300);
+    assert_eq!(
+        c.post("/api/rooms", &other).status,
+        409,
+        "another room of that name is kept"
+    );
+    let list = c.get("/api/rooms").json();
+    assert!(
+        list.as_array()
+            .unwrap()
+            .iter()
+            .any(|r| r["entry"] == "box.toml")
+    );
+    let mut s = small(2, 3);
+    s["rooms"] = json!(["H", "box.toml"]);
+    let id = c.post("/api/runs", &s).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let end = events(&c, &id).pop().unwrap();
+    assert_eq!(end.1["status"], "finished", "{}", end.1);
+}
+
+#[test]
+fn two_clients_stream_a_run_and_a_long_run_is_cancelled() {
+    let c = Client::start();
+    let a = c.post("/api/runs", &small(4, 1));
+    assert_eq!(a.status, 201, "{}", a.body);
+    let id = a.json()["id"].as_str().unwrap().to_string();
+    let long = c.post("/api/runs", &small(400, 2)).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let list = c.get("/api/runs").json();
+    let queued = list
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["id"] == long.as_str())
+        .unwrap();
+    // Waiting behind the first run (position 1 or 2, as the worker may not have taken it yet).
+    assert_eq!(queued["status"], "queued");
+    assert!(
+        matches!(queued["queue_position"].as_u64(), Some(1 | 2)),
+        "{queued}"
+    );
+    let (one, two) = std::thread::scope(|s| {
+        let h = s.spawn(|| events(&c, &id));
+        (events(&c, &id), h.join().unwrap())
+    });
+    assert_eq!(one, two, "both clients see the same events");
+    let gens: Vec<_> = one.iter().filter(|(e, _)| e == "generation").collect();
+    assert_eq!(gens.len(), 4);
+    assert!(one.iter().any(|(e, _)| e == "paths"));
+    let (end, data) = one.last().unwrap();
+    assert_eq!(
+        (end.as_str(), data["status"].as_str()),
+        ("end", Some("finished"))
+    );
+    assert_eq!(data["result"]["rows"].as_array().unwrap().len(), 2);
+    assert!(
+        c.lab
+            .dir()
+            .join("runs")
+            .join(&id)
+            .join("summary.json")
+            .is_file()
+    );
+    // The long run: wait for its first generation, cancel it from this client.
+    let mut stream = TcpStream::connect(c.lab.addr()).unwrap();
+    let head = format!(
+        "GET /api/runs/{long}/events HTTP/1.1\r\nHost: {}\r\nx-fuzzymotiv-token: {}\r\n\r\n",
+        c.lab.addr(),
+        c.lab.token()
+    );
+    stream.write_all(head.as_bytes()).unwrap();
+    let mut seen = String::new();
+    let mut buf = [0u8; 4096];
+    while !seen.contains("event: generation") {
+        let n = stream.read(&mut buf).unwrap();
+        assert!(n > 0, "stream ended early: {seen}");
+        seen += &String::from_utf8_lossy(&buf[..n]);
+    }
+    let a = c.post(&format!("/api/runs/{long}/cancel"), &json!({}));
+    assert_eq!(a.status, 200);
+    let end = events(&c, &long).pop().unwrap();
+    assert_eq!(end.1["status"], "stopped");
+    let gens = c.get(&format!("/api/runs/{long}")).json()["generations"]
+        .as_array()
+        .unwrap()
+        .len();
+    assert!(gens < 400, "stopped early ({gens} generations)");
+    let runs = c.lab.dir().join("runs");
+    assert!(!runs.join(&long).exists() && !runs.join(format!("{long}.partial")).exists());
+}
+
+#[test]
+fn a_lab_run_gives_the_generations_of_fuzzymotiv_run_and_saves_as_a_run_directory() {
+    let c = Client::start();
+    let id = c.post("/api/runs", &small(3, 5)).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert_eq!(events(&c, &id).pop().unwrap().1["status"], "finished");
+    // "Download config", then what `fuzzymotiv run config.toml` does with it.
+    let config = c.get(&format!("/api/runs/{id}/config.toml"));
+    assert_eq!(config.status, 200);
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("config.toml");
+    std::fs::write(&path, &config.body).unwrap();
+    let loaded = fuzzymotiv_io::files::inputs::load_config(Some(&path), &[], None).unwrap();
+    let out = tmp.path().join("run");
+    let progress = fuzzymotiv_io::pipeline::progress::NoProgress;
+    fuzzymotiv_io::pipeline::run_dir::execute(&loaded, &out, &progress, false, None).unwrap();
+    let lab_dir = c.lab.dir().join("runs").join(&id);
+    let read = |p: &Path| std::fs::read(p).unwrap();
+    assert_eq!(
+        read(&lab_dir.join("generations.csv")),
+        read(&out.join("generations.csv"))
+    );
+    assert_eq!(
+        read(&lab_dir.join("population.json")),
+        read(&out.join("population.json"))
+    );
+    // Save as run directory: once; again is fine; another run is never put there.
+    let a = c.post(&format!("/api/runs/{id}/save"), &json!({ "name": "mine" }));
+    assert_eq!(a.status, 200, "{}", a.body);
+    let saved = c.lab.dir().join("saved/mine");
+    assert_eq!(
+        read(&saved.join("generations.csv")),
+        read(&out.join("generations.csv"))
+    );
+    assert_eq!(
+        c.post(&format!("/api/runs/{id}/save"), &json!({ "name": "mine" }))
+            .status,
+        200
+    );
+    let other = c.post("/api/runs", &small(2, 6)).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert_eq!(events(&c, &other).pop().unwrap().1["status"], "finished");
+    let a = c.post(
+        &format!("/api/runs/{other}/save"),
+        &json!({ "name": "mine" }),
+    );
+    assert_eq!(a.status, 409, "{}", a.body);
+    assert_eq!(
+        c.post(
+            &format!("/api/runs/{other}/save"),
+            &json!({ "name": "../x" })
+        )
+        .status,
+        400
+    );
+    // Compare the two, with the library's statistics.
+    let cmp = c.get(&format!("/api/compare?a={id}&b={other}")).json();
+    assert_eq!(cmp["tests"].as_array().unwrap().len(), 4);
+    assert_eq!(cmp["tests"][0]["rooms"], 2);
+    // A new lab on the same directory lists the finished runs.
+    let dir = c.lab.dir().to_path_buf();
+    let Client { lab, _tmp: keep } = c;
+    lab.stop();
+    let mut opts = LabOptions::new(dir);
+    opts.port = 0;
+    let again = Lab::start(opts).unwrap();
+    let list = request(
+        again.addr(),
+        "GET",
+        "/api/runs",
+        &[format!("x-fuzzymotiv-token: {}", again.token())],
+        "",
+    );
+    assert!(list.body.contains(&id) && list.body.contains(&other));
+    drop(keep);
+}
