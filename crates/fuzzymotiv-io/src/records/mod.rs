@@ -13,10 +13,12 @@
 //! | `best_genome.json` | [`BestGenome`] |
 //! | `generations.csv` | [`GenerationRow`] |
 //! | `recognition.csv` | [`RecognitionTable`] |
+//! | `test_runs.csv` | [`test_runs::TestRunRow`] |
 //! | reproduce `summary.json` | [`StudySummary`] (ablation: [`AblationSummary`]) |
 //! | sweep `plan.jsonl`, `jobs/ID/job.json` | [`Job`] |
 //! | sweep `results.csv` | [`SweepResults`] |
 //! | sweep `aggregate.csv` | [`AggregateRow`] |
+//! | `compare.csv` | [`compare::CompareRow`] |
 
 use std::fmt;
 use std::path::Path;
@@ -34,7 +36,9 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::files::error::CliError;
 
 pub mod checkpoint;
+pub mod compare;
 pub mod context;
+pub mod test_runs;
 
 /// The `program` field of every JSON file.
 pub const PROGRAM: &str = "fuzzymotiv";
