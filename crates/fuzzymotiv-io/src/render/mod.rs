@@ -4,6 +4,7 @@
 //! PNG beside them ([`figures`]), the fitness terms in words ([`terms`]) and the self-contained
 //! report page ([`report`]).
 
+pub mod compare;
 pub mod figures;
 pub mod report;
 pub mod study;
