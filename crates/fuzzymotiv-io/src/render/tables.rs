@@ -361,7 +361,7 @@ fn room_claims_html(claims: &[ClaimRecord]) -> String {
             };
             let _ = writeln!(
                 html,
-                "<tr>{claim}<td>{}</td><td>{:+.1} [{:+.1}, {:+.1}]</td><td>{:.4}</td><td>{:.4}</td><td class=\"{}\">{}</td></tr>",
+                "<tr>{claim}<td class=\"left\">{}</td><td>{:+.1} [{:+.1}, {:+.1}]</td><td>{:.4}</td><td>{:.4}</td><td class=\"{}\">{}</td></tr>",
                 esc(&r.room),
                 r.difference,
                 r.ci_low,
