@@ -694,6 +694,10 @@ pub struct SettingSummary {
 pub struct ClaimRecord {
     /// The claim in words.
     pub claim: String,
+    /// Fig. 6's checks over seeds, one per setting (none for the comparisons and in files
+    /// written before them).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub curves: Vec<CurveStats>,
     /// The numbers behind the verdict.
     pub evidence: String,
     /// Whether the study shows it: for a comparison, its verdict is "holds".
@@ -702,10 +706,6 @@ pub struct ClaimRecord {
     /// the checks of Fig. 6's curves and in files written before them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stats: Option<ClaimStats>,
-    /// Fig. 6's checks over seeds, one per setting (none for the comparisons and in files
-    /// written before them).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub curves: Vec<CurveStats>,
 }
 
 /// One setting's test of a Fig. 6 claim over seeds: the first generation's mean F against the
