@@ -11,7 +11,7 @@ use clap::{Parser, Subcommand};
 use fuzzymotiv_io::files::error::ErrorKind;
 use fuzzymotiv_io::note;
 
-use crate::commands::{bench, claims, fuzzy, lab, replay, reproduce, rooms, run, sweep};
+use crate::commands::{bench, claims, compare, fuzzy, lab, replay, reproduce, rooms, run, sweep};
 
 /// Evolutionary behaviour learning for a simulated Khepera robot under fuzzy motivations.
 #[derive(Parser)]
@@ -36,6 +36,9 @@ enum Command {
     /// Recompute a finished study's claims from its records (summary.json), e.g. at another
     /// significance level: effect, interval, p-value, verdict and minimum detectable difference.
     Claims(claims::ClaimsArgs),
+    /// Compare two runs (over their test runs), two studies or two sweep settings (over seeds
+    /// or replicates), per room and overall: means, difference, interval and p-value.
+    Compare(compare::CompareArgs),
     /// Evaluate the TSK fuzzy fitness F for motivations X and fitness values Y.
     Fuzzy(fuzzy::FuzzyArgs),
     /// List the built-in rooms and validate room files.
@@ -60,6 +63,7 @@ fn main() -> ExitCode {
         Command::Reproduce(args) => reproduce::reproduce(args),
         Command::Replay(args) => replay::replay(args),
         Command::Claims(args) => claims::claims_command(args),
+        Command::Compare(args) => compare::compare_command(args),
         Command::Fuzzy(args) => fuzzy::fuzzy(args),
         Command::Rooms(args) => rooms::rooms(args),
         Command::Bench(args) => bench::bench(args),

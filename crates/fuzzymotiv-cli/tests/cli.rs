@@ -161,6 +161,7 @@ fn results_do_not_depend_on_thread_count() {
         "generations.csv",
         "best_genome.json",
         "recognition.csv",
+        "test_runs.csv",
         "table.md",
     ] {
         assert_eq!(

@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod claims;
+pub mod compare;
 pub mod fuzzy;
 pub mod lab;
 pub mod replay;

@@ -167,7 +167,7 @@ pub fn is_ours(dir: &Path) -> bool {
 
 /// The names of the files our outputs write (besides `*.svg` and `*.png` figures and `.tmp*`
 /// temporary files): anything else in a directory about to be replaced is the user's.
-const OUR_FILES: [&str; 27] = [
+const OUR_FILES: [&str; 30] = [
     "config.resolved.toml",
     "generations.csv",
     "best_genome.json",
@@ -195,6 +195,9 @@ const OUR_FILES: [&str; 27] = [
     "results.csv",
     "aggregate.csv",
     "aggregate.md",
+    "test_runs.csv",
+    "compare.md",
+    "compare.csv",
 ];
 
 /// The files under `dir` (recursively; a symbolic link counts as one, never followed) that none

@@ -3,6 +3,7 @@
 //! sweep's plan ([`sweep_plan`]), jobs ([`sweep_jobs`]) and merge ([`sweep_merge`]), runs or
 //! jobs side by side ([`lanes`]), and the progress all of it reports ([`progress`]).
 
+pub mod compare;
 pub mod lanes;
 pub mod progress;
 pub mod run_dir;

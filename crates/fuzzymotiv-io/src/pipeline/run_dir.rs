@@ -17,6 +17,7 @@ use crate::files::inputs::{Loaded, resolved_toml, run_identity};
 use crate::pipeline::progress::RunProgress;
 use crate::records::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
 use crate::records::context::RenderContext;
+use crate::records::test_runs;
 use crate::records::{
     BestGenome, Finished, GenerationRow, RecognitionTable, RunSummary, read_json, to_csv, to_json,
 };
@@ -260,6 +261,10 @@ fn write_run(
         to_json(&BestGenome::of(exp, &done.outcome.evolutions)),
     )?;
     staged.write("recognition.csv", RecognitionTable::of(exp, done).to_csv())?;
+    staged.write(
+        test_runs::TEST_RUNS,
+        test_runs::to_text(&test_runs::test_runs(done)),
+    )?;
     staged.write(
         "table.md",
         table_markdown(&done.rows) + &provenance_line(&ctx),

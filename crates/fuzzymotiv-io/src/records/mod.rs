@@ -13,10 +13,12 @@
 //! | `best_genome.json` | [`BestGenome`] |
 //! | `generations.csv` | [`GenerationRow`] |
 //! | `recognition.csv` | [`RecognitionTable`] |
+//! | `test_runs.csv` | [`test_runs::TestRunRow`] |
 //! | reproduce `summary.json` | [`StudySummary`] (ablation: [`AblationSummary`]) |
 //! | sweep `plan.jsonl`, `jobs/ID/job.json` | [`Job`] |
 //! | sweep `results.csv` | [`SweepResults`] |
 //! | sweep `aggregate.csv` | [`AggregateRow`] |
+//! | `compare.csv` | [`compare::CompareRow`] |
 
 use std::fmt;
 use std::path::Path;
@@ -34,7 +36,9 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::files::error::CliError;
 
 pub mod checkpoint;
+pub mod compare;
 pub mod context;
+pub mod test_runs;
 
 /// The `program` field of every JSON file.
 pub const PROGRAM: &str = "fuzzymotiv";
@@ -690,6 +694,10 @@ pub struct SettingSummary {
 pub struct ClaimRecord {
     /// The claim in words.
     pub claim: String,
+    /// Fig. 6's checks over seeds, one per setting (none for the comparisons and in files
+    /// written before them).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub curves: Vec<CurveStats>,
     /// The numbers behind the verdict.
     pub evidence: String,
     /// Whether the study shows it: for a comparison, its verdict is "holds".
@@ -698,6 +706,31 @@ pub struct ClaimRecord {
     /// the checks of Fig. 6's curves and in files written before them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stats: Option<ClaimStats>,
+}
+
+/// One setting's test of a Fig. 6 claim over seeds: the first generation's mean F against the
+/// band 0.05–0.15 (two one-sided sign-flip tests), or the last generation's mean F against the
+/// first's (paired by seed).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CurveStats {
+    /// The setting.
+    pub setting: String,
+    /// Seeds.
+    pub seeds: usize,
+    /// What `value` is, in words.
+    pub statistic: String,
+    /// The mean over seeds of the statistic.
+    pub value: f64,
+    /// Lower bound of its 95 % percentile bootstrap interval.
+    pub ci_low: f64,
+    /// Upper bound of the interval.
+    pub ci_high: f64,
+    /// The test's p-value (see `statistic`).
+    pub p: f64,
+    /// "holds", "opposite" or "not significant" at `alpha`.
+    pub verdict: String,
+    /// The significance level of the verdict.
+    pub alpha: f64,
 }
 
 /// The statistics of a comparison claim over seeds: see `fuzzymotiv::statistics` for the

@@ -4,6 +4,7 @@
 //! PNG beside them ([`figures`]), the fitness terms in words ([`terms`]), the self-contained
 //! report page ([`report`]) and rollout frames and GIFs drawn in pure Rust ([`frames`]).
 
+pub mod compare;
 pub mod figures;
 pub mod frames;
 pub mod report;

@@ -748,6 +748,10 @@ fn files_list() -> String {
             "recognition.csv",
             "per room: test runs, correct answers, confusion counts",
         ),
+        (
+            "test_runs.csv",
+            "every test run: room, % exploration, recognised or not, % battery, % homing (fuzzymotiv compare reads it)",
+        ),
         ("table.md", "the per-room table"),
         ("summary.json", "headline numbers and wall time"),
         (

@@ -6,8 +6,8 @@ use fuzzymotiv::statistics::{self, Expect, Settings, Verdict};
 
 use crate::records::context::RenderContext;
 use crate::records::{
-    ClaimRecord, ClaimStats, Finished, GenerationStat, RoomClaimStats, RoomRow, SeedSummary,
-    SettingSummary, TableRow,
+    ClaimRecord, ClaimStats, CurveStats, Finished, GenerationStat, RoomClaimStats, RoomRow,
+    SeedSummary, SettingSummary, TableRow,
 };
 use crate::render::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
 
@@ -438,6 +438,7 @@ fn compare_claim(
         holds: stats.as_ref().is_some_and(|s| s.verdict == "holds"),
         evidence,
         stats,
+        curves: Vec::new(),
     }
 }
 
@@ -482,9 +483,9 @@ fn room_claims(
         .collect()
 }
 
-/// The mean over seeds of the first (or the last) generation's mean F.
-fn mean_f(setting: &SettingSummary, last: bool) -> f64 {
-    let v: Vec<f64> = setting
+/// Per seed, the first (or the last) generation's mean F.
+fn seed_mean_f(setting: &SettingSummary, last: bool) -> Vec<f64> {
+    setting
         .per_seed
         .iter()
         .map(|s| {
@@ -494,20 +495,116 @@ fn mean_f(setting: &SettingSummary, last: bool) -> f64 {
                 s.first_generation.mean
             }
         })
-        .collect();
-    mean_std(&v).0
+        .collect()
+}
+
+/// The mean over seeds of the first (or the last) generation's mean F.
+fn mean_f(setting: &SettingSummary, last: bool) -> f64 {
+    mean_std(&seed_mean_f(setting, last)).0
+}
+
+/// The band Fig. 6 puts the first generation's mean F in ("about 0.1").
+pub const FIRST_F_BAND: (f64, f64) = (0.05, 0.15);
+
+/// The one-sided p of "mean(a) > mean(b)" from the paired two-sided sign-flip test: half the
+/// two-sided p when the observed difference is positive (the null distribution is symmetric),
+/// else 1 (conservative).
+fn one_sided_p(a: &[f64], b: &[f64], options: &Settings) -> Option<(statistics::Comparison, f64)> {
+    let c = statistics::paired(a, b, options).ok()?;
+    let p = if c.difference > 0.0 { c.p / 2.0 } else { 1.0 };
+    Some((c, p))
+}
+
+/// Whether the mean of `x` lies inside `band`, over seeds: two one-sided sign-flip tests
+/// (mean above the lower bound, mean below the upper; p the larger of the two); "holds" when
+/// p < α, "opposite" when the mean lies outside the band and the two-sided test against the
+/// nearer bound gives p < α. Returns the mean, its interval, p and the verdict.
+fn band_test(
+    x: &[f64],
+    band: (f64, f64),
+    options: &Settings,
+) -> Option<(f64, f64, f64, f64, Verdict)> {
+    let (lo, hi) = (vec![band.0; x.len()], vec![band.1; x.len()]);
+    let (above, p_above) = one_sided_p(x, &lo, options)?;
+    let (_, p_below) = one_sided_p(&hi, x, options)?;
+    let p = p_above.max(p_below);
+    let mean = above.mean_a;
+    let outside = if mean < band.0 {
+        Some(above.p)
+    } else if mean > band.1 {
+        statistics::paired(x, &hi, options).ok().map(|c| c.p)
+    } else {
+        None
+    };
+    let verdict = if p < options.alpha {
+        Verdict::Holds
+    } else if outside.is_some_and(|q| q < options.alpha) {
+        Verdict::Opposite
+    } else {
+        Verdict::NotSignificant
+    };
+    Some((
+        mean,
+        above.ci_low + band.0,
+        above.ci_high + band.0,
+        p,
+        verdict,
+    ))
+}
+
+/// One setting's first-generation mean F against [`FIRST_F_BAND`] ([`band_test`]).
+fn first_f_stats(setting: &SettingSummary, options: &Settings) -> Option<CurveStats> {
+    let x = seed_mean_f(setting, false);
+    let (value, ci_low, ci_high, p, verdict) = band_test(&x, FIRST_F_BAND, options)?;
+    Some(CurveStats {
+        setting: setting.name.clone(),
+        seeds: x.len(),
+        statistic:
+            "first-generation mean F; p: two one-sided sign-flip tests against 0.05 and 0.15".into(),
+        value,
+        ci_low,
+        ci_high,
+        p,
+        verdict: verdict.label().into(),
+        alpha: options.alpha,
+    })
+}
+
+/// One setting's rise of the mean F, last against first generation, paired by seed.
+fn rise_stats(setting: &SettingSummary, options: &Settings) -> Option<CurveStats> {
+    let (last, first) = (seed_mean_f(setting, true), seed_mean_f(setting, false));
+    let c = statistics::paired(&last, &first, options).ok()?;
+    Some(CurveStats {
+        setting: setting.name.clone(),
+        seeds: last.len(),
+        statistic: "last − first generation mean F; p: sign-flip test over seeds".into(),
+        value: c.difference,
+        ci_low: c.ci_low,
+        ci_high: c.ci_high,
+        p: c.p,
+        verdict: c.verdict(Expect::Higher).label().into(),
+        alpha: options.alpha,
+    })
 }
 
 /// The paper's claims from a study's records (`settings[0]` high curiosity, `settings[1]`
 /// low, as in `summary.json`): high vs low curiosity, each tested at level `alpha` (paired
-/// over seeds, see `fuzzymotiv::statistics`), and Fig. 6's fitness curves on means over
-/// seeds.
+/// over seeds, see `fuzzymotiv::statistics`), and Fig. 6's fitness curves: `holds` on the
+/// means over seeds, with each setting's test over seeds in `curves`.
 pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
     let (hc, lc) = (&settings[0], &settings[1]);
     let first = [mean_f(hc, false), mean_f(lc, false)];
     let last = [mean_f(hc, true), mean_f(lc, true)];
     let compare = |claim: &str, column: Column, expect: Expect| {
         compare_claim(settings, claim, column, expect, alpha)
+    };
+    let options = Settings {
+        alpha,
+        seed: hc.per_seed.first().map_or(0, |s| s.seed),
+        ..Settings::default()
+    };
+    let curves = |test: fn(&SettingSummary, &Settings) -> Option<CurveStats>| {
+        settings.iter().filter_map(|s| test(s, &options)).collect()
     };
     vec![
         compare(
@@ -535,6 +632,7 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
             holds: first.iter().all(|f| (0.05..=0.15).contains(f)),
             evidence: format!("high {:.3}, low {:.3}", first[0], first[1]),
             stats: None,
+            curves: curves(first_f_stats),
         },
         ClaimRecord {
             claim: "mean F rises over the generations".into(),
@@ -544,13 +642,32 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
                 first[0], last[0], first[1], last[1]
             ),
             stats: None,
+            curves: curves(rise_stats),
         },
     ]
 }
 
 #[cfg(test)]
 mod tests {
-    use super::quantile;
+    use super::{FIRST_F_BAND, Settings, Verdict, band_test, quantile};
+
+    /// Fig. 6's "about 0.1" over seeds: five seeds inside the band give the one-sided p 1/32 on
+    /// both sides (holds at 0.05); five above it cannot show the opposite (two-sided 1/16), six
+    /// can (1/32); a mean inside the band with a seed outside cannot hold.
+    #[test]
+    fn first_generation_band_is_tested_over_seeds() {
+        let o = Settings::default();
+        let (mean, lo, hi, p, v) =
+            band_test(&[0.1, 0.11, 0.09, 0.1, 0.12], FIRST_F_BAND, &o).unwrap();
+        assert!((mean - 0.104).abs() < 1e-12 && lo <= mean && mean <= hi);
+        assert_eq!((p, v), (1.0 / 32.0, Verdict::Holds));
+        let v5 = band_test(&[0.3; 5], FIRST_F_BAND, &o).unwrap().4;
+        assert_eq!(v5, Verdict::NotSignificant);
+        let (_, _, _, p6, v6) = band_test(&[0.3; 6], FIRST_F_BAND, &o).unwrap();
+        assert_eq!((p6, v6), (1.0, Verdict::Opposite));
+        let v = band_test(&[0.1, 0.1, 0.1, 0.1, 0.01], FIRST_F_BAND, &o).unwrap();
+        assert_eq!(v.4, Verdict::NotSignificant, "{v:?}");
+    }
 
     /// The study's fitness figure's medians and quartiles over seeds (finding 8): linear
     /// interpolation between order statistics.

@@ -258,7 +258,30 @@ pub fn claims_table(claims: &[ClaimRecord], prov: &Provenance) -> (String, Strin
         );
     }
     md.push_str(&room_claims_md(claims));
+    md.push_str(&curve_claims_md(claims));
     (md, csv)
+}
+
+/// What the Fig. 6 rows' tests are, for claims.md and the report.
+const CURVES_METHOD: &str = "Fig. 6 over seeds, per setting (the verdict column above is the check on the means): the first generation's mean F lies in 0.05–0.15 when two one-sided sign-flip tests (mean above 0.05, mean below 0.15; one-sided p = half the two-sided p on the observed side, else 1) both give p < α, p being the larger (\"opposite\": outside the band, with the two-sided test against the nearer bound at p < α); the rise is the last minus the first generation's mean F, paired by seed (two-sided sign-flip test). Intervals: 95 % percentile bootstrap over seeds.";
+
+/// The Fig. 6 checks over seeds as a Markdown table (empty without any).
+fn curve_claims_md(claims: &[ClaimRecord]) -> String {
+    let mut md = format!(
+        "\n{CURVES_METHOD}\n\n| claim | setting | value [95 % CI] | p | verdict |\n|---|---|---|---|---|\n"
+    );
+    let mut any = false;
+    for c in claims {
+        for r in &c.curves {
+            any = true;
+            let _ = writeln!(
+                md,
+                "| {} | {} | {:.3} [{:.3}, {:.3}] | {:.4} | {} |",
+                c.claim, r.setting, r.value, r.ci_low, r.ci_high, r.p, r.verdict
+            );
+        }
+    }
+    if any { md } else { String::new() }
 }
 
 /// The per-room comparisons as a Markdown table (empty without any).
@@ -280,24 +303,109 @@ fn room_claims_md(claims: &[ClaimRecord]) -> String {
     if any { md } else { String::new() }
 }
 
-/// The claims as an HTML table for the report page.
+/// The claims as HTML for the report page: the claims with their statistics, the per-room
+/// comparisons (Holm-adjusted) and Fig. 6's checks over seeds.
 pub fn claims_html(claims: &[ClaimRecord]) -> String {
     let mut html = String::from(
         "<h2 id=\"claims\">The paper's claims</h2>\n<table><tr><th>claim</th><th>verdict</th><th>high − low [95 % CI]</th><th>p</th><th>MDD</th><th>evidence (means over rooms and seeds)</th></tr>\n",
     );
     for c in claims {
         let [diff, p, mdd] = claim_cells(c);
+        let v = verdict(c);
         let _ = writeln!(
             html,
-            "<tr><td>{}</td><td>{}</td><td>{diff}</td><td>{p}</td><td>{mdd}</td><td>{}</td></tr>",
+            "<tr><td class=\"left\">{}</td><td class=\"{}\">{v}</td><td>{diff}</td><td>{p}</td><td>{mdd}</td><td>{}</td></tr>",
             esc(&c.claim),
-            verdict(c),
+            verdict_class(v),
             esc(&c.evidence)
         );
     }
-    let _ = writeln!(html, "<p>{}</p>", esc(&claims_method(claims)));
     html.push_str("</table>\n");
+    let _ = writeln!(
+        html,
+        "<p class=\"caption\">{}</p>",
+        esc(&claims_method(claims))
+    );
+    html.push_str(&room_claims_html(claims));
+    html.push_str(&curve_claims_html(claims));
     html
+}
+
+/// The CSS class of a verdict's cell.
+fn verdict_class(v: &str) -> &'static str {
+    match v {
+        "holds" => "verdict-holds",
+        "opposite" | "fails" => "verdict-opposite",
+        _ => "verdict-ns",
+    }
+}
+
+/// The per-room comparisons as an HTML table (empty without any).
+fn room_claims_html(claims: &[ClaimRecord]) -> String {
+    let mut html = String::from(
+        "<h3 id=\"claims-rooms\">Per room</h3>\n<p>Exploratory: each claim tested in every room alone, its p-values Holm-adjusted over the rooms (family-wise error rate α), the verdict on the adjusted p.</p>\n<table><tr><th>claim</th><th>room</th><th>high − low [95 % CI]</th><th>p</th><th>Holm p</th><th>verdict</th></tr>\n",
+    );
+    let mut any = false;
+    for c in claims {
+        let rooms = c.stats.iter().flat_map(|s| &s.rooms).collect::<Vec<_>>();
+        for (k, r) in rooms.iter().enumerate() {
+            any = true;
+            let claim = if k == 0 {
+                format!(
+                    "<td class=\"left\" rowspan=\"{}\">{}</td>",
+                    rooms.len(),
+                    esc(&c.claim)
+                )
+            } else {
+                String::new()
+            };
+            let _ = writeln!(
+                html,
+                "<tr>{claim}<td class=\"left\">{}</td><td>{:+.1} [{:+.1}, {:+.1}]</td><td>{:.4}</td><td>{:.4}</td><td class=\"{}\">{}</td></tr>",
+                esc(&r.room),
+                r.difference,
+                r.ci_low,
+                r.ci_high,
+                r.p,
+                r.p_holm,
+                verdict_class(&r.verdict),
+                r.verdict
+            );
+        }
+    }
+    html.push_str("</table>\n");
+    if any { html } else { String::new() }
+}
+
+/// Fig. 6's checks over seeds as an HTML table (empty without any).
+fn curve_claims_html(claims: &[ClaimRecord]) -> String {
+    let mut html = String::from(
+        "<h3 id=\"claims-fig6\">Fig. 6 over seeds</h3>\n<table><tr><th>claim</th><th>setting</th><th>value [95 % CI]</th><th>p</th><th>verdict</th></tr>\n",
+    );
+    let mut any = false;
+    for c in claims {
+        for r in &c.curves {
+            any = true;
+            let _ = writeln!(
+                html,
+                "<tr><td class=\"left\">{}</td><td>{}</td><td>{:.3} [{:.3}, {:.3}]</td><td>{:.4}</td><td class=\"{}\">{}</td></tr>",
+                esc(&c.claim),
+                esc(&r.setting),
+                r.value,
+                r.ci_low,
+                r.ci_high,
+                r.p,
+                verdict_class(&r.verdict),
+                r.verdict
+            );
+        }
+    }
+    let _ = writeln!(
+        html,
+        "</table>\n<p class=\"caption\">{}</p>",
+        esc(CURVES_METHOD)
+    );
+    if any { html } else { String::new() }
 }
 
 /// The ablation table: one row per variant, one column per claim, as (Markdown, CSV).

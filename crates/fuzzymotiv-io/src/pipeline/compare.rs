@@ -1,0 +1,396 @@
+//! `fuzzymotiv compare A B`: two outputs of the same kind and rooms — two run directories (over
+//! their test runs, `test_runs.csv`), two studies (over seeds) or settings of sweeps (over
+//! replicates) — read from their records, checked, and compared setting by setting
+//! ([`crate::render::compare`]): `compare.md`, `compare.csv` and `compare.svg`.
+
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::statistics::Settings;
+
+use crate::files::error::CliError;
+use crate::records::compare::{self as compare_csv, CompareRow};
+use crate::records::{RunSummary, StudySummary, SweepResults, TableRow, read_json, test_runs};
+use crate::render::compare::{Group, Unit, compare_groups, compare_md, compare_svg, pairing};
+
+/// What an output directory is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// `fuzzymotiv run`: compared over its test runs.
+    Run,
+    /// `fuzzymotiv reproduce`: compared over seeds, setting by setting.
+    Study,
+    /// A merged sweep: compared over a setting's replicates.
+    Sweep,
+}
+
+impl Kind {
+    /// The kind in words.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Run => "a run directory",
+            Kind::Study => "a study directory (reproduce)",
+            Kind::Sweep => "a sweep directory",
+        }
+    }
+
+    /// What one value of a sample is.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Kind::Run => "test runs",
+            Kind::Study => "seeds",
+            Kind::Sweep => "replicates",
+        }
+    }
+}
+
+/// One output, read: its kind, rooms and settings.
+#[derive(Debug, Clone)]
+pub struct Side {
+    /// The directory.
+    pub dir: PathBuf,
+    /// Its kind.
+    pub kind: Kind,
+    /// Its rooms, in order.
+    pub rooms: Vec<String>,
+    /// Its settings (a run has one).
+    pub groups: Vec<Group>,
+}
+
+/// Reads an output directory for a comparison; `which` ("A" or "B") names it in errors.
+pub fn load(dir: &Path, which: &str) -> Result<Side, CliError> {
+    let at = || format!("{which} ({})", dir.display());
+    if !dir.is_dir() {
+        return Err(CliError::input(format!(
+            "{}: not a directory; give a run, study or sweep directory",
+            at()
+        )));
+    }
+    if dir.join("plan.jsonl").is_file() {
+        return load_sweep(dir, &at());
+    }
+    let summary = dir.join("summary.json");
+    if !summary.is_file() {
+        return Err(CliError::input(format!(
+            "{}: no summary.json or plan.jsonl: not a finished run, study or sweep of fuzzymotiv",
+            at()
+        )));
+    }
+    let value: serde_json::Value = read_json(&summary)?;
+    if value.get("variants").is_some() {
+        return Err(CliError::input(format!(
+            "{}: an ablation (reproduce --ablation): compare two of its variant directories \
+             (each a study) instead",
+            at()
+        )));
+    }
+    if value.get("settings").is_some() {
+        load_study(dir)
+    } else {
+        load_run(dir)
+    }
+}
+
+fn row_values(r: &TableRow) -> [Option<f64>; 5] {
+    [
+        r.average_fitness,
+        r.exploration_pct,
+        r.recognition_pct,
+        r.battery_pct,
+        r.homing_pct,
+    ]
+}
+
+fn load_study(dir: &Path) -> Result<Side, CliError> {
+    let s: StudySummary = read_json(&dir.join("summary.json"))?;
+    let rooms = s.settings.first().map_or(Vec::new(), |g| {
+        g.rows.iter().map(|r| r.room.clone()).collect()
+    });
+    let groups = s
+        .settings
+        .iter()
+        .map(|g| Group {
+            name: g.name.clone(),
+            units: g
+                .per_seed
+                .iter()
+                .map(|seed| Unit {
+                    key: format!("seed {}", seed.seed),
+                    rooms: seed.rows.iter().map(row_values).collect(),
+                })
+                .collect(),
+        })
+        .collect();
+    Ok(Side {
+        dir: dir.into(),
+        kind: Kind::Study,
+        rooms,
+        groups,
+    })
+}
+
+fn load_run(dir: &Path) -> Result<Side, CliError> {
+    let s: RunSummary = read_json(&dir.join("summary.json"))?;
+    let rows = test_runs::read(dir)?;
+    let rooms: Vec<String> = s.rooms.iter().map(|r| r.room.clone()).collect();
+    let tests = rows.iter().map(|r| r.test + 1).max().unwrap_or(0);
+    let units = (0..tests)
+        .map(|k| Unit {
+            key: format!("seed {} test {k}", s.seed),
+            rooms: rooms
+                .iter()
+                .map(|room| {
+                    rows.iter()
+                        .find(|r| r.test == k && &r.room == room)
+                        .map_or([None; 5], |r| {
+                            let v = [r.exploration_pct, r.battery_pct, r.homing_pct];
+                            [None, Some(v[0]), r.recognition_pct, Some(v[1]), Some(v[2])]
+                        })
+                })
+                .collect(),
+        })
+        .collect();
+    Ok(Side {
+        dir: dir.into(),
+        kind: Kind::Run,
+        rooms,
+        groups: vec![Group {
+            name: s.name,
+            units,
+        }],
+    })
+}
+
+fn load_sweep(dir: &Path, at: &str) -> Result<Side, CliError> {
+    let path = dir.join("results.csv");
+    if !path.is_file() {
+        return Err(CliError::input(format!(
+            "{at}: a sweep directory without results.csv: merge it first (fuzzymotiv merge {})",
+            dir.display()
+        )));
+    }
+    let results = SweepResults::read(&path)?;
+    let mut rooms: Vec<String> = Vec::new();
+    let mut groups: Vec<Group> = Vec::new();
+    for r in &results.rows {
+        if !rooms.contains(&r.room) {
+            rooms.push(r.room.clone());
+        }
+        let room = rooms.iter().position(|x| *x == r.room).unwrap_or(0);
+        let g = match groups.iter().position(|g| g.name == r.setting) {
+            Some(g) => g,
+            None => {
+                groups.push(Group {
+                    name: r.setting.clone(),
+                    units: Vec::new(),
+                });
+                groups.len() - 1
+            }
+        };
+        let key = format!("seed {}", r.seed);
+        let units = &mut groups[g].units;
+        if !units.iter().any(|u| u.key == key) {
+            units.push(Unit {
+                key: key.clone(),
+                rooms: Vec::new(),
+            });
+        }
+        let unit = units.iter_mut().find(|u| u.key == key).expect("just added");
+        unit.rooms.resize(room + 1, [None; 5]);
+        unit.rooms[room] = r.values;
+    }
+    Ok(Side {
+        dir: dir.into(),
+        kind: Kind::Sweep,
+        rooms,
+        groups,
+    })
+}
+
+/// Refuses two outputs of different kinds or rooms, saying what differs.
+pub fn check_comparable(a: &Side, b: &Side) -> Result<(), CliError> {
+    if a.kind != b.kind {
+        return Err(CliError::input(format!(
+            "A ({}) is {}, B ({}) is {}: compare two outputs of the same kind",
+            a.dir.display(),
+            a.kind.name(),
+            b.dir.display(),
+            b.kind.name()
+        )));
+    }
+    if a.rooms != b.rooms {
+        return Err(CliError::input(format!(
+            "A ({}) has the rooms {}, B ({}) has {}: compare outputs of the same rooms",
+            a.dir.display(),
+            a.rooms.join(", "),
+            b.dir.display(),
+            b.rooms.join(", ")
+        )));
+    }
+    Ok(())
+}
+
+fn find<'a>(side: &'a Side, which: &str, name: &str) -> Result<&'a Group, CliError> {
+    side.groups.iter().find(|g| g.name == name).ok_or_else(|| {
+        CliError::input(format!(
+            "--setting {name}: {which} ({}) has no such setting; its settings: {}",
+            side.dir.display(),
+            names(side)
+        ))
+    })
+}
+
+fn names(side: &Side) -> String {
+    side.groups
+        .iter()
+        .map(|g| g.name.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The settings to compare: a run's one with the other's; with `--setting S` (once) S of
+/// both, with `--setting S1 --setting S2` S1 of A with S2 of B; else every setting of A with
+/// B's of the same name (the two must have the same settings).
+pub fn choose<'a>(
+    a: &'a Side,
+    b: &'a Side,
+    setting: &[String],
+) -> Result<Vec<(&'a Group, &'a Group)>, CliError> {
+    match (a.kind, setting) {
+        (Kind::Run, []) => Ok(vec![(&a.groups[0], &b.groups[0])]),
+        (Kind::Run, _) => Err(CliError::input(
+            "--setting picks a setting of a study or a sweep; A and B are run directories, \
+             which have one each: leave --setting out",
+        )),
+        (_, [s]) => Ok(vec![(find(a, "A", s)?, find(b, "B", s)?)]),
+        (_, [s, t]) => Ok(vec![(find(a, "A", s)?, find(b, "B", t)?)]),
+        (_, [_, _, _, ..]) => Err(CliError::input(format!(
+            "--setting was given {} times: give it once (the same setting of A and B) or twice \
+             (A's setting, then B's)",
+            setting.len()
+        ))),
+        (_, []) => {
+            let same = a.groups.len() == b.groups.len()
+                && a.groups
+                    .iter()
+                    .all(|g| b.groups.iter().any(|h| h.name == g.name));
+            if !same || same_dir(a, b) {
+                return Err(CliError::input(format!(
+                    "A's settings are {}, B's are {}: name the settings to compare with \
+                     --setting S (S of both) or --setting S1 --setting S2 (S1 of A, S2 of B)",
+                    names(a),
+                    names(b)
+                )));
+            }
+            Ok(a.groups
+                .iter()
+                .map(|g| (g, find(b, "B", &g.name).expect("checked")))
+                .collect())
+        }
+    }
+}
+
+fn same_dir(a: &Side, b: &Side) -> bool {
+    match (a.dir.canonicalize(), b.dir.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    }
+}
+
+/// A comparison's outputs.
+pub struct Compared {
+    /// `compare.csv`'s rows.
+    pub rows: Vec<CompareRow>,
+    /// `compare.md`.
+    pub md: String,
+    /// `compare.csv`.
+    pub csv: String,
+    /// `compare.svg`.
+    pub svg: String,
+}
+
+/// Compares the chosen settings of A and B at level `alpha` (resampling seeded with 0, so
+/// the same inputs give the same bytes).
+pub fn compare(
+    a: &Side,
+    b: &Side,
+    pairs: &[(&Group, &Group)],
+    alpha: f64,
+) -> Result<Compared, CliError> {
+    let settings = Settings {
+        alpha,
+        ..Settings::default()
+    };
+    settings
+        .check()
+        .map_err(|e| CliError::input(format!("--alpha: {e}")))?;
+    let mut rows = Vec::new();
+    let mut designs = String::new();
+    for (g, h) in pairs {
+        let found = compare_groups(g, h, &a.rooms, &settings)
+            .map_err(|e| CliError::input(format!("setting {} against {}: {e}", g.name, h.name)))?;
+        rows.extend(found);
+        designs.push_str(&design_line(a.kind, g, h));
+    }
+    let head = head(a, b, &designs, alpha);
+    let md = compare_md(&head, &rows, alpha);
+    let title = format!("A − B per room: {} vs {}", a.dir.display(), b.dir.display());
+    let svg = compare_svg(&title, &rows, alpha);
+    let csv = compare_csv::to_text(&rows);
+    Ok(Compared { rows, md, csv, svg })
+}
+
+/// The design of one pair of settings, as a Markdown list item.
+fn design_line(kind: Kind, g: &Group, h: &Group) -> String {
+    let unit = kind.unit();
+    let what = if g.name == h.name {
+        format!("`{}`", g.name)
+    } else {
+        format!("`{}` (A) against `{}` (B)", g.name, h.name)
+    };
+    match pairing(g, h) {
+        Some(_) if kind == Kind::Run => format!(
+            "- {what}: **paired** over {} {unit}: both runs have the same seed, so test run k \
+             in a room uses the same random streams in both (sign-flip permutation test)\n",
+            g.units.len()
+        ),
+        Some(_) => format!(
+            "- {what}: **paired** over {} {unit}: A and B share their seeds, so each seed's \
+             values are compared with the same seed's (sign-flip permutation test)\n",
+            g.units.len()
+        ),
+        None => format!(
+            "- {what}: **unpaired**, {} against {} {unit}: their seeds differ, so the samples \
+             are independent (two-sample permutation test)\n",
+            g.units.len(),
+            h.units.len()
+        ),
+    }
+}
+
+fn head(a: &Side, b: &Side, designs: &str, alpha: f64) -> String {
+    format!(
+        "# Comparison: A − B\n\n- A: `{}` ({})\n- B: `{}` ({})\n\n{designs}\n\
+         Per room and over all rooms (per {unit_one}, the mean over rooms), each metric's means, \
+         A − B with a 95 % percentile bootstrap interval (10 000 resamples), the two-sided \
+         permutation p-value (exact up to 2^16 arrangements, else 99 999 random ones; resampling \
+         seeded with 0), the room p-values Holm-adjusted over the rooms of each metric (the \
+         overall row: its own p), `*` where the (adjusted) p < α = {alpha}, and the minimum \
+         detectable difference at 80 % power and α (normal approximation). Computed by \
+         `fuzzymotiv::statistics`.{fitness}\n",
+        a.dir.display(),
+        a.kind.name(),
+        b.dir.display(),
+        b.kind.name(),
+        unit_one = match a.kind {
+            Kind::Run => "test run",
+            Kind::Study => "seed",
+            Kind::Sweep => "replicate",
+        },
+        fitness = if a.kind == Kind::Run {
+            " A test run has no average fitness (the mean F of the final population), so runs \
+             are compared on the test runs' metrics only."
+        } else {
+            ""
+        }
+    )
+}

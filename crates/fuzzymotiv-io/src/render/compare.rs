@@ -1,0 +1,309 @@
+//! `fuzzymotiv compare`'s numbers and pages: two settings' metrics per room and over all rooms,
+//! each compared with `fuzzymotiv::statistics` (paired when the two share their seeds, else
+//! unpaired), as [`CompareRow`]s, a Markdown page and a figure of the differences with their
+//! intervals per room.
+
+use std::fmt::Write as _;
+
+use fuzzymotiv::statistics::{self, Comparison, Settings, StatsError};
+
+use crate::records::METRICS;
+use crate::records::compare::{CompareRow, OVERALL};
+use crate::render::svg::esc;
+
+/// The metrics in words, in [`METRICS`] order, and their decimals.
+pub const METRIC_LABELS: [(&str, usize); 5] = [
+    ("average fitness F", 3),
+    ("% optimal exploration", 1),
+    ("% recognition", 1),
+    ("% battery usage", 1),
+    ("% homing", 1),
+];
+
+/// One seed, replicate or test run of a setting: per room, its values in [`METRICS`] order
+/// (none where it has no value).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unit {
+    /// What pairs it with a unit of the other side: its seed (and test run).
+    pub key: String,
+    /// Per room, the values.
+    pub rooms: Vec<[Option<f64>; 5]>,
+}
+
+/// One setting of an output: its name and its units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// The setting's name.
+    pub name: String,
+    /// Its seeds, replicates or test runs.
+    pub units: Vec<Unit>,
+}
+
+/// For each unit of `a`, the unit of `b` with the same key, when the two have the same keys
+/// (the same seeds): then the design is paired.
+pub fn pairing(a: &Group, b: &Group) -> Option<Vec<usize>> {
+    if a.units.len() != b.units.len() {
+        return None;
+    }
+    a.units
+        .iter()
+        .map(|u| b.units.iter().position(|v| v.key == u.key))
+        .collect()
+}
+
+/// The values of metric `m` in room `room` (`None`: the mean over rooms), one per unit, in
+/// `order` (a unit index each); none if a unit lacks one.
+fn values(g: &Group, order: &[usize], room: Option<usize>, m: usize) -> Option<Vec<f64>> {
+    order
+        .iter()
+        .map(|&k| {
+            let rooms = &g.units[k].rooms;
+            match room {
+                Some(r) => rooms.get(r)?[m],
+                None => {
+                    let v: Option<Vec<f64>> = rooms.iter().map(|r| r[m]).collect();
+                    v.filter(|v| !v.is_empty()).map(|v| statistics::mean(&v))
+                }
+            }
+        })
+        .collect()
+}
+
+/// Compares setting `a` with `b` on every metric, in every room of `rooms` and over all rooms:
+/// paired when [`pairing`] finds the same seeds, else unpaired. Room p-values are
+/// Holm-adjusted over the rooms of a metric. Metrics without values on both sides are left out.
+pub fn compare_groups(
+    a: &Group,
+    b: &Group,
+    rooms: &[String],
+    settings: &Settings,
+) -> Result<Vec<CompareRow>, StatsError> {
+    let pairs = pairing(a, b);
+    let order_a: Vec<usize> = (0..a.units.len()).collect();
+    let order_b = pairs
+        .clone()
+        .unwrap_or_else(|| (0..b.units.len()).collect());
+    let test = |room: Option<usize>, m: usize| -> Result<Option<Comparison>, StatsError> {
+        let (Some(va), Some(vb)) = (values(a, &order_a, room, m), values(b, &order_b, room, m))
+        else {
+            return Ok(None);
+        };
+        let c = if pairs.is_some() {
+            statistics::paired(&va, &vb, settings)?
+        } else {
+            statistics::unpaired(&va, &vb, settings)?
+        };
+        Ok(Some(c))
+    };
+    let setting = if a.name == b.name {
+        a.name.clone()
+    } else {
+        format!("{} vs {}", a.name, b.name)
+    };
+    let mut out = Vec::new();
+    for m in 0..METRICS.len() {
+        let mut tested = Vec::new();
+        for (r, room) in rooms.iter().enumerate() {
+            if let Some(c) = test(Some(r), m)? {
+                tested.push((room.as_str(), c));
+            }
+        }
+        let p: Vec<f64> = tested.iter().map(|(_, c)| c.p).collect();
+        for ((room, c), p_holm) in tested.iter().zip(statistics::holm(&p)) {
+            out.push(row(&setting, m, room, c, p_holm));
+        }
+        if let Some(c) = test(None, m)? {
+            out.push(row(&setting, m, OVERALL, &c, c.p));
+        }
+    }
+    Ok(out)
+}
+
+fn row(setting: &str, m: usize, room: &str, c: &Comparison, p_holm: f64) -> CompareRow {
+    let (design, n_a, n_b) = match c.design {
+        statistics::Design::Paired { n } => ("paired", n, n),
+        statistics::Design::Unpaired { n_a, n_b } => ("unpaired", n_a, n_b),
+    };
+    CompareRow {
+        setting: setting.into(),
+        metric: METRICS[m].into(),
+        room: room.into(),
+        design: design.into(),
+        n_a,
+        n_b,
+        mean_a: c.mean_a,
+        mean_b: c.mean_b,
+        difference: c.difference,
+        ci_low: c.ci_low,
+        ci_high: c.ci_high,
+        p: c.p,
+        exact: c.exact,
+        p_holm,
+        mdd: c.mdd,
+    }
+}
+
+/// The label and decimals of a metric's name in [`METRICS`].
+pub fn metric_label(metric: &str) -> (&'static str, usize) {
+    METRICS
+        .iter()
+        .position(|m| *m == metric)
+        .map_or(("?", 3), |k| METRIC_LABELS[k])
+}
+
+/// The rows of `rows` in (setting, metric) blocks, in their order.
+pub fn blocks(rows: &[CompareRow]) -> Vec<&[CompareRow]> {
+    let mut out: Vec<&[CompareRow]> = Vec::new();
+    let mut start = 0;
+    for k in 1..=rows.len() {
+        let cut = k == rows.len()
+            || rows[k].setting != rows[start].setting
+            || rows[k].metric != rows[start].metric;
+        if cut {
+            out.push(&rows[start..k]);
+            start = k;
+        }
+    }
+    out
+}
+
+/// `compare.md`: `head` (what was compared, the design, the method), then one table per
+/// setting and metric: means, A − B with its interval, p, Holm p and MDD; `*` marks p < α.
+pub fn compare_md(head: &str, rows: &[CompareRow], alpha: f64) -> String {
+    let mut md = format!("{head}\n");
+    for block in blocks(rows) {
+        let (label, d) = metric_label(&block[0].metric);
+        let _ = write!(
+            md,
+            "\n## {}: {label}\n\n| room | n A | n B | mean A | mean B | A − B [95 % CI] | p | Holm p | MDD |\n|---|---|---|---|---|---|---|---|---|\n",
+            block[0].setting
+        );
+        for r in block {
+            let star = if r.p_holm < alpha { " *" } else { "" };
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {:.d$} | {:.d$} | {:+.d$} [{:+.d$}, {:+.d$}] | {:.4} | {:.4}{star} | {} |",
+                r.room,
+                r.n_a,
+                r.n_b,
+                r.mean_a,
+                r.mean_b,
+                r.difference,
+                r.ci_low,
+                r.ci_high,
+                r.p,
+                r.p_holm,
+                r.mdd.map_or("—".into(), |m| format!("{m:.d$}"))
+            );
+        }
+    }
+    md
+}
+
+const PANEL_W: f64 = 250.0;
+const ROW_H: f64 = 22.0;
+const LABEL_W: f64 = 90.0;
+
+/// The figure: one panel per setting (rows) and metric (columns), in each room and over all
+/// rooms the difference A − B (dot) with its 95 % interval (line), against a line at 0; red
+/// where the (Holm-adjusted) p < `alpha`.
+pub fn compare_svg(title: &str, rows: &[CompareRow], alpha: f64) -> String {
+    let blocks = blocks(rows);
+    let mut settings: Vec<&str> = Vec::new();
+    let mut metrics: Vec<&str> = Vec::new();
+    for b in &blocks {
+        if !settings.contains(&b[0].setting.as_str()) {
+            settings.push(&b[0].setting);
+        }
+        if !metrics.contains(&b[0].metric.as_str()) {
+            metrics.push(&b[0].metric);
+        }
+    }
+    let most = blocks.iter().map(|b| b.len()).max().unwrap_or(1) as f64;
+    let panel_h = 50.0 + ROW_H * most;
+    let (w, h) = (
+        LABEL_W + PANEL_W * metrics.len().max(1) as f64 + 10.0,
+        40.0 + panel_h * settings.len().max(1) as f64,
+    );
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {w:.0} {h:.0}\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"8\" y=\"20\" font-size=\"14\" font-weight=\"bold\">{}</text>\n",
+        esc(title)
+    );
+    for b in &blocks {
+        let sx = settings
+            .iter()
+            .position(|s| *s == b[0].setting)
+            .unwrap_or(0);
+        let mx = metrics.iter().position(|m| *m == b[0].metric).unwrap_or(0);
+        let (x0, y0) = (LABEL_W + PANEL_W * mx as f64, 40.0 + panel_h * sx as f64);
+        panel(&mut svg, b, (x0, y0), mx == 0, alpha);
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// One panel of [`compare_svg`] at (x0, y0); room labels on its left when `labels`.
+fn panel(svg: &mut String, block: &[CompareRow], (x0, y0): (f64, f64), labels: bool, alpha: f64) {
+    let (label, d) = metric_label(&block[0].metric);
+    let reach = block
+        .iter()
+        .flat_map(|r| [r.ci_low.abs(), r.ci_high.abs(), r.difference.abs()])
+        .fold(0.0_f64, f64::max);
+    let reach = if reach > 0.0 { reach * 1.1 } else { 1.0 };
+    let (left, right) = (x0 + 10.0, x0 + PANEL_W - 15.0);
+    let x = |v: f64| left + (v + reach) / (2.0 * reach) * (right - left);
+    let bottom = y0 + 30.0 + ROW_H * block.len() as f64;
+    let _ = writeln!(
+        svg,
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\" font-weight=\"bold\">{}</text>\n<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\" fill=\"#555\">{}</text>\n<rect x=\"{left:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" fill=\"none\" stroke=\"#ccc\"/>\n<line x1=\"{:.1}\" x2=\"{:.1}\" y1=\"{:.1}\" y2=\"{bottom:.1}\" stroke=\"#888\" stroke-dasharray=\"3,3\"/>",
+        (left + right) / 2.0,
+        y0 + 4.0,
+        esc(label),
+        (left + right) / 2.0,
+        y0 + 17.0,
+        esc(&block[0].setting),
+        y0 + 24.0,
+        right - left,
+        bottom - y0 - 24.0,
+        x(0.0),
+        x(0.0),
+        y0 + 24.0,
+    );
+    for (k, r) in block.iter().enumerate() {
+        let y = y0 + 30.0 + ROW_H * (k as f64 + 0.5);
+        let colour = if r.p_holm < alpha {
+            "#d62728"
+        } else {
+            "#1f77b4"
+        };
+        if labels {
+            let _ = writeln!(
+                svg,
+                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>",
+                x0 - 4.0,
+                y + 4.0,
+                esc(&r.room)
+            );
+        }
+        let _ = writeln!(
+            svg,
+            "<line x1=\"{:.1}\" x2=\"{:.1}\" y1=\"{y:.1}\" y2=\"{y:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n<circle cx=\"{:.1}\" cy=\"{y:.1}\" r=\"3.5\" fill=\"{colour}\"><title>{}: {:+.d$} [{:+.d$}, {:+.d$}], p = {:.4}</title></circle>",
+            x(r.ci_low),
+            x(r.ci_high),
+            x(r.difference),
+            esc(&r.room),
+            r.difference,
+            r.ci_low,
+            r.ci_high,
+            r.p
+        );
+    }
+    let _ = writeln!(
+        svg,
+        "<text x=\"{left:.1}\" y=\"{:.1}\" fill=\"#555\">{:+.d$}</text>\n<text x=\"{right:.1}\" y=\"{:.1}\" text-anchor=\"end\" fill=\"#555\">{:+.d$}</text>",
+        bottom + 13.0,
+        -reach,
+        bottom + 13.0,
+        reach
+    );
+}
