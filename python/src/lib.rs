@@ -42,9 +42,12 @@ use rayon::{ThreadPool, ThreadPoolBuilder};
 mod ga;
 mod problem;
 mod stats;
+mod sweep;
 
+// Module `fuzzymotiv` (where the package exports it), so that the error pickles: executors
+// (Dask, submitit) send a job's error back to the process that waits for it.
 create_exception!(
-    _fuzzymotiv,
+    fuzzymotiv,
     FuzzymotivError,
     PyValueError,
     "Bad input (config, room file, motivations, ...): the message is the CLI's, naming the file, the field and what is wrong."
@@ -914,6 +917,9 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rooms, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_run_job, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_merge, m)?)?;
     m.add_class::<problem::Problem>()?;
     m.add_class::<ga::Ga>()?;
     stats::register(m)?;
