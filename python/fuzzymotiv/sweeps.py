@@ -135,7 +135,7 @@ def _out_path(out: Union[str, os.PathLike]) -> str:
 
 def run_job(job: Job, out: Union[str, os.PathLike], *, wait: bool = True) -> str:
     """Run one job into the sweep directory ``out`` exactly as ``fuzzymotiv sweep FILE --out
-    OUT --job INDEX`` does (the same checks of ``out``, the same files in ``OUT/jobs/ID/``).
+    OUT --index INDEX`` does (the same checks of ``out``, the same files in ``OUT/jobs/ID/``).
 
     Returns ``"ran"``, ``"skipped"`` (finished before: nothing runs) or, with ``wait=False``,
     ``"running"`` when another worker holds the job's lock. With ``wait=True`` (the default)

@@ -68,6 +68,9 @@ fn os_error_type(py: Python<'_>) -> PyResult<&Py<PyType>> {
         )?;
         let namespace = PyDict::new(py);
         namespace.set_item("__module__", "fuzzymotiv")?;
+        // OSError's constructor (the base with the larger layout), so that the error also
+        // unpickles where pickling goes through `cls.__new__(cls)` (tblib, which Dask installs).
+        namespace.set_item("__new__", py.get_type::<PyOSError>().getattr("__new__")?)?;
         namespace.set_item(
             "__doc__",
             "A file-system failure (reading or writing a named path): both a FuzzymotivError and an OSError; the message is the CLI's.",

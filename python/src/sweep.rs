@@ -57,7 +57,7 @@ pub fn sweep_plan(
 }
 
 /// Runs job `index` (whose id must be `id`) of the sweep `text` into the sweep directory `out`
-/// as `fuzzymotiv sweep --job INDEX` does, under the job's lock (waited for when `wait`):
+/// as `fuzzymotiv sweep --index INDEX` does, under the job's lock (waited for when `wait`):
 /// `"ran"`, `"skipped"` (finished before) or `"running"` (locked, not waited for). The GIL is
 /// released.
 #[pyfunction]

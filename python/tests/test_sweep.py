@@ -19,7 +19,7 @@ from conftest import run_cli
 SWEEP = """\
 name = "py-sweep"
 seed = 5
-rooms = ["H"]
+rooms = ["H", "square"]
 [ga]
 population = 6
 generations = 2
@@ -37,7 +37,7 @@ motivations = [[0.8, 0.1, 0.0, 0.1], [0.5, 0.3, 0.0, 0.2]]
 SWEEP_DICT = {
     "name": "py-sweep",
     "seed": 5,
-    "rooms": ["H"],
+    "rooms": ["H", "square"],
     "ga": {"population": 6, "generations": 2},
     "trial": {"steps": 60},
     "aem": {"epochs": 5, "test_runs": 1},
@@ -96,8 +96,8 @@ def test_sweep_in_threads_equals_cli_sweep_and_merge(sweep_file, cli_sweep, tmp_
     assert set(res.statuses.values()) == {"ran"} and len(res.statuses) == 4
     assert (res.jobs, res.missing) == (4, 0)
     assert res.markdown == (cli_sweep / "aggregate.md").read_text()
-    assert len(res.results) == 4  # one row per job (one room)
-    assert list(res.results["job_id"]) == [j.id for j in fm.plan(sweep_file)]
+    assert len(res.results) == 8  # one row per job and room
+    assert list(res.results["job_id"]) == [j.id for j in fm.plan(sweep_file) for _ in range(2)]
 
     # Again: every job is finished, nothing runs, the same results.
     again = fm.sweep(fm.plan(sweep_file), out=out)
@@ -209,7 +209,7 @@ def test_the_cli_waits_for_a_job_python_holds_and_skips_it_once_finished(cli, sw
     job = fm.plan(sweep_file)[0]
     lock = HeldLock(out, job)
     p = subprocess.Popen(
-        [str(cli), "sweep", str(sweep_file), "--out", str(out), "--job", "0", "--threads", "1"],
+        [str(cli), "sweep", str(sweep_file), "--out", str(out), "--index", "0", "--threads", "1"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,

@@ -42,11 +42,11 @@ fn hold(out: &Path, id: &str) -> File {
     f
 }
 
-/// `fuzzymotiv sweep F --out OUT --job 0`, started; returns once it says it waits for the lock.
+/// `fuzzymotiv sweep F --out OUT --index 0`, started; returns once it says it waits for the lock.
 fn start_waiting(f: &Path, out: &Path) -> (Child, BufReader<std::process::ChildStderr>) {
     let mut child = bin()
         .args(["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()])
-        .args(["--job", "0", "--threads", "1"])
+        .args(["--index", "0", "--threads", "1"])
         .stderr(Stdio::piped())
         .stdout(Stdio::null())
         .spawn()
@@ -94,7 +94,7 @@ fn a_waiting_task_runs_the_job_of_a_holder_that_died() {
         f.to_str().unwrap(),
         "--out",
         reference.to_str().unwrap(),
-        "--job",
+        "--index",
         "0",
     ]);
     let gens = |d: &Path| std::fs::read(d.join("jobs").join(&id).join("generations.csv")).unwrap();
@@ -113,7 +113,7 @@ fn a_waiting_task_skips_the_job_its_holder_finished() {
         f.to_str().unwrap(),
         "--out",
         reference.to_str().unwrap(),
-        "--job",
+        "--index",
         "0",
     ]);
     let out = dir.path().join("out");
@@ -147,6 +147,6 @@ fn force_removes_the_lock_files_with_the_sweep() {
     assert_eq!(locks(&out), 2);
     // Another plan with --force replaces the sweep: its jobs' locks go too.
     std::fs::write(&f, SWEEP.replace("seed = 4", "seed = 5")).unwrap();
-    ok(&["sweep", f_s, "--out", out_s, "--force", "--job", "0"]);
+    ok(&["sweep", f_s, "--out", out_s, "--force", "--index", "0"]);
     assert_eq!(locks(&out), 1);
 }

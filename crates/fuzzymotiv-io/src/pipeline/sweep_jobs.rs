@@ -83,7 +83,7 @@ pub fn run_jobs(
     Ok(())
 }
 
-/// Runs job `index` of `sweep` into the sweep directory `out` as `fuzzymotiv sweep --job` does
+/// Runs job `index` of `sweep` into the sweep directory `out` as `fuzzymotiv sweep --index` does
 /// (the same checks of `out`, the same files; `text` is the sweep file's text), unless it is
 /// finished. A job another worker holds is waited for when `wait`, else left to it
 /// ([`JobOutcome::Running`]). Many workers may call this at once on one `out`.
