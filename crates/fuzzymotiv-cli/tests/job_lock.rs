@@ -43,6 +43,8 @@ fn hold(out: &Path, id: &str) -> File {
 }
 
 /// `fuzzymotiv sweep F --out OUT --index 0`, started; returns once it says it waits for the lock.
+// The child is returned to the caller, which waits for it.
+#[allow(clippy::zombie_processes)]
 fn start_waiting(f: &Path, out: &Path) -> (Child, BufReader<std::process::ChildStderr>) {
     let mut child = bin()
         .args(["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()])
