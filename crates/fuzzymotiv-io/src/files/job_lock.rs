@@ -17,7 +17,6 @@ use std::fs::{File, OpenOptions, TryLockError};
 use std::path::{Path, PathBuf};
 
 use crate::files::error::CliError;
-use crate::files::guard::io_err;
 use crate::note;
 
 /// A held job lock; dropping it (or the process ending) releases it.
@@ -39,6 +38,12 @@ pub fn is_lock_name(name: &str) -> bool {
                 .bytes()
                 .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
     })
+}
+
+/// An I/O error on `path` (as the guard words them; the guard imports this module, so not its
+/// `io_err`, which would make a circle).
+fn io_err(path: &Path, e: std::io::Error) -> CliError {
+    CliError::io(format!("{}: {e}", path.display()))
 }
 
 fn open(path: &Path) -> Result<File, CliError> {
