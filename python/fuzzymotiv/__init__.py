@@ -36,6 +36,7 @@ from . import _fuzzymotiv as _native
 from ._fuzzymotiv import VERSION as __version__
 from ._fuzzymotiv import FuzzymotivError, FuzzymotivOSError
 from . import stats
+from .sweeps import Job, Plan, SweepResult, merge, plan, run_job, sweep
 
 __all__ = [
     "DESCRIPTORS",
@@ -44,17 +45,24 @@ __all__ = [
     "FuzzymotivError",
     "FuzzymotivOSError",
     "GA",
+    "Job",
+    "Plan",
     "Problem",
     "RunResult",
+    "SweepResult",
     "export_fll",
     "frames",
     "fuzzy_fitness",
     "load_room",
+    "merge",
+    "plan",
     "rooms",
     "run",
     "save_gif",
+    "run_job",
     "simulate",
     "stats",
+    "sweep",
     "__version__",
 ]
 
@@ -546,7 +554,10 @@ class Problem:
         seed: Optional[int] = None,
     ):
         path, text = _config_args(config)
-        self._native = _native.Problem(path, text, _sets(overrides), room, threads, seed)
+        sets = _sets(overrides)
+        self._native = _native.Problem(path, text, sets, room, threads, seed)
+        # What pickling needs to make this problem again (the file made absolute).
+        self._made_from = (path and os.path.abspath(path), text, sets, room, threads, seed)
         self.genome_size: int = self._native.genome_size
         self.rooms: list = self._native.rooms
         self.motivations: tuple = self._native.motivations
@@ -589,11 +600,23 @@ class Problem:
         fitness, terms, desc, _ = self._native.evaluate(g, generation, seed, describe, names)
         return Evaluation(fitness, terms, desc)
 
+    def __reduce__(self) -> tuple:
+        """Pickles as the arguments it was made from (the config file's absolute path or the
+        config text, the overrides, room, threads, seed): unpickling builds the same problem
+        again, which evaluates to the same bytes (the file must still be there)."""
+        return (_problem_again, self._made_from)
+
     def __repr__(self) -> str:
         return (
             f"<Problem run {self.run!r} rooms {self.rooms} genome_size {self.genome_size} "
             f"seed {self.seed}>"
         )
+
+
+def _problem_again(path, text, sets, room, threads, seed) -> Problem:
+    """A :class:`Problem` from the arguments :meth:`Problem.__reduce__` saved."""
+    config = Path(path) if path is not None else (None if text is None else text + "\n")
+    return Problem(config, sets, room=room, threads=threads, seed=seed)
 
 
 class Best(NamedTuple):
@@ -698,6 +721,11 @@ class GA:
         self.problem = problem
         self._native = _native.GA.from_state_json(text, problem._native)
         return self
+
+    def __reduce__(self) -> tuple:
+        """Pickles as its :attr:`state` and its problem: unpickled, it asks and breeds exactly
+        as this one would."""
+        return (GA.from_state, (self.state, self.problem))
 
     def __repr__(self) -> str:
         best = "none" if self.best is None else f"{self.best.fitness:.4f}"

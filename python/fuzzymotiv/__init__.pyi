@@ -8,6 +8,13 @@ import numpy as np
 import numpy.typing as npt
 
 from . import stats as stats
+from .sweeps import Job as Job
+from .sweeps import Plan as Plan
+from .sweeps import SweepResult as SweepResult
+from .sweeps import merge as merge
+from .sweeps import plan as plan
+from .sweeps import run_job as run_job
+from .sweeps import sweep as sweep
 
 __version__: str
 
@@ -213,6 +220,7 @@ class Problem:
         seed: Optional[int] = ...,
         descriptors: Union[None, bool, str, Sequence[str]] = ...,
     ) -> Evaluation: ...
+    def __reduce__(self) -> tuple[Any, ...]: ...
 
 class Best(NamedTuple):
     genome: FloatArray
@@ -247,3 +255,4 @@ class GA:
     def state(self) -> GAState: ...
     @classmethod
     def from_state(cls, state: Mapping[str, Any], problem: Optional[Problem] = ...) -> GA: ...
+    def __reduce__(self) -> tuple[Any, ...]: ...

@@ -44,9 +44,12 @@ mod ga;
 mod gym;
 mod problem;
 mod stats;
+mod sweep;
 
+// Module `fuzzymotiv` (where the package exports it), so that the error pickles: executors
+// (Dask, submitit) send a job's error back to the process that waits for it.
 create_exception!(
-    _fuzzymotiv,
+    fuzzymotiv,
     FuzzymotivError,
     PyValueError,
     "Bad input (config, room file, motivations, ...): the message is the CLI's, naming the file, the field and what is wrong."
@@ -67,6 +70,9 @@ fn os_error_type(py: Python<'_>) -> PyResult<&Py<PyType>> {
         )?;
         let namespace = PyDict::new(py);
         namespace.set_item("__module__", "fuzzymotiv")?;
+        // OSError's constructor (the base with the larger layout), so that the error also
+        // unpickles where pickling goes through `cls.__new__(cls)` (tblib, which Dask installs).
+        namespace.set_item("__new__", py.get_type::<PyOSError>().getattr("__new__")?)?;
         namespace.set_item(
             "__doc__",
             "A file-system failure (reading or writing a named path): both a FuzzymotivError and an OSError; the message is the CLI's.",
@@ -911,6 +917,9 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(frames::frames, m)?)?;
     m.add_function(wrap_pyfunction!(frames::save_gif, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_run_job, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_merge, m)?)?;
     m.add_class::<problem::Problem>()?;
     m.add_class::<ga::Ga>()?;
     m.add_class::<gym::GymCore>()?;

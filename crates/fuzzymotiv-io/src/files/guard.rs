@@ -165,8 +165,8 @@ pub fn is_ours(dir: &Path) -> bool {
     .any(|f| dir.join(f).is_file())
 }
 
-/// The names of the files our outputs write (besides `*.svg` and `*.png` figures and `.tmp*`
-/// temporary files): anything else in a directory about to be replaced is the user's.
+/// The names of the files our outputs write (besides `*.svg` and `*.png` figures, `.tmp*`
+/// temporary files and sweep jobs' `ID.lock` files): anything else in a directory about to be replaced is the user's.
 const OUR_FILES: [&str; 30] = [
     "config.resolved.toml",
     "generations.csv",
@@ -224,6 +224,7 @@ fn is_our_file(name: &str) -> bool {
         || name.ends_with(".svg")
         || name.ends_with(".png")
         || name.starts_with(".tmp")
+        || crate::files::job_lock::is_lock_name(name)
 }
 
 /// Refuses, before any work, to replace a directory that holds a file of the user's (see

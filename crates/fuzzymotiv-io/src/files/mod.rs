@@ -1,8 +1,9 @@
 //! The file layer: the output guard every writer goes through ([`guard`]), config and room
-//! loading ([`inputs`]), the error with its exit codes ([`error`]) and the terminal
-//! ([`console`]: `out!`, `outln!`, `note!`).
+//! loading ([`inputs`]), the error with its exit codes ([`error`]), the terminal
+//! ([`console`]: `out!`, `outln!`, `note!`) and a sweep job's lock ([`job_lock`]).
 
 pub mod console;
 pub mod error;
 pub mod guard;
 pub mod inputs;
+pub mod job_lock;

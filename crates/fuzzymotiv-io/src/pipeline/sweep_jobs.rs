@@ -1,19 +1,44 @@
 //! A sweep's jobs run into `DIR/jobs/ID/` (each a run directory, [`super::run_dir`]), and
-//! the sweep directory they share: who may run in it, and what `--force` removes.
+//! the sweep directory they share: who may run in it, and what `--force` removes. A job runs
+//! under its lock ([`JobLock`]): a worker that finds a job locked waits, then skips it if it
+//! was finished meanwhile or resumes it if its holder died.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use crate::files::error::CliError;
 use crate::files::guard::{
     StagedDir, ensure_replaceable, foreign_files, io_err, refuse_current_dir, refuse_non_directory,
     remove_ours, write_atomic,
 };
+use crate::files::job_lock::{JobLock, lock_path};
 use crate::note;
 use crate::pipeline::lanes::run_concurrently;
 use crate::pipeline::progress::SweepProgress;
 use crate::pipeline::run_dir::execute_or_resume;
 use crate::pipeline::sweep_plan::Sweep;
 use crate::records::{Job, to_json};
+
+/// What became of one job of a sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JobOutcome {
+    /// It ran (or resumed) here and is finished.
+    Ran,
+    /// It was finished already (by this or another worker); nothing ran.
+    Skipped,
+    /// Another worker holds its lock and waiting was not asked for; nothing ran.
+    Running,
+}
+
+impl JobOutcome {
+    /// `ran`, `skipped` or `running`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            JobOutcome::Ran => "ran",
+            JobOutcome::Skipped => "skipped",
+            JobOutcome::Running => "running",
+        }
+    }
+}
 
 /// Runs the `selected` jobs of `sweep` into `out/jobs/ID/`, skipping finished ones, as many at
 /// a time as there are threads ([`run_concurrently`]), reporting to `progress` (the command
@@ -26,6 +51,71 @@ pub fn run_jobs(
     force: bool,
     progress: &dyn SweepProgress,
 ) -> Result<(), CliError> {
+    let jobs_dir = prepare_sweep_dir(sweep, text, out, force)?;
+    let todo: Vec<usize> = selected
+        .iter()
+        .copied()
+        .filter(|&k| !is_done(&jobs_dir, &sweep.jobs[k]))
+        .collect();
+    let skipped = selected.len() - todo.len();
+    progress.begin(selected.len(), skipped);
+    let numbered: Vec<(usize, usize)> = todo.iter().copied().enumerate().collect();
+    let outcomes = run_concurrently(&numbered, |&(n, k)| {
+        let outcome = run_job(
+            sweep,
+            &sweep.jobs[k],
+            &jobs_dir,
+            true,
+            progress,
+            skipped + n + 1,
+        )?;
+        progress.job_done();
+        Ok(outcome)
+    })?;
+    progress.end();
+    let ran = outcomes.iter().filter(|&&o| o == JobOutcome::Ran).count();
+    note!(
+        "{ran} jobs run, {} already done, {} in this selection, {} in the plan",
+        selected.len() - ran,
+        selected.len(),
+        sweep.jobs.len()
+    );
+    Ok(())
+}
+
+/// Runs job `index` of `sweep` into the sweep directory `out` as `fuzzymotiv sweep --index` does
+/// (the same checks of `out`, the same files; `text` is the sweep file's text), unless it is
+/// finished. A job another worker holds is waited for when `wait`, else left to it
+/// ([`JobOutcome::Running`]). Many workers may call this at once on one `out`.
+pub fn run_one_job(
+    sweep: &Sweep,
+    text: &str,
+    index: usize,
+    out: &Path,
+    wait: bool,
+    progress: &dyn SweepProgress,
+) -> Result<JobOutcome, CliError> {
+    let job = sweep.jobs.get(index).ok_or_else(|| {
+        CliError::input(format!(
+            "job index {index} is out of range: the plan has {} jobs",
+            sweep.jobs.len()
+        ))
+    })?;
+    let jobs_dir = prepare_sweep_dir(sweep, text, out, false)?;
+    if is_done(&jobs_dir, job) {
+        return Ok(JobOutcome::Skipped);
+    }
+    run_job(sweep, job, &jobs_dir, wait, progress, 1)
+}
+
+/// Checks `out` for `sweep` ([`open_sweep_dir`]) and writes its plan and sweep file; returns
+/// its `jobs/` folder.
+fn prepare_sweep_dir(
+    sweep: &Sweep,
+    text: &str,
+    out: &Path,
+    force: bool,
+) -> Result<PathBuf, CliError> {
     open_sweep_dir(sweep, out, force)?;
     // The plan first: it is what makes the directory a sweep for the tasks that start with this.
     std::fs::create_dir_all(out).map_err(|e| io_err(out, e))?;
@@ -33,34 +123,12 @@ pub fn run_jobs(
     write_atomic(&out.join("sweep.toml"), text)?;
     let jobs_dir = out.join("jobs");
     std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
-    let todo: Vec<usize> = selected
-        .iter()
-        .copied()
-        .filter(|&k| !jobs_dir.join(&sweep.jobs[k].id).join("DONE").is_file())
-        .collect();
-    let skipped = selected.len() - todo.len();
-    progress.begin(selected.len(), skipped);
-    let numbered: Vec<(usize, usize)> = todo.iter().copied().enumerate().collect();
-    run_concurrently(&numbered, |&(n, k)| {
-        let job = &sweep.jobs[k];
-        run_job(
-            sweep,
-            job,
-            &jobs_dir.join(&job.id),
-            progress,
-            skipped + n + 1,
-        )?;
-        progress.job_done();
-        Ok(())
-    })?;
-    progress.end();
-    note!(
-        "{} jobs run, {skipped} already done, {} in this selection, {} in the plan",
-        todo.len(),
-        selected.len(),
-        sweep.jobs.len()
-    );
-    Ok(())
+    Ok(jobs_dir)
+}
+
+/// Whether `job` is finished in `jobs_dir`.
+fn is_done(jobs_dir: &Path, job: &Job) -> bool {
+    jobs_dir.join(&job.id).join("DONE").is_file()
 }
 
 /// The files of a sweep directory besides its job folders (written by `sweep` and `merge`).
@@ -167,7 +235,7 @@ fn plan_conflict(old: &[Job], new: &[Job]) -> Option<String> {
     })
 }
 
-/// Removes a sweep's own files and its jobs' folders (and their staging folders) from `out`;
+/// Removes a sweep's own files and its jobs' folders (their staging folders and locks) from `out`;
 /// anything else in it stays.
 fn remove_sweep(out: &Path, jobs: &[Job]) -> Result<(), CliError> {
     let jobs_dir = out.join("jobs");
@@ -187,6 +255,10 @@ fn remove_sweep(out: &Path, jobs: &[Job]) -> Result<(), CliError> {
             if d.is_dir() {
                 remove_ours(&d)?;
             }
+        }
+        let lock = lock_path(&jobs_dir, &job.id);
+        if lock.is_file() {
+            std::fs::remove_file(&lock).map_err(|e| io_err(&lock, e))?;
         }
     }
     if jobs_dir.read_dir().is_ok_and(|mut d| d.next().is_none()) {
@@ -209,18 +281,34 @@ fn is_job_id(id: &str) -> bool {
             .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
 }
 
-/// Runs one job of a sweep into `dir` (resuming it if a checkpoint is there) and marks it
-/// `DONE`, reporting to the progress `progress` gives it as the `nth` job of the selection.
+/// Runs one job of a sweep into `jobs_dir/ID/` under its lock (waited for when `wait`),
+/// resuming it if a checkpoint is there, and marks it `DONE`, reporting to the progress
+/// `progress` gives it as the `nth` job of the selection. A job finished while this worker
+/// waited is skipped.
 fn run_job(
     sweep: &Sweep,
     job: &Job,
-    dir: &Path,
+    jobs_dir: &Path,
+    wait: bool,
     progress: &dyn SweepProgress,
     nth: usize,
-) -> Result<(), CliError> {
+) -> Result<JobOutcome, CliError> {
+    let _lock = if wait {
+        JobLock::acquire(jobs_dir, &job.id)?
+    } else {
+        match JobLock::try_acquire(jobs_dir, &job.id)? {
+            Some(lock) => lock,
+            None => return Ok(JobOutcome::Running),
+        }
+    };
+    if is_done(jobs_dir, job) {
+        return Ok(JobOutcome::Skipped);
+    }
+    let dir = jobs_dir.join(&job.id);
     let loaded = sweep.load_job(job)?;
     let progress = progress.job(job, nth, &loaded.experiment);
-    execute_or_resume(&loaded, dir, &*progress, None)?;
+    execute_or_resume(&loaded, &dir, &*progress, None)?;
     write_atomic(&dir.join("job.json"), to_json(job))?;
-    write_atomic(&dir.join("DONE"), "")
+    write_atomic(&dir.join("DONE"), "")?;
+    Ok(JobOutcome::Ran)
 }

@@ -17,6 +17,34 @@ use crate::render::tables::STD_IS_SAMPLE;
 /// Writes `results.csv`, `aggregate.csv`, `aggregate.md` and `summary.svg` of the sweep
 /// directory `dir`; prints the Markdown table.
 pub fn merge_dir(dir: &Path) -> Result<(), CliError> {
+    let merged = write_merge(dir)?;
+    crate::out!("{}", merged.markdown)?;
+    note!(
+        "merged {} jobs ({} rows) into {}; {} of {} jobs not finished",
+        merged.jobs - merged.missing,
+        merged.rows,
+        dir.join("results.csv").display(),
+        merged.missing,
+        merged.jobs
+    );
+    Ok(())
+}
+
+/// What [`write_merge`] wrote.
+#[derive(Debug, Clone)]
+pub struct Merged {
+    /// `aggregate.md`'s text.
+    pub markdown: String,
+    /// Jobs in the plan.
+    pub jobs: usize,
+    /// Jobs not finished (left out of the tables).
+    pub missing: usize,
+    /// Rows of `results.csv` (one per room of a finished job).
+    pub rows: usize,
+}
+
+/// [`merge_dir`]'s files, written without printing anything (for the Python bindings).
+pub fn write_merge(dir: &Path) -> Result<Merged, CliError> {
     let jobs = Job::read_plan(&dir.join("plan.jsonl"))?;
     let (results, missing) = collect_results(dir, &jobs)?;
     write_atomic(&dir.join("results.csv"), results.to_csv())?;
@@ -34,15 +62,12 @@ pub fn merge_dir(dir: &Path) -> Result<(), CliError> {
         &dir.join("summary.svg"),
         sweep_summary_svg(&setting_points(&groups)),
     )?;
-    crate::out!("{md}")?;
-    note!(
-        "merged {} jobs ({} rows) into {}; {missing} of {} jobs not finished",
-        jobs.len() - missing,
-        results.rows.len(),
-        dir.join("results.csv").display(),
-        jobs.len()
-    );
-    Ok(())
+    Ok(Merged {
+        markdown: md,
+        jobs: jobs.len(),
+        missing,
+        rows: results.rows.len(),
+    })
 }
 
 /// The rows of every finished job (one per room), and the number of unfinished jobs.

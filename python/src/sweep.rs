@@ -1,0 +1,101 @@
+//! Sweeps from Python (`fuzzymotiv.plan`, `run_job`, `sweep`): the CLI's own planning, job
+//! running (under the job's lock) and merging of `fuzzymotiv-io`, reached with plain values —
+//! the sweep's text, its source and folder, a job's index and id — so that a job is a picklable
+//! value any executor can ship to another process.
+
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::pipeline::progress::NoProgress;
+use fuzzymotiv_io::pipeline::sweep_jobs::run_one_job;
+use fuzzymotiv_io::pipeline::sweep_merge::write_merge;
+use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
+use pyo3::prelude::*;
+
+use crate::py_err;
+
+/// The source name of a sweep given as text (a dict in Python), in error messages.
+const TEXT_SOURCE: &str = "(sweep dict)";
+
+/// `folder` made absolute (room files are relative to it, and a job may run in a process with
+/// another working directory).
+fn absolute(folder: &Path) -> Result<PathBuf, CliError> {
+    let folder = if folder.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        folder
+    };
+    std::path::absolute(folder).map_err(|e| fuzzymotiv_io::files::guard::io_err(folder, e))
+}
+
+/// A sweep file (`path`) or sweep text planned as `fuzzymotiv plan` plans it: `(text, source,
+/// base_dir, plan_jsonl)`, the first three being what [`sweep_run_job`] needs to run a job.
+#[pyfunction]
+#[pyo3(signature = (path=None, text=None))]
+pub fn sweep_plan(
+    py: Python<'_>,
+    path: Option<PathBuf>,
+    text: Option<String>,
+) -> PyResult<(String, String, String, String)> {
+    py.detach(|| {
+        let (text, source, base_dir) = match (path, text) {
+            (Some(p), _) => {
+                let text = std::fs::read_to_string(&p).map_err(|e| {
+                    CliError::input(format!("{}: cannot read sweep file: {e}", p.display()))
+                })?;
+                let dir = absolute(p.parent().unwrap_or(Path::new("")))?;
+                (text, p.display().to_string(), dir)
+            }
+            (None, Some(t)) => (t, TEXT_SOURCE.to_string(), absolute(Path::new(""))?),
+            (None, None) => return Err(CliError::input("plan: give a sweep file or a dict")),
+        };
+        let sweep = Sweep::parse_str(&text, &source, &base_dir)?;
+        let dir = base_dir.display().to_string();
+        Ok((text, source, dir, sweep.plan_jsonl()))
+    })
+    .map_err(py_err)
+}
+
+/// Runs job `index` (whose id must be `id`) of the sweep `text` into the sweep directory `out`
+/// as `fuzzymotiv sweep --index INDEX` does, under the job's lock (waited for when `wait`):
+/// `"ran"`, `"skipped"` (finished before) or `"running"` (locked, not waited for). The GIL is
+/// released.
+#[pyfunction]
+#[pyo3(signature = (text, source, base_dir, index, id, out, wait=true))]
+#[allow(clippy::too_many_arguments)]
+pub fn sweep_run_job(
+    py: Python<'_>,
+    text: String,
+    source: String,
+    base_dir: PathBuf,
+    index: usize,
+    id: String,
+    out: PathBuf,
+    wait: bool,
+) -> PyResult<&'static str> {
+    py.detach(|| {
+        let sweep = Sweep::parse_str(&text, &source, &base_dir)?;
+        match sweep.jobs.get(index) {
+            Some(job) if job.id == id => {}
+            _ => {
+                return Err(CliError::input(format!(
+                    "job {id} (index {index}) is not a job of {source} as it plans now ({} jobs): \
+                     plan it again with fuzzymotiv.plan",
+                    sweep.jobs.len()
+                )));
+            }
+        }
+        run_one_job(&sweep, &text, index, &out, wait, &NoProgress).map(|o| o.as_str())
+    })
+    .map_err(py_err)
+}
+
+/// Merges the sweep directory `dir` as `fuzzymotiv merge` does (the same `results.csv`,
+/// `aggregate.csv`, `aggregate.md`, `summary.svg`), printing nothing: `(markdown, jobs,
+/// missing, rows)`.
+#[pyfunction]
+pub fn sweep_merge(py: Python<'_>, dir: PathBuf) -> PyResult<(String, usize, usize, usize)> {
+    py.detach(|| write_merge(&dir))
+        .map(|m| (m.markdown, m.jobs, m.missing, m.rows))
+        .map_err(py_err)
+}
