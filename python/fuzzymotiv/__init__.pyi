@@ -218,3 +218,15 @@ class GA:
     def state(self) -> GAState: ...
     @classmethod
     def from_state(cls, state: Mapping[str, Any], problem: Optional[Problem] = ...) -> GA: ...
+    @classmethod
+    def from_run(
+        cls,
+        run_dir: Union[str, os.PathLike[str]],
+        *,
+        room: Optional[str] = ...,
+        problem: Optional[Problem] = ...,
+        threads: Optional[int] = ...,
+    ) -> GA:
+        """A GA continuing a finished run directory (its final population evaluated again and
+        bred): asking, evaluating and telling up to N generations gives a fresh N-generation
+        run's ``generations``. The directory is only read."""
