@@ -107,6 +107,8 @@ class RunResult:
     summary: dict[str, Any]
     hidden: int
     out: Optional[Path]
+    def __init__(self, native: dict[str, Any], out: Optional[Path]) -> None:
+        """Made by :func:`run` (from the native result)."""
 
 def run(
     config: Config = ...,
