@@ -27,20 +27,20 @@ pub fn finished_config(dir: &Path) -> Result<Loaded, CliError> {
             dir.display()
         ))
     };
+    if StagedDir::staging_path(dir).join(CONFIG).is_file() && !dir.join(CONFIG).is_file() {
+        return Err(what(
+            "an unfinished run",
+            &format!(
+                " (finish it first with `fuzzymotiv run --resume {}`)",
+                dir.display()
+            ),
+        ));
+    }
     if !dir.is_dir() {
         return Err(what("no such directory", ""));
     }
     if !dir.join(CONFIG).is_file() {
-        let partial = StagedDir::staging_path(dir).join(CONFIG).is_file();
-        let hint = if partial {
-            format!(
-                " (this run is unfinished: finish it first with `fuzzymotiv run --resume {}`)",
-                dir.display()
-            )
-        } else {
-            String::new()
-        };
-        return Err(what(&format!("no {CONFIG}"), &hint));
+        return Err(what(&format!("no {CONFIG}"), ""));
     }
     if !dir.join("summary.json").is_file() {
         return Err(what("no summary.json (an unfinished run)", ""));
