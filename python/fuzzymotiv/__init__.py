@@ -727,6 +727,36 @@ class GA:
         as this one would."""
         return (GA.from_state, (self.state, self.problem))
 
+    @classmethod
+    def from_run(
+        cls,
+        run_dir: Union[str, os.PathLike],
+        *,
+        room: Optional[str] = None,
+        problem: Optional[Problem] = None,
+        threads: Optional[int] = None,
+    ) -> "GA":
+        """A GA continuing the finished run directory ``run_dir`` (of :func:`run` or
+        ``fuzzymotiv run``): its final population is evaluated again and bred, so
+        :meth:`ask` gives the generation after its last and ``history`` holds its generations;
+        asking, evaluating and telling up to N generations gives a fresh N-generation run's
+        ``generations`` exactly. ``best`` starts as the final generation's best. ``problem``
+        (None: one from the run's ``config.resolved.toml``, with ``room`` for per-room
+        training and ``threads``) must be of the run's config. ``run_dir`` is only read; a
+        directory without ``population.json`` (an older or unfinished run) is an error."""
+        path = os.fspath(run_dir)
+        if problem is None:
+            config = os.path.join(path, "config.resolved.toml")
+            if not os.path.isfile(config):
+                _native.GA.from_run(path, None)  # raises the error naming what is missing
+            problem = Problem(config, room=room, threads=threads)
+        elif not isinstance(problem, Problem):
+            raise FuzzymotivError(f"problem: expected a fuzzymotiv.Problem, got {type(problem).__name__}")
+        self = cls.__new__(cls)
+        self.problem = problem
+        self._native = _native.GA.from_run(path, problem._native)
+        return self
+
     def __repr__(self) -> str:
         best = "none" if self.best is None else f"{self.best.fitness:.4f}"
         return f"<GA generation {self.generation} seed {self.seed} best F {best}>"

@@ -114,6 +114,8 @@ class RunResult:
     summary: dict[str, Any]
     hidden: int
     out: Optional[Path]
+    def __init__(self, native: dict[str, Any], out: Optional[Path]) -> None:
+        """Made by :func:`run` (from the native result)."""
 
 def run(
     config: Config = ...,
@@ -256,3 +258,15 @@ class GA:
     @classmethod
     def from_state(cls, state: Mapping[str, Any], problem: Optional[Problem] = ...) -> GA: ...
     def __reduce__(self) -> tuple[Any, ...]: ...
+    @classmethod
+    def from_run(
+        cls,
+        run_dir: Union[str, os.PathLike[str]],
+        *,
+        room: Optional[str] = ...,
+        problem: Optional[Problem] = ...,
+        threads: Optional[int] = ...,
+    ) -> GA:
+        """A GA continuing a finished run directory (its final population evaluated again and
+        bred): asking, evaluating and telling up to N generations gives a fresh N-generation
+        run's ``generations``. The directory is only read."""

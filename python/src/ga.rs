@@ -2,7 +2,7 @@
 //! (`initial_population`, `generation_record`, `breed`), so that ask → `Problem.evaluate` →
 //! tell is exactly `fm.run`'s evolution; its state is a plain, versioned dict.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use fuzzymotiv::evolution::ga::{Genome, Stats, ranking};
@@ -13,6 +13,7 @@ use fuzzymotiv::experiment::evolution::GenerationRecord;
 use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::fitness::terms::FitnessTerms;
 use fuzzymotiv_io::files::inputs::resolve;
+use fuzzymotiv_io::pipeline::continuation::{continue_runs, finished_config};
 use numpy::{
     PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods,
 };
@@ -312,6 +313,50 @@ impl Ga {
             best: self.best.clone(),
         };
         serde_json::to_string(&state).expect("finite numbers serialise")
+    }
+
+    /// The GA that continues the finished run in `dir` (its config is `problem`'s): its
+    /// final population evaluated again and bred, at the generation after the last, with the
+    /// run's history; `best` is the best of the final generation.
+    #[staticmethod]
+    #[pyo3(signature = (dir, problem=None))]
+    fn from_run(dir: PathBuf, problem: Option<Bound<'_, Problem>>) -> PyResult<Ga> {
+        let old = finished_config(&dir).map_err(py_err)?;
+        let problem = problem.ok_or_else(|| input_err("problem: required"))?;
+        let py = problem.py();
+        let p = problem.get();
+        let seed = old.experiment.seed();
+        if p.config_toml(seed) != old.raw.to_toml() || p.experiment_for(None)?.seed() != seed {
+            return Err(input_err(format!(
+                "problem: its config is not the one of {}; pass none (the run's config.resolved.toml is used)",
+                dir.display()
+            )));
+        }
+        let label = p.run().label.clone();
+        let continued = p.compute(py, || continue_runs(&dir, &old.experiment))?;
+        let c = (continued.map_err(py_err)?.into_iter())
+            .find(|c| c.finished.run.label == label)
+            .ok_or_else(|| {
+                input_err(format!(
+                    "problem: run {label:?} is not in {}",
+                    dir.display()
+                ))
+            })?;
+        let done = c.finished.history.len();
+        let best = Best {
+            genome: c.finished.population[c.finished.best].clone(),
+            fitness: c.finished.evaluations[c.finished.best].fitness,
+            generation: done - 1,
+        };
+        Ok(Ga {
+            config: p.config_toml(seed),
+            exp: p.experiment_for(None)?,
+            run: p.run().clone(),
+            generation: done,
+            population: c.next,
+            history: c.finished.history,
+            best: Some(best),
+        })
     }
 
     /// A GA from `state_json`'s text, with `problem`'s experiment when given (its config must

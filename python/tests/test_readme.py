@@ -28,3 +28,17 @@ def test_readme_own_optimiser(repo, monkeypatch, capsys):
     monkeypatch.chdir(repo)
     exec(compile(code, "README.md (Use your own optimiser)", "exec"), {})
     assert re.fullmatch(r"F \d\.\d{3} -> \d\.\d{3}\n", capsys.readouterr().out)
+
+
+def test_readme_cma_loop(repo, monkeypatch, capsys):
+    """The README's CMA-ES loop (ten lines) runs as written (where `cma` is installed)."""
+    pytest.importorskip("cma")
+    text = (repo / "README.md").read_text()
+    section = text.split("\n### Use your own optimiser\n", 1)[1].split("\n## ", 1)[0]
+    blocks = re.findall(r"```python\n(.*?)```", section, re.S)
+    code = next(b for b in blocks if "import cma" in b)
+    assert len(code.strip().splitlines()) <= 10
+    monkeypatch.chdir(repo)
+    exec(compile(code, "README.md (CMA-ES)", "exec"), {})
+    out = capsys.readouterr().out
+    assert re.fullmatch(r"CMA-ES best F \d\.\d{3}\n", out), out

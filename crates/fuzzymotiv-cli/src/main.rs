@@ -25,7 +25,7 @@ struct Cli {
 enum Command {
     /// Evolve controllers as a config file says and write a run directory.
     #[command(
-        override_usage = "fuzzymotiv run CONFIG [OPTIONS]\n       fuzzymotiv run --resume DIR [--threads N] [--png] [--quiet]"
+        override_usage = "fuzzymotiv run CONFIG [OPTIONS]\n       fuzzymotiv run --resume DIR [--threads N] [--png] [--quiet]\n       fuzzymotiv run --continue DIR --generations N --out NEW [OPTIONS]"
     )]
     Run(run::RunArgs),
     /// Run the paper's whole study (both motivation settings, five rooms) and write its tables

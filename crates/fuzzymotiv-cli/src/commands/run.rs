@@ -6,6 +6,7 @@ use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{OutState, StagedDir, check_out};
 use fuzzymotiv_io::files::inputs::{Loaded, load_config, run_identity};
 use fuzzymotiv_io::note;
+use fuzzymotiv_io::pipeline::continuation::{continued_config, finished_config, stage_continued};
 use fuzzymotiv_io::pipeline::lanes::set_threads;
 use fuzzymotiv_io::pipeline::run_dir::{execute, start_line};
 use fuzzymotiv_io::render::tables::table_markdown;
@@ -24,12 +25,19 @@ use crate::progress::Progress;
 pub struct RunArgs {
     /// Experiment config (TOML; every key is optional, defaults in docs/model.md). Required, unless
     /// --resume DIR is given instead.
-    #[arg(value_name = "CONFIG", required_unless_present = "resume")]
+    #[arg(value_name = "CONFIG", required_unless_present_any = ["resume", "continue_from"])]
     pub config: Option<PathBuf>,
     /// Continue a killed run: DIR is the run's output directory (its `DIR.partial/` holds the
     /// checkpoint and resolved config). The result equals an uninterrupted run.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["config", "out", "seed", "sets", "force"])]
     pub resume: Option<PathBuf>,
+    /// Continue a finished run DIR to more generations (--generations N, the total) into a new
+    /// directory (--out NEW); DIR is only read. The result equals a fresh N-generation run.
+    #[arg(long = "continue", value_name = "DIR", requires_all = ["generations", "out"], conflicts_with_all = ["config", "resume", "seed", "sets"])]
+    pub continue_from: Option<PathBuf>,
+    /// With --continue: the total number of generations (more than DIR ran).
+    #[arg(long, value_name = "N", requires = "continue_from")]
+    pub generations: Option<usize>,
     /// --out, --force, --quiet, --seed.
     #[command(flatten)]
     pub output: OutputArgs,
@@ -60,6 +68,7 @@ enum Target {
 pub fn run(args: RunArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
     let target = match (&args.resume, &args.config) {
+        _ if args.continue_from.is_some() => continue_target(&args)?,
         (Some(dir), _) => resume_target(dir)?,
         (None, Some(config)) => config_target(config, &args)?,
         (None, None) => return Err(CliError::input("give a CONFIG file or --resume DIR")),
@@ -133,4 +142,55 @@ fn config_target(config: &Path, args: &RunArgs) -> Result<Target, CliError> {
         out,
         resume,
     })
+}
+
+/// `--continue DIR --generations N --out NEW`: the finished run in `DIR` continued to N
+/// generations in `NEW` (staged from `DIR`'s final population; `DIR` is never written).
+fn continue_target(args: &RunArgs) -> Result<Target, CliError> {
+    let (Some(dir), Some(n), Some(out)) = (&args.continue_from, args.generations, &args.output.out)
+    else {
+        return Err(CliError::input(
+            "--continue DIR needs --generations N (the total) and --out NEW",
+        ));
+    };
+    let old = finished_config(dir)?;
+    let new = continued_config(dir, &old, n)?;
+    if same_place(dir, out) {
+        return Err(CliError::input(format!(
+            "--out {}: is the run being continued; --continue never changes it: choose a new --out",
+            out.display()
+        )));
+    }
+    let resume = match check_out(out, &run_identity(&new.raw), args.output.force)? {
+        OutState::Done => {
+            note!(
+                "{} already holds this run, finished ({n} generations); nothing to do. --force runs it again",
+                out.display()
+            );
+            return Ok(Target::Done(out.clone()));
+        }
+        OutState::Unfinished => true,
+        OutState::Fresh => {
+            stage_continued(dir, &old, &new, out)?;
+            true
+        }
+    };
+    Ok(Target::Run {
+        loaded: Box::new(new),
+        out: out.clone(),
+        resume,
+    })
+}
+
+/// Whether two paths name the same directory (or `b` lies inside `a`).
+fn same_place(a: &Path, b: &Path) -> bool {
+    let canon = |p: &Path| {
+        let parent = p.parent().filter(|q| !q.as_os_str().is_empty());
+        let base = parent.map_or_else(|| Path::new(".").canonicalize(), |q| q.canonicalize());
+        base.ok().map(|d| d.join(p.file_name().unwrap_or_default()))
+    };
+    match (a.canonicalize().ok(), canon(b)) {
+        (Some(a), Some(b)) => b.starts_with(&a),
+        _ => false,
+    }
 }

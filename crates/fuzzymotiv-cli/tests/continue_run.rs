@@ -1,0 +1,179 @@
+//! `fuzzymotiv run --continue DIR --generations N --out NEW`: a finished run continued to N
+//! generations equals a fresh N-generation run in its results, and DIR is left as it was.
+
+mod common;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use common::{Fm, repo, stderr};
+
+/// A small run of `configs/tiny.toml` (with `extra` settings) of `generations` into `out`.
+fn tiny_run(out: &Path, generations: usize, extra: &[&str]) {
+    let g = format!("ga.generations={generations}");
+    let mut sets = vec![
+        "ga.population=8",
+        "trial.steps=80",
+        "aem.epochs=10",
+        "aem.test_runs=2",
+        &g,
+    ];
+    sets.extend_from_slice(extra);
+    Fm::new(["run"])
+        .arg(repo().join("configs/tiny.toml"))
+        .out(out)
+        .sets(&sets)
+        .arg("--quiet")
+        .ok();
+}
+
+/// Every file under `dir` (relative path → bytes).
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    let mut files = BTreeMap::new();
+    let mut todo = vec![dir.to_path_buf()];
+    while let Some(d) = todo.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                todo.push(p);
+            } else {
+                let rel = p.strip_prefix(dir).unwrap().to_path_buf();
+                files.insert(rel, std::fs::read(&p).unwrap());
+            }
+        }
+    }
+    files
+}
+
+/// `summary.json` without its wall time (the one field that may differ).
+fn summary_without_time(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v.as_object_mut()
+        .unwrap()
+        .remove("wall_seconds")
+        .expect("a wall time");
+    v
+}
+
+/// Continues a 2-generation run to 4 and compares with a fresh 4-generation run.
+fn continued_equals_fresh(extra: &[&str]) {
+    let tmp = tempfile::tempdir().unwrap();
+    let (fresh, short, long) = (
+        tmp.path().join("fresh"),
+        tmp.path().join("short"),
+        tmp.path().join("long"),
+    );
+    tiny_run(&fresh, 4, extra);
+    tiny_run(&short, 2, extra);
+    let before = snapshot(&short);
+    let o = Fm::new(["run", "--continue"])
+        .arg(&short)
+        .arg("--generations")
+        .arg("4")
+        .out(&long)
+        .arg("--quiet")
+        .ok();
+    assert_eq!(snapshot(&short), before, "--continue changed DIR");
+    assert!(!tmp.path().join("long.partial").exists());
+    for f in [
+        "generations.csv",
+        "best_genome.json",
+        "recognition.csv",
+        "table.md",
+        "config.resolved.toml",
+    ] {
+        assert_eq!(
+            std::fs::read_to_string(fresh.join(f)).unwrap(),
+            std::fs::read_to_string(long.join(f)).unwrap(),
+            "{f} differs from a fresh run"
+        );
+    }
+    assert_eq!(summary_without_time(&fresh), summary_without_time(&long));
+    let rows = std::fs::read_to_string(long.join("generations.csv")).unwrap();
+    assert_ne!(
+        rows,
+        std::fs::read_to_string(short.join("generations.csv")).unwrap()
+    );
+    // The same command again: the continued run is there, finished.
+    let again = Fm::new(["run", "--continue"])
+        .arg(&short)
+        .arg("--generations")
+        .arg("4")
+        .out(&long)
+        .ok();
+    assert!(stderr(&again).contains("nothing to do"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_continued_run_equals_a_fresh_longer_run() {
+    continued_equals_fresh(&[]);
+}
+
+#[test]
+fn a_continued_per_room_run_equals_a_fresh_longer_run() {
+    continued_equals_fresh(&["training=\"per-room\"", "rooms=[\"H\",\"square\"]"]);
+}
+
+/// What cannot be continued is a clear error (exit 2) and nothing is written.
+#[test]
+fn what_cannot_be_continued_is_a_clear_error() {
+    let tmp = tempfile::tempdir().unwrap();
+    let done = tmp.path().join("done");
+    tiny_run(&done, 2, &[]);
+    let before = snapshot(&done);
+    let cont = |dir: &Path, n: &str, out: &Path| {
+        Fm::new(["run", "--continue"])
+            .arg(dir)
+            .arg("--generations")
+            .arg(n)
+            .out(out)
+            .run()
+    };
+    let new = tmp.path().join("new");
+    let expect = |o: std::process::Output, words: &str| {
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains(words),
+            "{words:?} not in: {}",
+            stderr(&o)
+        );
+        assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+    };
+    expect(cont(&done, "2", &new), "expected a total greater than 2");
+    expect(cont(&done, "4", &done), "choose a new --out");
+    expect(cont(&done, "4", &done.join("inside")), "choose a new --out");
+    expect(
+        cont(&tmp.path().join("none"), "4", &new),
+        "no such directory",
+    );
+    // An older run directory: no population.json.
+    let older = tmp.path().join("older");
+    std::fs::create_dir(&older).unwrap();
+    for (f, bytes) in &before {
+        if f != Path::new("population.json") && f.parent() == Some(Path::new("")) {
+            std::fs::write(older.join(f), bytes).unwrap();
+        }
+    }
+    expect(cont(&older, "4", &new), "no population.json");
+    // An unfinished one (only its staging directory).
+    let unfinished = tmp.path().join("unfinished");
+    std::fs::create_dir(tmp.path().join("unfinished.partial")).unwrap();
+    std::fs::write(
+        tmp.path().join("unfinished.partial/config.resolved.toml"),
+        &before[Path::new("config.resolved.toml")],
+    )
+    .unwrap();
+    expect(cont(&unfinished, "4", &new), "run --resume");
+    // --generations without --continue, --continue without --out.
+    let o = Fm::new(["run", "--generations", "4"]).run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let o = Fm::new(["run", "--continue"])
+        .arg(&done)
+        .arg("--generations")
+        .arg("4")
+        .run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(!new.exists() && !tmp.path().join("new.partial").exists());
+    assert_eq!(snapshot(&done), before, "DIR was changed");
+}
