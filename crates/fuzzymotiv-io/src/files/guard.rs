@@ -167,7 +167,7 @@ pub fn is_ours(dir: &Path) -> bool {
 
 /// The names of the files our outputs write (besides `*.svg` and `*.png` figures and `.tmp*`
 /// temporary files): anything else in a directory about to be replaced is the user's.
-const OUR_FILES: [&str; 27] = [
+const OUR_FILES: [&str; 29] = [
     "config.resolved.toml",
     "generations.csv",
     "best_genome.json",
@@ -190,6 +190,8 @@ const OUR_FILES: [&str; 27] = [
     "claims.csv",
     "ablation.md",
     "ablation.csv",
+    "search_strength.md",
+    "search_strength.csv",
     "plan.jsonl",
     "sweep.toml",
     "results.csv",

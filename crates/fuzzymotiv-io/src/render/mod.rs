@@ -6,6 +6,7 @@
 
 pub mod figures;
 pub mod report;
+pub mod strength;
 pub mod study;
 pub mod svg;
 pub mod tables;
