@@ -60,7 +60,7 @@ fn search_strength_runs_every_population_and_tabulates_the_claims() {
     assert_eq!(csv.lines().count(), 1 + 4 * 6 + 4, "{csv}");
     assert!(md.contains("Low-curiosity exploration"), "{md}");
     let svg = read(out.join("search_strength.svg"));
-    assert!(svg.contains("% exploration per setting") && svg.contains("recognises rooms better"));
+    assert!(svg.contains("% exploration per setting") && svg.contains(">returns home less<"));
     assert_eq!(svg.matches(">GA population<").count(), 5, "five panels");
     // The same command again: done, nothing replaced.
     let again = cmd().ok();

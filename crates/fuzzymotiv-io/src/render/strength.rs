@@ -114,7 +114,7 @@ fn claim_row(md: &mut String, csv: &mut String, study: &StudySummary, c: &ClaimR
         let verdict = if c.holds { "holds" } else { "fails" };
         let _ = writeln!(
             md,
-            "| {pop} | {} | {} | | | | {verdict} | |",
+            "| {pop} | {} | | | {} | | {verdict} | |",
             c.claim, c.evidence
         );
         let _ = writeln!(csv, "{pop},\"{}\",,,,,,,{verdict},,", c.claim);
@@ -246,10 +246,7 @@ fn claim_panels(studies: &[StudySummary]) -> Vec<Panel> {
                 .map(|s| s.claims.get(claims_index(s, &claim.claim)?)?.stats.clone())
                 .collect();
             Panel {
-                title: claim
-                    .claim
-                    .trim_start_matches("high curiosity ")
-                    .to_string(),
+                title: short(&claim.claim),
                 y_label: "high − low (points)",
                 series: vec![(
                     "difference".into(),
@@ -267,6 +264,14 @@ fn claim_panels(studies: &[StudySummary]) -> Vec<Panel> {
             }
         })
         .collect()
+}
+
+/// A claim's words without the setting names: "explores more", "returns home less".
+fn short(claim: &str) -> String {
+    claim
+        .trim_start_matches("high curiosity ")
+        .replace(" than low curiosity", "")
+        .replace(" (lower % homing)", "")
 }
 
 fn claims_index(study: &StudySummary, claim: &str) -> Option<usize> {
