@@ -234,13 +234,16 @@ fn study_seeds(args: &ReproduceArgs) -> Vec<u64> {
         .collect()
 }
 
+/// A variant and its claims.
+type VariantClaims = (&'static Variant, Vec<ClaimRecord>);
+
 /// Runs the study of every variant into `OUT/VARIANT/` (each with its tables, figures,
 /// claims and summary.json); `None` when `--out` already holds them all.
 fn run_variants(
     args: &ReproduceArgs,
     seeds: &[u64],
     variants: &'static [Variant],
-) -> Result<Option<(StagedDir, Vec<(&'static Variant, Vec<ClaimRecord>)>)>, CliError> {
+) -> Result<Option<(StagedDir, Vec<VariantClaims>)>, CliError> {
     let loaded = variants
         .iter()
         .map(|v| load_settings(args, seeds, v))

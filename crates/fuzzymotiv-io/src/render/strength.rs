@@ -16,6 +16,12 @@ use super::study::{CLAIMS_ALPHA, Variant, seed_means};
 use super::svg::{Ticks, colour, esc, text_width};
 use crate::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};
 
+/// Picks one column of a table row.
+type Column = fn(&TableRow) -> Option<f64>;
+
+/// A mean with its interval: (value, low, high).
+type Interval = Option<(f64, f64, f64)>;
+
 /// The study's variants: the GA population, everything else the paper's (200 generations).
 pub const SEARCH_STRENGTH: [Variant; 4] = [
     pop("pop-30", "ga.population = 30", &["ga.population=30"]),
@@ -39,18 +45,18 @@ const fn pop(name: &'static str, what: &'static str, sets: &'static [&'static st
 
 /// Each seed's low-curiosity (second setting's) mean exploration over rooms.
 fn low_exploration(study: &StudySummary) -> Option<Vec<f64>> {
-    let column: fn(&TableRow) -> Option<f64> = |r| r.exploration_pct;
+    let column: Column = |r| r.exploration_pct;
     seed_means(study.settings.get(1)?, column)
 }
 
 /// A setting's mean over seeds of each seed's mean over rooms of `column`.
-fn grand(setting: &SettingSummary, column: fn(&TableRow) -> Option<f64>) -> Option<f64> {
+fn grand(setting: &SettingSummary, column: Column) -> Option<f64> {
     seed_means(setting, column).map(|v| statistics::mean(&v))
 }
 
 /// The column a comparison claim is about, found by its words.
-fn claim_column(claim: &str) -> Option<fn(&TableRow) -> Option<f64>> {
-    let columns: [(&str, fn(&TableRow) -> Option<f64>); 4] = [
+fn claim_column(claim: &str) -> Option<Column> {
+    let columns: [(&str, Column); 4] = [
         ("explores", |r| r.exploration_pct),
         ("battery", |r| r.battery_pct),
         ("recognises", |r| r.recognition_pct),
@@ -213,7 +219,7 @@ struct Panel {
     title: String,
     y_label: &'static str,
     /// Per series (name, colour), per population: (value, low, high, verdict colour).
-    series: Vec<(String, &'static str, Vec<Option<(f64, f64, f64)>>)>,
+    series: Vec<(String, &'static str, Vec<Interval>)>,
     /// Per population, a mark colour by verdict (comparison panels only).
     verdicts: Vec<Option<&'static str>>,
     zero: bool,
@@ -280,7 +286,7 @@ fn claims_index(study: &StudySummary, claim: &str) -> Option<usize> {
 
 /// The exploration panel: both settings' means over seeds with bootstrap intervals.
 fn exploration_panel(studies: &[StudySummary]) -> Panel {
-    let column: fn(&TableRow) -> Option<f64> = |r| r.exploration_pct;
+    let column: Column = |r| r.exploration_pct;
     let names = ["high curiosity", "low curiosity"];
     let series = (0..2)
         .map(|k| {
