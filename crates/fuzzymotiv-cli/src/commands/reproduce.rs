@@ -19,10 +19,12 @@ use fuzzymotiv_io::pipeline::sweep_merge::merge_dir;
 use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
 use fuzzymotiv_io::records::context::RenderContext;
 use fuzzymotiv_io::records::{
-    AblationSummary, ClaimRecord, PROGRAM, StudySummary, VariantSummary, to_json,
+    AblationSummary, ClaimRecord, PROGRAM, StrengthSummary, StudySummary, VariantSummary,
+    read_json, to_json,
 };
 use fuzzymotiv_io::render::figures::write_figure_at;
 use fuzzymotiv_io::render::report::{Section, reproduce_page};
+use fuzzymotiv_io::render::strength::{SEARCH_STRENGTH, strength_svg, strength_table};
 use fuzzymotiv_io::render::study::{
     ABLATION, CLAIMS_ALPHA, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns,
     Variant, claims, overall,
@@ -39,7 +41,7 @@ use crate::progress::{JobsProgress, Progress};
 /// Arguments of `fuzzymotiv reproduce`.
 #[derive(clap::Args)]
 #[command(
-    mut_arg("out", |a| a.help("Output directory [default: results; with --quick results-quick; with --orientation results-orientation(-quick); with --ablation results-ablation(-quick)]. Another study's results there are kept unless --force")),
+    mut_arg("out", |a| a.help("Output directory [default: results; with --quick results-quick; with --orientation results-orientation(-quick); with --ablation results-ablation(-quick); with --search-strength results-search-strength(-quick)]. Another study's results there are kept unless --force")),
     mut_arg("force", |a| a.help("Replace another study's results in --out (or an unfinished one) and start over")),
     mut_arg("seed", |a| a.help("Base seed, a whole number from 0 to 2^53 − 1: the study's first seed is this seed, the others derive from it [default: 1]")),
 )]
@@ -49,7 +51,8 @@ pub struct ReproduceArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Number of seeds per setting; tables give mean ± std over them and every seed's values.
-    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=1000))]
+    /// Ten by default: five paired seeds cannot give p < 0.05 (README: why ten).
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=1000))]
     pub seeds: u64,
     /// A fast look: GA 30 × 30 instead of the paper's 200 × 200.
     #[arg(long)]
@@ -73,6 +76,11 @@ pub struct ReproduceArgs {
     /// paper's claims hold under each.
     #[arg(long, conflicts_with = "orientation")]
     pub ablation: bool,
+    /// Run the search-strength study instead: the study at GA populations 30, 60, 100 and 200
+    /// (the paper's generations), and the paper's claims with their statistics at each, as one
+    /// table and one figure (EXPERIMENTS.md).
+    #[arg(long, conflicts_with_all = ["orientation", "ablation"])]
+    pub search_strength: bool,
 }
 
 impl ReproduceArgs {
@@ -89,6 +97,8 @@ impl ReproduceArgs {
                 "results-orientation"
             } else if self.ablation {
                 "results-ablation"
+            } else if self.search_strength {
+                "results-search-strength"
             } else {
                 "results"
             };
@@ -195,6 +205,9 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     if args.ablation {
         return ablation(&args);
     }
+    if args.search_strength {
+        return search_strength(&args);
+    }
     let start = Instant::now();
     let seeds = study_seeds(&args);
     let loaded = load_settings(&args, &seeds, &DEFAULT_MODEL)?;
@@ -221,33 +234,95 @@ fn study_seeds(args: &ReproduceArgs) -> Vec<u64> {
         .collect()
 }
 
-/// `reproduce --ablation`: the study for every variant, then which claims hold under each.
-fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
-    let start = Instant::now();
-    let seeds = study_seeds(args);
-    let loaded = ABLATION
+/// A variant and its claims.
+type VariantClaims = (&'static Variant, Vec<ClaimRecord>);
+
+/// Runs the study of every variant into `OUT/VARIANT/` (each with its tables, figures,
+/// claims and summary.json); `None` when `--out` already holds them all.
+fn run_variants(
+    args: &ReproduceArgs,
+    seeds: &[u64],
+    variants: &'static [Variant],
+) -> Result<Option<(StagedDir, Vec<VariantClaims>)>, CliError> {
+    let loaded = variants
         .iter()
-        .map(|v| load_settings(args, &seeds, v))
+        .map(|v| load_settings(args, seeds, v))
         .collect::<Result<Vec<_>, CliError>>()?;
     let out = args.out_dir();
-    let variants: Vec<_> = ABLATION.iter().zip(&loaded).collect();
-    let Some(staged) = open_out(args, &out, &variants)? else {
-        return Ok(());
+    let pairs: Vec<_> = variants.iter().zip(&loaded).collect();
+    let Some(staged) = open_out(args, &out, &pairs)? else {
+        return Ok(None);
     };
     let progress = Progress::new(
         &loaded[0][0][0].experiment,
-        ABLATION.len() * SETTINGS.len() * seeds.len(),
+        variants.len() * SETTINGS.len() * seeds.len(),
         args.output.quiet,
     );
     let mut rows = Vec::new();
-    for (variant, loaded) in ABLATION.iter().zip(loaded) {
+    for (variant, loaded) in variants.iter().zip(loaded) {
         let dir = staged.staging.join(variant.name);
         let label = format!("{} · ", variant.name);
-        let studies = run_study(args, &seeds, loaded, &dir, &progress, &label)?;
+        let studies = run_study(args, seeds, loaded, &dir, &progress, &label)?;
         let (claims, _) = write_study(args, &dir, &studies, Instant::now())?;
         rows.push((variant, claims));
     }
     progress.finish();
+    Ok(Some((staged, rows)))
+}
+
+/// `reproduce --search-strength`: the study at every GA population of [`SEARCH_STRENGTH`],
+/// then the claims with their statistics per population, tabulated from each population's
+/// summary.json as `search_strength.md`/`.csv` and the figure `search_strength.svg`.
+fn search_strength(args: &ReproduceArgs) -> Result<(), CliError> {
+    let start = Instant::now();
+    let seeds = study_seeds(args);
+    let Some((staged, _)) = run_variants(args, &seeds, &SEARCH_STRENGTH)? else {
+        return Ok(());
+    };
+    let studies = SEARCH_STRENGTH
+        .iter()
+        .map(|v| read_json(&staged.staging.join(v.name).join("summary.json")))
+        .collect::<Result<Vec<StudySummary>, CliError>>()?;
+    let (md, csv) = strength_table(&studies);
+    staged.write("search_strength.md", &md)?;
+    staged.write("search_strength.csv", &csv)?;
+    write_figure_at(
+        &staged.staging.join("search_strength.svg"),
+        &strength_svg(&studies),
+        rasteriser(args.png),
+    )?;
+    let summary = StrengthSummary {
+        program: PROGRAM.into(),
+        version: fuzzymotiv::VERSION.into(),
+        seed: args.seed(),
+        seeds,
+        quick: args.quick,
+        generations: studies[0].generations,
+        populations: studies.iter().map(|s| s.population).collect(),
+        overrides: args.sets.clone(),
+        variants: SEARCH_STRENGTH
+            .iter()
+            .zip(&studies)
+            .map(|(v, s)| VariantSummary {
+                name: v.name.into(),
+                switched_back: v.what.into(),
+                claims: s.claims.clone(),
+            })
+            .collect(),
+        wall_seconds: start.elapsed().as_secs_f64(),
+    };
+    staged.write("summary.json", to_json(&summary))?;
+    commit(staged, start)?;
+    fuzzymotiv_io::outln!("{md}")
+}
+
+/// `reproduce --ablation`: the study for every variant, then which claims hold under each.
+fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
+    let start = Instant::now();
+    let seeds = study_seeds(args);
+    let Some((staged, rows)) = run_variants(args, &seeds, &ABLATION)? else {
+        return Ok(());
+    };
     let prov = Provenance::new(
         &seeds,
         &RenderContext::of(&rows_exp(args, &seeds)?),
@@ -326,7 +401,13 @@ fn run_configs(variants: &[(&Variant, &Vec<Vec<Loaded>>)]) -> Vec<(String, Strin
 /// What makes a study "the same": [`IDENTITY`] naming the kind of study and every run's
 /// resolved config, written before the first run starts.
 fn identity(args: &ReproduceArgs, runs: &[(String, String)]) -> Vec<(String, String)> {
-    let kind = if args.ablation { "ablation" } else { "study" };
+    let kind = if args.ablation {
+        "ablation"
+    } else if args.search_strength {
+        "search-strength"
+    } else {
+        "study"
+    };
     let runs: serde_json::Map<String, serde_json::Value> = runs
         .iter()
         .map(|(path, config)| (path.clone(), config.clone().into()))

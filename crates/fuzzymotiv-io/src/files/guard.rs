@@ -167,7 +167,7 @@ pub fn is_ours(dir: &Path) -> bool {
 
 /// The names of the files our outputs write (besides `*.svg` and `*.png` figures, `.tmp*`
 /// temporary files and sweep jobs' `ID.lock` files): anything else in a directory about to be replaced is the user's.
-const OUR_FILES: [&str; 30] = [
+const OUR_FILES: [&str; 32] = [
     "config.resolved.toml",
     "generations.csv",
     "best_genome.json",
@@ -190,6 +190,8 @@ const OUR_FILES: [&str; 30] = [
     "claims.csv",
     "ablation.md",
     "ablation.csv",
+    "search_strength.md",
+    "search_strength.csv",
     "plan.jsonl",
     "sweep.toml",
     "results.csv",

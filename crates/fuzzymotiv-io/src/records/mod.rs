@@ -14,7 +14,7 @@
 //! | `generations.csv` | [`GenerationRow`] |
 //! | `recognition.csv` | [`RecognitionTable`] |
 //! | `test_runs.csv` | [`test_runs::TestRunRow`] |
-//! | reproduce `summary.json` | [`StudySummary`] (ablation: [`AblationSummary`]) |
+//! | reproduce `summary.json` | [`StudySummary`] (ablation: [`AblationSummary`]; search strength: [`StrengthSummary`]) |
 //! | sweep `plan.jsonl`, `jobs/ID/job.json` | [`Job`] |
 //! | sweep `results.csv` | [`SweepResults`] |
 //! | sweep `aggregate.csv` | [`AggregateRow`] |
@@ -837,6 +837,32 @@ pub struct AblationSummary {
     /// The study's seeds.
     pub seeds: Vec<u64>,
     /// Every variant.
+    pub variants: Vec<VariantSummary>,
+    /// Program version.
+    pub version: String,
+    /// Wall time (s).
+    pub wall_seconds: f64,
+}
+
+/// `reproduce --search-strength`'s `summary.json`: each population's claims (its own study's
+/// `summary.json`, in `pop-N/`, holds the rest).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StrengthSummary {
+    /// GA generations (the same at every population).
+    pub generations: usize,
+    /// `--set` overrides.
+    pub overrides: Vec<String>,
+    /// The GA populations, in the order of `variants`.
+    pub populations: Vec<usize>,
+    /// Always `fuzzymotiv`.
+    pub program: String,
+    /// Whether `--quick`.
+    pub quick: bool,
+    /// `--seed`.
+    pub seed: u64,
+    /// The study's seeds.
+    pub seeds: Vec<u64>,
+    /// Every population's claims (`name` is its directory, `pop-N`).
     pub variants: Vec<VariantSummary>,
     /// Program version.
     pub version: String,

@@ -8,6 +8,7 @@ pub mod compare;
 pub mod figures;
 pub mod frames;
 pub mod report;
+pub mod strength;
 pub mod study;
 pub mod svg;
 pub mod tables;
