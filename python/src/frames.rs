@@ -5,14 +5,11 @@
 //! optionally `sensors`, `action`, `idle`) or a genome, run here exactly as `fm.simulate` runs
 //! it. The room and the robot's body and sensors come from the config.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::config::OrientationMode;
 use fuzzymotiv::simulation::robot::{Action, Pose};
-use fuzzymotiv::simulation::trial::Trajectory;
 use fuzzymotiv_io::files::guard::{FilesState, PYTHON, check_files_as, write_files};
-use fuzzymotiv_io::files::inputs::{resolve, room_entry};
 use fuzzymotiv_io::render::frames::animate::{GifWriter, delay_of};
 use fuzzymotiv_io::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
 use fuzzymotiv_io::render::frames::{FrameOptions, Frames, Track, gif_of_frames, render};
@@ -24,7 +21,8 @@ use numpy::{
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::{input_err, load, py_err, seed_arg};
+use crate::gym::single_room;
+use crate::{finite, input_err, instance_of, load, py_err, seed_arg};
 
 /// The columns of a trajectory dict, as the Python layer hands them over (float64 arrays, a
 /// list of action labels, a list of booleans).
@@ -122,41 +120,12 @@ impl Setting {
         let path = self.config_path.as_deref();
         let loaded =
             load(path, self.config_text.as_deref(), &self.sets, self.seed).map_err(py_err)?;
-        let want = match &self.room {
+        let room = match &self.room {
             Some(r) => r.clone(),
             None => loaded.experiment.room_names()[0].clone(),
         };
-        let entry = room_entry("room", &want, &loaded).map_err(py_err)?;
-        let mut raw = loaded.raw.clone();
-        raw.rooms = vec![entry];
-        raw.aem.enabled = false;
-        raw.fitness.orientation = OrientationMode::Offline;
-        Ok(resolve(raw, Path::new("."), "(frames)")
-            .map_err(py_err)?
-            .experiment)
+        single_room(&loaded, &room)
     }
-}
-
-/// Runs `genome` in the setting's room (as `fm.simulate`).
-fn run_genome(py: Python<'_>, exp: &Experiment, genome: &[f64]) -> PyResult<Trajectory> {
-    if let Some(k) = genome.iter().position(|v| !v.is_finite()) {
-        return Err(input_err(format!(
-            "genome: `{}` (weight {k}) is not a finite number; expected the network's weights",
-            genome[k]
-        )));
-    }
-    let want = exp.shape().genome_len();
-    if genome.len() != want {
-        return Err(input_err(format!(
-            "genome: {} weights, but an 8-{}-2 network needs {want} (network.hidden = {})",
-            genome.len(),
-            exp.shape().hidden(),
-            exp.shape().hidden()
-        )));
-    }
-    let run = exp.runs().remove(0);
-    let network = exp.network(genome).map_err(|e| input_err(e.to_string()))?;
-    Ok(py.detach(|| exp.instance_run(&network, &run, 0)).trajectory)
 }
 
 /// The frames of a trajectory dict or a genome, drawn without the GIL.
@@ -181,7 +150,13 @@ fn draw(
         py.detach(|| render(room, track, opts)).map_err(fail)
     } else {
         let genome: Vec<f64> = source.extract()?;
-        let tr = run_genome(py, &exp, &genome)?;
+        finite(
+            "genome",
+            &genome,
+            |k| format!("weight {k}"),
+            "expected the network's weights",
+        )?;
+        let tr = instance_of(py, &exp, &genome)?.trajectory;
         py.detach(|| render(room, Track::of(&tr), opts))
             .map_err(fail)
     }

@@ -278,7 +278,7 @@ impl GymCore {
             return Err(input_err(format!("reset: no env {i} or room slot {room}")));
         }
         let episode = self.episode(room, seed);
-        let chooser = rng_from_seed(derive(seed, &[0x6779_6d]));
+        let chooser = rng_from_seed(derive(seed, &[0x0067_796d]));
         self.envs[i] = Env {
             room,
             episode,

@@ -12,8 +12,10 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::config::RawConfig;
 use fuzzymotiv::experiment::evolution::{GenerationState, Observer};
+use fuzzymotiv::experiment::modelling::InstanceRun;
 use fuzzymotiv::experiment::outcome::RunError;
 use fuzzymotiv::fitness::fuzzy::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
@@ -838,18 +840,7 @@ fn simulate<'py>(
     .map_err(py_err)?;
     // As `replay`: neither recognition nor online orientation changes a trajectory.
     let exp = gym::single_room(&loaded, &room)?;
-    let want = exp.shape().genome_len();
-    if genome.len() != want {
-        return Err(input_err(format!(
-            "genome: {} weights, but an 8-{}-2 network needs {want} (network.hidden = {})",
-            genome.len(),
-            exp.shape().hidden(),
-            exp.shape().hidden()
-        )));
-    }
-    let run = exp.runs().remove(0);
-    let network = exp.network(&genome).map_err(|e| input_err(e.to_string()))?;
-    let instance = py.detach(|| exp.instance_run(&network, &run, 0));
+    let instance = instance_of(py, &exp, &genome)?;
     let d = trajectory_dict(py, &instance.trajectory)?;
     let terms = instance.terms;
     d.set_item("a", terms.a)?;
@@ -860,6 +851,23 @@ fn simulate<'py>(
     d.set_item("room", &exp.arenas()[0].room().name)?;
     d.set_item("seed", seed)?;
     Ok(d)
+}
+
+/// The instance run of `genome` in `exp`'s one room (`exp` from [`gym::single_room`]), as
+/// `fm.simulate` and `fm.frames` run it; a genome of the wrong length names the network's size.
+fn instance_of(py: Python<'_>, exp: &Experiment, genome: &[f64]) -> PyResult<InstanceRun> {
+    let want = exp.shape().genome_len();
+    if genome.len() != want {
+        return Err(input_err(format!(
+            "genome: {} weights, but an 8-{}-2 network needs {want} (network.hidden = {})",
+            genome.len(),
+            exp.shape().hidden(),
+            exp.shape().hidden()
+        )));
+    }
+    let run = exp.runs().remove(0);
+    let network = exp.network(genome).map_err(|e| input_err(e.to_string()))?;
+    Ok(py.detach(|| exp.instance_run(&network, &run, 0)))
 }
 
 /// A trajectory as numpy columns (poses, sensors, motors and the per-step flags).

@@ -2,7 +2,7 @@
 //! (exploration, homing, battery, F) the library's paired test over the rooms they share
 //! (`fuzzymotiv::statistics::paired`: sign-flip permutation p, bootstrap interval).
 
-use fuzzymotiv::statistics::{Expect, Settings, paired};
+use fuzzymotiv::statistics::{Expect, Settings, Verdict, paired};
 use serde_json::{Value, json};
 
 use crate::errors::ApiError;
@@ -42,6 +42,15 @@ fn values(side: &Value, measure: &str) -> Vec<(String, f64)> {
         .collect()
 }
 
+/// A comparison's verdict read as which run is higher (a − b > 0 is "A higher").
+fn direction(verdict: Verdict) -> &'static str {
+    match verdict {
+        Verdict::Holds => "A higher",
+        Verdict::Opposite => "B higher",
+        Verdict::NotSignificant => "not significant",
+    }
+}
+
 /// The paired test of one measure over the rooms both runs have.
 fn test(a: &Value, b: &Value, measure: &str) -> Value {
     let va = values(a, measure);
@@ -54,7 +63,7 @@ fn test(a: &Value, b: &Value, measure: &str) -> Value {
         Ok(c) => json!({ "measure": measure, "rooms": xs.len(), "mean_a": c.mean_a,
             "mean_b": c.mean_b, "difference": c.difference, "ci_low": c.ci_low,
             "ci_high": c.ci_high, "p": c.p, "min_p": c.min_p,
-            "verdict": format!("{:?}", c.verdict(Expect::Higher)) }),
+            "verdict": direction(c.verdict(Expect::Higher)) }),
         Err(e) => json!({ "measure": measure, "rooms": xs.len(), "error": e.to_string() }),
     }
 }
