@@ -117,7 +117,10 @@ impl<A: Borrow<Arena>> TermsRecorder<A> {
         let g = if self.homing == Homing::Escape && !self.escaped {
             0.0
         } else {
-            (1.0 - self.last.position().dist(home) / arena.d_max()).clamp(0.0, 1.0)
+            // √(dx² + dy²) with IEEE operations only, not libm's `hypot` (whose last bit may
+            // differ between platforms): the trial's results must not depend on the libm.
+            let d = self.last.position() - home;
+            (1.0 - d.dot(d).sqrt() / arena.d_max()).clamp(0.0, 1.0)
         };
         let b = if self.steps == 0 {
             0.0
