@@ -49,8 +49,10 @@ fn count(frames: &Frames, k: usize, rgb: [u8; 3]) -> usize {
         .count()
 }
 
+/// The build's target directory (wherever `CARGO_TARGET_DIR` puts it): target/tmp's parent.
 fn target_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target")
+    let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    tmp.parent().map_or(tmp.clone(), |p| p.to_path_buf())
 }
 
 fn save_png(frames: &Frames, k: usize, name: &str) {
@@ -100,10 +102,15 @@ fn frames_show_the_body_heading_and_path() {
     let far =
         tr.poses[400].position().dist(p_old) > 60.0 && tr.poses[200].position().dist(p_old) > 60.0;
     if far {
-        assert_eq!(
-            pixel(&frames, 400, view.pixel(p_old).unwrap()),
-            PATH,
-            "pose {t_old}"
+        // The path is antialiased: its colour is exact within a pixel of the pose.
+        let (x, y) = view.pixel(p_old).unwrap();
+        let near = (x.saturating_sub(1)..=x + 1)
+            .flat_map(|i| (y.saturating_sub(1)..=y + 1).map(move |j| (i, j)))
+            .any(|q| pixel(&frames, 400, q) == PATH);
+        assert!(
+            near,
+            "pose {t_old}: no path pixel at or next to {:?}",
+            (x, y)
         );
     }
 }
