@@ -225,7 +225,7 @@ fn claim_cells(c: &ClaimRecord) -> [String; 3] {
 
 /// The claims as (Markdown, CSV): verdict, high − low with its 95 % interval, p, the minimum
 /// detectable difference and the means behind them (CSV: Fig. 6's checks on the means with
-/// empty cells, then their tests over seeds per setting, [`curve_claims_csv`]).
+/// empty cells, then their tests over seeds per setting).
 pub fn claims_table(claims: &[ClaimRecord], prov: &Provenance) -> (String, String) {
     let mut md = format!(
         "{}\n\n{}\n\n| claim | verdict | high − low [95 % CI] | p | MDD | evidence |\n|---|---|---|---|---|---|\n",
