@@ -26,7 +26,7 @@ import json
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterator, Mapping, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Iterator, Mapping, Optional, Protocol, Sequence, Tuple, Union, overload
 
 from . import _fuzzymotiv as _native
 from ._fuzzymotiv import FuzzymotivError
@@ -91,7 +91,7 @@ class Plan(Sequence[Job]):
 
 def _toml_document(sweep: Mapping) -> str:
     """A sweep dict as TOML text: one ``key = value`` line per top-level key (tables inline)."""
-    from . import _toml_value
+    from . import _toml_value  # type: ignore[attr-defined]  # private: not in the stubs
 
     return "".join(f"{json.dumps(str(k))} = {_toml_value(v)}\n" for k, v in sweep.items())
 
@@ -215,10 +215,18 @@ def _jobs_of(the_plan: Any) -> Sequence[Job]:
     return plan(the_plan).jobs
 
 
+class SubmitExecutor(Protocol):
+    """Any executor :func:`sweep` can use: ``submit(fn, *args)`` returning an object with
+    ``result()`` (``concurrent.futures`` executors, Dask's ``client.get_executor()``, submitit's
+    ``AutoExecutor``)."""
+
+    def submit(self, fn: Callable[..., Any], /, *args: Any) -> Any: ...
+
+
 def sweep(
     the_plan: Union[Plan, Sequence[Job], str, os.PathLike, Mapping],
     out: Union[str, os.PathLike],
-    executor: Optional[concurrent.futures.Executor] = None,
+    executor: Optional[SubmitExecutor] = None,
 ) -> SweepResult:
     """Run every job of ``the_plan`` (a :class:`Plan`, a list of its jobs, or anything
     :func:`plan` takes) into the sweep directory ``out`` through ``executor``, wait, and
@@ -233,9 +241,10 @@ def sweep(
     """
     jobs = _jobs_of(the_plan)
     path = os.path.abspath(_out_path(out))
-    own = executor is None
-    if own:
-        executor = concurrent.futures.ThreadPoolExecutor(max_workers=min(len(jobs), os.cpu_count() or 1))
+    own: Optional[concurrent.futures.ThreadPoolExecutor] = None
+    if executor is None:
+        own = concurrent.futures.ThreadPoolExecutor(max_workers=min(len(jobs), os.cpu_count() or 1))
+        executor = own
     try:
         futures = [executor.submit(run_job, job, path) for job in jobs]
         statuses = {}
@@ -249,8 +258,8 @@ def sweep(
                     cancel()
             raise
     finally:
-        if own:
-            executor.shutdown(wait=True)
+        if own is not None:
+            own.shutdown(wait=True)
     result = merge(out)
     result.statuses = statuses
     return result
