@@ -242,7 +242,9 @@ fn the_lab_evolves_stops_saves_and_compares_in_chromium() {
     std::fs::write(&shot, d.full_page_png()).unwrap();
     eprintln!("screenshot: {}", shot.display());
 
-    // Another run, stopped after its first generation.
+    // Another run, stopped after its first generation: 400 generations (the lab's limit) so
+    // that it cannot end before Stop is pressed, however fast the machine.
+    type_into(&d, &labelled(&d, "Generations"), "400");
     d.click_button("Evolve");
     wait_for(
         &d,
