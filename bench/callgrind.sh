@@ -5,9 +5,9 @@
 #   bash bench/callgrind.sh [--steps N] [--no-enki]
 #
 # fuzzymotiv: `fuzzymotiv bench --steps N --repeat 1 --population 2 --threads 1` (N = 40000 by
-# default). Its robot-steps are N rounded up to whole 400-step trials, plus the population part
-# (2 robots x 400 steps per repeat), so
-#     Ir per robot-step = total Ir / (ceil(N/400)*400 + 2*400).
+# default). Both of its measurements (one robot; populations of 2) run whole 400-step trials
+# until they have done N robot-steps, so, counting only executed steps (bench reports them),
+#     Ir per robot-step = total Ir / (robot_steps + population_robot_steps).
 # That total includes process start-up and config loading; the script also reports the marginal
 # figure (Ir(2N) - Ir(N)) / (robot-steps(2N) - robot-steps(N)), which cancels them.
 # Enki (unless --no-enki): the same two-point marginal figure for bench/enki's khepera_h (whose

@@ -6,6 +6,14 @@
 # when no trial ends early). Usage:
 #
 #   bash bench/python_vs_cli.sh [--rounds K] [--repeat R] [--threads T] [--rooms N]
+#   bash bench/python_vs_cli.sh --callgrind [--rooms N]
+#
+# --callgrind counts instructions instead of timing (the machine's load does not change them):
+# both sides once under valgrind's callgrind for one and for two whole-population evaluations
+# (one thread), and prints the marginal instructions per executed robot-step,
+# (Ir(2) - Ir(1)) / (steps(2) - steps(1)), which cancels start-up (imports, config loading).
+# The CLI's figure covers its two measurements (one robot; the population), both of which
+# grow by one population's robot-steps.
 #
 # PYTHON is the interpreter with fuzzymotiv installed (default target/pyenv/bin/python; install
 # it with `pip install ./python`, a release build). FUZZYMOTIV_BIN / FUZZYMOTIV_REV as in
@@ -14,14 +22,15 @@ set -euo pipefail
 
 HERE="$(cd "$(dirname "$0")" && pwd)"
 ROOT="$(cd "$HERE/.." && pwd)"
-ROUNDS=11; REPEAT=9; THREADS=1; NROOMS=5
+ROUNDS=11; REPEAT=9; THREADS=1; NROOMS=5; CALLGRIND=0
 while [ $# -gt 0 ]; do
     case "$1" in
         --rounds) ROUNDS="$2"; shift 2 ;;
         --repeat) REPEAT="$2"; shift 2 ;;
         --threads) THREADS="$2"; shift 2 ;;
         --rooms) NROOMS="$2"; shift 2 ;;
-        -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+        --callgrind) CALLGRIND=1; shift ;;
+        -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
         *) echo "unknown argument: $1" >&2; exit 2 ;;
     esac
 done
@@ -34,6 +43,42 @@ build_fuzzymotiv
 ALL='"H","T","L","square","rectangle"'
 ROOMS="[$(echo "$ALL" | cut -d, -f1-"$NROOMS")]"
 STEPS=$((200 * NROOMS * 400))
+if [ "$CALLGRIND" -eq 1 ]; then
+    install_missing valgrind
+    TMP="$(mktemp -d)"
+    trap 'rm -rf "$TMP"' EXIT
+    # ir NAME CMD...: CMD under callgrind (its stdout kept in $TMP/NAME.json), prints total Ir.
+    ir() {
+        local name="$1"; shift
+        valgrind --tool=callgrind --callgrind-out-file="$TMP/$name.out" "$@" \
+            >"$TMP/$name.json" 2>"$TMP/$name.log" || { cat "$TMP/$name.log" >&2; exit 1; }
+        awk '/^(summary|totals):/ {print $2; exit}' "$TMP/$name.out"
+    }
+    measured=()
+    for n in 1 2; do
+        measured+=("$(ir "cli$n" "$FM" bench --population 200 --steps $((n * STEPS)) --repeat 1 \
+            --threads 1 --set "rooms=$ROOMS" --json)")
+        measured+=("$(ir "py$n" "$PYTHON" "$HERE/python_evaluate.py" --rooms "$NROOMS" \
+            --steps $((n * STEPS)) --repeat 1 --threads 1)")
+    done
+    "$PYTHON" - "$TMP" "$FM_SOURCE" "$ROOMS" "${measured[@]}" <<'PY'
+import json, sys
+tmp, source, rooms = sys.argv[1:4]
+cli1, py1, cli2, py2 = (int(v) for v in sys.argv[4:8])
+load = lambda name: json.load(open(f"{tmp}/{name}.json"))
+cli_steps = [load(n)["robot_steps"] + load(n)["population_robot_steps"] for n in ("cli1", "cli2")]
+py_steps = [load(n)["robot_steps"] for n in ("py1", "py2")]
+cli = (cli2 - cli1) / (cli_steps[1] - cli_steps[0])
+py = (py2 - py1) / (py_steps[1] - py_steps[0])
+print(f"fuzzymotiv {source}, 1 thread, rooms {rooms}, callgrind")
+print(f"CLI    Ir {cli1:,} / {cli2:,} for {cli_steps[0]:,} / {cli_steps[1]:,} robot-steps: "
+      f"marginal {cli:,.1f} Ir per robot-step")
+print(f"Python Ir {py1:,} / {py2:,} for {py_steps[0]:,} / {py_steps[1]:,} robot-steps: "
+      f"marginal {py:,.1f} Ir per robot-step")
+print(f"throughput ratio Python / CLI by instructions (CLI Ir / Python Ir per robot-step): {cli / py:.3f}")
+PY
+    exit 0
+fi
 cli=(); py=()
 for k in $(seq 1 "$ROUNDS"); do
     c="$("$FM" bench --population 200 --steps "$STEPS" --repeat "$REPEAT" --threads "$THREADS" \

@@ -306,6 +306,31 @@ fn bench_json_has_the_documented_keys() {
     }
 }
 
+/// `--steps` counts robot-steps in every room of the run: with two rooms (and no trial ending at
+/// home) 4,000 steps are one evaluation of five robots, not two.
+#[test]
+fn bench_steps_count_every_room() {
+    let o = run(&[
+        "bench",
+        "--steps",
+        "4000",
+        "--population",
+        "5",
+        "--repeat",
+        "1",
+        "--set",
+        r#"rooms=["H","square"]"#,
+        "--set",
+        "trial.end_at_home=false",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["population_evaluations"], 1);
+    assert_eq!(v["population_robot_steps"], 4000);
+    assert_eq!(v["robot_steps"], 4000);
+}
+
 /// The study runs as many (setting, seed) runs at a time as it has threads: its tables, and
 /// every run's records, are the same bytes with one thread (one run at a time) and with three
 /// (three of its four runs at once, and each population evaluated in parallel).

@@ -21,7 +21,8 @@ pub struct BenchArgs {
     /// Threads for the population measurement [default: all cores].
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Population size of the population measurement (each runs one 400-step trial).
+    /// Population size of the population measurement (each robot runs one 400-step trial per
+    /// room; `--set rooms=[...]` evaluates in several rooms).
     #[arg(long, default_value_t = 200)]
     pub population: usize,
     /// Repetitions; the median is reported.
@@ -142,8 +143,10 @@ fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
     let run = &exp.runs()[0];
     let population = exp.initial_population(run);
     let trial_steps = exp.trial_params().steps();
+    // One evaluation of a robot runs a trial in each of the run's rooms.
+    let robot_steps_each = trial_steps * run.rooms.len();
     let mut sink = 0.0;
-    let trials = args.steps.div_ceil(trial_steps);
+    let trials = args.steps.div_ceil(robot_steps_each);
     let (seconds, robot_steps) = timed(args.repeat, |r| {
         (0..trials)
             .map(|k| {
@@ -153,7 +156,7 @@ fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
             })
             .sum()
     });
-    let evaluations = args.steps.div_ceil(population.len() * trial_steps);
+    let evaluations = args.steps.div_ceil(population.len() * robot_steps_each);
     let (pop_seconds, pop_steps) = timed(args.repeat, |r| {
         (0..evaluations)
             .map(|e| {
