@@ -37,14 +37,6 @@ if [ "$WITH_ENKI" -eq 1 ]; then build_enki; fi
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
 
-# total_ir NAME CMD...: runs CMD under callgrind, prints its total instruction count.
-total_ir() {
-    local name="$1"; shift
-    valgrind --tool=callgrind --callgrind-out-file="$TMP/$name.out" "$@" \
-        >"$TMP/$name.stdout" 2>"$TMP/$name.log" || { cat "$TMP/$name.log" >&2; exit 1; }
-    awk '/^(summary|totals):/ {print $2; exit}' "$TMP/$name.out"
-}
-
 N1="$STEPS"; N2=$((2 * STEPS))
 # Enki's workload (the first release's H room, every trial all T steps) with the wheels model and
 # with the actions model; `fuzzymotiv bench --room H` measures the paper's H room, whose home
@@ -55,8 +47,8 @@ FR_H="$ROOT/rooms/first-release/H.toml"
 workload() {
     local name="$1"; shift
     local ir1 ir2
-    ir1=$(total_ir "${name}1" "$FM" bench "$@" --steps "$N1" --repeat 1 --population 2 --threads 1 --json) || exit 1
-    ir2=$(total_ir "${name}2" "$FM" bench "$@" --steps "$N2" --repeat 1 --population 2 --threads 1 --json) || exit 1
+    ir1=$(callgrind_ir "${name}1" "$FM" bench "$@" --steps "$N1" --repeat 1 --population 2 --threads 1 --json) || exit 1
+    ir2=$(callgrind_ir "${name}2" "$FM" bench "$@" --steps "$N2" --repeat 1 --population 2 --threads 1 --json) || exit 1
     echo "$ir1 $ir2 $(executed "${name}1") $(executed "${name}2")"
 }
 executed() { python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(d["robot_steps"] + d["population_robot_steps"])' "$TMP/$1.stdout"; }
@@ -67,8 +59,8 @@ PAPER=$(workload fp --room H --motion actions)
 EN1=""; EN2=""
 if [ "$WITH_ENKI" -eq 1 ]; then
     echo "== callgrind: khepera_h --steps $N1 and $N2" >&2
-    EN1=$(total_ir en1 "$ENKI" --steps "$N1" --repeat 1)
-    EN2=$(total_ir en2 "$ENKI" --steps "$N2" --repeat 1)
+    EN1=$(callgrind_ir en1 "$ENKI" --steps "$N1" --repeat 1)
+    EN2=$(callgrind_ir en2 "$ENKI" --steps "$N2" --repeat 1)
 fi
 
 python3 - "$N1" "$N2" "$EN1" "$EN2" "$HERE/callgrind.json" "$WHEELS" "$ACTIONS" "$PAPER" <<'PY'

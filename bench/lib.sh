@@ -69,3 +69,12 @@ build_enki() {
     make -C "$HERE/enki" --no-print-directory OUT="$ROOT/target/bench" >&2
     ENKI="$ROOT/target/bench/khepera_h"
 }
+
+# callgrind_ir NAME CMD...: runs CMD under callgrind with its files in $TMP (NAME.out, its stdout
+# in NAME.stdout, valgrind's log in NAME.log); prints the total instruction count.
+callgrind_ir() {
+    local name="$1"; shift
+    valgrind --tool=callgrind --callgrind-out-file="$TMP/$name.out" "$@" \
+        >"$TMP/$name.stdout" 2>"$TMP/$name.log" || { cat "$TMP/$name.log" >&2; exit 1; }
+    awk '/^(summary|totals):/ {print $2; exit}' "$TMP/$name.out"
+}

@@ -47,25 +47,18 @@ if [ "$CALLGRIND" -eq 1 ]; then
     install_missing valgrind
     TMP="$(mktemp -d)"
     trap 'rm -rf "$TMP"' EXIT
-    # ir NAME CMD...: CMD under callgrind (its stdout kept in $TMP/NAME.json), prints total Ir.
-    ir() {
-        local name="$1"; shift
-        valgrind --tool=callgrind --callgrind-out-file="$TMP/$name.out" "$@" \
-            >"$TMP/$name.json" 2>"$TMP/$name.log" || { cat "$TMP/$name.log" >&2; exit 1; }
-        awk '/^(summary|totals):/ {print $2; exit}' "$TMP/$name.out"
-    }
     measured=()
     for n in 1 2; do
-        measured+=("$(ir "cli$n" "$FM" bench --population 200 --steps $((n * STEPS)) --repeat 1 \
+        measured+=("$(callgrind_ir "cli$n" "$FM" bench --population 200 --steps $((n * STEPS)) --repeat 1 \
             --threads 1 --set "rooms=$ROOMS" --json)")
-        measured+=("$(ir "py$n" "$PYTHON" "$HERE/python_evaluate.py" --rooms "$NROOMS" \
+        measured+=("$(callgrind_ir "py$n" "$PYTHON" "$HERE/python_evaluate.py" --rooms "$NROOMS" \
             --steps $((n * STEPS)) --repeat 1 --threads 1)")
     done
     "$PYTHON" - "$TMP" "$FM_SOURCE" "$ROOMS" "${measured[@]}" <<'PY'
 import json, sys
 tmp, source, rooms = sys.argv[1:4]
 cli1, py1, cli2, py2 = (int(v) for v in sys.argv[4:8])
-load = lambda name: json.load(open(f"{tmp}/{name}.json"))
+load = lambda name: json.load(open(f"{tmp}/{name}.stdout"))
 cli_steps = [load(n)["robot_steps"] + load(n)["population_robot_steps"] for n in ("cli1", "cli2")]
 py_steps = [load(n)["robot_steps"] for n in ("py1", "py2")]
 cli = (cli2 - cli1) / (cli_steps[1] - cli_steps[0])
