@@ -5,7 +5,9 @@ use std::process::Output;
 
 mod common;
 
-use common::{Fm, SMALL, bin, ok, repo, run, stderr, stdout};
+use common::{
+    Fm, SMALL, assert_same_files, bin, ok, repo, run, stderr, stdout, summary_without_time,
+};
 
 #[test]
 fn fuzzy_prints_the_spec_worked_values() {
@@ -146,32 +148,21 @@ fn small_evolution_writes_every_file_and_improves() {
     assert!(!dir.path().join("small.partial").exists());
 }
 
-fn without_wall_time(summary: &str) -> serde_json::Value {
-    let mut v: serde_json::Value = serde_json::from_str(summary).unwrap();
-    v.as_object_mut().unwrap().remove("wall_seconds");
-    v
-}
-
 #[test]
 fn results_do_not_depend_on_thread_count() {
     let dir = tempfile::tempdir().unwrap();
     let one = small_run(dir.path(), "one", &["--threads", "1"]);
     let two = small_run(dir.path(), "two", &["--threads", "2"]);
-    for f in [
+    let files = [
         "generations.csv",
         "best_genome.json",
         "recognition.csv",
         "test_runs.csv",
         "table.md",
-    ] {
-        assert_eq!(
-            std::fs::read(one.join(f)).unwrap(),
-            std::fs::read(two.join(f)).unwrap(),
-            "{f} differs"
-        );
-    }
-    let s1 = without_wall_time(&std::fs::read_to_string(one.join("summary.json")).unwrap());
-    let s2 = without_wall_time(&std::fs::read_to_string(two.join("summary.json")).unwrap());
+    ];
+    assert_same_files(&one, &two, &files, "between one and two threads");
+    let s1 = summary_without_time(&one);
+    let s2 = summary_without_time(&two);
     assert_eq!(s1["rooms"], s2["rooms"]);
     assert_eq!(s1["runs"], s2["runs"]);
 }
@@ -543,13 +534,12 @@ fn replay_is_deterministic_and_redraws_the_reported_paths() {
     ] {
         assert!(dir.path().join("one").join(f).is_file(), "missing {f}");
     }
-    for f in ["replay-H.csv", "replay-square.csv", "replay.json"] {
-        assert_eq!(
-            std::fs::read(dir.path().join("one").join(f)).unwrap(),
-            std::fs::read(dir.path().join("two").join(f)).unwrap(),
-            "{f} differs between two replays"
-        );
-    }
+    assert_same_files(
+        &dir.path().join("one"),
+        &dir.path().join("two"),
+        &["replay-H.csv", "replay-square.csv", "replay.json"],
+        "between two replays",
+    );
     let csv = std::fs::read_to_string(dir.path().join("one/replay-H.csv")).unwrap();
     assert!(csv.starts_with(
         "step,x_mm,y_mm,heading_rad,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n0,"
@@ -695,20 +685,15 @@ fn killed_run_resumes_to_identical_results() {
     let o = run(&fresh);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("at generation 10/12"), "{}", stderr(&o));
-    for f in [
+    let files = [
         "generations.csv",
         "best_genome.json",
         "recognition.csv",
         "table.md",
         "config.resolved.toml",
         "population.json",
-    ] {
-        assert_eq!(
-            std::fs::read_to_string(reference.join(f)).unwrap(),
-            std::fs::read_to_string(out.join(f)).unwrap(),
-            "{f} differs after the kills"
-        );
-    }
+    ];
+    assert_same_files(&reference, &out, &files, "after the kills");
     assert!(!partial.exists());
 }
 

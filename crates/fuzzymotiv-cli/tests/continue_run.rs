@@ -6,7 +6,7 @@ mod common;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use common::{Fm, repo, stderr};
+use common::{Fm, assert_same_files, repo, stderr, summary_without_time};
 
 /// A small run of `configs/tiny.toml` (with `extra` settings) of `generations` into `out`.
 fn tiny_run(out: &Path, generations: usize, extra: &[&str]) {
@@ -46,16 +46,6 @@ fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
 }
 
 /// `summary.json` without its wall time (the one field that may differ).
-fn summary_without_time(dir: &Path) -> serde_json::Value {
-    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
-    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    v.as_object_mut()
-        .unwrap()
-        .remove("wall_seconds")
-        .expect("a wall time");
-    v
-}
-
 /// Continues a 2-generation run to 4 and compares with a fresh 4-generation run.
 fn continued_equals_fresh(extra: &[&str]) {
     let tmp = tempfile::tempdir().unwrap();
@@ -76,19 +66,14 @@ fn continued_equals_fresh(extra: &[&str]) {
         .ok();
     assert_eq!(snapshot(&short), before, "--continue changed DIR");
     assert!(!tmp.path().join("long.partial").exists());
-    for f in [
+    let files = [
         "generations.csv",
         "best_genome.json",
         "recognition.csv",
         "table.md",
         "config.resolved.toml",
-    ] {
-        assert_eq!(
-            std::fs::read_to_string(fresh.join(f)).unwrap(),
-            std::fs::read_to_string(long.join(f)).unwrap(),
-            "{f} differs from a fresh run"
-        );
-    }
+    ];
+    assert_same_files(&fresh, &long, &files, "from a fresh run");
     assert_eq!(summary_without_time(&fresh), summary_without_time(&long));
     let rows = std::fs::read_to_string(long.join("generations.csv")).unwrap();
     assert_ne!(

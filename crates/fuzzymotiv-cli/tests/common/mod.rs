@@ -120,3 +120,32 @@ impl Fm {
         o
     }
 }
+
+/// Asserts that each of `files` holds the same bytes in directories `a` and `b`; `why` ends the
+/// message (e.g. "between one and two threads").
+pub fn assert_same_files(a: &Path, b: &Path, files: &[&str], why: &str) {
+    for f in files {
+        let read = |dir: &Path| {
+            std::fs::read(dir.join(f)).unwrap_or_else(|e| panic!("{}: {e}", dir.join(f).display()))
+        };
+        let (x, y) = (read(a), read(b));
+        assert!(
+            x == y,
+            "{f} differs {why}:\n{}\n--- against ---\n{}",
+            String::from_utf8_lossy(&x),
+            String::from_utf8_lossy(&y)
+        );
+    }
+}
+
+/// A run directory's `summary.json` without its `wall_seconds` (the one field that may differ
+/// between two runs of the same experiment).
+pub fn summary_without_time(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v.as_object_mut()
+        .unwrap()
+        .remove("wall_seconds")
+        .expect("a wall time");
+    v
+}
