@@ -1,10 +1,11 @@
 //! The step loop calls no libm function (results must not depend on the platform's libm).
 //!
-//! This test disassembles its own executable with `objdump` (binutils), follows every direct
-//! call from `step_loop` (a whole trial: sensors, noise, network, motion, collision, fitness
-//! bookkeeping) and fails if any reachable function calls or loads the address of a libm
-//! function. A control probe that does call `f64::exp` must be flagged, so the check itself is
-//! tested.
+//! This test disassembles its own executable with `objdump` (binutils), follows every call from
+//! `step_loop` (a whole trial: sensors, noise, network, motion, collision, fitness
+//! bookkeeping), direct or through a GOT slot that the dynamic linker fills with one of the
+//! executable's own functions, and fails if any reachable function calls or loads the address
+//! of a libm function. A control probe that does call `f64::exp` must be flagged, so the check
+//! itself is tested.
 #![cfg(all(target_os = "linux", target_arch = "x86_64"))]
 
 use std::collections::{HashMap, HashSet};
@@ -40,10 +41,19 @@ fn control_probe(x: f64) -> f64 {
     black_box(x).exp()
 }
 
-/// Per function: direct call/jump targets and addresses named in `# addr` comments.
+/// A second control: libm (`log`) reached inside the library, which this crate calls as it
+/// calls the trial (in a test build, through a GOT slot).
+#[inline(never)]
+fn control_probe_library(p: f64) -> f64 {
+    fuzzymotiv::statistics::normal_quantile(black_box(p))
+}
+
+/// Per function: direct call/jump targets and addresses named in `# addr` comments; and the
+/// functions by start address.
 struct Disassembly {
     calls: HashMap<String, Vec<String>>,
     refs: HashMap<String, Vec<u64>>,
+    starts: HashMap<u64, String>,
 }
 
 fn objdump(args: &[&str]) -> String {
@@ -58,15 +68,20 @@ fn objdump(args: &[&str]) -> String {
 }
 
 fn disassemble() -> Disassembly {
-    let text = objdump(&["-d", "--no-show-raw-insn", "-C"]);
+    // Mangled names: demangled ones merge the instances of a generic function into one name.
+    let text = objdump(&["-d", "--no-show-raw-insn"]);
     let mut d = Disassembly {
         calls: HashMap::new(),
         refs: HashMap::new(),
+        starts: HashMap::new(),
     };
     let mut current = String::new();
     for line in text.lines() {
-        if let Some(name) = line.strip_suffix(">:").and_then(|l| l.split_once(" <")) {
-            current = name.1.to_string();
+        if let Some((addr, name)) = line.strip_suffix(">:").and_then(|l| l.split_once(" <")) {
+            current = name.to_string();
+            if let Ok(a) = u64::from_str_radix(addr, 16) {
+                d.starts.insert(a, current.clone());
+            }
             continue;
         }
         let insn = line.split_once(":\t").map_or("", |(_, i)| i);
@@ -86,29 +101,55 @@ fn disassemble() -> Disassembly {
     d
 }
 
-/// GOT addresses that the dynamic linker fills with a libm function.
-fn libm_slots() -> HashMap<u64, String> {
-    let mut slots = HashMap::new();
+/// What the dynamic linker writes into the GOT slots (by slot address).
+struct Slots {
+    /// A libm function's address.
+    libm: HashMap<u64, String>,
+    /// An address in this executable (`R_X86_64_RELATIVE`: load address + this offset).
+    local: HashMap<u64, u64>,
+}
+
+fn slots() -> Slots {
+    let mut slots = Slots {
+        libm: HashMap::new(),
+        local: HashMap::new(),
+    };
     for line in objdump(&["-R"]).lines() {
         let mut f = line.split_whitespace();
-        let (Some(addr), Some(_), Some(sym)) = (f.next(), f.next(), f.next()) else {
+        let (Some(addr), Some(kind), Some(sym)) = (f.next(), f.next(), f.next()) else {
+            continue;
+        };
+        let Ok(slot) = u64::from_str_radix(addr, 16) else {
             continue;
         };
         let name = sym.split('@').next().unwrap_or(sym);
-        if let (Ok(a), true) = (u64::from_str_radix(addr, 16), LIBM.contains(&name)) {
-            slots.insert(a, name.to_string());
+        if LIBM.contains(&name) {
+            slots.libm.insert(slot, name.to_string());
+        }
+        let offset = sym
+            .strip_prefix("*ABS*+0x")
+            .map(|o| u64::from_str_radix(o, 16));
+        if let (true, Some(Ok(target))) = (kind == "R_X86_64_RELATIVE", offset) {
+            slots.local.insert(slot, target);
         }
     }
     slots
 }
 
-/// The libm functions reachable from the function whose name ends with `root`.
-fn libm_reached(d: &Disassembly, slots: &HashMap<u64, String>, root: &str) -> Vec<String> {
+/// The libm functions reachable from the function `root` (a path such as
+/// `libm_free::step_loop`).
+fn libm_reached(d: &Disassembly, slots: &Slots, root: &str) -> Vec<String> {
+    // Its mangled name (legacy scheme): `_ZN` + each segment as length and text + `17h` hash.
+    let mangled: String = root
+        .split("::")
+        .map(|s| format!("{}{s}", s.len()))
+        .collect();
+    let mangled = format!("_ZN{mangled}17h");
     let start: Vec<&String> = d
         .calls
         .keys()
         .chain(d.refs.keys())
-        .filter(|f| f.ends_with(root))
+        .filter(|f| f.starts_with(&mangled))
         .collect();
     assert!(!start.is_empty(), "{root} not found in the disassembly");
     let mut seen: HashSet<String> = start.iter().map(|s| s.to_string()).collect();
@@ -120,11 +161,14 @@ fn libm_reached(d: &Disassembly, slots: &HashMap<u64, String>, root: &str) -> Ve
             found.push(format!("{plain} (plt)"));
         }
         for a in d.refs.get(&f).into_iter().flatten() {
-            if let Some(name) = slots.get(a) {
+            if let Some(name) = slots.libm.get(a) {
                 found.push(format!("{name} from {f}"));
             }
         }
-        for t in d.calls.get(&f).into_iter().flatten() {
+        // Functions called directly, and those whose address a GOT slot read here holds.
+        let through_got = (d.refs.get(&f).into_iter().flatten())
+            .filter_map(|a| d.starts.get(slots.local.get(a)?));
+        for t in d.calls.get(&f).into_iter().flatten().chain(through_got) {
             if seen.insert(t.clone()) {
                 stack.push(t.clone());
             }
@@ -157,13 +201,19 @@ fn the_step_loop_calls_no_libm_function() {
         black_box(step_loop(&arena(motion), &mut mlp, &mut rng_from_seed(1)));
     }
     black_box(control_probe(1.5));
+    black_box(control_probe_library(0.01));
 
     let d = disassemble();
-    let slots = libm_slots();
-    let control = libm_reached(&d, &slots, "control_probe");
+    let slots = slots();
+    let control = libm_reached(&d, &slots, "libm_free::control_probe");
     assert!(
         control.iter().any(|s| s.starts_with("exp")),
         "the check does not see f64::exp in the control probe: {control:?}"
+    );
+    let control = libm_reached(&d, &slots, "libm_free::control_probe_library");
+    assert!(
+        control.iter().any(|s| s.starts_with("log")),
+        "the check does not see log in the library's normal_quantile: {control:?}"
     );
     let reached = libm_reached(&d, &slots, "libm_free::step_loop");
     assert!(
