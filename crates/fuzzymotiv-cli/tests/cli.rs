@@ -1195,3 +1195,21 @@ fn replay_of_a_genome_file_uses_and_names_its_config() {
     let again = std::fs::read_to_string(dir.path().join("rl/replay-H.csv")).unwrap();
     assert_eq!(again, csv);
 }
+
+/// `lab --bind` takes an IP address or `localhost`; a host name is refused before anything
+/// starts (exit 2, saying what it accepts).
+#[test]
+fn lab_bind_refuses_a_host_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let lab_dir = dir.path().join("lab");
+    let o = run(&[
+        "lab",
+        "--bind",
+        "example.org",
+        "--dir",
+        lab_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("`localhost`"), "{}", stderr(&o));
+    assert!(!lab_dir.exists());
+}

@@ -25,9 +25,23 @@ pub struct LabArgs {
     open: bool,
     /// Interface to listen on [default: 127.0.0.1, this machine only]. Another address lets
     /// other machines reach the lab: anyone with the token can run experiments and write
-    /// under --dir, and the traffic (token included) is not encrypted.
-    #[arg(long, value_name = "ADDR")]
+    /// under --dir, and the traffic (token included) is not encrypted. An IP address, or
+    /// `localhost`.
+    #[arg(long, value_name = "ADDR", value_parser = bind_address)]
     bind: Option<IpAddr>,
+}
+
+/// `--bind`'s value: an IP address or `localhost` (no name lookup: the lab must know which
+/// address it serves, to check each request's Host header).
+fn bind_address(value: &str) -> Result<IpAddr, String> {
+    if value.eq_ignore_ascii_case("localhost") {
+        return Ok(IpAddr::from([127, 0, 0, 1]));
+    }
+    value.parse().map_err(|_| {
+        "expected an IP address (127.0.0.1 or ::1 for this machine only, 0.0.0.0 for every \
+         interface, or one interface's address) or `localhost`"
+            .to_string()
+    })
 }
 
 /// Entry point of `fuzzymotiv lab`.
