@@ -97,7 +97,10 @@ pub fn strength_table(studies: &[StudySummary]) -> (String, String) {
          (the mean over seeds of each seed's difference of its means over rooms, a 95 % \
          percentile bootstrap interval, a two-sided sign-flip permutation p, the verdict at \
          α = {CLAIMS_ALPHA} and the smallest difference the seeds could detect with 80 % \
-         power). Each population's tables, per-room claims and trajectories are in `pop-N/`.\n\n\
+         power). The verdict follows p, which is exact for the sign-flip test; the percentile \
+         interval is a little narrow with few seeds, so it can leave out 0 where p ≥ α (the \
+         verdict then says not significant). Each population's tables, per-room claims and \
+         trajectories are in `pop-N/`.\n\n\
          | population | claim | high | low | difference [95 % interval] | p | verdict | detectable |\n\
          |---|---|---|---|---|---|---|---|\n",
         provenance(studies)
