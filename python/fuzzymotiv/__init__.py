@@ -147,7 +147,8 @@ def export_fll(
     force: bool = False,
 ) -> str:
     """The TSK of ``motivations`` as a fuzzylite FLL engine (625 rules by default); also written
-    to ``path`` (atomically; an existing file only with ``force=True``).
+    to ``path`` (atomically; a file with other contents is kept unless ``force=True``, the same
+    text again is nothing to do, and a directory, link or device is never replaced).
 
     The text is the same as ``fuzzymotiv fuzzy --motivations C,H,O,E --export-fll FILE``.
 

@@ -21,7 +21,9 @@ use fuzzymotiv::fitness::fuzzy::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::simulation::trial::Trajectory;
 use fuzzymotiv_io::files::error::{CliError, ErrorKind};
-use fuzzymotiv_io::files::guard::{OutState, PYTHON, StagedDir, check_out_as};
+use fuzzymotiv_io::files::guard::{
+    FilesState, OutState, PYTHON, StagedDir, check_files_as, check_out_as, write_files,
+};
 use fuzzymotiv_io::files::inputs::{
     Loaded, load_config, load_room_file, parse_seed, resolve, run_identity,
 };
@@ -356,15 +358,20 @@ fn export_fll(
     });
     let text = fuzzymotiv::fitness::fll::to_fll(&t, &x, &name);
     if let Some(path) = path {
-        if path.exists() && !force {
-            return Err(input_err(format!(
-                "{}: the file exists; pass force=True to overwrite it",
-                path.display()
-            )));
-        }
-        fuzzymotiv_io::files::guard::write_atomic(&path, &text).map_err(py_err)?;
+        write_guarded(path, text.clone().into_bytes(), force)?;
     }
     Ok(text)
+}
+
+/// Writes `bytes` to `path` (the argument `path`) through the output guard: another file there
+/// is kept unless `force` (the same bytes: nothing to do), and a directory, link, device or
+/// FIFO is never replaced.
+pub(crate) fn write_guarded(path: PathBuf, bytes: Vec<u8>, force: bool) -> PyResult<()> {
+    let files = [(path, bytes)];
+    if check_files_as(&files, "path", force, &PYTHON).map_err(py_err)? == FilesState::Write {
+        write_files(&files).map_err(py_err)?;
+    }
+    Ok(())
 }
 
 fn room_dict<'py>(py: Python<'py>, r: &Room) -> PyResult<Bound<'py, PyDict>> {

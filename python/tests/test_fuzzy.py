@@ -1,6 +1,7 @@
 """The TSK motivation fitness: the worked values of docs/model.md §8, the CLI, vectorisation, explain, errors, FLL."""
 
 import doctest
+import os
 
 import numpy as np
 import pytest
@@ -134,12 +135,28 @@ def test_export_fll_file_equals_cli_and_refuses_overwrite(cli, tmp_path):
     theirs.parent.mkdir()
     run_cli(cli, "fuzzy", "--motivations", "0.8,0.1,0,0.1", "--export-fll", theirs)
     assert theirs.read_text() == text
-    with pytest.raises(ValueError, match="exists; pass force=True"):
+    with pytest.raises(ValueError, match=r"exists with other contents.*force=True"):
         fm.export_fll([0.5, 0.3, 0, 0.2], ours)
     assert ours.read_text() == text
+    fm.export_fll([0.8, 0.1, 0, 0.1], ours)  # the same text again: nothing to do
     fm.export_fll([0.5, 0.3, 0, 0.2], ours, force=True)
     assert "(0.5,0.3,0,0.2)" in ours.read_text()
-    assert not list(tmp_path.glob("*.tmp"))
+    assert not list(tmp_path.glob(".tmp*"))
+
+
+def test_export_fll_never_replaces_what_is_not_a_regular_file(tmp_path):
+    """The output guard, as save_gif and the CLI: with force=True too, a directory, a link and a
+    FIFO stay what they are."""
+    fifo, link, folder = tmp_path / "f.fll", tmp_path / "l.fll", tmp_path / "d.fll"
+    os.mkfifo(fifo)
+    (tmp_path / "target.txt").write_text("mine")
+    link.symlink_to(tmp_path / "target.txt")
+    folder.mkdir()
+    for path, what in [(fifo, "FIFO"), (link, "link"), (folder, "directory")]:
+        with pytest.raises(fm.FuzzymotivError, match=what):
+            fm.export_fll([0.8, 0.1, 0, 0.1], path, force=True)
+    assert fifo.is_fifo() and link.is_symlink() and folder.is_dir()
+    assert (tmp_path / "target.txt").read_text() == "mine"
 
 
 def test_docstring_examples_run():

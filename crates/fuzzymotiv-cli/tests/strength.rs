@@ -78,3 +78,24 @@ fn search_strength_is_its_own_kind_of_study() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--ablation"), "{}", stderr(&o));
 }
+
+/// The study sets the GA population itself: a `--set` of it (or of the whole `ga` table) would
+/// make the four studies one, so it is refused before anything runs.
+#[test]
+fn a_set_of_the_population_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("ss");
+    for set in ["ga.population=10", "ga={population=10}"] {
+        let o = Fm::new(["reproduce", "--search-strength", "--seeds", "2"])
+            .out(&out)
+            .sets(&[set])
+            .run();
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("sets `ga.population` itself"),
+            "{}",
+            stderr(&o)
+        );
+        assert!(!out.exists());
+    }
+}

@@ -244,6 +244,7 @@ fn run_variants(
     seeds: &[u64],
     variants: &'static [Variant],
 ) -> Result<Option<(StagedDir, Vec<VariantClaims>)>, CliError> {
+    refuse_variant_keys(&args.sets, variants)?;
     let loaded = variants
         .iter()
         .map(|v| load_settings(args, seeds, v))
@@ -268,6 +269,32 @@ fn run_variants(
     }
     progress.finish();
     Ok(Some((staged, rows)))
+}
+
+/// A `--set` of a key that a variant sets itself would make the variants one study (the user's
+/// value comes last): refused, naming the variant.
+fn refuse_variant_keys(sets: &[String], variants: &[Variant]) -> Result<(), CliError> {
+    let key = |set: &str| {
+        set.split_once('=')
+            .map_or(set, |(k, _)| k)
+            .trim()
+            .to_string()
+    };
+    for set in sets {
+        let user = key(set);
+        for v in variants {
+            let clash = (v.sets.iter().map(|s| key(s)))
+                .find(|own| *own == user || own.starts_with(&format!("{user}.")));
+            if let Some(own) = clash {
+                return Err(CliError::input(format!(
+                    "--set {set}: this study sets `{own}` itself (its part `{}`: {}); leave the \
+                     --set out, or run `fuzzymotiv reproduce --set {set}` for one study",
+                    v.name, v.what
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// `reproduce --search-strength`: the study at every GA population of [`SEARCH_STRENGTH`],

@@ -225,7 +225,9 @@ fn room_file_hint(msg: &str) -> &'static str {
 }
 
 /// Applies `key=value` overrides to a TOML document: dotted keys create or descend into tables;
-/// the value is read as TOML, and as a plain string if it is not valid TOML.
+/// the value is read as TOML, and as a plain string if it is not valid TOML. A table value
+/// (`ga={generations=3}`) sets the keys it names and keeps the table's others, as the dotted
+/// keys would; a value followed by more TOML (`4\ntrial.steps=5`) is an error.
 pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), ConfigError> {
     for set in sets {
         let Some((key, value)) = set.split_once('=') else {
@@ -238,9 +240,20 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
         let key = key.trim();
         let value = value.trim();
         let parsed: toml::Value = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
-            Ok(mut t) => t
-                .remove("v")
-                .unwrap_or(toml::Value::String(value.to_string())),
+            Ok(mut t) => {
+                let v = t.remove("v");
+                if !t.is_empty() {
+                    return Err(ConfigError {
+                        source_name: "--set".into(),
+                        field: key.trim().to_string(),
+                        reason: format!(
+                            "the value `{value}` has more TOML after it; give one value per \
+                             override (each key its own --set)"
+                        ),
+                    });
+                }
+                v.unwrap_or(toml::Value::String(value.to_string()))
+            }
             Err(_) => toml::Value::String(value.to_string()),
         };
         let parts: Vec<&str> = key.split('.').collect();
@@ -267,9 +280,24 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
                 }
             };
         }
-        t.insert(parts[parts.len() - 1].to_string(), parsed);
+        merge_value(t, parts[parts.len() - 1], parsed);
     }
     Ok(())
+}
+
+/// Sets `t[key]` to `value`; where both are tables, key by key (recursively), so that the
+/// table's other keys stay.
+fn merge_value(t: &mut toml::Table, key: &str, value: toml::Value) {
+    match (t.get_mut(key), value) {
+        (Some(toml::Value::Table(old)), toml::Value::Table(new)) => {
+            for (k, v) in new {
+                merge_value(old, &k, v);
+            }
+        }
+        (_, value) => {
+            t.insert(key.to_string(), value);
+        }
+    }
 }
 
 #[cfg(test)]
@@ -300,6 +328,24 @@ mod tests {
         assert_eq!(raw.ga.population, 20);
         assert_eq!(raw.rooms, vec!["H", "T"]);
         assert_eq!(raw.name, "hello world");
+    }
+
+    #[test]
+    fn a_table_value_sets_its_keys_and_keeps_the_others() {
+        let config = "[ga]\npopulation = 50\n[trial]\nsteps = 200\nnoise = 0.1\n";
+        let sets = ["ga={generations=3}".into(), "trial={noise=0.0}".into()];
+        let raw = RawConfig::parse(config, "x", &sets).unwrap();
+        assert_eq!(raw.ga.population, 50);
+        assert_eq!(raw.ga.generations, 3);
+        assert_eq!(raw.trial.steps, 200);
+        assert_eq!(raw.trial.noise, 0.0);
+    }
+
+    #[test]
+    fn a_value_with_more_toml_after_it_is_an_error() {
+        let e = RawConfig::parse("", "x", &["ga.population=4\ntrial.steps=5".into()]).unwrap_err();
+        assert_eq!(e.field, "ga.population", "{e}");
+        assert!(e.reason.contains("one value per"), "{e}");
     }
 
     #[test]
