@@ -638,6 +638,23 @@ fn replay_rejects_bad_input_with_exit_2() {
         assert!(!e.contains("panicked"), "{args:?}: {e}");
     }
     assert!(!page.exists());
+    // A page named like the trajectories (`y.json`, a bare name in the current directory)
+    // would replace them: refused, nothing written.
+    for name in ["y.json", "./y.json", "y.svg"] {
+        let o = Fm::new([
+            "replay",
+            out.to_str().unwrap(),
+            "--room",
+            "H",
+            "--out",
+            name,
+        ])
+        .in_dir(dir.path())
+        .run();
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
+        assert!(stderr(&o).contains("would both be"), "{}", stderr(&o));
+        assert!(!dir.path().join("y-H.csv").exists(), "{name}");
+    }
 }
 
 /// Kill a run at several points (deterministic ones: `FUZZYMOTIV_TEST_ABORT_AFTER=N` aborts the

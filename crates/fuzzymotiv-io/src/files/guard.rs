@@ -448,8 +448,15 @@ pub fn check_files(
     option: &str,
     force: bool,
 ) -> Result<FilesState, CliError> {
+    // `y.json` and `./y.json` are one file: compared as absolute paths without `.` parts.
+    let key = |p: &Path| -> PathBuf {
+        let abs = std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        (abs.components())
+            .filter(|c| *c != std::path::Component::CurDir)
+            .collect()
+    };
     for (k, (path, _)) in files.iter().enumerate() {
-        if files[..k].iter().any(|(p, _)| p == path) {
+        if files[..k].iter().any(|(p, _)| key(p) == key(path)) {
             return Err(CliError::input(format!(
                 "{option}: two of the files to write would both be {}; choose another {option} \
                  (e.g. a name ending in .html for a page)",
