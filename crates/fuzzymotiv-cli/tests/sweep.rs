@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 mod common;
 
-use common::{Fm, bin, ok, run};
+use common::{Fm, bin, ok, run, stderr};
 
 const SWEEP: &str = r#"
 name = "t"
@@ -422,4 +422,36 @@ fn merge_names_the_bad_field_of_a_summary() {
         assert_eq!(o.status.code(), Some(2), "{e}");
         assert!(e.contains("summary.json") && e.contains(field), "{e}");
     }
+}
+
+/// `merge` never replaces merged tables with empty ones: an emptied plan and a sweep none of
+/// whose jobs has finished are errors (exit 2), and `results.csv` stays as it was.
+#[test]
+fn merge_with_nothing_to_merge_keeps_the_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("s.toml");
+    std::fs::write(
+        &f,
+        "rooms = [\"H\", \"square\"]\n[ga]\npopulation = 6\ngenerations = 2\n[trial]\nsteps = 60\n[aem]\nepochs = 5\ntest_runs = 1\n[sweep]\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    ok(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let merged = results(&out);
+    let plan = std::fs::read_to_string(out.join("plan.jsonl")).unwrap();
+    std::fs::write(out.join("plan.jsonl"), "\n").unwrap();
+    let o = run(&["merge", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("holds no jobs"), "{}", stderr(&o));
+    std::fs::write(out.join("plan.jsonl"), plan).unwrap();
+    for done in std::fs::read_dir(out.join("jobs")).unwrap() {
+        let _ = std::fs::remove_file(done.unwrap().path().join("DONE"));
+    }
+    let o = run(&["merge", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("has finished"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(out.join("results.csv")).unwrap(),
+        merged
+    );
 }

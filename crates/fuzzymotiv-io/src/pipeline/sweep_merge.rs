@@ -47,6 +47,14 @@ pub struct Merged {
 pub fn write_merge(dir: &Path) -> Result<Merged, CliError> {
     let jobs = Job::read_plan(&dir.join("plan.jsonl"))?;
     let (results, missing) = collect_results(dir, &jobs)?;
+    if missing == jobs.len() {
+        return Err(CliError::input(format!(
+            "{}: none of the plan's {} jobs has finished (no jobs/ID/DONE), so there is nothing \
+             to merge; its tables, if any, are kept. Run the sweep's jobs first",
+            dir.display(),
+            jobs.len()
+        )));
+    }
     write_atomic(&dir.join("results.csv"), results.to_csv())?;
     let groups = group_by_setting_and_room(&results.rows);
     let aggregate: Vec<AggregateRow> = groups

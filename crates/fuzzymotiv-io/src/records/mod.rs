@@ -906,11 +906,19 @@ impl Job {
     /// Reads `plan.jsonl`.
     pub fn read_plan(path: &Path) -> Result<Vec<Job>, CliError> {
         let text = read_text(path, "the plan (is this a sweep directory?)")?;
-        text.lines()
-            .enumerate()
+        let jobs: Vec<Job> = (text.lines().enumerate())
             .filter(|(_, l)| !l.trim().is_empty())
             .map(|(i, l)| parse_json(l, &format!("{}: line {}", path.display(), i + 1)))
-            .collect()
+            .collect::<Result<_, _>>()?;
+        if jobs.is_empty() {
+            return Err(CliError::input(format!(
+                "{}: the plan holds no jobs (an emptied file?); `fuzzymotiv plan SWEEP.toml --out \
+                 {}` writes it again from the sweep file",
+                path.display(),
+                path.display()
+            )));
+        }
+        Ok(jobs)
     }
 }
 
