@@ -484,6 +484,11 @@ def save_gif(
                 f"frames: expected a (T, H, W, 3) uint8 array, got dtype {a.dtype}"
             )
         source: Any = np.ascontiguousarray(a)
+    elif isinstance(frames_or_trajectory, np.ndarray) and frames_or_trajectory.dtype == np.uint8:
+        raise FuzzymotivError(
+            f"frames: a uint8 array of shape {list(frames_or_trajectory.shape)}; expected "
+            "(T, H, W, 3) frames (one frame: frames[None])"
+        )
     else:
         source = _rollout(frames_or_trajectory)
     cfg_path, text = _config_args(config)

@@ -227,6 +227,8 @@ def sweep(
     the_plan: Union[Plan, Sequence[Job], str, os.PathLike, Mapping],
     out: Union[str, os.PathLike],
     executor: Optional[SubmitExecutor] = None,
+    *,
+    force: bool = False,
 ) -> SweepResult:
     """Run every job of ``the_plan`` (a :class:`Plan`, a list of its jobs, or anything
     :func:`plan` takes) into the sweep directory ``out`` through ``executor``, wait, and
@@ -238,9 +240,16 @@ def sweep(
     cores; each job is parallel inside too). Finished jobs are skipped, locked ones waited for;
     results do not depend on the executor, the order or the number of workers. The first job's
     error is raised (after cancelling the jobs not started).
+
+    ``out`` is checked before any job starts, as ``fuzzymotiv sweep`` checks ``--out``: the same
+    plan (or one that only adds jobs) goes on; another plan's sweep, or another output, is kept
+    unless ``force=True`` (which removes that sweep's own files, never a file of yours).
     """
     jobs = _jobs_of(the_plan)
     path = os.path.abspath(_out_path(out))
+    if jobs:
+        first = jobs[0]
+        _native.sweep_prepare(first.sweep_text, first.source, first.base_dir, path, bool(force))
     own: Optional[concurrent.futures.ThreadPoolExecutor] = None
     if executor is None:
         own = concurrent.futures.ThreadPoolExecutor(max_workers=min(len(jobs), os.cpu_count() or 1))

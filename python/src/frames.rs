@@ -15,7 +15,7 @@ use fuzzymotiv_io::render::frames::{FrameOptions, Frames, Track, gif_of_frames, 
 use numpy::ndarray::Array4;
 use numpy::{
     IntoPyArray, PyArray4, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray4,
-    PyArrayDescrMethods, PyUntypedArray, PyUntypedArrayMethods,
+    PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -205,14 +205,6 @@ pub(crate) fn frames<'py>(
     Ok(a.into_pyarray(py))
 }
 
-/// The shape of `source` if it is a numpy uint8 array (frames of the wrong shape, not a genome).
-fn uint8_array_shape(source: &Bound<'_, PyAny>) -> Option<Vec<usize>> {
-    let a = source.cast::<PyUntypedArray>().ok()?;
-    a.dtype()
-        .is_equiv_to(&numpy::dtype::<u8>(source.py()))
-        .then(|| a.shape().to_vec())
-}
-
 /// The GIF of `(T, H, W, 3)` uint8 frames.
 fn gif_of_array(py: Python<'_>, a: &PyReadonlyArray4<'_, u8>, delay: u16) -> PyResult<Vec<u8>> {
     let shape = a.shape().to_vec();
@@ -257,11 +249,6 @@ pub(crate) fn save_gif<'py>(
     let delay = delay_of(fps).map_err(|e| input_err(format!("fps: {e}")))?;
     let (bytes, count) = if let Ok(a) = source.extract::<PyReadonlyArray4<'_, u8>>() {
         (gif_of_array(py, &a, delay)?, a.shape()[0])
-    } else if let Some(shape) = uint8_array_shape(source) {
-        return Err(input_err(format!(
-            "frames: a uint8 array of shape {shape:?}; expected (T, H, W, 3) frames (one frame: \
-             frames[None])"
-        )));
     } else {
         let seed = seed.map(|s| seed_arg(&s)).transpose()?;
         let setting = Setting {

@@ -934,6 +934,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(frames::save_gif, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_run_job, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_prepare, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_merge, m)?)?;
     m.add_class::<problem::Problem>()?;
     m.add_class::<ga::Ga>()?;

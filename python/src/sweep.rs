@@ -6,13 +6,23 @@
 use std::path::{Path, PathBuf};
 
 use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::error::ErrorKind;
+use fuzzymotiv_io::files::guard::PYTHON;
 use fuzzymotiv_io::pipeline::progress::NoProgress;
-use fuzzymotiv_io::pipeline::sweep_jobs::run_one_job;
+use fuzzymotiv_io::pipeline::sweep_jobs::{prepare_sweep_dir, run_one_job};
 use fuzzymotiv_io::pipeline::sweep_merge::write_merge;
 use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
 use pyo3::prelude::*;
 
 use crate::py_err;
+
+/// An error of the sweep directory's checks in Python's words (`out`, `force=True`).
+fn in_python_words(e: CliError) -> PyErr {
+    py_err(match e.kind() {
+        ErrorKind::Input => PYTHON.respell(e),
+        _ => e,
+    })
+}
 
 /// The source name of a sweep given as text (a dict in Python), in error messages.
 const TEXT_SOURCE: &str = "(sweep dict)";
@@ -87,7 +97,26 @@ pub fn sweep_run_job(
         }
         run_one_job(&sweep, &text, index, &out, wait, &NoProgress).map(|o| o.as_str())
     })
-    .map_err(py_err)
+    .map_err(in_python_words)
+}
+
+/// Checks the sweep directory `out` for the sweep `text` and writes its plan, as `fuzzymotiv
+/// sweep` does before its first job: another plan's sweep there is replaced only with `force`.
+#[pyfunction]
+#[pyo3(signature = (text, source, base_dir, out, force=false))]
+pub fn sweep_prepare(
+    py: Python<'_>,
+    text: String,
+    source: String,
+    base_dir: PathBuf,
+    out: PathBuf,
+    force: bool,
+) -> PyResult<()> {
+    py.detach(|| {
+        let sweep = Sweep::parse_str(&text, &source, &base_dir)?;
+        prepare_sweep_dir(&sweep, &text, &out, force).map(|_| ())
+    })
+    .map_err(in_python_words)
 }
 
 /// Merges the sweep directory `dir` as `fuzzymotiv merge` does (the same `results.csv`,

@@ -300,3 +300,21 @@ def test_ga_survives_pickle_and_goes_on_alike():
     back = pickle.loads(pickle.dumps(ga))
     assert back.state == ga.state
     assert back.ask().tobytes() == ga.ask().tobytes()
+
+
+def test_sweep_into_another_plans_sweep_needs_force(sweep_file, cli_sweep, tmp_path):
+    """fm.sweep checks `out` before any job, as `fuzzymotiv sweep` does, in Python's words; with
+    force=True the other sweep's own files go and a file of the user's stays."""
+    out = tmp_path / "sw"
+    other = dict(SWEEP_DICT, sweep={"replicates": 1, "motivations": [[0.2, 0.6, 0.0, 0.2]]})
+    fm.sweep(fm.plan(other), out=out)
+    mine = out / "notes.txt"
+    mine.write_text("mine")
+    before = (out / "results.csv").read_bytes()
+    with pytest.raises(fm.FuzzymotivError, match=r"another plan.*force=True") as e:
+        fm.sweep(fm.plan(sweep_file), out=out)
+    assert "--force" not in str(e.value) and "--out" not in str(e.value)
+    assert (out / "results.csv").read_bytes() == before
+    fm.sweep(fm.plan(sweep_file), out=out, force=True)
+    assert_same_sweep(out, cli_sweep, sweep_file)
+    assert mine.read_text() == "mine"

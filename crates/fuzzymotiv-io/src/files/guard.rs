@@ -315,7 +315,7 @@ pub const PYTHON: Spelling = Spelling {
 
 impl Spelling {
     /// A guard message (written with the CLI's options) in this front's words.
-    fn respell(&self, e: CliError) -> CliError {
+    pub fn respell(&self, e: CliError) -> CliError {
         let text = e
             .to_string()
             .replace("--force", self.force)

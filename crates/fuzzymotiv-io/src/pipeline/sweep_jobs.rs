@@ -108,9 +108,9 @@ pub fn run_one_job(
     run_job(sweep, job, &jobs_dir, wait, progress, 1)
 }
 
-/// Checks `out` for `sweep` ([`open_sweep_dir`]) and writes its plan and sweep file; returns
-/// its `jobs/` folder.
-fn prepare_sweep_dir(
+/// Checks `out` for `sweep` ([`open_sweep_dir`]: with `force`, another plan's sweep is
+/// replaced) and writes its plan and sweep file; returns its `jobs/` folder.
+pub fn prepare_sweep_dir(
     sweep: &Sweep,
     text: &str,
     out: &Path,
