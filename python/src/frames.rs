@@ -9,9 +9,10 @@ use std::path::PathBuf;
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::simulation::robot::{Action, Pose};
+use fuzzymotiv::simulation::room::Room;
 use fuzzymotiv_io::render::frames::animate::{GifWriter, delay_of};
 use fuzzymotiv_io::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
-use fuzzymotiv_io::render::frames::{FrameOptions, Frames, Track, gif_of_frames, render};
+use fuzzymotiv_io::render::frames::{FrameOptions, Track, gif, render};
 use numpy::ndarray::Array4;
 use numpy::{
     IntoPyArray, PyArray4, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray4,
@@ -127,13 +128,14 @@ impl Setting {
     }
 }
 
-/// The frames of a trajectory dict or a genome, drawn without the GIL.
-fn draw(
+/// `paint` (e.g. [`render`] or [`gif`]) of a trajectory dict or a genome, without the GIL.
+fn draw<T: Send>(
     py: Python<'_>,
     source: &Bound<'_, PyAny>,
     setting: &Setting,
     opts: FrameOptions,
-) -> PyResult<Frames> {
+    paint: impl FnOnce(&Room, Track<'_>, FrameOptions) -> Result<T, String> + Send,
+) -> PyResult<T> {
     let exp = setting.experiment()?;
     let opts = opts.for_trial(exp.trial_params());
     let room = exp.arenas()[0].room();
@@ -146,7 +148,7 @@ fn draw(
             actions: c.actions.as_deref(),
             idle: c.idle.as_deref(),
         };
-        py.detach(|| render(room, track, opts)).map_err(fail)
+        py.detach(|| paint(room, track, opts)).map_err(fail)
     } else {
         let genome: Vec<f64> = source.extract()?;
         finite(
@@ -156,7 +158,7 @@ fn draw(
             "expected the network's weights",
         )?;
         let tr = instance_of(py, &exp, &genome)?.trajectory;
-        py.detach(|| render(room, Track::of(&tr), opts))
+        py.detach(|| paint(room, Track::of(&tr), opts))
             .map_err(fail)
     }
 }
@@ -199,7 +201,7 @@ pub(crate) fn frames<'py>(
         room,
         seed,
     };
-    let f = draw(py, source, &setting, options(size, stride)?)?;
+    let f = draw(py, source, &setting, options(size, stride)?, render)?;
     let (h, w) = (f.height as usize, f.width as usize);
     let a = Array4::from_shape_vec((f.len(), h, w, 3), f.rgb).expect("T × H × W × 3");
     Ok(a.into_pyarray(py))
@@ -258,12 +260,17 @@ pub(crate) fn save_gif<'py>(
             room,
             seed,
         };
-        let f = draw(py, source, &setting, options(size, stride)?)?;
-        let bytes = py.detach(|| gif_of_frames(&f, delay));
-        (
-            bytes.map_err(|e| input_err(format!("frames: {e}")))?,
-            f.len(),
-        )
+        // Drawn and encoded a frame at a time (as `replay --gif`): any length fits in memory.
+        draw(
+            py,
+            source,
+            &setting,
+            options(size, stride)?,
+            |room, track, opts| {
+                let count = opts.frame_poses(track.poses.len()).len();
+                gif(room, track, opts, delay).map(|bytes| (bytes, count))
+            },
+        )?
     };
     crate::write_guarded(path, bytes, force)?;
     Ok(count)

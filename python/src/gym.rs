@@ -193,6 +193,9 @@ fn actions(n: usize, arg: &Bound<'_, PyAny>) -> PyResult<Vec<Act>> {
         .collect()
 }
 
+/// The most environments of one vector env (about 0.5 KiB each, so 512 MiB).
+const MAX_ENVS: usize = 1 << 20;
+
 #[pymethods]
 impl GymCore {
     /// `num_envs` trials, each in one of `rooms` (room names or files), under the config.
@@ -218,6 +221,12 @@ impl GymCore {
         };
         if rooms.is_empty() || num_envs == 0 {
             return Err(input_err("room: at least one room and one env are needed"));
+        }
+        if num_envs > MAX_ENVS {
+            return Err(input_err(format!(
+                "num_envs: at most {MAX_ENVS} (each environment holds its own trial), got \
+                 {num_envs}; use several vector envs"
+            )));
         }
         let loaded =
             load(config_path.as_deref(), config_text.as_deref(), &sets, None).map_err(py_err)?;

@@ -141,6 +141,10 @@ def test_save_gif_keeps_other_files(traj, tmp_path):
         (lambda t: fm.save_gif(t, "x.gif", fps=0), r"fps: must be a frame rate"),
         (lambda t: fm.save_gif(np.zeros((2, 8, 8, 3)), "x.gif"), r"uint8"),
         (lambda t: fm.save_gif(np.zeros((2, 8, 8, 4), np.uint8), "x.gif"), r"\(T, H, W, 3\)"),
+        (
+            lambda t: fm.frames({k: np.zeros(1000) for k in ("x", "y", "heading")}, "H", size=2048),
+            r"1000 frames of 2048 × 2048 pixels need 11\.7 GiB, more than the 8 GiB",
+        ),
         (lambda t: fm.save_gif(np.zeros((2, 0, 8, 3), np.uint8), "x.gif"), r"T, H, W ≥ 1"),
         (lambda t: fm.save_gif(np.zeros((2, 8, 0, 3), np.uint8), "x.gif"), r"T, H, W ≥ 1"),
         (lambda t: fm.save_gif(np.zeros((8, 8, 3), np.uint8), "x.gif"), r"shape \[8, 8, 3\].*frames\[None\]"),

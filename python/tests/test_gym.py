@@ -112,6 +112,8 @@ def test_bad_arguments_raise_fuzzymotiv_error():
         fmgym.KheperaEnv("H", dtype=np.int32)
     with pytest.raises(fm.FuzzymotivError, match="room"):
         fmgym.KheperaEnv("no-such-room")
+    with pytest.raises(fm.FuzzymotivError, match=r"num_envs: at most 1048576 .* got 100000000"):
+        fmgym.KheperaVectorEnv(num_envs=10**8, room="H")
     env = fmgym.KheperaEnv("H", overrides=SHORT)
     env.reset(seed=0)
     with pytest.raises(fm.FuzzymotivError, match="NaN"):

@@ -75,14 +75,33 @@ fn rgb_of(pixmap: &Pixmap, out: &mut [u8]) {
     }
 }
 
+/// The most memory [`render`]'s frames may take (8 GiB): a longer or larger film is an error
+/// rather than a machine brought to a halt.
+pub const MAX_FRAME_BYTES: usize = 8 << 30;
+
 /// Every frame of `track` in `room` (drawn in parallel on rayon's pool; the bytes do not depend
-/// on the number of threads). The error names the track's bad column.
+/// on the number of threads). The error names the track's bad column, or says that the frames
+/// would take more than [`MAX_FRAME_BYTES`].
 pub fn render(room: &Room, track: Track<'_>, opts: FrameOptions) -> Result<Frames, String> {
     let painter = Painter::new(room, track, opts)?;
     let poses = opts.frame_poses(track.poses.len());
     let size = opts.size();
     let n = size as usize * size as usize * 3;
-    let mut rgb = vec![0u8; n * poses.len()];
+    let bytes = n.saturating_mul(poses.len());
+    let too_many = |why: &str| {
+        format!(
+            "{} frames of {size} × {size} pixels need {:.1} GiB, {why}; draw fewer (a larger \
+             stride) or smaller frames (size), or write a GIF, which is drawn a frame at a time",
+            poses.len(),
+            bytes as f64 / (1u64 << 30) as f64
+        )
+    };
+    if bytes > MAX_FRAME_BYTES {
+        return Err(too_many("more than the 8 GiB that frames may take"));
+    }
+    let mut rgb = Vec::new();
+    (rgb.try_reserve_exact(bytes)).map_err(|_| too_many("more than can be allocated"))?;
+    rgb.resize(bytes, 0);
     rgb.par_chunks_mut(n).zip(poses.par_iter()).for_each_init(
         || Pixmap::new(size, size).expect("size checked"),
         |pixmap, (out, &t)| {
@@ -113,15 +132,6 @@ pub fn gif(
     for t in opts.frame_poses(track.poses.len()) {
         painter.draw(t, &mut pixmap);
         writer.push_rgba(pixmap.data())?;
-    }
-    writer.finish()
-}
-
-/// The animated GIF of frames already drawn (RGB), `delay` hundredths of a second each.
-pub fn gif_of_frames(frames: &Frames, delay: u16) -> Result<Vec<u8>, String> {
-    let mut writer = GifWriter::new(frames.width, frames.height, delay)?;
-    for k in 0..frames.len() {
-        writer.push(frames.frame(k))?;
     }
     writer.finish()
 }
