@@ -150,6 +150,23 @@ fn what_cannot_be_continued_is_a_clear_error() {
     )
     .unwrap();
     expect(cont(&unfinished, "4", &new), "run --resume");
+    // A config edited after the run: the run is only read, so no --force advice.
+    let edited = tmp.path().join("edited");
+    std::fs::create_dir(&edited).unwrap();
+    for (f, bytes) in &before {
+        if f.parent() == Some(Path::new("")) {
+            std::fs::write(edited.join(f), bytes).unwrap();
+        }
+    }
+    let config = String::from_utf8(before[Path::new("config.resolved.toml")].clone()).unwrap();
+    let population = config
+        .lines()
+        .find(|l| l.starts_with("population = "))
+        .unwrap();
+    let more = config.replace(population, "population = 13");
+    std::fs::write(edited.join("config.resolved.toml"), more).unwrap();
+    let o = cont(&edited, "4", &new);
+    expect(o, "edited after it ran");
     // --generations without --continue, --continue without --out.
     let o = Fm::new(["run", "--generations", "4"]).run();
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));

@@ -83,7 +83,9 @@ pub struct Continued {
 pub fn continue_runs(dir: &Path, exp: &Experiment) -> Result<Vec<Continued>, CliError> {
     let runs = exp.runs();
     let path = dir.join(POPULATION);
-    let saved = Checkpoint::load(&path, &runs, exp)?;
+    let remedy = "the run is only read, so nothing is replaced: was its config.resolved.toml \
+                  or population.json edited after it ran?";
+    let saved = Checkpoint::load_or(&path, &runs, exp, remedy)?;
     if saved.runs.iter().any(|r| !r.done) {
         return Err(CliError::input(format!(
             "{}: not the population of a finished run",

@@ -117,8 +117,23 @@ impl Checkpoint {
     }
 
     /// Reads the checkpoint at `path` and checks it against the experiment (no file: a fresh
-    /// start).
+    /// start); a checkpoint of another config is an error that says `--force` starts over.
     pub fn load(path: &Path, runs: &[Run], exp: &Experiment) -> Result<Self, CliError> {
+        Self::load_or(
+            path,
+            runs,
+            exp,
+            "pass --force to discard it and start the run over",
+        )
+    }
+
+    /// [`Checkpoint::load`], with `remedy` ending the error of a checkpoint of another config.
+    pub fn load_or(
+        path: &Path,
+        runs: &[Run],
+        exp: &Experiment,
+        remedy: &str,
+    ) -> Result<Self, CliError> {
         if !path.is_file() {
             // Killed before the first generation finished: start over.
             return Ok(Self::fresh(runs));
@@ -146,7 +161,7 @@ impl Checkpoint {
             });
         if !ok {
             return Err(CliError::input(format!(
-                "{}: the checkpoint does not match the run's config (runs, sizes); pass --force to discard it and start the run over",
+                "{}: the checkpoint does not match the run's config (runs, sizes); {remedy}",
                 path.display()
             )));
         }
