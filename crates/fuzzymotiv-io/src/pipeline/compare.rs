@@ -359,10 +359,15 @@ fn design_line(kind: Kind, g: &Group, h: &Group) -> String {
             g.units.len()
         ),
         None => format!(
-            "- {what}: **unpaired**, {} against {} {unit}: their seeds differ, so the samples \
-             are independent (two-sample permutation test)\n",
+            "- {what}: **unpaired**, {} against {} {unit}: {}, so the samples are taken as \
+             independent (two-sample permutation test)\n",
             g.units.len(),
-            h.units.len()
+            h.units.len(),
+            if g.units.len() == h.units.len() {
+                "their seeds differ"
+            } else {
+                "their numbers differ (no pairing)"
+            }
         ),
     }
 }
