@@ -1230,3 +1230,23 @@ fn lab_bind_refuses_a_host_name() {
     assert!(stderr(&o).contains("`localhost`"), "{}", stderr(&o));
     assert!(!lab_dir.exists());
 }
+
+/// `lab` on a port in use, or with a file as `--dir`: exit 2 saying what to change, and no
+/// lab directory left behind.
+#[test]
+fn lab_start_failures_are_the_users_to_fix() {
+    let dir = tempfile::tempdir().unwrap();
+    let busy = std::net::TcpListener::bind(("127.0.0.1", 0)).unwrap();
+    let port = busy.local_addr().unwrap().port().to_string();
+    let lab_dir = dir.path().join("lab");
+    let o = run(&["lab", "--port", &port, "--dir", lab_dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("the port is in use"), "{}", stderr(&o));
+    assert!(!lab_dir.exists());
+    let file = dir.path().join("afile");
+    std::fs::write(&file, "mine").unwrap();
+    let o = run(&["lab", "--port", "0", "--dir", file.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("is not a directory"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
+}

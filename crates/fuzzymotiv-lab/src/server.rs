@@ -68,9 +68,40 @@ fn hosts(addr: SocketAddr) -> Vec<String> {
     hosts
 }
 
+/// The listening socket of `--bind` and `--port`; an address in use or not this machine's is
+/// the user's to change (exit 2), with what to do.
+fn bind(opts: &LabOptions) -> Result<std::net::TcpListener, CliError> {
+    use std::io::ErrorKind;
+    let at = format!("--bind {} --port {}", opts.bind, opts.port);
+    std::net::TcpListener::bind((opts.bind, opts.port)).map_err(|e| match e.kind() {
+        ErrorKind::AddrInUse => CliError::input(format!(
+            "{at}: the port is in use (another lab or program listens there); choose another \
+             --port, or --port 0 for any free one"
+        )),
+        ErrorKind::AddrNotAvailable => CliError::input(format!(
+            "{at}: {} is not an address of this machine; give one of its interfaces' addresses, \
+             127.0.0.1 (this machine only) or 0.0.0.0 (every interface)",
+            opts.bind
+        )),
+        ErrorKind::PermissionDenied => CliError::input(format!(
+            "{at}: not allowed to listen there (ports below 1024 need privileges); choose \
+             another --port"
+        )),
+        _ => io(&at, e),
+    })
+}
+
 impl Lab {
     /// Binds, starts the server and the run worker, and returns once it listens.
     pub fn start(opts: LabOptions) -> Result<Lab, CliError> {
+        // Bound first: a busy port leaves no directory behind.
+        let listener = bind(&opts)?;
+        if opts.dir.exists() && !opts.dir.is_dir() {
+            return Err(CliError::input(format!(
+                "--dir {}: is not a directory; give the lab's directory (created if missing)",
+                opts.dir.display()
+            )));
+        }
         std::fs::create_dir_all(&opts.dir).map_err(|e| io(&opts.dir.display().to_string(), e))?;
         let dir = opts
             .dir
@@ -86,8 +117,6 @@ impl Lab {
             .enable_all()
             .build()
             .map_err(|e| io("the async runtime", e))?;
-        let listener = std::net::TcpListener::bind((opts.bind, opts.port))
-            .map_err(|e| io(&format!("--bind {} --port {}", opts.bind, opts.port), e))?;
         listener
             .set_nonblocking(true)
             .map_err(|e| io("listener", e))?;
