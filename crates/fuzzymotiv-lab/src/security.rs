@@ -27,6 +27,9 @@ pub struct Access {
     pub token: String,
     /// Allowed `Host` header values, e.g. `127.0.0.1:8000` and `localhost:8000`.
     pub hosts: Vec<String>,
+    /// Bound to every interface (`0.0.0.0`, `::`): any IP address with the served port is also
+    /// allowed (an address, unlike a name, cannot be rebound to another server).
+    pub any_ip_port: Option<u16>,
     /// The cookie's name (with the port: cookies do not tell ports apart).
     pub cookie: String,
 }
@@ -46,7 +49,13 @@ fn same(a: &str, b: &str) -> bool {
 impl Access {
     fn host_ok(&self, headers: &HeaderMap) -> bool {
         let host = headers.get(header::HOST).and_then(|h| h.to_str().ok());
-        host.is_some_and(|h| self.hosts.iter().any(|a| a.eq_ignore_ascii_case(h)))
+        let listed = |h: &str| self.hosts.iter().any(|a| a.eq_ignore_ascii_case(h));
+        let any_ip = |h: &str| {
+            let addr = h.parse::<std::net::SocketAddr>();
+            self.any_ip_port
+                .is_some_and(|p| addr.is_ok_and(|a| a.port() == p))
+        };
+        host.is_some_and(|h| listed(h) || any_ip(h))
     }
 
     fn cookie_token<'h>(&self, headers: &'h HeaderMap) -> Option<&'h str> {

@@ -57,7 +57,7 @@ fn io(what: &str, e: impl std::fmt::Display) -> CliError {
 fn hosts(addr: SocketAddr) -> Vec<String> {
     let port = addr.port();
     let mut hosts = vec![addr.to_string()];
-    if addr.ip().is_loopback() {
+    if addr.ip().is_loopback() || addr.ip().is_unspecified() {
         hosts.extend([
             format!("127.0.0.1:{port}"),
             format!("localhost:{port}"),
@@ -125,6 +125,7 @@ impl Lab {
         let access = Arc::new(Access {
             token: token.clone(),
             hosts: hosts(addr),
+            any_ip_port: addr.ip().is_unspecified().then_some(addr.port()),
             cookie: format!("fuzzymotiv_lab_{}", addr.port()),
         });
         let runs = Arc::new(Runs::open(&dir));
@@ -180,7 +181,13 @@ impl Lab {
 
     /// The address to open, with the token.
     pub fn url(&self) -> String {
-        format!("http://{}/?token={}", self.addr, self.token)
+        // Bound to every interface: this machine reaches it on loopback.
+        let host = if self.addr.ip().is_unspecified() {
+            format!("127.0.0.1:{}", self.addr.port())
+        } else {
+            self.addr.to_string()
+        };
+        format!("http://{host}/?token={}", self.token)
     }
 
     /// Serves until Ctrl-C, then stops (runs cancelled).

@@ -446,3 +446,39 @@ fn a_lab_run_gives_the_generations_of_fuzzymotiv_run_and_saves_as_a_run_director
     assert!(list.body.contains(&id) && list.body.contains(&other));
     drop(keep);
 }
+
+/// Bound to every interface (`--bind 0.0.0.0`): the page is printed with 127.0.0.1, and any IP
+/// address with the lab's port is a good Host (another machine's browser names this one by its
+/// address), but a host name still is not (DNS rebinding).
+#[test]
+fn every_interface_answers_ip_addresses_not_names() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut opts = LabOptions::new(tmp.path().join("lab"));
+    opts.port = 0;
+    opts.bind = "0.0.0.0".parse().unwrap();
+    let lab = Lab::start(opts).expect("lab starts");
+    let port = lab.addr().port();
+    assert!(
+        lab.url()
+            .starts_with(&format!("http://127.0.0.1:{port}/?token="))
+    );
+    let local: SocketAddr = ([127, 0, 0, 1], port).into();
+    let token = format!("x-fuzzymotiv-token: {}", lab.token());
+    for (host, status) in [
+        (format!("127.0.0.1:{port}"), 200),
+        (format!("localhost:{port}"), 200),
+        (format!("192.0.2.7:{port}"), 200),
+        (format!("[2001:db8::7]:{port}"), 200),
+        (format!("192.0.2.7:{}", port.wrapping_add(1)), 403),
+        (format!("attacker.example:{port}"), 403),
+    ] {
+        let a = request(
+            local,
+            "GET",
+            "/api/info",
+            &[token.clone(), format!("Host: {host}")],
+            "",
+        );
+        assert_eq!(a.status, status, "Host {host}: {}", a.body);
+    }
+}

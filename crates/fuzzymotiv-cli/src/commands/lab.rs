@@ -59,6 +59,12 @@ pub fn lab(args: LabArgs) -> Result<(), CliError> {
     }
     let lab = Lab::start(opts)?;
     outln!("fuzzymotiv lab: {}", lab.url())?;
+    if lab.addr().ip().is_unspecified() {
+        note!(
+            "from other machines: the same address with this machine's IP address in place of \
+             127.0.0.1 (a host name is refused)"
+        );
+    }
     note!(
         "the lab writes under {}; Ctrl-C stops it (runs going on are stopped)",
         lab.dir().display()
