@@ -165,10 +165,7 @@ class KheperaEnv(gym.Env):
     def step(self, action: Any) -> tuple:
         if getattr(self, "_over", True):
             raise FuzzymotivError("step: no episode is running; call reset() first")
-        if self._discrete:
-            actions = np.array([int(action)], dtype=np.int64)
-        else:
-            actions = np.asarray(action, dtype=np.float64).reshape(1, 2)
+        actions = _actions(action, 1, self._discrete)
         seen = self._last_obs
         obs, reward, terminated, truncated, info = self._core.step(actions)
         info = self._info(info)
@@ -220,6 +217,28 @@ class KheperaEnv(gym.Env):
         return np.asarray(frames(self.trajectory(), room, size=self.size)[-1])
 
 
+def _actions(action: Any, n: int, discrete: bool) -> np.ndarray:
+    """The actions of ``n`` environments as the native step takes them: ``(n,)`` int64 action
+    numbers, or ``(n, 2)`` float64 motor outputs. Anything else is a FuzzymotivError saying
+    what was expected (no silent rounding of 1.7 to 1)."""
+    a = np.asarray(action)
+    numeric = a.dtype.kind in "iu" or (a.dtype.kind == "f" and bool(np.all(np.isfinite(a))))
+    if discrete:
+        whole = numeric and (a.dtype.kind in "iu" or bool(np.all(a == np.round(a))))
+        if a.size != n or not whole:
+            raise FuzzymotivError(
+                f"action: expected {n} whole number(s) of Discrete(4) (0 straight, 1 left30, "
+                f"2 right30, 3 turn180), got {action!r}"
+            )
+        return a.astype(np.int64).reshape(n)
+    if a.size != 2 * n or not numeric:
+        raise FuzzymotivError(
+            f"action: expected {n} pair(s) of finite motor outputs in [0, 1] (shape ({n}, 2) "
+            f"or ({2 * n},)), got {action!r}"
+        )
+    return a.astype(np.float64).reshape(n, 2)
+
+
 class KheperaVectorEnv(VectorEnv):
     """``num_envs`` Khepera trials stepped together in Rust (one call per step), with
     next-step autoreset (see the module's docs). ``reset(seed=S)`` seeds env ``i`` with
@@ -269,11 +288,7 @@ class KheperaVectorEnv(VectorEnv):
         return self._core.state()
 
     def step(self, actions: Any) -> tuple:
-        if self._discrete:
-            a = np.asarray(actions, dtype=np.int64).reshape(self.num_envs)
-        else:
-            a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, 2)
-        return self._core.step(a)
+        return self._core.step(_actions(actions, self.num_envs, self._discrete))
 
 
 gym.register(

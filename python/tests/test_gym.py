@@ -116,8 +116,16 @@ def test_bad_arguments_raise_fuzzymotiv_error():
         fmgym.KheperaVectorEnv(num_envs=10**8, room="H")
     env = fmgym.KheperaEnv("H", overrides=SHORT)
     env.reset(seed=0)
-    with pytest.raises(fm.FuzzymotivError, match="NaN"):
-        env.step(np.array([np.nan, 0.5]))
+    for bad in [np.array([np.nan, 0.5]), np.array([np.inf, 0.5]), np.array([0.1, 0.2, 0.3]), 0.5, "go"]:
+        with pytest.raises(fm.FuzzymotivError, match=r"action: expected 1 pair\(s\) of finite"):
+            env.step(bad)
+    discrete = fmgym.KheperaEnv("H", discrete=True, overrides=SHORT)
+    discrete.reset(seed=0)
+    for bad in [1.7, np.nan, 2**70, [1, 2], "left30"]:
+        with pytest.raises(fm.FuzzymotivError, match=r"action: expected 1 whole number"):
+            discrete.step(bad)
+    discrete.step(np.int64(2))  # a whole number of any integer type
+    discrete.step(np.array([1]))
     with pytest.raises(fm.FuzzymotivError, match="room"):
         env.reset(options={"room": "nowhere"})
     env.reset(seed=1)
