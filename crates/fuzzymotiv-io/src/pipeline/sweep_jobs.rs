@@ -108,8 +108,8 @@ pub fn run_one_job(
     run_job(sweep, job, &jobs_dir, wait, progress, 1)
 }
 
-/// Checks `out` for `sweep` ([`open_sweep_dir`]: with `force`, another plan's sweep is
-/// replaced) and writes its plan and sweep file; returns its `jobs/` folder.
+/// Checks `out` for `sweep` as `fuzzymotiv sweep` checks `--out` (with `force`, another plan's
+/// sweep is replaced) and writes its plan and sweep file; returns its `jobs/` folder.
 pub fn prepare_sweep_dir(
     sweep: &Sweep,
     text: &str,
