@@ -455,3 +455,24 @@ fn merge_with_nothing_to_merge_keeps_the_tables() {
         merged
     );
 }
+
+/// A file written into a folder that does not exist: a file-system error (exit 1) naming the
+/// folder, not the temporary file the write would have used.
+#[test]
+fn plan_into_a_missing_folder_names_the_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("nope/x/plan.jsonl");
+    let sweep = common::repo().join("configs/sweep-small.toml");
+    let o = run(&[
+        "plan",
+        sweep.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("nope/x does not exist") && !e.contains("x/.tmp"),
+        "{e}"
+    );
+}

@@ -22,6 +22,15 @@ fn temp_with(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, CliEr
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
+    if !dir.is_dir() {
+        // A file-system failure (exit 1, OSError in Python), said without the temporary name.
+        return Err(CliError::io(format!(
+            "{}: its folder {} does not exist (or is not a folder); create it, or choose \
+             another path",
+            path.display(),
+            dir.display()
+        )));
+    }
     let mut builder = tempfile::Builder::new();
     builder.prefix(".tmp");
     // As `std::fs::write` creates files: 0o666 less the umask (a temporary file would be 0o600).
