@@ -36,6 +36,9 @@ pub fn finished_config(dir: &Path) -> Result<Loaded, CliError> {
             ),
         ));
     }
+    if dir.exists() && !dir.is_dir() {
+        return Err(what("a file, not a directory", ""));
+    }
     if !dir.is_dir() {
         return Err(what("no such directory", ""));
     }
