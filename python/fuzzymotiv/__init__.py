@@ -28,7 +28,7 @@ import json
 import operator
 import os
 from pathlib import Path
-from typing import Any, Callable, Mapping, NamedTuple, Optional, Sequence, Union
+from typing import Any, Callable, Iterable, Mapping, NamedTuple, Optional, Sequence, Union
 
 import numpy as np
 
@@ -217,6 +217,11 @@ def _sets(overrides: Any) -> list:
         return [f"{k}={_toml_value(v)}" for k, v in overrides.items()]
     if isinstance(overrides, str):
         return [overrides]
+    if not isinstance(overrides, Iterable):
+        raise FuzzymotivError(
+            "overrides: expected a dict of dotted keys (e.g. {\"ga.population\": 20}) or a list "
+            f"of \"key=value\" strings, got {type(overrides).__name__}"
+        )
     return [str(s) for s in overrides]
 
 

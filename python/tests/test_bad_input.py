@@ -115,3 +115,18 @@ def test_finding_7_file_system_failures_are_os_errors(cli, repo, tmp_path):
     with pytest.raises(fm.FuzzymotivError) as e:
         fm.fuzzy_fitness(X, [NAN, 1, 1, 1])
     assert not isinstance(e.value, OSError)
+
+
+def test_overrides_of_another_type_and_table_overrides(repo):
+    """overrides that are neither a dict nor strings are named; a dict of tables sets only the
+    keys it names (the config's others stay), as dotted keys do."""
+    refused(
+        lambda: fm.Problem(repo / "configs/tiny.toml", 5),
+        'overrides: expected a dict of dotted keys (e.g. {"ga.population": 20}) or a list of '
+        '"key=value" strings, got int',
+    )
+    tiny = fm.Problem(repo / "configs/tiny.toml")
+    nested = fm.Problem(repo / "configs/tiny.toml", {"ga": {"generations": 3}, "trial": {"noise": 0.0}})
+    assert (nested.population, nested.steps) == (tiny.population, tiny.steps)
+    with pytest.raises(fm.FuzzymotivError, match="one value per override"):
+        fm.Problem(repo / "configs/tiny.toml", ["ga.population=4\ntrial.steps=5"])
