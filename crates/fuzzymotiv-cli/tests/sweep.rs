@@ -384,19 +384,25 @@ motivations = [[0.8, 0.1, 0.0, 0.1]]
     assert!(agg.contains("\"a, \"\"b\"\"\""), "{agg}");
 }
 
-/// A job's summary.json with a missing or malformed field stops `merge` with exit code 2 and
-/// a message naming the file and the field (no NaN or "?" in the results).
-#[test]
-fn merge_names_the_bad_field_of_a_summary() {
-    let dir = tempfile::tempdir().unwrap();
-    let f = dir.path().join("s.toml");
+/// A swept sweep of one small job (two rooms) in `dir/out`.
+fn one_job_sweep(dir: &Path) -> std::path::PathBuf {
+    let f = dir.join("s.toml");
     std::fs::write(
         &f,
         "rooms = [\"H\", \"square\"]\n[ga]\npopulation = 6\ngenerations = 2\n[trial]\nsteps = 60\n[aem]\nepochs = 5\ntest_runs = 1\n[sweep]\n",
     )
     .unwrap();
-    let out = dir.path().join("out");
+    let out = dir.join("out");
     ok(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    out
+}
+
+/// A job's summary.json with a missing or malformed field stops `merge` with exit code 2 and
+/// a message naming the file and the field (no NaN or "?" in the results).
+#[test]
+fn merge_names_the_bad_field_of_a_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = one_job_sweep(dir.path());
     let job = std::fs::read_dir(out.join("jobs"))
         .unwrap()
         .next()
@@ -429,14 +435,7 @@ fn merge_names_the_bad_field_of_a_summary() {
 #[test]
 fn merge_with_nothing_to_merge_keeps_the_tables() {
     let dir = tempfile::tempdir().unwrap();
-    let f = dir.path().join("s.toml");
-    std::fs::write(
-        &f,
-        "rooms = [\"H\", \"square\"]\n[ga]\npopulation = 6\ngenerations = 2\n[trial]\nsteps = 60\n[aem]\nepochs = 5\ntest_runs = 1\n[sweep]\n",
-    )
-    .unwrap();
-    let out = dir.path().join("out");
-    ok(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let out = one_job_sweep(dir.path());
     let merged = results(&out);
     let plan = std::fs::read_to_string(out.join("plan.jsonl")).unwrap();
     std::fs::write(out.join("plan.jsonl"), "\n").unwrap();
