@@ -179,3 +179,49 @@ fn what_cannot_be_continued_is_a_clear_error() {
     assert!(!new.exists() && !tmp.path().join("new.partial").exists());
     assert_eq!(snapshot(&done), before, "DIR was changed");
 }
+
+/// A room file is part of the run: `config.resolved.toml` records a digest of each, and a run
+/// whose room file changed since is neither continued nor resumed (that would evolve the rest
+/// of it in another room); with the file restored, both go on.
+#[test]
+fn a_changed_room_file_stops_continue_and_resume() {
+    let tmp = tempfile::tempdir().unwrap();
+    let room = tmp.path().join("U.toml");
+    let original = std::fs::read_to_string(repo().join("rooms/U.toml")).unwrap();
+    std::fs::write(&room, &original).unwrap();
+    let rooms = format!("rooms=[\"H\", {:?}]", room.to_str().unwrap());
+    let done = tmp.path().join("done");
+    tiny_run(&done, 2, &[&rooms]);
+    let config = std::fs::read_to_string(done.join("config.resolved.toml")).unwrap();
+    assert!(config.contains("# Room file "), "{config}");
+    let killed = tmp.path().join("killed");
+    let o = Fm::new(["run"])
+        .arg(repo().join("configs/tiny.toml"))
+        .out(&killed)
+        .sets(&["ga.population=8", "trial.steps=80", "ga.generations=4", &rooms])
+        .env("FUZZYMOTIV_TEST_ABORT_AFTER", "2")
+        .run();
+    assert!(!o.status.success());
+    let moved = original.replace("[400,80],[500,80]", "[420,80],[520,80]");
+    assert_ne!(moved, original);
+    std::fs::write(&room, &moved).unwrap();
+    let cont = || {
+        Fm::new(["run", "--continue"])
+            .arg(&done)
+            .arg("--generations")
+            .arg("3")
+            .out(&tmp.path().join("more"))
+            .arg("--quiet")
+            .run()
+    };
+    let resume = || Fm::new(["run", "--resume"]).arg(&killed).arg("--quiet").run();
+    for o in [cont(), resume()] {
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(stderr(&o).contains("a room file changed since the run"), "{}", stderr(&o));
+    }
+    assert!(!tmp.path().join("more").exists() && !killed.exists());
+    std::fs::write(&room, &original).unwrap();
+    for o in [cont(), resume()] {
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+}

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{OutState, StagedDir, check_out};
-use fuzzymotiv_io::files::inputs::{Loaded, load_config, run_identity};
+use fuzzymotiv_io::files::inputs::{Loaded, load_config, rooms_unchanged, run_identity};
 use fuzzymotiv_io::note;
 use fuzzymotiv_io::pipeline::continuation::{continued_config, finished_config, stage_continued};
 use fuzzymotiv_io::pipeline::lanes::set_threads;
@@ -111,8 +111,12 @@ fn resume_target(dir: &Path) -> Result<Target, CliError> {
             dir.display()
         )));
     }
+    let loaded = load_config(Some(&cfg), &[], None)?;
+    let remedy = "resuming would evolve the rest of the run in another room. Restore the file, \
+                  or start the run over with `fuzzymotiv run CONFIG --out DIR --force`";
+    rooms_unchanged(&cfg, &loaded, remedy)?;
     Ok(Target::Run {
-        loaded: Box::new(load_config(Some(&cfg), &[], None)?),
+        loaded: Box::new(loaded),
         out: dir.to_path_buf(),
         resume: true,
     })

@@ -113,13 +113,61 @@ pub fn parse_seed(text: &str) -> Result<u64, String> {
         })
 }
 
-/// The contents of `config.resolved.toml`: the resolved config with the program version on top.
+/// The contents of `config.resolved.toml`: the resolved config with the program version on top,
+/// and a line per room file with a digest of its contents ([`room_file_lines`]), so that a run
+/// made after a room file changed is another run (its identity differs).
 pub fn resolved_toml(raw: &RawConfig) -> String {
     format!(
-        "# Resolved configuration written by fuzzymotiv {} (all keys, with the seed).\n# Re-run: fuzzymotiv run config.resolved.toml\n{}",
+        "# Resolved configuration written by fuzzymotiv {} (all keys, with the seed).\n# Re-run: fuzzymotiv run config.resolved.toml\n{}{}",
         fuzzymotiv::VERSION,
+        room_file_lines(raw).concat(),
         raw.to_toml()
     )
+}
+
+/// The comment lines `# Room file PATH: FNV-1a HEX` of the config's room files (resolved
+/// entries are absolute paths; built-in rooms have none), each ending in a newline.
+pub fn room_file_lines(raw: &RawConfig) -> Vec<String> {
+    (raw.rooms.iter())
+        .filter(|entry| Path::new(entry).is_absolute())
+        .map(|entry| match std::fs::read(entry) {
+            Ok(bytes) => format!("# Room file {entry}: FNV-1a {:016x}\n", fnv1a(&bytes)),
+            Err(_) => format!("# Room file {entry}: unreadable\n"),
+        })
+        .collect()
+}
+
+/// The room files of the run whose `config.resolved.toml` is `config` still hold what the run
+/// used (its `# Room file` lines; a run written before they were recorded has none, and is
+/// taken as it is); else an error ending in `remedy`.
+pub fn rooms_unchanged(config: &Path, loaded: &Loaded, remedy: &str) -> Result<(), CliError> {
+    let text =
+        std::fs::read_to_string(config).map_err(|e| crate::files::guard::io_err(config, e))?;
+    let saved = saved_room_file_lines(&text);
+    let now = room_file_lines(&loaded.raw);
+    match saved.iter().find(|l| !now.contains(l)) {
+        Some(line) => Err(CliError::input(format!(
+            "{}: a room file changed since the run ({}); {remedy}",
+            config.display(),
+            line.trim_start_matches("# ").trim_end()
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The room-file lines of a saved `config.resolved.toml` text.
+fn saved_room_file_lines(text: &str) -> Vec<String> {
+    (text.lines())
+        .filter(|l| l.starts_with("# Room file "))
+        .map(|l| format!("{l}\n"))
+        .collect()
+}
+
+/// 64-bit FNV-1a of `bytes` (a fingerprint, not a cryptographic hash).
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
 }
 
 /// What makes an output directory "the same run": its `config.resolved.toml` holds exactly

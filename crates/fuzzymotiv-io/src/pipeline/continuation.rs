@@ -12,7 +12,7 @@ use fuzzymotiv::experiment::outcome::Start;
 
 use crate::files::error::CliError;
 use crate::files::guard::StagedDir;
-use crate::files::inputs::{Loaded, load_config, resolved_toml};
+use crate::files::inputs::{Loaded, load_config, resolved_toml, rooms_unchanged};
 use crate::records::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
 
 /// The config file of a run directory.
@@ -56,7 +56,11 @@ pub fn finished_config(dir: &Path) -> Result<Loaded, CliError> {
             "; run it again with this version to continue it",
         ));
     }
-    load_config(Some(&dir.join(CONFIG)), &[], None)
+    let loaded = load_config(Some(&dir.join(CONFIG)), &[], None)?;
+    let remedy = "continuing would evolve the rest of the run in another room. Restore the file, \
+                  or start a new run";
+    rooms_unchanged(&dir.join(CONFIG), &loaded, remedy)?;
+    Ok(loaded)
 }
 
 /// The config of `dir`'s run with `generations` generations in all: more than it ran.
