@@ -198,7 +198,12 @@ fn a_changed_room_file_stops_continue_and_resume() {
     let o = Fm::new(["run"])
         .arg(repo().join("configs/tiny.toml"))
         .out(&killed)
-        .sets(&["ga.population=8", "trial.steps=80", "ga.generations=4", &rooms])
+        .sets(&[
+            "ga.population=8",
+            "trial.steps=80",
+            "ga.generations=4",
+            &rooms,
+        ])
         .env("FUZZYMOTIV_TEST_ABORT_AFTER", "2")
         .run();
     assert!(!o.status.success());
@@ -214,12 +219,28 @@ fn a_changed_room_file_stops_continue_and_resume() {
             .arg("--quiet")
             .run()
     };
-    let resume = || Fm::new(["run", "--resume"]).arg(&killed).arg("--quiet").run();
+    let resume = || {
+        Fm::new(["run", "--resume"])
+            .arg(&killed)
+            .arg("--quiet")
+            .run()
+    };
     for o in [cont(), resume()] {
         assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-        assert!(stderr(&o).contains("a room file changed since the run"), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("a room file changed since the run"),
+            "{}",
+            stderr(&o)
+        );
     }
     assert!(!tmp.path().join("more").exists() && !killed.exists());
+    // A replay goes on, in the room as it is now, and says so.
+    let o = Fm::new(["replay"])
+        .arg(&done)
+        .out(&tmp.path().join("replay/r.html"))
+        .run();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("warning: ") && stderr(&o).contains("not the run's"));
     std::fs::write(&room, &original).unwrap();
     for o in [cont(), resume()] {
         assert!(o.status.success(), "{}", stderr(&o));

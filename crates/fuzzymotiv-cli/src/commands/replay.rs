@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, num, write_files};
-use fuzzymotiv_io::files::inputs::{load_config, resolve, room_entry};
+use fuzzymotiv_io::files::inputs::{load_config, resolve, room_entry, rooms_unchanged};
 use fuzzymotiv_io::note;
 use fuzzymotiv_io::records::context::RenderContext;
 use fuzzymotiv_io::records::{BestGenome, PROGRAM, read_json};
@@ -174,6 +174,12 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         None
     });
     let loaded = load_config(config_path.as_deref(), &[], seed)?;
+    if let Some(path) = &config_path {
+        let remedy = "the replay uses the room as it is now, so its paths are not the run's";
+        if let Err(e) = rooms_unchanged(path, &loaded, remedy) {
+            note!("warning: {e}");
+        }
+    }
     let source_name = config_path
         .as_ref()
         .map_or("(built-in defaults)".to_string(), |p| {
