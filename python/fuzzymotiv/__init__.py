@@ -606,8 +606,13 @@ class Problem:
             describe, names = True, None
         elif isinstance(descriptors, str):
             describe, names = True, [descriptors]
-        else:
+        elif isinstance(descriptors, Iterable):
             describe, names = True, [str(d) for d in descriptors]
+        else:
+            raise FuzzymotivError(
+                "descriptors: expected None, True, a name or a list of names of "
+                f"fuzzymotiv.DESCRIPTORS, got {descriptors!r}"
+            )
         fitness, terms, desc, _ = self._native.evaluate(g, generation, seed, describe, names)
         return Evaluation(fitness, terms, desc)
 
@@ -728,6 +733,8 @@ class GA:
             if not isinstance(config, str) or not isinstance(run, str):
                 raise FuzzymotivError("state: not a GA state (no config or run)")
             problem = Problem(config + "\n", room=None if run == "all" else run)
+        if not isinstance(problem, Problem):
+            raise FuzzymotivError(f"problem: expected a fuzzymotiv.Problem, got {type(problem).__name__}")
         self = cls.__new__(cls)
         self.problem = problem
         self._native = _native.GA.from_state_json(text, problem._native)

@@ -144,6 +144,7 @@ class KheperaEnv(gym.Env):
     def reset(
         self, *, seed: Optional[int] = None, options: Optional[dict] = None
     ) -> tuple:
+        _check_seed(seed)
         super().reset(seed=seed)
         room = (options or {}).get("room")
         if room is None:
@@ -208,6 +209,8 @@ class KheperaEnv(gym.Env):
         uint8, drawn by :func:`fuzzymotiv.frames`."""
         if self.render_mode != "rgb_array":
             return None
+        if not self._trace:
+            raise FuzzymotivError("render: no episode yet; call reset() first")
         import fuzzymotiv
 
         frames = getattr(fuzzymotiv, "frames", None)
@@ -215,6 +218,17 @@ class KheperaEnv(gym.Env):
             raise FuzzymotivError("render: fuzzymotiv.frames is not available in this build")
         room = self._room_args[self._room] if len(self._room_args) > 1 else self._room_args[0]
         return np.asarray(frames(self.trajectory(), room, size=self.size)[-1])
+
+
+def _check_seed(seed: Any) -> None:
+    """A reset seed is None or a whole number from 0 to 2^53 − 1 (as :func:`fuzzymotiv.simulate`
+    takes: a seeded episode is that trial)."""
+    whole = isinstance(seed, (int, np.integer)) and not isinstance(seed, bool)
+    if seed is not None and not (whole and 0 <= seed < _SEED_BOUND):
+        raise FuzzymotivError(
+            f"seed: {seed!r} is not a seed; a seed is a whole number from 0 to "
+            f"{_SEED_BOUND - 1} (2^53 − 1)"
+        )
 
 
 def _actions(action: Any, n: int, discrete: bool) -> np.ndarray:
@@ -257,7 +271,7 @@ class KheperaVectorEnv(VectorEnv):
         dtype: Any = np.float32,
         discrete: bool = False,
     ) -> None:
-        if int(num_envs) < 1:
+        if not isinstance(num_envs, (int, np.integer)) or isinstance(num_envs, bool) or num_envs < 1:
             raise FuzzymotivError(f"num_envs: expected a whole number >= 1, got {num_envs!r}")
         self.num_envs = int(num_envs)
         self._dtype = _dtype(dtype)
@@ -273,6 +287,11 @@ class KheperaVectorEnv(VectorEnv):
     def reset(
         self, *, seed: Union[int, Sequence[Optional[int]], None] = None, options: Optional[dict] = None
     ) -> tuple:
+        if isinstance(seed, (list, tuple, np.ndarray)):
+            for s in seed:
+                _check_seed(None if s is None else s)
+        else:
+            _check_seed(seed)
         first = seed if isinstance(seed, (int, np.integer)) or seed is None else None
         super().reset(seed=first)
         if seed is None or isinstance(seed, (int, np.integer)):

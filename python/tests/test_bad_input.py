@@ -130,3 +130,12 @@ def test_overrides_of_another_type_and_table_overrides(repo):
     assert (nested.population, nested.steps) == (tiny.population, tiny.steps)
     with pytest.raises(fm.FuzzymotivError, match="one value per override"):
         fm.Problem(repo / "configs/tiny.toml", ["ga.population=4\ntrial.steps=5"])
+
+
+def test_descriptors_and_problem_arguments_are_named(repo):
+    p = fm.Problem(repo / "configs/tiny.toml", {"trial.steps": 20})
+    g = np.zeros((2, p.genome_size))
+    with pytest.raises(fm.FuzzymotivError, match="descriptors: expected None, True, a name"):
+        p.evaluate(g, descriptors=3)
+    with pytest.raises(fm.FuzzymotivError, match="problem: expected a fuzzymotiv.Problem, got str"):
+        fm.GA.from_state(fm.GA(p).state, "p")

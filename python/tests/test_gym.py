@@ -205,3 +205,22 @@ def test_module_doctests():
 
     failures, tried = doctest.testmod(fmgym)
     assert failures == 0 and tried >= 3
+
+
+def test_seeds_and_sizes_are_checked_like_the_rest_of_the_package():
+    """Reset seeds are whole numbers below 2^53 (as fm.simulate takes), num_envs a whole number,
+    and render() needs an episode: FuzzymotivError naming the argument, not a numpy or Python
+    error from inside."""
+    env = fmgym.KheperaEnv("H", overrides=SHORT, render_mode="rgb_array")
+    with pytest.raises(fm.FuzzymotivError, match="render: no episode yet"):
+        env.render()
+    for bad in [2**53, 2**64, -1, 1.5, "1", True]:
+        with pytest.raises(fm.FuzzymotivError, match=r"seed: .* is not a seed"):
+            env.reset(seed=bad)
+    env.reset(seed=2**53 - 1)
+    with pytest.raises(fm.FuzzymotivError, match="num_envs: expected a whole number"):
+        fmgym.KheperaVectorEnv(num_envs=2.5, room="H")
+    vec = fmgym.KheperaVectorEnv(num_envs=3, room="H", overrides=SHORT)
+    with pytest.raises(fm.FuzzymotivError, match=r"seed: -2 is not a seed"):
+        vec.reset(seed=[1, -2, 3])
+    vec.reset(seed=[1, None, 3])
