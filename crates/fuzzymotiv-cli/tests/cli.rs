@@ -1250,3 +1250,20 @@ fn lab_start_failures_are_the_users_to_fix() {
     assert!(stderr(&o).contains("is not a directory"), "{}", stderr(&o));
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
 }
+
+/// Each of bench's sizes is checked on its own: the message names the option, its range and
+/// the value given (no unbounded --steps).
+#[test]
+fn bench_names_the_option_out_of_range() {
+    for (option, value, range) in [
+        ("--steps", "0", "1 to 10000000000"),
+        ("--steps", "18446744073709551615", "1 to 10000000000"),
+        ("--repeat", "0", "1 to 10000"),
+        ("--population", "1", "2 to 1000000"),
+    ] {
+        let o = run(&["bench", option, value]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let want = format!("{option}: must be from {range}, got {value}");
+        assert!(stderr(&o).contains(&want), "{}", stderr(&o));
+    }
+}

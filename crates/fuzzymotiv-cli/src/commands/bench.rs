@@ -85,10 +85,17 @@ pub struct BenchReport {
 /// Entry point of `fuzzymotiv bench`.
 pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     fuzzymotiv_io::pipeline::lanes::set_threads(args.threads)?;
-    if args.steps == 0 || args.repeat == 0 || args.population < 2 {
-        return Err(CliError::input(
-            "--steps and --repeat must be ≥ 1 and --population ≥ 2",
-        ));
+    let checks = [
+        ("--steps", args.steps, 1, MAX_BENCH_STEPS),
+        ("--repeat", args.repeat, 1, 10_000),
+        ("--population", args.population, 2, fuzzymotiv::params::BIG),
+    ];
+    for (option, value, low, high) in checks {
+        if !(low..=high).contains(&value) {
+            return Err(CliError::input(format!(
+                "{option}: must be from {low} to {high}, got {value}"
+            )));
+        }
     }
     let exp = bench_experiment(&args)?;
     let report = measure(&exp, &args);
@@ -101,6 +108,9 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
         print_report(&report)
     }
 }
+
+/// The most robot-steps of one measurement (about an hour at 3 M robot-steps per second).
+const MAX_BENCH_STEPS: usize = 10_000_000_000;
 
 /// The experiment measured: one room, the population size asked for, no AEM.
 fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
