@@ -126,6 +126,10 @@ fn what_cannot_be_continued_is_a_clear_error() {
         assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
     };
     expect(cont(&done, "2", &new), "expected a total greater than 2");
+    expect(
+        cont(&done, "99999999999", &new),
+        "--generations 99999999999: must be an integer in 1..=1000000",
+    );
     expect(cont(&done, "4", &done), "choose a new --out");
     expect(cont(&done, "4", &done.join("inside")), "choose a new --out");
     expect(

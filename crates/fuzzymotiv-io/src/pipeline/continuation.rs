@@ -10,7 +10,7 @@ use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::evolution::{Evolution, Population};
 use fuzzymotiv::experiment::outcome::Start;
 
-use crate::files::error::CliError;
+use crate::files::error::{CliError, ErrorKind};
 use crate::files::guard::StagedDir;
 use crate::files::inputs::{Loaded, load_config, resolved_toml, rooms_unchanged};
 use crate::records::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
@@ -73,7 +73,17 @@ pub fn continued_config(dir: &Path, old: &Loaded, generations: usize) -> Result<
         )));
     }
     let set = [format!("ga.generations={generations}")];
-    load_config(Some(&dir.join(CONFIG)), &set, None)
+    // The only value changed is --generations: a limit it breaks is said of it, not the file.
+    load_config(Some(&dir.join(CONFIG)), &set, None).map_err(|e| match e.kind() {
+        ErrorKind::Input if e.to_string().contains("ga.generations") => CliError::input(format!(
+            "--generations {generations}: {}",
+            e.to_string()
+                .rsplit("ga.generations`: ")
+                .next()
+                .unwrap_or("out of range")
+        )),
+        _ => e,
+    })
 }
 
 /// One evolution of a finished run, continued: the finished evolution (its final generation
