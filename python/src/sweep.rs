@@ -6,7 +6,6 @@
 use std::path::{Path, PathBuf};
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::error::ErrorKind;
 use fuzzymotiv_io::files::guard::PYTHON;
 use fuzzymotiv_io::pipeline::progress::NoProgress;
 use fuzzymotiv_io::pipeline::sweep_jobs::{prepare_sweep_dir, run_one_job};
@@ -18,10 +17,7 @@ use crate::py_err;
 
 /// An error of the sweep directory's checks in Python's words (`out`, `force=True`).
 fn in_python_words(e: CliError) -> PyErr {
-    py_err(match e.kind() {
-        ErrorKind::Input => PYTHON.respell(e),
-        _ => e,
-    })
+    py_err(PYTHON.respell(e))
 }
 
 /// The source name of a sweep given as text (a dict in Python), in error messages.

@@ -323,8 +323,12 @@ pub const PYTHON: Spelling = Spelling {
 };
 
 impl Spelling {
-    /// A guard message (written with the CLI's options) in this front's words.
+    /// A guard message (written with the CLI's options) in this front's words; a file-system
+    /// error is left as it is.
     pub fn respell(&self, e: CliError) -> CliError {
+        if e.kind() != crate::files::error::ErrorKind::Input {
+            return e;
+        }
         let text = e
             .to_string()
             .replace("--force", self.force)
@@ -340,10 +344,7 @@ pub fn check_out_as(
     force: bool,
     spelling: &Spelling,
 ) -> Result<OutState, CliError> {
-    let (state, replacing) = out_state(dir, id, force).map_err(|e| match e.kind() {
-        crate::files::error::ErrorKind::Input => spelling.respell(e),
-        _ => e,
-    })?;
+    let (state, replacing) = out_state(dir, id, force).map_err(|e| spelling.respell(e))?;
     if replacing {
         note!(
             "note: {}: {} will be replaced",
@@ -520,10 +521,7 @@ pub fn check_files_as(
     force: bool,
     spelling: &Spelling,
 ) -> Result<FilesState, CliError> {
-    check_files(files, option, force).map_err(|e| match e.kind() {
-        crate::files::error::ErrorKind::Input => spelling.respell(e),
-        _ => e,
-    })
+    check_files(files, option, force).map_err(|e| spelling.respell(e))
 }
 
 /// Writes a checked set of files: every one to a new temporary file first (all of them, so a
