@@ -114,6 +114,23 @@ pub(crate) struct Setting {
 }
 
 impl Setting {
+    /// The setting of `fm.frames` / `fm.save_gif`'s arguments (the seed checked).
+    fn of_args(
+        room: Option<String>,
+        seed: Option<Bound<'_, PyAny>>,
+        config_path: Option<PathBuf>,
+        config_text: Option<String>,
+        sets: Vec<String>,
+    ) -> PyResult<Setting> {
+        Ok(Setting {
+            config_path,
+            config_text,
+            sets,
+            room,
+            seed: seed.map(|s| seed_arg(&s)).transpose()?,
+        })
+    }
+
     /// The experiment of the rollout: the config with its one room (`room`, else the config's
     /// first), and, as `replay` and `fm.simulate`, no recognition or online orientation.
     fn experiment(&self) -> PyResult<Experiment> {
@@ -193,14 +210,7 @@ pub(crate) fn frames<'py>(
     config_text: Option<String>,
     sets: Vec<String>,
 ) -> PyResult<Bound<'py, PyArray4<u8>>> {
-    let seed = seed.map(|s| seed_arg(&s)).transpose()?;
-    let setting = Setting {
-        config_path,
-        config_text,
-        sets,
-        room,
-        seed,
-    };
+    let setting = Setting::of_args(room, seed, config_path, config_text, sets)?;
     let f = draw(py, source, &setting, options(size, stride)?, render)?;
     let (h, w) = (f.height as usize, f.width as usize);
     let a = Array4::from_shape_vec((f.len(), h, w, 3), f.rgb).expect("T × H × W × 3");
@@ -252,14 +262,7 @@ pub(crate) fn save_gif<'py>(
     let (bytes, count) = if let Ok(a) = source.extract::<PyReadonlyArray4<'_, u8>>() {
         (gif_of_array(py, &a, delay)?, a.shape()[0])
     } else {
-        let seed = seed.map(|s| seed_arg(&s)).transpose()?;
-        let setting = Setting {
-            config_path,
-            config_text,
-            sets,
-            room,
-            seed,
-        };
+        let setting = Setting::of_args(room, seed, config_path, config_text, sets)?;
         // Drawn and encoded a frame at a time (as `replay --gif`): any length fits in memory.
         draw(
             py,
