@@ -289,7 +289,7 @@ class KheperaVectorEnv(VectorEnv):
     ) -> tuple:
         if isinstance(seed, (list, tuple, np.ndarray)):
             for s in seed:
-                _check_seed(None if s is None else s)
+                _check_seed(s)
         else:
             _check_seed(seed)
         first = seed if isinstance(seed, (int, np.integer)) or seed is None else None
