@@ -34,6 +34,7 @@ import numpy as np
 
 from . import _fuzzymotiv as _native
 from ._fuzzymotiv import VERSION as __version__
+from ._fuzzymotiv import MODEL_VERSION
 from ._fuzzymotiv import FuzzymotivError, FuzzymotivOSError
 from . import stats
 from .sweeps import Job, Plan, SweepResult, merge, plan, run_job, sweep
@@ -64,6 +65,7 @@ __all__ = [
     "stats",
     "sweep",
     "__version__",
+    "MODEL_VERSION",
 ]
 
 _MOTIVATION_KEYS = ("curiosity", "homing", "orientation", "energy")

@@ -17,6 +17,7 @@ from .sweeps import run_job as run_job
 from .sweeps import sweep as sweep
 
 __version__: str
+MODEL_VERSION: int
 
 Motivations = Union[Sequence[float], Mapping[str, float]]
 Coefficients = Union[Literal["linear", "ratio"], Sequence[float], None]

@@ -6,6 +6,7 @@ import numpy as np
 import numpy.typing as npt
 
 VERSION: str
+MODEL_VERSION: int
 
 MAX_THREADS: int
 

@@ -29,11 +29,19 @@ use crate::{input_err, py_err, py_float, seed_arg};
 const FORMAT: &str = "fuzzymotiv.GA";
 const VERSION: u32 = 1;
 
+/// The model version of a state that names none (written before it was recorded).
+fn model_one() -> u32 {
+    1
+}
+
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct State {
     format: String,
     version: u32,
+    /// The model version that evaluated it ([`fuzzymotiv::MODEL_VERSION`]; 1 when absent).
+    #[serde(default = "model_one")]
+    model: u32,
     /// The resolved config (with the GA's seed), as TOML.
     config: String,
     /// The run's label (`all` or the room of a per-room run).
@@ -293,6 +301,7 @@ impl Ga {
         let state = State {
             format: FORMAT.into(),
             version: VERSION,
+            model: fuzzymotiv::MODEL_VERSION,
             config: self.config.clone(),
             run: self.run.label.clone(),
             seed: self.exp.seed(),
@@ -370,6 +379,13 @@ impl Ga {
             return Err(input_err(format!(
                 "state: format {:?} version {} is not {FORMAT:?} version {VERSION}; it was written by another version of fuzzymotiv",
                 state.format, state.version
+            )));
+        }
+        if state.model != fuzzymotiv::MODEL_VERSION {
+            return Err(input_err(format!(
+                "state: evaluated by model {} of fuzzymotiv, and this build is model {}, whose results differ; continuing it would mix two models in one evolution",
+                state.model,
+                fuzzymotiv::MODEL_VERSION
             )));
         }
         let (exp, run) = match problem {

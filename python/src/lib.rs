@@ -923,6 +923,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("FuzzymotivOSError", os_error_type(m.py())?.bind(m.py()))?;
     m.add("MAX_THREADS", MAX_THREADS)?;
     m.add("VERSION", fuzzymotiv::VERSION)?;
+    m.add("MODEL_VERSION", fuzzymotiv::MODEL_VERSION)?;
     m.add_function(wrap_pyfunction!(fuzzy_fitness_one, m)?)?;
     m.add_function(wrap_pyfunction!(fuzzy_fitness_many, m)?)?;
     m.add_function(wrap_pyfunction!(explain, m)?)?;

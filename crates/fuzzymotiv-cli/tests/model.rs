@@ -145,21 +145,77 @@ fn claims_are_recomputed_from_the_records(dir: &std::path::Path) {
     );
 }
 
-/// A checkpoint written by an earlier build (tests/golden/default/checkpoint/: the golden's run
-/// killed after its second generation) still resumes, to the golden's files.
-#[test]
-fn a_checkpoint_of_an_earlier_build_resumes() {
+/// `DIR.partial/` holding the golden's checkpoint fixture `name` (the golden's run killed
+/// after its second generation), in a new temporary directory.
+fn staged_checkpoint(name: &str) -> (tempfile::TempDir, std::path::PathBuf) {
     let golden = default_golden();
     let out = tempfile::tempdir().unwrap();
     let dir = out.path().join("run");
     let staging = out.path().join("run.partial");
     std::fs::create_dir(&staging).unwrap();
     for file in ["checkpoint.json", "config.resolved.toml"] {
-        std::fs::copy(golden.join("checkpoint").join(file), staging.join(file)).unwrap();
+        std::fs::copy(golden.join(name).join(file), staging.join(file)).unwrap();
     }
+    (out, dir)
+}
+
+/// A checkpoint written by an earlier build of this model (tests/golden/default/checkpoint/)
+/// still resumes, to the golden's files.
+#[test]
+fn a_checkpoint_of_an_earlier_build_resumes() {
+    let (_out, dir) = staged_checkpoint("checkpoint");
     let o = ok(&["run", "--resume", dir.to_str().unwrap()]);
     assert!(stderr(&o).contains("at generation 3/4"), "{}", stderr(&o));
-    assert_pinned(&golden, &dir, &PINNED, "resumed");
+    assert_pinned(&default_golden(), &dir, &PINNED, "resumed");
+}
+
+/// A checkpoint of another model (tests/golden/default/checkpoint-model-1/, written before
+/// model versions were recorded) is not resumed: the run would mix two models' results. The
+/// message says which models, and nothing is written.
+#[test]
+fn a_checkpoint_of_another_model_is_refused() {
+    let (out, dir) = staged_checkpoint("checkpoint-model-1");
+    let o = run(&["run", "--resume", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let msg = stderr(&o);
+    assert!(
+        msg.contains("written by model 1") && msg.contains("this build is model 2"),
+        "{msg}"
+    );
+    assert!(!dir.exists());
+    let staged = out.path().join("run.partial").join("checkpoint.json");
+    let fixture = default_golden().join("checkpoint-model-1/checkpoint.json");
+    assert_eq!(
+        std::fs::read(staged).unwrap(),
+        std::fs::read(fixture).unwrap()
+    );
+}
+
+/// A finished run of another model is kept, and the message says it is another model's
+/// (not just "another run"); `--force` replaces it.
+#[test]
+fn a_finished_run_of_another_model_is_kept() {
+    let golden = default_golden();
+    let out = tempfile::tempdir().unwrap();
+    let dir = out.path().join("run");
+    run_golden(&golden, &dir, &[]);
+    let cfg = dir.join("config.resolved.toml");
+    let text = std::fs::read_to_string(&cfg).unwrap();
+    let old = text.replacen(", model 2 (all keys", " (all keys", 1);
+    assert_ne!(old, text);
+    std::fs::write(&cfg, &old).unwrap();
+    let config = golden.join("config.toml");
+    let o = run(&[
+        "run",
+        config.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("the results of model 1 of fuzzymotiv (this build is model 2"));
+    assert_eq!(std::fs::read_to_string(&cfg).unwrap(), old, "kept");
+    run_golden(&golden, &dir, &["--force"]);
+    assert_pinned(&golden, &dir, &PINNED, "replaced with --force");
 }
 
 /// The default model differs from the first release's on the same rooms (so the switches are

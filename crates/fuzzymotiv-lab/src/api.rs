@@ -62,6 +62,7 @@ async fn info() -> Json<Value> {
     let tsk = TskFitness::paper();
     Json(json!({
         "version": fuzzymotiv::VERSION,
+        "model": fuzzymotiv::MODEL_VERSION,
         "presets": {
             "motivations": { "high curiosity": [0.8, 0.1, 0.0, 0.1], "low curiosity": [0.5, 0.3, 0.0, 0.2] },
             "ga": { "quick": [30, 30], "medium": [80, 80], "paper": [200, 200] },

@@ -85,3 +85,22 @@ pub use simulation::trial::{Arena, Trajectory};
 
 /// The program version, written into every run directory.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The model version: which numbers this build gives. Two builds with the same model version
+/// give the same results, bit for bit, for the same config and seed; a change that alters results
+/// on purpose bumps it in the same commit that regenerates the goldens (`tests/model_version.rs`
+/// fails when the goldens change and it does not). It is written beside [`VERSION`] into every
+/// run's `config.resolved.toml` (so it is part of a run's and a study's identity: a resumed run
+/// or a study read back never mixes two models), checkpoints, records and tables.
+///
+/// History (docs/model.md, "Model versions"):
+/// - 1: every build before 2026-12-02 that recorded no model version.
+/// - 2: the homing term g's distance is √(dx² + dy²) of IEEE operations instead of libm's
+///   `hypot` (commit fca8b79), which moves g by one ulp in some trials; at paper scale a near-tie
+///   of the GA then flips and a low-curiosity run of `reproduce` diverges.
+pub const MODEL_VERSION: u32 = 2;
+
+/// The program and model version as tables and pages show them: `fuzzymotiv 0.1.0 (model 2)`.
+pub fn provenance() -> String {
+    format!("fuzzymotiv {VERSION} (model {MODEL_VERSION})")
+}

@@ -433,6 +433,7 @@ fn replay_json(
     let doc = serde_json::json!({
         "program": PROGRAM,
         "version": fuzzymotiv::VERSION,
+        "model": fuzzymotiv::MODEL_VERSION,
         "genome": genome,
         "config": source_name,
         "seed": ctx.seed,

@@ -321,6 +321,7 @@ fn search_strength(args: &ReproduceArgs) -> Result<(), CliError> {
     let summary = StrengthSummary {
         program: PROGRAM.into(),
         version: fuzzymotiv::VERSION.into(),
+        model: fuzzymotiv::MODEL_VERSION,
         seed: args.seed(),
         seeds,
         quick: args.quick,
@@ -361,6 +362,7 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
     let summary = AblationSummary {
         program: PROGRAM.into(),
         version: fuzzymotiv::VERSION.into(),
+        model: fuzzymotiv::MODEL_VERSION,
         seed: args.seed(),
         seeds,
         quick: args.quick,
@@ -538,6 +540,7 @@ fn write_study(
     let summary = StudySummary {
         program: PROGRAM.into(),
         version: fuzzymotiv::VERSION.into(),
+        model: fuzzymotiv::MODEL_VERSION,
         seed: args.seed(),
         seeds: provenance.seeds.clone(),
         quick: args.quick,

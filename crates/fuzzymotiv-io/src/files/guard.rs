@@ -375,9 +375,16 @@ fn out_state(dir: &Path, id: &Identity, force: bool) -> Result<(OutState, bool),
         } else {
             "continue it with the command that started it, or ".to_string()
         };
+        let what = match other_model(&staging, id) {
+            Some(model) => format!(
+                "an unfinished output of model {model} of fuzzymotiv (this build is model {}, whose results differ)",
+                fuzzymotiv::MODEL_VERSION
+            ),
+            None => "an unfinished output of another run or command".to_string(),
+        };
         return Err(CliError::input(format!(
-            "--out {}: {} holds an unfinished output of another run or command (a checkpoint); \
-             {how}pass --force to discard it and start this one",
+            "--out {}: {} holds {what} (a checkpoint); {how}pass --force to discard it and start \
+             this one",
             dir.display(),
             staging.display(),
         )));
@@ -393,11 +400,34 @@ fn out_state(dir: &Path, id: &Identity, force: bool) -> Result<(OutState, bool),
         ensure_only_ours(dir)?;
         return Ok((OutState::Fresh, true));
     }
+    let what = match other_model(dir, id) {
+        Some(model) => format!(
+            "the results of model {model} of fuzzymotiv (this build is model {}, whose results \
+             differ)",
+            fuzzymotiv::MODEL_VERSION
+        ),
+        None => "the results of a different run (another config, seed, size or command)".into(),
+    };
     Err(CliError::input(format!(
-        "--out {}: holds the results of a different run (another config, seed, size or \
-         command); they are kept. Choose another --out, or pass --force to replace them",
+        "--out {}: holds {what}; they are kept. Choose another --out, or pass --force to \
+         replace them",
         dir.display()
     )))
+}
+
+/// The model version that wrote `dir`'s identity files, when it is not this build's (a
+/// `config.resolved.toml` or study identity without `(model N)` was written by model 1).
+fn other_model(dir: &Path, id: &Identity) -> Option<u32> {
+    const WRITTEN: &str = "Resolved configuration written by fuzzymotiv ";
+    let (name, _) = id.first()?;
+    let text = std::fs::read_to_string(dir.join(name)).ok()?;
+    let after = &text[text.find(WRITTEN)? + WRITTEN.len()..];
+    let line = after.split(['\n', '\\']).next().unwrap_or("");
+    let model = match line.split_once(", model ") {
+        Some((_, rest)) => rest.split(' ').next()?.parse().ok()?,
+        None => 1,
+    };
+    (model != fuzzymotiv::MODEL_VERSION).then_some(model)
 }
 
 /// Whether every identity file under `dir` has exactly the expected contents.

@@ -113,13 +113,15 @@ pub fn parse_seed(text: &str) -> Result<u64, String> {
         })
 }
 
-/// The contents of `config.resolved.toml`: the resolved config with the program version on top,
+/// The contents of `config.resolved.toml`: the resolved config with the program and model
+/// versions on top (so a build of another model makes another run),
 /// and a line per room file with a digest of its contents ([`room_file_lines`]), so that a run
 /// made after a room file changed is another run (its identity differs).
 pub fn resolved_toml(raw: &RawConfig) -> String {
     format!(
-        "# Resolved configuration written by fuzzymotiv {} (all keys, with the seed).\n# Re-run: fuzzymotiv run config.resolved.toml\n{}{}",
+        "# Resolved configuration written by fuzzymotiv {}, model {} (all keys, with the seed).\n# Re-run: fuzzymotiv run config.resolved.toml\n{}{}",
         fuzzymotiv::VERSION,
+        fuzzymotiv::MODEL_VERSION,
         room_file_lines(raw).concat(),
         raw.to_toml()
     )

@@ -228,6 +228,14 @@ fn starting_sweep(out: &Path) -> bool {
 /// Why the plan `new` cannot take over a sweep directory of the plan `old`, if it cannot: it
 /// must hold every old job (by id) with the same key and seed; it may add jobs.
 fn plan_conflict(old: &[Job], new: &[Job]) -> Option<String> {
+    if let Some(o) = old.iter().find(|o| o.model != fuzzymotiv::MODEL_VERSION) {
+        return Some(format!(
+            "it was planned by model {} of fuzzymotiv, and this build is model {}, whose \
+             results differ (finishing it would mix two models in one sweep)",
+            o.model,
+            fuzzymotiv::MODEL_VERSION
+        ));
+    }
     let missing: Vec<&Job> = old
         .iter()
         .filter(|o| !new.iter().any(|n| n.id == o.id))

@@ -152,7 +152,8 @@ impl Sweep {
             let source = format!("{} (job {key})", self.source);
             let raw = RawConfig::parse(&self.base_text, &source, &sets)?;
             // The id covers the resolved config and the contents of its room files, so an
-            // edited room file is a new job rather than a finished one.
+            // edited room file is a new job rather than a finished one (the model version is
+            // the plan's: `Job::model`).
             let mut resolved = raw.to_toml();
             for room in &raw.rooms {
                 if let Ok(text) = std::fs::read_to_string(self.base_dir.join(room)) {
@@ -167,6 +168,7 @@ impl Sweep {
                 replicate: rep,
                 seed,
                 overrides: sets,
+                model: fuzzymotiv::MODEL_VERSION,
             });
         }
         Ok(())

@@ -27,6 +27,10 @@ pub struct Checkpoint {
     pub format: u32,
     /// Program version that wrote it.
     pub version: String,
+    /// Model version that wrote it ([`fuzzymotiv::MODEL_VERSION`]; 1 when absent): a run is
+    /// never continued by a build of another model.
+    #[serde(default = "crate::records::model_one")]
+    pub model: u32,
     /// Wall time (s) of the run so far, over all sessions.
     #[serde(default)]
     pub wall_seconds: f64,
@@ -105,6 +109,7 @@ impl Checkpoint {
         Checkpoint {
             format: 1,
             version: fuzzymotiv::VERSION.to_string(),
+            model: fuzzymotiv::MODEL_VERSION,
             wall_seconds: 0.0,
             runs: runs
                 .iter()
@@ -145,6 +150,16 @@ impl Checkpoint {
                 path.display()
             ))
         })?;
+        if cp.model != fuzzymotiv::MODEL_VERSION {
+            return Err(CliError::input(format!(
+                "{}: written by model {} of fuzzymotiv, and this build is model {}, whose \
+                 results differ; continuing it would mix two models in one run. Start it over \
+                 with this build ({remedy})",
+                path.display(),
+                cp.model,
+                fuzzymotiv::MODEL_VERSION
+            )));
+        }
         let ok = cp.runs.len() == runs.len()
             && cp.runs.iter().zip(runs).all(|(c, r)| {
                 c.label == r.label

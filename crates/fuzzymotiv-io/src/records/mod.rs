@@ -40,6 +40,12 @@ pub mod compare;
 pub mod context;
 pub mod test_runs;
 
+/// The model version of a record that names none: written before model versions were
+/// recorded, by model 1.
+pub fn model_one() -> u32 {
+    1
+}
+
 /// The `program` field of every JSON file.
 pub const PROGRAM: &str = "fuzzymotiv";
 
@@ -319,6 +325,9 @@ pub struct RunSummary {
     pub training: Training,
     /// Program version.
     pub version: String,
+    /// Model version ([`fuzzymotiv::MODEL_VERSION`]); 1 in records written before it was recorded.
+    #[serde(default = "model_one")]
+    pub model: u32,
     /// Wall time (s), over all sessions of a resumed run.
     pub wall_seconds: f64,
 }
@@ -340,6 +349,7 @@ impl RunSummary {
         RunSummary {
             program: PROGRAM.into(),
             version: fuzzymotiv::VERSION.into(),
+            model: fuzzymotiv::MODEL_VERSION,
             name: exp.name().into(),
             seed: exp.seed(),
             motivations: MotivationsRecord::of(exp.motivations()),
@@ -440,6 +450,9 @@ pub struct BestGenome {
     /// Program version.
     #[serde(default)]
     pub version: String,
+    /// Model version ([`fuzzymotiv::MODEL_VERSION`]); 1 in records written before it was recorded.
+    #[serde(default = "model_one")]
+    pub model: u32,
     /// The top-level robot's weights.
     pub weights: Vec<f64>,
 }
@@ -484,6 +497,7 @@ impl BestGenome {
         BestGenome {
             program: PROGRAM.into(),
             version: fuzzymotiv::VERSION.into(),
+            model: fuzzymotiv::MODEL_VERSION,
             seed: Some(exp.seed()),
             shape: ShapeRecord {
                 hidden: shape.hidden(),
@@ -804,6 +818,9 @@ pub struct StudySummary {
     pub settings: Vec<SettingSummary>,
     /// Program version.
     pub version: String,
+    /// Model version ([`fuzzymotiv::MODEL_VERSION`]); 1 in records written before it was recorded.
+    #[serde(default = "model_one")]
+    pub model: u32,
     /// Wall time (s).
     pub wall_seconds: f64,
 }
@@ -840,6 +857,9 @@ pub struct AblationSummary {
     pub variants: Vec<VariantSummary>,
     /// Program version.
     pub version: String,
+    /// Model version ([`fuzzymotiv::MODEL_VERSION`]); 1 in records written before it was recorded.
+    #[serde(default = "model_one")]
+    pub model: u32,
     /// Wall time (s).
     pub wall_seconds: f64,
 }
@@ -866,6 +886,9 @@ pub struct StrengthSummary {
     pub variants: Vec<VariantSummary>,
     /// Program version.
     pub version: String,
+    /// Model version ([`fuzzymotiv::MODEL_VERSION`]); 1 in records written before it was recorded.
+    #[serde(default = "model_one")]
+    pub model: u32,
     /// Wall time (s).
     pub wall_seconds: f64,
 }
@@ -890,6 +913,10 @@ pub struct Job {
     pub seed: u64,
     /// The `--set` overrides that make this job's config from the base.
     pub overrides: Vec<String>,
+    /// The model version of the build that planned it ([`fuzzymotiv::MODEL_VERSION`]; 1 in
+    /// plans written before it was recorded): a sweep is never finished by another model.
+    #[serde(default = "model_one")]
+    pub model: u32,
 }
 
 impl Job {

@@ -84,7 +84,7 @@ impl Page {
 <body>
 <main>
 {body}
-<p class="note">Written by fuzzymotiv {version}. This page is self-contained: it makes no network requests.</p>
+<p class="note">Written by {version}. This page is self-contained: it makes no network requests.</p>
 </main>
 <script type="application/json" id="fm-data">{data}</script>
 <script>
@@ -94,7 +94,7 @@ impl Page {
 "#,
             title = esc(&self.title),
             body = self.body,
-            version = fuzzymotiv::VERSION,
+            version = fuzzymotiv::provenance(),
         )
     }
 }
@@ -176,9 +176,9 @@ pub fn run_page(ctx: &RenderContext, done: &Finished) -> String {
     let mut page = Page::new(format!("fuzzymotiv run report — {}", ctx.name));
     let _ = writeln!(
         page.body,
-        "<h1>Run report: {}</h1>\n<p class=\"meta\">fuzzymotiv {} · seed {} · wall time {:.2} s · {}</p>",
+        "<h1>Run report: {}</h1>\n<p class=\"meta\">{} · seed {} · wall time {:.2} s · {}</p>",
         esc(&ctx.name),
-        fuzzymotiv::VERSION,
+        fuzzymotiv::provenance(),
         ctx.seed,
         done.wall_seconds,
         esc(&setting_line(ctx))

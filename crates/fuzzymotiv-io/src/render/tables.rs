@@ -50,8 +50,8 @@ pub fn mean_std_cell(mean: f64, std: f64, n: usize, d: usize) -> String {
 /// length and training (so a small trial run and a paper-scale one never look alike).
 pub fn provenance_line(ctx: &RenderContext) -> String {
     format!(
-        "\nfuzzymotiv {} · seed {} · GA {} robots × {} generations · {} steps per trial · training {}\n",
-        fuzzymotiv::VERSION,
+        "\n{} · seed {} · GA {} robots × {} generations · {} steps per trial · training {}\n",
+        fuzzymotiv::provenance(),
         ctx.seed,
         ctx.population,
         ctx.generations,
@@ -90,8 +90,8 @@ impl Provenance {
     pub fn line(&self) -> String {
         let seeds: Vec<String> = self.seeds.iter().map(u64::to_string).collect();
         format!(
-            "fuzzymotiv {} · {} seed{} ({}) · GA {} × {}{}",
-            fuzzymotiv::VERSION,
+            "{} · {} seed{} ({}) · GA {} × {}{}",
+            fuzzymotiv::provenance(),
             self.seeds.len(),
             if self.seeds.len() == 1 { "" } else { "s" },
             seeds.join(", "),
