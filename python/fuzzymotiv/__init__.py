@@ -225,17 +225,44 @@ def _sets(overrides: Any) -> list:
     return [str(s) for s in overrides]
 
 
+def _looks_like_toml(text: str) -> bool:
+    """Whether a string that names no file is meant as TOML text: several lines, or one line
+    with a ``key = value``, a ``[table]`` or a ``# comment`` — unless it ends in ``.toml``."""
+    line = text.strip()
+    if "\n" in line or "\r" in line:
+        return True
+    if line.lower().endswith(".toml"):
+        return False
+    return "=" in line or line.startswith(("[", "#"))
+
+
+def _config_source(arg: str, config: Union[str, os.PathLike]) -> tuple:
+    """(path, text) of a config or sweep file given as a path or a string: a string is a file
+    if one of that name exists or it looks like a file name, else TOML text (its parse errors
+    give the line and column). A file name that names no file is an error saying so."""
+    if isinstance(config, str) and not os.path.isfile(config) and _looks_like_toml(config):
+        return None, config
+    path = os.fspath(config)
+    if path == "":
+        raise FuzzymotivError(
+            f"{arg}: an empty string is neither a file nor TOML text; pass a file's path, TOML "
+            "text, or None for the built-in defaults"
+        )
+    if not os.path.exists(path):
+        where = "" if os.path.isabs(path) else f" (relative to the working directory {os.getcwd()})"
+        raise FuzzymotivError(
+            f"{arg}: the file {path} does not exist{where}; {arg} is a TOML file's path or TOML text"
+        )
+    return path, None
+
+
 def _config_args(config: Any) -> tuple:
-    """(path, text): a path-like is a file; a string is TOML text if it has a newline or an
-    ``=`` and names no existing file, else a file name."""
+    """(path, text) for the native functions' ``config_path`` and ``config_text``: None is the
+    built-in defaults, a path-like a file, a string a file or TOML text (:func:`_config_source`)."""
     if config is None:
         return None, None
-    if isinstance(config, os.PathLike):
-        return os.fspath(config), None
-    if isinstance(config, str):
-        if os.path.isfile(config) or ("\n" not in config and "=" not in config):
-            return config, None
-        return None, config
+    if isinstance(config, (str, os.PathLike)):
+        return _config_source("config", config)
     raise FuzzymotivError(f"config: expected a path or TOML text, got {type(config).__name__}")
 
 
