@@ -116,7 +116,7 @@ def fuzzy_fitness(
     [10]
     """
     x = _motivations(motivations)
-    y = np.asarray(terms, dtype=np.float64)
+    y = _real_array("terms", terms, "a vector of 4 or an n × 4 array")
     coef = coefficients
     pk = None if peaks is None else [float(p) for p in peaks]
     if y.ndim == 1:
@@ -404,7 +404,7 @@ def simulate(
     ((21,), (20, 8), 'straight')
     """
     path, text = _config_args(config)
-    weights = np.asarray(genome, dtype=np.float64).ravel().tolist()
+    weights = _real_array("genome", genome, "a vector of weights").ravel().tolist()
     return _native.simulate(weights, os.fspath(room), seed, path, text, _sets(overrides))
 
 
@@ -413,7 +413,7 @@ def _rollout(source: Any) -> Any:
     float64 vectors; sensors as a float64 (n, 8) array; action and idle as lists), or the
     genome as a list of floats."""
     if not isinstance(source, Mapping):
-        return np.asarray(source, dtype=np.float64).ravel().tolist()
+        return _real_array("genome", source, "a vector of weights").ravel().tolist()
     cols: dict = {}
     for key in ("x", "y", "heading"):
         if key not in source:
@@ -537,12 +537,28 @@ DESCRIPTORS = tuple(_native.Problem.descriptor_names())
 fractions of the executed steps that were ``straight``, ``left30``, ``right30``, ``turn180``."""
 
 
-def _float_array(arg: str, value: Any, ndim: int, what: str) -> np.ndarray:
-    """``value`` as a C-contiguous float64 array of ``ndim`` dimensions, or FuzzymotivError."""
+_KINDS = {"c": "complex numbers", "O": "Python objects", "U": "strings", "S": "bytes", "b": "booleans"}
+
+
+def _real_array(arg: str, value: Any, what: str) -> np.ndarray:
+    """``value`` as a float64 array, or FuzzymotivError naming ``arg`` and ``what`` was expected
+    when it is not an array of real numbers: numpy itself would drop an imaginary part with a
+    mere ComplexWarning, and read strings and objects as numbers."""
     try:
-        a = np.asarray(value, dtype=np.float64)
+        a = np.asarray(value)
     except (TypeError, ValueError) as e:
         raise FuzzymotivError(f"{arg}: expected {what} of numbers ({e})") from None
+    if a.dtype.kind not in "iuf":
+        got = _KINDS.get(a.dtype.kind, "no real numbers")
+        raise FuzzymotivError(
+            f"{arg}: expected {what} of real numbers (float64), got {got} (dtype {a.dtype})"
+        )
+    return a.astype(np.float64, copy=False)
+
+
+def _float_array(arg: str, value: Any, ndim: int, what: str) -> np.ndarray:
+    """``value`` as a C-contiguous float64 array of ``ndim`` dimensions, or FuzzymotivError."""
+    a = _real_array(arg, value, what)
     if a.ndim != ndim:
         raise FuzzymotivError(f"{arg}: expected {what}, got an array of shape {a.shape}")
     return np.ascontiguousarray(a)
@@ -623,8 +639,9 @@ class Problem:
         the same call gives the same bytes on any number of threads. The GIL is released.
 
         ``descriptors``: None (default: none computed), True (all of :data:`DESCRIPTORS`), or
-        names from it, in the order wanted. Wrong shapes, NaN or infinite weights raise
-        :class:`FuzzymotivError` naming the argument.
+        names from it, in the order wanted. Wrong shapes, anything but real numbers (complex,
+        strings, objects), NaN or infinite weights raise :class:`FuzzymotivError` naming the
+        argument.
         """
         g = _float_array("genomes", genomes, 2, f"a (population, {self.genome_size}) array")
         if descriptors is None or descriptors is False:
