@@ -727,7 +727,9 @@ class GA:
 
     def tell(self, fitness: Any, terms: Any = None) -> None:
         """F of the genomes of :meth:`ask` (higher is better), optionally their terms
-        ``(pop, rooms, 4)``; breeds the next generation."""
+        ``(pop, rooms, 4)``; breeds the next generation. Each tell needs an :meth:`ask` of
+        its generation first (a restored GA's too): telling before asking, or twice, raises
+        :class:`FuzzymotivError`."""
         f = _float_array("F", fitness, 1, "one value per genome")
         t = None if terms is None else _float_array("terms", terms, 3, "a (pop, rooms, 4) array")
         self._native.tell(f, t)

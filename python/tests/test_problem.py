@@ -228,6 +228,7 @@ def test_bad_arguments(problem):
     with pytest.raises(fm.FuzzymotivError, match="threads"):
         fm.Problem(overrides={"rooms": ["H"], "aem.enabled": False}, threads=0)
     ga = fm.GA(problem)
+    ga.ask()
     with pytest.raises(fm.FuzzymotivError, match=r"F: expected 12 values .*got 3"):
         ga.tell(np.zeros(3))
     with pytest.raises(fm.FuzzymotivError, match=r"F: `nan` \(individual 1\)"):
@@ -251,6 +252,39 @@ def test_bad_arguments(problem):
     other = fm.Problem(overrides={"rooms": ["H"], "aem.enabled": False})
     with pytest.raises(fm.FuzzymotivError, match="problem: its config"):
         fm.GA.from_state(state, other)
+
+
+def test_tell_before_ask_is_refused_and_breeds_nothing(problem):
+    ga = fm.GA(problem)
+    with pytest.raises(fm.FuzzymotivError, match=r"tell: call ask\(\) first.*generation 0"):
+        ga.tell(np.zeros(12))
+    assert ga.generation == 0 and ga.best is None and len(ga.state["history"]) == 0
+    drive(problem, ga, 1)
+    assert ga.generation == 1
+
+
+def test_tell_twice_after_one_ask_is_refused(problem):
+    ga = fm.GA(problem)
+    ev = problem.evaluate(ga.ask(), generation=ga.generation, seed=ga.seed)
+    ga.tell(ev.fitness)
+    state = ga.state
+    with pytest.raises(fm.FuzzymotivError, match=r"tell: call ask\(\) first.*generation 1"):
+        ga.tell(ev.fitness)
+    assert ga.state == state  # nothing bred
+    restored = fm.GA.from_state(state, problem)  # a restored GA is asked again, too
+    with pytest.raises(fm.FuzzymotivError, match=r"tell: call ask\(\) first"):
+        restored.tell(ev.fitness)
+
+
+def test_a_failed_tell_keeps_the_ask(problem):
+    """A tell refused for its F can be repeated with the right F without asking again."""
+    ga = fm.GA(problem)
+    genomes = ga.ask()
+    with pytest.raises(fm.FuzzymotivError, match="F: expected 12 values"):
+        ga.tell(np.zeros(3))
+    ev = problem.evaluate(genomes, generation=ga.generation, seed=ga.seed)
+    ga.tell(ev.fitness)
+    assert ga.generation == 1
 
 
 @pytest.mark.parametrize(
