@@ -118,7 +118,7 @@ def fuzzy_fitness(
     [10]
     """
     x = _motivations(motivations)
-    y = np.asarray(terms, dtype=np.float64)
+    y = _real_array("terms", terms, "a vector of 4 or an n × 4 array")
     coef = coefficients
     pk = None if peaks is None else [float(p) for p in peaks]
     if y.ndim == 1:
@@ -227,17 +227,44 @@ def _sets(overrides: Any) -> list:
     return [str(s) for s in overrides]
 
 
+def _looks_like_toml(text: str) -> bool:
+    """Whether a string that names no file is meant as TOML text: several lines, or one line
+    with a ``key = value``, a ``[table]`` or a ``# comment`` — unless it ends in ``.toml``."""
+    line = text.strip()
+    if "\n" in line or "\r" in line:
+        return True
+    if line.lower().endswith(".toml"):
+        return False
+    return "=" in line or line.startswith(("[", "#"))
+
+
+def _config_source(arg: str, config: Union[str, os.PathLike]) -> tuple:
+    """(path, text) of a config or sweep file given as a path or a string: a string is a file
+    if one of that name exists or it looks like a file name, else TOML text (its parse errors
+    give the line and column). A file name that names no file is an error saying so."""
+    if isinstance(config, str) and not os.path.isfile(config) and _looks_like_toml(config):
+        return None, config
+    path = os.fspath(config)
+    if path == "":
+        raise FuzzymotivError(
+            f"{arg}: an empty string is neither a file nor TOML text; pass a file's path, TOML "
+            "text, or None for the built-in defaults"
+        )
+    if not os.path.exists(path):
+        where = "" if os.path.isabs(path) else f" (relative to the working directory {os.getcwd()})"
+        raise FuzzymotivError(
+            f"{arg}: the file {path} does not exist{where}; {arg} is a TOML file's path or TOML text"
+        )
+    return path, None
+
+
 def _config_args(config: Any) -> tuple:
-    """(path, text): a path-like is a file; a string is TOML text if it has a newline or an
-    ``=`` and names no existing file, else a file name."""
+    """(path, text) for the native functions' ``config_path`` and ``config_text``: None is the
+    built-in defaults, a path-like a file, a string a file or TOML text (:func:`_config_source`)."""
     if config is None:
         return None, None
-    if isinstance(config, os.PathLike):
-        return os.fspath(config), None
-    if isinstance(config, str):
-        if os.path.isfile(config) or ("\n" not in config and "=" not in config):
-            return config, None
-        return None, config
+    if isinstance(config, (str, os.PathLike)):
+        return _config_source("config", config)
     raise FuzzymotivError(f"config: expected a path or TOML text, got {type(config).__name__}")
 
 
@@ -379,7 +406,7 @@ def simulate(
     ((21,), (20, 8), 'straight')
     """
     path, text = _config_args(config)
-    weights = np.asarray(genome, dtype=np.float64).ravel().tolist()
+    weights = _real_array("genome", genome, "a vector of weights").ravel().tolist()
     return _native.simulate(weights, os.fspath(room), seed, path, text, _sets(overrides))
 
 
@@ -388,7 +415,7 @@ def _rollout(source: Any) -> Any:
     float64 vectors; sensors as a float64 (n, 8) array; action and idle as lists), or the
     genome as a list of floats."""
     if not isinstance(source, Mapping):
-        return np.asarray(source, dtype=np.float64).ravel().tolist()
+        return _real_array("genome", source, "a vector of weights").ravel().tolist()
     cols: dict = {}
     for key in ("x", "y", "heading"):
         if key not in source:
@@ -512,12 +539,28 @@ DESCRIPTORS = tuple(_native.Problem.descriptor_names())
 fractions of the executed steps that were ``straight``, ``left30``, ``right30``, ``turn180``."""
 
 
-def _float_array(arg: str, value: Any, ndim: int, what: str) -> np.ndarray:
-    """``value`` as a C-contiguous float64 array of ``ndim`` dimensions, or FuzzymotivError."""
+_KINDS = {"c": "complex numbers", "O": "Python objects", "U": "strings", "S": "bytes", "b": "booleans"}
+
+
+def _real_array(arg: str, value: Any, what: str) -> np.ndarray:
+    """``value`` as a float64 array, or FuzzymotivError naming ``arg`` and ``what`` was expected
+    when it is not an array of real numbers: numpy itself would drop an imaginary part with a
+    mere ComplexWarning, and read strings and objects as numbers."""
     try:
-        a = np.asarray(value, dtype=np.float64)
+        a = np.asarray(value)
     except (TypeError, ValueError) as e:
         raise FuzzymotivError(f"{arg}: expected {what} of numbers ({e})") from None
+    if a.dtype.kind not in "iuf":
+        got = _KINDS.get(a.dtype.kind, "no real numbers")
+        raise FuzzymotivError(
+            f"{arg}: expected {what} of real numbers (float64), got {got} (dtype {a.dtype})"
+        )
+    return a.astype(np.float64, copy=False)
+
+
+def _float_array(arg: str, value: Any, ndim: int, what: str) -> np.ndarray:
+    """``value`` as a C-contiguous float64 array of ``ndim`` dimensions, or FuzzymotivError."""
+    a = _real_array(arg, value, what)
     if a.ndim != ndim:
         raise FuzzymotivError(f"{arg}: expected {what}, got an array of shape {a.shape}")
     return np.ascontiguousarray(a)
@@ -598,8 +641,9 @@ class Problem:
         the same call gives the same bytes on any number of threads. The GIL is released.
 
         ``descriptors``: None (default: none computed), True (all of :data:`DESCRIPTORS`), or
-        names from it, in the order wanted. Wrong shapes, NaN or infinite weights raise
-        :class:`FuzzymotivError` naming the argument.
+        names from it, in the order wanted. Wrong shapes, anything but real numbers (complex,
+        strings, objects), NaN or infinite weights raise :class:`FuzzymotivError` naming the
+        argument.
         """
         g = _float_array("genomes", genomes, 2, f"a (population, {self.genome_size}) array")
         if descriptors is None or descriptors is False:
@@ -685,7 +729,9 @@ class GA:
 
     def tell(self, fitness: Any, terms: Any = None) -> None:
         """F of the genomes of :meth:`ask` (higher is better), optionally their terms
-        ``(pop, rooms, 4)``; breeds the next generation."""
+        ``(pop, rooms, 4)``; breeds the next generation. Each tell needs an :meth:`ask` of
+        its generation first (a restored GA's too): telling before asking, or twice, raises
+        :class:`FuzzymotivError`."""
         f = _float_array("F", fitness, 1, "one value per genome")
         t = None if terms is None else _float_array("terms", terms, 3, "a (pop, rooms, 4) array")
         self._native.tell(f, t)

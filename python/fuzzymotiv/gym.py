@@ -45,7 +45,7 @@ from gymnasium import spaces
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from . import FuzzymotivError, _config_args, _sets
+from . import FuzzymotivError, _config_args, _real_array, _sets
 from . import _fuzzymotiv as _native
 
 ACTIONS = ("straight", "left30", "right30", "turn180")
@@ -89,7 +89,7 @@ def network(genome: Any) -> Callable[[Any], np.ndarray]:
     """The network of ``genome`` (its weights, the library's own MLP, ``8-h-2`` with ``h`` from
     the length): a function from an observation (8 inputs in [0, 1]) to the two motor outputs
     the network gives the simulator — the action that replays :func:`fuzzymotiv.simulate`."""
-    weights = np.asarray(genome, dtype=np.float64).ravel()
+    weights = _real_array("genome", genome, "a vector of weights").ravel()
     hidden, rest = divmod(len(weights) - 2, 11)
     if rest or hidden < 1:
         raise FuzzymotivError(
@@ -98,7 +98,7 @@ def network(genome: Any) -> Callable[[Any], np.ndarray]:
     w = weights.tolist()
 
     def outputs(obs: Any) -> np.ndarray:
-        inputs = [float(v) for v in np.asarray(obs, dtype=np.float64).ravel()]
+        inputs = _real_array("obs", obs, "8 sensor inputs").ravel().tolist()
         return np.array(_native.network_outputs(w, hidden, inputs))
 
     return outputs

@@ -107,12 +107,10 @@ def plan(sweep_file_or_dict: Union[str, os.PathLike, Mapping]) -> Plan:
     """
     if isinstance(sweep_file_or_dict, Mapping):
         path, text = None, _toml_document(sweep_file_or_dict)
-    elif isinstance(sweep_file_or_dict, os.PathLike):
-        path, text = os.fspath(sweep_file_or_dict), None
-    elif isinstance(sweep_file_or_dict, str):
-        s = sweep_file_or_dict
-        is_text = not os.path.isfile(s) and ("\n" in s or "=" in s)
-        path, text = (None, s) if is_text else (s, None)
+    elif isinstance(sweep_file_or_dict, (str, os.PathLike)):
+        from . import _config_source  # type: ignore[attr-defined]  # private: not in the stubs
+
+        path, text = _config_source("sweep", sweep_file_or_dict)
     else:
         raise FuzzymotivError(
             f"plan: expected a sweep file, TOML text or a dict, got {type(sweep_file_or_dict).__name__}"

@@ -86,6 +86,9 @@ pub struct Ga {
     population: Population,
     history: Vec<GenerationRecord>,
     best: Option<Best>,
+    /// Whether `ask` was called since the GA was made or last told (not part of the state:
+    /// a restored GA is asked again, which gives the same genomes).
+    asked: bool,
 }
 
 /// Numbers that must be finite (`F`, terms), or an error naming `arg` and the position.
@@ -170,11 +173,13 @@ impl Ga {
             population,
             history: Vec::new(),
             best: None,
+            asked: false,
         })
     }
 
     /// The genomes of the current generation (the same until `tell`).
-    fn ask<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+    fn ask<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyAny> {
+        self.asked = true;
         population_array(py, &self.population, self.exp.shape().genome_len())
     }
 
@@ -186,6 +191,14 @@ impl Ga {
         fitness: PyReadonlyArray1<'_, f64>,
         terms: Option<PyReadonlyArray3<'_, f64>>,
     ) -> PyResult<()> {
+        if !self.asked {
+            return Err(input_err(format!(
+                "tell: call ask() first: tell(F) takes the F of the genomes ask() returned, and \
+                 ask() was not called for generation {} (telling before asking, or twice, would \
+                 breed from genomes nobody evaluated)",
+                self.generation
+            )));
+        }
         let n = self.population.len();
         let f = fitness.as_array().to_vec();
         if f.len() != n {
@@ -244,6 +257,7 @@ impl Ga {
         self.history.push(record);
         self.population = next;
         self.generation += 1;
+        self.asked = false;
         Ok(())
     }
 
@@ -365,6 +379,7 @@ impl Ga {
             population: c.next,
             history: c.finished.history,
             best: Some(best),
+            asked: false,
         })
     }
 
@@ -465,6 +480,7 @@ impl Ga {
             population,
             history,
             best: state.best,
+            asked: false,
         })
     }
 }

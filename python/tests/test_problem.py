@@ -2,6 +2,7 @@
 the state round trip; bad input."""
 
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -227,6 +228,7 @@ def test_bad_arguments(problem):
     with pytest.raises(fm.FuzzymotivError, match="threads"):
         fm.Problem(overrides={"rooms": ["H"], "aem.enabled": False}, threads=0)
     ga = fm.GA(problem)
+    ga.ask()
     with pytest.raises(fm.FuzzymotivError, match=r"F: expected 12 values .*got 3"):
         ga.tell(np.zeros(3))
     with pytest.raises(fm.FuzzymotivError, match=r"F: `nan` \(individual 1\)"):
@@ -250,3 +252,75 @@ def test_bad_arguments(problem):
     other = fm.Problem(overrides={"rooms": ["H"], "aem.enabled": False})
     with pytest.raises(fm.FuzzymotivError, match="problem: its config"):
         fm.GA.from_state(state, other)
+
+
+def test_tell_before_ask_is_refused_and_breeds_nothing(problem):
+    ga = fm.GA(problem)
+    with pytest.raises(fm.FuzzymotivError, match=r"tell: call ask\(\) first.*generation 0"):
+        ga.tell(np.zeros(12))
+    assert ga.generation == 0 and ga.best is None and len(ga.state["history"]) == 0
+    drive(problem, ga, 1)
+    assert ga.generation == 1
+
+
+def test_tell_twice_after_one_ask_is_refused(problem):
+    ga = fm.GA(problem)
+    ev = problem.evaluate(ga.ask(), generation=ga.generation, seed=ga.seed)
+    ga.tell(ev.fitness)
+    state = ga.state
+    with pytest.raises(fm.FuzzymotivError, match=r"tell: call ask\(\) first.*generation 1"):
+        ga.tell(ev.fitness)
+    assert ga.state == state  # nothing bred
+    restored = fm.GA.from_state(state, problem)  # a restored GA is asked again, too
+    with pytest.raises(fm.FuzzymotivError, match=r"tell: call ask\(\) first"):
+        restored.tell(ev.fitness)
+
+
+def test_a_failed_tell_keeps_the_ask(problem):
+    """A tell refused for its F can be repeated with the right F without asking again."""
+    ga = fm.GA(problem)
+    genomes = ga.ask()
+    with pytest.raises(fm.FuzzymotivError, match="F: expected 12 values"):
+        ga.tell(np.zeros(3))
+    ev = problem.evaluate(genomes, generation=ga.generation, seed=ga.seed)
+    ga.tell(ev.fitness)
+    assert ga.generation == 1
+
+
+@pytest.mark.parametrize(
+    "dtype, kind",
+    [(np.complex128, "complex numbers"), (object, "Python objects"), (str, "strings"), (bool, "booleans")],
+)
+def test_evaluate_refuses_genomes_that_are_not_real_numbers(problem, dtype, kind):
+    genomes = np.zeros((2, problem.genome_size)).astype(dtype)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no ComplexWarning either: an error, not a warning
+        with pytest.raises(fm.FuzzymotivError) as e:
+            problem.evaluate(genomes)
+    assert str(e.value).startswith(
+        f"genomes: expected a (population, 68) array of real numbers (float64), got {kind} (dtype "
+    )
+
+
+def test_ga_refuses_genomes_fitness_and_terms_that_are_not_real_numbers(problem):
+    complex_genomes = np.zeros((2, problem.genome_size), dtype=complex)
+    with pytest.raises(fm.FuzzymotivError, match=r"genomes: .*got complex numbers \(dtype complex128\)"):
+        fm.GA(problem, genomes=complex_genomes)
+    ga = fm.GA(problem)
+    ga.ask()
+    with pytest.raises(fm.FuzzymotivError, match=r"F: .*real numbers \(float64\), got complex"):
+        ga.tell(np.zeros(12) + 0.5j)
+    with pytest.raises(fm.FuzzymotivError, match=r"F: .*got strings"):
+        ga.tell(["0.5"] * 12)
+    with pytest.raises(fm.FuzzymotivError, match=r"terms: .*got complex numbers"):
+        ga.tell(np.zeros(12), np.zeros((12, 3, 4), dtype=complex))
+    assert ga.generation == 0
+
+
+def test_simulate_and_fuzzy_fitness_refuse_values_that_are_not_real_numbers():
+    with pytest.raises(fm.FuzzymotivError, match=r"genome: .*got complex numbers"):
+        fm.simulate(np.zeros(68, dtype=complex), "H", seed=1, overrides={"trial.steps": 5})
+    with pytest.raises(fm.FuzzymotivError, match=r"terms: .*got strings"):
+        fm.fuzzy_fitness([0.8, 0.1, 0, 0.1], ["0.5", "0", "0", "0"])
+    with pytest.raises(fm.FuzzymotivError, match=r"genome: .*got Python objects"):
+        fm.frames(np.zeros(68, dtype=object), "H")

@@ -2,12 +2,19 @@
 
 import doctest
 import re
+import sys
 
 import pytest
 
 
-def test_readme_python_session(repo, tmp_path, monkeypatch):
-    pytest.importorskip("pandas")  # the session shows a DataFrame
+@pytest.mark.parametrize("pandas", [True, False], ids=["with-pandas", "numpy-only"])
+def test_readme_python_session_runs_with_or_without_pandas(repo, tmp_path, monkeypatch, pandas):
+    """The wheel needs only numpy, so the README's first session runs with numpy alone (pandas
+    hidden from imports) as well as with pandas."""
+    if pandas:
+        pytest.importorskip("pandas")
+    else:
+        monkeypatch.setitem(sys.modules, "pandas", None)  # `import pandas` raises ImportError
     text = (repo / "README.md").read_text()
     section = text.split("\n## Python\n", 1)[1].split("\n## ", 1)[0]
     session = re.search(r"```python\n(.*?)```", section, re.S).group(1)

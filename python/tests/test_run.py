@@ -160,7 +160,7 @@ def test_errors_carry_the_cli_message(cli, repo):
     assert p.returncode == 2 and p.stderr.strip() == f"error: {e.value}"
     assert "field `home" in str(e.value)
 
-    with pytest.raises(ValueError, match="cannot read config file"):
+    with pytest.raises(ValueError, match="config: the file .*no-such-config.toml does not exist"):
         fm.run(repo / "no-such-config.toml")
     with pytest.raises(ValueError, match="threads must be at least 1"):
         fm.run(config, TINY, threads=0)

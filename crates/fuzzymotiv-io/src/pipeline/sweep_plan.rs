@@ -7,7 +7,7 @@
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::experiment::config::RawConfig;
+use fuzzymotiv::experiment::config::{RawConfig, at_line};
 use fuzzymotiv::random::seed::{Streams, hash_str};
 use serde::Deserialize;
 
@@ -196,7 +196,11 @@ fn split_sweep(text: &str, source: &str) -> Result<(RawSweep, String), CliError>
         err(
             source,
             "(document)",
-            format!("not valid TOML: {}", e.message().trim()),
+            format!(
+                "not valid TOML{}: {}",
+                at_line(text, e.span()),
+                e.message().trim()
+            ),
         )
     })?;
     let sweep_value = table.remove("sweep").ok_or_else(|| {
@@ -369,5 +373,23 @@ fn spread_units(
                 spread_units(rest, left - u, units, n, out);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sweep_text_that_is_not_toml_names_the_line_and_column() {
+        let text = "[sweep]\nreplicates = 1\n[[[garbage\n";
+        let Err(e) = Sweep::parse_str(text, "s.toml", Path::new(".")) else {
+            panic!("garbage parsed as a sweep");
+        };
+        let message = e.to_string();
+        assert!(
+            message.contains("not valid TOML (line 3, column "),
+            "{message}"
+        );
     }
 }
