@@ -2,7 +2,7 @@
 then the merge (the same results.csv as `fuzzymotiv sweep` + `fuzzymotiv merge`).
 
     pip install ./python submitit                        # in a virtual environment
-    python examples/python/submitit_sweep.py configs/sweep-small.toml sweeps/small
+    python examples/python/submitit_sweep.py configs/sweep-small.toml out/sweeps/small
     python examples/python/submitit_sweep.py SWEEP.toml OUT --cluster local   # no SLURM
 
 Run it again after a failure or a time-out: finished jobs are skipped, killed ones resume from

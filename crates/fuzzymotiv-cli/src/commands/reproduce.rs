@@ -27,7 +27,7 @@ use fuzzymotiv_io::render::report::{Section, reproduce_page};
 use fuzzymotiv_io::render::strength::{SEARCH_STRENGTH, strength_svg, strength_table};
 use fuzzymotiv_io::render::study::{
     ABLATION, CLAIMS_ALPHA, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns,
-    Variant, claims, overall,
+    Variant, claims, overall, seed_dir, seed_index,
 };
 use fuzzymotiv_io::render::svg::{FitnessPanel, best_paths_svg, fitness_panels_svg};
 use fuzzymotiv_io::render::tables::{
@@ -162,7 +162,8 @@ fn load_settings(
         .collect()
 }
 
-/// Evolves every (setting, seed) of a variant into `dir/SETTING/seed-S/`, as many runs at a
+/// Evolves every (setting, seed) of a variant into `dir/SETTING/seed-NN/` (the seed's index,
+/// [`seed_dir`]), as many runs at a
 /// time as there are threads ([`run_concurrently`]).
 fn run_study<'a>(
     args: &ReproduceArgs,
@@ -172,14 +173,16 @@ fn run_study<'a>(
     progress: &Progress,
     label: &str,
 ) -> Result<Vec<SettingRuns<'a>>, CliError> {
-    let runs: Vec<(&Setting, u64, &Loaded)> = SETTINGS
+    let n = seeds.len();
+    let runs: Vec<(&Setting, usize, &Loaded)> = SETTINGS
         .iter()
         .zip(&loaded)
-        .flat_map(|(setting, loaded)| seeds.iter().zip(loaded).map(move |(&s, l)| (setting, s, l)))
+        .flat_map(|(setting, loaded)| loaded.iter().enumerate().map(move |(k, l)| (setting, k, l)))
         .collect();
-    let finished = run_concurrently(&runs, |&(setting, seed, l)| {
-        let progress = progress.named(&format!("{label}{} seed {seed}", setting.name));
-        let run_dir = dir.join(setting.name).join(format!("seed-{seed}"));
+    let finished = run_concurrently(&runs, |&(setting, k, l)| {
+        let name = format!("{label}{} seed #{}", setting.name, seed_index(k, n));
+        let progress = progress.named(&name);
+        let run_dir = dir.join(setting.name).join(seed_dir(k, n));
         progress.note(&start_line(&l.experiment, &run_dir));
         execute_or_resume(l, &run_dir, &progress, rasteriser(args.png))
     })?;
@@ -411,13 +414,13 @@ fn run_configs(variants: &[(&Variant, &Vec<Vec<Loaded>>)]) -> Vec<(String, Strin
                 .iter()
                 .zip(loaded.iter())
                 .flat_map(move |(s, seeds)| {
-                    seeds.iter().map(move |l| {
+                    seeds.iter().enumerate().map(move |(k, l)| {
                         (
                             format!(
-                                "{}{}/seed-{}/config.resolved.toml",
+                                "{}{}/{}/config.resolved.toml",
                                 prefix(v),
                                 s.name,
-                                l.experiment.seed()
+                                seed_dir(k, seeds.len())
                             ),
                             resolved_toml(&l.raw),
                         )
@@ -605,10 +608,7 @@ fn page(
                 ctx: &study.contexts[m],
                 done: &study.finished[m],
                 paper: Some(study.setting),
-                link: Some(format!(
-                    "{}/seed-{}/report.html",
-                    study.setting.name, study.seeds[m]
-                )),
+                link: Some(format!("{}/report.html", study.run_dir(m))),
                 spread: Some(spread.as_str()),
                 overall: Some(overall(study)),
             }

@@ -140,15 +140,38 @@ impl SettingRuns<'_> {
         order[(order.len() - 1) / 2]
     }
 
-    /// "seed S" or "median seed S of N".
+    /// "seed: #1 (seed S)" or "median seed: #03 (seed S) of N": the median seed by its index,
+    /// the seed itself beside it.
     pub fn median_label(&self) -> String {
-        let seed = self.seeds[self.median()];
-        if self.seeds.len() == 1 {
-            format!("seed {seed}")
+        let m = self.median();
+        let (n, seed) = (self.seeds.len(), self.seeds[m]);
+        let index = seed_index(m, n);
+        if n == 1 {
+            format!("seed: #{index} (seed {seed})")
         } else {
-            format!("median seed {seed} of {}", self.seeds.len())
+            format!("median seed: #{index} (seed {seed}) of {n}")
         }
     }
+
+    /// The run directory of seed `k` (counted from 0), relative to the study:
+    /// `SETTING/seed-NN` ([`seed_dir`]).
+    pub fn run_dir(&self, k: usize) -> String {
+        format!("{}/{}", self.setting.name, seed_dir(k, self.seeds.len()))
+    }
+}
+
+/// Seed `k` (counted from 0) of `count` by its index: counted from 1 (1 = the base seed) and
+/// zero-padded to the width of `count`, e.g. `03` of 10. Derived seeds are 15–16 digit numbers;
+/// names and titles use this index, the records keep the seeds.
+pub fn seed_index(k: usize, count: usize) -> String {
+    let width = count.max(1).to_string().len();
+    format!("{:0width$}", k + 1)
+}
+
+/// The directory of seed `k` (counted from 0) of `count` in a study: `seed-` and its
+/// [`seed_index`], e.g. `seed-03`.
+pub fn seed_dir(k: usize, count: usize) -> String {
+    format!("seed-{}", seed_index(k, count))
 }
 
 /// The `q`-quantile (0 ≤ q ≤ 1) of `values` by linear interpolation between order statistics:
@@ -311,11 +334,12 @@ impl SettingRuns<'_> {
         self.seeds
             .iter()
             .zip(&self.finished)
-            .map(|(&seed, f)| {
+            .enumerate()
+            .map(|(k, (&seed, f))| {
                 let h = &f.outcome.evolutions[0].history;
                 SeedSummary {
                     seed,
-                    run_dir: format!("{}/seed-{seed}", self.setting.name),
+                    run_dir: self.run_dir(k),
                     rows: f.rows.iter().map(TableRow::of).collect(),
                     first_generation: GenerationStat::of(&h[0]),
                     last_generation: GenerationStat::of(&h[h.len() - 1]),
@@ -649,7 +673,20 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
 
 #[cfg(test)]
 mod tests {
-    use super::{FIRST_F_BAND, Settings, Verdict, band_test, quantile};
+    use super::{FIRST_F_BAND, Settings, Verdict, band_test, quantile, seed_dir, seed_index};
+
+    /// Seeds are named by their index from 1 (the base seed), zero-padded to the width of the
+    /// count, so that the directories of a study sort in seed order.
+    #[test]
+    fn seed_indices_are_padded_to_the_width_of_the_count() {
+        assert_eq!(seed_index(0, 1), "1");
+        assert_eq!(seed_index(8, 9), "9");
+        assert_eq!(seed_index(2, 10), "03");
+        assert_eq!(seed_index(9, 10), "10");
+        assert_eq!(seed_index(0, 1000), "0001");
+        assert_eq!(seed_dir(2, 10), "seed-03");
+        assert_eq!(seed_dir(19, 20), "seed-20");
+    }
 
     /// Fig. 6's "about 0.1" over seeds: five seeds inside the band give the one-sided p 1/32 on
     /// both sides (holds at 0.05); five above it cannot show the opposite (two-sided 1/16), six

@@ -8,7 +8,7 @@ use fuzzymotiv::experiment::config::Training;
 
 use crate::records::context::RenderContext;
 use crate::records::{ClaimRecord, RoomRow};
-use crate::render::study::{SettingRuns, Variant, metrics, paper_row, room_stats};
+use crate::render::study::{SettingRuns, Variant, metrics, paper_row, room_stats, seed_index};
 use crate::render::svg::esc;
 
 /// The per-room table as Markdown.
@@ -150,9 +150,10 @@ pub fn study_table(study: &SettingRuns<'_>, prov: &Provenance) -> (String, Strin
         "room,seed,average_fitness,exploration_pct,recognition_pct,battery_pct,homing_pct\n",
     );
     for (i, row) in rows.iter().enumerate() {
-        for (seed, f) in study.seeds.iter().zip(&study.finished) {
+        for (k, (seed, f)) in study.seeds.iter().zip(&study.finished).enumerate() {
             let values = metrics(&f.rows[i]);
-            let _ = write!(md, "| {} | {seed} |", row.room);
+            let index = seed_index(k, n);
+            let _ = write!(md, "| {} | #{index} ({seed}) |", row.room);
             let _ = write!(seeds_csv, "{},{seed}", row.room);
             for (c, v) in values.iter().enumerate() {
                 let d = DIGITS[c];
