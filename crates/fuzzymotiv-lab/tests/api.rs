@@ -425,10 +425,10 @@ fn a_lab_run_gives_the_generations_of_fuzzymotiv_run_and_saves_as_a_run_director
         .status,
         400
     );
-    // Compare the two, with the library's statistics.
+    // Compare the two as `fuzzymotiv compare`: four measures, each in two rooms and overall.
     let cmp = c.get(&format!("/api/compare?a={id}&b={other}")).json();
-    assert_eq!(cmp["tests"].as_array().unwrap().len(), 4);
-    assert_eq!(cmp["tests"][0]["rooms"], 2);
+    assert_eq!(cmp["tests"].as_array().unwrap().len(), 4 * 3);
+    assert_eq!(cmp["tests"][2]["room"], "overall");
     // A new lab on the same directory lists the finished runs.
     let dir = c.lab.dir().to_path_buf();
     let Client { lab, _tmp: keep } = c;
