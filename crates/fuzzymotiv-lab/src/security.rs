@@ -123,8 +123,7 @@ fn wants_page(headers: &HeaderMap) -> bool {
 
 /// What a browser gets without the token: a short page saying how to get in.
 const REFUSED_PAGE: &str = "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-<title>fuzzymotiv lab: access token needed</title></head><body style=\"font-family: sans-serif; \
-max-width: 40em; margin: 2em auto\"><h1>This lab needs its access token</h1>\
+<title>fuzzymotiv lab: access token needed</title></head><body><h1>This lab needs its access token</h1>\
 <p>Open the address <code>fuzzymotiv lab</code> printed when it started, the one ending in \
 <code>/?token=…</code>: it lets this browser in.</p>\
 <p>A lab makes a new token at every start, so a page opened before a restart is shut out. \
