@@ -723,8 +723,8 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
             let _ = writeln!(
                 s,
                 r#"<line x1="{lx}" x2="{}" y1="{ly}" y2="{ly}" stroke="{colour}"{dash}/><text x="{}" y="{}">{label}</text>"#,
-                lx + 16.0,
-                lx + 20.0,
+                px(lx + 16.0),
+                px(lx + 20.0),
                 ly + 4.0
             );
             if zero {
@@ -732,7 +732,7 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
                 let _ = writeln!(
                     s,
                     r##"<text x="{}" y="{}" font-size="10" fill="#555">(0 throughout)</text>"##,
-                    lx + 20.0,
+                    px(lx + 20.0),
                     ly + 4.0
                 );
             }
