@@ -1095,7 +1095,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
         r##"<text x="8" y="{:.0}" fill="#555">{}</text>"##,
         height - 6.0,
         if ternary {
-            "Means over rooms and replicates per motivation setting (C, H, O, E); each point's tooltip gives ± sample std and n."
+            "Means over rooms and replicates per motivation setting (C, H, O, E); under each panel the range of their sample std and n; each point's tooltip gives its own."
         } else {
             "Means over rooms and replicates per motivation setting (C, H, O, E); whiskers ± 1 sample std; n values per mean."
         }
@@ -1160,6 +1160,13 @@ fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw:
             }
         }
     }
+    let _ = writeln!(
+        s,
+        r##"<text x="{:.1}" y="{:.1}" fill="#555">{}</text>"##,
+        ox + 35.0,
+        y0 + 34.0,
+        spread_range(points, k)
+    );
     // Colour key.
     for i in 0..=10 {
         let v = i as f64 * 10.0;
@@ -1193,6 +1200,21 @@ fn mean_spread_n(p: &SettingPoint, k: usize) -> String {
     let mean = p.values[k].map_or("—".to_string(), |v| format!("{v:.1}"));
     let spread = p.spread[k].map_or(String::new(), |d| format!(" ± {d:.1}"));
     format!("{mean}{spread}, n {}", p.n[k])
+}
+
+/// "± std 12.0 to 50.1, n 15": the range of outcome `k`'s sample std and n over the settings.
+fn spread_range(points: &[SettingPoint], k: usize) -> String {
+    let range = |v: Vec<f64>, d: usize| match (
+        v.iter().copied().reduce(f64::min),
+        v.iter().copied().reduce(f64::max),
+    ) {
+        (Some(lo), Some(hi)) if lo == hi => format!("{lo:.d$}"),
+        (Some(lo), Some(hi)) => format!("{lo:.d$} to {hi:.d$}"),
+        _ => "—".to_string(),
+    };
+    let spreads = points.iter().filter_map(|p| p.spread[k]).collect();
+    let ns = points.iter().map(|p| p.n[k] as f64).collect();
+    format!("± std {}, n {} per point", range(spreads, 1), range(ns, 0))
 }
 
 /// Panel `k` of [`sweep_summary_svg`] for a few settings: one labelled bar each (the mean),
