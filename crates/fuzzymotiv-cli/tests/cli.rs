@@ -1231,6 +1231,21 @@ fn lab_bind_refuses_a_host_name() {
     assert!(!lab_dir.exists());
 }
 
+/// `lab --token` takes 16 to 128 letters, digits, `-` or `_`; a short or odd one is refused
+/// before anything starts (exit 2, saying what it accepts).
+#[test]
+fn lab_token_refuses_a_short_or_odd_token() {
+    let dir = tempfile::tempdir().unwrap();
+    let lab_dir = dir.path().join("lab");
+    for bad in ["short", "0123456789abcdef; Path=/"] {
+        let o = run(&["lab", "--token", bad, "--dir", lab_dir.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(stderr(&o).contains("--token"), "{}", stderr(&o));
+        assert!(stderr(&o).contains("16 to 128 letters"), "{}", stderr(&o));
+        assert!(!lab_dir.exists());
+    }
+}
+
 /// `lab` on a port in use, or with a file as `--dir`: exit 2 saying what to change, and no
 /// lab directory left behind.
 #[test]

@@ -92,7 +92,12 @@ fn runs_are_compared_over_their_test_runs() {
     );
     let svg = std::fs::read_to_string(out.join("compare.svg")).unwrap();
     assert!(
-        svg.starts_with("<svg") && svg.matches("<circle").count() == 12,
+        svg.starts_with("<svg") && svg.matches("<circle").count() == 12 + 2,
+        "{svg}"
+    );
+    // Its legend says what the colours mean.
+    assert!(
+        svg.contains("Holm-adjusted p &lt; 0.05: a difference"),
         "{svg}"
     );
 

@@ -263,3 +263,113 @@ fn the_lab_evolves_stops_saves_and_compares_in_chromium() {
     let console = d.console_errors();
     assert!(console.is_empty(), "console errors: {console:?}");
 }
+
+/// Starts a small run from the page's own script (as Evolve would, with small sizes); its id
+/// lands in `window.started`.
+fn start_small_run(d: &Driver, generations: usize, seed: u64) -> String {
+    let before = d.script("return (window.started || []).length;");
+    d.script(&format!(
+        "window.started = window.started || []; api('POST', '/api/runs', {{ name: 'b', seed: {seed}, \
+         population: 6, generations: {generations}, steps: 100, rooms: ['H', 'square'], \
+         motivations: {{ curiosity: 0.5, homing: 0.3, orientation: 0, energy: 0.2 }} }})\
+         .then(function (r) {{ window.started.push(r.id); }});"
+    ));
+    let script = format!(
+        "var s = window.started || []; return s.length > {before} ? s[s.length - 1] : null;"
+    );
+    let id = wait_for(d, 30, "a run started", &script);
+    id.as_str().unwrap().to_string()
+}
+
+#[test]
+fn the_lab_page_shows_axis_ticks_queue_places_whole_tables_and_a_lost_token() {
+    require_browser();
+    let tmp = tempfile::tempdir().unwrap();
+    let lab = LabProcess::start(&tmp.path().join("lab"));
+    let mut d = Driver::start();
+    d.new_session(&tmp.path().join("chromium-profile"));
+    d.goto(&lab.url);
+    wait_for(
+        &d,
+        30,
+        "the page",
+        "return typeof api === 'function' && document.querySelectorAll('#room-choices .thumb').length >= 5;",
+    );
+
+    // Two small runs to compare, then a long one that keeps the worker busy.
+    let (a, b) = (start_small_run(&d, 2, 1), start_small_run(&d, 2, 2));
+    let finished = |id: &str| {
+        format!(
+            "var r = Array.from(document.querySelectorAll('#run-list td:first-child')).find(function (t) {{ return t.textContent === '{id}'; }}); return r && r.parentNode.textContent.indexOf('finished') >= 0;"
+        )
+    };
+    wait_for(&d, 120, "run A finished", &finished(&a));
+    wait_for(&d, 120, "run B finished", &finished(&b));
+    let long = start_small_run(&d, 400, 3);
+    let queued = start_small_run(&d, 2, 4);
+    d.script(&format!("follow('{queued}');"));
+    let status = wait_for(
+        &d,
+        30,
+        "the queue place",
+        "var s = document.getElementById('run-status').textContent; return /place 1 in the queue/.test(s) ? s : null;",
+    );
+    assert!(
+        status.as_str().unwrap().contains("(1 run before it)"),
+        "{status}"
+    );
+    d.script(&format!("api('POST', '/api/runs/{long}/cancel');"));
+    wait_for(
+        &d,
+        120,
+        "the queued run finished",
+        "return /finished$/.test(document.getElementById('run-status').textContent);",
+    );
+
+    // The charts: ticks and labels on both axes, F from 0 to 1; l at 0 throughout is labelled.
+    let y = d.script("return Array.from(document.querySelectorAll('#fitness-chart .y-tick')).map(function (t) { return t.textContent; });");
+    assert_eq!(y, json!(["0.0", "0.2", "0.4", "0.6", "0.8", "1.0"]));
+    let x = d.script("return Array.from(document.querySelectorAll('#fitness-chart .x-tick')).map(function (t) { return t.textContent; });");
+    assert_eq!(x, json!(["0", "1"]));
+    let legend = d.script("return Array.from(document.querySelectorAll('#terms-chart .legend')).map(function (t) { return t.textContent; });");
+    assert!(
+        legend
+            .as_array()
+            .unwrap()
+            .contains(&json!("l = 0 throughout")),
+        "{legend}"
+    );
+
+    // The comparison: every column of both tables shows (nothing scrolled away) at 1280 px.
+    d.script(&format!("document.getElementById('compare-a').value = '{a}'; document.getElementById('compare-b').value = '{b}';"));
+    d.click_button("Compare");
+    wait_for(
+        &d,
+        30,
+        "the differences",
+        "return document.getElementById('differences');",
+    );
+    let clipped = d.script("return Array.from(document.querySelectorAll('.compare > *')).filter(function (c) { return c.scrollWidth > c.clientWidth; }).map(function (c) { return [c.scrollWidth, c.clientWidth]; });");
+    assert_eq!(clipped, json!([]), "a side of the comparison scrolls");
+    let heads = d.script("return document.querySelector('.compare table').textContent;");
+    assert!(heads.as_str().unwrap().contains("% recognition"), "{heads}");
+    let measures = d.script("return document.getElementById('differences').textContent;");
+    assert!(
+        measures.as_str().unwrap().contains("% recognition"),
+        "{measures}"
+    );
+    d.script("document.getElementById('runs-panel').scrollIntoView();");
+    let shot = target_dir().join("lab-compare-screenshot.png");
+    std::fs::write(&shot, d.full_page_png()).unwrap();
+    eprintln!("screenshot: {}", shot.display());
+
+    // A lost token (as after a restart): the page says so instead of failing silently.
+    d.cmd("DELETE", "/cookie", json!({}));
+    let said = wait_for(
+        &d,
+        30,
+        "the token message",
+        "var b = document.getElementById('error-bar'); return !b.hidden && b.textContent;",
+    );
+    assert!(said.as_str().unwrap().contains("--token"), "{said}");
+}

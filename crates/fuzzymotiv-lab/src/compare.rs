@@ -1,20 +1,16 @@
-//! Two finished runs side by side: their curves, paths and per-room tables, and per measure
-//! (exploration, homing, battery, F) the library's paired test over the rooms they share
-//! (`fuzzymotiv::statistics::paired`: sign-flip permutation p, bootstrap interval).
+//! Two finished runs side by side: their curves, paths and per-room tables, and the
+//! differences `fuzzymotiv compare` reports for two run directories (over their test runs,
+//! paired when the runs share their seed; `fuzzymotiv_io::pipeline::compare`), overall and per
+//! room, every metric of the test runs (recognition included).
 
-use fuzzymotiv::statistics::{Expect, Settings, Verdict, paired};
+use fuzzymotiv_io::pipeline::compare::{check_comparable, choose, compare as compare_dirs, load};
 use serde_json::{Value, json};
 
 use crate::errors::ApiError;
 use crate::runs::{RunEntry, Runs, Status};
 
-/// The measures compared, as `summary.json`'s per-room rows name them.
-const MEASURES: [&str; 4] = [
-    "exploration_pct",
-    "homing_pct",
-    "battery_pct",
-    "average_fitness",
-];
+/// The level of the verdicts, as `fuzzymotiv compare`'s default `--alpha`.
+const ALPHA: f64 = 0.05;
 
 /// What the page shows of one side.
 fn side(e: &RunEntry) -> Result<Value, ApiError> {
@@ -31,41 +27,34 @@ fn side(e: &RunEntry) -> Result<Value, ApiError> {
     )
 }
 
-/// Per room name, the value of `measure` in a side's table.
-fn values(side: &Value, measure: &str) -> Vec<(String, f64)> {
-    let rows = side["result"]["rows"]
-        .as_array()
-        .cloned()
-        .unwrap_or_default();
-    rows.iter()
-        .filter_map(|r| Some((r["room"].as_str()?.to_string(), r[measure].as_f64()?)))
-        .collect()
-}
-
-/// A comparison's verdict read as which run is higher (a − b > 0 is "A higher").
-fn direction(verdict: Verdict) -> &'static str {
-    match verdict {
-        Verdict::Holds => "A higher",
-        Verdict::Opposite => "B higher",
-        Verdict::NotSignificant => "not significant",
-    }
-}
-
-/// The paired test of one measure over the rooms both runs have.
-fn test(a: &Value, b: &Value, measure: &str) -> Value {
-    let va = values(a, measure);
-    let vb = values(b, measure);
-    let (xs, ys): (Vec<f64>, Vec<f64>) = va
-        .iter()
-        .filter_map(|(room, x)| vb.iter().find(|(r, _)| r == room).map(|(_, y)| (*x, *y)))
-        .unzip();
-    match paired(&xs, &ys, &Settings::default()) {
-        Ok(c) => json!({ "measure": measure, "rooms": xs.len(), "mean_a": c.mean_a,
-            "mean_b": c.mean_b, "difference": c.difference, "ci_low": c.ci_low,
-            "ci_high": c.ci_high, "p": c.p, "min_p": c.min_p,
-            "verdict": direction(c.verdict(Expect::Higher)) }),
-        Err(e) => json!({ "measure": measure, "rooms": xs.len(), "error": e.to_string() }),
-    }
+/// The comparison's rows as `fuzzymotiv compare A B` computes them for the two run
+/// directories, with a verdict each; or why there are none (e.g. different rooms).
+fn tests(runs: &Runs, a: &str, b: &str) -> Result<(Vec<Value>, String), String> {
+    let (da, db) = (load(&runs.run_dir(a), "A"), load(&runs.run_dir(b), "B"));
+    let (da, db) = (
+        da.map_err(|e| e.to_string())?,
+        db.map_err(|e| e.to_string())?,
+    );
+    check_comparable(&da, &db).map_err(|e| e.to_string())?;
+    let pairs = choose(&da, &db, &[]).map_err(|e| e.to_string())?;
+    let done = compare_dirs(&da, &db, &pairs, ALPHA).map_err(|e| e.to_string())?;
+    let rows = done.rows.iter().map(|r| {
+        let verdict = match (r.p_holm < ALPHA, r.difference > 0.0) {
+            (false, _) => "not significant",
+            (true, true) => "A higher",
+            (true, false) => "B higher",
+        };
+        let mut v = serde_json::to_value(r).unwrap_or_default();
+        v["verdict"] = json!(verdict);
+        v
+    });
+    let note = format!(
+        "As `fuzzymotiv compare A B`: over the runs' test runs ({}), per room and overall (per \
+         test run, the mean over rooms); 95 % bootstrap interval; two-sided permutation p, \
+         Holm-adjusted over the rooms of a measure; a verdict needs p < {ALPHA}.",
+        done.rows.first().map_or("", |r| r.design.as_str())
+    );
+    Ok((rows.collect(), note))
 }
 
 /// The comparison of runs `a` and `b`.
@@ -75,7 +64,9 @@ pub fn compare(runs: &Runs, a: &str, b: &str) -> Result<Value, ApiError> {
             .ok_or_else(|| ApiError::not_found(format!("no run `{id}` in this lab")))
     };
     let (sa, sb) = (side(&*find(a)?)?, side(&*find(b)?)?);
-    let tests: Vec<Value> = MEASURES.iter().map(|m| test(&sa, &sb, m)).collect();
-    Ok(json!({ "a": sa, "b": sb, "tests": tests,
-        "note": "paired over the rooms both runs have: a − b per room; a verdict needs p < 0.05, which five rooms cannot give (smallest p 1/16)" }))
+    let (tests, note) = match tests(runs, a, b) {
+        Ok(found) => found,
+        Err(why) => (Vec::new(), format!("No differences are tested: {why}")),
+    };
+    Ok(json!({ "a": sa, "b": sb, "tests": tests, "note": note }))
 }

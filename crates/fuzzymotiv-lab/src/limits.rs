@@ -16,8 +16,12 @@ pub const MAX_ROOM_VERTICES: usize = 400;
 pub const MAX_SAVED_ROOMS: usize = 200;
 /// Most runs waiting in the queue; more are refused (HTTP 503) until some finish.
 pub const MAX_QUEUED: usize = 64;
-/// Stopped or failed runs remembered in the list (finished runs are on disk and stay).
+/// Stopped or failed runs whose curves the lab keeps in memory; older ones stay in the list
+/// (marked stopped or failed) without them.
 pub const MAX_FORGOTTEN: usize = 32;
+/// Stopped or failed runs the list shows at most (the oldest beyond it leave the list; finished
+/// runs are on disk and stay).
+pub const MAX_STOPPED_LISTED: usize = 10_000;
 /// A live run sends the current best robot's paths every this many generations.
 pub const PATHS_EVERY: usize = 5;
 /// Most points of a path sent to the page.

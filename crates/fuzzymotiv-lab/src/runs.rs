@@ -17,7 +17,7 @@ use serde_json::{Value, json};
 use tokio::sync::watch;
 
 use crate::errors::ApiError;
-use crate::limits::{MAX_FORGOTTEN, MAX_QUEUED};
+use crate::limits::{MAX_FORGOTTEN, MAX_QUEUED, MAX_STOPPED_LISTED};
 use crate::live::{Live, Shows, result};
 use crate::settings::Settings;
 
@@ -230,20 +230,25 @@ impl Runs {
         Ok(entry.status())
     }
 
-    /// Drops the oldest stopped or failed runs beyond [`MAX_FORGOTTEN`] (memory stays bounded).
+    /// Keeps memory bounded while stopped and failed runs stay listed: beyond the newest
+    /// [`MAX_FORGOTTEN`] of them, their curves and paths are let go; beyond
+    /// [`MAX_STOPPED_LISTED`], the oldest leave the list.
     fn forget_old(&self) {
         let mut list = self.list();
         let gone = |e: &Arc<RunEntry>| matches!(e.status(), Status::Stopped | Status::Failed);
-        let mut extra = list
-            .iter()
-            .filter(|e| gone(e))
-            .count()
-            .saturating_sub(MAX_FORGOTTEN);
+        let count = list.iter().filter(|e| gone(e)).count();
+        let mut unlisted = count.saturating_sub(MAX_STOPPED_LISTED);
         list.retain(|e| {
-            let drop_it = extra > 0 && gone(e);
-            extra -= usize::from(drop_it);
+            let drop_it = unlisted > 0 && gone(e);
+            unlisted -= usize::from(drop_it);
             !drop_it
         });
+        let old = count.min(MAX_STOPPED_LISTED).saturating_sub(MAX_FORGOTTEN);
+        for e in list.iter().filter(|e| gone(e)).take(old) {
+            let mut state = e.lock();
+            state.1.generations = Vec::new();
+            state.1.paths = None;
+        }
     }
 
     /// Stops every run and the worker.

@@ -91,9 +91,10 @@ pub async fn guard(State(access): State<Arc<Access>>, req: Request, next: Next) 
         };
         return with_headers(e.into_response(), PAGE_CSP);
     }
+    let page = wants_page(headers);
     if let Some(t) = Access::query_token(req.uri().query()) {
         if !same(t, &access.token) {
-            return with_headers(refused(), PAGE_CSP);
+            return with_headers(refused(page), PAGE_CSP);
         }
         let cookie = format!(
             "{}={}; Path=/; HttpOnly; SameSite=Strict",
@@ -107,17 +108,44 @@ pub async fn guard(State(access): State<Arc<Access>>, req: Request, next: Next) 
     }
     let given = Access::header_token(headers).or_else(|| access.cookie_token(headers));
     if !given.is_some_and(|t| same(t, &access.token)) {
-        return with_headers(refused(), PAGE_CSP);
+        return with_headers(refused(page), PAGE_CSP);
     }
     let is_report = req.uri().path().ends_with("/report.html");
     let resp = next.run(req).await;
     with_headers(resp, if is_report { REPORT_CSP } else { PAGE_CSP })
 }
 
-fn refused() -> Response {
+/// Whether a request is a browser's for a page (it accepts HTML), not the page's script's.
+fn wants_page(headers: &HeaderMap) -> bool {
+    let accept = headers.get(header::ACCEPT).and_then(|v| v.to_str().ok());
+    accept.is_some_and(|a| a.contains("text/html"))
+}
+
+/// What a browser gets without the token: a short page saying how to get in.
+const REFUSED_PAGE: &str = "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+<title>fuzzymotiv lab: access token needed</title></head><body><h1>This lab needs its access token</h1>\
+<p>Open the address <code>fuzzymotiv lab</code> printed when it started, the one ending in \
+<code>/?token=…</code>: it lets this browser in.</p>\
+<p>A lab makes a new token at every start, so a page opened before a restart is shut out. \
+To keep one token across restarts, start the lab with <code>--token VALUE</code> \
+(16 to 128 letters, digits, <code>-</code> or <code>_</code>).</p></body></html>\n";
+
+/// The answer to a request without the right token: for a browser, [`REFUSED_PAGE`]; for the
+/// API, its JSON error.
+fn refused(page: bool) -> Response {
+    if page {
+        let mut r = (StatusCode::UNAUTHORIZED, REFUSED_PAGE).into_response();
+        r.headers_mut().insert(
+            header::CONTENT_TYPE,
+            HeaderValue::from_static("text/html; charset=utf-8"),
+        );
+        return r;
+    }
     ApiError {
         status: StatusCode::UNAUTHORIZED,
-        message: "this lab needs its access token: open the address `fuzzymotiv lab` printed (…/?token=…)".into(),
+        message: "this lab needs its access token: open the address `fuzzymotiv lab` printed (…/?token=…); \
+                  each start makes a new one unless the lab is started with --token"
+            .into(),
     }
     .into_response()
 }

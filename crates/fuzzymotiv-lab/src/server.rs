@@ -23,6 +23,8 @@ pub struct LabOptions {
     pub bind: IpAddr,
     /// Threads of a run (as `fuzzymotiv run --threads`); default all cores.
     pub threads: Option<usize>,
+    /// The access token; default a new random one (so a restart shuts out open pages).
+    pub token: Option<String>,
 }
 
 impl LabOptions {
@@ -33,6 +35,7 @@ impl LabOptions {
             port: 8765,
             bind: IpAddr::V4(Ipv4Addr::LOCALHOST),
             threads: None,
+            token: None,
         }
     }
 }
@@ -121,7 +124,10 @@ impl Lab {
             .set_nonblocking(true)
             .map_err(|e| io("listener", e))?;
         let addr = listener.local_addr().map_err(|e| io("listener", e))?;
-        let token = random_token().map_err(|e| io("the access token", e))?;
+        let token = match opts.token {
+            Some(t) => t,
+            None => random_token().map_err(|e| io("the access token", e))?,
+        };
         let access = Arc::new(Access {
             token: token.clone(),
             hosts: hosts(addr),

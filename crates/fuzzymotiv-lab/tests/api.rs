@@ -425,10 +425,10 @@ fn a_lab_run_gives_the_generations_of_fuzzymotiv_run_and_saves_as_a_run_director
         .status,
         400
     );
-    // Compare the two, with the library's statistics.
+    // Compare the two as `fuzzymotiv compare`: four measures, each in two rooms and overall.
     let cmp = c.get(&format!("/api/compare?a={id}&b={other}")).json();
-    assert_eq!(cmp["tests"].as_array().unwrap().len(), 4);
-    assert_eq!(cmp["tests"][0]["rooms"], 2);
+    assert_eq!(cmp["tests"].as_array().unwrap().len(), 4 * 3);
+    assert_eq!(cmp["tests"][2]["room"], "overall");
     // A new lab on the same directory lists the finished runs.
     let dir = c.lab.dir().to_path_buf();
     let Client { lab, _tmp: keep } = c;
@@ -481,4 +481,126 @@ fn every_interface_answers_ip_addresses_not_names() {
         );
         assert_eq!(a.status, status, "Host {host}: {}", a.body);
     }
+}
+
+#[test]
+fn a_browser_without_the_token_gets_a_page_saying_how_to_get_in() {
+    let c = Client::start();
+    let addr = c.lab.addr();
+    let browser = ["Accept: text/html,application/xhtml+xml,*/*;q=0.8".to_string()];
+    let page = request(addr, "GET", "/", &browser, "");
+    assert_eq!(page.status, 401);
+    assert!(
+        page.head.contains("content-type: text/html"),
+        "{}",
+        page.head
+    );
+    assert!(
+        page.body
+            .contains("<h1>This lab needs its access token</h1>")
+    );
+    assert!(page.body.contains("/?token=") && page.body.contains("--token"));
+    // The page's script still gets JSON, which it shows in its own words.
+    let api = request(addr, "GET", "/api/runs", &[], "");
+    assert_eq!(api.status, 401);
+    assert!(api.json()["error"].as_str().unwrap().contains("--token"));
+}
+
+#[test]
+fn a_lab_started_with_a_token_keeps_it_across_restarts() {
+    let tmp = tempfile::tempdir().unwrap();
+    let token = "0123456789abcdef-kept_token";
+    let start = || {
+        let mut opts = LabOptions::new(tmp.path().join("lab"));
+        opts.port = 0;
+        opts.threads = Some(1);
+        opts.token = Some(token.to_string());
+        Lab::start(opts).expect("lab starts")
+    };
+    for _ in 0..2 {
+        let lab = start();
+        assert_eq!(lab.token(), token);
+        assert!(lab.url().ends_with(&format!("/?token={token}")));
+        let auth = [format!("x-fuzzymotiv-token: {token}")];
+        assert_eq!(
+            request(lab.addr(), "GET", "/api/runs", &auth, "").status,
+            200
+        );
+        lab.stop();
+    }
+}
+
+#[test]
+fn stopped_runs_stay_in_the_list_marked_stopped() {
+    let c = Client::start();
+    let busy = c.post("/api/runs", &small(400, 1)).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    // More stopped runs than the lab keeps curves of: each is queued, then stopped.
+    let mut stopped = Vec::new();
+    for seed in 0..40 {
+        let a = c.post("/api/runs", &small(2, 100 + seed));
+        assert_eq!(a.status, 201, "{}", a.body);
+        let id = a.json()["id"].as_str().unwrap().to_string();
+        assert_eq!(
+            c.post(&format!("/api/runs/{id}/cancel"), &json!({})).status,
+            200
+        );
+        stopped.push(id);
+    }
+    assert_eq!(
+        c.post(&format!("/api/runs/{busy}/cancel"), &json!({}))
+            .status,
+        200
+    );
+    let list = c.get("/api/runs").json();
+    let listed: Vec<&Value> = list.as_array().unwrap().iter().collect();
+    for id in &stopped {
+        let run = listed.iter().find(|r| r["id"] == id.as_str());
+        assert_eq!(
+            run.map(|r| &r["status"]),
+            Some(&json!("stopped")),
+            "{id}: {list}"
+        );
+    }
+}
+
+#[test]
+fn comparing_two_runs_tests_every_measure_over_their_test_runs_as_compare_does() {
+    let c = Client::start();
+    let ids: Vec<String> = [1, 2]
+        .iter()
+        .map(|&seed| {
+            let a = c.post("/api/runs", &small(2, seed));
+            assert_eq!(a.status, 201, "{}", a.body);
+            a.json()["id"].as_str().unwrap().to_string()
+        })
+        .collect();
+    for id in &ids {
+        assert_eq!(events(&c, id).last().unwrap().1["status"], "finished");
+    }
+    let r = c.get(&format!("/api/compare?a={}&b={}", ids[0], ids[1]));
+    assert_eq!(r.status, 200, "{}", r.body);
+    let r = r.json();
+    let tests = r["tests"].as_array().unwrap();
+    // What `fuzzymotiv compare A B` computes for the two run directories, row for row.
+    use fuzzymotiv_io::pipeline::compare::{choose, compare, load};
+    let runs = c.lab.dir().join("runs");
+    let a = load(&runs.join(&ids[0]), "A").unwrap();
+    let b = load(&runs.join(&ids[1]), "B").unwrap();
+    let cli = compare(&a, &b, &choose(&a, &b, &[]).unwrap(), 0.05).unwrap();
+    assert_eq!(tests.len(), cli.rows.len());
+    for (t, row) in tests.iter().zip(&cli.rows) {
+        let mut t = t.clone();
+        assert!(t.as_object_mut().unwrap().remove("verdict").is_some());
+        assert_eq!(t, serde_json::to_value(row).unwrap());
+    }
+    let metrics: Vec<&str> = tests
+        .iter()
+        .map(|t| t["metric"].as_str().unwrap())
+        .collect();
+    assert!(metrics.contains(&"recognition_pct"), "{metrics:?}");
+    assert!(tests.iter().all(|t| t["n_a"].as_u64() > Some(1)), "{r}");
+    assert!(r["note"].as_str().unwrap().contains("test runs"), "{r}");
 }

@@ -29,6 +29,28 @@ pub struct LabArgs {
     /// `localhost`.
     #[arg(long, value_name = "ADDR", value_parser = bind_address)]
     bind: Option<IpAddr>,
+    /// The access token [default: a new random one at every start]. Giving the same one again
+    /// lets the pages open before a restart go on working: 16 to 128 letters, digits, `-` or
+    /// `_` (e.g. from `openssl rand -hex 16`).
+    #[arg(long, value_name = "TOKEN", value_parser = token)]
+    token: Option<String>,
+}
+
+/// `--token`'s value: long enough not to be guessed, and safe in a URL and a cookie.
+fn token(value: &str) -> Result<String, String> {
+    let chars_ok = value
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
+    if (16..=128).contains(&value.len()) && chars_ok {
+        Ok(value.to_string())
+    } else {
+        Err(format!(
+            "expected 16 to 128 letters, digits, `-` or `_` (got {} characters{}), e.g. the \
+             output of `openssl rand -hex 16`",
+            value.chars().count(),
+            if chars_ok { "" } else { ", some of them other" }
+        ))
+    }
 }
 
 /// `--bind`'s value: an IP address or `localhost` (no name lookup: the lab must know which
@@ -49,6 +71,7 @@ pub fn lab(args: LabArgs) -> Result<(), CliError> {
     let mut opts = LabOptions::new(args.dir);
     opts.port = args.port;
     opts.threads = args.threads;
+    opts.token = args.token;
     if let Some(bind) = args.bind {
         if !bind.is_loopback() {
             note!(

@@ -230,6 +230,8 @@ fn setting_points(groups: &Groups<'_>) -> Vec<SettingPoint> {
             label,
             motivations,
             values: std::array::from_fn(|k| mean_std(&vals[k + 1]).0),
+            spread: std::array::from_fn(|k| mean_std(&vals[k + 1]).1),
+            n: std::array::from_fn(|k| vals[k + 1].len()),
         })
         .collect()
 }

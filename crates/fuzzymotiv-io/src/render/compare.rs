@@ -223,7 +223,7 @@ pub fn compare_svg(title: &str, rows: &[CompareRow], alpha: f64) -> String {
     let panel_h = 50.0 + ROW_H * most;
     let (w, h) = (
         LABEL_W + PANEL_W * metrics.len().max(1) as f64 + 10.0,
-        40.0 + panel_h * settings.len().max(1) as f64,
+        40.0 + panel_h * settings.len().max(1) as f64 + LEGEND_H,
     );
     let mut svg = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {w:.0} {h:.0}\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"8\" y=\"20\" font-size=\"14\" font-weight=\"bold\">{}</text>\n",
@@ -238,9 +238,47 @@ pub fn compare_svg(title: &str, rows: &[CompareRow], alpha: f64) -> String {
         let (x0, y0) = (LABEL_W + PANEL_W * mx as f64, 40.0 + panel_h * sx as f64);
         panel(&mut svg, b, (x0, y0), mx == 0, alpha);
     }
+    legend(&mut svg, h - LEGEND_H, alpha);
     svg.push_str("</svg>\n");
     svg
 }
+
+/// Height of [`compare_svg`]'s legend under its panels.
+const LEGEND_H: f64 = 52.0;
+
+/// What the colours and marks of [`compare_svg`] mean, one entry a row from `top`.
+fn legend(svg: &mut String, top: f64, alpha: f64) {
+    let entries = [
+        (
+            SIGNIFICANT,
+            format!("A − B, Holm-adjusted p < {alpha}: a difference"),
+        ),
+        (
+            NOT_SIGNIFICANT,
+            format!("A − B, p ≥ {alpha}: no clear difference"),
+        ),
+    ];
+    for (k, (colour, text)) in entries.iter().enumerate() {
+        let y = top + 12.0 + 15.0 * k as f64;
+        let _ = writeln!(
+            svg,
+            "<line x1=\"10\" x2=\"30\" y1=\"{:.1}\" y2=\"{:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/><circle cx=\"20\" cy=\"{:.1}\" r=\"3.5\" fill=\"{colour}\"/><text x=\"36\" y=\"{y:.1}\">{}</text>",
+            y - 4.0,
+            y - 4.0,
+            y - 4.0,
+            esc(text)
+        );
+    }
+    let _ = writeln!(
+        svg,
+        "<text x=\"10\" y=\"{:.1}\" fill=\"#555\">line: 95 % interval; dashed: A − B = 0</text>",
+        top + 42.0
+    );
+}
+
+/// Colour of a difference at p < α, and of one that is not.
+const SIGNIFICANT: &str = "#d62728";
+const NOT_SIGNIFICANT: &str = "#1f77b4";
 
 /// One panel of [`compare_svg`] at (x0, y0); room labels on its left when `labels`.
 fn panel(svg: &mut String, block: &[CompareRow], (x0, y0): (f64, f64), labels: bool, alpha: f64) {
@@ -272,9 +310,9 @@ fn panel(svg: &mut String, block: &[CompareRow], (x0, y0): (f64, f64), labels: b
     for (k, r) in block.iter().enumerate() {
         let y = y0 + 30.0 + ROW_H * (k as f64 + 0.5);
         let colour = if r.p_holm < alpha {
-            "#d62728"
+            SIGNIFICANT
         } else {
-            "#1f77b4"
+            NOT_SIGNIFICANT
         };
         if labels {
             let _ = writeln!(

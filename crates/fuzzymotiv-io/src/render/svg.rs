@@ -28,6 +28,13 @@ pub fn text_width_at(text: &str, bold: bool, size: f64) -> f64 {
     text.chars().count() as f64 * size * if bold { 0.68 } else { 0.62 }
 }
 
+/// A coordinate or size as figures print it: rounded to 2 decimals, so that Rust's shortest
+/// round-trip formatting writes at most 2 (`428.52`, never `428.52000000000004`). Every
+/// computed number a figure writes into an attribute goes through it.
+pub fn px(v: f64) -> f64 {
+    (v * 100.0).round() / 100.0 + 0.0
+}
+
 /// Colours for rooms (and other categories), in order; cycles after ten.
 pub const PALETTE: [&str; 10] = [
     "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
@@ -141,7 +148,7 @@ pub fn fitness_panels_svg(panels: &[FitnessPanel]) -> String {
     let widths: Vec<f64> = panels
         .iter()
         // The title is centred over the plot area, which is off the panel's centre.
-        .map(|p| 420f64.max(text_width(&p.title, true) + ml - mr + 10.0))
+        .map(|p| px(420f64.max(text_width(&p.title, true) + ml - mr + 10.0)))
         .collect();
     let legends: Vec<Vec<(LegendMark, &str)>> = panels.iter().map(fitness_legend).collect();
     let legend_top = y0 + 54.0;
@@ -152,7 +159,7 @@ pub fn fitness_panels_svg(panels: &[FitnessPanel]) -> String {
         .max()
         .unwrap_or(1);
     let ph = legend_top + 16.0 * (rows - 1) as f64 + 10.0;
-    let width: f64 = widths.iter().sum::<f64>().max(1.0);
+    let width = px(widths.iter().sum::<f64>().max(1.0));
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -253,7 +260,7 @@ enum LegendMark {
 
 /// Width of a legend entry: a 20 px mark, a gap, the text, and room before the next entry.
 fn legend_entry_width(text: &str) -> f64 {
-    26.0 + text_width(text, false) + 14.0
+    px(26.0 + text_width(text, false) + 14.0)
 }
 
 /// Rows a legend needs when its entries flow left to right in `width` px.
@@ -284,8 +291,9 @@ fn draw_legend(s: &mut String, entries: &[(LegendMark, &str)], (x0, x1): (f64, f
             LegendMark::Line(colour) => {
                 let _ = writeln!(
                     s,
-                    r#"<line x1="{x}" x2="{}" y1="{}" y2="{}" stroke="{colour}" stroke-width="2"/>"#,
-                    x + 20.0,
+                    r#"<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="{colour}" stroke-width="2"/>"#,
+                    px(x),
+                    px(x + 20.0),
                     y - 4.0,
                     y - 4.0
                 );
@@ -302,7 +310,13 @@ fn draw_legend(s: &mut String, entries: &[(LegendMark, &str)], (x0, x1): (f64, f
                 }
             }
         }
-        let _ = writeln!(s, r#"<text x="{}" y="{y}">{}</text>"#, x + 26.0, esc(text));
+        let _ = writeln!(
+            s,
+            r#"<text x="{}" y="{}">{}</text>"#,
+            px(x + 26.0),
+            px(y),
+            esc(text)
+        );
         x += w;
     }
 }
@@ -586,11 +600,12 @@ fn panel_frame(
     generations: usize,
     y_label: &str,
 ) {
+    let (x0, x1, y0, y1) = (px(x0), px(x1), px(y0), px(y1));
     let y = |f: f64| y0 + (y1 - y0) * f;
     let _ = writeln!(
         s,
         r#"<text x="{}" y="18" text-anchor="middle" font-weight="bold">{}</text>"#,
-        (x0 + x1) / 2.0,
+        px((x0 + x1) / 2.0),
         esc(name)
     );
     let y_ticks = Ticks::nice(0.0, 1.0, 5, false);
@@ -636,10 +651,10 @@ fn axis_labels(
     let _ = writeln!(
         s,
         r#"<text x="{}" y="{x_label_y}" text-anchor="middle">{}</text>"#,
-        (x0 + x1) / 2.0,
+        px((x0 + x1) / 2.0),
         esc(x)
     );
-    let (cx, cy) = (x0 - 36.0, (y0 + y1) / 2.0);
+    let (cx, cy) = (px(x0 - 36.0), px((y0 + y1) / 2.0));
     let _ = writeln!(
         s,
         r#"<text x="{cx}" y="{cy}" text-anchor="middle" transform="rotate(-90 {cx} {cy})">{}</text>"#,
@@ -657,9 +672,9 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
     let widths: Vec<f64> = panels
         .iter()
         // The title is centred over the plot area, left of the panel's centre.
-        .map(|(title, _)| 520f64.max(text_width(title, true) + mr - ml + 10.0))
+        .map(|(title, _)| px(520f64.max(text_width(title, true) + mr - ml + 10.0)))
         .collect();
-    let width: f64 = widths.iter().sum::<f64>().max(1.0);
+    let width = px(widths.iter().sum::<f64>().max(1.0));
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -685,24 +700,43 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
             hist.len(),
             "population mean",
         );
-        for (k, (label, colour, pick)) in series.iter().enumerate() {
+        let mut ly = y1 + 10.0;
+        for (label, colour, pick) in &series {
             let pts: String = hist
                 .iter()
                 .enumerate()
                 .map(|(g, r)| format!("{:.1},{:.1} ", x(g), y(pick(r))))
                 .collect();
+            // A term at 0 throughout (l when O = 0) lies on the x axis: dashed and wider, so
+            // it shows there, and its legend says so.
+            let zero = !hist.is_empty() && hist.iter().all(|r| pick(r) == 0.0);
+            let dash = if zero {
+                r#" stroke-width="3" stroke-dasharray="6 4""#
+            } else {
+                r#" stroke-width="1.8""#
+            };
             let _ = writeln!(
                 s,
-                r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8" stroke-linejoin="round"/>"#
+                r#"<polyline points="{pts}" fill="none" stroke="{colour}"{dash} stroke-linejoin="round"/>"#
             );
-            let (lx, ly) = (x1 + 10.0, y1 + 10.0 + 16.0 * k as f64);
+            let lx = px(x1 + 10.0);
             let _ = writeln!(
                 s,
-                r#"<line x1="{lx}" x2="{}" y1="{ly}" y2="{ly}" stroke="{colour}" stroke-width="2"/><text x="{}" y="{}">{label}</text>"#,
-                lx + 16.0,
-                lx + 20.0,
+                r#"<line x1="{lx}" x2="{}" y1="{ly}" y2="{ly}" stroke="{colour}"{dash}/><text x="{}" y="{}">{label}</text>"#,
+                px(lx + 16.0),
+                px(lx + 20.0),
                 ly + 4.0
             );
+            if zero {
+                ly += 14.0;
+                let _ = writeln!(
+                    s,
+                    r##"<text x="{}" y="{}" font-size="10" fill="#555">(0 throughout)</text>"##,
+                    px(lx + 20.0),
+                    ly + 4.0
+                );
+            }
+            ly += 16.0;
         }
         ox += pw;
     }
@@ -989,6 +1023,10 @@ pub struct SettingPoint {
     pub motivations: [f64; 4],
     /// Mean exploration %, recognition %, battery %, homing % (None when not measured).
     pub values: [Option<f64>; 4],
+    /// Their sample standard deviations (None for fewer than two values).
+    pub spread: [Option<f64>; 4],
+    /// How many values (rooms × replicates) each mean is over.
+    pub n: [usize; 4],
 }
 
 /// A colour for a value in [0, 100]: dark blue → teal → yellow.
@@ -1026,7 +1064,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
     let (pw, ph) = if ternary {
         (330.0, 330.0)
     } else {
-        (330.0, 60.0 + 22.0 * points.len() as f64)
+        (390.0, 60.0 + 22.0 * points.len() as f64)
     };
     let width = pw * 4.0;
     let height = ph + 56.0;
@@ -1054,8 +1092,13 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
     }
     let _ = writeln!(
         s,
-        r##"<text x="8" y="{:.0}" fill="#555">Means over rooms and replicates per motivation setting (C, H, O, E).</text>"##,
-        height - 6.0
+        r##"<text x="8" y="{:.0}" fill="#555">{}</text>"##,
+        height - 6.0,
+        if ternary {
+            "Means over rooms and replicates per motivation setting (C, H, O, E); under each panel the range of their sample std and n; each point's tooltip gives its own."
+        } else {
+            "Means over rooms and replicates per motivation setting (C, H, O, E); whiskers ± 1 sample std; n values per mean."
+        }
     );
     s.push_str("</svg>\n");
     s
@@ -1103,9 +1146,10 @@ fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw:
             Some(v) => {
                 let _ = writeln!(
                     s,
-                    r##"<circle cx="{x:.1}" cy="{y:.1}" r="7" fill="{}" stroke="#333" stroke-width="0.5"><title>{}: {v:.1}</title></circle>"##,
+                    r##"<circle cx="{x:.1}" cy="{y:.1}" r="7" fill="{}" stroke="#333" stroke-width="0.5"><title>{}: {}</title></circle>"##,
                     value_colour(v),
-                    esc(&p.label)
+                    esc(&p.label),
+                    mean_spread_n(p, k)
                 );
             }
             None => {
@@ -1116,6 +1160,13 @@ fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw:
             }
         }
     }
+    let _ = writeln!(
+        s,
+        r##"<text x="{:.1}" y="{:.1}" fill="#555">{}</text>"##,
+        ox + 35.0,
+        y0 + 34.0,
+        spread_range(points, k)
+    );
     // Colour key.
     for i in 0..=10 {
         let v = i as f64 * 10.0;
@@ -1143,15 +1194,41 @@ fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw:
     }
 }
 
-/// Panel `k` of [`sweep_summary_svg`] for a few settings: one labelled bar each, over a scale
-/// from 0 to 100 with ticks at round values.
+/// "56.7 ± 50.1, n 15": outcome `k` of a setting, its sample std (when there are two values
+/// or more) and how many values the mean is over.
+fn mean_spread_n(p: &SettingPoint, k: usize) -> String {
+    let mean = p.values[k].map_or("—".to_string(), |v| format!("{v:.1}"));
+    let spread = p.spread[k].map_or(String::new(), |d| format!(" ± {d:.1}"));
+    format!("{mean}{spread}, n {}", p.n[k])
+}
+
+/// "± std 12.0 to 50.1, n 15": the range of outcome `k`'s sample std and n over the settings.
+fn spread_range(points: &[SettingPoint], k: usize) -> String {
+    let range = |v: Vec<f64>, d: usize| match (
+        v.iter().copied().reduce(f64::min),
+        v.iter().copied().reduce(f64::max),
+    ) {
+        (Some(lo), Some(hi)) if lo == hi => format!("{lo:.d$}"),
+        (Some(lo), Some(hi)) => format!("{lo:.d$} to {hi:.d$}"),
+        _ => "—".to_string(),
+    };
+    let spreads = points.iter().filter_map(|p| p.spread[k]).collect();
+    let ns = points.iter().map(|p| p.n[k] as f64).collect();
+    format!("± std {}, n {} per point", range(spreads, 1), range(ns, 0))
+}
+
+/// Panel `k` of [`sweep_summary_svg`] for a few settings: one labelled bar each (the mean),
+/// a whisker of ± 1 sample std and the numbers with n, over a scale from 0 to 100 with ticks
+/// at round values.
 fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
+    const SCALE: f64 = 1.3;
     let axis_y = 40.0 + 22.0 * points.len() as f64;
+    let at = |v: f64| ox + 130.0 + SCALE * v.clamp(0.0, 100.0);
     let _ = writeln!(
         s,
         r##"<line x1="{:.1}" x2="{:.1}" y1="{axis_y:.1}" y2="{axis_y:.1}" stroke="#333"/>"##,
-        ox + 130.0,
-        ox + 290.0
+        at(0.0),
+        at(100.0)
     );
     let ticks = Ticks::nice(0.0, 100.0, 5, true);
     for &v in &ticks.values {
@@ -1161,7 +1238,7 @@ fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
             axis_y + 3.0,
             axis_y + 14.0,
             ticks.label(v),
-            xv = ox + 130.0 + 1.6 * v
+            xv = at(v)
         );
     }
     for (i, p) in points.iter().enumerate() {
@@ -1178,16 +1255,32 @@ fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
             m[3]
         );
         if let Some(v) = p.values[k] {
-            let w = 160.0 * (v / 100.0).clamp(0.0, 1.0);
             let _ = writeln!(
                 s,
-                r##"<rect x="{:.1}" y="{y:.1}" width="{w:.1}" height="15" fill="{}"/><text x="{:.1}" y="{:.1}">{v:.1}</text>"##,
-                ox + 130.0,
+                r##"<rect x="{:.1}" y="{y:.1}" width="{:.1}" height="15" fill="{}"/>"##,
+                at(0.0),
+                at(v) - at(0.0),
                 value_colour(v),
-                ox + 134.0 + w,
-                y + 12.0
             );
+            if let Some(d) = p.spread[k] {
+                let (lo, hi, mid) = (at(v - d), at(v + d), y + 7.5);
+                let _ = writeln!(
+                    s,
+                    r##"<path d="M{lo:.1},{:.1}V{:.1}M{lo:.1},{mid:.1}H{hi:.1}M{hi:.1},{:.1}V{:.1}" stroke="#000" stroke-width="1.2" fill="none" class="spread"/>"##,
+                    mid - 4.0,
+                    mid + 4.0,
+                    mid - 4.0,
+                    mid + 4.0
+                );
+            }
         }
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}">{}</text>"#,
+            at(100.0) + 6.0,
+            y + 12.0,
+            mean_spread_n(p, k)
+        );
     }
 }
 
@@ -1313,6 +1406,58 @@ mod tests {
         all.insert(1, wall);
         all.insert(3, u);
         (0..n).map(|k| all[k % all.len()].clone()).collect()
+    }
+
+    /// Every number in an attribute value of `svg` has at most 2 decimals.
+    fn assert_compact_numbers(svg: &str, what: &str) {
+        for value in svg.split("=\"").skip(1).filter_map(|v| v.split('"').next()) {
+            for token in value.split(|c: char| !(c.is_ascii_digit() || c == '.')) {
+                let decimals = token.split_once('.').map_or(0, |(_, d)| d.len());
+                assert!(decimals <= 2, "{what}: `{token}` in `{value}`");
+            }
+        }
+    }
+
+    #[test]
+    fn figure_attributes_print_numbers_with_at_most_two_decimals() {
+        let long = "a title long enough to widen its panel by a fraction of a pixel";
+        let runs = vec![
+            (long.to_string(), history(7, 1)),
+            ("b".into(), history(3, 2)),
+        ];
+        assert_compact_numbers(&fitness_svg(&runs), "fitness");
+        assert_compact_numbers(&terms_svg(&runs), "terms");
+        assert_compact_numbers(&membership_svg(&[0.0, 0.3, 1.0], &[]), "membership");
+    }
+
+    #[test]
+    fn terms_figure_shows_a_term_at_zero_dashed_and_says_so() {
+        let svg = terms_svg(&[("run".to_string(), history(5, 1))]);
+        // history() has all terms 0: each is dashed, in the plot and in the legend.
+        assert_eq!(svg.matches(r#"stroke-dasharray="6 4""#).count(), 8, "{svg}");
+        assert_eq!(svg.matches("(0 throughout)").count(), 4, "{svg}");
+        let mut hist = history(5, 1);
+        hist[2].terms.a = 0.5;
+        let svg = terms_svg(&[("run".to_string(), hist)]);
+        assert_eq!(svg.matches("(0 throughout)").count(), 3, "{svg}");
+        assert_texts_fit(&svg, "terms with zero terms");
+    }
+
+    #[test]
+    fn sweep_summary_bars_show_spread_and_n() {
+        let p = SettingPoint {
+            label: "x".into(),
+            motivations: [0.8, 0.1, 0.0, 0.1],
+            values: [Some(56.7), Some(28.7), None, Some(100.0)],
+            spread: [Some(50.1), None, None, Some(0.0)],
+            n: [15, 15, 0, 15],
+        };
+        let svg = sweep_summary_svg(&[p]);
+        assert!(svg.contains("56.7 ± 50.1, n 15"), "{svg}");
+        assert!(svg.contains("28.7, n 15"), "{svg}");
+        assert_eq!(svg.matches(r#"class="spread""#).count(), 2, "{svg}");
+        assert_texts_fit(&svg, "sweep summary bars");
+        assert_compact_numbers(&svg, "sweep summary");
     }
 
     #[test]
@@ -1468,6 +1613,8 @@ mod tests {
                     label: format!("setting-{k}"),
                     motivations: [0.5, 0.25, 0.0, 0.25],
                     values: [Some(100.0), Some(12.5 * k as f64), None, Some(0.0)],
+                    spread: [Some(0.0), Some(50.0), None, Some(3.25)],
+                    n: [15, 15, 0, 15],
                 })
                 .collect();
             assert_texts_fit(

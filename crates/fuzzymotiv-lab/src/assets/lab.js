@@ -24,7 +24,10 @@ function html(tag, text, parent) {
   if (parent) parent.appendChild(e);
   return e;
 }
+const TOKEN_GONE = 'The lab no longer accepts this page: it was restarted, and each start makes a new access token ' +
+  'unless started with --token. Open the address `fuzzymotiv lab` printed (…/?token=…) to go on.';
 function showError(msg) {
+  if (lab.locked && msg !== TOKEN_GONE) return;
   const bar = $('error-bar');
   bar.textContent = msg;
   bar.hidden = !msg;
@@ -33,6 +36,13 @@ async function api(method, url, body) {
   const opts = { method, headers: {} };
   if (body !== undefined) { opts.body = JSON.stringify(body); opts.headers['content-type'] = 'application/json'; }
   const r = await fetch(url, opts);
+  if (r.status === 401) {
+    lab.locked = true;
+    const e = new Error(TOKEN_GONE);
+    showError(TOKEN_GONE);
+    e.status = 401;
+    throw e;
+  }
   const data = await r.json().catch(() => ({}));
   if (!r.ok) { const e = new Error(data.error || r.statusText); e.data = data; e.status = r.status; throw e; }
   return data;
@@ -210,25 +220,58 @@ function setupEditor() {
 }
 
 // ---- 3. Evolve ------------------------------------------------------------------------------
+// Round tick values over [lo, hi]: every multiple of a 1, 2 or 5 × 10^k step, about `target`
+// intervals (the figures' Ticks::nice); `integer` keeps the step at least 1.
+function niceTicks(lo, hi, target, integer) {
+  if (!(hi > lo)) return { step: 1, values: [lo] };
+  const raw = (hi - lo) / target, mag = Math.pow(10, Math.floor(Math.log10(raw)));
+  let step = [1, 2, 5, 10].map((m) => m * mag).find((v) => v >= raw * (1 - 1e-9));
+  if (integer) step = Math.max(1, step);
+  const values = [];
+  for (let k = Math.ceil(lo / step - 1e-9); k <= Math.floor(hi / step + 1e-9); k++) values.push(k * step);
+  return { step, values };
+}
+function tickLabel(v, step) {
+  return v.toFixed(Math.max(0, -Math.floor(Math.log10(step))));
+}
+// A chart of `series` per generation: y from 0 to yMax, ticks and labels on both axes; a series
+// at 0 throughout lies on the x axis, so it is dashed and its legend says "= 0".
 function chart(svg, series, yMax) {
   svg.replaceChildren();
   const n = Math.max(2, ...series.map((s) => s.values.length));
-  const X = (i) => 30 + (i / (n - 1)) * 360, Y = (v) => 185 - (v / yMax) * 170;
-  el('line', { x1: 30, y1: 185, x2: 390, y2: 185, stroke: '#999' }, svg);
-  el('line', { x1: 30, y1: 15, x2: 30, y2: 185, stroke: '#999' }, svg);
-  el('text', { x: 4, y: 20, 'font-size': 10 }, svg).textContent = yMax.toFixed(1);
-  el('text', { x: 380, y: 198, 'font-size': 10 }, svg).textContent = String(n - 1);
-  series.forEach((s, k) => {
-    const line = el('polyline', { points: s.values.map((v, i) => `${X(i)},${Y(v)}`).join(' '), fill: 'none', stroke: s.color, 'stroke-width': 2 }, svg);
+  const [x0, x1, y0, y1] = [38, 392, 170, 22];
+  const X = (i) => x0 + (i / (n - 1)) * (x1 - x0), Y = (v) => y0 - (v / yMax) * (y0 - y1);
+  const yt = niceTicks(0, yMax, 5, false);
+  yt.values.forEach((v) => {
+    el('line', { x1: x0, y1: Y(v), x2: x1, y2: Y(v), stroke: '#eee' }, svg);
+    el('line', { x1: x0 - 4, y1: Y(v), x2: x0, y2: Y(v), stroke: '#666' }, svg);
+    el('text', { x: x0 - 6, y: Y(v) + 3, 'font-size': 9, 'text-anchor': 'end', class: 'y-tick' }, svg).textContent = tickLabel(v, yt.step);
+  });
+  const xt = niceTicks(0, n - 1, 6, true);
+  xt.values.forEach((g) => {
+    el('line', { x1: X(g), y1: y0, x2: X(g), y2: y0 + 4, stroke: '#666' }, svg);
+    el('text', { x: X(g), y: y0 + 13, 'font-size': 9, 'text-anchor': 'middle', class: 'x-tick' }, svg).textContent = String(g);
+  });
+  el('line', { x1: x0, y1: y0, x2: x1, y2: y0, stroke: '#666' }, svg);
+  el('line', { x1: x0, y1: y1, x2: x0, y2: y0, stroke: '#666' }, svg);
+  el('text', { x: (x0 + x1) / 2, y: 197, 'font-size': 9, 'text-anchor': 'middle' }, svg).textContent = 'generation';
+  let lx = x0 + 4;
+  series.forEach((s) => {
+    const zero = s.values.length > 0 && s.values.every((v) => v === 0);
+    const dash = zero ? { 'stroke-dasharray': '6 4', 'stroke-width': 3 } : { 'stroke-width': 2 };
+    const line = el('polyline', { points: s.values.map((v, i) => `${X(i)},${Y(v)}`).join(' '), fill: 'none', stroke: s.color, ...dash }, svg);
     line.id = `${svg.id}-${s.name}`;
     line.setAttribute('data-points', String(s.values.length));
-    el('text', { x: 40 + k * 50, y: 12, 'font-size': 10, fill: s.color }, svg).textContent = s.name;
+    el('line', { x1: lx, y1: 9, x2: lx + 14, y2: 9, stroke: s.color, ...dash }, svg);
+    const label = el('text', { x: lx + 17, y: 12, 'font-size': 10, fill: s.color, class: 'legend' }, svg);
+    label.textContent = zero ? `${s.name} = 0 throughout` : s.name;
+    lx += 30 + label.textContent.length * 6;
   });
 }
 function drawCharts(gens, fit, terms) {
   const best = gens.map((g) => g.best), mean = gens.map((g) => g.mean);
   chart(fit, [{ name: 'best', values: best, color: COLORS.best }, { name: 'mean', values: mean, color: COLORS.mean }],
-    Math.max(1, ...best) * 1.05);
+    1);
   chart(terms, ['a', 'g', 'l', 'b'].map((k) => ({ name: k, values: gens.map((g) => g[k]), color: COLORS[k] })), 1);
 }
 function drawPaths(box, paths) {
@@ -270,6 +313,7 @@ function follow(id) {
   $('result').hidden = true;
   $('stop').disabled = false;
   $('run-status').textContent = `Run ${id}: waiting…`;
+  refreshRuns();
   drawCharts([], $('fitness-chart'), $('terms-chart'));
   $('paths').replaceChildren();
   const src = new EventSource(`/api/runs/${encodeURIComponent(id)}/events`);
@@ -331,6 +375,12 @@ async function saveRun() {
 async function refreshRuns() {
   let runs;
   try { runs = await api('GET', '/api/runs'); } catch (e) { return; }
+  const mine = runs.find((r) => r.id === lab.run);
+  if (mine && mine.status === 'queued' && lab.gens.length === 0) {
+    const ahead = mine.queue_position - 1 + (runs.some((r) => r.status === 'running') ? 1 : 0);
+    $('run-status').textContent = `Run ${mine.id}: waiting, place ${mine.queue_position} in the queue ` +
+      `(${ahead} run${ahead === 1 ? '' : 's'} before it)…`;
+  }
   const body = $('run-list').querySelector('tbody');
   body.replaceChildren();
   runs.slice().reverse().forEach((r) => {
@@ -377,16 +427,20 @@ async function compare() {
       paths.className = 'thumbs';
       drawPaths(paths, side.paths);
     });
-    html('h3', 'Differences A − B over rooms (library statistics, paired over rooms)', out);
-    const t = html('table', undefined, out);
-    const head = html('tr', undefined, t);
-    ['measure', 'rooms', 'A', 'B', 'A − B', '95 % interval', 'p', 'verdict'].forEach((h) => html('th', h, head));
-    r.tests.forEach((c) => {
-      const tr = html('tr', undefined, t);
-      const f = (v) => (typeof v === 'number' ? v.toFixed(3) : '—');
-      [c.measure, c.rooms, f(c.mean_a), f(c.mean_b), f(c.difference), c.error ? c.error : `[${f(c.ci_low)}, ${f(c.ci_high)}]`, f(c.p), c.verdict || '—']
-        .forEach((v) => html('td', String(v), tr));
-    });
+    html('h3', 'Differences A − B over the test runs (as fuzzymotiv compare)', out);
+    if (r.tests.length) {
+      const t = html('table', undefined, out);
+      t.id = 'differences';
+      const head = html('tr', undefined, t);
+      ['measure', 'room', 'n A', 'n B', 'A', 'B', 'A − B', '95 % interval', 'p (Holm)', 'verdict'].forEach((h) => html('th', h, head));
+      const names = { exploration_pct: '% exploration', homing_pct: '% homing', battery_pct: '% battery', recognition_pct: '% recognition' };
+      r.tests.forEach((c) => {
+        const tr = html('tr', undefined, t);
+        const f = (v) => (typeof v === 'number' ? v.toFixed(1) : '—');
+        [names[c.metric] || c.metric, c.room, c.n_a, c.n_b, f(c.mean_a), f(c.mean_b), f(c.difference), `[${f(c.ci_low)}, ${f(c.ci_high)}]`,
+          c.p_holm.toFixed(3), c.verdict].forEach((v) => html('td', String(v), tr));
+      });
+    }
     html('p', r.note, out).className = 'hint';
     showError('');
   } catch (e) { showError(e.message); }
