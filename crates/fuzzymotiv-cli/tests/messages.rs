@@ -3,6 +3,8 @@
 
 mod common;
 
+use std::path::Path;
+
 use common::{Fm, repo, stderr};
 
 /// `fuzzymotiv run` of the high-curiosity config with `sets`, expected to be refused with
@@ -29,5 +31,97 @@ fn a_nan_motivation_is_blamed_on_its_own_field() {
             "{name}: {msg}"
         );
         assert_eq!(msg.matches("motivations.").count(), 1, "{name}: {msg}");
+    }
+}
+
+/// Every command that takes `--threads` refuses a number outside 1..=256 (and a negative one,
+/// which clap would otherwise take for an option) with status 2 and a message naming
+/// `--threads`, the range and the value, before starting anything.
+#[test]
+fn threads_outside_1_to_256_are_refused_naming_the_option_and_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let sweep = repo().join("configs/sweep-small.toml");
+    let out = dir.path().join("out");
+    let (cfg, sweep, out) = (
+        cfg.to_str().unwrap(),
+        sweep.to_str().unwrap(),
+        out.to_str().unwrap(),
+    );
+    let commands: [&[&str]; 5] = [
+        &["run", cfg, "--out", out],
+        &["reproduce", "--quick", "--out", out],
+        &["bench", "--steps", "10"],
+        &["sweep", sweep, "--out", out],
+        &["lab", "--port", "0", "--dir", out],
+    ];
+    for command in commands {
+        for threads in ["0", "-1", "257", "100000"] {
+            let o = Fm::new(command).arg("--threads").arg(threads).run();
+            let msg = stderr(&o);
+            assert_eq!(
+                o.status.code(),
+                Some(2),
+                "{command:?} --threads {threads}: {msg}"
+            );
+            for part in ["--threads", "from 1 to 256", &format!("got {threads}")] {
+                assert!(msg.contains(part), "{command:?} --threads {threads}: {msg}");
+            }
+            assert!(
+                !Path::new(out).exists(),
+                "{command:?} --threads {threads} wrote {out}"
+            );
+        }
+    }
+}
+
+/// Numeric options take a leading hyphen as the start of their value, so their own check
+/// answers a negative number (not clap's "unexpected argument '-5'").
+#[test]
+fn negative_numbers_reach_the_options_own_check() {
+    let o = Fm::new([
+        "fuzzy",
+        "--motivations",
+        "-0.2,0.9,0.2,0.1",
+        "--fitness",
+        "1,1,1,1",
+    ])
+    .run();
+    let msg = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{msg}");
+    assert!(
+        msg.contains("--motivations") && msg.contains("curiosity") && msg.contains("-0.2"),
+        "{msg}"
+    );
+    // Fitness values are clamped to [0, 1], as the help says: -5 is 0.
+    let clamped = Fm::new([
+        "fuzzy",
+        "--motivations",
+        "0.8,0.1,0,0.1",
+        "--fitness",
+        "-5,0,0,0",
+    ])
+    .ok();
+    let zero = Fm::new([
+        "fuzzy",
+        "--motivations",
+        "0.8,0.1,0,0.1",
+        "--fitness",
+        "0,0,0,0",
+    ])
+    .ok();
+    assert_eq!(common::stdout(&clamped), common::stdout(&zero));
+    for (command, option) in [
+        (&["claims", "study", "--alpha", "-0.5"][..], "--alpha"),
+        (&["lab", "--port", "-1"][..], "--port"),
+        (&["bench", "--steps", "-1"][..], "--steps"),
+    ] {
+        let o = Fm::new(command).run();
+        let msg = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{command:?}: {msg}");
+        assert!(
+            msg.contains(option) && !msg.contains("unexpected argument"),
+            "{command:?}: {msg}"
+        );
     }
 }

@@ -16,7 +16,7 @@ pub struct ClaimsArgs {
     pub dir: PathBuf,
     /// Significance level α of the verdicts (0 < α < 1) and of the minimum detectable
     /// difference.
-    #[arg(long, default_value_t = CLAIMS_ALPHA)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = CLAIMS_ALPHA)]
     pub alpha: f64,
     /// Directory for claims.md and claims.csv (default: DIR itself; the same tables again are
     /// left alone, other ones are kept unless --force).

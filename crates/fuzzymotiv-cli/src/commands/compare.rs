@@ -25,7 +25,7 @@ pub struct CompareArgs {
     #[arg(long = "setting", value_name = "S")]
     pub setting: Vec<String>,
     /// Significance level α of the `*` marks and of the minimum detectable difference.
-    #[arg(long, default_value_t = CLAIMS_ALPHA)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = CLAIMS_ALPHA)]
     pub alpha: f64,
     /// Also write compare.png beside compare.svg.
     #[arg(long)]
