@@ -4,7 +4,9 @@
 use std::path::PathBuf;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_files};
+use fuzzymotiv_io::files::guard::{
+    FilesState, check_files, io_err, refuse_staging_name, write_files,
+};
 use fuzzymotiv_io::pipeline::compare::{check_comparable, choose, compare, load};
 use fuzzymotiv_io::render::study::CLAIMS_ALPHA;
 
@@ -44,6 +46,7 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
             args.alpha
         )));
     }
+    refuse_staging_name(&args.out, "--out")?;
     let a = load(&args.a, "A")?;
     let b = load(&args.b, "B")?;
     check_comparable(&a, &b)?;
