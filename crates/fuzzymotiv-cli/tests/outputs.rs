@@ -78,3 +78,29 @@ fn out_ending_in_partial_is_refused() {
         assert!(!staging.exists(), "{msg}");
     }
 }
+
+/// `--help` and `--version` write through the same standard output as every result: a full
+/// one is the README's one-line error with status 1, not a silent success.
+#[test]
+fn help_and_version_on_a_full_stdout_are_a_one_line_error() {
+    for args in [
+        &["--help"][..],
+        &["--version"],
+        &["-V"],
+        &["run", "--help"],
+        &["claims", "-h"],
+    ] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let o = common::bin().args(args).stdout(full).output().unwrap();
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert!(e.starts_with("error: standard output:"), "{args:?}: {e}");
+        assert_eq!(e.lines().count(), 1, "{args:?}: {e}");
+        // And on a working one, the help as before.
+        let o = common::bin().args(args).output().unwrap();
+        assert!(o.status.success() && !o.stdout.is_empty(), "{args:?}");
+    }
+}
