@@ -125,3 +125,51 @@ fn negative_numbers_reach_the_options_own_check() {
         );
     }
 }
+
+/// A huge or tiny number is shown compactly (`1e300`), not as hundreds of digits.
+#[test]
+fn numbers_in_messages_are_shown_compactly() {
+    for (set, field) in [
+        ("ga.parent_fraction=1e300", "ga.parent_fraction"),
+        ("motivations.homing=1e300", "motivations.homing"),
+        ("trial.dt=-1e-300", "trial.dt"),
+    ] {
+        let msg = refused_run(&[set]);
+        let value = set.split_once('=').unwrap().1;
+        assert!(
+            msg.contains(field) && msg.contains(&format!("got {value}")),
+            "{set}: {msg}"
+        );
+        assert!(!msg.contains("0000000000"), "{set}: {msg}");
+    }
+    let o = Fm::new(["claims", "study", "--alpha", "1e300"]).run();
+    let msg = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{msg}");
+    assert!(
+        msg.contains("--alpha") && msg.contains("got 1e300"),
+        "{msg}"
+    );
+}
+
+/// A value of the wrong type for a whole-number field (`1.5`, `-1`) is answered with the
+/// field's own range, not "a whole number ≥ 0".
+#[test]
+fn type_errors_state_the_fields_real_range() {
+    for (set, range) in [
+        ("ga.population=1.5", "a whole number from 2 to 1000000"),
+        ("ga.population=-1", "a whole number from 2 to 1000000"),
+        ("ga.generations=2.5", "a whole number from 1 to 1000000"),
+        ("trial.steps=-5", "a whole number from 1 to 10000000"),
+        ("aem.test_runs=0.5", "a whole number from 1 to 100000"),
+        ("network.hidden=\"six\"", "a whole number from 1 to 1024"),
+        ("ga.elite=-1", "a whole number from 0 to ga.population − 1"),
+        ("aem.threshold=-1", "a whole number ≥ 0"),
+    ] {
+        let msg = refused_run(&[set]);
+        let field = set.split_once('=').unwrap().0;
+        assert!(
+            msg.contains(&format!("field `{field}`")) && msg.contains(range),
+            "{set}: {msg}"
+        );
+    }
+}

@@ -38,7 +38,7 @@ pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
     if args.alpha.is_nan() || args.alpha <= 0.0 || args.alpha >= 1.0 {
         return Err(CliError::input(format!(
             "--alpha must be between 0 and 1 (exclusive), got {}",
-            args.alpha
+            fuzzymotiv::params::Num(args.alpha)
         )));
     }
     if let Some(out) = &args.out {

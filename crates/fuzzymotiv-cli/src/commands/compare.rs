@@ -43,7 +43,7 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
     if args.alpha.is_nan() || args.alpha <= 0.0 || args.alpha >= 1.0 {
         return Err(CliError::input(format!(
             "--alpha must be between 0 and 1 (exclusive), got {}",
-            args.alpha
+            fuzzymotiv::params::Num(args.alpha)
         )));
     }
     refuse_staging_name(&args.out, "--out")?;

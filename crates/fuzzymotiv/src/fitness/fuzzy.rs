@@ -26,6 +26,8 @@
 
 use std::fmt;
 
+use crate::params::Num;
+
 /// Tolerance on `|C + H + O + E − 1|` accepted by [`Motivations::new`].
 pub const MOTIVATION_SUM_TOLERANCE: f64 = 1e-9;
 
@@ -58,7 +60,7 @@ pub const PAPER_PEAKS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FuzzyError {
     /// One motivation is not a finite number in `[0, 1]`.
-    #[error("{name} must be a number in [0, 1], got {value}")]
+    #[error("{name} must be a number in [0, 1], got {}", Num(*.value))]
     MotivationOutOfRange {
         /// Field name: `curiosity`, `homing`, `orientation` or `energy`.
         name: &'static str,
@@ -68,7 +70,7 @@ pub enum FuzzyError {
     /// The four motivations do not sum to 1 (within
     /// [`MOTIVATION_SUM_TOLERANCE`]).
     #[error(
-        "motivations must sum to 1, got {sum} (curiosity {curiosity} + homing {homing} + orientation {orientation} + energy {energy}); a sum within 0.001 of 1 is normalised, farther off is an error"
+        "motivations must sum to 1, got {} (curiosity {} + homing {} + orientation {} + energy {}); a sum within 0.001 of 1 is normalised, farther off is an error", Num(*.sum), Num(*.curiosity), Num(*.homing), Num(*.orientation), Num(*.energy)
     )]
     MotivationSum {
         /// The actual sum `C + H + O + E`.
@@ -123,7 +125,7 @@ pub enum FuzzyError {
     /// A coefficient is NaN, infinite or larger in magnitude than
     /// [`MAX_COEFFICIENT_MAGNITUDE`].
     #[error(
-        "fuzzy.coefficients must be finite numbers with magnitude at most 1e300, got {value} at position {index} (0-based)"
+        "fuzzy.coefficients must be finite numbers with magnitude at most 1e300, got {} at position {index} (0-based)", Num(*.value)
     )]
     InvalidCoefficient {
         /// 0-based position in the list.
