@@ -96,23 +96,6 @@ pub fn load_config(
     resolve(raw, &base, &source)
 }
 
-/// The largest seed: 2^53 − 1, so every seed is exact in JSON for tools that read numbers as
-/// doubles (JavaScript, jq).
-pub const MAX_SEED: u64 = fuzzymotiv::experiment::config::MAX_SEED;
-
-/// Parses `--seed`: a whole number from 0 to 2^53 − 1, with a plain message otherwise.
-pub fn parse_seed(text: &str) -> Result<u64, String> {
-    text.trim()
-        .parse::<u64>()
-        .ok()
-        .filter(|&s| s <= MAX_SEED)
-        .ok_or_else(|| {
-            format!(
-                "`{text}` is not a seed; a seed is a whole number from 0 to {MAX_SEED} (2^53 − 1)"
-            )
-        })
-}
-
 /// The largest number of worker threads (`--threads` of every command, the lab's runs,
 /// Python's `threads=`). Results never depend on the number of threads, so threads beyond the
 /// machine's cores only cost memory (a stack each) and switching; 256 is at least the hardware
@@ -143,6 +126,23 @@ pub fn parse_threads(text: &str) -> Result<usize, String> {
             "must be a whole number from 1 to {MAX_THREADS}, got `{text}`"
         )),
     }
+}
+
+/// The largest seed: 2^53 − 1, so every seed is exact in JSON for tools that read numbers as
+/// doubles (JavaScript, jq).
+pub const MAX_SEED: u64 = fuzzymotiv::experiment::config::MAX_SEED;
+
+/// Parses `--seed`: a whole number from 0 to 2^53 − 1, with a plain message otherwise.
+pub fn parse_seed(text: &str) -> Result<u64, String> {
+    text.trim()
+        .parse::<u64>()
+        .ok()
+        .filter(|&s| s <= MAX_SEED)
+        .ok_or_else(|| {
+            format!(
+                "`{text}` is not a seed; a seed is a whole number from 0 to {MAX_SEED} (2^53 − 1)"
+            )
+        })
 }
 
 /// The contents of `config.resolved.toml`: the resolved config with the program version on top,
