@@ -115,14 +115,33 @@ fn negative_numbers_reach_the_options_own_check() {
         (&["claims", "study", "--alpha", "-0.5"][..], "--alpha"),
         (&["lab", "--port", "-1"][..], "--port"),
         (&["bench", "--steps", "-1"][..], "--steps"),
+        (&["reproduce", "--seeds", "-1"][..], "--seeds"),
+        (
+            &["sweep", "s.toml", "--out", "o", "--index", "-1"][..],
+            "--index",
+        ),
+        (
+            &[
+                "run",
+                "--continue",
+                "r",
+                "--generations",
+                "-1",
+                "--out",
+                "o",
+            ][..],
+            "--generations",
+        ),
     ] {
+        let value = command[command.iter().position(|a| *a == option).unwrap() + 1];
         let o = Fm::new(command).run();
         let msg = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{command:?}: {msg}");
         assert!(
-            msg.contains(option) && !msg.contains("unexpected argument"),
+            msg.contains(option) && msg.contains(value) && !msg.contains("unexpected argument"),
             "{command:?}: {msg}"
         );
+        assert!(!msg.contains("invalid digit"), "{command:?}: {msg}");
     }
 }
 

@@ -76,7 +76,8 @@ pub struct ReplayArgs {
         allow_hyphen_values = true,
         value_name = "N",
         default_value_t = 1,
-        requires = "gif"
+        requires = "gif",
+        value_parser = crate::args::whole_number
     )]
     pub stride: usize,
     /// GIF frames per second (0.01 to 50; the last frame is held for a second).

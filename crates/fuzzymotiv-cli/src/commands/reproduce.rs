@@ -52,7 +52,7 @@ pub struct ReproduceArgs {
     pub output: OutputArgs,
     /// Number of seeds per setting; tables give mean ± std over them and every seed's values.
     /// Ten by default: five paired seeds cannot give p < 0.05 (README: why ten).
-    #[arg(long, allow_hyphen_values = true, default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=1000))]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 10, value_parser = clap::builder::RangedI64ValueParser::<u64>::new().range(1..=1000))]
     pub seeds: u64,
     /// A fast look: GA 30 × 30 instead of the paper's 200 × 200.
     #[arg(long)]

@@ -40,7 +40,8 @@ pub struct RunArgs {
         long,
         allow_hyphen_values = true,
         value_name = "N",
-        requires = "continue_from"
+        requires = "continue_from",
+        value_parser = crate::args::whole_number
     )]
     pub generations: Option<usize>,
     /// --out, --force, --quiet, --seed.

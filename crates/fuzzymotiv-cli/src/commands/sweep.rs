@@ -58,7 +58,7 @@ pub struct SweepArgs {
     #[arg(long, allow_hyphen_values = true, value_name = "I/N", conflicts_with_all = ["index", "index_from_env"])]
     pub shard: Option<String>,
     /// Run only job K (0-based plan index).
-    #[arg(long, allow_hyphen_values = true, conflicts_with = "index_from_env")]
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "index_from_env", value_parser = crate::args::whole_number)]
     pub index: Option<usize>,
     /// Read the job index from an environment variable, e.g. SLURM_ARRAY_TASK_ID,
     /// JOB_COMPLETION_INDEX (Kubernetes) or an HTCondor $(Process) passed in the environment.
