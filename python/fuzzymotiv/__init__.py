@@ -352,7 +352,7 @@ def run(
     ``config`` is a config file path or TOML text (None: the built-in defaults); ``overrides``
     a dict of dotted keys, the same as ``--set`` (``{"ga.generations": 20, "rooms": ["H"]}``);
     ``seed`` overrides the base seed (a whole number from 0 to 2^53 − 1). ``threads`` sizes
-    the worker pool (1 to 1024; results do not depend on it). ``progress`` is a callable
+    the worker pool (1 to 256; results do not depend on it). ``progress`` is a callable
     ``(done, total, best_F)`` called after every generation, or True for a tqdm bar.
 
     ``out`` also writes the usual run directory (``generations.csv``, ``summary.json``,

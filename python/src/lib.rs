@@ -145,9 +145,10 @@ fn terms_finite(terms: &[f64; 4]) -> PyResult<()> {
     )
 }
 
-/// The largest `threads`: more threads than this are surely a mistake (results do not depend
-/// on the number).
-const MAX_THREADS: i64 = 1024;
+/// The largest `threads`, the CLI's `--threads` bound ([`fuzzymotiv_io::files::inputs::MAX_THREADS`],
+/// which says why): more threads than this are surely a mistake (results do not depend on the
+/// number).
+const MAX_THREADS: i64 = fuzzymotiv_io::files::inputs::MAX_THREADS as i64;
 
 /// A whole number from a Python object (an `int`, a numpy integer; not a bool or a float), as
 /// text, or the object's repr when it is not one.

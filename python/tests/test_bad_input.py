@@ -87,13 +87,13 @@ def test_finding_7_seeds_are_whole_numbers_below_2_53(cli, repo):
     assert res.summary["seed"] == 2**53 - 1
 
 
-def test_finding_7_threads_from_1_to_1024(repo):
+def test_threads_are_a_whole_number_from_1_to_256(repo):
     refused(lambda: fm.run(threads=0), "threads must be at least 1, got 0")
     refused(lambda: fm.run(threads=-1), "threads must be at least 1, got -1")
-    refused(lambda: fm.run(threads=1025), "threads must be at most 1024, got 1025")
-    refused(lambda: fm.run(threads=2**70), f"threads must be at most 1024, got {2**70}")
-    refused(lambda: fm.run(threads=2.0), "threads must be a whole number from 1 to 1024, got 2.0")
-    refused(lambda: fm.run(threads=True), "threads must be a whole number from 1 to 1024, got True")
+    refused(lambda: fm.run(threads=257), "threads must be at most 256, got 257")
+    refused(lambda: fm.run(threads=2**70), f"threads must be at most 256, got {2**70}")
+    refused(lambda: fm.run(threads=2.0), "threads must be a whole number from 1 to 256, got 2.0")
+    refused(lambda: fm.run(threads=True), "threads must be a whole number from 1 to 256, got True")
     res = fm.run(repo / "configs/tiny.toml", {"ga.generations": 1, "trial.steps": 20, "aem.enabled": False}, threads=np.int32(1))
     assert len(res.generations) == 1
 

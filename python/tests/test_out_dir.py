@@ -170,7 +170,7 @@ def test_finding_1_foreign_directory_file_and_cwd_are_never_replaced(tiny, tmp_p
 
     a_file = tmp_path / "file"
     a_file.write_text("x")
-    with pytest.raises(fm.FuzzymotivError, match="is a file, not a directory"):
+    with pytest.raises(fm.FuzzymotivError, match="is a regular file, not a directory"):
         fm.run(tiny, SMALL, out=a_file, force=True)
 
     here = tmp_path / "here"

@@ -5,10 +5,11 @@ mod commands;
 mod png;
 mod progress;
 
+use std::io::IsTerminal;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use fuzzymotiv_io::files::error::ErrorKind;
+use fuzzymotiv_io::files::error::{CliError, ErrorKind};
 use fuzzymotiv_io::note;
 
 use crate::commands::{bench, claims, compare, fuzzy, lab, replay, reproduce, rooms, run, sweep};
@@ -57,8 +58,30 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let result = match cli.command {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // `--help` and `--version`: on standard output like every result, so a failure to write
+        // it is the same one-line error (and a closed one the same quiet end).
+        Err(e) if !e.use_stderr() => return finish(show_help(&e)),
+        // A usage error: clap's message on standard error, status 2.
+        Err(e) => e.exit(),
+    };
+    finish(execute(cli))
+}
+
+/// Clap's help or version text on standard output through [`fuzzymotiv_io::out!`] (plain
+/// text unless standard output is a terminal, where clap's colours are kept).
+fn show_help(e: &clap::Error) -> Result<(), CliError> {
+    let text = e.render();
+    if std::io::stdout().is_terminal() {
+        fuzzymotiv_io::out!("{}", text.ansi())
+    } else {
+        fuzzymotiv_io::out!("{text}")
+    }
+}
+
+fn execute(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
         Command::Run(args) => run::run(args),
         Command::Reproduce(args) => reproduce::reproduce(args),
         Command::Replay(args) => replay::replay(args),
@@ -71,7 +94,11 @@ fn main() -> ExitCode {
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),
         Command::Lab(args) => lab::lab(args),
-    };
+    }
+}
+
+/// The exit status of a command's outcome, with its error (if any) on standard error.
+fn finish(result: Result<(), CliError>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         // The reader has gone (`| head -1`): end quietly, as a program killed by SIGPIPE.

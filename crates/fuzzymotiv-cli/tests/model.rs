@@ -107,8 +107,8 @@ fn default_study_reproduces_its_golden() {
 }
 
 /// `claims DIR` recomputes a finished study's claims from its summary.json: at the study's α
-/// the same files (left alone); at another α, other verdicts, refused over the study's files
-/// unless --force, written to --out.
+/// the same files (left alone); at another α, other verdicts, written beside the study's
+/// (claims-alpha-A.md, .csv; the study's own never replaced) or to --out.
 fn claims_are_recomputed_from_the_records(dir: &std::path::Path) {
     let read = |p: std::path::PathBuf| std::fs::read_to_string(p).unwrap();
     let (md, csv) = (read(dir.join("claims.md")), read(dir.join("claims.csv")));
@@ -119,9 +119,19 @@ fn claims_are_recomputed_from_the_records(dir: &std::path::Path) {
     assert_eq!(read(dir.join("claims.md")), md, "the same tables again");
     assert_eq!(read(dir.join("claims.csv")), csv);
     // Two seeds: the smallest p is 2/4, so only an α above 1/2 lets a claim be shown.
-    let refused = run(&["claims", dir.to_str().unwrap(), "--alpha", "0.6"]);
-    assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
-    assert_eq!(read(dir.join("claims.csv")), csv, "kept without --force");
+    let beside = ok(&["claims", dir.to_str().unwrap(), "--alpha", "0.6"]);
+    assert_eq!(
+        read(dir.join("claims.md")),
+        md,
+        "the study's own claims are kept"
+    );
+    assert_eq!(
+        read(dir.join("claims.csv")),
+        csv,
+        "the study's own claims are kept"
+    );
+    assert_eq!(stdout(&beside), read(dir.join("claims-alpha-0.6.md")));
+    assert!(read(dir.join("claims-alpha-0.6.csv")) != csv);
     let other = dir.with_file_name("claims-0.6");
     let o = ok(&[
         "claims",

@@ -6,6 +6,7 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 
 use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::inputs::check_threads;
 use tokio::sync::watch;
 
 use crate::api::{AppState, router};
@@ -21,7 +22,8 @@ pub struct LabOptions {
     pub port: u16,
     /// Interface to listen on; default 127.0.0.1 (this machine only).
     pub bind: IpAddr,
-    /// Threads of a run (as `fuzzymotiv run --threads`); default all cores.
+    /// Threads of a run (as `fuzzymotiv run --threads`: 1 to
+    /// [`MAX_THREADS`](fuzzymotiv_io::files::inputs::MAX_THREADS)); default all cores.
     pub threads: Option<usize>,
     /// The access token; default a new random one (so a restart shuts out open pages).
     pub token: Option<String>,
@@ -97,6 +99,9 @@ fn bind(opts: &LabOptions) -> Result<std::net::TcpListener, CliError> {
 impl Lab {
     /// Binds, starts the server and the run worker, and returns once it listens.
     pub fn start(opts: LabOptions) -> Result<Lab, CliError> {
+        if let Some(n) = opts.threads {
+            check_threads(n as i128).map_err(|m| CliError::input(format!("--threads {m}")))?;
+        }
         // Bound first: a busy port leaves no directory behind.
         let listener = bind(&opts)?;
         if opts.dir.exists() && !opts.dir.is_dir() {

@@ -55,3 +55,29 @@ pub fn check(ok: bool, field: &str, reason: impl FnOnce() -> String) -> Result<(
 pub fn unit(v: f64) -> bool {
     v.is_finite() && (0.0..=1.0).contains(&v)
 }
+
+/// A number as messages show it: as written (`0.5`, `-3`, `250`) when that is short, in
+/// scientific notation (`1e300`, `1.5e-9`) when it is very large or very small, never 300
+/// digits; NaN and infinities as `NaN`, `inf`, `-inf`.
+///
+/// ```
+/// use fuzzymotiv::params::Num;
+/// assert_eq!(Num(1e300).to_string(), "1e300");
+/// assert_eq!(Num(-2.5e-12).to_string(), "-2.5e-12");
+/// assert_eq!(Num(0.3).to_string(), "0.3");
+/// assert_eq!(Num(123456.5).to_string(), "123456.5");
+/// assert_eq!(Num(f64::NAN).to_string(), "NaN");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let size = self.0.abs();
+        if size.is_finite() && size != 0.0 && !(1e-6..1e16).contains(&size) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}

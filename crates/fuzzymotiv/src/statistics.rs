@@ -100,7 +100,8 @@ impl Settings {
         ] {
             if v.is_nan() || v <= 0.0 || v >= 1.0 {
                 return Err(StatsError::Setting(format!(
-                    "{name} must be between 0 and 1 (exclusive), got {v}"
+                    "{name} must be between 0 and 1 (exclusive), got {}",
+                    crate::params::Num(v)
                 )));
             }
         }

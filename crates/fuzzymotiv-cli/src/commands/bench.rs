@@ -16,17 +16,17 @@ pub struct BenchArgs {
     pub room: String,
     /// Robot-steps of each measurement (the population one evaluates whole populations until
     /// it has done at least this many, so its time is long enough to measure).
-    #[arg(long, default_value_t = 2_000_000)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 2_000_000, value_parser = crate::args::whole_number)]
     pub steps: usize,
-    /// Threads for the population measurement [default: all cores].
-    #[arg(long)]
+    /// Threads for the population measurement, 1 to 256 [default: all cores].
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
     pub threads: Option<usize>,
     /// Population size of the population measurement (each robot runs one 400-step trial per
     /// room; `--set rooms=[...]` evaluates in several rooms).
-    #[arg(long, default_value_t = 200)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 200, value_parser = crate::args::whole_number)]
     pub population: usize,
     /// Repetitions; the median is reported.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 5, value_parser = crate::args::whole_number)]
     pub repeat: usize,
     /// Print JSON instead of text.
     #[arg(long)]

@@ -4,9 +4,12 @@
 use std::path::PathBuf;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_files};
+use fuzzymotiv_io::files::guard::{
+    FilesState, check_files, io_err, refuse_staging_name, write_files,
+};
+use fuzzymotiv_io::note;
 use fuzzymotiv_io::records::{StudySummary, read_json};
-use fuzzymotiv_io::render::study::{CLAIMS_ALPHA, claims};
+use fuzzymotiv_io::render::study::{CLAIMS_ALPHA, claims, claims_stem};
 use fuzzymotiv_io::render::tables::{Provenance, claims_table};
 
 /// Arguments of `fuzzymotiv claims`.
@@ -16,25 +19,30 @@ pub struct ClaimsArgs {
     pub dir: PathBuf,
     /// Significance level α of the verdicts (0 < α < 1) and of the minimum detectable
     /// difference.
-    #[arg(long, default_value_t = CLAIMS_ALPHA)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = CLAIMS_ALPHA)]
     pub alpha: f64,
-    /// Directory for claims.md and claims.csv (default: DIR itself; the same tables again are
-    /// left alone, other ones are kept unless --force).
+    /// Directory for claims.md and claims.csv [default: DIR itself: at the study's α its own
+    /// claims.md and claims.csv (the same tables again are left alone); at another α, A,
+    /// claims-alpha-A.md and .csv beside them, never replacing the study's]. Files there with
+    /// other contents are kept unless --force.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Replace claims.md and claims.csv that differ (regular files only).
+    /// Replace claims files that differ (regular files only).
     #[arg(long)]
     pub force: bool,
 }
 
 /// Entry point of `fuzzymotiv claims`: reads DIR/summary.json, recomputes the claims at
-/// `--alpha`, writes claims.md and claims.csv through the output guard and prints the table.
+/// `--alpha`, writes them through the output guard ([`claims_files`]) and prints the table.
 pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
     if args.alpha.is_nan() || args.alpha <= 0.0 || args.alpha >= 1.0 {
         return Err(CliError::input(format!(
             "--alpha must be between 0 and 1 (exclusive), got {}",
-            args.alpha
+            fuzzymotiv::params::Num(args.alpha)
         )));
+    }
+    if let Some(out) = &args.out {
+        refuse_staging_name(out, "--out")?;
     }
     let summary: StudySummary = read_json(&args.dir.join("summary.json"))?;
     if summary.settings.len() != 2 {
@@ -52,15 +60,33 @@ pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
     };
     let recomputed = claims(&summary.settings, args.alpha);
     let (md, csv) = claims_table(&recomputed, &provenance);
-    let out = args.out.unwrap_or(args.dir);
-    let files = [
-        (out.join("claims.md"), md.clone().into_bytes()),
-        (out.join("claims.csv"), csv.into_bytes()),
-    ];
-    if check_files(&files, "--out", args.force)? == FilesState::Write {
-        std::fs::create_dir_all(&out).map_err(|e| io_err(&out, e))?;
+    let (dir, files) = claims_files(&args, md.clone(), csv);
+    // Messages name --out only when the user gave it.
+    let option = if args.out.is_some() { "--out" } else { "" };
+    if check_files(&files, option, args.force)? == FilesState::Write {
+        std::fs::create_dir_all(&dir).map_err(|e| io_err(&dir, e))?;
         write_files(&files)?;
+        note!(
+            "wrote {} and {}",
+            files[0].0.display(),
+            files[1].0.display()
+        );
     }
     fuzzymotiv_io::out!("{md}")?;
     Ok(())
+}
+
+/// Where the claims go: `--out` gets claims.md and claims.csv; without it they go beside the
+/// study, named by [`claims_stem`] (the study's own files at its α, `claims-alpha-A.*` at
+/// another).
+fn claims_files(args: &ClaimsArgs, md: String, csv: String) -> (PathBuf, [(PathBuf, Vec<u8>); 2]) {
+    let (dir, stem) = match &args.out {
+        Some(out) => (out.clone(), "claims".to_string()),
+        None => (args.dir.clone(), claims_stem(args.alpha)),
+    };
+    let files = [
+        (dir.join(format!("{stem}.md")), md.into_bytes()),
+        (dir.join(format!("{stem}.csv")), csv.into_bytes()),
+    ];
+    (dir, files)
 }

@@ -4,7 +4,9 @@
 use std::path::PathBuf;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_files};
+use fuzzymotiv_io::files::guard::{
+    FilesState, check_files, io_err, refuse_staging_name, write_files,
+};
 use fuzzymotiv_io::pipeline::compare::{check_comparable, choose, compare, load};
 use fuzzymotiv_io::render::study::CLAIMS_ALPHA;
 
@@ -25,7 +27,7 @@ pub struct CompareArgs {
     #[arg(long = "setting", value_name = "S")]
     pub setting: Vec<String>,
     /// Significance level α of the `*` marks and of the minimum detectable difference.
-    #[arg(long, default_value_t = CLAIMS_ALPHA)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = CLAIMS_ALPHA)]
     pub alpha: f64,
     /// Also write compare.png beside compare.svg.
     #[arg(long)]
@@ -41,9 +43,10 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
     if args.alpha.is_nan() || args.alpha <= 0.0 || args.alpha >= 1.0 {
         return Err(CliError::input(format!(
             "--alpha must be between 0 and 1 (exclusive), got {}",
-            args.alpha
+            fuzzymotiv::params::Num(args.alpha)
         )));
     }
+    refuse_staging_name(&args.out, "--out")?;
     let a = load(&args.a, "A")?;
     let b = load(&args.b, "B")?;
     check_comparable(&a, &b)?;

@@ -11,10 +11,15 @@ use fuzzymotiv_io::{note, outln};
 pub struct FuzzyArgs {
     /// Motivations C,H,O,E (each in [0, 1], summing to 1; a sum within 0.001 of 1 is
     /// normalised), e.g. 0.8,0.1,0,0.1.
-    #[arg(long, value_name = "C,H,O,E")]
+    #[arg(long, allow_hyphen_values = true, value_name = "C,H,O,E")]
     motivations: String,
     /// Fitness values a,g,l,b (each clamped to [0, 1]), e.g. 0.95,0.5,0,0.79.
-    #[arg(long, value_name = "a,g,l,b", required_unless_present = "export_fll")]
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        value_name = "a,g,l,b",
+        required_unless_present = "export_fll"
+    )]
     fitness: Option<String>,
     /// Also list the firing rules with their labels, weights and outputs.
     #[arg(long, requires = "fitness")]

@@ -11,14 +11,14 @@ use fuzzymotiv_lab::{Lab, LabOptions};
 #[derive(clap::Args)]
 pub struct LabArgs {
     /// TCP port (0: any free port).
-    #[arg(long, default_value_t = 8765)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 8765)]
     port: u16,
     /// Directory of the lab: its runs (DIR/runs/), drawn rooms (DIR/rooms/) and saved run
     /// directories (DIR/saved/). Everything the lab writes stays under it.
     #[arg(long, value_name = "DIR", default_value = "lab")]
     dir: PathBuf,
-    /// Worker threads of a run [default: all cores]; further runs wait in a queue.
-    #[arg(long)]
+    /// Worker threads of a run, 1 to 256 [default: all cores]; further runs wait in a queue.
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
     threads: Option<usize>,
     /// Open the page in the default browser (where there is none, the address is printed).
     #[arg(long)]

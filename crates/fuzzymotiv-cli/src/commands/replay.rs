@@ -62,13 +62,32 @@ pub struct ReplayArgs {
     #[arg(long)]
     pub gif: bool,
     /// Side of the GIFs' square frames (pixels, 64 to 2048).
-    #[arg(long, value_name = "PIXELS", default_value_t = 320, requires = "gif")]
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        value_name = "PIXELS",
+        default_value_t = 320,
+        requires = "gif"
+    )]
     pub size: u32,
     /// A GIF frame every N steps (the last pose always gets one).
-    #[arg(long, value_name = "N", default_value_t = 1, requires = "gif")]
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        value_name = "N",
+        default_value_t = 1,
+        requires = "gif",
+        value_parser = crate::args::whole_number
+    )]
     pub stride: usize,
     /// GIF frames per second (0.01 to 50; the last frame is held for a second).
-    #[arg(long, value_name = "FPS", default_value_t = 25.0, requires = "gif")]
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        value_name = "FPS",
+        default_value_t = 25.0,
+        requires = "gif"
+    )]
     pub fps: f64,
     /// Replace existing files of these names that hold something else (only regular files:
     /// a directory, device or link is never replaced). The same replay again changes nothing.

@@ -52,14 +52,14 @@ pub struct ReproduceArgs {
     pub output: OutputArgs,
     /// Number of seeds per setting; tables give mean ± std over them and every seed's values.
     /// Ten by default: five paired seeds cannot give p < 0.05 (README: why ten).
-    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=1000))]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 10, value_parser = clap::builder::RangedI64ValueParser::<u64>::new().range(1..=1000))]
     pub seeds: u64,
     /// A fast look: GA 30 × 30 instead of the paper's 200 × 200.
     #[arg(long)]
     pub quick: bool,
-    /// Worker threads [default: all cores]; up to this many (setting, seed) runs go on at once,
+    /// Worker threads, 1 to 256 [default: all cores]; up to this many (setting, seed) runs go on at once,
     /// sharing them; results do not depend on it.
-    #[arg(long)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
     pub threads: Option<usize>,
     /// Run the orientation study instead (configs/orientation-study.toml): does rewarding
     /// orientation (online recognition in the fitness) raise recognition, and at what cost?

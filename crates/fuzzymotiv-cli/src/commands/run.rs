@@ -36,13 +36,19 @@ pub struct RunArgs {
     #[arg(long = "continue", value_name = "DIR", requires_all = ["generations", "out"], conflicts_with_all = ["config", "resume", "seed", "sets"])]
     pub continue_from: Option<PathBuf>,
     /// With --continue: the total number of generations (more than DIR ran).
-    #[arg(long, value_name = "N", requires = "continue_from")]
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        value_name = "N",
+        requires = "continue_from",
+        value_parser = crate::args::whole_number
+    )]
     pub generations: Option<usize>,
     /// --out, --force, --quiet, --seed.
     #[command(flatten)]
     pub output: OutputArgs,
-    /// Worker threads [default: all cores]; results do not depend on it.
-    #[arg(long)]
+    /// Worker threads, 1 to 256 [default: all cores]; results do not depend on it.
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
     pub threads: Option<usize>,
     /// Override a config key, e.g. --set ga.population=20 (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]

@@ -55,18 +55,18 @@ pub struct SweepArgs {
     #[arg(long)]
     pub out: PathBuf,
     /// Run shard I of N (0-based): the jobs whose index ≡ I mod N.
-    #[arg(long, value_name = "I/N", conflicts_with_all = ["index", "index_from_env"])]
+    #[arg(long, allow_hyphen_values = true, value_name = "I/N", conflicts_with_all = ["index", "index_from_env"])]
     pub shard: Option<String>,
     /// Run only job K (0-based plan index).
-    #[arg(long, conflicts_with = "index_from_env")]
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "index_from_env", value_parser = crate::args::whole_number)]
     pub index: Option<usize>,
     /// Read the job index from an environment variable, e.g. SLURM_ARRAY_TASK_ID,
     /// JOB_COMPLETION_INDEX (Kubernetes) or an HTCondor $(Process) passed in the environment.
     #[arg(long, value_name = "VAR")]
     pub index_from_env: Option<String>,
-    /// Worker threads [default: all cores]; up to this many jobs run at once, sharing them;
+    /// Worker threads, 1 to 256 [default: all cores]; up to this many jobs run at once, sharing them;
     /// results do not depend on it.
-    #[arg(long)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
     pub threads: Option<usize>,
     /// No progress lines on stderr.
     #[arg(long, short)]

@@ -232,10 +232,21 @@ pub fn foreign_files(dir: &Path) -> Vec<PathBuf> {
 
 fn is_our_file(name: &str) -> bool {
     OUR_FILES.contains(&name)
+        || is_claims_at_alpha(name)
         || name.ends_with(".svg")
         || name.ends_with(".png")
         || name.starts_with(".tmp")
         || crate::files::job_lock::is_lock_name(name)
+}
+
+/// `claims-alpha-A.md` or `.csv`: the claims of a study at another α
+/// ([`claims_stem`](crate::render::study::claims_stem)), beside its own.
+fn is_claims_at_alpha(name: &str) -> bool {
+    let alpha = name.strip_prefix("claims-alpha-").and_then(|rest| {
+        rest.strip_suffix(".md")
+            .or_else(|| rest.strip_suffix(".csv"))
+    });
+    alpha.is_some_and(|a| a.parse::<f64>().is_ok_and(|a| a > 0.0 && a < 1.0))
 }
 
 /// Refuses, before any work, to replace a directory that holds a file of the user's (see
@@ -358,6 +369,7 @@ pub fn check_out_as(
 /// The state of `dir` for [`check_out`], and whether `--force` replaces something there.
 fn out_state(dir: &Path, id: &Identity, force: bool) -> Result<(OutState, bool), CliError> {
     refuse_current_dir(dir)?;
+    refuse_staging_name(dir, "--out")?;
     refuse_non_directory(dir)?;
     let staging = StagedDir::staging_path(dir);
     if force && std::fs::symlink_metadata(&staging).is_ok() {
@@ -442,11 +454,63 @@ fn is_empty_dir(dir: &Path) -> bool {
     dir.read_dir().is_ok_and(|mut d| d.next().is_none())
 }
 
-/// `--out DIR` naming something that is not a directory (a file, a link, a device): refused.
+/// `--out DIR` naming something that is not a directory (a file, a link, a FIFO, a device):
+/// refused, saying which it is ([`what_it_is`]).
 pub fn refuse_non_directory(dir: &Path) -> Result<(), CliError> {
-    if std::fs::symlink_metadata(dir).is_ok_and(|m| !m.is_dir()) {
+    match std::fs::symlink_metadata(dir) {
+        Ok(m) if m.file_type().is_symlink() => Err(CliError::input(format!(
+            "--out {}: is a symbolic link, and an output directory is never written through a \
+             link; choose another --out (e.g. the directory the link points to)",
+            dir.display()
+        ))),
+        Ok(m) if !m.is_dir() => Err(CliError::input(format!(
+            "--out {}: is {}, not a directory; choose another --out",
+            dir.display(),
+            what_it_is(&m)
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// What a file-system entry is, for messages: "a regular file", "a directory", "a symbolic
+/// link", "a FIFO (named pipe)", "a socket", "a device"; "not a regular file or directory"
+/// when it is none of these.
+pub fn what_it_is(meta: &std::fs::Metadata) -> &'static str {
+    let t = meta.file_type();
+    if t.is_symlink() {
+        return "a symbolic link";
+    }
+    if t.is_dir() {
+        return "a directory";
+    }
+    if t.is_file() {
+        return "a regular file";
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+        if t.is_block_device() || t.is_char_device() {
+            return "a device";
+        }
+    }
+    "not a regular file or directory"
+}
+
+/// `--out NAME.partial`: refused, since `NAME.partial` is where the output `--out NAME` is
+/// staged ([`StagedDir`]), which would take it for its own unfinished output and adopt or
+/// discard it.
+pub fn refuse_staging_name(dir: &Path, option: &str) -> Result<(), CliError> {
+    let name = dir.file_name().map(|n| n.to_string_lossy().into_owned());
+    if name.is_some_and(|n| n.ends_with(".partial")) {
         return Err(CliError::input(format!(
-            "--out {}: is a file, not a directory; choose another --out",
+            "{option} {}: a name ending in .partial is where another output is written until it \
+             is finished; choose a name without .partial",
             dir.display()
         )));
     }
@@ -479,7 +543,8 @@ pub enum FilesState {
     Write,
 }
 
-/// Checks the files an output would write (`path`, bytes, and the option that named it):
+/// Checks the files an output would write (`path`, bytes, and the option that named it, or
+/// "" when the user named none: the files go to the command's own place, e.g. beside a study):
 /// something that is not a regular file (a directory, a device, a FIFO, a symbolic link) is
 /// never replaced, not even with `force`; a regular file with other contents is replaced only
 /// with `force`; when every file already holds the same bytes there is nothing to do.
@@ -510,18 +575,20 @@ pub fn check_files(
             same = false;
             continue;
         };
+        // Without an option (the command's own place for the files) the messages name only
+        // the path: never an option the user did not pass.
+        let named = match option {
+            "" => path.display().to_string(),
+            _ => format!("{option} {}", path.display()),
+        };
         if !meta.is_file() {
-            let what = if meta.is_dir() {
-                "a directory"
-            } else if meta.is_symlink() {
-                "a symbolic link"
-            } else {
-                "not a regular file (a device, FIFO or socket)"
+            let remedy = match option {
+                "" => "move it away".to_string(),
+                _ => "give the path of a new or regular file".to_string(),
             };
             return Err(CliError::input(format!(
-                "{option} {}: is {what}, which is never replaced (not even with --force); \
-                 give the path of a new or regular file",
-                path.display()
+                "{named}: is {}, which is never replaced (not even with --force); {remedy}",
+                what_it_is(&meta)
             )));
         }
         if std::fs::read(path).is_ok_and(|have| have == *bytes) {
@@ -529,10 +596,13 @@ pub fn check_files(
         }
         same = false;
         if !force {
+            let elsewhere = match option {
+                "" => String::new(),
+                _ => format!(", or choose another {option}"),
+            };
             return Err(CliError::input(format!(
-                "{option} {}: the file exists with other contents and is kept; pass --force to \
-                 replace it, or choose another {option}",
-                path.display()
+                "{named}: the file exists with other contents and is kept; pass --force to \
+                 replace it{elsewhere}"
             )));
         }
     }

@@ -96,6 +96,38 @@ pub fn load_config(
     resolve(raw, &base, &source)
 }
 
+/// The largest number of worker threads (`--threads` of every command, the lab's runs,
+/// Python's `threads=`). Results never depend on the number of threads, so threads beyond the
+/// machine's cores only cost memory (a stack each) and switching; 256 is at least the hardware
+/// threads of the machines this program is meant for (a two-socket server has up to 256),
+/// while the thousands a slip of the finger asks for would make the machine unusable. A fixed
+/// bound (not a multiple of this machine's cores) keeps the accepted values, and so a command
+/// line, the same on every machine.
+pub const MAX_THREADS: usize = 256;
+
+/// `n` as a number of worker threads: from 1 to [`MAX_THREADS`]; otherwise the end of a
+/// sentence whose start names the option (`--threads must be a whole number from 1 to 256,
+/// got 0`).
+pub fn check_threads(n: i128) -> Result<usize, String> {
+    match usize::try_from(n) {
+        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "must be a whole number from 1 to {MAX_THREADS}, got {n}"
+        )),
+    }
+}
+
+/// `--threads N` (a clap value parser): a whole number from 1 to [`MAX_THREADS`], with a
+/// message stating the range otherwise.
+pub fn parse_threads(text: &str) -> Result<usize, String> {
+    match text.trim().parse::<i128>() {
+        Ok(n) => check_threads(n),
+        Err(_) => Err(format!(
+            "must be a whole number from 1 to {MAX_THREADS}, got `{text}`"
+        )),
+    }
+}
+
 /// The largest seed: 2^53 − 1, so every seed is exact in JSON for tools that read numbers as
 /// doubles (JavaScript, jq).
 pub const MAX_SEED: u64 = fuzzymotiv::experiment::config::MAX_SEED;

@@ -5,13 +5,15 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 
 use crate::files::error::CliError;
+use crate::files::inputs::check_threads;
 
-/// Configures rayon's global pool.
+/// Configures rayon's global pool: `--threads` from 1 to
+/// [`MAX_THREADS`](crate::files::inputs::MAX_THREADS) (the commands' parser
+/// [`parse_threads`](crate::files::inputs::parse_threads) already checked it; a library caller
+/// gets the same message).
 pub fn set_threads(threads: Option<usize>) -> Result<(), CliError> {
     if let Some(n) = threads {
-        if n == 0 {
-            return Err(CliError::input("--threads must be at least 1"));
-        }
+        let n = check_threads(n as i128).map_err(|m| CliError::input(format!("--threads {m}")))?;
         // A second call (e.g. in-process tests) keeps the first pool; results do not depend on it.
         let _ = rayon::ThreadPoolBuilder::new()
             .num_threads(n)

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use crate::files::error::CliError;
 use crate::files::guard::{
     StagedDir, ensure_replaceable, foreign_files, io_err, refuse_current_dir, refuse_non_directory,
-    remove_ours, write_atomic,
+    refuse_staging_name, remove_ours, write_atomic,
 };
 use crate::files::job_lock::{JobLock, lock_path};
 use crate::note;
@@ -147,9 +147,10 @@ const SWEEP_FILES: [&str; 7] = [
 /// jobs (more replicates or points, no id clash) keeps the finished ones; any other plan, or
 /// another kind of output, is refused unless `force`, which removes the old sweep's own files
 /// and job folders (or the other output), never a file of the user's. A directory that is not
-/// a fuzzymotiv output, a file, and the current directory are refused.
+/// a fuzzymotiv output, a file, a `.partial` name and the current directory are refused.
 fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError> {
     refuse_current_dir(out)?;
+    refuse_staging_name(out, "--out")?;
     refuse_non_directory(out)?;
     if !out.exists() {
         return Ok(());

@@ -310,7 +310,11 @@ fn simplex_points(s: &RawSimplex, source: &str) -> Result<Vec<[f64; 4]>, CliErro
 fn simplex_divisions(step: f64, source: &str) -> Result<usize, CliError> {
     let field = "sweep.simplex.step";
     if !(step.is_finite() && step > 0.0 && step <= 1.0) {
-        return Err(err(source, field, format!("must be in (0, 1], got {step}")));
+        return Err(err(
+            source,
+            field,
+            format!("must be in (0, 1], got {}", fuzzymotiv::params::Num(step)),
+        ));
     }
     let n = (1.0 / step).round();
     if ((1.0 / step) - n).abs() > 1e-9 || n > 100.0 {
@@ -340,7 +344,10 @@ fn fixed_units(s: &RawSimplex, n: usize, source: &str) -> Result<[Option<usize>;
             return Err(err(
                 source,
                 &field,
-                format!("must be a multiple of the step in [0, 1], got {v}"),
+                format!(
+                    "must be a multiple of the step in [0, 1], got {}",
+                    fuzzymotiv::params::Num(*v)
+                ),
             ));
         }
         fixed[i] = Some(units.round() as usize);

@@ -418,6 +418,17 @@ fn grand_mean_of(setting: &SettingSummary, column: Column) -> Option<f64> {
 /// The significance level of the claims unless told otherwise (`claims --alpha`).
 pub const CLAIMS_ALPHA: f64 = 0.05;
 
+/// The stem of the claims files at `alpha` beside a study: `claims` at the study's own
+/// [`CLAIMS_ALPHA`], `claims-alpha-A` at another (e.g. `claims-alpha-0.1`, written by
+/// `fuzzymotiv claims DIR --alpha 0.1`), so another α never replaces the study's claims.
+pub fn claims_stem(alpha: f64) -> String {
+    if alpha == CLAIMS_ALPHA {
+        "claims".into()
+    } else {
+        format!("claims-alpha-{alpha}")
+    }
+}
+
 /// A comparison claim, high against low curiosity on `column`, paired by seed
 /// ([`statistics::paired`] on each seed's mean over rooms, resampling seeded by the study's
 /// first seed): the verdict at `alpha`, the effect, its interval, p and the minimum detectable

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::params::{BIG, FieldError, check, unit};
+use crate::params::{BIG, FieldError, Num, check, unit};
 use crate::random::rng::{Rng, index, standard_normal, uniform, uniform01};
 
 /// A genome: the controller's weights.
@@ -156,13 +156,19 @@ impl GaParams {
                 && raw.parent_fraction > 0.0
                 && raw.parent_fraction <= 1.0,
             "ga.parent_fraction",
-            || format!("must be in (0, 1], got {}", raw.parent_fraction),
+            || format!("must be in (0, 1], got {}", Num(raw.parent_fraction)),
         )?;
         check(unit(raw.crossover), "ga.crossover", || {
-            format!("must be a probability in [0, 1], got {}", raw.crossover)
+            format!(
+                "must be a probability in [0, 1], got {}",
+                Num(raw.crossover)
+            )
         })?;
         check(unit(raw.mutation_rate), "ga.mutation_rate", || {
-            format!("must be a probability in [0, 1], got {}", raw.mutation_rate)
+            format!(
+                "must be a probability in [0, 1], got {}",
+                Num(raw.mutation_rate)
+            )
         })?;
         Self::check_weights(raw)?;
         Ok(GaParams {
@@ -184,19 +190,29 @@ impl GaParams {
         check(
             raw.mutation_sigma.is_finite() && raw.mutation_sigma >= 0.0,
             "ga.mutation_sigma",
-            || format!("must be a finite number ≥ 0, got {}", raw.mutation_sigma),
+            || {
+                format!(
+                    "must be a finite number ≥ 0, got {}",
+                    Num(raw.mutation_sigma)
+                )
+            },
         )?;
         check(
             raw.weight_limit.is_finite() && raw.weight_limit > 0.0 && raw.weight_limit <= 1e6,
             "ga.weight_limit",
-            || format!("must be in (0, 1e6], got {}", raw.weight_limit),
+            || format!("must be in (0, 1e6], got {}", Num(raw.weight_limit)),
         )?;
         check(
             raw.init_range.is_finite()
                 && raw.init_range >= 0.0
                 && raw.init_range <= raw.weight_limit,
             "ga.init_range",
-            || format!("must be in [0, ga.weight_limit], got {}", raw.init_range),
+            || {
+                format!(
+                    "must be in [0, ga.weight_limit], got {}",
+                    Num(raw.init_range)
+                )
+            },
         )
     }
 }

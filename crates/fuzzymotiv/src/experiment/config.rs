@@ -16,7 +16,7 @@ pub use crate::evolution::ga::RawGa;
 pub use crate::fitness::fuzzy::{Coefficients, RawFuzzy, RawMotivations};
 use crate::fitness::terms::Homing;
 pub use crate::modelling::aem::RawAem;
-use crate::params::FieldError;
+use crate::params::{BIG, FieldError};
 pub use crate::simulation::controller::RawNetwork;
 pub use crate::simulation::robot::RawRobot;
 use crate::simulation::room::{BUILTIN_ROOMS, field_from_toml_message};
@@ -195,19 +195,36 @@ pub fn at_line(text: &str, span: Option<std::ops::Range<usize>>) -> String {
     format!(" (line {line}, column {column})")
 }
 
-/// Serde's type names in plain words: "expected u64" → "expected a whole number ≥ 0", etc.
+/// Serde's type names in plain words: "expected u64" → "expected a whole number from 2 to
+/// 1000000" (the field's own range, [`whole_number_range`]), etc.
 fn plain_words(msg: &str, field: &str) -> String {
-    let whole = if field == "seed" {
-        format!("a whole number from 0 to {MAX_SEED} (2^53 − 1)")
-    } else {
-        "a whole number ≥ 0".to_string()
-    };
+    let whole = format!("a whole number {}", whole_number_range(field));
     let mut out = msg.to_string();
     for t in ["u64", "usize", "u32", "u16", "u8", "i64"] {
         out = out.replace(&format!("expected {t}"), &format!("expected {whole}"));
     }
     out.replace("expected f64", "expected a number (e.g. 0.5)")
         .replace("expected a boolean", "expected true or false")
+}
+
+/// The range of a whole-number field as its own check states it (serde reports a type error,
+/// e.g. `1.5` or `-1`, before that check runs), from the constants the checks use; "≥ 0" for a
+/// field that takes any.
+fn whole_number_range(field: &str) -> String {
+    use crate::modelling::{aem::MAX_TEST_RUNS, som::MAX_NODES};
+    use crate::simulation::{controller::MlpShape, trial::MAX_STEPS};
+    let (low, high) = match field {
+        "seed" => return format!("from 0 to {MAX_SEED} (2^53 − 1)"),
+        "ga.elite" => return "from 0 to ga.population − 1".into(),
+        "ga.population" => (2, BIG),
+        "ga.generations" | "aem.epochs" => (1, BIG),
+        "trial.steps" => (1, MAX_STEPS),
+        "aem.test_runs" => (1, MAX_TEST_RUNS),
+        "aem.som_nodes" => (1, MAX_NODES),
+        "network.hidden" => (1, MlpShape::MAX_HIDDEN),
+        _ => return "≥ 0".into(),
+    };
+    format!("from {low} to {high}")
 }
 
 /// A hint when a room file (docs/model.md §4) was given where a config belongs.

@@ -26,6 +26,8 @@
 
 use std::fmt;
 
+use crate::params::Num;
+
 /// Tolerance on `|C + H + O + E − 1|` accepted by [`Motivations::new`].
 pub const MOTIVATION_SUM_TOLERANCE: f64 = 1e-9;
 
@@ -58,7 +60,7 @@ pub const PAPER_PEAKS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FuzzyError {
     /// One motivation is not a finite number in `[0, 1]`.
-    #[error("{name} must be a number in [0, 1], got {value}")]
+    #[error("{name} must be a number in [0, 1], got {}", Num(*.value))]
     MotivationOutOfRange {
         /// Field name: `curiosity`, `homing`, `orientation` or `energy`.
         name: &'static str,
@@ -68,7 +70,7 @@ pub enum FuzzyError {
     /// The four motivations do not sum to 1 (within
     /// [`MOTIVATION_SUM_TOLERANCE`]).
     #[error(
-        "motivations must sum to 1, got {sum} (curiosity {curiosity} + homing {homing} + orientation {orientation} + energy {energy}); a sum within 0.001 of 1 is normalised, farther off is an error"
+        "motivations must sum to 1, got {} (curiosity {} + homing {} + orientation {} + energy {}); a sum within 0.001 of 1 is normalised, farther off is an error", Num(*.sum), Num(*.curiosity), Num(*.homing), Num(*.orientation), Num(*.energy)
     )]
     MotivationSum {
         /// The actual sum `C + H + O + E`.
@@ -123,7 +125,7 @@ pub enum FuzzyError {
     /// A coefficient is NaN, infinite or larger in magnitude than
     /// [`MAX_COEFFICIENT_MAGNITUDE`].
     #[error(
-        "fuzzy.coefficients must be finite numbers with magnitude at most 1e300, got {value} at position {index} (0-based)"
+        "fuzzy.coefficients must be finite numbers with magnitude at most 1e300, got {} at position {index} (0-based)", Num(*.value)
     )]
     InvalidCoefficient {
         /// 0-based position in the list.
@@ -266,16 +268,7 @@ impl Motivations {
         orientation: f64,
         energy: f64,
     ) -> Result<Self, FuzzyError> {
-        for (name, value) in [
-            ("curiosity", curiosity),
-            ("homing", homing),
-            ("orientation", orientation),
-            ("energy", energy),
-        ] {
-            if !(0.0..=1.0).contains(&value) {
-                return Err(FuzzyError::MotivationOutOfRange { name, value });
-            }
-        }
+        check_each_in_unit_range([curiosity, homing, orientation, energy])?;
         let sum = curiosity + homing + orientation + energy;
         if (sum - 1.0).abs() > MOTIVATION_SUM_TOLERANCE {
             return Err(FuzzyError::MotivationSum {
@@ -303,6 +296,9 @@ impl Motivations {
         orientation: f64,
         energy: f64,
     ) -> Result<(Self, Option<f64>), FuzzyError> {
+        // Each value first: a NaN or out-of-range one would otherwise make the sum NaN (or
+        // near 1) and be divided into the others, and the error would name the wrong field.
+        check_each_in_unit_range([curiosity, homing, orientation, energy])?;
         let sum = curiosity + homing + orientation + energy;
         let off = (sum - 1.0).abs();
         if off <= MOTIVATION_SUM_TOLERANCE || off > MOTIVATION_NORMALISE_TOLERANCE {
@@ -369,6 +365,19 @@ pub fn label_name(m_index_zero_based: usize, m_count: usize) -> String {
         PAPER_LABEL_NAMES[m_index_zero_based].to_string()
     } else {
         format!("L{}", m_index_zero_based + 1)
+    }
+}
+
+/// Each motivation `(C, H, O, E)` is a number in `[0, 1]` (so not NaN); the error names the
+/// first that is not.
+fn check_each_in_unit_range(values: [f64; 4]) -> Result<(), FuzzyError> {
+    const NAMES: [&str; 4] = ["curiosity", "homing", "orientation", "energy"];
+    match values.iter().position(|v| !(0.0..=1.0).contains(v)) {
+        Some(k) => Err(FuzzyError::MotivationOutOfRange {
+            name: NAMES[k],
+            value: values[k],
+        }),
+        None => Ok(()),
     }
 }
 
@@ -925,6 +934,25 @@ mod tests {
             t.evaluate(&x, [1.7, -0.3, f64::NAN, f64::INFINITY]),
             t.evaluate(&x, [1.0, 0.0, 0.0, 1.0])
         );
+    }
+
+    #[test]
+    fn a_nan_motivation_is_blamed_on_its_own_field() {
+        let names = ["curiosity", "homing", "orientation", "energy"];
+        for (k, name) in names.into_iter().enumerate() {
+            let mut x = [0.25; 4];
+            x[k] = f64::NAN;
+            for err in [
+                Motivations::new(x[0], x[1], x[2], x[3]).unwrap_err(),
+                Motivations::normalised(x[0], x[1], x[2], x[3]).unwrap_err(),
+            ] {
+                assert!(
+                    matches!(err, FuzzyError::MotivationOutOfRange { name: n, value }
+                        if n == name && value.is_nan()),
+                    "{name}: {err}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -65,6 +65,9 @@ impl AemParams {
     }
 }
 
+/// The most test runs per room (`aem.test_runs`).
+pub const MAX_TEST_RUNS: usize = 100_000;
+
 /// `[aem]` in a config, as written (docs/model.md §9): see [`AemParams`] and [`SomParams`] for
 /// each field's unit, default and range.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -134,9 +137,9 @@ impl AemParams {
     pub fn from_raw(a: &RawAem, steps: usize, rooms: usize) -> Result<AemParams, FieldError> {
         let som = SomParams::from_raw(&a.som())?;
         check(
-            (1..=100_000).contains(&a.test_runs),
+            (1..=MAX_TEST_RUNS).contains(&a.test_runs),
             "aem.test_runs",
-            || format!("must be in 1..=100000, got {}", a.test_runs),
+            || format!("must be in 1..={MAX_TEST_RUNS}, got {}", a.test_runs),
         )?;
         check(
             !a.enabled || steps.saturating_mul(a.som_nodes) <= 50_000_000,

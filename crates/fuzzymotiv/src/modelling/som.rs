@@ -4,7 +4,7 @@
 //! lowest index) and the neighbourhood is Gaussian in node index. Width and learning rate decay
 //! geometrically over the epochs. Training is deterministic for a given generator state.
 
-use crate::params::{BIG, FieldError, check};
+use crate::params::{BIG, FieldError, Num, check};
 use crate::random::rng::{Rng, shuffle, uniform};
 
 /// The most nodes a map may have.
@@ -88,7 +88,7 @@ impl SomParams {
             ("aem.rate_end", raw.rate_end),
         ] {
             check(v.is_finite() && v > 0.0, name, || {
-                format!("must be a finite number > 0, got {v}")
+                format!("must be a finite number > 0, got {}", Num(v))
             })?;
         }
         Ok(SomParams {

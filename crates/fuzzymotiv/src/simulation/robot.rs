@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::params::{FieldError, check};
+use crate::params::{FieldError, Num, check};
 use crate::simulation::geom::Vec2;
 use crate::simulation::math;
 
@@ -141,7 +141,7 @@ impl Khepera {
         check(
             raw.v_max.is_finite() && raw.v_max > 0.0,
             "robot.v_max",
-            || format!("must be a speed > 0 (mm/s), got {}", raw.v_max),
+            || format!("must be a speed > 0 (mm/s), got {}", Num(raw.v_max)),
         )?;
         // The sensor mounts are fixed (docs/model.md §3): they must sit inside the body, and a
         // body far larger than the sensors' reach would be blind.
@@ -155,14 +155,14 @@ impl Khepera {
             || {
                 format!(
                     "must be in [{mounts:.2}, 80] mm (the IR sensors sit {mounts:.2} mm from the centre and see 58 mm), got {}",
-                    raw.radius
+                    Num(raw.radius)
                 )
             },
         )?;
         check(
             raw.wheel_base.is_finite() && raw.wheel_base > 0.0 && raw.wheel_base <= 1000.0,
             "robot.wheel_base",
-            || format!("must be in (0, 1000] mm, got {}", raw.wheel_base),
+            || format!("must be in (0, 1000] mm, got {}", Num(raw.wheel_base)),
         )?;
         Ok(Khepera {
             radius: raw.radius,

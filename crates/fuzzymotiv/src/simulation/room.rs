@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::params::FieldError;
+use crate::params::{FieldError, Num};
 use crate::simulation::geom::{
     Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area,
 };
@@ -364,7 +364,7 @@ impl Room {
                 "home_zone.radius",
                 format!(
                     "must be a radius > 0 and ≤ {MAX_COORD} mm, got {} (the default is {HOME_ZONE_RADIUS})",
-                    zone.radius
+                    Num(zone.radius)
                 ),
             ));
         }

@@ -11,7 +11,7 @@ use std::sync::{Arc, LazyLock, Mutex, MutexGuard, PoisonError, Weak};
 
 use serde::{Deserialize, Serialize};
 
-use crate::params::{FieldError, check};
+use crate::params::{FieldError, Num, check};
 use crate::random::noise::{perturb, perturb_sensors};
 use crate::random::rng::Rng;
 use crate::simulation::controller::{Controller, INPUTS};
@@ -54,6 +54,9 @@ impl Default for TrialParams {
     }
 }
 
+/// The most steps a trial may have (`trial.steps`).
+pub const MAX_STEPS: usize = 10_000_000;
+
 /// `[trial]` in a config, as written: see [`TrialParams`] for each field's unit, default and
 /// range.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -92,13 +95,13 @@ impl TrialParams {
         robot: &RawRobot,
         action_tolerance: f64,
     ) -> Result<TrialParams, FieldError> {
-        check((1..=10_000_000).contains(&t.steps), "trial.steps", || {
-            format!("must be an integer in 1..={}, got {}", 10_000_000, t.steps)
+        check((1..=MAX_STEPS).contains(&t.steps), "trial.steps", || {
+            format!("must be an integer in 1..={MAX_STEPS}, got {}", t.steps)
         })?;
         check(
             t.dt.is_finite() && t.dt > 0.0 && t.dt <= 10.0,
             "trial.dt",
-            || format!("must be a time step in (0, 10] seconds, got {}", t.dt),
+            || format!("must be a time step in (0, 10] seconds, got {}", Num(t.dt)),
         )?;
         check(
             t.noise.is_finite() && (0.0..=0.5).contains(&t.noise),
@@ -106,7 +109,7 @@ impl TrialParams {
             || {
                 format!(
                     "must be a noise level in [0, 0.5] (0.06 is the paper's 6 %), got {}",
-                    t.noise
+                    Num(t.noise)
                 )
             },
         )?;
@@ -130,7 +133,12 @@ impl TrialParams {
         check(
             action_tolerance.is_finite() && (0.0..=2.0).contains(&action_tolerance),
             "aem.action_tolerance",
-            || format!("must be in [0, 2] (signed-speed units), got {action_tolerance}"),
+            || {
+                format!(
+                    "must be in [0, 2] (signed-speed units), got {}",
+                    Num(action_tolerance)
+                )
+            },
         )?;
         Ok(trial)
     }

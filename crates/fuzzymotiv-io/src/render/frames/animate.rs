@@ -117,7 +117,8 @@ pub fn palette_index(rgb: [u8; 3]) -> u8 {
 pub fn delay_of(fps: f64) -> Result<u16, String> {
     if !(MIN_FPS..=MAX_FPS).contains(&fps) {
         return Err(format!(
-            "must be a frame rate in [{MIN_FPS}, {MAX_FPS}] frames per second, got {fps}"
+            "must be a frame rate in [{MIN_FPS}, {MAX_FPS}] frames per second, got {}",
+            fuzzymotiv::params::Num(fps)
         ));
     }
     Ok((100.0 / fps).round() as u16)
