@@ -68,7 +68,13 @@ fn read_csv(dir: &Path, file: &str) -> Result<Vec<Row>, String> {
     let mut rows = Vec::new();
     for record in reader.records() {
         let record = record.map_err(|e| format!("{}: {e}", path.display()))?;
-        rows.push(headers.iter().map(String::from).zip(record.iter().map(String::from)).collect());
+        rows.push(
+            headers
+                .iter()
+                .map(String::from)
+                .zip(record.iter().map(String::from))
+                .collect(),
+        );
     }
     Ok(rows)
 }
@@ -83,7 +89,10 @@ fn read_json(dir: &Path, file: &str) -> Result<serde_json::Value, String> {
 fn cell<'a>(row: &'a Row, column: &str) -> Result<&'a str, String> {
     row.get(column).map(String::as_str).ok_or_else(|| {
         let known: Vec<&str> = row.keys().map(String::as_str).collect();
-        format!("no column `{column}` in the record; its columns are {}", known.join(", "))
+        format!(
+            "no column `{column}` in the record; its columns are {}",
+            known.join(", ")
+        )
     })
 }
 
@@ -166,12 +175,13 @@ fn rooms(dir: &Path, file: &str) -> Rendered {
     ];
     let mut rows = Vec::new();
     for r in read_csv(dir, file)? {
-        let with_paper = |key: &str, digits: usize, paper_digits: usize| -> Result<String, String> {
-            let value = opt_fixed(opt_num(&r, key)?, digits);
-            let spread = opt_fixed(opt_num(&r, &format!("{key}_std"))?, digits);
-            let paper = fixed(num(&r, &format!("paper_{key}"))?, paper_digits);
-            Ok(format!("{value} ± {spread} ({paper})"))
-        };
+        let with_paper =
+            |key: &str, digits: usize, paper_digits: usize| -> Result<String, String> {
+                let value = opt_fixed(opt_num(&r, key)?, digits);
+                let spread = opt_fixed(opt_num(&r, &format!("{key}_std"))?, digits);
+                let paper = fixed(num(&r, &format!("paper_{key}"))?, paper_digits);
+                Ok(format!("{value} ± {spread} ({paper})"))
+            };
         rows.push(format!(
             "| {} | {} | {} | {} | {} | {} ± {} |",
             cell(&r, "room")?,
@@ -203,9 +213,22 @@ fn is_summary_claim(row: &Row) -> Result<bool, String> {
     Ok(!cell(row, "claim")?.contains(" — "))
 }
 
+/// A claim as the documents name it: the study's name, its bound written short.
+fn claim_name(row: &Row) -> Result<String, String> {
+    Ok(cell(row, "claim")?.replace(" (between 0.05 and 0.15)", " (0.05–0.15)"))
+}
+
 /// The paper's claims over seeds: `claims.csv`.
 fn claims(dir: &Path, file: &str) -> Rendered {
-    let header = ["claim", "high", "low", "high − low [95 % CI]", "p", "verdict", "MDD"];
+    let header = [
+        "claim",
+        "high",
+        "low",
+        "high − low [95 % CI]",
+        "p",
+        "verdict",
+        "MDD",
+    ];
     let mut rows = Vec::new();
     for r in read_csv(dir, file)? {
         if !is_summary_claim(&r)? {
@@ -216,15 +239,22 @@ fn claims(dir: &Path, file: &str) -> Rendered {
         let line = match opt_num(&r, "p")? {
             Some(p) => format!(
                 "| {} | {high} | {low} | {} [{}, {}] | {} | {} | {} |",
-                cell(&r, "claim")?,
+                claim_name(&r)?,
                 signed(num(&r, "difference")?, 1),
                 signed(num(&r, "ci_low")?, 1),
                 signed(num(&r, "ci_high")?, 1),
                 fixed(p, 3),
-                if verdict == "not significant" { verdict.into() } else { format!("**{verdict}**") },
+                if verdict == "not significant" {
+                    verdict.into()
+                } else {
+                    format!("**{verdict}**")
+                },
                 fixed(num(&r, "mdd")?, 1),
             ),
-            None => format!("| {} | {high} | {low} | — | — | {verdict} | — |", cell(&r, "claim")?),
+            None => format!(
+                "| {} | {high} | {low} | — | — | {verdict} | — |",
+                claim_name(&r)?
+            ),
         };
         rows.push(line);
     }
@@ -244,7 +274,9 @@ fn room_means(dir: &Path, file: &str) -> Rendered {
         "mean F gen 0 → last",
         "best F gen 0 → last",
     ];
-    let settings = summary["settings"].as_array().ok_or("summary.json has no settings")?;
+    let settings = summary["settings"]
+        .as_array()
+        .ok_or("summary.json has no settings")?;
     let mut rows = Vec::new();
     for (i, setting) in settings.iter().enumerate() {
         let over_rooms = |key: &str| {
@@ -257,7 +289,10 @@ fn room_means(dir: &Path, file: &str) -> Rendered {
             opt_fixed((!values.is_empty()).then(|| mean(&values)), 1)
         };
         let f = |generation: &str, which: &str| -> Result<String, String> {
-            Ok(fixed(json_num(&summary, &format!("/settings/{i}/{generation}/{which}"))?, 3))
+            Ok(fixed(
+                json_num(&summary, &format!("/settings/{i}/{generation}/{which}"))?,
+                3,
+            ))
         };
         rows.push(format!(
             "| {} | {} | {} | {} | {} | {} → {} | {} → {} |",
@@ -462,7 +497,10 @@ fn ablation_means(dir: &Path, folder: &str) -> Rendered {
         };
         let claims = read_csv(&vdir, "claims.csv")?;
         let gen0 = |setting: &str| -> Result<String, String> {
-            let row = select(&claims, &[("claim", '~', "first-generation"), ("claim", '~', setting)])?;
+            let row = select(
+                &claims,
+                &[("claim", '~', "first-generation"), ("claim", '~', setting)],
+            )?;
             Ok(fixed(num(row, "difference")?, 3))
         };
         rows.push(format!(
@@ -487,9 +525,16 @@ fn motivations_label(setting: &str) -> Result<(String, f64), String> {
             .split_once('=')
             .ok_or_else(|| format!("setting `{setting}` is not of the form C=…,H=…,O=…,E=…"))?;
         if key == "O" {
-            orientation = value.parse().map_err(|_| format!("setting `{setting}`: O"))?;
+            orientation = value
+                .parse()
+                .map_err(|_| format!("setting `{setting}`: O"))?;
         }
-        parts.push(value.strip_prefix('0').filter(|v| !v.is_empty()).unwrap_or(value));
+        parts.push(
+            value
+                .strip_prefix('0')
+                .filter(|v| !v.is_empty())
+                .unwrap_or(value),
+        );
     }
     Ok((format!("({})", parts.join(", ")), orientation))
 }
@@ -498,7 +543,11 @@ fn mean_std(values: &[f64], digits: usize) -> String {
     match values.len() {
         0 => "—".into(),
         1 => format!("{} ± —", fixed(values[0], digits)),
-        _ => format!("{} ± {}", fixed(mean(values), digits), fixed(std(values), digits)),
+        _ => format!(
+            "{} ± {}",
+            fixed(mean(values), digits),
+            fixed(std(values), digits)
+        ),
     }
 }
 
@@ -547,7 +596,10 @@ fn orientation(dir: &Path, folder: &str) -> Rendered {
             let mut ls = Vec::new();
             for job in &jobs {
                 let generations = read_csv(&dir, &format!("jobs/{job}/generations.csv"))?;
-                ls.push(num(generations.last().ok_or("an empty generations.csv")?, "l")?);
+                ls.push(num(
+                    generations.last().ok_or("an empty generations.csv")?,
+                    "l",
+                )?);
             }
             mean_std(&ls, 2)
         };
@@ -567,16 +619,22 @@ fn orientation(dir: &Path, folder: &str) -> Rendered {
 /// orientation, energy) and a comma-separated list of metrics.
 fn levels(dir: &Path, file: &str, args: &[&str]) -> Rendered {
     let [motivation, metrics] = args else {
-        return Err("`levels` takes two arguments: a motivation and a comma-separated list of \
+        return Err(
+            "`levels` takes two arguments: a motivation and a comma-separated list of \
                     metrics, e.g. `levels curiosity exploration,battery`"
-            .into());
+                .into(),
+        );
     };
     let letter = match *motivation {
         "curiosity" => "C",
         "homing" => "H",
         "orientation" => "O",
         "energy" => "E",
-        other => return Err(format!("`levels`: unknown motivation `{other}`; known: curiosity, homing, orientation, energy")),
+        other => {
+            return Err(format!(
+                "`levels`: unknown motivation `{other}`; known: curiosity, homing, orientation, energy"
+            ));
+        }
     };
     let results = read_csv(dir, file)?;
     let levels = ["0", "0.2", "0.4", "0.6", "0.8", "1.0"];
@@ -599,7 +657,12 @@ fn levels(dir: &Path, file: &str, args: &[&str]) -> Rendered {
     Ok(table(&header, rows))
 }
 
-fn level_mean(results: &[Row], motivation: &str, level: f64, column: &str) -> Result<String, String> {
+fn level_mean(
+    results: &[Row],
+    motivation: &str,
+    level: f64,
+    column: &str,
+) -> Result<String, String> {
     let mut per_setting: BTreeMap<&str, Vec<f64>> = BTreeMap::new();
     for r in results {
         if (num(r, motivation)? - level).abs() < 1e-9 {
@@ -607,8 +670,16 @@ fn level_mean(results: &[Row], motivation: &str, level: f64, column: &str) -> Re
             values.extend(opt_num(r, column)?);
         }
     }
-    let means: Vec<f64> = per_setting.values().filter(|v| !v.is_empty()).map(|v| mean(v)).collect();
-    Ok(if means.is_empty() { "—".into() } else { fixed(mean(&means), 0) })
+    let means: Vec<f64> = per_setting
+        .values()
+        .filter(|v| !v.is_empty())
+        .map(|v| mean(v))
+        .collect();
+    Ok(if means.is_empty() {
+        "—".into()
+    } else {
+        fixed(mean(&means), 0)
+    })
 }
 
 /// Renders a table marker's spec (`PATH: RENDERER [ARGS]`) from the records in `dir`.
@@ -617,7 +688,9 @@ fn render_block(dir: &Path, spec: &str) -> Rendered {
         .split_once(": ")
         .ok_or_else(|| format!("`{spec}` is not `RECORD: RENDERER [ARGS]`"))?;
     let mut words = how.split_whitespace();
-    let renderer = words.next().ok_or_else(|| format!("`{spec}` names no renderer"))?;
+    let renderer = words
+        .next()
+        .ok_or_else(|| format!("`{spec}` names no renderer"))?;
     let args: Vec<&str> = words.collect();
     if !dir.join(path).exists() {
         return Err(format!("the record {path} is not in {}", dir.display()));
@@ -633,7 +706,9 @@ fn render_block(dir: &Path, spec: &str) -> Rendered {
         "ablation-means" => ablation_means(dir, path),
         "orientation" => orientation(dir, path),
         "levels" => levels(dir, path, &args),
-        other => Err(format!("unknown renderer `{other}`; the renderers are {RENDERERS}")),
+        other => Err(format!(
+            "unknown renderer `{other}`; the renderers are {RENDERERS}"
+        )),
     }
 }
 
@@ -647,7 +722,11 @@ fn select<'a>(rows: &'a [Row], selectors: &[(&str, char, &str)]) -> Result<&'a R
         let mut all = true;
         for (column, op, text) in selectors {
             let value = cell(row, column)?;
-            all &= if *op == '=' { value == *text } else { value.contains(text) };
+            all &= if *op == '=' {
+                value == *text
+            } else {
+                value.contains(text)
+            };
         }
         if all {
             found.push(row);
@@ -668,14 +747,20 @@ fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
         .ok_or_else(|| format!("`{spec}` is not `RECORD: SELECTOR… COLUMN FORMAT`"))?;
     let words: Vec<&str> = how.split_whitespace().collect();
     let [selectors @ .., column, format] = words.as_slice() else {
-        return Err(format!("`{spec}` needs selectors, a column and a format (e.g. `.1`)"));
+        return Err(format!(
+            "`{spec}` needs selectors, a column and a format (e.g. `.1`)"
+        ));
     };
     let mut parsed = Vec::new();
     for selector in selectors {
-        let op = selector
-            .find(['=', '~'])
-            .ok_or_else(|| format!("selector `{selector}` is not `column=text` or `column~text`"))?;
-        parsed.push((&selector[..op], selector.as_bytes()[op] as char, &selector[op + 1..]));
+        let op = selector.find(['=', '~']).ok_or_else(|| {
+            format!("selector `{selector}` is not `column=text` or `column~text`")
+        })?;
+        parsed.push((
+            &selector[..op],
+            selector.as_bytes()[op] as char,
+            &selector[op + 1..],
+        ));
     }
     let rows = read_csv(dir, path)?;
     let x = num(select(&rows, &parsed)?, column)?;
@@ -687,7 +772,11 @@ fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
         .strip_prefix('.')
         .and_then(|d| d.parse().ok())
         .ok_or_else(|| format!("format `{format}` is not `.N` or `+.N`"))?;
-    Ok(if sign { signed(x, digits) } else { fixed(x, digits) })
+    Ok(if sign {
+        signed(x, digits)
+    } else {
+        fixed(x, digits)
+    })
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -717,7 +806,10 @@ fn render_document(text: &str, dir: &Path) -> Result<(String, Vec<Difference>), 
             i += 1;
             continue;
         }
-        if let Some(spec) = line.strip_prefix(BLOCK_START).and_then(|s| s.strip_suffix(" -->")) {
+        if let Some(spec) = line
+            .strip_prefix(BLOCK_START)
+            .and_then(|s| s.strip_suffix(" -->"))
+        {
             let end = lines[i..]
                 .iter()
                 .position(|l| *l == BLOCK_END)
@@ -740,7 +832,11 @@ fn render_document(text: &str, dir: &Path) -> Result<(String, Vec<Difference>), 
         }
         let rendered = render_values(line, dir).map_err(|e| format!("line {}: {e}", i + 1))?;
         if rendered != line {
-            differences.push(Difference { line: i + 1, document: line.into(), records: rendered.clone() });
+            differences.push(Difference {
+                line: i + 1,
+                document: line.into(),
+                records: rendered.clone(),
+            });
         }
         out.push(rendered);
         i += 1;
@@ -842,15 +938,25 @@ fn every_record_a_document_quotes_exists() {
             }
         }
     }
-    assert!(quoted > 0, "no document quotes a record: the markers are gone");
-    assert!(missing.is_empty(), "records the documents quote are missing:\n{}", missing.join("\n"));
+    assert!(
+        quoted > 0,
+        "no document quotes a record: the markers are gone"
+    );
+    assert!(
+        missing.is_empty(),
+        "records the documents quote are missing:\n{}",
+        missing.join("\n")
+    );
 }
 
 fn small_records() -> tempfile::TempDir {
     let dir = tempfile::tempdir().expect("a temp dir");
     fs::create_dir(dir.path().join("study")).unwrap();
-    fs::write(dir.path().join("study/claims.csv"), "claim,p,mdd\nexplores,0.168,3.2\nbattery,0.0117,2.5\n")
-        .unwrap();
+    fs::write(
+        dir.path().join("study/claims.csv"),
+        "claim,p,mdd\nexplores,0.168,3.2\nbattery,0.0117,2.5\n",
+    )
+    .unwrap();
     dir
 }
 
@@ -858,16 +964,26 @@ fn small_records() -> tempfile::TempDir {
 fn a_marker_naming_an_unknown_renderer_fails_with_a_clear_message() {
     let dir = small_records();
     let doc = "text\n<!-- record study/claims.csv: nope -->\n| a |\n<!-- end record -->\n";
-    let error = render_document(doc, dir.path()).err().expect("an unknown renderer fails");
-    assert!(error.starts_with("line 2: unknown renderer `nope`; the renderers are rooms"), "{error}");
+    let error = render_document(doc, dir.path())
+        .err()
+        .expect("an unknown renderer fails");
+    assert!(
+        error.starts_with("line 2: unknown renderer `nope`; the renderers are rooms"),
+        "{error}"
+    );
 }
 
 #[test]
 fn a_value_naming_an_unknown_column_fails_with_a_clear_message() {
     let dir = small_records();
     let doc = "p is <!-- value study/claims.csv: claim=battery nope .3 -->0.012<!-- end -->.\n";
-    let error = render_document(doc, dir.path()).err().expect("an unknown column fails");
-    assert_eq!(error, "line 1: no column `nope` in the record; its columns are claim, mdd, p");
+    let error = render_document(doc, dir.path())
+        .err()
+        .expect("an unknown column fails");
+    assert_eq!(
+        error,
+        "line 1: no column `nope` in the record; its columns are claim, mdd, p"
+    );
 }
 
 #[test]
@@ -875,7 +991,10 @@ fn a_value_renders_from_its_row_and_a_stale_one_is_a_difference() {
     let dir = small_records();
     let doc = "p <!-- value study/claims.csv: claim~batt p .3 -->0.011<!-- end --> here\n";
     let (text, differences) = render_document(doc, dir.path()).expect("renders");
-    assert_eq!(text, "p <!-- value study/claims.csv: claim~batt p .3 -->0.012<!-- end --> here\n");
+    assert_eq!(
+        text,
+        "p <!-- value study/claims.csv: claim~batt p .3 -->0.012<!-- end --> here\n"
+    );
     assert_eq!(differences.len(), 1);
     assert_eq!(differences[0].line, 1);
 }
@@ -884,6 +1003,11 @@ fn a_value_renders_from_its_row_and_a_stale_one_is_a_difference() {
 fn a_marker_naming_a_missing_record_fails_with_a_clear_message() {
     let dir = small_records();
     let doc = "<!-- record study/table9.csv: rooms -->\n<!-- end record -->\n";
-    let error = render_document(doc, dir.path()).err().expect("a missing record fails");
-    assert!(error.starts_with("line 1: the record study/table9.csv is not in "), "{error}");
+    let error = render_document(doc, dir.path())
+        .err()
+        .expect("a missing record fails");
+    assert!(
+        error.starts_with("line 1: the record study/table9.csv is not in "),
+        "{error}"
+    );
 }
