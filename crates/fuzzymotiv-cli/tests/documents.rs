@@ -872,7 +872,14 @@ fn render_values(line: &str, dir: &Path) -> Result<String, String> {
 /// The record paths (relative to docs/results/) that a document's markers name.
 fn quoted_records(text: &str) -> Vec<(usize, String)> {
     let mut found = Vec::new();
+    let mut fenced = false;
     for (n, line) in text.lines().enumerate() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+        }
+        if fenced {
+            continue;
+        }
         let mut specs: Vec<&str> = Vec::new();
         if let Some(spec) = line.strip_prefix(BLOCK_START) {
             specs.push(spec);
