@@ -739,8 +739,8 @@ fn select<'a>(rows: &'a [Row], selectors: &[(&str, char, &str)]) -> Result<&'a R
 }
 
 /// Renders a value marker's spec: `FILE.csv: SELECTOR… COLUMN FORMAT`, where a selector is
-/// `column=text` (equal) or `column~text` (contains), and the format `.N` (N decimals) or
-/// `+.N` (with its sign).
+/// `column=text` (equal) or `column~text` (contains), or `FILE.json: /JSON/POINTER FORMAT`; the
+/// format is `.N` (N decimals) or `+.N` (with its sign).
 fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
     let (path, how) = spec
         .split_once(": ")
@@ -751,19 +751,17 @@ fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
             "`{spec}` needs selectors, a column and a format (e.g. `.1`)"
         ));
     };
-    let mut parsed = Vec::new();
-    for selector in selectors {
-        let op = selector.find(['=', '~']).ok_or_else(|| {
-            format!("selector `{selector}` is not `column=text` or `column~text`")
-        })?;
-        parsed.push((
-            &selector[..op],
-            selector.as_bytes()[op] as char,
-            &selector[op + 1..],
-        ));
-    }
-    let rows = read_csv(dir, path)?;
-    let x = num(select(&rows, &parsed)?, column)?;
+    let x = if path.ends_with(".json") {
+        if !selectors.is_empty() {
+            return Err(format!(
+                "`{spec}`: a JSON record takes one pointer and a format"
+            ));
+        }
+        json_num(&read_json(dir, path)?, column)?
+    } else {
+        let rows = read_csv(dir, path)?;
+        num(select(&rows, &parse_selectors(selectors)?)?, column)?
+    };
     let (sign, digits) = match format.strip_prefix('+') {
         Some(rest) => (true, rest),
         None => (false, *format),
@@ -777,6 +775,21 @@ fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
     } else {
         fixed(x, digits)
     })
+}
+
+fn parse_selectors<'a>(selectors: &[&'a str]) -> Result<Vec<(&'a str, char, &'a str)>, String> {
+    let mut parsed = Vec::new();
+    for selector in selectors {
+        let op = selector.find(['=', '~']).ok_or_else(|| {
+            format!("selector `{selector}` is not `column=text` or `column~text`")
+        })?;
+        parsed.push((
+            &selector[..op],
+            selector.as_bytes()[op] as char,
+            &selector[op + 1..],
+        ));
+    }
+    Ok(parsed)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1016,5 +1029,40 @@ fn a_marker_naming_a_missing_record_fails_with_a_clear_message() {
     assert!(
         error.starts_with("line 1: the record study/table9.csv is not in "),
         "{error}"
+    );
+}
+
+#[test]
+fn a_stale_table_is_rewritten_from_its_record_and_named_by_its_line() {
+    let dir = small_records();
+    fs::write(
+        dir.path().join("study/ablation.csv"),
+        "variant,a,b,c,d,e,f\ndefault,false,true,false,true,false,true\n",
+    )
+    .unwrap();
+    let doc = "# A\n<!-- record study/ablation.csv: ablation-claims -->\n| old |\n<!-- end record -->\nafter\n";
+    let (text, differences) = render_document(doc, dir.path()).expect("renders");
+    assert_eq!(differences.len(), 1);
+    assert_eq!(differences[0].line, 3);
+    assert_eq!(differences[0].document, "| old |");
+    assert!(
+        text.contains("| default | fails | holds | fails | holds | fails | holds |\n<!-- end record -->\nafter\n"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_value_reads_a_json_pointer() {
+    let dir = small_records();
+    fs::write(
+        dir.path().join("study/summary.json"),
+        r#"{"settings": [{"mean": -0.1234}]}"#,
+    )
+    .unwrap();
+    let doc = "F <!-- value study/summary.json: /settings/0/mean +.2 -->0<!-- end -->\n";
+    let (text, _) = render_document(doc, dir.path()).expect("renders");
+    assert_eq!(
+        text,
+        "F <!-- value study/summary.json: /settings/0/mean +.2 -->−0.12<!-- end -->\n"
     );
 }
