@@ -72,11 +72,10 @@ def _dtype(dtype: Any) -> np.dtype:
     return d
 
 
-def _core(room: Any, num_envs: int, config: Any, overrides: Any, reward: str, dtype: np.dtype) -> Any:
-    path, text = _config_args(config)
-    return _native.GymCore(
-        _rooms(room), num_envs, path, text, _sets(overrides), reward, dtype == np.float64
-    )
+def _core(room: Any, num_envs: int, source: tuple, reward: str, dtype: np.dtype) -> Any:
+    """The native core of ``num_envs`` envs; ``source`` is (config path, config text, sets)."""
+    path, text, sets = source
+    return _native.GymCore(_rooms(room), num_envs, path, text, sets, reward, dtype == np.float64)
 
 
 def _spaces(dtype: np.dtype, discrete: bool) -> tuple:
@@ -131,7 +130,9 @@ class KheperaEnv(gym.Env):
             raise FuzzymotivError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
         self._dtype = _dtype(dtype)
         self._room_args = _rooms(room)
-        self._core = _core(self._room_args, 1, config, overrides, reward, self._dtype)
+        # The config as the native code takes it, kept for render() (same robot, same rooms).
+        self._source = (*_config_args(config), _sets(overrides))
+        self._core = _core(self._room_args, 1, self._source, reward, self._dtype)
         self.observation_space, self.action_space = _spaces(self._dtype, discrete)
         self.rooms: list = list(self._core.room_names)
         self.max_steps: int = self._core.max_steps
@@ -206,18 +207,16 @@ class KheperaEnv(gym.Env):
 
     def render(self) -> Optional[np.ndarray]:
         """With ``render_mode="rgb_array"``: the frame of the episode so far, ``(H, W, 3)``
-        uint8, drawn by :func:`fuzzymotiv.frames`."""
+        uint8 — the last frame :func:`fuzzymotiv.frames` draws of :meth:`trajectory` with the
+        env's ``config`` and ``overrides`` (its robot, its rooms), drawn alone: one frame per
+        call, whatever the episode's length."""
         if self.render_mode != "rgb_array":
             return None
         if not self._trace:
             raise FuzzymotivError("render: no episode yet; call reset() first")
-        import fuzzymotiv
-
-        frames = getattr(fuzzymotiv, "frames", None)
-        if frames is None:
-            raise FuzzymotivError("render: fuzzymotiv.frames is not available in this build")
+        path, text, sets = self._source
         room = self._room_args[self._room] if len(self._room_args) > 1 else self._room_args[0]
-        return np.asarray(frames(self.trajectory(), room, size=self.size)[-1])
+        return _native.last_frame(self.trajectory(), room, self.size, path, text, sets)
 
 
 def _check_seed(seed: Any) -> None:
@@ -275,7 +274,8 @@ class KheperaVectorEnv(VectorEnv):
             raise FuzzymotivError(f"num_envs: expected a whole number >= 1, got {num_envs!r}")
         self.num_envs = int(num_envs)
         self._dtype = _dtype(dtype)
-        self._core = _core(room, self.num_envs, config, overrides, reward, self._dtype)
+        source = (*_config_args(config), _sets(overrides))
+        self._core = _core(room, self.num_envs, source, reward, self._dtype)
         self._discrete = discrete
         self.single_observation_space, self.single_action_space = _spaces(self._dtype, discrete)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)

@@ -933,6 +933,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(frames::frames, m)?)?;
     m.add_function(wrap_pyfunction!(frames::save_gif, m)?)?;
+    m.add_function(wrap_pyfunction!(frames::last_frame, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_run_job, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_prepare, m)?)?;
