@@ -27,6 +27,7 @@ from __future__ import annotations
 import json
 import operator
 import os
+import warnings
 from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping, NamedTuple, Optional, Sequence, Union
 
@@ -238,34 +239,54 @@ def _looks_like_toml(text: str) -> bool:
     return "=" in line or line.startswith(("[", "#"))
 
 
-def _config_source(arg: str, config: Union[str, os.PathLike]) -> tuple:
-    """(path, text) of a config or sweep file given as a path or a string: a string is a file
-    if one of that name exists or it looks like a file name, else TOML text (its parse errors
-    give the line and column). A file name that names no file is an error saying so."""
+def _config_source(
+    arg: str, config: Union[str, os.PathLike, None], text: Optional[str] = None,
+    text_arg: str = "config_text", stacklevel: int = 4,
+) -> tuple:
+    """(path, text) of a config or sweep file given as ``arg`` (a path) or ``text_arg`` (TOML
+    text), at most one of them. A path that names no file is an error saying so. A string
+    ``arg`` that names no file but looks like TOML text is still read as text for one release,
+    with a DeprecationWarning pointing at ``text_arg``."""
+    if text is not None:
+        if config is not None:
+            raise FuzzymotivError(
+                f"{arg} and {text_arg}: give one of them, a file's path ({arg}=) or TOML text "
+                f"({text_arg}=), not both"
+            )
+        if not isinstance(text, str):
+            raise FuzzymotivError(f"{text_arg}: expected TOML text (a str), got {type(text).__name__}")
+        return None, text
+    if config is None:
+        return None, None
+    if not isinstance(config, (str, os.PathLike)):
+        raise FuzzymotivError(f"{arg}: expected a file's path, got {type(config).__name__}")
     if isinstance(config, str) and not os.path.isfile(config) and _looks_like_toml(config):
+        warnings.warn(
+            f"{arg}: TOML text passed as {arg}= is deprecated and will be refused in the next "
+            f"release; pass it as {text_arg}= ({arg}= is a file's path)",
+            DeprecationWarning,
+            stacklevel=stacklevel,
+        )
         return None, config
     path = os.fspath(config)
     if path == "":
         raise FuzzymotivError(
-            f"{arg}: an empty string is neither a file nor TOML text; pass a file's path, TOML "
-            "text, or None for the built-in defaults"
+            f"{arg}: an empty string names no file; pass a file's path, TOML text as "
+            f"{text_arg}=, or None for the built-in defaults"
         )
     if not os.path.exists(path):
         where = "" if os.path.isabs(path) else f" (relative to the working directory {os.getcwd()})"
         raise FuzzymotivError(
-            f"{arg}: the file {path} does not exist{where}; {arg} is a TOML file's path or TOML text"
+            f"{arg}: the file {path} does not exist{where}; {arg} is a TOML file's path "
+            f"(TOML text goes in {text_arg}=)"
         )
     return path, None
 
 
-def _config_args(config: Any) -> tuple:
-    """(path, text) for the native functions' ``config_path`` and ``config_text``: None is the
-    built-in defaults, a path-like a file, a string a file or TOML text (:func:`_config_source`)."""
-    if config is None:
-        return None, None
-    if isinstance(config, (str, os.PathLike)):
-        return _config_source("config", config)
-    raise FuzzymotivError(f"config: expected a path or TOML text, got {type(config).__name__}")
+def _config_args(config: Any, config_text: Optional[str] = None) -> tuple:
+    """(path, text) for the native functions' ``config_path`` and ``config_text`` from the
+    public ``config=`` (a file's path; None: the built-in defaults) and ``config_text=``."""
+    return _config_source("config", config, config_text)
 
 
 def _frame(columns: dict) -> Any:
@@ -346,10 +367,12 @@ def run(
     seed: Optional[int] = None,
     progress: Any = None,
     force: bool = False,
+    config_text: Optional[str] = None,
 ) -> RunResult:
     """Evolve controllers as ``fuzzymotiv run`` does and return a :class:`RunResult`.
 
-    ``config`` is a config file path or TOML text (None: the built-in defaults); ``overrides``
+    ``config`` is a config file's path (None: the built-in defaults), ``config_text`` TOML text
+    instead (at most one of them); ``overrides``
     a dict of dotted keys, the same as ``--set`` (``{"ga.generations": 20, "rooms": ["H"]}``);
     ``seed`` overrides the base seed (a whole number from 0 to 2^53 − 1). ``threads`` sizes
     the worker pool (1 to 1024; results do not depend on it). ``progress`` is a callable
@@ -371,7 +394,7 @@ def run(
     >>> res = run("configs/tiny.toml", {"ga.generations": 3})  # doctest: +SKIP
     >>> res.generations["best"].iloc[-1]                      # doctest: +SKIP
     """
-    path, text = _config_args(config)
+    path, text = _config_args(config, config_text)
     sets = _sets(overrides)
     out_path = None if out is None else os.fspath(out)
     if out_path == "":
@@ -388,6 +411,8 @@ def simulate(
     seed: int,
     config: Union[str, os.PathLike, None] = None,
     overrides: Any = None,
+    *,
+    config_text: Optional[str] = None,
 ) -> dict:
     """Run ``genome`` (the network's weights) for one trial from home in ``room`` (a room of the
     config, a built-in room or a room file) under base seed ``seed`` — exactly the trial of
@@ -405,7 +430,7 @@ def simulate(
     >>> tr["x"].shape, tr["sensors"].shape, str(tr["action"][0])
     ((21,), (20, 8), 'straight')
     """
-    path, text = _config_args(config)
+    path, text = _config_args(config, config_text)
     weights = _real_array("genome", genome, "a vector of weights").ravel().tolist()
     return _native.simulate(weights, os.fspath(room), seed, path, text, _sets(overrides))
 
@@ -459,6 +484,7 @@ def frames(
     size: int = 320,
     stride: int = 1,
     config: Union[str, os.PathLike, None] = None,
+    config_text: Optional[str] = None,
     overrides: Any = None,
     seed: Optional[int] = None,
 ) -> np.ndarray:
@@ -481,7 +507,7 @@ def frames(
     >>> frames(tr, size=96, stride=5).shape
     (5, 96, 96, 3)
     """
-    path, text = _config_args(config)
+    path, text = _config_args(config, config_text)
     return _native.frames(
         _rollout(trajectory_or_genome), _room_arg(trajectory_or_genome, room),
         _whole("size", size), _whole("stride", stride), seed, path, text, _sets(overrides),
@@ -498,6 +524,7 @@ def save_gif(
     size: int = 320,
     stride: int = 1,
     config: Union[str, os.PathLike, None] = None,
+    config_text: Optional[str] = None,
     overrides: Any = None,
     seed: Optional[int] = None,
 ) -> int:
@@ -525,7 +552,7 @@ def save_gif(
         )
     else:
         source = _rollout(frames_or_trajectory)
-    cfg_path, text = _config_args(config)
+    cfg_path, text = _config_args(config, config_text)
     return _native.save_gif(
         source, os.fspath(path), float(fps), bool(force),
         _room_arg(frames_or_trajectory, room), _whole("size", size), _whole("stride", stride),
@@ -583,7 +610,7 @@ class Problem:
     """One evolution's fitness function for any optimiser: the validated experiment of a
     config, evaluated in batches.
 
-    ``config`` and ``overrides`` are :func:`run`'s (a file or TOML text; dotted keys as
+    ``config``, ``config_text`` and ``overrides`` are :func:`run`'s (a file, TOML text; dotted keys as
     ``--set``); ``seed`` overrides the config's seed. With ``training = "per-room"`` there is
     one problem per room: ``room=NAME``. ``threads`` sizes the pool that evaluates (results do
     not depend on it; None: all cores).
@@ -608,8 +635,9 @@ class Problem:
         room: Optional[str] = None,
         threads: Optional[int] = None,
         seed: Optional[int] = None,
+        config_text: Optional[str] = None,
     ):
-        path, text = _config_args(config)
+        path, text = _config_args(config, config_text)
         sets = _sets(overrides)
         self._native = _native.Problem(path, text, sets, room, threads, seed)
         # What pickling needs to make this problem again (the file made absolute).
@@ -677,8 +705,7 @@ class Problem:
 
 def _problem_again(path, text, sets, room, threads, seed) -> Problem:
     """A :class:`Problem` from the arguments :meth:`Problem.__reduce__` saved."""
-    config = Path(path) if path is not None else (None if text is None else text + "\n")
-    return Problem(config, sets, room=room, threads=threads, seed=seed)
+    return Problem(path, sets, room=room, threads=threads, seed=seed, config_text=text)
 
 
 class Best(NamedTuple):
@@ -780,7 +807,7 @@ class GA:
             config = state.get("config")
             if not isinstance(config, str) or not isinstance(run, str):
                 raise FuzzymotivError("state: not a GA state (no config or run)")
-            problem = Problem(config + "\n", room=None if run == "all" else run)
+            problem = Problem(config_text=config, room=None if run == "all" else run)
         if not isinstance(problem, Problem):
             raise FuzzymotivError(f"problem: expected a fuzzymotiv.Problem, got {type(problem).__name__}")
         self = cls.__new__(cls)

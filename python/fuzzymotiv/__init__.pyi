@@ -127,6 +127,7 @@ def run(
     seed: Optional[int] = ...,
     progress: Union[None, bool, Callable[[int, int, float], Any]] = ...,
     force: bool = ...,
+    config_text: Optional[str] = ...,
 ) -> RunResult:
     """Evolve as ``fuzzymotiv run``. With ``out``, the directory follows ``fuzzymotiv run --out``:
     the same finished run is read back (nothing runs), an unfinished one (``OUT.partial/``) is
@@ -158,6 +159,8 @@ def simulate(
     seed: int,
     config: Config = ...,
     overrides: Overrides = ...,
+    *,
+    config_text: Optional[str] = ...,
 ) -> Trajectory: ...
 
 def frames(
@@ -167,6 +170,7 @@ def frames(
     size: int = ...,
     stride: int = ...,
     config: Config = ...,
+    config_text: Optional[str] = ...,
     overrides: Overrides = ...,
     seed: Optional[int] = ...,
 ) -> npt.NDArray[np.uint8]:
@@ -183,6 +187,7 @@ def save_gif(
     size: int = ...,
     stride: int = ...,
     config: Config = ...,
+    config_text: Optional[str] = ...,
     overrides: Overrides = ...,
     seed: Optional[int] = ...,
 ) -> int:
@@ -214,6 +219,7 @@ class Problem:
         room: Optional[str] = ...,
         threads: Optional[int] = ...,
         seed: Optional[int] = ...,
+        config_text: Optional[str] = ...,
     ) -> None: ...
     def evaluate(
         self,

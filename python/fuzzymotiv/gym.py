@@ -119,6 +119,7 @@ class KheperaEnv(gym.Env):
         room: RoomArg = "H",
         *,
         config: Union[str, "os.PathLike[str]", None] = None,
+        config_text: Optional[str] = None,
         overrides: Any = None,
         reward: str = "end",
         dtype: Any = np.float32,
@@ -131,7 +132,7 @@ class KheperaEnv(gym.Env):
         self._dtype = _dtype(dtype)
         self._room_args = _rooms(room)
         # The config as the native code takes it, kept for render() (same robot, same rooms).
-        self._source = (*_config_args(config), _sets(overrides))
+        self._source = (*_config_args(config, config_text), _sets(overrides))
         self._core = _core(self._room_args, 1, self._source, reward, self._dtype)
         self.observation_space, self.action_space = _spaces(self._dtype, discrete)
         self.rooms: list = list(self._core.room_names)
@@ -265,6 +266,7 @@ class KheperaVectorEnv(VectorEnv):
         room: RoomArg = "H",
         *,
         config: Union[str, "os.PathLike[str]", None] = None,
+        config_text: Optional[str] = None,
         overrides: Any = None,
         reward: str = "end",
         dtype: Any = np.float32,
@@ -274,7 +276,7 @@ class KheperaVectorEnv(VectorEnv):
             raise FuzzymotivError(f"num_envs: expected a whole number >= 1, got {num_envs!r}")
         self.num_envs = int(num_envs)
         self._dtype = _dtype(dtype)
-        source = (*_config_args(config), _sets(overrides))
+        source = (*_config_args(config, config_text), _sets(overrides))
         self._core = _core(room, self.num_envs, source, reward, self._dtype)
         self._discrete = discrete
         self.single_observation_space, self.single_action_space = _spaces(self._dtype, discrete)

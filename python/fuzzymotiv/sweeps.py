@@ -37,7 +37,8 @@ __all__ = ["Job", "Plan", "SweepResult", "merge", "plan", "run_job", "sweep"]
 @dataclass(frozen=True)
 class Job:
     """One job of a sweep: a line of ``fuzzymotiv plan`` (``index``, ``id``, ``key``,
-    ``setting``, ``replicate``, ``seed``, ``overrides``) and the sweep it belongs to
+    ``setting``, ``replicate``, ``seed``, ``overrides``, and ``model``, the model version that
+    planned it) and the sweep it belongs to
     (``sweep_text``, ``source``, ``base_dir``: what a worker needs to run it). Picklable."""
 
     index: int
@@ -47,6 +48,7 @@ class Job:
     replicate: int
     seed: int
     overrides: Tuple[str, ...]
+    model: int
     sweep_text: str = field(repr=False)
     source: str = field(repr=False)
     base_dir: str = field(repr=False)
@@ -61,6 +63,7 @@ class Job:
             "replicate": self.replicate,
             "seed": self.seed,
             "overrides": list(self.overrides),
+            "model": self.model,
         }
 
 
@@ -96,24 +99,39 @@ def _toml_document(sweep: Mapping) -> str:
     return "".join(f"{json.dumps(str(k))} = {_toml_value(v)}\n" for k, v in sweep.items())
 
 
-def plan(sweep_file_or_dict: Union[str, os.PathLike, Mapping]) -> Plan:
+def plan(
+    sweep_file_or_dict: Union[str, os.PathLike, Mapping, None] = None,
+    *,
+    sweep_text: Optional[str] = None,
+) -> Plan:
     """The jobs of a sweep, with the ids and seeds ``fuzzymotiv plan`` gives them.
 
-    The argument is a sweep file (a config with a ``[sweep]`` table; its room files are relative
-    to its folder), TOML text, or a dict of the same document (``{"ga": {...}, "sweep":
+    The argument is a sweep file's path (a config with a ``[sweep]`` table; its room files are
+    relative to its folder) or a dict of the same document (``{"ga": {...}, "sweep":
     {"replicates": 2, "motivations": [[...]], "grid": {"trial.noise": [0.0, 0.06]}}}``; room
-    files relative to the current directory). Every job's config is validated now: a bad point
-    raises :class:`FuzzymotivError` before anything runs.
+    files relative to the current directory); or, instead, ``sweep_text=`` the document as TOML
+    text (TOML text as the first argument still works, with a DeprecationWarning, for one
+    release). Every job's config is validated now: a bad point raises
+    :class:`FuzzymotivError` before anything runs.
     """
-    if isinstance(sweep_file_or_dict, Mapping):
-        path, text = None, _toml_document(sweep_file_or_dict)
-    elif isinstance(sweep_file_or_dict, (str, os.PathLike)):
-        from . import _config_source  # type: ignore[attr-defined]  # private: not in the stubs
+    from . import _config_source  # type: ignore[attr-defined]  # private: not in the stubs
 
-        path, text = _config_source("sweep", sweep_file_or_dict)
+    if isinstance(sweep_file_or_dict, Mapping):
+        if sweep_text is not None:
+            raise FuzzymotivError(
+                "sweep and sweep_text: give one of them, a file's path or dict, or TOML text "
+                "(sweep_text=), not both"
+            )
+        path, text = None, _toml_document(sweep_file_or_dict)
+    elif sweep_file_or_dict is None and sweep_text is None:
+        raise FuzzymotivError("plan: expected a sweep file's path, a dict, or sweep_text=")
+    elif sweep_file_or_dict is None or isinstance(sweep_file_or_dict, (str, os.PathLike)):
+        path, text = _config_source(
+            "sweep", sweep_file_or_dict, sweep_text, text_arg="sweep_text", stacklevel=3
+        )
     else:
         raise FuzzymotivError(
-            f"plan: expected a sweep file, TOML text or a dict, got {type(sweep_file_or_dict).__name__}"
+            f"plan: expected a sweep file, a dict or sweep_text=, got {type(sweep_file_or_dict).__name__}"
         )
     sweep_text, source, base_dir, jsonl = _native.sweep_plan(path, text)
     jobs = []
