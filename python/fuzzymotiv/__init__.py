@@ -16,10 +16,13 @@ array([0.263309, 1.      ])
 >>> tr["sensors"].shape
 (50, 8)
 
-Errors in the input (configs, room files, motivations, overrides, NaN or infinite numbers,
-an ``out`` directory that must not be replaced) raise :class:`FuzzymotivError`, a
-``ValueError`` carrying the message the CLI prints; file-system failures raise
-:class:`FuzzymotivOSError`, both a ``FuzzymotivError`` and an ``OSError``.
+Errors in the input raise :class:`FuzzymotivError`, a ``ValueError`` carrying the message the
+CLI prints, or one of its subclasses: :class:`ConfigError` (a config, overrides, a room or
+sweep file), :class:`OutputExistsError` (an output at ``out=``/``path=`` that must not be
+replaced; ``force=True`` replaces fuzzymotiv's own), :class:`ResetNeeded` (a Gymnasium env
+used before ``reset()``), :class:`DependencyNotInstalled` (an optional package missing);
+file-system failures raise :class:`FuzzymotivOSError`, both a ``FuzzymotivError`` and an
+``OSError`` with ``errno`` set.
 """
 
 from __future__ import annotations
@@ -36,7 +39,14 @@ import numpy as np
 from . import _fuzzymotiv as _native
 from ._fuzzymotiv import VERSION as __version__
 from ._fuzzymotiv import MODEL_VERSION
-from ._fuzzymotiv import FuzzymotivError, FuzzymotivOSError
+from ._fuzzymotiv import (
+    ConfigError,
+    DependencyNotInstalled,
+    FuzzymotivError,
+    FuzzymotivOSError,
+    OutputExistsError,
+    ResetNeeded,
+)
 from . import stats
 from .sweeps import Job, Plan, SweepResult, merge, plan, run_job, sweep
 
@@ -44,8 +54,12 @@ __all__ = [
     "DESCRIPTORS",
     "Best",
     "Evaluation",
+    "ConfigError",
+    "DependencyNotInstalled",
     "FuzzymotivError",
     "FuzzymotivOSError",
+    "OutputExistsError",
+    "ResetNeeded",
     "GA",
     "Job",
     "Plan",
@@ -343,7 +357,7 @@ def _progress_callback(progress: Any) -> Optional[Callable]:
         try:
             from tqdm.auto import tqdm
         except ImportError:
-            raise FuzzymotivError("progress=True needs tqdm (pip install tqdm)") from None
+            raise DependencyNotInstalled("progress=True needs tqdm (pip install tqdm)") from None
         bar = {}
 
         def update(done: int, total: int, best: float) -> None:

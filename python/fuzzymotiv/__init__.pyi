@@ -31,6 +31,18 @@ class FuzzymotivError(ValueError):
 class FuzzymotivOSError(FuzzymotivError, OSError):
     """A file-system failure (reading or writing a named path); the message is the CLI's."""
 
+class ConfigError(FuzzymotivError):
+    """A config, overrides, a room or a sweep file that cannot be used."""
+
+class OutputExistsError(FuzzymotivError):
+    """An output that must not be replaced (``force=True`` replaces fuzzymotiv's own)."""
+
+class ResetNeeded(FuzzymotivError):
+    """A Gymnasium environment used before ``reset()``."""
+
+class DependencyNotInstalled(FuzzymotivError):
+    """An optional package a call needs is not installed."""
+
 class FiringRule(TypedDict):
     number: int
     labels: list[int]

@@ -45,7 +45,7 @@ from gymnasium import spaces
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from . import FuzzymotivError, _config_args, _real_array, _sets
+from . import FuzzymotivError, ResetNeeded, _config_args, _real_array, _sets
 from . import _fuzzymotiv as _native
 
 ACTIONS = ("straight", "left30", "right30", "turn180")
@@ -167,7 +167,7 @@ class KheperaEnv(gym.Env):
 
     def step(self, action: Any) -> tuple:
         if getattr(self, "_over", True):
-            raise FuzzymotivError("step: no episode is running; call reset() first")
+            raise ResetNeeded("step: no episode is running; call reset() first")
         actions = _actions(action, 1, self._discrete)
         seen = self._last_obs
         obs, reward, terminated, truncated, info = self._core.step(actions)
@@ -214,7 +214,7 @@ class KheperaEnv(gym.Env):
         if self.render_mode != "rgb_array":
             return None
         if not self._trace:
-            raise FuzzymotivError("render: no episode yet; call reset() first")
+            raise ResetNeeded("render: no episode yet; call reset() first")
         path, text, sets = self._source
         room = self._room_args[self._room] if len(self._room_args) > 1 else self._room_args[0]
         return _native.last_frame(self.trajectory(), room, self.size, path, text, sets)

@@ -22,7 +22,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::gym::single_room;
-use crate::{finite, input_err, instance_of, load, py_err, seed_arg};
+use crate::{config_err, finite, input_err, instance_of, load, seed_arg};
 
 /// The columns of a trajectory dict, as the Python layer hands them over (float64 arrays, a
 /// list of action labels, a list of booleans).
@@ -136,7 +136,7 @@ impl Setting {
     fn experiment(&self) -> PyResult<Experiment> {
         let path = self.config_path.as_deref();
         let loaded =
-            load(path, self.config_text.as_deref(), &self.sets, self.seed).map_err(py_err)?;
+            load(path, self.config_text.as_deref(), &self.sets, self.seed).map_err(config_err)?;
         let room = match &self.room {
             Some(r) => r.clone(),
             None => loaded.experiment.room_names()[0].clone(),
