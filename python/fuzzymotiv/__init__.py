@@ -48,6 +48,7 @@ from ._fuzzymotiv import (
     ResetNeeded,
 )
 from . import stats
+from .tables import Table, table_of
 from .sweeps import Job, Plan, SweepResult, merge, plan, run_job, sweep
 
 __all__ = [
@@ -66,6 +67,7 @@ __all__ = [
     "Problem",
     "RunResult",
     "SweepResult",
+    "Table",
     "export_fll",
     "frames",
     "fuzzy_fitness",
@@ -303,24 +305,16 @@ def _config_args(config: Any, config_text: Optional[str] = None) -> tuple:
     return _config_source("config", config, config_text)
 
 
-def _frame(columns: dict) -> Any:
-    try:
-        import pandas as pd
-    except ImportError:
-        return columns
-    return pd.DataFrame(columns)
-
-
 class RunResult:
     """What :func:`run` returns.
 
     Attributes:
         generations: per generation (and run), the columns of ``generations.csv``
             (``generation, best, mean, std, min, max, a, g, l, b, room``) with the values
-            that file holds (9 decimals), with or without ``out``: a pandas DataFrame when
-            pandas is installed, else a dict of numpy arrays.
+            that file holds (9 decimals), with or without ``out``: a :class:`Table` (a dict of
+            numpy arrays, whatever is installed; ``.to_pandas()`` for a DataFrame).
         rooms: the per-room table (``room, average_fitness, exploration_pct,
-            recognition_pct, battery_pct, homing_pct, r_node``), DataFrame or dict.
+            recognition_pct, battery_pct, homing_pct, r_node``), a :class:`Table`.
         best_genome: the best robot's weights (numpy array; the first run's for per-room
             training, as ``best_genome.json``'s ``weights``).
         best_genomes: per run label, the best robot's weights.
@@ -331,8 +325,8 @@ class RunResult:
     """
 
     def __init__(self, native: dict, out: Optional[Path]):
-        self.generations = _frame(native["generations"])
-        self.rooms = _frame(native["rooms"])
+        self.generations = table_of(native["generations"])
+        self.rooms = table_of(native["rooms"])
         self.best_genomes = dict(native["best_genomes"])
         self.best_genome = next(iter(self.best_genomes.values()))
         self.trajectories = native["trajectories"]
@@ -406,7 +400,7 @@ def run(
     Same config and seed → the same numbers as the CLI.
 
     >>> res = run("configs/tiny.toml", {"ga.generations": 3})  # doctest: +SKIP
-    >>> res.generations["best"].iloc[-1]                      # doctest: +SKIP
+    >>> res.generations["best"][-1]                           # doctest: +SKIP
     """
     path, text = _config_args(config, config_text)
     sets = _sets(overrides)
@@ -795,9 +789,9 @@ class GA:
 
     @property
     def history(self) -> Any:
-        """Per generation told, ``generations.csv``'s columns (a DataFrame with pandas, else a
-        dict of arrays); a, g, l, b are NaN where tell had no terms."""
-        return _frame(self._native.history)
+        """Per generation told, ``generations.csv``'s columns as a :class:`Table` (a dict of
+        numpy arrays); a, g, l, b are NaN where tell had no terms."""
+        return table_of(self._native.history)
 
     @property
     def state(self) -> dict:

@@ -8,6 +8,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import stats as stats
+from .tables import Table as Table
 from .sweeps import Job as Job
 from .sweeps import Plan as Plan
 from .sweeps import SweepResult as SweepResult
@@ -117,10 +118,10 @@ def rooms(files: Optional[Sequence[Union[str, os.PathLike[str]]]] = ...) -> list
 def load_room(path: Union[str, os.PathLike[str]]) -> RoomInfo: ...
 
 class RunResult:
-    generations: Any
-    """pandas.DataFrame (or dict of numpy arrays): generation,best,mean,std,min,max,a,g,l,b,room."""
-    rooms: Any
-    """pandas.DataFrame (or dict): room,average_fitness,exploration_pct,recognition_pct,battery_pct,homing_pct,r_node."""
+    generations: Table
+    """generation,best,mean,std,min,max,a,g,l,b,room: a dict of numpy arrays."""
+    rooms: Table
+    """room,average_fitness,exploration_pct,recognition_pct,battery_pct,homing_pct,r_node."""
     best_genome: FloatArray
     best_genomes: dict[str, FloatArray]
     trajectories: dict[str, dict[str, FloatArray]]
@@ -271,7 +272,7 @@ class GA:
     @property
     def best(self) -> Optional[Best]: ...
     @property
-    def history(self) -> Any: ...
+    def history(self) -> Table: ...
     @property
     def state(self) -> GAState: ...
     @classmethod

@@ -21,7 +21,6 @@ write the same job twice.
 from __future__ import annotations
 
 import concurrent.futures
-import csv
 import json
 import os
 from dataclasses import dataclass, field
@@ -30,6 +29,7 @@ from typing import Any, Callable, Iterator, Mapping, Optional, Protocol, Sequenc
 
 from . import _fuzzymotiv as _native
 from ._fuzzymotiv import FuzzymotivError
+from .tables import Table, read_table
 
 __all__ = ["Job", "Plan", "SweepResult", "merge", "plan", "run_job", "sweep"]
 
@@ -171,8 +171,9 @@ class SweepResult:
 
     Attributes:
         out: the sweep directory.
-        results: ``results.csv`` (one row per room of a finished job): a pandas DataFrame when
-            pandas is installed, else a list of dicts of strings.
+        results: ``results.csv`` (one row per room of a finished job) as a
+            :class:`~fuzzymotiv.Table` (a dict of numpy arrays: numbers as float64, text as
+            str; ``.to_pandas()`` for a DataFrame), whatever is installed.
         aggregate: ``aggregate.csv`` (mean ± std per setting and room), the same way.
         markdown: ``aggregate.md``'s text (the table ``fuzzymotiv merge`` prints).
         jobs: jobs in the plan; ``missing``: how many of them are not finished.
@@ -181,8 +182,8 @@ class SweepResult:
     """
 
     out: Path
-    results: Any
-    aggregate: Any
+    results: Table
+    aggregate: Table
     markdown: str
     jobs: int
     missing: int
@@ -196,15 +197,6 @@ class SweepResult:
         )
 
 
-def _read_table(path: Path) -> Any:
-    try:
-        import pandas as pd
-    except ImportError:
-        with open(path, newline="", encoding="utf-8") as f:
-            return list(csv.DictReader(f))
-    return pd.read_csv(path)
-
-
 def merge(out: Union[str, os.PathLike]) -> SweepResult:
     """Merge the sweep directory ``out`` as ``fuzzymotiv merge OUT`` does (the same
     ``results.csv``, ``aggregate.csv``, ``aggregate.md`` and ``summary.svg``; unfinished jobs
@@ -213,8 +205,8 @@ def merge(out: Union[str, os.PathLike]) -> SweepResult:
     markdown, jobs, missing, _rows = _native.sweep_merge(os.fspath(path))
     return SweepResult(
         out=path,
-        results=_read_table(path / "results.csv"),
-        aggregate=_read_table(path / "aggregate.csv"),
+        results=read_table(path / "results.csv"),
+        aggregate=read_table(path / "aggregate.csv"),
         markdown=markdown,
         jobs=jobs,
         missing=missing,

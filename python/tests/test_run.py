@@ -199,8 +199,9 @@ def test_tables_without_pandas_are_dicts_of_arrays(repo, monkeypatch):
     assert isinstance(res.rooms, dict)
 
 
-def test_tables_with_pandas_are_dataframes(repo):
+def test_tables_become_dataframes_with_to_pandas(repo):
     pd = pytest.importorskip("pandas")
     res = fm.run(repo / "configs/tiny.toml", {"ga.generations": 2, "trial.steps": 50, "aem.enabled": False})
-    assert isinstance(res.generations, pd.DataFrame) and list(res.generations.columns) == COLUMNS
-    assert isinstance(res.rooms, pd.DataFrame) and res.rooms["room"].tolist() == ["H", "square", "U"]
+    generations, rooms = res.generations.to_pandas(), res.rooms.to_pandas()
+    assert isinstance(generations, pd.DataFrame) and list(generations.columns) == COLUMNS
+    assert isinstance(rooms, pd.DataFrame) and rooms["room"].tolist() == ["H", "square", "U"]

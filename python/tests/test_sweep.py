@@ -96,7 +96,7 @@ def test_sweep_in_threads_equals_cli_sweep_and_merge(sweep_file, cli_sweep, tmp_
     assert set(res.statuses.values()) == {"ran"} and len(res.statuses) == 4
     assert (res.jobs, res.missing) == (4, 0)
     assert res.markdown == (cli_sweep / "aggregate.md").read_text()
-    assert len(res.results) == 8  # one row per job and room
+    assert res.results.rows == 8  # one row per job and room
     assert list(res.results["job_id"]) == [j.id for j in fm.plan(sweep_file) for _ in range(2)]
 
     # Again: every job is finished, nothing runs, the same results.
