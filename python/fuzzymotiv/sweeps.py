@@ -25,10 +25,11 @@ import json
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Iterator, Mapping, Optional, Protocol, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, Iterator, Mapping, Optional, Protocol, Sequence, Tuple, Union, overload
 
 from . import _fuzzymotiv as _native
 from ._fuzzymotiv import FuzzymotivError
+from .config import _config_source, _toml_value
 from .tables import Table, read_table
 
 __all__ = ["Job", "Plan", "SweepResult", "merge", "plan", "run_job", "sweep"]
@@ -53,7 +54,7 @@ class Job:
     source: str = field(repr=False)
     base_dir: str = field(repr=False)
 
-    def record(self) -> dict:
+    def record(self) -> Dict[str, Any]:
         """The job's line of ``plan.jsonl`` as a dict."""
         return {
             "index": self.index,
@@ -92,15 +93,13 @@ class Plan(Sequence[Job]):
         return self.jobs[i]
 
 
-def _toml_document(sweep: Mapping) -> str:
+def _toml_document(sweep: Mapping[str, Any]) -> str:
     """A sweep dict as TOML text: one ``key = value`` line per top-level key (tables inline)."""
-    from . import _toml_value  # type: ignore[attr-defined]  # private: not in the stubs
-
     return "".join(f"{json.dumps(str(k))} = {_toml_value(v)}\n" for k, v in sweep.items())
 
 
 def plan(
-    sweep_file_or_dict: Union[str, os.PathLike, Mapping, None] = None,
+    sweep_file_or_dict: Union[str, "os.PathLike[str]", Mapping[str, Any], None] = None,
     *,
     sweep_text: Optional[str] = None,
 ) -> Plan:
@@ -114,15 +113,14 @@ def plan(
     release). Every job's config is validated now: a bad point raises
     :class:`FuzzymotivError` before anything runs.
     """
-    from . import _config_source  # type: ignore[attr-defined]  # private: not in the stubs
-
     if isinstance(sweep_file_or_dict, Mapping):
         if sweep_text is not None:
             raise FuzzymotivError(
                 "sweep and sweep_text: give one of them, a file's path or dict, or TOML text "
                 "(sweep_text=), not both"
             )
-        path, text = None, _toml_document(sweep_file_or_dict)
+        path: Optional[str] = None
+        text: Optional[str] = _toml_document(sweep_file_or_dict)
     elif sweep_file_or_dict is None and sweep_text is None:
         raise FuzzymotivError("plan: expected a sweep file's path, a dict, or sweep_text=")
     elif sweep_file_or_dict is None or isinstance(sweep_file_or_dict, (str, os.PathLike)):
@@ -142,14 +140,14 @@ def plan(
     return Plan(tuple(jobs), source, jsonl)
 
 
-def _out_path(out: Union[str, os.PathLike]) -> str:
+def _out_path(out: Union[str, "os.PathLike[str]"]) -> str:
     path = os.fspath(out)
     if path == "":
         raise FuzzymotivError('out: an empty path; give the sweep directory, e.g. out="sweeps/s1"')
     return path
 
 
-def run_job(job: Job, out: Union[str, os.PathLike], *, wait: bool = True) -> str:
+def run_job(job: Job, out: Union[str, "os.PathLike[str]"], *, wait: bool = True) -> str:
     """Run one job into the sweep directory ``out`` exactly as ``fuzzymotiv sweep FILE --out
     OUT --index INDEX`` does (the same checks of ``out``, the same files in ``OUT/jobs/ID/``).
 
@@ -187,7 +185,7 @@ class SweepResult:
     markdown: str
     jobs: int
     missing: int
-    statuses: dict = field(default_factory=dict)
+    statuses: Dict[str, str] = field(default_factory=dict)
 
     def __repr__(self) -> str:
         ran = sum(1 for s in self.statuses.values() if s == "ran")
@@ -197,7 +195,7 @@ class SweepResult:
         )
 
 
-def merge(out: Union[str, os.PathLike]) -> SweepResult:
+def merge(out: Union[str, "os.PathLike[str]"]) -> SweepResult:
     """Merge the sweep directory ``out`` as ``fuzzymotiv merge OUT`` does (the same
     ``results.csv``, ``aggregate.csv``, ``aggregate.md`` and ``summary.svg``; unfinished jobs
     are left out) and return the tables as a :class:`SweepResult`."""
@@ -232,8 +230,8 @@ class SubmitExecutor(Protocol):
 
 
 def sweep(
-    the_plan: Union[Plan, Sequence[Job], str, os.PathLike, Mapping],
-    out: Union[str, os.PathLike],
+    the_plan: Union[Plan, Sequence[Job], str, "os.PathLike[str]", Mapping[str, Any]],
+    out: Union[str, "os.PathLike[str]"],
     executor: Optional[SubmitExecutor] = None,
     *,
     force: bool = False,
