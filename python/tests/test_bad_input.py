@@ -95,7 +95,7 @@ def test_threads_are_a_whole_number_from_1_to_256(repo):
     refused(lambda: fm.run(threads=2.0), "threads must be a whole number from 1 to 256, got 2.0")
     refused(lambda: fm.run(threads=True), "threads must be a whole number from 1 to 256, got True")
     res = fm.run(repo / "configs/tiny.toml", {"ga.generations": 1, "trial.steps": 20, "aem.enabled": False}, threads=np.int32(1))
-    assert len(res.generations) == 1
+    assert res.generations.rows == 1
 
 
 def test_finding_7_file_system_failures_are_os_errors(cli, repo, tmp_path):
