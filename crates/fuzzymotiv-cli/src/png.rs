@@ -140,7 +140,7 @@ mod tests {
     }
 
     #[test]
-    fn finding_8_home_zone_is_the_disc_within_the_room() {
+    fn home_zone_is_the_disc_within_the_room() {
         let all = rooms(7);
         for room in &all {
             let tr = Trajectory {
