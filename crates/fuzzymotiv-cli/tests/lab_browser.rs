@@ -284,6 +284,7 @@ fn start_small_run(d: &Driver, generations: usize, seed: u64) -> String {
 }
 
 #[test]
+#[ignore = "needs chromium: run by .ci/run"]
 fn the_lab_page_shows_axis_ticks_queue_places_whole_tables_and_a_lost_token() {
     require_browser();
     let tmp = tempfile::tempdir().unwrap();
