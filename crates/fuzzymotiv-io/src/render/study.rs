@@ -717,10 +717,10 @@ mod tests {
         assert_eq!(v.4, Verdict::NotSignificant, "{v:?}");
     }
 
-    /// The study's fitness figure's medians and quartiles over seeds (finding 8): linear
+    /// The study's fitness figure's medians and quartiles over seeds: linear
     /// interpolation between order statistics.
     #[test]
-    fn finding_8_quantiles_over_seeds_interpolate_linearly() {
+    fn quantiles_over_seeds_interpolate_linearly() {
         assert_eq!(quantile(&[3.0, 1.0, 2.0], 0.5), 2.0);
         assert_eq!(quantile(&[4.0, 1.0, 2.0, 3.0], 0.5), 2.5);
         assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0, 5.0], 0.25), 2.0);
