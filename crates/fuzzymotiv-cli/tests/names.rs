@@ -331,7 +331,7 @@ fn finding_9_n_equals_1_shows_a_dash() {
 #[test]
 fn finding_9_tables_say_sample_std() {
     // The statistic itself: divided by n − 1, not n.
-    let (mean, std) = fuzzymotiv_io::render::study::mean_std(&[1.0, 2.0, 3.0, 4.0]);
+    let (mean, std) = fuzzymotiv::statistics::mean_std(&[1.0, 2.0, 3.0, 4.0]);
     assert_eq!(mean, 2.5);
     assert!((std - (5.0f64 / 3.0).sqrt()).abs() < 1e-15, "{std}");
     const SAYS: &str = "sample standard deviation, n − 1";

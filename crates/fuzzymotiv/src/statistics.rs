@@ -277,6 +277,20 @@ pub fn sample_sd(values: &[f64]) -> Option<f64> {
     })
 }
 
+/// The mean and the sample standard deviation of `values` ([`mean`], [`sample_sd`]), the std 0
+/// for fewer than two values (no spread: the tables show a dash there).
+///
+/// ```
+/// use fuzzymotiv::statistics::mean_std;
+/// let (mean, std) = mean_std(&[1.0, 2.0, 3.0, 4.0]);
+/// assert_eq!(mean, 2.5);
+/// assert!((std - (5.0f64 / 3.0).sqrt()).abs() < 1e-15); // divided by n − 1, not n
+/// assert_eq!(mean_std(&[7.0]), (7.0, 0.0));
+/// ```
+pub fn mean_std(values: &[f64]) -> (f64, f64) {
+    (mean(values), sample_sd(values).unwrap_or(0.0))
+}
+
 /// The smallest true difference a two-sided test at level `alpha` detects with probability
 /// `power`, for an estimate with standard error `se`: (z_{1−α/2} + z_power) · se (normal
 /// approximation).
