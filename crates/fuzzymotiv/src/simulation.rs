@@ -12,3 +12,4 @@ pub(crate) mod sensing;
 pub mod sensor;
 pub mod stepper;
 pub mod trial;
+pub mod trial_params;
