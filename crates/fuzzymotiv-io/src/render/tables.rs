@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::experiment::config::Training;
+use fuzzymotiv::experiment::Training;
 
 use crate::records::context::RenderContext;
 use crate::records::{ClaimRecord, RoomRow};

@@ -208,13 +208,13 @@ impl Arena {
     /// at `p`: those of `p`'s cell closer than the sensing (or one-step collision) reach. Usually none in open floor,
     /// which skips ray casting altogether.
     #[inline]
-    pub fn near_walls(&self, p: Vec2) -> NearWalls {
+    pub(crate) fn near_walls(&self, p: Vec2) -> NearWalls {
         self.near_walls_in(p, self.cell_of(p))
     }
 
     /// As [`Arena::near_walls`], with `p`'s grid cell already known.
     #[inline]
-    pub fn near_walls_in(&self, p: Vec2, cell: usize) -> NearWalls {
+    pub(crate) fn near_walls_in(&self, p: Vec2, cell: usize) -> NearWalls {
         let mut near = NearWalls {
             len: 0,
             overflow: false,
@@ -254,7 +254,7 @@ impl Arena {
 
     /// Sensor values at `pose` given its [`Arena::near_walls`].
     #[inline]
-    pub fn read_sensors_near(&self, pose: &Pose, near: &NearWalls) -> [f64; INPUTS] {
+    pub(crate) fn read_sensors_near(&self, pose: &Pose, near: &NearWalls) -> [f64; INPUTS] {
         if near.is_empty() {
             return [0.0; INPUTS];
         }
@@ -354,7 +354,7 @@ impl Arena {
     /// Whether a body centred at `p` overlaps one of the `near` walls (computed for a point
     /// at most one step away).
     #[inline]
-    pub fn overlaps_near(&self, p: Vec2, near: &NearWalls) -> bool {
+    pub(crate) fn overlaps_near(&self, p: Vec2, near: &NearWalls) -> bool {
         let r2 = self.radius * self.radius;
         self.near_list(near)
             .iter()
