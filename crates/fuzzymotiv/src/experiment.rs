@@ -24,7 +24,7 @@ pub use config::{
 pub use descriptors::Descriptors;
 pub use evaluation::{Evaluation, RoomScore};
 pub use evolution::{Evolution, GenerationRecord, GenerationState, Observer, Population, Stopped};
-pub use modelling::{AemReport, InstanceRun};
+pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
 pub use outcome::{Outcome, RunError, Start};
 pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, parse_room_file};
 

@@ -271,7 +271,7 @@ impl Arena {
     /// Sensor values of a robot centred at `pos` facing compass direction `dir` (`actions`
     /// motion: the rays were turned once, in [`Arena::new`]).
     #[inline]
-    pub fn read_sensors_on_compass(
+    pub(crate) fn read_sensors_on_compass(
         &self,
         pos: Vec2,
         dir: usize,
@@ -474,11 +474,6 @@ pub struct NearWalls {
 }
 
 impl NearWalls {
-    /// Number of nearby walls (when they fit).
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
     /// Whether no wall is near.
     pub fn is_empty(&self) -> bool {
         self.len == 0 && !self.overflow
