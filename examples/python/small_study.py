@@ -36,7 +36,7 @@ def main(out: Path = Path("small_study.png")) -> None:
 
     fig, (curves, path) = plt.subplots(1, 2, figsize=(11, 4.5))
     for name, res in results.items():
-        g = res.generations  # a DataFrame with pandas, else a dict of numpy arrays
+        g = res.generations  # a dict of numpy arrays (fm.Table)
         curves.plot(g["generation"], g["best"], label=f"{name} best")
         curves.plot(g["generation"], g["mean"], "--", label=f"{name} mean")
     curves.set(xlabel="generation", ylabel="fuzzy fitness F", title="Fitness evolution")

@@ -37,15 +37,18 @@ observation with reward 0 and ``terminated = truncated = False``.
 from __future__ import annotations
 
 import os
-from typing import Any, Callable, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import gymnasium as gym
 import numpy as np
+import numpy.typing as npt
 from gymnasium import spaces
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from . import FuzzymotivError, _config_args, _real_array, _sets
+from ._checks import FloatArray, _real_array
+from ._fuzzymotiv import FuzzymotivError, ResetNeeded
+from .config import _config_args, _sets
 from . import _fuzzymotiv as _native
 
 ACTIONS = ("straight", "left30", "right30", "turn180")
@@ -53,10 +56,16 @@ ACTIONS = ("straight", "left30", "right30", "turn180")
 
 _SEED_BOUND = 2**53
 
+Obs = npt.NDArray[np.floating[Any]]
+"""An observation: the eight IR sensors / 1023 (float32 or float64, as the env's dtype)."""
+
+Source = Tuple[Optional[str], Optional[str], List[str]]
+"""A config as the native core takes it: (file path, TOML text, ``--set`` strings)."""
+
 RoomArg = Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]]]
 
 
-def _rooms(room: Any) -> list:
+def _rooms(room: Any) -> List[str]:
     if isinstance(room, (str, os.PathLike)):
         return [os.fspath(room)]
     rooms = [os.fspath(r) for r in room]
@@ -65,27 +74,26 @@ def _rooms(room: Any) -> list:
     return rooms
 
 
-def _dtype(dtype: Any) -> np.dtype:
+def _dtype(dtype: Any) -> "np.dtype[Any]":
     d = np.dtype(dtype)
     if d not in (np.dtype(np.float32), np.dtype(np.float64)):
         raise FuzzymotivError(f"dtype: expected np.float32 or np.float64, got {d}")
     return d
 
 
-def _core(room: Any, num_envs: int, config: Any, overrides: Any, reward: str, dtype: np.dtype) -> Any:
-    path, text = _config_args(config)
-    return _native.GymCore(
-        _rooms(room), num_envs, path, text, _sets(overrides), reward, dtype == np.float64
-    )
+def _core(room: Any, num_envs: int, source: Source, reward: str, dtype: "np.dtype[Any]") -> Any:
+    """The native core of ``num_envs`` envs; ``source`` is (config path, config text, sets)."""
+    path, text, sets = source
+    return _native.GymCore(_rooms(room), num_envs, path, text, sets, reward, dtype == np.float64)
 
 
-def _spaces(dtype: np.dtype, discrete: bool) -> tuple:
+def _spaces(dtype: "np.dtype[Any]", discrete: bool) -> Tuple["spaces.Space[Any]", "spaces.Space[Any]"]:
     obs = spaces.Box(0.0, 1.0, (8,), dtype)
     act = spaces.Discrete(4) if discrete else spaces.Box(0.0, 1.0, (2,), dtype)
     return obs, act
 
 
-def network(genome: Any) -> Callable[[Any], np.ndarray]:
+def network(genome: npt.ArrayLike) -> Callable[[npt.ArrayLike], FloatArray]:
     """The network of ``genome`` (its weights, the library's own MLP, ``8-h-2`` with ``h`` from
     the length): a function from an observation (8 inputs in [0, 1]) to the two motor outputs
     the network gives the simulator — the action that replays :func:`fuzzymotiv.simulate`."""
@@ -97,14 +105,14 @@ def network(genome: Any) -> Callable[[Any], np.ndarray]:
         )
     w = weights.tolist()
 
-    def outputs(obs: Any) -> np.ndarray:
+    def outputs(obs: npt.ArrayLike) -> FloatArray:
         inputs = _real_array("obs", obs, "8 sensor inputs").ravel().tolist()
         return np.array(_native.network_outputs(w, hidden, inputs))
 
     return outputs
 
 
-class KheperaEnv(gym.Env):
+class KheperaEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
     """One Khepera trial as a Gymnasium environment (see the module's docs).
 
     >>> env = KheperaEnv("H", overrides={"trial.steps": 5})
@@ -120,6 +128,7 @@ class KheperaEnv(gym.Env):
         room: RoomArg = "H",
         *,
         config: Union[str, "os.PathLike[str]", None] = None,
+        config_text: Optional[str] = None,
         overrides: Any = None,
         reward: str = "end",
         dtype: Any = np.float32,
@@ -131,19 +140,21 @@ class KheperaEnv(gym.Env):
             raise FuzzymotivError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
         self._dtype = _dtype(dtype)
         self._room_args = _rooms(room)
-        self._core = _core(self._room_args, 1, config, overrides, reward, self._dtype)
+        # The config as the native code takes it, kept for render() (same robot, same rooms).
+        self._source = (*_config_args(config, config_text), _sets(overrides))
+        self._core = _core(self._room_args, 1, self._source, reward, self._dtype)
         self.observation_space, self.action_space = _spaces(self._dtype, discrete)
-        self.rooms: list = list(self._core.room_names)
+        self.rooms: List[str] = list(self._core.room_names)
         self.max_steps: int = self._core.max_steps
         self.render_mode = render_mode
         self.size = size
         self._discrete = discrete
         self._room = 0
-        self._trace: dict = {}
+        self._trace: Dict[str, List[Any]] = {}
 
     def reset(
-        self, *, seed: Optional[int] = None, options: Optional[dict] = None
-    ) -> tuple:
+        self, *, seed: Optional[int] = None, options: Optional[Dict[str, Any]] = None
+    ) -> Tuple[Obs, Dict[str, Any]]:
         _check_seed(seed)
         super().reset(seed=seed)
         room = (options or {}).get("room")
@@ -163,9 +174,9 @@ class KheperaEnv(gym.Env):
         self._over = False
         return obs[0], info
 
-    def step(self, action: Any) -> tuple:
+    def step(self, action: Any) -> Tuple[Obs, float, bool, bool, Dict[str, Any]]:
         if getattr(self, "_over", True):
-            raise FuzzymotivError("step: no episode is running; call reset() first")
+            raise ResetNeeded("step: no episode is running; call reset() first")
         actions = _actions(action, 1, self._discrete)
         seen = self._last_obs
         obs, reward, terminated, truncated, info = self._core.step(actions)
@@ -175,8 +186,8 @@ class KheperaEnv(gym.Env):
         self._over = bool(terminated[0] or truncated[0])
         return obs[0], float(reward[0]), bool(terminated[0]), bool(truncated[0]), info
 
-    def _info(self, native: dict) -> dict:
-        info = {k: float(native[k][0]) for k in ("a", "g", "l", "b", "x", "y", "heading")}
+    def _info(self, native: Dict[str, Any]) -> Dict[str, Any]:
+        info: Dict[str, Any] = {k: float(native[k][0]) for k in ("a", "g", "l", "b", "x", "y", "heading")}
         info["t"] = int(native["t"][0])
         info["room"] = self.rooms[int(native["room"][0])]
         action = int(native["action"][0])
@@ -184,13 +195,13 @@ class KheperaEnv(gym.Env):
             info["action"] = ACTIONS[action]
         return info
 
-    def _record(self, seen: np.ndarray, info: dict) -> None:
+    def _record(self, seen: Obs, info: Dict[str, Any]) -> None:
         for k in ("x", "y", "heading"):
             self._trace[k].append(info[k])
         self._trace["sensors"].append(np.asarray(seen, dtype=np.float64) * 1023.0)
         self._trace["action"].append(info.get("action", "straight"))
 
-    def trajectory(self) -> dict:
+    def trajectory(self) -> Dict[str, npt.NDArray[Any]]:
         """The episode so far, shaped like :func:`fuzzymotiv.simulate`'s result: ``x``,
         ``y``, ``heading`` (steps + 1 poses), ``sensors`` (steps × 8, 0–1023; rounded when the
         env is float32) and ``action`` (labels)."""
@@ -204,20 +215,18 @@ class KheperaEnv(gym.Env):
             "action": np.array(t["action"], dtype=str),
         }
 
-    def render(self) -> Optional[np.ndarray]:
+    def render(self) -> Optional[npt.NDArray[np.uint8]]:
         """With ``render_mode="rgb_array"``: the frame of the episode so far, ``(H, W, 3)``
-        uint8, drawn by :func:`fuzzymotiv.frames`."""
+        uint8 — the last frame :func:`fuzzymotiv.frames` draws of :meth:`trajectory` with the
+        env's ``config`` and ``overrides`` (its robot, its rooms), drawn alone: one frame per
+        call, whatever the episode's length."""
         if self.render_mode != "rgb_array":
             return None
         if not self._trace:
-            raise FuzzymotivError("render: no episode yet; call reset() first")
-        import fuzzymotiv
-
-        frames = getattr(fuzzymotiv, "frames", None)
-        if frames is None:
-            raise FuzzymotivError("render: fuzzymotiv.frames is not available in this build")
+            raise ResetNeeded("render: no episode yet; call reset() first")
+        path, text, sets = self._source
         room = self._room_args[self._room] if len(self._room_args) > 1 else self._room_args[0]
-        return np.asarray(frames(self.trajectory(), room, size=self.size)[-1])
+        return _native.last_frame(self.trajectory(), room, self.size, path, text, sets)
 
 
 def _check_seed(seed: Any) -> None:
@@ -231,7 +240,7 @@ def _check_seed(seed: Any) -> None:
         )
 
 
-def _actions(action: Any, n: int, discrete: bool) -> np.ndarray:
+def _actions(action: Any, n: int, discrete: bool) -> npt.NDArray[Any]:
     """The actions of ``n`` environments as the native step takes them: ``(n,)`` int64 action
     numbers, or ``(n, 2)`` float64 motor outputs. Anything else is a FuzzymotivError saying
     what was expected (no silent rounding of 1.7 to 1)."""
@@ -253,7 +262,7 @@ def _actions(action: Any, n: int, discrete: bool) -> np.ndarray:
     return a.astype(np.float64).reshape(n, 2)
 
 
-class KheperaVectorEnv(VectorEnv):
+class KheperaVectorEnv(VectorEnv[npt.NDArray[np.floating[Any]], npt.NDArray[Any], npt.NDArray[Any]]):
     """``num_envs`` Khepera trials stepped together in Rust (one call per step), with
     next-step autoreset (see the module's docs). ``reset(seed=S)`` seeds env ``i`` with
     ``S + i`` (its trial's base seed; its room drawn from the vector env's ``np_random``)."""
@@ -266,6 +275,7 @@ class KheperaVectorEnv(VectorEnv):
         room: RoomArg = "H",
         *,
         config: Union[str, "os.PathLike[str]", None] = None,
+        config_text: Optional[str] = None,
         overrides: Any = None,
         reward: str = "end",
         dtype: Any = np.float32,
@@ -275,18 +285,20 @@ class KheperaVectorEnv(VectorEnv):
             raise FuzzymotivError(f"num_envs: expected a whole number >= 1, got {num_envs!r}")
         self.num_envs = int(num_envs)
         self._dtype = _dtype(dtype)
-        self._core = _core(room, self.num_envs, config, overrides, reward, self._dtype)
+        source = (*_config_args(config, config_text), _sets(overrides))
+        self._core = _core(room, self.num_envs, source, reward, self._dtype)
         self._discrete = discrete
         self.single_observation_space, self.single_action_space = _spaces(self._dtype, discrete)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
-        self.rooms: list = list(self._core.room_names)
+        self.rooms: List[str] = list(self._core.room_names)
         self.max_steps: int = self._core.max_steps
         self.render_mode = None
 
     def reset(
-        self, *, seed: Union[int, Sequence[Optional[int]], None] = None, options: Optional[dict] = None
-    ) -> tuple:
+        self, *, seed: Union[int, Sequence[Optional[int]], None] = None,
+        options: Optional[Dict[str, Any]] = None,
+    ) -> Tuple[Obs, Dict[str, Any]]:
         if isinstance(seed, (list, tuple, np.ndarray)):
             for s in seed:
                 _check_seed(s)
@@ -295,7 +307,7 @@ class KheperaVectorEnv(VectorEnv):
         first = seed if isinstance(seed, (int, np.integer)) or seed is None else None
         super().reset(seed=first)
         if seed is None or isinstance(seed, (int, np.integer)):
-            seeds: list = [None if seed is None else int(seed) + i for i in range(self.num_envs)]
+            seeds: List[Optional[int]] = [None if seed is None else int(seed) + i for i in range(self.num_envs)]
         else:
             seeds = list(seed)
             if len(seeds) != self.num_envs:
@@ -304,10 +316,16 @@ class KheperaVectorEnv(VectorEnv):
             room = int(self.np_random.integers(len(self.rooms)))
             base = s if s is not None else int(self.np_random.integers(_SEED_BOUND))
             self._core.reset_one(i, room, base)
-        return self._core.state()
+        obs, info = self._core.state()
+        return obs, info
 
-    def step(self, actions: Any) -> tuple:
-        return self._core.step(_actions(actions, self.num_envs, self._discrete))
+    def step(
+        self, actions: Any
+    ) -> Tuple[Obs, FloatArray, npt.NDArray[np.bool_], npt.NDArray[np.bool_], Dict[str, Any]]:
+        obs, reward, terminated, truncated, info = self._core.step(
+            _actions(actions, self.num_envs, self._discrete)
+        )
+        return obs, reward, terminated, truncated, info
 
 
 gym.register(

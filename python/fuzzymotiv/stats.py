@@ -25,7 +25,7 @@ The same code as the study's claims, so a comparison made here equals the CLI's.
 
 from __future__ import annotations
 
-from typing import Any, Optional, Sequence
+from typing import Any, List, Optional, Sequence
 
 from . import _fuzzymotiv as _native
 
@@ -37,7 +37,7 @@ BOOTSTRAP_RESAMPLES = 10_000
 PERMUTATION_RESAMPLES = 99_999
 
 
-def _floats(name: str, values: Sequence[float]) -> list:
+def _floats(name: str, values: Sequence[float]) -> List[float]:
     try:
         return [float(v) for v in values]
     except (TypeError, ValueError):
@@ -95,6 +95,6 @@ def unpaired(
     )
 
 
-def holm(p: Sequence[float]) -> list:
+def holm(p: Sequence[float]) -> List[float]:
     """Holm-adjusted p-values of a family of tests, in the input's order."""
     return _native.stats_holm(_floats("p", p))

@@ -21,15 +21,16 @@ write the same job twice.
 from __future__ import annotations
 
 import concurrent.futures
-import csv
 import json
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Iterator, Mapping, Optional, Protocol, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, Iterator, Mapping, Optional, Protocol, Sequence, Tuple, Union, overload
 
 from . import _fuzzymotiv as _native
 from ._fuzzymotiv import FuzzymotivError
+from .config import _config_source, _toml_value
+from .tables import Table, read_table
 
 __all__ = ["Job", "Plan", "SweepResult", "merge", "plan", "run_job", "sweep"]
 
@@ -37,7 +38,8 @@ __all__ = ["Job", "Plan", "SweepResult", "merge", "plan", "run_job", "sweep"]
 @dataclass(frozen=True)
 class Job:
     """One job of a sweep: a line of ``fuzzymotiv plan`` (``index``, ``id``, ``key``,
-    ``setting``, ``replicate``, ``seed``, ``overrides``) and the sweep it belongs to
+    ``setting``, ``replicate``, ``seed``, ``overrides``, and ``model``, the model version that
+    planned it) and the sweep it belongs to
     (``sweep_text``, ``source``, ``base_dir``: what a worker needs to run it). Picklable."""
 
     index: int
@@ -47,11 +49,12 @@ class Job:
     replicate: int
     seed: int
     overrides: Tuple[str, ...]
+    model: int
     sweep_text: str = field(repr=False)
     source: str = field(repr=False)
     base_dir: str = field(repr=False)
 
-    def record(self) -> dict:
+    def record(self) -> Dict[str, Any]:
         """The job's line of ``plan.jsonl`` as a dict."""
         return {
             "index": self.index,
@@ -61,6 +64,7 @@ class Job:
             "replicate": self.replicate,
             "seed": self.seed,
             "overrides": list(self.overrides),
+            "model": self.model,
         }
 
 
@@ -89,31 +93,43 @@ class Plan(Sequence[Job]):
         return self.jobs[i]
 
 
-def _toml_document(sweep: Mapping) -> str:
+def _toml_document(sweep: Mapping[str, Any]) -> str:
     """A sweep dict as TOML text: one ``key = value`` line per top-level key (tables inline)."""
-    from . import _toml_value  # type: ignore[attr-defined]  # private: not in the stubs
-
     return "".join(f"{json.dumps(str(k))} = {_toml_value(v)}\n" for k, v in sweep.items())
 
 
-def plan(sweep_file_or_dict: Union[str, os.PathLike, Mapping]) -> Plan:
+def plan(
+    sweep_file_or_dict: Union[str, "os.PathLike[str]", Mapping[str, Any], None] = None,
+    *,
+    sweep_text: Optional[str] = None,
+) -> Plan:
     """The jobs of a sweep, with the ids and seeds ``fuzzymotiv plan`` gives them.
 
-    The argument is a sweep file (a config with a ``[sweep]`` table; its room files are relative
-    to its folder), TOML text, or a dict of the same document (``{"ga": {...}, "sweep":
+    The argument is a sweep file's path (a config with a ``[sweep]`` table; its room files are
+    relative to its folder) or a dict of the same document (``{"ga": {...}, "sweep":
     {"replicates": 2, "motivations": [[...]], "grid": {"trial.noise": [0.0, 0.06]}}}``; room
-    files relative to the current directory). Every job's config is validated now: a bad point
-    raises :class:`FuzzymotivError` before anything runs.
+    files relative to the current directory); or, instead, ``sweep_text=`` the document as TOML
+    text (TOML text as the first argument still works, with a DeprecationWarning, for one
+    release). Every job's config is validated now: a bad point raises
+    :class:`FuzzymotivError` before anything runs.
     """
     if isinstance(sweep_file_or_dict, Mapping):
-        path, text = None, _toml_document(sweep_file_or_dict)
-    elif isinstance(sweep_file_or_dict, (str, os.PathLike)):
-        from . import _config_source  # type: ignore[attr-defined]  # private: not in the stubs
-
-        path, text = _config_source("sweep", sweep_file_or_dict)
+        if sweep_text is not None:
+            raise FuzzymotivError(
+                "sweep and sweep_text: give one of them, a file's path or dict, or TOML text "
+                "(sweep_text=), not both"
+            )
+        path: Optional[str] = None
+        text: Optional[str] = _toml_document(sweep_file_or_dict)
+    elif sweep_file_or_dict is None and sweep_text is None:
+        raise FuzzymotivError("plan: expected a sweep file's path, a dict, or sweep_text=")
+    elif sweep_file_or_dict is None or isinstance(sweep_file_or_dict, (str, os.PathLike)):
+        path, text = _config_source(
+            "sweep", sweep_file_or_dict, sweep_text, text_arg="sweep_text", stacklevel=3
+        )
     else:
         raise FuzzymotivError(
-            f"plan: expected a sweep file, TOML text or a dict, got {type(sweep_file_or_dict).__name__}"
+            f"plan: expected a sweep file, a dict or sweep_text=, got {type(sweep_file_or_dict).__name__}"
         )
     sweep_text, source, base_dir, jsonl = _native.sweep_plan(path, text)
     jobs = []
@@ -124,14 +140,14 @@ def plan(sweep_file_or_dict: Union[str, os.PathLike, Mapping]) -> Plan:
     return Plan(tuple(jobs), source, jsonl)
 
 
-def _out_path(out: Union[str, os.PathLike]) -> str:
+def _out_path(out: Union[str, "os.PathLike[str]"]) -> str:
     path = os.fspath(out)
     if path == "":
         raise FuzzymotivError('out: an empty path; give the sweep directory, e.g. out="sweeps/s1"')
     return path
 
 
-def run_job(job: Job, out: Union[str, os.PathLike], *, wait: bool = True) -> str:
+def run_job(job: Job, out: Union[str, "os.PathLike[str]"], *, wait: bool = True) -> str:
     """Run one job into the sweep directory ``out`` exactly as ``fuzzymotiv sweep FILE --out
     OUT --index INDEX`` does (the same checks of ``out``, the same files in ``OUT/jobs/ID/``).
 
@@ -153,8 +169,9 @@ class SweepResult:
 
     Attributes:
         out: the sweep directory.
-        results: ``results.csv`` (one row per room of a finished job): a pandas DataFrame when
-            pandas is installed, else a list of dicts of strings.
+        results: ``results.csv`` (one row per room of a finished job) as a
+            :class:`~fuzzymotiv.Table` (a dict of numpy arrays: numbers as float64, text as
+            str; ``.to_pandas()`` for a DataFrame), whatever is installed.
         aggregate: ``aggregate.csv`` (mean ± std per setting and room), the same way.
         markdown: ``aggregate.md``'s text (the table ``fuzzymotiv merge`` prints).
         jobs: jobs in the plan; ``missing``: how many of them are not finished.
@@ -163,12 +180,12 @@ class SweepResult:
     """
 
     out: Path
-    results: Any
-    aggregate: Any
+    results: Table
+    aggregate: Table
     markdown: str
     jobs: int
     missing: int
-    statuses: dict = field(default_factory=dict)
+    statuses: Dict[str, str] = field(default_factory=dict)
 
     def __repr__(self) -> str:
         ran = sum(1 for s in self.statuses.values() if s == "ran")
@@ -178,16 +195,7 @@ class SweepResult:
         )
 
 
-def _read_table(path: Path) -> Any:
-    try:
-        import pandas as pd
-    except ImportError:
-        with open(path, newline="", encoding="utf-8") as f:
-            return list(csv.DictReader(f))
-    return pd.read_csv(path)
-
-
-def merge(out: Union[str, os.PathLike]) -> SweepResult:
+def merge(out: Union[str, "os.PathLike[str]"]) -> SweepResult:
     """Merge the sweep directory ``out`` as ``fuzzymotiv merge OUT`` does (the same
     ``results.csv``, ``aggregate.csv``, ``aggregate.md`` and ``summary.svg``; unfinished jobs
     are left out) and return the tables as a :class:`SweepResult`."""
@@ -195,8 +203,8 @@ def merge(out: Union[str, os.PathLike]) -> SweepResult:
     markdown, jobs, missing, _rows = _native.sweep_merge(os.fspath(path))
     return SweepResult(
         out=path,
-        results=_read_table(path / "results.csv"),
-        aggregate=_read_table(path / "aggregate.csv"),
+        results=read_table(path / "results.csv"),
+        aggregate=read_table(path / "aggregate.csv"),
         markdown=markdown,
         jobs=jobs,
         missing=missing,
@@ -222,8 +230,8 @@ class SubmitExecutor(Protocol):
 
 
 def sweep(
-    the_plan: Union[Plan, Sequence[Job], str, os.PathLike, Mapping],
-    out: Union[str, os.PathLike],
+    the_plan: Union[Plan, Sequence[Job], str, "os.PathLike[str]", Mapping[str, Any]],
+    out: Union[str, "os.PathLike[str]"],
     executor: Optional[SubmitExecutor] = None,
     *,
     force: bool = False,

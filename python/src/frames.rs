@@ -12,17 +12,17 @@ use fuzzymotiv::simulation::{Action, Pose};
 use fuzzymotiv::simulation::Room;
 use fuzzymotiv_io::render::frames::animate::{GifWriter, delay_of};
 use fuzzymotiv_io::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
-use fuzzymotiv_io::render::frames::{FrameOptions, Track, gif, render};
-use numpy::ndarray::Array4;
+use fuzzymotiv_io::render::frames::{FrameOptions, Track, gif, render, render_last};
+use numpy::ndarray::{Array3, Array4};
 use numpy::{
-    IntoPyArray, PyArray4, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray4,
+    IntoPyArray, PyArray3, PyArray4, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray4,
     PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::gym::single_room;
-use crate::{finite, input_err, instance_of, load, py_err, seed_arg};
+use crate::{config_err, finite, input_err, instance_of, load, seed_arg};
 
 /// The columns of a trajectory dict, as the Python layer hands them over (float64 arrays, a
 /// list of action labels, a list of booleans).
@@ -136,7 +136,7 @@ impl Setting {
     fn experiment(&self) -> PyResult<Experiment> {
         let path = self.config_path.as_deref();
         let loaded =
-            load(path, self.config_text.as_deref(), &self.sets, self.seed).map_err(py_err)?;
+            load(path, self.config_text.as_deref(), &self.sets, self.seed).map_err(config_err)?;
         let room = match &self.room {
             Some(r) => r.clone(),
             None => loaded.experiment.room_names()[0].clone(),
@@ -214,6 +214,32 @@ pub(crate) fn frames<'py>(
     let f = draw(py, source, &setting, options(size, stride)?, render)?;
     let (h, w) = (f.height as usize, f.width as usize);
     let a = Array4::from_shape_vec((f.len(), h, w, 3), f.rgb).expect("T × H × W × 3");
+    Ok(a.into_pyarray(py))
+}
+
+/// The `(H, W, 3)` uint8 frame of a trajectory dict's last pose, drawn alone (the Gymnasium
+/// env's `render()`: one frame per call, with the env's config and overrides).
+#[pyfunction]
+#[pyo3(signature = (source, room=None, size=320, config_path=None, config_text=None, sets=Vec::new()))]
+pub(crate) fn last_frame<'py>(
+    py: Python<'py>,
+    source: &Bound<'py, PyDict>,
+    room: Option<String>,
+    size: i64,
+    config_path: Option<PathBuf>,
+    config_text: Option<String>,
+    sets: Vec<String>,
+) -> PyResult<Bound<'py, PyArray3<u8>>> {
+    let setting = Setting::of_args(room, None, config_path, config_text, sets)?;
+    let f = draw(
+        py,
+        source.as_any(),
+        &setting,
+        options(size, 1)?,
+        render_last,
+    )?;
+    let (h, w) = (f.height as usize, f.width as usize);
+    let a = Array3::from_shape_vec((h, w, 3), f.rgb).expect("H × W × 3");
     Ok(a.into_pyarray(py))
 }
 

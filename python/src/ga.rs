@@ -22,7 +22,7 @@ use pyo3::types::PyDict;
 use serde::{Deserialize, Serialize};
 
 use crate::problem::{Problem, genomes_arg, population_array};
-use crate::{input_err, py_err, py_float, seed_arg};
+use crate::{config_err, input_err, py_err, py_float, seed_arg};
 
 /// What `GA.state` holds (`format`, `version`): the next population, the records so far and
 /// the best genome told, with the resolved config, so that a state restores on its own.
@@ -415,10 +415,10 @@ impl Ga {
             }
             None => {
                 let source = "(GA state)";
-                let raw =
-                    RawConfig::parse(&state.config, source, &[]).map_err(|e| py_err(e.into()))?;
+                let raw = RawConfig::parse(&state.config, source, &[])
+                    .map_err(|e| config_err(e.into()))?;
                 let exp = resolve(raw, Path::new("."), source)
-                    .map_err(py_err)?
+                    .map_err(config_err)?
                     .experiment;
                 let run = exp
                     .runs()

@@ -23,19 +23,19 @@ use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyUntyped
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
-use crate::{input_err, load, py_err};
+use crate::{config_err, input_err, load};
 
 /// The experiment of one trial in `room` (a room of the config, a built-in room or a room
 /// file), as `fuzzymotiv replay --room ROOM` and `fm.simulate` build it: that room only, and
 /// neither recognition nor online orientation (they change no trajectory).
 pub(crate) fn single_room(loaded: &Loaded, room: &str) -> PyResult<Experiment> {
-    let entry = room_entry("room", room, loaded).map_err(py_err)?;
+    let entry = room_entry("room", room, loaded).map_err(config_err)?;
     let mut raw = loaded.raw.clone();
     raw.rooms = vec![entry];
     raw.aem.enabled = false;
     raw.fitness.orientation = OrientationMode::Offline;
     Ok(resolve(raw, Path::new("."), "(simulate)")
-        .map_err(py_err)?
+        .map_err(config_err)?
         .experiment)
 }
 
@@ -228,8 +228,8 @@ impl GymCore {
                  {num_envs}; use several vector envs"
             )));
         }
-        let loaded =
-            load(config_path.as_deref(), config_text.as_deref(), &sets, None).map_err(py_err)?;
+        let loaded = load(config_path.as_deref(), config_text.as_deref(), &sets, None)
+            .map_err(config_err)?;
         let slots = (rooms.iter())
             .map(|r| {
                 let exp = single_room(&loaded, r)?;

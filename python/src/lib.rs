@@ -59,6 +59,31 @@ create_exception!(
     "Bad input (config, room file, motivations, ...): the message is the CLI's, naming the file, the field and what is wrong."
 );
 
+create_exception!(
+    fuzzymotiv,
+    ConfigError,
+    FuzzymotivError,
+    "A config, its overrides, a room file or a sweep file that cannot be used: the message names the file, the field and what is wrong."
+);
+create_exception!(
+    fuzzymotiv,
+    OutputExistsError,
+    FuzzymotivError,
+    "An output that must not be replaced: another run's or file's contents at out= or path= (force=True replaces fuzzymotiv's own outputs), or a place that is never written (a directory of yours, the current directory)."
+);
+create_exception!(
+    fuzzymotiv,
+    ResetNeeded,
+    FuzzymotivError,
+    "A Gymnasium environment used before reset() (step() or render() with no episode running)."
+);
+create_exception!(
+    fuzzymotiv,
+    DependencyNotInstalled,
+    FuzzymotivError,
+    "An optional package a call needs is not installed (pandas, gymnasium, tqdm, ...): the message says what to pip install."
+);
+
 /// `FuzzymotivOSError(FuzzymotivError, OSError)`: a file-system failure, created when the
 /// module is loaded (an exception with two bases cannot be declared with `create_exception!`).
 static OS_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
@@ -90,17 +115,48 @@ fn os_error_type(py: Python<'_>) -> PyResult<&Py<PyType>> {
     })
 }
 
-/// A CLI error as a Python exception, with the message the CLI prints after `error:`: bad
-/// input → `FuzzymotivError` (a `ValueError`); a file-system failure → `FuzzymotivOSError`
-/// (a `FuzzymotivError` and an `OSError`); another failure while running → `RuntimeError`.
+/// A CLI error as a Python exception, with the message the CLI prints after `error:`, the
+/// class picked by the error's kind: bad input → `FuzzymotivError` (a `ValueError`); a
+/// file-system failure → `FuzzymotivOSError` (a `FuzzymotivError` and an `OSError`, `.errno`
+/// set when the OS gave one); another failure while running → `RuntimeError`.
 fn py_err(e: CliError) -> PyErr {
     match e.kind() {
         ErrorKind::Input => FuzzymotivError::new_err(e.to_string()),
         ErrorKind::Runtime => PyRuntimeError::new_err(e.to_string()),
-        ErrorKind::Io | ErrorKind::ClosedStdout => Python::attach(|py| match os_error_type(py) {
-            Ok(t) => PyErr::from_type(t.bind(py).clone(), e.to_string()),
-            Err(err) => err,
-        }),
+        ErrorKind::Io | ErrorKind::ClosedStdout => Python::attach(|py| os_err(py, &e)),
+    }
+}
+
+/// A file-system failure as `FuzzymotivOSError`, its `errno` the OS's error number (or None).
+fn os_err(py: Python<'_>, e: &CliError) -> PyErr {
+    let t = match os_error_type(py) {
+        Ok(t) => t.bind(py).clone(),
+        Err(err) => return err,
+    };
+    let err = PyErr::from_type(t, e.to_string());
+    if let Some(n) = e.errno()
+        && let Err(set) = err.value(py).setattr("errno", n)
+    {
+        return set;
+    }
+    err
+}
+
+/// [`py_err`] of an error loading a config, overrides, a room or a sweep file: bad input is a
+/// `ConfigError`.
+fn config_err(e: CliError) -> PyErr {
+    match e.kind() {
+        ErrorKind::Input => ConfigError::new_err(e.to_string()),
+        _ => py_err(e),
+    }
+}
+
+/// [`py_err`] of the output guard's check of `out=` or `path=`: bad input there (an output
+/// that must not be replaced) is an `OutputExistsError`.
+fn output_err(e: CliError) -> PyErr {
+    match e.kind() {
+        ErrorKind::Input => OutputExistsError::new_err(e.to_string()),
+        _ => py_err(e),
     }
 }
 
@@ -369,7 +425,7 @@ fn export_fll(
 /// FIFO is never replaced.
 pub(crate) fn write_guarded(path: PathBuf, bytes: Vec<u8>, force: bool) -> PyResult<()> {
     let files = [(path, bytes)];
-    if check_files_as(&files, "path", force, &PYTHON).map_err(py_err)? == FilesState::Write {
+    if check_files_as(&files, "path", force, &PYTHON).map_err(output_err)? == FilesState::Write {
         write_files(&files).map_err(py_err)?;
     }
     Ok(())
@@ -418,7 +474,7 @@ fn rooms<'py>(py: Python<'py>, files: Option<Vec<PathBuf>>) -> PyResult<Bound<'p
         }
         Some(files) => {
             for f in files {
-                out.append(room_dict(py, &load_room_file(&f).map_err(py_err)?)?)?;
+                out.append(room_dict(py, &load_room_file(&f).map_err(config_err)?)?)?;
             }
         }
     }
@@ -602,13 +658,13 @@ fn run<'py>(
     let pool = thread_pool(threads.as_ref())?;
     let seed = seed.as_ref().map(seed_arg).transpose()?;
     let loaded =
-        load(config_path.as_deref(), config_text.as_deref(), &sets, seed).map_err(py_err)?;
+        load(config_path.as_deref(), config_text.as_deref(), &sets, seed).map_err(config_err)?;
     let out = match out {
         None => None,
         Some(dir) => {
             // The identity of a run, as `fuzzymotiv run` checks it.
             let id = run_identity(&loaded.raw);
-            let state = check_out_as(&dir, &id, force, &PYTHON).map_err(py_err)?;
+            let state = check_out_as(&dir, &id, force, &PYTHON).map_err(output_err)?;
             Some((dir, state))
         }
     };
@@ -845,7 +901,7 @@ fn simulate<'py>(
         &sets,
         Some(seed),
     )
-    .map_err(py_err)?;
+    .map_err(config_err)?;
     // As `replay`: neither recognition nor online orientation changes a trajectory.
     let exp = gym::single_room(&loaded, &room)?;
     let instance = instance_of(py, &exp, &genome)?;
@@ -922,6 +978,13 @@ fn numpy_strings<'py>(py: Python<'py>, items: &[&str]) -> PyResult<Bound<'py, Py
 fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("FuzzymotivError", m.py().get_type::<FuzzymotivError>())?;
     m.add("FuzzymotivOSError", os_error_type(m.py())?.bind(m.py()))?;
+    m.add("ConfigError", m.py().get_type::<ConfigError>())?;
+    m.add("OutputExistsError", m.py().get_type::<OutputExistsError>())?;
+    m.add("ResetNeeded", m.py().get_type::<ResetNeeded>())?;
+    m.add(
+        "DependencyNotInstalled",
+        m.py().get_type::<DependencyNotInstalled>(),
+    )?;
     m.add("MAX_THREADS", MAX_THREADS)?;
     m.add("VERSION", fuzzymotiv::VERSION)?;
     m.add("MODEL_VERSION", fuzzymotiv::MODEL_VERSION)?;
@@ -934,6 +997,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(frames::frames, m)?)?;
     m.add_function(wrap_pyfunction!(frames::save_gif, m)?)?;
+    m.add_function(wrap_pyfunction!(frames::last_frame, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_plan, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_run_job, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_prepare, m)?)?;

@@ -21,7 +21,7 @@ use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 
-use crate::{input_err, load, py_err, py_float, seed_arg, thread_pool, whole_number};
+use crate::{config_err, input_err, load, py_float, seed_arg, thread_pool, whole_number};
 
 /// Distinct seeds whose experiments a problem keeps (besides its own).
 const SEEDS_KEPT: usize = 4;
@@ -52,7 +52,7 @@ impl Problem {
         raw.seed = seed;
         let exp = Arc::new(
             resolve(raw, Path::new("."), "(problem)")
-                .map_err(py_err)?
+                .map_err(config_err)?
                 .experiment,
         );
         if others.len() == SEEDS_KEPT {
@@ -173,8 +173,8 @@ impl Problem {
     ) -> PyResult<Problem> {
         let pool = thread_pool(threads.as_ref())?;
         let seed = seed.as_ref().map(seed_arg).transpose()?;
-        let loaded =
-            load(config_path.as_deref(), config_text.as_deref(), &sets, seed).map_err(py_err)?;
+        let loaded = load(config_path.as_deref(), config_text.as_deref(), &sets, seed)
+            .map_err(config_err)?;
         let exp = loaded.experiment;
         let runs = exp.runs();
         let labels: Vec<&str> = runs.iter().map(|r| r.label.as_str()).collect();

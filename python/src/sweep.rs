@@ -13,9 +13,10 @@ use fuzzymotiv_io::pipeline::sweep_merge::write_merge;
 use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
 use pyo3::prelude::*;
 
-use crate::py_err;
+use crate::{config_err, output_err, py_err};
 
-/// An error of the sweep directory's checks in Python's words (`out`, `force=True`).
+/// An error of a sweep job in Python's words (`out`, `force=True`). Its bad input may be the
+/// sweep's or the directory's (the kind does not tell): the base `FuzzymotivError`.
 fn in_python_words(e: CliError) -> PyErr {
     py_err(PYTHON.respell(e))
 }
@@ -59,7 +60,7 @@ pub fn sweep_plan(
         let dir = base_dir.display().to_string();
         Ok((text, source, dir, sweep.plan_jsonl()))
     })
-    .map_err(py_err)
+    .map_err(config_err)
 }
 
 /// Runs job `index` (whose id must be `id`) of the sweep `text` into the sweep directory `out`
@@ -108,11 +109,10 @@ pub fn sweep_prepare(
     out: PathBuf,
     force: bool,
 ) -> PyResult<()> {
-    py.detach(|| {
-        let sweep = Sweep::parse_str(&text, &source, &base_dir)?;
-        prepare_sweep_dir(&sweep, &text, &out, force).map(|_| ())
-    })
-    .map_err(in_python_words)
+    let sweep = Sweep::parse_str(&text, &source, &base_dir).map_err(config_err)?;
+    // The directory's check: bad input there is an output that must not be replaced.
+    py.detach(|| prepare_sweep_dir(&sweep, &text, &out, force).map(|_| ()))
+        .map_err(|e| output_err(PYTHON.respell(e)))
 }
 
 /// Merges the sweep directory `dir` as `fuzzymotiv merge` does (the same `results.csv`,

@@ -1,4 +1,4 @@
-"""Finding 7: NaN and infinities, bad threads and seeds raise FuzzymotivError with the CLI's
+"""NaN and infinities, bad threads and seeds raise FuzzymotivError with the CLI's
 words; file-system failures raise FuzzymotivOSError, both a FuzzymotivError and an OSError."""
 
 import numpy as np
@@ -19,7 +19,7 @@ def refused(call, message):
     return e.value
 
 
-def test_finding_7_nan_and_inf_in_fuzzy_fitness_name_argument_position_value(cli):
+def test_nan_and_inf_in_fuzzy_fitness_are_refused_naming_argument_position_value(cli):
     e = refused(
         lambda: fm.fuzzy_fitness(X, [NAN, 1, 1, 1]),
         "terms: `nan` (a) is not a finite number; expected four numbers (a, g, l, b)",
@@ -62,7 +62,7 @@ def test_finding_7_nan_and_inf_in_fuzzy_fitness_name_argument_position_value(cli
     )
 
 
-def test_finding_7_nan_genome_in_simulate():
+def test_nan_genome_in_simulate_is_refused():
     refused(
         lambda: fm.simulate(np.full(68, NAN), "H", seed=1),
         "genome: `nan` (weight 0) is not a finite number; expected the network's weights",
@@ -75,7 +75,7 @@ def test_finding_7_nan_genome_in_simulate():
     )
 
 
-def test_finding_7_seeds_are_whole_numbers_below_2_53(cli, repo):
+def test_seeds_are_whole_numbers_below_2_53(cli, repo):
     for seed, text in [(-1, "-1"), (2**53, "9007199254740992"), (2**64, "18446744073709551616"), (1.5, "1.5"), (True, "True")]:
         refused(lambda: fm.simulate(np.zeros(68), "H", seed=seed), f"seed: `{text}` {SEED_WORDS}")
         refused(lambda: fm.run(seed=seed), f"seed: `{text}` {SEED_WORDS}")
@@ -95,10 +95,10 @@ def test_threads_are_a_whole_number_from_1_to_256(repo):
     refused(lambda: fm.run(threads=2.0), "threads must be a whole number from 1 to 256, got 2.0")
     refused(lambda: fm.run(threads=True), "threads must be a whole number from 1 to 256, got True")
     res = fm.run(repo / "configs/tiny.toml", {"ga.generations": 1, "trial.steps": 20, "aem.enabled": False}, threads=np.int32(1))
-    assert len(res.generations) == 1
+    assert res.generations.rows == 1
 
 
-def test_finding_7_file_system_failures_are_os_errors(cli, repo, tmp_path):
+def test_file_system_failures_are_os_errors(cli, repo, tmp_path):
     blocker = tmp_path / "a-file"
     blocker.write_text("not a directory")
     with pytest.raises(OSError) as e:

@@ -187,6 +187,36 @@ def test_render_rgb_array():
     assert frame.std() > 0
 
 
+def played(env, steps=5):
+    """`env` reset with seed 0 and stepped `steps` times with fixed motor outputs."""
+    env.reset(seed=0)
+    for _ in range(steps):
+        env.step(np.array([0.9, 0.4], dtype=env.action_space.dtype))
+    return env
+
+
+def test_render_draws_the_robot_of_the_envs_overrides():
+    """A robot.* override is drawn: render() is the last frame fm.frames draws of the episode
+    with the env's overrides, not with the default robot."""
+    bigger = {**SHORT, "robot.radius": 38.0}
+    env = played(fmgym.KheperaEnv("H", overrides=bigger, render_mode="rgb_array", size=128))
+    frame = env.render()
+    expected = fm.frames(env.trajectory(), "H", size=128, overrides=bigger)[-1]
+    default_robot = fm.frames(env.trajectory(), "H", size=128, overrides=SHORT)[-1]
+    assert frame.shape == (128, 128, 3) and frame.dtype == np.uint8
+    assert np.array_equal(frame, expected)
+    assert not np.array_equal(frame, default_robot)
+
+
+def test_render_finds_a_room_known_only_to_the_envs_config(repo):
+    """A room that only the env's config names (a room file beside it) is drawn by render()."""
+    config = str(repo / "configs" / "tiny.toml")
+    env = played(fmgym.KheperaEnv("U", config=config, overrides=SHORT, render_mode="rgb_array",
+                                  size=96))
+    expected = fm.frames(env.trajectory(), "U", size=96, config=config, overrides=SHORT)[-1]
+    assert np.array_equal(env.render(), expected)
+
+
 def test_readme_gymnasium_section(repo, monkeypatch, capsys):
     """The README's Gymnasium section runs as written."""
     text = (repo / "README.md").read_text()

@@ -83,9 +83,9 @@ def test_run_with_out_writes_the_cli_run_directory(cli_run, repo, tmp_path):
     assert calls[-1][2] == pytest.approx(res.summary["runs"][0]["last_generation"]["best"])
 
 
-def test_config_as_toml_text_and_overrides(repo):
+def test_config_text_and_overrides_equal_the_config_file_and_set_strings(repo):
     text = (repo / "configs/tiny.toml").read_text().replace('"../rooms/U.toml"', '"rooms/U.toml"')
-    a = fm.run(text, {"ga.generations": 2, "trial.steps": 60, "rooms": ["H", "square"], "aem.enabled": False})
+    a = fm.run(config_text=text, overrides={"ga.generations": 2, "trial.steps": 60, "rooms": ["H", "square"], "aem.enabled": False})
     b = fm.run(repo / "configs/tiny.toml", ["ga.generations=2", "trial.steps=60", 'rooms=["H","square"]', "aem.enabled=false"])
     assert columns(a.generations) == columns(b.generations)
     assert a.summary["rooms"][0]["room"] == "H" and len(a.summary["rooms"]) == 2
@@ -165,7 +165,7 @@ def test_errors_carry_the_cli_message(cli, repo):
     with pytest.raises(ValueError, match="threads must be at least 1"):
         fm.run(config, TINY, threads=0)
     with pytest.raises(ValueError, match=r"ga.population"):
-        fm.run("[ga]\npopulation = -3\n")
+        fm.run(config_text="[ga]\npopulation = -3\n")
 
 
 def test_ctrl_c_interrupts_a_run(repo):
@@ -199,8 +199,9 @@ def test_tables_without_pandas_are_dicts_of_arrays(repo, monkeypatch):
     assert isinstance(res.rooms, dict)
 
 
-def test_tables_with_pandas_are_dataframes(repo):
+def test_tables_become_dataframes_with_to_pandas(repo):
     pd = pytest.importorskip("pandas")
     res = fm.run(repo / "configs/tiny.toml", {"ga.generations": 2, "trial.steps": 50, "aem.enabled": False})
-    assert isinstance(res.generations, pd.DataFrame) and list(res.generations.columns) == COLUMNS
-    assert isinstance(res.rooms, pd.DataFrame) and res.rooms["room"].tolist() == ["H", "square", "U"]
+    generations, rooms = res.generations.to_pandas(), res.rooms.to_pandas()
+    assert isinstance(generations, pd.DataFrame) and list(generations.columns) == COLUMNS
+    assert isinstance(rooms, pd.DataFrame) and rooms["room"].tolist() == ["H", "square", "U"]

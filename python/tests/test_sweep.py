@@ -82,7 +82,7 @@ def test_plan_equals_the_cli_plan(cli, sweep_file):
     assert [j.record() for j in plan] == [__import__("json").loads(l) for l in printed.splitlines()]
     assert len(plan) == 4 and plan[0].index == 0 and len({j.id for j in plan}) == 4
     # The same document as a dict or as text: the same ids and seeds.
-    for other in (fm.plan(SWEEP_DICT), fm.plan(SWEEP)):
+    for other in (fm.plan(SWEEP_DICT), fm.plan(sweep_text=SWEEP)):
         assert [(j.id, j.seed, j.key) for j in other] == [(j.id, j.seed, j.key) for j in plan]
     # Jobs and plans are plain values: they pickle and compare equal.
     assert pickle.loads(pickle.dumps(plan)) == plan
@@ -96,7 +96,7 @@ def test_sweep_in_threads_equals_cli_sweep_and_merge(sweep_file, cli_sweep, tmp_
     assert set(res.statuses.values()) == {"ran"} and len(res.statuses) == 4
     assert (res.jobs, res.missing) == (4, 0)
     assert res.markdown == (cli_sweep / "aggregate.md").read_text()
-    assert len(res.results) == 8  # one row per job and room
+    assert res.results.rows == 8  # one row per job and room
     assert list(res.results["job_id"]) == [j.id for j in fm.plan(sweep_file) for _ in range(2)]
 
     # Again: every job is finished, nothing runs, the same results.
@@ -242,7 +242,7 @@ def test_bad_sweeps_and_jobs_raise_fuzzymotiv_error(sweep_file, tmp_path):
     with pytest.raises(fm.FuzzymotivError, match="out: an empty path"):
         fm.run_job(job, "")
     # Another plan's directory is refused, as `fuzzymotiv sweep` refuses it.
-    other = fm.plan(SWEEP.replace("seed = 5", "seed = 6"))
+    other = fm.plan(sweep_text=SWEEP.replace("seed = 5", "seed = 6"))
     fm.run_job(other[0], tmp_path / "other", wait=False)
     with pytest.raises(fm.FuzzymotivError, match="holds a sweep of another plan"):
         fm.run_job(job, tmp_path / "other")
@@ -268,7 +268,7 @@ def test_problem_survives_pickle(repo, config):
     overrides = {"rooms": ["H", "T"], "trial.steps": 40}
     made = {
         "file": lambda: fm.Problem(repo / "configs/tiny.toml", overrides, seed=3),
-        "text": lambda: fm.Problem("seed = 11\n", overrides, threads=1),
+        "text": lambda: fm.Problem(config_text="seed = 11\n", overrides=overrides, threads=1),
         "defaults": lambda: fm.Problem(None, overrides, room=None),
     }[config]
     p = made()

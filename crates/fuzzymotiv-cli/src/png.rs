@@ -140,7 +140,7 @@ mod tests {
     }
 
     #[test]
-    fn finding_8_home_zone_is_the_disc_within_the_room() {
+    fn home_zone_is_the_disc_within_the_room() {
         let all = rooms(7);
         for room in &all {
             let tr = Trajectory {
@@ -225,7 +225,7 @@ mod tests {
     /// look at figures that only appear inline in report pages:
     /// `FIGS_DIR=/tmp/x cargo test -p fuzzymotiv-cli --bin fuzzymotiv png -- --ignored`.
     #[test]
-    #[ignore]
+    #[ignore = "a tool, not a test: renders $FIGS_DIR's SVGs (see its doc)"]
     fn render_svgs_in_figs_dir() {
         let Ok(dir) = std::env::var("FIGS_DIR") else {
             return;

@@ -5,7 +5,8 @@
 //! `target/report-replay-screenshot.png` (the replay widget) and
 //! `target/reproduce-report-screenshot.png` (the page of `reproduce`).
 //!
-//! Needs the Debian packages `chromium` and `chromium-driver` (`.ci/run` installs them).
+//! Needs the Debian packages `chromium` and `chromium-driver`, so it is ignored by default;
+//! `.ci/run` installs them and runs it (`cargo test -- --ignored`).
 
 use std::time::{Duration, Instant};
 
@@ -32,6 +33,7 @@ fn check_page_health(driver: &Driver, widgets: u64, what: &str) {
 }
 
 #[test]
+#[ignore = "needs chromium: run by .ci/run"]
 fn report_page_runs_and_replays_in_chromium() {
     require_browser();
     let dir = tempfile::tempdir().unwrap();

@@ -4,7 +4,8 @@
 //! compares, starts another run and stops it. Prints the time from pressing Evolve to the first
 //! generation drawn and to the finished run, and saves `target/lab-screenshot.png`.
 //!
-//! Needs the Debian packages `chromium` and `chromium-driver` (`.ci/run` installs them).
+//! Needs the Debian packages `chromium` and `chromium-driver`, so it is ignored by default;
+//! `.ci/run` installs them and runs it (`cargo test -- --ignored`).
 
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
@@ -146,6 +147,7 @@ fn draw_room(d: &Driver) {
 }
 
 #[test]
+#[ignore = "needs chromium: run by .ci/run"]
 fn the_lab_evolves_stops_saves_and_compares_in_chromium() {
     require_browser();
     let tmp = tempfile::tempdir().unwrap();
@@ -282,6 +284,7 @@ fn start_small_run(d: &Driver, generations: usize, seed: u64) -> String {
 }
 
 #[test]
+#[ignore = "needs chromium: run by .ci/run"]
 fn the_lab_page_shows_axis_ticks_queue_places_whole_tables_and_a_lost_token() {
     require_browser();
     let tmp = tempfile::tempdir().unwrap();

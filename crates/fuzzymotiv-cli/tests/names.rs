@@ -1,7 +1,8 @@
-//! Finding 9 of the review ("Names and numbers"): one name per quantity across `summary.json`,
-//! tables, CSV and Python (the homing result is `homing_pct`, the motivation weight `homing`),
-//! and old summaries still read; a standard deviation over one value is a dash in Markdown and
-//! an empty cell in CSV; the tables say their std is the sample std (n − 1).
+//! Names and numbers: one name per quantity across `summary.json`, tables, CSV and Python (the
+//! homing result is `homing_pct`, the motivation weight `homing`), and old summaries still read;
+//! a standard deviation over one value is a dash in Markdown and an empty cell in CSV; the tables
+//! say their std is the sample std (n − 1). The tests of `scripts/seeds_table.py` need python3
+//! and are ignored by default (`.ci/run` runs them).
 //!
 //! `tests/fixtures/sweep-3edfbc7/` is a sweep directory written by the binary of commit 3edfbc7,
 //! before the rename: its jobs' `summary.json` call the result `homing`, and its `results.csv`
@@ -225,8 +226,14 @@ fn homing_pct_is_one_name_and_old_summaries_still_merge() {
                 .is_some()
         );
     }
+}
 
-    // seeds_table.py reads a study summary.json of either name alike.
+/// seeds_table.py reads a study summary.json of either name (`homing`, `homing_pct`) alike.
+#[test]
+#[ignore = "needs python3: run by .ci/run"]
+fn seeds_table_reads_old_and_new_homing_names_alike() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = one_seed_study();
     let renamed = dir.path().join("old-study");
     std::fs::create_dir_all(&renamed).unwrap();
     std::fs::write(
@@ -244,7 +251,7 @@ fn homing_pct_is_one_name_and_old_summaries_still_merge() {
 /// A std over one value (one replicate, one seed) printed "± 0.00": now a dash in Markdown, an
 /// empty cell in CSV, `null` in a study's summary.json.
 #[test]
-fn finding_9_n_equals_1_shows_a_dash() {
+fn std_of_one_value_is_a_dash_not_zero() {
     let dir = tempfile::tempdir().unwrap();
     // merge: aggregate.md and aggregate.csv of one replicate per setting.
     let sweep = old_sweep(dir.path(), "sweep");
@@ -319,22 +326,29 @@ fn finding_9_n_equals_1_shows_a_dash() {
     let report = read(&study.join("report.html"));
     assert!(report.contains(" ± — <span"), "the report's spread table");
     assert!(!report.contains(" ± 0.0 <span") && !report.contains(" ± 0.000 <span"));
+}
 
-    // seeds_table.py over one study.
+/// seeds_table.py over one study with one seed per setting: a dash, not "± 0.0".
+#[test]
+#[ignore = "needs python3: run by .ci/run"]
+fn seeds_table_shows_a_dash_for_one_seed() {
+    let study = one_seed_study();
     let (success, out, e) = seeds_table(&[study]);
     assert!(success, "{e}");
     assert!(out.contains(" ± — |") && !out.contains("± 0.0"), "{out}");
 }
 
+/// What every table that shows a std says of it.
+const SAYS: &str = "sample standard deviation, n − 1";
+
 /// The tables said "± std" without saying which: it is the sample standard deviation (divided by
 /// n − 1), and every table that shows one now says so.
 #[test]
-fn finding_9_tables_say_sample_std() {
+fn tables_say_their_std_is_the_sample_std() {
     // The statistic itself: divided by n − 1, not n.
     let (mean, std) = fuzzymotiv::statistics::mean_std(&[1.0, 2.0, 3.0, 4.0]);
     assert_eq!(mean, 2.5);
     assert!((std - (5.0f64 / 3.0).sqrt()).abs() < 1e-15, "{std}");
-    const SAYS: &str = "sample standard deviation, n − 1";
 
     // merge, with two replicates: aggregate.csv holds the sample std of results.csv's values.
     let dir = tempfile::tempdir().unwrap();
@@ -367,11 +381,18 @@ fn finding_9_tables_say_sample_std() {
     let csv = read(&out.join("aggregate.csv"));
     assert!(csv.starts_with("setting,room,n,average_fitness_mean,average_fitness_std,"));
 
-    // The study's tables, its report and seeds_table.py.
+    // The study's tables and its report.
     let study = one_seed_study();
     for t in ["table1.md", "table2.md", "report.html"] {
         assert!(read(&study.join(t)).contains(SAYS), "{t}");
     }
+}
+
+/// seeds_table.py's table says its std is the sample standard deviation too.
+#[test]
+#[ignore = "needs python3: run by .ci/run"]
+fn seeds_table_says_its_std_is_the_sample_std() {
+    let study = one_seed_study();
     let (success, out, e) = seeds_table(&[study, study]);
     assert!(success, "{e}");
     assert!(out.contains(SAYS), "{out}");

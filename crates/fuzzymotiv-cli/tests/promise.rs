@@ -1,6 +1,6 @@
 //! "Keep the promise everywhere": every way of writing output keeps `run`'s promise (results are
 //! never replaced silently, the same command resumes or says it is done), and no command panics
-//! when its standard output fails. One test per finding of the issue, named after it.
+//! when its standard output fails. Each test is named after the behaviour it checks.
 //!
 //! Kill points are deterministic: `FUZZYMOTIV_TEST_ABORT_AFTER=N` makes the binary abort (as
 //! `kill -9` would) once N generations have been checkpointed, so nothing here depends on timing.
@@ -143,11 +143,11 @@ fn suggestion_works(command: &str) {
     );
 }
 
-/// Finding 3: `reproduce` killed at several deterministic points resumes with the same command
+/// `reproduce` killed at several deterministic points resumes with the same command
 /// and ends with exactly the files of an uninterrupted study; a message that suggests a command
 /// suggests one that works.
 #[test]
-fn finding_3_reproduce_resumes_with_the_same_command() {
+fn killed_reproduce_resumes_to_the_files_of_an_uninterrupted_study() {
     let dir = tempfile::tempdir().unwrap();
     let reference = dir.path().join("reference");
     study(&reference).ok();
@@ -191,10 +191,10 @@ fn finding_3_reproduce_resumes_with_the_same_command() {
     assert!(other.join("summary.json").is_file());
 }
 
-/// Finding 3 (ablation and orientation studies resume too): an aborted ablation finishes with the
+/// Ablation and orientation studies resume too: an aborted ablation finishes with the
 /// same command.
 #[test]
-fn finding_3_ablation_resumes_with_the_same_command() {
+fn killed_ablation_resumes_with_the_same_command() {
     let dir = tempfile::tempdir().unwrap();
     let ablation = |out: &Path| {
         Fm::new([
@@ -216,11 +216,11 @@ fn finding_3_ablation_resumes_with_the_same_command() {
     assert_same_results(&out, &reference);
 }
 
-/// Finding 4: `sweep --out` is protected: a directory of the user's, a run directory and the
+/// `sweep --out` is protected: a directory of the user's, a run directory and the
 /// current directory are refused; another plan is refused unless it only adds jobs; `--force`
 /// replaces the sweep but never a file of the user's.
 #[test]
-fn finding_4_sweep_out_is_protected() {
+fn sweep_out_never_replaces_a_users_directory_or_another_plan() {
     let dir = tempfile::tempdir().unwrap();
     let base = small_sweep(6, 2, 1);
     let write = |name: &str, text: &str| {
@@ -306,10 +306,10 @@ fn finding_4_sweep_out_is_protected() {
     assert!(out.join("summary.png").is_file());
 }
 
-/// Finding 5: `replay` never overwrites other files without `--force`; the same replay again
+/// `replay` never overwrites other files without `--force`; the same replay again
 /// changes nothing; `--out` naming a directory is refused before anything is written.
 #[test]
-fn finding_5_replay_never_overwrites_without_force() {
+fn replay_never_overwrites_without_force() {
     let dir = tempfile::tempdir().unwrap();
     let run_dir = dir.path().join("run");
     tiny_run(&run_dir);
@@ -351,11 +351,11 @@ fn finding_5_replay_never_overwrites_without_force() {
     assert_eq!(tree(dir.path()), before);
 }
 
-/// Finding 2: `fuzzy --export-fll FILE --force` never replaces what is not a regular file (a
+/// `fuzzy --export-fll FILE --force` never replaces what is not a regular file (a
 /// FIFO, a directory, a symbolic link); `-` writes to standard output; the same file again is
 /// left alone; another file is kept unless `--force`.
 #[test]
-fn finding_2_fll_export_never_replaces_a_non_regular_file() {
+fn fll_export_never_replaces_a_non_regular_file() {
     let dir = tempfile::tempdir().unwrap();
     let fifo = dir.path().join("fifo");
     assert!(
@@ -487,10 +487,10 @@ fn prepare(dir: &Path) {
         .ok();
 }
 
-/// Finding 6: with its standard output closed (`| head -1` after the reader has gone), every
+/// With its standard output closed (`| head -1` after the reader has gone), every
 /// command ends quietly with status 141, as a program killed by SIGPIPE; never a panic.
 #[test]
-fn finding_6_closed_stdout_ends_quietly_without_panic() {
+fn closed_stdout_ends_quietly_with_141_without_panic() {
     let dir = tempfile::tempdir().unwrap();
     prepare(dir.path());
     for args in printing_commands(dir.path()) {
@@ -514,11 +514,11 @@ fn finding_6_closed_stdout_ends_quietly_without_panic() {
     }
 }
 
-/// Finding 6, a full disk: standard output to a file under a file-size limit of zero (SIGXFSZ
+/// A full disk: standard output to a file under a file-size limit of zero (SIGXFSZ
 /// ignored, so the write fails with EFBIG as a full disk fails with ENOSPC) gives one line of
 /// error, never a panic. Only commands that write no other file (the limit applies to them too).
 #[test]
-fn finding_6_full_stdout_is_a_one_line_error() {
+fn full_stdout_is_a_one_line_error_not_a_panic() {
     let dir = tempfile::tempdir().unwrap();
     let sweep_file = repo().join("configs/sweep-small.toml");
     for args in [
@@ -546,9 +546,9 @@ fn finding_6_full_stdout_is_a_one_line_error() {
     }
 }
 
-/// Finding 6, a closed standard error: a run loses its progress lines and notes but finishes.
+/// A closed standard error: a run loses its progress lines and notes but finishes.
 #[test]
-fn finding_6_closed_stderr_drops_progress_and_the_run_finishes() {
+fn closed_stderr_drops_progress_and_the_run_finishes() {
     let dir = tempfile::tempdir().unwrap();
     let cfg = repo().join("configs/tiny.toml");
     let out = dir.path().join("run");
@@ -566,7 +566,7 @@ fn finding_6_closed_stderr_drops_progress_and_the_run_finishes() {
 
 /// `--png` on a finished output writes the PNGs it lacks and nothing else.
 #[test]
-fn finding_8_png_on_a_finished_output_adds_only_the_pngs() {
+fn png_on_a_finished_output_adds_only_the_pngs() {
     let dir = tempfile::tempdir().unwrap();
     let cfg = repo().join("configs/tiny.toml");
     let out = dir.path().join("run");

@@ -23,6 +23,8 @@ pub enum ErrorKind {
 pub struct CliError {
     message: String,
     kind: ErrorKind,
+    /// The operating system's error number of a file-system failure, when it has one.
+    errno: Option<i32>,
 }
 
 impl CliError {
@@ -31,6 +33,7 @@ impl CliError {
         Self {
             message: message.into(),
             kind: ErrorKind::Input,
+            errno: None,
         }
     }
 
@@ -39,6 +42,7 @@ impl CliError {
         Self {
             message: message.into(),
             kind: ErrorKind::Runtime,
+            errno: None,
         }
     }
 
@@ -47,6 +51,16 @@ impl CliError {
         Self {
             message: message.into(),
             kind: ErrorKind::Io,
+            errno: None,
+        }
+    }
+
+    /// A file-system failure caused by `cause`, whose OS error number it keeps ([`Self::errno`];
+    /// Python's `FuzzymotivOSError.errno`).
+    pub fn io_from(message: impl Into<String>, cause: &std::io::Error) -> Self {
+        Self {
+            errno: cause.raw_os_error(),
+            ..Self::io(message)
         }
     }
 
@@ -55,12 +69,18 @@ impl CliError {
         Self {
             message: "standard output closed".into(),
             kind: ErrorKind::ClosedStdout,
+            errno: None,
         }
     }
 
     /// What kind of failure this is.
     pub fn kind(&self) -> ErrorKind {
         self.kind
+    }
+
+    /// The OS error number of a file-system failure made by [`Self::io_from`], else None.
+    pub fn errno(&self) -> Option<i32> {
+        self.errno
     }
 
     /// The process exit code.

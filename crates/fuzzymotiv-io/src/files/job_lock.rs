@@ -43,7 +43,7 @@ pub fn is_lock_name(name: &str) -> bool {
 /// An I/O error on `path` (as the guard words them; the guard imports this module, so not its
 /// `io_err`, which would make a circle).
 fn io_err(path: &Path, e: std::io::Error) -> CliError {
-    CliError::io(format!("{}: {e}", path.display()))
+    CliError::io_from(format!("{}: {e}", path.display()), &e)
 }
 
 fn open(path: &Path) -> Result<File, CliError> {

@@ -1394,10 +1394,10 @@ mod tests {
         assert!(e.to_string().contains("field `correct`"), "{e}");
     }
 
-    /// Finding 9: the homing result is `homing_pct` (the weight keeps `homing`); a room row or
+    /// The homing result is `homing_pct` (the weight keeps `homing`); a room row or
     /// a study's table row written under the old name `homing` reads the same.
     #[test]
-    fn finding_9_old_homing_key_reads_as_homing_pct() {
+    fn old_homing_key_reads_as_homing_pct() {
         let row = RoomRow {
             average_fitness: 0.5,
             battery_pct: 90.0,

@@ -117,6 +117,24 @@ pub fn render(room: &Room, track: Track<'_>, opts: FrameOptions) -> Result<Frame
     })
 }
 
+/// The one frame of `track`'s last pose (what [`render`] draws last, the same bytes), drawn
+/// alone: a live view (the Gymnasium env's `render()`) costs one frame whatever the length.
+pub fn render_last(room: &Room, track: Track<'_>, opts: FrameOptions) -> Result<Frames, String> {
+    let painter = Painter::new(room, track, opts)?;
+    let size = opts.size();
+    let mut pixmap = Pixmap::new(size, size).expect("size checked");
+    let last = track.poses.len() - 1; // Painter::new checked there is a pose
+    painter.draw(last, &mut pixmap);
+    let mut rgb = vec![0; size as usize * size as usize * 3];
+    rgb_of(&pixmap, &mut rgb);
+    Ok(Frames {
+        width: size,
+        height: size,
+        poses: vec![last],
+        rgb,
+    })
+}
+
 /// The animated GIF of `track` in `room`, `delay` hundredths of a second per frame
 /// ([`animate::delay_of`]), drawn and encoded one frame at a time.
 pub fn gif(

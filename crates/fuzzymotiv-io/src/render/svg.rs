@@ -1461,7 +1461,7 @@ mod tests {
     }
 
     #[test]
-    fn finding_8_axis_ticks_at_round_numbers() {
+    fn axis_ticks_at_round_numbers() {
         let t = Ticks::nice(0.0, 199.0, 6, true);
         assert_eq!(t.values, [0.0, 50.0, 100.0, 150.0]);
         let t = Ticks::nice(0.0, 1.0, 5, false);
@@ -1513,7 +1513,7 @@ mod tests {
     }
 
     #[test]
-    fn finding_8_study_fitness_draws_median_and_iqr_over_seeds() {
+    fn study_fitness_draws_median_and_iqr_over_seeds() {
         // (The quantiles: study.rs's tests.) The drawing: medians as lines, the IQR bands as closed paths, the legend saying so.
         let best: Vec<f64> = (0..10).map(|g| 0.5 + 0.03 * g as f64).collect();
         let mean: Vec<f64> = (0..10).map(|g| 0.1 + 0.05 * g as f64).collect();
@@ -1552,7 +1552,7 @@ mod tests {
     /// Every figure the program makes, at 1, 2, 5 and 8 rooms (panels, settings), with long
     /// titles: each text inside the viewBox, no two texts overlapping.
     #[test]
-    fn finding_8_no_text_clipped_or_overlapping_at_1_to_8_rooms() {
+    fn no_text_clipped_or_overlapping_at_1_to_8_rooms() {
         let title = "Replay of runs/high-curiosity/best_genome.json (seed 9007199254740991)";
         let names: Vec<String> = fuzzymotiv::fitness::PAPER_LABEL_NAMES
             .iter()
