@@ -3,10 +3,9 @@
 
 mod common;
 
-use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use common::{Fm, assert_same_files, repo, stderr, summary_without_time};
+use common::{Fm, assert_same_files, repo, stderr, summary_without_time, tree};
 
 /// A small run of `configs/tiny.toml` (with `extra` settings) of `generations` into `out`.
 fn tiny_run(out: &Path, generations: usize, extra: &[&str]) {
@@ -27,24 +26,6 @@ fn tiny_run(out: &Path, generations: usize, extra: &[&str]) {
         .ok();
 }
 
-/// Every file under `dir` (relative path → bytes).
-fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    let mut files = BTreeMap::new();
-    let mut todo = vec![dir.to_path_buf()];
-    while let Some(d) = todo.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                todo.push(p);
-            } else {
-                let rel = p.strip_prefix(dir).unwrap().to_path_buf();
-                files.insert(rel, std::fs::read(&p).unwrap());
-            }
-        }
-    }
-    files
-}
-
 /// `summary.json` without its wall time (the one field that may differ).
 /// Continues a 2-generation run to 4 and compares with a fresh 4-generation run.
 fn continued_equals_fresh(extra: &[&str]) {
@@ -56,7 +37,7 @@ fn continued_equals_fresh(extra: &[&str]) {
     );
     tiny_run(&fresh, 4, extra);
     tiny_run(&short, 2, extra);
-    let before = snapshot(&short);
+    let before = tree(&short);
     let o = Fm::new(["run", "--continue"])
         .arg(&short)
         .arg("--generations")
@@ -64,7 +45,7 @@ fn continued_equals_fresh(extra: &[&str]) {
         .out(&long)
         .arg("--quiet")
         .ok();
-    assert_eq!(snapshot(&short), before, "--continue changed DIR");
+    assert_eq!(tree(&short), before, "--continue changed DIR");
     assert!(!tmp.path().join("long.partial").exists());
     let files = [
         "generations.csv",
@@ -106,7 +87,7 @@ fn what_cannot_be_continued_is_a_clear_error() {
     let tmp = tempfile::tempdir().unwrap();
     let done = tmp.path().join("done");
     tiny_run(&done, 2, &[]);
-    let before = snapshot(&done);
+    let before = tree(&done);
     let cont = |dir: &Path, n: &str, out: &Path| {
         Fm::new(["run", "--continue"])
             .arg(dir)
@@ -181,7 +162,7 @@ fn what_cannot_be_continued_is_a_clear_error() {
         .run();
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(!new.exists() && !tmp.path().join("new.partial").exists());
-    assert_eq!(snapshot(&done), before, "DIR was changed");
+    assert_eq!(tree(&done), before, "DIR was changed");
 }
 
 /// A room file is part of the run: `config.resolved.toml` records a digest of each, and a run

@@ -12,23 +12,9 @@ use std::process::{Command, Output, Stdio};
 
 use common::{Fm, SMALL, bin, repo, stderr, stdout};
 
-/// The files under `dir` (recursively, relative paths) with their contents.
+/// The files under `dir` (recursively, relative paths, in order) with their contents.
 fn tree(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else {
-                let rel = p.strip_prefix(dir).unwrap().to_path_buf();
-                out.push((rel, std::fs::read(&p).unwrap()));
-            }
-        }
-    }
-    out.sort();
-    out
+    common::tree(dir).into_iter().collect()
 }
 
 /// `tree` without what holds wall times (`summary.json`'s `wall_seconds`, the report pages).

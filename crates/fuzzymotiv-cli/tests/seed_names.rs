@@ -2,12 +2,11 @@
 //! itself beside it; the records keep the seeds. A study written with directories named by the
 //! seed (`seed-704825065232813`, earlier builds) is another study: refused, never mixed.
 
-use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 mod common;
 
-use common::{Fm, stderr};
+use common::{Fm, stderr, tree};
 
 /// Tiny sizes: a ten-seed study in about a second.
 const TINY: [&str; 5] = [
@@ -39,24 +38,6 @@ fn read(path: &Path) -> String {
 
 fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&read(path)).unwrap()
-}
-
-/// Every file under `dir` (relative path → bytes).
-fn tree(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    let mut files = BTreeMap::new();
-    let mut todo = vec![dir.to_path_buf()];
-    while let Some(d) = todo.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                todo.push(p);
-            } else {
-                let bytes = std::fs::read(&p).unwrap();
-                files.insert(p.strip_prefix(dir).unwrap().to_path_buf(), bytes);
-            }
-        }
-    }
-    files
 }
 
 #[test]
