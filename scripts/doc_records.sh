@@ -9,7 +9,7 @@
 #   ten-seed=results-10          (fuzzymotiv reproduce --out results-10)
 #   twenty-seed=results-20       (fuzzymotiv reproduce --seeds 20 --out results-20)
 #   search-strength=results-search-strength   (fuzzymotiv reproduce --search-strength)
-#   ablation=results-ablation    (fuzzymotiv reproduce --ablation)
+#   ablation=results-ablation    (fuzzymotiv reproduce --ablation --seeds 5)
 #   orientation=results-orientation           (fuzzymotiv reproduce --orientation)
 #   maps/o-fixed=out/maps/o-fixed   (fuzzymotiv sweep configs/motivation-map.toml … + merge)
 #   maps/o-free=out/maps/o-free     (fuzzymotiv sweep configs/motivation-map-o-free.toml … + merge)

@@ -8,7 +8,7 @@
 * ``fuzzymotiv/KheperaDiscrete-v0``: the same with ``Discrete(4)`` actions, executed as given
   (0 ``straight``, 1 ``left30``, 2 ``right30``, 3 ``turn180``; ``motion = "actions"``).
 
-The step is the library's own (``fuzzymotiv::simulation::stepper::TrialRun``): the same
+The step is the library's own (``fuzzymotiv::simulation::TrialRun``): the same
 sensors, noise streams, motion model and end at home as :func:`fuzzymotiv.simulate`. An episode
 is the trial ``fm.simulate(genome, room, seed)`` runs: reset with ``seed=S`` in room ``R`` and
 drive it with the genome's network outputs, and you get that trajectory, bit for bit (with

@@ -5,13 +5,13 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use fuzzymotiv::evolution::ga::{Genome, Stats, ranking};
-use fuzzymotiv::evolution::population::Population;
-use fuzzymotiv::experiment::config::RawConfig;
-use fuzzymotiv::experiment::evaluation::{Evaluation, RoomScore};
-use fuzzymotiv::experiment::evolution::GenerationRecord;
+use fuzzymotiv::evolution::{Genome, Stats, ranking};
+use fuzzymotiv::evolution::Population;
+use fuzzymotiv::experiment::RawConfig;
+use fuzzymotiv::experiment::{Evaluation, RoomScore};
+use fuzzymotiv::experiment::GenerationRecord;
 use fuzzymotiv::experiment::{Experiment, Run};
-use fuzzymotiv::fitness::terms::FitnessTerms;
+use fuzzymotiv::fitness::FitnessTerms;
 use fuzzymotiv_io::files::inputs::resolve;
 use fuzzymotiv_io::pipeline::continuation::{continue_runs, finished_config};
 use numpy::{

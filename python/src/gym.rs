@@ -9,14 +9,14 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use fuzzymotiv::experiment::config::OrientationMode;
+use fuzzymotiv::experiment::OrientationMode;
 use fuzzymotiv::experiment::{Experiment, Run};
-use fuzzymotiv::fitness::episode::Episode;
-use fuzzymotiv::random::rng::{Rng, Rng64, index, rng_from_seed};
-use fuzzymotiv::random::seed::{JSON_EXACT, derive};
-use fuzzymotiv::simulation::controller::{Controller, INPUTS, Mlp};
-use fuzzymotiv::simulation::robot::Action;
-use fuzzymotiv::simulation::trial::Arena;
+use fuzzymotiv::fitness::Episode;
+use fuzzymotiv::random::{Rng, Rng64, index, rng_from_seed};
+use fuzzymotiv::random::{JSON_EXACT, derive};
+use fuzzymotiv::simulation::{Controller, INPUTS, Mlp};
+use fuzzymotiv::simulation::Action;
+use fuzzymotiv::simulation::Arena;
 use fuzzymotiv_io::files::inputs::{Loaded, resolve, room_entry};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -419,7 +419,7 @@ pub(crate) fn network_outputs(
     hidden: usize,
     inputs: [f64; 8],
 ) -> PyResult<[f64; 2]> {
-    let shape = fuzzymotiv::simulation::controller::MlpShape::with_hidden(hidden)
+    let shape = fuzzymotiv::simulation::MlpShape::with_hidden(hidden)
         .map_err(|e| input_err(format!("hidden: {e}")))?;
     let mut net =
         Mlp::from_genome(shape, &genome).map_err(|e| input_err(format!("genome: {e}")))?;

@@ -13,13 +13,13 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::config::RawConfig;
-use fuzzymotiv::experiment::evolution::{GenerationState, Observer};
-use fuzzymotiv::experiment::modelling::InstanceRun;
-use fuzzymotiv::experiment::outcome::RunError;
-use fuzzymotiv::fitness::fuzzy::{CoefficientScheme, Motivations, TskFitness};
-use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
-use fuzzymotiv::simulation::trial::Trajectory;
+use fuzzymotiv::experiment::RawConfig;
+use fuzzymotiv::experiment::{GenerationState, Observer};
+use fuzzymotiv::experiment::InstanceRun;
+use fuzzymotiv::experiment::RunError;
+use fuzzymotiv::fitness::{CoefficientScheme, Motivations, TskFitness};
+use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv_io::files::error::{CliError, ErrorKind};
 use fuzzymotiv_io::files::guard::{
     FilesState, OutState, PYTHON, StagedDir, check_files_as, check_out_as, write_files,
@@ -277,7 +277,7 @@ fn motivations(x: [f64; 4]) -> PyResult<Motivations> {
 
 /// The TSK from optional peaks and coefficients (`"linear"`, `"ratio"` or a list).
 fn tsk(peaks: Option<Vec<f64>>, coefficients: Option<&Bound<'_, PyAny>>) -> PyResult<TskFitness> {
-    let peaks = peaks.unwrap_or_else(|| fuzzymotiv::fitness::fuzzy::PAPER_PEAKS.to_vec());
+    let peaks = peaks.unwrap_or_else(|| fuzzymotiv::fitness::PAPER_PEAKS.to_vec());
     finite(
         "peaks",
         &peaks,
@@ -413,7 +413,7 @@ fn export_fll(
             .and_then(|p| p.file_stem())
             .map_or("fuzzymotiv".into(), |s| s.to_string_lossy().into_owned())
     });
-    let text = fuzzymotiv::fitness::fll::to_fll(&t, &x, &name);
+    let text = fuzzymotiv::fitness::to_fll(&t, &x, &name);
     if let Some(path) = path {
         write_guarded(path, text.clone().into_bytes(), force)?;
     }
@@ -433,7 +433,7 @@ pub(crate) fn write_guarded(path: PathBuf, bytes: Vec<u8>, force: bool) -> PyRes
 
 fn room_dict<'py>(py: Python<'py>, r: &Room) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    let pts = |p: &[fuzzymotiv::simulation::geom::Vec2]| -> PyResult<Bound<'py, PyAny>> {
+    let pts = |p: &[fuzzymotiv::simulation::Vec2]| -> PyResult<Bound<'py, PyAny>> {
         let flat: Vec<f64> = p.iter().flat_map(|v| [v.x, v.y]).collect();
         let a = Array2::from_shape_vec((p.len(), 2), flat).expect("n × 2");
         Ok(a.into_pyarray(py).into_any())

@@ -9,11 +9,11 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use fuzzymotiv::evolution::ga::Genome;
-use fuzzymotiv::evolution::population::Population;
-use fuzzymotiv::experiment::config::{RawConfig, Training};
-use fuzzymotiv::experiment::descriptors::Descriptors;
-use fuzzymotiv::experiment::evaluation::Evaluation;
+use fuzzymotiv::evolution::Genome;
+use fuzzymotiv::evolution::Population;
+use fuzzymotiv::experiment::{RawConfig, Training};
+use fuzzymotiv::experiment::Descriptors;
+use fuzzymotiv::experiment::Evaluation;
 use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv_io::files::inputs::resolve;
 use numpy::ndarray::{Array2, Array3};

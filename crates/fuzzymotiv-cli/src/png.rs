@@ -102,8 +102,8 @@ pub fn add_pngs(dir: &std::path::Path) -> Result<(), CliError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
-    use fuzzymotiv::simulation::trial::Trajectory;
+    use fuzzymotiv::simulation::Trajectory;
+    use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
     use fuzzymotiv_io::render::svg::{text_width, trajectories_svg};
 
     #[test]
@@ -168,7 +168,7 @@ mod tests {
                 (0..36).map(move |k| {
                     let a = k as f64 * std::f64::consts::TAU / 36.0;
                     let r = f * zone.radius;
-                    fuzzymotiv::simulation::geom::Vec2::new(
+                    fuzzymotiv::simulation::Vec2::new(
                         zone.centre.x + r * a.cos(),
                         zone.centre.y + r * a.sin(),
                     )
@@ -178,8 +178,7 @@ mod tests {
             // zone's dashed edge.
             for p in ring(0.75) {
                 let clear = room.contains(p)
-                    && fuzzymotiv::simulation::geom::edges(&room.outline)
-                        .all(|e| e.dist_to(p) > 15.0)
+                    && fuzzymotiv::simulation::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)
                     && p.dist(room.home.position()) > 40.0;
                 if clear {
                     assert!(
@@ -195,8 +194,7 @@ mod tests {
             for p in ring(0.9) {
                 let (plo, phi) = room.bounds();
                 let beyond = !room.contains(p)
-                    && fuzzymotiv::simulation::geom::edges(&room.outline)
-                        .all(|e| e.dist_to(p) > 15.0)
+                    && fuzzymotiv::simulation::edges(&room.outline).all(|e| e.dist_to(p) > 15.0)
                     && p.x > plo.x - 50.0
                     && p.y < phi.y + 50.0;
                 if beyond {

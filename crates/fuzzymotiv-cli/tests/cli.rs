@@ -386,7 +386,7 @@ fn reproduce_quick_writes_every_documented_file() {
     ] {
         assert!(out.join(f).is_file(), "missing {f}");
     }
-    let second = fuzzymotiv::random::seed::study_seed(5, 1);
+    let second = fuzzymotiv::random::study_seed(5, 1);
     // The run directories are named by the seed's index (1 = the base seed).
     for index in [1, 2] {
         for f in [

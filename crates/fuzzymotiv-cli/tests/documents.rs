@@ -423,7 +423,9 @@ fn search_strength_exploration(dir: &Path, file: &str) -> Rendered {
     Ok(table(&header, rows))
 }
 
-/// Which claims hold under each variant: `ablation.csv` (columns in the study's claim order).
+/// Each claim's verdict under each variant: the variants and claims of `ablation.csv` (its
+/// columns name the claims, in the study's order), each verdict from the variant's own
+/// `VARIANT/claims.csv` ("holds", "not significant", "opposite", "fails").
 fn ablation_claims(dir: &Path, file: &str) -> Rendered {
     let header = [
         "variant",
@@ -435,29 +437,33 @@ fn ablation_claims(dir: &Path, file: &str) -> Rendered {
         "F rises",
     ];
     let path = dir.join(file);
-    let mut reader = csv::Reader::from_path(&path)
+    let names: Vec<String> = csv::Reader::from_path(&path)
+        .and_then(|mut r| {
+            r.headers()
+                .map(|h| h.iter().skip(1).map(String::from).collect())
+        })
         .map_err(|e| format!("cannot read the record {}: {e}", path.display()))?;
-    let columns = reader.headers().map_err(|e| e.to_string())?.len();
-    if columns != header.len() {
+    if names.len() + 1 != header.len() {
         return Err(format!(
-            "{} has {columns} columns, the table {}: the study's claims changed, so change the \
-             renderer `ablation-claims` with them",
+            "{} has {} claims, the table {}: the study's claims changed, so change the renderer \
+             `ablation-claims` with them",
             path.display(),
-            header.len()
+            names.len(),
+            header.len() - 1
         ));
     }
+    let folder = Path::new(file).parent().unwrap_or(Path::new(""));
     let mut rows = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| format!("{}: {e}", path.display()))?;
-        let cells: Vec<&str> = record
-            .iter()
-            .enumerate()
-            .map(|(i, c)| match (i, c) {
-                (0, variant) => variant,
-                (_, "true") => "holds",
-                _ => "fails",
-            })
-            .collect();
+    for variant in read_csv(dir, file)? {
+        let name = cell(&variant, "variant")?;
+        let claims = read_csv(dir, &folder.join(name).join("claims.csv").to_string_lossy())?;
+        let mut cells = vec![name.to_string()];
+        for claim in &names {
+            let row = (claims.iter())
+                .find(|r| r.get("claim") == Some(claim))
+                .ok_or_else(|| format!("{name}/claims.csv has no claim `{claim}`"))?;
+            cells.push(cell(row, "verdict")?.to_string());
+        }
         rows.push(format!("| {} |", cells.join(" | ")));
     }
     Ok(table(&header, rows))
@@ -1040,13 +1046,19 @@ fn a_stale_table_is_rewritten_from_its_record_and_named_by_its_line() {
         "variant,a,b,c,d,e,f\ndefault,false,true,false,true,false,true\n",
     )
     .unwrap();
+    fs::create_dir_all(dir.path().join("study/default")).unwrap();
+    fs::write(
+        dir.path().join("study/default/claims.csv"),
+        "claim,verdict\na,not significant\na — x,holds\nb,holds\nc,opposite\nd,holds\ne,fails\nf,holds\n",
+    )
+    .unwrap();
     let doc = "# A\n<!-- record study/ablation.csv: ablation-claims -->\n| old |\n<!-- end record -->\nafter\n";
     let (text, differences) = render_document(doc, dir.path()).expect("renders");
     assert_eq!(differences.len(), 1);
     assert_eq!(differences[0].line, 3);
     assert_eq!(differences[0].document, "| old |");
     assert!(
-        text.contains("| default | fails | holds | fails | holds | fails | holds |\n<!-- end record -->\nafter\n"),
+        text.contains("| default | not significant | holds | opposite | holds | fails | holds |\n<!-- end record -->\nafter\n"),
         "{text}"
     );
 }

@@ -346,7 +346,7 @@ const SAYS: &str = "sample standard deviation, n − 1";
 #[test]
 fn tables_say_their_std_is_the_sample_std() {
     // The statistic itself: divided by n − 1, not n.
-    let (mean, std) = fuzzymotiv_io::render::study::mean_std(&[1.0, 2.0, 3.0, 4.0]);
+    let (mean, std) = fuzzymotiv::statistics::mean_std(&[1.0, 2.0, 3.0, 4.0]);
     assert_eq!(mean, 2.5);
     assert!((std - (5.0f64 / 3.0).sqrt()).abs() < 1e-15, "{std}");
 

@@ -5,12 +5,12 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv::random::rng::rng_from_seed;
-use fuzzymotiv::simulation::controller::Controller;
-use fuzzymotiv::simulation::geom::Vec2;
-use fuzzymotiv::simulation::robot::Pose;
-use fuzzymotiv::simulation::room::Room;
-use fuzzymotiv::simulation::trial::{Arena, Trajectory, TrialParams, run_trial};
+use fuzzymotiv::random::rng_from_seed;
+use fuzzymotiv::simulation::Controller;
+use fuzzymotiv::simulation::Pose;
+use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::Vec2;
+use fuzzymotiv::simulation::{Arena, Trajectory, TrialParams, run_trial};
 use fuzzymotiv_io::render::frames::animate::{PALETTE, delay_of, palette_index};
 use fuzzymotiv_io::render::frames::scene::{BODY, HEADING, PATH, TEXT};
 use fuzzymotiv_io::render::frames::{FrameOptions, Frames, Track, View, gif, render};

@@ -13,7 +13,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
 use futures_util::Stream;
-use fuzzymotiv::fitness::fuzzy::{Motivations, TskFitness};
+use fuzzymotiv::fitness::{Motivations, TskFitness};
 use fuzzymotiv_io::files::guard::{OutState, Spelling, StagedDir, check_out_as};
 use serde::Deserialize;
 use serde_json::{Value, json};

@@ -5,9 +5,9 @@
 use std::ops::ControlFlow;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::evolution::GenerationState;
-use fuzzymotiv::simulation::controller::Mlp;
-use fuzzymotiv::simulation::trial::Trajectory;
+use fuzzymotiv::experiment::GenerationState;
+use fuzzymotiv::simulation::Mlp;
+use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv_io::records::Finished;
 use serde_json::{Value, json};
 

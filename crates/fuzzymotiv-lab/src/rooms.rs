@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 use fuzzymotiv_io::files::guard::{FilesState, check_files, write_files};
 use serde::{Deserialize, Serialize};
 

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 
-use fuzzymotiv::experiment::evolution::GenerationState;
+use fuzzymotiv::experiment::GenerationState;
 use fuzzymotiv_io::files::guard::StagedDir;
 use fuzzymotiv_io::pipeline::progress::NoProgress;
 use fuzzymotiv_io::pipeline::run_dir::execute_with;
@@ -324,7 +324,7 @@ impl Runs {
 }
 
 /// What the list says of a run.
-fn about(s: &Settings, raw: &fuzzymotiv::experiment::config::RawConfig) -> Value {
+fn about(s: &Settings, raw: &fuzzymotiv::experiment::RawConfig) -> Value {
     let m = &raw.motivations;
     json!({ "name": raw.name, "seed": raw.seed, "population": s.population,
             "generations": s.generations, "rooms": raw.rooms,

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use fuzzymotiv::experiment::config::RawConfig;
-use fuzzymotiv::simulation::room::Room;
+use fuzzymotiv::experiment::RawConfig;
+use fuzzymotiv::simulation::Room;
 use fuzzymotiv_io::files::inputs::{Loaded, resolve};
 use serde::{Deserialize, Serialize};
 

@@ -14,13 +14,13 @@
 //! instruction; three runs) one robot at a time took 81–90 ns, four in lockstep 58–67 ns (about
 //! 1.4×); with AVX2 (two runs) 82–86 ns against 45–50 ns (about 1.75×). The network is about
 //! 30 % of a study's time.
-use fuzzymotiv::modelling::aem::DEFAULT_ACTION_TOLERANCE;
-use fuzzymotiv::random::rng::{rng_from_seed, uniform};
-use fuzzymotiv::simulation::controller::{Controller, Mlp, MlpShape};
-use fuzzymotiv::simulation::math::logistic_lanes;
-use fuzzymotiv::simulation::robot::RawRobot;
-use fuzzymotiv::simulation::room::Room;
-use fuzzymotiv::simulation::trial::{Arena, RawTrial, Step, StepObserver, TrialParams, simulate};
+use fuzzymotiv::modelling::DEFAULT_ACTION_TOLERANCE;
+use fuzzymotiv::random::{rng_from_seed, uniform};
+use fuzzymotiv::simulation::RawRobot;
+use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::logistic_lanes;
+use fuzzymotiv::simulation::{Arena, RawTrial, Step, StepObserver, TrialParams, simulate};
+use fuzzymotiv::simulation::{Controller, Mlp, MlpShape};
 use std::time::Instant;
 
 const L: usize = 4;

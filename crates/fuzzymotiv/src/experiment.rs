@@ -1,22 +1,36 @@
 //! The facade: a validated [`Experiment`] built once from a [`RawConfig`] and its rooms, with
 //! its protocol ([`Experiment::runs`]), random streams and fuzzy fitness. Evaluation
-//! ([`crate::experiment::evaluation`]), evolution ([`crate::experiment::evolution`], [`Experiment::evolve`]) and room
-//! modelling ([`crate::experiment::modelling`], [`Experiment::environment_modelling`]) are methods of
+//! ([`Evaluation`]), evolution ([`Evolution`], [`Experiment::evolve`]) and room
+//! modelling ([`AemReport`], [`Experiment::environment_modelling`]) are methods of
 //! `Experiment` written beside their own types.
 
-pub mod config;
-pub mod descriptors;
-pub mod episodes;
-pub mod evaluation;
-pub mod evolution;
-pub mod modelling;
-pub mod outcome;
-pub mod setup;
+pub(crate) mod config;
+pub(crate) mod descriptors;
+pub(crate) mod episodes;
+pub(crate) mod evaluation;
+pub(crate) mod evolution;
+pub(crate) mod modelling;
+pub(crate) mod outcome;
+pub(crate) mod setup;
+
+/// The sections of a config as written, each checked into its subsystem's parameters.
+pub use config::{
+    Coefficients, RawAem, RawFitness, RawFuzzy, RawGa, RawMotivations, RawNetwork, RawRobot,
+    RawTrial,
+};
+pub use config::{
+    ConfigError, EnergyMode, MAX_SEED, OrientationMode, RawConfig, Training, apply_sets, at_line,
+};
+pub use descriptors::Descriptors;
+pub use evaluation::{Evaluation, RoomScore};
+pub use evolution::{Evolution, GenerationRecord, GenerationState, Observer, Population, Stopped};
+pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
+pub use outcome::{Outcome, RunError, Start};
+pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, parse_room_file};
 
 use serde::{Deserialize, Serialize};
 
 use crate::evolution::ga::GaParams;
-use crate::experiment::config::{ConfigError, EnergyMode, OrientationMode, RawConfig, Training};
 use crate::fitness::fuzzy::{Motivations, TskFitness};
 use crate::fitness::terms::{FitnessTerms, Homing};
 use crate::modelling::aem::AemParams;

@@ -46,8 +46,8 @@
 //! assert_eq!(evolution.history.len(), 3);
 //! ```
 //!
-//! The pieces stay usable alone: [`simulation::trial::run_trial`] runs a controller in a room,
-//! [`fitness::fuzzy::TskFitness::evaluate`] combines fitness terms,
+//! The pieces stay usable alone: [`simulation::run_trial`] runs a controller in a room,
+//! [`fitness::TskFitness::evaluate`] combines fitness terms,
 //!
 //! ```
 //! use fuzzymotiv::{Motivations, TskFitness};
@@ -56,8 +56,8 @@
 //! assert!((f - 0.797220).abs() < 1e-6);
 //! ```
 //!
-//! [`evolution::ga::next_generation`] breeds, and [`Experiment`] ties them together as the paper does
-//! ([`experiment::evolution`] shows the loop as ask/evaluate/tell steps a custom optimiser can drive).
+//! [`evolution::next_generation`] breeds, and [`Experiment`] ties them together as the paper does
+//! ([`experiment::Evolution`] shows the loop as ask/evaluate/tell steps a custom optimiser can drive).
 
 #![warn(missing_docs)]
 

@@ -2,13 +2,25 @@
 //! the robot's body and motion, its infrared sensors, the neural controller and trials (a
 //! controller driving the robot in a room for a number of steps).
 
-pub mod controller;
-pub mod geom;
-pub mod math;
+pub(crate) mod controller;
+pub(crate) mod geom;
+pub(crate) mod math;
 pub(crate) mod memo;
-pub mod robot;
-pub mod room;
+pub(crate) mod robot;
+pub(crate) mod room;
 pub(crate) mod sensing;
-pub mod sensor;
-pub mod stepper;
-pub mod trial;
+pub(crate) mod sensor;
+pub(crate) mod stepper;
+pub(crate) mod trial;
+pub(crate) mod trial_params;
+
+pub use controller::{Controller, GenomeError, INPUTS, Mlp, MlpShape, OUTPUTS};
+pub use geom::{PreparedSegment, Segment, Vec2, edges, point_in_polygon, signed_area};
+pub use math::logistic_lanes;
+pub use robot::{Action, Compass, Khepera, Motion, Pose, RawRobot, drive, wrap_angle};
+pub use room::{BUILTIN_ROOMS, HomeZone, Room, RoomError};
+pub use sensor::{RayMount, SENSOR_LAYOUT, SENSOR_MAX, SENSORS, SensorModel, SensorMount, rays};
+pub use stepper::TrialRun;
+pub use trial::{
+    Arena, RawTrial, Step, StepObserver, Trajectory, TrialParams, run_trial, simulate,
+};

@@ -15,7 +15,7 @@
 //!   `permutation_test`); for the paired test's symmetric null distribution this is the share
 //!   of sign patterns at least as far from 0 as the observed mean. Resampled p-values count
 //!   the observed arrangement once more ((k + 1) / (R + 1)), so they are never 0.
-//! - **Interval**: a percentile bootstrap ([`bootstrap`]) with [`BOOTSTRAP_RESAMPLES`]
+//! - **Interval**: a percentile bootstrap ([`mean_interval`], [`difference_interval`]) with [`BOOTSTRAP_RESAMPLES`]
 //!   resamples, at `confidence` (95 % by default).
 //! - **Minimum detectable difference** at power 1 − β (80 % by default), by the normal
 //!   approximation (z_{1−α/2} + z_{1−β}) · SE, where SE is sd/√n of the paired differences, or
@@ -40,12 +40,13 @@
 //! assert_eq!(c.verdict(Expect::Higher), Verdict::NotSignificant); // 1/16 ≥ 0.05
 //! ```
 
-pub mod bootstrap;
-pub mod normal;
-pub mod permutation;
+pub(crate) mod bootstrap;
+pub(crate) mod normal;
+pub(crate) mod permutation;
 
-pub use bootstrap::quantile;
+pub use bootstrap::{difference_interval, mean_interval, quantile};
 pub use normal::normal_quantile;
+pub use permutation::{EXACT_LIMIT, PermutationP, sign_flip_p, two_sample_p};
 
 use crate::random::seed::derive;
 
@@ -275,6 +276,20 @@ pub fn sample_sd(values: &[f64]) -> Option<f64> {
         let m = mean(values);
         (values.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / (n - 1) as f64).sqrt()
     })
+}
+
+/// The mean and the sample standard deviation of `values` ([`mean`], [`sample_sd`]), the std 0
+/// for fewer than two values (no spread: the tables show a dash there).
+///
+/// ```
+/// use fuzzymotiv::statistics::mean_std;
+/// let (mean, std) = mean_std(&[1.0, 2.0, 3.0, 4.0]);
+/// assert_eq!(mean, 2.5);
+/// assert!((std - (5.0f64 / 3.0).sqrt()).abs() < 1e-15); // divided by n − 1, not n
+/// assert_eq!(mean_std(&[7.0]), (7.0, 0.0));
+/// ```
+pub fn mean_std(values: &[f64]) -> (f64, f64) {
+    (mean(values), sample_sd(values).unwrap_or(0.0))
 }
 
 /// The smallest true difference a two-sided test at level `alpha` detects with probability

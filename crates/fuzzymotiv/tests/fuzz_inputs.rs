@@ -3,8 +3,8 @@
 //! typed error naming a field — never a panic.
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::config::RawConfig;
-use fuzzymotiv::simulation::room::Room;
+use fuzzymotiv::experiment::RawConfig;
+use fuzzymotiv::simulation::Room;
 use proptest::prelude::*;
 
 const KEYS: &[&str] = &[
@@ -164,9 +164,9 @@ proptest! {
         match Room::from_toml_str(&text, "fuzz-room.toml") {
             Ok(room) => {
                 // A valid room must be usable by the simulator.
-                let raw = fuzzymotiv::simulation::trial::RawTrial { steps: 20, ..Default::default() };
-                let params = fuzzymotiv::simulation::trial::TrialParams::from_raw(&raw, &Default::default(), 0.25).unwrap();
-                let arena = fuzzymotiv::simulation::trial::Arena::new(room, &params);
+                let raw = fuzzymotiv::simulation::RawTrial { steps: 20, ..Default::default() };
+                let params = fuzzymotiv::simulation::TrialParams::from_raw(&raw, &Default::default(), 0.25).unwrap();
+                let arena = fuzzymotiv::simulation::Arena::new(room, &params);
                 prop_assert!(arena.reachable_cells() <= arena.cell_count());
             }
             Err(e) => prop_assert!(!e.field.is_empty() && !e.reason.is_empty()),

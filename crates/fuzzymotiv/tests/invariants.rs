@@ -1,11 +1,11 @@
 //! Property tests of the simulator's invariants and value-stability (golden) tests.
 
-use fuzzymotiv::modelling::aem::{Action, DEFAULT_ACTION_TOLERANCE};
-use fuzzymotiv::random::rng::{Rng, rng_from_seed, standard_normal, uniform01};
-use fuzzymotiv::simulation::controller::{Mlp, MlpShape};
-use fuzzymotiv::simulation::robot::{Motion, RawRobot, wrap_angle};
-use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
-use fuzzymotiv::simulation::trial::{Arena, RawTrial, TrialParams, run_trial};
+use fuzzymotiv::modelling::{Action, DEFAULT_ACTION_TOLERANCE};
+use fuzzymotiv::random::{Rng, rng_from_seed, standard_normal, uniform01};
+use fuzzymotiv::simulation::{Arena, RawTrial, TrialParams, run_trial};
+use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::simulation::{Mlp, MlpShape};
+use fuzzymotiv::simulation::{Motion, RawRobot, wrap_angle};
 use proptest::prelude::*;
 
 /// Checked parameters: `trial`, a robot of `motion` and the default action tolerance.

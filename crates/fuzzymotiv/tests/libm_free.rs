@@ -12,13 +12,13 @@ use std::collections::{HashMap, HashSet};
 use std::hint::black_box;
 use std::process::Command;
 
-use fuzzymotiv::fitness::terms::{Homing, TermsRecorder};
-use fuzzymotiv::modelling::aem::DEFAULT_ACTION_TOLERANCE;
-use fuzzymotiv::random::rng::{Rng64, rng_from_seed};
-use fuzzymotiv::simulation::controller::{Mlp, MlpShape};
-use fuzzymotiv::simulation::robot::{Motion, Pose, RawRobot};
-use fuzzymotiv::simulation::room::Room;
-use fuzzymotiv::simulation::trial::{Arena, RawTrial, TrialParams, simulate};
+use fuzzymotiv::fitness::{Homing, TermsRecorder};
+use fuzzymotiv::modelling::DEFAULT_ACTION_TOLERANCE;
+use fuzzymotiv::random::{Rng64, rng_from_seed};
+use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::{Arena, RawTrial, TrialParams, simulate};
+use fuzzymotiv::simulation::{Mlp, MlpShape};
+use fuzzymotiv::simulation::{Motion, Pose, RawRobot};
 
 /// libm functions that must not be reached from the step loop (`fmod`, reached by
 /// `wrap_angle` for |θ| ≥ 2π only, is exact by definition, so the same on every platform).

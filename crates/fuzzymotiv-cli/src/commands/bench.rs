@@ -3,7 +3,7 @@
 use std::time::Instant;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::simulation::room::Room;
+use fuzzymotiv::simulation::Room;
 
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::inputs::{load_config, resolve};
@@ -125,7 +125,7 @@ fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
     let loaded = if Room::builtin(&args.room).is_some() {
         load_config(None, &sets, None)?
     } else {
-        let raw = fuzzymotiv::experiment::config::RawConfig::parse("", "bench", &sets)?;
+        let raw = fuzzymotiv::experiment::RawConfig::parse("", "bench", &sets)?;
         resolve(raw, std::path::Path::new("."), "--room")?
     };
     Ok(loaded.experiment)

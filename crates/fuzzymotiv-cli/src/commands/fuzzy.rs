@@ -68,7 +68,7 @@ fn parse_four(text: &str, option: &str, names: [&str; 4]) -> Result<[f64; 4], Cl
 
 /// Entry point of `fuzzymotiv fuzzy`.
 pub fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
-    use fuzzymotiv::fitness::fuzzy::{Motivations, TskFitness};
+    use fuzzymotiv::fitness::{Motivations, TskFitness};
     let x = parse_four(&args.motivations, "--motivations", ["C", "H", "O", "E"])?;
     let (m, sum) = Motivations::normalised(x[0], x[1], x[2], x[3])
         .map_err(|e| CliError::input(format!("--motivations: {e}")))?;
@@ -96,8 +96,8 @@ pub fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
 /// Writes the FLL engine to `path` (`-`: standard output) through the output guard.
 fn export_fll(
     path: &std::path::Path,
-    tsk: &fuzzymotiv::fitness::fuzzy::TskFitness,
-    m: &fuzzymotiv::fitness::fuzzy::Motivations,
+    tsk: &fuzzymotiv::fitness::TskFitness,
+    m: &fuzzymotiv::fitness::Motivations,
     force: bool,
 ) -> Result<(), CliError> {
     use fuzzymotiv_io::files::guard::{FilesState, check_files, write_files};
@@ -106,7 +106,7 @@ fn export_fll(
         Some(s) if !stdout => s.to_string_lossy().into_owned(),
         _ => "fuzzymotiv".into(),
     };
-    let text = fuzzymotiv::fitness::fll::to_fll(tsk, m, &name);
+    let text = fuzzymotiv::fitness::to_fll(tsk, m, &name);
     if stdout {
         return fuzzymotiv_io::out!("{text}");
     }

@@ -10,11 +10,11 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::experiment::config::{OrientationMode, Training};
-use fuzzymotiv::experiment::modelling::InstanceRun;
+use fuzzymotiv::experiment::InstanceRun;
 use fuzzymotiv::experiment::{Experiment, Run};
-use fuzzymotiv::simulation::controller::MlpShape;
-use fuzzymotiv::simulation::trial::{Trajectory, TrialParams};
+use fuzzymotiv::experiment::{OrientationMode, Training};
+use fuzzymotiv::simulation::MlpShape;
+use fuzzymotiv::simulation::{Trajectory, TrialParams};
 use rayon::prelude::*;
 
 use fuzzymotiv_io::files::error::CliError;

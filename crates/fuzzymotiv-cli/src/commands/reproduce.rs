@@ -3,8 +3,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use fuzzymotiv::experiment::config::RawConfig;
-use fuzzymotiv::random::seed::Streams;
+use fuzzymotiv::experiment::RawConfig;
+use fuzzymotiv::random::Streams;
 
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{
@@ -136,8 +136,7 @@ fn load_one(
     for (name, text) in FIRST_RELEASE_ROOMS {
         let file = format!("rooms/first-release/{name}.toml");
         rooms.push(
-            fuzzymotiv::simulation::room::Room::from_toml_str(text, &file)
-                .map_err(CliError::from)?,
+            fuzzymotiv::simulation::Room::from_toml_str(text, &file).map_err(CliError::from)?,
         );
         raw.rooms.push(file);
     }
@@ -648,7 +647,7 @@ fn orientation_study(args: &ReproduceArgs) -> Result<(), CliError> {
     if !sets.is_empty() {
         // Apply overrides to the document (config keys and sweep keys alike).
         let mut table: toml::Table = toml::from_str(&text).expect("built-in sweep is valid TOML");
-        fuzzymotiv::experiment::config::apply_sets(&mut table, &sets)?;
+        fuzzymotiv::experiment::apply_sets(&mut table, &sets)?;
         text = toml::to_string(&table).expect("a table serialises");
     }
     let sweep = Sweep::parse_str(

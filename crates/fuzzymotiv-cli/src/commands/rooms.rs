@@ -16,7 +16,7 @@ pub struct RoomsArgs {
 
 /// Entry point of `fuzzymotiv rooms`.
 pub fn rooms(args: RoomsArgs) -> Result<(), CliError> {
-    use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
+    use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
     if args.check.is_empty() {
         outln!(
             "{:<10} {:>10} {:>10}  home (x mm, y mm, heading °)",
@@ -44,7 +44,7 @@ pub fn rooms(args: RoomsArgs) -> Result<(), CliError> {
     }
 }
 
-fn print_room(prefix: &str, r: &fuzzymotiv::simulation::room::Room) -> Result<(), CliError> {
+fn print_room(prefix: &str, r: &fuzzymotiv::simulation::Room) -> Result<(), CliError> {
     outln!(
         "{prefix}{:<10} {:>10.3} {:>10.3}  ({}, {}, {})",
         r.name,

@@ -99,10 +99,10 @@ impl fmt::Display for CliError {
     }
 }
 
-/// A config or room file that cannot be used ([`fuzzymotiv::experiment::config::ConfigError`] and
-/// [`fuzzymotiv::simulation::room::RoomError`] are this one type).
-impl From<fuzzymotiv::experiment::setup::SetupError> for CliError {
-    fn from(e: fuzzymotiv::experiment::setup::SetupError) -> Self {
+/// A config or room file that cannot be used ([`fuzzymotiv::experiment::ConfigError`] and
+/// [`fuzzymotiv::simulation::RoomError`] are this one type).
+impl From<fuzzymotiv::experiment::SetupError> for CliError {
+    fn from(e: fuzzymotiv::experiment::SetupError) -> Self {
         CliError::input(e.to_string())
     }
 }

@@ -3,9 +3,9 @@
 use std::path::{Path, PathBuf};
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::config::RawConfig;
-use fuzzymotiv::experiment::setup::{RoomFile, RoomFiles, Setup, parse_room_file};
-use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
+use fuzzymotiv::experiment::RawConfig;
+use fuzzymotiv::experiment::{RoomFile, RoomFiles, Setup, parse_room_file};
+use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 
 use crate::files::error::CliError;
 use crate::note;
@@ -130,7 +130,7 @@ pub fn parse_threads(text: &str) -> Result<usize, String> {
 
 /// The largest seed: 2^53 − 1, so every seed is exact in JSON for tools that read numbers as
 /// doubles (JavaScript, jq).
-pub const MAX_SEED: u64 = fuzzymotiv::experiment::config::MAX_SEED;
+pub const MAX_SEED: u64 = fuzzymotiv::experiment::MAX_SEED;
 
 /// Parses `--seed`: a whole number from 0 to 2^53 − 1, with a plain message otherwise.
 pub fn parse_seed(text: &str) -> Result<u64, String> {

@@ -7,8 +7,8 @@
 use std::path::Path;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::evolution::{Evolution, Population};
-use fuzzymotiv::experiment::outcome::Start;
+use fuzzymotiv::experiment::Start;
+use fuzzymotiv::experiment::{Evolution, Population};
 
 use crate::files::error::{CliError, ErrorKind};
 use crate::files::guard::StagedDir;

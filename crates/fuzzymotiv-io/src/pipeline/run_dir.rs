@@ -7,9 +7,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::config::Training;
-use fuzzymotiv::experiment::evolution::{GenerationState, Observer};
-use fuzzymotiv::experiment::outcome::{Outcome, RunError};
+use fuzzymotiv::experiment::Training;
+use fuzzymotiv::experiment::{GenerationState, Observer};
+use fuzzymotiv::experiment::{Outcome, RunError};
 
 use crate::files::error::CliError;
 use crate::files::guard::{StagedDir, io_err, matches};

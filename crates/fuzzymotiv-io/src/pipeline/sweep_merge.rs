@@ -5,6 +5,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use fuzzymotiv::statistics;
+
 use crate::files::error::CliError;
 use crate::files::guard::write_atomic;
 use crate::note;
@@ -236,12 +238,11 @@ fn setting_points(groups: &Groups<'_>) -> Vec<SettingPoint> {
         .collect()
 }
 
-/// Mean and sample standard deviation ([`crate::render::study::mean_std`], divided by n − 1): no mean
-/// for no values, no std for fewer than two (one value has no spread).
+/// Mean and sample standard deviation ([`statistics::mean`], [`statistics::sample_sd`]: divided
+/// by n − 1): no mean for no values, no std for fewer than two (one value has no spread).
 fn mean_std(v: &[f64]) -> (Option<f64>, Option<f64>) {
     if v.is_empty() {
         return (None, None);
     }
-    let (mean, std) = crate::render::study::mean_std(v);
-    (Some(mean), (v.len() > 1).then_some(std))
+    (Some(statistics::mean(v)), statistics::sample_sd(v))
 }

@@ -7,8 +7,8 @@
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::experiment::config::{RawConfig, at_line};
-use fuzzymotiv::random::seed::{Streams, hash_str};
+use fuzzymotiv::experiment::{RawConfig, at_line};
+use fuzzymotiv::random::{Streams, hash_str};
 use serde::Deserialize;
 
 use crate::files::error::CliError;

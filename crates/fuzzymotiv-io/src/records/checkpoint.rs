@@ -3,9 +3,9 @@
 
 use std::path::Path;
 
-use fuzzymotiv::experiment::evolution::{GenerationRecord, GenerationState, Population, Stopped};
-use fuzzymotiv::experiment::outcome::Start;
+use fuzzymotiv::experiment::Start;
 use fuzzymotiv::experiment::{Experiment, Run};
+use fuzzymotiv::experiment::{GenerationRecord, GenerationState, Population, Stopped};
 use serde::{Deserialize, Serialize};
 
 use crate::files::error::CliError;

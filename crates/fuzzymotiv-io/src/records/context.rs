@@ -3,11 +3,11 @@
 //! ([`RenderContext::of`]), so that rendering reads records and this, never the live
 //! experiment.
 
-use fuzzymotiv::experiment::config::{EnergyMode, OrientationMode, Training};
-use fuzzymotiv::fitness::fuzzy::label_name;
-use fuzzymotiv::fitness::terms::Homing;
-use fuzzymotiv::simulation::robot::Motion;
-use fuzzymotiv::simulation::room::Room;
+use fuzzymotiv::experiment::{EnergyMode, OrientationMode, Training};
+use fuzzymotiv::fitness::Homing;
+use fuzzymotiv::fitness::label_name;
+use fuzzymotiv::simulation::Motion;
+use fuzzymotiv::simulation::Room;
 
 use crate::files::inputs::{Loaded, resolved_toml};
 use crate::records::MotivationsRecord;

@@ -24,12 +24,12 @@ use std::fmt;
 use std::path::Path;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::config::Training;
-use fuzzymotiv::experiment::evolution::{Evolution, GenerationRecord};
-use fuzzymotiv::experiment::outcome::Outcome;
-use fuzzymotiv::fitness::fuzzy::{Explanation, Motivations};
-use fuzzymotiv::fitness::terms::FitnessTerms;
-use fuzzymotiv::simulation::trial::Trajectory;
+use fuzzymotiv::experiment::Outcome;
+use fuzzymotiv::experiment::Training;
+use fuzzymotiv::experiment::{Evolution, GenerationRecord};
+use fuzzymotiv::fitness::FitnessTerms;
+use fuzzymotiv::fitness::{Explanation, Motivations};
+use fuzzymotiv::simulation::Trajectory;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 

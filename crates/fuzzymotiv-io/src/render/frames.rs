@@ -8,8 +8,8 @@
 //! and the action taken from that pose. Same rollout and options → the same bytes.
 //!
 //! ```
-//! use fuzzymotiv::simulation::robot::Pose;
-//! use fuzzymotiv::simulation::room::Room;
+//! use fuzzymotiv::simulation::Pose;
+//! use fuzzymotiv::simulation::Room;
 //! use fuzzymotiv_io::render::frames::{FrameOptions, Track, render};
 //! let room = Room::builtin("square").unwrap();
 //! let poses: Vec<Pose> = (0..5).map(|t| Pose::new(room.home.x + 8.0 * t as f64, room.home.y, 0.0)).collect();
@@ -24,7 +24,7 @@ pub mod draw;
 pub mod font;
 pub mod scene;
 
-use fuzzymotiv::simulation::room::Room;
+use fuzzymotiv::simulation::Room;
 use rayon::prelude::*;
 use tiny_skia::Pixmap;
 

@@ -7,9 +7,9 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::experiment::config::Training;
-use fuzzymotiv::experiment::modelling::InstanceRun;
-use fuzzymotiv::simulation::sensor::SENSOR_LAYOUT;
+use fuzzymotiv::experiment::InstanceRun;
+use fuzzymotiv::experiment::Training;
+use fuzzymotiv::simulation::SENSOR_LAYOUT;
 use serde_json::{Value, json};
 
 use crate::records::context::RenderContext;
@@ -108,8 +108,8 @@ fn r3(v: f64) -> f64 {
 }
 
 /// One letter per action: S straight, L left30, R right30, T turn180.
-fn action_letter(a: fuzzymotiv::modelling::aem::Action) -> char {
-    use fuzzymotiv::modelling::aem::Action::*;
+fn action_letter(a: fuzzymotiv::modelling::Action) -> char {
+    use fuzzymotiv::modelling::Action::*;
     match a {
         Straight => 'S',
         Left30 => 'L',
@@ -122,7 +122,7 @@ fn action_letter(a: fuzzymotiv::modelling::aem::Action) -> char {
 /// sensors to integers; actions and collisions as one character per step).
 pub fn replay_room(ctx: &RenderContext, room: usize, run_label: &str, run: &InstanceRun) -> Value {
     let r = &ctx.rooms[room];
-    let pts = |p: &[fuzzymotiv::simulation::geom::Vec2]| {
+    let pts = |p: &[fuzzymotiv::simulation::Vec2]| {
         p.iter().map(|v| [r1(v.x), r1(v.y)]).collect::<Vec<_>>()
     };
     let (tr, terms, f) = (&run.trajectory, run.terms, run.f);
@@ -421,7 +421,7 @@ fn heading(page: &mut Page, level: u8, id: &str, part: &str, text: &str) {
 fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     let done = s.done;
     let names = s.ctx.room_names();
-    let label = |evo: &fuzzymotiv::experiment::evolution::Evolution| match s.ctx.training {
+    let label = |evo: &fuzzymotiv::experiment::Evolution| match s.ctx.training {
         Training::AllRooms => s.title.clone(),
         Training::PerRoom => format!("{}: robot evolved in {}", s.title, evo.run.label),
     };

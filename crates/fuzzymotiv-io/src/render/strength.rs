@@ -10,7 +10,7 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::statistics::{self, BOOTSTRAP_RESAMPLES, Settings, bootstrap::mean_interval};
+use fuzzymotiv::statistics::{self, BOOTSTRAP_RESAMPLES, Settings, mean_interval};
 
 use super::study::{CLAIMS_ALPHA, Variant, seed_means};
 use super::svg::{Ticks, colour, esc, text_width};

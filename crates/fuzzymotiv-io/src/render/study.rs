@@ -2,7 +2,7 @@
 //! ablation's variants, a setting's runs over seeds with their statistics, and the paper's
 //! claims tested on them.
 
-use fuzzymotiv::statistics::{self, Expect, Settings, Verdict};
+use fuzzymotiv::statistics::{self, Expect, Settings, Verdict, mean_std, quantile};
 
 use crate::records::context::RenderContext;
 use crate::records::{
@@ -172,33 +172,6 @@ pub fn seed_index(k: usize, count: usize) -> String {
 /// [`seed_index`], e.g. `seed-03`.
 pub fn seed_dir(k: usize, count: usize) -> String {
     format!("seed-{}", seed_index(k, count))
-}
-
-/// The `q`-quantile (0 ≤ q ≤ 1) of `values` by linear interpolation between order statistics:
-/// sorted ascending and counted from 0, the value at rank h = (n − 1) q, interpolated between
-/// ranks ⌊h⌋ and ⌈h⌉ (Hyndman and Fan's type 7, the default of R and NumPy). The median of an
-/// even count is the mean of the middle two; one value is every quantile. NaN for no values.
-pub fn quantile(values: &[f64], q: f64) -> f64 {
-    let mut v = values.to_vec();
-    v.sort_by(f64::total_cmp);
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    let h = (v.len() - 1) as f64 * q.clamp(0.0, 1.0);
-    let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
-    v[lo] + (h - lo as f64) * (v[hi] - v[lo])
-}
-
-/// Mean and sample standard deviation (divided by n − 1; 0 for one value, which the tables
-/// show as a dash).
-pub fn mean_std(values: &[f64]) -> (f64, f64) {
-    let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
-    if values.len() < 2 {
-        return (mean, 0.0);
-    }
-    let var = values.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / (n - 1.0);
-    (mean, var.sqrt())
 }
 
 /// The table's five columns of a room row.
@@ -684,7 +657,7 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
 
 #[cfg(test)]
 mod tests {
-    use super::{FIRST_F_BAND, Settings, Verdict, band_test, quantile, seed_dir, seed_index};
+    use super::{FIRST_F_BAND, Settings, Verdict, band_test, seed_dir, seed_index};
 
     /// Seeds are named by their index from 1 (the base seed), zero-padded to the width of the
     /// count, so that the directories of a study sort in seed order.
@@ -715,18 +688,5 @@ mod tests {
         assert_eq!((p6, v6), (1.0, Verdict::Opposite));
         let v = band_test(&[0.1, 0.1, 0.1, 0.1, 0.01], FIRST_F_BAND, &o).unwrap();
         assert_eq!(v.4, Verdict::NotSignificant, "{v:?}");
-    }
-
-    /// The study's fitness figure's medians and quartiles over seeds: linear
-    /// interpolation between order statistics.
-    #[test]
-    fn quantiles_over_seeds_interpolate_linearly() {
-        assert_eq!(quantile(&[3.0, 1.0, 2.0], 0.5), 2.0);
-        assert_eq!(quantile(&[4.0, 1.0, 2.0, 3.0], 0.5), 2.5);
-        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0, 5.0], 0.25), 2.0);
-        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0], 0.25), 1.75);
-        assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0], 0.75), 3.25);
-        assert_eq!(quantile(&[7.0], 0.75), 7.0);
-        assert!(quantile(&[], 0.5).is_nan());
     }
 }

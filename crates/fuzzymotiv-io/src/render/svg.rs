@@ -3,10 +3,10 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::experiment::evolution::GenerationRecord;
-use fuzzymotiv::simulation::geom::{Vec2, point_in_polygon};
-use fuzzymotiv::simulation::room::Room;
-use fuzzymotiv::simulation::trial::Trajectory;
+use fuzzymotiv::experiment::GenerationRecord;
+use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::Trajectory;
+use fuzzymotiv::simulation::{Vec2, point_in_polygon};
 
 /// Escapes text for XML/HTML content and attribute values.
 pub fn esc(s: &str) -> String {
@@ -335,8 +335,8 @@ const TICK: f64 = 3.0;
 /// room and down in SVG.
 struct Projection {
     x_off: f64,
-    lo: fuzzymotiv::simulation::geom::Vec2,
-    hi: fuzzymotiv::simulation::geom::Vec2,
+    lo: fuzzymotiv::simulation::Vec2,
+    hi: fuzzymotiv::simulation::Vec2,
     scale: f64,
 }
 
@@ -349,7 +349,7 @@ impl Projection {
         40.0 + (self.hi.y - y) * self.scale
     }
 
-    fn polygon(&self, pts: &[fuzzymotiv::simulation::geom::Vec2]) -> String {
+    fn polygon(&self, pts: &[fuzzymotiv::simulation::Vec2]) -> String {
         pts.iter()
             .map(|p| format!("{:.1},{:.1}", self.x(p.x), self.y(p.y)))
             .collect::<Vec<_>>()
@@ -1287,9 +1287,9 @@ fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fuzzymotiv::evolution::ga::Stats;
-    use fuzzymotiv::experiment::evolution::GenerationRecord;
-    use fuzzymotiv::simulation::room::{BUILTIN_ROOMS, Room};
+    use fuzzymotiv::evolution::Stats;
+    use fuzzymotiv::experiment::GenerationRecord;
+    use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 
     /// An attribute's value in an element's start tag (`head`: the text after `<name`).
     fn attr(head: &str, name: &str) -> Option<String> {
@@ -1554,7 +1554,7 @@ mod tests {
     #[test]
     fn no_text_clipped_or_overlapping_at_1_to_8_rooms() {
         let title = "Replay of runs/high-curiosity/best_genome.json (seed 9007199254740991)";
-        let names: Vec<String> = fuzzymotiv::fitness::fuzzy::PAPER_LABEL_NAMES
+        let names: Vec<String> = fuzzymotiv::fitness::PAPER_LABEL_NAMES
             .iter()
             .map(|s| s.to_string())
             .collect();

@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::experiment::config::Training;
+use fuzzymotiv::experiment::Training;
 
 use crate::records::context::RenderContext;
 use crate::records::{ClaimRecord, RoomRow};
@@ -33,7 +33,7 @@ pub fn table_markdown(rows: &[RoomRow]) -> String {
 }
 
 /// What the ± of every table means, for its caption: the standard deviation is the sample
-/// one ([`crate::render::study::mean_std`], divided by n − 1), and one value has none.
+/// one ([`fuzzymotiv::statistics::mean_std`], divided by n − 1), and one value has none.
 pub const STD_IS_SAMPLE: &str = "std: the sample standard deviation, n − 1; — for one value";
 
 /// `mean ± std` with `d` decimals over `n` values: the std an em dash for one value (no spread

@@ -5,9 +5,9 @@
 //! A sentence may mark code with backticks, as Markdown does; [`html`] turns them into
 //! `<code>`.
 
-use fuzzymotiv::experiment::config::EnergyMode;
-use fuzzymotiv::fitness::terms::Homing;
-use fuzzymotiv::simulation::robot::Motion;
+use fuzzymotiv::experiment::EnergyMode;
+use fuzzymotiv::fitness::Homing;
+use fuzzymotiv::simulation::Motion;
 
 use crate::render::svg::esc;
 

@@ -4,7 +4,7 @@
 //! [`crate::simulation::trial`], `[aem]` in [`crate::modelling::aem`], …) and re-exported here.
 //!
 //! ```
-//! use fuzzymotiv::experiment::config::RawConfig;
+//! use fuzzymotiv::experiment::RawConfig;
 //! let raw = RawConfig::parse("", "empty.toml", &["ga.population=20".to_string()]).unwrap();
 //! assert_eq!(raw.ga.population, 20);
 //! assert_eq!(raw.trial.steps, 400);

@@ -7,8 +7,8 @@
 //! [`Experiment::evolve`] is exactly these steps, with an observer after every generation:
 //!
 //! ```
-//! use fuzzymotiv::experiment::config::RawConfig;
-//! use fuzzymotiv::experiment::setup::{BuiltinRoomsOnly, Setup};
+//! use fuzzymotiv::experiment::RawConfig;
+//! use fuzzymotiv::experiment::{BuiltinRoomsOnly, Setup};
 //! use std::ops::ControlFlow;
 //!
 //! let sets = ["ga.population=6", "ga.generations=2", "trial.steps=50"].map(String::from);

@@ -4,8 +4,8 @@
 //! [`RoomFiles`] that does (the CLI reads them relative to the config file).
 //!
 //! ```
-//! use fuzzymotiv::experiment::config::RawConfig;
-//! use fuzzymotiv::experiment::setup::{BuiltinRoomsOnly, Setup};
+//! use fuzzymotiv::experiment::RawConfig;
+//! use fuzzymotiv::experiment::{BuiltinRoomsOnly, Setup};
 //!
 //! let sets = ["motivations.curiosity=0.8".to_string(), "motivations.homing=0.1001".to_string()];
 //! let raw = RawConfig::parse("rooms = [\"H\", \"square\"]", "example", &sets).unwrap();

@@ -11,8 +11,8 @@
 //! shortest round-trip form, so every coefficient reads back to the same `f64`.
 //!
 //! ```
-//! use fuzzymotiv::fitness::fll::to_fll;
-//! use fuzzymotiv::fitness::fuzzy::{Motivations, TskFitness};
+//! use fuzzymotiv::fitness::to_fll;
+//! use fuzzymotiv::fitness::{Motivations, TskFitness};
 //! let text = to_fll(&TskFitness::paper(), &Motivations::HIGH_CURIOSITY, "high_curiosity");
 //! assert_eq!(text.matches("\n  rule: ").count(), 625);
 //! assert!(text.contains("term: r10 Linear 0.8 0.025 0 0 0"));

@@ -166,7 +166,7 @@ impl AemParams {
     }
 }
 
-/// The action taken in one control step: defined with the robot's motion ([`crate::simulation::robot`]),
+/// The action taken in one control step: defined with the robot's motion ([`crate::simulation::Motion`]),
 /// re-exported here where the chain code and the environment vectors use it.
 pub use crate::simulation::robot::Action;
 

@@ -6,7 +6,7 @@ use crate::random::rng::{Rng, uniform};
 /// drawn and the value is returned unchanged, so noise-free trials are exactly repeatable.
 ///
 /// ```
-/// use fuzzymotiv::random::{noise::perturb, rng::rng_from_seed};
+/// use fuzzymotiv::random::{perturb, rng_from_seed};
 /// let mut rng = rng_from_seed(1);
 /// assert_eq!(perturb(100.0, 0.0, &mut rng), 100.0);
 /// let v = perturb(100.0, 0.06, &mut rng);

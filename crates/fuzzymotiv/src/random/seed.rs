@@ -27,7 +27,7 @@ pub mod purpose {
 /// `room_key` is [`hash_str`] of the room's name.
 ///
 /// ```
-/// use fuzzymotiv::random::seed::Streams;
+/// use fuzzymotiv::random::Streams;
 /// let s = Streams::new(1);
 /// assert_ne!(s.initial_population(0), s.breeding(0, 0));
 /// assert_eq!(s.study(0), 1);
@@ -132,7 +132,7 @@ pub const JSON_EXACT: u64 = (1 << 53) - 1;
 /// that it survives any JSON reader.
 ///
 /// ```
-/// use fuzzymotiv::random::seed::{study_seed, JSON_EXACT};
+/// use fuzzymotiv::random::{study_seed, JSON_EXACT};
 /// assert_eq!(study_seed(1, 0), 1);
 /// assert_ne!(study_seed(1, 1), study_seed(1, 2));
 /// assert!(study_seed(1, 1) <= JSON_EXACT);
@@ -158,7 +158,7 @@ pub fn mix64(mut z: u64) -> u64 {
 /// `derive(seed, &[purpose::EVAL, run, generation, individual, room, trial])`.
 ///
 /// ```
-/// use fuzzymotiv::random::seed::derive;
+/// use fuzzymotiv::random::derive;
 /// assert_ne!(derive(1, &[3, 0, 1]), derive(1, &[3, 1, 0]));
 /// assert_eq!(derive(1, &[3, 0, 1]), derive(1, &[3, 0, 1]));
 /// ```

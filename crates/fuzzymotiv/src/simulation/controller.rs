@@ -64,7 +64,7 @@ impl MlpShape {
     /// `network.hidden`.
     ///
     /// ```
-    /// use fuzzymotiv::simulation::controller::MlpShape;
+    /// use fuzzymotiv::simulation::MlpShape;
     /// assert_eq!(MlpShape::with_hidden(6).unwrap(), MlpShape::default());
     /// assert_eq!(MlpShape::with_hidden(0).unwrap_err().field, "network.hidden");
     /// ```
@@ -96,7 +96,7 @@ impl MlpShape {
     /// weights]`. 68 for the paper's 8-6-2.
     ///
     /// ```
-    /// assert_eq!(fuzzymotiv::simulation::controller::MlpShape::default().genome_len(), 68);
+    /// assert_eq!(fuzzymotiv::simulation::MlpShape::default().genome_len(), 68);
     /// ```
     pub fn genome_len(&self) -> usize {
         self.hidden * (INPUTS + 1) + OUTPUTS * (self.hidden + 1)
@@ -121,7 +121,7 @@ impl MlpShape {
 /// A genome whose length is not its network's ([`Mlp::from_genome`]).
 ///
 /// ```
-/// use fuzzymotiv::simulation::controller::{Mlp, MlpShape};
+/// use fuzzymotiv::simulation::{Mlp, MlpShape};
 /// let e = Mlp::from_genome(MlpShape::default(), &[0.0; 67]).unwrap_err();
 /// assert_eq!(e.to_string(), "a genome of the 8-6-2 network has 68 weights, got 67");
 /// ```

@@ -1,7 +1,7 @@
 //! Plane geometry in millimetres: points, wall segments, rays and polygons.
 //!
 //! ```
-//! use fuzzymotiv::simulation::geom::{Segment, Vec2};
+//! use fuzzymotiv::simulation::{Segment, Vec2};
 //! // A wall from (10, -5) to (10, 5); a ray from the origin along +x hits it at t = 10.
 //! let wall = Segment::new(Vec2::new(10.0, -5.0), Vec2::new(10.0, 5.0));
 //! assert_eq!(wall.ray_hit(Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0)), Some(10.0));
@@ -24,7 +24,7 @@ impl Vec2 {
         Self { x, y }
     }
     /// The unit vector at angle `theta` (rad) from +x (the project's own sin/cos: ≤ 1 ulp for
-    /// `|theta| ≤ 10⁶`, see [`crate::simulation::math`]).
+    /// `|theta| ≤ 10⁶`, see `simulation/math.rs`).
     #[inline]
     pub fn from_angle(theta: f64) -> Self {
         let (s, c) = crate::simulation::math::sin_cos(theta);
@@ -112,7 +112,7 @@ impl Segment {
     /// Squared distance from `p` to the nearest point of the segment.
     ///
     /// ```
-    /// use fuzzymotiv::simulation::geom::{Segment, Vec2};
+    /// use fuzzymotiv::simulation::{Segment, Vec2};
     /// let s = Segment::new(Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0));
     /// assert_eq!(s.dist2_to(Vec2::new(5.0, 3.0)), 9.0);   // above the middle
     /// assert_eq!(s.dist2_to(Vec2::new(13.0, 4.0)), 25.0); // beyond the end: 3-4-5
@@ -175,7 +175,7 @@ impl Segment {
     /// Distance between two segments (0 when they touch or cross).
     ///
     /// ```
-    /// use fuzzymotiv::simulation::geom::{Segment, Vec2};
+    /// use fuzzymotiv::simulation::{Segment, Vec2};
     /// let a = Segment::new(Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0));
     /// let b = Segment::new(Vec2::new(5.0, 3.0), Vec2::new(5.0, 9.0));
     /// assert_eq!(a.dist_to_segment(&b), 3.0);
@@ -231,7 +231,7 @@ impl PreparedSegment {
     /// rounding).
     ///
     /// ```
-    /// use fuzzymotiv::simulation::geom::{PreparedSegment, Segment, Vec2};
+    /// use fuzzymotiv::simulation::{PreparedSegment, Segment, Vec2};
     /// let s = PreparedSegment::new(&Segment::new(Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0)));
     /// assert_eq!(s.dist2_to(Vec2::new(5.0, 3.0)), 9.0);
     /// assert_eq!(s.dist2_to(Vec2::new(13.0, 4.0)), 25.0);
@@ -250,7 +250,7 @@ impl PreparedSegment {
     /// the numerator of `t`) is computed once for all the rays.
     ///
     /// ```
-    /// use fuzzymotiv::simulation::geom::{PreparedSegment, Segment, Vec2};
+    /// use fuzzymotiv::simulation::{PreparedSegment, Segment, Vec2};
     /// let wall = PreparedSegment::new(&Segment::new(Vec2::new(10.0, -5.0), Vec2::new(10.0, 5.0)));
     /// let mut nearest = [f64::INFINITY; 2];
     /// wall.lower_ray_hits(Vec2::new(0.0, 0.0), &[Vec2::new(1.0, 0.0), Vec2::new(-1.0, 0.0)], &mut nearest);
@@ -290,7 +290,7 @@ fn on_segment(a: Vec2, b: Vec2, p: Vec2) -> bool {
 /// Signed area of a closed polygon (mm²): positive when counter-clockwise.
 ///
 /// ```
-/// use fuzzymotiv::simulation::geom::{signed_area, Vec2};
+/// use fuzzymotiv::simulation::{signed_area, Vec2};
 /// let square = [Vec2::new(0.0, 0.0), Vec2::new(2.0, 0.0), Vec2::new(2.0, 2.0), Vec2::new(0.0, 2.0)];
 /// assert_eq!(signed_area(&square), 4.0);
 /// ```

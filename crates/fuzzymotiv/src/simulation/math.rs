@@ -17,14 +17,6 @@
 //! | [`exp`] | all `f64` (overflow to `+∞` above 709.78, `0` below −745.13) | ≤ 1 ulp (normal results) |
 //! | [`sin`], [`cos`], [`sin_cos`] | `|x| ≤ 10⁶` (NaN outside) | ≤ 1 ulp |
 //! | [`logistic`] | all `f64` | ≤ 4 ulp from `1/(1 + libm exp(−x))` (an `exp` error of 1 ulp is up to 2 ulp of the quotient) |
-//!
-//! ```
-//! use fuzzymotiv::simulation::math;
-//! assert_eq!(math::exp(0.0), 1.0);
-//! assert!((math::exp(1.0) - std::f64::consts::E).abs() <= f64::EPSILON * 3.0);
-//! let (s, c) = math::sin_cos(std::f64::consts::FRAC_PI_6);
-//! assert!((s - 0.5).abs() < 1e-16 && (c - 0.75f64.sqrt()).abs() < 2e-16);
-//! ```
 
 /// 1.5 · 2⁵²: adding and subtracting it rounds a double of magnitude < 2⁵¹ to the nearest
 /// integer (ties to even) without a libm `round` call.
@@ -251,7 +243,7 @@ pub fn logistic(x: f64) -> f64 {
     1.0 / (1.0 + exp(-x))
 }
 
-/// [`logistic`] of each lane: the same operations in the same order, so the same bits in
+/// `logistic` of each lane: the same operations in the same order, so the same bits in
 /// every lane, written stage by stage across the lanes so that the compiler can do each stage
 /// for several lanes in one vector instruction (the table look-up stays one load per lane).
 /// Lanes with `|x| > 708` or NaN send the whole call to the scalar function.
@@ -424,6 +416,14 @@ pub const GRID_30: [(f64, f64); 12] = {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn exp_and_sin_cos_give_known_values() {
+        assert_eq!(exp(0.0), 1.0);
+        assert!((exp(1.0) - std::f64::consts::E).abs() <= f64::EPSILON * 3.0);
+        let (s, c) = sin_cos(std::f64::consts::FRAC_PI_6);
+        assert!((s - 0.5).abs() < 1e-16 && (c - 0.75f64.sqrt()).abs() < 2e-16);
+    }
 
     /// Distance in ulps between two finite doubles of the same sign (or both tiny).
     fn ulps(a: f64, b: f64) -> u64 {

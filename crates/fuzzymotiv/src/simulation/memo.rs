@@ -19,13 +19,20 @@
 //! Lookups land all over a table, so with ordinary 4 KiB pages most of them also missed the
 //! processor's address cache (TLB). Each table is therefore one 2 MiB block on a 2 MiB boundary,
 //! which Linux is asked to back with a single transparent huge page.
+//!
+//! Which arenas share tables is decided process-wide: arenas equal in every bit a sight reads
+//! ([`SightKey`]) hold the same memo number ([`MemoClaim`]) in a registry that forgets a number
+//! when its last arena goes; the tables of a forgotten number are taken over first.
 
 use std::alloc::{Layout, alloc, dealloc, handle_alloc_error};
 use std::cell::RefCell;
+use std::collections::HashMap;
 use std::ptr::NonNull;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, LazyLock, Mutex, MutexGuard, PoisonError, Weak};
 
 use crate::simulation::geom::Vec2;
-use crate::simulation::sensor::SENSORS as INPUTS;
+use crate::simulation::sensor::{SENSORS as INPUTS, SensorModel};
 
 /// Entries per table (2¹⁶: 2 MiB).
 pub const SLOTS: usize = 1 << 16;
@@ -319,6 +326,87 @@ impl Slot {
             blocked: self.values[0] & BLOCKED_BIT != 0,
         })
     }
+}
+
+// The process-wide registry of memo numbers: which arenas share tables.
+
+/// Everything a sight ([`Arena::sight`](crate::simulation::trial::Arena::sight)) reads of an arena, to the bit: the walls, the grid
+/// they are culled to, the compass (the home heading), the sensor model, the body radius and
+/// the culling reach (the length of a straight move is the table's, [`Owner::step`]). Arenas
+/// with equal keys see the same from every pose, so they may share their memo tables; arenas
+/// with different keys never do.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub(super) struct SightKey {
+    /// Each wall's end points, `[a.x, a.y, b.x, b.y]`.
+    pub(super) walls: Vec<[u64; 4]>,
+    /// The grid's origin `[x, y]`, columns and rows.
+    pub(super) grid: [u64; 4],
+    pub(super) heading: u64,
+    pub(super) sensor_model: SensorModel,
+    pub(super) radius: u64,
+    pub(super) near_reach: u64,
+}
+
+/// A memo number in use, held by the arenas of one [`SightKey`] (and their clones): when the
+/// last of them goes, so does the number's entry in [`REGISTRY`]. Numbers are never given
+/// twice, so a table of a number no arena holds any more is never looked at again; threads
+/// take such tables over first ([`memo_live`]).
+#[derive(Debug)]
+pub(super) struct MemoClaim {
+    pub(super) number: u64,
+    key: SightKey,
+}
+
+/// The memo numbers of the arenas alive, by [`SightKey`]: arenas equal in every bit a sight
+/// reads (the same room prepared with the same parameters, in several runs or experiments at
+/// once) get the same number, and so share their tables. An entry goes when its last arena
+/// does ([`MemoClaim`]'s `Drop`), so the registry holds only the keys of arenas alive.
+static REGISTRY: LazyLock<Mutex<Registry>> = LazyLock::new(Default::default);
+
+/// Each key's memo number and the claim that holds it.
+type Registry = HashMap<SightKey, (u64, Weak<MemoClaim>)>;
+
+/// The next memo number to give (numbers start at 1 and are never reused).
+static NEXT_NUMBER: AtomicU64 = AtomicU64::new(1);
+
+/// The registry, locked (a panic elsewhere while it was held leaves it consistent: every
+/// change is one map operation).
+pub(super) fn registry() -> MutexGuard<'static, Registry> {
+    REGISTRY.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+impl MemoClaim {
+    /// The claim of the arenas of `key`: the one held by a live arena of the same key, or a
+    /// new number.
+    pub(super) fn of(key: SightKey) -> Arc<MemoClaim> {
+        let mut known = registry();
+        if let Some(claim) = known.get(&key).and_then(|(_, weak)| weak.upgrade()) {
+            return claim;
+        }
+        let number = NEXT_NUMBER.fetch_add(1, Ordering::Relaxed);
+        let claim = Arc::new(MemoClaim {
+            number,
+            key: key.clone(),
+        });
+        known.insert(key, (number, Arc::downgrade(&claim)));
+        claim
+    }
+}
+
+impl Drop for MemoClaim {
+    fn drop(&mut self) {
+        let mut known = registry();
+        // A new claim may already have replaced this one (made between the last arena's
+        // going and this drop): its entry stays.
+        if known.get(&self.key).is_some_and(|(n, _)| *n == self.number) {
+            known.remove(&self.key);
+        }
+    }
+}
+
+/// Whether memo number `number` is held by an arena alive (the others' tables are free).
+pub(super) fn memo_live(number: u64) -> bool {
+    registry().values().any(|(n, _)| *n == number)
 }
 
 #[cfg(test)]

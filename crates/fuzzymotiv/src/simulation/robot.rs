@@ -43,7 +43,7 @@ impl Pose {
 /// Wraps an angle to (−π, π].
 ///
 /// ```
-/// use fuzzymotiv::simulation::robot::wrap_angle;
+/// use fuzzymotiv::simulation::wrap_angle;
 /// use std::f64::consts::PI;
 /// assert!((wrap_angle(3.0 * PI / 2.0) + PI / 2.0).abs() < 1e-12);
 /// ```
@@ -176,8 +176,8 @@ impl Khepera {
 /// How the network's two motor commands move the robot (config `[robot] motion`).
 ///
 /// ```
-/// use fuzzymotiv::simulation::robot::Action;
-/// use fuzzymotiv::simulation::robot::{Compass, Motion, Pose};
+/// use fuzzymotiv::simulation::Action;
+/// use fuzzymotiv::simulation::{Compass, Motion, Pose};
 /// let compass = Compass::new(0.0);
 /// let home = Pose::new(40.0, 40.0, 0.0);
 /// // A straight action moves 8 mm along the heading; a turn rotates on the spot.
@@ -336,7 +336,7 @@ impl Default for Khepera {
 /// equal).
 ///
 /// ```
-/// use fuzzymotiv::simulation::robot::{Pose, drive};
+/// use fuzzymotiv::simulation::{Pose, drive};
 /// // Both wheels at 80 mm/s for 0.1 s: 8 mm straight ahead.
 /// let p = drive(Pose::new(0.0, 0.0, 0.0), 80.0, 80.0, 53.0, 0.1);
 /// assert_eq!((p.x, p.y, p.heading), (8.0, 0.0, 0.0));
@@ -400,7 +400,7 @@ impl Action {
     /// `Straight` (see [`Action::from_motors`]).
     ///
     /// ```
-    /// use fuzzymotiv::simulation::robot::Action;
+    /// use fuzzymotiv::simulation::Action;
     /// assert_eq!(Action::from_speeds(-0.1, -0.9, 0.25), Action::Turn180);
     /// assert_eq!(Action::from_speeds(0.2, 0.6, 0.25), Action::Left30);
     /// assert_eq!(Action::from_speeds(0.9, 0.8, 0.25), Action::Straight);

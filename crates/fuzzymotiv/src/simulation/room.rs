@@ -1,7 +1,7 @@
 //! Rooms: walls as polygons, the home pose, the five built-in rooms (docs/model.md §4) and room files.
 //!
 //! ```
-//! use fuzzymotiv::simulation::room::Room;
+//! use fuzzymotiv::simulation::Room;
 //! let h = Room::builtin("H").unwrap();
 //! assert_eq!(h.area(), 2.0 * 200.0 * 800.0 + 400.0 * 240.0);
 //! assert_eq!(h.walls().len(), 12);
@@ -43,7 +43,7 @@ pub struct Room {
 /// escaped robot whose centre is inside it again has come home.
 ///
 /// ```
-/// use fuzzymotiv::simulation::{geom::Vec2, room::HomeZone};
+/// use fuzzymotiv::simulation::{Vec2, HomeZone};
 /// let zone = HomeZone { centre: Vec2::new(0.0, 0.0), radius: 160.0 };
 /// assert!(zone.contains(Vec2::new(40.0, 40.0)));
 /// assert!(!zone.contains(Vec2::new(120.0, 120.0)));

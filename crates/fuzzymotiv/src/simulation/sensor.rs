@@ -121,7 +121,7 @@ impl RayMount {
     /// The ray's value for a wall at distance `d` along it (`f64::INFINITY` for none).
     ///
     /// ```
-    /// use fuzzymotiv::simulation::sensor::{SensorModel, rays};
+    /// use fuzzymotiv::simulation::{SensorModel, rays};
     /// let axis = rays(SensorModel::Sampled)[2][0];
     /// assert_eq!(axis.value(15.0), 750.0); // first sample at or beyond 15 mm is 20 mm
     /// assert_eq!(axis.value(58.0), 40.0);
@@ -154,7 +154,7 @@ impl RayMount {
 }
 
 /// The rays of every sensor for a model: `rays(model)[sensor]` lists up to 3 rays (unused
-/// entries have `angle = NaN` and are skipped via [`ray_count`]).
+/// entries have `angle = NaN` and are skipped via `ray_count`).
 pub fn rays(model: SensorModel) -> [[RayMount; 3]; 8] {
     let side = SIDE_RAY_DEG.to_radians();
     let mut out = [[RayMount {

@@ -4,10 +4,10 @@
 //! Gymnasium environment) instead of a [`Controller`](crate::simulation::controller::Controller).
 //!
 //! ```
-//! use fuzzymotiv::random::rng::rng_from_seed;
-//! use fuzzymotiv::simulation::room::Room;
-//! use fuzzymotiv::simulation::stepper::TrialRun;
-//! use fuzzymotiv::simulation::trial::{Arena, TrialParams};
+//! use fuzzymotiv::random::rng_from_seed;
+//! use fuzzymotiv::simulation::Room;
+//! use fuzzymotiv::simulation::TrialRun;
+//! use fuzzymotiv::simulation::{Arena, TrialParams};
 //!
 //! let arena = Arena::new(Room::builtin("square").unwrap(), &TrialParams::default());
 //! let mut run = TrialRun::new(&arena, rng_from_seed(7));
@@ -115,8 +115,8 @@ impl<A: Borrow<Arena>, R: Rng> TrialRun<A, R> {
 
     /// Step `t` executing `action` (a [`crate::simulation::robot::Action`] chosen from
     /// outside, e.g. a discrete agent's): with `actions` motion the action is executed as
-    /// given, with the motor outputs of [`motors_for`] recorded and the wheel noise drawn as
-    /// usual; with `wheels` motion it is the step with the motor outputs [`motors_for`].
+    /// given, with the motor outputs of `motors_for` recorded and the wheel noise drawn as
+    /// usual; with `wheels` motion it is the step with the motor outputs `motors_for`.
     pub fn step_action(&mut self, action: Action) -> Step {
         self.advance(motors_for(action), Some(action))
     }

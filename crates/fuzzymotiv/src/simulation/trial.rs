@@ -3,206 +3,27 @@
 //! [`Arena`] precomputes everything per room that the hot loop needs (walls culled to a grid
 //! of 50 mm cells, the reachable cells of the exploration grid); [`simulate`] is the
 //! allocation-free step loop, reporting each step to a [`StepObserver`]; [`run_trial`] records a
-//! whole [`Trajectory`].
+//! whole [`Trajectory`]. The trial's parameters are in [`crate::simulation::trial_params`], the
+//! memo of sightings and the registry of which arenas share it in `simulation/memo.rs`.
 
-use std::collections::HashMap;
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, LazyLock, Mutex, MutexGuard, PoisonError, Weak};
+use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
-use crate::params::{FieldError, Num, check};
 use crate::random::noise::{perturb, perturb_sensors};
 use crate::random::rng::Rng;
 use crate::simulation::controller::{Controller, INPUTS};
 use crate::simulation::geom::{PreparedSegment, Segment, Vec2};
-use crate::simulation::memo::{Owner, Sight, Table};
+use crate::simulation::memo::{MemoClaim, Owner, Sight, SightKey, Table, memo_live};
 use crate::simulation::robot::Action;
-use crate::simulation::robot::{Compass, Khepera, Motion, Pose, RawRobot, drive};
+use crate::simulation::robot::{Compass, Motion, Pose, drive};
 use crate::simulation::room::Room;
 use crate::simulation::sensing::{Eyes, Facing};
 use crate::simulation::sensor::{SENSOR_MAX, SensorModel, sensing_reach};
+pub use crate::simulation::trial_params::{MAX_STEPS, RawTrial, TrialParams};
 
 /// Side of a grid cell (mm): the exploration grid of docs/model.md §7 and the wall-culling grid.
 pub const CELL: f64 = 50.0;
-
-/// Checked parameters of a trial (docs/model.md, "Robot", "Noise" and "Home zone"), built by
-/// [`TrialParams::from_raw`] (or [`TrialParams::default`]); read through the accessors, each
-/// documented with its unit, default and range.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TrialParams {
-    steps: usize,
-    dt: f64,
-    noise: f64,
-    sensor_model: SensorModel,
-    robot: Khepera,
-    end_at_home: bool,
-    action_tolerance: f64,
-}
-
-impl Default for TrialParams {
-    fn default() -> Self {
-        Self {
-            steps: 400,
-            dt: 0.1,
-            noise: 0.06,
-            sensor_model: SensorModel::Sampled,
-            robot: Khepera::default(),
-            end_at_home: true,
-            action_tolerance: crate::simulation::robot::DEFAULT_ACTION_TOLERANCE,
-        }
-    }
-}
-
-/// The most steps a trial may have (`trial.steps`).
-pub const MAX_STEPS: usize = 10_000_000;
-
-/// `[trial]` in a config, as written: see [`TrialParams`] for each field's unit, default and
-/// range.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RawTrial {
-    /// [`TrialParams::steps`].
-    pub steps: usize,
-    /// [`TrialParams::dt`].
-    pub dt: f64,
-    /// [`TrialParams::noise`].
-    pub noise: f64,
-    /// [`TrialParams::sensor_model`].
-    pub sensor_model: SensorModel,
-    /// [`TrialParams::end_at_home`].
-    pub end_at_home: bool,
-}
-
-impl Default for RawTrial {
-    fn default() -> Self {
-        let d = TrialParams::default();
-        Self {
-            steps: d.steps,
-            dt: d.dt,
-            noise: d.noise,
-            sensor_model: d.sensor_model,
-            end_at_home: d.end_at_home,
-        }
-    }
-}
-
-impl TrialParams {
-    /// Checks `[trial]` with the robot body (`[robot]`, [`Khepera::from_raw`]) and the action
-    /// tolerance (`aem.action_tolerance`), naming the first field out of range.
-    pub fn from_raw(
-        t: &RawTrial,
-        robot: &RawRobot,
-        action_tolerance: f64,
-    ) -> Result<TrialParams, FieldError> {
-        check((1..=MAX_STEPS).contains(&t.steps), "trial.steps", || {
-            format!("must be an integer in 1..={MAX_STEPS}, got {}", t.steps)
-        })?;
-        check(
-            t.dt.is_finite() && t.dt > 0.0 && t.dt <= 10.0,
-            "trial.dt",
-            || format!("must be a time step in (0, 10] seconds, got {}", Num(t.dt)),
-        )?;
-        check(
-            t.noise.is_finite() && (0.0..=0.5).contains(&t.noise),
-            "trial.noise",
-            || {
-                format!(
-                    "must be a noise level in [0, 0.5] (0.06 is the paper's 6 %), got {}",
-                    Num(t.noise)
-                )
-            },
-        )?;
-        let robot = Khepera::from_raw(robot)?;
-        let trial = TrialParams {
-            steps: t.steps,
-            dt: t.dt,
-            noise: t.noise,
-            sensor_model: t.sensor_model,
-            robot,
-            end_at_home: t.end_at_home,
-            action_tolerance,
-        };
-        check(trial.max_step() < robot.radius(), "trial.dt", || {
-            format!(
-                "one step may move the robot {:.1} mm (robot.v_max × trial.dt × (1 + trial.noise)), which must stay below the body radius {} mm so it cannot pass through walls; use a smaller dt or v_max",
-                trial.max_step(),
-                robot.radius()
-            )
-        })?;
-        check(
-            action_tolerance.is_finite() && (0.0..=2.0).contains(&action_tolerance),
-            "aem.action_tolerance",
-            || {
-                format!(
-                    "must be in [0, 2] (signed-speed units), got {}",
-                    Num(action_tolerance)
-                )
-            },
-        )?;
-        Ok(trial)
-    }
-
-    /// Steps per trial `T`; default 400; range 1..=10⁷.
-    #[inline]
-    pub fn steps(&self) -> usize {
-        self.steps
-    }
-
-    /// Control step (s); default 0.1; range (0, 10], and one step must move the robot less than
-    /// its radius ([`TrialParams::max_step`]).
-    #[inline]
-    pub fn dt(&self) -> f64 {
-        self.dt
-    }
-
-    /// Multiplicative noise level on sensors and wheels; default 0.06 (the paper's 6 %); range
-    /// [0, 0.5]; 0 disables it.
-    #[inline]
-    pub fn noise(&self) -> f64 {
-        self.noise
-    }
-
-    /// IR response model; default `sampled`.
-    #[inline]
-    pub fn sensor_model(&self) -> SensorModel {
-        self.sensor_model
-    }
-
-    /// The robot's body and motion model.
-    #[inline]
-    pub fn robot(&self) -> &Khepera {
-        &self.robot
-    }
-
-    /// End the trial when the robot, having escaped the home zone, is back inside it; the
-    /// remaining steps are idle. Default true.
-    #[inline]
-    pub fn end_at_home(&self) -> bool {
-        self.end_at_home
-    }
-
-    /// Signed-speed difference (fractions of `v_max`) separating a turn from a straight step
-    /// in the action labels; default 0.25 (config `aem.action_tolerance`); range [0, 2].
-    #[inline]
-    pub fn action_tolerance(&self) -> f64 {
-        self.action_tolerance
-    }
-
-    /// Longest distance the centre can move in one step (mm), noise included.
-    pub fn max_step(&self) -> f64 {
-        match self.robot.motion() {
-            Motion::Actions => self.straight_step(),
-            Motion::Wheels => self.robot.v_max() * self.dt * (1.0 + self.noise),
-        }
-    }
-
-    /// Length of a straight action (mm): `v_max · dt`, 8 mm by default.
-    #[inline]
-    pub fn straight_step(&self) -> f64 {
-        self.robot.v_max() * self.dt
-    }
-}
 
 /// A room prepared for fast trials with the parameters it keeps ([`Arena::params`]): every
 /// trial in it ([`simulate`], [`run_trial`]) runs with them, so the walls culled for its reach
@@ -230,23 +51,7 @@ pub struct Arena {
     memo: Option<Arc<MemoClaim>>,
 }
 
-/// Everything a sight ([`Arena::sight`]) reads of an arena, to the bit: the walls, the grid
-/// they are culled to, the compass (the home heading), the sensor model, the body radius and
-/// the culling reach (the length of a straight move is the table's, [`Owner::step`]). Arenas
-/// with equal keys see the same from every pose, so they may share their memo tables; arenas
-/// with different keys never do.
-#[derive(Debug, Clone, PartialEq, Eq, Hash)]
-struct SightKey {
-    /// Each wall's end points, `[a.x, a.y, b.x, b.y]`.
-    walls: Vec<[u64; 4]>,
-    /// The grid's origin `[x, y]`, columns and rows.
-    grid: [u64; 4],
-    heading: u64,
-    sensor_model: SensorModel,
-    radius: u64,
-    near_reach: u64,
-}
-
+/// A sight key is made from an arena's grid and walls, which only this module sees.
 impl SightKey {
     /// The key of `arena`.
     fn of(arena: &Arena) -> SightKey {
@@ -267,68 +72,6 @@ impl SightKey {
             near_reach: arena.near_reach.to_bits(),
         }
     }
-}
-
-/// A memo number in use, held by the arenas of one [`SightKey`] (and their clones): when the
-/// last of them goes, so does the number's entry in [`REGISTRY`]. Numbers are never given
-/// twice, so a table of a number no arena holds any more is never looked at again; threads
-/// take such tables over first ([`memo_live`]).
-#[derive(Debug)]
-struct MemoClaim {
-    number: u64,
-    key: SightKey,
-}
-
-/// The memo numbers of the arenas alive, by [`SightKey`]: arenas equal in every bit a sight
-/// reads (the same room prepared with the same parameters, in several runs or experiments at
-/// once) get the same number, and so share their tables. An entry goes when its last arena
-/// does ([`MemoClaim`]'s `Drop`), so the registry holds only the keys of arenas alive.
-static REGISTRY: LazyLock<Mutex<Registry>> = LazyLock::new(Default::default);
-
-/// Each key's memo number and the claim that holds it.
-type Registry = HashMap<SightKey, (u64, Weak<MemoClaim>)>;
-
-/// The next memo number to give (numbers start at 1 and are never reused).
-static NEXT_NUMBER: AtomicU64 = AtomicU64::new(1);
-
-/// The registry, locked (a panic elsewhere while it was held leaves it consistent: every
-/// change is one map operation).
-fn registry() -> MutexGuard<'static, Registry> {
-    REGISTRY.lock().unwrap_or_else(PoisonError::into_inner)
-}
-
-impl MemoClaim {
-    /// The claim of the arenas of `key`: the one held by a live arena of the same key, or a
-    /// new number.
-    fn of(key: SightKey) -> Arc<MemoClaim> {
-        let mut known = registry();
-        if let Some(claim) = known.get(&key).and_then(|(_, weak)| weak.upgrade()) {
-            return claim;
-        }
-        let number = NEXT_NUMBER.fetch_add(1, Ordering::Relaxed);
-        let claim = Arc::new(MemoClaim {
-            number,
-            key: key.clone(),
-        });
-        known.insert(key, (number, Arc::downgrade(&claim)));
-        claim
-    }
-}
-
-impl Drop for MemoClaim {
-    fn drop(&mut self) {
-        let mut known = registry();
-        // A new claim may already have replaced this one (made between the last arena's
-        // going and this drop): its entry stays.
-        if known.get(&self.key).is_some_and(|(n, _)| *n == self.number) {
-            known.remove(&self.key);
-        }
-    }
-}
-
-/// Whether memo number `number` is held by an arena alive (the others' tables are free).
-fn memo_live(number: u64) -> bool {
-    registry().values().any(|(n, _)| *n == number)
 }
 
 impl Arena {
@@ -465,13 +208,13 @@ impl Arena {
     /// at `p`: those of `p`'s cell closer than the sensing (or one-step collision) reach. Usually none in open floor,
     /// which skips ray casting altogether.
     #[inline]
-    pub fn near_walls(&self, p: Vec2) -> NearWalls {
+    pub(crate) fn near_walls(&self, p: Vec2) -> NearWalls {
         self.near_walls_in(p, self.cell_of(p))
     }
 
     /// As [`Arena::near_walls`], with `p`'s grid cell already known.
     #[inline]
-    pub fn near_walls_in(&self, p: Vec2, cell: usize) -> NearWalls {
+    pub(crate) fn near_walls_in(&self, p: Vec2, cell: usize) -> NearWalls {
         let mut near = NearWalls {
             len: 0,
             overflow: false,
@@ -511,7 +254,7 @@ impl Arena {
 
     /// Sensor values at `pose` given its [`Arena::near_walls`].
     #[inline]
-    pub fn read_sensors_near(&self, pose: &Pose, near: &NearWalls) -> [f64; INPUTS] {
+    pub(crate) fn read_sensors_near(&self, pose: &Pose, near: &NearWalls) -> [f64; INPUTS] {
         if near.is_empty() {
             return [0.0; INPUTS];
         }
@@ -528,7 +271,7 @@ impl Arena {
     /// Sensor values of a robot centred at `pos` facing compass direction `dir` (`actions`
     /// motion: the rays were turned once, in [`Arena::new`]).
     #[inline]
-    pub fn read_sensors_on_compass(
+    pub(crate) fn read_sensors_on_compass(
         &self,
         pos: Vec2,
         dir: usize,
@@ -611,7 +354,7 @@ impl Arena {
     /// Whether a body centred at `p` overlaps one of the `near` walls (computed for a point
     /// at most one step away).
     #[inline]
-    pub fn overlaps_near(&self, p: Vec2, near: &NearWalls) -> bool {
+    pub(crate) fn overlaps_near(&self, p: Vec2, near: &NearWalls) -> bool {
         let r2 = self.radius * self.radius;
         self.near_list(near)
             .iter()
@@ -731,11 +474,6 @@ pub struct NearWalls {
 }
 
 impl NearWalls {
-    /// Number of nearby walls (when they fit).
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
     /// Whether no wall is near.
     pub fn is_empty(&self) -> bool {
         self.len == 0 && !self.overflow
@@ -1184,6 +922,8 @@ where
 mod tests {
     use super::*;
     use crate::random::rng::rng_from_seed;
+    use crate::simulation::memo::registry;
+    use crate::simulation::robot::RawRobot;
 
     struct Fixed([f64; 2]);
     impl Controller for Fixed {

@@ -46,7 +46,7 @@ fn percentile_interval(mut boot: Vec<f64>, confidence: f64) -> (f64, f64) {
 /// their (1 − c)/2 and (1 + c)/2 quantiles. The same inputs and seed give the same bits.
 ///
 /// ```
-/// use fuzzymotiv::statistics::bootstrap::mean_interval;
+/// use fuzzymotiv::statistics::mean_interval;
 /// let (lo, hi) = mean_interval(&[1.0, 2.0, 3.0, 4.0, 5.0], 0.95, 10_000, 7);
 /// assert!(1.0 < lo && lo < 3.0 && 3.0 < hi && hi < 5.0);
 /// ```
@@ -64,7 +64,7 @@ pub fn mean_interval(d: &[f64], confidence: f64, resamples: usize, seed: u64) ->
 /// (one stream, from `seed`); then as [`mean_interval`].
 ///
 /// ```
-/// use fuzzymotiv::statistics::bootstrap::difference_interval;
+/// use fuzzymotiv::statistics::difference_interval;
 /// let (lo, hi) = difference_interval(&[5.0, 6.0, 7.0], &[1.0, 2.0, 3.0], 0.95, 10_000, 7);
 /// assert!(2.0 < lo && lo < 4.0 && 4.0 < hi && hi < 6.0);
 /// ```

@@ -75,7 +75,7 @@ impl Tally {
 /// likely. Exact for n ≤ 16; else `resamples` random patterns from `seed`.
 ///
 /// ```
-/// use fuzzymotiv::statistics::permutation::sign_flip_p;
+/// use fuzzymotiv::statistics::sign_flip_p;
 /// // Five positive differences: only the observed pattern is as extreme on its side.
 /// let r = sign_flip_p(&[1.0, 2.0, 0.5, 3.0, 1.5], 99_999, 7);
 /// assert_eq!((r.p, r.exact, r.arrangements), (1.0 / 16.0, true, 32));
@@ -136,7 +136,7 @@ fn choose_within_limit(n: usize, k: usize) -> Option<u64> {
 /// (C(n_a + n_b, n_a)); else `resamples` random splits from `seed`.
 ///
 /// ```
-/// use fuzzymotiv::statistics::permutation::two_sample_p;
+/// use fuzzymotiv::statistics::two_sample_p;
 /// // {1, 2} vs {3, 4}: of the 6 splits only the observed one has a difference of −2 or less.
 /// let r = two_sample_p(&[1.0, 2.0], &[3.0, 4.0], 99_999, 7);
 /// assert_eq!((r.p, r.arrangements), (2.0 / 6.0, 6));

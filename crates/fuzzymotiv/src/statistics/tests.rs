@@ -165,3 +165,26 @@ fn bad_input_is_named() {
         "{e}"
     );
 }
+
+/// Type 7 quantiles (R's and NumPy's default), as the study's fitness figure draws medians and
+/// quartiles over seeds.
+#[test]
+fn quantile_interpolates_linearly_between_order_statistics() {
+    assert_eq!(quantile(&[3.0, 1.0, 2.0], 0.5), 2.0);
+    assert_eq!(quantile(&[4.0, 1.0, 2.0, 3.0], 0.5), 2.5);
+    assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0, 5.0], 0.25), 2.0);
+    assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0], 0.25), 1.75);
+    assert_eq!(quantile(&[1.0, 2.0, 3.0, 4.0], 0.75), 3.25);
+    assert_eq!(quantile(&[7.0], 0.75), 7.0);
+    assert!(quantile(&[], 0.5).is_nan());
+}
+
+#[test]
+fn mean_std_is_the_sample_std_and_zero_for_one_value() {
+    let (m, s) = mean_std(&[1.0, 2.0, 3.0, 4.0]);
+    assert_eq!(m, 2.5);
+    assert_eq!(s, sample_sd(&[1.0, 2.0, 3.0, 4.0]).unwrap());
+    assert_eq!(mean_std(&[7.0]), (7.0, 0.0));
+    let (m, s) = mean_std(&[]);
+    assert!(m.is_nan() && s == 0.0);
+}

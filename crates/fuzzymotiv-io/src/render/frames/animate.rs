@@ -35,10 +35,10 @@ pub static PALETTE: LazyLock<Vec<[u8; 3]>> = LazyLock::new(|| {
         RAY_HIGH, TEXT, IDLE,
     ];
     let actions = [
-        fuzzymotiv::simulation::robot::Action::Straight,
-        fuzzymotiv::simulation::robot::Action::Left30,
-        fuzzymotiv::simulation::robot::Action::Right30,
-        fuzzymotiv::simulation::robot::Action::Turn180,
+        fuzzymotiv::simulation::Action::Straight,
+        fuzzymotiv::simulation::Action::Left30,
+        fuzzymotiv::simulation::Action::Right30,
+        fuzzymotiv::simulation::Action::Turn180,
     ]
     .map(action_colour);
     for c in scene.into_iter().chain(actions) {

@@ -1,9 +1,9 @@
 //! Drawing one frame with tiny-skia: the room (drawn once, [`Painter::new`]), then per frame
 //! the path so far, the IR rays, the body and heading, and the labels.
 
-use fuzzymotiv::simulation::geom::{Segment, Vec2};
-use fuzzymotiv::simulation::room::Room;
-use fuzzymotiv::simulation::sensor::{RayMount, SENSOR_MAX, SENSORS, rays};
+use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::{RayMount, SENSOR_MAX, SENSORS, rays};
+use fuzzymotiv::simulation::{Segment, Vec2};
 use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Mask, Paint, Path, PathBuilder, Pixmap, Rect, Stroke,
     StrokeDash, Transform,

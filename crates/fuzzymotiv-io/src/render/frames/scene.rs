@@ -1,11 +1,11 @@
 //! What a frame shows and where: the options ([`FrameOptions`]), the rollout drawn
 //! ([`Track`]), the mapping from the room's millimetres to pixels ([`View`]) and the colours.
 
-use fuzzymotiv::simulation::geom::Vec2;
-use fuzzymotiv::simulation::robot::{Action, Khepera, Pose};
-use fuzzymotiv::simulation::room::Room;
-use fuzzymotiv::simulation::sensor::{SENSOR_MAX, SENSORS, SensorModel};
-use fuzzymotiv::simulation::trial::{Trajectory, TrialParams};
+use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::Vec2;
+use fuzzymotiv::simulation::{Action, Khepera, Pose};
+use fuzzymotiv::simulation::{SENSOR_MAX, SENSORS, SensorModel};
+use fuzzymotiv::simulation::{Trajectory, TrialParams};
 
 use crate::render::frames::font::GLYPH_H;
 

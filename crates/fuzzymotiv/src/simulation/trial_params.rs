@@ -1,0 +1,186 @@
+//! The parameters of a trial: `[trial]` as written ([`RawTrial`]) and checked, with the robot's
+//! body and the action tolerance ([`TrialParams`]).
+
+use serde::{Deserialize, Serialize};
+
+use crate::params::{FieldError, Num, check};
+use crate::simulation::robot::{Khepera, Motion, RawRobot};
+use crate::simulation::sensor::SensorModel;
+
+/// Checked parameters of a trial (docs/model.md, "Robot", "Noise" and "Home zone"), built by
+/// [`TrialParams::from_raw`] (or [`TrialParams::default`]); read through the accessors, each
+/// documented with its unit, default and range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrialParams {
+    pub(super) steps: usize,
+    pub(super) dt: f64,
+    pub(super) noise: f64,
+    pub(super) sensor_model: SensorModel,
+    pub(super) robot: Khepera,
+    pub(super) end_at_home: bool,
+    pub(super) action_tolerance: f64,
+}
+
+impl Default for TrialParams {
+    fn default() -> Self {
+        Self {
+            steps: 400,
+            dt: 0.1,
+            noise: 0.06,
+            sensor_model: SensorModel::Sampled,
+            robot: Khepera::default(),
+            end_at_home: true,
+            action_tolerance: crate::simulation::robot::DEFAULT_ACTION_TOLERANCE,
+        }
+    }
+}
+
+/// The most steps a trial may have (`trial.steps`).
+pub const MAX_STEPS: usize = 10_000_000;
+
+/// `[trial]` in a config, as written: see [`TrialParams`] for each field's unit, default and
+/// range.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RawTrial {
+    /// [`TrialParams::steps`].
+    pub steps: usize,
+    /// [`TrialParams::dt`].
+    pub dt: f64,
+    /// [`TrialParams::noise`].
+    pub noise: f64,
+    /// [`TrialParams::sensor_model`].
+    pub sensor_model: SensorModel,
+    /// [`TrialParams::end_at_home`].
+    pub end_at_home: bool,
+}
+
+impl Default for RawTrial {
+    fn default() -> Self {
+        let d = TrialParams::default();
+        Self {
+            steps: d.steps,
+            dt: d.dt,
+            noise: d.noise,
+            sensor_model: d.sensor_model,
+            end_at_home: d.end_at_home,
+        }
+    }
+}
+
+impl TrialParams {
+    /// Checks `[trial]` with the robot body (`[robot]`, [`Khepera::from_raw`]) and the action
+    /// tolerance (`aem.action_tolerance`), naming the first field out of range.
+    pub fn from_raw(
+        t: &RawTrial,
+        robot: &RawRobot,
+        action_tolerance: f64,
+    ) -> Result<TrialParams, FieldError> {
+        check((1..=MAX_STEPS).contains(&t.steps), "trial.steps", || {
+            format!("must be an integer in 1..={MAX_STEPS}, got {}", t.steps)
+        })?;
+        check(
+            t.dt.is_finite() && t.dt > 0.0 && t.dt <= 10.0,
+            "trial.dt",
+            || format!("must be a time step in (0, 10] seconds, got {}", Num(t.dt)),
+        )?;
+        check(
+            t.noise.is_finite() && (0.0..=0.5).contains(&t.noise),
+            "trial.noise",
+            || {
+                format!(
+                    "must be a noise level in [0, 0.5] (0.06 is the paper's 6 %), got {}",
+                    Num(t.noise)
+                )
+            },
+        )?;
+        let robot = Khepera::from_raw(robot)?;
+        let trial = TrialParams {
+            steps: t.steps,
+            dt: t.dt,
+            noise: t.noise,
+            sensor_model: t.sensor_model,
+            robot,
+            end_at_home: t.end_at_home,
+            action_tolerance,
+        };
+        check(trial.max_step() < robot.radius(), "trial.dt", || {
+            format!(
+                "one step may move the robot {:.1} mm (robot.v_max × trial.dt × (1 + trial.noise)), which must stay below the body radius {} mm so it cannot pass through walls; use a smaller dt or v_max",
+                trial.max_step(),
+                robot.radius()
+            )
+        })?;
+        check(
+            action_tolerance.is_finite() && (0.0..=2.0).contains(&action_tolerance),
+            "aem.action_tolerance",
+            || {
+                format!(
+                    "must be in [0, 2] (signed-speed units), got {}",
+                    Num(action_tolerance)
+                )
+            },
+        )?;
+        Ok(trial)
+    }
+
+    /// Steps per trial `T`; default 400; range 1..=10⁷.
+    #[inline]
+    pub fn steps(&self) -> usize {
+        self.steps
+    }
+
+    /// Control step (s); default 0.1; range (0, 10], and one step must move the robot less than
+    /// its radius ([`TrialParams::max_step`]).
+    #[inline]
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// Multiplicative noise level on sensors and wheels; default 0.06 (the paper's 6 %); range
+    /// [0, 0.5]; 0 disables it.
+    #[inline]
+    pub fn noise(&self) -> f64 {
+        self.noise
+    }
+
+    /// IR response model; default `sampled`.
+    #[inline]
+    pub fn sensor_model(&self) -> SensorModel {
+        self.sensor_model
+    }
+
+    /// The robot's body and motion model.
+    #[inline]
+    pub fn robot(&self) -> &Khepera {
+        &self.robot
+    }
+
+    /// End the trial when the robot, having escaped the home zone, is back inside it; the
+    /// remaining steps are idle. Default true.
+    #[inline]
+    pub fn end_at_home(&self) -> bool {
+        self.end_at_home
+    }
+
+    /// Signed-speed difference (fractions of `v_max`) separating a turn from a straight step
+    /// in the action labels; default 0.25 (config `aem.action_tolerance`); range [0, 2].
+    #[inline]
+    pub fn action_tolerance(&self) -> f64 {
+        self.action_tolerance
+    }
+
+    /// Longest distance the centre can move in one step (mm), noise included.
+    pub fn max_step(&self) -> f64 {
+        match self.robot.motion() {
+            Motion::Actions => self.straight_step(),
+            Motion::Wheels => self.robot.v_max() * self.dt * (1.0 + self.noise),
+        }
+    }
+
+    /// Length of a straight action (mm): `v_max · dt`, 8 mm by default.
+    #[inline]
+    pub fn straight_step(&self) -> f64 {
+        self.robot.v_max() * self.dt
+    }
+}
