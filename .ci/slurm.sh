@@ -2,7 +2,7 @@
 # The SLURM path on a real SLURM: a throwaway single-node cluster (Debian's slurm-wlm and munge)
 # under a temporary directory runs examples/slurm/sweep.sbatch as an array; its results.csv must
 # equal the local sweep's byte for byte, also after one array task is cancelled mid-run and
-# resubmitted. Then the README's submitit recipe runs against the same cluster.
+# resubmitted. Then the guide's submitit recipe runs against the same cluster.
 #
 #   .ci/slurm.sh FUZZYMOTIV_BIN [VENV]     # VENV: a virtual environment with fuzzymotiv installed
 #
@@ -170,7 +170,7 @@ grep -i "resum" "$T/log/sweep-${J2}_$K.out" | head -n 1 | sed 's/^/slurm: resubm
 fuzzymotiv merge "$T/cancel" >/dev/null
 same_results "$T/cancel" "task $K cancelled and resubmitted"
 
-# 3. ---- The README's submitit recipe, against the same cluster ----
+# 3. ---- The guide's submitit recipe (docs/guide/sweeps-and-clusters.md), against the same cluster ----
 RECIPE=examples/python/submitit_sweep.py
 if [ ! -f "$RECIPE" ]; then
     echo "submitit recipe: $RECIPE not present (skipped)"

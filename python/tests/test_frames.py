@@ -1,7 +1,5 @@
 """fm.frames and fm.save_gif: shapes, the robot and its path in the frames, stride, same bytes,
-GIFs that decode with the right frame count, the output guard, bad input, the README section."""
-
-import re
+GIFs that decode with the right frame count, the output guard, bad input, the guide's section."""
 
 import numpy as np
 import pytest
@@ -157,12 +155,10 @@ def test_bad_input_is_named(traj, tmp_path, monkeypatch, call, message):
     assert not (tmp_path / "x.gif").exists()
 
 
-def test_readme_frames_section(repo, tmp_path, monkeypatch):
-    """The README's "Frames and GIFs" code runs as written."""
-    text = (repo / "README.md").read_text()
-    section = text.split("\n### Frames and GIFs\n", 1)[1].split("\n## ", 1)[0]
-    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+def test_guide_frames_section(doc_blocks, tmp_path, monkeypatch):
+    """The guide's "Frames and GIFs" code (docs/guide/python.md) runs as written."""
+    (code,) = doc_blocks("docs/guide/python.md", "## Frames and GIFs")
     monkeypatch.chdir(tmp_path)
     scope: dict = {}
-    exec(compile(code, "README.md (Frames and GIFs)", "exec"), scope)
+    exec(compile(code, "docs/guide/python.md (Frames and GIFs)", "exec"), scope)
     assert (tmp_path / "rollout-H.gif").is_file()

@@ -1,5 +1,5 @@
 """The Gymnasium environments (fuzzymotiv.gym): the library's step, exactly; check_env; the
-native vector env and its next-step autoreset; the README's Gymnasium section."""
+native vector env and its next-step autoreset; the guide's Gymnasium page."""
 
 import json
 import re
@@ -217,15 +217,14 @@ def test_render_finds_a_room_known_only_to_the_envs_config(repo):
     assert np.array_equal(env.render(), expected)
 
 
-def test_readme_gymnasium_section(repo, monkeypatch, capsys):
-    """The README's Gymnasium section runs as written."""
-    text = (repo / "README.md").read_text()
-    section = text.split("\n### Gymnasium\n", 1)[1].split("\n## ", 1)[0]
-    blocks = re.findall(r"```python\n(.*?)```", section, re.S)
-    assert blocks
+def test_guide_gymnasium_page(repo, doc_blocks, monkeypatch, capsys):
+    """The guide's Gymnasium page (docs/guide/gymnasium.md: the reflex and the vector env) runs
+    as written."""
+    blocks = doc_blocks("docs/guide/gymnasium.md")
+    assert len(blocks) == 2
     monkeypatch.chdir(repo)
     for k, code in enumerate(blocks):
-        exec(compile(code, f"README.md (Gymnasium, block {k})", "exec"), {})
+        exec(compile(code, f"docs/guide/gymnasium.md (block {k})", "exec"), {})
     out = capsys.readouterr().out
     assert re.search(r"F = \d\.\d+", out), out
 

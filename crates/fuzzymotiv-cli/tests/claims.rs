@@ -27,7 +27,7 @@ fn claims_at_another_alpha_without_out_write_beside_the_study() {
     let (md, csv) = (read(&dir.join("claims.md")), read(&dir.join("claims.csv")));
     let d = dir.to_str().unwrap();
 
-    // The README's own usage: at another α the claims go to claims-alpha-0.1.* and are printed.
+    // The guide's own usage (docs/guide/compare-and-claims.md): at another α the claims go to claims-alpha-0.1.* and are printed.
     let o = Fm::new(["claims", d, "--alpha", "0.1"]).ok();
     let at = read(&dir.join("claims-alpha-0.1.md"));
     assert!(at.contains("at p < α = 0.1") && stdout(&o) == at, "{at}");

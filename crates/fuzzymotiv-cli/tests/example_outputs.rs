@@ -1,5 +1,5 @@
 //! The documents' examples, and the commands' default output directories, write only where git
-//! ignores: a new user following the README leaves no untracked clutter in the repository.
+//! ignores: a new user following the README or the guide leaves no untracked clutter in the repository.
 
 use std::path::Path;
 use std::process::Command;
@@ -15,6 +15,7 @@ fn documents() -> Vec<String> {
         .to_vec();
     for dir in [
         "docs",
+        "docs/guide",
         "configs",
         "examples/slurm",
         "examples/htcondor",

@@ -80,7 +80,7 @@ fn out_ending_in_partial_is_refused() {
 }
 
 /// `--help` and `--version` write through the same standard output as every result: a full
-/// one is the README's one-line error with status 1, not a silent success.
+/// one is the one-line error with status 1 of docs/guide/cli.md ("Pipes, full disks"), not a silent success.
 #[test]
 fn help_and_version_on_a_full_stdout_are_a_one_line_error() {
     for args in [

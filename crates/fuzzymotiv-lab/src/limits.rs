@@ -1,4 +1,4 @@
-//! The documented limits of the lab: what one request may ask for (README, "Lab").
+//! The documented limits of the lab: what one request may ask for (docs/guide/lab.md, "Limits").
 
 /// Largest request body (bytes): settings, a room, a comparison. Larger bodies get HTTP 413.
 pub const MAX_BODY: usize = 64 * 1024;

@@ -51,7 +51,7 @@ pub struct ReproduceArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Number of seeds per setting; tables give mean ± std over them and every seed's values.
-    /// Ten by default: five paired seeds cannot give p < 0.05 (README: why ten).
+    /// Ten by default: five paired seeds cannot give p < 0.05 (docs/guide/cli.md: why ten seeds).
     #[arg(long, allow_hyphen_values = true, default_value_t = 10, value_parser = clap::builder::RangedI64ValueParser::<u64>::new().range(1..=1000))]
     pub seeds: u64,
     /// A fast look: GA 30 × 30 instead of the paper's 200 × 200.
