@@ -46,7 +46,10 @@ fn temp_with(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, CliEr
 
 /// An I/O failure naming the path.
 pub fn io_err(path: &Path, e: std::io::Error) -> CliError {
-    CliError::io_from(format!("{}: {e}", path.display()), &e)
+    CliError::Io {
+        path: path.to_path_buf(),
+        source: e,
+    }
 }
 
 /// A run directory being written: files go into `<dir>.partial/`, which is renamed to `<dir>`
