@@ -20,9 +20,9 @@ use fuzzymotiv::experiment::RunError;
 use fuzzymotiv::fitness::{CoefficientScheme, Motivations, TskFitness};
 use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::simulation::Trajectory;
-use fuzzymotiv_io::files::error::{CliError, ErrorKind};
+use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{
-    FilesState, OutState, PYTHON, StagedDir, check_files_as, check_out_as, write_files,
+    FilesState, OutState, PYTHON, StagedDir, check_files, check_out_as, write_files,
 };
 use fuzzymotiv_io::files::inputs::{
     Loaded, load_config, load_room_file, parse_seed, resolve, run_identity,
@@ -115,15 +115,20 @@ fn os_error_type(py: Python<'_>) -> PyResult<&Py<PyType>> {
     })
 }
 
-/// A CLI error as a Python exception, with the message the CLI prints after `error:`, the
-/// class picked by the error's kind: bad input → `FuzzymotivError` (a `ValueError`); a
+/// A CLI error as a Python exception, with the message the CLI prints after `error:` (a refused
+/// output worded with Python's `out` and `force=True`), the class picked by the error: a refused
+/// output → `OutputExistsError`; other bad input → `FuzzymotivError` (a `ValueError`); a
 /// file-system failure → `FuzzymotivOSError` (a `FuzzymotivError` and an `OSError`, `.errno`
 /// set when the OS gave one); another failure while running → `RuntimeError`.
 fn py_err(e: CliError) -> PyErr {
-    match e.kind() {
-        ErrorKind::Input => FuzzymotivError::new_err(e.to_string()),
-        ErrorKind::Runtime => PyRuntimeError::new_err(e.to_string()),
-        ErrorKind::Io | ErrorKind::ClosedStdout => Python::attach(|py| os_err(py, &e)),
+    match e {
+        CliError::Output(refusal) => OutputExistsError::new_err(refusal.render(&PYTHON)),
+        CliError::Input(message) => FuzzymotivError::new_err(message),
+        CliError::Setup(e) => FuzzymotivError::new_err(e.to_string()),
+        CliError::Runtime(message) => PyRuntimeError::new_err(message),
+        CliError::Io { .. } | CliError::FileSystem(_) | CliError::ClosedStdout => {
+            Python::attach(|py| os_err(py, &e))
+        }
     }
 }
 
@@ -145,18 +150,10 @@ fn os_err(py: Python<'_>, e: &CliError) -> PyErr {
 /// [`py_err`] of an error loading a config, overrides, a room or a sweep file: bad input is a
 /// `ConfigError`.
 fn config_err(e: CliError) -> PyErr {
-    match e.kind() {
-        ErrorKind::Input => ConfigError::new_err(e.to_string()),
-        _ => py_err(e),
-    }
-}
-
-/// [`py_err`] of the output guard's check of `out=` or `path=`: bad input there (an output
-/// that must not be replaced) is an `OutputExistsError`.
-fn output_err(e: CliError) -> PyErr {
-    match e.kind() {
-        ErrorKind::Input => OutputExistsError::new_err(e.to_string()),
-        _ => py_err(e),
+    match e {
+        CliError::Input(message) => ConfigError::new_err(message),
+        CliError::Setup(e) => ConfigError::new_err(e.to_string()),
+        other => py_err(other),
     }
 }
 
@@ -425,7 +422,7 @@ fn export_fll(
 /// FIFO is never replaced.
 pub(crate) fn write_guarded(path: PathBuf, bytes: Vec<u8>, force: bool) -> PyResult<()> {
     let files = [(path, bytes)];
-    if check_files_as(&files, "path", force, &PYTHON).map_err(output_err)? == FilesState::Write {
+    if check_files(&files, "path", force).map_err(py_err)? == FilesState::Write {
         write_files(&files).map_err(py_err)?;
     }
     Ok(())
@@ -664,7 +661,7 @@ fn run<'py>(
         Some(dir) => {
             // The identity of a run, as `fuzzymotiv run` checks it.
             let id = run_identity(&loaded.raw);
-            let state = check_out_as(&dir, &id, force, &PYTHON).map_err(output_err)?;
+            let state = check_out_as(&dir, &id, force, &PYTHON).map_err(py_err)?;
             Some((dir, state))
         }
     };

@@ -6,20 +6,13 @@
 use std::path::{Path, PathBuf};
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::PYTHON;
 use fuzzymotiv_io::pipeline::progress::NoProgress;
 use fuzzymotiv_io::pipeline::sweep_jobs::{prepare_sweep_dir, run_one_job};
 use fuzzymotiv_io::pipeline::sweep_merge::write_merge;
 use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
 use pyo3::prelude::*;
 
-use crate::{config_err, output_err, py_err};
-
-/// An error of a sweep job in Python's words (`out`, `force=True`). Its bad input may be the
-/// sweep's or the directory's (the kind does not tell): the base `FuzzymotivError`.
-fn in_python_words(e: CliError) -> PyErr {
-    py_err(PYTHON.respell(e))
-}
+use crate::{config_err, py_err};
 
 /// The source name of a sweep given as text (a dict in Python), in error messages.
 const TEXT_SOURCE: &str = "(sweep dict)";
@@ -94,7 +87,7 @@ pub fn sweep_run_job(
         }
         run_one_job(&sweep, &text, index, &out, wait, &NoProgress).map(|o| o.as_str())
     })
-    .map_err(in_python_words)
+    .map_err(py_err)
 }
 
 /// Checks the sweep directory `out` for the sweep `text` and writes its plan, as `fuzzymotiv
@@ -110,9 +103,9 @@ pub fn sweep_prepare(
     force: bool,
 ) -> PyResult<()> {
     let sweep = Sweep::parse_str(&text, &source, &base_dir).map_err(config_err)?;
-    // The directory's check: bad input there is an output that must not be replaced.
+    // The directory's check: a refused output is an `OutputExistsError` (`py_err`).
     py.detach(|| prepare_sweep_dir(&sweep, &text, &out, force).map(|_| ()))
-        .map_err(|e| output_err(PYTHON.respell(e)))
+        .map_err(py_err)
 }
 
 /// Merges the sweep directory `dir` as `fuzzymotiv merge` does (the same `results.csv`,

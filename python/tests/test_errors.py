@@ -61,6 +61,19 @@ def test_another_file_at_an_export_path_raises_output_exists_error(tmp_path):
     assert path.read_text() == "mine\n"
 
 
+def test_a_sweep_job_into_another_output_raises_output_exists_error_in_pythons_words(tmp_path):
+    """The class comes from what the guard refused, wherever it refused it (here inside a
+    job), and the words from its facts: `out` and `force=True`, never the CLI's options."""
+    out = tmp_path / "run"
+    fm.run(overrides=TINY, out=out, seed=1)
+    job = fm.plan({"rooms": ["H"], "ga": {"population": 4, "generations": 1},
+                   "trial": {"steps": 20}, "aem": {"enabled": False},
+                   "sweep": {"replicates": 1}})[0]
+    with pytest.raises(fm.OutputExistsError, match=r"^out .*not a sweep.*force=True") as e:
+        fm.run_job(job, out)
+    assert "--" not in str(e.value)
+
+
 def test_a_gym_env_stepped_or_rendered_before_reset_raises_reset_needed():
     fmgym = pytest.importorskip("fuzzymotiv.gym")
     env = fmgym.KheperaEnv("H", render_mode="rgb_array")

@@ -9,7 +9,7 @@ use std::io::IsTerminal;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use fuzzymotiv_io::files::error::{CliError, ErrorKind};
+use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::note;
 
 use crate::commands::{bench, claims, compare, fuzzy, lab, replay, reproduce, rooms, run, sweep};
@@ -102,10 +102,21 @@ fn finish(result: Result<(), CliError>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         // The reader has gone (`| head -1`): end quietly, as a program killed by SIGPIPE.
-        Err(e) if e.kind() == ErrorKind::ClosedStdout => ExitCode::from(e.exit_code()),
+        Err(CliError::ClosedStdout) => ExitCode::from(141),
         Err(e) => {
             note!("error: {e}");
-            ExitCode::from(e.exit_code())
+            ExitCode::from(exit_code(&e))
         }
+    }
+}
+
+/// The exit code of an error: 2 for bad input (a config, a room file, an option, an output that
+/// must not be replaced), 1 for a failure while running, 141 for a closed standard output (as a
+/// program killed by SIGPIPE).
+fn exit_code(e: &CliError) -> u8 {
+    match e {
+        CliError::Input(_) | CliError::Setup(_) | CliError::Output(_) => 2,
+        CliError::Runtime(_) | CliError::Io { .. } | CliError::FileSystem(_) => 1,
+        CliError::ClosedStdout => 141,
     }
 }

@@ -286,7 +286,7 @@ fn save_copy(from: &Path, to: &Path) -> Result<String, ApiError> {
     if let Some(parent) = to.parent() {
         std::fs::create_dir_all(parent).map_err(|e| io(parent, e))?;
     }
-    match check_out_as(to, &id, false, &SAVE).map_err(|e| ApiError::conflict(e.to_string()))? {
+    match check_out_as(to, &id, false, &SAVE).map_err(|e| ApiError::conflict(e.render(&SAVE)))? {
         OutState::Done => return Ok(to.display().to_string()),
         OutState::Unfinished => {
             return Err(ApiError::conflict(format!(

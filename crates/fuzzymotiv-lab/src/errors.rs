@@ -3,7 +3,7 @@
 use axum::Json;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
-use fuzzymotiv_io::files::error::{CliError, ErrorKind};
+use fuzzymotiv_io::files::error::CliError;
 use serde::de::DeserializeOwned;
 
 /// An error answer: `{"error": message}` with `status`.
@@ -50,9 +50,10 @@ impl ApiError {
 impl From<CliError> for ApiError {
     /// Bad input is the client's (400); anything else is the server's (500).
     fn from(e: CliError) -> Self {
-        let status = match e.kind() {
-            ErrorKind::Input => StatusCode::BAD_REQUEST,
-            _ => StatusCode::INTERNAL_SERVER_ERROR,
+        let status = if e.is_input() {
+            StatusCode::BAD_REQUEST
+        } else {
+            StatusCode::INTERNAL_SERVER_ERROR
         };
         Self {
             status,

@@ -42,7 +42,7 @@ pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
         )));
     }
     if let Some(out) = &args.out {
-        refuse_staging_name(out, "--out")?;
+        refuse_staging_name(out)?;
     }
     let summary: StudySummary = read_json(&args.dir.join("summary.json"))?;
     if summary.settings.len() != 2 {

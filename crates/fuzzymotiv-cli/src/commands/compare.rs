@@ -46,7 +46,7 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
             fuzzymotiv::params::Num(args.alpha)
         )));
     }
-    refuse_staging_name(&args.out, "--out")?;
+    refuse_staging_name(&args.out)?;
     let a = load(&args.a, "A")?;
     let b = load(&args.b, "B")?;
     check_comparable(&a, &b)?;

@@ -2,11 +2,11 @@
 //! (`println!` and `eprintln!` panic when the stream is closed or full).
 //!
 //! A closed standard output (`fuzzymotiv plan BIG.toml | head -1`) ends the command quietly
-//! with a non-zero status, as `grep` does ([`ErrorKind::ClosedStdout`]); another write failure
+//! with a non-zero status, as `grep` does ([`CliError::ClosedStdout`]); another write failure
 //! (a full disk) is an error naming standard output. A closed standard error only drops notes
 //! and progress lines: the command goes on.
 //!
-//! [`ErrorKind::ClosedStdout`]: crate::files::error::ErrorKind::ClosedStdout
+//! [`CliError::ClosedStdout`]: crate::files::error::CliError::ClosedStdout
 
 use std::fmt::Arguments;
 use std::io::Write;

@@ -1,114 +1,100 @@
-//! The CLI's error: bad input (exit code 2) or a failure while running (exit code 1), which
-//! may be a file-system failure ([`CliError::io`]).
+//! The error of the CLI, Python and the lab: what went wrong, as facts where a front words them
+//! its own way ([`CliError::Output`], [`CliError::Setup`]). Each front maps the variants to its
+//! own outcome: the binary to exit codes (2 bad input, 1 a failure while running, 141 a closed
+//! pipe), Python to exception classes, the lab to HTTP statuses.
 
-use std::fmt;
+use std::path::PathBuf;
 
-/// What kind of failure a [`CliError`] is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ErrorKind {
-    /// Bad input from the user (a config, a room file, an option, an output directory that
-    /// must not be replaced): exit code 2.
-    Input,
-    /// A failure while running: exit code 1.
-    Runtime,
-    /// A file-system failure (reading or writing a named path): exit code 1.
-    Io,
-    /// Standard output was closed by its reader (`| head -1`): the command ends quietly with
-    /// exit code 141, as a program killed by SIGPIPE does.
+use fuzzymotiv::experiment::SetupError;
+use fuzzymotiv::params::FieldError;
+
+use crate::files::refusal::{OutputError, Spelling};
+
+/// What went wrong.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// Bad input from the user (an option, a file's contents), said in a sentence naming what
+    /// is wrong and what would be right.
+    #[error("{0}")]
+    Input(String),
+    /// A config or room file that cannot be used: the source, the field and the reason
+    /// ([`FieldError`]), or a room file that is not TOML.
+    #[error(transparent)]
+    Setup(#[from] SetupError),
+    /// An output the guard refuses to write or replace, as facts each front words with its own
+    /// option names ([`OutputError::render`]).
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    /// A failure while running.
+    #[error("{0}")]
+    Runtime(String),
+    /// A file-system failure on a named path (its OS error number is [`Self::errno`]).
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The path read or written.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// A file-system failure said in a sentence (e.g. a folder that does not exist).
+    #[error("{0}")]
+    FileSystem(String),
+    /// Standard output was closed by its reader (`| head -1`): the command ends quietly, as a
+    /// program killed by SIGPIPE does.
+    #[error("standard output closed")]
     ClosedStdout,
 }
 
-/// An error with the exit code it deserves.
-#[derive(Debug)]
-pub struct CliError {
-    message: String,
-    kind: ErrorKind,
-    /// The operating system's error number of a file-system failure, when it has one.
-    errno: Option<i32>,
-}
-
 impl CliError {
-    /// Bad input from the user: exit code 2.
+    /// Bad input from the user.
     pub fn input(message: impl Into<String>) -> Self {
-        Self {
-            message: message.into(),
-            kind: ErrorKind::Input,
-            errno: None,
-        }
+        Self::Input(message.into())
     }
 
-    /// A failure while running: exit code 1.
+    /// A failure while running.
     pub fn runtime(message: impl Into<String>) -> Self {
-        Self {
-            message: message.into(),
-            kind: ErrorKind::Runtime,
-            errno: None,
-        }
+        Self::Runtime(message.into())
     }
 
-    /// A file-system failure: exit code 1 (in Python both a `FuzzymotivError` and an `OSError`).
+    /// A file-system failure said in a sentence (in Python both a `FuzzymotivError` and an
+    /// `OSError`).
     pub fn io(message: impl Into<String>) -> Self {
-        Self {
-            message: message.into(),
-            kind: ErrorKind::Io,
-            errno: None,
-        }
+        Self::FileSystem(message.into())
     }
 
-    /// A file-system failure caused by `cause`, whose OS error number it keeps ([`Self::errno`];
-    /// Python's `FuzzymotivOSError.errno`).
-    pub fn io_from(message: impl Into<String>, cause: &std::io::Error) -> Self {
-        Self {
-            errno: cause.raw_os_error(),
-            ..Self::io(message)
-        }
-    }
-
-    /// Standard output was closed by its reader: no message, exit code 141.
+    /// Standard output was closed by its reader.
     pub fn closed_stdout() -> Self {
-        Self {
-            message: "standard output closed".into(),
-            kind: ErrorKind::ClosedStdout,
-            errno: None,
-        }
+        Self::ClosedStdout
     }
 
-    /// What kind of failure this is.
-    pub fn kind(&self) -> ErrorKind {
-        self.kind
+    /// Whether this is the user's bad input (a config, a room file, an option, an output that
+    /// must not be replaced) rather than a failure while running.
+    pub fn is_input(&self) -> bool {
+        matches!(self, Self::Input(_) | Self::Setup(_) | Self::Output(_))
     }
 
-    /// The OS error number of a file-system failure made by [`Self::io_from`], else None.
+    /// The OS error number of a file-system failure on a named path, else None.
     pub fn errno(&self) -> Option<i32> {
-        self.errno
+        match self {
+            Self::Io { source, .. } => source.raw_os_error(),
+            _ => None,
+        }
     }
 
-    /// The process exit code.
-    pub fn exit_code(&self) -> u8 {
-        match self.kind {
-            ErrorKind::Input => 2,
-            ErrorKind::Runtime | ErrorKind::Io => 1,
-            ErrorKind::ClosedStdout => 141,
+    /// The message in the words of a front whose output options are spelled as `s` spells
+    /// them: a refused output is worded from its facts ([`OutputError::render`]), any other
+    /// error is its message.
+    pub fn render(&self, s: &Spelling) -> String {
+        match self {
+            Self::Output(e) => e.render(s),
+            other => other.to_string(),
         }
     }
 }
 
-impl fmt::Display for CliError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-/// A config or room file that cannot be used ([`fuzzymotiv::experiment::ConfigError`] and
-/// [`fuzzymotiv::simulation::RoomError`] are this one type).
-impl From<fuzzymotiv::experiment::SetupError> for CliError {
-    fn from(e: fuzzymotiv::experiment::SetupError) -> Self {
-        CliError::input(e.to_string())
-    }
-}
-
-impl From<fuzzymotiv::params::FieldError> for CliError {
-    fn from(e: fuzzymotiv::params::FieldError) -> Self {
-        CliError::input(e.to_string())
+/// A value of a config or room file that cannot be used.
+impl From<FieldError> for CliError {
+    fn from(e: FieldError) -> Self {
+        Self::Setup(SetupError::Field(e))
     }
 }

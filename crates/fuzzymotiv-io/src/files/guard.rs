@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::files::error::CliError;
+pub use crate::files::refusal::{CLI, OutputError, PYTHON, Spelling};
 use crate::note;
 
 /// Writes `contents` to `path` via a temporary file in the same directory and a rename.
@@ -45,7 +46,10 @@ fn temp_with(path: &Path, bytes: &[u8]) -> Result<tempfile::NamedTempFile, CliEr
 
 /// An I/O failure naming the path.
 pub fn io_err(path: &Path, e: std::io::Error) -> CliError {
-    CliError::io_from(format!("{}: {e}", path.display()), &e)
+    CliError::Io {
+        path: path.to_path_buf(),
+        source: e,
+    }
 }
 
 /// A run directory being written: files go into `<dir>.partial/`, which is renamed to `<dir>`
@@ -153,11 +157,10 @@ pub fn ensure_replaceable(dir: &Path) -> Result<(), CliError> {
     if meta.is_dir() && (is_empty_dir(dir) || is_ours(dir)) {
         Ok(())
     } else {
-        Err(CliError::input(format!(
-            "{}: exists and is not a fuzzymotiv output directory, so it will not be replaced \
-             (not even with --force); choose another --out (or remove it yourself)",
-            dir.display()
-        )))
+        Err(OutputError::NotAnOutput {
+            dir: dir.to_path_buf(),
+        }
+        .into())
     }
 }
 
@@ -253,29 +256,20 @@ fn is_claims_at_alpha(name: &str) -> bool {
 /// [`foreign_files`]), even with `--force`.
 pub fn ensure_only_ours(dir: &Path) -> Result<(), CliError> {
     if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
-        return Err(CliError::input(format!(
-            "{}: is a symbolic link, which is never replaced (not even with --force); choose \
-             another --out",
-            dir.display()
-        )));
+        return Err(OutputError::LinkNeverReplaced {
+            dir: dir.to_path_buf(),
+        }
+        .into());
     }
-    let foreign = foreign_files(dir);
-    if foreign.is_empty() {
+    let files = foreign_files(dir);
+    if files.is_empty() {
         return Ok(());
     }
-    let shown: Vec<String> = foreign
-        .iter()
-        .take(3)
-        .map(|p| p.display().to_string())
-        .collect();
-    Err(CliError::input(format!(
-        "{}: holds {} file(s) that fuzzymotiv did not write ({}{}), which are never deleted, not \
-         even with --force; move them elsewhere, or choose another --out",
-        dir.display(),
-        foreign.len(),
-        shown.join(", "),
-        if foreign.len() > 3 { ", …" } else { "" }
-    )))
+    Err(OutputError::NotOurs {
+        dir: dir.to_path_buf(),
+        files,
+    }
+    .into())
 }
 
 /// Removes one of our directories (a run, a study, a job, a staging directory) unless it holds a
@@ -307,55 +301,21 @@ pub type Identity = [(String, String)];
 /// Checks `--out DIR` before any work: it must not be the current directory (or hold it), nor a
 /// file; an earlier output of another run (another resolved config, or another kind of output)
 /// and an unfinished one (a checkpoint) are replaced only with `force`; anything that is not a
-/// fuzzymotiv output is never replaced. Messages name the CLI's options.
+/// fuzzymotiv output is never replaced. A refusal is an [`OutputError`] (whose `Display` names
+/// the CLI's options).
 pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, CliError> {
     check_out_as(dir, id, force, &CLI)
 }
 
-/// How a front names the output options in messages.
-#[derive(Debug, Clone, Copy)]
-pub struct Spelling {
-    /// The output directory option, e.g. `--out`.
-    pub out: &'static str,
-    /// The replace option, e.g. `--force`.
-    pub force: &'static str,
-}
-
-/// The command line's `--out` and `--force`.
-pub const CLI: Spelling = Spelling {
-    out: "--out",
-    force: "--force",
-};
-
-/// Python's `out` and `force=True` (`fm.run(..., out=DIR, force=True)`).
-pub const PYTHON: Spelling = Spelling {
-    out: "out",
-    force: "force=True",
-};
-
-impl Spelling {
-    /// A guard message (written with the CLI's options) in this front's words; a file-system
-    /// error is left as it is.
-    pub fn respell(&self, e: CliError) -> CliError {
-        if e.kind() != crate::files::error::ErrorKind::Input {
-            return e;
-        }
-        let text = e
-            .to_string()
-            .replace("--force", self.force)
-            .replace("--out", self.out);
-        CliError::input(text)
-    }
-}
-
-/// [`check_out`], with messages (and the `--force` note) naming the options as `spelling` does.
+/// [`check_out`], with the `--force` note naming the option as `spelling` does (a refusal is an
+/// [`OutputError`], which the caller words with [`OutputError::render`]).
 pub fn check_out_as(
     dir: &Path,
     id: &Identity,
     force: bool,
     spelling: &Spelling,
 ) -> Result<OutState, CliError> {
-    let (state, replacing) = out_state(dir, id, force).map_err(|e| spelling.respell(e))?;
+    let (state, replacing) = out_state(dir, id, force)?;
     if replacing {
         note!(
             "note: {}: {} will be replaced",
@@ -369,7 +329,7 @@ pub fn check_out_as(
 /// The state of `dir` for [`check_out`], and whether `--force` replaces something there.
 fn out_state(dir: &Path, id: &Identity, force: bool) -> Result<(OutState, bool), CliError> {
     refuse_current_dir(dir)?;
-    refuse_staging_name(dir, "--out")?;
+    refuse_staging_name(dir)?;
     refuse_non_directory(dir)?;
     let staging = StagedDir::staging_path(dir);
     if force && std::fs::symlink_metadata(&staging).is_ok() {
@@ -379,27 +339,13 @@ fn out_state(dir: &Path, id: &Identity, force: bool) -> Result<(OutState, bool),
         if matches(&staging, id) {
             return Ok((OutState::Unfinished, false));
         }
-        let how = if staging.join("config.resolved.toml").is_file() {
-            format!(
-                "continue it with `fuzzymotiv run --resume {}`, or ",
-                dir.display()
-            )
-        } else {
-            "continue it with the command that started it, or ".to_string()
-        };
-        let what = match other_model(&staging, id) {
-            Some(model) => format!(
-                "an unfinished output of model {model} of fuzzymotiv (this build is model {}, whose results differ)",
-                fuzzymotiv::MODEL_VERSION
-            ),
-            None => "an unfinished output of another run or command".to_string(),
-        };
-        return Err(CliError::input(format!(
-            "--out {}: {} holds {what} (a checkpoint); {how}pass --force to discard it and start \
-             this one",
-            dir.display(),
-            staging.display(),
-        )));
+        return Err(OutputError::Unfinished {
+            dir: dir.to_path_buf(),
+            resumable: staging.join("config.resolved.toml").is_file(),
+            model: other_model(&staging, id),
+            staging,
+        }
+        .into());
     }
     if !dir.exists() || is_empty_dir(dir) {
         return Ok((OutState::Fresh, false));
@@ -412,19 +358,11 @@ fn out_state(dir: &Path, id: &Identity, force: bool) -> Result<(OutState, bool),
         ensure_only_ours(dir)?;
         return Ok((OutState::Fresh, true));
     }
-    let what = match other_model(dir, id) {
-        Some(model) => format!(
-            "the results of model {model} of fuzzymotiv (this build is model {}, whose results \
-             differ)",
-            fuzzymotiv::MODEL_VERSION
-        ),
-        None => "the results of a different run (another config, seed, size or command)".into(),
-    };
-    Err(CliError::input(format!(
-        "--out {}: holds {what}; they are kept. Choose another --out, or pass --force to \
-         replace them",
-        dir.display()
-    )))
+    Err(OutputError::WouldReplace {
+        dir: dir.to_path_buf(),
+        model: other_model(dir, id),
+    }
+    .into())
 }
 
 /// The model version that wrote `dir`'s identity files, when it is not this build's (a
@@ -458,16 +396,15 @@ fn is_empty_dir(dir: &Path) -> bool {
 /// refused, saying which it is ([`what_it_is`]).
 pub fn refuse_non_directory(dir: &Path) -> Result<(), CliError> {
     match std::fs::symlink_metadata(dir) {
-        Ok(m) if m.file_type().is_symlink() => Err(CliError::input(format!(
-            "--out {}: is a symbolic link, and an output directory is never written through a \
-             link; choose another --out (e.g. the directory the link points to)",
-            dir.display()
-        ))),
-        Ok(m) if !m.is_dir() => Err(CliError::input(format!(
-            "--out {}: is {}, not a directory; choose another --out",
-            dir.display(),
-            what_it_is(&m)
-        ))),
+        Ok(m) if m.file_type().is_symlink() => Err(OutputError::OutIsLink {
+            dir: dir.to_path_buf(),
+        }
+        .into()),
+        Ok(m) if !m.is_dir() => Err(OutputError::NotADirectory {
+            dir: dir.to_path_buf(),
+            what: what_it_is(&m),
+        }
+        .into()),
         _ => Ok(()),
     }
 }
@@ -505,14 +442,13 @@ pub fn what_it_is(meta: &std::fs::Metadata) -> &'static str {
 /// `--out NAME.partial`: refused, since `NAME.partial` is where the output `--out NAME` is
 /// staged ([`StagedDir`]), which would take it for its own unfinished output and adopt or
 /// discard it.
-pub fn refuse_staging_name(dir: &Path, option: &str) -> Result<(), CliError> {
+pub fn refuse_staging_name(dir: &Path) -> Result<(), CliError> {
     let name = dir.file_name().map(|n| n.to_string_lossy().into_owned());
     if name.is_some_and(|n| n.ends_with(".partial")) {
-        return Err(CliError::input(format!(
-            "{option} {}: a name ending in .partial is where another output is written until it \
-             is finished; choose a name without .partial",
-            dir.display()
-        )));
+        return Err(OutputError::StagingName {
+            dir: dir.to_path_buf(),
+        }
+        .into());
     }
     Ok(())
 }
@@ -525,11 +461,10 @@ pub fn refuse_current_dir(dir: &Path) -> Result<(), CliError> {
     let out = out.canonicalize().unwrap_or(out);
     let here = here.canonicalize().unwrap_or(here);
     if here.starts_with(&out) {
-        return Err(CliError::input(format!(
-            "--out {}: is the current directory (or holds it); an output directory is written \
-             beside and then renamed into place, so give a new directory, e.g. --out results",
-            dir.display()
-        )));
+        return Err(OutputError::CurrentDir {
+            dir: dir.to_path_buf(),
+        }
+        .into());
     }
     Ok(())
 }
@@ -562,11 +497,11 @@ pub fn check_files(
     };
     for (k, (path, _)) in files.iter().enumerate() {
         if files[..k].iter().any(|(p, _)| key(p) == key(path)) {
-            return Err(CliError::input(format!(
-                "{option}: two of the files to write would both be {}; choose another {option} \
-                 (e.g. a name ending in .html for a page)",
-                path.display()
-            )));
+            return Err(OutputError::SameFileTwice {
+                option: option.to_string(),
+                path: path.clone(),
+            }
+            .into());
         }
     }
     let mut same = true;
@@ -575,35 +510,24 @@ pub fn check_files(
             same = false;
             continue;
         };
-        // Without an option (the command's own place for the files) the messages name only
-        // the path: never an option the user did not pass.
-        let named = match option {
-            "" => path.display().to_string(),
-            _ => format!("{option} {}", path.display()),
-        };
         if !meta.is_file() {
-            let remedy = match option {
-                "" => "move it away".to_string(),
-                _ => "give the path of a new or regular file".to_string(),
-            };
-            return Err(CliError::input(format!(
-                "{named}: is {}, which is never replaced (not even with --force); {remedy}",
-                what_it_is(&meta)
-            )));
+            return Err(OutputError::NotAFile {
+                option: option.to_string(),
+                path: path.clone(),
+                what: what_it_is(&meta),
+            }
+            .into());
         }
         if std::fs::read(path).is_ok_and(|have| have == *bytes) {
             continue;
         }
         same = false;
         if !force {
-            let elsewhere = match option {
-                "" => String::new(),
-                _ => format!(", or choose another {option}"),
-            };
-            return Err(CliError::input(format!(
-                "{named}: the file exists with other contents and is kept; pass --force to \
-                 replace it{elsewhere}"
-            )));
+            return Err(OutputError::FileDiffers {
+                option: option.to_string(),
+                path: path.clone(),
+            }
+            .into());
         }
     }
     Ok(if same {
@@ -611,17 +535,6 @@ pub fn check_files(
     } else {
         FilesState::Write
     })
-}
-
-/// [`check_files`], with messages naming the options as `spelling` does (Python's
-/// `force=True`).
-pub fn check_files_as(
-    files: &[(PathBuf, Vec<u8>)],
-    option: &str,
-    force: bool,
-    spelling: &Spelling,
-) -> Result<FilesState, CliError> {
-    check_files(files, option, force).map_err(|e| spelling.respell(e))
 }
 
 /// Writes a checked set of files: every one to a new temporary file first (all of them, so a
@@ -640,4 +553,59 @@ pub fn write_files(files: &[(PathBuf, Vec<u8>)]) -> Result<(), CliError> {
 /// Formats a float for CSV with fixed precision (stable across runs and platforms).
 pub fn num(v: f64) -> String {
     format!("{v:.9}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A directory holding a finished run whose resolved config is `config`.
+    fn finished_run(config: &str) -> tempfile::TempDir {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("config.resolved.toml"), config).unwrap();
+        std::fs::write(dir.path().join("summary.json"), "{}").unwrap();
+        dir
+    }
+
+    fn identity(config: &str) -> Vec<(String, String)> {
+        vec![("config.resolved.toml".into(), config.into())]
+    }
+
+    #[test]
+    fn another_runs_output_is_refused_with_its_path_as_would_replace() {
+        let run = finished_run("a = 1\n");
+        match check_out(run.path(), &identity("a = 2\n"), false) {
+            Err(CliError::Output(OutputError::WouldReplace { dir, model: None })) => {
+                assert_eq!(dir, run.path());
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_file_of_the_users_is_refused_as_not_ours_even_with_force() {
+        let run = finished_run("a = 1\n");
+        let notes = run.path().join("notes.txt");
+        std::fs::write(&notes, "mine").unwrap();
+        match check_out(run.path(), &identity("a = 2\n"), true) {
+            Err(CliError::Output(OutputError::NotOurs { dir, files })) => {
+                assert_eq!((dir.as_path(), files), (run.path(), vec![notes]));
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_file_with_other_contents_is_refused_as_file_differs() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("page.html");
+        std::fs::write(&path, "old").unwrap();
+        let files = [(path.clone(), b"new".to_vec())];
+        match check_files(&files, "--out", false) {
+            Err(CliError::Output(OutputError::FileDiffers { option, path: p })) => {
+                assert_eq!((option.as_str(), p), ("--out", path));
+            }
+            other => panic!("{other:?}"),
+        }
+    }
 }

@@ -43,7 +43,10 @@ pub fn is_lock_name(name: &str) -> bool {
 /// An I/O error on `path` (as the guard words them; the guard imports this module, so not its
 /// `io_err`, which would make a circle).
 fn io_err(path: &Path, e: std::io::Error) -> CliError {
-    CliError::io_from(format!("{}: {e}", path.display()), &e)
+    CliError::Io {
+        path: path.to_path_buf(),
+        source: e,
+    }
 }
 
 fn open(path: &Path) -> Result<File, CliError> {

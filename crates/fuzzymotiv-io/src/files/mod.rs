@@ -1,5 +1,6 @@
 //! The file layer: the output guard every writer goes through ([`guard`]), config and room
-//! loading ([`inputs`]), the error with its exit codes ([`error`]), the terminal
+//! loading ([`inputs`]), the error with its exit codes ([`error`]) and the guard's refusals
+//! ([`refusal`]), the terminal
 //! ([`console`]: `out!`, `outln!`, `note!`) and a sweep job's lock ([`job_lock`]).
 
 pub mod console;
@@ -7,3 +8,4 @@ pub mod error;
 pub mod guard;
 pub mod inputs;
 pub mod job_lock;
+pub mod refusal;

@@ -6,11 +6,11 @@
 
 use std::path::Path;
 
-use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::Start;
 use fuzzymotiv::experiment::{Evolution, Population};
+use fuzzymotiv::experiment::{Experiment, SetupError};
 
-use crate::files::error::{CliError, ErrorKind};
+use crate::files::error::CliError;
 use crate::files::guard::StagedDir;
 use crate::files::inputs::{Loaded, load_config, resolved_toml, rooms_unchanged};
 use crate::records::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATION};
@@ -74,15 +74,11 @@ pub fn continued_config(dir: &Path, old: &Loaded, generations: usize) -> Result<
     }
     let set = [format!("ga.generations={generations}")];
     // The only value changed is --generations: a limit it breaks is said of it, not the file.
-    load_config(Some(&dir.join(CONFIG)), &set, None).map_err(|e| match e.kind() {
-        ErrorKind::Input if e.to_string().contains("ga.generations") => CliError::input(format!(
-            "--generations {generations}: {}",
-            e.to_string()
-                .rsplit("ga.generations`: ")
-                .next()
-                .unwrap_or("out of range")
-        )),
-        _ => e,
+    load_config(Some(&dir.join(CONFIG)), &set, None).map_err(|e| match e {
+        CliError::Setup(SetupError::Field(f)) if f.field == "ga.generations" => {
+            CliError::input(format!("--generations {generations}: {}", f.reason))
+        }
+        e => e,
     })
 }
 

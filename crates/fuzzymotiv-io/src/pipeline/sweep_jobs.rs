@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 
 use crate::files::error::CliError;
 use crate::files::guard::{
-    StagedDir, ensure_replaceable, foreign_files, io_err, refuse_current_dir, refuse_non_directory,
-    refuse_staging_name, remove_ours, write_atomic,
+    OutputError, StagedDir, ensure_replaceable, foreign_files, io_err, refuse_current_dir,
+    refuse_non_directory, refuse_staging_name, remove_ours, write_atomic,
 };
 use crate::files::job_lock::{JobLock, lock_path};
 use crate::note;
@@ -150,7 +150,7 @@ const SWEEP_FILES: [&str; 7] = [
 /// a fuzzymotiv output, a file, a `.partial` name and the current directory are refused.
 fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError> {
     refuse_current_dir(out)?;
-    refuse_staging_name(out, "--out")?;
+    refuse_staging_name(out)?;
     refuse_non_directory(out)?;
     if !out.exists() {
         return Ok(());
@@ -189,13 +189,11 @@ fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError
     }
     match conflict {
         None => Ok(()),
-        Some(why) => Err(CliError::input(format!(
-            "--out {}: holds a sweep of another plan ({why}); its results are kept. Choose \
-             another --out, pass --force to replace that sweep, or run the sweep file that made it \
-             ({})",
-            out.display(),
-            out.join("sweep.toml").display()
-        ))),
+        Some(why) => Err(OutputError::OtherPlan {
+            dir: out.to_path_buf(),
+            why,
+        }
+        .into()),
     }
 }
 
@@ -204,11 +202,10 @@ fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError
 fn refuse_other_output(out: &Path, force: bool) -> Result<(), CliError> {
     ensure_replaceable(out)?;
     if !force {
-        return Err(CliError::input(format!(
-            "--out {}: holds another fuzzymotiv output (a run or a study), not a sweep; it is \
-             kept. Choose another --out, or pass --force to replace it",
-            out.display()
-        )));
+        return Err(OutputError::NotASweep {
+            dir: out.to_path_buf(),
+        }
+        .into());
     }
     note!("note: --force: {} will be replaced", out.display());
     remove_ours(out)

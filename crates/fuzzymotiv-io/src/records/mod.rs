@@ -1286,27 +1286,19 @@ impl CsvTable {
         })
     }
 
-    fn get<T: std::str::FromStr>(&self, row: usize, column: &str) -> Result<T, CliError> {
+    fn get<T: Cell>(&self, row: usize, column: &str) -> Result<T, CliError> {
         let text = self.cell(row, column)?;
         text.parse().map_err(|_| {
-            let what = if std::any::type_name::<T>().starts_with('f') {
-                "number"
-            } else {
-                "whole number"
-            };
             CliError::input(format!(
-                "{}: line {}: field `{column}`: `{text}` is not a {what}",
+                "{}: line {}: field `{column}`: `{text}` is not {}",
                 self.path,
-                self.line(row)
+                self.line(row),
+                T::EXPECTED
             ))
         })
     }
 
-    fn get_opt<T: std::str::FromStr>(
-        &self,
-        row: usize,
-        column: &str,
-    ) -> Result<Option<T>, CliError> {
+    fn get_opt<T: Cell>(&self, row: usize, column: &str) -> Result<Option<T>, CliError> {
         if self.cell(row, column)?.is_empty() {
             Ok(None)
         } else {
@@ -1314,6 +1306,31 @@ impl CsvTable {
         }
     }
 }
+
+/// A value a CSV cell holds, and what a cell that is not one is told it should be.
+trait Cell: std::str::FromStr {
+    /// What the cell should hold, in a message: "a number", "a whole number".
+    const EXPECTED: &'static str;
+}
+
+impl Cell for f64 {
+    const EXPECTED: &'static str = "a number";
+}
+
+/// Text: every cell is one (its parse cannot fail).
+impl Cell for String {
+    const EXPECTED: &'static str = "text";
+}
+
+macro_rules! whole_number_cells {
+    ($($t:ty),*) => {$(
+        impl Cell for $t {
+            const EXPECTED: &'static str = "a whole number";
+        }
+    )*};
+}
+
+whole_number_cells!(u32, u64, usize);
 
 #[cfg(test)]
 mod tests {
@@ -1379,7 +1396,7 @@ mod tests {
         )
         .unwrap();
         let e = read_csv::<GenerationRow>(&path).unwrap_err();
-        assert_eq!(e.exit_code(), 2);
+        assert!(e.is_input(), "{e:?}");
         assert!(
             e.to_string().contains("line 2") && e.to_string().contains("field `mean`"),
             "{e}"
@@ -1392,6 +1409,27 @@ mod tests {
         .unwrap();
         let e = RecognitionTable::read(&path).unwrap_err();
         assert!(e.to_string().contains("field `correct`"), "{e}");
+    }
+
+    /// A cell that does not parse says what it should hold: a count a whole number, a
+    /// percentage a number.
+    #[test]
+    fn a_bad_cell_says_whether_a_number_or_a_whole_number_is_expected() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("recognition.csv");
+        let header = "room,test_runs,correct,recognition_pct,as_H,not_recognised\n";
+        std::fs::write(&path, format!("{header}H,5,4.5,80,4,1\n")).unwrap();
+        let e = RecognitionTable::read(&path).unwrap_err().to_string();
+        assert!(
+            e.ends_with("field `correct`: `4.5` is not a whole number"),
+            "{e}"
+        );
+        std::fs::write(&path, format!("{header}H,5,4,most,4,1\n")).unwrap();
+        let e = RecognitionTable::read(&path).unwrap_err().to_string();
+        assert!(
+            e.ends_with("field `recognition_pct`: `most` is not a number"),
+            "{e}"
+        );
     }
 
     /// The homing result is `homing_pct` (the weight keeps `homing`); a room row or
