@@ -8,8 +8,8 @@
 use std::path::PathBuf;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::simulation::{Action, Pose};
 use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::{Action, Pose};
 use fuzzymotiv_io::render::frames::animate::{GifWriter, delay_of};
 use fuzzymotiv_io::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
 use fuzzymotiv_io::render::frames::{FrameOptions, Track, gif, render, render_last};

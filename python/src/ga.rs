@@ -5,11 +5,11 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use fuzzymotiv::evolution::{Genome, Stats, ranking};
 use fuzzymotiv::evolution::Population;
+use fuzzymotiv::evolution::{Genome, Stats, ranking};
+use fuzzymotiv::experiment::GenerationRecord;
 use fuzzymotiv::experiment::RawConfig;
 use fuzzymotiv::experiment::{Evaluation, RoomScore};
-use fuzzymotiv::experiment::GenerationRecord;
 use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::fitness::FitnessTerms;
 use fuzzymotiv_io::files::inputs::resolve;

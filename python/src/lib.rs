@@ -13,13 +13,13 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::experiment::RawConfig;
-use fuzzymotiv::experiment::{GenerationState, Observer};
 use fuzzymotiv::experiment::InstanceRun;
+use fuzzymotiv::experiment::RawConfig;
 use fuzzymotiv::experiment::RunError;
+use fuzzymotiv::experiment::{GenerationState, Observer};
 use fuzzymotiv::fitness::{CoefficientScheme, Motivations, TskFitness};
-use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 use fuzzymotiv::simulation::Trajectory;
+use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{
     FilesState, OutState, PYTHON, StagedDir, check_files, check_out_as, write_files,

@@ -11,10 +11,10 @@ use std::sync::{Arc, Mutex};
 
 use fuzzymotiv::evolution::Genome;
 use fuzzymotiv::evolution::Population;
-use fuzzymotiv::experiment::{RawConfig, Training};
 use fuzzymotiv::experiment::Descriptors;
 use fuzzymotiv::experiment::Evaluation;
 use fuzzymotiv::experiment::{Experiment, Run};
+use fuzzymotiv::experiment::{RawConfig, Training};
 use fuzzymotiv_io::files::inputs::resolve;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
