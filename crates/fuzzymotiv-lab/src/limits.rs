@@ -20,8 +20,10 @@ pub const MAX_QUEUED: usize = 64;
 /// (marked stopped or failed) without them.
 pub const MAX_FORGOTTEN: usize = 32;
 /// Stopped or failed runs the list shows at most (the oldest beyond it leave the list; finished
-/// runs are on disk and stay).
-pub const MAX_STOPPED_LISTED: usize = 10_000;
+/// runs are on disk and stay): far more than a session stops by hand, and few enough that a lab
+/// under load (`examples/load.rs`: thousands of runs started and cancelled) keeps its memory and
+/// its `/api/runs` answers bounded.
+pub const MAX_STOPPED_LISTED: usize = 1_000;
 /// A live run sends the current best robot's paths every this many generations.
 pub const PATHS_EVERY: usize = 5;
 /// Most points of a path sent to the page.

@@ -230,9 +230,10 @@ impl Runs {
         Ok(entry.status())
     }
 
-    /// Keeps memory bounded while stopped and failed runs stay listed: beyond the newest
-    /// [`MAX_FORGOTTEN`] of them, their curves and paths are let go; beyond
-    /// [`MAX_STOPPED_LISTED`], the oldest leave the list.
+    /// Keeps memory bounded while ended runs stay listed: beyond the newest [`MAX_FORGOTTEN`]
+    /// ended runs (finished, stopped or failed), their curves and paths are let go (a finished
+    /// run keeps its result, and its files are on disk); beyond [`MAX_STOPPED_LISTED`] stopped
+    /// or failed runs, the oldest of them leave the list.
     fn forget_old(&self) {
         let mut list = self.list();
         let gone = |e: &Arc<RunEntry>| matches!(e.status(), Status::Stopped | Status::Failed);
@@ -243,8 +244,15 @@ impl Runs {
             unlisted -= usize::from(drop_it);
             !drop_it
         });
-        let old = count.min(MAX_STOPPED_LISTED).saturating_sub(MAX_FORGOTTEN);
-        for e in list.iter().filter(|e| gone(e)).take(old) {
+        // Curves and paths are let go for every ended run but the newest few (finished runs
+        // too: a lab under load ends thousands, and each held its curves for good).
+        let ended = |e: &Arc<RunEntry>| gone(e) || e.status() == Status::Finished;
+        let old = list
+            .iter()
+            .filter(|e| ended(e))
+            .count()
+            .saturating_sub(MAX_FORGOTTEN);
+        for e in list.iter().filter(|e| ended(e)).take(old) {
             let mut state = e.lock();
             state.1.generations = Vec::new();
             state.1.paths = None;
