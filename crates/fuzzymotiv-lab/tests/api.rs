@@ -604,3 +604,30 @@ fn comparing_two_runs_tests_every_measure_over_their_test_runs_as_compare_does()
     assert!(tests.iter().all(|t| t["n_a"].as_u64() > Some(1)), "{r}");
     assert!(r["note"].as_str().unwrap().contains("test runs"), "{r}");
 }
+
+/// A lab under load ends thousands of runs: every ended run but the newest
+/// `MAX_FORGOTTEN` (32) lets its curves and paths go, finished runs too (they kept them for
+/// good, and the lab's memory grew without bound); a finished run keeps its result.
+#[test]
+fn finished_runs_beyond_the_newest_32_let_their_curves_go() {
+    let c = Client::start();
+    let ids: Vec<String> = (0..34)
+        .map(|seed| {
+            let a = c.post("/api/runs", &small(2, 200 + seed));
+            assert_eq!(a.status, 201, "{}", a.body);
+            a.json()["id"].as_str().unwrap().to_string()
+        })
+        .collect();
+    // One worker runs them in order: when the last has finished, all have.
+    assert_eq!(events(&c, &ids[33]).last().unwrap().1["status"], "finished");
+    let run = |id: &str| c.get(&format!("/api/runs/{id}")).json();
+    for (old, id) in ids.iter().enumerate().take(2) {
+        let r = run(id);
+        assert_eq!(r["status"], "finished", "{old}: {r}");
+        assert_eq!(r["generations"], json!([]), "{old}: {r}");
+        assert!(r["paths"].is_null() && !r["result"].is_null(), "{old}: {r}");
+    }
+    let newest = run(&ids[33]);
+    assert_eq!(newest["generations"].as_array().map(Vec::len), Some(2), "{newest}");
+    assert!(!newest["paths"].is_null(), "{newest}");
+}
