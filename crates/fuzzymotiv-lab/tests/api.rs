@@ -628,6 +628,10 @@ fn finished_runs_beyond_the_newest_32_let_their_curves_go() {
         assert!(r["paths"].is_null() && !r["result"].is_null(), "{old}: {r}");
     }
     let newest = run(&ids[33]);
-    assert_eq!(newest["generations"].as_array().map(Vec::len), Some(2), "{newest}");
+    assert_eq!(
+        newest["generations"].as_array().map(Vec::len),
+        Some(2),
+        "{newest}"
+    );
     assert!(!newest["paths"].is_null(), "{newest}");
 }
