@@ -126,7 +126,13 @@ impl Ga {
                             .iter()
                             .map(|&[a, g, l, b]| RoomScore {
                                 f: 0.0,
-                                terms: FitnessTerms { a, g, l, b },
+                                terms: FitnessTerms {
+                                    a,
+                                    g,
+                                    l,
+                                    b,
+                                    ..Default::default()
+                                },
                                 executed: 0,
                             })
                             .collect(),
@@ -142,6 +148,7 @@ impl Ga {
                     g: f64::NAN,
                     l: f64::NAN,
                     b: f64::NAN,
+                    ..Default::default()
                 },
             },
         }
@@ -465,7 +472,13 @@ impl Ga {
                         min: r.min,
                         max: r.max,
                     },
-                    terms: FitnessTerms { a, g, l, b },
+                    terms: FitnessTerms {
+                        a,
+                        g,
+                        l,
+                        b,
+                        ..Default::default()
+                    },
                 }
             })
             .collect();

@@ -323,7 +323,7 @@ fn fuzzy_fitness_one(
 ) -> PyResult<f64> {
     let x = self::motivations(motivations)?;
     terms_finite(&terms)?;
-    Ok(tsk(peaks, coefficients)?.evaluate(&x, terms))
+    Ok(tsk(peaks, coefficients)?.evaluate(&x, &terms))
 }
 
 /// F for every row of an `n × 4` float64 array.
@@ -355,7 +355,7 @@ fn fuzzy_fitness_many<'py>(
     let out: Vec<f64> = view
         .rows()
         .into_iter()
-        .map(|r| t.evaluate(&x, [r[0], r[1], r[2], r[3]]))
+        .map(|r| t.evaluate(&x, &[r[0], r[1], r[2], r[3]]))
         .collect();
     Ok(PyArray1::from_vec(py, out))
 }
@@ -373,7 +373,7 @@ fn explain<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let x = self::motivations(motivations)?;
     terms_finite(&terms)?;
-    let e = tsk(peaks, coefficients)?.explain(&x, terms);
+    let e = tsk(peaks, coefficients)?.explain(&x, &terms);
     let d = PyDict::new(py);
     d.set_item("fitness", e.fitness)?;
     d.set_item("weight_sum", e.weight_sum)?;

@@ -94,7 +94,7 @@ async fn explain(body: Bytes) -> Result<Json<Value>, ApiError> {
             "request body: field `fitness[{i}]`: must be a finite number (a, g, l, b are clamped to [0, 1])"
         )));
     }
-    let x = TskFitness::paper().explain(&m, req.fitness);
+    let x = TskFitness::paper().explain(&m, &req.fitness);
     Ok(Json(
         json!({ "fitness": x.fitness, "rules": x.rules, "weight_sum": x.weight_sum,
         "motivations": m.as_array() }),

@@ -336,7 +336,7 @@ fn about(s: &Settings, raw: &fuzzymotiv::experiment::RawConfig) -> Value {
     let m = &raw.motivations;
     json!({ "name": raw.name, "seed": raw.seed, "population": s.population,
             "generations": s.generations, "rooms": raw.rooms,
-            "motivations": [m.curiosity, m.homing, m.orientation, m.energy] })
+            "motivations": fuzzymotiv::fitness::PAPER_MOTIVATIONS.map(|n| m.weight_of(n).unwrap_or(0.0)) })
 }
 
 /// The finished run directories under `runs` (those of earlier sessions too).

@@ -12,6 +12,7 @@ pub(crate) mod evolution;
 pub(crate) mod modelling;
 pub(crate) mod outcome;
 pub(crate) mod setup;
+pub(crate) mod terms;
 
 /// The sections of a config as written, each checked into its subsystem's parameters.
 pub use config::{
@@ -27,12 +28,14 @@ pub use evolution::{Evolution, GenerationRecord, GenerationState, Observer, Popu
 pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
 pub use outcome::{Outcome, RunError, Start};
 pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, parse_room_file};
+pub use terms::UserTerm;
 
 use serde::{Deserialize, Serialize};
 
 use crate::evolution::ga::GaParams;
-use crate::fitness::fuzzy::{Motivations, TskFitness};
-use crate::fitness::terms::{FitnessTerms, Homing};
+use crate::experiment::terms::TermPlan;
+use crate::fitness::terms::Homing;
+use crate::fitness::{Motivations, TskFitness};
 use crate::modelling::aem::AemParams;
 use crate::params::{FieldError, check};
 use crate::random::seed::{Streams, hash_str};
@@ -58,6 +61,7 @@ pub struct Experiment {
     pub(crate) orientation: OrientationMode,
     pub(crate) homing: Homing,
     pub(crate) aem: AemParams,
+    pub(crate) plan: TermPlan,
 }
 
 impl Experiment {
@@ -67,17 +71,31 @@ impl Experiment {
         rooms: Vec<Room>,
         source_name: &str,
     ) -> Result<Experiment, ConfigError> {
-        Self::build(raw, rooms).map_err(|e| e.in_source(source_name))
+        Self::with_terms(raw, rooms, &[], source_name)
     }
 
-    fn build(raw: &RawConfig, rooms: Vec<Room>) -> Result<Experiment, FieldError> {
+    /// [`Experiment::new`], with user-defined terms a motivation's `term` can name.
+    pub fn with_terms(
+        raw: &RawConfig,
+        rooms: Vec<Room>,
+        user: &[UserTerm],
+        source_name: &str,
+    ) -> Result<Experiment, ConfigError> {
+        Self::build(raw, rooms, user).map_err(|e| e.in_source(source_name))
+    }
+
+    fn build(
+        raw: &RawConfig,
+        rooms: Vec<Room>,
+        user: &[UserTerm],
+    ) -> Result<Experiment, FieldError> {
         check_name(&raw.name)?;
         check_rooms(&rooms)?;
-        let motivations = raw.motivations.validated()?;
+        let fuzzy = raw.fuzzy.validated()?;
+        let motivations = raw.motivations.validated(&fuzzy)?;
         let ga = GaParams::from_raw(&raw.ga)?;
         let trial = TrialParams::from_raw(&raw.trial, &raw.robot, raw.aem.action_tolerance)?;
         let shape = raw.network.shape()?;
-        let fuzzy = raw.fuzzy.validated()?;
         let aem = AemParams::from_raw(&raw.aem, trial.steps(), rooms.len())?;
         check(
             raw.fitness.orientation != OrientationMode::Online
@@ -86,6 +104,13 @@ impl Experiment {
             || "\"online\" needs training = \"all-rooms\" with at least 2 rooms".into(),
         )?;
         check_clearance(&rooms, trial.robot().radius())?;
+        let plan = TermPlan::resolve(
+            &motivations,
+            user,
+            &rooms,
+            raw.fitness.waypoints,
+            raw.fitness.end_at_mission,
+        )?;
         let arenas = rooms.into_iter().map(|r| Arena::new(r, &trial)).collect();
         Ok(Experiment {
             name: raw.name.clone(),
@@ -101,6 +126,7 @@ impl Experiment {
             orientation: raw.fitness.orientation,
             homing: raw.fitness.homing,
             aem,
+            plan,
         })
     }
 
@@ -203,21 +229,6 @@ impl Experiment {
     /// The random streams of this experiment (docs/model.md §11).
     pub fn streams(&self) -> Streams {
         Streams::new(self.seed)
-    }
-
-    /// F for fitness terms under this experiment's motivations (battery direction applied).
-    pub fn fuzzy_fitness(&self, terms: &FitnessTerms) -> f64 {
-        self.fuzzy
-            .evaluate(&self.motivations, self.fuzzy_inputs(terms))
-    }
-
-    /// The fuzzy inputs Y for fitness terms (with `energy = "conserve"`, Y₄ = 1 − b).
-    pub fn fuzzy_inputs(&self, terms: &FitnessTerms) -> [f64; 4] {
-        let b = match self.energy {
-            EnergyMode::Use => terms.b,
-            EnergyMode::Conserve => 1.0 - terms.b,
-        };
-        [terms.a, terms.g, terms.l, b]
     }
 }
 
@@ -341,7 +352,7 @@ mod tests {
         assert_eq!(exp.aem(), &AemParams::default());
         assert_eq!(exp.ga(), &GaParams::default());
         assert_eq!(exp.shape(), MlpShape::default());
-        assert_eq!(exp.motivations(), &Motivations::HIGH_CURIOSITY);
+        assert_eq!(exp.motivations(), &Motivations::high_curiosity());
         assert_eq!(exp.fuzzy(), &TskFitness::paper());
         assert_eq!((exp.name(), exp.seed()), ("experiment", 1));
         assert_eq!(exp.arenas().len(), BUILTIN_ROOMS.len());

@@ -4,13 +4,18 @@
 pub(crate) mod episode;
 pub(crate) mod fll;
 pub(crate) mod fuzzy;
+pub(crate) mod motivation;
 pub(crate) mod terms;
 
 pub use episode::Episode;
 pub use fll::to_fll;
 pub use fuzzy::{
-    CoefficientScheme, Explanation, FiringRule, FuzzyError, MAX_COEFFICIENT_MAGNITUDE, MAX_LABELS,
-    MOTIVATION_NORMALISE_TOLERANCE, MOTIVATION_SUM_TOLERANCE, Motivations, PAPER_LABEL_NAMES,
-    PAPER_PEAKS, TskFitness, label_name,
+    CoefficientScheme, Coefficients, Explanation, FiringRule, FuzzyError,
+    MAX_COEFFICIENT_MAGNITUDE, MAX_LABELS, MOTIVATION_NORMALISE_TOLERANCE,
+    MOTIVATION_SUM_TOLERANCE, PAPER_LABEL_NAMES, PAPER_PEAKS, RawFuzzy, TskFitness, label_name,
+};
+pub use motivation::{
+    MAX_MOTIVATIONS, Motivation, Motivations, PAPER_MOTIVATIONS, PAPER_TERMS, RawMotivation,
+    RawMotivationTable, RawMotivations,
 };
 pub use terms::{FitnessTerms, Homing, TermsRecorder};

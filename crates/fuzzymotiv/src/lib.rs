@@ -52,7 +52,7 @@
 //! ```
 //! use fuzzymotiv::{Motivations, TskFitness};
 //! let x = Motivations::new(0.8, 0.1, 0.0, 0.1).unwrap();
-//! let f = TskFitness::paper().evaluate(&x, [0.95, 0.5, 0.0, 0.79]);
+//! let f = TskFitness::paper().evaluate(&x, &[0.95, 0.5, 0.0, 0.79]);
 //! assert!((f - 0.797220).abs() < 1e-6);
 //! ```
 //!
@@ -77,8 +77,8 @@ pub use experiment::evolution::{
 pub use experiment::outcome::{Interrupted, Outcome, RunError, RunObserver, Start};
 pub use experiment::setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError};
 pub use experiment::{Experiment, Run};
-pub use fitness::fuzzy::{Motivations, TskFitness};
 pub use fitness::terms::FitnessTerms;
+pub use fitness::{Motivations, TskFitness};
 pub use params::FieldError;
 pub use simulation::room::Room;
 pub use simulation::trial::{Arena, Trajectory};

@@ -10,21 +10,23 @@ use fuzzymotiv_io::{note, outln};
 #[derive(clap::Args)]
 pub struct FuzzyArgs {
     /// Motivations C,H,O,E (each in [0, 1], summing to 1; a sum within 0.001 of 1 is
-    /// normalised), e.g. 0.8,0.1,0,0.1.
-    #[arg(long, allow_hyphen_values = true, value_name = "C,H,O,E")]
+    /// normalised), e.g. 0.8,0.1,0,0.1; or any number by name, each weighing the term of its
+    /// name, e.g. curiosity=0.6,homing=0.1,orientation=0,energy=0.1,urgency=0.2.
+    #[arg(long, allow_hyphen_values = true, value_name = "C,H,O,E|name=w,…")]
     motivations: String,
-    /// Fitness values a,g,l,b (each clamped to [0, 1]), e.g. 0.95,0.5,0,0.79.
+    /// Fitness values a,g,l,b (each clamped to [0, 1]), e.g. 0.95,0.5,0,0.79; or by term,
+    /// e.g. a=0.95,g=0.5,l=0,b=0.79,urgency=0.4.
     #[arg(
         long,
         allow_hyphen_values = true,
-        value_name = "a,g,l,b",
+        value_name = "a,g,l,b|term=y,…",
         required_unless_present = "export_fll"
     )]
     fitness: Option<String>,
     /// Also list the firing rules with their labels, weights and outputs.
     #[arg(long, requires = "fitness")]
     explain: bool,
-    /// Write the 625-rule TSK of these motivations as a fuzzylite FLL file (`-`: standard
+    /// Write the TSK of these motivations (625 rules for the paper's four) as a fuzzylite FLL file (`-`: standard
     /// output). The same file again is left as it is; another file there is kept unless --force.
     #[arg(long, value_name = "FILE")]
     export_fll: Option<PathBuf>,
@@ -66,25 +68,127 @@ fn parse_four(text: &str, option: &str, names: [&str; 4]) -> Result<[f64; 4], Cl
     Ok(out)
 }
 
-/// Entry point of `fuzzymotiv fuzzy`.
-pub fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
-    use fuzzymotiv::fitness::{Motivations, TskFitness};
-    let x = parse_four(&args.motivations, "--motivations", ["C", "H", "O", "E"])?;
-    let (m, sum) = Motivations::normalised(x[0], x[1], x[2], x[3])
-        .map_err(|e| CliError::input(format!("--motivations: {e}")))?;
-    if let Some(sum) = sum {
+/// `name=value,…` pairs (the named form of --motivations and --fitness), or `None` for the
+/// paper's positional form (no `=`).
+fn parse_named(text: &str, option: &str) -> Result<Option<Vec<(String, f64)>>, CliError> {
+    if !text.contains('=') {
+        return Ok(None);
+    }
+    let mut out: Vec<(String, f64)> = Vec::new();
+    for part in text.split(',').map(str::trim) {
+        let bad = |why: &str| {
+            CliError::input(format!(
+                "{option}: `{part}` {why}; expected name=value pairs separated by commas, e.g. {option} curiosity=0.6,homing=0.1,orientation=0,energy=0.1,urgency=0.2"
+            ))
+        };
+        let (name, value) = part.split_once('=').ok_or_else(|| bad("has no `=`"))?;
+        let name = name.trim();
+        if name.is_empty() {
+            return Err(bad("has no name before `=`"));
+        }
+        if out.iter().any(|(n, _)| n == name) {
+            return Err(bad("names a motivation or term a second time"));
+        }
+        let value = value
+            .trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| bad("is not a finite number"))?;
+        out.push((name.to_string(), value));
+    }
+    Ok(Some(out))
+}
+
+/// The motivations of --motivations: the paper's C,H,O,E, or named ones (each weighing the
+/// term of its own name; curiosity, homing, orientation and energy weigh a, g, l and b).
+fn motivations_of(text: &str) -> Result<fuzzymotiv::fitness::Motivations, CliError> {
+    use fuzzymotiv::fitness::{RawMotivation, RawMotivations, TskFitness};
+    let raw = match parse_named(text, "--motivations")? {
+        None => RawMotivations::paper(parse_four(text, "--motivations", ["C", "H", "O", "E"])?),
+        Some(named) => RawMotivations {
+            list: named
+                .into_iter()
+                .map(|(n, w)| (n, RawMotivation::Weight(w)))
+                .collect(),
+        },
+    };
+    let mut normalised = raw.clone();
+    let paper = !text.contains('=');
+    if let Some(sum) = normalised.normalise(&TskFitness::paper()) {
+        if paper {
+            let x: Vec<f64> = normalised.list.iter().map(|(_, w)| w.weight()).collect();
+            note!("note: --motivations summed to {sum}, normalised to (C, H, O, E) = {x:?}");
+            return normalised
+                .validated(&TskFitness::paper())
+                .map_err(|e| CliError::input(format!("--motivations: {}", e.reason)));
+        }
+        let x: Vec<String> = normalised
+            .list
+            .iter()
+            .map(|(n, w)| format!("{n} = {}", w.weight()))
+            .collect();
         note!(
-            "note: --motivations summed to {sum}, normalised to (C, H, O, E) = {:?}",
-            m.as_array()
+            "note: --motivations summed to {sum}, normalised to {}",
+            x.join(", ")
         );
     }
+    normalised
+        .validated(&TskFitness::paper())
+        .map_err(|e| CliError::input(format!("--motivations: {}", e.reason)))
+}
+
+/// The fitness values of --fitness, one per motivation: a,g,l,b positionally for the paper's
+/// four, or named by term (`goal=0.7,…`).
+fn fitness_of(text: &str, m: &fuzzymotiv::fitness::Motivations) -> Result<Vec<f64>, CliError> {
+    let Some(named) = parse_named(text, "--fitness")? else {
+        if !m.is_paper() {
+            return Err(CliError::input(format!(
+                "--fitness: give the terms by name for these motivations, e.g. --fitness {}",
+                m.input_names()
+                    .iter()
+                    .map(|t| format!("{t}=0.5"))
+                    .collect::<Vec<_>>()
+                    .join(",")
+            )));
+        }
+        return Ok(parse_four(text, "--fitness", ["a", "g", "l", "b"])?.to_vec());
+    };
+    let inputs = m.input_names();
+    if let Some((extra, _)) = named.iter().find(|(n, _)| !inputs.contains(n)) {
+        return Err(CliError::input(format!(
+            "--fitness: `{extra}` is not an input of these motivations; the inputs are {}",
+            inputs.join(", ")
+        )));
+    }
+    inputs
+        .iter()
+        .map(|i| {
+            named
+                .iter()
+                .find(|(n, _)| n == i)
+                .map(|(_, v)| *v)
+                .ok_or_else(|| {
+                    CliError::input(format!(
+                        "--fitness: no value for `{i}`; give one per input: {}",
+                        inputs.join(", ")
+                    ))
+                })
+        })
+        .collect()
+}
+
+/// Entry point of `fuzzymotiv fuzzy`.
+pub fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
+    use fuzzymotiv::fitness::TskFitness;
+    let m = motivations_of(&args.motivations)?;
     let tsk = TskFitness::paper();
     if let Some(fitness) = &args.fitness {
-        let y = parse_four(fitness, "--fitness", ["a", "g", "l", "b"])?;
-        let f = tsk.evaluate(&m, y);
+        let y = fitness_of(fitness, &m)?;
+        let f = tsk.evaluate(&m, &y);
         outln!("{f:.12}")?;
         if args.explain {
-            fuzzymotiv_io::out!("{}", tsk.explain(&m, y))?;
+            fuzzymotiv_io::out!("{}", tsk.explain(&m, &y))?;
         }
     }
     if let Some(path) = &args.export_fll {
@@ -122,7 +226,7 @@ fn export_fll(
     note!(
         "wrote {} ({} rules, fuzzylite FLL)",
         path.display(),
-        tsk.rule_count()
+        tsk.rule_count(m)
     );
     Ok(())
 }

@@ -99,7 +99,7 @@ impl RenderContext {
                 label_names: (0..tsk.labels())
                     .map(|k| label_name(k, tsk.labels()))
                     .collect(),
-                rule_count: tsk.rule_count(),
+                rule_count: tsk.rule_count(exp.motivations()),
             },
             energy: exp.energy(),
             homing: exp.homing(),

@@ -216,7 +216,7 @@ pub struct RoomFuzzy {
     /// F in this room.
     pub f: f64,
     /// The fuzzy inputs Y (b or 1 − b by the energy mode), before clamping.
-    pub inputs: [f64; 4],
+    pub inputs: Vec<f64>,
     /// The firing rules and the sums that give F.
     pub explanation: Explanation,
 }
@@ -232,8 +232,8 @@ impl RoomFuzzy {
             room: exp.arenas()[r].room().name.clone(),
             terms: score.terms,
             f: score.f,
+            explanation: exp.fuzzy().explain(exp.motivations(), &inputs),
             inputs,
-            explanation: exp.fuzzy().explain(exp.motivations(), inputs),
         }
     }
 }

@@ -774,13 +774,14 @@ fn files_list() -> String {
 
 /// One room's firing rules as an HTML table, with the sums that give F.
 fn rules_html(ctx: &RenderContext, room: &RoomFuzzy) -> String {
-    let (ex, y) = (&room.explanation, room.inputs);
+    let (ex, y) = (&room.explanation, &room.inputs);
     let mut rules = String::from(
         "<table><tr><th>rule</th><th class=\"left\">if …</th><th>w</th><th>f</th><th>w·f</th></tr>",
     );
     let mut sum_wf = 0.0;
     for rule in &ex.rules {
-        let cond = ["a", "g", "l", "b"]
+        let cond = ex
+            .inputs
             .iter()
             .zip(&rule.label_names)
             .map(|(i, n)| format!("{i} is {n}"))

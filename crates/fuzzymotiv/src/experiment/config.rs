@@ -13,8 +13,8 @@
 use serde::{Deserialize, Serialize};
 
 pub use crate::evolution::ga::RawGa;
-pub use crate::fitness::fuzzy::{Coefficients, RawFuzzy, RawMotivations};
-use crate::fitness::terms::Homing;
+use crate::fitness::terms::{Homing, WaypointOrder};
+pub use crate::fitness::{Coefficients, RawFuzzy, RawMotivations};
 pub use crate::modelling::aem::RawAem;
 use crate::params::{BIG, FieldError};
 pub use crate::simulation::controller::RawNetwork;
@@ -73,6 +73,18 @@ pub struct RawFitness {
     pub orientation: OrientationMode,
     /// `"escape"` (default) or `"distance"`.
     pub homing: Homing,
+    /// How the `waypoints` term counts: `"in-order"` (default) or `"any-order"`.
+    #[serde(skip_serializing_if = "is_default")]
+    pub waypoints: WaypointOrder,
+    /// Whether a trial ends the step its mission is done (as it ends at home); default false.
+    #[serde(skip_serializing_if = "is_default")]
+    pub end_at_mission: bool,
+}
+
+/// Whether `v` is its type's default (options added later are written only when set, so that
+/// the configs of earlier runs read and write back byte for byte).
+fn is_default<T: Default + PartialEq>(v: &T) -> bool {
+    *v == T::default()
 }
 
 /// The configuration document as written (every key optional, the defaults of docs/model.md).

@@ -7,12 +7,12 @@ use serde::{Deserialize, Serialize};
 use crate::evolution::population::Population;
 use crate::experiment::config::OrientationMode;
 use crate::experiment::{Experiment, Run};
-use crate::fitness::terms::{FitnessTerms, TermsRecorder};
+use crate::fitness::terms::{FitnessTerms, TermsRecorder, TrialRecord, UserValues};
 use crate::modelling::aem::{Action, environment_vector};
 use crate::modelling::recognition::nearest_unique;
 use crate::random::rng::rng_from_seed;
 use crate::simulation::controller::{GenomeError, Mlp};
-use crate::simulation::trial::{ActionLog, simulate};
+use crate::simulation::trial::{ActionLog, Arena, Trajectory, simulate};
 
 impl Experiment {
     /// The experiment's network for `genome`: an error when its length is not the network's
@@ -40,18 +40,48 @@ impl Experiment {
     ) -> (FitnessTerms, Vec<Action>, usize) {
         let arena = &self.arenas[room];
         let mut rng = rng_from_seed(seed);
+        let mut recorder = TermsRecorder::new(arena, self.homing);
+        if let Some(tracker) = self.plan.tracker(arena.room()) {
+            recorder = recorder.with_mission(tracker);
+        }
         let mut obs = (
-            TermsRecorder::new(arena, self.homing),
+            recorder,
             ActionLog {
                 actions: Vec::with_capacity(if actions { self.trial.steps() } else { 0 }),
             },
         );
+        if self.plan.user.iter().any(|u| u.term.is_some()) {
+            let mut trajectory = Trajectory::starting_at(arena.room().home, self.trial.steps());
+            simulate(arena, network, &mut rng, &mut (&mut obs, &mut trajectory));
+            let mut terms = obs.0.finish();
+            self.user_values(arena, &trajectory, &mut terms);
+            return (terms, obs.1.actions, obs.0.executed());
+        }
         if actions {
             simulate(arena, network, &mut rng, &mut obs);
         } else {
             simulate(arena, network, &mut rng, &mut obs.0);
         }
-        (obs.0.finish(), obs.1.actions, obs.0.executed())
+        let mut terms = obs.0.finish();
+        terms.user = UserValues::zeros(self.plan.user.len());
+        (terms, obs.1.actions, obs.0.executed())
+    }
+
+    /// The user-defined terms' values of a finished trial (supplied ones left at 0 for the front
+    /// to fill in).
+    fn user_values(&self, arena: &Arena, trajectory: &Trajectory, terms: &mut FitnessTerms) {
+        let mut values = UserValues::zeros(self.plan.user.len());
+        for (v, u) in values.as_mut_slice().iter_mut().zip(&self.plan.user) {
+            if let Some(term) = &u.term {
+                let record = TrialRecord {
+                    arena,
+                    trajectory,
+                    terms,
+                };
+                *v = term.value(&record);
+            }
+        }
+        terms.user = values;
     }
 
     /// The random stream of individual `individual`'s evaluation trial in `room` in generation
@@ -171,10 +201,7 @@ impl Evaluation {
         let n = self.per_room.len() as f64;
         let mut t = FitnessTerms::default();
         for s in &self.per_room {
-            t.a += s.terms.a / n;
-            t.g += s.terms.g / n;
-            t.l += s.terms.l / n;
-            t.b += s.terms.b / n;
+            t.add_mean(&s.terms, n);
         }
         t
     }

@@ -71,22 +71,14 @@ impl Experiment {
     pub fn generation_record(&self, generation: usize, evals: &[Evaluation]) -> GenerationRecord {
         let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
         let n = evals.len() as f64;
-        let mut mean = [0.0; 4];
+        let mut terms = FitnessTerms::default();
         for e in evals {
-            let t = e.mean_terms();
-            for (m, v) in mean.iter_mut().zip(t.as_array()) {
-                *m += v / n;
-            }
+            terms.add_mean(&e.mean_terms(), n);
         }
         GenerationRecord {
             generation,
             stats: Stats::of(&fitness),
-            terms: FitnessTerms {
-                a: mean[0],
-                g: mean[1],
-                l: mean[2],
-                b: mean[3],
-            },
+            terms,
         }
     }
 

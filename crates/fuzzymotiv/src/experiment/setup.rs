@@ -18,7 +18,7 @@
 
 use crate::experiment::Experiment;
 use crate::experiment::config::{RawConfig, at_line};
-use crate::fitness::fuzzy::{Motivations, RawMotivations};
+use crate::fitness::{PAPER_MOTIVATIONS, RawMotivations};
 use crate::params::FieldError;
 use crate::simulation::room::{BUILTIN_ROOMS, Room};
 
@@ -94,15 +94,10 @@ impl Setup {
         for (i, entry) in raw.rooms.iter_mut().enumerate() {
             rooms.push(resolve_room(i, entry, source_name, files)?);
         }
-        let notes = raw
-            .motivations
-            .normalise()
-            .map(|(sum, m)| {
-                format!(
-                    "{source_name}: motivations summed to {sum}, normalised to (C, H, O, E) = {:?}",
-                    m.as_array()
-                )
-            })
+        let shared = raw.fuzzy.validated().ok();
+        let notes = shared
+            .and_then(|shared| raw.motivations.normalise(&shared))
+            .map(|sum| normalised_note(source_name, sum, &raw.motivations))
             .into_iter()
             .collect();
         let experiment = Experiment::new(&raw, rooms, source_name)?;
@@ -153,17 +148,26 @@ pub fn parse_room_file(text: &str, source_name: &str) -> Result<Room, SetupError
     Ok(Room::from_toml_str(text, source_name)?)
 }
 
-impl RawMotivations {
-    /// docs/model.md §8: motivations summing to within 0.001 of 1 (but not within 1e-9) are
-    /// divided by their sum; returns the original sum and the normalised motivations then.
-    /// Values farther off are left as they are, for validation to refuse.
-    pub fn normalise(&mut self) -> Option<(f64, Motivations)> {
-        let (m, sum) =
-            Motivations::normalised(self.curiosity, self.homing, self.orientation, self.energy)
-                .ok()?;
-        let sum = sum?;
-        [self.curiosity, self.homing, self.orientation, self.energy] = m.as_array();
-        Some((sum, m))
+/// What normalising the motivations did: `(C, H, O, E) = [..]` for the paper's four.
+fn normalised_note(source_name: &str, sum: f64, m: &RawMotivations) -> String {
+    let paper = m.list.len() == 4
+        && m.list
+            .iter()
+            .zip(PAPER_MOTIVATIONS)
+            .all(|((n, _), p)| n == p);
+    if paper {
+        let x: Vec<f64> = m.list.iter().map(|(_, w)| w.weight()).collect();
+        format!("{source_name}: motivations summed to {sum}, normalised to (C, H, O, E) = {x:?}")
+    } else {
+        let x: Vec<String> = m
+            .list
+            .iter()
+            .map(|(n, w)| format!("{n} = {}", w.weight()))
+            .collect();
+        format!(
+            "{source_name}: motivations summed to {sum}, normalised to {}",
+            x.join(", ")
+        )
     }
 }
 
@@ -230,21 +234,19 @@ mod tests {
     /// Motivations a little off 1 are normalised (and said); far off is an error.
     #[test]
     fn motivations_are_normalised_once_and_said() {
-        let mut m = RawMotivations {
-            curiosity: 0.3333,
-            homing: 0.3333,
-            orientation: 0.0,
-            energy: 0.3333,
-        };
-        let (sum, n) = m.normalise().unwrap();
+        let shared = crate::fitness::TskFitness::paper();
+        let mut m = RawMotivations::paper([0.3333, 0.3333, 0.0, 0.3333]);
+        let sum = m.normalise(&shared).unwrap();
         assert!((sum - 0.9999).abs() < 1e-12);
-        assert_eq!(m.curiosity, n.curiosity());
-        assert_eq!(m.normalise(), None, "already normalised");
-        let mut far = RawMotivations {
-            curiosity: 0.5,
-            ..m
-        };
-        assert_eq!(far.normalise(), None);
-        assert_eq!(far.curiosity, 0.5, "left for validation to refuse");
+        let n = m.validated(&shared).unwrap();
+        assert_eq!(m.weight_of("curiosity"), Some(n.curiosity()));
+        assert_eq!(m.normalise(&shared), None, "already normalised");
+        let mut far = RawMotivations::paper([0.5, 0.3333, 0.0, 0.3333]);
+        assert_eq!(far.normalise(&shared), None);
+        assert_eq!(
+            far.weight_of("curiosity"),
+            Some(0.5),
+            "left for validation to refuse"
+        );
     }
 }

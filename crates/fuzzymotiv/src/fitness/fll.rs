@@ -13,14 +13,15 @@
 //! ```
 //! use fuzzymotiv::fitness::to_fll;
 //! use fuzzymotiv::fitness::{Motivations, TskFitness};
-//! let text = to_fll(&TskFitness::paper(), &Motivations::HIGH_CURIOSITY, "high_curiosity");
+//! let text = to_fll(&TskFitness::paper(), &Motivations::high_curiosity(), "high_curiosity");
 //! assert_eq!(text.matches("\n  rule: ").count(), 625);
 //! assert!(text.contains("term: r10 Linear 0.8 0.025 0 0 0"));
 //! ```
 
 use std::fmt::Write as _;
 
-use crate::fitness::fuzzy::{INPUT_NAMES, Motivations, TskFitness};
+use crate::fitness::fuzzy::TskFitness;
+use crate::fitness::motivation::Motivations;
 
 /// Name of the FLL output variable.
 pub const OUTPUT_NAME: &str = "F";
@@ -98,47 +99,55 @@ fn term_shape(peaks: &[f64], m: usize) -> String {
 /// The TSK fuzzy fitness `tsk` under `motivations` as a fuzzylite FLL engine named `name`
 /// (characters other than letters, digits and `_` become `_`). See the module documentation.
 pub fn to_fll(tsk: &TskFitness, motivations: &Motivations, name: &str) -> String {
-    let peaks = tsk.peaks();
-    let c = tsk.coefficients();
-    let m = tsk.labels();
-    let x = motivations.as_array();
+    let inputs = motivations.input_names();
+    let labels: Vec<&TskFitness> = motivations
+        .iter()
+        .map(|m| m.labels().unwrap_or(tsk))
+        .collect();
+    let x = motivations.weights();
     let mut s = String::new();
     let _ = writeln!(s, "Engine: {}", identifier(name));
     let _ = writeln!(
         s,
-        "  description: fuzzymotiv {} TSK motivation fitness, (C,H,O,E) = ({},{},{},{}), {} rules",
+        "  description: fuzzymotiv {} TSK motivation fitness, {}, {} rules",
         env!("CARGO_PKG_VERSION"),
-        num(x[0]),
-        num(x[1]),
-        num(x[2]),
-        num(x[3]),
-        tsk.rule_count()
+        describe(motivations),
+        tsk.rule_count(motivations)
     );
-    for input in INPUT_NAMES {
+    for (input, l) in inputs.iter().zip(&labels) {
         let _ = writeln!(s, "InputVariable: {input}");
         s.push_str("  enabled: true\n  range: 0 1\n  lock-range: true\n");
-        for k in 0..m {
-            let _ = writeln!(s, "  term: {} {}", fll_label(k, m), term_shape(peaks, k));
+        for k in 0..l.labels() {
+            let _ = writeln!(
+                s,
+                "  term: {} {}",
+                fll_label(k, l.labels()),
+                term_shape(l.peaks(), k)
+            );
         }
     }
     let _ = writeln!(s, "OutputVariable: {OUTPUT_NAME}");
     s.push_str(
         "  enabled: true\n  range: 0 1\n  lock-range: false\n  aggregation: none\n  defuzzifier: WeightedAverage TakagiSugeno\n  default: nan\n  lock-previous: false\n",
     );
-    for n in 1..=tsk.rule_count() {
-        let labels = tsk.rule_labels(n);
-        let coefs: Vec<String> = (0..4).map(|i| num(x[i] * c[labels[i] - 1])).collect();
+    let rules = tsk.rule_count(motivations);
+    for n in 1..=rules {
+        let rule = tsk.rule_labels(motivations, n);
+        let coefs: Vec<String> = (0..rule.len())
+            .map(|i| num(x[i] * labels[i].coefficients()[rule[i] - 1]))
+            .collect();
         let _ = writeln!(s, "  term: r{n} Linear {} 0", coefs.join(" "));
     }
     s.push_str(
         "RuleBlock: rules\n  enabled: true\n  conjunction: Minimum\n  disjunction: none\n  implication: none\n  activation: General\n",
     );
-    for n in 1..=tsk.rule_count() {
-        let labels = tsk.rule_labels(n);
-        let condition: Vec<String> = INPUT_NAMES
+    for n in 1..=rules {
+        let rule = tsk.rule_labels(motivations, n);
+        let condition: Vec<String> = inputs
             .iter()
-            .zip(labels)
-            .map(|(input, l)| format!("{input} is {}", fll_label(l - 1, m)))
+            .zip(&rule)
+            .zip(&labels)
+            .map(|((input, &l), t)| format!("{input} is {}", fll_label(l - 1, t.labels())))
             .collect();
         let _ = writeln!(
             s,
@@ -149,6 +158,20 @@ pub fn to_fll(tsk: &TskFitness, motivations: &Motivations, name: &str) -> String
     s
 }
 
+/// `(C,H,O,E) = (0.8,0.1,0,0.1)` for the paper's four, else `X = (name 0.6, …)`.
+fn describe(motivations: &Motivations) -> String {
+    if motivations.is_paper() {
+        let x: Vec<String> = motivations.weights().into_iter().map(num).collect();
+        format!("(C,H,O,E) = ({})", x.join(","))
+    } else {
+        let x: Vec<String> = motivations
+            .iter()
+            .map(|m| format!("{} {}", m.name(), num(m.weight())))
+            .collect();
+        format!("X = ({})", x.join(", "))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -156,8 +179,8 @@ mod tests {
 
     /// Evaluates an FLL text the way fuzzylite does, from the text alone (terms, rules,
     /// `Linear` coefficients), for the shapes `to_fll` writes.
-    fn eval_fll(text: &str, y: [f64; 4]) -> f64 {
-        let y = y.map(|v| v.clamp(0.0, 1.0));
+    fn eval_fll(text: &str, y: &[f64]) -> f64 {
+        let y: Vec<f64> = y.iter().map(|v| v.clamp(0.0, 1.0)).collect();
         let mut terms: Vec<std::collections::HashMap<String, Vec<f64>>> = vec![];
         let mut outputs = std::collections::HashMap::new();
         let mut in_output = false;
@@ -201,7 +224,7 @@ mod tests {
                     w = w.min(mu);
                 }
                 let c = &outputs[out];
-                let f: f64 = (0..4).map(|i| c[i] * y[i]).sum::<f64>() + c[4];
+                let f: f64 = (0..y.len()).map(|i| c[i] * y[i]).sum::<f64>() + c[y.len()];
                 num += w * f;
                 den += w;
             }
@@ -211,7 +234,7 @@ mod tests {
 
     #[test]
     fn paper_engine_has_625_rules_and_terms() {
-        let x = Motivations::HIGH_CURIOSITY;
+        let x = Motivations::high_curiosity();
         let text = to_fll(&TskFitness::paper(), &x, "high curiosity");
         assert!(text.starts_with("Engine: high_curiosity\n"));
         assert_eq!(text.matches("\n  rule: if ").count(), 625);
@@ -241,7 +264,7 @@ mod tests {
         .unwrap();
         let text = to_fll(&tsk, &x, "t");
         for n in 1..=625 {
-            let labels = tsk.rule_labels(n);
+            let labels = tsk.rule_labels(&x, n);
             let prefix = format!("  term: r{n} Linear ");
             let line = text.lines().find(|l| l.starts_with(&prefix)).unwrap();
             let values: Vec<f64> = line[prefix.len()..]
@@ -264,8 +287,8 @@ mod tests {
     #[test]
     fn fll_semantics_match_evaluate() {
         let cases = [
-            (TskFitness::paper(), Motivations::HIGH_CURIOSITY),
-            (TskFitness::paper(), Motivations::LOW_CURIOSITY),
+            (TskFitness::paper(), Motivations::high_curiosity()),
+            (TskFitness::paper(), Motivations::low_curiosity()),
             (
                 TskFitness::with_scheme(vec![0.1, 0.3, 0.35, 0.9], CoefficientScheme::Ratio)
                     .unwrap(),
@@ -282,12 +305,12 @@ mod tests {
                     (t * 0.533).fract(),
                     (t * 0.771).fract(),
                 ];
-                let ours = tsk.evaluate(x, y);
-                let theirs = eval_fll(&text, y);
+                let ours = tsk.evaluate(x, &y);
+                let theirs = eval_fll(&text, &y);
                 assert!((ours - theirs).abs() < 1e-12, "{y:?}: {ours} vs {theirs}");
             }
         }
-        let text = to_fll(&TskFitness::paper(), &Motivations::HIGH_CURIOSITY, "t");
-        assert!((eval_fll(&text, [0.95, 0.5, 0.0, 0.79]) - 0.797220).abs() < 1e-6);
+        let text = to_fll(&TskFitness::paper(), &Motivations::high_curiosity(), "t");
+        assert!((eval_fll(&text, &[0.95, 0.5, 0.0, 0.79]) - 0.797220).abs() < 1e-6);
     }
 }

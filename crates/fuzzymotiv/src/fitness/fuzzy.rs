@@ -26,6 +26,7 @@
 
 use std::fmt;
 
+use crate::fitness::motivation::{MAX_MOTIVATIONS, Motivation, Motivations};
 use crate::params::Num;
 
 /// Tolerance on `|C + H + O + E − 1|` accepted by [`Motivations::new`].
@@ -43,10 +44,6 @@ pub const MAX_LABELS: usize = 255;
 /// rule output `f[n]` finite.
 pub const MAX_COEFFICIENT_MAGNITUDE: f64 = 1e300;
 
-/// Short names of the four fitness inputs `Y = (a, g, l, b)`: exploration
-/// (`a`), homing (`g`), orientation/recognition (`l`) and battery (`b`).
-pub const INPUT_NAMES: [&str; 4] = ["a", "g", "l", "b"];
-
 /// Label names used when there are exactly five labels (`M = 5`), from the
 /// lowest peak to the highest.
 pub const PAPER_LABEL_NAMES: [&str; 5] = ["V.L.", "L", "M", "H", "V.H."];
@@ -62,61 +59,78 @@ pub enum FuzzyError {
     /// One motivation is not a finite number in `[0, 1]`.
     #[error("{name} must be a number in [0, 1], got {}", Num(*.value))]
     MotivationOutOfRange {
-        /// Field name: `curiosity`, `homing`, `orientation` or `energy`.
-        name: &'static str,
+        /// The motivation's name: `curiosity`, `homing`, `orientation`, `energy` or the config's.
+        name: String,
         /// The rejected value.
         value: f64,
     },
-    /// The four motivations do not sum to 1 (within
-    /// [`MOTIVATION_SUM_TOLERANCE`]).
+    /// The motivations do not sum to 1 (within [`MOTIVATION_SUM_TOLERANCE`]).
     #[error(
-        "motivations must sum to 1, got {} (curiosity {} + homing {} + orientation {} + energy {}); a sum within 0.001 of 1 is normalised, farther off is an error", Num(*.sum), Num(*.curiosity), Num(*.homing), Num(*.orientation), Num(*.energy)
+        "motivations must sum to 1, got {} ({}); a sum within 0.001 of 1 is normalised, farther off is an error", Num(*.sum), sum_parts(.parts)
     )]
     MotivationSum {
-        /// The actual sum `C + H + O + E`.
+        /// The actual sum `Σ X_i`.
         sum: f64,
-        /// Curiosity `C`.
-        curiosity: f64,
-        /// Homing `H`.
-        homing: f64,
-        /// Orientation `O`.
-        orientation: f64,
-        /// Energy `E`.
-        energy: f64,
+        /// Each motivation's name and weight, in input order.
+        parts: Vec<(String, f64)>,
+    },
+    /// Fewer than one or more than [`crate::fitness::MAX_MOTIVATIONS`] motivations.
+    #[error("there must be from 1 to {max} motivations, got {count}")]
+    MotivationCount {
+        /// Number given.
+        count: usize,
+        /// The most allowed.
+        max: usize,
+    },
+    /// Two motivations have the same name.
+    #[error("two motivations are named {name:?}; each needs its own name")]
+    DuplicateMotivation {
+        /// The repeated name.
+        name: String,
     },
     /// Fewer than two or more than [`MAX_LABELS`] peaks were given.
-    #[error("fuzzy.peaks must have between 2 and {max} values, got {count}")]
+    #[error("{of}peaks must have between 2 and {max} values, got {count}")]
     PeakCount {
+        /// Where the labels were given: `fuzzy.` or `motivations.NAME.`.
+        of: String,
         /// Number of peaks given.
         count: usize,
         /// Maximum allowed ([`MAX_LABELS`]).
         max: usize,
     },
     /// A peak is NaN or infinite.
-    #[error("fuzzy.peaks must be finite numbers, got {value} at position {index} (0-based)")]
+    #[error("{of}peaks must be finite numbers, got {value} at position {index} (0-based)")]
     NonFinitePeak {
+        /// Where the labels were given: `fuzzy.` or `motivations.NAME.`.
+        of: String,
         /// 0-based position in the list.
         index: usize,
         /// The rejected value.
         value: f64,
     },
     /// The peaks are not strictly increasing.
-    #[error("fuzzy.peaks must be strictly increasing, got {peaks:?}")]
+    #[error("{of}peaks must be strictly increasing, got {peaks:?}")]
     PeaksNotIncreasing {
+        /// Where the labels were given: `fuzzy.` or `motivations.NAME.`.
+        of: String,
         /// The rejected list.
         peaks: Vec<f64>,
     },
     /// Two neighbouring peaks are so far apart that their gap overflows.
-    #[error("fuzzy.peaks gap between {low} and {high} is too large to represent")]
+    #[error("{of}peaks gap between {low} and {high} is too large to represent")]
     PeakGapTooLarge {
+        /// Where the labels were given: `fuzzy.` or `motivations.NAME.`.
+        of: String,
         /// Lower peak.
         low: f64,
         /// Upper peak.
         high: f64,
     },
     /// The coefficient list length differs from the number of peaks.
-    #[error("fuzzy.coefficients must have {expected} values (one per label), got {got}")]
+    #[error("{of}coefficients must have {expected} values (one per label), got {got}")]
     CoefficientCount {
+        /// Where the labels were given: `fuzzy.` or `motivations.NAME.`.
+        of: String,
         /// Number of labels (peaks).
         expected: usize,
         /// Number of coefficients given.
@@ -125,9 +139,11 @@ pub enum FuzzyError {
     /// A coefficient is NaN, infinite or larger in magnitude than
     /// [`MAX_COEFFICIENT_MAGNITUDE`].
     #[error(
-        "fuzzy.coefficients must be finite numbers with magnitude at most 1e300, got {} at position {index} (0-based)", Num(*.value)
+        "{of}coefficients must be finite numbers with magnitude at most 1e300, got {} at position {index} (0-based)", Num(*.value)
     )]
     InvalidCoefficient {
+        /// Where the labels were given: `fuzzy.` or `motivations.NAME.`.
+        of: String,
         /// 0-based position in the list.
         index: usize,
         /// The rejected value.
@@ -135,65 +151,7 @@ pub enum FuzzyError {
     },
 }
 
-/// Motivations `X = (C, H, O, E)`: curiosity `C`, homing `H`, orientation `O`
-/// and energy `E`. Dimensionless weights, each in `[0, 1]`, summing to 1.
-///
-/// Built only by checking: [`Motivations::new`], [`Motivations::normalised`],
-/// [`RawMotivations::validated`], or the paper's settings ([`Motivations::HIGH_CURIOSITY`],
-/// [`Motivations::LOW_CURIOSITY`]); read through the accessors.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Motivations {
-    curiosity: f64,
-    homing: f64,
-    orientation: f64,
-    energy: f64,
-}
-
-/// `[motivations]` in a config, as written: X = (C, H, O, E), each in [0, 1], summing to 1;
-/// default the paper's high-curiosity setting [`Motivations::HIGH_CURIOSITY`].
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RawMotivations {
-    /// Curiosity C (weight of exploration a); default 0.8.
-    pub curiosity: f64,
-    /// Homing H (weight of homing g); default 0.1.
-    pub homing: f64,
-    /// Orientation O (weight of recognition l); default 0.
-    pub orientation: f64,
-    /// Energy E (weight of battery b); default 0.1.
-    pub energy: f64,
-}
-
-impl Default for RawMotivations {
-    fn default() -> Self {
-        let m = Motivations::HIGH_CURIOSITY;
-        Self {
-            curiosity: m.curiosity,
-            homing: m.homing,
-            orientation: m.orientation,
-            energy: m.energy,
-        }
-    }
-}
-
-impl RawMotivations {
-    /// The validated motivations, normalised as [`Motivations::normalised`] says (as the
-    /// error text promises); an error names `motivations.NAME` or `motivations`.
-    pub fn validated(&self) -> Result<Motivations, crate::params::FieldError> {
-        let (c, h, o, e) = (self.curiosity, self.homing, self.orientation, self.energy);
-        Motivations::normalised(c, h, o, e)
-            .map(|(m, _)| m)
-            .map_err(|e| {
-                let field = match &e {
-                    FuzzyError::MotivationOutOfRange { name, .. } => format!("motivations.{name}"),
-                    _ => "motivations".to_string(),
-                };
-                crate::params::FieldError::new(field, e.to_string())
-            })
-    }
-}
-
-/// Coefficient array of `[fuzzy]`: a scheme name or explicit values.
+/// Coefficient array of `[fuzzy]`: a scheme name or explicit values (default `"linear"`).
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(untagged)]
 pub enum Coefficients {
@@ -214,6 +172,12 @@ pub struct RawFuzzy {
     pub coefficients: Coefficients,
 }
 
+impl Default for Coefficients {
+    fn default() -> Self {
+        Coefficients::Scheme(CoefficientScheme::Linear)
+    }
+}
+
 impl Default for RawFuzzy {
     fn default() -> Self {
         Self {
@@ -226,111 +190,24 @@ impl Default for RawFuzzy {
 impl RawFuzzy {
     /// The validated evaluator; an error names `fuzzy.peaks` or `fuzzy.coefficients`.
     pub fn validated(&self) -> Result<TskFitness, crate::params::FieldError> {
-        match &self.coefficients {
-            Coefficients::Scheme(s) => TskFitness::with_scheme(self.peaks.clone(), *s),
-            Coefficients::Values(v) => TskFitness::new(self.peaks.clone(), v.clone()),
-        }
-        .map_err(|e| {
-            let field = match e {
-                FuzzyError::CoefficientCount { .. } | FuzzyError::InvalidCoefficient { .. } => {
-                    "fuzzy.coefficients"
-                }
-                _ => "fuzzy.peaks",
-            };
-            crate::params::FieldError::new(field, e.to_string())
-        })
+        TskFitness::of_raw(self.peaks.clone(), &self.coefficients, "fuzzy.")
     }
 }
 
-impl Motivations {
-    /// The paper's high-curiosity setting `(C, H, O, E) = (0.8, 0.1, 0, 0.1)`.
-    pub const HIGH_CURIOSITY: Motivations = Motivations {
-        curiosity: 0.8,
-        homing: 0.1,
-        orientation: 0.0,
-        energy: 0.1,
-    };
-
-    /// The paper's low-curiosity setting `(C, H, O, E) = (0.5, 0.3, 0, 0.2)`.
-    pub const LOW_CURIOSITY: Motivations = Motivations {
-        curiosity: 0.5,
-        homing: 0.3,
-        orientation: 0.0,
-        energy: 0.2,
-    };
-
-    /// Validates and builds motivations. Each value must be a finite number
-    /// in `[0, 1]` and the four must sum to 1 within
-    /// [`MOTIVATION_SUM_TOLERANCE`]; nothing is renormalised.
-    pub fn new(
-        curiosity: f64,
-        homing: f64,
-        orientation: f64,
-        energy: f64,
-    ) -> Result<Self, FuzzyError> {
-        check_each_in_unit_range([curiosity, homing, orientation, energy])?;
-        let sum = curiosity + homing + orientation + energy;
-        if (sum - 1.0).abs() > MOTIVATION_SUM_TOLERANCE {
-            return Err(FuzzyError::MotivationSum {
-                sum,
-                curiosity,
-                homing,
-                orientation,
-                energy,
-            });
+impl FuzzyError {
+    /// The field a label error is about (`{of}peaks` or `{of}coefficients`), for the other
+    /// errors `None`.
+    fn label_field(&self) -> Option<String> {
+        match self {
+            FuzzyError::CoefficientCount { of, .. } | FuzzyError::InvalidCoefficient { of, .. } => {
+                Some(format!("{of}coefficients"))
+            }
+            FuzzyError::PeakCount { of, .. }
+            | FuzzyError::NonFinitePeak { of, .. }
+            | FuzzyError::PeaksNotIncreasing { of, .. }
+            | FuzzyError::PeakGapTooLarge { of, .. } => Some(format!("{of}peaks")),
+            _ => None,
         }
-        Ok(Self {
-            curiosity,
-            homing,
-            orientation,
-            energy,
-        })
-    }
-
-    /// Like [`Motivations::new`], but a sum within [`MOTIVATION_NORMALISE_TOLERANCE`] of 1 is
-    /// normalised (each value divided by the sum); then the original sum is returned as well,
-    /// so the caller can say so.
-    pub fn normalised(
-        curiosity: f64,
-        homing: f64,
-        orientation: f64,
-        energy: f64,
-    ) -> Result<(Self, Option<f64>), FuzzyError> {
-        // Each value first: a NaN or out-of-range one would otherwise make the sum NaN (or
-        // near 1) and be divided into the others, and the error would name the wrong field.
-        check_each_in_unit_range([curiosity, homing, orientation, energy])?;
-        let sum = curiosity + homing + orientation + energy;
-        let off = (sum - 1.0).abs();
-        if off <= MOTIVATION_SUM_TOLERANCE || off > MOTIVATION_NORMALISE_TOLERANCE {
-            return Self::new(curiosity, homing, orientation, energy).map(|m| (m, None));
-        }
-        let [c, h, o, e] = [curiosity, homing, orientation, energy].map(|v| v / sum);
-        Self::new(c, h, o, e).map(|m| (m, Some(sum)))
-    }
-
-    /// Curiosity `C`: weight of exploration fitness `a`.
-    pub fn curiosity(&self) -> f64 {
-        self.curiosity
-    }
-
-    /// Homing `H`: weight of homing fitness `g`.
-    pub fn homing(&self) -> f64 {
-        self.homing
-    }
-
-    /// Orientation `O`: weight of orientation/recognition fitness `l`.
-    pub fn orientation(&self) -> f64 {
-        self.orientation
-    }
-
-    /// Energy `E`: weight of battery fitness `b`.
-    pub fn energy(&self) -> f64 {
-        self.energy
-    }
-
-    /// The motivations as `[C, H, O, E]`, matching the order of `Y = [a, g, l, b]`.
-    pub fn as_array(&self) -> [f64; 4] {
-        [self.curiosity, self.homing, self.orientation, self.energy]
     }
 }
 
@@ -368,17 +245,13 @@ pub fn label_name(m_index_zero_based: usize, m_count: usize) -> String {
     }
 }
 
-/// Each motivation `(C, H, O, E)` is a number in `[0, 1]` (so not NaN); the error names the
-/// first that is not.
-fn check_each_in_unit_range(values: [f64; 4]) -> Result<(), FuzzyError> {
-    const NAMES: [&str; 4] = ["curiosity", "homing", "orientation", "energy"];
-    match values.iter().position(|v| !(0.0..=1.0).contains(v)) {
-        Some(k) => Err(FuzzyError::MotivationOutOfRange {
-            name: NAMES[k],
-            value: values[k],
-        }),
-        None => Ok(()),
-    }
+/// `curiosity 0.8 + homing 0.1 + …`: the parts of a sum of motivations.
+fn sum_parts(parts: &[(String, f64)]) -> String {
+    parts
+        .iter()
+        .map(|(name, w)| format!("{name} {}", Num(*w)))
+        .collect::<Vec<_>>()
+        .join(" + ")
 }
 
 /// Clamps a fitness value to `[0, 1]`; NaN becomes 0.
@@ -414,6 +287,15 @@ struct Candidates {
     len: usize,
 }
 
+impl Candidates {
+    /// No input (the unused slots of a fixed-size array).
+    const NONE: Candidates = Candidates {
+        labels: [0; 2],
+        mu: [0.0; 2],
+        len: 0,
+    };
+}
+
 impl TskFitness {
     /// Validates and builds a fuzzy fitness function.
     ///
@@ -424,26 +306,35 @@ impl TskFitness {
     /// `coefficients`: one finite value per peak (magnitude at most
     /// [`MAX_COEFFICIENT_MAGNITUDE`]); see [`CoefficientScheme::values`].
     pub fn new(peaks: Vec<f64>, coefficients: Vec<f64>) -> Result<Self, FuzzyError> {
+        Self::new_in(peaks, coefficients, "fuzzy.")
+    }
+
+    /// [`TskFitness::new`], its errors naming the labels given at `of` (`fuzzy.` or
+    /// `motivations.NAME.`).
+    fn new_in(peaks: Vec<f64>, coefficients: Vec<f64>, of: &str) -> Result<Self, FuzzyError> {
+        let of = of.to_string();
         if peaks.len() < 2 || peaks.len() > MAX_LABELS {
             return Err(FuzzyError::PeakCount {
+                of,
                 count: peaks.len(),
                 max: MAX_LABELS,
             });
         }
         if let Some((index, &value)) = peaks.iter().enumerate().find(|(_, p)| !p.is_finite()) {
-            return Err(FuzzyError::NonFinitePeak { index, value });
+            return Err(FuzzyError::NonFinitePeak { of, index, value });
         }
         for pair in peaks.windows(2) {
             let (low, high) = (pair[0], pair[1]);
             if low >= high {
-                return Err(FuzzyError::PeaksNotIncreasing { peaks });
+                return Err(FuzzyError::PeaksNotIncreasing { of, peaks });
             }
             if !(high - low).is_finite() {
-                return Err(FuzzyError::PeakGapTooLarge { low, high });
+                return Err(FuzzyError::PeakGapTooLarge { of, low, high });
             }
         }
         if coefficients.len() != peaks.len() {
             return Err(FuzzyError::CoefficientCount {
+                of,
                 expected: peaks.len(),
                 got: coefficients.len(),
             });
@@ -453,11 +344,28 @@ impl TskFitness {
             .enumerate()
             .find(|(_, c)| !(c.is_finite() && c.abs() <= MAX_COEFFICIENT_MAGNITUDE))
         {
-            return Err(FuzzyError::InvalidCoefficient { index, value });
+            return Err(FuzzyError::InvalidCoefficient { of, index, value });
         }
         Ok(Self {
             peaks,
             coefficients,
+        })
+    }
+
+    /// Labels from `peaks` and coefficients as a config writes them, given at `of` (`fuzzy.`
+    /// or `motivations.NAME.`); an error names `{of}peaks` or `{of}coefficients`.
+    pub(crate) fn of_raw(
+        peaks: Vec<f64>,
+        coefficients: &Coefficients,
+        of: &str,
+    ) -> Result<TskFitness, crate::params::FieldError> {
+        let values = match coefficients {
+            Coefficients::Scheme(s) => s.values(peaks.len()),
+            Coefficients::Values(v) => v.clone(),
+        };
+        Self::new_in(peaks, values, of).map_err(|e| {
+            let field = e.label_field().unwrap_or_else(|| format!("{of}peaks"));
+            crate::params::FieldError::new(field, e.to_string())
         })
     }
 
@@ -489,11 +397,6 @@ impl TskFitness {
     /// Number of labels `M` per input (5 by default).
     pub fn labels(&self) -> usize {
         self.peaks.len()
-    }
-
-    /// Number of rules `M^4` (625 by default).
-    pub fn rule_count(&self) -> usize {
-        self.labels().pow(4)
     }
 
     /// Membership degree in `[0, 1]` of value `y` in label `label` (0-based).
@@ -552,36 +455,57 @@ impl TskFitness {
         }
     }
 
-    /// Visits every rule that may have non-zero weight, in ascending rule
-    /// number, passing 0-based labels, weight `w` and output `f`. The
-    /// arithmetic matches the naive loop over all `M^4` rules exactly.
+    /// Visits every rule that may have non-zero weight, in ascending rule number, passing
+    /// 0-based labels (one per motivation), weight `w` and output `f`. The arithmetic matches
+    /// the naive loop over all rules exactly: `w` is the minimum taken left to right and `f`
+    /// the sum of `X_i·Y_i·C_i[x_i]` added left to right, input 1 varying fastest. `y` is
+    /// already clamped; one value per motivation.
     #[inline]
-    fn for_each_rule(&self, x: [f64; 4], y: [f64; 4], mut visit: impl FnMut([usize; 4], f64, f64)) {
-        let cand = y.map(|v| self.candidates(v));
-        let c = &self.coefficients;
-        for jb in 0..cand[3].len {
-            for jl in 0..cand[2].len {
-                for jg in 0..cand[1].len {
-                    for ja in 0..cand[0].len {
-                        let labels = [
-                            cand[0].labels[ja],
-                            cand[1].labels[jg],
-                            cand[2].labels[jl],
-                            cand[3].labels[jb],
-                        ];
-                        let w = cand[0].mu[ja]
-                            .min(cand[1].mu[jg])
-                            .min(cand[2].mu[jl])
-                            .min(cand[3].mu[jb]);
-                        let f = x[0] * y[0] * c[labels[0]]
-                            + x[1] * y[1] * c[labels[1]]
-                            + x[2] * y[2] * c[labels[2]]
-                            + x[3] * y[3] * c[labels[3]];
-                        visit(labels, w, f);
-                    }
+    fn for_each_rule(&self, x: &Motivations, y: &[f64], mut visit: impl FnMut(&[usize], f64, f64)) {
+        let n = x.len().min(y.len()).min(MAX_MOTIVATIONS);
+        if n == 0 {
+            return;
+        }
+        let mut cand = [Candidates::NONE; MAX_MOTIVATIONS];
+        let mut coef: [&[f64]; MAX_MOTIVATIONS] = [&[]; MAX_MOTIVATIONS];
+        let mut weight = [0.0; MAX_MOTIVATIONS];
+        for (i, m) in x.iter().take(n).enumerate() {
+            let labels = self.labels_of(m);
+            cand[i] = labels.candidates(y[i]);
+            coef[i] = &labels.coefficients;
+            weight[i] = m.weight();
+        }
+        let mut at = [0usize; MAX_MOTIVATIONS];
+        let mut labels = [0usize; MAX_MOTIVATIONS];
+        loop {
+            labels[0] = cand[0].labels[at[0]];
+            let mut w = cand[0].mu[at[0]];
+            let mut f = weight[0] * y[0] * coef[0][labels[0]];
+            for i in 1..n {
+                labels[i] = cand[i].labels[at[i]];
+                w = w.min(cand[i].mu[at[i]]);
+                f += weight[i] * y[i] * coef[i][labels[i]];
+            }
+            visit(&labels[..n], w, f);
+            // The next combination, input 1 fastest.
+            let mut i = 0;
+            loop {
+                at[i] += 1;
+                if at[i] < cand[i].len {
+                    break;
+                }
+                at[i] = 0;
+                i += 1;
+                if i == n {
+                    return;
                 }
             }
         }
+    }
+
+    /// The labels motivation `m` is fuzzified with: its own, or these shared ones.
+    fn labels_of<'a>(&'a self, m: &'a Motivation) -> &'a TskFitness {
+        m.labels().unwrap_or(self)
     }
 
     /// `F = Σ w·f / Σ w` from the sums; 0 when `Σ w` is not positive.
@@ -596,18 +520,17 @@ impl TskFitness {
         }
     }
 
-    /// The fuzzy fitness `F` for motivations `x` and fitness values
-    /// `y = [a, g, l, b]`.
+    /// The fuzzy fitness `F` for motivations `x` and fitness values `y`, one per motivation
+    /// (the value of the term it weighs; for the paper's four `y = [a, g, l, b]`).
     ///
-    /// Each `y` value is clamped to `[0, 1]` first (NaN becomes 0). For valid
-    /// motivations and coefficients in `[0, 1]` the result lies in `[0, 1]`.
-    /// Returns 0 if the total weight were 0 (impossible with a partition of
-    /// unity). Does not allocate; never panics.
-    pub fn evaluate(&self, x: &Motivations, y: [f64; 4]) -> f64 {
-        let y = y.map(clamp_unit);
+    /// Each `y` value is clamped to `[0, 1]` first (NaN becomes 0); values beyond the number of
+    /// motivations are ignored and missing ones count as 0. For valid motivations and
+    /// coefficients in `[0, 1]` the result lies in `[0, 1]`. Does not allocate; never panics.
+    pub fn evaluate(&self, x: &Motivations, y: &[f64]) -> f64 {
+        let y = clamped(x, y);
         let mut numerator = 0.0;
         let mut weight_sum = 0.0;
-        self.for_each_rule(x.as_array(), y, |_, w, f| {
+        self.for_each_rule(x, &y, |_, w, f| {
             numerator += w * f;
             weight_sum += w;
         });
@@ -617,21 +540,25 @@ impl TskFitness {
     /// Like [`TskFitness::evaluate`] but also lists every firing rule
     /// (`w > 0`) in ascending rule number. `fitness` is bit-identical to
     /// `evaluate`; `weight_sum` is `Σ w` over all rules.
-    pub fn explain(&self, x: &Motivations, y: [f64; 4]) -> Explanation {
-        let y = y.map(clamp_unit);
-        let m = self.labels();
+    pub fn explain(&self, x: &Motivations, y: &[f64]) -> Explanation {
+        let y = clamped(x, y);
         let mut numerator = 0.0;
         let mut weight_sum = 0.0;
         let mut rules = Vec::new();
-        self.for_each_rule(x.as_array(), y, |labels0, w, f| {
+        self.for_each_rule(x, &y, |labels0, w, f| {
             numerator += w * f;
             weight_sum += w;
             if w > 0.0 {
-                let labels = labels0.map(|l| l + 1);
+                let labels: Vec<usize> = labels0.iter().map(|l| l + 1).collect();
+                let label_names = x
+                    .iter()
+                    .zip(labels0)
+                    .map(|(m, &l)| label_name(l, self.labels_of(m).labels()))
+                    .collect();
                 rules.push(FiringRule {
-                    number: self.rule_number(labels),
+                    number: self.rule_number(x, &labels),
                     labels,
-                    label_names: labels0.map(|l| label_name(l, m)),
+                    label_names,
                     weight: w,
                     output: f,
                 });
@@ -641,56 +568,89 @@ impl TskFitness {
             fitness: Self::ratio(numerator, weight_sum),
             rules,
             weight_sum,
+            inputs: x.input_names(),
         }
     }
 
-    /// Rule number `n = 1 + Σ_i (x_i − 1)·M^(i−1)` (1-based) of the 1-based
-    /// labels `[x_a, x_g, x_l, x_b]`; `x_a` varies fastest.
-    ///
-    /// # Panics
-    /// If any label is 0 or greater than `M` (a programming error).
-    pub fn rule_number(&self, labels: [usize; 4]) -> usize {
-        let m = self.labels();
-        assert!(
-            labels.iter().all(|&l| (1..=m).contains(&l)),
-            "rule labels must be in 1..={m}, got {labels:?}"
-        );
-        1 + labels.iter().rev().fold(0, |acc, &l| acc * m + (l - 1))
+    /// Number of labels `M_i` of each motivation's input.
+    pub fn label_counts(&self, x: &Motivations) -> Vec<usize> {
+        x.iter().map(|m| self.labels_of(m).labels()).collect()
     }
 
-    /// The 1-based labels `[x_a, x_g, x_l, x_b]` of rule `n` (1-based); the
-    /// inverse of [`TskFitness::rule_number`].
+    /// Number of rules `Π M_i` (625 for the paper's four inputs of five labels); saturates at
+    /// `usize::MAX`.
+    pub fn rule_count(&self, x: &Motivations) -> usize {
+        self.label_counts(x)
+            .iter()
+            .try_fold(1usize, |n, &m| n.checked_mul(m))
+            .unwrap_or(usize::MAX)
+    }
+
+    /// Rule number `n = 1 + Σ_i (x_i − 1)·Π_{j<i} M_j` (1-based) of the 1-based labels
+    /// `[x_1, …, x_N]`; `x_1` varies fastest.
     ///
     /// # Panics
-    /// If `n` is 0 or greater than [`TskFitness::rule_count`] (a programming
-    /// error).
-    pub fn rule_labels(&self, n: usize) -> [usize; 4] {
-        let m = self.labels();
+    /// If a label is 0 or greater than its input's `M_i`, or the count is not N (a
+    /// programming error).
+    pub fn rule_number(&self, x: &Motivations, labels: &[usize]) -> usize {
+        let counts = self.label_counts(x);
         assert!(
-            (1..=self.rule_count()).contains(&n),
-            "rule number must be in 1..={}, got {n}",
-            self.rule_count()
+            labels.len() == counts.len()
+                && labels
+                    .iter()
+                    .zip(&counts)
+                    .all(|(&l, &m)| (1..=m).contains(&l)),
+            "rule labels must be one per input, in 1..=M_i ({counts:?}), got {labels:?}"
+        );
+        1 + labels
+            .iter()
+            .zip(&counts)
+            .rev()
+            .fold(0, |acc, (&l, &m)| acc * m + (l - 1))
+    }
+
+    /// The 1-based labels `[x_1, …, x_N]` of rule `n` (1-based); the inverse of
+    /// [`TskFitness::rule_number`].
+    ///
+    /// # Panics
+    /// If `n` is 0 or greater than [`TskFitness::rule_count`] (a programming error).
+    pub fn rule_labels(&self, x: &Motivations, n: usize) -> Vec<usize> {
+        let count = self.rule_count(x);
+        assert!(
+            (1..=count).contains(&n),
+            "rule number must be in 1..={count}, got {n}"
         );
         let mut rest = n - 1;
-        let mut labels = [0; 4];
-        for l in &mut labels {
-            *l = rest % m + 1;
-            rest /= m;
-        }
-        labels
+        self.label_counts(x)
+            .into_iter()
+            .map(|m| {
+                let l = rest % m + 1;
+                rest /= m;
+                l
+            })
+            .collect()
     }
+}
+
+/// One value per motivation, each clamped to `[0, 1]` (NaN and missing values become 0).
+fn clamped(x: &Motivations, y: &[f64]) -> [f64; MAX_MOTIVATIONS] {
+    let mut out = [0.0; MAX_MOTIVATIONS];
+    for (o, &v) in out.iter_mut().zip(y).take(x.len()) {
+        *o = clamp_unit(v);
+    }
+    out
 }
 
 /// One rule with non-zero firing strength, as listed by
 /// [`TskFitness::explain`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct FiringRule {
-    /// Rule number `n` (1-based, `x_a` varies fastest).
+    /// Rule number `n` (1-based, input 1 varies fastest).
     pub number: usize,
-    /// 1-based labels for `[a, g, l, b]`.
-    pub labels: [usize; 4],
-    /// Label names for `[a, g, l, b]` (see [`label_name`]).
-    pub label_names: [String; 4],
+    /// 1-based labels, one per motivation (for the paper's four: `[a, g, l, b]`).
+    pub labels: Vec<usize>,
+    /// Label names, one per motivation (see [`label_name`]).
+    pub label_names: Vec<String>,
     /// Firing strength `w[n] = min_i μ(Y_i)`, in `(0, 1]`.
     pub weight: f64,
     /// Rule output `f[n] = Σ_i X_i·Y_i·C[x_i]`.
@@ -706,14 +666,23 @@ pub struct Explanation {
     pub rules: Vec<FiringRule>,
     /// `Σ w` over all rules.
     pub weight_sum: f64,
+    /// The terms the inputs are (for the paper's four `a, g, l, b`), in input order.
+    #[serde(skip)]
+    pub inputs: Vec<String>,
 }
 
 impl fmt::Display for Explanation {
     /// A table of the firing rules followed by the final `F`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "{:>6}  {:<56}  {:>10}  {:>10}", "rule", "if", "w", "f")?;
+        let width = 14 * self.inputs.len().max(4);
+        writeln!(
+            f,
+            "{:>6}  {:<width$}  {:>10}  {:>10}",
+            "rule", "if", "w", "f"
+        )?;
         for rule in &self.rules {
-            let condition = INPUT_NAMES
+            let condition = self
+                .inputs
                 .iter()
                 .zip(&rule.label_names)
                 .map(|(input, name)| format!("{input} is {name}"))
@@ -721,7 +690,7 @@ impl fmt::Display for Explanation {
                 .join(" and ");
             writeln!(
                 f,
-                "{:>6}  {:<56}  {:>10.6}  {:>10.6}",
+                "{:>6}  {:<width$}  {:>10.6}  {:>10.6}",
                 rule.number,
                 format!("if {condition}"),
                 rule.weight,
@@ -753,34 +722,56 @@ mod tests {
         }
     }
 
-    /// Straightforward reference: loop over all M^4 rules in rule-number order.
-    fn reference(t: &TskFitness, x: &Motivations, y: [f64; 4]) -> f64 {
-        let y = y.map(|v| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) });
-        let x = x.as_array();
-        let c = t.coefficients();
-        let m = t.labels();
+    /// Straightforward reference: loop over all Π M_i rules in rule-number order (input 1
+    /// fastest), each motivation with its own labels or the shared ones.
+    fn reference(t: &TskFitness, x: &Motivations, y: &[f64]) -> f64 {
+        let y: Vec<f64> = y
+            .iter()
+            .map(|v| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) })
+            .collect();
+        let inputs: Vec<(&TskFitness, f64)> = x
+            .iter()
+            .map(|m| (m.labels().unwrap_or(t), m.weight()))
+            .collect();
         let mut num = 0.0;
         let mut den = 0.0;
-        for b in 0..m {
-            for l in 0..m {
-                for g in 0..m {
-                    for a in 0..m {
-                        let w = t
-                            .membership(a, y[0])
-                            .min(t.membership(g, y[1]))
-                            .min(t.membership(l, y[2]))
-                            .min(t.membership(b, y[3]));
-                        let f = x[0] * y[0] * c[a]
-                            + x[1] * y[1] * c[g]
-                            + x[2] * y[2] * c[l]
-                            + x[3] * y[3] * c[b];
-                        num += w * f;
-                        den += w;
-                    }
-                }
+        for n in 1..=t.rule_count(x) {
+            let labels = t.rule_labels(x, n);
+            let mut w = f64::INFINITY;
+            let mut f = None;
+            for (i, &l) in labels.iter().enumerate() {
+                let (labels_i, weight) = inputs[i];
+                w = if i == 0 {
+                    labels_i.membership(l - 1, y[i])
+                } else {
+                    w.min(labels_i.membership(l - 1, y[i]))
+                };
+                let term = weight * y[i] * labels_i.coefficients()[l - 1];
+                f = Some(f.map_or(term, |s| s + term));
             }
+            num += w * f.unwrap();
+            den += w;
         }
         if den > 0.0 { num / den } else { 0.0 }
+    }
+
+    /// Random motivations: `n` of them, some with their own labels.
+    fn random_motivations(rng: &mut Lcg, n: usize, own: &[TskFitness]) -> Motivations {
+        let raw: Vec<f64> = (0..n).map(|_| rng.next_f64() + 1e-3).collect();
+        let total: f64 = raw.iter().sum();
+        let list = raw
+            .iter()
+            .enumerate()
+            .map(|(i, w)| {
+                let m = Motivation::new(format!("m{i}"), w / total, "a");
+                let pick = (rng.next_f64() * (own.len() + 2) as f64) as usize;
+                match own.get(pick) {
+                    Some(labels) => m.with_labels(labels.clone()),
+                    None => m,
+                }
+            })
+            .collect();
+        Motivations::from_list(list).unwrap().0
     }
 
     fn close(a: f64, b: f64) -> bool {
@@ -790,18 +781,18 @@ mod tests {
     #[test]
     fn worked_values() {
         let t = TskFitness::paper();
-        let f1 = t.evaluate(&Motivations::HIGH_CURIOSITY, [0.95, 0.5, 0.0, 0.79]);
+        let f1 = t.evaluate(&Motivations::high_curiosity(), &[0.95, 0.5, 0.0, 0.79]);
         assert!(close(f1, 0.797220), "{f1}");
-        let f2 = t.evaluate(&Motivations::LOW_CURIOSITY, [0.55, 0.3, 0.0, 0.58]);
+        let f2 = t.evaluate(&Motivations::low_curiosity(), &[0.55, 0.3, 0.0, 0.58]);
         assert!(close(f2, 0.263309), "{f2}");
         let x = Motivations::new(0.25, 0.25, 0.25, 0.25).unwrap();
-        let f3 = t.evaluate(&x, [1.0, 1.0, 1.0, 1.0]);
+        let f3 = t.evaluate(&x, &[1.0, 1.0, 1.0, 1.0]);
         assert!(close(f3, 1.0), "{f3}");
     }
 
     #[test]
     fn constants_are_valid() {
-        for m in [Motivations::HIGH_CURIOSITY, Motivations::LOW_CURIOSITY] {
+        for m in [Motivations::high_curiosity(), Motivations::low_curiosity()] {
             let [c, h, o, e] = m.as_array();
             assert_eq!(Motivations::new(c, h, o, e), Ok(m));
         }
@@ -811,13 +802,14 @@ mod tests {
     fn rule_numbering() {
         let t = TskFitness::paper();
         assert_eq!(t.labels(), 5);
-        assert_eq!(t.rule_count(), 625);
-        assert_eq!(t.rule_number([5, 2, 1, 1]), 10);
-        assert_eq!(t.rule_labels(10), [5, 2, 1, 1]);
-        assert_eq!(t.rule_number([1, 1, 1, 1]), 1);
-        assert_eq!(t.rule_number([5, 5, 5, 5]), 625);
+        let x = Motivations::high_curiosity();
+        assert_eq!(t.rule_count(&x), 625);
+        assert_eq!(t.rule_number(&x, &[5, 2, 1, 1]), 10);
+        assert_eq!(t.rule_labels(&x, 10), [5, 2, 1, 1]);
+        assert_eq!(t.rule_number(&x, &[1, 1, 1, 1]), 1);
+        assert_eq!(t.rule_number(&x, &[5, 5, 5, 5]), 625);
         for n in 1..=625 {
-            assert_eq!(t.rule_number(t.rule_labels(n)), n);
+            assert_eq!(t.rule_number(&x, &t.rule_labels(&x, n)), n);
         }
     }
 
@@ -859,6 +851,8 @@ mod tests {
         assert_eq!(t.membership(1, 0.125), 0.5);
     }
 
+    /// The fast path (at most 2^N rules visited) is bit-identical to the naive loop over all
+    /// rules, for N = 1 … 8 motivations, shared and own labels.
     #[test]
     fn fast_path_is_bit_identical_to_full_loop() {
         let ts = [
@@ -872,30 +866,40 @@ mod tests {
             )
             .unwrap(),
         ];
+        let own = [
+            TskFitness::with_scheme(vec![0.0, 0.5, 1.0], CoefficientScheme::Ratio).unwrap(),
+            TskFitness::new(vec![0.2, 0.4], vec![1.0, 0.3]).unwrap(),
+        ];
         let mut rng = Lcg(12345);
         let specials = [0.0, 0.25, 0.5, 0.75, 1.0, 0.35, -0.2, 1.5, f64::NAN];
-        for t in &ts {
-            for _ in 0..3000 {
-                let raw = [0.0; 4].map(|_| rng.next_f64());
-                let total: f64 = raw.iter().sum();
-                let x = Motivations {
-                    curiosity: raw[0] / total,
-                    homing: raw[1] / total,
-                    orientation: raw[2] / total,
-                    energy: raw[3] / total,
-                };
-                let y = [0.0; 4].map(|_| {
-                    let r = rng.next_f64();
-                    if r < 0.3 {
-                        specials[(rng.next_f64() * specials.len() as f64) as usize]
-                    } else {
-                        rng.next_f64() * 1.4 - 0.2
-                    }
-                });
-                let fast = t.evaluate(&x, y);
-                let slow = reference(t, &x, y);
-                assert_eq!(fast.to_bits(), slow.to_bits(), "{x:?} {y:?}");
-                assert_eq!(t.explain(&x, y).fitness.to_bits(), fast.to_bits());
+        for n in 1..=MAX_MOTIVATIONS {
+            // The naive loop visits Π M_i rules (5^8 = 390 625 for eight inputs): fewer rounds
+            // and at most five labels for many inputs.
+            let rounds = match n {
+                1..=4 => 3000,
+                5..=6 => 60,
+                _ => 12,
+            };
+            let shared: Vec<&TskFitness> =
+                ts.iter().filter(|t| n <= 4 || t.labels() <= 5).collect();
+            for t in shared {
+                for _ in 0..rounds {
+                    let x = random_motivations(&mut rng, n, &own);
+                    let y: Vec<f64> = (0..n)
+                        .map(|_| {
+                            let r = rng.next_f64();
+                            if r < 0.3 {
+                                specials[(rng.next_f64() * specials.len() as f64) as usize]
+                            } else {
+                                rng.next_f64() * 1.4 - 0.2
+                            }
+                        })
+                        .collect();
+                    let fast = t.evaluate(&x, &y);
+                    let slow = reference(t, &x, &y);
+                    assert_eq!(fast.to_bits(), slow.to_bits(), "{x:?} {y:?}");
+                    assert_eq!(t.explain(&x, &y).fitness.to_bits(), fast.to_bits());
+                }
             }
         }
     }
@@ -903,24 +907,24 @@ mod tests {
     #[test]
     fn explanation_is_consistent() {
         let t = TskFitness::paper();
-        let x = Motivations::HIGH_CURIOSITY;
+        let x = Motivations::high_curiosity();
         let y = [0.95, 0.5, 0.0, 0.79];
-        let e = t.explain(&x, y);
-        assert_eq!(e.fitness, t.evaluate(&x, y));
+        let e = t.explain(&x, &y);
+        assert_eq!(e.fitness, t.evaluate(&x, &y));
         assert_eq!(e.rules.len(), 4);
         let s: f64 = e.rules.iter().map(|r| r.weight).sum();
         assert!((s - e.weight_sum).abs() < 1e-12);
         assert!(e.rules.iter().all(|r| r.weight > 0.0));
         assert!(e.rules.windows(2).all(|p| p[0].number < p[1].number));
         for r in &e.rules {
-            assert_eq!(t.rule_labels(r.number), r.labels);
+            assert_eq!(t.rule_labels(&x, r.number), r.labels);
         }
         let text = e.to_string();
         assert!(text.contains("V.H."), "{text}");
         assert!(text.contains("if a is V.H. and g is M and l is V.L. and b is H"));
         assert!(text.contains("0.797220"), "{text}");
 
-        let sample = t.explain(&x, [1.0, 0.25, 0.0, 0.0]);
+        let sample = t.explain(&x, &[1.0, 0.25, 0.0, 0.0]);
         assert_eq!(sample.rules.len(), 1);
         assert_eq!(sample.rules[0].number, 10);
         assert_eq!(sample.rules[0].label_names, ["V.H.", "L", "V.L.", "V.L."]);
@@ -929,10 +933,10 @@ mod tests {
     #[test]
     fn out_of_range_y_is_clamped() {
         let t = TskFitness::paper();
-        let x = Motivations::LOW_CURIOSITY;
+        let x = Motivations::low_curiosity();
         assert_eq!(
-            t.evaluate(&x, [1.7, -0.3, f64::NAN, f64::INFINITY]),
-            t.evaluate(&x, [1.0, 0.0, 0.0, 1.0])
+            t.evaluate(&x, &[1.7, -0.3, f64::NAN, f64::INFINITY]),
+            t.evaluate(&x, &[1.0, 0.0, 0.0, 1.0])
         );
     }
 
@@ -947,7 +951,7 @@ mod tests {
                 Motivations::normalised(x[0], x[1], x[2], x[3]).unwrap_err(),
             ] {
                 assert!(
-                    matches!(err, FuzzyError::MotivationOutOfRange { name: n, value }
+                    matches!(&err, FuzzyError::MotivationOutOfRange { name: n, value }
                         if n == name && value.is_nan()),
                     "{name}: {err}"
                 );

@@ -1,10 +1,12 @@
-//! The fitness terms (docs/model.md, "Fitness terms"): exploration `a`, homing `g`,
-//! orientation `l`, battery `b`.
+//! The fitness terms (docs/model.md, "Fitness terms"): the paper's exploration `a`, homing `g`,
+//! orientation `l` and battery `b`; the mission terms `goal`, `urgency`, `waypoints` (of a room
+//! file's mission) and `safety`; and the values of terms a user defines ([`Term`]).
 
 use std::borrow::Borrow;
 
 use serde::{Deserialize, Serialize};
 
+use crate::simulation::room::{HomeZone, Room};
 use crate::simulation::trial::{Arena, CELL, Step, StepObserver, Trajectory};
 
 /// The four fitness values Y = (a, g, l, b), each in [0, 1], higher is better for the fuzzy
@@ -21,6 +23,172 @@ pub struct FitnessTerms {
     /// Battery usage: the energy of the executed steps / T (one unit per action with
     /// `actions` motion; (|sL| + |sR|) / (2·v_max) of the commanded speeds with `wheels`).
     pub b: f64,
+    /// The mission terms, when the experiment measures them (a motivation weighs one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mission: Option<MissionTerms>,
+    /// The values of the experiment's user-defined terms, in the order they were registered.
+    #[serde(default, skip_serializing_if = "UserValues::is_empty")]
+    pub user: UserValues,
+}
+
+/// The mission terms of one trial (docs/model.md, "Fitness terms"), each in [0, 1].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct MissionTerms {
+    /// Goal: 1 once the robot's centre has been in the room's goal zone, else 1 − (closest
+    /// approach to the zone) / (the room's largest distance).
+    pub goal: f64,
+    /// Urgency: 1 − t_done / T for a mission done at step t_done (1-based), 0 if never done.
+    pub urgency: f64,
+    /// Waypoints: the fraction of the room's waypoints visited (in order, or in any order).
+    pub waypoints: f64,
+    /// Safety: 1 − the fraction of executed steps whose move was blocked by a wall.
+    pub safety: f64,
+    /// The step (1-based) at which the mission was done, if it was.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub done_at: Option<usize>,
+}
+
+/// The most user-defined terms an experiment may have.
+pub const MAX_USER_TERMS: usize = 8;
+
+/// The values of user-defined terms, without allocating (at most [`MAX_USER_TERMS`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct UserValues {
+    values: [f64; MAX_USER_TERMS],
+    len: u8,
+}
+
+impl UserValues {
+    /// `n` values of 0 (to be filled in).
+    pub fn zeros(n: usize) -> UserValues {
+        UserValues {
+            values: [0.0; MAX_USER_TERMS],
+            len: n.min(MAX_USER_TERMS) as u8,
+        }
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The values.
+    pub fn as_slice(&self) -> &[f64] {
+        &self.values[..self.len as usize]
+    }
+
+    /// The values, to fill in.
+    pub fn as_mut_slice(&mut self) -> &mut [f64] {
+        &mut self.values[..self.len as usize]
+    }
+}
+
+impl Serialize for UserValues {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.as_slice().serialize(s)
+    }
+}
+
+impl<'de> Deserialize<'de> for UserValues {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let v = Vec::<f64>::deserialize(d)?;
+        if v.len() > MAX_USER_TERMS {
+            return Err(serde::de::Error::custom(format!(
+                "at most {MAX_USER_TERMS} user terms, got {}",
+                v.len()
+            )));
+        }
+        let mut out = UserValues::zeros(v.len());
+        out.as_mut_slice().copy_from_slice(&v);
+        Ok(out)
+    }
+}
+
+/// The terms of the library a motivation can weigh, by name: the paper's four, then the
+/// mission terms.
+pub const LIBRARY_TERMS: [&str; 8] = ["a", "g", "l", "b", "goal", "urgency", "waypoints", "safety"];
+
+/// Other names accepted for the paper's terms in a config (`term = "exploration"`).
+pub const TERM_ALIASES: [(&str, &str); 4] = [
+    ("exploration", "a"),
+    ("homing", "g"),
+    ("orientation", "l"),
+    ("battery", "b"),
+];
+
+/// A term a motivation weighs, resolved: one of the library's, or user-defined term `k`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TermId {
+    /// Exploration `a`.
+    A,
+    /// Homing `g`.
+    G,
+    /// Orientation `l`.
+    L,
+    /// Battery `b`.
+    B,
+    /// `goal`.
+    Goal,
+    /// `urgency`.
+    Urgency,
+    /// `waypoints`.
+    Waypoints,
+    /// `safety`.
+    Safety,
+    /// The experiment's user-defined term `k` (registration order).
+    User(usize),
+}
+
+impl TermId {
+    /// The library term named `name` (or one of [`TERM_ALIASES`]).
+    pub fn library(name: &str) -> Option<TermId> {
+        let name = TERM_ALIASES
+            .iter()
+            .find(|(alias, _)| *alias == name)
+            .map_or(name, |(_, t)| t);
+        let ids = [
+            TermId::A,
+            TermId::G,
+            TermId::L,
+            TermId::B,
+            TermId::Goal,
+            TermId::Urgency,
+            TermId::Waypoints,
+            TermId::Safety,
+        ];
+        LIBRARY_TERMS
+            .iter()
+            .position(|t| *t == name)
+            .map(|k| ids[k])
+    }
+
+    /// Whether it is one of the mission terms (measured only when a motivation weighs one).
+    pub fn is_mission(self) -> bool {
+        matches!(
+            self,
+            TermId::Goal | TermId::Urgency | TermId::Waypoints | TermId::Safety
+        )
+    }
+}
+
+/// A term of your own: a value in [0, 1] of a finished trial (docs/guide, "Define your own
+/// motivation"). Register it with [`crate::Setup::resolve_with_terms`] under a name a
+/// motivation's `term` can use; an experiment with one records each trial's steps for it.
+pub trait Term: Send + Sync + std::fmt::Debug {
+    /// The term's value for one finished trial, in [0, 1] (values outside are an error of the
+    /// run: NaN or out of range stops it, naming the term).
+    fn value(&self, trial: &TrialRecord<'_>) -> f64;
+}
+
+/// A finished trial, as a [`Term`] sees it.
+#[derive(Debug, Clone, Copy)]
+pub struct TrialRecord<'a> {
+    /// The arena (room, grid, parameters) the trial ran in.
+    pub arena: &'a Arena,
+    /// Every step: poses, sensors, motors, speeds, collisions, actions, idle, energy.
+    pub trajectory: &'a Trajectory,
+    /// The terms the library measured.
+    pub terms: &'a FitnessTerms,
 }
 
 /// How the homing term `g` is measured (config `[fitness] homing`).
@@ -39,6 +207,49 @@ impl FitnessTerms {
     /// As the array `[a, g, l, b]`.
     pub fn as_array(&self) -> [f64; 4] {
         [self.a, self.g, self.l, self.b]
+    }
+
+    /// Adds `other / n`, term by term (the running mean of `n` trials' terms); a mission step
+    /// (`done_at`) is not averaged.
+    pub fn add_mean(&mut self, other: &FitnessTerms, n: f64) {
+        self.a += other.a / n;
+        self.g += other.g / n;
+        self.l += other.l / n;
+        self.b += other.b / n;
+        if let Some(o) = &other.mission {
+            let m = self.mission.get_or_insert_with(MissionTerms::default);
+            m.goal += o.goal / n;
+            m.urgency += o.urgency / n;
+            m.waypoints += o.waypoints / n;
+            m.safety += o.safety / n;
+        }
+        if self.user.len < other.user.len {
+            self.user = UserValues::zeros(other.user.len as usize);
+        }
+        for (m, v) in self
+            .user
+            .as_mut_slice()
+            .iter_mut()
+            .zip(other.user.as_slice())
+        {
+            *m += v / n;
+        }
+    }
+
+    /// The value of term `id` (a mission term not measured is 0, a user term not filled in 0).
+    pub fn get(&self, id: TermId) -> f64 {
+        let mission = self.mission.unwrap_or_default();
+        match id {
+            TermId::A => self.a,
+            TermId::G => self.g,
+            TermId::L => self.l,
+            TermId::B => self.b,
+            TermId::Goal => mission.goal,
+            TermId::Urgency => mission.urgency,
+            TermId::Waypoints => mission.waypoints,
+            TermId::Safety => mission.safety,
+            TermId::User(k) => self.user.as_slice().get(k).copied().unwrap_or(0.0),
+        }
     }
 
     /// Measures the terms of a trajectory recorded in `arena` (`l` = 0).
@@ -75,9 +286,163 @@ pub struct TermsRecorder<A: Borrow<Arena>> {
     escaped: bool,
     homing: Homing,
     optimum: usize,
+    mission: Option<MissionTracker>,
+}
+
+/// How the mission terms are measured (config `[fitness]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WaypointOrder {
+    /// A waypoint counts only once the ones before it are visited (default).
+    #[default]
+    InOrder,
+    /// Every waypoint counts, in whatever order.
+    AnyOrder,
+}
+
+/// Follows a trial's mission (the room's waypoints, then its goal) and the blocked moves, for
+/// the mission terms.
+#[derive(Debug, Clone)]
+pub struct MissionTracker {
+    goal: Option<HomeZone>,
+    waypoints: Vec<HomeZone>,
+    order: WaypointOrder,
+    largest: f64,
+    closest: f64,
+    goal_reached: bool,
+    visited: Vec<bool>,
+    visited_count: usize,
+    blocked: usize,
+    executed: usize,
+    done_at: Option<usize>,
+    end_when_done: bool,
+}
+
+impl MissionTracker {
+    /// A tracker of the mission `goal` (if any) after `waypoints` in `room`; with
+    /// `end_when_done`, the trial ends the step the mission is done.
+    pub fn new(
+        room: &Room,
+        goal: Option<HomeZone>,
+        waypoints: Vec<HomeZone>,
+        order: WaypointOrder,
+        end_when_done: bool,
+    ) -> MissionTracker {
+        let visited = vec![false; waypoints.len()];
+        MissionTracker {
+            goal,
+            waypoints,
+            order,
+            largest: largest_distance(room),
+            closest: f64::INFINITY,
+            goal_reached: false,
+            visited,
+            visited_count: 0,
+            blocked: 0,
+            executed: 0,
+            done_at: None,
+            end_when_done,
+        }
+    }
+
+    /// Whether every waypoint counts as visited.
+    fn waypoints_done(&self) -> bool {
+        self.visited_count == self.waypoints.len()
+    }
+
+    #[inline]
+    fn observe(&mut self, s: &Step) {
+        if s.idle {
+            return;
+        }
+        self.executed += 1;
+        self.blocked += usize::from(s.collided);
+        let p = s.pose.position();
+        self.visit_waypoints(p);
+        if let Some(goal) = self.goal {
+            let d = p - goal.centre;
+            let rim = (d.dot(d).sqrt() - goal.radius).max(0.0);
+            self.closest = self.closest.min(rim);
+            self.goal_reached |= rim == 0.0;
+        }
+        let goal_now = self.goal.is_none_or(|g| g.contains(p));
+        if self.done_at.is_none() && self.waypoints_done() && goal_now {
+            self.done_at = Some(s.t + 1);
+        }
+    }
+
+    fn visit_waypoints(&mut self, p: crate::simulation::Vec2) {
+        match self.order {
+            WaypointOrder::InOrder => {
+                let k = self.visited_count;
+                if k < self.waypoints.len() && self.waypoints[k].contains(p) {
+                    self.visited[k] = true;
+                    self.visited_count += 1;
+                }
+            }
+            WaypointOrder::AnyOrder => {
+                for (seen, w) in self.visited.iter_mut().zip(&self.waypoints) {
+                    if !*seen && w.contains(p) {
+                        *seen = true;
+                        self.visited_count += 1;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The mission terms after `steps` steps (T).
+    fn finish(&self, steps: usize) -> MissionTerms {
+        let goal = match self.goal {
+            _ if self.goal_reached => 1.0,
+            Some(_) if self.closest.is_finite() => {
+                (1.0 - self.closest / self.largest).clamp(0.0, 1.0)
+            }
+            _ => 0.0,
+        };
+        let urgency = match self.done_at {
+            Some(t) if steps > 0 => (1.0 - t as f64 / steps as f64).clamp(0.0, 1.0),
+            _ => 0.0,
+        };
+        let waypoints = if self.waypoints.is_empty() {
+            0.0
+        } else {
+            self.visited_count as f64 / self.waypoints.len() as f64
+        };
+        let safety = if self.executed == 0 {
+            1.0
+        } else {
+            1.0 - self.blocked as f64 / self.executed as f64
+        };
+        MissionTerms {
+            goal,
+            urgency,
+            waypoints,
+            safety,
+            done_at: self.done_at,
+        }
+    }
+}
+
+/// The largest distance between two points of the room's outline (mm), at least 1.
+fn largest_distance(room: &Room) -> f64 {
+    let mut most: f64 = 1.0;
+    for (i, p) in room.outline.iter().enumerate() {
+        for q in &room.outline[i + 1..] {
+            let d = *p - *q;
+            most = most.max(d.dot(d).sqrt());
+        }
+    }
+    most
 }
 
 impl<A: Borrow<Arena>> TermsRecorder<A> {
+    /// The same recorder, also following a mission (the mission terms).
+    pub fn with_mission(mut self, tracker: MissionTracker) -> Self {
+        self.mission = Some(tracker);
+        self
+    }
+
     /// A recorder for a trial in `arena` starting at home (the home cell counts as visited).
     pub fn new(arena: A, homing: Homing) -> Self {
         let a = arena.borrow();
@@ -96,6 +461,7 @@ impl<A: Borrow<Arena>> TermsRecorder<A> {
             escaped: false,
             homing,
             optimum,
+            mission: None,
         }
     }
 
@@ -127,7 +493,14 @@ impl<A: Borrow<Arena>> TermsRecorder<A> {
         } else {
             (self.battery / self.steps as f64).clamp(0.0, 1.0)
         };
-        FitnessTerms { a, g, l: 0.0, b }
+        FitnessTerms {
+            a,
+            g,
+            l: 0.0,
+            b,
+            mission: self.mission.as_ref().map(|m| m.finish(self.steps)),
+            user: UserValues::default(),
+        }
     }
 }
 
@@ -146,6 +519,16 @@ impl<A: Borrow<Arena>> StepObserver for TermsRecorder<A> {
         self.executed += usize::from(!s.idle);
         self.last = s.pose;
         self.escaped = s.escaped;
+        if let Some(m) = &mut self.mission {
+            m.observe(s);
+        }
+    }
+
+    #[inline]
+    fn finished(&self) -> bool {
+        self.mission
+            .as_ref()
+            .is_some_and(|m| m.end_when_done && m.done_at.is_some())
     }
 }
 

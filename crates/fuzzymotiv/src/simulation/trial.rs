@@ -532,6 +532,25 @@ impl Step {
 pub trait StepObserver {
     /// Called once per step, in order.
     fn observe(&mut self, step: &Step);
+
+    /// Whether the trial should end now (e.g. its mission is done); the rest of its steps are
+    /// then reported as idle. Default: never.
+    #[inline]
+    fn finished(&self) -> bool {
+        false
+    }
+}
+
+impl<O: StepObserver + ?Sized> StepObserver for &mut O {
+    #[inline]
+    fn observe(&mut self, step: &Step) {
+        (**self).observe(step);
+    }
+
+    #[inline]
+    fn finished(&self) -> bool {
+        (**self).finished()
+    }
 }
 
 impl StepObserver for () {
@@ -542,6 +561,11 @@ impl<A: StepObserver, B: StepObserver> StepObserver for (A, B) {
     fn observe(&mut self, step: &Step) {
         self.0.observe(step);
         self.1.observe(step);
+    }
+
+    #[inline]
+    fn finished(&self) -> bool {
+        self.0.finished() || self.1.finished()
     }
 }
 
@@ -589,7 +613,7 @@ where
         let (step, home) = walk.step(t, arena, controller, rng, memo.as_deref_mut());
         observer.observe(&step);
         t += 1;
-        if params.end_at_home && home {
+        if (params.end_at_home && home) || observer.finished() {
             break;
         }
     }

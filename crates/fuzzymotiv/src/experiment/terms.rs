@@ -1,0 +1,363 @@
+//! Which terms an experiment measures: each motivation's term resolved to the library's or a
+//! user-defined one ([`crate::fitness::Term`]), the mission it follows in each room, and the
+//! fuzzy inputs `Y` of a trial's terms.
+
+use std::sync::Arc;
+
+use crate::experiment::Experiment;
+use crate::experiment::config::EnergyMode;
+use crate::fitness::terms::{
+    FitnessTerms, LIBRARY_TERMS, MAX_USER_TERMS, MissionTracker, Term, TermId, WaypointOrder,
+};
+use crate::fitness::{MAX_MOTIVATIONS, Motivations};
+use crate::params::FieldError;
+use crate::simulation::room::{HomeZone, Room};
+
+/// A term registered with an experiment under a name a motivation's `term` can use: computed by
+/// the library from each trial's record ([`Term`]), or, with no `Term`, supplied by the front
+/// that drives the experiment (Python's batched terms), which fills
+/// [`FitnessTerms::user`] before F is computed ([`Experiment::refit`]).
+#[derive(Debug, Clone)]
+pub struct UserTerm {
+    /// The name motivations use.
+    pub name: String,
+    /// How it is computed, or `None` when the front supplies its values.
+    pub term: Option<Arc<dyn Term>>,
+}
+
+impl UserTerm {
+    /// A term computed by the library from each trial's record.
+    pub fn computed(name: impl Into<String>, term: Arc<dyn Term>) -> UserTerm {
+        UserTerm {
+            name: name.into(),
+            term: Some(term),
+        }
+    }
+
+    /// A term whose values the front supplies.
+    pub fn supplied(name: impl Into<String>) -> UserTerm {
+        UserTerm {
+            name: name.into(),
+            term: None,
+        }
+    }
+}
+
+/// The terms an experiment measures, resolved once.
+#[derive(Debug, Clone)]
+pub(crate) struct TermPlan {
+    /// The term of each motivation, in input order.
+    pub(crate) inputs: Vec<TermId>,
+    /// The user-defined terms, in registration order.
+    pub(crate) user: Vec<UserTerm>,
+    /// Whether any mission term is weighed (then every trial follows its room's mission).
+    pub(crate) mission: bool,
+    /// How waypoints count.
+    pub(crate) order: WaypointOrder,
+    /// Whether a trial ends when its mission is done.
+    pub(crate) end_at_mission: bool,
+}
+
+impl TermPlan {
+    /// Resolves each motivation's term; checks that the rooms have the missions the terms need.
+    pub(crate) fn resolve(
+        motivations: &Motivations,
+        user: &[UserTerm],
+        rooms: &[Room],
+        order: WaypointOrder,
+        end_at_mission: bool,
+    ) -> Result<TermPlan, FieldError> {
+        check_user_terms(user)?;
+        let mut inputs = Vec::with_capacity(MAX_MOTIVATIONS);
+        for m in motivations.iter() {
+            let id = TermId::library(m.term())
+                .or_else(|| {
+                    user.iter()
+                        .position(|u| u.name == m.term())
+                        .map(TermId::User)
+                })
+                .ok_or_else(|| unknown_term(m.name(), m.term(), user))?;
+            check_missions(m.name(), id, rooms)?;
+            inputs.push(id);
+        }
+        let mission = inputs.iter().any(|id| id.is_mission());
+        if end_at_mission && !mission {
+            return Err(FieldError::new(
+                "fitness.end_at_mission",
+                "is true, but no motivation weighs a mission term (goal, urgency, waypoints or safety); set it to false or bind a motivation to one",
+            ));
+        }
+        Ok(TermPlan {
+            inputs,
+            user: user.to_vec(),
+            mission,
+            order,
+            end_at_mission,
+        })
+    }
+
+    /// A tracker of `room`'s mission, when the experiment measures mission terms.
+    pub(crate) fn tracker(&self, room: &Room) -> Option<MissionTracker> {
+        self.mission.then(|| {
+            let (goal, waypoints) = mission_of(room);
+            MissionTracker::new(room, goal, waypoints, self.order, self.end_at_mission)
+        })
+    }
+}
+
+/// The goal and waypoints of `room`'s mission.
+pub(crate) fn mission_of(_room: &Room) -> (Option<HomeZone>, Vec<HomeZone>) {
+    (None, Vec::new()) // MERGE: room.mission
+}
+
+/// At most [`MAX_USER_TERMS`], named apart from each other and from the library's terms.
+fn check_user_terms(user: &[UserTerm]) -> Result<(), FieldError> {
+    if user.len() > MAX_USER_TERMS {
+        return Err(FieldError::new(
+            "terms",
+            format!(
+                "at most {MAX_USER_TERMS} user-defined terms, got {}",
+                user.len()
+            ),
+        ));
+    }
+    for (i, u) in user.iter().enumerate() {
+        let clash =
+            TermId::library(&u.name).is_some() || user[..i].iter().any(|o| o.name == u.name);
+        let plain = !u.name.is_empty()
+            && u.name.len() <= 40
+            && u.name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+        if clash || !plain {
+            return Err(FieldError::new(
+                format!("terms.{}", u.name),
+                "a user-defined term needs its own plain name (letters, digits, '_' or '-', at most 40), not one of the library's terms (a, g, l, b, goal, urgency, waypoints, safety) nor another user term's",
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn unknown_term(motivation: &str, term: &str, user: &[UserTerm]) -> FieldError {
+    let mut known: Vec<&str> = LIBRARY_TERMS.to_vec();
+    known.extend(user.iter().map(|u| u.name.as_str()));
+    FieldError::new(
+        format!("motivations.{motivation}"),
+        format!(
+            "weighs the term {term:?}, which does not exist; a motivation weighs one of the terms {} (write {motivation} = {{ weight = …, term = \"…\" }}; a motivation without `term` weighs the term of its own name)",
+            known.join(", ")
+        ),
+    )
+}
+
+/// A mission term needs its mission in every room: `goal` a goal, `waypoints` waypoints,
+/// `urgency` either.
+fn check_missions(motivation: &str, id: TermId, rooms: &[Room]) -> Result<(), FieldError> {
+    for (i, room) in rooms.iter().enumerate() {
+        let (goal, waypoints) = mission_of(room);
+        let missing = match id {
+            TermId::Goal if goal.is_none() => "a goal zone (goal = { x, y, radius })",
+            TermId::Waypoints if waypoints.is_empty() => "waypoints ([[waypoints]] x, y, radius)",
+            TermId::Urgency if goal.is_none() && waypoints.is_empty() => {
+                "a mission (a goal zone or waypoints)"
+            }
+            _ => continue,
+        };
+        return Err(FieldError::new(
+            format!("rooms[{i}]"),
+            format!(
+                "motivation {motivation} weighs a mission term, but room \"{}\" has no {missing}; give its room file one, or leave the room out",
+                room.name
+            ),
+        ));
+    }
+    Ok(())
+}
+
+impl Experiment {
+    /// The fuzzy inputs `Y` for a trial's terms, one per motivation (with `energy =
+    /// "conserve"`, the battery term is `1 − b`).
+    pub fn fuzzy_inputs(&self, terms: &FitnessTerms) -> Vec<f64> {
+        self.plan
+            .inputs
+            .iter()
+            .map(|&id| match (id, self.energy) {
+                (TermId::B, EnergyMode::Conserve) => 1.0 - terms.b,
+                _ => terms.get(id),
+            })
+            .collect()
+    }
+
+    /// F for a trial's terms under this experiment's motivations.
+    pub fn fuzzy_fitness(&self, terms: &FitnessTerms) -> f64 {
+        let mut y = [0.0; MAX_MOTIVATIONS];
+        for (slot, &id) in y.iter_mut().zip(&self.plan.inputs) {
+            *slot = match (id, self.energy) {
+                (TermId::B, EnergyMode::Conserve) => 1.0 - terms.b,
+                _ => terms.get(id),
+            };
+        }
+        self.fuzzy
+            .evaluate(&self.motivations, &y[..self.plan.inputs.len()])
+    }
+
+    /// The term each motivation weighs, in input order.
+    pub fn input_terms(&self) -> &[TermId] {
+        &self.plan.inputs
+    }
+
+    /// The user-defined terms, in registration order.
+    pub fn user_terms(&self) -> &[UserTerm] {
+        &self.plan.user
+    }
+
+    /// Whether trials follow their room's mission (a motivation weighs a mission term).
+    pub fn measures_mission(&self) -> bool {
+        self.plan.mission
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiment::RawConfig;
+    use crate::simulation::room::BUILTIN_ROOMS;
+
+    fn build(config: &str, user: &[UserTerm]) -> Result<Experiment, FieldError> {
+        let text = format!(
+            "[ga]\npopulation = 6\ngenerations = 2\n[trial]\nsteps = 80\n[aem]\nepochs = 5\ntest_runs = 2\n{config}"
+        );
+        let raw = RawConfig::parse(&text, "c.toml", &[])?;
+        let rooms = BUILTIN_ROOMS.iter().map(|r| Room::builtin(r).unwrap()).collect();
+        Experiment::with_terms(&raw, rooms, user, "c.toml")
+    }
+
+    /// A config without `[motivations]` has the paper's four, in paper order, bound to a, g,
+    /// l, b, and writes them back as before.
+    #[test]
+    fn the_paper_four_are_the_default_and_write_back_as_before() {
+        let exp = build("", &[]).unwrap();
+        assert!(exp.motivations().is_paper());
+        assert_eq!(exp.input_terms(), [TermId::A, TermId::G, TermId::L, TermId::B]);
+        let raw = RawConfig::parse("", "c.toml", &[]).unwrap();
+        let text = raw.to_toml();
+        let at = text.find("[motivations]").unwrap();
+        assert!(
+            text[at..].starts_with(
+                "[motivations]\ncuriosity = 0.8\nhoming = 0.1\norientation = 0.0\nenergy = 0.1\n"
+            ),
+            "{text}"
+        );
+        assert!(!text.contains("waypoints"), "{text}");
+    }
+
+    /// Five motivations: the paper's four and one of one's own bound to `safety`, in input
+    /// order paper-first; the table form records its term.
+    #[test]
+    fn a_fifth_motivation_is_an_input_after_the_paper_four() {
+        let exp = build(
+            "[motivations]\ncuriosity = 0.6\nhoming = 0.1\norientation = 0.0\nenergy = 0.1\ncare = { weight = 0.2, term = \"safety\" }\n",
+            &[],
+        )
+        .unwrap();
+        let names: Vec<&str> = exp.motivations().iter().map(|m| m.name()).collect();
+        assert_eq!(names, ["curiosity", "homing", "orientation", "energy", "care"]);
+        assert_eq!(exp.input_terms()[4], TermId::Safety);
+        assert!(exp.measures_mission());
+        let raw = RawConfig::parse(
+            "[motivations]\ncuriosity = 0.6\nhoming = 0.1\norientation = 0.0\nenergy = 0.1\ncare = { weight = 0.2, term = \"safety\" }\n",
+            "c.toml",
+            &[],
+        )
+        .unwrap();
+        assert!(raw.to_toml().contains("term = \"safety\""), "{}", raw.to_toml());
+    }
+
+    /// One motivation alone (N = 1) when none of the paper's is named.
+    #[test]
+    fn a_single_motivation_of_ones_own_stands_alone() {
+        let exp = build("[motivations]\nsafety = 1.0\n", &[]).unwrap();
+        assert_eq!(exp.motivations().len(), 1);
+        assert_eq!(exp.input_terms(), [TermId::Safety]);
+    }
+
+    /// Unknown terms, too many motivations, sums off 1 and mission terms in rooms without a
+    /// mission each name their field.
+    #[test]
+    fn bad_motivations_name_their_field() {
+        let e = build("[motivations]\nfoo = 1.0\n", &[]).unwrap_err();
+        assert_eq!(e.field, "motivations.foo", "{e}");
+        assert!(e.reason.contains("does not exist"), "{e}");
+        let nine: String = (0..9).map(|k| format!("m{k} = {{ weight = 0.1, term = \"a\" }}\n")).collect();
+        let e = build(&format!("[motivations]\n{nine}"), &[]).unwrap_err();
+        assert_eq!(e.field, "motivations", "{e}");
+        assert!(e.reason.contains("from 1 to 8"), "{e}");
+        let e = build("[motivations]\nsafety = 0.5\ngoal = 0.2\n", &[]).unwrap_err();
+        assert!(e.reason.contains("sum to 1"), "{e}");
+        let e = build("[motivations]\nsafety = 0.5\ngoal = 0.5\n", &[]).unwrap_err();
+        assert_eq!(e.field, "rooms[0]", "{e}");
+        assert!(e.reason.contains("no a goal zone") || e.reason.contains("goal zone"), "{e}");
+        let e = build(
+            "[motivations]\nsafety = { weight = 1.0, peaks = [0.5, 0.2] }\n",
+            &[],
+        )
+        .unwrap_err();
+        assert_eq!(e.field, "motivations.safety.peaks", "{e}");
+        let e = build("[fitness]\nend_at_mission = true\n", &[]).unwrap_err();
+        assert_eq!(e.field, "fitness.end_at_mission", "{e}");
+    }
+
+    /// A term of one's own, computed from each trial's record, is the input of the motivation
+    /// that names it: a constant term of 0.25 with weight 1 gives F = 0.25 · C[label] blends,
+    /// and equals the TSK of that value.
+    #[test]
+    fn a_user_term_of_known_value_sets_f_by_its_formula() {
+        #[derive(Debug)]
+        struct Quarter;
+        impl Term for Quarter {
+            fn value(&self, _: &crate::fitness::terms::TrialRecord<'_>) -> f64 {
+                0.25
+            }
+        }
+        let exp = build(
+            "[motivations]\nsteady = { weight = 1.0, term = \"quarter\" }\n",
+            &[UserTerm::computed("quarter", Arc::new(Quarter))],
+        )
+        .unwrap();
+        let run = &exp.runs()[0];
+        let genome = exp.initial_population(run).network(0);
+        let e = exp.evaluate(&genome, run, 0, 0);
+        // One input at 0.25, the peak of label L (C = 0.25): F = 1 · 0.25 · 0.25.
+        for s in &e.per_room {
+            assert_eq!(s.terms.user.as_slice(), [0.25]);
+            assert_eq!(s.f, 0.0625);
+        }
+    }
+
+    /// The safety term is 1 − (blocked moves / executed steps) of the trial.
+    #[test]
+    fn safety_counts_the_blocked_moves() {
+        let exp = build("[motivations]\nsafety = 1.0\n", &[]).unwrap();
+        let run = &exp.runs()[0];
+        let genome = exp.initial_population(run).network(1);
+        let (terms, _) = exp.trial(&genome, 0, 99);
+        let arena = &exp.arenas()[0];
+        let mut tr = crate::simulation::trial::Trajectory::starting_at(arena.room().home, 80);
+        crate::simulation::trial::simulate(
+            arena,
+            &mut genome.clone(),
+            &mut crate::random::rng::rng_from_seed(99),
+            &mut tr,
+        );
+        let executed = tr.idle.iter().filter(|i| !**i).count();
+        let blocked = tr
+            .collisions
+            .iter()
+            .zip(&tr.idle)
+            .filter(|(c, i)| **c && !**i)
+            .count();
+        let safety = terms.mission.unwrap().safety;
+        assert_eq!(safety, 1.0 - blocked as f64 / executed as f64);
+    }
+}
