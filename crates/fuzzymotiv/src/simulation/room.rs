@@ -14,6 +14,7 @@ use crate::simulation::geom::{
     Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area,
 };
 use crate::simulation::robot::{KHEPERA_RADIUS, Pose};
+use crate::simulation::trial::{Arena, TrialParams};
 
 /// Largest coordinate magnitude accepted in room files (mm): rooms up to 20 m across.
 pub const MAX_COORD: f64 = 1e4;
@@ -37,26 +38,67 @@ pub struct Room {
     pub home: Pose,
     /// The home zone: a trial can end when the robot comes back into it (docs/model.md).
     pub home_zone: HomeZone,
+    /// The room's mission (a goal zone and waypoints), empty unless the room file declares one.
+    #[serde(default, skip_serializing_if = "Mission::is_empty")]
+    pub mission: Mission,
 }
 
-/// The home zone, a disc: the robot has *escaped* once its centre has been outside it, and an
-/// escaped robot whose centre is inside it again has come home.
+/// A disc in a room (mm): the home zone, a mission's goal or one of its waypoints.
 ///
 /// ```
-/// use fuzzymotiv::simulation::{Vec2, HomeZone};
-/// let zone = HomeZone { centre: Vec2::new(0.0, 0.0), radius: 160.0 };
+/// use fuzzymotiv::simulation::{Vec2, Zone};
+/// let zone = Zone { centre: Vec2::new(0.0, 0.0), radius: 160.0 };
 /// assert!(zone.contains(Vec2::new(40.0, 40.0)));
+/// assert!(zone.contains(Vec2::new(160.0, 0.0)));
 /// assert!(!zone.contains(Vec2::new(120.0, 120.0)));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct HomeZone {
+pub struct Zone {
     /// Centre (mm).
     pub centre: Vec2,
     /// Radius (mm), > 0.
     pub radius: f64,
 }
 
-impl HomeZone {
+/// The home zone, a [`Zone`]: the robot has *escaped* once its centre has been outside it, and
+/// an escaped robot whose centre is inside it again has come home.
+pub type HomeZone = Zone;
+
+/// A room's mission (docs/model.md §4): an optional goal zone and waypoints, in order.
+///
+/// ```
+/// use fuzzymotiv::simulation::{Mission, Vec2, Zone};
+/// assert!(Mission::default().is_empty());
+/// let goal = Zone { centre: Vec2::new(850.0, 750.0), radius: 60.0 };
+/// let m = Mission { goal: Some(goal), waypoints: vec![] };
+/// assert!(!m.is_empty());
+/// assert_eq!(m.zones().next(), Some(("goal".to_string(), goal)));
+/// ```
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Mission {
+    /// The zone to reach, if any.
+    pub goal: Option<Zone>,
+    /// Zones to visit, in order.
+    pub waypoints: Vec<Zone>,
+}
+
+impl Mission {
+    /// Whether the mission has neither a goal nor waypoints.
+    pub fn is_empty(&self) -> bool {
+        self.goal.is_none() && self.waypoints.is_empty()
+    }
+
+    /// Every zone of the mission with its room-file field: `goal`, then `waypoints[0]`, ….
+    pub fn zones(&self) -> impl Iterator<Item = (String, Zone)> + '_ {
+        let goal = self.goal.map(|z| ("goal".to_string(), z));
+        let waypoints = (self.waypoints.iter())
+            .enumerate()
+            .map(|(i, z)| (format!("waypoints[{i}]"), *z));
+        goal.into_iter().chain(waypoints)
+    }
+}
+
+impl Zone {
     /// Whether `p` is inside the zone (on its rim counts as inside).
     #[inline]
     pub fn contains(&self, p: Vec2) -> bool {
@@ -85,6 +127,9 @@ struct RawRoom {
     home_zone: Option<RawZone>,
     #[serde(default)]
     obstacles: Vec<RawObstacle>,
+    goal: Option<RawZone>,
+    #[serde(default)]
+    waypoints: Vec<RawZone>,
 }
 
 #[derive(Deserialize)]
@@ -93,6 +138,36 @@ struct RawZone {
     x: f64,
     y: f64,
     radius: f64,
+}
+
+impl RawZone {
+    /// The zone, its centre within ±`MAX_COORD` and its radius > 0 (`field` names it).
+    fn zone(&self, field: &str) -> Result<Zone, FieldError> {
+        for (name, v) in [("x", self.x), ("y", self.y)] {
+            if !(v.is_finite() && v.abs() <= MAX_COORD) {
+                return Err(FieldError::new(
+                    format!("{field}.{name}"),
+                    format!(
+                        "must be a finite coordinate within ±{MAX_COORD} mm, got {}",
+                        Num(v)
+                    ),
+                ));
+            }
+        }
+        if !(self.radius > 0.0 && self.radius <= MAX_COORD) {
+            return Err(FieldError::new(
+                format!("{field}.radius"),
+                format!(
+                    "must be a radius > 0 and ≤ {MAX_COORD} mm, got {} (e.g. radius = 60)",
+                    Num(self.radius)
+                ),
+            ));
+        }
+        Ok(Zone {
+            centre: Vec2::new(self.x, self.y),
+            radius: self.radius,
+        })
+    }
 }
 
 #[derive(Deserialize)]
@@ -203,6 +278,15 @@ impl RawRoom {
             radius: z.radius,
         })
     }
+
+    /// The mission's zones, each with finite values and a radius > 0.
+    fn mission(&self) -> Result<Mission, FieldError> {
+        let goal = self.goal.as_ref().map(|z| z.zone("goal")).transpose()?;
+        let waypoints = (self.waypoints.iter().enumerate())
+            .map(|(i, z)| z.zone(&format!("waypoints[{i}]")))
+            .collect::<Result<_, _>>()?;
+        Ok(Mission { goal, waypoints })
+    }
 }
 
 fn pts(v: &[(f64, f64)]) -> Vec<Vec2> {
@@ -260,6 +344,7 @@ impl Room {
                 centre: Vec2::new(0.0, 0.0),
                 radius: HOME_ZONE_RADIUS,
             },
+            mission: Mission::default(),
         })
     }
 
@@ -269,11 +354,12 @@ impl Room {
         let raw: RawRoom = toml::from_str(text).map_err(|e| {
             let msg = e.message().to_string();
             let field = field_from_toml_message(&msg, text, e.span());
-            FieldError::new(field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline)")).in_source(source_name)
+            FieldError::new(field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline, optional goal = {{ x, y, radius }}, optional [[waypoints]] x, y, radius)")).in_source(source_name)
         })?;
         raw.check_coordinates()
             .map_err(|e| e.in_source(source_name))?;
         let home_zone = raw.home_zone().map_err(|e| e.in_source(source_name))?;
+        let mission = raw.mission().map_err(|e| e.in_source(source_name))?;
         let to_vec = |v: &[[f64; 2]]| v.iter().map(|p| Vec2::new(p[0], p[1])).collect::<Vec<_>>();
         let room = Room {
             name: raw.name,
@@ -281,8 +367,18 @@ impl Room {
             obstacles: raw.obstacles.iter().map(|o| to_vec(&o.outline)).collect(),
             home: Pose::new(raw.home.x, raw.home.y, raw.home.heading_deg.to_radians()),
             home_zone,
+            mission,
         };
-        room.validated(source_name)
+        let room = room.validated(source_name)?;
+        // Reachable by the Khepera, as home's clearance; a bigger body is checked by the
+        // experiment ([`crate::simulation::check_missions_reachable`]).
+        if !room.mission.is_empty() {
+            let arena = Arena::new(room.clone(), &TrialParams::default());
+            if let Some(e) = arena.unreachable_mission_zone() {
+                return Err(e.in_source(source_name));
+            }
+        }
+        Ok(room)
     }
 
     /// Checks the geometry (docs/model.md §4) and normalises the outline to counter-clockwise order.
@@ -300,7 +396,46 @@ impl Room {
         }
         self.check_obstacles().map_err(in_source)?;
         self.check_home().map_err(in_source)?;
+        self.check_mission().map_err(in_source)?;
         Ok(self)
+    }
+
+    /// Every zone of the mission has a radius > 0 and its centre on the floor (inside the
+    /// outline, outside every obstacle).
+    fn check_mission(&self) -> Result<(), FieldError> {
+        for (field, zone) in self.mission.zones() {
+            if !(zone.radius > 0.0 && zone.radius <= MAX_COORD) {
+                return Err(FieldError::new(
+                    format!("{field}.radius"),
+                    format!(
+                        "must be a radius > 0 and ≤ {MAX_COORD} mm, got {} (e.g. radius = 60)",
+                        Num(zone.radius)
+                    ),
+                ));
+            }
+            let c = zone.centre;
+            if !point_in_polygon(&self.outline, c) {
+                return Err(FieldError::new(
+                    field,
+                    format!(
+                        "the centre ({}, {}) lies outside the room outline; put it inside the room",
+                        Num(c.x),
+                        Num(c.y)
+                    ),
+                ));
+            }
+            if let Some(k) = self.obstacles.iter().position(|o| point_in_polygon(o, c)) {
+                return Err(FieldError::new(
+                    field,
+                    format!(
+                        "the centre ({}, {}) lies inside obstacles[{k}]; put it on the free floor",
+                        Num(c.x),
+                        Num(c.y)
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Every obstacle is a simple polygon strictly inside the outline.
