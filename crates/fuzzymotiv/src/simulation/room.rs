@@ -756,4 +756,217 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
         );
         assert!(e.field.starts_with("home"), "{e}");
     }
+    /// A square room 800 × 400 with home on the left, for the mission tests.
+    const MISSION_ROOM: &str =
+        "name='m'\noutline=[[0,0],[800,0],[800,400],[0,400]]\nhome={x=100,y=200,heading_deg=0}\n";
+
+    #[test]
+    fn room_file_goal_and_waypoints_parse_in_both_toml_forms() {
+        let text = format!(
+            "{MISSION_ROOM}goal = {{ x = 700, y = 300, radius = 60 }}\n\
+             [[waypoints]]\nx = 400\ny = 100\nradius = 50\n\
+             [[waypoints]]\nx = 600\ny = 300\nradius = 40.5\n"
+        );
+        let r = Room::from_toml_str(&text, "m.toml").unwrap();
+        let zone = |x, y, radius| Zone {
+            centre: Vec2::new(x, y),
+            radius,
+        };
+        assert_eq!(r.mission.goal, Some(zone(700.0, 300.0, 60.0)));
+        assert_eq!(
+            r.mission.waypoints,
+            vec![zone(400.0, 100.0, 50.0), zone(600.0, 300.0, 40.5)]
+        );
+        let inline = format!(
+            "{MISSION_ROOM}waypoints = [{{ x = 400, y = 100, radius = 50 }}, {{ x = 600, y = 300, radius = 40.5 }}]\n\
+             goal = {{ x = 700, y = 300, radius = 60 }}\n"
+        );
+        assert_eq!(Room::from_toml_str(&inline, "m.toml").unwrap(), r);
+        let none = Room::from_toml_str(MISSION_ROOM, "m.toml").unwrap();
+        assert!(none.mission.is_empty());
+    }
+
+    fn bad_mission(extra: &str) -> RoomError {
+        bad(&format!("{MISSION_ROOM}{extra}"))
+    }
+
+    #[test]
+    fn a_goal_outside_the_outline_names_goal() {
+        let e = bad_mission("goal={x=900,y=200,radius=50}");
+        assert_eq!(
+            (e.source_name.as_str(), e.field.as_str()),
+            ("bad.toml", "goal")
+        );
+        assert!(e.reason.contains("outside the room outline"), "{e}");
+    }
+
+    #[test]
+    fn a_waypoint_inside_an_obstacle_names_the_waypoint() {
+        let e = bad_mission(
+            "waypoints=[{x=200,y=100,radius=50},{x=450,y=200,radius=30}]\n\
+             [[obstacles]]\noutline=[[400,150],[500,150],[500,250],[400,250]]",
+        );
+        assert_eq!(e.field, "waypoints[1]");
+        assert!(e.reason.contains("inside obstacles[0]"), "{e}");
+        let e = bad_mission(
+            "goal={x=450,y=200,radius=30}\n[[obstacles]]\noutline=[[400,150],[500,150],[500,250],[400,250]]",
+        );
+        assert_eq!(e.field, "goal");
+    }
+
+    #[test]
+    fn a_zone_radius_zero_negative_or_nan_names_its_radius() {
+        for r in ["0", "-5", "nan", "inf", "1e5"] {
+            let e = bad_mission(&format!("goal={{x=700,y=200,radius={r}}}"));
+            assert_eq!(e.field, "goal.radius", "radius {r}: {e}");
+            assert!(e.reason.contains("> 0"), "{e}");
+            let e = bad_mission(&format!(
+                "[[waypoints]]\nx=300\ny=200\nradius=40\n[[waypoints]]\nx=700\ny=200\nradius={r}"
+            ));
+            assert_eq!(e.field, "waypoints[1].radius", "radius {r}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_zone_centre_not_finite_or_too_far_names_its_coordinate() {
+        let e = bad_mission("goal={x=nan,y=200,radius=50}");
+        assert_eq!(e.field, "goal.x");
+        let e = bad_mission("waypoints=[{x=300,y=-inf,radius=50}]");
+        assert_eq!(e.field, "waypoints[0].y");
+        let e = bad_mission("goal={x=2e4,y=200,radius=50}");
+        assert_eq!(e.field, "goal.x");
+        assert!(e.reason.contains("10000"), "{e}");
+    }
+
+    #[test]
+    fn an_unknown_or_missing_key_in_goal_names_goal() {
+        let e = bad_mission("goal={x=700,y=200,radius=50,colour='red'}");
+        assert_eq!(e.field, "goal");
+        assert!(e.reason.contains("colour"), "{e}");
+        assert!(e.reason.contains("optional goal = { x, y, radius }"), "{e}");
+        let e = bad_mission("goal={x=700,y=200}");
+        assert!(e.to_string().contains("radius"), "{e}");
+        let e = bad_mission("[[waypoints]]\nx=300\ny=200\nradius=40\nsize=3");
+        assert_eq!(e.field, "waypoints.size");
+    }
+
+    /// A goal behind a wall with no gap the body fits through is refused when the file is read.
+    #[test]
+    fn a_goal_in_a_closed_off_pocket_is_unreachable() {
+        let wall = "[[obstacles]]\noutline=[[400,5],[420,5],[420,395],[400,395]]\n";
+        let e = bad_mission(&format!("goal={{x=700,y=200,radius=50}}\n{wall}"));
+        assert_eq!(
+            (e.source_name.as_str(), e.field.as_str()),
+            ("bad.toml", "goal")
+        );
+        assert!(e.reason.contains("cannot be reached from home"), "{e}");
+        let e = bad_mission(&format!(
+            "waypoints=[{{x=200,y=200,radius=50}},{{x=600,y=100,radius=50}}]\n{wall}"
+        ));
+        assert_eq!(e.field, "waypoints[1]");
+        // The same goal with the wall open in the middle is fine.
+        let open = "[[obstacles]]\noutline=[[400,5],[420,5],[420,140],[400,140]]\n\
+                    [[obstacles]]\noutline=[[400,260],[420,260],[420,395],[400,395]]\n";
+        Room::from_toml_str(
+            &format!("{MISSION_ROOM}goal={{x=700,y=200,radius=50}}\n{open}"),
+            "ok.toml",
+        )
+        .unwrap();
+    }
+
+    /// A zone whose centre is too close to a wall for the body's centre can still be reached
+    /// where it reaches into the floor the body can cover.
+    #[test]
+    fn a_zone_centred_in_a_corner_is_reachable_through_its_disc() {
+        let r = Room::from_toml_str(
+            &format!("{MISSION_ROOM}goal={{x=790,y=390,radius=100}}"),
+            "corner.toml",
+        )
+        .unwrap();
+        assert_eq!(r.mission.goal.unwrap().centre, Vec2::new(790.0, 390.0));
+        let e = bad_mission("goal={x=795,y=395,radius=10}");
+        assert_eq!(e.field, "goal");
+    }
+
+    /// A room without a mission serializes exactly as before missions existed (the goldens and
+    /// saved runs hold such rooms).
+    #[test]
+    fn rooms_without_a_mission_serialize_as_before() {
+        let old = concat!(
+            r#"{"name":"rectangle","outline":[{"x":0.0,"y":0.0},{"x":800.0,"y":0.0},"#,
+            r#"{"x":800.0,"y":400.0},{"x":0.0,"y":400.0}],"obstacles":[],"#,
+            r#""home":{"x":40.0,"y":40.0,"heading":0.0},"#,
+            r#""home_zone":{"centre":{"x":0.0,"y":0.0},"radius":160.0}}"#
+        );
+        let room = Room::builtin("rectangle").unwrap();
+        assert_eq!(serde_json::to_string(&room).unwrap(), old);
+        assert_eq!(serde_json::from_str::<Room>(old).unwrap(), room);
+        let with = Room {
+            mission: Mission {
+                goal: Some(Zone {
+                    centre: Vec2::new(700.0, 300.0),
+                    radius: 60.0,
+                }),
+                waypoints: Vec::new(),
+            },
+            ..room
+        };
+        let json = serde_json::to_string(&with).unwrap();
+        assert!(json.ends_with(r#""mission":{"goal":{"centre":{"x":700.0,"y":300.0},"radius":60.0},"waypoints":[]}}"#), "{json}");
+        assert_eq!(serde_json::from_str::<Room>(&json).unwrap(), with);
+    }
+
+    #[test]
+    fn the_shipped_mission_rooms_are_valid() {
+        let fetch =
+            Room::from_toml_str(include_str!("../../../../rooms/fetch-L.toml"), "fetch-L").unwrap();
+        let goal = fetch.mission.goal.unwrap();
+        let far = fetch.outline.iter().map(|p| p.dist(fetch.home.position()));
+        assert!(goal.centre.dist(fetch.home.position()) > 0.85 * far.fold(0.0, f64::max));
+        let patrol =
+            Room::from_toml_str(include_str!("../../../../rooms/patrol.toml"), "patrol").unwrap();
+        assert_eq!(
+            (patrol.mission.goal, patrol.mission.waypoints.len()),
+            (None, 3)
+        );
+    }
+    /// A room whose goal lies behind a 120 mm gap: the Khepera (55 mm across) passes it, a
+    /// body of radius 60 does not.
+    fn gap_room() -> Room {
+        let text = format!(
+            "{MISSION_ROOM}goal={{x=700,y=200,radius=50}}\n\
+             [[obstacles]]\noutline=[[400,5],[420,5],[420,140],[400,140]]\n\
+             [[obstacles]]\noutline=[[400,260],[420,260],[420,395],[400,395]]\n"
+        );
+        Room::from_toml_str(&text, "gap.toml").unwrap()
+    }
+
+    #[test]
+    fn the_arena_finds_the_mission_zone_its_body_cannot_reach() {
+        let room = gap_room();
+        let khepera = Arena::new(room.clone(), &TrialParams::default());
+        assert_eq!(khepera.unreachable_mission_zone(), None);
+        let raw = crate::simulation::RawRobot {
+            radius: 60.0,
+            ..Default::default()
+        };
+        let params = TrialParams {
+            robot: crate::simulation::Khepera::from_raw(&raw).unwrap(),
+            ..TrialParams::default()
+        };
+        let e = Arena::new(room, &params)
+            .unreachable_mission_zone()
+            .unwrap();
+        assert_eq!(e.field, "goal");
+        assert!(e.reason.contains("body radius 60 mm"), "{e}");
+    }
+
+    #[test]
+    fn a_bigger_body_that_cannot_reach_a_goal_names_the_room_and_field() {
+        let rooms = [Room::builtin("H").unwrap(), gap_room()];
+        crate::simulation::check_missions_reachable(&rooms, KHEPERA_RADIUS).unwrap();
+        let e = crate::simulation::check_missions_reachable(&rooms, 60.0).unwrap_err();
+        assert_eq!(e.field, "rooms[1]");
+        assert!(e.reason.contains("room \"m\", field `goal`"), "{e}");
+    }
 }
