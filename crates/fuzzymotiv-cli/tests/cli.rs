@@ -254,6 +254,83 @@ fn bad_room_file_in_config_exits_2() {
     assert!(e.contains("r.toml") && e.contains("`home`"), "{e}");
 }
 
+/// Runs `c.toml` with rooms `["H", "r.toml"]`, `r.toml` being `room`, into `o`; returns what it
+/// did after checking it exited 2 and wrote nothing.
+fn run_refused_with_room(dir: &Path, room: &str, extra: &[&str]) -> String {
+    std::fs::write(dir.join("r.toml"), room).unwrap();
+    let cfg = dir.join("c.toml");
+    std::fs::write(&cfg, "rooms = [\"H\", \"r.toml\"]\n").unwrap();
+    let out = dir.join("o");
+    let o = Fm::new(["run", cfg.to_str().unwrap()])
+        .out(&out)
+        .sets(&SMALL)
+        .sets(extra)
+        .run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(!out.exists(), "a refused run wrote {}", out.display());
+    let e = stderr(&o);
+    assert!(!e.contains("panicked"), "{e}");
+    e
+}
+
+#[test]
+fn a_bad_goal_in_a_room_file_exits_2_naming_the_file_and_field_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let room =
+        "name='r'\noutline=[[0,0],[800,0],[800,400],[0,400]]\nhome={x=100,y=200,heading_deg=0}\n";
+    let e = run_refused_with_room(
+        dir.path(),
+        &format!("{room}goal={{x=900,y=200,radius=50}}\n"),
+        &[],
+    );
+    assert!(
+        e.contains("r.toml") && e.contains("`goal`") && e.contains("outside the room outline"),
+        "{e}"
+    );
+    let e = run_refused_with_room(
+        dir.path(),
+        &format!("{room}[[waypoints]]\nx=300\ny=200\nradius=0\n"),
+        &[],
+    );
+    assert!(
+        e.contains("r.toml") && e.contains("`waypoints[0].radius`"),
+        "{e}"
+    );
+    // Behind a wall with a 120 mm gap: reachable for the Khepera, not for a body of radius 60.
+    let gap = format!(
+        "{room}goal={{x=700,y=200,radius=50}}\n\
+         [[obstacles]]\noutline=[[400,5],[420,5],[420,140],[400,140]]\n\
+         [[obstacles]]\noutline=[[400,260],[420,260],[420,395],[400,395]]\n"
+    );
+    let e = run_refused_with_room(
+        dir.path(),
+        &gap,
+        &["robot.radius=60", "rooms=[\"r.toml\"]", "aem.enabled=false"],
+    );
+    assert!(
+        e.contains("c.toml") && e.contains("`rooms[0]`") && e.contains("room \"r\", field `goal`"),
+        "{e}"
+    );
+    assert!(e.contains("cannot be reached from home"), "{e}");
+}
+
+#[test]
+fn the_shipped_mission_rooms_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = repo().join("configs/tiny.toml");
+    let out = dir.path().join("o");
+    Fm::new(["run", cfg.to_str().unwrap()])
+        .out(&out)
+        .sets(&SMALL)
+        .sets(&["rooms=[\"../rooms/fetch-L.toml\", \"../rooms/patrol.toml\"]"])
+        .ok();
+    let table = std::fs::read_to_string(out.join("table.md")).unwrap();
+    assert!(
+        table.contains("fetch-L") && table.contains("patrol"),
+        "{table}"
+    );
+}
+
 #[test]
 fn user_room_takes_part_in_recognition() {
     let dir = tempfile::tempdir().unwrap();

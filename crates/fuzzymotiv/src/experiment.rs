@@ -270,6 +270,7 @@ fn check_rooms(rooms: &[Room]) -> Result<(), FieldError> {
 
 /// Room files are validated against the Khepera; a bigger body needs its own check.
 fn check_clearance(rooms: &[Room], radius: f64) -> Result<(), FieldError> {
+    crate::simulation::check_missions_reachable(rooms, radius)?;
     if radius <= KHEPERA_RADIUS {
         return Ok(());
     }

@@ -18,9 +18,10 @@ pub use controller::{Controller, GenomeError, INPUTS, Mlp, MlpShape, OUTPUTS};
 pub use geom::{PreparedSegment, Segment, Vec2, edges, point_in_polygon, signed_area};
 pub use math::logistic_lanes;
 pub use robot::{Action, Compass, Khepera, Motion, Pose, RawRobot, drive, wrap_angle};
-pub use room::{BUILTIN_ROOMS, HomeZone, Room, RoomError};
+pub use room::{BUILTIN_ROOMS, HomeZone, Mission, Room, RoomError, Zone};
 pub use sensor::{RayMount, SENSOR_LAYOUT, SENSOR_MAX, SENSORS, SensorModel, SensorMount, rays};
 pub use stepper::TrialRun;
 pub use trial::{
-    Arena, RawTrial, Step, StepObserver, Trajectory, TrialParams, run_trial, simulate,
+    Arena, RawTrial, Step, StepObserver, Trajectory, TrialParams, check_missions_reachable,
+    run_trial, simulate,
 };

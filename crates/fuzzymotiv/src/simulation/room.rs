@@ -14,6 +14,7 @@ use crate::simulation::geom::{
     Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area,
 };
 use crate::simulation::robot::{KHEPERA_RADIUS, Pose};
+use crate::simulation::trial::{Arena, TrialParams};
 
 /// Largest coordinate magnitude accepted in room files (mm): rooms up to 20 m across.
 pub const MAX_COORD: f64 = 1e4;
@@ -37,26 +38,67 @@ pub struct Room {
     pub home: Pose,
     /// The home zone: a trial can end when the robot comes back into it (docs/model.md).
     pub home_zone: HomeZone,
+    /// The room's mission (a goal zone and waypoints), empty unless the room file declares one.
+    #[serde(default, skip_serializing_if = "Mission::is_empty")]
+    pub mission: Mission,
 }
 
-/// The home zone, a disc: the robot has *escaped* once its centre has been outside it, and an
-/// escaped robot whose centre is inside it again has come home.
+/// A disc in a room (mm): the home zone, a mission's goal or one of its waypoints.
 ///
 /// ```
-/// use fuzzymotiv::simulation::{Vec2, HomeZone};
-/// let zone = HomeZone { centre: Vec2::new(0.0, 0.0), radius: 160.0 };
+/// use fuzzymotiv::simulation::{Vec2, Zone};
+/// let zone = Zone { centre: Vec2::new(0.0, 0.0), radius: 160.0 };
 /// assert!(zone.contains(Vec2::new(40.0, 40.0)));
+/// assert!(zone.contains(Vec2::new(160.0, 0.0)));
 /// assert!(!zone.contains(Vec2::new(120.0, 120.0)));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct HomeZone {
+pub struct Zone {
     /// Centre (mm).
     pub centre: Vec2,
     /// Radius (mm), > 0.
     pub radius: f64,
 }
 
-impl HomeZone {
+/// The home zone, a [`Zone`]: the robot has *escaped* once its centre has been outside it, and
+/// an escaped robot whose centre is inside it again has come home.
+pub type HomeZone = Zone;
+
+/// A room's mission (docs/model.md §4): an optional goal zone and waypoints, in order.
+///
+/// ```
+/// use fuzzymotiv::simulation::{Mission, Vec2, Zone};
+/// assert!(Mission::default().is_empty());
+/// let goal = Zone { centre: Vec2::new(850.0, 750.0), radius: 60.0 };
+/// let m = Mission { goal: Some(goal), waypoints: vec![] };
+/// assert!(!m.is_empty());
+/// assert_eq!(m.zones().next(), Some(("goal".to_string(), goal)));
+/// ```
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Mission {
+    /// The zone to reach, if any.
+    pub goal: Option<Zone>,
+    /// Zones to visit, in order.
+    pub waypoints: Vec<Zone>,
+}
+
+impl Mission {
+    /// Whether the mission has neither a goal nor waypoints.
+    pub fn is_empty(&self) -> bool {
+        self.goal.is_none() && self.waypoints.is_empty()
+    }
+
+    /// Every zone of the mission with its room-file field: `goal`, then `waypoints[0]`, ….
+    pub fn zones(&self) -> impl Iterator<Item = (String, Zone)> + '_ {
+        let goal = self.goal.map(|z| ("goal".to_string(), z));
+        let waypoints = (self.waypoints.iter())
+            .enumerate()
+            .map(|(i, z)| (format!("waypoints[{i}]"), *z));
+        goal.into_iter().chain(waypoints)
+    }
+}
+
+impl Zone {
     /// Whether `p` is inside the zone (on its rim counts as inside).
     #[inline]
     pub fn contains(&self, p: Vec2) -> bool {
@@ -85,6 +127,9 @@ struct RawRoom {
     home_zone: Option<RawZone>,
     #[serde(default)]
     obstacles: Vec<RawObstacle>,
+    goal: Option<RawZone>,
+    #[serde(default)]
+    waypoints: Vec<RawZone>,
 }
 
 #[derive(Deserialize)]
@@ -93,6 +138,36 @@ struct RawZone {
     x: f64,
     y: f64,
     radius: f64,
+}
+
+impl RawZone {
+    /// The zone, its centre within ±`MAX_COORD` and its radius > 0 (`field` names it).
+    fn zone(&self, field: &str) -> Result<Zone, FieldError> {
+        for (name, v) in [("x", self.x), ("y", self.y)] {
+            if !(v.is_finite() && v.abs() <= MAX_COORD) {
+                return Err(FieldError::new(
+                    format!("{field}.{name}"),
+                    format!(
+                        "must be a finite coordinate within ±{MAX_COORD} mm, got {}",
+                        Num(v)
+                    ),
+                ));
+            }
+        }
+        if !(self.radius > 0.0 && self.radius <= MAX_COORD) {
+            return Err(FieldError::new(
+                format!("{field}.radius"),
+                format!(
+                    "must be a radius > 0 and ≤ {MAX_COORD} mm, got {} (e.g. radius = 60)",
+                    Num(self.radius)
+                ),
+            ));
+        }
+        Ok(Zone {
+            centre: Vec2::new(self.x, self.y),
+            radius: self.radius,
+        })
+    }
 }
 
 #[derive(Deserialize)]
@@ -203,6 +278,15 @@ impl RawRoom {
             radius: z.radius,
         })
     }
+
+    /// The mission's zones, each with finite values and a radius > 0.
+    fn mission(&self) -> Result<Mission, FieldError> {
+        let goal = self.goal.as_ref().map(|z| z.zone("goal")).transpose()?;
+        let waypoints = (self.waypoints.iter().enumerate())
+            .map(|(i, z)| z.zone(&format!("waypoints[{i}]")))
+            .collect::<Result<_, _>>()?;
+        Ok(Mission { goal, waypoints })
+    }
 }
 
 fn pts(v: &[(f64, f64)]) -> Vec<Vec2> {
@@ -260,6 +344,7 @@ impl Room {
                 centre: Vec2::new(0.0, 0.0),
                 radius: HOME_ZONE_RADIUS,
             },
+            mission: Mission::default(),
         })
     }
 
@@ -269,11 +354,12 @@ impl Room {
         let raw: RawRoom = toml::from_str(text).map_err(|e| {
             let msg = e.message().to_string();
             let field = field_from_toml_message(&msg, text, e.span());
-            FieldError::new(field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline)")).in_source(source_name)
+            FieldError::new(field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline, optional goal = {{ x, y, radius }}, optional [[waypoints]] x, y, radius)")).in_source(source_name)
         })?;
         raw.check_coordinates()
             .map_err(|e| e.in_source(source_name))?;
         let home_zone = raw.home_zone().map_err(|e| e.in_source(source_name))?;
+        let mission = raw.mission().map_err(|e| e.in_source(source_name))?;
         let to_vec = |v: &[[f64; 2]]| v.iter().map(|p| Vec2::new(p[0], p[1])).collect::<Vec<_>>();
         let room = Room {
             name: raw.name,
@@ -281,8 +367,18 @@ impl Room {
             obstacles: raw.obstacles.iter().map(|o| to_vec(&o.outline)).collect(),
             home: Pose::new(raw.home.x, raw.home.y, raw.home.heading_deg.to_radians()),
             home_zone,
+            mission,
         };
-        room.validated(source_name)
+        let room = room.validated(source_name)?;
+        // Reachable by the Khepera, as home's clearance; a bigger body is checked by the
+        // experiment ([`crate::simulation::check_missions_reachable`]).
+        if !room.mission.is_empty() {
+            let arena = Arena::new(room.clone(), &TrialParams::default());
+            if let Some(e) = arena.unreachable_mission_zone() {
+                return Err(e.in_source(source_name));
+            }
+        }
+        Ok(room)
     }
 
     /// Checks the geometry (docs/model.md §4) and normalises the outline to counter-clockwise order.
@@ -300,7 +396,46 @@ impl Room {
         }
         self.check_obstacles().map_err(in_source)?;
         self.check_home().map_err(in_source)?;
+        self.check_mission().map_err(in_source)?;
         Ok(self)
+    }
+
+    /// Every zone of the mission has a radius > 0 and its centre on the floor (inside the
+    /// outline, outside every obstacle).
+    fn check_mission(&self) -> Result<(), FieldError> {
+        for (field, zone) in self.mission.zones() {
+            if !(zone.radius > 0.0 && zone.radius <= MAX_COORD) {
+                return Err(FieldError::new(
+                    format!("{field}.radius"),
+                    format!(
+                        "must be a radius > 0 and ≤ {MAX_COORD} mm, got {} (e.g. radius = 60)",
+                        Num(zone.radius)
+                    ),
+                ));
+            }
+            let c = zone.centre;
+            if !point_in_polygon(&self.outline, c) {
+                return Err(FieldError::new(
+                    field,
+                    format!(
+                        "the centre ({}, {}) lies outside the room outline; put it inside the room",
+                        Num(c.x),
+                        Num(c.y)
+                    ),
+                ));
+            }
+            if let Some(k) = self.obstacles.iter().position(|o| point_in_polygon(o, c)) {
+                return Err(FieldError::new(
+                    field,
+                    format!(
+                        "the centre ({}, {}) lies inside obstacles[{k}]; put it on the free floor",
+                        Num(c.x),
+                        Num(c.y)
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Every obstacle is a simple polygon strictly inside the outline.
@@ -620,5 +755,218 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
             "name='x'\noutline=[[0,0],[300,0],[300,300],[0,300]]\nhome={x='a',y=150,heading_deg=0}",
         );
         assert!(e.field.starts_with("home"), "{e}");
+    }
+    /// A square room 800 × 400 with home on the left, for the mission tests.
+    const MISSION_ROOM: &str =
+        "name='m'\noutline=[[0,0],[800,0],[800,400],[0,400]]\nhome={x=100,y=200,heading_deg=0}\n";
+
+    #[test]
+    fn room_file_goal_and_waypoints_parse_in_both_toml_forms() {
+        let text = format!(
+            "{MISSION_ROOM}goal = {{ x = 700, y = 300, radius = 60 }}\n\
+             [[waypoints]]\nx = 400\ny = 100\nradius = 50\n\
+             [[waypoints]]\nx = 600\ny = 300\nradius = 40.5\n"
+        );
+        let r = Room::from_toml_str(&text, "m.toml").unwrap();
+        let zone = |x, y, radius| Zone {
+            centre: Vec2::new(x, y),
+            radius,
+        };
+        assert_eq!(r.mission.goal, Some(zone(700.0, 300.0, 60.0)));
+        assert_eq!(
+            r.mission.waypoints,
+            vec![zone(400.0, 100.0, 50.0), zone(600.0, 300.0, 40.5)]
+        );
+        let inline = format!(
+            "{MISSION_ROOM}waypoints = [{{ x = 400, y = 100, radius = 50 }}, {{ x = 600, y = 300, radius = 40.5 }}]\n\
+             goal = {{ x = 700, y = 300, radius = 60 }}\n"
+        );
+        assert_eq!(Room::from_toml_str(&inline, "m.toml").unwrap(), r);
+        let none = Room::from_toml_str(MISSION_ROOM, "m.toml").unwrap();
+        assert!(none.mission.is_empty());
+    }
+
+    fn bad_mission(extra: &str) -> RoomError {
+        bad(&format!("{MISSION_ROOM}{extra}"))
+    }
+
+    #[test]
+    fn a_goal_outside_the_outline_names_goal() {
+        let e = bad_mission("goal={x=900,y=200,radius=50}");
+        assert_eq!(
+            (e.source_name.as_str(), e.field.as_str()),
+            ("bad.toml", "goal")
+        );
+        assert!(e.reason.contains("outside the room outline"), "{e}");
+    }
+
+    #[test]
+    fn a_waypoint_inside_an_obstacle_names_the_waypoint() {
+        let e = bad_mission(
+            "waypoints=[{x=200,y=100,radius=50},{x=450,y=200,radius=30}]\n\
+             [[obstacles]]\noutline=[[400,150],[500,150],[500,250],[400,250]]",
+        );
+        assert_eq!(e.field, "waypoints[1]");
+        assert!(e.reason.contains("inside obstacles[0]"), "{e}");
+        let e = bad_mission(
+            "goal={x=450,y=200,radius=30}\n[[obstacles]]\noutline=[[400,150],[500,150],[500,250],[400,250]]",
+        );
+        assert_eq!(e.field, "goal");
+    }
+
+    #[test]
+    fn a_zone_radius_zero_negative_or_nan_names_its_radius() {
+        for r in ["0", "-5", "nan", "inf", "1e5"] {
+            let e = bad_mission(&format!("goal={{x=700,y=200,radius={r}}}"));
+            assert_eq!(e.field, "goal.radius", "radius {r}: {e}");
+            assert!(e.reason.contains("> 0"), "{e}");
+            let e = bad_mission(&format!(
+                "[[waypoints]]\nx=300\ny=200\nradius=40\n[[waypoints]]\nx=700\ny=200\nradius={r}"
+            ));
+            assert_eq!(e.field, "waypoints[1].radius", "radius {r}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_zone_centre_not_finite_or_too_far_names_its_coordinate() {
+        let e = bad_mission("goal={x=nan,y=200,radius=50}");
+        assert_eq!(e.field, "goal.x");
+        let e = bad_mission("waypoints=[{x=300,y=-inf,radius=50}]");
+        assert_eq!(e.field, "waypoints[0].y");
+        let e = bad_mission("goal={x=2e4,y=200,radius=50}");
+        assert_eq!(e.field, "goal.x");
+        assert!(e.reason.contains("10000"), "{e}");
+    }
+
+    #[test]
+    fn an_unknown_or_missing_key_in_goal_names_goal() {
+        let e = bad_mission("goal={x=700,y=200,radius=50,colour='red'}");
+        assert_eq!(e.field, "goal");
+        assert!(e.reason.contains("colour"), "{e}");
+        assert!(e.reason.contains("optional goal = { x, y, radius }"), "{e}");
+        let e = bad_mission("goal={x=700,y=200}");
+        assert!(e.to_string().contains("radius"), "{e}");
+        let e = bad_mission("[[waypoints]]\nx=300\ny=200\nradius=40\nsize=3");
+        assert_eq!(e.field, "waypoints.size");
+    }
+
+    /// A goal behind a wall with no gap the body fits through is refused when the file is read.
+    #[test]
+    fn a_goal_in_a_closed_off_pocket_is_unreachable() {
+        let wall = "[[obstacles]]\noutline=[[400,5],[420,5],[420,395],[400,395]]\n";
+        let e = bad_mission(&format!("goal={{x=700,y=200,radius=50}}\n{wall}"));
+        assert_eq!(
+            (e.source_name.as_str(), e.field.as_str()),
+            ("bad.toml", "goal")
+        );
+        assert!(e.reason.contains("cannot be reached from home"), "{e}");
+        let e = bad_mission(&format!(
+            "waypoints=[{{x=200,y=200,radius=50}},{{x=600,y=100,radius=50}}]\n{wall}"
+        ));
+        assert_eq!(e.field, "waypoints[1]");
+        // The same goal with the wall open in the middle is fine.
+        let open = "[[obstacles]]\noutline=[[400,5],[420,5],[420,140],[400,140]]\n\
+                    [[obstacles]]\noutline=[[400,260],[420,260],[420,395],[400,395]]\n";
+        Room::from_toml_str(
+            &format!("{MISSION_ROOM}goal={{x=700,y=200,radius=50}}\n{open}"),
+            "ok.toml",
+        )
+        .unwrap();
+    }
+
+    /// A zone whose centre is too close to a wall for the body's centre can still be reached
+    /// where it reaches into the floor the body can cover.
+    #[test]
+    fn a_zone_centred_in_a_corner_is_reachable_through_its_disc() {
+        let r = Room::from_toml_str(
+            &format!("{MISSION_ROOM}goal={{x=790,y=390,radius=100}}"),
+            "corner.toml",
+        )
+        .unwrap();
+        assert_eq!(r.mission.goal.unwrap().centre, Vec2::new(790.0, 390.0));
+        let e = bad_mission("goal={x=795,y=395,radius=10}");
+        assert_eq!(e.field, "goal");
+    }
+
+    /// A room without a mission serializes exactly as before missions existed (the goldens and
+    /// saved runs hold such rooms).
+    #[test]
+    fn rooms_without_a_mission_serialize_as_before() {
+        let old = concat!(
+            r#"{"name":"rectangle","outline":[{"x":0.0,"y":0.0},{"x":800.0,"y":0.0},"#,
+            r#"{"x":800.0,"y":400.0},{"x":0.0,"y":400.0}],"obstacles":[],"#,
+            r#""home":{"x":40.0,"y":40.0,"heading":0.0},"#,
+            r#""home_zone":{"centre":{"x":0.0,"y":0.0},"radius":160.0}}"#
+        );
+        let room = Room::builtin("rectangle").unwrap();
+        assert_eq!(serde_json::to_string(&room).unwrap(), old);
+        assert_eq!(serde_json::from_str::<Room>(old).unwrap(), room);
+        let with = Room {
+            mission: Mission {
+                goal: Some(Zone {
+                    centre: Vec2::new(700.0, 300.0),
+                    radius: 60.0,
+                }),
+                waypoints: Vec::new(),
+            },
+            ..room
+        };
+        let json = serde_json::to_string(&with).unwrap();
+        assert!(json.ends_with(r#""mission":{"goal":{"centre":{"x":700.0,"y":300.0},"radius":60.0},"waypoints":[]}}"#), "{json}");
+        assert_eq!(serde_json::from_str::<Room>(&json).unwrap(), with);
+    }
+
+    #[test]
+    fn the_shipped_mission_rooms_are_valid() {
+        let fetch =
+            Room::from_toml_str(include_str!("../../../../rooms/fetch-L.toml"), "fetch-L").unwrap();
+        let goal = fetch.mission.goal.unwrap();
+        let far = fetch.outline.iter().map(|p| p.dist(fetch.home.position()));
+        assert!(goal.centre.dist(fetch.home.position()) > 0.85 * far.fold(0.0, f64::max));
+        let patrol =
+            Room::from_toml_str(include_str!("../../../../rooms/patrol.toml"), "patrol").unwrap();
+        assert_eq!(
+            (patrol.mission.goal, patrol.mission.waypoints.len()),
+            (None, 3)
+        );
+    }
+    /// A room whose goal lies behind a 120 mm gap: the Khepera (55 mm across) passes it, a
+    /// body of radius 60 does not.
+    fn gap_room() -> Room {
+        let text = format!(
+            "{MISSION_ROOM}goal={{x=700,y=200,radius=50}}\n\
+             [[obstacles]]\noutline=[[400,5],[420,5],[420,140],[400,140]]\n\
+             [[obstacles]]\noutline=[[400,260],[420,260],[420,395],[400,395]]\n"
+        );
+        Room::from_toml_str(&text, "gap.toml").unwrap()
+    }
+
+    #[test]
+    fn the_arena_finds_the_mission_zone_its_body_cannot_reach() {
+        let room = gap_room();
+        let khepera = Arena::new(room.clone(), &TrialParams::default());
+        assert_eq!(khepera.unreachable_mission_zone(), None);
+        let raw = crate::simulation::RawRobot {
+            radius: 60.0,
+            ..Default::default()
+        };
+        let params = TrialParams {
+            robot: crate::simulation::Khepera::from_raw(&raw).unwrap(),
+            ..TrialParams::default()
+        };
+        let e = Arena::new(room, &params)
+            .unreachable_mission_zone()
+            .unwrap();
+        assert_eq!(e.field, "goal");
+        assert!(e.reason.contains("body radius 60 mm"), "{e}");
+    }
+
+    #[test]
+    fn a_bigger_body_that_cannot_reach_a_goal_names_the_room_and_field() {
+        let rooms = [Room::builtin("H").unwrap(), gap_room()];
+        crate::simulation::check_missions_reachable(&rooms, KHEPERA_RADIUS).unwrap();
+        let e = crate::simulation::check_missions_reachable(&rooms, 60.0).unwrap_err();
+        assert_eq!(e.field, "rooms[1]");
+        assert!(e.reason.contains("room \"m\", field `goal`"), "{e}");
     }
 }

@@ -10,14 +10,15 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
+use crate::params::{FieldError, Num};
 use crate::random::noise::{perturb, perturb_sensors};
 use crate::random::rng::Rng;
 use crate::simulation::controller::{Controller, INPUTS};
 use crate::simulation::geom::{PreparedSegment, Segment, Vec2};
 use crate::simulation::memo::{MemoClaim, Owner, Sight, SightKey, Table, memo_live};
 use crate::simulation::robot::Action;
-use crate::simulation::robot::{Compass, Motion, Pose, drive};
-use crate::simulation::room::Room;
+use crate::simulation::robot::{Compass, Khepera, Motion, Pose, RawRobot, drive};
+use crate::simulation::room::{Room, Zone};
 use crate::simulation::sensing::{Eyes, Facing};
 use crate::simulation::sensor::{SENSOR_MAX, SensorModel, sensing_reach};
 pub use crate::simulation::trial_params::{MAX_STEPS, RawTrial, TrialParams};
@@ -184,6 +185,30 @@ impl Arena {
     /// `d_max` of the homing term: farthest outline vertex from home (mm).
     pub fn d_max(&self) -> f64 {
         self.d_max
+    }
+
+    /// The first zone of the room's mission (the goal, then the waypoints in order) that the
+    /// robot cannot reach from home, as an error in its room-file field (`goal`,
+    /// `waypoints[2]`, …), or `None` when every zone can be reached. A zone can be reached when
+    /// the cell of its centre, or a cell whose centre lies in the zone, is one of the cells the
+    /// flood fill from home reaches (docs/model.md §7).
+    pub fn unreachable_mission_zone(&self) -> Option<FieldError> {
+        let reached = |zone: &Zone| {
+            self.is_reachable(self.cell_of(zone.centre))
+                || (0..self.cell_count())
+                    .any(|k| self.reachable[k] && zone.contains(self.grid.centre(k)))
+        };
+        let (field, zone) = self.room.mission.zones().find(|(_, z)| !reached(z))?;
+        Some(FieldError::new(
+            field,
+            format!(
+                "the zone centred at ({}, {}) with radius {} cannot be reached from home by a robot of body radius {} mm (it is cut off by walls or obstacles, or too close to them); move it into the part of the room connected to home",
+                Num(zone.centre.x),
+                Num(zone.centre.y),
+                Num(zone.radius),
+                self.radius
+            ),
+        ))
     }
 
     /// Indices of the walls that can matter to a robot whose centre is in `cell`.
@@ -454,6 +479,35 @@ impl Grid {
         }
         reachable
     }
+}
+
+/// Each room's mission reachable from home by a robot of body `radius`
+/// ([`Arena::unreachable_mission_zone`]; the other trial parameters their defaults): the first
+/// room whose mission is not, as an error in `rooms[i]` naming the room and its field.
+pub fn check_missions_reachable(rooms: &[Room], radius: f64) -> Result<(), FieldError> {
+    let robot = Khepera::from_raw(&RawRobot {
+        radius,
+        ..RawRobot::default()
+    })?;
+    let params = TrialParams {
+        robot,
+        ..TrialParams::default()
+    };
+    for (i, room) in rooms.iter().enumerate() {
+        if room.mission.is_empty() {
+            continue;
+        }
+        if let Some(e) = Arena::new(room.clone(), &params).unreachable_mission_zone() {
+            return Err(FieldError::new(
+                format!("rooms[{i}]"),
+                format!(
+                    "room \"{}\", field `{}` of its room file: {}",
+                    room.name, e.field, e.reason
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Whether a body of `radius` can slide along `path` without touching one of `walls`.
