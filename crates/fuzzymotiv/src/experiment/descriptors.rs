@@ -11,11 +11,10 @@ use crate::evolution::population::Population;
 use crate::experiment::config::OrientationMode;
 use crate::experiment::evaluation::{Evaluation, RoomScore};
 use crate::experiment::{Experiment, Run};
-use crate::fitness::terms::{FitnessTerms, TermsRecorder};
-use crate::random::rng::rng_from_seed;
+use crate::fitness::terms::FitnessTerms;
 use crate::simulation::controller::Mlp;
 use crate::simulation::robot::{Action, Pose};
-use crate::simulation::trial::{Step, StepObserver, simulate};
+use crate::simulation::trial::{Step, StepObserver};
 
 /// The behaviour of one individual's evaluation trial in one room. Every value is in [0, 1].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -129,21 +128,14 @@ impl Experiment {
         room: usize,
         seed: u64,
     ) -> (RoomScore, Descriptors) {
-        let arena = &self.arenas[room];
-        let mut rng = rng_from_seed(seed);
-        let mut obs = (
-            TermsRecorder::new(arena, self.homing),
-            ActionCounts::default(),
-        );
-        let last = simulate(arena, network, &mut rng, &mut obs);
-        let terms = obs.0.finish();
-        let executed = obs.0.executed();
+        let mut counts = ActionCounts::default();
+        let (terms, executed, last) = self.observed_trial(network, room, seed, &mut counts);
         let score = RoomScore {
             f: 0.0,
             terms,
             executed,
         };
-        (score, self.descriptors(room, last, &terms, obs.1))
+        (score, self.descriptors(room, last, &terms, counts))
     }
 
     fn descriptors(

@@ -12,7 +12,8 @@ use crate::modelling::aem::{Action, environment_vector};
 use crate::modelling::recognition::nearest_unique;
 use crate::random::rng::rng_from_seed;
 use crate::simulation::controller::{GenomeError, Mlp};
-use crate::simulation::trial::{ActionLog, Arena, Trajectory, simulate};
+use crate::simulation::robot::Pose;
+use crate::simulation::trial::{ActionLog, Arena, StepObserver, Trajectory, simulate};
 
 impl Experiment {
     /// The experiment's network for `genome`: an error when its length is not the network's
@@ -38,39 +39,57 @@ impl Experiment {
         seed: u64,
         actions: bool,
     ) -> (FitnessTerms, Vec<Action>, usize) {
+        let mut log = ActionLog {
+            actions: Vec::with_capacity(if actions { self.trial.steps() } else { 0 }),
+        };
+        let (terms, executed, _) = if actions {
+            self.observed_trial(network, room, seed, &mut log)
+        } else {
+            self.observed_trial(network, room, seed, &mut ())
+        };
+        (terms, log.actions, executed)
+    }
+
+    /// One evaluation trial in `room` on the stream `seed`, each step also shown to `extra`:
+    /// its terms (the mission's and the user-defined ones included; `l` = 0), the steps it
+    /// executed and its final pose. Every evaluation trial runs through here.
+    pub(crate) fn observed_trial<O: StepObserver>(
+        &self,
+        network: &mut Mlp,
+        room: usize,
+        seed: u64,
+        extra: &mut O,
+    ) -> (FitnessTerms, usize, Pose) {
         let arena = &self.arenas[room];
         let mut rng = rng_from_seed(seed);
         let mut recorder = TermsRecorder::new(arena, self.homing);
         if let Some(tracker) = self.plan.tracker(arena.room()) {
             recorder = recorder.with_mission(tracker);
         }
-        let mut obs = (
-            recorder,
-            ActionLog {
-                actions: Vec::with_capacity(if actions { self.trial.steps() } else { 0 }),
-            },
-        );
-        if self.plan.user.iter().any(|u| u.term.is_some()) {
+        let computed = self.plan.user.iter().any(|u| u.term.is_some());
+        let (last, trajectory) = if computed {
             let mut trajectory = Trajectory::starting_at(arena.room().home, self.trial.steps());
-            simulate(arena, network, &mut rng, &mut (&mut obs, &mut trajectory));
-            let mut terms = obs.0.finish();
-            self.user_values(arena, &trajectory, &mut terms);
-            return (terms, obs.1.actions, obs.0.executed());
-        }
-        if actions {
-            simulate(arena, network, &mut rng, &mut obs);
+            let mut obs = (&mut recorder, (&mut *extra, &mut trajectory));
+            (
+                simulate(arena, network, &mut rng, &mut obs),
+                Some(trajectory),
+            )
         } else {
-            simulate(arena, network, &mut rng, &mut obs.0);
-        }
-        let mut terms = obs.0.finish();
+            let mut obs = (&mut recorder, &mut *extra);
+            (simulate(arena, network, &mut rng, &mut obs), None)
+        };
+        let mut terms = recorder.finish();
         terms.user = UserValues::zeros(self.plan.user.len());
-        (terms, obs.1.actions, obs.0.executed())
+        if let Some(trajectory) = trajectory {
+            self.user_values(arena, &trajectory, &mut terms);
+        }
+        (terms, recorder.executed(), last)
     }
 
     /// The user-defined terms' values of a finished trial (supplied ones left at 0 for the front
     /// to fill in).
     fn user_values(&self, arena: &Arena, trajectory: &Trajectory, terms: &mut FitnessTerms) {
-        let mut values = UserValues::zeros(self.plan.user.len());
+        let mut values = terms.user;
         for (v, u) in values.as_mut_slice().iter_mut().zip(&self.plan.user) {
             if let Some(term) = &u.term {
                 let record = TrialRecord {
@@ -82,6 +101,16 @@ impl Experiment {
             }
         }
         terms.user = values;
+    }
+
+    /// Recomputes an evaluation's F (each room's, then their mean) from its terms: for a front
+    /// that filled in the values of supplied user terms ([`crate::experiment::UserTerm`]).
+    pub fn refit(&self, evaluation: &mut Evaluation) {
+        for s in &mut evaluation.per_room {
+            s.f = self.fuzzy_fitness(&s.terms);
+        }
+        let n = evaluation.per_room.len() as f64;
+        evaluation.fitness = evaluation.per_room.iter().map(|s| s.f).sum::<f64>() / n;
     }
 
     /// The random stream of individual `individual`'s evaluation trial in `room` in generation

@@ -106,8 +106,8 @@ impl TermPlan {
 }
 
 /// The goal and waypoints of `room`'s mission.
-pub(crate) fn mission_of(_room: &Room) -> (Option<HomeZone>, Vec<HomeZone>) {
-    (None, Vec::new()) // MERGE: room.mission
+pub(crate) fn mission_of(room: &Room) -> (Option<HomeZone>, Vec<HomeZone>) {
+    (room.mission.goal, room.mission.waypoints.clone())
 }
 
 /// At most [`MAX_USER_TERMS`], named apart from each other and from the library's terms.
@@ -229,7 +229,10 @@ mod tests {
             "[ga]\npopulation = 6\ngenerations = 2\n[trial]\nsteps = 80\n[aem]\nepochs = 5\ntest_runs = 2\n{config}"
         );
         let raw = RawConfig::parse(&text, "c.toml", &[])?;
-        let rooms = BUILTIN_ROOMS.iter().map(|r| Room::builtin(r).unwrap()).collect();
+        let rooms = BUILTIN_ROOMS
+            .iter()
+            .map(|r| Room::builtin(r).unwrap())
+            .collect();
         Experiment::with_terms(&raw, rooms, user, "c.toml")
     }
 
@@ -239,7 +242,10 @@ mod tests {
     fn the_paper_four_are_the_default_and_write_back_as_before() {
         let exp = build("", &[]).unwrap();
         assert!(exp.motivations().is_paper());
-        assert_eq!(exp.input_terms(), [TermId::A, TermId::G, TermId::L, TermId::B]);
+        assert_eq!(
+            exp.input_terms(),
+            [TermId::A, TermId::G, TermId::L, TermId::B]
+        );
         let raw = RawConfig::parse("", "c.toml", &[]).unwrap();
         let text = raw.to_toml();
         let at = text.find("[motivations]").unwrap();
@@ -262,7 +268,10 @@ mod tests {
         )
         .unwrap();
         let names: Vec<&str> = exp.motivations().iter().map(|m| m.name()).collect();
-        assert_eq!(names, ["curiosity", "homing", "orientation", "energy", "care"]);
+        assert_eq!(
+            names,
+            ["curiosity", "homing", "orientation", "energy", "care"]
+        );
         assert_eq!(exp.input_terms()[4], TermId::Safety);
         assert!(exp.measures_mission());
         let raw = RawConfig::parse(
@@ -271,7 +280,11 @@ mod tests {
             &[],
         )
         .unwrap();
-        assert!(raw.to_toml().contains("term = \"safety\""), "{}", raw.to_toml());
+        assert!(
+            raw.to_toml().contains("term = \"safety\""),
+            "{}",
+            raw.to_toml()
+        );
     }
 
     /// One motivation alone (N = 1) when none of the paper's is named.
@@ -289,7 +302,9 @@ mod tests {
         let e = build("[motivations]\nfoo = 1.0\n", &[]).unwrap_err();
         assert_eq!(e.field, "motivations.foo", "{e}");
         assert!(e.reason.contains("does not exist"), "{e}");
-        let nine: String = (0..9).map(|k| format!("m{k} = {{ weight = 0.1, term = \"a\" }}\n")).collect();
+        let nine: String = (0..9)
+            .map(|k| format!("m{k} = {{ weight = 0.1, term = \"a\" }}\n"))
+            .collect();
         let e = build(&format!("[motivations]\n{nine}"), &[]).unwrap_err();
         assert_eq!(e.field, "motivations", "{e}");
         assert!(e.reason.contains("from 1 to 8"), "{e}");
@@ -297,7 +312,10 @@ mod tests {
         assert!(e.reason.contains("sum to 1"), "{e}");
         let e = build("[motivations]\nsafety = 0.5\ngoal = 0.5\n", &[]).unwrap_err();
         assert_eq!(e.field, "rooms[0]", "{e}");
-        assert!(e.reason.contains("no a goal zone") || e.reason.contains("goal zone"), "{e}");
+        assert!(
+            e.reason.contains("no a goal zone") || e.reason.contains("goal zone"),
+            "{e}"
+        );
         let e = build(
             "[motivations]\nsafety = { weight = 1.0, peaks = [0.5, 0.2] }\n",
             &[],

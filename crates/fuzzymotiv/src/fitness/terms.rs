@@ -175,8 +175,9 @@ impl TermId {
 /// motivation"). Register it with [`crate::Setup::resolve_with_terms`] under a name a
 /// motivation's `term` can use; an experiment with one records each trial's steps for it.
 pub trait Term: Send + Sync + std::fmt::Debug {
-    /// The term's value for one finished trial, in [0, 1] (values outside are an error of the
-    /// run: NaN or out of range stops it, naming the term).
+    /// The term's value for one finished trial, in [0, 1]. As every fuzzy input, a value
+    /// outside is clamped to [0, 1] and NaN counts as 0 (the library cannot stop a trial on a
+    /// term's word; check your term's range in its own tests).
     fn value(&self, trial: &TrialRecord<'_>) -> f64;
 }
 
