@@ -18,4 +18,7 @@ pub use motivation::{
     MAX_MOTIVATIONS, Motivation, Motivations, PAPER_MOTIVATIONS, PAPER_TERMS, RawMotivation,
     RawMotivationTable, RawMotivations,
 };
-pub use terms::{FitnessTerms, Homing, TermsRecorder};
+pub use terms::{
+    FitnessTerms, Homing, LIBRARY_TERMS, MAX_USER_TERMS, MissionTerms, MissionTracker,
+    TERM_ALIASES, Term, TermId, TermsRecorder, TrialRecord, UserValues, WaypointOrder,
+};
