@@ -1397,8 +1397,7 @@ mod tests {
             "wall.toml",
         )
         .unwrap();
-        let u =
-            Room::from_toml_str(include_str!("../../../../rooms/U.toml"), "rooms/U.toml").unwrap();
+        let u = Room::from_toml_str(include_str!("../../../rooms/U.toml"), "rooms/U.toml").unwrap();
         let mut all: Vec<Room> = BUILTIN_ROOMS
             .iter()
             .map(|name| Room::builtin(name).unwrap())

@@ -1,8 +1,11 @@
-//! Rendering, from records and a run's [`RenderContext`](crate::records::context::RenderContext)
-//! only, never the live experiment: tables ([`tables`]), the paper's study with its statistics
+//! Rendering, from records and a run's [`RenderContext`](fuzzymotiv_records::records::context::RenderContext)
+//! only, never the live experiment or the pipeline (this crate depends on `fuzzymotiv` and
+//! `fuzzymotiv-records` alone, so the compiler keeps it so): tables ([`tables`]), the paper's study with its statistics
 //! and claims ([`study`]), hand-written SVG figures ([`svg`]) written as files with an optional
 //! PNG beside them ([`figures`]), the fitness terms in words ([`terms`]), the self-contained
 //! report page ([`report`]) and rollout frames and GIFs drawn in pure Rust ([`frames`]).
+
+#![warn(missing_docs)]
 
 pub mod compare;
 pub mod figures;

@@ -7,9 +7,9 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::statistics::{self, Comparison, Settings, StatsError};
 
-use crate::records::METRICS;
-use crate::records::compare::{CompareRow, OVERALL};
-use crate::render::svg::esc;
+use crate::svg::esc;
+use fuzzymotiv_records::records::METRICS;
+use fuzzymotiv_records::records::compare::{CompareRow, OVERALL};
 
 /// The metrics in words, in [`METRICS`] order, and their decimals.
 pub const METRIC_LABELS: [(&str, usize); 5] = [

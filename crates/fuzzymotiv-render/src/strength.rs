@@ -14,7 +14,7 @@ use fuzzymotiv::statistics::{self, BOOTSTRAP_RESAMPLES, Settings, mean_interval}
 
 use super::study::{CLAIMS_ALPHA, Variant, seed_means};
 use super::svg::{Ticks, colour, esc, text_width};
-use crate::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};
+use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};
 
 /// Picks one column of a table row.
 type Column = fn(&TableRow) -> Option<f64>;
