@@ -12,10 +12,10 @@ use fuzzymotiv::experiment::Training;
 use fuzzymotiv::simulation::SENSOR_LAYOUT;
 use serde_json::{Value, json};
 
+use crate::plot::{colour, esc};
 use crate::study::Setting;
 use crate::svg::{
-    SomRoom, best_paths_svg, colour, esc, fitness_svg, membership_svg, som_svg, terms_svg,
-    trajectories_svg,
+    SomRoom, best_paths_svg, fitness_svg, membership_svg, som_svg, terms_svg, trajectories_svg,
 };
 use crate::terms::{NAMES, html, terms};
 use fuzzymotiv_records::records::context::RenderContext;

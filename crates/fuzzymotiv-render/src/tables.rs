@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::experiment::Training;
 
+use crate::plot::esc;
 use crate::study::{SettingRuns, Variant, metrics, paper_row, room_stats, seed_index};
-use crate::svg::esc;
 use fuzzymotiv_records::records::context::RenderContext;
 use fuzzymotiv_records::records::{ClaimRecord, RoomRow};
 

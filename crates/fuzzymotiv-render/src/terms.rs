@@ -9,7 +9,7 @@ use fuzzymotiv::experiment::EnergyMode;
 use fuzzymotiv::fitness::Homing;
 use fuzzymotiv::simulation::Motion;
 
-use crate::svg::esc;
+use crate::plot::esc;
 
 /// One fitness term: its symbol, names and definition.
 #[derive(Debug, Clone, PartialEq)]
