@@ -45,6 +45,15 @@ enum Kind {
     Number,
 }
 
+/// Visit methods handed to the field's own visitor as they are.
+macro_rules! delegate {
+    ($($method:ident($t:ty))*) => {$(
+        fn $method<E: de::Error>(self, v: $t) -> Result<V::Value, E> {
+            self.inner.$method(v)
+        }
+    )*};
+}
+
 /// Scalar methods, read with a [`Typed`] visitor of their kind.
 macro_rules! typed {
     ($($method:ident => $kind:expr),* $(,)?) => {$(
@@ -67,8 +76,14 @@ macro_rules! forward {
 impl<'de, D: Deserializer<'de>> Deserializer<'de> for Plain<D> {
     type Error = D::Error;
 
+    /// Whatever comes (a value of a type's own visitor, e.g. a weight or a table): a table or
+    /// an array in it is read with the path still followed.
     fn deserialize_any<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
-        self.inner.deserialize_any(visitor)
+        let path = self.path;
+        self.inner.deserialize_any(Nested {
+            inner: visitor,
+            path,
+        })
     }
 
     typed! {
@@ -235,8 +250,8 @@ impl<'de, V: Visitor<'de>> Visitor<'de> for Typed<V> {
     }
 }
 
-/// The visitor of a table, an array or an option: the field's own (its words are the field's),
-/// with the path handed down to what it contains.
+/// The visitor of a table, an array, an option or any value: the field's own (its words are
+/// the field's, every value goes to it), with the path handed down to what it contains.
 struct Nested<V> {
     inner: V,
     path: String,
@@ -251,6 +266,25 @@ impl<'de, V: Visitor<'de>> Visitor<'de> for Nested<V> {
 
     fn visit_none<E: de::Error>(self) -> Result<V::Value, E> {
         self.inner.visit_none()
+    }
+
+    delegate! {
+        visit_bool(bool) visit_i64(i64) visit_u64(u64) visit_i128(i128) visit_u128(u128)
+        visit_f64(f64) visit_char(char) visit_str(&str) visit_borrowed_str(&'de str)
+        visit_string(String) visit_bytes(&[u8]) visit_borrowed_bytes(&'de [u8])
+        visit_byte_buf(Vec<u8>)
+    }
+
+    fn visit_unit<E: de::Error>(self) -> Result<V::Value, E> {
+        self.inner.visit_unit()
+    }
+
+    fn visit_newtype_struct<D: Deserializer<'de>>(self, d: D) -> Result<V::Value, D::Error> {
+        self.inner.visit_newtype_struct(d)
+    }
+
+    fn visit_enum<A: de::EnumAccess<'de>>(self, data: A) -> Result<V::Value, A::Error> {
+        self.inner.visit_enum(data)
     }
 
     fn visit_some<D: Deserializer<'de>>(self, d: D) -> Result<V::Value, D::Error> {
@@ -410,5 +444,58 @@ mod tests {
         .unwrap();
         assert_eq!((raw.seed, raw.ga.population), (7, 12));
         assert!(!raw.trial.end_at_home);
+    }
+
+    /// A type that reads itself with `deserialize_any` (a number or a table, as a motivation
+    /// may be written): the numbers in its table still say what they take.
+    #[test]
+    fn a_table_read_through_deserialize_any_keeps_the_plain_words() {
+        use serde::Deserialize;
+        use serde::de::{self, Deserializer, MapAccess, Visitor};
+        #[derive(Deserialize)]
+        struct Table {
+            weight: f64,
+        }
+        struct Either(f64);
+        impl<'de> Deserialize<'de> for Either {
+            fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                struct V;
+                impl<'de> Visitor<'de> for V {
+                    type Value = Either;
+                    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                        f.write_str("a weight or a table")
+                    }
+                    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Either, E> {
+                        Ok(Either(v))
+                    }
+                    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Either, A::Error> {
+                        let t = Table::deserialize(de::value::MapAccessDeserializer::new(map))?;
+                        Ok(Either(t.weight))
+                    }
+                }
+                d.deserialize_any(V)
+            }
+        }
+        #[derive(Deserialize)]
+        struct Doc {
+            x: Either,
+        }
+        let e = super::from_str::<Doc>("x = { weight = \"a\" }\n")
+            .err()
+            .unwrap();
+        assert_eq!(
+            e.message(),
+            "invalid type: string \"a\", expected a number (e.g. 0.5)"
+        );
+        let e = super::from_str::<Doc>("x = true\n").err().unwrap();
+        assert_eq!(
+            e.message(),
+            "invalid type: boolean `true`, expected a weight or a table"
+        );
+        let read = |text| super::from_str::<Doc>(text).ok().unwrap().x.0;
+        assert_eq!(
+            (read("x = 0.5"), read("x = { weight = 0.25 }")),
+            (0.5, 0.25)
+        );
     }
 }
