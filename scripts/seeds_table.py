@@ -5,7 +5,7 @@ Usage: scripts/seeds_table.py results-s1 results-s2 ...   (prints Markdown table
 
 Refuses (exit status 1) to average studies of different kinds: quick and full runs, other GA sizes, or
 other program versions, and names the file and the field of a summary.json that lacks one it needs.
-The field names are those of `StudySummary` in crates/fuzzymotiv-io/src/records/mod.rs; a summary written
+The field names are those of `StudySummary` in crates/fuzzymotiv-records/src/records/mod.rs; a summary written
 before % homing was named `homing_pct` (it was `homing`, like the motivation weight) is read too.
 """
 import json

@@ -104,7 +104,8 @@ mod tests {
     use super::*;
     use fuzzymotiv::simulation::Trajectory;
     use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
-    use fuzzymotiv_io::render::svg::{text_width, trajectories_svg};
+    use fuzzymotiv_io::render::plot::text_width;
+    use fuzzymotiv_io::render::svg::trajectories_svg;
 
     #[test]
     fn a_small_svg_becomes_a_png_of_twice_its_size() {

@@ -1,12 +1,15 @@
-//! The import map of the command line (`crates/fuzzymotiv-cli/src`), the files crate it stands
-//! on (`crates/fuzzymotiv-io/src`) and the library under both (`crates/fuzzymotiv/src`), every
-//! folder included: each module belongs to a layer
-//! of [`LAYERS`] (ARCHITECTURE.md), imports only from its own layer or the ones below, and no
-//! modules import each other in a circle.
+//! The import map inside each crate of the workspace, every folder included: the library
+//! (`crates/fuzzymotiv/src`), the records (`crates/fuzzymotiv-records/src`), the rendering
+//! (`crates/fuzzymotiv-render/src`), the pipeline (`crates/fuzzymotiv-io/src`), the lab and the
+//! command line. Each module belongs to a layer of [`LAYERS`] (ARCHITECTURE.md), imports only
+//! from its own layer or the ones below, and no modules import each other in a circle.
 //!
-//! Imports are the paths a file names after `crate::` (and `fuzzymotiv::`, in the
-//! files crate and the command line, and `fuzzymotiv_io::` in the command line), `use` groups included, comments left out; an import is of the longest
-//! module its path starts with, and the macros `out!`, `outln!` and `note!` are `console`'s.
+//! Only what the compiler cannot check is read: the order of the crates is Cargo's (a crate
+//! cannot import one that depends on it), so only imports inside a crate are read — the paths a
+//! file names after `crate::`, `use` groups included, comments and tests left out. An import is
+//! of the longest module its path starts with; the macros `out!`, `outln!` and `note!` are
+//! `console`'s; the names a crate root re-exports from a crate below ([`REEXPORTS`]) are that
+//! crate's, ordered by Cargo, and not read.
 //!
 //! `cargo test -p fuzzymotiv-cli --test layers -- --nocapture` prints the import map.
 
@@ -14,8 +17,10 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The layers, lowest first: a module path, standing for the module and everything in it,
-/// and its layer. A module imports only from its own layer and the ones below it.
-const LAYERS: [(&str, usize); 31] = [
+/// and its layer. A module imports only from its own layer and the ones below it. Imports are
+/// read inside a crate only, so the numbers order the modules of one crate; they go on rising
+/// from crate to crate in Cargo's order.
+const LAYERS: [(&str, usize); 32] = [
     // fuzzymotiv, the library: the pipeline's subsystems
     ("lib::params", 0),     // FieldError: the one error of every input
     ("lib::random", 0),     // seeded streams, noise
@@ -26,39 +31,49 @@ const LAYERS: [(&str, usize); 31] = [
     ("lib::modelling", 4),  // AEM, SOM, recognition
     ("lib::experiment", 5), // config, the entry, evaluation, the loop, room modelling, outcome
     ("lib", 6),             // the crate root: modules and re-exports
+    // fuzzymotiv-records
+    ("records::files", 7), // the output guard, inputs, the errors, the terminal macros, locks
+    ("records::records", 8), // the output model (one serde type per file), the checkpoint
+    ("records", 9),        // the crate root (module declarations)
+    // fuzzymotiv-render: tables, the study's statistics, SVG figures, the report, frames
+    ("render", 10),
     // fuzzymotiv-io
-    ("io::files", 7),     // the output guard, inputs, the error, the terminal macros
-    ("io::records", 8),   // the output model (one serde type per file), the checkpoint
-    ("io::render", 9),    // tables, the study's statistics, SVG figures, the report
-    ("io::pipeline", 10), // run directory, sweep plan/jobs/merge, lanes, progress
-    ("io", 11),           // the crate root (module declarations)
+    ("io::pipeline", 11), // run directory, sweep plan/jobs/merge, lanes, progress
+    ("io", 12),           // the crate root (module declarations, re-exports)
     // fuzzymotiv-lab: the browser lab (a library the binary starts)
-    ("lab::limits", 12),   // the documented limits
-    ("lab::errors", 12),   // the handlers' error (status + the CLI's message)
-    ("lab::assets", 12),   // the embedded page, script and style
-    ("lab::rooms", 13),    // built-in, drawn and uploaded rooms, checked and saved
-    ("lab::security", 13), // token, Host check, security headers
-    ("lab::live", 13),     // a run's events: generations, paths, result
-    ("lab::settings", 14), // the page's settings → the CLI's config checks
-    ("lab::runs", 15),     // the run list, the queue and the worker
-    ("lab::compare", 16),  // two runs side by side, the library's statistics
-    ("lab::api", 17),      // the routes
-    ("lab::server", 18),   // start and stop
-    ("lab", 19),           // the crate root
+    ("lab::limits", 13),   // the documented limits
+    ("lab::errors", 13),   // the handlers' error (status + the CLI's message)
+    ("lab::assets", 13),   // the embedded page, script and style
+    ("lab::rooms", 14),    // built-in, drawn and uploaded rooms, checked and saved
+    ("lab::security", 14), // token, Host check, security headers
+    ("lab::live", 14),     // a run's events: generations, paths, result
+    ("lab::settings", 15), // the page's settings → the CLI's config checks
+    ("lab::runs", 16),     // the run list, the queue and the worker
+    ("lab::compare", 17),  // two runs side by side, the library's statistics
+    ("lab::api", 18),      // the routes
+    ("lab::server", 19),   // start and stop
+    ("lab", 20),           // the crate root
     // fuzzymotiv-cli
-    ("cli::args", 20),     // clap options shared by commands
-    ("cli::png", 20),      // the resvg rasteriser
-    ("cli::progress", 20), // indicatif progress
-    ("cli::commands", 21), // one module per command
-    ("cli", 22),           // main.rs: parse the arguments, dispatch
+    ("cli::args", 21),     // clap options shared by commands
+    ("cli::png", 21),      // the resvg rasteriser
+    ("cli::progress", 21), // indicatif progress
+    ("cli::commands", 22), // one module per command
+    ("cli", 23),           // main.rs: parse the arguments, dispatch
 ];
 
 /// The macros exported at the crate root, by the module that defines them.
 const MACROS: [(&str, &str); 3] = [
-    ("out", "io::files::console"),
-    ("outln", "io::files::console"),
-    ("note", "io::files::console"),
+    ("out", "records::files::console"),
+    ("outln", "records::files::console"),
+    ("note", "records::files::console"),
 ];
+
+/// The names a crate root re-exports from a crate below it (`crate::files::…` in the
+/// pipeline is `fuzzymotiv_records::files::…`): imports of them are across crates, Cargo's.
+const REEXPORTS: [(&str, &[&str]); 1] = [(
+    "io",
+    &["files", "records", "render", "out", "outln", "note"],
+)];
 
 /// One import: `from` (in `file`) names `import`, which is of the module `to`.
 #[derive(Debug, Clone)]
@@ -69,37 +84,15 @@ struct Edge {
     import: String,
 }
 
-/// Which path roots name which crate (by its module prefix) in a crate's code.
-type Roots = &'static [(&'static str, &'static str)];
-
-/// The crates read: the prefix of their module paths, their source folder (from this crate's
-/// folder), and the path roots of their code.
-const CRATES: [(&str, &str, Roots); 4] = [
-    ("lib", "../fuzzymotiv/src", &[("crate", "lib")]),
-    (
-        "io",
-        "../fuzzymotiv-io/src",
-        &[("crate", "io"), ("fuzzymotiv", "lib")],
-    ),
-    (
-        "lab",
-        "../fuzzymotiv-lab/src",
-        &[
-            ("crate", "lab"),
-            ("fuzzymotiv_io", "io"),
-            ("fuzzymotiv", "lib"),
-        ],
-    ),
-    (
-        "cli",
-        "src",
-        &[
-            ("crate", "cli"),
-            ("fuzzymotiv_lab", "lab"),
-            ("fuzzymotiv_io", "io"),
-            ("fuzzymotiv", "lib"),
-        ],
-    ),
+/// The crates read: the prefix of their module paths and their source folder (from this
+/// crate's folder).
+const CRATES: [(&str, &str); 6] = [
+    ("lib", "../fuzzymotiv/src"),
+    ("records", "../fuzzymotiv-records/src"),
+    ("render", "../fuzzymotiv-render/src"),
+    ("io", "../fuzzymotiv-io/src"),
+    ("lab", "../fuzzymotiv-lab/src"),
+    ("cli", "src"),
 ];
 
 /// Every `.rs` file under `dir`, with its module path (`lib.rs`/`main.rs`: the crate root,
@@ -210,45 +203,51 @@ fn resolve(path: &[String], known: &BTreeSet<String>) -> Option<String> {
         .find(|m| known.contains(m))
 }
 
-/// Every import of both crates, and every module.
+/// Whether `crate_prefix`'s root re-exports `name` from a crate below ([`REEXPORTS`]).
+fn reexported(crate_prefix: &str, name: &str) -> bool {
+    REEXPORTS
+        .iter()
+        .any(|(c, names)| *c == crate_prefix && names.contains(&name))
+}
+
+/// Every import inside each crate (`crate::…`), and every module.
 fn import_edges() -> (Vec<Edge>, BTreeMap<String, PathBuf>) {
     let mut files = BTreeMap::new();
-    let mut roots = Vec::new();
-    for (prefix, dir, names) in CRATES {
+    let mut prefixes = Vec::new();
+    for (prefix, dir) in CRATES {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
         for (module, path) in modules(prefix, &dir) {
-            roots.push((module.clone(), names));
+            prefixes.push((module.clone(), prefix));
             files.insert(module, path);
         }
     }
     let known: BTreeSet<String> = files.keys().cloned().collect();
     let mut edges = Vec::new();
-    for (module, names) in roots {
+    for (module, crate_prefix) in prefixes {
         let path = &files[&module];
         let text = code(path);
-        for &(root, crate_prefix) in names {
-            let marker = format!("{root}::");
-            for (at, _) in text.match_indices(&marker) {
-                let before = text[..at].chars().next_back();
-                if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
-                    continue; // e.g. `fuzzymotiv_io::` is not `io::`
+        for (at, _) in text.match_indices("crate::") {
+            let before = text[..at].chars().next_back();
+            if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+                continue; // e.g. `my_crate::` is not `crate::`
+            }
+            for p in use_paths(&text[at + "crate::".len()..]) {
+                if reexported(crate_prefix, &p[0]) {
+                    continue;
                 }
-                for p in use_paths(&text[at + marker.len()..]) {
-                    let full: Vec<String> = std::iter::once(crate_prefix.to_string())
-                        .chain(p.iter().cloned())
-                        .collect();
-                    let import = format!("{root}::{}", p.join("::"));
-                    let to = resolve(&full, &known).unwrap_or_else(|| {
-                        panic!("{}: `{import}` names no module", path.display())
+                let full: Vec<String> = std::iter::once(crate_prefix.to_string())
+                    .chain(p.iter().cloned())
+                    .collect();
+                let import = format!("crate::{}", p.join("::"));
+                let to = resolve(&full, &known)
+                    .unwrap_or_else(|| panic!("{}: `{import}` names no module", path.display()));
+                if to != module {
+                    edges.push(Edge {
+                        from: module.clone(),
+                        to,
+                        file: path.display().to_string(),
+                        import,
                     });
-                    if to != module {
-                        edges.push(Edge {
-                            from: module.clone(),
-                            to,
-                            file: path.display().to_string(),
-                            import,
-                        });
-                    }
                 }
             }
         }
@@ -338,6 +337,8 @@ fn every_module_has_a_layer_and_every_layer_a_module() {
     assert!(files.contains_key("io::pipeline::run_dir"), "{files:?}");
     assert!(files.contains_key("cli::commands::run"), "{files:?}");
     assert!(files.contains_key("lib::simulation::trial"), "{files:?}");
+    assert!(files.contains_key("records::files::guard"), "{files:?}");
+    assert!(files.contains_key("render::frames::scene"), "{files:?}");
 }
 
 #[test]
@@ -353,12 +354,16 @@ fn imports_go_down_the_layers_without_circles() {
             uses.iter().copied().collect::<Vec<_>>().join(", ")
         );
     }
-    // The import map is really read: the command line imports the files crate.
-    assert!(
+    // The import map is really read: the records import the file layer, a command the
+    // shared options, the pipeline its own modules.
+    let read = |from: &str, to: &str| {
         edges
             .iter()
-            .any(|e| e.from.starts_with("cli::") && e.to.starts_with("io::"))
-    );
+            .any(|e| e.from.starts_with(from) && e.to.starts_with(to))
+    };
+    assert!(read("records::records", "records::files"));
+    assert!(read("cli::commands", "cli::args"));
+    assert!(read("io::pipeline::", "io::pipeline::"));
     let bad = layer_violations(&edges, &LAYERS);
     assert!(
         bad.is_empty(),
@@ -382,23 +387,27 @@ fn edge(from: &str, to: &str) -> Edge {
 /// The checks fail when they should: an upward import, a module without a layer, a circle.
 #[test]
 fn the_checks_catch_a_backward_edge_and_a_circle() {
-    let upward = [edge("io::records", "io::render::svg")];
+    let upward = [edge(
+        "records::files::guard",
+        "records::records::checkpoint",
+    )];
     let bad = layer_violations(&upward, &LAYERS);
     assert_eq!(
         bad,
         [
-            "io::records.rs: `crate::io::render::svg` imports io::render::svg (layer 9) into \
-          io::records (layer 8), a lower layer"
+            "records::files::guard.rs: `crate::records::records::checkpoint` imports \
+          records::records::checkpoint (layer 8) into records::files::guard (layer 7), a lower \
+          layer"
         ]
     );
-    let downward = [edge("cli::commands::run", "io::files::guard")];
+    let downward = [edge("cli::commands::run", "cli::args")];
     assert!(layer_violations(&downward, &LAYERS).is_empty());
-    let unplaced = [edge("cli::stray", "io::files")];
-    assert_eq!(layer_violations(&unplaced, &[("io", 0)]).len(), 1);
+    let unplaced = [edge("cli::stray", "cli::args")];
+    assert_eq!(layer_violations(&unplaced, &[("cli::args", 0)]).len(), 1);
     let circle = [
-        edge("io::render::svg", "io::render::study"),
-        edge("io::render::study", "io::render::tables"),
-        edge("io::render::tables", "io::render::svg"),
+        edge("render::svg", "render::study"),
+        edge("render::study", "render::tables"),
+        edge("render::tables", "render::svg"),
     ];
     assert!(layer_violations(&circle, &LAYERS).is_empty());
     assert_eq!(find_circle(&circle).map(|c| c.len()), Some(4));
@@ -423,16 +432,18 @@ fn use_trees_are_read() {
         ["note", "render::svg::esc", "render::tables"]
     );
     assert_eq!(paths("out!(\"{x}\")?;"), ["out"]);
-    let known: BTreeSet<String> = ["io", "io::files::console", "io::render::svg"]
+    let known: BTreeSet<String> = ["records", "records::files::console", "render::svg"]
         .map(String::from)
         .into();
     let path = |s: &str| s.split("::").map(String::from).collect::<Vec<_>>();
     assert_eq!(
-        resolve(&path("io::note"), &known).as_deref(),
-        Some("io::files::console")
+        resolve(&path("records::note"), &known).as_deref(),
+        Some("records::files::console")
     );
     assert_eq!(
-        resolve(&path("io::render::svg::esc"), &known).as_deref(),
-        Some("io::render::svg")
+        resolve(&path("render::svg::esc"), &known).as_deref(),
+        Some("render::svg")
     );
+    // The pipeline's `crate::files::…` is the records crate's, re-exported: not read.
+    assert!(reexported("io", "files") && !reexported("io", "pipeline"));
 }

@@ -62,6 +62,12 @@ fn search_strength_runs_every_population_and_tabulates_the_claims() {
     let svg = read(out.join("search_strength.svg"));
     assert!(svg.contains("% exploration per setting") && svg.contains(">returns home less<"));
     assert_eq!(svg.matches(">GA population<").count(), 5, "five panels");
+    // It opens as every figure does, in the one font stack.
+    let font = format!(
+        "font-family=\"{}\"",
+        fuzzymotiv_io::render::plot::FONT_STACK
+    );
+    assert!(svg.starts_with("<svg ") && svg.split('>').next().unwrap().contains(&font));
     // The same command again: done, nothing replaced.
     let again = cmd().ok();
     assert!(

@@ -1,25 +1,27 @@
-//! The files of fuzzymotiv, shared by the `fuzzymotiv` command line and the Python bindings:
-//! reading configs and rooms, the output guard every writer goes through, the records written
-//! and read back, tables, SVG figures and the report page, and the pipeline that evolves with
-//! checkpoints and writes a run directory (or runs a sweep's jobs).
+//! The files of fuzzymotiv, shared by the `fuzzymotiv` command line, the lab and the Python
+//! bindings: the pipeline that evolves with checkpoints and writes a run directory (or runs a
+//! sweep's jobs), over the records and the rendering, which it re-exports under their old
+//! module names ([`files`], [`records`], [`render`]) so that one dependency gives the fronts all
+//! three.
 //!
 //! No terminal front end is compiled in (no clap, indicatif or resvg): progress is reported
 //! through [`pipeline::progress`] ([`pipeline::progress::NoProgress`] shows nothing), and PNG
 //! figures are drawn by a [`render::figures::Rasterise`] the caller passes, or not at all.
 //!
-//! Layers, each using only itself and the ones below it (`crates/fuzzymotiv-cli/tests/layers.rs`
-//! checks the order and that no modules import each other in a circle):
+//! The crates, each using only the ones below it (Cargo enforces the order):
 //!
-//! - [`pipeline`]: a run directory (evolve with checkpoints, model the rooms, write it, read it
-//!   back), a sweep's plan, jobs and merge, runs side by side, the progress it reports;
-//! - [`render`]: from records only: tables, the paper's study and its statistics, SVG figures,
-//!   the report page;
-//! - [`records`]: the output model (one serde type per file) and the checkpoint;
-//! - [`files`]: the output guard, config and room loading, the error and the terminal macros.
+//! - `fuzzymotiv-io` ([`pipeline`]): a run directory (evolve with checkpoints, model the rooms,
+//!   write it, read it back), a sweep's plan, jobs and merge, runs side by side, the progress it
+//!   reports;
+//! - `fuzzymotiv-render` ([`render`]): from records only: tables, the paper's study and its
+//!   statistics, SVG figures, the report page, rollout frames and GIFs;
+//! - `fuzzymotiv-records` ([`records`], [`files`]): the output model (one serde type per file)
+//!   and the checkpoint; the output guard, config and room loading, the errors and the terminal
+//!   macros.
 
 #![warn(missing_docs)]
 
-pub mod files;
 pub mod pipeline;
-pub mod records;
-pub mod render;
+
+pub use fuzzymotiv_records::{files, note, out, outln, records};
+pub use fuzzymotiv_render as render;

@@ -11,6 +11,7 @@ pub(crate) mod evaluation;
 pub(crate) mod evolution;
 pub(crate) mod modelling;
 pub(crate) mod outcome;
+mod plain;
 pub(crate) mod setup;
 pub(crate) mod terms;
 

@@ -161,7 +161,7 @@ impl RawConfig {
     }
 
     fn from_text(text: &str, source_name: &str) -> Result<RawConfig, ConfigError> {
-        let raw: RawConfig = toml::from_str(text).map_err(|e| {
+        let raw: RawConfig = super::plain::from_str(text).map_err(|e| {
             let msg = e.message().trim().to_string();
             let field = field_from_toml_message(&msg, text, e.span());
             // Line numbers only point into the user's own file, not a document with overrides.
@@ -170,7 +170,7 @@ impl RawConfig {
             } else {
                 at_line(text, e.span())
             };
-            let reason = format!("{}{at}{}", plain_words(&msg, &field), room_file_hint(&msg));
+            let reason = format!("{msg}{at}{}", room_file_hint(&msg));
             ConfigError {
                 source_name: source_name.to_string(),
                 field,
@@ -207,22 +207,10 @@ pub fn at_line(text: &str, span: Option<std::ops::Range<usize>>) -> String {
     format!(" (line {line}, column {column})")
 }
 
-/// Serde's type names in plain words: "expected u64" → "expected a whole number from 2 to
-/// 1000000" (the field's own range, [`whole_number_range`]), etc.
-fn plain_words(msg: &str, field: &str) -> String {
-    let whole = format!("a whole number {}", whole_number_range(field));
-    let mut out = msg.to_string();
-    for t in ["u64", "usize", "u32", "u16", "u8", "i64"] {
-        out = out.replace(&format!("expected {t}"), &format!("expected {whole}"));
-    }
-    out.replace("expected f64", "expected a number (e.g. 0.5)")
-        .replace("expected a boolean", "expected true or false")
-}
-
-/// The range of a whole-number field as its own check states it (serde reports a type error,
-/// e.g. `1.5` or `-1`, before that check runs), from the constants the checks use; "≥ 0" for a
-/// field that takes any.
-fn whole_number_range(field: &str) -> String {
+/// The range of a whole-number field as its own check states it (a type error, e.g. `1.5` or
+/// `-1`, is reported while reading, before that check runs: [`super::plain`]), from the
+/// constants the checks use; "≥ 0" for a field that takes any.
+pub(super) fn whole_number_range(field: &str) -> String {
     use crate::modelling::{aem::MAX_TEST_RUNS, som::MAX_NODES};
     use crate::simulation::{controller::MlpShape, trial::MAX_STEPS};
     let (low, high) = match field {

@@ -12,14 +12,14 @@ use fuzzymotiv::experiment::Training;
 use fuzzymotiv::simulation::SENSOR_LAYOUT;
 use serde_json::{Value, json};
 
-use crate::records::context::RenderContext;
-use crate::records::{Finished, RoomFuzzy, RoomRow};
-use crate::render::study::Setting;
-use crate::render::svg::{
-    SomRoom, best_paths_svg, colour, esc, fitness_svg, membership_svg, som_svg, terms_svg,
-    trajectories_svg,
+use crate::plot::{colour, esc};
+use crate::study::Setting;
+use crate::svg::{
+    SomRoom, best_paths_svg, fitness_svg, membership_svg, som_svg, terms_svg, trajectories_svg,
 };
-use crate::render::terms::{NAMES, html, terms};
+use crate::terms::{NAMES, html, terms};
+use fuzzymotiv_records::records::context::RenderContext;
+use fuzzymotiv_records::records::{Finished, RoomFuzzy, RoomRow};
 
 const CSS: &str = include_str!("report/report.css");
 const SCRIPT: &str = include_str!("report/replay.js");

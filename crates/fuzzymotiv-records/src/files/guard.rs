@@ -243,7 +243,7 @@ fn is_our_file(name: &str) -> bool {
 }
 
 /// `claims-alpha-A.md` or `.csv`: the claims of a study at another α
-/// ([`claims_stem`](crate::render::study::claims_stem)), beside its own.
+/// (`claims_stem` of the render crate's `study`), beside its own.
 fn is_claims_at_alpha(name: &str) -> bool {
     let alpha = name.strip_prefix("claims-alpha-").and_then(|rest| {
         rest.strip_suffix(".md")

@@ -7,9 +7,9 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::statistics::{self, Comparison, Settings, StatsError};
 
-use crate::records::METRICS;
-use crate::records::compare::{CompareRow, OVERALL};
-use crate::render::svg::esc;
+use crate::plot::{esc, open};
+use fuzzymotiv_records::records::METRICS;
+use fuzzymotiv_records::records::compare::{CompareRow, OVERALL};
 
 /// The metrics in words, in [`METRICS`] order, and their decimals.
 pub const METRIC_LABELS: [(&str, usize); 5] = [
@@ -225,8 +225,10 @@ pub fn compare_svg(title: &str, rows: &[CompareRow], alpha: f64) -> String {
         LABEL_W + PANEL_W * metrics.len().max(1) as f64 + 10.0,
         40.0 + panel_h * settings.len().max(1) as f64 + LEGEND_H,
     );
-    let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w:.0}\" height=\"{h:.0}\" viewBox=\"0 0 {w:.0} {h:.0}\" font-family=\"DejaVu Sans, sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"8\" y=\"20\" font-size=\"14\" font-weight=\"bold\">{}</text>\n",
+    let mut svg = open(format_args!("{w:.0}"), format_args!("{h:.0}"), 11);
+    let _ = writeln!(
+        svg,
+        "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"8\" y=\"20\" font-size=\"14\" font-weight=\"bold\">{}</text>",
         esc(title)
     );
     for b in &blocks {

@@ -1,4 +1,4 @@
-//! Rollout frames and GIFs (`fuzzymotiv_io::render::frames`) on a real 400-step trial in the
+//! Rollout frames and GIFs (`fuzzymotiv_render::frames`) on a real 400-step trial in the
 //! H room: sizes, the body and heading where the robot is, the path, stride, determinism over
 //! thread counts, a GIF that decodes back to the frames, bad tracks. The frames are also saved as
 //! `target/frames-H-*.png` to look at.
@@ -11,9 +11,9 @@ use fuzzymotiv::simulation::Pose;
 use fuzzymotiv::simulation::Room;
 use fuzzymotiv::simulation::Vec2;
 use fuzzymotiv::simulation::{Arena, Trajectory, TrialParams, run_trial};
-use fuzzymotiv_io::render::frames::animate::{PALETTE, delay_of, palette_index};
-use fuzzymotiv_io::render::frames::scene::{BODY, HEADING, PATH, TEXT};
-use fuzzymotiv_io::render::frames::{FrameOptions, Frames, Track, View, gif, render};
+use fuzzymotiv_render::frames::animate::{PALETTE, delay_of, palette_index};
+use fuzzymotiv_render::frames::scene::{BODY, HEADING, PATH, TEXT};
+use fuzzymotiv_render::frames::{FrameOptions, Frames, Track, View, gif, render};
 
 /// Straight on, left when a front sensor sees a wall, about when both do.
 struct WallShy;

@@ -7,7 +7,7 @@ use fuzzymotiv::simulation::{Action, Khepera, Pose};
 use fuzzymotiv::simulation::{SENSOR_MAX, SENSORS, SensorModel};
 use fuzzymotiv::simulation::{Trajectory, TrialParams};
 
-use crate::render::frames::font::GLYPH_H;
+use crate::frames::font::GLYPH_H;
 
 /// Smallest frame side (pixels).
 pub const MIN_SIZE: u32 = 64;
@@ -140,7 +140,7 @@ impl FrameOptions {
     /// steps over it, so the last frame always shows where the rollout ended.
     ///
     /// ```
-    /// use fuzzymotiv_io::render::frames::FrameOptions;
+    /// use fuzzymotiv_render::frames::FrameOptions;
     /// let o = FrameOptions::new(320, 3).unwrap();
     /// assert_eq!(o.frame_poses(8), [0, 3, 6, 7]);
     /// assert_eq!(o.frame_poses(7), [0, 3, 6]);

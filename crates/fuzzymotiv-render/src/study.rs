@@ -4,12 +4,12 @@
 
 use fuzzymotiv::statistics::{self, Expect, Settings, Verdict, mean_std, quantile};
 
-use crate::records::context::RenderContext;
-use crate::records::{
+use crate::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
+use fuzzymotiv_records::records::context::RenderContext;
+use fuzzymotiv_records::records::{
     ClaimRecord, ClaimStats, CurveStats, Finished, GenerationStat, RoomClaimStats, RoomRow,
     SeedSummary, SettingSummary, TableRow,
 };
-use crate::render::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
 
 /// A built-in setting of the study with the paper's table.
 pub struct Setting {
@@ -28,7 +28,7 @@ pub const SETTINGS: [Setting; 2] = [
     Setting {
         name: "high-curiosity",
         tag: "high_curiosity",
-        config: include_str!("../../../../configs/high-curiosity.toml"),
+        config: include_str!("../../../configs/high-curiosity.toml"),
         paper: [
             ("H", 0.6421, 93.84, 80.00, 79.19),
             ("T", 0.6686, 91.77, 100.00, 78.45),
@@ -40,7 +40,7 @@ pub const SETTINGS: [Setting; 2] = [
     Setting {
         name: "low-curiosity",
         tag: "low_curiosity",
-        config: include_str!("../../../../configs/low-curiosity.toml"),
+        config: include_str!("../../../configs/low-curiosity.toml"),
         paper: [
             ("H", 0.2465, 54.66, 20.00, 57.90),
             ("T", 0.2694, 57.84, 0.00, 59.66),
@@ -102,16 +102,16 @@ pub const ABLATION: [Variant; 5] = [
 
 /// The first release's five rooms (the files in rooms/first-release/, built into the binary).
 pub const FIRST_RELEASE_ROOMS: [(&str, &str); 5] = [
-    ("H", include_str!("../../../../rooms/first-release/H.toml")),
-    ("T", include_str!("../../../../rooms/first-release/T.toml")),
-    ("L", include_str!("../../../../rooms/first-release/L.toml")),
+    ("H", include_str!("../../../rooms/first-release/H.toml")),
+    ("T", include_str!("../../../rooms/first-release/T.toml")),
+    ("L", include_str!("../../../rooms/first-release/L.toml")),
     (
         "square",
-        include_str!("../../../../rooms/first-release/square.toml"),
+        include_str!("../../../rooms/first-release/square.toml"),
     ),
     (
         "rectangle",
-        include_str!("../../../../rooms/first-release/rectangle.toml"),
+        include_str!("../../../rooms/first-release/rectangle.toml"),
     ),
 ];
 

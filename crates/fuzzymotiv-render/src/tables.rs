@@ -6,10 +6,10 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::experiment::Training;
 
-use crate::records::context::RenderContext;
-use crate::records::{ClaimRecord, RoomRow};
-use crate::render::study::{SettingRuns, Variant, metrics, paper_row, room_stats, seed_index};
-use crate::render::svg::esc;
+use crate::plot::esc;
+use crate::study::{SettingRuns, Variant, metrics, paper_row, room_stats, seed_index};
+use fuzzymotiv_records::records::context::RenderContext;
+use fuzzymotiv_records::records::{ClaimRecord, RoomRow};
 
 /// The per-room table as Markdown.
 pub fn table_markdown(rows: &[RoomRow]) -> String {

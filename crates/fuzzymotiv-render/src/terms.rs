@@ -9,7 +9,7 @@ use fuzzymotiv::experiment::EnergyMode;
 use fuzzymotiv::fitness::Homing;
 use fuzzymotiv::simulation::Motion;
 
-use crate::render::svg::esc;
+use crate::plot::esc;
 
 /// One fitness term: its symbol, names and definition.
 #[derive(Debug, Clone, PartialEq)]
@@ -122,7 +122,7 @@ mod tests {
 
     /// docs/model.md §7 with its lines joined (one space between words).
     fn model_section_7() -> String {
-        let doc = include_str!("../../../../docs/model.md");
+        let doc = include_str!("../../../docs/model.md");
         let start = doc
             .find("## 7. Fitness terms")
             .expect("docs/model.md has §7");

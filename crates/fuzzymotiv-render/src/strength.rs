@@ -13,8 +13,8 @@ use std::fmt::Write as _;
 use fuzzymotiv::statistics::{self, BOOTSTRAP_RESAMPLES, Settings, mean_interval};
 
 use super::study::{CLAIMS_ALPHA, Variant, seed_means};
-use super::svg::{Ticks, colour, esc, text_width};
-use crate::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};
+use crate::plot::{Ticks, colour, esc, open, text_width};
+use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};
 
 /// Picks one column of a table row.
 type Column = fn(&TableRow) -> Option<f64>;
@@ -328,11 +328,7 @@ pub fn strength_svg(studies: &[StudySummary]) -> String {
     let mut panels = vec![exploration_panel(studies)];
     panels.extend(claim_panels(studies));
     let width = PW * panels.len() as f64;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{PH}" viewBox="0 0 {width} {PH}" font-family="sans-serif" font-size="12">"#
-    );
+    let mut s = open(width, PH, 12);
     let _ = writeln!(s, r#"<rect width="{width}" height="{PH}" fill="white"/>"#);
     let pops: Vec<usize> = studies.iter().map(|s| s.population).collect();
     for (k, panel) in panels.iter().enumerate() {

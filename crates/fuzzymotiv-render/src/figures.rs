@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use crate::files::error::CliError;
-use crate::files::guard::{StagedDir, io_err, write_atomic};
+use fuzzymotiv_records::files::error::CliError;
+use fuzzymotiv_records::files::guard::{StagedDir, io_err, write_atomic};
 
 /// Turns an SVG document into PNG bytes.
 pub trait Rasterise: Sync {

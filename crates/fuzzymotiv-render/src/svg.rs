@@ -3,102 +3,12 @@
 
 use std::fmt::Write as _;
 
+use crate::plot::{Ticks, colour, esc, open, px, text_width};
+
 use fuzzymotiv::experiment::GenerationRecord;
 use fuzzymotiv::simulation::Room;
 use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv::simulation::{Vec2, point_in_polygon};
-
-/// Escapes text for XML/HTML content and attribute values.
-pub fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-/// A generous estimate of the width (px) of `text` at 12 px sans-serif (bold or not): wide
-/// enough for DejaVu Sans, the widest of the fonts the PNGs use.
-pub fn text_width(text: &str, bold: bool) -> f64 {
-    text_width_at(text, bold, 12.0)
-}
-
-/// [`text_width`] at a font size of `size` px: 0.62 × size per character (0.68 bold), more
-/// than DejaVu Sans's average advance.
-pub fn text_width_at(text: &str, bold: bool, size: f64) -> f64 {
-    text.chars().count() as f64 * size * if bold { 0.68 } else { 0.62 }
-}
-
-/// A coordinate or size as figures print it: rounded to 2 decimals, so that Rust's shortest
-/// round-trip formatting writes at most 2 (`428.52`, never `428.52000000000004`). Every
-/// computed number a figure writes into an attribute goes through it.
-pub fn px(v: f64) -> f64 {
-    (v * 100.0).round() / 100.0 + 0.0
-}
-
-/// Colours for rooms (and other categories), in order; cycles after ten.
-pub const PALETTE: [&str; 10] = [
-    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
-    "#bcbd22", "#17becf",
-];
-
-/// The colour of category `k`.
-pub fn colour(k: usize) -> &'static str {
-    PALETTE[k % PALETTE.len()]
-}
-
-/// Axis ticks at round numbers: every multiple of `step` in a range, where `step` is 1, 2 or
-/// 5 × 10^k.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Ticks {
-    /// Distance between ticks.
-    pub step: f64,
-    /// The ticks, ascending.
-    pub values: Vec<f64>,
-}
-
-impl Ticks {
-    /// Ticks over `[lo, hi]`, about `target` intervals (the smallest 1, 2, 5 × 10^k step not
-    /// shorter than `(hi − lo) / target`); `integer` keeps the step at least 1 (generations,
-    /// node indices). An empty or non-finite range gets the one tick `lo`.
-    pub fn nice(lo: f64, hi: f64, target: usize, integer: bool) -> Ticks {
-        if !(lo.is_finite() && hi.is_finite()) || hi <= lo {
-            return Ticks {
-                step: 1.0,
-                values: vec![lo],
-            };
-        }
-        let raw = (hi - lo) / target.max(1) as f64;
-        let magnitude = 10f64.powf(raw.log10().floor());
-        let mut step = [1.0, 2.0, 5.0, 10.0]
-            .iter()
-            .map(|m| m * magnitude)
-            .find(|&s| s >= raw * (1.0 - 1e-9))
-            .unwrap_or(10.0 * magnitude);
-        if integer {
-            step = step.max(1.0);
-        }
-        let first = (lo / step - 1e-9).ceil() as i64;
-        let last = (hi / step + 1e-9).floor() as i64;
-        let values = (first..=last).map(|k| k as f64 * step).collect();
-        Ticks { step, values }
-    }
-
-    /// A tick's label, with as many decimals as the step needs ("0.2", "50", "1.0").
-    pub fn label(&self, v: f64) -> String {
-        let decimals = (-self.step.log10().floor()).max(0.0) as usize;
-        let text = format!("{v:.decimals$}");
-        // No "-0" for a tick at zero.
-        if text
-            .trim_start_matches('-')
-            .chars()
-            .all(|c| c == '0' || c == '.')
-        {
-            text.trim_start_matches('-').to_string()
-        } else {
-            text
-        }
-    }
-}
 
 /// One panel of [`fitness_panels_svg`]: curves per generation with shaded bands.
 pub struct FitnessPanel {
@@ -160,11 +70,7 @@ pub fn fitness_panels_svg(panels: &[FitnessPanel]) -> String {
         .unwrap_or(1);
     let ph = legend_top + 16.0 * (rows - 1) as f64 + 10.0;
     let width = px(widths.iter().sum::<f64>().max(1.0));
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{ph}" viewBox="0 0 {width} {ph}" font-family="sans-serif" font-size="12">"#
-    );
+    let mut s = open(width, ph, 12);
     let _ = writeln!(s, r#"<rect width="{width}" height="{ph}" fill="white"/>"#);
     let mut ox = 0.0;
     for ((panel, pw), legend) in panels.iter().zip(&widths).zip(&legends) {
@@ -397,11 +303,7 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         .max(2.0 * pad + text_width(caption, false));
     let (caption_y, bar_y) = (40.0 + max_h + 40.0, 40.0 + max_h + 60.0);
     let height = bar_y + 12.0;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif" font-size="12">"#
-    );
+    let mut s = open(format_args!("{width:.0}"), format_args!("{height:.0}"), 12);
     let _ = writeln!(
         s,
         r#"<rect width="{width:.0}" height="{height:.0}" fill="white"/>"#
@@ -675,11 +577,7 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
         .map(|(title, _)| px(520f64.max(text_width(title, true) + mr - ml + 10.0)))
         .collect();
     let width = px(widths.iter().sum::<f64>().max(1.0));
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{ph}" viewBox="0 0 {width} {ph}" font-family="sans-serif" font-size="12">"#
-    );
+    let mut s = open(width, ph, 12);
     let _ = writeln!(s, r#"<rect width="{width}" height="{ph}" fill="white"/>"#);
     let series: [(&str, &str, TermOf); 4] = [
         ("a exploration", "#2ca02c", |r| r.terms.a),
@@ -754,11 +652,7 @@ pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
     );
     let x = |v: f64| x0 + (x1 - x0) * (v - lo) / (hi - lo);
     let y = |m: f64| y0 + (y1 - y0) * m;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="12">"#
-    );
+    let mut s = open(w, h, 12);
     let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
     let _ = writeln!(
         s,
@@ -887,11 +781,7 @@ pub fn som_svg(title: &str, nodes: usize, threshold: usize, rooms: &[SomRoom<'_>
     let h = line_y + 40.0 + 9.0 * max_dots as f64 + 46.0;
     let last = nodes.saturating_sub(1).max(1) as f64;
     let x = |n: f64| x0 + (x1 - x0) * n / last;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h:.0}" viewBox="0 0 {w} {h:.0}" font-family="sans-serif" font-size="12">"#
-    );
+    let mut s = open(w, format_args!("{h:.0}"), 12);
     let _ = writeln!(s, r#"<rect width="{w}" height="{h:.0}" fill="white"/>"#);
     let _ = writeln!(
         s,
@@ -1068,11 +958,7 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
     };
     let width = pw * 4.0;
     let height = ph + 56.0;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="11">"#
-    );
+    let mut s = open(width, height, 11);
     let _ = writeln!(
         s,
         r#"<rect width="{width}" height="{height}" fill="white"/>"#
@@ -1287,6 +1173,7 @@ fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plot::text_width_at;
     use fuzzymotiv::evolution::Stats;
     use fuzzymotiv::experiment::GenerationRecord;
     use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
@@ -1346,6 +1233,12 @@ mod tests {
     /// Asserts every text of `svg` lies inside its viewBox and no two texts overlap.
     fn assert_texts_fit(svg: &str, what: &str) {
         let root = svg.split('>').next().unwrap();
+        // The widths below are estimated for the font stack's first font: the figure names it.
+        assert_eq!(
+            attr(root, "font-family").as_deref(),
+            Some(crate::plot::FONT_STACK),
+            "{what}: {root}"
+        );
         let vb: Vec<f64> = attr(root, "viewBox")
             .unwrap()
             .split_whitespace()
@@ -1397,8 +1290,7 @@ mod tests {
             "wall.toml",
         )
         .unwrap();
-        let u =
-            Room::from_toml_str(include_str!("../../../../rooms/U.toml"), "rooms/U.toml").unwrap();
+        let u = Room::from_toml_str(include_str!("../../../rooms/U.toml"), "rooms/U.toml").unwrap();
         let mut all: Vec<Room> = BUILTIN_ROOMS
             .iter()
             .map(|name| Room::builtin(name).unwrap())

@@ -10,7 +10,7 @@
 //! ```
 //! use fuzzymotiv::simulation::Pose;
 //! use fuzzymotiv::simulation::Room;
-//! use fuzzymotiv_io::render::frames::{FrameOptions, Track, render};
+//! use fuzzymotiv_render::frames::{FrameOptions, Track, render};
 //! let room = Room::builtin("square").unwrap();
 //! let poses: Vec<Pose> = (0..5).map(|t| Pose::new(room.home.x + 8.0 * t as f64, room.home.y, 0.0)).collect();
 //! let track = Track { poses: &poses, sensors: None, actions: None, idle: None };
@@ -28,9 +28,9 @@ use fuzzymotiv::simulation::Room;
 use rayon::prelude::*;
 use tiny_skia::Pixmap;
 
-pub use crate::render::frames::animate::GifWriter;
-pub use crate::render::frames::draw::Painter;
-pub use crate::render::frames::scene::{FrameOptions, Track, View};
+pub use crate::frames::animate::GifWriter;
+pub use crate::frames::draw::Painter;
+pub use crate::frames::scene::{FrameOptions, Track, View};
 
 /// Rendered frames: RGB bytes, frame after frame, each `width × height` pixels row by row.
 #[derive(Debug, Clone, PartialEq, Eq)]

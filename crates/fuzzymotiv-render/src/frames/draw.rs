@@ -9,8 +9,8 @@ use tiny_skia::{
     StrokeDash, Transform,
 };
 
-use crate::render::frames::font::{draw_text, text_width};
-use crate::render::frames::scene::{
+use crate::frames::font::{draw_text, text_width};
+use crate::frames::scene::{
     BODY, FLOOR, FrameOptions, HEADING, HOME_RIM, HOME_ZONE, IDLE, OBSTACLE, OUTSIDE, PATH, TEXT,
     Track, View, WALL, action_colour, ray_colour,
 };

@@ -6,7 +6,7 @@ use std::sync::LazyLock;
 
 use gif::{DisposalMethod, Encoder, Frame, Repeat};
 
-use crate::render::frames::scene::{
+use crate::frames::scene::{
     BODY, FLOOR, HEADING, HOME_RIM, HOME_ZONE, IDLE, OBSTACLE, OUTSIDE, PATH, RAY_HIGH, RAY_LOW,
     TEXT, WALL, action_colour,
 };

@@ -1,0 +1,19 @@
+//! Rendering, from records and a run's [`RenderContext`](fuzzymotiv_records::records::context::RenderContext)
+//! only, never the live experiment or the pipeline (this crate depends on `fuzzymotiv` and
+//! `fuzzymotiv-records` alone, so the compiler keeps it so): tables ([`tables`]), the paper's study with its statistics
+//! and claims ([`study`]), SVG figures ([`svg`], written with one builder: [`plot`]) written as files with an optional
+//! PNG beside them ([`figures`]), the fitness terms in words ([`terms`]), the self-contained
+//! report page ([`report`]) and rollout frames and GIFs drawn in pure Rust ([`frames`]).
+
+#![warn(missing_docs)]
+
+pub mod compare;
+pub mod figures;
+pub mod frames;
+pub mod plot;
+pub mod report;
+pub mod strength;
+pub mod study;
+pub mod svg;
+pub mod tables;
+pub mod terms;

@@ -1,0 +1,501 @@
+//! A config's TOML read with its type errors in plain words: a field that takes a whole number,
+//! a number or true/false says so ("expected a whole number from 2 to 1000000", "expected a
+//! number (e.g. 0.5)", "expected true or false") where serde would name its Rust type ("expected
+//! u64"). The words are produced by the visitors that read the values, which know the field's
+//! path and so its range ([`whole_number_range`]); nothing is rewritten afterwards.
+//!
+//! [`Plain`] wraps TOML's deserializer: it follows the path through tables, options and arrays,
+//! and reads every bool, integer and float with a [`Typed`] visitor whose `expecting` is the
+//! plain words; everything else (strings, enums, untagged values) goes to TOML unchanged, so
+//! those messages and every line and column stay TOML's own.
+
+use std::fmt;
+
+use serde::de::{
+    self, DeserializeSeed, Deserializer, IntoDeserializer, MapAccess, SeqAccess, Unexpected,
+    Visitor,
+};
+
+use super::config::whole_number_range;
+
+/// Reads `text` as a `T` (a config), type errors in plain words.
+pub(super) fn from_str<'de, T: de::Deserialize<'de>>(text: &'de str) -> Result<T, toml::de::Error> {
+    T::deserialize(Plain {
+        inner: toml::Deserializer::parse(text)?,
+        path: String::new(),
+    })
+}
+
+/// A deserializer at `path` (dotted keys, empty at the document).
+struct Plain<D> {
+    inner: D,
+    path: String,
+}
+
+/// What a scalar field takes, in the words of its messages.
+#[derive(Clone, Copy)]
+enum Kind {
+    /// true or false.
+    Bool,
+    /// A whole number from 0 to the maximum of its type.
+    Unsigned(u64),
+    /// A whole number in the range of its type.
+    Signed(i64, i64),
+    /// Any number.
+    Number,
+}
+
+/// Visit methods handed to the field's own visitor as they are.
+macro_rules! delegate {
+    ($($method:ident($t:ty))*) => {$(
+        fn $method<E: de::Error>(self, v: $t) -> Result<V::Value, E> {
+            self.inner.$method(v)
+        }
+    )*};
+}
+
+/// Scalar methods, read with a [`Typed`] visitor of their kind.
+macro_rules! typed {
+    ($($method:ident => $kind:expr),* $(,)?) => {$(
+        fn $method<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+            let kind = $kind;
+            self.inner.deserialize_any(Typed { inner: visitor, kind, path: self.path })
+        }
+    )*};
+}
+
+/// Methods handed to TOML's deserializer as they are.
+macro_rules! forward {
+    ($($method:ident)*) => {$(
+        fn $method<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+            self.inner.$method(visitor)
+        }
+    )*};
+}
+
+impl<'de, D: Deserializer<'de>> Deserializer<'de> for Plain<D> {
+    type Error = D::Error;
+
+    /// Whatever comes (a value of a type's own visitor, e.g. a weight or a table): a table or
+    /// an array in it is read with the path still followed.
+    fn deserialize_any<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+        let path = self.path;
+        self.inner.deserialize_any(Nested {
+            inner: visitor,
+            path,
+        })
+    }
+
+    typed! {
+        deserialize_bool => Kind::Bool,
+        deserialize_u8 => Kind::Unsigned(u8::MAX.into()),
+        deserialize_u16 => Kind::Unsigned(u16::MAX.into()),
+        deserialize_u32 => Kind::Unsigned(u32::MAX.into()),
+        deserialize_u64 => Kind::Unsigned(u64::MAX),
+        deserialize_i8 => Kind::Signed(i8::MIN.into(), i8::MAX.into()),
+        deserialize_i16 => Kind::Signed(i16::MIN.into(), i16::MAX.into()),
+        deserialize_i32 => Kind::Signed(i32::MIN.into(), i32::MAX.into()),
+        deserialize_i64 => Kind::Signed(i64::MIN, i64::MAX),
+        deserialize_f32 => Kind::Number,
+        deserialize_f64 => Kind::Number,
+    }
+
+    fn deserialize_option<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+        let path = self.path;
+        self.inner.deserialize_option(Nested {
+            inner: visitor,
+            path,
+        })
+    }
+
+    fn deserialize_seq<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+        let path = self.path;
+        self.inner.deserialize_seq(Nested {
+            inner: visitor,
+            path,
+        })
+    }
+
+    fn deserialize_map<V: Visitor<'de>>(self, visitor: V) -> Result<V::Value, Self::Error> {
+        let path = self.path;
+        self.inner.deserialize_map(Nested {
+            inner: visitor,
+            path,
+        })
+    }
+
+    fn deserialize_struct<V: Visitor<'de>>(
+        self,
+        name: &'static str,
+        fields: &'static [&'static str],
+        visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        let path = self.path;
+        self.inner.deserialize_struct(
+            name,
+            fields,
+            Nested {
+                inner: visitor,
+                path,
+            },
+        )
+    }
+
+    fn deserialize_unit_struct<V: Visitor<'de>>(
+        self,
+        name: &'static str,
+        visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        self.inner.deserialize_unit_struct(name, visitor)
+    }
+
+    fn deserialize_newtype_struct<V: Visitor<'de>>(
+        self,
+        name: &'static str,
+        visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        self.inner.deserialize_newtype_struct(name, visitor)
+    }
+
+    fn deserialize_tuple<V: Visitor<'de>>(
+        self,
+        len: usize,
+        visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        self.inner.deserialize_tuple(len, visitor)
+    }
+
+    fn deserialize_tuple_struct<V: Visitor<'de>>(
+        self,
+        name: &'static str,
+        len: usize,
+        visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        self.inner.deserialize_tuple_struct(name, len, visitor)
+    }
+
+    fn deserialize_enum<V: Visitor<'de>>(
+        self,
+        name: &'static str,
+        variants: &'static [&'static str],
+        visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        self.inner.deserialize_enum(name, variants, visitor)
+    }
+
+    forward! {
+        deserialize_i128 deserialize_u128 deserialize_char deserialize_str deserialize_string
+        deserialize_bytes deserialize_byte_buf deserialize_unit deserialize_identifier
+        deserialize_ignored_any
+    }
+}
+
+/// A scalar's visitor: accepts what `kind` takes, hands it to the field's own visitor, and
+/// says what it expects in plain words.
+struct Typed<V> {
+    inner: V,
+    kind: Kind,
+    path: String,
+}
+
+impl<'de, V: Visitor<'de>> Visitor<'de> for Typed<V> {
+    type Value = V::Value;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.kind {
+            Kind::Bool => f.write_str("true or false"),
+            Kind::Number => f.write_str("a number (e.g. 0.5)"),
+            Kind::Unsigned(_) | Kind::Signed(..) => {
+                write!(f, "a whole number {}", whole_number_range(&self.path))
+            }
+        }
+    }
+
+    fn visit_bool<E: de::Error>(self, v: bool) -> Result<V::Value, E> {
+        match self.kind {
+            Kind::Bool => self.inner.visit_bool(v),
+            _ => Err(E::invalid_type(Unexpected::Bool(v), &self)),
+        }
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<V::Value, E> {
+        match self.kind {
+            Kind::Number => self.inner.visit_i64(v),
+            Kind::Unsigned(max) if v >= 0 && v as u64 <= max => self.inner.visit_u64(v as u64),
+            Kind::Signed(min, max) if (min..=max).contains(&v) => self.inner.visit_i64(v),
+            Kind::Unsigned(_) | Kind::Signed(..) => {
+                Err(E::invalid_value(Unexpected::Signed(v), &self))
+            }
+            Kind::Bool => Err(E::invalid_type(Unexpected::Signed(v), &self)),
+        }
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<V::Value, E> {
+        match self.kind {
+            Kind::Number => self.inner.visit_u64(v),
+            Kind::Unsigned(max) if v <= max => self.inner.visit_u64(v),
+            Kind::Signed(_, max) if v <= max as u64 => self.inner.visit_i64(v as i64),
+            Kind::Unsigned(_) | Kind::Signed(..) => {
+                Err(E::invalid_value(Unexpected::Unsigned(v), &self))
+            }
+            Kind::Bool => Err(E::invalid_type(Unexpected::Unsigned(v), &self)),
+        }
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<V::Value, E> {
+        match self.kind {
+            Kind::Number => self.inner.visit_f64(v),
+            _ => Err(E::invalid_type(Unexpected::Float(v), &self)),
+        }
+    }
+}
+
+/// The visitor of a table, an array, an option or any value: the field's own (its words are
+/// the field's, every value goes to it), with the path handed down to what it contains.
+struct Nested<V> {
+    inner: V,
+    path: String,
+}
+
+impl<'de, V: Visitor<'de>> Visitor<'de> for Nested<V> {
+    type Value = V::Value;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.inner.expecting(f)
+    }
+
+    fn visit_none<E: de::Error>(self) -> Result<V::Value, E> {
+        self.inner.visit_none()
+    }
+
+    delegate! {
+        visit_bool(bool) visit_i64(i64) visit_u64(u64) visit_i128(i128) visit_u128(u128)
+        visit_f64(f64) visit_char(char) visit_str(&str) visit_borrowed_str(&'de str)
+        visit_string(String) visit_bytes(&[u8]) visit_borrowed_bytes(&'de [u8])
+        visit_byte_buf(Vec<u8>)
+    }
+
+    fn visit_unit<E: de::Error>(self) -> Result<V::Value, E> {
+        self.inner.visit_unit()
+    }
+
+    fn visit_newtype_struct<D: Deserializer<'de>>(self, d: D) -> Result<V::Value, D::Error> {
+        self.inner.visit_newtype_struct(d)
+    }
+
+    fn visit_enum<A: de::EnumAccess<'de>>(self, data: A) -> Result<V::Value, A::Error> {
+        self.inner.visit_enum(data)
+    }
+
+    fn visit_some<D: Deserializer<'de>>(self, d: D) -> Result<V::Value, D::Error> {
+        let path = self.path;
+        self.inner.visit_some(Plain { inner: d, path })
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<V::Value, A::Error> {
+        let path = self.path;
+        self.inner.visit_seq(Nested { inner: seq, path })
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<V::Value, A::Error> {
+        self.inner.visit_map(Table {
+            inner: map,
+            path: self.path,
+            key: String::new(),
+        })
+    }
+}
+
+impl<'de, A: SeqAccess<'de>> SeqAccess<'de> for Nested<A> {
+    type Error = A::Error;
+
+    fn next_element_seed<T: DeserializeSeed<'de>>(
+        &mut self,
+        seed: T,
+    ) -> Result<Option<T::Value>, A::Error> {
+        let path = self.path.clone();
+        self.inner.next_element_seed(At { inner: seed, path })
+    }
+
+    fn size_hint(&self) -> Option<usize> {
+        self.inner.size_hint()
+    }
+}
+
+/// A table's entries, each value at the path of its key.
+struct Table<A> {
+    inner: A,
+    path: String,
+    key: String,
+}
+
+impl<'de, A: MapAccess<'de>> MapAccess<'de> for Table<A> {
+    type Error = A::Error;
+
+    fn next_key_seed<K: DeserializeSeed<'de>>(
+        &mut self,
+        seed: K,
+    ) -> Result<Option<K::Value>, A::Error> {
+        self.inner.next_key_seed(Key {
+            inner: seed,
+            key: &mut self.key,
+        })
+    }
+
+    fn next_value_seed<T: DeserializeSeed<'de>>(&mut self, seed: T) -> Result<T::Value, A::Error> {
+        let path = if self.path.is_empty() {
+            self.key.clone()
+        } else {
+            format!("{}.{}", self.path, self.key)
+        };
+        self.inner.next_value_seed(At { inner: seed, path })
+    }
+
+    fn size_hint(&self) -> Option<usize> {
+        self.inner.size_hint()
+    }
+}
+
+/// A key, kept for the path of its value.
+struct Key<'k, K> {
+    inner: K,
+    key: &'k mut String,
+}
+
+impl<'de, K: DeserializeSeed<'de>> DeserializeSeed<'de> for Key<'_, K> {
+    type Value = K::Value;
+
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<K::Value, D::Error> {
+        let key = <String as de::Deserialize>::deserialize(d)?;
+        self.key.clone_from(&key);
+        self.inner.deserialize(key.into_deserializer())
+    }
+}
+
+/// A value read at `path`.
+struct At<T> {
+    inner: T,
+    path: String,
+}
+
+impl<'de, T: DeserializeSeed<'de>> DeserializeSeed<'de> for At<T> {
+    type Value = T::Value;
+
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<T::Value, D::Error> {
+        self.inner.deserialize(Plain {
+            inner: d,
+            path: self.path,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::config::RawConfig;
+
+    /// The reason of the error of `text` read as a config.
+    fn reason(text: &str) -> String {
+        RawConfig::parse(text, "c.toml", &[]).unwrap_err().reason
+    }
+
+    #[test]
+    fn type_errors_say_what_the_field_takes_in_plain_words() {
+        assert_eq!(
+            reason("[ga]\npopulation = 1.5\n"),
+            "invalid type: floating point `1.5`, expected a whole number from 2 to 1000000 \
+             (line 2, column 14)"
+        );
+        assert_eq!(
+            reason("[trial]\nsteps = -3\n"),
+            "invalid value: integer `-3`, expected a whole number from 1 to 10000000 \
+             (line 2, column 9)"
+        );
+        assert_eq!(
+            reason("[fuzzy]\npeaks = [0, \"a\", 1]\n"),
+            "invalid type: string \"a\", expected a number (e.g. 0.5) (line 2, column 13)"
+        );
+        assert_eq!(
+            reason("[trial]\nend_at_home = 1\n"),
+            "invalid type: integer `1`, expected true or false (line 2, column 15)"
+        );
+        assert_eq!(
+            reason("seed = \"one\"\n"),
+            "invalid type: string \"one\", expected a whole number from 0 to 9007199254740991 \
+             (2^53 − 1) (line 1, column 8)"
+        );
+    }
+
+    /// Everything else is TOML's and serde's own: an unknown key, a word for an enum, a table
+    /// where a number belongs; and good values read as they are.
+    #[test]
+    fn other_errors_and_good_values_are_read_as_toml_reads_them() {
+        assert!(
+            reason("[ga]\npopulaton = 3\n")
+                .starts_with("unknown field `populaton`, expected one of"),
+            "{}",
+            reason("[ga]\npopulaton = 3\n")
+        );
+        assert!(reason("[fitness]\nhoming = \"far\"\n").starts_with("unknown variant `far`"));
+        let raw = RawConfig::parse(
+            "seed = 7\n[ga]\npopulation = 12\n[trial]\nend_at_home = false\n",
+            "c",
+            &[],
+        )
+        .unwrap();
+        assert_eq!((raw.seed, raw.ga.population), (7, 12));
+        assert!(!raw.trial.end_at_home);
+    }
+
+    /// A type that reads itself with `deserialize_any` (a number or a table, as a motivation
+    /// may be written): the numbers in its table still say what they take.
+    #[test]
+    fn a_table_read_through_deserialize_any_keeps_the_plain_words() {
+        use serde::Deserialize;
+        use serde::de::{self, Deserializer, MapAccess, Visitor};
+        #[derive(Deserialize)]
+        struct Table {
+            weight: f64,
+        }
+        struct Either(f64);
+        impl<'de> Deserialize<'de> for Either {
+            fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                struct V;
+                impl<'de> Visitor<'de> for V {
+                    type Value = Either;
+                    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                        f.write_str("a weight or a table")
+                    }
+                    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Either, E> {
+                        Ok(Either(v))
+                    }
+                    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Either, A::Error> {
+                        let t = Table::deserialize(de::value::MapAccessDeserializer::new(map))?;
+                        Ok(Either(t.weight))
+                    }
+                }
+                d.deserialize_any(V)
+            }
+        }
+        #[derive(Deserialize)]
+        struct Doc {
+            x: Either,
+        }
+        let e = super::from_str::<Doc>("x = { weight = \"a\" }\n")
+            .err()
+            .unwrap();
+        assert_eq!(
+            e.message(),
+            "invalid type: string \"a\", expected a number (e.g. 0.5)"
+        );
+        let e = super::from_str::<Doc>("x = true\n").err().unwrap();
+        assert_eq!(
+            e.message(),
+            "invalid type: boolean `true`, expected a weight or a table"
+        );
+        let read = |text| super::from_str::<Doc>(text).ok().unwrap().x.0;
+        assert_eq!(
+            (read("x = 0.5"), read("x = { weight = 0.25 }")),
+            (0.5, 0.25)
+        );
+    }
+}
