@@ -34,7 +34,6 @@ pub use terms::UserTerm;
 use serde::{Deserialize, Serialize};
 
 use crate::evolution::ga::GaParams;
-use crate::experiment::terms::TermPlan;
 use crate::fitness::terms::Homing;
 use crate::fitness::{Motivations, TskFitness};
 use crate::modelling::aem::AemParams;
@@ -62,7 +61,7 @@ pub struct Experiment {
     pub(crate) orientation: OrientationMode,
     pub(crate) homing: Homing,
     pub(crate) aem: AemParams,
-    pub(crate) plan: TermPlan,
+    pub(crate) plan: terms::TermPlan,
 }
 
 impl Experiment {
@@ -105,7 +104,7 @@ impl Experiment {
             || "\"online\" needs training = \"all-rooms\" with at least 2 rooms".into(),
         )?;
         check_clearance(&rooms, trial.robot().radius())?;
-        let plan = TermPlan::resolve(
+        let plan = terms::TermPlan::resolve(
             &motivations,
             user,
             &rooms,

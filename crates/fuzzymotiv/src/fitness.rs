@@ -5,19 +5,21 @@ pub(crate) mod episode;
 pub(crate) mod fll;
 pub(crate) mod fuzzy;
 pub(crate) mod motivation;
+pub(crate) mod rules;
 pub(crate) mod terms;
 
 pub use episode::Episode;
 pub use fll::to_fll;
 pub use fuzzy::{
-    CoefficientScheme, Coefficients, Explanation, FiringRule, FuzzyError,
-    MAX_COEFFICIENT_MAGNITUDE, MAX_LABELS, MOTIVATION_NORMALISE_TOLERANCE,
-    MOTIVATION_SUM_TOLERANCE, PAPER_LABEL_NAMES, PAPER_PEAKS, RawFuzzy, TskFitness, label_name,
+    CoefficientScheme, Coefficients, FuzzyError, MAX_COEFFICIENT_MAGNITUDE, MAX_LABELS,
+    MOTIVATION_NORMALISE_TOLERANCE, MOTIVATION_SUM_TOLERANCE, PAPER_LABEL_NAMES, PAPER_PEAKS,
+    RawFuzzy, TskFitness, label_name,
 };
 pub use motivation::{
     MAX_MOTIVATIONS, Motivation, Motivations, PAPER_MOTIVATIONS, PAPER_TERMS, RawMotivation,
     RawMotivationTable, RawMotivations,
 };
+pub use rules::{Explanation, FiringRule};
 pub use terms::{
     FitnessTerms, Homing, LIBRARY_TERMS, MAX_USER_TERMS, MissionTerms, MissionTracker,
     TERM_ALIASES, Term, TermId, TermsRecorder, TrialRecord, UserValues, WaypointOrder,

@@ -14,7 +14,6 @@ use crate::simulation::geom::{
     Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area,
 };
 use crate::simulation::robot::{KHEPERA_RADIUS, Pose};
-use crate::simulation::trial::{Arena, TrialParams};
 
 /// Largest coordinate magnitude accepted in room files (mm): rooms up to 20 m across.
 pub const MAX_COORD: f64 = 1e4;
@@ -348,9 +347,9 @@ impl Room {
         })
     }
 
-    /// Parses and validates a room file (docs/model.md §4). `source_name` (usually the path) is used in
-    /// error messages.
-    pub fn from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
+    /// Parses a room file and checks its geometry (docs/model.md §4), but not that its mission
+    /// is reachable: [`Room::from_toml_str`] (beside the arena's flood fill) does both.
+    pub(crate) fn geometry_from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
         let raw: RawRoom = toml::from_str(text).map_err(|e| {
             let msg = e.message().to_string();
             let field = field_from_toml_message(&msg, text, e.span());
@@ -369,16 +368,7 @@ impl Room {
             home_zone,
             mission,
         };
-        let room = room.validated(source_name)?;
-        // Reachable by the Khepera, as home's clearance; a bigger body is checked by the
-        // experiment ([`crate::simulation::check_missions_reachable`]).
-        if !room.mission.is_empty() {
-            let arena = Arena::new(room.clone(), &TrialParams::default());
-            if let Some(e) = arena.unreachable_mission_zone() {
-                return Err(e.in_source(source_name));
-            }
-        }
-        Ok(room)
+        room.validated(source_name)
     }
 
     /// Checks the geometry (docs/model.md §4) and normalises the outline to counter-clockwise order.
@@ -929,44 +919,5 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
             (patrol.mission.goal, patrol.mission.waypoints.len()),
             (None, 3)
         );
-    }
-    /// A room whose goal lies behind a 120 mm gap: the Khepera (55 mm across) passes it, a
-    /// body of radius 60 does not.
-    fn gap_room() -> Room {
-        let text = format!(
-            "{MISSION_ROOM}goal={{x=700,y=200,radius=50}}\n\
-             [[obstacles]]\noutline=[[400,5],[420,5],[420,140],[400,140]]\n\
-             [[obstacles]]\noutline=[[400,260],[420,260],[420,395],[400,395]]\n"
-        );
-        Room::from_toml_str(&text, "gap.toml").unwrap()
-    }
-
-    #[test]
-    fn the_arena_finds_the_mission_zone_its_body_cannot_reach() {
-        let room = gap_room();
-        let khepera = Arena::new(room.clone(), &TrialParams::default());
-        assert_eq!(khepera.unreachable_mission_zone(), None);
-        let raw = crate::simulation::RawRobot {
-            radius: 60.0,
-            ..Default::default()
-        };
-        let params = TrialParams {
-            robot: crate::simulation::Khepera::from_raw(&raw).unwrap(),
-            ..TrialParams::default()
-        };
-        let e = Arena::new(room, &params)
-            .unreachable_mission_zone()
-            .unwrap();
-        assert_eq!(e.field, "goal");
-        assert!(e.reason.contains("body radius 60 mm"), "{e}");
-    }
-
-    #[test]
-    fn a_bigger_body_that_cannot_reach_a_goal_names_the_room_and_field() {
-        let rooms = [Room::builtin("H").unwrap(), gap_room()];
-        crate::simulation::check_missions_reachable(&rooms, KHEPERA_RADIUS).unwrap();
-        let e = crate::simulation::check_missions_reachable(&rooms, 60.0).unwrap_err();
-        assert_eq!(e.field, "rooms[1]");
-        assert!(e.reason.contains("room \"m\", field `goal`"), "{e}");
     }
 }

@@ -18,7 +18,7 @@ use crate::simulation::geom::{PreparedSegment, Segment, Vec2};
 use crate::simulation::memo::{MemoClaim, Owner, Sight, SightKey, Table, memo_live};
 use crate::simulation::robot::Action;
 use crate::simulation::robot::{Compass, Khepera, Motion, Pose, RawRobot, drive};
-use crate::simulation::room::{Room, Zone};
+use crate::simulation::room::{Room, RoomError, Zone};
 use crate::simulation::sensing::{Eyes, Facing};
 use crate::simulation::sensor::{SENSOR_MAX, SensorModel, sensing_reach};
 pub use crate::simulation::trial_params::{MAX_STEPS, RawTrial, TrialParams};
@@ -478,6 +478,23 @@ impl Grid {
             }
         }
         reachable
+    }
+}
+
+impl Room {
+    /// Parses and validates a room file (docs/model.md §4): its geometry, and that its mission's
+    /// zones are reachable from home by the Khepera (as home's clearance; a bigger body is
+    /// checked by the experiment, [`check_missions_reachable`]). `source_name` (usually the
+    /// path) is used in error messages.
+    pub fn from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
+        let room = Room::geometry_from_toml_str(text, source_name)?;
+        if !room.mission.is_empty() {
+            let arena = Arena::new(room.clone(), &TrialParams::default());
+            if let Some(e) = arena.unreachable_mission_zone() {
+                return Err(e.in_source(source_name));
+            }
+        }
+        Ok(room)
     }
 }
 
@@ -1303,5 +1320,51 @@ mod tests {
         );
         assert!(!memo_live(number_then));
         assert!(memo_live(number(&again).unwrap()));
+    }
+
+    const MISSION_ROOM: &str =
+        "name='m'\noutline=[[0,0],[800,0],[800,400],[0,400]]\nhome={x=100,y=200,heading_deg=0}\n";
+    /// A room whose goal lies behind a 120 mm gap: the Khepera (55 mm across) passes it, a
+    /// body of radius 60 does not.
+    fn gap_room() -> Room {
+        let text = format!(
+            "{MISSION_ROOM}goal={{x=700,y=200,radius=50}}\n\
+             [[obstacles]]\noutline=[[400,5],[420,5],[420,140],[400,140]]\n\
+             [[obstacles]]\noutline=[[400,260],[420,260],[420,395],[400,395]]\n"
+        );
+        Room::from_toml_str(&text, "gap.toml").unwrap()
+    }
+
+    #[test]
+    fn the_arena_finds_the_mission_zone_its_body_cannot_reach() {
+        let room = gap_room();
+        let khepera = Arena::new(room.clone(), &TrialParams::default());
+        assert_eq!(khepera.unreachable_mission_zone(), None);
+        let raw = crate::simulation::RawRobot {
+            radius: 60.0,
+            ..Default::default()
+        };
+        let params = TrialParams {
+            robot: crate::simulation::Khepera::from_raw(&raw).unwrap(),
+            ..TrialParams::default()
+        };
+        let e = Arena::new(room, &params)
+            .unreachable_mission_zone()
+            .unwrap();
+        assert_eq!(e.field, "goal");
+        assert!(e.reason.contains("body radius 60 mm"), "{e}");
+    }
+
+    #[test]
+    fn a_bigger_body_that_cannot_reach_a_goal_names_the_room_and_field() {
+        let rooms = [Room::builtin("H").unwrap(), gap_room()];
+        crate::simulation::check_missions_reachable(
+            &rooms,
+            crate::simulation::robot::KHEPERA_RADIUS,
+        )
+        .unwrap();
+        let e = crate::simulation::check_missions_reachable(&rooms, 60.0).unwrap_err();
+        assert_eq!(e.field, "rooms[1]");
+        assert!(e.reason.contains("room \"m\", field `goal`"), "{e}");
     }
 }
