@@ -3,6 +3,8 @@
 
 mod common;
 
+use common::{ok, run, stderr, stdout};
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -76,6 +78,11 @@ int main(void)
 fn build_driver(dir: &Path, c: &CSources) -> PathBuf {
     std::fs::write(dir.join(CSources::HEADER_NAME), &c.header).unwrap();
     std::fs::write(dir.join(CSources::SOURCE_NAME), &c.source).unwrap();
+    compile_driver(dir)
+}
+
+/// Compiles the driver with the exported C already in `dir`; the driver's path.
+fn compile_driver(dir: &Path) -> PathBuf {
     std::fs::write(dir.join("driver.c"), DRIVER).unwrap();
     let exe = dir.join("driver");
     let out = Command::new(cc())
@@ -249,4 +256,138 @@ fn exported_logistic_is_the_librarys_bit_for_bit() {
         assert_eq!(line, &want, "logistic({x:e})");
     }
     assert_eq!(got.len(), xs.len());
+}
+
+/// A tiny evolved run (noise 0, so every recorded action is the label of the motor outputs).
+fn tiny_run(dir: &Path) -> PathBuf {
+    let cfg = dir.join("tiny.toml");
+    std::fs::write(&cfg, "name = \"tiny\"\nseed = 5\nrooms = [\"H\", \"square\"]\n[ga]\npopulation = 8\ngenerations = 2\n[trial]\nsteps = 150\nnoise = 0.0\n[aem]\nepochs = 20\ntest_runs = 2\n").unwrap();
+    let out = dir.join("tiny");
+    ok(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    out
+}
+
+#[test]
+fn exported_run_reproduces_its_replay_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_dir = tiny_run(dir.path());
+    let c_dir = dir.path().join("controller");
+    let o = ok(&[
+        "export",
+        run_dir.to_str().unwrap(),
+        "--to",
+        "c",
+        "--out",
+        c_dir.to_str().unwrap(),
+    ]);
+    assert!(stdout(&o).contains("fm_controller.c"), "{}", stdout(&o));
+    let page = dir.path().join("replay").join("replay.html");
+    ok(&[
+        "replay",
+        run_dir.to_str().unwrap(),
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    let doc: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(page.with_extension("json")).unwrap()).unwrap();
+    let exe = compile_driver(&c_dir);
+    let p = params(Motion::Actions, 0.0);
+    let mut steps = 0;
+    for room in doc["rooms"].as_array().unwrap() {
+        let tr: Trajectory = serde_json::from_value(room["trajectory"].clone()).unwrap();
+        let (input, want): (String, Vec<String>) = expected(&tr, &p).into_iter().unzip();
+        let got = run_driver(&exe, &input);
+        assert_eq!(got.len(), want.len());
+        for (got, want) in got.iter().zip(&want) {
+            assert!(got.starts_with(want.as_str()), "{got} vs {want}");
+        }
+        steps += want.len();
+    }
+    assert!(steps >= 150, "{steps}");
+}
+
+#[test]
+fn export_json_describes_the_network_and_refuses_to_replace_another_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_dir = tiny_run(dir.path());
+    let out = dir.path().join("controller.json");
+    let (src, dst) = (run_dir.to_str().unwrap(), out.to_str().unwrap());
+    ok(&["export", src, "--to", "json", "--out", dst]);
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(doc["format"], "fuzzymotiv-controller");
+    assert_eq!(doc["network"]["layout"], "8-6-2");
+    let genome: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(run_dir.join("best_genome.json")).unwrap()).unwrap();
+    assert_eq!(doc["network"]["weights"], genome["weights"]);
+    assert_eq!(doc["actions"]["motion"], "actions");
+    // The same export again: nothing to do.
+    let o = ok(&["export", src, "--to", "json", "--out", dst]);
+    assert!(stderr(&o).contains("nothing to do"), "{}", stderr(&o));
+    // Another file there is kept without --force.
+    std::fs::write(&out, "mine").unwrap();
+    let o = run(&["export", src, "--to", "json", "--out", dst]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--force"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "mine");
+    ok(&["export", src, "--to", "json", "--out", dst, "--force"]);
+    assert_ne!(std::fs::read_to_string(&out).unwrap(), "mine");
+}
+
+#[test]
+fn export_of_a_genome_of_the_wrong_length_names_the_file_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let genome = dir.path().join("best_genome.json");
+    std::fs::write(
+        &genome,
+        r#"{"shape": {"hidden": 6}, "weights": [0.5, 1.0]}"#,
+    )
+    .unwrap();
+    let c_dir = dir.path().join("c");
+    let o = run(&[
+        "export",
+        genome.to_str().unwrap(),
+        "--to",
+        "c",
+        "--out",
+        c_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("best_genome.json") && e.contains("`weights`") && e.contains("68"),
+        "{e}"
+    );
+    assert!(!e.contains("panicked"), "{e}");
+    assert!(!c_dir.exists());
+}
+
+#[test]
+fn export_c_refuses_a_file_as_its_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    let genome = dir.path().join("best_genome.json");
+    let weights = vec!["0.1"; 68].join(", ");
+    std::fs::write(
+        &genome,
+        format!(r#"{{"shape": {{"hidden": 6}}, "weights": [{weights}]}}"#),
+    )
+    .unwrap();
+    let file = dir.path().join("plain.txt");
+    std::fs::write(&file, "keep").unwrap();
+    let o = run(&[
+        "export",
+        genome.to_str().unwrap(),
+        "--to",
+        "c",
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("is not a directory"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
 }
