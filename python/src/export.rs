@@ -28,6 +28,7 @@ pub(crate) fn export_controller(
         to,
         out: &out,
         force,
+        room_option: "room",
         out_option: "out",
     })
     .map_err(py_err)?;

@@ -56,6 +56,7 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
         },
         out: &args.out,
         force: args.force,
+        room_option: "--room",
         out_option: "--out",
     })?;
     let config =

@@ -51,6 +51,8 @@ pub struct ExportRequest<'a> {
     pub force: bool,
     /// The name of the out option in messages (`--out`, `out`).
     pub out_option: &'a str,
+    /// The name of the room option in messages (`--room`, `room`).
+    pub room_option: &'a str,
 }
 
 /// What an export did.
@@ -87,7 +89,7 @@ pub fn export_controller(req: &ExportRequest) -> Result<Exported, CliError> {
         )));
     }
     let mut notes = Vec::new();
-    let weights = chosen_weights(&genome, req.room, &mut notes)?;
+    let weights = chosen_weights(&genome, req, &mut notes)?;
     let in_file =
         |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome_path.display()));
     let shape = MlpShape::with_hidden(genome.hidden).map_err(|e| in_file(&e))?;
@@ -117,25 +119,26 @@ pub fn export_controller(req: &ExportRequest) -> Result<Exported, CliError> {
 /// The weights to export: the main robot's, or with `room` the one evolved in that room.
 fn chosen_weights<'a>(
     genome: &'a SavedGenome,
-    room: Option<&str>,
+    req: &ExportRequest,
     notes: &mut Vec<String>,
 ) -> Result<&'a [f64], CliError> {
-    let Some(room) = room else {
+    let option = req.room_option;
+    let Some(room) = req.room else {
         if !genome.runs.is_empty() {
-            notes.push(
-                "note: the genome file holds a robot per room; exporting its main robot (a room option picks one)".into(),
-            );
+            notes.push(format!(
+                "note: the genome file holds a robot per room; exporting its main robot ({option} ROOM picks one)"
+            ));
         }
         return Ok(&genome.weights);
     };
     match genome.runs.iter().find(|(label, _)| label == room) {
         Some((_, w)) => Ok(w),
         None if genome.runs.is_empty() => Err(CliError::input(format!(
-            "room {room}: {} holds one robot for all rooms (trained in all rooms); leave the room out",
+            "{option} {room}: {} holds one robot for all rooms (trained in all rooms); leave {option} out",
             genome.path.display()
         ))),
         None => Err(CliError::input(format!(
-            "room {room}: {} has no robot evolved in that room; its rooms are {}",
+            "{option} {room}: {} has no robot evolved in that room; its rooms are {}",
             genome.path.display(),
             (genome.runs.iter().map(|(l, _)| l.as_str()))
                 .collect::<Vec<_>>()
