@@ -1,5 +1,5 @@
 """A run's evolved controller for a real robot: C99 (the simulator's outputs bit for bit) or a
-self-describing JSON document, as ``fuzzymotiv export`` writes them (docs/guide/real-robot.md)."""
+self-describing JSON document or an ONNX model, as ``fuzzymotiv export`` writes them (docs/guide/real-robot.md)."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ PathLike = Union[str, "os.PathLike[str]"]
 def export_controller(
     run_or_genome: PathLike,
     *,
-    to: Literal["c", "json"],
+    to: Literal["c", "json", "onnx"],
     out: PathLike,
     config: Optional[PathLike] = None,
     room: Optional[str] = None,
@@ -24,7 +24,8 @@ def export_controller(
     ``config.resolved.toml`` beside it or ``config``) and returns the paths written.
 
     ``to="c"``: ``out`` is a directory (created if missing) receiving ``fm_controller.h`` and
-    ``fm_controller.c``; ``to="json"``: ``out`` is the JSON file. Other files there are kept
+    ``fm_controller.c``; ``to="json"``: ``out`` is the JSON file; ``to="onnx"``: ``out`` is the
+    ONNX model. Other files there are kept
     unless ``force=True`` (``OutputExistsError``); the same export again writes nothing. A bad
     genome or config raises ``FuzzymotivError`` naming the file and field. ``room`` picks the
     robot evolved in that room (per-room training). The same as ``fuzzymotiv export

@@ -28,6 +28,9 @@ def test_export_controller_writes_the_clis_files(run_dir, tmp_path, cli):
     genome = json.loads((run_dir / "best_genome.json").read_text())
     assert doc["format"] == "fuzzymotiv-controller"
     assert doc["network"]["weights"] == genome["weights"]
+    fm.export_controller(run_dir, to="onnx", out=tmp_path / "c.onnx")
+    run_cli(cli, "export", run_dir, "--to", "onnx", "--out", tmp_path / "cli.onnx")
+    assert (tmp_path / "c.onnx").read_bytes() == (tmp_path / "cli.onnx").read_bytes()
 
 
 def test_export_controller_keeps_another_file_and_names_bad_input(run_dir, tmp_path):
@@ -38,8 +41,8 @@ def test_export_controller_keeps_another_file_and_names_bad_input(run_dir, tmp_p
     assert target.read_text() == "mine"
     fm.export_controller(run_dir, to="json", out=target, force=True)
     assert target.read_text() != "mine"
-    with pytest.raises(fm.FuzzymotivError, match="to: `onnx` is not an export format"):
-        fm.export_controller(run_dir, to="onnx", out=tmp_path / "x")  # type: ignore[arg-type]
+    with pytest.raises(fm.FuzzymotivError, match="to: `tflite` is not an export format"):
+        fm.export_controller(run_dir, to="tflite", out=tmp_path / "x")  # type: ignore[arg-type]
     bad = tmp_path / "best_genome.json"
     bad.write_text('{"shape": {"hidden": 6}, "weights": [1.0]}')
     with pytest.raises(fm.FuzzymotivError, match=r"best_genome.json: field `weights`"):

@@ -391,3 +391,54 @@ fn export_c_refuses_a_file_as_its_directory() {
     assert!(stderr(&o).contains("is not a directory"), "{}", stderr(&o));
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
 }
+
+/// Runs the ONNX model of each genome with onnxruntime (the Python of
+/// `FUZZYMOTIV_ONNX_PYTHON`, else `python3`) on recorded readings and requires the simulator's
+/// motor outputs within 1e-6. Not bit for bit: onnxruntime's MatMul adds the products in its own
+/// order (and may fuse them) and its Sigmoid uses its own exp; in practice they differ by ~1e-16.
+#[test]
+#[ignore = "needs python onnxruntime: run by .ci/run"]
+fn onnx_export_agrees_with_the_simulator_under_onnxruntime() {
+    let python = std::env::var("FUZZYMOTIV_ONNX_PYTHON").unwrap_or_else(|_| "python3".into());
+    let dir = tempfile::tempdir().unwrap();
+    let script = "import json, sys\nimport numpy as np\nimport onnxruntime as ort\nd = json.load(open(sys.argv[2]))\ns = ort.InferenceSession(sys.argv[1], providers=['CPUExecutionProvider'])\n(m,) = s.run(None, {'ir': np.array(d['ir'], dtype=np.float64)})\nprint(float(np.max(np.abs(m - np.array(d['motors'])))), m.shape[0])\n";
+    for (g, &(hidden, seed, scale)) in [(6, 1, 5.0), (3, 4, 8.0), (6, 3, 40.0)].iter().enumerate() {
+        let shape = MlpShape::with_hidden(hidden).unwrap();
+        let weights = genome(shape, seed, scale);
+        let p = params(Motion::Actions, 0.06);
+        let export = ExportedController::new(shape, &weights, &p).unwrap();
+        let model = dir.path().join(format!("g{g}.onnx"));
+        std::fs::write(&model, export.onnx()).unwrap();
+        let (mut ir, mut motors) = (Vec::new(), Vec::new());
+        for room in ["H", "square"] {
+            let arena = Arena::new(Room::builtin(room).unwrap(), &p);
+            let mut mlp = Mlp::from_genome(shape, &weights).unwrap();
+            let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed));
+            for t in (0..tr.len()).filter(|&t| !tr.idle[t]) {
+                ir.push(tr.sensors[t]);
+                motors.push(tr.motors[t]);
+            }
+        }
+        let data = dir.path().join(format!("g{g}.json"));
+        let doc = serde_json::json!({ "ir": ir, "motors": motors });
+        std::fs::write(&data, doc.to_string()).unwrap();
+        let out = Command::new(&python)
+            .args(["-c", script])
+            .arg(&model)
+            .arg(&data)
+            .output()
+            .unwrap_or_else(|e| panic!("{python} does not run: {e}"));
+        assert!(
+            out.status.success(),
+            "onnxruntime failed ({python}; pip install onnxruntime numpy):\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8(out.stdout).unwrap();
+        let mut words = text.split_whitespace();
+        let diff: f64 = words.next().unwrap().parse().unwrap();
+        let rows: usize = words.next().unwrap().parse().unwrap();
+        assert_eq!(rows, ir.len());
+        eprintln!("genome {g}: onnxruntime within {diff:e} of the simulator over {rows} steps");
+        assert!(diff <= 1e-6, "genome {g}: onnxruntime differs by {diff:e}");
+    }
+}

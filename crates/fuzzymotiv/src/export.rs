@@ -19,6 +19,7 @@
 
 pub(crate) mod c;
 pub(crate) mod json;
+pub(crate) mod onnx;
 
 pub use c::CSources;
 pub use json::{ControllerDoc, FORMAT, FORMAT_VERSION};
@@ -90,6 +91,12 @@ impl ExportedController {
     pub fn json(&self) -> String {
         let doc = ControllerDoc::of(self);
         serde_json::to_string_pretty(&doc).expect("a controller document serialises") + "\n"
+    }
+
+    /// The network as an ONNX model (opset 13, double precision; input `ir` `[N, 8]` raw
+    /// readings, output `motors` `[N, 2]`), protobuf bytes.
+    pub fn onnx(&self) -> Vec<u8> {
+        onnx::model(self)
     }
 
     /// The C99 header and source ([`CSources`]).

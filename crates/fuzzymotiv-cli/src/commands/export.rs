@@ -1,5 +1,5 @@
 //! `fuzzymotiv export`: an evolved controller for a real robot, as dependency-free C99 (its
-//! motor outputs the simulator's bit for bit) or as a self-describing JSON document
+//! motor outputs the simulator's bit for bit), a self-describing JSON document or an ONNX model
 //! ([`fuzzymotiv::export`], [`fuzzymotiv_io::files::export`]; docs/guide/real-robot.md).
 
 use std::path::PathBuf;
@@ -15,6 +15,9 @@ pub enum Target {
     C,
     /// The JSON document (format `fuzzymotiv-controller`) in the file --out.
     Json,
+    /// The network as an ONNX model (double precision, inputs the raw readings) in the file
+    /// --out.
+    Onnx,
 }
 
 /// Arguments of `fuzzymotiv export`.
@@ -29,7 +32,7 @@ pub struct ExportArgs {
     #[arg(long, value_enum)]
     pub to: Target,
     /// Where: a directory for `c` (created if missing; receives fm_controller.h and
-    /// fm_controller.c), a file for `json`.
+    /// fm_controller.c), a file for `json` and `onnx`.
     #[arg(long, value_name = "PATH")]
     pub out: PathBuf,
     /// The config whose robot the controller drives [default: the run's own config].
@@ -53,6 +56,7 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
         to: match args.to {
             Target::C => ExportTarget::C,
             Target::Json => ExportTarget::Json,
+            Target::Onnx => ExportTarget::Onnx,
         },
         out: &args.out,
         force: args.force,

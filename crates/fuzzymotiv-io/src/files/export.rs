@@ -18,6 +18,8 @@ pub enum ExportTarget {
     C,
     /// The JSON document in a file.
     Json,
+    /// The ONNX model in a file.
+    Onnx,
 }
 
 impl ExportTarget {
@@ -26,8 +28,9 @@ impl ExportTarget {
         match value {
             "c" => Ok(ExportTarget::C),
             "json" => Ok(ExportTarget::Json),
+            "onnx" => Ok(ExportTarget::Onnx),
             _ => Err(CliError::input(format!(
-                "{option}: `{value}` is not an export format; use \"c\" or \"json\""
+                "{option}: `{value}` is not an export format; use \"c\", \"json\" or \"onnx\""
             ))),
         }
     }
@@ -45,7 +48,7 @@ pub struct ExportRequest<'a> {
     pub room: Option<&'a str>,
     /// The format.
     pub to: ExportTarget,
-    /// A directory (`C`) or a file (`Json`).
+    /// A directory (`C`) or a file (`Json`, `Onnx`).
     pub out: &'a Path,
     /// Replace other files of these names.
     pub force: bool,
@@ -98,6 +101,7 @@ pub fn export_controller(req: &ExportRequest) -> Result<Exported, CliError> {
     let files = match req.to {
         ExportTarget::C => c_files(req, &controller.c())?,
         ExportTarget::Json => vec![(req.out.to_path_buf(), controller.json().into_bytes())],
+        ExportTarget::Onnx => vec![(req.out.to_path_buf(), controller.onnx())],
     };
     let state = check_files(&files, req.out_option, req.force)?;
     if state == FilesState::Write {
