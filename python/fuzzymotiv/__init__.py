@@ -54,6 +54,7 @@ from .rollouts import (
     simulate,
 )
 from .sweeps import Job, Plan, SweepResult, merge, plan, run_job, sweep
+from .real_robot import export_controller
 from .tables import Table
 
 __all__ = [
@@ -83,6 +84,7 @@ __all__ = [
     "SweepResult",
     "Table",
     "Trajectory",
+    "export_controller",
     "export_fll",
     "frames",
     "fuzzy_fitness",

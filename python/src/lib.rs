@@ -43,6 +43,7 @@ use pyo3::types::{PyBool, PyDict, PyList, PyTuple, PyType};
 use rayon::prelude::*;
 use rayon::{ThreadPool, ThreadPoolBuilder};
 
+mod export;
 mod frames;
 mod ga;
 mod gym;
@@ -989,6 +990,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fuzzy_fitness_many, m)?)?;
     m.add_function(wrap_pyfunction!(explain, m)?)?;
     m.add_function(wrap_pyfunction!(export_fll, m)?)?;
+    m.add_function(wrap_pyfunction!(export::export_controller, m)?)?;
     m.add_function(wrap_pyfunction!(rooms, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;

@@ -12,7 +12,9 @@ use clap::{Parser, Subcommand};
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::note;
 
-use crate::commands::{bench, claims, compare, fuzzy, lab, replay, reproduce, rooms, run, sweep};
+use crate::commands::{
+    bench, claims, compare, export, fuzzy, lab, replay, reproduce, rooms, run, sweep,
+};
 
 /// Evolutionary behaviour learning for a simulated Khepera robot under fuzzy motivations.
 #[derive(Parser)]
@@ -34,6 +36,9 @@ enum Command {
     Reproduce(reproduce::ReproduceArgs),
     /// Run a saved genome again: write its trajectory (CSV, JSON) and a replay page (HTML).
     Replay(replay::ReplayArgs),
+    /// Export an evolved controller for a real robot: C99 (the simulator's outputs bit for bit)
+    /// or a self-describing JSON document.
+    Export(export::ExportArgs),
     /// Recompute a finished study's claims from its records (summary.json), e.g. at another
     /// significance level: effect, interval, p-value, verdict and minimum detectable difference.
     Claims(claims::ClaimsArgs),
@@ -85,6 +90,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         Command::Run(args) => run::run(args),
         Command::Reproduce(args) => reproduce::reproduce(args),
         Command::Replay(args) => replay::replay(args),
+        Command::Export(args) => export::export(args),
         Command::Claims(args) => claims::claims_command(args),
         Command::Compare(args) => compare::compare_command(args),
         Command::Fuzzy(args) => fuzzy::fuzzy(args),

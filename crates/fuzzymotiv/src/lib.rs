@@ -63,6 +63,7 @@
 
 pub mod evolution;
 pub mod experiment;
+pub mod export;
 pub mod fitness;
 pub mod modelling;
 pub mod params;

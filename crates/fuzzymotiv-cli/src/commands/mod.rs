@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod claims;
 pub mod compare;
+pub mod export;
 pub mod fuzzy;
 pub mod lab;
 pub mod replay;

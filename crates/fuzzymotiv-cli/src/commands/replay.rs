@@ -18,11 +18,12 @@ use fuzzymotiv::simulation::{Trajectory, TrialParams};
 use rayon::prelude::*;
 
 use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::genome::{SavedGenome, locate, read_genome};
 use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, num, write_files};
 use fuzzymotiv_io::files::inputs::{load_config, resolve, room_entry, rooms_unchanged};
 use fuzzymotiv_io::note;
+use fuzzymotiv_io::records::PROGRAM;
 use fuzzymotiv_io::records::context::RenderContext;
-use fuzzymotiv_io::records::{BestGenome, PROGRAM, read_json};
 use fuzzymotiv_io::render::frames::animate::delay_of;
 use fuzzymotiv_io::render::frames::{self, FrameOptions, Track};
 use fuzzymotiv_io::render::report::{replay_page, xs};
@@ -93,40 +94,6 @@ pub struct ReplayArgs {
     /// a directory, device or link is never replaced). The same replay again changes nothing.
     #[arg(long)]
     pub force: bool,
-}
-
-/// A genome read from `best_genome.json`, checked.
-struct SavedGenome {
-    path: PathBuf,
-    hidden: usize,
-    weights: Vec<f64>,
-    seed: Option<u64>,
-    /// Per evolution (run label, weights), when the file lists them (per-room training).
-    runs: Vec<(String, Vec<f64>)>,
-}
-
-fn read_genome(path: &Path) -> Result<SavedGenome, CliError> {
-    if !path.is_file() {
-        return Err(CliError::input(format!(
-            "{}: cannot read genome file: no such file",
-            path.display()
-        )));
-    }
-    let doc: BestGenome = read_json(path)?;
-    let hidden = doc.shape.hidden;
-    if !(1..=1024).contains(&hidden) {
-        return Err(CliError::input(format!(
-            "{}: field `shape.hidden`: {hidden} is not a number of hidden units in 1..=1024",
-            path.display()
-        )));
-    }
-    Ok(SavedGenome {
-        path: path.to_path_buf(),
-        hidden,
-        weights: doc.weights,
-        seed: doc.seed,
-        runs: doc.runs.into_iter().map(|r| (r.run, r.weights)).collect(),
-    })
 }
 
 /// A file-name-safe version of a room name.
@@ -268,31 +235,6 @@ fn room_gifs(
             Ok((path, bytes))
         })
         .collect()
-}
-
-/// The genome file and the config beside it (a run directory's, or one next to the file).
-fn locate(src: &Path) -> Result<(PathBuf, Option<PathBuf>), CliError> {
-    if src.is_dir() {
-        let config = src.join("config.resolved.toml");
-        if !config.is_file() {
-            return Err(CliError::input(format!(
-                "{}: not a run directory (no config.resolved.toml); pass a directory written by `fuzzymotiv run` or a best_genome.json",
-                src.display()
-            )));
-        }
-        Ok((src.join("best_genome.json"), Some(config)))
-    } else if src.is_file() {
-        let beside = src
-            .parent()
-            .map(|d| d.join("config.resolved.toml"))
-            .filter(|c| c.is_file());
-        Ok((src.to_path_buf(), beside))
-    } else {
-        Err(CliError::input(format!(
-            "{}: no such run directory or genome file",
-            src.display()
-        )))
-    }
 }
 
 /// The room-modelling run of the genome (per-room training: of the room's own robot) in every

@@ -20,24 +20,24 @@
 
 /// 1.5 · 2⁵²: adding and subtracting it rounds a double of magnitude < 2⁵¹ to the nearest
 /// integer (ties to even) without a libm `round` call.
-const TO_INT: f64 = 6_755_399_441_055_744.0;
+pub(crate) const TO_INT: f64 = 6_755_399_441_055_744.0;
 
 const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
 const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
 /// 128 / ln 2.
-const INV_LN2_N: f64 = f64::from_bits(0x4067_1547_652b_82fe);
+pub(crate) const INV_LN2_N: f64 = f64::from_bits(0x4067_1547_652b_82fe);
 /// ln 2 / 128 in two parts; the first has 32 significant bits, so `k · LN2_HI_N` is exact for
 /// `|k| < 2²¹`.
-const LN2_HI_N: f64 = LN2_HI / 128.0;
-const LN2_LO_N: f64 = LN2_LO / 128.0;
+pub(crate) const LN2_HI_N: f64 = LN2_HI / 128.0;
+pub(crate) const LN2_LO_N: f64 = LN2_LO / 128.0;
 /// Largest `x` with `exp(x)` finite.
-const EXP_MAX: f64 = f64::from_bits(0x4086_2e42_fefa_39ef);
+pub(crate) const EXP_MAX: f64 = f64::from_bits(0x4086_2e42_fefa_39ef);
 /// Below this `exp(x)` rounds to 0.
-const EXP_MIN: f64 = f64::from_bits(0xc087_4910_d52d_3051);
+pub(crate) const EXP_MIN: f64 = f64::from_bits(0xc087_4910_d52d_3051);
 
 /// `2^(j/128)` for `j = 0..128` as the correctly rounded double `hi` and the rounded
 /// remainder `lo = 2^(j/128) − hi` (bit patterns; generated with 80-digit decimal arithmetic).
-const EXP2_TABLE: [(u64, u64); 128] = [
+pub(crate) const EXP2_TABLE: [(u64, u64); 128] = [
     (0x3ff0000000000000, 0x0000000000000000),
     (0x3ff0163da9fb3335, 0x3c9b61299ab8cdb7),
     (0x3ff02c9a3e778061, 0xbc719083535b085d),

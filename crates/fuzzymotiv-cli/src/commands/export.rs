@@ -1,0 +1,88 @@
+//! `fuzzymotiv export`: an evolved controller for a real robot, as dependency-free C99 (its
+//! motor outputs the simulator's bit for bit), a self-describing JSON document or an ONNX model
+//! ([`fuzzymotiv::export`], [`fuzzymotiv_io::files::export`]; docs/guide/real-robot.md).
+
+use std::path::PathBuf;
+
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::export::{ExportRequest, ExportTarget, export_controller};
+use fuzzymotiv_io::note;
+
+/// What `--to` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Target {
+    /// C99: `fm_controller.h` and `fm_controller.c` in the directory --out.
+    C,
+    /// The JSON document (format `fuzzymotiv-controller`) in the file --out.
+    Json,
+    /// The network as an ONNX model (double precision, inputs the raw readings) in the file
+    /// --out.
+    Onnx,
+}
+
+/// Arguments of `fuzzymotiv export`.
+#[derive(clap::Args)]
+pub struct ExportArgs {
+    /// A run directory (its best_genome.json and config.resolved.toml), or a genome file
+    /// (best_genome.json: the robot's v_max, motion and action tolerance come from --config,
+    /// else from the config.resolved.toml beside it, else from the built-in defaults).
+    #[arg(value_name = "RUN_DIR|GENOME.json")]
+    pub source: PathBuf,
+    /// What to write.
+    #[arg(long, value_enum)]
+    pub to: Target,
+    /// Where: a directory for `c` (created if missing; receives fm_controller.h and
+    /// fm_controller.c), a file for `json` and `onnx`.
+    #[arg(long, value_name = "PATH")]
+    pub out: PathBuf,
+    /// The config whose robot the controller drives [default: the run's own config].
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// With per-room training: the robot evolved in this room [default: the genome's main
+    /// robot].
+    #[arg(long, value_name = "ROOM")]
+    pub room: Option<String>,
+    /// Replace existing files of these names that hold something else (only regular files).
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// Entry point of `fuzzymotiv export`.
+pub fn export(args: ExportArgs) -> Result<(), CliError> {
+    let done = export_controller(&ExportRequest {
+        source: &args.source,
+        config: args.config.as_deref(),
+        room: args.room.as_deref(),
+        to: match args.to {
+            Target::C => ExportTarget::C,
+            Target::Json => ExportTarget::Json,
+            Target::Onnx => ExportTarget::Onnx,
+        },
+        out: &args.out,
+        force: args.force,
+        room_option: "--room",
+        out_option: "--out",
+    })?;
+    let config =
+        (done.config.as_ref()).map_or("(built-in defaults)".into(), |p| p.display().to_string());
+    note!("config: {config}");
+    for line in &done.notes {
+        note!("{line}");
+    }
+    for path in &done.files {
+        fuzzymotiv_io::outln!("{}", path.display())?;
+    }
+    if done.unchanged {
+        note!(
+            "{} already holds this export; nothing to do",
+            args.out.display()
+        );
+    } else {
+        note!(
+            "wrote the 8-{}-2 controller of {}",
+            done.hidden,
+            done.genome.display()
+        );
+    }
+    Ok(())
+}

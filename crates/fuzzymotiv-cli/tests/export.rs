@@ -1,0 +1,444 @@
+//! `fuzzymotiv export`: the exported C gives the simulator's motor outputs and actions bit for
+//! bit on recorded trials (compiled with the system `cc`), and the command's files and refusals.
+
+mod common;
+
+use common::{ok, run, stderr, stdout};
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use fuzzymotiv::export::{CSources, ExportedController};
+use fuzzymotiv::random::{rng_from_seed, uniform};
+use fuzzymotiv::simulation::{
+    Arena, Mlp, MlpShape, Motion, RawRobot, RawTrial, Room, Trajectory, TrialParams, run_trial,
+};
+
+/// The C compiler every Rust toolchain needs for linking; its absence fails the test.
+fn cc() -> &'static str {
+    let found = Command::new("cc").arg("--version").output();
+    assert!(
+        found.is_ok_and(|o| o.status.success()),
+        "the bit-parity test compiles the exported C with the system C compiler `cc`, which was not found: install one (e.g. apt-get install gcc; Rust needs it to link anyway)"
+    );
+    "cc"
+}
+
+/// Reads 8 readings per line (hex bit patterns of doubles) and prints, per line, the bits of
+/// mL and mR and the action from `fm_controller_step_readings`, then the same from
+/// `fm_controller_step` when every reading is a whole number (else `-`). A line `L x` prints
+/// `fm_logistic(x)`'s bits.
+const DRIVER: &str = r#"
+#include <inttypes.h>
+#include <stdio.h>
+#include "fm_controller.h"
+
+typedef union { double d; uint64_t u; } bits;
+
+int main(void)
+{
+    char kind[4];
+    while (scanf("%3s", kind) == 1) {
+        if (kind[0] == 'L') {
+            bits x, y;
+            if (scanf("%" SCNx64, &x.u) != 1) return 2;
+            y.d = fm_logistic(x.d);
+            printf("%016" PRIx64 "\n", y.u);
+        } else {
+            bits in[8], m[2];
+            double ir[8], motors[2];
+            uint16_t ir16[8];
+            int action, i, whole = 1;
+            for (i = 0; i < 8; i++) {
+                if (scanf("%" SCNx64, &in[i].u) != 1) return 2;
+                ir[i] = in[i].d;
+                ir16[i] = (uint16_t)ir[i];
+                if ((double)ir16[i] != ir[i]) whole = 0;
+            }
+            fm_controller_step_readings(ir, motors, &action);
+            m[0].d = motors[0];
+            m[1].d = motors[1];
+            printf("%016" PRIx64 " %016" PRIx64 " %d", m[0].u, m[1].u, action);
+            if (whole) {
+                fm_controller_step(ir16, motors, &action);
+                m[0].d = motors[0];
+                m[1].d = motors[1];
+                printf(" %016" PRIx64 " %016" PRIx64 " %d\n", m[0].u, m[1].u, action);
+            } else {
+                printf(" -\n");
+            }
+        }
+    }
+    return 0;
+}
+"#;
+
+/// Writes the exported C and the driver into `dir` and compiles them with the flags the
+/// header asks for; the driver's path.
+fn build_driver(dir: &Path, c: &CSources) -> PathBuf {
+    std::fs::write(dir.join(CSources::HEADER_NAME), &c.header).unwrap();
+    std::fs::write(dir.join(CSources::SOURCE_NAME), &c.source).unwrap();
+    compile_driver(dir)
+}
+
+/// Compiles the driver with the exported C already in `dir`; the driver's path.
+fn compile_driver(dir: &Path) -> PathBuf {
+    std::fs::write(dir.join("driver.c"), DRIVER).unwrap();
+    let exe = dir.join("driver");
+    let out = Command::new(cc())
+        .args([
+            "-std=c99",
+            "-O2",
+            "-ffp-contract=off",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+        ])
+        .arg(dir.join(CSources::SOURCE_NAME))
+        .arg(dir.join("driver.c"))
+        .arg("-o")
+        .arg(&exe)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "cc failed on the exported C:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    exe
+}
+
+/// Runs the driver on `input` (through a file: no pipe to fill); its output lines.
+fn run_driver(exe: &Path, input: &str) -> Vec<String> {
+    let path = exe.with_extension("in");
+    std::fs::write(&path, input).unwrap();
+    let out = Command::new(exe)
+        .stdin(std::fs::File::open(&path).unwrap())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "driver failed");
+    String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(String::from)
+        .collect()
+}
+
+fn params(motion: Motion, noise: f64) -> TrialParams {
+    let trial = RawTrial {
+        noise,
+        ..RawTrial::default()
+    };
+    let robot = RawRobot {
+        motion,
+        ..RawRobot::default()
+    };
+    TrialParams::from_raw(&trial, &robot, 0.25).unwrap()
+}
+
+fn genome(shape: MlpShape, seed: u64, scale: f64) -> Vec<f64> {
+    let mut rng = rng_from_seed(seed);
+    (0..shape.genome_len())
+        .map(|_| uniform(&mut rng, -scale, scale))
+        .collect()
+}
+
+const ACTIONS: [&str; 4] = ["straight", "left30", "right30", "turn180"];
+
+/// What the C must print for each executed step of `tr`: the recorded motor outputs' bits and
+/// the action the library labels from the commanded (noise-free) speeds, which with noise 0 is
+/// the recorded one.
+fn expected(tr: &Trajectory, p: &TrialParams) -> Vec<(String, String)> {
+    (0..tr.len())
+        .filter(|&t| !tr.idle[t])
+        .map(|t| {
+            let [ml, mr] = tr.motors[t];
+            let action = (p.robot().motion()).label(
+                tr.motors[t],
+                tr.speeds[t],
+                p.robot().v_max(),
+                p.action_tolerance(),
+            );
+            if p.noise() == 0.0 {
+                assert_eq!(action, tr.actions[t], "step {t}");
+            }
+            let code = ACTIONS.iter().position(|a| *a == action.label()).unwrap();
+            let line = format!("{:016x} {:016x} {code}", ml.to_bits(), mr.to_bits());
+            let input: Vec<String> = (tr.sensors[t].iter())
+                .map(|v| format!("{:x}", v.to_bits()))
+                .collect();
+            (format!("S {}\n", input.join(" ")), line)
+        })
+        .collect()
+}
+
+#[test]
+fn exported_c_gives_the_simulators_outputs_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut checked = 0;
+    let mut whole_checked = 0;
+    // Genomes of the paper's 8-6-2 (the fixed-size vector path) and others (the general path),
+    // with weights small and large (saturated units, sums beyond ±708: exp's edge cases).
+    let genomes = [
+        (6, 1, 5.0),
+        (6, 2, 1.0),
+        (6, 3, 400.0),
+        (3, 4, 8.0),
+        (11, 5, 3.0),
+    ];
+    for (g, &(hidden, seed, scale)) in genomes.iter().enumerate() {
+        let shape = MlpShape::with_hidden(hidden).unwrap();
+        let weights = genome(shape, seed, scale);
+        for motion in [Motion::Actions, Motion::Wheels] {
+            let sub = dir.path().join(format!("g{g}-{motion:?}"));
+            std::fs::create_dir_all(&sub).unwrap();
+            let export = ExportedController::new(shape, &weights, &params(motion, 0.0)).unwrap();
+            let exe = build_driver(&sub, &export.c());
+            let (mut input, mut want) = (String::new(), Vec::new());
+            for room in ["H", "L", "square"] {
+                for (trial_seed, noise) in [(11, 0.0), (12, 0.06), (13, 0.2)] {
+                    let p = params(motion, noise);
+                    let arena = Arena::new(Room::builtin(room).unwrap(), &p);
+                    let mut mlp = Mlp::from_genome(shape, &weights).unwrap();
+                    let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(trial_seed));
+                    for (line, out) in expected(&tr, &p) {
+                        input.push_str(&line);
+                        want.push(out);
+                    }
+                }
+            }
+            let got = run_driver(&exe, &input);
+            assert_eq!(got.len(), want.len());
+            for (i, (got, want)) in got.iter().zip(&want).enumerate() {
+                let (readings, whole) = got.split_at(want.len());
+                assert_eq!(readings, want, "genome {g}, {motion:?}, step line {i}");
+                if whole != " -" {
+                    assert_eq!(whole.trim(), want, "uint16 entry, genome {g}, line {i}");
+                    whole_checked += 1;
+                }
+                checked += 1;
+            }
+        }
+    }
+    // Enough steps, most of them near walls, and integer readings (noise 0) through the
+    // uint16_t entry point.
+    assert!(checked > 10_000, "{checked} steps");
+    assert!(whole_checked > 3_000, "{whole_checked} steps");
+}
+
+#[test]
+fn exported_logistic_is_the_librarys_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let shape = MlpShape::default();
+    let export =
+        ExportedController::new(shape, &genome(shape, 1, 1.0), &TrialParams::default()).unwrap();
+    let exe = build_driver(dir.path(), &export.c());
+    let mut rng = rng_from_seed(99);
+    let mut xs: Vec<f64> = (0..20_000)
+        .map(|_| uniform(&mut rng, -40.0, 40.0))
+        .collect();
+    xs.extend((0..5_000).map(|_| uniform(&mut rng, -800.0, 800.0)));
+    xs.extend([
+        0.0, -0.0, 708.0, -708.0, 708.0001, -708.0001, 709.7, -709.7, 745.0, -745.0, 746.0, -746.0,
+        1e-300, -1e-300, 1e300, -1e300,
+    ]);
+    xs.extend([f64::INFINITY, f64::NEG_INFINITY, f64::MAX, f64::MIN]);
+    let input: String = xs
+        .iter()
+        .map(|x| format!("L {:x}\n", x.to_bits()))
+        .collect();
+    let got = run_driver(&exe, &input);
+    for (x, line) in xs.iter().zip(&got) {
+        let want = format!(
+            "{:016x}",
+            fuzzymotiv::simulation::logistic_lanes([*x])[0].to_bits()
+        );
+        assert_eq!(line, &want, "logistic({x:e})");
+    }
+    assert_eq!(got.len(), xs.len());
+}
+
+/// A tiny evolved run (noise 0, so every recorded action is the label of the motor outputs).
+fn tiny_run(dir: &Path) -> PathBuf {
+    let cfg = dir.join("tiny.toml");
+    std::fs::write(&cfg, "name = \"tiny\"\nseed = 5\nrooms = [\"H\", \"square\"]\n[ga]\npopulation = 8\ngenerations = 2\n[trial]\nsteps = 150\nnoise = 0.0\n[aem]\nepochs = 20\ntest_runs = 2\n").unwrap();
+    let out = dir.join("tiny");
+    ok(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    out
+}
+
+#[test]
+fn exported_run_reproduces_its_replay_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_dir = tiny_run(dir.path());
+    let c_dir = dir.path().join("controller");
+    let o = ok(&[
+        "export",
+        run_dir.to_str().unwrap(),
+        "--to",
+        "c",
+        "--out",
+        c_dir.to_str().unwrap(),
+    ]);
+    assert!(stdout(&o).contains("fm_controller.c"), "{}", stdout(&o));
+    let page = dir.path().join("replay").join("replay.html");
+    ok(&[
+        "replay",
+        run_dir.to_str().unwrap(),
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    let doc: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(page.with_extension("json")).unwrap()).unwrap();
+    let exe = compile_driver(&c_dir);
+    let p = params(Motion::Actions, 0.0);
+    let mut steps = 0;
+    for room in doc["rooms"].as_array().unwrap() {
+        let tr: Trajectory = serde_json::from_value(room["trajectory"].clone()).unwrap();
+        let (input, want): (String, Vec<String>) = expected(&tr, &p).into_iter().unzip();
+        let got = run_driver(&exe, &input);
+        assert_eq!(got.len(), want.len());
+        for (got, want) in got.iter().zip(&want) {
+            assert!(got.starts_with(want.as_str()), "{got} vs {want}");
+        }
+        steps += want.len();
+    }
+    assert!(steps >= 150, "{steps}");
+}
+
+#[test]
+fn export_json_describes_the_network_and_refuses_to_replace_another_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_dir = tiny_run(dir.path());
+    let out = dir.path().join("controller.json");
+    let (src, dst) = (run_dir.to_str().unwrap(), out.to_str().unwrap());
+    ok(&["export", src, "--to", "json", "--out", dst]);
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(doc["format"], "fuzzymotiv-controller");
+    assert_eq!(doc["network"]["layout"], "8-6-2");
+    let genome: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(run_dir.join("best_genome.json")).unwrap()).unwrap();
+    assert_eq!(doc["network"]["weights"], genome["weights"]);
+    assert_eq!(doc["actions"]["motion"], "actions");
+    // The same export again: nothing to do.
+    let o = ok(&["export", src, "--to", "json", "--out", dst]);
+    assert!(stderr(&o).contains("nothing to do"), "{}", stderr(&o));
+    // Another file there is kept without --force.
+    std::fs::write(&out, "mine").unwrap();
+    let o = run(&["export", src, "--to", "json", "--out", dst]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--force"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "mine");
+    ok(&["export", src, "--to", "json", "--out", dst, "--force"]);
+    assert_ne!(std::fs::read_to_string(&out).unwrap(), "mine");
+}
+
+#[test]
+fn export_of_a_genome_of_the_wrong_length_names_the_file_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let genome = dir.path().join("best_genome.json");
+    std::fs::write(
+        &genome,
+        r#"{"shape": {"hidden": 6}, "weights": [0.5, 1.0]}"#,
+    )
+    .unwrap();
+    let c_dir = dir.path().join("c");
+    let o = run(&[
+        "export",
+        genome.to_str().unwrap(),
+        "--to",
+        "c",
+        "--out",
+        c_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("best_genome.json") && e.contains("`weights`") && e.contains("68"),
+        "{e}"
+    );
+    assert!(!e.contains("panicked"), "{e}");
+    assert!(!c_dir.exists());
+}
+
+#[test]
+fn export_c_refuses_a_file_as_its_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    let genome = dir.path().join("best_genome.json");
+    let weights = vec!["0.1"; 68].join(", ");
+    std::fs::write(
+        &genome,
+        format!(r#"{{"shape": {{"hidden": 6}}, "weights": [{weights}]}}"#),
+    )
+    .unwrap();
+    let file = dir.path().join("plain.txt");
+    std::fs::write(&file, "keep").unwrap();
+    let o = run(&[
+        "export",
+        genome.to_str().unwrap(),
+        "--to",
+        "c",
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("is not a directory"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
+}
+
+/// Runs the ONNX model of each genome with onnxruntime (the Python of
+/// `FUZZYMOTIV_ONNX_PYTHON`, else `python3`) on recorded readings and requires the simulator's
+/// motor outputs within 1e-6. Not bit for bit: onnxruntime's MatMul adds the products in its own
+/// order (and may fuse them) and its Sigmoid uses its own exp; in practice they differ by ~1e-16.
+#[test]
+#[ignore = "needs python onnxruntime: run by .ci/run"]
+fn onnx_export_agrees_with_the_simulator_under_onnxruntime() {
+    let python = std::env::var("FUZZYMOTIV_ONNX_PYTHON").unwrap_or_else(|_| "python3".into());
+    let dir = tempfile::tempdir().unwrap();
+    let script = "import json, sys\nimport numpy as np\nimport onnxruntime as ort\nd = json.load(open(sys.argv[2]))\ns = ort.InferenceSession(sys.argv[1], providers=['CPUExecutionProvider'])\n(m,) = s.run(None, {'ir': np.array(d['ir'], dtype=np.float64)})\nprint(float(np.max(np.abs(m - np.array(d['motors'])))), m.shape[0])\n";
+    for (g, &(hidden, seed, scale)) in [(6, 1, 5.0), (3, 4, 8.0), (6, 3, 40.0)].iter().enumerate() {
+        let shape = MlpShape::with_hidden(hidden).unwrap();
+        let weights = genome(shape, seed, scale);
+        let p = params(Motion::Actions, 0.06);
+        let export = ExportedController::new(shape, &weights, &p).unwrap();
+        let model = dir.path().join(format!("g{g}.onnx"));
+        std::fs::write(&model, export.onnx()).unwrap();
+        let (mut ir, mut motors) = (Vec::new(), Vec::new());
+        for room in ["H", "square"] {
+            let arena = Arena::new(Room::builtin(room).unwrap(), &p);
+            let mut mlp = Mlp::from_genome(shape, &weights).unwrap();
+            let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed));
+            for t in (0..tr.len()).filter(|&t| !tr.idle[t]) {
+                ir.push(tr.sensors[t]);
+                motors.push(tr.motors[t]);
+            }
+        }
+        let data = dir.path().join(format!("g{g}.json"));
+        let doc = serde_json::json!({ "ir": ir, "motors": motors });
+        std::fs::write(&data, doc.to_string()).unwrap();
+        let out = Command::new(&python)
+            .args(["-c", script])
+            .arg(&model)
+            .arg(&data)
+            .output()
+            .unwrap_or_else(|e| panic!("{python} does not run: {e}"));
+        assert!(
+            out.status.success(),
+            "onnxruntime failed ({python}; pip install onnxruntime numpy):\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8(out.stdout).unwrap();
+        let mut words = text.split_whitespace();
+        let diff: f64 = words.next().unwrap().parse().unwrap();
+        let rows: usize = words.next().unwrap().parse().unwrap();
+        assert_eq!(rows, ir.len());
+        eprintln!("genome {g}: onnxruntime within {diff:e} of the simulator over {rows} steps");
+        assert!(diff <= 1e-6, "genome {g}: onnxruntime differs by {diff:e}");
+    }
+}

@@ -1,0 +1,176 @@
+//! `fuzzymotiv export` and `fm.export_controller`: a run's (or a genome file's) controller as
+//! C99 or JSON files ([`fuzzymotiv::export`]), checked and written through the output guard.
+
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::export::{CSources, ExportedController};
+use fuzzymotiv::simulation::MlpShape;
+
+use crate::files::error::CliError;
+use crate::files::genome::{SavedGenome, locate, read_genome};
+use crate::files::guard::{FilesState, check_files, io_err, write_files};
+use crate::files::inputs::load_config;
+
+/// What an export writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ExportTarget {
+    /// `fm_controller.h` and `fm_controller.c` in a directory.
+    C,
+    /// The JSON document in a file.
+    Json,
+    /// The ONNX model in a file.
+    Onnx,
+}
+
+impl ExportTarget {
+    /// `"c"` or `"json"`; an error names `option` and the accepted values.
+    pub fn parse(option: &str, value: &str) -> Result<ExportTarget, CliError> {
+        match value {
+            "c" => Ok(ExportTarget::C),
+            "json" => Ok(ExportTarget::Json),
+            "onnx" => Ok(ExportTarget::Onnx),
+            _ => Err(CliError::input(format!(
+                "{option}: `{value}` is not an export format; use \"c\", \"json\" or \"onnx\""
+            ))),
+        }
+    }
+}
+
+/// A request: the run directory or genome file, the config (else the one beside it), the room
+/// of a per-room robot, the format and where to write.
+#[derive(Debug, Clone)]
+pub struct ExportRequest<'a> {
+    /// A run directory or a `best_genome.json`.
+    pub source: &'a Path,
+    /// The config whose robot the controller drives.
+    pub config: Option<&'a Path>,
+    /// With per-room training: the robot evolved in this room.
+    pub room: Option<&'a str>,
+    /// The format.
+    pub to: ExportTarget,
+    /// A directory (`C`) or a file (`Json`, `Onnx`).
+    pub out: &'a Path,
+    /// Replace other files of these names.
+    pub force: bool,
+    /// The name of the out option in messages (`--out`, `out`).
+    pub out_option: &'a str,
+    /// The name of the room option in messages (`--room`, `room`).
+    pub room_option: &'a str,
+}
+
+/// What an export did.
+#[derive(Debug, Clone)]
+pub struct Exported {
+    /// The files, in order.
+    pub files: Vec<PathBuf>,
+    /// Whether they already held this export (nothing written).
+    pub unchanged: bool,
+    /// The genome file.
+    pub genome: PathBuf,
+    /// The config used (`None`: the built-in defaults).
+    pub config: Option<PathBuf>,
+    /// Hidden units.
+    pub hidden: usize,
+    /// Notes for the user (e.g. which robot of a per-room genome).
+    pub notes: Vec<String>,
+}
+
+/// Loads the genome and config, builds the export and writes it through the output guard
+/// (another file is kept unless `force`; the same export again writes nothing; nothing is
+/// written half-way).
+pub fn export_controller(req: &ExportRequest) -> Result<Exported, CliError> {
+    let (genome_path, found_config) = locate(req.source)?;
+    let config = req.config.map(Path::to_path_buf).or(found_config);
+    let genome = read_genome(&genome_path)?;
+    let loaded = load_config(config.as_deref(), &[], None)?;
+    if config.is_some() && loaded.raw.network.hidden != genome.hidden {
+        return Err(CliError::input(format!(
+            "{}: field `shape.hidden`: the genome has {} hidden units but the config says network.hidden = {}",
+            genome_path.display(),
+            genome.hidden,
+            loaded.raw.network.hidden
+        )));
+    }
+    let mut notes = Vec::new();
+    let weights = chosen_weights(&genome, req, &mut notes)?;
+    let in_file =
+        |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome_path.display()));
+    let shape = MlpShape::with_hidden(genome.hidden).map_err(|e| in_file(&e))?;
+    let controller = ExportedController::new(shape, weights, loaded.experiment.trial_params())
+        .map_err(|e| in_file(&format!("field `weights`: {e}")))?;
+    let files = match req.to {
+        ExportTarget::C => c_files(req, &controller.c())?,
+        ExportTarget::Json => vec![(req.out.to_path_buf(), controller.json().into_bytes())],
+        ExportTarget::Onnx => vec![(req.out.to_path_buf(), controller.onnx())],
+    };
+    let state = check_files(&files, req.out_option, req.force)?;
+    if state == FilesState::Write {
+        if req.to == ExportTarget::C {
+            std::fs::create_dir_all(req.out).map_err(|e| io_err(req.out, e))?;
+        }
+        write_files(&files)?;
+    }
+    Ok(Exported {
+        files: files.into_iter().map(|(p, _)| p).collect(),
+        unchanged: state == FilesState::Same,
+        genome: genome_path,
+        config,
+        hidden: genome.hidden,
+        notes,
+    })
+}
+
+/// The weights to export: the main robot's, or with `room` the one evolved in that room.
+fn chosen_weights<'a>(
+    genome: &'a SavedGenome,
+    req: &ExportRequest,
+    notes: &mut Vec<String>,
+) -> Result<&'a [f64], CliError> {
+    let option = req.room_option;
+    let Some(room) = req.room else {
+        if !genome.runs.is_empty() {
+            notes.push(format!(
+                "note: the genome file holds a robot per room; exporting its main robot ({option} ROOM picks one)"
+            ));
+        }
+        return Ok(&genome.weights);
+    };
+    match genome.runs.iter().find(|(label, _)| label == room) {
+        Some((_, w)) => Ok(w),
+        None if genome.runs.is_empty() => Err(CliError::input(format!(
+            "{option} {room}: {} holds one robot for all rooms (trained in all rooms); leave {option} out",
+            genome.path.display()
+        ))),
+        None => Err(CliError::input(format!(
+            "{option} {room}: {} has no robot evolved in that room; its rooms are {}",
+            genome.path.display(),
+            (genome.runs.iter().map(|(l, _)| l.as_str()))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))),
+    }
+}
+
+/// The C files in the directory `out` (refused when `out` is something else than a directory).
+fn c_files(req: &ExportRequest, c: &CSources) -> Result<Vec<(PathBuf, Vec<u8>)>, CliError> {
+    let out = req.out;
+    if out.exists() && !out.is_dir() {
+        return Err(CliError::input(format!(
+            "{} {}: is not a directory; the C export writes {} and {} into a directory (created if missing), e.g. controller/",
+            req.out_option,
+            out.display(),
+            CSources::HEADER_NAME,
+            CSources::SOURCE_NAME
+        )));
+    }
+    Ok(vec![
+        (
+            out.join(CSources::HEADER_NAME),
+            c.header.clone().into_bytes(),
+        ),
+        (
+            out.join(CSources::SOURCE_NAME),
+            c.source.clone().into_bytes(),
+        ),
+    ])
+}

@@ -1,0 +1,230 @@
+//! The ONNX form of an exported controller: the network as an ONNX graph (opset 13) in double
+//! precision, its input the eight raw readings (scaled by the graph as the simulator scales
+//! them), its output the two motor outputs. The protobuf messages are declared here for the
+//! subset of `onnx.proto` the graph needs (field numbers as in ONNX 1.x) and written with
+//! `prost`.
+//!
+//! An ONNX runtime agrees with the simulator to about 1e-15, not bit for bit: its `MatMul` may
+//! add the products in another order or fuse them, and its `Sigmoid` uses its own `exp`.
+
+use prost::Message;
+
+use super::ExportedController;
+use crate::simulation::controller::{INPUTS, OUTPUTS};
+use crate::simulation::sensor::SENSOR_MAX;
+
+/// `TensorProto.DataType.DOUBLE`.
+const DOUBLE: i32 = 11;
+
+#[derive(Clone, PartialEq, Message)]
+struct ModelProto {
+    #[prost(int64, tag = "1")]
+    ir_version: i64,
+    #[prost(string, tag = "2")]
+    producer_name: String,
+    #[prost(string, tag = "3")]
+    producer_version: String,
+    #[prost(string, tag = "6")]
+    doc_string: String,
+    #[prost(message, optional, tag = "7")]
+    graph: Option<GraphProto>,
+    #[prost(message, repeated, tag = "8")]
+    opset_import: Vec<OperatorSetIdProto>,
+    #[prost(message, repeated, tag = "14")]
+    metadata_props: Vec<StringStringEntryProto>,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct OperatorSetIdProto {
+    #[prost(string, tag = "1")]
+    domain: String,
+    #[prost(int64, tag = "2")]
+    version: i64,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct StringStringEntryProto {
+    #[prost(string, tag = "1")]
+    key: String,
+    #[prost(string, tag = "2")]
+    value: String,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct GraphProto {
+    #[prost(message, repeated, tag = "1")]
+    node: Vec<NodeProto>,
+    #[prost(string, tag = "2")]
+    name: String,
+    #[prost(message, repeated, tag = "5")]
+    initializer: Vec<TensorProto>,
+    #[prost(message, repeated, tag = "11")]
+    input: Vec<ValueInfoProto>,
+    #[prost(message, repeated, tag = "12")]
+    output: Vec<ValueInfoProto>,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct NodeProto {
+    #[prost(string, repeated, tag = "1")]
+    input: Vec<String>,
+    #[prost(string, repeated, tag = "2")]
+    output: Vec<String>,
+    #[prost(string, tag = "3")]
+    name: String,
+    #[prost(string, tag = "4")]
+    op_type: String,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct TensorProto {
+    #[prost(int64, repeated, tag = "1")]
+    dims: Vec<i64>,
+    #[prost(int32, tag = "2")]
+    data_type: i32,
+    #[prost(string, tag = "8")]
+    name: String,
+    #[prost(double, repeated, tag = "10")]
+    double_data: Vec<f64>,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct ValueInfoProto {
+    #[prost(string, tag = "1")]
+    name: String,
+    #[prost(message, optional, tag = "2")]
+    r#type: Option<TypeProto>,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct TypeProto {
+    #[prost(message, optional, tag = "1")]
+    tensor_type: Option<TensorType>,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct TensorType {
+    #[prost(int32, tag = "1")]
+    elem_type: i32,
+    #[prost(message, optional, tag = "2")]
+    shape: Option<TensorShapeProto>,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct TensorShapeProto {
+    #[prost(message, repeated, tag = "1")]
+    dim: Vec<Dimension>,
+}
+
+#[derive(Clone, PartialEq, Message)]
+struct Dimension {
+    #[prost(int64, optional, tag = "1")]
+    dim_value: Option<i64>,
+    #[prost(string, optional, tag = "2")]
+    dim_param: Option<String>,
+}
+
+/// A `[N, width]` double tensor named `name` (N the batch of steps).
+fn batch_of(name: &str, width: i64) -> ValueInfoProto {
+    let dims = vec![
+        Dimension {
+            dim_value: None,
+            dim_param: Some("N".into()),
+        },
+        Dimension {
+            dim_value: Some(width),
+            dim_param: None,
+        },
+    ];
+    ValueInfoProto {
+        name: name.into(),
+        r#type: Some(TypeProto {
+            tensor_type: Some(TensorType {
+                elem_type: DOUBLE,
+                shape: Some(TensorShapeProto { dim: dims }),
+            }),
+        }),
+    }
+}
+
+fn tensor(name: &str, dims: &[i64], data: Vec<f64>) -> TensorProto {
+    TensorProto {
+        dims: dims.to_vec(),
+        data_type: DOUBLE,
+        name: name.into(),
+        double_data: data,
+    }
+}
+
+fn node(op: &str, inputs: &[&str], output: &str) -> NodeProto {
+    NodeProto {
+        input: inputs.iter().map(|s| s.to_string()).collect(),
+        output: vec![output.into()],
+        name: output.into(),
+        op_type: op.into(),
+    }
+}
+
+/// The network's weights as ONNX initialisers: `w1` `[8, H]`, `b1` `[H]`, `w2` `[H, 2]`,
+/// `b2` `[2]` (transposed from the genome's per-unit rows) and the reading scale.
+fn initialisers(c: &ExportedController) -> Vec<TensorProto> {
+    let h = c.shape.hidden();
+    let (hidden_w, out_w) = c.weights.split_at(h * (INPUTS + 1));
+    let w1 = (0..INPUTS)
+        .flat_map(|i| (0..h).map(move |j| hidden_w[j * (INPUTS + 1) + 1 + i]))
+        .collect();
+    let b1 = (0..h).map(|j| hidden_w[j * (INPUTS + 1)]).collect();
+    let w2 = (0..h)
+        .flat_map(|j| (0..OUTPUTS).map(move |o| out_w[o * (h + 1) + 1 + j]))
+        .collect();
+    let b2 = (0..OUTPUTS).map(|o| out_w[o * (h + 1)]).collect();
+    let h = h as i64;
+    vec![
+        tensor("reading_max", &[], vec![SENSOR_MAX]),
+        tensor("w1", &[INPUTS as i64, h], w1),
+        tensor("b1", &[h], b1),
+        tensor("w2", &[h, OUTPUTS as i64], w2),
+        tensor("b2", &[OUTPUTS as i64], b2),
+    ]
+}
+
+/// The ONNX model's bytes.
+pub(crate) fn model(c: &ExportedController) -> Vec<u8> {
+    let nodes = vec![
+        node("Div", &["ir", "reading_max"], "x"),
+        node("MatMul", &["x", "w1"], "x_w1"),
+        node("Add", &["x_w1", "b1"], "hidden_sum"),
+        node("Sigmoid", &["hidden_sum"], "hidden"),
+        node("MatMul", &["hidden", "w2"], "hidden_w2"),
+        node("Add", &["hidden_w2", "b2"], "output_sum"),
+        node("Sigmoid", &["output_sum"], "motors"),
+    ];
+    let graph = GraphProto {
+        node: nodes,
+        name: format!("fuzzymotiv_8_{}_2", c.shape.hidden()),
+        initializer: initialisers(c),
+        input: vec![batch_of("ir", INPUTS as i64)],
+        output: vec![batch_of("motors", OUTPUTS as i64)],
+    };
+    let meta = |k: &str, v: String| StringStringEntryProto {
+        key: k.into(),
+        value: v,
+    };
+    let model = ModelProto {
+        ir_version: 8,
+        producer_name: "fuzzymotiv".into(),
+        producer_version: crate::VERSION.into(),
+        doc_string: "An evolved fuzzymotiv controller: ir [N, 8] raw readings 0..1023 -> motors [N, 2] (mL, mR in [0, 1]; wheel speed (2m - 1) * v_max). Agrees with the simulator to ~1e-15, not bit for bit (MatMul's summation order, the runtime's exp).".into(),
+        graph: Some(graph),
+        opset_import: vec![OperatorSetIdProto {
+            domain: String::new(),
+            version: 13,
+        }],
+        metadata_props: vec![
+            meta("provenance", crate::provenance()),
+            meta("v_max", format!("{}", c.v_max)),
+            meta("action_tolerance", format!("{}", c.tolerance)),
+        ],
+    };
+    model.encode_to_vec()
+}

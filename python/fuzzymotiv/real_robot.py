@@ -1,0 +1,41 @@
+"""A run's evolved controller for a real robot: C99 (the simulator's outputs bit for bit) or a
+self-describing JSON document or an ONNX model, as ``fuzzymotiv export`` writes them (docs/guide/real-robot.md)."""
+
+from __future__ import annotations
+
+import os
+from typing import List, Literal, Optional, Union
+
+from . import _fuzzymotiv as _native
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def export_controller(
+    run_or_genome: PathLike,
+    *,
+    to: Literal["c", "json", "onnx"],
+    out: PathLike,
+    config: Optional[PathLike] = None,
+    room: Optional[str] = None,
+    force: bool = False,
+) -> List[str]:
+    """Exports the controller of a run directory (or a ``best_genome.json``, its robot from the
+    ``config.resolved.toml`` beside it or ``config``) and returns the paths written.
+
+    ``to="c"``: ``out`` is a directory (created if missing) receiving ``fm_controller.h`` and
+    ``fm_controller.c``; ``to="json"``: ``out`` is the JSON file; ``to="onnx"``: ``out`` is the
+    ONNX model. Other files there are kept
+    unless ``force=True`` (``OutputExistsError``); the same export again writes nothing. A bad
+    genome or config raises ``FuzzymotivError`` naming the file and field. ``room`` picks the
+    robot evolved in that room (per-room training). The same as ``fuzzymotiv export
+    RUN_OR_GENOME --to TO --out OUT``.
+    """
+    return _native.export_controller(
+        os.fspath(run_or_genome),
+        to,
+        os.fspath(out),
+        None if config is None else os.fspath(config),
+        room,
+        force,
+    )

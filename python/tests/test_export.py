@@ -1,0 +1,50 @@
+"""fm.export_controller writes what `fuzzymotiv export` writes, through the same output guard."""
+
+import json
+
+import pytest
+
+import fuzzymotiv as fm
+from conftest import run_cli
+
+SMALL = {"ga.generations": 2, "ga.population": 8, "trial.steps": 80, "aem.epochs": 20, "aem.test_runs": 2}
+
+
+@pytest.fixture(scope="module")
+def run_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("export") / "run"
+    fm.run(None, SMALL, out=out, threads=2)
+    return out
+
+
+def test_export_controller_writes_the_clis_files(run_dir, tmp_path, cli):
+    written = fm.export_controller(run_dir, to="c", out=tmp_path / "py")
+    assert [p.rsplit("/", 1)[1] for p in written] == ["fm_controller.h", "fm_controller.c"]
+    run_cli(cli, "export", run_dir, "--to", "c", "--out", tmp_path / "cli")
+    for name in ["fm_controller.h", "fm_controller.c"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    fm.export_controller(run_dir, to="json", out=tmp_path / "c.json")
+    doc = json.loads((tmp_path / "c.json").read_text())
+    genome = json.loads((run_dir / "best_genome.json").read_text())
+    assert doc["format"] == "fuzzymotiv-controller"
+    assert doc["network"]["weights"] == genome["weights"]
+    fm.export_controller(run_dir, to="onnx", out=tmp_path / "c.onnx")
+    run_cli(cli, "export", run_dir, "--to", "onnx", "--out", tmp_path / "cli.onnx")
+    assert (tmp_path / "c.onnx").read_bytes() == (tmp_path / "cli.onnx").read_bytes()
+
+
+def test_export_controller_keeps_another_file_and_names_bad_input(run_dir, tmp_path):
+    target = tmp_path / "c.json"
+    target.write_text("mine")
+    with pytest.raises(fm.OutputExistsError):
+        fm.export_controller(run_dir, to="json", out=target)
+    assert target.read_text() == "mine"
+    fm.export_controller(run_dir, to="json", out=target, force=True)
+    assert target.read_text() != "mine"
+    with pytest.raises(fm.FuzzymotivError, match="to: `tflite` is not an export format"):
+        fm.export_controller(run_dir, to="tflite", out=tmp_path / "x")  # type: ignore[arg-type]
+    bad = tmp_path / "best_genome.json"
+    bad.write_text('{"shape": {"hidden": 6}, "weights": [1.0]}')
+    with pytest.raises(fm.FuzzymotivError, match=r"best_genome.json: field `weights`"):
+        fm.export_controller(bad, to="c", out=tmp_path / "c")
+    assert not (tmp_path / "c").exists()
