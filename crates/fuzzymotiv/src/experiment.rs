@@ -21,7 +21,8 @@ pub use config::{
     RawTrial,
 };
 pub use config::{
-    ConfigError, EnergyMode, MAX_SEED, OrientationMode, RawConfig, Training, apply_sets, at_line,
+    Combination, ConfigError, EnergyMode, MAX_SEED, OrientationMode, RawConfig, Training,
+    apply_sets, at_line,
 };
 pub use descriptors::Descriptors;
 pub use evaluation::{Evaluation, RoomScore};
@@ -62,6 +63,7 @@ pub struct Experiment {
     pub(crate) homing: Homing,
     pub(crate) aem: AemParams,
     pub(crate) plan: terms::TermPlan,
+    pub(crate) combine: Combination,
 }
 
 impl Experiment {
@@ -127,6 +129,7 @@ impl Experiment {
             homing: raw.fitness.homing,
             aem,
             plan,
+            combine: raw.fitness.combine,
         })
     }
 

@@ -17,10 +17,14 @@ use fuzzymotiv_io::pipeline::run_dir::{execute_or_resume, start_line};
 use fuzzymotiv_io::pipeline::sweep_jobs::run_jobs;
 use fuzzymotiv_io::pipeline::sweep_merge::merge_dir;
 use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
+use fuzzymotiv_io::records::combination::CombinationSummary;
 use fuzzymotiv_io::records::context::RenderContext;
 use fuzzymotiv_io::records::{
     AblationSummary, ClaimRecord, PROGRAM, StrengthSummary, StudySummary, VariantSummary,
     read_json, to_json,
+};
+use fuzzymotiv_io::render::combination::{
+    COMBINATION, behaviour_rows, behaviour_svg, behaviour_table,
 };
 use fuzzymotiv_io::render::figures::write_figure_at;
 use fuzzymotiv_io::render::report::{Section, reproduce_page};
@@ -81,6 +85,12 @@ pub struct ReproduceArgs {
     /// table and one figure (EXPERIMENTS.md).
     #[arg(long, conflicts_with_all = ["orientation", "ablation"])]
     pub search_strength: bool,
+    /// Run the combination study instead: the study under the paper's TSK and under the two
+    /// baselines of `[fitness] combine` (a weighted sum, a weighted sum of squares), the
+    /// claims under each and, between each baseline and the TSK, the paired statistics of the
+    /// behaviour (EXPERIMENTS.md: does the fuzzy combination matter?).
+    #[arg(long, conflicts_with_all = ["orientation", "ablation", "search_strength"])]
+    pub combination: bool,
 }
 
 impl ReproduceArgs {
@@ -99,6 +109,8 @@ impl ReproduceArgs {
                 "results-ablation"
             } else if self.search_strength {
                 "results-search-strength"
+            } else if self.combination {
+                "results-combination"
             } else {
                 "results"
             };
@@ -209,6 +221,9 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     }
     if args.search_strength {
         return search_strength(&args);
+    }
+    if args.combination {
+        return combination(&args);
     }
     let start = Instant::now();
     let seeds = study_seeds(&args);
@@ -339,6 +354,63 @@ fn search_strength(args: &ReproduceArgs) -> Result<(), CliError> {
                 claims: s.claims.clone(),
             })
             .collect(),
+        wall_seconds: start.elapsed().as_secs_f64(),
+    };
+    staged.write("summary.json", to_json(&summary))?;
+    commit(staged, start)?;
+    fuzzymotiv_io::outln!("{md}")
+}
+
+/// `reproduce --combination`: the study under every combination of [`COMBINATION`], the claims
+/// under each, and each baseline's behaviour against the TSK's (`combination.md`,
+/// `behaviour.csv`, `behaviour.svg`, `summary.json`).
+fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
+    let start = Instant::now();
+    let seeds = study_seeds(args);
+    let Some((staged, rows)) = run_variants(args, &seeds, &COMBINATION)? else {
+        return Ok(());
+    };
+    let studies = COMBINATION
+        .iter()
+        .map(|v| read_json(&staged.staging.join(v.name).join("summary.json")))
+        .collect::<Result<Vec<StudySummary>, CliError>>()?;
+    let named: Vec<(&str, &StudySummary)> =
+        COMBINATION.iter().map(|v| v.name).zip(&studies).collect();
+    let behaviour = behaviour_rows(&named);
+    let prov = Provenance::new(
+        &seeds,
+        &RenderContext::of(&rows_exp(args, &seeds)?),
+        args.quick,
+    );
+    let (table, csv) = behaviour_table(&behaviour, seeds.len());
+    let claims = fuzzymotiv_io::render::combination::claims_table(&rows, &prov.line());
+    let md = format!("{claims}\n\n{table}");
+    staged.write("combination.md", &md)?;
+    staged.write("behaviour.csv", &csv)?;
+    write_figure_at(
+        &staged.staging.join("behaviour.svg"),
+        &behaviour_svg(&behaviour),
+        rasteriser(args.png),
+    )?;
+    let summary = CombinationSummary {
+        program: PROGRAM.into(),
+        version: fuzzymotiv::VERSION.into(),
+        model: fuzzymotiv::MODEL_VERSION,
+        seed: args.seed(),
+        seeds,
+        quick: args.quick,
+        population: prov.population,
+        generations: prov.generations,
+        overrides: args.sets.clone(),
+        combinations: rows
+            .iter()
+            .map(|(v, claims)| VariantSummary {
+                name: v.name.into(),
+                switched_back: v.what.into(),
+                claims: claims.clone(),
+            })
+            .collect(),
+        behaviour,
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;

@@ -36,6 +36,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::files::error::CliError;
 
 pub mod checkpoint;
+pub mod combination;
 pub mod compare;
 pub mod context;
 pub mod test_runs;

@@ -79,6 +79,23 @@ pub struct RawFitness {
     /// Whether a trial ends the step its mission is done (as it ends at home); default false.
     #[serde(skip_serializing_if = "is_default")]
     pub end_at_mission: bool,
+    /// How the motivations combine the terms into F: `"tsk"` (default, the paper's),
+    /// `"weighted-sum"` or `"weighted-squares"` (baselines, docs/model.md §8).
+    #[serde(skip_serializing_if = "is_default")]
+    pub combine: Combination,
+}
+
+/// How the motivations X combine the fuzzy inputs Y into F (docs/model.md §8, "Baselines").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Combination {
+    /// The paper's TSK rule base (default).
+    #[default]
+    Tsk,
+    /// `F = Σ X_i·Y_i`: a plain weighted sum of the same motivations.
+    WeightedSum,
+    /// `F = Σ X_i·Y_i²`: the TSK's value when every input sits on a peak of the default labels.
+    WeightedSquares,
 }
 
 /// Whether `v` is its type's default (options added later are written only when set, so that

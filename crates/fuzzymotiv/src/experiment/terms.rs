@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use crate::experiment::Experiment;
-use crate::experiment::config::EnergyMode;
+use crate::experiment::config::{Combination, EnergyMode};
 use crate::fitness::terms::{
     FitnessTerms, LIBRARY_TERMS, MAX_USER_TERMS, MissionTracker, Term, TermId, WaypointOrder,
 };
@@ -175,6 +175,14 @@ fn check_missions(motivation: &str, id: TermId, rooms: &[Room]) -> Result<(), Fi
     Ok(())
 }
 
+/// `Σ X_i · g(Y_i)`, each `Y_i` clamped to [0, 1] (NaN as 0) as the TSK clamps its inputs.
+fn weighted(x: &Motivations, y: &[f64], g: impl Fn(f64) -> f64) -> f64 {
+    x.iter()
+        .zip(y)
+        .map(|(m, &v)| m.weight() * g(if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) }))
+        .sum()
+}
+
 impl Experiment {
     /// The fuzzy inputs `Y` for a trial's terms, one per motivation (with `energy =
     /// "conserve"`, the battery term is `1 − b`).
@@ -198,8 +206,17 @@ impl Experiment {
                 _ => terms.get(id),
             };
         }
-        self.fuzzy
-            .evaluate(&self.motivations, &y[..self.plan.inputs.len()])
+        let y = &y[..self.plan.inputs.len()];
+        match self.combine {
+            Combination::Tsk => self.fuzzy.evaluate(&self.motivations, y),
+            Combination::WeightedSum => weighted(&self.motivations, y, |v| v),
+            Combination::WeightedSquares => weighted(&self.motivations, y, |v| v * v),
+        }
+    }
+
+    /// How the motivations combine the terms.
+    pub fn combination(&self) -> Combination {
+        self.combine
     }
 
     /// The term each motivation weighs, in input order.
@@ -324,6 +341,42 @@ mod tests {
         assert_eq!(e.field, "motivations.safety.peaks", "{e}");
         let e = build("[fitness]\nend_at_mission = true\n", &[]).unwrap_err();
         assert_eq!(e.field, "fitness.end_at_mission", "{e}");
+    }
+
+    /// The baselines: a weighted sum and a weighted sum of squares of the same inputs; on the
+    /// peaks of the default labels the TSK equals the weighted squares.
+    #[test]
+    fn the_baseline_combinations_follow_their_formulas() {
+        let t = FitnessTerms {
+            a: 0.9,
+            g: 0.3,
+            l: 0.0,
+            b: 0.7,
+            ..Default::default()
+        };
+        let f = |combine: &str| {
+            build(&format!("[fitness]\ncombine = \"{combine}\"\n"), &[])
+                .unwrap()
+                .fuzzy_fitness(&t)
+        };
+        assert_eq!(f("weighted-sum"), 0.8 * 0.9 + 0.1 * 0.3 + 0.0 + 0.1 * 0.7);
+        assert_eq!(
+            f("weighted-squares"),
+            0.8 * 0.81 + 0.1 * 0.09 + 0.0 + 0.1 * 0.49
+        );
+        let on_peaks = FitnessTerms {
+            a: 0.75,
+            g: 0.25,
+            l: 0.0,
+            b: 1.0,
+            ..Default::default()
+        };
+        let exp = build("", &[]).unwrap();
+        let squares = build("[fitness]\ncombine = \"weighted-squares\"\n", &[]).unwrap();
+        assert!((exp.fuzzy_fitness(&on_peaks) - squares.fuzzy_fitness(&on_peaks)).abs() < 1e-15);
+        assert_ne!(f("tsk"), f("weighted-sum"));
+        let e = build("[fitness]\ncombine = \"product\"\n", &[]).unwrap_err();
+        assert_eq!(e.field, "fitness.combine", "{e}");
     }
 
     /// A term of one's own, computed from each trial's record, is the input of the motivation

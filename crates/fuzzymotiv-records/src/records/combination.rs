@@ -1,0 +1,71 @@
+//! `reproduce --combination`'s records: the behaviour under each baseline combination against
+//! the TSK (`behaviour.csv`, and `summary.json`).
+
+use serde::{Deserialize, Serialize};
+
+use crate::records::{ClaimRecord, VariantSummary};
+
+/// One measure of one setting: a baseline against the TSK, paired by seed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BehaviourRow {
+    /// The baseline (`weighted-sum`, `weighted-squares`).
+    pub combination: String,
+    /// The setting (`high-curiosity`, `low-curiosity`).
+    pub setting: String,
+    /// The measure ([`MEASURES`]).
+    pub measure: String,
+    /// Mean over seeds under the baseline.
+    pub mean_combination: f64,
+    /// Mean over seeds under the TSK.
+    pub mean_tsk: f64,
+    /// Baseline − TSK, mean of the per-seed differences.
+    pub difference: f64,
+    /// Its 95 % bootstrap interval.
+    pub ci_low: f64,
+    /// Upper bound.
+    pub ci_high: f64,
+    /// Two-sided sign-flip permutation p-value.
+    pub p: f64,
+    /// The smallest difference the design detects with 80 % power.
+    pub detectable: f64,
+    /// `higher` / `lower` under the baseline (p < α), or `not significant`.
+    pub verdict: String,
+}
+
+/// `reproduce --combination`'s `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CombinationSummary {
+    /// Always `fuzzymotiv`.
+    pub program: String,
+    /// Program version.
+    pub version: String,
+    /// Model version.
+    pub model: u32,
+    /// `--seed`.
+    pub seed: u64,
+    /// The study's seeds.
+    pub seeds: Vec<u64>,
+    /// Whether `--quick`.
+    pub quick: bool,
+    /// GA population.
+    pub population: usize,
+    /// GA generations.
+    pub generations: usize,
+    /// `--set` overrides.
+    pub overrides: Vec<String>,
+    /// The paper's claims under each combination (the TSK first).
+    pub combinations: Vec<VariantSummary>,
+    /// Each baseline against the TSK, per setting and measure.
+    pub behaviour: Vec<BehaviourRow>,
+    /// Wall time (s).
+    pub wall_seconds: f64,
+}
+
+/// The claims of a combination study, by combination (for tables that read them back).
+pub fn claims_of(summary: &CombinationSummary) -> Vec<(&str, &[ClaimRecord])> {
+    summary
+        .combinations
+        .iter()
+        .map(|v| (v.name.as_str(), v.claims.as_slice()))
+        .collect()
+}

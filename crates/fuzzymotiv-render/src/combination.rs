@@ -1,0 +1,372 @@
+//! `reproduce --combination`: does the fuzzy combination matter? The paper's study under the
+//! TSK (the default) and under the two baselines of `[fitness] combine` (docs/model.md §8), and,
+//! between each baseline and the TSK, the paired statistics of the behaviour the robots evolved
+//! (exploration, homing, battery, recognition: each seed's mean over rooms, paired by seed).
+
+use std::fmt::Write as _;
+
+use fuzzymotiv::statistics::{Comparison, Settings, paired};
+use fuzzymotiv_records::records::combination::BehaviourRow;
+use fuzzymotiv_records::records::{ClaimRecord, StudySummary, TableRow};
+
+use crate::plot::{Ticks, colour, esc, open, px, text_width};
+use crate::study::{DEFAULT_MODEL, Variant};
+use crate::tables::verdict;
+
+/// The study under each combination: the TSK first (the default model), then the baselines.
+pub const COMBINATION: [Variant; 3] = [
+    DEFAULT_MODEL,
+    Variant {
+        name: "weighted-sum",
+        what: "fitness.combine = \"weighted-sum\" (F = Σ X_i·Y_i)",
+        sets: &["fitness.combine=\"weighted-sum\""],
+        first_release_rooms: false,
+    },
+    Variant {
+        name: "weighted-squares",
+        what: "fitness.combine = \"weighted-squares\" (F = Σ X_i·Y_i², the TSK on its peaks)",
+        sets: &["fitness.combine=\"weighted-squares\""],
+        first_release_rooms: false,
+    },
+];
+
+/// The behaviour measures compared, as the tables name them.
+pub const MEASURES: [&str; 4] = [
+    "% optimal exploration",
+    "% homing",
+    "% battery usage",
+    "% recognition",
+];
+
+/// The value of measure `k` in a seed's table: the mean over the rooms that have it.
+fn seed_value(rows: &[TableRow], k: usize) -> Option<f64> {
+    let values: Vec<f64> = rows
+        .iter()
+        .filter_map(|r| match k {
+            0 => r.exploration_pct,
+            1 => r.homing_pct,
+            2 => r.battery_pct,
+            _ => r.recognition_pct,
+        })
+        .collect();
+    (!values.is_empty()).then(|| values.iter().sum::<f64>() / values.len() as f64)
+}
+
+/// Every baseline against the TSK (the first study), per setting and measure, paired by seed.
+/// Measures a study does not have (recognition without room modelling) are left out.
+pub fn behaviour_rows(studies: &[(&str, &StudySummary)]) -> Vec<BehaviourRow> {
+    let Some(((_, tsk), rest)) = studies.split_first() else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for (name, study) in rest {
+        for (s, base) in study.settings.iter().zip(&tsk.settings) {
+            for (k, measure) in MEASURES.iter().enumerate() {
+                let pairs: Option<Vec<(f64, f64)>> = s
+                    .per_seed
+                    .iter()
+                    .zip(&base.per_seed)
+                    .map(|(a, b)| Some((seed_value(&a.rows, k)?, seed_value(&b.rows, k)?)))
+                    .collect();
+                let Some(pairs) = pairs.filter(|p| p.len() >= 2) else {
+                    continue;
+                };
+                let (a, b): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
+                let Ok(c) = paired(&a, &b, &Settings::default()) else {
+                    continue;
+                };
+                out.push(row(name, &s.name, measure, &c));
+            }
+        }
+    }
+    out
+}
+
+fn row(combination: &str, setting: &str, measure: &str, c: &Comparison) -> BehaviourRow {
+    let verdict = if c.p < c.alpha && c.difference > 0.0 {
+        "higher"
+    } else if c.p < c.alpha && c.difference < 0.0 {
+        "lower"
+    } else {
+        "not significant"
+    };
+    BehaviourRow {
+        combination: combination.into(),
+        setting: setting.into(),
+        measure: measure.into(),
+        mean_combination: c.mean_a,
+        mean_tsk: c.mean_b,
+        difference: c.difference,
+        ci_low: c.ci_low,
+        ci_high: c.ci_high,
+        p: c.p,
+        detectable: c.mdd.unwrap_or(f64::NAN),
+        verdict: verdict.into(),
+    }
+}
+
+/// The claims under each combination, one row per combination, as Markdown (after `prov`, the
+/// study's provenance line).
+pub fn claims_table(rows: &[(&Variant, Vec<ClaimRecord>)], prov: &str) -> String {
+    let mut md = format!(
+        "{prov}\n\nThe paper's claims under each combination of the same motivations (means over rooms and seeds; each combination's own tables are in its directory).\n\n| combination | F |"
+    );
+    let Some((_, first)) = rows.first() else {
+        return md;
+    };
+    for c in first {
+        let _ = write!(md, " {} |", c.claim);
+    }
+    md.push_str("\n|---|---|");
+    md.push_str(&"---|".repeat(first.len()));
+    md.push('\n');
+    for (v, claims) in rows {
+        let name = if v.name == DEFAULT_MODEL.name {
+            "tsk"
+        } else {
+            v.name
+        };
+        let what = if v.sets.is_empty() {
+            "the paper's TSK rule base"
+        } else {
+            v.what
+        };
+        let _ = write!(md, "| {name} | {what} |");
+        for c in claims {
+            let _ = write!(md, " {} ({}) |", verdict(c), c.evidence);
+        }
+        md.push('\n');
+    }
+    md
+}
+
+/// The behaviour table as (Markdown, CSV).
+pub fn behaviour_table(rows: &[BehaviourRow], seeds: usize) -> (String, String) {
+    let mut md = format!(
+        "Does the fuzzy combination change behaviour? Each baseline against the TSK, paired by seed ({seeds} seeds; each seed's value is its mean over rooms; 95 % bootstrap interval, two-sided sign-flip permutation p, α = 0.05; \"detectable\" is the smallest difference this design finds with 80 % power).\n\n| combination | setting | measure | baseline | TSK | difference (95 % CI) | p | detectable | verdict |\n|---|---|---|---|---|---|---|---|---|\n"
+    );
+    let mut csv = String::from(
+        "combination,setting,measure,mean_combination,mean_tsk,difference,ci_low,ci_high,p,detectable,verdict\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {:.1} | {:.1} | {:+.1} ({:+.1}, {:+.1}) | {:.3} | {:.1} | {} |",
+            r.combination,
+            r.setting,
+            r.measure,
+            r.mean_combination,
+            r.mean_tsk,
+            r.difference,
+            r.ci_low,
+            r.ci_high,
+            r.p,
+            r.detectable,
+            r.verdict
+        );
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{},{},{},{}",
+            r.combination,
+            r.setting,
+            r.measure,
+            r.mean_combination,
+            r.mean_tsk,
+            r.difference,
+            r.ci_low,
+            r.ci_high,
+            r.p,
+            r.detectable,
+            r.verdict
+        );
+    }
+    (md, csv)
+}
+
+const PANEL_W: f64 = 250.0;
+const PANEL_H: f64 = 240.0;
+const TOP: f64 = 44.0;
+const BOTTOM: f64 = 56.0;
+const LEFT: f64 = 46.0;
+
+/// The figure: one panel per measure; in each, per setting and baseline, the paired difference
+/// baseline − TSK (points) with its 95 % interval; a zero line. Filled points are significant.
+pub fn behaviour_svg(rows: &[BehaviourRow]) -> String {
+    let measures: Vec<&str> = MEASURES
+        .iter()
+        .copied()
+        .filter(|m| rows.iter().any(|r| r.measure == *m))
+        .collect();
+    let width = PANEL_W * measures.len().max(1) as f64;
+    let height = PANEL_H + 30.0;
+    let mut s = open(px(width), height, 12);
+    let _ = writeln!(
+        s,
+        r#"<rect width="{}" height="{height}" fill="white"/>"#,
+        px(width)
+    );
+    let combos = distinct(rows.iter().map(|r| r.combination.as_str()));
+    let settings = distinct(rows.iter().map(|r| r.setting.as_str()));
+    for (k, m) in measures.iter().enumerate() {
+        let panel: Vec<&BehaviourRow> = rows.iter().filter(|r| r.measure == *m).collect();
+        draw_panel(&mut s, m, &panel, &settings, &combos, k as f64 * PANEL_W);
+    }
+    let mut x = 10.0;
+    for (c, name) in combos.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            r#"<circle cx="{}" cy="{}" r="4" fill="{}"/><text x="{}" y="{}">{} − TSK</text>"#,
+            px(x + 4.0),
+            height - 12.0,
+            colour(c),
+            px(x + 12.0),
+            height - 8.0,
+            esc(name)
+        );
+        x += 30.0 + text_width(&format!("{name} − TSK"), false);
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+fn distinct<'a>(items: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut out: Vec<&str> = Vec::new();
+    for i in items {
+        if !out.contains(&i) {
+            out.push(i);
+        }
+    }
+    out
+}
+
+fn draw_panel(
+    s: &mut String,
+    title: &str,
+    rows: &[&BehaviourRow],
+    settings: &[&str],
+    combos: &[&str],
+    ox: f64,
+) {
+    let (lo, hi) = rows.iter().fold((0.0f64, 0.0f64), |(lo, hi), r| {
+        (lo.min(r.ci_low), hi.max(r.ci_high))
+    });
+    let pad = ((hi - lo) * 0.08).max(0.5);
+    let ticks = Ticks::nice(lo - pad, hi + pad, 5, false);
+    let (y0, y1) = (ticks.values[0], *ticks.values.last().unwrap_or(&1.0));
+    let plot_h = PANEL_H - TOP - BOTTOM;
+    let y = |v: f64| TOP + plot_h * (1.0 - (v - y0) / (y1 - y0).max(1e-9));
+    let plot_w = PANEL_W - LEFT - 12.0;
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="20" text-anchor="middle" font-weight="bold">{}</text>"#,
+        px(ox + PANEL_W / 2.0),
+        esc(title)
+    );
+    for &t in &ticks.values {
+        let _ = writeln!(
+            s,
+            r##"<line x1="{}" x2="{}" y1="{yy}" y2="{yy}" stroke="#ddd"/><text x="{}" y="{}" text-anchor="end" font-size="10">{}</text>"##,
+            px(ox + LEFT),
+            px(ox + LEFT + plot_w),
+            px(ox + LEFT - 4.0),
+            px(y(t) + 3.0),
+            ticks.label(t),
+            yy = px(y(t)),
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<line x1="{}" x2="{}" y1="{yy}" y2="{yy}" stroke="#333"/>"##,
+        px(ox + LEFT),
+        px(ox + LEFT + plot_w),
+        yy = px(y(0.0)),
+    );
+    let slot = plot_w / settings.len().max(1) as f64;
+    for (i, setting) in settings.iter().enumerate() {
+        let cx = ox + LEFT + slot * (i as f64 + 0.5);
+        let _ = writeln!(
+            s,
+            r#"<text x="{}" y="{}" text-anchor="middle" font-size="10">{}</text>"#,
+            px(cx),
+            px(TOP + plot_h + 16.0),
+            esc(setting)
+        );
+        for (c, combo) in combos.iter().enumerate() {
+            let Some(r) = rows
+                .iter()
+                .find(|r| r.setting == *setting && r.combination == *combo)
+            else {
+                continue;
+            };
+            let x = cx + (c as f64 - (combos.len() as f64 - 1.0) / 2.0) * 14.0;
+            let fill = if r.verdict == "not significant" {
+                "white"
+            } else {
+                colour(c)
+            };
+            let _ = writeln!(
+                s,
+                r#"<line x1="{x}" x2="{x}" y1="{}" y2="{}" stroke="{col}" stroke-width="2"/><circle cx="{x}" cy="{}" r="4" fill="{fill}" stroke="{col}" stroke-width="2"><title>{} {} {}: {:+.2} (p = {:.3})</title></circle>"#,
+                px(y(r.ci_low)),
+                px(y(r.ci_high)),
+                px(y(r.difference)),
+                esc(combo),
+                esc(setting),
+                esc(title),
+                r.difference,
+                r.p,
+                x = px(x),
+                col = colour(c),
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(combination: &str, setting: &str, measure: &str, d: f64, p: f64) -> BehaviourRow {
+        BehaviourRow {
+            combination: combination.into(),
+            setting: setting.into(),
+            measure: measure.into(),
+            mean_combination: 50.0 + d,
+            mean_tsk: 50.0,
+            difference: d,
+            ci_low: d - 2.0,
+            ci_high: d + 2.0,
+            p,
+            detectable: 3.0,
+            verdict: if p < 0.05 {
+                "higher"
+            } else {
+                "not significant"
+            }
+            .into(),
+        }
+    }
+
+    /// The table has a row per comparison and the figure a panel per measure, each point with
+    /// its interval; a significant point is filled, the others hollow.
+    #[test]
+    fn the_behaviour_table_and_figure_show_every_comparison() {
+        let rows = vec![
+            row("weighted-sum", "high-curiosity", MEASURES[0], 4.0, 0.01),
+            row("weighted-sum", "low-curiosity", MEASURES[0], -1.0, 0.4),
+            row("weighted-squares", "high-curiosity", MEASURES[1], 0.5, 0.8),
+        ];
+        let (md, csv) = behaviour_table(&rows, 10);
+        assert_eq!(md.matches("\n| weighted-").count(), 3, "{md}");
+        assert!(
+            md.contains("| +4.0 (+2.0, +6.0) | 0.010 | 3.0 | higher |"),
+            "{md}"
+        );
+        assert_eq!(csv.lines().count(), 4);
+        let svg = behaviour_svg(&rows);
+        assert!(svg.starts_with("<svg"), "{svg}");
+        assert_eq!(svg.matches("<circle cx").count(), 3 + 2, "{svg}");
+        assert_eq!(svg.matches(r#"fill="white" stroke"#).count(), 2, "{svg}");
+        assert!(svg.contains("% optimal exploration") && svg.contains("% homing"));
+    }
+}
