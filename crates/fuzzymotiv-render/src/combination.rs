@@ -252,15 +252,17 @@ fn draw_panel(
     });
     let pad = ((hi - lo) * 0.08).max(0.5);
     let ticks = Ticks::nice(lo - pad, hi + pad, 5, false);
-    let (y0, y1) = (ticks.values[0], *ticks.values.last().unwrap_or(&1.0));
+    let y0 = ticks.values[0].min(lo - pad);
+    let y1 = ticks.values.last().map_or(hi + pad, |t| t.max(hi + pad));
     let plot_h = PANEL_H - TOP - BOTTOM;
     let y = |v: f64| TOP + plot_h * (1.0 - (v - y0) / (y1 - y0).max(1e-9));
     let plot_w = PANEL_W - LEFT - 12.0;
     let _ = writeln!(
         s,
-        r#"<text x="{}" y="20" text-anchor="middle" font-weight="bold">{}</text>"#,
+        r#"<text x="{}" y="20" text-anchor="middle" font-weight="bold">{}</text><text x="{}" y="34" text-anchor="middle" font-size="10">baseline − TSK (points)</text>"#,
         px(ox + PANEL_W / 2.0),
-        esc(title)
+        esc(title),
+        px(ox + PANEL_W / 2.0),
     );
     for &t in &ticks.values {
         let _ = writeln!(

@@ -172,7 +172,7 @@ impl TermId {
 }
 
 /// A term of your own: a value in [0, 1] of a finished trial (docs/guide, "Define your own
-/// motivation"). Register it with [`crate::Setup::resolve_with_terms`] under a name a
+/// motivation"). Register it with [`crate::Experiment::with_terms`] under a name a
 /// motivation's `term` can use; an experiment with one records each trial's steps for it.
 pub trait Term: Send + Sync + std::fmt::Debug {
     /// The term's value for one finished trial, in [0, 1]. As every fuzzy input, a value
