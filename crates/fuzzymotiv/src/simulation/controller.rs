@@ -198,7 +198,7 @@ impl Mlp {
 /// are exactly 0 (a sensor that sees nothing: most of them, most of the time) are skipped.
 /// Adding `w · 0 = ±0` leaves a sum unchanged except for the sign of a zero sum, and
 /// `logistic(−0) = logistic(+0) = 0.5`, so the outputs are the same bits.
-#[inline]
+#[inline(always)]
 fn hidden_sums(by_input: &[f64], inputs: &[f64; INPUTS], sums: &mut [f64]) {
     let h = sums.len();
     sums.copy_from_slice(&by_input[..h]);
@@ -215,7 +215,7 @@ fn hidden_sums(by_input: &[f64], inputs: &[f64; INPUTS], sums: &mut [f64]) {
 /// order as the general path (so identical results), with fixed trip counts the compiler
 /// unrolls and vectorises, and each layer's logistic units done together
 /// ([`logistic_lanes`]: the scalar function's bits).
-#[inline]
+#[inline(always)]
 fn step_fixed<const H: usize>(
     by_input: &[f64],
     out_w: &[f64],
@@ -236,7 +236,9 @@ fn step_fixed<const H: usize>(
 }
 
 impl Controller for Mlp {
-    #[inline]
+    // Always inlined: the step loop is also compiled for AVX2 (`trial::Isa`), and a network
+    // called out of line would run the baseline code there.
+    #[inline(always)]
     fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
         if inputs.iter().all(|&x| x == 0.0) {
             return self.idle_out;

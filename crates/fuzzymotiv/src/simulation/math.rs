@@ -247,7 +247,7 @@ pub fn logistic(x: f64) -> f64 {
 /// every lane, written stage by stage across the lanes so that the compiler can do each stage
 /// for several lanes in one vector instruction (the table look-up stays one load per lane).
 /// Lanes with `|x| > 708` or NaN send the whole call to the scalar function.
-#[inline]
+#[inline(always)]
 pub fn logistic_lanes<const L: usize>(x: [f64; L]) -> [f64; L] {
     if !x.iter().all(|v| v.abs() <= 708.0) {
         return x.map(logistic);

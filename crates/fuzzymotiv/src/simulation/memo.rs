@@ -158,7 +158,7 @@ impl Table {
     /// Then asks the processor to fetch the slots of the poses `next` into cache (the poses the
     /// caller may ask for next), so that their lookup does not wait on memory: a table is larger
     /// than the caches, and a lookup is otherwise a cache miss.
-    #[inline]
+    #[inline(always)]
     pub fn recall(
         &mut self,
         pos: Vec2,

@@ -323,7 +323,7 @@ impl Arena {
     /// cell `cell`, sees, and whether a straight move of `step` mm would overlap a wall;
     /// remembered in `memo` (this arena's table, from [`Arena::memo_owner`]) when the
     /// cell has walls near it, computed every time without one.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn sight(
         &self,
         memo: Option<&mut Table>,
@@ -656,15 +656,88 @@ where
         Motion::Actions => arena.memo_owner(),
         Motion::Wheels => None,
     };
+    let isa = Isa::detected();
     match owner {
         Some(owner) => crate::simulation::memo::with_table(owner, memo_live, |table| {
-            walk_trial(arena, controller, rng, observer, table)
+            walk_trial_on(isa, arena, controller, rng, observer, table)
         }),
-        None => walk_trial(arena, controller, rng, observer, None),
+        None => walk_trial_on(isa, arena, controller, rng, observer, None),
     }
 }
 
+/// Which instructions a trial's step loop is compiled for. Both forms run the same Rust
+/// code: the same IEEE-754 operations in the same order (no fused multiply-add: Rust never
+/// contracts `a * b + c`, and `avx2` does not enable FMA), so every result has the same bits;
+/// AVX2 only does more lanes per instruction (the network's six hidden units in two vector
+/// operations instead of three) and has three-operand forms that save register copies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Isa {
+    /// The build's baseline (x86-64: SSE2).
+    Baseline,
+    /// x86-64 with AVX2, when the processor has it (checked at run time).
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+}
+
+impl Isa {
+    /// The best form this processor runs.
+    #[inline]
+    pub(crate) fn detected() -> Isa {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return Isa::Avx2;
+        }
+        Isa::Baseline
+    }
+}
+
+/// [`walk_trial`] compiled for `isa`, which the processor must have ([`Isa::detected`]).
+#[inline]
+pub(crate) fn walk_trial_on<C, R, O>(
+    isa: Isa,
+    arena: &Arena,
+    controller: &mut C,
+    rng: &mut R,
+    observer: &mut O,
+    memo: Option<&mut Table>,
+) -> Pose
+where
+    C: Controller + ?Sized,
+    R: Rng + ?Sized,
+    O: StepObserver + ?Sized,
+{
+    match isa {
+        Isa::Baseline => walk_trial(arena, controller, rng, observer, memo),
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
+        Isa::Avx2 => unsafe { walk_trial_avx2(arena, controller, rng, observer, memo) },
+    }
+}
+
+/// [`walk_trial`] with AVX2 instructions: the step loop, sensing and the network are inlined
+/// here and compiled for AVX2.
+///
+/// # Safety
+/// The processor must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn walk_trial_avx2<C, R, O>(
+    arena: &Arena,
+    controller: &mut C,
+    rng: &mut R,
+    observer: &mut O,
+    memo: Option<&mut Table>,
+) -> Pose
+where
+    C: Controller + ?Sized,
+    R: Rng + ?Sized,
+    O: StepObserver + ?Sized,
+{
+    walk_trial(arena, controller, rng, observer, memo)
+}
+
 /// [`simulate`], with the arena's [`crate::simulation::memo`] table for the trial's poses, or none.
+#[inline(always)]
 fn walk_trial<C, R, O>(
     arena: &Arena,
     controller: &mut C,
@@ -1113,6 +1186,71 @@ mod tests {
         assert_eq!(tr.collisions.iter().filter(|&&c| c).count(), 400 - 91);
         assert!(tr.poses[92..].iter().all(|p| p == last));
         assert_eq!(tr.poses.len(), 401);
+    }
+
+    /// The step loop compiled for AVX2 takes the very steps of the baseline build: every
+    /// pose, sensor value, motor output, speed, collision and action has the same bits, for
+    /// random networks (most of which touch walls) in the paper's H room and in the square,
+    /// with both motion models, the memo of sightings on and off. Skipped on a processor
+    /// without AVX2 (there only the baseline runs).
+    #[test]
+    fn avx2_step_loop_takes_the_baseline_steps_bit_for_bit() {
+        if Isa::detected() == Isa::Baseline {
+            return;
+        }
+        let shape = crate::simulation::MlpShape::default();
+        let mut draw = rng_from_seed(38);
+        for (room, motion) in [
+            ("H", Motion::Actions),
+            ("H", Motion::Wheels),
+            ("square", Motion::Wheels),
+        ] {
+            let robot = RawRobot {
+                motion,
+                ..RawRobot::default()
+            };
+            let params = TrialParams::from_raw(
+                &RawTrial::default(),
+                &robot,
+                crate::simulation::robot::DEFAULT_ACTION_TOLERANCE,
+            )
+            .unwrap();
+            let arena = Arena::new(Room::builtin(room).unwrap(), &params);
+            for k in 0..40u64 {
+                let genome: Vec<f64> = (0..shape.genome_len())
+                    .map(|_| crate::random::rng::uniform(&mut draw, -4.0, 4.0))
+                    .collect();
+                let run = |isa: Isa, memo: bool| {
+                    let mut net = crate::simulation::Mlp::from_genome(shape, &genome).unwrap();
+                    let mut tr = Trajectory::starting_at(arena.room.home, params.steps);
+                    let mut rng = rng_from_seed(k);
+                    let owner = arena.memo_owner().filter(|_| memo);
+                    match owner {
+                        Some(owner) => crate::simulation::memo::with_table(owner, memo_live, |t| {
+                            walk_trial_on(isa, &arena, &mut net, &mut rng, &mut tr, t)
+                        }),
+                        None => walk_trial_on(isa, &arena, &mut net, &mut rng, &mut tr, None),
+                    };
+                    format!("{:?}", bits_of(&tr))
+                };
+                for memo in [false, true] {
+                    let base = run(Isa::Baseline, memo);
+                    assert_eq!(run(Isa::detected(), memo), base, "{room} {motion:?} #{k}");
+                }
+            }
+        }
+    }
+
+    /// A trajectory as bit patterns (so that -0.0 and 0.0, or two NaNs, are told apart).
+    fn bits_of(tr: &Trajectory) -> Vec<Vec<u64>> {
+        let f = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let mut out: Vec<Vec<u64>> = tr.poses.iter().map(|p| f(&[p.x, p.y, p.heading])).collect();
+        out.extend(tr.sensors.iter().map(|s| f(s)));
+        out.extend(tr.motors.iter().map(|m| f(m)));
+        out.extend(tr.speeds.iter().map(|m| f(m)));
+        out.push(tr.collisions.iter().map(|&c| u64::from(c)).collect());
+        out.push(tr.actions.iter().map(|&a| a as u64).collect());
+        out
     }
 
     fn noiseless() -> TrialParams {
