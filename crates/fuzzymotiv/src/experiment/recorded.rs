@@ -1,16 +1,59 @@
-//! Evaluation with the evaluation trials recorded: for a front that computes terms of its own
-//! from whole trajectories (Python's batched user terms) and then fills them in
-//! ([`Experiment::refit`]). The GA's own evaluation ([`Experiment::evaluate_population`]) never
-//! records them.
+//! Terms of one's own, for the fronts: a config resolved with user-defined terms
+//! ([`Setup::resolve_with_terms`]), and evaluation with the evaluation trials recorded, for a
+//! front that computes its terms from whole trajectories (Python's batched user terms) and then
+//! fills them in ([`Experiment::refit`]). The GA's own evaluation
+//! ([`Experiment::evaluate_population`]) never records them.
 
 use rayon::prelude::*;
 
 use crate::evolution::population::Population;
-use crate::experiment::config::OrientationMode;
+use crate::experiment::config::{OrientationMode, RawConfig};
 use crate::experiment::evaluation::{Evaluation, RoomScore};
+use crate::experiment::setup::{RoomFiles, Setup, SetupError};
+use crate::experiment::terms::UserTerm;
 use crate::experiment::{Experiment, Run};
+use crate::fitness::RawMotivations;
 use crate::simulation::controller::Mlp;
 use crate::simulation::trial::Trajectory;
+
+impl Setup {
+    /// [`Setup::resolve`], with user-defined terms a motivation's `term` can name (the same
+    /// rooms, checks, normalisation and errors; a motivation naming none of the library's
+    /// terms nor of `user` is an error naming it).
+    pub fn resolve_with_terms(
+        raw: RawConfig,
+        source_name: &str,
+        files: &dyn RoomFiles,
+        user: &[UserTerm],
+    ) -> Result<Setup, SetupError> {
+        if user.is_empty() {
+            return Setup::resolve(raw, source_name, files);
+        }
+        // The rooms and every check that does not involve the motivations, as `resolve` does
+        // them, with the paper's motivations standing in; then the config's own, with `user`.
+        let mut stand_in = raw.clone();
+        stand_in.motivations = RawMotivations::default();
+        stand_in.fitness.end_at_mission = false;
+        let rooms = Setup::resolve(stand_in, source_name, files)?;
+        let mut resolved = rooms.raw;
+        resolved.motivations = raw.motivations;
+        resolved.fitness.end_at_mission = raw.fitness.end_at_mission;
+        let shared = resolved.fuzzy.validated().ok();
+        let notes = shared
+            .and_then(|shared| resolved.motivations.normalise(&shared))
+            .map(|sum| format!("{source_name}: motivations summed to {sum}, normalised to 1"))
+            .into_iter()
+            .collect();
+        let arenas = rooms.experiment.arenas();
+        let rooms = arenas.iter().map(|a| a.room().clone()).collect();
+        let experiment = Experiment::with_terms(&resolved, rooms, user, source_name)?;
+        Ok(Setup {
+            raw: resolved,
+            experiment,
+            notes,
+        })
+    }
+}
 
 impl Experiment {
     /// Evaluates one individual as [`Experiment::evaluate`] does (the same [`Evaluation`], bit
@@ -74,7 +117,32 @@ impl Experiment {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+    use crate::experiment::BuiltinRoomsOnly;
     use crate::experiment::testing::{ORIENTED, experiment};
+
+    /// A motivation may weigh a term the front supplies once it is registered; without it the
+    /// config is refused naming the motivation, and weights are normalised as `resolve` does.
+    #[test]
+    fn a_supplied_term_resolves_only_when_registered() {
+        let text = "rooms = [\"H\", \"T\"]\n[motivations]\ncuriosity = 0.3\nhoming = 0.1\norientation = 0.0\nenergy = 0.1\nsmooth = { weight = 0.5004, term = \"smoothness\" }\n";
+        let raw = RawConfig::parse(text, "c.toml", &[]).unwrap();
+        let user = [UserTerm::supplied("smoothness")];
+        let setup =
+            Setup::resolve_with_terms(raw.clone(), "c.toml", &BuiltinRoomsOnly, &user).unwrap();
+        assert_eq!(setup.experiment.motivations().len(), 5);
+        assert_eq!(setup.experiment.room_names(), ["H", "T"]);
+        assert_eq!(setup.experiment.user_terms().len(), 1);
+        assert_eq!(setup.notes.len(), 1, "{:?}", setup.notes);
+        let sum: f64 = setup.experiment.motivations().weights().iter().sum();
+        assert!((sum - 1.0).abs() < 1e-12, "{sum}");
+        let Err(SetupError::Field(e)) =
+            Setup::resolve_with_terms(raw, "c.toml", &BuiltinRoomsOnly, &[])
+        else {
+            panic!("an unregistered term resolved");
+        };
+        assert_eq!(e.field, "motivations.smooth", "{e}");
+    }
 
     /// The recorded evaluation is the GA's own, bit for bit (F and every term), under the
     /// paper's model, online orientation and a mission term; each room's trajectory has T + 1
