@@ -180,3 +180,13 @@ def test_a_problem_with_terms_pickles_and_evolves_with_ga():
         ga.tell(ev.fitness, ev.terms)
     assert np.all((ga.history["smooth"] > 0) & (ga.history["smooth"] <= 1))
     assert ga.best is not None
+
+
+def test_guide_term_of_your_own_runs_as_written(doc_blocks, capsys):
+    """docs/guide/motivations.md, "A term of your own, in Python": the block runs and prints
+    the five inputs and three generations' mean smoothness."""
+    (code,) = doc_blocks("docs/guide/motivations.md", "## 6. A term of your own, in Python")
+    exec(compile(code, "docs/guide/motivations.md (own term)", "exec"), {})
+    out = capsys.readouterr().out.splitlines()
+    assert out[0] == "['a', 'g', 'l', 'b', 'smoothness']"
+    assert out[1].startswith("[") and len(out[1].strip("[]").split()) == 3
