@@ -386,7 +386,8 @@ class GA:
     @classmethod
     def from_state(cls, state: Mapping[str, Any], problem: Optional[Problem] = None) -> "GA":
         """A GA from :attr:`state`; ``problem`` (optional) must be made from the same config;
-        without it one is made from the state's config."""
+        without it one is made from the state's config (a problem with terms of its own,
+        ``terms=``, must be given: the state holds no functions)."""
         if not isinstance(state, Mapping):
             raise FuzzymotivError(f"state: expected the dict of GA.state, got {type(state).__name__}")
         try:
