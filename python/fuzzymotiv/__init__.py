@@ -56,6 +56,7 @@ from .rollouts import (
 from .sweeps import Job, Plan, SweepResult, merge, plan, run_job, sweep
 from .real_robot import export_controller
 from .tables import Table
+from .trials import TermFunction, Trials
 
 __all__ = [
     "DESCRIPTORS",
@@ -83,6 +84,8 @@ __all__ = [
     "RunResult",
     "SweepResult",
     "Table",
+    "TermFunction",
+    "Trials",
     "Trajectory",
     "export_controller",
     "export_fll",

@@ -16,6 +16,7 @@ from ._checks import FloatArray, _float_array
 from ._fuzzymotiv import DependencyNotInstalled, FuzzymotivError
 from .config import Config, Overrides, _config_args, _sets
 from .tables import Table, table_of
+from .trials import TermFunction, _supplier, _term_names
 
 __all__ = ["DESCRIPTORS", "Best", "Evaluation", "GA", "GAState", "Problem", "RunResult", "run"]
 
@@ -144,7 +145,8 @@ class Evaluation(NamedTuple):
     """F per genome, shape ``(pop,)``: the mean over the rooms of the TSK fitness; higher is
     better (in [0, 1])."""
     terms: FloatArray
-    """The fitness terms a, g, l, b per genome and room, shape ``(pop, rooms, 4)``."""
+    """The fitness terms per genome and room, shape ``(pop, rooms, N)``: one per motivation,
+    named by :attr:`Problem.term_names` (a, g, l, b for the paper's four)."""
     descriptors: Optional[FloatArray]
     """The chosen descriptors per genome and room, shape ``(pop, rooms, D)``, or None when
     none were asked for."""
@@ -159,9 +161,19 @@ class Problem:
     one problem per room: ``room=NAME``. ``threads`` sizes the pool that evaluates (results do
     not depend on it; None: all cores).
 
+    ``terms`` adds terms of your own: ``{"name": fn}``, each name one a motivation's ``term``
+    can weigh (``[motivations] smooth = { weight = 0.3, term = "name" }``). Every
+    :meth:`evaluate` calls each ``fn`` once with the generation's evaluation trials
+    (:class:`Trials`: x, y, heading, actions, sensors, ... as numpy arrays ``(pop, rooms,
+    ...)``); it returns their values ``(pop, rooms)`` in [0, 1], which set F. A value outside
+    [0, 1], NaN or the wrong shape raises :class:`FuzzymotivError` naming the term. Trials are
+    recorded only when ``terms`` is given.
+
     Attributes: ``genome_size`` (weights per genome), ``rooms`` (the rooms each genome is
-    evaluated in), ``motivations`` (C, H, O, E), ``seed``, ``run`` (``"all"`` or the room),
-    ``population`` and ``generations`` (the config's GA sizes), ``hidden``, ``steps``.
+    evaluated in), ``motivations`` (C, H, O, E; 0 for one the config lacks), ``term_names``
+    (the N fuzzy inputs' names: the last axis of ``terms``), ``seed``, ``run`` (``"all"`` or
+    the room), ``population`` and ``generations`` (the config's GA sizes), ``hidden``,
+    ``steps``.
 
     >>> p = Problem(overrides={"rooms": ["H", "T"], "trial.steps": 50})
     >>> p.genome_size, p.rooms
@@ -180,12 +192,18 @@ class Problem:
         threads: Optional[int] = None,
         seed: Optional[int] = None,
         config_text: Optional[str] = None,
+        terms: Optional[Mapping[str, TermFunction]] = None,
     ):
         path, text = _config_args(config, config_text)
         sets = _sets(overrides)
-        self._native = _native.Problem(path, text, sets, room, threads, seed)
+        names = [] if terms is None else _term_names(terms)
+        self._terms: Dict[str, TermFunction] = {} if terms is None else dict(terms)
+        self._supply = _supplier(self._terms) if names else None
+        self._native = _native.Problem(path, text, sets, room, threads, seed, names)
         # What pickling needs to make this problem again (the file made absolute).
-        self._made_from = (path and os.path.abspath(path), text, sets, room, threads, seed)
+        self._made_from = (
+            path and os.path.abspath(path), text, sets, room, threads, seed, self._terms or None
+        )
         self.genome_size: int = self._native.genome_size
         self.rooms: List[str] = self._native.rooms
         self.motivations: Tuple[float, float, float, float] = self._native.motivations
@@ -194,6 +212,7 @@ class Problem:
         self.population, self.generations = self._native.ga_sizes
         self.hidden: int = self._native.hidden
         self.steps: int = self._native.steps
+        self.term_names: List[str] = self._native.term_names
 
     def evaluate(
         self,
@@ -204,8 +223,8 @@ class Problem:
         descriptors: Union[None, bool, str, Sequence[str]] = None,
     ) -> Evaluation:
         """Evaluate a ``(pop, genome_size)`` array of genomes: :class:`Evaluation` of numpy
-        arrays ``fitness`` (pop,) — F, higher is better —, ``terms`` (pop, rooms, 4) and
-        ``descriptors`` (pop, rooms, D).
+        arrays ``fitness`` (pop,) — F, higher is better —, ``terms`` (pop, rooms, N), in the
+        order of :attr:`term_names`, and ``descriptors`` (pop, rooms, D).
 
         Genome i of ``generation`` g runs on the noise streams the built-in GA gives individual
         i of generation g (seed, run, g, i, room; ``seed=None``: the problem's seed), so
@@ -213,7 +232,8 @@ class Problem:
         the same call gives the same bytes on any number of threads. The GIL is released.
 
         ``descriptors``: None (default: none computed), True (all of :data:`DESCRIPTORS`), or
-        names from it, in the order wanted. Wrong shapes, anything but real numbers (complex,
+        names from it or of any term the problem measures (its :attr:`term_names`, a, g, l, b,
+        the mission terms when it weighs one, its own ``terms``), in the order wanted. Wrong shapes, anything but real numbers (complex,
         strings, objects), NaN or infinite weights raise :class:`FuzzymotivError` naming the
         argument.
         """
@@ -231,13 +251,16 @@ class Problem:
                 "descriptors: expected None, True, a name or a list of names of "
                 f"fuzzymotiv.DESCRIPTORS, got {descriptors!r}"
             )
-        fitness, terms, desc, _ = self._native.evaluate(g, generation, seed, describe, names)
+        fitness, terms, desc, _ = self._native.evaluate(
+            g, generation, seed, describe, names, self._supply
+        )
         return Evaluation(fitness, terms, desc)
 
     def __reduce__(self) -> Tuple[Any, ...]:
         """Pickles as the arguments it was made from (the config file's absolute path or the
-        config text, the overrides, room, threads, seed): unpickling builds the same problem
-        again, which evaluates to the same bytes (the file must still be there)."""
+        config text, the overrides, room, threads, seed, terms: their functions pickle by
+        reference): unpickling builds the same problem again, which evaluates to the same bytes
+        (the file must still be there)."""
         return (_problem_again, self._made_from)
 
     def __repr__(self) -> str:
@@ -250,9 +273,10 @@ class Problem:
 def _problem_again(
     path: Optional[str], text: Optional[str], sets: List[str], room: Optional[str],
     threads: Optional[int], seed: Optional[int],
+    terms: Optional[Mapping[str, TermFunction]] = None,
 ) -> Problem:
     """A :class:`Problem` from the arguments :meth:`Problem.__reduce__` saved."""
-    return Problem(path, sets, room=room, threads=threads, seed=seed, config_text=text)
+    return Problem(path, sets, room=room, threads=threads, seed=seed, config_text=text, terms=terms)
 
 
 class Best(NamedTuple):
@@ -282,8 +306,9 @@ class GA:
     """The built-in genetic algorithm (docs/model.md §6) as ask/tell steps.
 
     ``ga.ask()`` gives the current generation's genomes (``(pop, genome_size)``);
-    ``ga.tell(F, terms=None)`` takes their F (higher is better; ``terms`` only feed the
-    logged means of a, g, l, b) and breeds the next generation. Asking, evaluating with
+    ``ga.tell(F, terms=None)`` takes their F (higher is better; ``terms`` ``(pop, rooms, N)``,
+    as :meth:`Problem.evaluate` returns them, only feed the logged means of a, g, l, b and of
+    the problem's other :attr:`Problem.term_names`) and breeds the next generation. Asking, evaluating with
     ``problem.evaluate(genomes, generation=ga.generation, seed=ga.seed)`` and telling is
     exactly :func:`run`'s evolution: ``ga.history`` equals its ``generations``.
 
@@ -320,11 +345,11 @@ class GA:
 
     def tell(self, fitness: Any, terms: Any = None) -> None:
         """F of the genomes of :meth:`ask` (higher is better), optionally their terms
-        ``(pop, rooms, 4)``; breeds the next generation. Each tell needs an :meth:`ask` of
+        ``(pop, rooms, N)`` (N = ``len(problem.term_names)``); breeds the next generation. Each tell needs an :meth:`ask` of
         its generation first (a restored GA's too): telling before asking, or twice, raises
         :class:`FuzzymotivError`."""
         f = _float_array("F", fitness, 1, "one value per genome")
-        t = None if terms is None else _float_array("terms", terms, 3, "a (pop, rooms, 4) array")
+        t = None if terms is None else _float_array("terms", terms, 3, "a (pop, rooms, N) array")
         self._native.tell(f, t)
 
     @property
@@ -346,7 +371,8 @@ class GA:
     @property
     def history(self) -> Table:
         """Per generation told, ``generations.csv``'s columns as a :class:`Table` (a dict of
-        numpy arrays); a, g, l, b are NaN where tell had no terms."""
+        numpy arrays), then one column per other term of :attr:`Problem.term_names`; a term
+        is NaN where tell had no terms (a, g, l, b also where the problem does not weigh it)."""
         return table_of(self._native.history)
 
     @property
@@ -360,7 +386,8 @@ class GA:
     @classmethod
     def from_state(cls, state: Mapping[str, Any], problem: Optional[Problem] = None) -> "GA":
         """A GA from :attr:`state`; ``problem`` (optional) must be made from the same config;
-        without it one is made from the state's config."""
+        without it one is made from the state's config (a problem with terms of its own,
+        ``terms=``, must be given: the state holds no functions)."""
         if not isinstance(state, Mapping):
             raise FuzzymotivError(f"state: expected the dict of GA.state, got {type(state).__name__}")
         try:

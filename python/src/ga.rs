@@ -11,7 +11,7 @@ use fuzzymotiv::experiment::GenerationRecord;
 use fuzzymotiv::experiment::RawConfig;
 use fuzzymotiv::experiment::{Evaluation, RoomScore};
 use fuzzymotiv::experiment::{Experiment, Run};
-use fuzzymotiv::fitness::FitnessTerms;
+use fuzzymotiv::fitness::{FitnessTerms, MissionTerms, TermId, UserValues};
 use fuzzymotiv_io::files::inputs::resolve;
 use fuzzymotiv_io::pipeline::continuation::{continue_runs, finished_config};
 use numpy::{
@@ -65,6 +65,53 @@ struct Row {
     min: f64,
     max: f64,
     terms: Option<[f64; 4]>,
+    /// The mean of each input term beyond a, g, l, b (mission and user terms), in input order;
+    /// absent for the paper's four or when `tell` was given no terms.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    inputs: Option<Vec<f64>>,
+}
+
+/// The input terms of `exp` beyond the paper's a, g, l, b, in input order.
+fn other_inputs(exp: &Experiment) -> Vec<TermId> {
+    (exp.input_terms().iter().copied())
+        .filter(|id| !matches!(id, TermId::A | TermId::G | TermId::L | TermId::B))
+        .collect()
+}
+
+/// Terms with the values of `exp`'s inputs (in input order); a, g, l, b not among them NaN.
+fn terms_of(exp: &Experiment, values: &[f64]) -> FitnessTerms {
+    let mut t = FitnessTerms {
+        a: f64::NAN,
+        g: f64::NAN,
+        l: f64::NAN,
+        b: f64::NAN,
+        ..Default::default()
+    };
+    t.user = UserValues::zeros(exp.user_terms().len());
+    for (&id, &v) in exp.input_terms().iter().zip(values) {
+        set_term(&mut t, id, v);
+    }
+    t
+}
+
+/// Sets term `id` of `t` to `v`.
+fn set_term(t: &mut FitnessTerms, id: TermId, v: f64) {
+    match id {
+        TermId::A => t.a = v,
+        TermId::G => t.g = v,
+        TermId::L => t.l = v,
+        TermId::B => t.b = v,
+        TermId::User(k) => t.user.as_mut_slice()[k] = v,
+        mission => {
+            let m = t.mission.get_or_insert_with(MissionTerms::default);
+            match mission {
+                TermId::Goal => m.goal = v,
+                TermId::Urgency => m.urgency = v,
+                TermId::Waypoints => m.waypoints = v,
+                _ => m.safety = v,
+            }
+        }
+    }
 }
 
 /// The best genome told so far (the first of the highest F).
@@ -109,30 +156,20 @@ fn finite_values<'a>(
 }
 
 impl Ga {
-    fn record(
-        &self,
-        fitness: &[f64],
-        terms: Option<&[[f64; 4]]>,
-        rooms: usize,
-    ) -> GenerationRecord {
+    fn record(&self, fitness: &[f64], terms: Option<&[f64]>, rooms: usize) -> GenerationRecord {
+        let inputs = self.exp.input_terms().len();
         match terms {
             Some(terms) => {
                 let evals: Vec<Evaluation> = fitness
                     .iter()
-                    .zip(terms.chunks(rooms))
+                    .zip(terms.chunks(rooms * inputs))
                     .map(|(&f, t)| Evaluation {
                         fitness: f,
                         per_room: t
-                            .iter()
-                            .map(|&[a, g, l, b]| RoomScore {
+                            .chunks(inputs)
+                            .map(|values| RoomScore {
                                 f: 0.0,
-                                terms: FitnessTerms {
-                                    a,
-                                    g,
-                                    l,
-                                    b,
-                                    ..Default::default()
-                                },
+                                terms: terms_of(&self.exp, values),
                                 executed: 0,
                             })
                             .collect(),
@@ -143,13 +180,7 @@ impl Ga {
             None => GenerationRecord {
                 generation: self.generation,
                 stats: Stats::of(fitness),
-                terms: FitnessTerms {
-                    a: f64::NAN,
-                    g: f64::NAN,
-                    l: f64::NAN,
-                    b: f64::NAN,
-                    ..Default::default()
-                },
+                terms: terms_of(&self.exp, &vec![f64::NAN; inputs]),
             },
         }
     }
@@ -222,13 +253,15 @@ impl Ga {
             "expected the F of each genome of ask()",
         )?;
         let rooms = self.run.rooms.len();
-        let terms: Option<Vec<[f64; 4]>> = match terms {
+        let inputs = self.exp.input_terms().len();
+        let terms: Option<Vec<f64>> = match terms {
             None => None,
             Some(t) => {
                 let shape = t.shape();
-                if shape != [n, rooms, 4] {
+                if shape != [n, rooms, inputs] {
                     return Err(input_err(format!(
-                        "terms: expected shape ({n}, {rooms}, 4) (genomes, rooms, a g l b), got {shape:?}"
+                        "terms: expected shape ({n}, {rooms}, {inputs}) (genomes, rooms, the terms {}), got {shape:?}",
+                        self.exp.motivations().input_names().join(" ")
                     )));
                 }
                 let view = t.as_array();
@@ -238,14 +271,7 @@ impl Ga {
                         .map(|((i, r, k), v)| (format!("individual {i}, room {r}, term {k}"), v)),
                     "expected the terms problem.evaluate returned",
                 )?;
-                Some(
-                    view.as_standard_layout()
-                        .as_slice()
-                        .expect("standard layout")
-                        .chunks(4)
-                        .map(|c| [c[0], c[1], c[2], c[3]])
-                        .collect(),
-                )
+                Some(view.iter().copied().collect())
             }
         };
         let record = self.record(&f, terms.as_deref(), rooms);
@@ -313,12 +339,19 @@ impl Ga {
         d.set_item("g", col(&|r| r.terms.g))?;
         d.set_item("l", col(&|r| r.terms.l))?;
         d.set_item("b", col(&|r| r.terms.b))?;
+        let names = self.exp.motivations().input_names();
+        for (name, &id) in names.iter().zip(self.exp.input_terms()) {
+            if !matches!(id, TermId::A | TermId::G | TermId::L | TermId::B) {
+                d.set_item(name, col(&|r| r.terms.get(id)))?;
+            }
+        }
         d.set_item("room", vec![self.run.label.clone(); h.len()])?;
         Ok(d)
     }
 
     /// The state as JSON text (`fuzzymotiv.GA.state` parses it into a dict).
     fn state_json(&self) -> String {
+        let others = other_inputs(&self.exp);
         let state = State {
             format: FORMAT.into(),
             version: VERSION,
@@ -338,6 +371,8 @@ impl Ga {
                     min: r.stats.min,
                     max: r.stats.max,
                     terms: Some(r.terms.as_array()).filter(|t| t.iter().all(|v| v.is_finite())),
+                    inputs: Some(others.iter().map(|&id| r.terms.get(id)).collect::<Vec<_>>())
+                        .filter(|v| !v.is_empty() && v.iter().all(|v| v.is_finite())),
                 })
                 .collect(),
             best: self.best.clone(),
@@ -459,11 +494,17 @@ impl Ga {
                 state.generation
             )));
         }
+        let others = other_inputs(&exp);
         let history = state
             .history
             .iter()
             .map(|r| {
-                let [a, g, l, b] = r.terms.unwrap_or([f64::NAN; 4]);
+                let mut terms = terms_of(&exp, &[]);
+                [terms.a, terms.g, terms.l, terms.b] = r.terms.unwrap_or([f64::NAN; 4]);
+                for (k, &id) in others.iter().enumerate() {
+                    let v = r.inputs.as_ref().and_then(|v| v.get(k).copied());
+                    set_term(&mut terms, id, v.unwrap_or(f64::NAN));
+                }
                 GenerationRecord {
                     generation: r.generation,
                     stats: Stats {
@@ -472,13 +513,7 @@ impl Ga {
                         min: r.min,
                         max: r.max,
                     },
-                    terms: FitnessTerms {
-                        a,
-                        g,
-                        l,
-                        b,
-                        ..Default::default()
-                    },
+                    terms,
                 }
             })
             .collect();

@@ -50,6 +50,7 @@ mod gym;
 mod problem;
 mod stats;
 mod sweep;
+mod terms;
 
 // Module `fuzzymotiv` (where the package exports it), so that the error pickles: executors
 // (Dask, submitit) send a job's error back to the process that waits for it.

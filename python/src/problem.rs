@@ -15,13 +15,14 @@ use fuzzymotiv::experiment::Descriptors;
 use fuzzymotiv::experiment::Evaluation;
 use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::experiment::{RawConfig, Training};
-use fuzzymotiv_io::files::inputs::resolve;
+use fuzzymotiv::fitness::{LIBRARY_TERMS, TermId};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 
-use crate::{config_err, input_err, load, py_float, seed_arg, thread_pool, whole_number};
+use crate::terms::{load_with_terms, record, resolve_with_terms, supplied_values};
+use crate::{config_err, input_err, py_float, seed_arg, thread_pool, whole_number};
 
 /// Distinct seeds whose experiments a problem keeps (besides its own).
 const SEEDS_KEPT: usize = 4;
@@ -36,6 +37,8 @@ pub struct Problem {
     pool: Option<rayon::ThreadPool>,
     /// Experiments built for other seeds, most recent last.
     others: Mutex<Vec<(u64, Arc<Experiment>)>>,
+    /// The names of the terms Python supplies (`terms=`), in registration order.
+    user: Vec<String>,
 }
 
 impl Problem {
@@ -51,7 +54,7 @@ impl Problem {
         let mut raw = self.raw.clone();
         raw.seed = seed;
         let exp = Arc::new(
-            resolve(raw, Path::new("."), "(problem)")
+            resolve_with_terms(raw, Path::new("."), "(problem)", &self.user)
                 .map_err(config_err)?
                 .experiment,
         );
@@ -138,31 +141,67 @@ fn index_arg(arg: &str, obj: &Bound<'_, PyAny>) -> PyResult<usize> {
     }
 }
 
-/// Descriptor indices from names (`None`: all of them, in [`Descriptors::NAMES`] order).
-fn descriptor_columns(names: Option<Vec<String>>) -> PyResult<Vec<usize>> {
+/// A descriptor column: one of [`Descriptors::NAMES`], or a fitness term by name.
+#[derive(Clone, Copy)]
+enum Column {
+    Descriptor(usize),
+    Term(TermId),
+}
+
+/// The terms `exp` measures, by name: its inputs (`term_names`), then the library's terms it
+/// measures (a, g, l, b; the mission terms when a motivation weighs one) and its user terms.
+fn measured_terms(exp: &Experiment) -> Vec<(String, TermId)> {
+    let mut named: Vec<(String, TermId)> = (exp.motivations().input_names().into_iter())
+        .zip(exp.input_terms().iter().copied())
+        .collect();
+    let library = LIBRARY_TERMS
+        .iter()
+        .take(if exp.measures_mission() { 8 } else { 4 })
+        .map(|&n| (n.to_string(), TermId::library(n).expect("a library term")));
+    let user =
+        (exp.user_terms().iter().enumerate()).map(|(k, u)| (u.name.clone(), TermId::User(k)));
+    for (name, id) in library.chain(user) {
+        if !named.iter().any(|(n, _)| *n == name) {
+            named.push((name, id));
+        }
+    }
+    named
+}
+
+/// Descriptor columns from names (`None`: all of [`Descriptors::NAMES`], in order); a name
+/// that is no descriptor may be any term the experiment measures.
+fn descriptor_columns(names: Option<Vec<String>>, exp: &Experiment) -> PyResult<Vec<Column>> {
     let Some(names) = names else {
-        return Ok((0..Descriptors::NAMES.len()).collect());
+        return Ok((0..Descriptors::NAMES.len())
+            .map(Column::Descriptor)
+            .collect());
     };
+    let terms = measured_terms(exp);
     names
         .iter()
         .map(|n| {
-            Descriptors::NAMES
-                .iter()
-                .position(|k| k == n)
-                .ok_or_else(|| {
-                    input_err(format!(
-                        "descriptors: unknown descriptor {n:?}; expected some of {:?}",
-                        Descriptors::NAMES
-                    ))
-                })
+            if let Some(k) = Descriptors::NAMES.iter().position(|k| k == n) {
+                return Ok(Column::Descriptor(k));
+            }
+            if let Some((_, id)) = terms.iter().find(|(t, _)| t == n) {
+                return Ok(Column::Term(*id));
+            }
+            let terms: Vec<&str> = terms.iter().map(|(t, _)| t.as_str()).collect();
+            Err(input_err(format!(
+                "descriptors: unknown descriptor {n:?}; expected some of {:?} or of the terms {terms:?}",
+                Descriptors::NAMES
+            )))
         })
         .collect()
 }
 
+/// The evaluations of a population, with each room's descriptors when asked for.
+type Evaluated = (Vec<Evaluation>, Option<Vec<Vec<Descriptors>>>);
+
 #[pymethods]
 impl Problem {
     #[new]
-    #[pyo3(signature = (config_path=None, config_text=None, sets=Vec::new(), room=None, threads=None, seed=None))]
+    #[pyo3(signature = (config_path=None, config_text=None, sets=Vec::new(), room=None, threads=None, seed=None, terms=Vec::new()))]
     fn new(
         config_path: Option<PathBuf>,
         config_text: Option<String>,
@@ -170,11 +209,18 @@ impl Problem {
         room: Option<String>,
         threads: Option<Bound<'_, PyAny>>,
         seed: Option<Bound<'_, PyAny>>,
+        terms: Vec<String>,
     ) -> PyResult<Problem> {
         let pool = thread_pool(threads.as_ref())?;
         let seed = seed.as_ref().map(seed_arg).transpose()?;
-        let loaded = load(config_path.as_deref(), config_text.as_deref(), &sets, seed)
-            .map_err(config_err)?;
+        let loaded = load_with_terms(
+            config_path.as_deref(),
+            config_text.as_deref(),
+            &sets,
+            seed,
+            &terms,
+        )
+        .map_err(config_err)?;
         let exp = loaded.experiment;
         let runs = exp.runs();
         let labels: Vec<&str> = runs.iter().map(|r| r.label.as_str()).collect();
@@ -207,7 +253,21 @@ impl Problem {
             run,
             pool,
             others: Mutex::new(Vec::new()),
+            user: terms,
         })
+    }
+
+    /// The names of the TSK's inputs, one per motivation, in order (`a`, `g`, `l`, `b` for
+    /// the paper's four): the last axis of `evaluate`'s terms.
+    #[getter]
+    fn term_names(&self) -> Vec<String> {
+        self.exp.motivations().input_names()
+    }
+
+    /// The names of the terms Python supplies, in registration order.
+    #[getter]
+    fn user_terms(&self) -> Vec<String> {
+        self.user.clone()
     }
 
     /// Weights per genome.
@@ -268,10 +328,12 @@ impl Problem {
     }
 
     /// `(F, terms, descriptors or None, executed steps)` of a population: F `(pop,)`, terms
-    /// `(pop, rooms, 4)`, descriptors `(pop, rooms, D)` in the order of `descriptors` (when
-    /// `describe`).
-    #[pyo3(signature = (genomes, generation, seed=None, describe=false, descriptors=None))]
-    #[allow(clippy::type_complexity)]
+    /// `(pop, rooms, N)` in the order of `term_names`, descriptors `(pop, rooms, D)` in the
+    /// order of `descriptors` (when `describe`). With supplied terms, `supply(trials)` is
+    /// called once with the generation's evaluation trials (a dict of arrays) and returns their
+    /// values `(pop, rooms, U)`, which set F.
+    #[pyo3(signature = (genomes, generation, seed=None, describe=false, descriptors=None, supply=None))]
+    #[allow(clippy::type_complexity, clippy::too_many_arguments)]
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
@@ -280,6 +342,7 @@ impl Problem {
         seed: Option<Bound<'py, PyAny>>,
         describe: bool,
         descriptors: Option<Vec<String>>,
+        supply: Option<Bound<'py, PyAny>>,
     ) -> PyResult<(
         Bound<'py, PyArray1<f64>>,
         Bound<'py, PyAny>,
@@ -288,39 +351,44 @@ impl Problem {
     )> {
         let generation = index_arg("generation", &generation)?;
         let seed = seed.as_ref().map(seed_arg).transpose()?;
-        let columns = descriptor_columns(descriptors)?;
         let exp = self.experiment_for(seed)?;
+        let columns = descriptor_columns(descriptors, &exp)?;
         let population = genomes_arg("genomes", &genomes, &exp)?;
-        let run = &self.run;
-        let (evals, described): (Vec<Evaluation>, Option<Vec<Vec<Descriptors>>>) =
-            self.compute(py, || {
-                if describe {
-                    let (e, d) = exp
-                        .evaluate_population_described(&population, run, generation)
-                        .into_iter()
-                        .unzip();
-                    (e, Some(d))
-                } else {
-                    (exp.evaluate_population(&population, run, generation), None)
-                }
-            })?;
-        let (n, rooms) = (evals.len(), run.rooms.len());
+        let (mut evals, described) = self.evaluated(
+            py,
+            &exp,
+            &population,
+            generation,
+            describe,
+            &columns,
+            supply.as_ref(),
+        )?;
+        let (n, rooms) = (evals.len(), self.run.rooms.len());
         let fitness: Vec<f64> = evals.iter().map(|e| e.fitness).collect();
+        let inputs = exp.input_terms();
         let terms: Vec<f64> = evals
             .iter()
-            .flat_map(|e| e.per_room.iter().flat_map(|s| s.terms.as_array()))
+            .flat_map(|e| {
+                e.per_room
+                    .iter()
+                    .flat_map(|s| inputs.iter().map(|&id| s.terms.get(id)))
+            })
             .collect();
-        let terms = Array3::from_shape_vec((n, rooms, 4), terms).expect("pop × rooms × 4");
+        let terms =
+            Array3::from_shape_vec((n, rooms, inputs.len()), terms).expect("pop × rooms × N");
         let executed = evals.iter().map(Evaluation::executed).sum();
-        let described = described.map(|d| {
-            let flat: Vec<f64> = d
-                .iter()
-                .flatten()
-                .flat_map(|x| {
-                    let all = x.as_array();
-                    columns.iter().map(move |&c| all[c])
-                })
-                .collect();
+        let described = describe.then(|| {
+            let mut flat = Vec::with_capacity(n * rooms * columns.len());
+            for (i, e) in evals.iter_mut().enumerate() {
+                for (r, s) in e.per_room.iter().enumerate() {
+                    flat.extend(columns.iter().map(|c| match *c {
+                        Column::Descriptor(k) => {
+                            described.as_ref().expect("described")[i][r].as_array()[k]
+                        }
+                        Column::Term(id) => s.terms.get(id),
+                    }));
+                }
+            }
             Array3::from_shape_vec((n, rooms, columns.len()), flat)
                 .expect("pop × rooms × D")
                 .into_pyarray(py)
@@ -332,6 +400,61 @@ impl Problem {
             described,
             executed,
         ))
+    }
+}
+
+impl Problem {
+    /// The population's evaluations (the supplied terms filled in, F refitted) and, when some
+    /// column is a descriptor, each room's descriptors (then, with supplied terms, the trials
+    /// run once more to be recorded).
+    #[allow(clippy::too_many_arguments)]
+    fn evaluated(
+        &self,
+        py: Python<'_>,
+        exp: &Experiment,
+        population: &Population,
+        generation: usize,
+        describe: bool,
+        columns: &[Column],
+        supply: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Evaluated> {
+        let run = &self.run;
+        let descriptors = describe && columns.iter().any(|c| matches!(c, Column::Descriptor(_)));
+        let supplied = !exp.user_terms().is_empty();
+        let supply = match (supplied, supply) {
+            (false, _) => None,
+            (true, Some(f)) => Some(f),
+            (true, None) => {
+                return Err(input_err(
+                    "terms: this problem has terms of its own, and evaluate was given no function to compute them",
+                ));
+            }
+        };
+        let (evals, described): Evaluated = self.compute(py, || match (descriptors, supplied) {
+            (true, _) => {
+                let (e, d) = exp
+                    .evaluate_population_described(population, run, generation)
+                    .into_iter()
+                    .unzip();
+                (e, Some(d))
+            }
+            (false, false) => (exp.evaluate_population(population, run, generation), None),
+            (false, true) => (Vec::new(), None),
+        })?;
+        let Some(supply) = supply else {
+            return Ok((evals, described));
+        };
+        let recorded = self.compute(py, || {
+            exp.evaluate_population_recorded(population, run, generation)
+        })?;
+        let trials = record(py, exp, &self.rooms(), &recorded)?;
+        let values = supply.call1((trials,))?;
+        let mut evals: Vec<Evaluation> = recorded.into_iter().map(|(e, _)| e).collect();
+        supplied_values(&values, &self.user, &mut evals)?;
+        for e in &mut evals {
+            exp.refit(e);
+        }
+        Ok((evals, described))
     }
 }
 

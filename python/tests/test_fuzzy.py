@@ -172,3 +172,26 @@ def test_docstring_examples_run():
         assert failures == 0, module.__name__
         total += tried
     assert total >= 20
+
+
+def test_fll_with_five_motivations_agrees_with_pyfuzzylite_and_the_cli(cli, tmp_path):
+    """N = 5 (the paper's four and urgency): the CLI's FLL export, evaluated by pyfuzzylite,
+    gives the F of `fuzzymotiv fuzzy --fitness name=value,…` to 1e-9."""
+    fl = pytest.importorskip("fuzzylite")
+    x = "curiosity=0.5,homing=0.1,orientation=0,energy=0.1,urgency=0.3"
+    path = tmp_path / "five.fll"
+    run_cli(cli, "fuzzy", "--motivations", x, "--export-fll", path)
+    engine = fl.FllImporter().from_string(path.read_text())
+    assert len(engine.rule_blocks[0].rules) == 5**5
+    names = ["a", "g", "l", "b", "urgency"]
+    y = np.random.default_rng(5).random((12, 5))
+    y[:3] = np.round(y[:3] * 4) / 4  # exactly on the peaks
+    y[3] = [0, 1, 0, 1, 0]
+    for i, name in enumerate(names):
+        engine.input_variable(name).value = y[:, i]
+    engine.process()
+    theirs = np.asarray(engine.output_variable("F").value, dtype=float)
+    for row, f in zip(y, theirs):
+        values = ",".join(f"{n}={v!r}" for n, v in zip(names, row))
+        out = run_cli(cli, "fuzzy", "--motivations", x, "--fitness", values).stdout
+        assert abs(float(out.split()[0]) - f) < 1e-9, (values, out, f)

@@ -12,6 +12,7 @@ pub(crate) mod evolution;
 pub(crate) mod modelling;
 pub(crate) mod outcome;
 mod plain;
+pub(crate) mod recorded;
 pub(crate) mod setup;
 pub(crate) mod terms;
 

@@ -1,0 +1,224 @@
+//! Terms Python supplies (`fm.Problem(..., terms={"name": fn})`): configs resolved with them
+//! registered, the generation's evaluation trials handed to Python as numpy arrays, and the
+//! values it returns checked and filled in.
+
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::experiment::UserTerm;
+use fuzzymotiv::experiment::{Evaluation, Experiment, RawConfig, RoomFile, RoomFiles, Setup};
+use fuzzymotiv::fitness::{LIBRARY_TERMS, TermId};
+use fuzzymotiv::simulation::Trajectory;
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::inputs::{Loaded, resolve};
+use numpy::ndarray::{Array2, Array3, Array4};
+use numpy::{IntoPyArray, PyReadonlyArray3, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::{input_err, load, py_float};
+
+/// Room files relative to a folder (the config file's), recorded absolute: as the CLI finds them.
+struct RoomDir<'a>(&'a Path);
+
+impl RoomFiles for RoomDir<'_> {
+    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        let path = self.0.join(entry);
+        if !path.is_file() {
+            return Ok(None);
+        }
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| format!("{}: cannot read room file: {e}", path.display()))?;
+        let source_name = path.display().to_string();
+        let abs: PathBuf = path.canonicalize().unwrap_or(path);
+        Ok(Some(RoomFile {
+            text,
+            source_name,
+            entry: abs.display().to_string(),
+        }))
+    }
+
+    fn looked_for(&self, entry: &str) -> String {
+        self.0.join(entry).display().to_string()
+    }
+}
+
+/// `resolve`, with the terms named `user` supplied by Python (none: `resolve` itself).
+pub(crate) fn resolve_with_terms(
+    raw: RawConfig,
+    base: &Path,
+    source: &str,
+    user: &[String],
+) -> Result<Loaded, CliError> {
+    if user.is_empty() {
+        return resolve(raw, base, source);
+    }
+    let user: Vec<UserTerm> = user.iter().map(UserTerm::supplied).collect();
+    let setup = Setup::resolve_with_terms(raw, source, &RoomDir(base), &user)?;
+    Ok(Loaded {
+        raw: setup.raw,
+        experiment: setup.experiment,
+    })
+}
+
+/// `load`, with the terms named `user` supplied by Python.
+pub(crate) fn load_with_terms(
+    config_path: Option<&Path>,
+    config_text: Option<&str>,
+    sets: &[String],
+    seed: Option<u64>,
+    user: &[String],
+) -> Result<Loaded, CliError> {
+    if user.is_empty() {
+        return load(config_path, config_text, sets, seed);
+    }
+    let mut sets = sets.to_vec();
+    if let Some(s) = seed {
+        sets.push(format!("seed={s}"));
+    }
+    let (text, source, base) = match (config_text, config_path) {
+        (Some(text), _) => (text.to_string(), "(config text)".into(), PathBuf::from(".")),
+        (None, Some(p)) => {
+            let text = std::fs::read_to_string(p).map_err(|e| {
+                CliError::input(format!("{}: cannot read config file: {e}", p.display()))
+            })?;
+            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
+            (text, p.display().to_string(), base)
+        }
+        (None, None) => (
+            String::new(),
+            "(built-in defaults)".into(),
+            PathBuf::from("."),
+        ),
+    };
+    let raw = RawConfig::parse(&text, &source, &sets)?;
+    resolve_with_terms(raw, &base, &source, user)
+}
+
+/// A `(pop, rooms, len)` array of `f(trajectory)`'s values.
+fn per_step<'py, T: numpy::Element + Copy>(
+    py: Python<'py>,
+    recorded: &[(Evaluation, Vec<Trajectory>)],
+    len: usize,
+    f: impl Fn(&Trajectory) -> Vec<T>,
+) -> Bound<'py, PyAny> {
+    let rooms = recorded.first().map_or(0, |(_, t)| t.len());
+    let flat: Vec<T> = recorded
+        .iter()
+        .flat_map(|(_, ts)| ts.iter().flat_map(&f))
+        .collect();
+    Array3::from_shape_vec((recorded.len(), rooms, len), flat)
+        .expect("pop × rooms × len")
+        .into_pyarray(py)
+        .into_any()
+}
+
+/// The generation's evaluation trials as the dict `fuzzymotiv.Trials` is made from.
+pub(crate) fn record<'py>(
+    py: Python<'py>,
+    exp: &Experiment,
+    rooms: &[String],
+    recorded: &[(Evaluation, Vec<Trajectory>)],
+) -> PyResult<Bound<'py, PyDict>> {
+    let steps = exp.trial_params().steps();
+    let (pop, n_rooms) = (recorded.len(), rooms.len());
+    let d = PyDict::new(py);
+    let poses = steps + 1;
+    d.set_item(
+        "x",
+        per_step(py, recorded, poses, |t| {
+            t.poses.iter().map(|p| p.x).collect()
+        }),
+    )?;
+    d.set_item(
+        "y",
+        per_step(py, recorded, poses, |t| {
+            t.poses.iter().map(|p| p.y).collect()
+        }),
+    )?;
+    d.set_item(
+        "heading",
+        per_step(py, recorded, poses, |t| {
+            t.poses.iter().map(|p| p.heading).collect()
+        }),
+    )?;
+    d.set_item(
+        "actions",
+        per_step(py, recorded, steps, |t| {
+            t.actions.iter().map(|&a| a as i64).collect()
+        }),
+    )?;
+    d.set_item(
+        "collisions",
+        per_step(py, recorded, steps, |t| t.collisions.clone()),
+    )?;
+    d.set_item("idle", per_step(py, recorded, steps, |t| t.idle.clone()))?;
+    d.set_item(
+        "energy",
+        per_step(py, recorded, steps, |t| t.energy.clone()),
+    )?;
+    let sensors: Vec<f64> = (recorded.iter())
+        .flat_map(|(_, ts)| ts.iter().flat_map(|t| t.sensors.iter().flatten().copied()))
+        .collect();
+    let width = sensors.len() / (pop * n_rooms * steps).max(1);
+    d.set_item(
+        "sensors",
+        Array4::from_shape_vec((pop, n_rooms, steps, width), sensors)
+            .expect("pop × rooms × T × sensors")
+            .into_pyarray(py),
+    )?;
+    let executed: Vec<i64> = (recorded.iter())
+        .flat_map(|(e, _)| e.per_room.iter().map(|s| s.executed as i64))
+        .collect();
+    d.set_item(
+        "executed",
+        Array2::from_shape_vec((pop, n_rooms), executed)
+            .expect("pop × rooms")
+            .into_pyarray(py),
+    )?;
+    d.set_item("rooms", rooms.to_vec())?;
+    let terms = PyDict::new(py);
+    let measured = if exp.measures_mission() { 8 } else { 4 };
+    for name in &LIBRARY_TERMS[..measured] {
+        let id = TermId::library(name).expect("a library term");
+        let values: Vec<f64> = (recorded.iter())
+            .flat_map(|(e, _)| e.per_room.iter().map(move |s| s.terms.get(id)))
+            .collect();
+        let values = Array2::from_shape_vec((pop, n_rooms), values).expect("pop × rooms");
+        terms.set_item(*name, values.into_pyarray(py))?;
+    }
+    d.set_item("terms", terms)?;
+    Ok(d)
+}
+
+/// Fills each evaluation's supplied terms from `values` `(pop, rooms, U)`: the right shape, and
+/// each value a number in [0, 1], or an error naming the term.
+pub(crate) fn supplied_values(
+    values: &Bound<'_, PyAny>,
+    names: &[String],
+    evals: &mut [Evaluation],
+) -> PyResult<()> {
+    let rooms = evals.first().map_or(0, |e| e.per_room.len());
+    let want = [evals.len(), rooms, names.len()];
+    let array: PyReadonlyArray3<'_, f64> = values.extract().map_err(|_| {
+        input_err(format!(
+            "terms {names:?}: expected their values as a float array of shape {want:?} (genomes, rooms, terms)"
+        ))
+    })?;
+    if array.shape() != want {
+        return Err(input_err(format!(
+            "terms {names:?}: expected values of shape {want:?} (genomes, rooms, terms), got {:?}",
+            array.shape()
+        )));
+    }
+    for ((i, r, k), &v) in array.as_array().indexed_iter() {
+        if !(0.0..=1.0).contains(&v) {
+            return Err(input_err(format!(
+                "terms[{:?}]: `{}` (genome {i}, room {r}) is not a number in [0, 1]; a term's value must be one",
+                names[k],
+                py_float(v)
+            )));
+        }
+        evals[i].per_room[r].terms.user.as_mut_slice()[k] = v;
+    }
+    Ok(())
+}
