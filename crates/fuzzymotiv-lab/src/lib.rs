@@ -28,6 +28,7 @@ mod compare;
 mod errors;
 pub mod limits;
 mod live;
+mod motivations;
 mod rooms;
 mod runs;
 mod security;

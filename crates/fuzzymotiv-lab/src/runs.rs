@@ -331,12 +331,13 @@ impl Runs {
     }
 }
 
-/// What the list says of a run.
+/// What the list says of a run: its motivations' weights in input order, and their names.
 fn about(s: &Settings, raw: &fuzzymotiv::experiment::RawConfig) -> Value {
-    let m = &raw.motivations;
+    let m = &raw.motivations.list;
     json!({ "name": raw.name, "seed": raw.seed, "population": s.population,
             "generations": s.generations, "rooms": raw.rooms,
-            "motivations": fuzzymotiv::fitness::PAPER_MOTIVATIONS.map(|n| m.weight_of(n).unwrap_or(0.0)) })
+            "motivations": m.iter().map(|(_, w)| w.weight()).collect::<Vec<_>>(),
+            "motivation_names": m.iter().map(|(n, _)| n).collect::<Vec<_>>() })
 }
 
 /// The finished run directories under `runs` (those of earlier sessions too).

@@ -635,3 +635,132 @@ fn finished_runs_beyond_the_newest_32_let_their_curves_go() {
     );
     assert!(!newest["paths"].is_null(), "{newest}");
 }
+
+#[test]
+fn explain_takes_named_motivations_and_terms_as_well_as_the_four_numbers() {
+    let c = Client::start();
+    let old = c.post(
+        "/api/explain",
+        &json!({ "motivations": [0.5, 0.3, 0.0, 0.2], "fitness": [0.9, 0.5, 0.0, 0.8] }),
+    );
+    assert_eq!(old.status, 200, "{}", old.body);
+    let named = c.post(
+        "/api/explain",
+        &json!({ "motivations": { "curiosity": 0.5, "homing": 0.3, "orientation": 0.0, "energy": 0.2 },
+                 "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8 } }),
+    );
+    assert_eq!(named.status, 200, "{}", named.body);
+    assert_eq!(old.json()["fitness"], named.json()["fitness"]);
+    assert_eq!(old.json()["motivations"], json!([0.5, 0.3, 0.0, 0.2]));
+
+    // Five motivations: the paper's four and urgency; every rule lists five labels.
+    let five = json!({ "curiosity": 0.5, "homing": 0.1, "orientation": 0.0, "energy": 0.1,
+                       "urgency": 0.3 });
+    let a = c.post(
+        "/api/explain",
+        &json!({ "motivations": five, "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8, "urgency": 0.7 } }),
+    );
+    assert_eq!(a.status, 200, "{}", a.body);
+    let x = a.json();
+    assert_eq!(x["inputs"], json!(["a", "g", "l", "b", "urgency"]));
+    assert_eq!(x["names"][4], "urgency");
+    let rules = x["rules"].as_array().unwrap();
+    assert!(
+        !rules.is_empty()
+            && rules
+                .iter()
+                .all(|r| r["labels"].as_array().unwrap().len() == 5)
+    );
+    let f = x["fitness"].as_f64().unwrap();
+    let slower = c.post(
+        "/api/explain",
+        &json!({ "motivations": five, "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8, "urgency": 0.0 } }),
+    );
+    assert!(
+        slower.json()["fitness"].as_f64().unwrap() < f,
+        "urgency weighs in F"
+    );
+
+    // A term left out, a term no motivation weighs, an unknown term: 400 naming the field.
+    let a = c.post(
+        "/api/explain",
+        &json!({ "motivations": five, "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8 } }),
+    );
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `fitness.urgency`: missing"),
+        "{}",
+        a.body
+    );
+    let a = c.post(
+        "/api/explain",
+        &json!({ "motivations": [0.5, 0.3, 0.0, 0.2], "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8, "goal": 1 } }),
+    );
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `fitness.goal`"),
+        "{}",
+        a.body
+    );
+    let a = c.post(
+        "/api/explain",
+        &json!({ "motivations": { "curiosity": 0.5, "energy": 0.1, "hurry": { "weight": 0.3, "term": "speed" } },
+                 "fitness": { "a": 0.9 } }),
+    );
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `motivations.hurry`"),
+        "{}",
+        a.body
+    );
+}
+
+#[test]
+fn the_sliders_follow_the_motivations_of_a_preset_or_a_loaded_config() {
+    let c = Client::start();
+    let info = c.get("/api/info").json();
+    let high = info["presets"]["motivations"]["high curiosity"]
+        .as_array()
+        .unwrap()
+        .clone();
+    let names: Vec<&str> = high.iter().map(|m| m["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["curiosity", "homing", "orientation", "energy"]);
+    assert_eq!(high[0]["weight"], 0.8);
+    assert_eq!(high[0]["term"], "a");
+    let fetch = info["presets"]["motivations"]["fetch"]
+        .as_array()
+        .unwrap()
+        .clone();
+    assert_eq!(fetch.len(), 5);
+    assert_eq!(fetch[4]["name"], "urgency");
+
+    let text = include_str!("../../../configs/fetch.toml");
+    let a = c.post("/api/config", &json!({ "toml": text }));
+    assert_eq!(a.status, 200, "{}", a.body);
+    let loaded = a.json()["motivations"].clone();
+    assert_eq!(
+        loaded,
+        json!(fetch),
+        "configs/fetch.toml has the fetch preset's motivations"
+    );
+
+    let a = c.post(
+        "/api/config",
+        &json!({ "toml": "[motivations]\ncuriosity = 0.5\nhoming = 0.1\nenergy = 0.1\nrush = { weight = 0.3, term = \"hurry\" }\n" }),
+    );
+    assert_eq!(a.status, 400);
+    let e = a.json()["error"].as_str().unwrap().to_string();
+    assert!(
+        e.starts_with("loaded config: field `motivations.rush`"),
+        "{e}"
+    );
+}

@@ -1,12 +1,17 @@
 // fuzzymotiv lab: the page's script. Plain JavaScript and SVG; talks to its own server only.
 'use strict';
 
+// The paper's four motivations and their letters; a config may add others (docs/guide/motivations.md).
 const NAMES = ['curiosity', 'homing', 'orientation', 'energy'];
-const LETTERS = ['C', 'H', 'O', 'E'];
+const LETTERS = { curiosity: 'C', homing: 'H', orientation: 'O', energy: 'E' };
+// Default values of "What would F be?" per input.
+const EXPLAIN_DEFAULTS = { a: 0.9, g: 0.5, l: 0, b: 0.8 };
 const SVGNS = 'http://www.w3.org/2000/svg';
-const COLORS = { best: '#c33', mean: '#36c', a: '#2a6', g: '#c80', l: '#86c', b: '#088' };
+const COLORS = { best: '#c33', mean: '#36c', a: '#2a6', g: '#c80', l: '#86c', b: '#088',
+  goal: '#d3a', urgency: '#a50', waypoints: '#567', safety: '#6a0' };
+const MORE_COLORS = ['#e70', '#09c', '#a3a', '#5a5', '#c66'];
 const lab = {
-  x: [0.8, 0.1, 0.0, 0.1], info: null, rooms: [], chosen: new Set(['H', 'T', 'L', 'square', 'rectangle']),
+  x: [0.8, 0.1, 0.0, 0.1], motivations: [], info: null, rooms: [], chosen: new Set(['H', 'T', 'L', 'square', 'rectangle']),
   run: null, source: null, gens: [], times: {}, draw: { outline: [], obstacles: [], home: null, current: -1 },
 };
 window.labTimes = lab.times;
@@ -49,26 +54,46 @@ async function api(method, url, body) {
 }
 
 // ---- 1. Motivations -------------------------------------------------------------------------
+// The sliders of `list` ({name, weight, term, spec}, one per motivation of the loaded config).
+function setMotivations(list) {
+  lab.motivations = list.map((m) => ({ ...m }));
+  lab.x = list.map((m) => m.weight);
+  buildSliders();
+  buildExplainInputs();
+}
+function sliderLabel(m) {
+  const name = m.name[0].toUpperCase() + m.name.slice(1);
+  return LETTERS[m.name] ? `${name} ${LETTERS[m.name]}` : `${name} (${m.term})`;
+}
 function buildSliders() {
   const box = $('sliders');
-  NAMES.forEach((name, i) => {
+  box.replaceChildren();
+  lab.motivations.forEach((m, i) => {
     const row = html('div', undefined, box);
     row.className = 'slider';
-    const label = html('label', `${name[0].toUpperCase() + name.slice(1)} ${LETTERS[i]}`, row);
-    label.htmlFor = `slider-${name}`;
+    const label = html('label', sliderLabel(m), row);
+    label.htmlFor = `slider-${m.name}`;
     const input = html('input', undefined, row);
-    Object.assign(input, { type: 'range', min: 0, max: 1, step: 0.01, id: `slider-${name}` });
-    input.setAttribute('aria-label', `${name} ${LETTERS[i]}`);
+    Object.assign(input, { type: 'range', min: 0, max: 1, step: 0.01, id: `slider-${m.name}` });
+    input.setAttribute('aria-label', sliderLabel(m));
     const out = html('output', '', row);
-    out.id = `value-${name}`;
+    out.id = `value-${m.name}`;
     input.addEventListener('input', () => setWeight(i, Number(input.value)));
   });
+  const n = lab.motivations.length;
+  $('sliders-hint').textContent = `The ${n} weights X = (${lab.motivations.map((m) => LETTERS[m.name] || m.name).join(', ')}) ` +
+    'always sum to 1: moving one slider shares the rest among the others.';
+  $('membership-title').textContent = `Membership functions of ${inputNames().join(', ')}`;
   showWeights();
+}
+// The TSK's input names: the term each motivation weighs, or its name where two weigh one term.
+function inputNames() {
+  return lab.motivations.map((m) => (lab.motivations.filter((o) => o.term === m.term).length > 1 ? m.name : m.term));
 }
 function setWeight(i, v) {
   const rest = lab.x.reduce((s, w, k) => (k === i ? s : s + w), 0);
-  const left = 1 - v;
-  lab.x = lab.x.map((w, k) => (k === i ? v : rest > 1e-9 ? (w / rest) * left : left / 3));
+  const left = 1 - v, others = Math.max(1, lab.x.length - 1);
+  lab.x = lab.x.map((w, k) => (k === i ? v : rest > 1e-9 ? (w / rest) * left : left / others));
   lab.x = lab.x.map((w) => Math.round(w * 1000) / 1000);
   const drift = 1 - lab.x.reduce((s, w) => s + w, 0);
   const fix = lab.x.findIndex((w, k) => k !== i && w + drift >= 0);
@@ -76,10 +101,41 @@ function setWeight(i, v) {
   showWeights();
 }
 function showWeights() {
-  NAMES.forEach((name, i) => {
-    $(`slider-${name}`).value = lab.x[i];
-    $(`value-${name}`).textContent = lab.x[i].toFixed(2);
+  lab.motivations.forEach((m, i) => {
+    $(`slider-${m.name}`).value = lab.x[i];
+    $(`value-${m.name}`).textContent = lab.x[i].toFixed(2);
   });
+}
+// The motivations as a config's [motivations] writes them, with the sliders' weights.
+function motivationsSpec() {
+  const out = {};
+  lab.motivations.forEach((m, i) => {
+    out[m.name] = typeof m.spec === 'number' ? lab.x[i] : { ...m.spec, weight: lab.x[i] };
+  });
+  return out;
+}
+function buildExplainInputs() {
+  const box = $('explain-inputs');
+  box.querySelectorAll('label').forEach((l) => l.remove());
+  const button = $('explain-button');
+  inputNames().forEach((name) => {
+    const label = html('label', `${name} `);
+    const input = html('input', undefined, label);
+    Object.assign(input, { type: 'number', min: 0, max: 1, step: 0.05, id: `explain-${name}`,
+      value: EXPLAIN_DEFAULTS[name] ?? 0.5 });
+    box.insertBefore(label, button);
+  });
+}
+async function loadConfig(file) {
+  try {
+    const r = await api('POST', '/api/config', { toml: await file.text() });
+    setMotivations(r.motivations);
+    $('config-message').className = 'ok';
+    $('config-message').textContent = `${file.name}: ${r.motivations.length} motivations loaded (its other settings are the lab's to set below).`;
+  } catch (e) {
+    $('config-message').className = 'error';
+    $('config-message').textContent = e.message;
+  }
 }
 function drawMembership(peaks) {
   const svg = $('membership');
@@ -95,15 +151,16 @@ function drawMembership(peaks) {
   });
 }
 async function explainF() {
-  const y = ['a', 'g', 'l', 'b'].map((k) => Number($(`explain-${k}`).value));
+  const y = {};
+  inputNames().forEach((k) => { y[k] = Number($(`explain-${k}`).value); });
   try {
-    const r = await api('POST', '/api/explain', { motivations: lab.x, fitness: y });
+    const r = await api('POST', '/api/explain', { motivations: motivationsSpec(), fitness: y });
     const out = $('explain-out');
     out.replaceChildren();
     html('p', `F = ${r.fitness.toFixed(6)} from ${r.rules.length} firing rule(s) (Σw = ${r.weight_sum.toFixed(4)})`, out).id = 'explain-f';
     const t = html('table', undefined, out);
     const head = html('tr', undefined, t);
-    ['rule', 'a is', 'g is', 'l is', 'b is', 'w', 'f'].forEach((h) => html('th', h, head));
+    ['rule', ...r.inputs.map((k) => `${k} is`), 'w', 'f'].forEach((h) => html('th', h, head));
     r.rules.slice(0, 16).forEach((rule) => {
       const tr = html('tr', undefined, t);
       [rule.number, ...rule.label_names, rule.weight.toFixed(4), rule.output.toFixed(4)].forEach((v) => html('td', String(v), tr));
@@ -294,7 +351,7 @@ function gaPreset() {
 }
 function settings() {
   return { name: $('run-name').value, seed: Number($('seed').value),
-    motivations: { curiosity: lab.x[0], homing: lab.x[1], orientation: lab.x[2], energy: lab.x[3] },
+    motivations: motivationsSpec(),
     population: Number($('population').value), generations: Number($('generations').value),
     motion: $('motion').value, rooms: lab.rooms.filter((r) => lab.chosen.has(r.entry)).map((r) => r.entry) };
 }
@@ -385,9 +442,12 @@ async function refreshRuns() {
   body.replaceChildren();
   runs.slice().reverse().forEach((r) => {
     const tr = html('tr', undefined, body);
+    const names = r.about.motivation_names || NAMES;
     const m = Array.isArray(r.about.motivations) ? r.about.motivations : NAMES.map((k) => r.about.motivations[k]);
+    const paper = names.length === 4 && names.every((n, k) => n === NAMES[k]);
     html('td', r.id, tr);
-    html('td', `(${m.map((v) => Number(v).toFixed(2)).join(', ')})`, tr);
+    html('td', paper ? `(${m.map((v) => Number(v).toFixed(2)).join(', ')})`
+      : names.map((n, k) => `${LETTERS[n] || n} ${Number(m[k]).toFixed(2)}`).join(', '), tr);
     html('td', `${r.about.population} × ${r.about.generations}`, tr);
     html('td', r.status + (r.queue_position ? ` (queue ${r.queue_position})` : ''), tr);
     const td = html('td', undefined, tr);
@@ -448,11 +508,13 @@ async function compare() {
 
 // ---- start ----------------------------------------------------------------------------------
 async function start() {
-  buildSliders();
   lab.info = await api('GET', '/api/info');
+  const presets = lab.info.presets.motivations;
+  setMotivations(presets['high curiosity']);
   drawMembership(lab.info.peaks);
-  $('preset-high').addEventListener('click', () => { lab.x = [0.8, 0.1, 0, 0.1]; showWeights(); });
-  $('preset-low').addEventListener('click', () => { lab.x = [0.5, 0.3, 0, 0.2]; showWeights(); });
+  [['preset-high', 'high curiosity'], ['preset-low', 'low curiosity'], ['preset-fetch', 'fetch']].forEach(([id, name]) =>
+    $(id).addEventListener('click', () => setMotivations(presets[name])));
+  $('config-file').addEventListener('change', (ev) => { const f = ev.target.files[0]; if (f) loadConfig(f); });
   $('explain-button').addEventListener('click', explainF);
   $('ga-preset').addEventListener('change', gaPreset);
   ['population', 'generations'].forEach((id) => $(id).addEventListener('input', () => { $('ga-preset').value = 'custom'; }));
