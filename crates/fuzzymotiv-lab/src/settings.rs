@@ -48,6 +48,10 @@ pub struct Settings {
     /// built-in rooms.
     #[serde(default)]
     pub rooms: Option<Vec<String>>,
+    /// `aem.enabled`: room recognition after the evolution (it needs two rooms or more);
+    /// default the config's (on).
+    #[serde(default)]
+    pub recognition: Option<bool>,
 }
 
 fn default_name() -> String {
@@ -88,6 +92,10 @@ impl Settings {
         if let Some(steps) = self.steps {
             let trial = Table::from_iter([("steps".to_string(), Value::Integer(steps as i64))]);
             doc.insert("trial".into(), Value::Table(trial));
+        }
+        if let Some(on) = self.recognition {
+            let aem = Table::from_iter([("enabled".to_string(), Value::Boolean(on))]);
+            doc.insert("aem".into(), Value::Table(aem));
         }
         if let Some(motion) = &self.motion {
             let robot = Table::from_iter([("motion".to_string(), Value::String(motion.clone()))]);

@@ -12,9 +12,13 @@ const COLORS = { best: '#c33', mean: '#36c', a: '#2a6', g: '#c80', l: '#86c', b:
 const MORE_COLORS = ['#e70', '#09c', '#a3a', '#5a5', '#c66'];
 const lab = {
   x: [0.8, 0.1, 0.0, 0.1], motivations: [], info: null, rooms: [], chosen: new Set(['H', 'T', 'L', 'square', 'rectangle']),
-  run: null, source: null, gens: [], times: {}, draw: { outline: [], obstacles: [], home: null, current: -1 },
+  run: null, source: null, gens: [], times: {}, draw: emptyDrawing(),
 };
 window.labTimes = lab.times;
+// A room being drawn: corners on the 10 cm grid; goal and waypoints as {x, y, radius} (mm).
+function emptyDrawing() {
+  return { outline: [], obstacles: [], home: null, current: -1, goal: null, waypoints: [] };
+}
 
 const $ = (id) => document.getElementById(id);
 function el(tag, attrs, parent) {
@@ -181,7 +185,33 @@ function roomSvg(room, svg, pad) {
   const z = room.home_zone;
   el('circle', { cx: z.centre.x, cy: -z.centre.y, r: z.radius, fill: 'none', stroke: '#2a6', 'stroke-dasharray': '12 8', 'stroke-width': 4 }, svg);
   el('circle', { cx: room.home.x, cy: -room.home.y, r: 28, fill: '#2a6' }, svg);
+  const m = room.mission || {};
+  drawMission(svg, m.goal && { x: m.goal.centre.x, y: m.goal.centre.y, radius: m.goal.radius },
+    (m.waypoints || []).map((w) => ({ x: w.centre.x, y: w.centre.y, radius: w.radius })), (y) => -y);
   return svg;
+}
+// A mission on `svg`: the goal a gold disc with a flag, the waypoints numbered in their order.
+function drawMission(svg, goal, waypoints, Y, bad) {
+  const wrong = (field) => bad && bad.field && (bad.field === field || bad.field.startsWith(`${field}.`));
+  if (waypoints.length > 1) {
+    el('polyline', { points: waypoints.map((w) => `${w.x},${Y(w.y)}`).join(' '), fill: 'none', stroke: '#567',
+      'stroke-width': 4, 'stroke-dasharray': '10 8' }, svg);
+  }
+  waypoints.forEach((w, k) => {
+    const field = `waypoints[${k}]`;
+    const c = el('circle', { cx: w.x, cy: Y(w.y), r: w.radius, fill: '#cde', 'fill-opacity': 0.7,
+      stroke: wrong(field) ? '#d00' : '#567', 'stroke-width': wrong(field) ? 12 : 4 }, svg);
+    c.setAttribute('class', 'waypoint');
+    const t = el('text', { x: w.x, y: Y(w.y) + 14, 'font-size': 40, 'text-anchor': 'middle', 'font-weight': 'bold', fill: '#234' }, svg);
+    t.textContent = String(k + 1);
+  });
+  if (goal) {
+    const c = el('circle', { cx: goal.x, cy: Y(goal.y), r: goal.radius, fill: '#fd6', 'fill-opacity': 0.75,
+      stroke: wrong('goal') ? '#d00' : '#b80', 'stroke-width': wrong('goal') ? 12 : 6 }, svg);
+    c.setAttribute('class', 'goal');
+    el('line', { x1: goal.x, y1: Y(goal.y), x2: goal.x, y2: Y(goal.y) - 70, stroke: '#333', 'stroke-width': 5 }, svg);
+    el('polygon', { points: `${goal.x},${Y(goal.y) - 70} ${goal.x + 45},${Y(goal.y) - 57} ${goal.x},${Y(goal.y) - 44}`, fill: '#c33' }, svg);
+  }
 }
 async function loadRooms() {
   lab.rooms = await api('GET', '/api/rooms');
@@ -195,15 +225,24 @@ async function loadRooms() {
     const cb = html('input', undefined, label);
     Object.assign(cb, { type: 'checkbox', checked: lab.chosen.has(r.entry), id: `room-${r.entry}` });
     cb.addEventListener('change', () => { if (cb.checked) lab.chosen.add(r.entry); else lab.chosen.delete(r.entry); });
-    label.appendChild(document.createTextNode(` ${r.room.name}${r.builtin ? '' : ' (drawn)'}`));
+    const m = r.room.mission || {};
+    const mission = [m.goal ? 'goal' : '', m.waypoints && m.waypoints.length ? `${m.waypoints.length} waypoints` : ''].filter(Boolean).join(', ');
+    label.appendChild(document.createTextNode(` ${r.room.name}${r.builtin ? '' : ' (drawn)'}${mission ? ` (${mission})` : ''}`));
+    const edit = html('button', 'Edit', d);
+    edit.type = 'button';
+    edit.className = 'small';
+    edit.title = `Copy ${r.room.name} into the editor to give it a goal and waypoints`;
+    edit.addEventListener('click', () => editRoom(r));
   });
 }
-function editorPoint(ev) {
+// The room point (mm) under the pointer: on the 10 cm grid, or to 1 cm with `fine`.
+function editorPoint(ev, fine) {
   const svg = $('room-editor');
   const pt = svg.createSVGPoint();
   pt.x = ev.clientX; pt.y = ev.clientY;
   const p = pt.matrixTransform(svg.getScreenCTM().inverse());
-  return [Math.round(p.x / 100) * 100, Math.round((1200 - p.y) / 100) * 100];
+  const g = fine ? 10 : 100;
+  return [Math.round(p.x / g) * g, Math.round((1200 - p.y) / g) * g];
 }
 function drawEditor(bad) {
   const svg = $('room-editor'), d = lab.draw;
@@ -225,12 +264,23 @@ function drawEditor(bad) {
     }
   });
   if (d.home) el('circle', { cx: d.home[0], cy: 1200 - d.home[1], r: 30, fill: '#2a6' }, svg);
+  drawMission(svg, d.goal, d.waypoints, (y) => 1200 - y, bad);
+  if (bad && bad.field && /^(goal|waypoints)/.test(bad.field)) {
+    const z = bad.field.startsWith('goal') ? d.goal : d.waypoints[Number((bad.field.match(/\d+/) || [0])[0])];
+    if (z) {
+      const t = el('text', { x: z.x + z.radius + 10, y: 1200 - z.y, 'font-size': 40, fill: '#d00' }, svg);
+      t.textContent = bad.error.split(': ').slice(-1)[0].slice(0, 60);
+    }
+  }
 }
 function drawnRoom() {
   const d = lab.draw;
   const room = { name: $('room-name').value, outline: d.outline,
     home: d.home ? { x: d.home[0], y: d.home[1], heading_deg: Number($('home-heading').value) } : { x: 0, y: 0, heading_deg: 0 } };
   if (d.obstacles.length) room.obstacles = d.obstacles.filter((o) => o.length).map((o) => ({ outline: o }));
+  if (d.homeZone) room.home_zone = { ...d.homeZone };
+  if (d.goal) room.goal = { ...d.goal };
+  if (d.waypoints.length) room.waypoints = d.waypoints.map((w) => ({ ...w }));
   return room;
 }
 async function checkRoom(save, body) {
@@ -247,10 +297,48 @@ async function checkRoom(save, body) {
     drawEditor(e.data);
   }
 }
+// Goal and waypoints: press to place the centre, drag to size (a click keeps 60 mm).
+function setupMissionDrawing(svg) {
+  let zone = null;
+  svg.addEventListener('pointerdown', (ev) => {
+    const mode = $('draw-mode').value, d = lab.draw;
+    if (mode !== 'goal' && mode !== 'waypoint') return;
+    const [x, y] = editorPoint(ev, true);
+    zone = { x, y, radius: 60 };
+    if (mode === 'goal') d.goal = zone; else d.waypoints.push(zone);
+    svg.setPointerCapture?.(ev.pointerId);
+    drawEditor();
+  });
+  svg.addEventListener('pointermove', (ev) => {
+    if (!zone) return;
+    const [x, y] = editorPoint(ev, true);
+    const r = Math.round(Math.hypot(x - zone.x, y - zone.y) / 10) * 10;
+    if (r >= 20) { zone.radius = r; drawEditor(); }
+  });
+  const end = () => { zone = null; };
+  svg.addEventListener('pointerup', end);
+  svg.addEventListener('pointercancel', end);
+}
+// A listed room copied into the editor (a built-in one under a new name), to give it a mission.
+function editRoom(view) {
+  const r = view.room, pt = (p) => [p.x, p.y], zone = (z) => ({ x: z.centre.x, y: z.centre.y, radius: z.radius });
+  const m = r.mission || {};
+  lab.draw = { outline: r.outline.map(pt), obstacles: r.obstacles.map((o) => o.map(pt)), current: -1,
+    home: [r.home.x, r.home.y], homeZone: zone(r.home_zone), goal: m.goal ? zone(m.goal) : null, waypoints: (m.waypoints || []).map(zone) };
+  $('home-heading').value = Math.round((r.home.heading * 180) / Math.PI);
+  $('room-name').value = view.builtin ? `${r.name}-mission` : `${r.name}-2`;
+  $('room-editor-box').open = true;
+  $('draw-mode').value = 'goal';
+  $('room-message').textContent = `Editing a copy of ${r.name}: save it under a new name.`;
+  drawEditor();
+  $('room-editor').scrollIntoView({ block: 'center' });
+}
 function setupEditor() {
   const svg = $('room-editor');
+  setupMissionDrawing(svg);
   svg.addEventListener('click', (ev) => {
     const p = editorPoint(ev), d = lab.draw, mode = $('draw-mode').value;
+    if (mode === 'goal' || mode === 'waypoint') return;
     if (mode === 'home') d.home = p;
     else if (mode === 'obstacle') {
       if (d.current < 0) { d.obstacles.push([]); d.current = d.obstacles.length - 1; }
@@ -261,10 +349,11 @@ function setupEditor() {
   $('new-obstacle').addEventListener('click', () => { lab.draw.obstacles.push([]); lab.draw.current = lab.draw.obstacles.length - 1; $('draw-mode').value = 'obstacle'; });
   $('undo-vertex').addEventListener('click', () => {
     const d = lab.draw, mode = $('draw-mode').value;
-    if (mode === 'obstacle' && d.current >= 0) d.obstacles[d.current].pop(); else if (mode === 'outline') d.outline.pop(); else d.home = null;
+    if (mode === 'obstacle' && d.current >= 0) d.obstacles[d.current].pop(); else if (mode === 'outline') d.outline.pop();
+    else if (mode === 'goal') d.goal = null; else if (mode === 'waypoint') d.waypoints.pop(); else d.home = null;
     drawEditor();
   });
-  $('clear-room').addEventListener('click', () => { lab.draw = { outline: [], obstacles: [], home: null, current: -1 }; drawEditor(); });
+  $('clear-room').addEventListener('click', () => { lab.draw = emptyDrawing(); drawEditor(); });
   $('check-room').addEventListener('click', () => checkRoom(false));
   $('save-room').addEventListener('click', () => checkRoom(true));
   $('room-file').addEventListener('change', async (ev) => {
@@ -296,7 +385,8 @@ function tickLabel(v, step) {
 function chart(svg, series, yMax) {
   svg.replaceChildren();
   const n = Math.max(2, ...series.map((s) => s.values.length));
-  const [x0, x1, y0, y1] = [38, 392, 170, 22];
+  const legend = legendLayout(series, 42, 392);
+  const [x0, x1, y0, y1] = [38, 392, 170, 22 + 12 * (legend.rows - 1)];
   const X = (i) => x0 + (i / (n - 1)) * (x1 - x0), Y = (v) => y0 - (v / yMax) * (y0 - y1);
   const yt = niceTicks(0, yMax, 5, false);
   yt.values.forEach((v) => {
@@ -312,24 +402,47 @@ function chart(svg, series, yMax) {
   el('line', { x1: x0, y1: y0, x2: x1, y2: y0, stroke: '#666' }, svg);
   el('line', { x1: x0, y1: y1, x2: x0, y2: y0, stroke: '#666' }, svg);
   el('text', { x: (x0 + x1) / 2, y: 197, 'font-size': 9, 'text-anchor': 'middle' }, svg).textContent = 'generation';
-  let lx = x0 + 4;
-  series.forEach((s) => {
-    const zero = s.values.length > 0 && s.values.every((v) => v === 0);
+  series.forEach((s, k) => {
+    const zero = legend.zero[k], [lx, ly] = legend.at[k];
     const dash = zero ? { 'stroke-dasharray': '6 4', 'stroke-width': 3 } : { 'stroke-width': 2 };
     const line = el('polyline', { points: s.values.map((v, i) => `${X(i)},${Y(v)}`).join(' '), fill: 'none', stroke: s.color, ...dash }, svg);
     line.id = `${svg.id}-${s.name}`;
     line.setAttribute('data-points', String(s.values.length));
-    el('line', { x1: lx, y1: 9, x2: lx + 14, y2: 9, stroke: s.color, ...dash }, svg);
-    const label = el('text', { x: lx + 17, y: 12, 'font-size': 10, fill: s.color, class: 'legend' }, svg);
-    label.textContent = zero ? `${s.name} = 0 throughout` : s.name;
-    lx += 30 + label.textContent.length * 6;
+    el('line', { x1: lx, y1: ly - 3, x2: lx + 14, y2: ly - 3, stroke: s.color, ...dash }, svg);
+    const label = el('text', { x: lx + 17, y: ly, 'font-size': 10, fill: s.color, class: 'legend' }, svg);
+    label.textContent = legend.text[k];
   });
+}
+// Where each series' legend goes: left to right from `from`, a new row where `to` is passed.
+function legendLayout(series, from, to) {
+  const zero = series.map((s) => s.values.length > 0 && s.values.every((v) => v === 0));
+  const text = series.map((s, k) => (zero[k] ? `${s.name} = 0 throughout` : s.name));
+  let lx = from, row = 0;
+  const at = text.map((t) => {
+    const w = 30 + t.length * 6;
+    if (lx > from && lx + w - 12 > to) { lx = from; row += 1; }
+    const p = [lx, 12 + 12 * row];
+    lx += w;
+    return p;
+  });
+  return { zero, text, at, rows: row + 1 };
+}
+// The terms a run shows: a, g, l, b, then the mission and user terms it measures.
+function termNames(gens) {
+  const more = [];
+  gens.forEach((g) => Object.keys(g.terms || {}).forEach((k) => { if (!more.includes(k)) more.push(k); }));
+  return ['a', 'g', 'l', 'b', ...more];
 }
 function drawCharts(gens, fit, terms) {
   const best = gens.map((g) => g.best), mean = gens.map((g) => g.mean);
   chart(fit, [{ name: 'best', values: best, color: COLORS.best }, { name: 'mean', values: mean, color: COLORS.mean }],
     1);
-  chart(terms, ['a', 'g', 'l', 'b'].map((k) => ({ name: k, values: gens.map((g) => g[k]), color: COLORS[k] })), 1);
+  const names = termNames(gens);
+  const value = (g, k) => (k in g && typeof g[k] === 'number' ? g[k] : (g.terms || {})[k] ?? 0);
+  chart(terms, names.map((k, i) => ({ name: k, values: gens.map((g) => value(g, k)),
+    color: COLORS[k] || MORE_COLORS[i % MORE_COLORS.length] })), 1);
+  const caption = terms.closest('figure')?.querySelector('figcaption');
+  if (caption) caption.textContent = `Mean terms ${names.join(', ')} per generation`;
 }
 function drawPaths(box, paths) {
   box.replaceChildren();
@@ -342,18 +455,22 @@ function drawPaths(box, paths) {
     if (room) roomSvg(room.room, svg);
     const line = el('polyline', { points: p.points.map(([x, y]) => `${x},${-y}`).join(' '), fill: 'none', stroke: '#c33', 'stroke-width': 6 }, svg);
     line.setAttribute('class', 'robot-path');
-    html('div', `${p.room}${p.f !== undefined ? `, F = ${p.f.toFixed(3)}` : ''}`, d);
+    const goal = room && room.room.mission && room.room.mission.goal;
+    const reached = !goal ? '' : p.goal_step != null ? `, goal at step ${p.goal_step}` : ', goal not reached';
+    html('div', `${p.room}${p.f !== undefined ? `, F = ${p.f.toFixed(3)}` : ''}${reached}`, d);
   });
 }
 function gaPreset() {
   const v = $('ga-preset').value, sizes = { quick: [30, 30], medium: [80, 80], paper: [200, 200] }[v];
   if (sizes) { $('population').value = sizes[0]; $('generations').value = sizes[1]; }
 }
+// A run's settings; room recognition needs two rooms, so one room runs without it.
 function settings() {
+  const rooms = lab.rooms.filter((r) => lab.chosen.has(r.entry)).map((r) => r.entry);
   return { name: $('run-name').value, seed: Number($('seed').value),
     motivations: motivationsSpec(),
     population: Number($('population').value), generations: Number($('generations').value),
-    motion: $('motion').value, rooms: lab.rooms.filter((r) => lab.chosen.has(r.entry)).map((r) => r.entry) };
+    motion: $('motion').value, rooms, recognition: $('recognition').checked && rooms.length >= 2 };
 }
 async function evolve() {
   try {
@@ -397,15 +514,24 @@ function follow(id) {
     refreshRuns();
   });
 }
-function table(rows, parent) {
+// The per-room table; with `paths` (the final paths), a column of when each room's goal was
+// reached by the best robot, for runs in rooms with goals.
+function table(rows, parent, paths) {
   const cols = ['room', 'exploration_pct', 'homing_pct', 'battery_pct', 'recognition_pct', 'average_fitness'];
   const heads = ['room', '% exploration', '% homing', '% battery', '% recognition', 'mean F'];
+  const goalOf = (name) => { const r = lab.rooms.find((v) => v.room.name === name); return r && r.room.mission && r.room.mission.goal; };
+  const withGoal = paths && paths.rooms.some((p) => goalOf(p.room));
+  if (withGoal) heads.push('goal reached (step)');
   const t = html('table', undefined, parent);
   const tr = html('tr', undefined, t);
   heads.forEach((h) => html('th', h, tr));
   rows.forEach((r) => {
     const row = html('tr', undefined, t);
     cols.forEach((c) => html('td', typeof r[c] === 'number' ? r[c].toFixed(c === 'average_fitness' ? 3 : 1) : (r[c] ?? '—'), row));
+    if (withGoal) {
+      const p = paths.rooms.find((q) => q.room === r.room);
+      html('td', !goalOf(r.room) || !p ? '—' : p.goal_step != null ? `yes (${p.goal_step})` : 'no', row);
+    }
   });
   return t;
 }
@@ -413,7 +539,7 @@ function showResult(id, result) {
   $('result').hidden = false;
   const box = $('result-table');
   box.replaceChildren();
-  table(result.rows, box);
+  table(result.rows, box, result.paths);
   html('p', `Wall time ${result.wall_seconds.toFixed(1)} s.`, box);
   $('save-name').value = id;
   $('download-config').href = `/api/runs/${encodeURIComponent(id)}/config.toml`;
