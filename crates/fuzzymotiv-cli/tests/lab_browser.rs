@@ -409,7 +409,8 @@ fn draw_room_with_goal(d: &Driver) {
     d.cmd("POST", &format!("/element/{summary}/click"), json!({}));
     let editor = d.element("#room-editor");
     d.script("document.getElementById('room-editor').scrollIntoView({block: 'center'});");
-    let w = d.script("return document.getElementById('room-editor').getBoundingClientRect().width;");
+    let w =
+        d.script("return document.getElementById('room-editor').getBoundingClientRect().width;");
     let w = w.as_f64().unwrap();
     let at = |x: f64, y: f64| {
         (
@@ -429,9 +430,13 @@ fn draw_room_with_goal(d: &Driver) {
     choose(d, "Waypoints");
     let (dx, dy) = at(500.0, 400.0);
     click_at(d, &editor, dx, dy);
-    let goal = d.script("return document.querySelector('#room-editor circle.goal').getAttribute('r');");
+    let goal =
+        d.script("return document.querySelector('#room-editor circle.goal').getAttribute('r');");
     let r: f64 = goal.as_str().unwrap().parse().unwrap();
-    assert!((90.0..=150.0).contains(&r), "the goal was not dragged to size: r = {r}");
+    assert!(
+        (90.0..=150.0).contains(&r),
+        "the goal was not dragged to size: r = {r}"
+    );
     assert_eq!(
         d.script("return document.querySelectorAll('#room-editor circle.waypoint').length;"),
         1
@@ -444,7 +449,10 @@ fn draw_room_with_goal(d: &Driver) {
         "the room saved",
         "var m = document.getElementById('room-message').textContent; return m ? m : null;",
     );
-    assert!(msg.as_str().unwrap().starts_with("Saved as goalroom.toml"), "{msg}");
+    assert!(
+        msg.as_str().unwrap().starts_with("Saved as goalroom.toml"),
+        "{msg}"
+    );
     wait_for(
         d,
         10,
@@ -484,7 +492,12 @@ fn a_fetch_config_shows_five_sliders_and_evolves_towards_a_goal_drawn_on_the_can
     assert!(x[4] > 0.35, "the urgency slider did not move: {x:?}");
     assert!((x.iter().sum::<f64>() - 1.0).abs() < 0.011, "{x:?}");
     d.click_button("Explain F");
-    wait_for(&d, 10, "F explained", "return document.getElementById('explain-f');");
+    wait_for(
+        &d,
+        10,
+        "F explained",
+        "return document.getElementById('explain-f');",
+    );
     let heads = d.script("return Array.from(document.querySelectorAll('#explain-out th')).map(function (h) { return h.textContent; }).join('|');");
     assert!(heads.as_str().unwrap().contains("urgency is"), "{heads}");
 
@@ -494,23 +507,30 @@ fn a_fetch_config_shows_five_sliders_and_evolves_towards_a_goal_drawn_on_the_can
         let cb = d.element(&format!("#room-{room}"));
         d.cmd("POST", &format!("/element/{cb}/click"), json!({}));
     }
-    type_into(&d, &labelled(&d, "Population"), "12");
-    type_into(&d, &labelled(&d, "Generations"), "8");
+    // The quick preset (30 × 30): in one room without recognition, a few seconds.
     d.click_button("Evolve");
     let grow = "var l = document.getElementById('terms-chart-urgency'); return l && +l.getAttribute('data-points') >= 3 ? +l.getAttribute('data-points') : 0;";
     wait_for(&d, 120, "the urgency curve to grow", grow);
-    wait_for(&d, 300, "the run to finish", "return window.labTimes.finished;");
+    wait_for(
+        &d,
+        300,
+        "the run to finish",
+        "return window.labTimes.finished;",
+    );
     let status = d.script("return document.getElementById('run-status').textContent;");
     assert!(status.as_str().unwrap().ends_with("finished"), "{status}");
     assert_eq!(
-        d.script("return +document.getElementById('fitness-chart-best').getAttribute('data-points');"),
-        8
+        d.script(
+            "return +document.getElementById('fitness-chart-best').getAttribute('data-points');"
+        ),
+        30
     );
     let heads = d.script("return document.getElementById('result-table').textContent;");
-    assert!(heads.as_str().unwrap().contains("goal reached (step)"), "{heads}");
     assert!(
-        d.script("return document.querySelectorAll('#paths .thumb circle.goal').length;") == 1
+        heads.as_str().unwrap().contains("goal reached (step)"),
+        "{heads}"
     );
+    assert!(d.script("return document.querySelectorAll('#paths .thumb circle.goal').length;") == 1);
     d.script("window.scrollTo(0, 0);");
     let shot = target_dir().join("lab-fetch-screenshot.png");
     std::fs::write(&shot, d.full_page_png()).unwrap();
