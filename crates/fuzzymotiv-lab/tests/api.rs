@@ -783,6 +783,9 @@ fn a_room_with_a_goal_and_waypoints_is_saved_read_back_and_followed_by_a_run() {
     );
     assert_eq!(a.status, 200, "{}", a.body);
     let text = std::fs::read_to_string(c.lab.dir().join("rooms/fetchbox.toml")).unwrap();
+    // As the shipped room files write it: the goal an inline table, the waypoints tables.
+    assert!(text.contains("goal = { "), "{text}");
+    assert_eq!(text.matches("[[waypoints]]").count(), 2, "{text}");
     let file: toml::Table = toml::from_str(&text).unwrap();
     assert_eq!(file["goal"]["x"].as_integer(), Some(850), "{text}");
     assert_eq!(file["goal"]["radius"].as_integer(), Some(90), "{text}");
