@@ -531,6 +531,21 @@ fn a_fetch_config_shows_five_sliders_and_evolves_towards_a_goal_drawn_on_the_can
         "{heads}"
     );
     assert!(d.script("return document.querySelectorAll('#paths .thumb circle.goal').length;") == 1);
+    // Edit under the built-in H copies it into the editor, under a name of its own.
+    let edit = d
+        .find_xpath(
+            "//input[@id='room-H']/ancestor::div[@class='thumb']/button[normalize-space()='Edit']",
+        )
+        .expect("Edit under H");
+    d.cmd("POST", &format!("/element/{edit}/click"), json!({}));
+    assert_eq!(
+        d.script("return document.getElementById('room-name').value;"),
+        "H-mission"
+    );
+    assert_eq!(
+        d.script("return document.querySelector('#room-editor polygon').getAttribute('points').split(' ').length;"),
+        12
+    );
     d.script("window.scrollTo(0, 0);");
     let shot = target_dir().join("lab-fetch-screenshot.png");
     std::fs::write(&shot, d.full_page_png()).unwrap();
