@@ -376,3 +376,180 @@ fn the_lab_page_shows_axis_ticks_queue_places_whole_tables_and_a_lost_token() {
     );
     assert!(said.as_str().unwrap().contains("--token"), "{said}");
 }
+
+/// Drags inside `element` from `from` to `to` (CSS pixels from its centre).
+fn drag(d: &Driver, element: &str, from: (f64, f64), to: (f64, f64)) {
+    let origin = json!({ ELEMENT: element });
+    let at = |p: (f64, f64)| (p.0.round() as i64, p.1.round() as i64);
+    let ((x0, y0), (x1, y1)) = (at(from), at(to));
+    d.cmd("POST", "/actions", json!({"actions": [{"type": "pointer", "id": "mouse",
+        "parameters": {"pointerType": "mouse"}, "actions": [
+            {"type": "pointerMove", "origin": origin, "x": x0, "y": y0},
+            {"type": "pointerDown", "button": 0},
+            {"type": "pointerMove", "origin": origin, "x": (x0 + x1) / 2, "y": (y0 + y1) / 2, "duration": 50},
+            {"type": "pointerMove", "origin": origin, "x": x1, "y": y1, "duration": 50},
+            {"type": "pointerUp", "button": 0}]}]}));
+}
+
+fn choose(d: &Driver, option: &str) {
+    let o = d
+        .find_xpath(&format!(
+            "//select[@id='draw-mode']/option[normalize-space()='{option}']"
+        ))
+        .unwrap_or_else(|| panic!("no drawing mode `{option}`"));
+    d.cmd("POST", &format!("/element/{o}/click"), json!({}));
+}
+
+/// Draws a 1 m × 0.8 m room, its home near one corner, a goal dragged to size near the
+/// opposite one and a waypoint; saves it as `goalroom`.
+fn draw_room_with_goal(d: &Driver) {
+    let summary = d
+        .find_xpath("//summary[normalize-space()='Draw a room']")
+        .expect("Draw a room");
+    d.cmd("POST", &format!("/element/{summary}/click"), json!({}));
+    let editor = d.element("#room-editor");
+    d.script("document.getElementById('room-editor').scrollIntoView({block: 'center'});");
+    let w =
+        d.script("return document.getElementById('room-editor').getBoundingClientRect().width;");
+    let w = w.as_f64().unwrap();
+    let at = |x: f64, y: f64| {
+        (
+            (x + 100.0) * w / 1400.0 - w / 2.0,
+            (1300.0 - y) * w / 1400.0 - w / 2.0,
+        )
+    };
+    for (x, y) in [(0.0, 0.0), (1000.0, 0.0), (1000.0, 800.0), (0.0, 800.0)] {
+        let (dx, dy) = at(x, y);
+        click_at(d, &editor, dx, dy);
+    }
+    choose(d, "Home");
+    let (dx, dy) = at(200.0, 200.0);
+    click_at(d, &editor, dx, dy);
+    choose(d, "Goal");
+    drag(d, &editor, at(800.0, 600.0), at(920.0, 600.0));
+    choose(d, "Waypoints");
+    let (dx, dy) = at(500.0, 400.0);
+    click_at(d, &editor, dx, dy);
+    let goal =
+        d.script("return document.querySelector('#room-editor circle.goal').getAttribute('r');");
+    let r: f64 = goal.as_str().unwrap().parse().unwrap();
+    assert!(
+        (90.0..=150.0).contains(&r),
+        "the goal was not dragged to size: r = {r}"
+    );
+    assert_eq!(
+        d.script("return document.querySelectorAll('#room-editor circle.waypoint').length;"),
+        1
+    );
+    type_into(d, &labelled(d, "Room name"), "goalroom");
+    d.click_button("Save room");
+    let msg = wait_for(
+        d,
+        20,
+        "the room saved",
+        "var m = document.getElementById('room-message').textContent; return m ? m : null;",
+    );
+    assert!(
+        msg.as_str().unwrap().starts_with("Saved as goalroom.toml"),
+        "{msg}"
+    );
+    wait_for(
+        d,
+        10,
+        "the room listed with its goal",
+        "return document.querySelector('#room-choices .thumb circle.goal');",
+    );
+}
+
+#[test]
+#[ignore = "needs chromium: run by .ci/run"]
+fn a_fetch_config_shows_five_sliders_and_evolves_towards_a_goal_drawn_on_the_canvas() {
+    require_browser();
+    let tmp = tempfile::tempdir().unwrap();
+    let lab = LabProcess::start(&tmp.path().join("lab"));
+    let mut d = Driver::start();
+    d.new_session(&tmp.path().join("chromium-profile"));
+    d.goto(&lab.url);
+    wait_for(
+        &d,
+        30,
+        "the page",
+        "return document.querySelectorAll('#room-choices .thumb').length >= 5;",
+    );
+    let sliders = "return document.querySelectorAll('#sliders input[type=range]').length;";
+    assert_eq!(d.script(sliders), 4);
+    d.click_button("Fetch (.5, .1, 0, .1, urgency .3)");
+    assert_eq!(d.script(sliders), 5);
+    let urgency = labelled(&d, "Urgency (urgency)");
+    d.cmd(
+        "POST",
+        &format!("/element/{urgency}/value"),
+        json!({"text": "\u{E014}".repeat(10)}),
+    );
+    let x = d.script("return Array.from(document.querySelectorAll('#sliders output')).map(function (o) { return +o.textContent; });");
+    let x: Vec<f64> = serde_json::from_value(x).unwrap();
+    assert_eq!(x.len(), 5);
+    assert!(x[4] > 0.35, "the urgency slider did not move: {x:?}");
+    assert!((x.iter().sum::<f64>() - 1.0).abs() < 0.011, "{x:?}");
+    d.click_button("Explain F");
+    wait_for(
+        &d,
+        10,
+        "F explained",
+        "return document.getElementById('explain-f');",
+    );
+    let heads = d.script("return Array.from(document.querySelectorAll('#explain-out th')).map(function (h) { return h.textContent; }).join('|');");
+    assert!(heads.as_str().unwrap().contains("urgency is"), "{heads}");
+
+    draw_room_with_goal(&d);
+    // Only the room with a goal: the built-in rooms have none for urgency to weigh.
+    for room in ["H", "T", "L", "square", "rectangle"] {
+        let cb = d.element(&format!("#room-{room}"));
+        d.cmd("POST", &format!("/element/{cb}/click"), json!({}));
+    }
+    // The quick preset (30 × 30): in one room without recognition, a few seconds.
+    d.click_button("Evolve");
+    let grow = "var l = document.getElementById('terms-chart-urgency'); return l && +l.getAttribute('data-points') >= 3 ? +l.getAttribute('data-points') : 0;";
+    wait_for(&d, 120, "the urgency curve to grow", grow);
+    wait_for(
+        &d,
+        300,
+        "the run to finish",
+        "return window.labTimes.finished;",
+    );
+    let status = d.script("return document.getElementById('run-status').textContent;");
+    assert!(status.as_str().unwrap().ends_with("finished"), "{status}");
+    assert_eq!(
+        d.script(
+            "return +document.getElementById('fitness-chart-best').getAttribute('data-points');"
+        ),
+        30
+    );
+    let heads = d.script("return document.getElementById('result-table').textContent;");
+    assert!(
+        heads.as_str().unwrap().contains("goal reached (step)"),
+        "{heads}"
+    );
+    assert!(d.script("return document.querySelectorAll('#paths .thumb circle.goal').length;") == 1);
+    // Edit under the built-in H copies it into the editor, under a name of its own.
+    let edit = d
+        .find_xpath(
+            "//input[@id='room-H']/ancestor::div[@class='thumb']/button[normalize-space()='Edit']",
+        )
+        .expect("Edit under H");
+    d.cmd("POST", &format!("/element/{edit}/click"), json!({}));
+    assert_eq!(
+        d.script("return document.getElementById('room-name').value;"),
+        "H-mission"
+    );
+    assert_eq!(
+        d.script("return document.querySelector('#room-editor polygon').getAttribute('points').split(' ').length;"),
+        12
+    );
+    d.script("window.scrollTo(0, 0);");
+    let shot = target_dir().join("lab-fetch-screenshot.png");
+    std::fs::write(&shot, d.full_page_png()).unwrap();
+    eprintln!("screenshot: {}", shot.display());
+    let console = d.console_errors();
+    assert!(console.is_empty(), "console errors: {console:?}");
+}

@@ -13,7 +13,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
 use futures_util::Stream;
-use fuzzymotiv::fitness::{Motivations, TskFitness};
+use fuzzymotiv::fitness::TskFitness;
 use fuzzymotiv_io::files::guard::{OutState, Spelling, StagedDir, check_out_as};
 use serde::Deserialize;
 use serde_json::{Value, json};
@@ -22,6 +22,7 @@ use tokio::sync::watch;
 use crate::assets;
 use crate::errors::{ApiError, parse_body};
 use crate::limits;
+use crate::motivations;
 use crate::rooms::{self, RoomRequest};
 use crate::runs::{Runs, Status};
 use crate::settings::Settings;
@@ -44,6 +45,7 @@ pub fn router(state: Arc<AppState>) -> Router {
         .route("/lab.css", get(|| async { assets::style() }))
         .route("/api/info", get(info))
         .route("/api/explain", post(explain))
+        .route("/api/config", post(config_motivations))
         .route("/api/rooms", get(room_list).post(room_check))
         .route("/api/runs", get(run_list).post(run_start))
         .route("/api/runs/{id}", get(run_detail))
@@ -57,47 +59,64 @@ pub fn router(state: Arc<AppState>) -> Router {
         .with_state(state)
 }
 
-/// Presets, limits and the TSK's membership functions, for the page to draw.
-async fn info() -> Json<Value> {
+/// Presets (each motivation preset a slider list), limits and the TSK's membership
+/// functions, for the page to draw.
+async fn info() -> Result<Json<Value>, ApiError> {
     let tsk = TskFitness::paper();
-    Json(json!({
+    let mut motivations = serde_json::Map::new();
+    for (name, raw) in motivations::presets() {
+        motivations.insert(name.into(), json!(motivations::listed(&raw, "preset")?));
+    }
+    Ok(Json(json!({
         "version": fuzzymotiv::VERSION,
         "model": fuzzymotiv::MODEL_VERSION,
         "presets": {
-            "motivations": { "high curiosity": [0.8, 0.1, 0.0, 0.1], "low curiosity": [0.5, 0.3, 0.0, 0.2] },
+            "motivations": motivations,
             "ga": { "quick": [30, 30], "medium": [80, 80], "paper": [200, 200] },
         },
+        "terms": fuzzymotiv::fitness::LIBRARY_TERMS,
         "peaks": tsk.peaks(),
         "limits": { "population": limits::MAX_POPULATION, "generations": limits::MAX_GENERATIONS,
             "rooms": limits::MAX_ROOMS, "steps": limits::MAX_STEPS, "body_bytes": limits::MAX_BODY,
             "room_vertices": limits::MAX_ROOM_VERTICES, "queued": limits::MAX_QUEUED },
-    }))
+    })))
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ExplainRequest {
-    /// C, H, O, E.
-    motivations: [f64; 4],
-    /// a, g, l, b.
-    fitness: [f64; 4],
+    /// `[C, H, O, E]`, or named as a config's `[motivations]`.
+    motivations: Value,
+    /// `[a, g, l, b]` (one value per motivation), or `{ term: value }`.
+    fitness: Value,
 }
 
-/// "What would F be": the library's explain (F and the firing rules).
+/// "What would F be": the library's explain (F and the firing rules) over N inputs.
 async fn explain(body: Bytes) -> Result<Json<Value>, ApiError> {
     let req: ExplainRequest = parse_body(&body)?;
-    let [c, h, o, e] = req.motivations;
-    let (m, _) = Motivations::normalised(c, h, o, e)
-        .map_err(|e| ApiError::bad(format!("request body: field `motivations`: {e}")))?;
-    if let Some(i) = req.fitness.iter().position(|v| !v.is_finite()) {
-        return Err(ApiError::bad(format!(
-            "request body: field `fitness[{i}]`: must be a finite number (a, g, l, b are clamped to [0, 1])"
-        )));
-    }
-    let x = TskFitness::paper().explain(&m, &req.fitness);
+    let m = motivations::explain_motivations(req.motivations)?;
+    let y = motivations::explain_inputs(&m, req.fitness)?;
+    let x = TskFitness::paper().explain(&m, &y);
+    let names: Vec<&str> = m.iter().map(|m| m.name()).collect();
     Ok(Json(
         json!({ "fitness": x.fitness, "rules": x.rules, "weight_sum": x.weight_sum,
+        "inputs": x.inputs, "names": names, "weights": m.weights(),
         "motivations": m.as_array() }),
+    ))
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ConfigRequest {
+    /// A config file's text.
+    toml: String,
+}
+
+/// "Load config": the motivations of a config file, for the sliders.
+async fn config_motivations(body: Bytes) -> Result<Json<Value>, ApiError> {
+    let req: ConfigRequest = parse_body(&body)?;
+    Ok(Json(
+        json!({ "motivations": motivations::of_config(&req.toml)? }),
     ))
 }
 

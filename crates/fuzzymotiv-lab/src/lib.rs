@@ -1,5 +1,6 @@
-//! `fuzzymotiv lab`: a local web page where a person sets the motivations C, H, O, E, chooses
-//! or draws rooms, evolves robots live and compares runs.
+//! `fuzzymotiv lab`: a local web page where a person sets the motivations (the paper's C, H, O,
+//! E or any config's), chooses or draws rooms and their missions, evolves robots live and
+//! compares runs.
 //!
 //! The server (axum on tokio) binds to loopback by default and answers only requests that
 //! carry its random token (`?token=` once, then a cookie, or the `x-fuzzymotiv-token` header)
@@ -28,6 +29,7 @@ mod compare;
 mod errors;
 pub mod limits;
 mod live;
+mod motivations;
 mod rooms;
 mod runs;
 mod security;

@@ -6,8 +6,9 @@ use std::ops::ControlFlow;
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::GenerationState;
+use fuzzymotiv::fitness::FitnessTerms;
 use fuzzymotiv::simulation::Mlp;
-use fuzzymotiv::simulation::Trajectory;
+use fuzzymotiv::simulation::{Trajectory, Vec2};
 use fuzzymotiv_io::records::Finished;
 use serde_json::{Value, json};
 
@@ -64,11 +65,11 @@ impl<'a> Live<'a> {
         }
         let runs = self.exp.runs();
         let label = runs.get(self.run).map_or("", |r| r.label.as_str());
-        let (s, t) = (record.stats, record.terms);
+        let (s, t) = (record.stats, &record.terms);
         self.entry.push_generation(json!({
             "run": self.run, "label": label, "generation": record.generation,
             "best": s.max, "mean": s.mean, "min": s.min, "std": s.std,
-            "a": t.a, "g": t.g, "l": t.l, "b": t.b,
+            "a": t.a, "g": t.g, "l": t.l, "b": t.b, "terms": measured_terms(self.exp, t),
         }));
         let g = record.generation + 1;
         if g % PATHS_EVERY == 1 || PATHS_EVERY == 1 {
@@ -94,11 +95,41 @@ impl<'a> Live<'a> {
         let rooms: Vec<Value> = (0..names.len())
             .map(|r| {
                 let i = self.exp.instance_run(&net, &run, r);
-                json!({ "room": names[r], "points": path_points(&i.trajectory), "f": i.f })
+                json!({ "room": names[r], "points": path_points(&i.trajectory), "f": i.f,
+                        "goal_step": goal_step(self.exp, r, &i.trajectory) })
             })
             .collect();
         Some(json!({ "generation": generation, "rooms": rooms }))
     }
+}
+
+/// The mission and user-defined terms a run measures, by name (population means; empty for
+/// the paper's four alone, whose a, g, l, b the record has already).
+fn measured_terms(exp: &Experiment, t: &FitnessTerms) -> Value {
+    let mut out = serde_json::Map::new();
+    if let Some(m) = t.mission.filter(|_| exp.measures_mission()) {
+        for (k, v) in [
+            ("goal", m.goal),
+            ("urgency", m.urgency),
+            ("waypoints", m.waypoints),
+            ("safety", m.safety),
+        ] {
+            out.insert(k.into(), json!(v));
+        }
+    }
+    for (u, v) in exp.user_terms().iter().zip(t.user.as_slice()) {
+        out.insert(u.name.clone(), json!(v));
+    }
+    Value::Object(out)
+}
+
+/// The first step (0 = the start) at which the robot's centre is in room `r`'s goal zone;
+/// `None` when it never is or the room has no goal.
+fn goal_step(exp: &Experiment, r: usize, t: &Trajectory) -> Option<usize> {
+    let goal = exp.arenas().get(r)?.room().mission.goal?;
+    t.poses
+        .iter()
+        .position(|p| goal.contains(Vec2::new(p.x, p.y)))
 }
 
 /// What the page shows when a run has finished.
@@ -108,7 +139,10 @@ pub fn result(exp: &Experiment, done: &Finished) -> Value {
         .trajectories()
         .iter()
         .zip(&names)
-        .map(|(t, name)| json!({ "room": name, "points": path_points(t) }))
+        .enumerate()
+        .map(|(r, (t, name))| {
+            json!({ "room": name, "points": path_points(t), "goal_step": goal_step(exp, r, t) })
+        })
         .collect();
     let confusion: Vec<Value> = done
         .outcome

@@ -60,16 +60,43 @@ fn room_text(req: &RoomRequest) -> Result<(String, String), ApiError> {
             let bad = |e: &dyn std::fmt::Display| {
                 ApiError::bad(format!("drawn room `{name}`: cannot be a room file: {e}"))
             };
-            // Through a TOML value, so that tables come after plain keys.
             let value = toml::Value::try_from(room).map_err(|e| bad(&e))?;
-            let text = toml::to_string(&value).map_err(|e| bad(&e))?;
-            Ok((text, format!("drawn room `{name}`")))
+            let toml::Value::Table(table) = value else {
+                return Err(bad(&"not a table of room-file keys"));
+            };
+            Ok((room_file(table), format!("drawn room `{name}`")))
         }
         (None, Some(text)) => Ok((text.clone(), "uploaded room file".to_string())),
         _ => Err(ApiError::bad(
             "request body: give either `room` (a drawn room) or `toml` (a room file's text)",
         )),
     }
+}
+
+/// A room file's text as the shipped rooms write it: plain keys, then the discs and the home
+/// as inline tables (`home = { … }`, `goal = { x, y, radius }`), then the obstacles and
+/// waypoints as arrays of tables (`[[waypoints]]`).
+fn room_file(table: toml::Table) -> String {
+    let (mut plain, mut inline, mut sections) =
+        (toml::Table::new(), String::new(), toml::Table::new());
+    for (k, v) in table {
+        match v {
+            toml::Value::Table(_) => inline += &format!("{k} = {v}\n"),
+            toml::Value::Array(a) if a.iter().any(toml::Value::is_table) => {
+                sections.insert(k, toml::Value::Array(a));
+            }
+            v => {
+                plain.insert(k, v);
+            }
+        }
+    }
+    let mut text = toml::to_string(&plain).unwrap_or_default();
+    text += &inline;
+    if !sections.is_empty() {
+        text += "\n";
+        text += &toml::to_string(&sections).unwrap_or_default();
+    }
+    text
 }
 
 /// Checks a room; `Err(Ok(problem))` for a room the checks refuse (with its field).

@@ -89,15 +89,25 @@ impl RunEntry {
     }
 
     fn end(&self, status: Status, result: Option<Value>, error: Option<String>) {
-        self.update(|s| {
-            s.0 = status;
-            if let Some(r) = &result {
-                s.1.paths = r.get("paths").cloned();
-                s.1.paths_version += 1;
-            }
-            s.1.result = result;
-            s.1.error = error;
-        });
+        self.record_end(status, result, error);
+        self.announce();
+    }
+
+    /// Sets the end in the state without waking the event streams (see [`Runs::work`]).
+    fn record_end(&self, status: Status, result: Option<Value>, error: Option<String>) {
+        let s = &mut *self.lock();
+        s.0 = status;
+        if let Some(r) = &result {
+            s.1.paths = r.get("paths").cloned();
+            s.1.paths_version += 1;
+        }
+        s.1.result = result;
+        s.1.error = error;
+    }
+
+    /// Wakes the event streams: the state changed.
+    fn announce(&self) {
+        self.changed.send_modify(|v| *v += 1);
     }
 
     pub fn is_cancelled(&self) -> bool {
@@ -286,29 +296,34 @@ impl Runs {
         }
     }
 
-    /// The worker: runs the queue one run at a time on `pool` until the lab closes.
+    /// The worker: runs the queue one run at a time on `pool` until the lab closes. A run's
+    /// end is announced once the older runs' curves are let go, so that a client told of the
+    /// end sees the list as it stays.
     pub fn work(&self, pool: &rayon::ThreadPool) {
         while let Some(entry) = self.next() {
             entry.update(|s| s.0 = Status::Running);
-            pool.install(|| self.execute(&entry));
+            let (status, result, error) = pool.install(|| self.execute(&entry));
+            entry.record_end(status, result, error);
             self.forget_old();
+            entry.announce();
         }
     }
 
-    fn execute(&self, entry: &RunEntry) {
+    /// Runs `entry`: its end (status, what it shows, the error).
+    fn execute(&self, entry: &RunEntry) -> (Status, Option<Value>, Option<String>) {
         let Some(settings) = &entry.settings else {
-            return;
+            return (Status::Failed, None, Some("a run without settings".into()));
         };
         let loaded = match settings.load(&self.dir) {
             Ok(l) => l,
-            Err(e) => return entry.end(Status::Failed, None, Some(e.message)),
+            Err(e) => return (Status::Failed, None, Some(e.message)),
         };
         let out = self.dir.join(RUN_DIR).join(&entry.id);
         let mut live = Live::new(&loaded.experiment, entry);
         let mut hook = |s: &GenerationState<'_>| live.on_generation(s);
         let done = execute_with(&loaded, &out, &NoProgress, false, None, &mut hook);
         match done {
-            Ok(done) => entry.end(
+            Ok(done) => (
                 Status::Finished,
                 Some(result(&loaded.experiment, &done)),
                 None,
@@ -317,9 +332,9 @@ impl Runs {
                 // A stopped run's staging folder is the lab's own: nothing of it is kept.
                 let _ = std::fs::remove_dir_all(StagedDir::staging_path(&out));
                 if entry.is_cancelled() {
-                    entry.end(Status::Stopped, None, None)
+                    (Status::Stopped, None, None)
                 } else {
-                    entry.end(Status::Failed, None, Some(e.to_string()))
+                    (Status::Failed, None, Some(e.to_string()))
                 }
             }
         }
@@ -331,12 +346,13 @@ impl Runs {
     }
 }
 
-/// What the list says of a run.
+/// What the list says of a run: its motivations' weights in input order, and their names.
 fn about(s: &Settings, raw: &fuzzymotiv::experiment::RawConfig) -> Value {
-    let m = &raw.motivations;
+    let m = &raw.motivations.list;
     json!({ "name": raw.name, "seed": raw.seed, "population": s.population,
             "generations": s.generations, "rooms": raw.rooms,
-            "motivations": fuzzymotiv::fitness::PAPER_MOTIVATIONS.map(|n| m.weight_of(n).unwrap_or(0.0)) })
+            "motivations": m.iter().map(|(_, w)| w.weight()).collect::<Vec<_>>(),
+            "motivation_names": m.iter().map(|(n, _)| n).collect::<Vec<_>>() })
 }
 
 /// The finished run directories under `runs` (those of earlier sessions too).

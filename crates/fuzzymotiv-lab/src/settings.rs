@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use fuzzymotiv::experiment::RawConfig;
+use fuzzymotiv::fitness::RawMotivations;
 use fuzzymotiv::simulation::Room;
 use fuzzymotiv_io::files::inputs::{Loaded, resolve};
 use serde::{Deserialize, Serialize};
@@ -15,16 +16,6 @@ use crate::rooms::{ROOM_DIR, valid_room_name};
 
 /// The source name of settings in error messages.
 pub const SOURCE: &str = "lab settings";
-
-/// The motivations X = (C, H, O, E) as the page's sliders set them.
-#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MotivationSliders {
-    pub curiosity: f64,
-    pub homing: f64,
-    pub orientation: f64,
-    pub energy: f64,
-}
 
 /// A run's settings as the page sends them; every key but the motivations is optional (the
 /// config defaults of docs/model.md).
@@ -37,7 +28,10 @@ pub struct Settings {
     /// Base seed; default 1.
     #[serde(default = "default_seed")]
     pub seed: u64,
-    pub motivations: MotivationSliders,
+    /// The motivations as a config's `[motivations]` writes them: `name` → weight, or
+    /// `name` → `{ weight, term, peaks, coefficients }`; the paper's four
+    /// `{ curiosity, homing, orientation, energy }` as before.
+    pub motivations: RawMotivations,
     /// GA population (`ga.population`); default 30 (the quick preset).
     #[serde(default = "default_size")]
     pub population: usize,
@@ -54,6 +48,10 @@ pub struct Settings {
     /// built-in rooms.
     #[serde(default)]
     pub rooms: Option<Vec<String>>,
+    /// `aem.enabled`: room recognition after the evolution (it needs two rooms or more);
+    /// default the config's (on).
+    #[serde(default)]
+    pub recognition: Option<bool>,
 }
 
 fn default_name() -> String {
@@ -80,17 +78,10 @@ impl Settings {
             let list = rooms.iter().map(|r| Value::String(r.clone())).collect();
             doc.insert("rooms".into(), Value::Array(list));
         }
-        let m = self.motivations;
-        let mut x = Table::new();
-        for (k, v) in [
-            ("curiosity", m.curiosity),
-            ("homing", m.homing),
-            ("orientation", m.orientation),
-            ("energy", m.energy),
-        ] {
-            x.insert(k.into(), Value::Float(v));
+        // Serialised as written (a plain weight stays a plain weight), in input order.
+        if let Ok(x) = Value::try_from(&self.motivations) {
+            doc.insert("motivations".into(), x);
         }
-        doc.insert("motivations".into(), Value::Table(x));
         let mut ga = Table::new();
         ga.insert("population".into(), Value::Integer(self.population as i64));
         ga.insert(
@@ -101,6 +92,10 @@ impl Settings {
         if let Some(steps) = self.steps {
             let trial = Table::from_iter([("steps".to_string(), Value::Integer(steps as i64))]);
             doc.insert("trial".into(), Value::Table(trial));
+        }
+        if let Some(on) = self.recognition {
+            let aem = Table::from_iter([("enabled".to_string(), Value::Boolean(on))]);
+            doc.insert("aem".into(), Value::Table(aem));
         }
         if let Some(motion) = &self.motion {
             let robot = Table::from_iter([("motion".to_string(), Value::String(motion.clone()))]);

@@ -635,3 +635,267 @@ fn finished_runs_beyond_the_newest_32_let_their_curves_go() {
     );
     assert!(!newest["paths"].is_null(), "{newest}");
 }
+
+#[test]
+fn explain_takes_named_motivations_and_terms_as_well_as_the_four_numbers() {
+    let c = Client::start();
+    let old = c.post(
+        "/api/explain",
+        &json!({ "motivations": [0.5, 0.3, 0.0, 0.2], "fitness": [0.9, 0.5, 0.0, 0.8] }),
+    );
+    assert_eq!(old.status, 200, "{}", old.body);
+    let named = c.post(
+        "/api/explain",
+        &json!({ "motivations": { "curiosity": 0.5, "homing": 0.3, "orientation": 0.0, "energy": 0.2 },
+                 "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8 } }),
+    );
+    assert_eq!(named.status, 200, "{}", named.body);
+    assert_eq!(old.json()["fitness"], named.json()["fitness"]);
+    assert_eq!(old.json()["motivations"], json!([0.5, 0.3, 0.0, 0.2]));
+
+    // Five motivations: the paper's four and urgency; every rule lists five labels.
+    let five = json!({ "curiosity": 0.5, "homing": 0.1, "orientation": 0.0, "energy": 0.1,
+                       "urgency": 0.3 });
+    let a = c.post(
+        "/api/explain",
+        &json!({ "motivations": five, "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8, "urgency": 0.7 } }),
+    );
+    assert_eq!(a.status, 200, "{}", a.body);
+    let x = a.json();
+    assert_eq!(x["inputs"], json!(["a", "g", "l", "b", "urgency"]));
+    assert_eq!(x["names"][4], "urgency");
+    let rules = x["rules"].as_array().unwrap();
+    assert!(
+        !rules.is_empty()
+            && rules
+                .iter()
+                .all(|r| r["labels"].as_array().unwrap().len() == 5)
+    );
+    let f = x["fitness"].as_f64().unwrap();
+    let slower = c.post(
+        "/api/explain",
+        &json!({ "motivations": five, "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8, "urgency": 0.0 } }),
+    );
+    assert!(
+        slower.json()["fitness"].as_f64().unwrap() < f,
+        "urgency weighs in F"
+    );
+
+    // A term left out, a term no motivation weighs, an unknown term: 400 naming the field.
+    let a = c.post(
+        "/api/explain",
+        &json!({ "motivations": five, "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8 } }),
+    );
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `fitness.urgency`: missing"),
+        "{}",
+        a.body
+    );
+    let a = c.post(
+        "/api/explain",
+        &json!({ "motivations": [0.5, 0.3, 0.0, 0.2], "fitness": { "a": 0.9, "g": 0.5, "l": 0.0, "b": 0.8, "goal": 1 } }),
+    );
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `fitness.goal`"),
+        "{}",
+        a.body
+    );
+    let a = c.post(
+        "/api/explain",
+        &json!({ "motivations": { "curiosity": 0.5, "energy": 0.1, "hurry": { "weight": 0.3, "term": "speed" } },
+                 "fitness": { "a": 0.9 } }),
+    );
+    assert_eq!(a.status, 400);
+    assert!(
+        a.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("field `motivations.hurry`"),
+        "{}",
+        a.body
+    );
+}
+
+#[test]
+fn the_sliders_follow_the_motivations_of_a_preset_or_a_loaded_config() {
+    let c = Client::start();
+    let info = c.get("/api/info").json();
+    let high = info["presets"]["motivations"]["high curiosity"]
+        .as_array()
+        .unwrap()
+        .clone();
+    let names: Vec<&str> = high.iter().map(|m| m["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["curiosity", "homing", "orientation", "energy"]);
+    assert_eq!(high[0]["weight"], 0.8);
+    assert_eq!(high[0]["term"], "a");
+    let fetch = info["presets"]["motivations"]["fetch"]
+        .as_array()
+        .unwrap()
+        .clone();
+    assert_eq!(fetch.len(), 5);
+    assert_eq!(fetch[4]["name"], "urgency");
+
+    let text = include_str!("../../../configs/fetch.toml");
+    let a = c.post("/api/config", &json!({ "toml": text }));
+    assert_eq!(a.status, 200, "{}", a.body);
+    let loaded = a.json()["motivations"].clone();
+    assert_eq!(
+        loaded,
+        json!(fetch),
+        "configs/fetch.toml has the fetch preset's motivations"
+    );
+
+    let a = c.post(
+        "/api/config",
+        &json!({ "toml": "[motivations]\ncuriosity = 0.5\nhoming = 0.1\nenergy = 0.1\nrush = { weight = 0.3, term = \"hurry\" }\n" }),
+    );
+    assert_eq!(a.status, 400);
+    let e = a.json()["error"].as_str().unwrap().to_string();
+    assert!(
+        e.starts_with("loaded config: field `motivations.rush`"),
+        "{e}"
+    );
+}
+
+/// A 1 m × 0.8 m room drawn in the page, home near one corner, a goal near the opposite one.
+fn room_with_goal(name: &str, goal: Value) -> Value {
+    json!({ "save": true, "room": { "name": name,
+        "outline": [[0, 0], [1000, 0], [1000, 800], [0, 800]],
+        "home": { "x": 100, "y": 100, "heading_deg": 0 },
+        "goal": goal,
+        "waypoints": [{ "x": 500, "y": 200, "radius": 80 }, { "x": 500, "y": 600, "radius": 80 }] } })
+}
+
+#[test]
+fn a_room_with_a_goal_and_waypoints_is_saved_read_back_and_followed_by_a_run() {
+    let c = Client::start();
+    let a = c.post(
+        "/api/rooms",
+        &room_with_goal("fetchbox", json!({ "x": 850, "y": 650, "radius": 90 })),
+    );
+    assert_eq!(a.status, 200, "{}", a.body);
+    let text = std::fs::read_to_string(c.lab.dir().join("rooms/fetchbox.toml")).unwrap();
+    // As the shipped room files write it: the goal an inline table, the waypoints tables.
+    assert!(text.contains("goal = { "), "{text}");
+    assert_eq!(text.matches("[[waypoints]]").count(), 2, "{text}");
+    let file: toml::Table = toml::from_str(&text).unwrap();
+    assert_eq!(file["goal"]["x"].as_integer(), Some(850), "{text}");
+    assert_eq!(file["goal"]["radius"].as_integer(), Some(90), "{text}");
+    assert_eq!(file["waypoints"].as_array().unwrap().len(), 2, "{text}");
+    // `fuzzymotiv rooms --check` reads it with its mission.
+    let room = fuzzymotiv::simulation::Room::from_toml_str(&text, "fetchbox.toml").unwrap();
+    assert_eq!(room.mission.waypoints.len(), 2);
+
+    let list = c.get("/api/rooms").json();
+    let listed = list
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["entry"] == "fetchbox.toml")
+        .expect("the room is listed")
+        .clone();
+    let goal = &listed["room"]["mission"]["goal"];
+    assert_eq!(goal["centre"]["x"], 850.0);
+    assert_eq!(goal["radius"], 90.0);
+    assert_eq!(
+        listed["room"]["mission"]["waypoints"][1]["centre"]["y"],
+        600.0
+    );
+
+    // Five motivations, urgency weighing the mission: the run measures the mission terms.
+    let mut s = small(2, 5);
+    s["rooms"] = json!(["fetchbox.toml"]);
+    s["recognition"] = json!(false);
+    s["motivations"] = json!({ "curiosity": 0.5, "homing": 0.1, "orientation": 0.0,
+                               "energy": 0.1, "urgency": 0.3 });
+    let a = c.post("/api/runs", &s);
+    assert_eq!(a.status, 201, "{}", a.body);
+    let id = a.json()["id"].as_str().unwrap().to_string();
+    let seen = events(&c, &id);
+    let gens: Vec<&Value> = seen
+        .iter()
+        .filter(|(k, _)| k == "generation")
+        .map(|(_, v)| v)
+        .collect();
+    assert_eq!(gens.len(), 2);
+    for g in &gens {
+        let urgency = g["terms"]["urgency"].as_f64().expect("urgency measured");
+        assert!((0.0..=1.0).contains(&urgency), "{g}");
+        assert!(g["terms"]["goal"].as_f64().is_some(), "{g}");
+    }
+    let end = &seen.last().unwrap().1;
+    assert_eq!(end["status"], "finished", "{end}");
+    let about = &c.get("/api/runs").json()[0]["about"];
+    assert_eq!(about["motivation_names"][4], "urgency");
+    assert_eq!(about["motivations"][4], 0.3);
+
+    // The paper's four alone measure no mission term.
+    let a = c.post("/api/runs", &small(1, 6));
+    let id = a.json()["id"].as_str().unwrap().to_string();
+    let g = events(&c, &id)
+        .into_iter()
+        .find(|(k, _)| k == "generation")
+        .unwrap()
+        .1;
+    assert_eq!(g["terms"], json!({}), "{g}");
+}
+
+#[test]
+fn a_bad_goal_or_waypoint_gets_400_naming_the_room_file_field() {
+    let c = Client::start();
+    for (goal, field, says) in [
+        (
+            json!({ "x": 1500, "y": 400, "radius": 60 }),
+            "goal",
+            "outside the room outline",
+        ),
+        (
+            json!({ "x": 850, "y": 650, "radius": 0 }),
+            "goal.radius",
+            "must be a radius > 0",
+        ),
+    ] {
+        let a = c.post("/api/rooms", &room_with_goal("badgoal", goal));
+        assert_eq!(a.status, 400, "{}", a.body);
+        let p = a.json();
+        assert_eq!(p["field"], field, "{p}");
+        let e = p["error"].as_str().unwrap();
+        assert!(
+            e.starts_with(&format!("drawn room `badgoal`: field `{field}`")),
+            "{e}"
+        );
+        assert!(e.contains(says), "{e}");
+    }
+    let mut room = room_with_goal("badway", json!({ "x": 850, "y": 650, "radius": 90 }));
+    room["room"]["waypoints"][1] = json!({ "x": 500, "y": 900, "radius": 80 });
+    let p = c.post("/api/rooms", &room).json();
+    assert_eq!(p["field"], "waypoints[1]", "{p}");
+    // Inside the outline but walled off from home: not reachable.
+    let mut room = room_with_goal("walled", json!({ "x": 900, "y": 700, "radius": 40 }));
+    room["room"]["obstacles"] = json!([{ "outline": [[800, 560], [995, 560], [995, 600], [840, 600], [840, 795], [800, 795]] }]);
+    let p = c.post("/api/rooms", &room).json();
+    assert_eq!(p["field"], "goal", "{p}");
+    assert!(p["error"].as_str().unwrap().contains("walled"), "{p}");
+    assert!(!c.lab.dir().join("rooms/badgoal.toml").exists());
+    assert!(!c.lab.dir().join("rooms/walled.toml").exists());
+    // A run whose urgency needs a mission, in a room without one: 400 naming the room.
+    let mut s = small(2, 1);
+    s["motivations"] = json!({ "curiosity": 0.5, "homing": 0.1, "orientation": 0.0,
+                               "energy": 0.1, "urgency": 0.3 });
+    let e = c.post("/api/runs", &s).json()["error"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("field `rooms[0]`") && e.contains("has no"),
+        "{e}"
+    );
+}

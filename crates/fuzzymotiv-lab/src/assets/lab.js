@@ -1,15 +1,24 @@
 // fuzzymotiv lab: the page's script. Plain JavaScript and SVG; talks to its own server only.
 'use strict';
 
+// The paper's four motivations and their letters; a config may add others (docs/guide/motivations.md).
 const NAMES = ['curiosity', 'homing', 'orientation', 'energy'];
-const LETTERS = ['C', 'H', 'O', 'E'];
+const LETTERS = { curiosity: 'C', homing: 'H', orientation: 'O', energy: 'E' };
+// Default values of "What would F be?" per input.
+const EXPLAIN_DEFAULTS = { a: 0.9, g: 0.5, l: 0, b: 0.8 };
 const SVGNS = 'http://www.w3.org/2000/svg';
-const COLORS = { best: '#c33', mean: '#36c', a: '#2a6', g: '#c80', l: '#86c', b: '#088' };
+const COLORS = { best: '#c33', mean: '#36c', a: '#2a6', g: '#c80', l: '#86c', b: '#088',
+  goal: '#d3a', urgency: '#a50', waypoints: '#567', safety: '#6a0' };
+const MORE_COLORS = ['#e70', '#09c', '#a3a', '#5a5', '#c66'];
 const lab = {
-  x: [0.8, 0.1, 0.0, 0.1], info: null, rooms: [], chosen: new Set(['H', 'T', 'L', 'square', 'rectangle']),
-  run: null, source: null, gens: [], times: {}, draw: { outline: [], obstacles: [], home: null, current: -1 },
+  x: [0.8, 0.1, 0.0, 0.1], motivations: [], info: null, rooms: [], chosen: new Set(['H', 'T', 'L', 'square', 'rectangle']),
+  run: null, source: null, gens: [], times: {}, draw: emptyDrawing(),
 };
 window.labTimes = lab.times;
+// A room being drawn: corners on the 10 cm grid; goal and waypoints as {x, y, radius} (mm).
+function emptyDrawing() {
+  return { outline: [], obstacles: [], home: null, current: -1, goal: null, waypoints: [] };
+}
 
 const $ = (id) => document.getElementById(id);
 function el(tag, attrs, parent) {
@@ -49,26 +58,46 @@ async function api(method, url, body) {
 }
 
 // ---- 1. Motivations -------------------------------------------------------------------------
+// The sliders of `list` ({name, weight, term, spec}, one per motivation of the loaded config).
+function setMotivations(list) {
+  lab.motivations = list.map((m) => ({ ...m }));
+  lab.x = list.map((m) => m.weight);
+  buildSliders();
+  buildExplainInputs();
+}
+function sliderLabel(m) {
+  const name = m.name[0].toUpperCase() + m.name.slice(1);
+  return LETTERS[m.name] ? `${name} ${LETTERS[m.name]}` : `${name} (${m.term})`;
+}
 function buildSliders() {
   const box = $('sliders');
-  NAMES.forEach((name, i) => {
+  box.replaceChildren();
+  lab.motivations.forEach((m, i) => {
     const row = html('div', undefined, box);
     row.className = 'slider';
-    const label = html('label', `${name[0].toUpperCase() + name.slice(1)} ${LETTERS[i]}`, row);
-    label.htmlFor = `slider-${name}`;
+    const label = html('label', sliderLabel(m), row);
+    label.htmlFor = `slider-${m.name}`;
     const input = html('input', undefined, row);
-    Object.assign(input, { type: 'range', min: 0, max: 1, step: 0.01, id: `slider-${name}` });
-    input.setAttribute('aria-label', `${name} ${LETTERS[i]}`);
+    Object.assign(input, { type: 'range', min: 0, max: 1, step: 0.01, id: `slider-${m.name}` });
+    input.setAttribute('aria-label', sliderLabel(m));
     const out = html('output', '', row);
-    out.id = `value-${name}`;
+    out.id = `value-${m.name}`;
     input.addEventListener('input', () => setWeight(i, Number(input.value)));
   });
+  const n = lab.motivations.length;
+  $('sliders-hint').textContent = `The ${n} weights X = (${lab.motivations.map((m) => LETTERS[m.name] || m.name).join(', ')}) ` +
+    'always sum to 1: moving one slider shares the rest among the others.';
+  $('membership-title').textContent = `Membership functions of ${inputNames().join(', ')}`;
   showWeights();
+}
+// The TSK's input names: the term each motivation weighs, or its name where two weigh one term.
+function inputNames() {
+  return lab.motivations.map((m) => (lab.motivations.filter((o) => o.term === m.term).length > 1 ? m.name : m.term));
 }
 function setWeight(i, v) {
   const rest = lab.x.reduce((s, w, k) => (k === i ? s : s + w), 0);
-  const left = 1 - v;
-  lab.x = lab.x.map((w, k) => (k === i ? v : rest > 1e-9 ? (w / rest) * left : left / 3));
+  const left = 1 - v, others = Math.max(1, lab.x.length - 1);
+  lab.x = lab.x.map((w, k) => (k === i ? v : rest > 1e-9 ? (w / rest) * left : left / others));
   lab.x = lab.x.map((w) => Math.round(w * 1000) / 1000);
   const drift = 1 - lab.x.reduce((s, w) => s + w, 0);
   const fix = lab.x.findIndex((w, k) => k !== i && w + drift >= 0);
@@ -76,10 +105,41 @@ function setWeight(i, v) {
   showWeights();
 }
 function showWeights() {
-  NAMES.forEach((name, i) => {
-    $(`slider-${name}`).value = lab.x[i];
-    $(`value-${name}`).textContent = lab.x[i].toFixed(2);
+  lab.motivations.forEach((m, i) => {
+    $(`slider-${m.name}`).value = lab.x[i];
+    $(`value-${m.name}`).textContent = lab.x[i].toFixed(2);
   });
+}
+// The motivations as a config's [motivations] writes them, with the sliders' weights.
+function motivationsSpec() {
+  const out = {};
+  lab.motivations.forEach((m, i) => {
+    out[m.name] = typeof m.spec === 'number' ? lab.x[i] : { ...m.spec, weight: lab.x[i] };
+  });
+  return out;
+}
+function buildExplainInputs() {
+  const box = $('explain-inputs');
+  box.querySelectorAll('label').forEach((l) => l.remove());
+  const button = $('explain-button');
+  inputNames().forEach((name) => {
+    const label = html('label', `${name} `);
+    const input = html('input', undefined, label);
+    Object.assign(input, { type: 'number', min: 0, max: 1, step: 0.05, id: `explain-${name}`,
+      value: EXPLAIN_DEFAULTS[name] ?? 0.5 });
+    box.insertBefore(label, button);
+  });
+}
+async function loadConfig(file) {
+  try {
+    const r = await api('POST', '/api/config', { toml: await file.text() });
+    setMotivations(r.motivations);
+    $('config-message').className = 'ok';
+    $('config-message').textContent = `${file.name}: ${r.motivations.length} motivations loaded (its other settings are the lab's to set below).`;
+  } catch (e) {
+    $('config-message').className = 'error';
+    $('config-message').textContent = e.message;
+  }
 }
 function drawMembership(peaks) {
   const svg = $('membership');
@@ -95,15 +155,16 @@ function drawMembership(peaks) {
   });
 }
 async function explainF() {
-  const y = ['a', 'g', 'l', 'b'].map((k) => Number($(`explain-${k}`).value));
+  const y = {};
+  inputNames().forEach((k) => { y[k] = Number($(`explain-${k}`).value); });
   try {
-    const r = await api('POST', '/api/explain', { motivations: lab.x, fitness: y });
+    const r = await api('POST', '/api/explain', { motivations: motivationsSpec(), fitness: y });
     const out = $('explain-out');
     out.replaceChildren();
     html('p', `F = ${r.fitness.toFixed(6)} from ${r.rules.length} firing rule(s) (Σw = ${r.weight_sum.toFixed(4)})`, out).id = 'explain-f';
     const t = html('table', undefined, out);
     const head = html('tr', undefined, t);
-    ['rule', 'a is', 'g is', 'l is', 'b is', 'w', 'f'].forEach((h) => html('th', h, head));
+    ['rule', ...r.inputs.map((k) => `${k} is`), 'w', 'f'].forEach((h) => html('th', h, head));
     r.rules.slice(0, 16).forEach((rule) => {
       const tr = html('tr', undefined, t);
       [rule.number, ...rule.label_names, rule.weight.toFixed(4), rule.output.toFixed(4)].forEach((v) => html('td', String(v), tr));
@@ -124,7 +185,33 @@ function roomSvg(room, svg, pad) {
   const z = room.home_zone;
   el('circle', { cx: z.centre.x, cy: -z.centre.y, r: z.radius, fill: 'none', stroke: '#2a6', 'stroke-dasharray': '12 8', 'stroke-width': 4 }, svg);
   el('circle', { cx: room.home.x, cy: -room.home.y, r: 28, fill: '#2a6' }, svg);
+  const m = room.mission || {};
+  drawMission(svg, m.goal && { x: m.goal.centre.x, y: m.goal.centre.y, radius: m.goal.radius },
+    (m.waypoints || []).map((w) => ({ x: w.centre.x, y: w.centre.y, radius: w.radius })), (y) => -y);
   return svg;
+}
+// A mission on `svg`: the goal a gold disc with a flag, the waypoints numbered in their order.
+function drawMission(svg, goal, waypoints, Y, bad) {
+  const wrong = (field) => bad && bad.field && (bad.field === field || bad.field.startsWith(`${field}.`));
+  if (waypoints.length > 1) {
+    el('polyline', { points: waypoints.map((w) => `${w.x},${Y(w.y)}`).join(' '), fill: 'none', stroke: '#567',
+      'stroke-width': 4, 'stroke-dasharray': '10 8' }, svg);
+  }
+  waypoints.forEach((w, k) => {
+    const field = `waypoints[${k}]`;
+    const c = el('circle', { cx: w.x, cy: Y(w.y), r: w.radius, fill: '#cde', 'fill-opacity': 0.7,
+      stroke: wrong(field) ? '#d00' : '#567', 'stroke-width': wrong(field) ? 12 : 4 }, svg);
+    c.setAttribute('class', 'waypoint');
+    const t = el('text', { x: w.x, y: Y(w.y) + 14, 'font-size': 40, 'text-anchor': 'middle', 'font-weight': 'bold', fill: '#234' }, svg);
+    t.textContent = String(k + 1);
+  });
+  if (goal) {
+    const c = el('circle', { cx: goal.x, cy: Y(goal.y), r: goal.radius, fill: '#fd6', 'fill-opacity': 0.75,
+      stroke: wrong('goal') ? '#d00' : '#b80', 'stroke-width': wrong('goal') ? 12 : 6 }, svg);
+    c.setAttribute('class', 'goal');
+    el('line', { x1: goal.x, y1: Y(goal.y), x2: goal.x, y2: Y(goal.y) - 70, stroke: '#333', 'stroke-width': 5 }, svg);
+    el('polygon', { points: `${goal.x},${Y(goal.y) - 70} ${goal.x + 45},${Y(goal.y) - 57} ${goal.x},${Y(goal.y) - 44}`, fill: '#c33' }, svg);
+  }
 }
 async function loadRooms() {
   lab.rooms = await api('GET', '/api/rooms');
@@ -138,15 +225,24 @@ async function loadRooms() {
     const cb = html('input', undefined, label);
     Object.assign(cb, { type: 'checkbox', checked: lab.chosen.has(r.entry), id: `room-${r.entry}` });
     cb.addEventListener('change', () => { if (cb.checked) lab.chosen.add(r.entry); else lab.chosen.delete(r.entry); });
-    label.appendChild(document.createTextNode(` ${r.room.name}${r.builtin ? '' : ' (drawn)'}`));
+    const m = r.room.mission || {};
+    const mission = [m.goal ? 'goal' : '', m.waypoints && m.waypoints.length ? `${m.waypoints.length} waypoints` : ''].filter(Boolean).join(', ');
+    label.appendChild(document.createTextNode(` ${r.room.name}${r.builtin ? '' : ' (drawn)'}${mission ? ` (${mission})` : ''}`));
+    const edit = html('button', 'Edit', d);
+    edit.type = 'button';
+    edit.className = 'small';
+    edit.title = `Copy ${r.room.name} into the editor to give it a goal and waypoints`;
+    edit.addEventListener('click', () => editRoom(r));
   });
 }
-function editorPoint(ev) {
+// The room point (mm) under the pointer: on the 10 cm grid, or to 1 cm with `fine`.
+function editorPoint(ev, fine) {
   const svg = $('room-editor');
   const pt = svg.createSVGPoint();
   pt.x = ev.clientX; pt.y = ev.clientY;
   const p = pt.matrixTransform(svg.getScreenCTM().inverse());
-  return [Math.round(p.x / 100) * 100, Math.round((1200 - p.y) / 100) * 100];
+  const g = fine ? 10 : 100;
+  return [Math.round(p.x / g) * g, Math.round((1200 - p.y) / g) * g];
 }
 function drawEditor(bad) {
   const svg = $('room-editor'), d = lab.draw;
@@ -168,12 +264,23 @@ function drawEditor(bad) {
     }
   });
   if (d.home) el('circle', { cx: d.home[0], cy: 1200 - d.home[1], r: 30, fill: '#2a6' }, svg);
+  drawMission(svg, d.goal, d.waypoints, (y) => 1200 - y, bad);
+  if (bad && bad.field && /^(goal|waypoints)/.test(bad.field)) {
+    const z = bad.field.startsWith('goal') ? d.goal : d.waypoints[Number((bad.field.match(/\d+/) || [0])[0])];
+    if (z) {
+      const t = el('text', { x: z.x + z.radius + 10, y: 1200 - z.y, 'font-size': 40, fill: '#d00' }, svg);
+      t.textContent = bad.error.split(': ').slice(-1)[0].slice(0, 60);
+    }
+  }
 }
 function drawnRoom() {
   const d = lab.draw;
   const room = { name: $('room-name').value, outline: d.outline,
     home: d.home ? { x: d.home[0], y: d.home[1], heading_deg: Number($('home-heading').value) } : { x: 0, y: 0, heading_deg: 0 } };
   if (d.obstacles.length) room.obstacles = d.obstacles.filter((o) => o.length).map((o) => ({ outline: o }));
+  if (d.homeZone) room.home_zone = { ...d.homeZone };
+  if (d.goal) room.goal = { ...d.goal };
+  if (d.waypoints.length) room.waypoints = d.waypoints.map((w) => ({ ...w }));
   return room;
 }
 async function checkRoom(save, body) {
@@ -190,10 +297,48 @@ async function checkRoom(save, body) {
     drawEditor(e.data);
   }
 }
+// Goal and waypoints: press to place the centre, drag to size (a click keeps 60 mm).
+function setupMissionDrawing(svg) {
+  let zone = null;
+  svg.addEventListener('pointerdown', (ev) => {
+    const mode = $('draw-mode').value, d = lab.draw;
+    if (mode !== 'goal' && mode !== 'waypoint') return;
+    const [x, y] = editorPoint(ev, true);
+    zone = { x, y, radius: 60 };
+    if (mode === 'goal') d.goal = zone; else d.waypoints.push(zone);
+    svg.setPointerCapture?.(ev.pointerId);
+    drawEditor();
+  });
+  svg.addEventListener('pointermove', (ev) => {
+    if (!zone) return;
+    const [x, y] = editorPoint(ev, true);
+    const r = Math.round(Math.hypot(x - zone.x, y - zone.y) / 10) * 10;
+    if (r >= 20) { zone.radius = r; drawEditor(); }
+  });
+  const end = () => { zone = null; };
+  svg.addEventListener('pointerup', end);
+  svg.addEventListener('pointercancel', end);
+}
+// A listed room copied into the editor (a built-in one under a new name), to give it a mission.
+function editRoom(view) {
+  const r = view.room, pt = (p) => [p.x, p.y], zone = (z) => ({ x: z.centre.x, y: z.centre.y, radius: z.radius });
+  const m = r.mission || {};
+  lab.draw = { outline: r.outline.map(pt), obstacles: r.obstacles.map((o) => o.map(pt)), current: -1,
+    home: [r.home.x, r.home.y], homeZone: zone(r.home_zone), goal: m.goal ? zone(m.goal) : null, waypoints: (m.waypoints || []).map(zone) };
+  $('home-heading').value = Math.round((r.home.heading * 180) / Math.PI);
+  $('room-name').value = view.builtin ? `${r.name}-mission` : `${r.name}-2`;
+  $('room-editor-box').open = true;
+  $('draw-mode').value = 'goal';
+  $('room-message').textContent = `Editing a copy of ${r.name}: save it under a new name.`;
+  drawEditor();
+  $('room-editor').scrollIntoView({ block: 'center' });
+}
 function setupEditor() {
   const svg = $('room-editor');
+  setupMissionDrawing(svg);
   svg.addEventListener('click', (ev) => {
     const p = editorPoint(ev), d = lab.draw, mode = $('draw-mode').value;
+    if (mode === 'goal' || mode === 'waypoint') return;
     if (mode === 'home') d.home = p;
     else if (mode === 'obstacle') {
       if (d.current < 0) { d.obstacles.push([]); d.current = d.obstacles.length - 1; }
@@ -204,10 +349,11 @@ function setupEditor() {
   $('new-obstacle').addEventListener('click', () => { lab.draw.obstacles.push([]); lab.draw.current = lab.draw.obstacles.length - 1; $('draw-mode').value = 'obstacle'; });
   $('undo-vertex').addEventListener('click', () => {
     const d = lab.draw, mode = $('draw-mode').value;
-    if (mode === 'obstacle' && d.current >= 0) d.obstacles[d.current].pop(); else if (mode === 'outline') d.outline.pop(); else d.home = null;
+    if (mode === 'obstacle' && d.current >= 0) d.obstacles[d.current].pop(); else if (mode === 'outline') d.outline.pop();
+    else if (mode === 'goal') d.goal = null; else if (mode === 'waypoint') d.waypoints.pop(); else d.home = null;
     drawEditor();
   });
-  $('clear-room').addEventListener('click', () => { lab.draw = { outline: [], obstacles: [], home: null, current: -1 }; drawEditor(); });
+  $('clear-room').addEventListener('click', () => { lab.draw = emptyDrawing(); drawEditor(); });
   $('check-room').addEventListener('click', () => checkRoom(false));
   $('save-room').addEventListener('click', () => checkRoom(true));
   $('room-file').addEventListener('change', async (ev) => {
@@ -239,7 +385,8 @@ function tickLabel(v, step) {
 function chart(svg, series, yMax) {
   svg.replaceChildren();
   const n = Math.max(2, ...series.map((s) => s.values.length));
-  const [x0, x1, y0, y1] = [38, 392, 170, 22];
+  const legend = legendLayout(series, 42, 392);
+  const [x0, x1, y0, y1] = [38, 392, 170, 22 + 12 * (legend.rows - 1)];
   const X = (i) => x0 + (i / (n - 1)) * (x1 - x0), Y = (v) => y0 - (v / yMax) * (y0 - y1);
   const yt = niceTicks(0, yMax, 5, false);
   yt.values.forEach((v) => {
@@ -255,24 +402,47 @@ function chart(svg, series, yMax) {
   el('line', { x1: x0, y1: y0, x2: x1, y2: y0, stroke: '#666' }, svg);
   el('line', { x1: x0, y1: y1, x2: x0, y2: y0, stroke: '#666' }, svg);
   el('text', { x: (x0 + x1) / 2, y: 197, 'font-size': 9, 'text-anchor': 'middle' }, svg).textContent = 'generation';
-  let lx = x0 + 4;
-  series.forEach((s) => {
-    const zero = s.values.length > 0 && s.values.every((v) => v === 0);
+  series.forEach((s, k) => {
+    const zero = legend.zero[k], [lx, ly] = legend.at[k];
     const dash = zero ? { 'stroke-dasharray': '6 4', 'stroke-width': 3 } : { 'stroke-width': 2 };
     const line = el('polyline', { points: s.values.map((v, i) => `${X(i)},${Y(v)}`).join(' '), fill: 'none', stroke: s.color, ...dash }, svg);
     line.id = `${svg.id}-${s.name}`;
     line.setAttribute('data-points', String(s.values.length));
-    el('line', { x1: lx, y1: 9, x2: lx + 14, y2: 9, stroke: s.color, ...dash }, svg);
-    const label = el('text', { x: lx + 17, y: 12, 'font-size': 10, fill: s.color, class: 'legend' }, svg);
-    label.textContent = zero ? `${s.name} = 0 throughout` : s.name;
-    lx += 30 + label.textContent.length * 6;
+    el('line', { x1: lx, y1: ly - 3, x2: lx + 14, y2: ly - 3, stroke: s.color, ...dash }, svg);
+    const label = el('text', { x: lx + 17, y: ly, 'font-size': 10, fill: s.color, class: 'legend' }, svg);
+    label.textContent = legend.text[k];
   });
+}
+// Where each series' legend goes: left to right from `from`, a new row where `to` is passed.
+function legendLayout(series, from, to) {
+  const zero = series.map((s) => s.values.length > 0 && s.values.every((v) => v === 0));
+  const text = series.map((s, k) => (zero[k] ? `${s.name} = 0 throughout` : s.name));
+  let lx = from, row = 0;
+  const at = text.map((t) => {
+    const w = 30 + t.length * 6;
+    if (lx > from && lx + w - 12 > to) { lx = from; row += 1; }
+    const p = [lx, 12 + 12 * row];
+    lx += w;
+    return p;
+  });
+  return { zero, text, at, rows: row + 1 };
+}
+// The terms a run shows: a, g, l, b, then the mission and user terms it measures.
+function termNames(gens) {
+  const more = [];
+  gens.forEach((g) => Object.keys(g.terms || {}).forEach((k) => { if (!more.includes(k)) more.push(k); }));
+  return ['a', 'g', 'l', 'b', ...more];
 }
 function drawCharts(gens, fit, terms) {
   const best = gens.map((g) => g.best), mean = gens.map((g) => g.mean);
   chart(fit, [{ name: 'best', values: best, color: COLORS.best }, { name: 'mean', values: mean, color: COLORS.mean }],
     1);
-  chart(terms, ['a', 'g', 'l', 'b'].map((k) => ({ name: k, values: gens.map((g) => g[k]), color: COLORS[k] })), 1);
+  const names = termNames(gens);
+  const value = (g, k) => (k in g && typeof g[k] === 'number' ? g[k] : (g.terms || {})[k] ?? 0);
+  chart(terms, names.map((k, i) => ({ name: k, values: gens.map((g) => value(g, k)),
+    color: COLORS[k] || MORE_COLORS[i % MORE_COLORS.length] })), 1);
+  const caption = terms.closest('figure')?.querySelector('figcaption');
+  if (caption) caption.textContent = `Mean terms ${names.join(', ')} per generation`;
 }
 function drawPaths(box, paths) {
   box.replaceChildren();
@@ -285,18 +455,22 @@ function drawPaths(box, paths) {
     if (room) roomSvg(room.room, svg);
     const line = el('polyline', { points: p.points.map(([x, y]) => `${x},${-y}`).join(' '), fill: 'none', stroke: '#c33', 'stroke-width': 6 }, svg);
     line.setAttribute('class', 'robot-path');
-    html('div', `${p.room}${p.f !== undefined ? `, F = ${p.f.toFixed(3)}` : ''}`, d);
+    const goal = room && room.room.mission && room.room.mission.goal;
+    const reached = !goal ? '' : p.goal_step != null ? `, goal at step ${p.goal_step}` : ', goal not reached';
+    html('div', `${p.room}${p.f !== undefined ? `, F = ${p.f.toFixed(3)}` : ''}${reached}`, d);
   });
 }
 function gaPreset() {
   const v = $('ga-preset').value, sizes = { quick: [30, 30], medium: [80, 80], paper: [200, 200] }[v];
   if (sizes) { $('population').value = sizes[0]; $('generations').value = sizes[1]; }
 }
+// A run's settings; room recognition needs two rooms, so one room runs without it.
 function settings() {
+  const rooms = lab.rooms.filter((r) => lab.chosen.has(r.entry)).map((r) => r.entry);
   return { name: $('run-name').value, seed: Number($('seed').value),
-    motivations: { curiosity: lab.x[0], homing: lab.x[1], orientation: lab.x[2], energy: lab.x[3] },
+    motivations: motivationsSpec(),
     population: Number($('population').value), generations: Number($('generations').value),
-    motion: $('motion').value, rooms: lab.rooms.filter((r) => lab.chosen.has(r.entry)).map((r) => r.entry) };
+    motion: $('motion').value, rooms, recognition: $('recognition').checked && rooms.length >= 2 };
 }
 async function evolve() {
   try {
@@ -340,15 +514,24 @@ function follow(id) {
     refreshRuns();
   });
 }
-function table(rows, parent) {
+// The per-room table; with `paths` (the final paths), a column of when each room's goal was
+// reached by the best robot, for runs in rooms with goals.
+function table(rows, parent, paths) {
   const cols = ['room', 'exploration_pct', 'homing_pct', 'battery_pct', 'recognition_pct', 'average_fitness'];
   const heads = ['room', '% exploration', '% homing', '% battery', '% recognition', 'mean F'];
+  const goalOf = (name) => { const r = lab.rooms.find((v) => v.room.name === name); return r && r.room.mission && r.room.mission.goal; };
+  const withGoal = paths && paths.rooms.some((p) => goalOf(p.room));
+  if (withGoal) heads.push('goal reached (step)');
   const t = html('table', undefined, parent);
   const tr = html('tr', undefined, t);
   heads.forEach((h) => html('th', h, tr));
   rows.forEach((r) => {
     const row = html('tr', undefined, t);
     cols.forEach((c) => html('td', typeof r[c] === 'number' ? r[c].toFixed(c === 'average_fitness' ? 3 : 1) : (r[c] ?? '—'), row));
+    if (withGoal) {
+      const p = paths.rooms.find((q) => q.room === r.room);
+      html('td', !goalOf(r.room) || !p ? '—' : p.goal_step != null ? `yes (${p.goal_step})` : 'no', row);
+    }
   });
   return t;
 }
@@ -356,7 +539,7 @@ function showResult(id, result) {
   $('result').hidden = false;
   const box = $('result-table');
   box.replaceChildren();
-  table(result.rows, box);
+  table(result.rows, box, result.paths);
   html('p', `Wall time ${result.wall_seconds.toFixed(1)} s.`, box);
   $('save-name').value = id;
   $('download-config').href = `/api/runs/${encodeURIComponent(id)}/config.toml`;
@@ -385,9 +568,12 @@ async function refreshRuns() {
   body.replaceChildren();
   runs.slice().reverse().forEach((r) => {
     const tr = html('tr', undefined, body);
+    const names = r.about.motivation_names || NAMES;
     const m = Array.isArray(r.about.motivations) ? r.about.motivations : NAMES.map((k) => r.about.motivations[k]);
+    const paper = names.length === 4 && names.every((n, k) => n === NAMES[k]);
     html('td', r.id, tr);
-    html('td', `(${m.map((v) => Number(v).toFixed(2)).join(', ')})`, tr);
+    html('td', paper ? `(${m.map((v) => Number(v).toFixed(2)).join(', ')})`
+      : names.map((n, k) => `${LETTERS[n] || n} ${Number(m[k]).toFixed(2)}`).join(', '), tr);
     html('td', `${r.about.population} × ${r.about.generations}`, tr);
     html('td', r.status + (r.queue_position ? ` (queue ${r.queue_position})` : ''), tr);
     const td = html('td', undefined, tr);
@@ -448,11 +634,13 @@ async function compare() {
 
 // ---- start ----------------------------------------------------------------------------------
 async function start() {
-  buildSliders();
   lab.info = await api('GET', '/api/info');
+  const presets = lab.info.presets.motivations;
+  setMotivations(presets['high curiosity']);
   drawMembership(lab.info.peaks);
-  $('preset-high').addEventListener('click', () => { lab.x = [0.8, 0.1, 0, 0.1]; showWeights(); });
-  $('preset-low').addEventListener('click', () => { lab.x = [0.5, 0.3, 0, 0.2]; showWeights(); });
+  [['preset-high', 'high curiosity'], ['preset-low', 'low curiosity'], ['preset-fetch', 'fetch']].forEach(([id, name]) =>
+    $(id).addEventListener('click', () => setMotivations(presets[name])));
+  $('config-file').addEventListener('change', (ev) => { const f = ev.target.files[0]; if (f) loadConfig(f); });
   $('explain-button').addEventListener('click', explainF);
   $('ga-preset').addEventListener('change', gaPreset);
   ['population', 'generations'].forEach((id) => $(id).addEventListener('input', () => { $('ga-preset').value = 'custom'; }));
