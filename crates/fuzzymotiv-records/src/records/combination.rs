@@ -12,7 +12,7 @@ pub struct BehaviourRow {
     pub combination: String,
     /// The setting (`high-curiosity`, `low-curiosity`).
     pub setting: String,
-    /// The measure ([`MEASURES`]).
+    /// The measure (`% optimal exploration`, `% homing`, `% battery usage`, `% recognition`).
     pub measure: String,
     /// Mean over seeds under the baseline.
     pub mean_combination: f64,

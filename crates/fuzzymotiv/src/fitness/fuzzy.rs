@@ -26,11 +26,11 @@
 
 use crate::params::Num;
 
-/// Tolerance on `|C + H + O + E − 1|` accepted by [`Motivations::new`].
+/// Tolerance on `|C + H + O + E − 1|` accepted by [`crate::fitness::Motivations::new`].
 pub const MOTIVATION_SUM_TOLERANCE: f64 = 1e-9;
 
 /// How far `C + H + O + E` may be off 1 and still be normalised by
-/// [`Motivations::normalised`] (docs/model.md §8: e.g. `.3333` three times).
+/// [`crate::fitness::Motivations::normalised`] (docs/model.md §8: e.g. `.3333` three times).
 pub const MOTIVATION_NORMALISE_TOLERANCE: f64 = 1e-3;
 
 /// Largest number of labels (peaks) accepted by [`TskFitness::new`]; keeps
