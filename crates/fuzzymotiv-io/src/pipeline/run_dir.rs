@@ -19,7 +19,8 @@ use crate::records::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATI
 use crate::records::context::RenderContext;
 use crate::records::test_runs;
 use crate::records::{
-    BestGenome, Finished, GenerationRow, RecognitionTable, RunSummary, read_json, to_csv, to_json,
+    BestGenome, Finished, GenerationRow, RecognitionTable, RunSummary, extra_terms,
+    generations_csv, read_json, to_json,
 };
 use crate::render::figures::{Rasterise, add_missing_pngs, write_figure};
 use crate::render::report;
@@ -78,8 +79,8 @@ pub fn execute_with(
     };
     let mut session = Session::open(&staged, exp, out, progress, resume)?;
     let outcome = session.run(exp, progress, hook)?;
-    let generations = GenerationRow::all(&outcome.evolutions);
-    staged.write("generations.csv", to_csv(&generations))?;
+    let generations = GenerationRow::all_of(&extra_terms(exp), &outcome.evolutions);
+    staged.write("generations.csv", generations_csv(&generations))?;
     let done = Finished::new(exp, outcome, session.wall_seconds());
     write_run(&staged, loaded, &done, png, &session.checkpoint)?;
     staged.commit()?;
@@ -294,7 +295,7 @@ fn write_run_figures(
     done: &Finished,
     png: Option<&dyn Rasterise>,
 ) -> Result<(), CliError> {
-    let setting = format!("{} (C,H,O,E) = {:?}", ctx.name, ctx.motivations.as_array());
+    let setting = format!("{} {}", ctx.name, ctx.motivations.label());
     let panels: Vec<_> = done
         .outcome
         .evolutions
@@ -309,11 +310,15 @@ fn write_run_figures(
         .collect();
     write_figure(staged, "fitness", &fitness_svg(&panels), png)?;
     write_figure(staged, "terms", &terms_svg(&panels), png)?;
-    let title = format!(
-        "Best robot, {} (C, H, O, E) = {:?}",
-        ctx.name,
-        ctx.motivations.as_array()
-    );
+    let title = if ctx.motivations.table.is_empty() {
+        format!(
+            "Best robot, {} (C, H, O, E) = {:?}",
+            ctx.name,
+            ctx.motivations.as_array()
+        )
+    } else {
+        format!("Best robot, {} {}", ctx.name, ctx.motivations.label())
+    };
     let paths = best_paths_svg(&title, &ctx.rooms, &done.trajectories());
     write_figure(staged, "trajectories", &paths, png)
 }
