@@ -89,3 +89,45 @@ fn paper_run_records_have_no_extra_terms() {
     }
     assert!(!read(&out.join("best_genome.json")).contains("\"terms\": {"));
 }
+
+#[test]
+fn fetch_run_draws_its_goal_in_the_figure_the_replay_and_the_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = fetch_run(dir.path(), &[]);
+    let svg = read(&run.join("trajectories.svg"));
+    let goal_rims = svg
+        .lines()
+        .filter(|l| l.contains(r##"stroke="#ff7f0e""##) && l.contains("stroke-dasharray"))
+        .count();
+    assert_eq!(goal_rims, 5, "one dashed goal rim per room:\n{svg}");
+    assert!(svg.contains("orange: goal zone"), "{svg}");
+    assert!(read(&run.join("report.html")).contains(r#""goal":[730.0,730.0,60.0]"#));
+    let page = dir.path().join("replay.html");
+    ok(&[
+        "replay",
+        run.to_str().unwrap(),
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    let replay = json(&dir.path().join("replay.json"));
+    let goal = &replay["rooms"][0]["goal"];
+    assert_eq!(
+        (goal["x"].as_f64(), goal["radius"].as_f64()),
+        (Some(730.0), Some(60.0))
+    );
+}
+
+#[test]
+fn paper_figures_draw_no_mission() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let config = repo().join("configs/tiny.toml");
+    ok(&[
+        "run",
+        config.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let svg = read(&out.join("trajectories.svg"));
+    assert!(!svg.contains("#ff7f0e") && !svg.contains("goal"), "{svg}");
+}
