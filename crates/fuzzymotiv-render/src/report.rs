@@ -15,7 +15,7 @@ use serde_json::{Value, json};
 use crate::plot::{colour, esc};
 use crate::study::Setting;
 use crate::svg::{
-    SomRoom, best_paths_svg, fitness_svg, membership_svg, som_svg, terms_svg, trajectories_svg,
+    SomRoom, best_paths_svg, fitness_svg, membership_svg, som_svg, terms_svg_with, trajectories_svg,
 };
 use crate::terms::{NAMES, html, terms};
 use fuzzymotiv_records::records::context::RenderContext;
@@ -456,7 +456,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     );
     figure(
         page,
-        &terms_svg(&panels),
+        &terms_svg_with(&panels, &s.ctx.extra_terms),
         "The population's mean fitness terms per generation: which behaviour the motivations pushed the population towards.",
     );
 

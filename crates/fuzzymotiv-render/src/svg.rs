@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 use crate::plot::{Ticks, colour, esc, open, px, text_width};
 
 use fuzzymotiv::experiment::GenerationRecord;
+use fuzzymotiv::fitness::TermId;
 use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv::simulation::{HomeZone, Room};
 use fuzzymotiv::simulation::{Vec2, point_in_polygon};
@@ -625,6 +626,20 @@ type TermOf = fn(&GenerationRecord) -> f64;
 
 /// One panel per run: the population means of the fitness terms a, g, l, b per generation.
 pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
+    terms_svg_with(panels, &[])
+}
+
+/// Colours of the terms beyond a, g, l, b in the terms figure, in turn.
+const EXTRA_TERM_COLOURS: [&str; 6] = [
+    "#d62728", "#17becf", "#bcbd22", "#e377c2", "#7f7f7f", "#1f77b4",
+];
+
+/// [`terms_svg`] with a curve per term of `extra` (by name: the mission terms, user terms)
+/// after the paper's four.
+pub fn terms_svg_with(
+    panels: &[(String, Vec<GenerationRecord>)],
+    extra: &[(String, TermId)],
+) -> String {
     let ph = 300.0;
     let (ml, mr, mt, mb) = (50.0, 135.0, 30.0, 40.0);
     let widths: Vec<f64> = panels
@@ -635,12 +650,21 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
     let width = px(widths.iter().sum::<f64>().max(1.0));
     let mut s = open(width, ph, 12);
     let _ = writeln!(s, r#"<rect width="{width}" height="{ph}" fill="white"/>"#);
-    let series: [(&str, &str, TermOf); 4] = [
+    let paper: [(&str, &str, TermOf); 4] = [
         ("a exploration", "#2ca02c", |r| r.terms.a),
         ("g homing", "#9467bd", |r| r.terms.g),
         ("l recognition", "#8c564b", |r| r.terms.l),
         ("b battery", "#ff7f0e", |r| r.terms.b),
     ];
+    type Pick<'a> = Box<dyn Fn(&GenerationRecord) -> f64 + 'a>;
+    let mut series: Vec<(String, &str, Pick)> = (paper.into_iter())
+        .map(|(l, c, f)| (l.to_string(), c, Box::new(f) as Pick))
+        .collect();
+    for (k, (name, id)) in extra.iter().enumerate() {
+        let pick = move |r: &GenerationRecord| r.terms.get(*id);
+        let colour = EXTRA_TERM_COLOURS[k % EXTRA_TERM_COLOURS.len()];
+        series.push((name.clone(), colour, Box::new(pick)));
+    }
     let mut ox = 0.0;
     for ((name, hist), pw) in panels.iter().zip(&widths) {
         let (x0, x1, y0, y1) = (ox + ml, ox + pw - mr, ph - mb, mt);
