@@ -62,7 +62,10 @@ fn five_motivation_run_records_urgency_and_goal_by_name() {
     assert!(room["terms_pct"]["goal"].is_number(), "{room}");
     let terms = read(&run.join("terms.svg"));
     for name in ["a exploration", "goal", "urgency", "safety"] {
-        assert!(terms.contains(&format!(">{name}</text>")), "no {name} curve:\n{terms}");
+        assert!(
+            terms.contains(&format!(">{name}</text>")),
+            "no {name} curve:\n{terms}"
+        );
     }
     let md = read(&run.join("table.md"));
     assert!(
