@@ -15,7 +15,7 @@ use serde_json::{Value, json};
 use crate::plot::{colour, esc};
 use crate::study::Setting;
 use crate::svg::{
-    SomRoom, best_paths_svg, fitness_svg, membership_svg, som_svg, terms_svg, trajectories_svg,
+    SomRoom, best_paths_svg, fitness_svg, membership_svg, som_svg, terms_svg_with, trajectories_svg,
 };
 use crate::terms::{NAMES, html, terms};
 use fuzzymotiv_records::records::context::RenderContext;
@@ -127,7 +127,7 @@ pub fn replay_room(ctx: &RenderContext, room: usize, run_label: &str, run: &Inst
     };
     let (tr, terms, f) = (&run.trajectory, run.terms, run.f);
     let zone = r.home_zone;
-    json!({
+    let mut v = json!({
         "room": r.name,
         "run": run_label,
         "steps": tr.len(),
@@ -147,7 +147,22 @@ pub fn replay_room(ctx: &RenderContext, room: usize, run_label: &str, run: &Inst
         "terms": {"a": r3(terms.a), "g": r3(terms.g), "l": r3(terms.l), "b": r3(terms.b)},
         "online_l": ctx.online_orientation(),
         "f": r3(f),
-    })
+    });
+    add_mission(&mut v, r);
+    v
+}
+
+/// A room's mission in its replay data (only when it has one, so the paper's replays keep
+/// their bytes): `goal` as [x, y, radius], `waypoints` as a list of them, in order.
+fn add_mission(v: &mut Value, r: &fuzzymotiv::simulation::Room) {
+    let disc =
+        |z: &fuzzymotiv::simulation::HomeZone| [r1(z.centre.x), r1(z.centre.y), r1(z.radius)];
+    if let Some(goal) = &r.mission.goal {
+        v["goal"] = json!(disc(goal));
+    }
+    if !r.mission.waypoints.is_empty() {
+        v["waypoints"] = json!(r.mission.waypoints.iter().map(disc).collect::<Vec<_>>());
+    }
 }
 
 /// One setting (one run directory) to show on a page.
@@ -441,7 +456,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     );
     figure(
         page,
-        &terms_svg(&panels),
+        &terms_svg_with(&panels, &s.ctx.extra_terms),
         "The population's mean fitness terms per generation: which behaviour the motivations pushed the population towards.",
     );
 

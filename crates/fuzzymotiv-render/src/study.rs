@@ -239,7 +239,7 @@ impl SettingRuns<'_> {
         };
         SettingSummary {
             name: self.setting.name.into(),
-            motivations: ctx.motivations,
+            motivations: ctx.motivations.clone(),
             rows: table(false),
             std: table(true),
             first_generation: stat(false),

@@ -6,8 +6,9 @@ use std::fmt::Write as _;
 use crate::plot::{Ticks, colour, esc, open, px, text_width};
 
 use fuzzymotiv::experiment::GenerationRecord;
-use fuzzymotiv::simulation::Room;
+use fuzzymotiv::fitness::TermId;
 use fuzzymotiv::simulation::Trajectory;
+use fuzzymotiv::simulation::{HomeZone, Room};
 use fuzzymotiv::simulation::{Vec2, point_in_polygon};
 
 /// One panel of [`fitness_panels_svg`]: curves per generation with shaded bands.
@@ -284,6 +285,7 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
             scale,
         };
         draw_room(&mut parts, room, &p);
+        draw_mission(&mut parts, room, &p);
         draw_path(&mut parts, tr, &p);
         draw_home_and_end(&mut parts, room, tr, &p);
         let _ = writeln!(
@@ -297,7 +299,11 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     }
     // Title, caption and scale bar each get a line of their own, and the figure is wide enough
     // for the longest text, so nothing is clipped or overprinted, whatever the number of rooms.
-    let caption = "green: home pose; blue: home zone; red: path, a tick per step; filled circle: the end (ringed: back home)";
+    let caption = format!(
+        "green: home pose; blue: home zone; {}red: path, a tick per step; filled circle: the end (ringed: back home)",
+        mission_caption(rooms.iter().map(|(r, _)| *r))
+    );
+    let caption = caption.as_str();
     let width = x_off
         .max(2.0 * pad + text_width(title, true))
         .max(2.0 * pad + text_width(caption, false));
@@ -337,11 +343,70 @@ fn draw_room(parts: &mut String, room: &Room, p: &Projection) {
         r##"<polygon points="{}" fill="#fafafa" stroke="#222" stroke-width="2"/>"##,
         p.polygon(&room.outline)
     );
-    let (floor, rim) = zone_within(room);
+    draw_zone(parts, room, room.home_zone, HOME_COLOUR, p);
+    for o in &room.obstacles {
+        let _ = writeln!(
+            parts,
+            r##"<polygon points="{}" fill="#888" stroke="#222"/>"##,
+            p.polygon(o)
+        );
+    }
+}
+
+/// The home zone's colour in the figures.
+const HOME_COLOUR: &str = "#1f77b4";
+/// The goal zone's colour in the figures.
+pub const GOAL_COLOUR: &str = "#ff7f0e";
+/// The waypoints' colour in the figures.
+pub const WAYPOINT_COLOUR: &str = "#9467bd";
+
+/// What the trajectory figure's caption says of the rooms' missions (nothing when no room has
+/// one, so the paper's figures keep their bytes).
+fn mission_caption<'a>(rooms: impl Iterator<Item = &'a Room> + Clone) -> String {
+    let goal = rooms.clone().any(|r| r.mission.goal.is_some());
+    let waypoints = rooms.clone().any(|r| !r.mission.waypoints.is_empty());
+    let mut s = String::new();
+    if goal {
+        s.push_str("orange: goal zone; ");
+    }
+    if waypoints {
+        s.push_str("purple: waypoints, numbered in order; ");
+    }
+    s
+}
+
+/// A room's mission: its goal zone and its waypoints (numbered from 1), each a disc within the
+/// room with a dashed rim, like the home zone, in colours of their own.
+fn draw_mission(parts: &mut String, room: &Room, p: &Projection) {
+    if let Some(goal) = room.mission.goal {
+        draw_zone(parts, room, goal, GOAL_COLOUR, p);
+        let _ = writeln!(
+            parts,
+            r##"<text x="{:.1}" y="{:.1}" text-anchor="middle" fill="{GOAL_COLOUR}" font-weight="bold">goal</text>"##,
+            p.x(goal.centre.x),
+            p.y(goal.centre.y) + 4.0
+        );
+    }
+    for (k, w) in room.mission.waypoints.iter().enumerate() {
+        draw_zone(parts, room, *w, WAYPOINT_COLOUR, p);
+        let _ = writeln!(
+            parts,
+            r##"<text x="{:.1}" y="{:.1}" text-anchor="middle" fill="{WAYPOINT_COLOUR}" font-weight="bold">{}</text>"##,
+            p.x(w.centre.x),
+            p.y(w.centre.y) + 4.0,
+            k + 1
+        );
+    }
+}
+
+/// A zone drawn as its disc within the room's outline, filled lightly in `colour`, its rim
+/// dashed where it runs inside the room.
+fn draw_zone(parts: &mut String, room: &Room, zone: HomeZone, colour: &str, p: &Projection) {
+    let (floor, rim) = zone_within(room, zone);
     if floor.len() >= 3 {
         let _ = writeln!(
             parts,
-            r##"<polygon points="{}" fill="#1f77b4" fill-opacity="0.10" stroke="none"/>"##,
+            r##"<polygon points="{}" fill="{colour}" fill-opacity="0.10" stroke="none"/>"##,
             p.polygon(&floor)
         );
     }
@@ -358,14 +423,7 @@ fn draw_room(parts: &mut String, room: &Room, p: &Projection) {
     if !d.is_empty() {
         let _ = writeln!(
             parts,
-            r##"<path d="{d}" fill="none" stroke="#1f77b4" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##
-        );
-    }
-    for o in &room.obstacles {
-        let _ = writeln!(
-            parts,
-            r##"<polygon points="{}" fill="#888" stroke="#222"/>"##,
-            p.polygon(o)
+            r##"<path d="{d}" fill="none" stroke="{colour}" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##
         );
     }
 }
@@ -377,8 +435,7 @@ const ZONE_SIDES: usize = 240;
 /// 240-gon; Sutherland–Hodgman, exact for a convex clip region and any simple outline; where
 /// the result falls apart in pieces they are joined by zero-width seams along the rim, which
 /// the unstroked fill does not show), and the runs of the rim inside the outline.
-fn zone_within(room: &Room) -> (Vec<Vec2>, Vec<Vec<Vec2>>) {
-    let zone = room.home_zone;
+fn zone_within(room: &Room, zone: HomeZone) -> (Vec<Vec2>, Vec<Vec<Vec2>>) {
     let circle: Vec<Vec2> = (0..ZONE_SIDES)
         .map(|i| {
             let a = i as f64 * std::f64::consts::TAU / ZONE_SIDES as f64;
@@ -569,6 +626,20 @@ type TermOf = fn(&GenerationRecord) -> f64;
 
 /// One panel per run: the population means of the fitness terms a, g, l, b per generation.
 pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
+    terms_svg_with(panels, &[])
+}
+
+/// Colours of the terms beyond a, g, l, b in the terms figure, in turn.
+const EXTRA_TERM_COLOURS: [&str; 6] = [
+    "#d62728", "#17becf", "#bcbd22", "#e377c2", "#7f7f7f", "#1f77b4",
+];
+
+/// [`terms_svg`] with a curve per term of `extra` (by name: the mission terms, user terms)
+/// after the paper's four.
+pub fn terms_svg_with(
+    panels: &[(String, Vec<GenerationRecord>)],
+    extra: &[(String, TermId)],
+) -> String {
     let ph = 300.0;
     let (ml, mr, mt, mb) = (50.0, 135.0, 30.0, 40.0);
     let widths: Vec<f64> = panels
@@ -579,12 +650,21 @@ pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
     let width = px(widths.iter().sum::<f64>().max(1.0));
     let mut s = open(width, ph, 12);
     let _ = writeln!(s, r#"<rect width="{width}" height="{ph}" fill="white"/>"#);
-    let series: [(&str, &str, TermOf); 4] = [
+    let paper: [(&str, &str, TermOf); 4] = [
         ("a exploration", "#2ca02c", |r| r.terms.a),
         ("g homing", "#9467bd", |r| r.terms.g),
         ("l recognition", "#8c564b", |r| r.terms.l),
         ("b battery", "#ff7f0e", |r| r.terms.b),
     ];
+    type Pick<'a> = Box<dyn Fn(&GenerationRecord) -> f64 + 'a>;
+    let mut series: Vec<(String, &str, Pick)> = (paper.into_iter())
+        .map(|(l, c, f)| (l.to_string(), c, Box::new(f) as Pick))
+        .collect();
+    for (k, (name, id)) in extra.iter().enumerate() {
+        let pick = move |r: &GenerationRecord| r.terms.get(*id);
+        let colour = EXTRA_TERM_COLOURS[k % EXTRA_TERM_COLOURS.len()];
+        series.push((name.clone(), colour, Box::new(pick)));
+    }
     let mut ox = 0.0;
     for ((name, hist), pw) in panels.iter().zip(&widths) {
         let (x0, x1, y0, y1) = (ox + ml, ox + pw - mr, ph - mb, mt);

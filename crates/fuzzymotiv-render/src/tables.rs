@@ -11,13 +11,22 @@ use crate::study::{SettingRuns, Variant, metrics, paper_row, room_stats, seed_in
 use fuzzymotiv_records::records::context::RenderContext;
 use fuzzymotiv_records::records::{ClaimRecord, RoomRow};
 
-/// The per-room table as Markdown.
+/// The per-room table as Markdown: the paper's columns, then, for an experiment that measures
+/// more terms, "% missions done" (the share of test runs whose mission was done) and one
+/// "% term" column per extra term (its mean over the test runs), by name.
 pub fn table_markdown(rows: &[RoomRow]) -> String {
+    let extra = extra_columns(rows);
     let mut s = String::from(
-        "| room | average fitness | % optimal exploration | % recognition | % battery usage | % homing |\n|---|---|---|---|---|---|\n",
+        "| room | average fitness | % optimal exploration | % recognition | % battery usage | % homing |",
     );
+    let mut rule = String::from("|---|---|---|---|---|---|");
+    for name in &extra {
+        let _ = write!(s, " {name} |");
+        rule.push_str("---|");
+    }
+    let _ = writeln!(s, "\n{rule}");
     for r in rows {
-        let _ = writeln!(
+        let _ = write!(
             s,
             "| {} | {:.3} | {:.1} | {} | {:.1} | {:.1} |",
             r.room,
@@ -28,8 +37,31 @@ pub fn table_markdown(rows: &[RoomRow]) -> String {
             r.battery_pct,
             r.homing_pct
         );
+        for cell in extra_cells(r) {
+            let _ = write!(s, " {cell} |");
+        }
+        s.push('\n');
     }
     s
+}
+
+/// The headers of the extra columns of the per-room table (none for the paper's model).
+fn extra_columns(rows: &[RoomRow]) -> Vec<String> {
+    let Some(r) = rows.first() else {
+        return Vec::new();
+    };
+    let done = r.mission_done_pct.map(|_| "% missions done".to_string());
+    done.into_iter()
+        .chain(r.terms_pct.keys().map(|k| format!("% {k}")))
+        .collect()
+}
+
+/// A row's cells in the extra columns.
+fn extra_cells(r: &RoomRow) -> Vec<String> {
+    let done = r.mission_done_pct.map(|p| format!("{p:.0}"));
+    done.into_iter()
+        .chain(r.terms_pct.values().map(|v| format!("{v:.1}")))
+        .collect()
 }
 
 /// What the ± of every table means, for its caption: the standard deviation is the sample

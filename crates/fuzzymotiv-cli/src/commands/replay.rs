@@ -294,8 +294,15 @@ fn room_files(
         let csv = dir.join(format!("{stem}-{}.csv", file_tag(name)));
         files.push((csv.clone(), trajectory_csv(&run.trajectory).into_bytes()));
         let (tr, terms) = (&run.trajectory, run.terms);
+        let mission = terms.mission.map_or(String::new(), |m| {
+            let done = m.done_at.map_or("not done".into(), |t| format!("done at step {t}"));
+            format!(
+                ", goal = {:.3}, urgency = {:.3}, waypoints = {:.3}, safety = {:.3} (mission {done})",
+                m.goal, m.urgency, m.waypoints, m.safety
+            )
+        });
         lines.push(format!(
-            "{name}: a = {:.3}, g = {:.3}, b = {:.3}, F = {:.4}, {} collisions → {}",
+            "{name}: a = {:.3}, g = {:.3}, b = {:.3}{mission}, F = {:.4}, {} collisions → {}",
             terms.a,
             terms.g,
             terms.b,
@@ -303,7 +310,7 @@ fn room_files(
             tr.collisions.iter().filter(|&&c| c).count(),
             csv.display()
         ));
-        rooms_json.push(serde_json::json!({
+        let mut room_json = serde_json::json!({
             "room": name,
             "run": label,
             "steps": tr.len(),
@@ -312,9 +319,23 @@ fn room_files(
             "executed_steps": tr.executed(),
             "actions": tr.actions.iter().map(|a| a.label()).collect::<Vec<_>>(),
             "trajectory": tr,
-        }));
+        });
+        add_mission(&mut room_json, &ctx.rooms[*r]);
+        rooms_json.push(room_json);
     }
     (lines, rooms_json)
+}
+
+/// A room's mission in the replay's JSON, only when it has one (the paper's replays keep their
+/// bytes): `goal` as {x, y, radius} and `waypoints` as a list of them, in order.
+fn add_mission(room_json: &mut serde_json::Value, room: &fuzzymotiv::simulation::Room) {
+    let zone = |z: &fuzzymotiv::simulation::HomeZone| serde_json::json!({"x": z.centre.x, "y": z.centre.y, "radius": z.radius});
+    if let Some(goal) = &room.mission.goal {
+        room_json["goal"] = zone(goal);
+    }
+    if !room.mission.waypoints.is_empty() {
+        room_json["waypoints"] = room.mission.waypoints.iter().map(zone).collect();
+    }
 }
 
 /// Writes the replay's CSV per room, JSON, figure and page, through the output guard: the same

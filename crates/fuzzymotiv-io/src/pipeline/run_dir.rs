@@ -19,11 +19,12 @@ use crate::records::checkpoint::{CHECKPOINT, Checkpoint, CheckpointRun, POPULATI
 use crate::records::context::RenderContext;
 use crate::records::test_runs;
 use crate::records::{
-    BestGenome, Finished, GenerationRow, RecognitionTable, RunSummary, read_json, to_csv, to_json,
+    BestGenome, Finished, GenerationRow, RecognitionTable, RunSummary, extra_terms,
+    generations_csv, read_json, to_json,
 };
 use crate::render::figures::{Rasterise, add_missing_pngs, write_figure};
 use crate::render::report;
-use crate::render::svg::{best_paths_svg, fitness_svg, terms_svg};
+use crate::render::svg::{best_paths_svg, fitness_svg, terms_svg_with};
 use crate::render::tables::{provenance_line, table_markdown};
 
 /// What is about to run, said before the first generation (which may take long).
@@ -78,8 +79,8 @@ pub fn execute_with(
     };
     let mut session = Session::open(&staged, exp, out, progress, resume)?;
     let outcome = session.run(exp, progress, hook)?;
-    let generations = GenerationRow::all(&outcome.evolutions);
-    staged.write("generations.csv", to_csv(&generations))?;
+    let generations = GenerationRow::all_of(&extra_terms(exp), &outcome.evolutions);
+    staged.write("generations.csv", generations_csv(&generations))?;
     let done = Finished::new(exp, outcome, session.wall_seconds());
     write_run(&staged, loaded, &done, png, &session.checkpoint)?;
     staged.commit()?;
@@ -269,7 +270,7 @@ fn write_run(
         "table.md",
         table_markdown(&done.rows) + &provenance_line(&ctx),
     )?;
-    write_run_figures(staged, &ctx, done, png)?;
+    write_run_figures(staged, &ctx, done, png, &extra_terms(exp))?;
     staged.write("summary.json", to_json(&RunSummary::of(exp, done)))?;
     // The last checkpoint (in memory: the file may already be gone, when a run killed after
     // this step resumes from population.json) holds the final population: kept as
@@ -293,8 +294,9 @@ fn write_run_figures(
     ctx: &RenderContext,
     done: &Finished,
     png: Option<&dyn Rasterise>,
+    extra: &[(String, fuzzymotiv::fitness::TermId)],
 ) -> Result<(), CliError> {
-    let setting = format!("{} (C,H,O,E) = {:?}", ctx.name, ctx.motivations.as_array());
+    let setting = format!("{} {}", ctx.name, ctx.motivations.label());
     let panels: Vec<_> = done
         .outcome
         .evolutions
@@ -308,12 +310,17 @@ fn write_run_figures(
         })
         .collect();
     write_figure(staged, "fitness", &fitness_svg(&panels), png)?;
-    write_figure(staged, "terms", &terms_svg(&panels), png)?;
-    let title = format!(
-        "Best robot, {} (C, H, O, E) = {:?}",
-        ctx.name,
-        ctx.motivations.as_array()
-    );
+    let terms = terms_svg_with(&panels, extra);
+    write_figure(staged, "terms", &terms, png)?;
+    let title = if ctx.motivations.table.is_empty() {
+        format!(
+            "Best robot, {} (C, H, O, E) = {:?}",
+            ctx.name,
+            ctx.motivations.as_array()
+        )
+    } else {
+        format!("Best robot, {} {}", ctx.name, ctx.motivations.label())
+    };
     let paths = best_paths_svg(&title, &ctx.rooms, &done.trajectories());
     write_figure(staged, "trajectories", &paths, png)
 }

@@ -116,7 +116,7 @@ fn collect_results(dir: &Path, jobs: &[Job]) -> Result<(SweepResults, usize), Cl
                 setting: job.setting.clone(),
                 replicate: job.replicate,
                 seed: job.seed,
-                motivations: summary.motivations,
+                motivations: summary.motivations.clone(),
                 grid: grid.clone(),
                 room: r.room.clone(),
                 values: [

@@ -45,6 +45,50 @@ struct RawSimplex {
     /// Motivations held fixed, e.g. { orientation = 0.0 }; the others vary.
     #[serde(default)]
     fixed: BTreeMap<String, f64>,
+    /// The motivations that vary, by name (any of the base config's); the others keep their
+    /// `fixed` value, else the base config's weight. Without it, every motivation not fixed
+    /// varies.
+    #[serde(default)]
+    over: Option<Vec<String>>,
+}
+
+/// A motivation point: one weight per motivation of the base config, in its order.
+type Point = Vec<(String, f64)>;
+
+/// The base config's motivations: names in input order, their weights, and whether each is
+/// written as a table (then a sweep sets `motivations.NAME.weight`).
+struct BaseMotivations {
+    names: Vec<String>,
+    weights: Vec<f64>,
+    tables: Vec<bool>,
+}
+
+impl BaseMotivations {
+    fn of(base: &RawConfig) -> BaseMotivations {
+        let list = &base.motivations.list;
+        BaseMotivations {
+            names: list.iter().map(|(n, _)| n.clone()).collect(),
+            weights: list.iter().map(|(_, m)| m.weight()).collect(),
+            tables: (list.iter())
+                .map(|(_, m)| matches!(m, fuzzymotiv::fitness::RawMotivation::Table(_)))
+                .collect(),
+        }
+    }
+
+    /// Whether they are the paper's four, in its order (then settings keep their old names).
+    fn is_paper(&self) -> bool {
+        self.names == MOTIVATIONS
+    }
+
+    /// The `--set` key of motivation `k`'s weight.
+    fn key(&self, k: usize) -> String {
+        let name = &self.names[k];
+        if self.tables[k] {
+            format!("motivations.{name}.weight")
+        } else {
+            format!("motivations.{name}")
+        }
+    }
 }
 
 /// Most jobs one sweep file may plan.
@@ -96,7 +140,8 @@ impl Sweep {
                 format!("must be in 1..=100000, got {}", raw.replicates),
             ));
         }
-        let points = motivation_points(&raw, source)?;
+        let motivations = BaseMotivations::of(&base);
+        let points = motivation_points(&raw, &motivations, source)?;
         let combos = grid_combinations(&raw.grid, source)?;
         let planned = points
             .len()
@@ -120,7 +165,7 @@ impl Sweep {
         let mut seen = HashSet::new();
         for point in &points {
             for combo in &combos {
-                let (setting, overrides) = setting_of(point.as_ref(), combo);
+                let (setting, overrides) = setting_of(&motivations, point.as_ref(), combo);
                 // The same point listed twice (e.g. explicitly and by the simplex): once.
                 if seen.insert(setting.clone()) {
                     sweep.add_replicates(&setting, &overrides, raw.replicates, base.seed)?;
@@ -217,10 +262,15 @@ fn split_sweep(text: &str, source: &str) -> Result<(RawSweep, String), CliError>
 }
 
 /// The motivation points (explicit, then the simplex's), or one "no point" when none.
-fn motivation_points(sweep: &RawSweep, source: &str) -> Result<Vec<Option<[f64; 4]>>, CliError> {
-    let mut points: Vec<[f64; 4]> = sweep.motivations.clone();
+fn motivation_points(
+    sweep: &RawSweep,
+    base: &BaseMotivations,
+    source: &str,
+) -> Result<Vec<Option<Point>>, CliError> {
+    let paper = |p: &[f64; 4]| (MOTIVATIONS.iter().map(|n| n.to_string()).zip(*p)).collect();
+    let mut points: Vec<Point> = sweep.motivations.iter().map(paper).collect();
     if let Some(simplex) = &sweep.simplex {
-        points.extend(simplex_points(simplex, source)?);
+        points.extend(simplex_points(simplex, base, source)?);
     }
     Ok(if points.is_empty() {
         vec![None]
@@ -259,14 +309,28 @@ fn grid_combinations(
 
 /// A setting's name (e.g. `C=0.8,H=0.1,O=0,E=0.1;trial.noise=0.06`, or `base`) and its
 /// `--set` overrides.
-fn setting_of(point: Option<&[f64; 4]>, combo: &[(String, toml::Value)]) -> (String, Vec<String>) {
+/// A point over other motivations than the paper's four is named `name=weight,…`.
+fn setting_of(
+    base: &BaseMotivations,
+    point: Option<&Point>,
+    combo: &[(String, toml::Value)],
+) -> (String, Vec<String>) {
     let mut overrides = Vec::new();
     let mut parts = Vec::new();
     if let Some(p) = point {
-        for (k, v) in MOTIVATIONS.iter().zip(p) {
-            overrides.push(format!("motivations.{k}={}", fmt_value(*v)));
+        let named: Vec<&str> = p.iter().map(|(n, _)| n.as_str()).collect();
+        for (name, v) in p {
+            let key = (base.names.iter().position(|n| n == name))
+                .map_or_else(|| format!("motivations.{name}"), |k| base.key(k));
+            overrides.push(format!("{key}={}", fmt_value(*v)));
         }
-        parts.push(format!("C={},H={},O={},E={}", p[0], p[1], p[2], p[3]));
+        if named == MOTIVATIONS {
+            let w: Vec<f64> = p.iter().map(|(_, v)| *v).collect();
+            parts.push(format!("C={},H={},O={},E={}", w[0], w[1], w[2], w[3]));
+        } else {
+            let each: Vec<String> = p.iter().map(|(n, v)| format!("{n}={v}")).collect();
+            parts.push(each.join(","));
+        }
     }
     for (k, v) in combo {
         overrides.push(format!("{k}={v}"));
@@ -280,10 +344,14 @@ fn setting_of(point: Option<&[f64; 4]>, combo: &[(String, toml::Value)]) -> (Str
     (setting, overrides)
 }
 
-/// The motivation points of a simplex grid.
-fn simplex_points(s: &RawSimplex, source: &str) -> Result<Vec<[f64; 4]>, CliError> {
+/// The motivation points of a simplex grid over the base config's motivations.
+fn simplex_points(
+    s: &RawSimplex,
+    base: &BaseMotivations,
+    source: &str,
+) -> Result<Vec<Point>, CliError> {
     let n = simplex_divisions(s.step, source)?;
-    let fixed = fixed_units(s, n, source)?;
+    let fixed = fixed_units(s, base, n, source)?;
     let fixed_units: usize = fixed.iter().flatten().sum();
     if fixed_units > n {
         return Err(err(
@@ -292,8 +360,8 @@ fn simplex_points(s: &RawSimplex, source: &str) -> Result<Vec<[f64; 4]>, CliErro
             "fixed motivations sum to more than 1",
         ));
     }
-    let free: Vec<usize> = (0..4).filter(|&i| fixed[i].is_none()).collect();
-    let mut units = fixed.map(|f| f.unwrap_or(0));
+    let free: Vec<usize> = (0..fixed.len()).filter(|&i| fixed[i].is_none()).collect();
+    let mut units: Vec<usize> = fixed.iter().map(|f| f.unwrap_or(0)).collect();
     let mut out = Vec::new();
     spread_units(&free, n - fixed_units, &mut units, n, &mut out);
     if out.is_empty() {
@@ -303,7 +371,8 @@ fn simplex_points(s: &RawSimplex, source: &str) -> Result<Vec<[f64; 4]>, CliErro
             "no motivation point sums to 1 with these fixed values",
         ));
     }
-    Ok(out)
+    let named = |w: Vec<f64>| base.names.iter().cloned().zip(w).collect();
+    Ok(out.into_iter().map(named).collect())
 }
 
 /// 1/step, checked to be a whole number ≤ 100.
@@ -327,32 +396,69 @@ fn simplex_divisions(step: f64, source: &str) -> Result<usize, CliError> {
     Ok(n as usize)
 }
 
-/// The fixed motivations in steps of 1/n, per motivation (none where free).
-fn fixed_units(s: &RawSimplex, n: usize, source: &str) -> Result<[Option<usize>; 4], CliError> {
-    let mut fixed = [None; 4];
+/// The fixed motivations in steps of 1/n, per motivation of the base config (none where
+/// free): those `fixed` names, and with `over`, every one it leaves out at its base weight.
+fn fixed_units(
+    s: &RawSimplex,
+    base: &BaseMotivations,
+    n: usize,
+    source: &str,
+) -> Result<Vec<Option<usize>>, CliError> {
+    let known = || {
+        if base.is_paper() {
+            "use curiosity, homing, orientation or energy".to_string()
+        } else {
+            format!("use one of the config's: {}", base.names.join(", "))
+        }
+    };
+    let position = |field: &str, k: &str| {
+        (base.names.iter().position(|m| m == k))
+            .ok_or_else(|| err(source, field, format!("not a motivation; {}", known())))
+    };
+    let mut fixed = vec![None; base.names.len()];
+    if let Some(over) = &s.over {
+        let mut free = vec![false; base.names.len()];
+        for (j, k) in over.iter().enumerate() {
+            let field = format!("sweep.simplex.over[{j}]");
+            let i = position(&field, k)?;
+            if s.fixed.contains_key(k) || free[i] {
+                let why = "is named twice (in `over` and `fixed`, or twice in `over`)";
+                return Err(err(source, &field, format!("{k} {why}")));
+            }
+            free[i] = true;
+        }
+        for i in (0..free.len()).filter(|&i| !free[i]) {
+            let field = format!("motivations.{}", base.names[i]);
+            let kept = in_units(base.weights[i], n, source, &field).map_err(|_| {
+                let why = "not a multiple of sweep.simplex.step; a motivation `over` leaves out keeps its weight: give it one in sweep.simplex.fixed";
+                let w = fuzzymotiv::params::Num(base.weights[i]);
+                err(source, &field, format!("is {w}, {why}"))
+            })?;
+            fixed[i] = Some(kept);
+        }
+    }
     for (k, v) in &s.fixed {
         let field = format!("sweep.simplex.fixed.{k}");
-        let i = MOTIVATIONS.iter().position(|m| m == k).ok_or_else(|| {
-            err(
-                source,
-                &field,
-                "not a motivation; use curiosity, homing, orientation or energy",
-            )
-        })?;
-        let units = v * n as f64;
-        if !(0.0..=1.0).contains(v) || (units - units.round()).abs() > 1e-9 {
-            return Err(err(
-                source,
-                &field,
-                format!(
-                    "must be a multiple of the step in [0, 1], got {}",
-                    fuzzymotiv::params::Num(*v)
-                ),
-            ));
-        }
-        fixed[i] = Some(units.round() as usize);
+        let i = position(&field, k)?;
+        fixed[i] = Some(in_units(*v, n, source, &field)?);
     }
     Ok(fixed)
+}
+
+/// A weight in steps of 1/n, checked to be a multiple of the step in [0, 1].
+fn in_units(v: f64, n: usize, source: &str, field: &str) -> Result<usize, CliError> {
+    let units = v * n as f64;
+    if !(0.0..=1.0).contains(&v) || (units - units.round()).abs() > 1e-9 {
+        return Err(err(
+            source,
+            field,
+            format!(
+                "must be a multiple of the step in [0, 1], got {}",
+                fuzzymotiv::params::Num(v)
+            ),
+        ));
+    }
+    Ok(units.round() as usize)
 }
 
 /// Every way to spread `left` units over the `free` motivations (the first free one from most
@@ -360,19 +466,20 @@ fn fixed_units(s: &RawSimplex, n: usize, source: &str) -> Result<[Option<usize>;
 fn spread_units(
     free: &[usize],
     left: usize,
-    units: &mut [usize; 4],
+    units: &mut [usize],
     n: usize,
-    out: &mut Vec<[f64; 4]>,
+    out: &mut Vec<Vec<f64>>,
 ) {
+    let point = |units: &[usize]| units.iter().map(|&u| u as f64 / n as f64).collect();
     match free {
         [] => {
             if left == 0 {
-                out.push(units.map(|u| u as f64 / n as f64));
+                out.push(point(units));
             }
         }
         [last] => {
             units[*last] = left;
-            out.push(units.map(|u| u as f64 / n as f64));
+            out.push(point(units));
         }
         [first, rest @ ..] => {
             for u in (0..=left).rev() {
@@ -396,6 +503,57 @@ mod tests {
         let message = e.to_string();
         assert!(
             message.contains("not valid TOML (line 3, column "),
+            "{message}"
+        );
+    }
+
+    /// A base config of five motivations (the paper's four + urgency over a goal).
+    fn five(sweep: &str) -> Result<Sweep, CliError> {
+        let text = format!(
+            "rooms = [\"../rooms/fetch-H.toml\"]\n[aem]\nenabled = false\n[ga]\npopulation = 4\ngenerations = 1\n[motivations]\ncuriosity = 0.5\nhoming = 0.1\norientation = 0.0\nenergy = 0.0\nurgency = {{ weight = 0.4, term = \"urgency\" }}\n{sweep}"
+        );
+        let configs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs");
+        Sweep::parse_str(&text, "s.toml", &configs)
+    }
+
+    #[test]
+    fn simplex_over_three_named_motivations_plans_their_points() {
+        let sweep = five(
+            "[sweep]\nsimplex = { step = 0.5, over = [\"curiosity\", \"urgency\", \"homing\"] }\n",
+        )
+        .unwrap();
+        let settings: Vec<&str> = sweep.jobs.iter().map(|j| j.setting.as_str()).collect();
+        // orientation and energy keep the base config's 0; the three spread 1 in halves, the
+        // first (in the config's order) from most to fewest.
+        assert_eq!(
+            settings,
+            [
+                "curiosity=1,homing=0,orientation=0,energy=0,urgency=0",
+                "curiosity=0.5,homing=0.5,orientation=0,energy=0,urgency=0",
+                "curiosity=0.5,homing=0,orientation=0,energy=0,urgency=0.5",
+                "curiosity=0,homing=1,orientation=0,energy=0,urgency=0",
+                "curiosity=0,homing=0.5,orientation=0,energy=0,urgency=0.5",
+                "curiosity=0,homing=0,orientation=0,energy=0,urgency=1",
+            ]
+        );
+        let urgency = sweep.load_job(&sweep.jobs[5]).unwrap();
+        assert_eq!(
+            urgency.experiment.motivations().weight_of("urgency"),
+            Some(1.0)
+        );
+    }
+
+    #[test]
+    fn simplex_over_a_name_the_config_lacks_says_which_it_has() {
+        let Err(e) =
+            five("[sweep]\nsimplex = { step = 0.5, over = [\"curiosity\", \"hunger\"] }\n")
+        else {
+            panic!("an unknown motivation was swept");
+        };
+        let message = e.to_string();
+        assert!(
+            message.contains("sweep.simplex.over[1]")
+                && message.contains("curiosity, homing, orientation, energy, urgency"),
             "{message}"
         );
     }

@@ -49,6 +49,8 @@ pub struct RenderContext {
     pub aem: AemSetting,
     /// The resolved config (`config.resolved.toml`).
     pub config_text: String,
+    /// The terms measured beyond a, g, l, b ([`crate::records::extra_terms`]), by name.
+    pub extra_terms: Vec<(String, fuzzymotiv::fitness::TermId)>,
 }
 
 /// The TSK rule base (docs/model.md §8) as the report describes it.
@@ -112,6 +114,7 @@ impl RenderContext {
                 test_runs: aem.test_runs(),
             },
             config_text: resolved_toml(&loaded.raw),
+            extra_terms: crate::records::extra_terms(exp),
         }
     }
 

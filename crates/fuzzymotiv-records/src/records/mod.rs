@@ -19,6 +19,15 @@
 //! | sweep `results.csv` | [`SweepResults`] |
 //! | sweep `aggregate.csv` | [`AggregateRow`] |
 //! | `compare.csv` | [`compare::CompareRow`] |
+//!
+//! An experiment whose motivations are not the paper's four, or that measures a mission or
+//! terms of its own ([`extra_terms`]), records more, by name: `generations.csv` a column per
+//! extra term between `b` and `room` (the population mean), `best_genome.json` a `terms`
+//! object per room, `summary.json` the motivation table (`motivations.table`: name, weight,
+//! term) and per room `terms_pct` (the mean 100·term over the test runs) and
+//! `mission_done_pct` (the share of test runs whose mission was done: waypoints visited, goal
+//! reached); `table.md` shows the last two as "% missions done" and "% term" columns. The
+//! paper's model records none of these, so its files keep their bytes.
 
 use std::fmt;
 use std::path::Path;
@@ -27,8 +36,10 @@ use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::Outcome;
 use fuzzymotiv::experiment::Training;
 use fuzzymotiv::experiment::{Evolution, GenerationRecord};
+use std::collections::BTreeMap;
+
 use fuzzymotiv::fitness::FitnessTerms;
-use fuzzymotiv::fitness::{Explanation, Motivations};
+use fuzzymotiv::fitness::{Explanation, Motivations, TermId};
 use fuzzymotiv::simulation::Trajectory;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -92,7 +103,10 @@ impl Finished {
     /// The outcome of a run with its per-room table and fuzzy fitness explained.
     pub fn new(exp: &Experiment, outcome: Outcome, wall_seconds: f64) -> Finished {
         let rooms = 0..exp.arenas().len();
-        let rows = rooms.clone().map(|r| RoomRow::of(&outcome, r)).collect();
+        let extra = extra_terms(exp);
+        let rows = (rooms.clone())
+            .map(|r| RoomRow::of(&outcome, r, &extra))
+            .collect();
         let fuzzy = rooms.map(|r| RoomFuzzy::of(exp, &outcome, r)).collect();
         Finished {
             outcome,
@@ -136,13 +150,79 @@ pub struct GenerationRow {
     pub b: Fixed<9>,
     /// The run's label: `all`, or the room a per-room robot was evolved in.
     pub room: String,
+    /// Population means of the terms the experiment measures beyond a, g, l, b
+    /// ([`extra_terms`]), by name: columns between `b` and `room`, only in the files of such
+    /// experiments (written by [`generations_csv`], read by [`read_generations`]).
+    #[serde(skip)]
+    pub extra: Vec<(String, Fixed<9>)>,
+}
+
+/// The terms an experiment measures beyond the paper's a, g, l, b, by name, in the order the
+/// records list them: the mission terms when a motivation weighs one of them (`goal` when a
+/// room has a goal zone, `urgency`, `waypoints` when a room has waypoints, `safety`), then the
+/// user-defined terms in registration order. None for the paper's model.
+pub fn extra_terms(exp: &Experiment) -> Vec<(String, TermId)> {
+    let mut out = Vec::new();
+    if exp.measures_mission() {
+        let rooms = || exp.arenas().iter().map(|a| &a.room().mission);
+        let goal = rooms().any(|m| m.goal.is_some());
+        let waypoints = rooms().any(|m| !m.waypoints.is_empty());
+        let ids = [
+            (TermId::Goal, goal),
+            (TermId::Urgency, true),
+            (TermId::Waypoints, waypoints),
+            (TermId::Safety, true),
+        ];
+        for (id, _) in ids.into_iter().filter(|(_, on)| *on) {
+            out.push((term_name(id).to_string(), id));
+        }
+    }
+    for (k, u) in exp.user_terms().iter().enumerate() {
+        out.push((u.name.clone(), TermId::User(k)));
+    }
+    out
+}
+
+fn term_name(id: TermId) -> &'static str {
+    match id {
+        TermId::A => "a",
+        TermId::G => "g",
+        TermId::L => "l",
+        TermId::B => "b",
+        TermId::Goal => "goal",
+        TermId::Urgency => "urgency",
+        TermId::Waypoints => "waypoints",
+        TermId::Safety => "safety",
+        TermId::User(_) => "user",
+    }
+}
+
+/// The values of `extra` terms in `terms`, by name.
+pub fn extra_values(extra: &[(String, TermId)], terms: &FitnessTerms) -> Vec<(String, f64)> {
+    extra
+        .iter()
+        .map(|(name, id)| (name.clone(), terms.get(*id)))
+        .collect()
 }
 
 impl GenerationRow {
-    /// The row of `rec` in run `run`.
+    /// The row of `rec` in run `run` (the paper's columns only).
     pub fn of(rec: &GenerationRecord, run: &str) -> GenerationRow {
+        Self::with_terms(rec, run, &[])
+    }
+
+    /// The row of `rec` in run `run`, with a column per term of `extra` ([`extra_terms`]).
+    pub fn with_terms(
+        rec: &GenerationRecord,
+        run: &str,
+        extra: &[(String, TermId)],
+    ) -> GenerationRow {
         let (s, t) = (rec.stats, rec.terms);
         GenerationRow {
+            extra: extra_values(extra, &t)
+                .into_iter()
+                .map(|(n, v)| (n, Fixed(v)))
+                .collect(),
             generation: rec.generation,
             best: Fixed(s.max),
             mean: Fixed(s.mean),
@@ -157,13 +237,77 @@ impl GenerationRow {
         }
     }
 
-    /// Every generation of every evolution, in order.
+    /// Every generation of every evolution, in order (the paper's columns only).
     pub fn all(evolutions: &[Evolution]) -> Vec<GenerationRow> {
+        Self::all_of(&[], evolutions)
+    }
+
+    /// Every generation of every evolution, in order, with a column per term of `extra`.
+    pub fn all_of(extra: &[(String, TermId)], evolutions: &[Evolution]) -> Vec<GenerationRow> {
         evolutions
             .iter()
-            .flat_map(|e| e.history.iter().map(|r| GenerationRow::of(r, &e.run.label)))
+            .flat_map(|e| {
+                e.history
+                    .iter()
+                    .map(|r| GenerationRow::with_terms(r, &e.run.label, extra))
+            })
             .collect()
     }
+}
+
+/// The columns of `generations.csv` before the extra terms'.
+const GENERATION_COLUMNS: [&str; 10] = [
+    "generation",
+    "best",
+    "mean",
+    "std",
+    "min",
+    "max",
+    "a",
+    "g",
+    "l",
+    "b",
+];
+
+/// `generations.csv`'s text: the paper's columns, then one per extra term (by the first row's
+/// names), then `room`. Rows without extra terms give the bytes they always gave.
+pub fn generations_csv(rows: &[GenerationRow]) -> String {
+    let Some(first) = rows.first().filter(|r| !r.extra.is_empty()) else {
+        return to_csv(rows);
+    };
+    let mut w = csv_writer();
+    let mut header: Vec<String> = GENERATION_COLUMNS.iter().map(|c| c.to_string()).collect();
+    header.extend(first.extra.iter().map(|(n, _)| n.clone()));
+    header.push("room".into());
+    write_row(&mut w, header);
+    for r in rows {
+        let mut cells = vec![r.generation.to_string()];
+        for v in [r.best, r.mean, r.std, r.min, r.max, r.a, r.g, r.l, r.b] {
+            cells.push(v.to_string());
+        }
+        cells.extend(r.extra.iter().map(|(_, v)| v.to_string()));
+        cells.push(r.room.clone());
+        write_row(&mut w, cells);
+    }
+    csv_text(w)
+}
+
+/// Reads `generations.csv`: the paper's columns, and every other column but `room` as an extra
+/// term's (a file of the paper's model has none).
+pub fn read_generations(path: &Path) -> Result<Vec<GenerationRow>, CliError> {
+    let mut rows: Vec<GenerationRow> = read_csv(path)?;
+    let table = CsvTable::read(path)?;
+    let names: Vec<String> = (table.headers.iter())
+        .filter(|h| !GENERATION_COLUMNS.contains(&h.as_str()) && *h != "room")
+        .cloned()
+        .collect();
+    for (k, row) in rows.iter_mut().enumerate() {
+        for name in &names {
+            let v: f64 = table.get(k, name)?;
+            row.extra.push((name.clone(), Fixed(v)));
+        }
+    }
+    Ok(rows)
 }
 
 /// One row of the per-room table (docs/model.md §10): `summary.json`'s `rooms`, `table.md`.
@@ -185,15 +329,36 @@ pub struct RoomRow {
     pub recognition_pct: Option<f64>,
     /// Room name.
     pub room: String,
+    /// % of the test runs whose mission was done (the room's waypoints visited and its goal
+    /// reached: `done_at` set), when the experiment measures a mission ([`extra_terms`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mission_done_pct: Option<f64>,
+    /// Mean 100·term over the test runs, for each term the experiment measures beyond a, g,
+    /// l, b ([`extra_terms`]), by name; none for the paper's model.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub terms_pct: BTreeMap<String, f64>,
 }
 
 impl RoomRow {
     /// Room `r`'s row: all-rooms training uses the one robot everywhere, per-room training
-    /// each room's own robot.
-    fn of(outcome: &Outcome, r: usize) -> RoomRow {
+    /// each room's own robot; with a column per term of `extra`.
+    fn of(outcome: &Outcome, r: usize, extra: &[(String, TermId)]) -> RoomRow {
         let (evo, k) = outcome.robot_for_room(r);
         let a = &outcome.aem_for_room(r).rooms[r];
+        let n = a.tests.len().max(1) as f64;
+        let terms_pct = (extra.iter())
+            .map(|(name, id)| {
+                let sum: f64 = a.tests.iter().map(|t| 100.0 * t.terms.get(*id)).sum();
+                (name.clone(), sum / n)
+            })
+            .collect();
+        let measured = a.tests.iter().any(|t| t.terms.mission.is_some());
+        let done = (a.tests.iter())
+            .filter(|t| t.terms.mission.is_some_and(|m| m.done_at.is_some()))
+            .count();
         RoomRow {
+            mission_done_pct: measured.then(|| 100.0 * done as f64 / n),
+            terms_pct,
             room: a.room.clone(),
             average_fitness: evo.mean_room_fitness(k),
             exploration_pct: a.exploration_pct,
@@ -239,8 +404,9 @@ impl RoomFuzzy {
     }
 }
 
-/// The motivations X = (C, H, O, E) as files record them.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// The motivations as files record them: the paper's X = (C, H, O, E) (0 where absent) and,
+/// when they are not the paper's four, the whole table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MotivationsRecord {
     /// Curiosity C.
     pub curiosity: f64,
@@ -250,12 +416,39 @@ pub struct MotivationsRecord {
     pub homing: f64,
     /// Orientation O.
     pub orientation: f64,
+    /// Every motivation in input order (name, weight, term), when they are not the paper's
+    /// four ([`Motivations::is_paper`]); absent in the paper's records.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub table: Vec<MotivationEntry>,
+}
+
+/// One motivation of a [`MotivationsRecord`]'s table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MotivationEntry {
+    /// Its name.
+    pub name: String,
+    /// The term it weighs.
+    pub term: String,
+    /// Its weight.
+    pub weight: f64,
 }
 
 impl MotivationsRecord {
     /// The record of `m`.
     pub fn of(m: &Motivations) -> MotivationsRecord {
+        let table = if m.is_paper() {
+            Vec::new()
+        } else {
+            m.iter()
+                .map(|x| MotivationEntry {
+                    name: x.name().to_string(),
+                    term: x.term().to_string(),
+                    weight: x.weight(),
+                })
+                .collect()
+        };
         MotivationsRecord {
+            table,
             curiosity: m.curiosity(),
             energy: m.energy(),
             homing: m.homing(),
@@ -266,6 +459,19 @@ impl MotivationsRecord {
     /// (C, H, O, E).
     pub fn as_array(&self) -> [f64; 4] {
         [self.curiosity, self.homing, self.orientation, self.energy]
+    }
+
+    /// The motivations as a title shows them: `(C,H,O,E) = [..]` for the paper's four,
+    /// `name = weight, …` for others.
+    pub fn label(&self) -> String {
+        if self.table.is_empty() {
+            format!("(C,H,O,E) = {:?}", self.as_array())
+        } else {
+            let parts: Vec<String> = (self.table.iter())
+                .map(|m| format!("{} = {}", m.name, m.weight))
+                .collect();
+            parts.join(", ")
+        }
     }
 }
 
@@ -401,6 +607,10 @@ pub struct RoomTerms {
     pub l: f64,
     /// Room name.
     pub room: String,
+    /// The terms beyond a, g, l, b the experiment measures ([`extra_terms`]), by name; absent
+    /// for the paper's model.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub terms: BTreeMap<String, f64>,
 }
 
 /// The best robot of one evolution in `best_genome.json`.
@@ -466,6 +676,7 @@ impl BestGenome {
     /// The best robots of a finished run.
     pub fn of(exp: &Experiment, evolutions: &[Evolution]) -> BestGenome {
         let names = exp.room_names();
+        let extra = extra_terms(exp);
         let runs: Vec<GenomeRun> = evolutions
             .iter()
             .map(|evo| {
@@ -487,6 +698,7 @@ impl BestGenome {
                             g: s.terms.g,
                             l: s.terms.l,
                             b: s.terms.b,
+                            terms: extra_values(&extra, &s.terms).into_iter().collect(),
                         })
                         .collect(),
                     weights: evo.population[evo.best].clone(),
@@ -1063,6 +1275,7 @@ impl SweepResults {
                         homing: t.get(i, "homing")?,
                         orientation: t.get(i, "orientation")?,
                         energy: t.get(i, "energy")?,
+                        table: Vec::new(),
                     },
                     grid: grid
                         .iter()
@@ -1353,6 +1566,7 @@ mod tests {
             l: Fixed(0.0),
             b: Fixed(1.0 / 3.0),
             room: "a, \"b\"".into(),
+            extra: Vec::new(),
         };
         let text = to_csv(&[row(0), row(1)]);
         assert_eq!(
@@ -1387,6 +1601,24 @@ mod tests {
     }
 
     /// A malformed cell names the file, the line and the column.
+    #[test]
+    fn generations_with_extra_terms_round_trip_by_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("generations.csv");
+        let text = "generation,best,mean,std,min,max,a,g,l,b,goal,urgency,room\n0,0.500000000,0.250000000,0.100000000,0.000000000,0.500000000,0.100000000,0.200000000,0.000000000,1.000000000,0.750000000,0.125000000,all\n";
+        std::fs::write(&path, text).unwrap();
+        let rows = read_generations(&path).unwrap();
+        let names: Vec<&str> = rows[0].extra.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, ["goal", "urgency"]);
+        assert_eq!(rows[0].extra[1].1, Fixed(0.125));
+        assert_eq!(generations_csv(&rows), text);
+        let paper: Vec<GenerationRow> = read_csv(&path).unwrap();
+        assert!(paper[0].extra.is_empty());
+        assert!(
+            generations_csv(&paper).starts_with("generation,best,mean,std,min,max,a,g,l,b,room\n")
+        );
+    }
+
     #[test]
     fn bad_cells_name_their_column() {
         let dir = tempfile::tempdir().unwrap();
@@ -1445,6 +1677,8 @@ mod tests {
             r_node: Some(3),
             recognition_pct: None,
             room: "H".into(),
+            mission_done_pct: None,
+            terms_pct: BTreeMap::new(),
         };
         let new = to_json(&row);
         assert!(new.contains("\"homing_pct\": 62.5") && !new.contains("\"homing\""));

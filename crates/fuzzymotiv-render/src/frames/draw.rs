@@ -1,7 +1,7 @@
 //! Drawing one frame with tiny-skia: the room (drawn once, [`Painter::new`]), then per frame
 //! the path so far, the IR rays, the body and heading, and the labels.
 
-use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::{HomeZone, Room};
 use fuzzymotiv::simulation::{RayMount, SENSOR_MAX, SENSORS, rays};
 use fuzzymotiv::simulation::{Segment, Vec2};
 use tiny_skia::{
@@ -11,8 +11,8 @@ use tiny_skia::{
 
 use crate::frames::font::{draw_text, text_width};
 use crate::frames::scene::{
-    BODY, FLOOR, FrameOptions, HEADING, HOME_RIM, HOME_ZONE, IDLE, OBSTACLE, OUTSIDE, PATH, TEXT,
-    Track, View, WALL, action_colour, ray_colour,
+    BODY, FLOOR, FrameOptions, GOAL_RIM, GOAL_ZONE, HEADING, HOME_RIM, HOME_ZONE, IDLE, OBSTACLE,
+    OUTSIDE, PATH, TEXT, Track, View, WALL, WAYPOINT_RIM, WAYPOINT_ZONE, action_colour, ray_colour,
 };
 
 /// Draws the frames of one rollout in one room: the room is drawn once, each frame on a copy.
@@ -41,6 +41,31 @@ fn stroke(width: f32, cap: LineCap) -> Stroke {
         line_cap: cap,
         line_join: LineJoin::Round,
         ..Stroke::default()
+    }
+}
+
+/// A zone (home, goal, waypoint) as its disc within the room's `outline`, filled and its rim
+/// dashed in `colours` (fill, rim).
+fn draw_zone(
+    bg: &mut Pixmap,
+    view: &View,
+    outline: &Path,
+    zone: HomeZone,
+    (fill, rim): ([u8; 3], [u8; 3]),
+    k: f32,
+) {
+    let id = Transform::identity();
+    let (cx, cy) = view.point(zone.centre);
+    let radius = (zone.radius * view.scale) as f32;
+    if let (Some(disc), Some(mut mask)) = (
+        PathBuilder::from_circle(cx, cy, radius),
+        Mask::new(view.size, view.size),
+    ) {
+        mask.fill_path(outline, FillRule::Winding, true, id);
+        bg.fill_path(&disc, &paint(fill), FillRule::Winding, id, Some(&mask));
+        let mut line = stroke(1.2 * k, LineCap::Butt);
+        line.dash = StrokeDash::new(vec![5.0 * k, 4.0 * k], 0.0);
+        bg.stroke_path(&disc, &paint(rim), &line, id, Some(&mask));
     }
 }
 
@@ -76,6 +101,7 @@ impl<'a> Painter<'a> {
             k: (opts.size() as f32 / 320.0).max(0.4),
         };
         painter.draw_room();
+        painter.number_waypoints();
         Ok(painter)
     }
 
@@ -99,18 +125,11 @@ impl<'a> Painter<'a> {
             return;
         };
         bg.fill_path(&outline, &paint(FLOOR), FillRule::Winding, id, None);
-        let zone = room.home_zone;
-        let (cx, cy) = view.point(zone.centre);
-        let radius = (zone.radius * view.scale) as f32;
-        if let (Some(disc), Some(mut mask)) = (
-            PathBuilder::from_circle(cx, cy, radius),
-            Mask::new(view.size, view.size),
-        ) {
-            mask.fill_path(&outline, FillRule::Winding, true, id);
-            bg.fill_path(&disc, &paint(HOME_ZONE), FillRule::Winding, id, Some(&mask));
-            let mut rim = stroke(1.2 * k, LineCap::Butt);
-            rim.dash = StrokeDash::new(vec![5.0 * k, 4.0 * k], 0.0);
-            bg.stroke_path(&disc, &paint(HOME_RIM), &rim, id, Some(&mask));
+        let zones = std::iter::once((room.home_zone, HOME_ZONE, HOME_RIM))
+            .chain(room.mission.goal.map(|g| (g, GOAL_ZONE, GOAL_RIM)))
+            .chain((room.mission.waypoints.iter()).map(|w| (*w, WAYPOINT_ZONE, WAYPOINT_RIM)));
+        for (zone, fill, rim) in zones {
+            draw_zone(bg, view, &outline, zone, (fill, rim), k);
         }
         for o in &room.obstacles {
             if let Some(p) = polygon(view, o) {
@@ -125,6 +144,26 @@ impl<'a> Painter<'a> {
             id,
             None,
         );
+    }
+
+    /// Numbers the room's waypoints (from 1) at their centres.
+    fn number_waypoints(&mut self) {
+        let (s, size) = (self.view.text_scale, self.view.size as usize);
+        for (n, w) in self.room.mission.waypoints.iter().enumerate() {
+            let label = (n + 1).to_string();
+            let (x, y) = self.view.point(w.centre);
+            let half = text_width(&label, s) as f32 / 2.0;
+            let (x, y) = ((x - half).max(0.0), (y - 4.0 * s as f32).max(0.0));
+            let data = self.background.data_mut();
+            draw_text(
+                data,
+                size,
+                (x as usize, y as usize),
+                &label,
+                s,
+                WAYPOINT_RIM,
+            );
+        }
     }
 
     /// Draws the frame of pose `t` into `frame` (a pixmap of the frame's size).

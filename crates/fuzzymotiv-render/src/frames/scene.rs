@@ -28,6 +28,14 @@ pub const OBSTACLE: [u8; 3] = [153, 153, 153];
 pub const HOME_ZONE: [u8; 3] = [233, 241, 247];
 /// The home zone's dashed rim.
 pub const HOME_RIM: [u8; 3] = [121, 173, 210];
+/// A goal zone's disc (a colour of the palette's cube, so GIFs show it exactly).
+pub const GOAL_ZONE: [u8; 3] = [255, 204, 153];
+/// A goal zone's dashed rim.
+pub const GOAL_RIM: [u8; 3] = [255, 102, 0];
+/// A waypoint's disc.
+pub const WAYPOINT_ZONE: [u8; 3] = [204, 204, 255];
+/// A waypoint's dashed rim and its number.
+pub const WAYPOINT_RIM: [u8; 3] = [153, 51, 204];
 /// The path so far.
 pub const PATH: [u8; 3] = [31, 119, 180];
 /// The robot's body.

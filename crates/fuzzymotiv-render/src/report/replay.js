@@ -188,6 +188,22 @@
         ctx.fillStyle = "rgba(31,119,180,0.10)"; ctx.fill();
         ctx.strokeStyle = "rgba(31,119,180,0.6)"; ctx.setLineDash([5, 4]); ctx.lineWidth = 1.2; ctx.stroke(); ctx.setLineDash([]);
       }
+      // the mission: goal zone (orange) and waypoints (purple, numbered), dashed like the home zone
+      function disc(z, fill, line) {
+        ctx.beginPath(); ctx.arc(px(r, z[0]), py(r, z[1]), z[2] * view.scale, 0, 2 * Math.PI);
+        ctx.fillStyle = fill; ctx.fill();
+        ctx.strokeStyle = line; ctx.setLineDash([5, 4]); ctx.lineWidth = 1.2; ctx.stroke(); ctx.setLineDash([]);
+      }
+      if (r.goal) {
+        disc(r.goal, "rgba(255,127,14,0.12)", "rgba(255,127,14,0.8)");
+        ctx.fillStyle = "#ff7f0e"; ctx.font = "bold 11px sans-serif"; ctx.textAlign = "center";
+        ctx.fillText("goal", px(r, r.goal[0]), py(r, r.goal[1]) + 4); ctx.textAlign = "start";
+      }
+      (r.waypoints || []).forEach(function (w, k) {
+        disc(w, "rgba(148,103,189,0.12)", "rgba(148,103,189,0.8)");
+        ctx.fillStyle = "#9467bd"; ctx.font = "bold 11px sans-serif"; ctx.textAlign = "center";
+        ctx.fillText(String(k + 1), px(r, w[0]), py(r, w[1]) + 4); ctx.textAlign = "start";
+      });
       ctx.restore();
       r.obstacles.forEach(function (o) { polygon(ctx, r, o); ctx.fillStyle = "#999"; ctx.fill(); });
       polygon(ctx, r, r.outline);

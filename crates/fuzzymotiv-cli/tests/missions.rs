@@ -1,0 +1,140 @@
+//! Runs of more (or other) motivations than the paper's four and runs with missions: their
+//! records carry the extra terms by name, their figures draw the missions; the paper's runs
+//! keep their bytes (the goldens of `model.rs`).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{SMALL, ok, repo};
+
+/// A small run of `configs/fetch.toml` (the paper's four motivations + urgency, a goal per
+/// room) into `dir/run`, with `extra` `--set` values.
+fn fetch_run(dir: &Path, extra: &[&str]) -> PathBuf {
+    let out = dir.join("run");
+    let config = repo().join("configs/fetch.toml");
+    let mut args = vec!["run", config.to_str().unwrap()];
+    for s in SMALL.iter().chain(extra) {
+        args.extend(["--set", s]);
+    }
+    args.extend(["--set", "aem.enabled=false", "--out", out.to_str().unwrap()]);
+    ok(&args);
+    out
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&read(path)).unwrap()
+}
+
+#[test]
+fn five_motivation_run_records_urgency_and_goal_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = fetch_run(dir.path(), &[]);
+    let csv = read(&run.join("generations.csv"));
+    let header = csv.lines().next().unwrap();
+    assert_eq!(
+        header,
+        "generation,best,mean,std,min,max,a,g,l,b,goal,urgency,safety,room"
+    );
+    let genome = json(&run.join("best_genome.json"));
+    let terms = &genome["terms"][0]["terms"];
+    for name in ["goal", "urgency", "safety"] {
+        let v = terms[name]
+            .as_f64()
+            .unwrap_or_else(|| panic!("no {name}: {terms}"));
+        assert!((0.0..=1.0).contains(&v), "{name} = {v}");
+    }
+    let summary = json(&run.join("summary.json"));
+    let table = summary["motivations"]["table"].as_array().unwrap();
+    let names: Vec<&str> = table.iter().map(|m| m["name"].as_str().unwrap()).collect();
+    assert_eq!(
+        names,
+        ["curiosity", "homing", "orientation", "energy", "urgency"]
+    );
+    assert_eq!(table[4]["term"], "urgency");
+    assert_eq!(table[4]["weight"], 0.3);
+    let room = &summary["rooms"][0];
+    assert!(room["mission_done_pct"].is_number(), "{room}");
+    assert!(room["terms_pct"]["goal"].is_number(), "{room}");
+    let terms = read(&run.join("terms.svg"));
+    for name in ["a exploration", "goal", "urgency", "safety"] {
+        assert!(
+            terms.contains(&format!(">{name}</text>")),
+            "no {name} curve:\n{terms}"
+        );
+    }
+    let md = read(&run.join("table.md"));
+    assert!(
+        md.lines()
+            .next()
+            .unwrap()
+            .ends_with("| % missions done | % goal | % safety | % urgency |"),
+        "{md}"
+    );
+}
+
+#[test]
+fn paper_run_records_have_no_extra_terms() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let config = repo().join("configs/high-curiosity.toml");
+    let mut args = vec!["run", config.to_str().unwrap()];
+    for s in SMALL {
+        args.extend(["--set", s]);
+    }
+    args.extend(["--set", "aem.enabled=false", "--out", out.to_str().unwrap()]);
+    ok(&args);
+    let header = read(&out.join("generations.csv"));
+    assert!(header.starts_with("generation,best,mean,std,min,max,a,g,l,b,room\n"));
+    let summary = read(&out.join("summary.json"));
+    for word in ["table", "terms_pct", "mission_done_pct"] {
+        assert!(!summary.contains(word), "{word} in {summary}");
+    }
+    assert!(!read(&out.join("best_genome.json")).contains("\"terms\": {"));
+}
+
+#[test]
+fn fetch_run_draws_its_goal_in_the_figure_the_replay_and_the_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = fetch_run(dir.path(), &[]);
+    let svg = read(&run.join("trajectories.svg"));
+    let goal_rims = svg
+        .lines()
+        .filter(|l| l.contains(r##"stroke="#ff7f0e""##) && l.contains("stroke-dasharray"))
+        .count();
+    assert_eq!(goal_rims, 5, "one dashed goal rim per room:\n{svg}");
+    assert!(svg.contains("orange: goal zone"), "{svg}");
+    assert!(read(&run.join("report.html")).contains(r#""goal":[730.0,730.0,60.0]"#));
+    let page = dir.path().join("replay.html");
+    ok(&[
+        "replay",
+        run.to_str().unwrap(),
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    let replay = json(&dir.path().join("replay.json"));
+    let goal = &replay["rooms"][0]["goal"];
+    assert_eq!(
+        (goal["x"].as_f64(), goal["radius"].as_f64()),
+        (Some(730.0), Some(60.0))
+    );
+}
+
+#[test]
+fn paper_figures_draw_no_mission() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let config = repo().join("configs/tiny.toml");
+    ok(&[
+        "run",
+        config.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let svg = read(&out.join("trajectories.svg"));
+    assert!(!svg.contains("#ff7f0e") && !svg.contains("goal"), "{svg}");
+}
