@@ -2,6 +2,7 @@
 //! arguments into calls of `fuzzymotiv` and `fuzzymotiv_io`, and shows the outcome.
 
 pub mod bench;
+pub mod calibrate;
 pub mod claims;
 pub mod compare;
 pub mod export;

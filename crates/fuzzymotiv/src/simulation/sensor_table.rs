@@ -346,7 +346,8 @@ pub struct Calibration {
     pub table: SensorTable,
     /// Per sensor and distance: count, median, mean, std.
     pub spread: Vec<Spread>,
-    /// The mean relative spread (std / mean over the distances with a non-zero mean).
+    /// The relative spread: the sum of the standard deviations over the sum of the means (per
+    /// sensor and distance, where there are 2 readings or more).
     pub relative_spread: f64,
     /// The `trial.noise` with that spread: the simulator multiplies each reading by
     /// U(1 − n, 1 + n), whose relative std is n/√3, so n = √3 × spread (capped at 0.5).
@@ -431,12 +432,11 @@ pub fn calibrate(rows: &[Measurement]) -> Result<Calibration, FieldError> {
         }
     };
     let table = SensorTable::from_raw(&raw)?;
-    let rel: Vec<f64> = spread.iter().filter_map(Spread::relative).collect();
-    let relative_spread = if rel.is_empty() {
-        0.0
-    } else {
-        rel.iter().sum::<f64>() / rel.len() as f64
-    };
+    // Σ std / Σ mean: readings near 0 (the converter's offset, not the multiplicative noise the
+    // simulator models) weigh as little as they read.
+    let repeated = spread.iter().filter(|g| g.count >= 2);
+    let (std, mean) = repeated.fold((0.0, 0.0), |(s, m), g| (s + g.std, m + g.mean));
+    let relative_spread = if mean > 0.0 { std / mean } else { 0.0 };
     Ok(Calibration {
         table,
         spread,
@@ -585,8 +585,8 @@ mod tests {
             [(10.0, 950.0), (30.0, 310.0), (50.0, 20.0)]
         );
         assert_eq!(c.spread[0].std, 50.0);
-        let rel = [50.0 / 950.0, 200f64.sqrt() / 310.0, 200f64.sqrt() / 20.0];
-        assert!((c.relative_spread - rel.iter().sum::<f64>() / 3.0).abs() < 1e-12);
+        let rel = (50.0 + 2.0 * 200f64.sqrt()) / (950.0 + 310.0 + 20.0);
+        assert!((c.relative_spread - rel).abs() < 1e-12);
         assert!((c.noise - 0.5f64.min(3f64.sqrt() * c.relative_spread)).abs() < 1e-12);
     }
 
