@@ -12,6 +12,7 @@ pub(crate) mod evolution;
 pub(crate) mod modelling;
 pub(crate) mod outcome;
 mod plain;
+pub(crate) mod robustness;
 pub(crate) mod setup;
 pub(crate) mod terms;
 
@@ -28,6 +29,7 @@ pub use evaluation::{Evaluation, RoomScore};
 pub use evolution::{Evolution, GenerationRecord, GenerationState, Observer, Population, Stopped};
 pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
 pub use outcome::{Outcome, RunError, Start};
+pub use robustness::{Perturbation, RobustnessError, RobustnessRow};
 pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, parse_room_file};
 pub use terms::UserTerm;
 

@@ -151,6 +151,12 @@ impl TrialParams {
         TrialParams { noise, ..self }
     }
 
+    /// The same parameters with the body `robot` (for perturbation studies; its step must stay
+    /// below its radius as [`TrialParams::from_raw`] requires).
+    pub fn with_robot(self, robot: Khepera) -> TrialParams {
+        TrialParams { robot, ..self }
+    }
+
     /// Steps per trial `T`; default 400; range 1..=10⁷.
     #[inline]
     pub fn steps(&self) -> usize {
