@@ -10,6 +10,7 @@ pub mod fuzzy;
 pub mod lab;
 pub mod replay;
 pub mod reproduce;
+pub mod robustness;
 pub mod rooms;
 pub mod run;
 pub mod sweep;

@@ -58,7 +58,7 @@ impl Perturbation {
             Perturbation::TableScale(k) => format!("table×{k}"),
             Perturbation::DeadSensor(s) => format!("dead={s}"),
             Perturbation::WheelBias(b) => format!("wheels×{}", 1.0 + b),
-            Perturbation::Radius(r) => format!("radius={r}"),
+            Perturbation::Radius(r) => format!("radius={r:.1}"),
         }
     }
 }
