@@ -13,7 +13,8 @@ use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::note;
 
 use crate::commands::{
-    bench, claims, compare, export, fuzzy, lab, replay, reproduce, rooms, run, sweep,
+    bench, calibrate, claims, compare, export, fuzzy, lab, replay, reproduce, robustness, rooms,
+    run, sweep,
 };
 
 /// Evolutionary behaviour learning for a simulated Khepera robot under fuzzy motivations.
@@ -39,6 +40,12 @@ enum Command {
     /// Export an evolved controller for a real robot: C99 (the simulator's outputs bit for bit)
     /// or a self-describing JSON document.
     Export(export::ExportArgs),
+    /// Turn bench measurements of a robot's IR sensors (CSV) into a sensor table file for
+    /// `trial.sensor_table`, and estimate the sensor noise from their spread.
+    Calibrate(calibrate::CalibrateArgs),
+    /// Evaluate a run's best robot under the perturbations a real robot brings (sensor noise,
+    /// sensor sensitivity, a dead sensor, wheel bias, a larger body) on paired streams.
+    Robustness(robustness::RobustnessArgs),
     /// Recompute a finished study's claims from its records (summary.json), e.g. at another
     /// significance level: effect, interval, p-value, verdict and minimum detectable difference.
     Claims(claims::ClaimsArgs),
@@ -91,6 +98,8 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         Command::Reproduce(args) => reproduce::reproduce(args),
         Command::Replay(args) => replay::replay(args),
         Command::Export(args) => export::export(args),
+        Command::Calibrate(args) => calibrate::calibrate_command(args),
+        Command::Robustness(args) => robustness::robustness(args),
         Command::Claims(args) => claims::claims_command(args),
         Command::Compare(args) => compare::compare_command(args),
         Command::Fuzzy(args) => fuzzy::fuzzy(args),

@@ -13,6 +13,7 @@ pub(crate) mod modelling;
 pub(crate) mod outcome;
 mod plain;
 pub(crate) mod recorded;
+pub(crate) mod robustness;
 pub(crate) mod setup;
 pub(crate) mod terms;
 
@@ -30,6 +31,7 @@ pub use evaluation::{Evaluation, RoomScore};
 pub use evolution::{Evolution, GenerationRecord, GenerationState, Observer, Population, Stopped};
 pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
 pub use outcome::{Outcome, RunError, Start};
+pub use robustness::{Perturbation, RobustnessError, RobustnessRow};
 pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, parse_room_file};
 pub use terms::UserTerm;
 
@@ -44,6 +46,7 @@ use crate::random::seed::{Streams, hash_str};
 use crate::simulation::controller::MlpShape;
 use crate::simulation::robot::KHEPERA_RADIUS;
 use crate::simulation::room::Room;
+use crate::simulation::sensor_table::SensorTable;
 use crate::simulation::trial::{Arena, TrialParams};
 
 /// A validated experiment: its fields are private (read through the accessors below), so their
@@ -84,13 +87,26 @@ impl Experiment {
         user: &[UserTerm],
         source_name: &str,
     ) -> Result<Experiment, ConfigError> {
-        Self::build(raw, rooms, user).map_err(|e| e.in_source(source_name))
+        Self::build(raw, rooms, user, None).map_err(|e| e.in_source(source_name))
+    }
+
+    /// [`Experiment::with_terms`], the `sampled` sensors reading `sensor_table` (the file
+    /// `trial.sensor_table` names, read by the front end: [`crate::experiment::Setup::resolve`]).
+    pub fn with_sensor_table(
+        raw: &RawConfig,
+        rooms: Vec<Room>,
+        user: &[UserTerm],
+        sensor_table: Option<&'static SensorTable>,
+        source_name: &str,
+    ) -> Result<Experiment, ConfigError> {
+        Self::build(raw, rooms, user, sensor_table).map_err(|e| e.in_source(source_name))
     }
 
     fn build(
         raw: &RawConfig,
         rooms: Vec<Room>,
         user: &[UserTerm],
+        sensor_table: Option<&'static SensorTable>,
     ) -> Result<Experiment, FieldError> {
         check_name(&raw.name)?;
         check_rooms(&rooms)?;
@@ -98,6 +114,18 @@ impl Experiment {
         let motivations = raw.motivations.validated(&fuzzy)?;
         let ga = GaParams::from_raw(&raw.ga)?;
         let trial = TrialParams::from_raw(&raw.trial, &raw.robot, raw.aem.action_tolerance)?;
+        let trial = match (&raw.trial.sensor_table, sensor_table) {
+            (None, _) => trial,
+            (Some(_), Some(table)) => trial.with_sensor_table(table),
+            (Some(file), None) => {
+                return Err(FieldError::new(
+                    "trial.sensor_table",
+                    format!(
+                        "the sensor table file \"{file}\" was not read: a front end reads it (Setup::resolve)"
+                    ),
+                ));
+            }
+        };
         let shape = raw.network.shape()?;
         let aem = AemParams::from_raw(&raw.aem, trial.steps(), rooms.len())?;
         check(

@@ -10,6 +10,7 @@ pub(crate) mod robot;
 pub(crate) mod room;
 pub(crate) mod sensing;
 pub(crate) mod sensor;
+pub(crate) mod sensor_table;
 pub(crate) mod stepper;
 pub(crate) mod trial;
 pub(crate) mod trial_params;
@@ -19,7 +20,13 @@ pub use geom::{PreparedSegment, Segment, Vec2, edges, point_in_polygon, signed_a
 pub use math::logistic_lanes;
 pub use robot::{Action, Compass, Khepera, Motion, Pose, RawRobot, drive, wrap_angle};
 pub use room::{BUILTIN_ROOMS, HomeZone, Mission, Room, RoomError, Zone};
-pub use sensor::{RayMount, SENSOR_LAYOUT, SENSOR_MAX, SENSORS, SensorModel, SensorMount, rays};
+pub use sensor::{
+    RayMount, SENSOR_LAYOUT, SENSOR_MAX, SENSORS, SensorModel, SensorMount, TableRef, rays,
+};
+pub use sensor_table::{
+    Calibration, Measurement, RawRay, RawSensorRays, RawSensorTable, SensorTable, Spread, TableRay,
+    calibrate,
+};
 pub use stepper::TrialRun;
 pub use trial::{
     Arena, RawTrial, Step, StepObserver, Trajectory, TrialParams, check_missions_reachable,

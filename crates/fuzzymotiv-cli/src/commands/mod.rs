@@ -2,6 +2,7 @@
 //! arguments into calls of `fuzzymotiv` and `fuzzymotiv_io`, and shows the outcome.
 
 pub mod bench;
+pub mod calibrate;
 pub mod claims;
 pub mod compare;
 pub mod export;
@@ -9,6 +10,7 @@ pub mod fuzzy;
 pub mod lab;
 pub mod replay;
 pub mod reproduce;
+pub mod robustness;
 pub mod rooms;
 pub mod run;
 pub mod sweep;

@@ -11,7 +11,7 @@ use crate::fitness::terms::{FitnessTerms, TermsRecorder, TrialRecord, UserValues
 use crate::modelling::aem::{Action, environment_vector};
 use crate::modelling::recognition::nearest_unique;
 use crate::random::rng::rng_from_seed;
-use crate::simulation::controller::{GenomeError, Mlp};
+use crate::simulation::controller::{Controller, GenomeError, Mlp};
 use crate::simulation::robot::Pose;
 use crate::simulation::trial::{ActionLog, Arena, StepObserver, Trajectory, simulate};
 
@@ -53,9 +53,9 @@ impl Experiment {
     /// One evaluation trial in `room` on the stream `seed`, each step also shown to `extra`:
     /// its terms (the mission's and the user-defined ones included; `l` = 0), the steps it
     /// executed and its final pose. Every evaluation trial runs through here.
-    pub(crate) fn observed_trial<O: StepObserver>(
+    pub(crate) fn observed_trial<C: Controller + ?Sized, O: StepObserver>(
         &self,
-        network: &mut Mlp,
+        network: &mut C,
         room: usize,
         seed: u64,
         extra: &mut O,

@@ -21,6 +21,7 @@ use crate::experiment::config::{RawConfig, at_line};
 use crate::fitness::{PAPER_MOTIVATIONS, RawMotivations};
 use crate::params::FieldError;
 use crate::simulation::room::{BUILTIN_ROOMS, Room};
+use crate::simulation::sensor_table::SensorTable;
 
 /// A room file as a front end found it.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,6 +43,11 @@ pub trait RoomFiles {
 
     /// Where `entry` was looked for, for the error when [`RoomFiles::find`] found nothing.
     fn looked_for(&self, entry: &str) -> String;
+
+    /// The sensor table file `trial.sensor_table` names (found as room files are, by default).
+    fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        self.find(entry)
+    }
 }
 
 /// No room files: every room must be a built-in one (`H`, `T`, `L`, `square`, `rectangle`).
@@ -100,7 +106,8 @@ impl Setup {
             .map(|sum| normalised_note(source_name, sum, &raw.motivations))
             .into_iter()
             .collect();
-        let experiment = Experiment::new(&raw, rooms, source_name)?;
+        let table = resolve_sensor_table(&mut raw.trial.sensor_table, source_name, files)?;
+        let experiment = Experiment::with_sensor_table(&raw, rooms, &[], table, source_name)?;
         Ok(Setup {
             raw,
             experiment,
@@ -133,6 +140,41 @@ fn resolve_room(
     let room = parse_room_file(&file.text, &file.source_name)?;
     *entry = file.entry;
     Ok(room)
+}
+
+/// The sensor table file a config names (`trial.sensor_table`), read through `files` and
+/// checked (errors name the table file and its field), its entry rewritten as the file asks.
+fn resolve_sensor_table(
+    entry: &mut Option<String>,
+    source_name: &str,
+    files: &dyn RoomFiles,
+) -> Result<Option<&'static SensorTable>, SetupError> {
+    let Some(name) = entry.as_mut() else {
+        return Ok(None);
+    };
+    let Some(file) = files
+        .find_sensor_table(name)
+        .map_err(SetupError::RoomFile)?
+    else {
+        let reason = format!(
+            "no sensor table file \"{name}\" (looked for {})",
+            files.looked_for(name)
+        );
+        return Err(FieldError::new("trial.sensor_table", reason)
+            .in_source(source_name)
+            .into());
+    };
+    if let Err(e) = toml::from_str::<toml::Table>(&file.text) {
+        return Err(SetupError::RoomFile(format!(
+            "{}: not valid TOML{}: {}",
+            file.source_name,
+            at_line(&file.text, e.span()),
+            e.message().trim()
+        )));
+    }
+    let table = SensorTable::from_toml_str(&file.text, &file.source_name)?;
+    *name = file.entry;
+    Ok(Some(table.intern()))
 }
 
 /// Parses and validates a room file's text: a TOML syntax error names the line, a wrong or

@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::simulation::geom::Vec2;
+use crate::simulation::sensor_table::SensorTable;
 
 /// Where one sensor sits on the body, in the robot frame (x forward, y left).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -95,6 +96,37 @@ pub enum SensorModel {
     Sampled,
     /// One axis ray, `1023·(1 − d/50)` below 50 mm.
     Linear,
+    /// `sampled` reading a sensor table file instead of the built-in tables
+    /// (`trial.sensor_table`; never written in a config: the file is named there).
+    #[serde(skip)]
+    Table(TableRef),
+}
+
+impl SensorModel {
+    /// Whether every sensor value is a whole number (what lets a trial remember its poses):
+    /// the sample tables' values are, the `linear` model's are not.
+    pub fn whole_valued(self) -> bool {
+        !matches!(self, SensorModel::Linear)
+    }
+}
+
+/// A sensor table kept for the process ([`SensorTable::intern`]): equal tables are one copy,
+/// so two references are equal exactly when they are the same.
+#[derive(Debug, Clone, Copy)]
+pub struct TableRef(pub &'static SensorTable);
+
+impl PartialEq for TableRef {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self.0, other.0)
+    }
+}
+
+impl Eq for TableRef {}
+
+impl std::hash::Hash for TableRef {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        std::ptr::hash(self.0, state)
+    }
 }
 
 /// One ray of one sensor in the robot frame, with its response table.
@@ -104,8 +136,10 @@ pub struct RayMount {
     pub origin: Vec2,
     /// Direction angle in the robot frame (rad).
     pub angle: f64,
-    /// Which table reads the hit distance: 0 axis, 1 side, 2 linear.
+    /// Which table reads the hit distance: 0 axis, 1 side, 2 linear, 3 `samples`.
     kind: u8,
+    /// The samples of a sensor table file's ray (kind 3; empty for a ray that reads nothing).
+    samples: &'static [(f64, f64)],
 }
 
 impl RayMount {
@@ -114,6 +148,7 @@ impl RayMount {
         match self.kind {
             0 => AXIS_SAMPLES[4].0,
             1 => SIDE_SAMPLES[4].0,
+            3 => self.samples.last().map_or(0.0, |s| s.0),
             _ => LINEAR_RANGE,
         }
     }
@@ -132,6 +167,7 @@ impl RayMount {
         let table = match self.kind {
             0 => &AXIS_SAMPLES,
             1 => &SIDE_SAMPLES,
+            3 => return table_value(self.samples, d),
             _ => {
                 return if d < LINEAR_RANGE {
                     SENSOR_MAX * (1.0 - d / LINEAR_RANGE)
@@ -153,6 +189,15 @@ impl RayMount {
     }
 }
 
+/// A sensor table file's ray read as the built-in tables are: the value of the first sample at
+/// or beyond `d`, 0 beyond the last (and for no samples).
+fn table_value(samples: &[(f64, f64)], d: f64) -> f64 {
+    match samples.last() {
+        Some(&(last, _)) if d <= last => samples.iter().find(|s| s.0 >= d).map_or(0.0, |s| s.1),
+        _ => 0.0,
+    }
+}
+
 /// The rays of every sensor for a model: `rays(model)[sensor]` lists up to 3 rays (unused
 /// entries have `angle = NaN` and are skipped via `ray_count`).
 pub fn rays(model: SensorModel) -> [[RayMount; 3]; 8] {
@@ -161,6 +206,7 @@ pub fn rays(model: SensorModel) -> [[RayMount; 3]; 8] {
         origin: Vec2::new(0.0, 0.0),
         angle: f64::NAN,
         kind: 2,
+        samples: &[],
     }; 3]; 8];
     for (s, m) in SENSOR_LAYOUT.iter().enumerate() {
         let origin = Vec2::new(m.x, m.y);
@@ -172,16 +218,19 @@ pub fn rays(model: SensorModel) -> [[RayMount; 3]; 8] {
                         origin,
                         angle: axis,
                         kind: 0,
+                        samples: &[],
                     },
                     RayMount {
                         origin,
                         angle: axis + side,
                         kind: 1,
+                        samples: &[],
                     },
                     RayMount {
                         origin,
                         angle: axis - side,
                         kind: 1,
+                        samples: &[],
                     },
                 ];
             }
@@ -190,7 +239,18 @@ pub fn rays(model: SensorModel) -> [[RayMount; 3]; 8] {
                     origin,
                     angle: axis,
                     kind: 2,
+                    samples: &[],
                 }
+            }
+            SensorModel::Table(TableRef(table)) => {
+                let own = table.rays_of(s);
+                // Sensors with fewer rays than 3 get rays along the axis that read nothing.
+                out[s] = std::array::from_fn(|k| RayMount {
+                    origin,
+                    angle: axis + own.get(k).map_or(0.0, |r| r.angle_deg().to_radians()),
+                    kind: 3,
+                    samples: own.get(k).map_or(&[], |r| r.samples()),
+                });
             }
         }
     }
@@ -202,6 +262,13 @@ pub fn ray_count(model: SensorModel) -> usize {
     match model {
         SensorModel::Sampled => 3,
         SensorModel::Linear => 1,
+        SensorModel::Table(TableRef(t)) => {
+            if (0..SENSORS).all(|s| t.rays_of(s).len() == 1) {
+                1
+            } else {
+                3
+            }
+        }
     }
 }
 

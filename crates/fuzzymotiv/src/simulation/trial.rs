@@ -120,7 +120,7 @@ impl Arena {
             memo: None,
         };
         // Only whole-number sensor values fit the memo (docs/model.md §3).
-        let memo = (params.sensor_model == SensorModel::Sampled)
+        let memo = SensorModel::whole_valued(params.sensor_model)
             .then(|| MemoClaim::of(SightKey::of(&arena)));
         Arena { memo, ..arena }
     }

@@ -5,7 +5,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::params::{FieldError, Num, check};
 use crate::simulation::robot::{Khepera, Motion, RawRobot};
-use crate::simulation::sensor::SensorModel;
+use crate::simulation::sensor::{SensorModel, TableRef};
+use crate::simulation::sensor_table::SensorTable;
 
 /// Checked parameters of a trial (docs/model.md, "Robot", "Noise" and "Home zone"), built by
 /// [`TrialParams::from_raw`] (or [`TrialParams::default`]); read through the accessors, each
@@ -40,7 +41,7 @@ pub const MAX_STEPS: usize = 10_000_000;
 
 /// `[trial]` in a config, as written: see [`TrialParams`] for each field's unit, default and
 /// range.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RawTrial {
     /// [`TrialParams::steps`].
@@ -51,6 +52,10 @@ pub struct RawTrial {
     pub noise: f64,
     /// [`TrialParams::sensor_model`].
     pub sensor_model: SensorModel,
+    /// A sensor table file (path relative to the config) read by the `sampled` model instead of
+    /// the built-in Khepera tables; the front end reads it ([`crate::experiment::Setup::resolve`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sensor_table: Option<String>,
     /// [`TrialParams::end_at_home`].
     pub end_at_home: bool,
 }
@@ -63,6 +68,7 @@ impl Default for RawTrial {
             dt: d.dt,
             noise: d.noise,
             sensor_model: d.sensor_model,
+            sensor_table: None,
             end_at_home: d.end_at_home,
         }
     }
@@ -92,6 +98,13 @@ impl TrialParams {
                     "must be a noise level in [0, 0.5] (0.06 is the paper's 6 %), got {}",
                     Num(t.noise)
                 )
+            },
+        )?;
+        check(
+            t.sensor_table.is_none() || t.sensor_model == SensorModel::Sampled,
+            "trial.sensor_table",
+            || {
+                "a sensor table is read by the \"sampled\" sensor model; remove trial.sensor_table or set trial.sensor_model = \"sampled\"".into()
             },
         )?;
         let robot = Khepera::from_raw(robot)?;
@@ -124,6 +137,26 @@ impl TrialParams {
         Ok(trial)
     }
 
+    /// The same parameters, the `sampled` model reading `table` instead of the built-in tables
+    /// (`trial.sensor_table`).
+    pub fn with_sensor_table(self, table: &'static SensorTable) -> TrialParams {
+        TrialParams {
+            sensor_model: SensorModel::Table(TableRef(table)),
+            ..self
+        }
+    }
+
+    /// The same parameters with noise level `noise` (in [0, 0.5]; for perturbation studies).
+    pub fn with_noise(self, noise: f64) -> TrialParams {
+        TrialParams { noise, ..self }
+    }
+
+    /// The same parameters with the body `robot` (for perturbation studies; its step must stay
+    /// below its radius as [`TrialParams::from_raw`] requires).
+    pub fn with_robot(self, robot: Khepera) -> TrialParams {
+        TrialParams { robot, ..self }
+    }
+
     /// Steps per trial `T`; default 400; range 1..=10⁷.
     #[inline]
     pub fn steps(&self) -> usize {
@@ -144,7 +177,8 @@ impl TrialParams {
         self.noise
     }
 
-    /// IR response model; default `sampled`.
+    /// IR response model; default `sampled` ([`SensorModel::Table`] when `trial.sensor_table`
+    /// names a file).
     #[inline]
     pub fn sensor_model(&self) -> SensorModel {
         self.sensor_model

@@ -1,0 +1,144 @@
+//! `fuzzymotiv calibrate`: bench measurements of a robot's IR sensors (CSV) → a sensor table
+//! file for `trial.sensor_table`, and the readings' spread as the `trial.noise` estimate
+//! ([`fuzzymotiv::simulation::calibrate`]; docs/guide/real-robot.md).
+
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::experiment::SetupError;
+use fuzzymotiv::params::FieldError;
+use fuzzymotiv::simulation::{Calibration, Measurement, calibrate};
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::guard::{FilesState, check_files, write_files};
+use fuzzymotiv_io::{note, outln};
+
+/// Arguments of `fuzzymotiv calibrate`.
+#[derive(clap::Args)]
+pub struct CalibrateArgs {
+    /// Bench measurements: a CSV file with the columns sensor (0–7), distance_mm and reading
+    /// (0–1023), one row per reading, several readings per distance (other columns are ignored).
+    #[arg(value_name = "MEASUREMENTS.csv")]
+    pub measurements: PathBuf,
+    /// The sensor table file to write (TOML, for `trial.sensor_table`).
+    #[arg(long, value_name = "TABLE.toml")]
+    pub out: PathBuf,
+    /// Replace an existing file of that name that holds something else.
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// Entry point of `fuzzymotiv calibrate`.
+pub fn calibrate_command(args: CalibrateArgs) -> Result<(), CliError> {
+    let source = args.measurements.display().to_string();
+    let rows = read_measurements(&args.measurements)?;
+    let c = calibrate(&rows).map_err(|e| field_error(e.in_source(&source)))?;
+    let header = format!(
+        "Sensor table written by `fuzzymotiv calibrate` from {source}:\nper sensor and distance the median reading (docs/guide/real-robot.md).\nRelative spread of the readings {:.4}: trial.noise = {:.3}.",
+        c.relative_spread, c.noise
+    );
+    let files = [(args.out.clone(), c.table.to_toml(&header).into_bytes())];
+    if check_files(&files, "--out", args.force)? == FilesState::Write {
+        write_files(&files)?;
+        note!("wrote {}", args.out.display());
+    } else {
+        note!(
+            "{} already holds this table; nothing to do",
+            args.out.display()
+        );
+    }
+    show(&c)
+}
+
+fn field_error(e: FieldError) -> CliError {
+    CliError::Setup(SetupError::Field(e))
+}
+
+/// The spread per sensor and distance (standard output), then the noise estimate.
+fn show(c: &Calibration) -> Result<(), CliError> {
+    outln!("sensor,distance_mm,readings,median,mean,std,std_over_mean")?;
+    for s in &c.spread {
+        let rel = s.relative().map_or(String::new(), |r| format!("{r:.4}"));
+        outln!(
+            "{},{},{},{},{:.2},{:.2},{rel}",
+            s.sensor,
+            s.distance_mm,
+            s.count,
+            s.median,
+            s.mean,
+            s.std
+        )?;
+    }
+    for line in &c.notes {
+        note!("note: {line}");
+    }
+    note!(
+        "relative spread (sum of std / sum of means over the sensors and distances): {:.4}",
+        c.relative_spread
+    );
+    note!(
+        "sensor noise estimate: trial.noise = {:.3} (the simulator multiplies each reading by U(1 − n, 1 + n), relative std n/√3)",
+        c.noise
+    );
+    Ok(())
+}
+
+/// One CSV row as written.
+#[derive(serde::Deserialize)]
+struct Row {
+    sensor: usize,
+    distance_mm: f64,
+    reading: f64,
+}
+
+/// Reads the measurements; a missing column or a value that is not a number names the file,
+/// the row and the column.
+fn read_measurements(path: &Path) -> Result<Vec<Measurement>, CliError> {
+    let source = path.display().to_string();
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::input(format!("{source}: cannot read the measurements: {e}")))?;
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let headers = reader
+        .headers()
+        .map_err(|e| CliError::input(format!("{source}: not a CSV file: {e}")))?
+        .clone();
+    for column in ["sensor", "distance_mm", "reading"] {
+        if !headers.iter().any(|h| h == column) {
+            let reason = format!(
+                "the header has no column `{column}` (it needs sensor, distance_mm and reading; found {})",
+                headers.iter().collect::<Vec<_>>().join(", ")
+            );
+            return Err(field_error(
+                FieldError::new(column, reason).in_source(&source),
+            ));
+        }
+    }
+    let mut rows = Vec::new();
+    for (i, record) in reader.deserialize::<Row>().enumerate() {
+        let row = record.map_err(|e| {
+            let column = e
+                .position()
+                .and(match e.kind() {
+                    csv::ErrorKind::Deserialize { err, .. } => err.field(),
+                    _ => None,
+                })
+                .and_then(|k| headers.get(k as usize))
+                .unwrap_or("(row)")
+                .to_string();
+            let reason = format!("data row {}: {e}; sensor is a whole number 0–7, distance_mm and reading are numbers", i + 1);
+            field_error(FieldError::new(column, reason).in_source(&source))
+        })?;
+        rows.push(Measurement {
+            sensor: row.sensor,
+            distance_mm: row.distance_mm,
+            reading: row.reading,
+        });
+    }
+    if rows.is_empty() {
+        return Err(CliError::input(format!(
+            "{source}: holds no measurements (a header and no rows)"
+        )));
+    }
+    Ok(rows)
+}

@@ -1,0 +1,252 @@
+//! Robustness to the reality gap (issue 37, item 3; the library's part): an evolved network
+//! evaluated under the perturbations a real robot brings, on paired streams (the same seeds
+//! for every perturbation), F and behaviour per trial.
+//!
+//! ```
+//! use fuzzymotiv::experiment::{BuiltinRoomsOnly, Perturbation, RawConfig, Setup};
+//! let raw = RawConfig::parse("rooms = [\"square\", \"H\"]", "c", &["trial.steps=50".into()]).unwrap();
+//! let exp = Setup::resolve(raw, "c", &BuiltinRoomsOnly).unwrap().experiment;
+//! let genome = vec![0.1; 8 * 6 + 6 + 6 * 2 + 2]; // the paper's 8-6-2 network
+//! let rows = exp.robustness(&genome, &[Perturbation::None, Perturbation::DeadSensor(2)], 3).unwrap();
+//! assert_eq!(rows[0].f.len(), 3 * 2); // 3 trials in each of 2 rooms
+//! ```
+
+use crate::experiment::Experiment;
+use crate::params::FieldError;
+use crate::random::seed::hash_str;
+use crate::simulation::controller::{Controller, GenomeError, INPUTS, Mlp, OUTPUTS};
+use crate::simulation::robot::{Khepera, RawRobot};
+use crate::simulation::sensor::{SensorModel, TableRef};
+use crate::simulation::sensor_table::SensorTable;
+use crate::simulation::trial::Arena;
+
+/// One perturbation of the simulated robot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Perturbation {
+    /// The robot as evolved.
+    None,
+    /// Sensor and wheel noise level `trial.noise` (0–0.5).
+    Noise(f64),
+    /// Every reading of the sensor table multiplied by this factor (rounded, capped at 1023).
+    TableScale(f64),
+    /// Sensor `k` (0–7) reads 0.
+    DeadSensor(usize),
+    /// Both wheel speeds multiplied by 1 + this (e.g. ±0.1).
+    WheelBias(f64),
+    /// The body radius (mm) instead of the evolved one.
+    Radius(f64),
+}
+
+impl Perturbation {
+    /// The issue's set: noise 0–20 %, table ±30 %, each dead sensor, wheel bias ±10 %, a body
+    /// 10 % and 20 % larger than `radius`.
+    pub fn standard(radius: f64) -> Vec<Perturbation> {
+        let mut all = vec![Perturbation::None];
+        all.extend([0.0, 0.05, 0.1, 0.15, 0.2].map(Perturbation::Noise));
+        all.extend([0.7, 0.85, 1.15, 1.3].map(Perturbation::TableScale));
+        all.extend((0..INPUTS).map(Perturbation::DeadSensor));
+        all.extend([-0.1, -0.05, 0.05, 0.1].map(Perturbation::WheelBias));
+        all.extend([1.1, 1.2].map(|k| Perturbation::Radius(radius * k)));
+        all
+    }
+
+    /// A short name (`noise=0.1`, `dead=3`, …).
+    pub fn label(&self) -> String {
+        match *self {
+            Perturbation::None => "none".into(),
+            Perturbation::Noise(n) => format!("noise={n}"),
+            Perturbation::TableScale(k) => format!("table×{k}"),
+            Perturbation::DeadSensor(s) => format!("dead={s}"),
+            Perturbation::WheelBias(b) => format!("wheels×{}", 1.0 + b),
+            Perturbation::Radius(r) => format!("radius={r:.1}"),
+        }
+    }
+}
+
+/// A network with a dead sensor or biased wheels.
+struct Perturbed<'a> {
+    net: &'a mut Mlp,
+    dead: Option<usize>,
+    bias: f64,
+}
+
+impl Controller for Perturbed<'_> {
+    fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
+        let mut x = *inputs;
+        if let Some(s) = self.dead {
+            x[s] = 0.0;
+        }
+        // Motor m drives the wheel at (2m − 1)·v_max: scaling the speed by 1 + bias.
+        self.net
+            .step(&x)
+            .map(|m| ((2.0 * m - 1.0) * (1.0 + self.bias) + 1.0) / 2.0)
+    }
+}
+
+/// Why a robustness study cannot run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RobustnessError {
+    /// The genome does not fit the experiment's network.
+    #[error(transparent)]
+    Genome(#[from] GenomeError),
+    /// A perturbation the robot cannot take (e.g. a body too large for its step).
+    #[error("perturbation: {0}")]
+    Perturbation(#[from] FieldError),
+}
+
+/// F and behaviour of every trial under one perturbation (trial `k` of room `r` at index
+/// `r · trials + k`, on the same stream under every perturbation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobustnessRow {
+    /// The perturbation.
+    pub perturbation: Perturbation,
+    /// Each trial's F (the experiment's fuzzy fitness of its terms).
+    pub f: Vec<f64>,
+    /// Each trial's exploration term `a`.
+    pub exploration: Vec<f64>,
+    /// Each trial's homing term `g`.
+    pub homing: Vec<f64>,
+    /// Each trial's battery term `b`.
+    pub battery: Vec<f64>,
+}
+
+impl Experiment {
+    /// Evaluates `genome` under each perturbation: `trials` trials per room, trial `k` on the
+    /// stream `hash("robustness", seed, k, room)`, the same under every perturbation.
+    pub fn robustness(
+        &self,
+        genome: &[f64],
+        perturbations: &[Perturbation],
+        trials: usize,
+    ) -> Result<Vec<RobustnessRow>, RobustnessError> {
+        let net = self.network(genome)?;
+        let mut rows = Vec::with_capacity(perturbations.len());
+        for &p in perturbations {
+            let exp = self.perturbed(p)?;
+            let mut row = RobustnessRow {
+                perturbation: p,
+                f: Vec::new(),
+                exploration: Vec::new(),
+                homing: Vec::new(),
+                battery: Vec::new(),
+            };
+            for room in 0..exp.arenas.len() {
+                for k in 0..trials {
+                    let seed = hash_str(&format!("robustness/{}/{k}/{room}", self.seed));
+                    let mut net = net.clone();
+                    let mut c = Perturbed {
+                        net: &mut net,
+                        dead: match p {
+                            Perturbation::DeadSensor(s) => Some(s),
+                            _ => None,
+                        },
+                        bias: match p {
+                            Perturbation::WheelBias(b) => b,
+                            _ => 0.0,
+                        },
+                    };
+                    let (terms, _, _) = exp.observed_trial(&mut c, room, seed, &mut ());
+                    row.f.push(exp.fuzzy_fitness(&terms));
+                    row.exploration.push(terms.a);
+                    row.homing.push(terms.g);
+                    row.battery.push(terms.b);
+                }
+            }
+            rows.push(row);
+        }
+        Ok(rows)
+    }
+
+    /// This experiment with the trial parameters `p` changes (dead sensors and wheel bias are
+    /// the controller's: unchanged here).
+    fn perturbed(&self, p: Perturbation) -> Result<Experiment, FieldError> {
+        let mut trial = self.trial;
+        match p {
+            Perturbation::Noise(n) => trial = trial.with_noise(n),
+            Perturbation::TableScale(k) => {
+                let table = match trial.sensor_model() {
+                    SensorModel::Table(TableRef(t)) => t.clone(),
+                    _ => SensorTable::khepera(),
+                };
+                trial = trial.with_sensor_table(table.scaled(k).intern());
+            }
+            Perturbation::Radius(r) => {
+                let b = trial.robot();
+                let raw = RawRobot {
+                    radius: r,
+                    wheel_base: b.wheel_base(),
+                    v_max: b.v_max(),
+                    motion: b.motion(),
+                };
+                trial = trial.with_robot(Khepera::from_raw(&raw)?);
+            }
+            _ => return Ok(self.clone()),
+        }
+        let mut exp = self.clone();
+        exp.arenas = (self.arenas.iter())
+            .map(|a| Arena::new(a.room().clone(), &trial))
+            .collect();
+        exp.trial = trial;
+        Ok(exp)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiment::{BuiltinRoomsOnly, RawConfig, Setup};
+    use crate::random::rng::{rng_from_seed, uniform};
+
+    fn setup() -> (Experiment, Vec<f64>) {
+        let sets = ["trial.steps=400".to_string()];
+        let raw = RawConfig::parse("rooms = [\"square\", \"H\"]", "c", &sets).unwrap();
+        let exp = Setup::resolve(raw, "c", &BuiltinRoomsOnly)
+            .unwrap()
+            .experiment;
+        let mut g = rng_from_seed(3);
+        let mut genome: Vec<f64> = (0..exp.shape.genome_len())
+            .map(|_| uniform(&mut g, -1.0, 1.0))
+            .collect();
+        // Output biases (after the hidden units' [bias, 8 weights]; each output is [bias, hidden
+        // weights]) that drive both wheels forward: the robot reaches the walls.
+        let h = exp.shape.hidden();
+        genome[9 * h] = 2.0;
+        genome[9 * h + 1 + h] = 2.0;
+        (exp, genome)
+    }
+
+    /// Paired streams: a perturbation that changes nothing gives the unperturbed trials exactly
+    /// (the default noise 0.06, the built-in tables scaled by 1, the evolved radius).
+    #[test]
+    fn perturbations_that_change_nothing_give_the_same_trials() {
+        let (exp, genome) = setup();
+        let same = [
+            Perturbation::None,
+            Perturbation::Noise(0.06),
+            Perturbation::TableScale(1.0),
+            Perturbation::WheelBias(0.0),
+            Perturbation::Radius(exp.trial.robot().radius()),
+        ];
+        let rows = exp.robustness(&genome, &same, 3).unwrap();
+        for row in &rows[1..] {
+            assert_eq!(row.f, rows[0].f, "{}", row.perturbation.label());
+            assert_eq!(row.exploration, rows[0].exploration);
+        }
+        assert_eq!(rows[0].f.len(), 6);
+    }
+
+    /// A perturbation that matters changes the trials.
+    #[test]
+    fn blinding_the_robot_changes_its_trials() {
+        let (exp, genome) = setup();
+        let all: Vec<Perturbation> = (0..INPUTS).map(Perturbation::DeadSensor).collect();
+        let base = exp.robustness(&genome, &[Perturbation::None], 2).unwrap();
+        let rows = exp.robustness(&genome, &all, 2).unwrap();
+        let changed = rows.iter().filter(|r| r.f != base[0].f).count();
+        assert!(changed > 0, "{:?}", base[0].exploration);
+        let noisy = exp
+            .robustness(&genome, &[Perturbation::Noise(0.2)], 2)
+            .unwrap();
+        assert_ne!(noisy[0].exploration, base[0].exploration);
+    }
+}
