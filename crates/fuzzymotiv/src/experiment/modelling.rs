@@ -5,13 +5,13 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::experiment::{Experiment, Run};
-use crate::fitness::terms::{FitnessTerms, TermsRecorder};
+use crate::fitness::terms::FitnessTerms;
 use crate::modelling::aem::environment_vector;
 use crate::modelling::recognition::{Confusion, Recognizer};
 use crate::modelling::som::SomError;
 use crate::random::rng::rng_from_seed;
 use crate::simulation::controller::Mlp;
-use crate::simulation::trial::{Trajectory, simulate};
+use crate::simulation::trial::Trajectory;
 
 impl Experiment {
     /// The room-modelling run of `network` in `room` on the AEM instance stream of `run` (the
@@ -21,15 +21,11 @@ impl Experiment {
     pub fn instance_run(&self, network: &Mlp, run: &Run, room: usize) -> InstanceRun {
         let arena = &self.arenas[room];
         let seed = self.streams().aem_instance(run.tag, self.room_key(room));
-        let mut rng = rng_from_seed(seed);
-        let mut obs = (
-            TermsRecorder::new(arena, self.homing),
-            Trajectory::starting_at(arena.room().home, self.trial.steps()),
-        );
-        simulate(arena, &mut network.clone(), &mut rng, &mut obs);
-        let terms = obs.0.finish();
+        // Through the evaluation's own trial, so the mission and user terms are measured too.
+        let mut trajectory = Trajectory::starting_at(arena.room().home, self.trial.steps());
+        let (terms, _, _) = self.observed_trial(&mut network.clone(), room, seed, &mut trajectory);
         InstanceRun {
-            trajectory: obs.1,
+            trajectory,
             f: self.fuzzy_fitness(&terms),
             terms,
         }

@@ -406,6 +406,23 @@ mod tests {
         }
     }
 
+    /// The instance run (replays, the lab's paths, figures) measures the mission terms as the
+    /// evaluation does, so its F is the evaluation's formula.
+    #[test]
+    fn the_instance_run_measures_the_mission_terms_too() {
+        let exp = build("[motivations]\nsafety = 1.0\n", &[]).unwrap();
+        let run = &exp.runs()[0];
+        let network = exp.initial_population(run).network(1);
+        let instance = exp.instance_run(&network, run, 0);
+        let safety = instance
+            .terms
+            .mission
+            .expect("mission terms measured")
+            .safety;
+        assert_eq!(instance.f, exp.fuzzy_fitness(&instance.terms));
+        assert!((0.0..=1.0).contains(&safety));
+    }
+
     /// The safety term is 1 − (blocked moves / executed steps) of the trial.
     #[test]
     fn safety_counts_the_blocked_moves() {
