@@ -319,7 +319,7 @@ fn write_run_figures(
             ctx.motivations.as_array()
         )
     } else {
-        format!("Best robot, {} {}", ctx.name, ctx.motivations.label())
+        format!("Best robot, {}: {}", ctx.name, ctx.motivations.label())
     };
     let paths = best_paths_svg(&title, &ctx.rooms, &done.trajectories());
     write_figure(staged, "trajectories", &paths, png)
