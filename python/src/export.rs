@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::export::{ExportRequest, ExportTarget, export_controller as export};
+use fuzzymotiv_io::records::export::{ExportRequest, ExportTarget, export_controller as export};
 use pyo3::prelude::*;
 
 use crate::py_err;

@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 /// and its layer. A module imports only from its own layer and the ones below it. Imports are
 /// read inside a crate only, so the numbers order the modules of one crate; they go on rising
 /// from crate to crate in Cargo's order.
-const LAYERS: [(&str, usize); 32] = [
+const LAYERS: [(&str, usize); 33] = [
     // fuzzymotiv, the library: the pipeline's subsystems
     ("lib::params", 0),     // FieldError: the one error of every input
     ("lib::random", 0),     // seeded streams, noise
@@ -41,18 +41,19 @@ const LAYERS: [(&str, usize); 32] = [
     ("io::pipeline", 11), // run directory, sweep plan/jobs/merge, lanes, progress
     ("io", 12),           // the crate root (module declarations, re-exports)
     // fuzzymotiv-lab: the browser lab (a library the binary starts)
-    ("lab::limits", 13),   // the documented limits
-    ("lab::errors", 13),   // the handlers' error (status + the CLI's message)
-    ("lab::assets", 13),   // the embedded page, script and style
-    ("lab::rooms", 14),    // built-in, drawn and uploaded rooms, checked and saved
-    ("lab::security", 14), // token, Host check, security headers
-    ("lab::live", 14),     // a run's events: generations, paths, result
-    ("lab::settings", 15), // the page's settings → the CLI's config checks
-    ("lab::runs", 16),     // the run list, the queue and the worker
-    ("lab::compare", 17),  // two runs side by side, the library's statistics
-    ("lab::api", 18),      // the routes
-    ("lab::server", 19),   // start and stop
-    ("lab", 20),           // the crate root
+    ("lab::limits", 13),      // the documented limits
+    ("lab::errors", 13),      // the handlers' error (status + the CLI's message)
+    ("lab::assets", 13),      // the embedded page, script and style
+    ("lab::rooms", 14),       // built-in, drawn and uploaded rooms, checked and saved
+    ("lab::security", 14),    // token, Host check, security headers
+    ("lab::live", 14),        // a run's events: generations, paths, result
+    ("lab::motivations", 14), // the sliders' motivations: presets, a config's, explain over N
+    ("lab::settings", 15),    // the page's settings → the CLI's config checks
+    ("lab::runs", 16),        // the run list, the queue and the worker
+    ("lab::compare", 17),     // two runs side by side, the library's statistics
+    ("lab::api", 18),         // the routes
+    ("lab::server", 19),      // start and stop
+    ("lab", 20),              // the crate root
     // fuzzymotiv-cli
     ("cli::args", 21),     // clap options shared by commands
     ("cli::png", 21),      // the resvg rasteriser

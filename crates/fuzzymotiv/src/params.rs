@@ -81,3 +81,49 @@ impl std::fmt::Display for Num {
         }
     }
 }
+
+/// Best guess at the key a TOML error refers to: the key on the line of the error span.
+pub(crate) fn field_from_toml_message(
+    msg: &str,
+    text: &str,
+    span: Option<std::ops::Range<usize>>,
+) -> String {
+    let from_message = || {
+        let start = msg.find("field `")?;
+        let rest = &msg[start + 7..];
+        rest.find('`').map(|end| rest[..end].to_string())
+    };
+    if msg.contains("missing field") {
+        if let Some(f) = from_message() {
+            return f;
+        }
+    }
+    if let Some(span) = span {
+        let start = span.start.min(text.len());
+        let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+        let line = &text[line_start..line_end];
+        if let Some(eq) = line.find('=') {
+            let key = line[..eq].trim();
+            if !key.is_empty() && !key.starts_with('[') {
+                // Prefix with the enclosing table, if any.
+                let table = text[..line_start]
+                    .lines()
+                    .rev()
+                    .find(|l| l.trim_start().starts_with('['))
+                    .map(|l| l.trim().trim_matches(|c| c == '[' || c == ']').to_string());
+                return match table {
+                    Some(t) if !t.is_empty() => format!("{t}.{key}"),
+                    _ => key.to_string(),
+                };
+            }
+        }
+        if line.trim_start().starts_with('[') {
+            return line
+                .trim()
+                .trim_matches(|c| c == '[' || c == ']')
+                .to_string();
+        }
+    }
+    from_message().unwrap_or_else(|| "(document)".to_string())
+}

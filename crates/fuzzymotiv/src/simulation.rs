@@ -10,6 +10,7 @@ pub(crate) mod robot;
 pub(crate) mod room;
 pub(crate) mod sensing;
 pub(crate) mod sensor;
+pub(crate) mod sensor_layout;
 pub(crate) mod sensor_table;
 pub(crate) mod stepper;
 pub(crate) mod trial;

@@ -1,12 +1,12 @@
 //! `fuzzymotiv export`: an evolved controller for a real robot, as dependency-free C99 (its
 //! motor outputs the simulator's bit for bit), a self-describing JSON document or an ONNX model
-//! ([`fuzzymotiv::export`], [`fuzzymotiv_io::files::export`]; docs/guide/real-robot.md).
+//! ([`fuzzymotiv::export`], [`fuzzymotiv_io::records::export`]; docs/guide/real-robot.md).
 
 use std::path::PathBuf;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::export::{ExportRequest, ExportTarget, export_controller};
 use fuzzymotiv_io::note;
+use fuzzymotiv_io::records::export::{ExportRequest, ExportTarget, export_controller};
 
 /// What `--to` writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

@@ -18,12 +18,12 @@ use fuzzymotiv::simulation::{Trajectory, TrialParams};
 use rayon::prelude::*;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::genome::{SavedGenome, locate, read_genome};
 use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, num, write_files};
 use fuzzymotiv_io::files::inputs::{load_config, resolve, room_entry, rooms_unchanged};
 use fuzzymotiv_io::note;
 use fuzzymotiv_io::records::PROGRAM;
 use fuzzymotiv_io::records::context::RenderContext;
+use fuzzymotiv_io::records::genome::{SavedGenome, locate, read_genome};
 use fuzzymotiv_io::render::frames::animate::delay_of;
 use fuzzymotiv_io::render::frames::{self, FrameOptions, Track};
 use fuzzymotiv_io::render::report::{replay_page, xs};

@@ -7,9 +7,9 @@ use std::path::PathBuf;
 use fuzzymotiv::experiment::{Perturbation, RobustnessRow};
 use fuzzymotiv::statistics::{mean, mean_interval};
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::genome::{locate, read_genome};
 use fuzzymotiv_io::files::guard::{FilesState, check_files, write_files};
 use fuzzymotiv_io::files::inputs::load_config;
+use fuzzymotiv_io::records::genome::{locate, read_genome};
 use fuzzymotiv_io::{note, outln};
 
 /// Arguments of `fuzzymotiv robustness`.

@@ -1,12 +1,10 @@
 //! The file layer: the output guard every writer goes through ([`guard`]), config and room
-//! loading ([`inputs`]), saved genomes ([`genome`]), controller export ([`export`]), the error with its exit codes ([`error`]) and the guard's refusals
+//! loading ([`inputs`]), the error with its exit codes ([`error`]) and the guard's refusals
 //! ([`refusal`]), the terminal
 //! ([`console`]: `out!`, `outln!`, `note!`) and a sweep job's lock ([`job_lock`]).
 
 pub mod console;
 pub mod error;
-pub mod export;
-pub mod genome;
 pub mod guard;
 pub mod inputs;
 pub mod job_lock;

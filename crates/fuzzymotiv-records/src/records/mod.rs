@@ -50,6 +50,8 @@ pub mod checkpoint;
 pub mod combination;
 pub mod compare;
 pub mod context;
+pub mod export;
+pub mod genome;
 pub mod test_runs;
 
 /// The model version of a record that names none: written before model versions were

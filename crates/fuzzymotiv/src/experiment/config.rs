@@ -16,10 +16,11 @@ pub use crate::evolution::ga::RawGa;
 use crate::fitness::terms::{Homing, WaypointOrder};
 pub use crate::fitness::{Coefficients, RawFuzzy, RawMotivations};
 pub use crate::modelling::aem::RawAem;
+use crate::params::field_from_toml_message;
 use crate::params::{BIG, FieldError};
 pub use crate::simulation::controller::RawNetwork;
 pub use crate::simulation::robot::RawRobot;
-use crate::simulation::room::{BUILTIN_ROOMS, field_from_toml_message};
+use crate::simulation::room::BUILTIN_ROOMS;
 pub use crate::simulation::trial::RawTrial;
 
 /// The largest base seed, 2^53 − 1: every seed (and every seed derived from it for a sweep) is

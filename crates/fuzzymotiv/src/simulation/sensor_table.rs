@@ -22,9 +22,11 @@ use std::sync::Mutex;
 
 use serde::{Deserialize, Serialize};
 
+use crate::params::field_from_toml_message;
 use crate::params::{FieldError, Num, check};
-use crate::simulation::room::field_from_toml_message;
-use crate::simulation::sensor::{AXIS_SAMPLES, SENSOR_MAX, SENSORS, SIDE_RAY_DEG, SIDE_SAMPLES};
+use crate::simulation::sensor_layout::{
+    AXIS_SAMPLES, SENSOR_MAX, SENSORS, SIDE_RAY_DEG, SIDE_SAMPLES,
+};
 
 /// The most rays a sensor may have.
 pub const MAX_RAYS: usize = 3;

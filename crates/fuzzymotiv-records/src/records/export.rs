@@ -7,9 +7,9 @@ use fuzzymotiv::export::{CSources, ExportedController};
 use fuzzymotiv::simulation::MlpShape;
 
 use crate::files::error::CliError;
-use crate::files::genome::{SavedGenome, locate, read_genome};
 use crate::files::guard::{FilesState, check_files, io_err, write_files};
 use crate::files::inputs::load_config;
+use crate::records::genome::{SavedGenome, locate, read_genome};
 
 /// What an export writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
