@@ -19,7 +19,8 @@ fn read(p: std::path::PathBuf) -> String {
 }
 
 /// Every combination runs in its own directory; the behaviour table pairs each baseline with
-/// the TSK for both settings and the four measures; the summary and the CSV say the same.
+/// the TSK for both settings and the five measures (the end spread measured from the runs);
+/// the summary and the CSV say the same.
 #[test]
 fn combination_runs_each_combination_and_compares_their_behaviour() {
     let tmp = tempfile::tempdir().unwrap();
@@ -38,7 +39,20 @@ fn combination_runs_each_combination_and_compares_their_behaviour() {
     let summary: serde_json::Value = serde_json::from_str(&read(out.join("summary.json"))).unwrap();
     assert_eq!(summary["combinations"].as_array().unwrap().len(), 3);
     let rows = summary["behaviour"].as_array().unwrap();
-    assert_eq!(rows.len(), 2 * 2 * 4, "{rows:?}");
+    assert_eq!(rows.len(), 2 * 2 * 5, "{rows:?}");
+    // Per combination, setting and seed, an end spread in % of the room's largest distance.
+    let spreads = summary["end_spreads"].as_array().unwrap();
+    assert_eq!(spreads.len(), 3);
+    for setting in spreads.iter().flat_map(|c| c.as_array().unwrap()) {
+        let seeds = setting.as_array().unwrap();
+        assert_eq!(seeds.len(), 2);
+        assert!(
+            seeds
+                .iter()
+                .all(|v| (0.0..=100.0).contains(&v.as_f64().unwrap()))
+        );
+    }
+    assert!(md.contains("% end spread"), "{md}");
     let csv = read(out.join("behaviour.csv"));
     assert_eq!(csv.lines().count(), 1 + rows.len());
     assert!(md.contains("| tsk | the paper's TSK rule base |"), "{md}");
@@ -62,4 +76,51 @@ fn combination_refuses_to_have_its_combine_set() {
         stderr(&o)
     );
     assert!(!out.exists());
+}
+
+/// `reproduce --replication`: the study at base seeds S and S + 10, each a whole study; the
+/// claims from both and pooled; per number of seeds both base seeds' verdicts; the figure.
+#[test]
+fn replication_runs_two_base_seeds_and_pools_their_claims() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    let o = Fm::new(["reproduce", "--replication", "--seeds", "3", "--quiet"])
+        .out(&out)
+        .sets(&SIZES)
+        .ok();
+    let md = read(out.join("replication.md"));
+    assert_eq!(stdout(&o).trim_end(), md.trim_end());
+    for base in ["base-1", "base-11"] {
+        let s: serde_json::Value =
+            serde_json::from_str(&read(out.join(base).join("summary.json"))).unwrap();
+        assert_eq!(s["seeds"].as_array().unwrap().len(), 3, "{base}");
+    }
+    let b: serde_json::Value =
+        serde_json::from_str(&read(out.join("base-11/summary.json"))).unwrap();
+    assert_eq!(b["seed"], 11);
+    let summary: serde_json::Value = serde_json::from_str(&read(out.join("summary.json"))).unwrap();
+    assert_eq!(summary["base_seeds"], serde_json::json!([1, 11]));
+    assert_eq!(summary["rows"].as_array().unwrap().len(), 6);
+    // Seeds 2 and 3 per base seed, each with every claim's two verdicts.
+    assert_eq!(summary["by_seeds"].as_array().unwrap().len(), 2);
+    let pooled = &summary["pooled"][0]["stats"]["seeds"];
+    assert_eq!(pooled, 6, "the pooled claims see both base seeds' seeds");
+    assert!(
+        md.contains("| claim | base seed 1 | base seed 11 | pooled (6 seeds) |"),
+        "{md}"
+    );
+    let seeds = read(out.join("replication_seeds.csv"));
+    assert_eq!(seeds.lines().count(), 1 + 2 * 6);
+    let svg = read(out.join("replication.svg"));
+    assert!(svg.contains("base seed 11") && svg.contains("seeds per base seed"));
+    // Run again: the study is there, nothing to do.
+    let again = Fm::new(["reproduce", "--replication", "--seeds", "3"])
+        .out(&out)
+        .sets(&SIZES)
+        .ok();
+    assert!(
+        stderr(&again).contains("already holds this study"),
+        "{}",
+        stderr(&again)
+    );
 }

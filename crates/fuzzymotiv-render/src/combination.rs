@@ -30,12 +30,15 @@ pub const COMBINATION: [Variant; 3] = [
     },
 ];
 
-/// The behaviour measures compared, as the tables name them.
-pub const MEASURES: [&str; 4] = [
+/// The behaviour measures compared, as the tables name them. The last, the spread of the
+/// test runs' final positions (`Experiment::end_spread`), is measured by the study beside the
+/// tables.
+pub const MEASURES: [&str; 5] = [
     "% optimal exploration",
     "% homing",
     "% battery usage",
     "% recognition",
+    "% end spread",
 ];
 
 /// The value of measure `k` in a seed's table: the mean over the rooms that have it.
@@ -53,21 +56,31 @@ fn seed_value(rows: &[TableRow], k: usize) -> Option<f64> {
 }
 
 /// Every baseline against the TSK (the first study), per setting and measure, paired by seed.
-/// Measures a study does not have (recognition without room modelling) are left out.
-pub fn behaviour_rows(studies: &[(&str, &StudySummary)]) -> Vec<BehaviourRow> {
+/// `spreads[study][setting][seed]` is each seed's end spread (mean over rooms). Measures a
+/// study does not have (recognition without room modelling) are left out.
+pub fn behaviour_rows(
+    studies: &[(&str, &StudySummary)],
+    spreads: &[Vec<Vec<f64>>],
+) -> Vec<BehaviourRow> {
     let Some(((_, tsk), rest)) = studies.split_first() else {
         return Vec::new();
     };
+    let spread = |i: usize, si: usize, k: usize| spreads.get(i)?.get(si)?.get(k).copied();
     let mut out = Vec::new();
-    for (name, study) in rest {
-        for (s, base) in study.settings.iter().zip(&tsk.settings) {
+    for (i, (name, study)) in rest.iter().enumerate() {
+        for (si, (s, base)) in study.settings.iter().zip(&tsk.settings).enumerate() {
             for (k, measure) in MEASURES.iter().enumerate() {
-                let pairs: Option<Vec<(f64, f64)>> = s
-                    .per_seed
-                    .iter()
-                    .zip(&base.per_seed)
-                    .map(|(a, b)| Some((seed_value(&a.rows, k)?, seed_value(&b.rows, k)?)))
-                    .collect();
+                let pairs: Option<Vec<(f64, f64)>> = if k == 4 {
+                    (0..s.per_seed.len().min(base.per_seed.len()))
+                        .map(|j| Some((spread(i + 1, si, j)?, spread(0, si, j)?)))
+                        .collect()
+                } else {
+                    s.per_seed
+                        .iter()
+                        .zip(&base.per_seed)
+                        .map(|(a, b)| Some((seed_value(&a.rows, k)?, seed_value(&b.rows, k)?)))
+                        .collect()
+                };
                 let Some(pairs) = pairs.filter(|p| p.len() >= 2) else {
                     continue;
                 };

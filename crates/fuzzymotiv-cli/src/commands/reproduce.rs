@@ -19,6 +19,7 @@ use fuzzymotiv_io::pipeline::sweep_merge::merge_dir;
 use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
 use fuzzymotiv_io::records::combination::CombinationSummary;
 use fuzzymotiv_io::records::context::RenderContext;
+use fuzzymotiv_io::records::replication::ReplicationSummary;
 use fuzzymotiv_io::records::{
     AblationSummary, ClaimRecord, PROGRAM, StrengthSummary, StudySummary, VariantSummary,
     read_json, to_json,
@@ -27,6 +28,9 @@ use fuzzymotiv_io::render::combination::{
     COMBINATION, behaviour_rows, behaviour_svg, behaviour_table,
 };
 use fuzzymotiv_io::render::figures::write_figure_at;
+use fuzzymotiv_io::render::replication::{
+    replication as replication_of, replication_svg, replication_table, seeds_csv,
+};
 use fuzzymotiv_io::render::report::{Section, reproduce_page};
 use fuzzymotiv_io::render::strength::{SEARCH_STRENGTH, strength_svg, strength_table};
 use fuzzymotiv_io::render::study::{
@@ -91,6 +95,11 @@ pub struct ReproduceArgs {
     /// behaviour (EXPERIMENTS.md: does the fuzzy combination matter?).
     #[arg(long, conflicts_with_all = ["orientation", "ablation", "search_strength"])]
     pub combination: bool,
+    /// Run the replication study instead: the study at base seed --seed and at --seed + 10
+    /// (--seeds each), the claims from each and from all their seeds pooled, and from how
+    /// many seeds on both base seeds give the pooled verdicts (EXPERIMENTS.md: why N seeds).
+    #[arg(long, conflicts_with_all = ["orientation", "ablation", "search_strength", "combination"])]
+    pub replication: bool,
 }
 
 impl ReproduceArgs {
@@ -111,6 +120,8 @@ impl ReproduceArgs {
                 "results-search-strength"
             } else if self.combination {
                 "results-combination"
+            } else if self.replication {
+                "results-replication"
             } else {
                 "results"
             };
@@ -179,7 +190,7 @@ fn load_settings(
 fn run_study<'a>(
     args: &ReproduceArgs,
     seeds: &[u64],
-    loaded: Vec<Vec<Loaded>>,
+    loaded: &[Vec<Loaded>],
     dir: &Path,
     progress: &Progress,
     label: &str,
@@ -187,7 +198,7 @@ fn run_study<'a>(
     let n = seeds.len();
     let runs: Vec<(&Setting, usize, &Loaded)> = SETTINGS
         .iter()
-        .zip(&loaded)
+        .zip(loaded)
         .flat_map(|(setting, loaded)| loaded.iter().enumerate().map(move |(k, l)| (setting, k, l)))
         .collect();
     let finished = run_concurrently(&runs, |&(setting, k, l)| {
@@ -225,11 +236,14 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     if args.combination {
         return combination(&args);
     }
+    if args.replication {
+        return replication(&args);
+    }
     let start = Instant::now();
     let seeds = study_seeds(&args);
     let loaded = load_settings(&args, &seeds, &DEFAULT_MODEL)?;
     let out = args.out_dir();
-    let Some(staged) = open_out(&args, &out, &[(&DEFAULT_MODEL, &loaded)])? else {
+    let Some(staged) = open_out(&args, &out, &[(DEFAULT_MODEL.name, &loaded)])? else {
         return Ok(());
     };
     let progress = Progress::new(
@@ -237,22 +251,30 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
         SETTINGS.len() * seeds.len(),
         args.output.quiet,
     );
-    let studies = run_study(&args, &seeds, loaded, &staged.staging, &progress, "")?;
+    let studies = run_study(&args, &seeds, &loaded, &staged.staging, &progress, "")?;
     progress.finish();
-    let (claims, tables) = write_study(&args, &staged.staging, &studies, start)?;
+    let (claims, tables) = write_study(&args, args.seed(), &staged.staging, &studies, start)?;
     commit(staged, start)?;
     fuzzymotiv_io::out!("{tables}")?;
     print_claims(&claims)
 }
 
 fn study_seeds(args: &ReproduceArgs) -> Vec<u64> {
-    (0..args.seeds as usize)
-        .map(|k| Streams::new(args.seed()).study(k))
+    seeds_of(args.seed(), args.seeds)
+}
+
+/// The `n` seeds of a study at base seed `base`.
+fn seeds_of(base: u64, n: u64) -> Vec<u64> {
+    (0..n as usize)
+        .map(|k| Streams::new(base).study(k))
         .collect()
 }
 
 /// A variant and its claims.
 type VariantClaims = (&'static Variant, Vec<ClaimRecord>);
+
+/// The staged output of a study of variants, and per variant its claims and what was measured.
+type Measured<T> = (StagedDir, Vec<(VariantClaims, T)>);
 
 /// Runs the study of every variant into `OUT/VARIANT/` (each with its tables, figures,
 /// claims and summary.json); `None` when `--out` already holds them all.
@@ -261,13 +283,25 @@ fn run_variants(
     seeds: &[u64],
     variants: &'static [Variant],
 ) -> Result<Option<(StagedDir, Vec<VariantClaims>)>, CliError> {
+    let done = run_variants_measuring(args, seeds, variants, |_, _| Ok(()))?;
+    Ok(done.map(|(staged, rows)| (staged, rows.into_iter().map(|(v, _)| v).collect())))
+}
+
+/// [`run_variants`], also measuring each variant's runs with `measure` (given the variant's
+/// configs and its runs, per setting) while they are in memory.
+fn run_variants_measuring<T>(
+    args: &ReproduceArgs,
+    seeds: &[u64],
+    variants: &'static [Variant],
+    measure: impl Fn(&[Vec<Loaded>], &[SettingRuns<'_>]) -> Result<T, CliError>,
+) -> Result<Option<Measured<T>>, CliError> {
     refuse_variant_keys(&args.sets, variants)?;
     let loaded = variants
         .iter()
         .map(|v| load_settings(args, seeds, v))
         .collect::<Result<Vec<_>, CliError>>()?;
     let out = args.out_dir();
-    let pairs: Vec<_> = variants.iter().zip(&loaded).collect();
+    let pairs: Vec<_> = variants.iter().map(|v| v.name).zip(&loaded).collect();
     let Some(staged) = open_out(args, &out, &pairs)? else {
         return Ok(None);
     };
@@ -280,9 +314,10 @@ fn run_variants(
     for (variant, loaded) in variants.iter().zip(loaded) {
         let dir = staged.staging.join(variant.name);
         let label = format!("{} · ", variant.name);
-        let studies = run_study(args, seeds, loaded, &dir, &progress, &label)?;
-        let (claims, _) = write_study(args, &dir, &studies, Instant::now())?;
-        rows.push((variant, claims));
+        let studies = run_study(args, seeds, &loaded, &dir, &progress, &label)?;
+        let (claims, _) = write_study(args, args.seed(), &dir, &studies, Instant::now())?;
+        let measured = measure(&loaded, &studies)?;
+        rows.push(((variant, claims), measured));
     }
     progress.finish();
     Ok(Some((staged, rows)))
@@ -367,16 +402,18 @@ fn search_strength(args: &ReproduceArgs) -> Result<(), CliError> {
 fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
     let start = Instant::now();
     let seeds = study_seeds(args);
-    let Some((staged, rows)) = run_variants(args, &seeds, &COMBINATION)? else {
+    let Some((staged, measured)) = run_variants_measuring(args, &seeds, &COMBINATION, end_spreads)?
+    else {
         return Ok(());
     };
+    let (rows, spreads): (Vec<VariantClaims>, Vec<_>) = measured.into_iter().unzip();
     let studies = COMBINATION
         .iter()
         .map(|v| read_json(&staged.staging.join(v.name).join("summary.json")))
         .collect::<Result<Vec<StudySummary>, CliError>>()?;
     let named: Vec<(&str, &StudySummary)> =
         COMBINATION.iter().map(|v| v.name).zip(&studies).collect();
-    let behaviour = behaviour_rows(&named);
+    let behaviour = behaviour_rows(&named, &spreads);
     let prov = Provenance::new(
         &seeds,
         &RenderContext::of(&rows_exp(args, &seeds)?),
@@ -411,11 +448,102 @@ fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
             })
             .collect(),
         behaviour,
+        end_spreads: spreads,
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;
     commit(staged, start)?;
     fuzzymotiv_io::outln!("{md}")
+}
+
+/// `reproduce --replication`: the default study at base seeds `--seed` and `--seed` + 10
+/// (`OUT/base-S/`, each a whole study), then the claims from their seeds pooled and per number
+/// of seeds both base seeds' verdicts (`replication.md`/`.csv`, `replication_seeds.csv`,
+/// `replication.svg`, `summary.json`).
+fn replication(args: &ReproduceArgs) -> Result<(), CliError> {
+    let start = Instant::now();
+    let bases = [args.seed(), args.seed().saturating_add(10)];
+    let seeds = bases.map(|b| seeds_of(b, args.seeds));
+    let names = bases.map(|b| format!("base-{b}"));
+    let loaded = [0, 1].map(|i| load_settings(args, &seeds[i], &DEFAULT_MODEL));
+    let [la, lb] = loaded;
+    let loaded = [la?, lb?];
+    let parts: Vec<(&str, &Vec<Vec<Loaded>>)> =
+        names.iter().map(String::as_str).zip(&loaded).collect();
+    let Some(staged) = open_out(args, &args.out_dir(), &parts)? else {
+        return Ok(());
+    };
+    let progress = Progress::new(
+        &loaded[0][0][0].experiment,
+        2 * SETTINGS.len() * seeds[0].len(),
+        args.output.quiet,
+    );
+    for (i, loaded) in loaded.iter().enumerate() {
+        let dir = staged.staging.join(&names[i]);
+        let label = format!("{} · ", names[i]);
+        let studies = run_study(args, &seeds[i], loaded, &dir, &progress, &label)?;
+        write_study(args, bases[i], &dir, &studies, Instant::now())?;
+    }
+    progress.finish();
+    let [a, b] = [0, 1]
+        .map(|i| read_json::<StudySummary>(&staged.staging.join(&names[i]).join("summary.json")));
+    let (a, b) = (a?, b?);
+    let (pooled, rows, by_seeds, needed) = replication_of(&a, &b);
+    let prov = Provenance::new(&seeds[0], &RenderContext::of(&loaded[0][0][0]), args.quick);
+    let (md, csv) = replication_table(bases, seeds[0].len(), &rows, needed, &prov.line());
+    staged.write("replication.md", &md)?;
+    staged.write("replication.csv", &csv)?;
+    staged.write("replication_seeds.csv", seeds_csv(&pooled, &by_seeds))?;
+    write_figure_at(
+        &staged.staging.join("replication.svg"),
+        &replication_svg(bases, &pooled, &by_seeds),
+        rasteriser(args.png),
+    )?;
+    let summary = ReplicationSummary {
+        program: PROGRAM.into(),
+        version: fuzzymotiv::VERSION.into(),
+        model: fuzzymotiv::MODEL_VERSION,
+        base_seeds: bases,
+        seeds: seeds[0].len(),
+        quick: args.quick,
+        population: prov.population,
+        generations: prov.generations,
+        overrides: args.sets.clone(),
+        rows,
+        by_seeds,
+        seeds_needed: needed,
+        pooled,
+        wall_seconds: start.elapsed().as_secs_f64(),
+    };
+    staged.write("summary.json", to_json(&summary))?;
+    commit(staged, start)?;
+    fuzzymotiv_io::outln!("{md}")
+}
+
+/// Per setting and seed, the end spread of the seed's robots (`Experiment::end_spreads`, mean
+/// over rooms).
+fn end_spreads(
+    loaded: &[Vec<Loaded>],
+    studies: &[SettingRuns<'_>],
+) -> Result<Vec<Vec<f64>>, CliError> {
+    loaded
+        .iter()
+        .zip(studies)
+        .map(|(loaded, study)| {
+            loaded
+                .iter()
+                .zip(&study.finished)
+                .map(|(l, done)| {
+                    let spreads = l.experiment.end_spreads(&done.outcome).map_err(|e| {
+                        CliError::input(format!(
+                            "a run's best genome does not fit its network: {e}"
+                        ))
+                    })?;
+                    Ok(spreads.iter().sum::<f64>() / spreads.len().max(1) as f64)
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// `reproduce --ablation`: the study for every variant, then which claims hold under each.
@@ -470,12 +598,12 @@ fn commit(staged: StagedDir, start: Instant) -> Result<(), CliError> {
 }
 
 /// Every run of a study by its path in the output, with its resolved config.
-fn run_configs(variants: &[(&Variant, &Vec<Vec<Loaded>>)]) -> Vec<(String, String)> {
-    let prefix = |v: &Variant| {
+fn run_configs(variants: &[(&str, &Vec<Vec<Loaded>>)]) -> Vec<(String, String)> {
+    let prefix = |name: &str| {
         if variants.len() == 1 {
             String::new()
         } else {
-            format!("{}/", v.name)
+            format!("{name}/")
         }
     };
     variants
@@ -508,6 +636,10 @@ fn identity(args: &ReproduceArgs, runs: &[(String, String)]) -> Vec<(String, Str
         "ablation"
     } else if args.search_strength {
         "search-strength"
+    } else if args.combination {
+        "combination"
+    } else if args.replication {
+        "replication"
     } else {
         "study"
     };
@@ -526,7 +658,7 @@ fn identity(args: &ReproduceArgs, runs: &[(String, String)]) -> Vec<(String, Str
 fn open_out(
     args: &ReproduceArgs,
     out: &Path,
-    variants: &[(&Variant, &Vec<Vec<Loaded>>)],
+    variants: &[(&str, &Vec<Vec<Loaded>>)],
 ) -> Result<Option<StagedDir>, CliError> {
     let runs = run_configs(variants);
     let id = identity(args, &runs);
@@ -577,6 +709,7 @@ fn rows_exp(args: &ReproduceArgs, seeds: &[u64]) -> Result<Loaded, CliError> {
 /// Returns the claims and the tables to print once the study is in place.
 fn write_study(
     args: &ReproduceArgs,
+    base: u64,
     dir: &Path,
     studies: &[SettingRuns<'_>],
     start: Instant,
@@ -615,7 +748,7 @@ fn write_study(
         program: PROGRAM.into(),
         version: fuzzymotiv::VERSION.into(),
         model: fuzzymotiv::MODEL_VERSION,
-        seed: args.seed(),
+        seed: base,
         seeds: provenance.seeds.clone(),
         quick: args.quick,
         population: provenance.population,

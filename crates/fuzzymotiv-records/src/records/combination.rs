@@ -57,6 +57,11 @@ pub struct CombinationSummary {
     pub combinations: Vec<VariantSummary>,
     /// Each baseline against the TSK, per setting and measure.
     pub behaviour: Vec<BehaviourRow>,
+    /// Per combination (in `combinations`' order), setting and seed: the end spread, the
+    /// root-mean-square distance of the best robot's test runs' final positions from their
+    /// centroid in % of the room's largest distance, mean over rooms.
+    #[serde(default)]
+    pub end_spreads: Vec<Vec<Vec<f64>>>,
     /// Wall time (s).
     pub wall_seconds: f64,
 }

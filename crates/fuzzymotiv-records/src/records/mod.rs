@@ -52,6 +52,7 @@ pub mod compare;
 pub mod context;
 pub mod export;
 pub mod genome;
+pub mod replication;
 pub mod test_runs;
 
 /// The model version of a record that names none: written before model versions were
@@ -981,7 +982,7 @@ pub struct ClaimStats {
     pub min_p: f64,
     /// The significance level of the verdict.
     pub alpha: f64,
-    /// "holds", "opposite" or "not significant".
+    /// "holds", "opposite", "not significant" or, when |difference| < `mdd`, "inconclusive".
     pub verdict: String,
     /// The smallest difference detectable with 80 % power at `alpha` with these seeds; none
     /// for one seed.

@@ -5,12 +5,13 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::experiment::{Experiment, Run};
-use crate::fitness::terms::FitnessTerms;
+use crate::fitness::terms::{FitnessTerms, largest_distance};
 use crate::modelling::aem::environment_vector;
 use crate::modelling::recognition::{Confusion, Recognizer};
 use crate::modelling::som::SomError;
 use crate::random::rng::rng_from_seed;
 use crate::simulation::controller::Mlp;
+use crate::simulation::robot::Pose;
 use crate::simulation::trial::Trajectory;
 
 impl Experiment {
@@ -29,6 +30,34 @@ impl Experiment {
             f: self.fuzzy_fitness(&terms),
             terms,
         }
+    }
+
+    /// Where `network`'s test runs in `room` end (the streams of the recognition tests of
+    /// [`Experiment::environment_modelling`], so the very trials its table measures).
+    pub fn test_run_ends(&self, network: &Mlp, run: &Run, room: usize) -> Vec<Pose> {
+        (0..self.aem.test_runs())
+            .map(|t| {
+                let seed = self.streams().aem_test(run.tag, self.room_key(room), t);
+                self.observed_trial(&mut network.clone(), room, seed, &mut ())
+                    .2
+            })
+            .collect()
+    }
+
+    /// How far apart `network`'s test runs in `room` end: the root-mean-square distance of
+    /// their final positions from their centroid, in % of the room's largest distance (0: they
+    /// all end at one point).
+    pub fn end_spread(&self, network: &Mlp, run: &Run, room: usize) -> f64 {
+        let ends = self.test_run_ends(network, run, room);
+        let n = ends.len().max(1) as f64;
+        let (cx, cy) = ends.iter().fold((0.0, 0.0), |(x, y), p| (x + p.x, y + p.y));
+        let (cx, cy) = (cx / n, cy / n);
+        let ms = ends
+            .iter()
+            .map(|p| (p.x - cx).powi(2) + (p.y - cy).powi(2))
+            .sum::<f64>()
+            / n;
+        100.0 * ms.sqrt() / largest_distance(self.arenas[room].room())
     }
 
     /// Action-based environment modelling with one robot (its network): an instance run per room, SOM

@@ -140,6 +140,17 @@ impl Experiment {
         Ok(reports)
     }
 
+    /// [`Experiment::end_spread`] in every room, of the robot that stands for it in `outcome`.
+    pub fn end_spreads(&self, outcome: &Outcome) -> Result<Vec<f64>, GenomeError> {
+        (0..self.arenas.len())
+            .map(|r| {
+                let (evolution, _) = outcome.robot_for_room(r);
+                let network = self.network(&evolution.population[evolution.best])?;
+                Ok(self.end_spread(&network, &evolution.run, r))
+            })
+            .collect()
+    }
+
     /// Which evolution's best robot stands for room `r`, and the room's position among that
     /// evolution's rooms: the one robot of all-rooms training, or the room's own robot.
     pub fn robot_for_room(&self, r: usize) -> (usize, usize) {

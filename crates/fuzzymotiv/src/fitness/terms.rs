@@ -426,7 +426,7 @@ impl MissionTracker {
 }
 
 /// The largest distance between two points of the room's outline (mm), at least 1.
-fn largest_distance(room: &Room) -> f64 {
+pub fn largest_distance(room: &Room) -> f64 {
     let mut most: f64 = 1.0;
     for (i, p) in room.outline.iter().enumerate() {
         for q in &room.outline[i + 1..] {
