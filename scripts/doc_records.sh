@@ -11,6 +11,8 @@
 #   search-strength=results-search-strength   (fuzzymotiv reproduce --search-strength)
 #   ablation=results-ablation    (fuzzymotiv reproduce --ablation --seeds 5)
 #   orientation=results-orientation           (fuzzymotiv reproduce --orientation)
+#   replication=results-replication           (fuzzymotiv reproduce --replication --seeds 20)
+#   combination=results-combination           (fuzzymotiv reproduce --combination)
 #   maps/o-fixed=out/maps/o-fixed   (fuzzymotiv sweep configs/motivation-map.toml … + merge)
 #   maps/o-free=out/maps/o-free     (fuzzymotiv sweep configs/motivation-map-o-free.toml … + merge)
 #
@@ -67,7 +69,17 @@ files_of() { # KIND DIR
             for job in "$dir"/jobs/*/; do echo "jobs/$(basename "$job")/generations.csv"; done ;;
         maps/o-fixed | maps/o-free)
             echo results.csv aggregate.csv ;;
-        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, search-strength, ablation, orientation, maps/o-fixed, maps/o-free" ;;
+        replication)
+            echo replication.csv replication_seeds.csv summary.json
+            for base in "$dir"/base-*/; do
+                echo "$(basename "$base")/claims.csv"
+            done ;;
+        combination)
+            echo behaviour.csv summary.json
+            for c in default weighted-sum weighted-squares; do
+                echo "$c/claims.csv $c/table1.csv $c/table2.csv"
+            done ;;
+        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination" ;;
     esac
 }
 

@@ -96,7 +96,10 @@ pub fn behaviour_rows(
 }
 
 fn row(combination: &str, setting: &str, measure: &str, c: &Comparison) -> BehaviourRow {
-    let verdict = if c.p < c.alpha && c.difference > 0.0 {
+    // As the claims' verdicts: a difference within what the design detects is inconclusive.
+    let verdict = if c.mdd.is_some_and(|m| c.difference.abs() < m) {
+        "inconclusive"
+    } else if c.p < c.alpha && c.difference > 0.0 {
         "higher"
     } else if c.p < c.alpha && c.difference < 0.0 {
         "lower"
@@ -156,7 +159,7 @@ pub fn claims_table(rows: &[(&Variant, Vec<ClaimRecord>)], prov: &str) -> String
 /// The behaviour table as (Markdown, CSV).
 pub fn behaviour_table(rows: &[BehaviourRow], seeds: usize) -> (String, String) {
     let mut md = format!(
-        "Does the fuzzy combination change behaviour? Each baseline against the TSK, paired by seed ({seeds} seeds; each seed's value is its mean over rooms; 95 % bootstrap interval, two-sided sign-flip permutation p, α = 0.05; \"detectable\" is the smallest difference this design finds with 80 % power).\n\n| combination | setting | measure | baseline | TSK | difference (95 % CI) | p | detectable | verdict |\n|---|---|---|---|---|---|---|---|---|\n"
+        "Does the fuzzy combination change behaviour? Each baseline against the TSK, paired by seed ({seeds} seeds; each seed's value is its mean over rooms; 95 % bootstrap interval, two-sided sign-flip permutation p, α = 0.05; \"detectable\" is the smallest difference this design finds with 80 % power; a difference within it is \"inconclusive\", whatever p, as in the claims).\n\n| combination | setting | measure | baseline | TSK | difference (95 % CI) | p | detectable | verdict |\n|---|---|---|---|---|---|---|---|---|\n"
     );
     let mut csv = String::from(
         "combination,setting,measure,mean_combination,mean_tsk,difference,ci_low,ci_high,p,detectable,verdict\n",
@@ -203,7 +206,7 @@ const BOTTOM: f64 = 56.0;
 const LEFT: f64 = 46.0;
 
 /// The figure: one panel per measure; in each, per setting and baseline, the paired difference
-/// baseline − TSK (points) with its 95 % interval; a zero line. Filled points are significant.
+/// baseline − TSK (points) with its 95 % interval; a zero line. Filled points are significant and at least the detectable difference (verdict higher or lower).
 pub fn behaviour_svg(rows: &[BehaviourRow]) -> String {
     let measures: Vec<&str> = MEASURES
         .iter()
@@ -314,7 +317,7 @@ fn draw_panel(
                 continue;
             };
             let x = cx + (c as f64 - (combos.len() as f64 - 1.0) / 2.0) * 14.0;
-            let fill = if r.verdict == "not significant" {
+            let fill = if r.verdict == "not significant" || r.verdict == "inconclusive" {
                 "white"
             } else {
                 colour(c)

@@ -452,7 +452,7 @@ fn strength_legend(s: &mut String, seeds: usize) {
         (colour(1), "low curiosity"),
         (HOLDS, "holds"),
         (OPPOSITE, "opposite"),
-        (NOT_SIGNIFICANT, "not significant"),
+        (NOT_SIGNIFICANT, "not significant or inconclusive"),
     ];
     let mut x = ML;
     let yy = PH - 16.0;

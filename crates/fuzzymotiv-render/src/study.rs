@@ -437,7 +437,7 @@ fn compare_claim(
         p: s.p,
         min_p: s.min_p,
         alpha,
-        verdict: s.verdict(expect).label().into(),
+        verdict: claim_verdict(&s, expect).into(),
         mdd: s.mdd,
         rooms: room_claims(hc, lc, column, expect, &options),
     });
@@ -447,6 +447,17 @@ fn compare_claim(
         evidence,
         stats,
         curves: Vec::new(),
+    }
+}
+
+/// A comparison claim's verdict: "inconclusive" when the effect lies within the difference
+/// the seeds detect with 80 % power (|effect| < MDD: the study is at the edge of its power and
+/// another base seed may give the other verdict), else the test's verdict.
+fn claim_verdict(c: &statistics::Comparison, expect: Expect) -> &'static str {
+    if c.mdd.is_some_and(|m| c.difference.abs() < m) {
+        "inconclusive"
+    } else {
+        c.verdict(expect).label()
     }
 }
 

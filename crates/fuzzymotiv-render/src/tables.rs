@@ -235,7 +235,10 @@ fn claims_method(claims: &[ClaimRecord]) -> String {
          seeds (all 2^n sign patterns up to 16 seeds); a claim holds, or its opposite does, \
          only at p < α = {alpha}. MDD is the smallest difference these seeds would detect with \
          80 % power at α ((z₁₋α/₂ + z₀.₈) · sd/√n of the per-seed differences, a normal \
-         approximation). The last two rows check Fig. 6's curves on means over seeds.\n\n\
+         approximation). An effect smaller than its MDD is \"inconclusive\", whatever p: the \
+         study is at the edge of its power, and a study of as many seeds at another base seed \
+         may well give the other verdict (EXPERIMENTS.md: verdicts that replicate). The last \
+         two rows check Fig. 6's curves on means over seeds.\n\n\
          Note: with {n} paired seeds the smallest two-sided p is 2/2^{n} = {min_p:.4} (1/16 \
          for five seeds), {reach}.",
         alpha = s.alpha,

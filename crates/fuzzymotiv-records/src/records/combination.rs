@@ -28,7 +28,8 @@ pub struct BehaviourRow {
     pub p: f64,
     /// The smallest difference the design detects with 80 % power.
     pub detectable: f64,
-    /// `higher` / `lower` under the baseline (p < α), or `not significant`.
+    /// `higher` / `lower` under the baseline (p < α and at least the detectable difference),
+    /// `inconclusive` (a difference within the detectable one), or `not significant`.
     pub verdict: String,
 }
 
