@@ -5,9 +5,9 @@ mod common;
 use common::{ok, repo, run};
 
 /// A run's best robot under every standard perturbation: one CSV row each, intervals around
-/// the means; the files are not replaced by a different study without --force.
+/// the means, a figure naming every perturbation; the files are not replaced by a different study without --force.
 #[test]
-fn robustness_writes_one_row_per_perturbation_and_keeps_earlier_results() {
+fn robustness_writes_one_row_and_one_figure_row_per_perturbation_and_keeps_earlier_results() {
     let dir = tempfile::tempdir().unwrap();
     let run_dir = dir.path().join("run");
     let config = repo().join("configs/tiny.toml");
@@ -51,6 +51,14 @@ fn robustness_writes_one_row_per_perturbation_and_keeps_earlier_results() {
         for c in v.chunks(3) {
             assert!(c[1] <= c[0] && c[0] <= c[2], "{line}");
         }
+    }
+    let svg = std::fs::read_to_string(out.join("robustness.svg")).unwrap();
+    for line in &lines[1..] {
+        let label = line.split(',').next().unwrap();
+        assert!(
+            svg.contains(&format!(">{label}</text>")),
+            "{label} not in the figure"
+        );
     }
     ok(&args); // the same study again: the same files, nothing to do
     let mut other = args.to_vec();

@@ -13,6 +13,7 @@ pub mod figures;
 pub mod frames;
 pub mod plot;
 pub mod report;
+pub mod robustness;
 pub mod strength;
 pub mod study;
 pub mod svg;
