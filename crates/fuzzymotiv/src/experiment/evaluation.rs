@@ -131,7 +131,15 @@ impl Experiment {
             // The ranges were checked against the robot (Randomise::from_raw): every draw fits.
             trial = p.apply(trial).unwrap_or(trial);
         }
-        let arena = Arena::new(self.arenas[room].room().clone(), &trial);
+        // A draw that leaves the trial's parameters as they are (a wheel bias alone) runs in the
+        // room as prepared; any other is prepared for its robot.
+        let drawn;
+        let arena = if trial == self.trial {
+            &self.arenas[room]
+        } else {
+            drawn = Arena::new(self.arenas[room].room().clone(), &trial);
+            &drawn
+        };
         let mut c = Perturbed {
             net: network,
             dead: None,
@@ -141,9 +149,9 @@ impl Experiment {
             actions: Vec::with_capacity(if actions { trial.steps() } else { 0 }),
         };
         let (terms, executed, _) = if actions {
-            self.observed_trial_in(&arena, &mut c, seed, &mut log)
+            self.observed_trial_in(arena, &mut c, seed, &mut log)
         } else {
-            self.observed_trial_in(&arena, &mut c, seed, &mut ())
+            self.observed_trial_in(arena, &mut c, seed, &mut ())
         };
         (terms, log.actions, executed)
     }
