@@ -1,5 +1,6 @@
 """A run's evolved controller for a real robot: C99 (the simulator's outputs bit for bit) or a
-self-describing JSON document or an ONNX model, as ``fuzzymotiv export`` writes them (docs/guide/real-robot.md)."""
+self-describing JSON document or an ONNX model, as ``fuzzymotiv export`` writes them; and its
+robustness to the reality gap, as ``fuzzymotiv robustness`` measures it (docs/guide/real-robot.md)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,7 @@ import os
 from typing import List, Literal, Optional, Union
 
 from . import _fuzzymotiv as _native
+from .tables import Table, table_of
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -39,3 +41,23 @@ def export_controller(
         room,
         force,
     )
+
+
+def robustness(run_dir: PathLike, *, trials: int = 10) -> Table:
+    """The run's best robot under the perturbations a real robot brings (sensor and wheel
+    noise, the sensor table scaled, each sensor dead, a wheel-speed bias, a larger body), with
+    ``trials`` trials per room on the same random streams under every perturbation: one row per
+    perturbation, the rows of ``fuzzymotiv robustness RUN_DIR``'s ``robustness.csv``.
+
+    Columns: ``perturbation`` (its label, ``none`` first), ``trials``, then for ``f``,
+    ``exploration``, ``homing`` and ``battery`` the mean and the bounds of its 95 % bootstrap
+    interval (``f``, ``f_lo``, ``f_hi``, ...). A directory that is not a run, or ``trials``
+    outside 2..=10000, raises ``FuzzymotivError`` naming it.
+    """
+    if isinstance(trials, bool) or not isinstance(trials, int):
+        raise TypeError(f"trials must be a whole number, got {trials!r}")
+    if not 2 <= trials <= 10_000:
+        raise _native.FuzzymotivError(
+            f"trials must be a whole number in 2..=10000 (an interval needs two trials), got {trials}"
+        )
+    return table_of(_native.robustness(os.fspath(run_dir), trials))

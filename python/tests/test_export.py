@@ -48,3 +48,26 @@ def test_export_controller_keeps_another_file_and_names_bad_input(run_dir, tmp_p
     with pytest.raises(fm.FuzzymotivError, match=r"best_genome.json: field `weights`"):
         fm.export_controller(bad, to="c", out=tmp_path / "c")
     assert not (tmp_path / "c").exists()
+
+
+def test_robustness_gives_the_rows_the_cli_writes(run_dir, tmp_path, cli):
+    table = fm.robustness(run_dir, trials=3)
+    assert isinstance(table, fm.Table)
+    run_cli(cli, "robustness", run_dir, "--out", tmp_path / "rob", "--trials", "3")
+    text = (tmp_path / "rob" / "robustness.csv").read_text().splitlines()
+    assert list(table) == text[0].split(",")
+    assert table.rows == len(text) - 1
+    for k, line in enumerate(text[1:]):
+        cells = line.split(",")
+        assert table["perturbation"][k] == cells[0]
+        for name, cell in zip(list(table)[1:], cells[1:]):
+            assert f"{table[name][k]:.6f}" == f"{float(cell):.6f}", (name, k)
+    assert table["perturbation"][0] == "none"
+    assert all(table["f_lo"] <= table["f"]) and all(table["f"] <= table["f_hi"])
+
+
+def test_robustness_names_bad_input(run_dir, tmp_path):
+    with pytest.raises(fm.FuzzymotivError, match="trials must be a whole number in 2..=10000"):
+        fm.robustness(run_dir, trials=1)
+    with pytest.raises(fm.FuzzymotivError, match="not a run directory"):
+        fm.robustness(tmp_path, trials=3)

@@ -14,6 +14,7 @@ pub mod frames;
 pub mod plot;
 pub mod replication;
 pub mod report;
+pub mod robustness;
 pub mod strength;
 pub mod study;
 pub mod svg;

@@ -44,6 +44,7 @@ use crate::modelling::aem::AemParams;
 use crate::params::{FieldError, check};
 use crate::random::seed::{Streams, hash_str};
 use crate::simulation::controller::MlpShape;
+use crate::simulation::randomise::Randomise;
 use crate::simulation::robot::KHEPERA_RADIUS;
 use crate::simulation::room::Room;
 use crate::simulation::sensor_table::SensorTable;
@@ -68,6 +69,7 @@ pub struct Experiment {
     pub(crate) aem: AemParams,
     pub(crate) plan: terms::TermPlan,
     pub(crate) combine: Combination,
+    pub(crate) randomise: Option<Randomise>,
 }
 
 impl Experiment {
@@ -135,6 +137,11 @@ impl Experiment {
             || "\"online\" needs training = \"all-rooms\" with at least 2 rooms".into(),
         )?;
         check_clearance(&rooms, trial.robot().radius())?;
+        let randomise = trial.randomise_of(&raw.trial, &raw.robot)?;
+        if let Some((_, largest)) = randomise.and_then(|r| r.radius) {
+            check_clearance(&rooms, largest)
+                .map_err(|e| FieldError::new("trial.randomise.radius", e.reason))?;
+        }
         let plan = terms::TermPlan::resolve(
             &motivations,
             user,
@@ -159,6 +166,7 @@ impl Experiment {
             aem,
             plan,
             combine: raw.fitness.combine,
+            randomise,
         })
     }
 
@@ -200,6 +208,12 @@ impl Experiment {
     /// Trial parameters (the robot body included).
     pub fn trial_params(&self) -> &TrialParams {
         &self.trial
+    }
+
+    /// The ranges each evaluation trial of the evolution draws its robot from
+    /// (`[trial.randomise]`); none by default (every trial runs the configured robot).
+    pub fn randomise(&self) -> Option<&Randomise> {
+        self.randomise.as_ref()
     }
 
     /// Network shape.

@@ -6,6 +6,7 @@ pub(crate) mod controller;
 pub(crate) mod geom;
 pub(crate) mod math;
 pub(crate) mod memo;
+pub(crate) mod randomise;
 pub(crate) mod robot;
 pub(crate) mod room;
 pub(crate) mod sensing;
@@ -19,6 +20,7 @@ pub(crate) mod trial_params;
 pub use controller::{Controller, GenomeError, INPUTS, Mlp, MlpShape, OUTPUTS};
 pub use geom::{PreparedSegment, Segment, Vec2, edges, point_in_polygon, signed_area};
 pub use math::logistic_lanes;
+pub use randomise::{Draw, Randomise, RawRandomise};
 pub use robot::{Action, Compass, Khepera, Motion, Pose, RawRobot, drive, wrap_angle};
 pub use room::{BUILTIN_ROOMS, HomeZone, Mission, Room, RoomError, Zone};
 pub use sensor::{

@@ -19,6 +19,7 @@
 //! | sweep `results.csv` | [`SweepResults`] |
 //! | sweep `aggregate.csv` | [`AggregateRow`] |
 //! | `compare.csv` | [`compare::CompareRow`] |
+//! | `robustness.csv` | [`robustness::RobustnessRecord`] |
 //!
 //! An experiment whose motivations are not the paper's four, or that measures a mission or
 //! terms of its own ([`extra_terms`]), records more, by name: `generations.csv` a column per
@@ -53,6 +54,7 @@ pub mod context;
 pub mod export;
 pub mod genome;
 pub mod replication;
+pub mod robustness;
 pub mod test_runs;
 
 /// The model version of a record that names none: written before model versions were

@@ -6,12 +6,14 @@ use serde::{Deserialize, Serialize};
 
 use crate::evolution::population::Population;
 use crate::experiment::config::OrientationMode;
-use crate::experiment::{Experiment, Run};
+use crate::experiment::robustness::Perturbed;
+use crate::experiment::{Experiment, Perturbation, Run};
 use crate::fitness::terms::{FitnessTerms, TermsRecorder, TrialRecord, UserValues};
 use crate::modelling::aem::{Action, environment_vector};
 use crate::modelling::recognition::nearest_unique;
 use crate::random::rng::rng_from_seed;
 use crate::simulation::controller::{Controller, GenomeError, Mlp};
+use crate::simulation::randomise::Draw;
 use crate::simulation::robot::Pose;
 use crate::simulation::trial::{ActionLog, Arena, StepObserver, Trajectory, simulate};
 
@@ -60,7 +62,18 @@ impl Experiment {
         seed: u64,
         extra: &mut O,
     ) -> (FitnessTerms, usize, Pose) {
-        let arena = &self.arenas[room];
+        self.observed_trial_in(&self.arenas[room], network, seed, extra)
+    }
+
+    /// [`Experiment::observed_trial`] in `arena` (a room of the experiment, maybe prepared for
+    /// another robot).
+    fn observed_trial_in<C: Controller + ?Sized, O: StepObserver>(
+        &self,
+        arena: &Arena,
+        network: &mut C,
+        seed: u64,
+        extra: &mut O,
+    ) -> (FitnessTerms, usize, Pose) {
         let mut rng = rng_from_seed(seed);
         let mut recorder = TermsRecorder::new(arena, self.homing);
         if let Some(tracker) = self.plan.tracker(arena.room()) {
@@ -84,6 +97,63 @@ impl Experiment {
             self.user_values(arena, &trajectory, &mut terms);
         }
         (terms, recorder.executed(), last)
+    }
+
+    /// An evolution's evaluation trial: [`Experiment::recorded_trial`], or with
+    /// `[trial.randomise]` the robot drawn for this trial ([`Experiment::randomised_trial`]).
+    /// The choice is made once per trial, never per step.
+    fn training_trial(
+        &self,
+        network: &mut Mlp,
+        room: usize,
+        seed: u64,
+        actions: bool,
+    ) -> (FitnessTerms, Vec<Action>, usize) {
+        match &self.randomise {
+            None => self.recorded_trial(network, room, seed, actions),
+            Some(r) => self.randomised_trial(&r.draw(seed), network, room, seed, actions),
+        }
+    }
+
+    /// One trial of the robot `draw` makes of this experiment's (its perturbations applied as
+    /// the robustness study applies them: the room prepared for the drawn body, sensors and
+    /// noise; the wheel bias on the network's outputs).
+    fn randomised_trial(
+        &self,
+        draw: &Draw,
+        network: &mut Mlp,
+        room: usize,
+        seed: u64,
+        actions: bool,
+    ) -> (FitnessTerms, Vec<Action>, usize) {
+        let mut trial = self.trial;
+        for p in Perturbation::of_draw(draw) {
+            // The ranges were checked against the robot (Randomise::from_raw): every draw fits.
+            trial = p.apply(trial).unwrap_or(trial);
+        }
+        // A draw that leaves the trial's parameters as they are (a wheel bias alone) runs in the
+        // room as prepared; any other is prepared for its robot.
+        let drawn;
+        let arena = if trial == self.trial {
+            &self.arenas[room]
+        } else {
+            drawn = Arena::new(self.arenas[room].room().clone(), &trial);
+            &drawn
+        };
+        let mut c = Perturbed {
+            net: network,
+            dead: None,
+            bias: draw.wheel_bias.unwrap_or(0.0),
+        };
+        let mut log = ActionLog {
+            actions: Vec::with_capacity(if actions { trial.steps() } else { 0 }),
+        };
+        let (terms, executed, _) = if actions {
+            self.observed_trial_in(arena, &mut c, seed, &mut log)
+        } else {
+            self.observed_trial_in(arena, &mut c, seed, &mut ())
+        };
+        (terms, log.actions, executed)
     }
 
     /// The user-defined terms' values of a finished trial (supplied ones left at 0 for the front
@@ -145,7 +215,7 @@ impl Experiment {
         let mut first_vectors = Vec::new();
         for &r in &run.rooms {
             let seed = self.eval_seed(run, generation, individual, r);
-            let (terms, actions, executed) = self.recorded_trial(network, r, seed, online);
+            let (terms, actions, executed) = self.training_trial(network, r, seed, online);
             if online {
                 first_vectors.push(environment_vector(&actions, self.aem.encoder()));
             }
@@ -162,7 +232,7 @@ impl Experiment {
                 let seed = self
                     .streams()
                     .online(run.tag, generation, individual, self.room_key(r));
-                let (_, actions, _) = self.recorded_trial(network, r, seed, true);
+                let (_, actions, _) = self.training_trial(network, r, seed, true);
                 let v = environment_vector(&actions, self.aem.encoder());
                 if nearest_unique(&first_vectors, &v).ok().flatten() == Some(k) {
                     correct += 1;

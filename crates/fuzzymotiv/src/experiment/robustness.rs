@@ -15,10 +15,12 @@ use crate::experiment::Experiment;
 use crate::params::FieldError;
 use crate::random::seed::hash_str;
 use crate::simulation::controller::{Controller, GenomeError, INPUTS, Mlp, OUTPUTS};
+use crate::simulation::randomise::Draw;
 use crate::simulation::robot::{Khepera, RawRobot};
 use crate::simulation::sensor::{SensorModel, TableRef};
 use crate::simulation::sensor_table::SensorTable;
 use crate::simulation::trial::Arena;
+use crate::simulation::trial_params::TrialParams;
 
 /// One perturbation of the simulated robot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,6 +52,43 @@ impl Perturbation {
         all
     }
 
+    /// The trial parameters `trial` under this perturbation (dead sensors and wheel bias are
+    /// the controller's: unchanged here); an error for a body the robot cannot take.
+    pub fn apply(&self, trial: TrialParams) -> Result<TrialParams, FieldError> {
+        Ok(match *self {
+            Perturbation::Noise(n) => trial.with_noise(n),
+            Perturbation::TableScale(k) => {
+                let table = match trial.sensor_model() {
+                    SensorModel::Table(TableRef(t)) => t.clone(),
+                    _ => SensorTable::khepera(),
+                };
+                trial.with_sensor_table(table.scaled(k).intern())
+            }
+            Perturbation::Radius(r) => {
+                let b = trial.robot();
+                let raw = RawRobot {
+                    radius: r,
+                    wheel_base: b.wheel_base(),
+                    v_max: b.v_max(),
+                    motion: b.motion(),
+                };
+                trial.with_robot(Khepera::from_raw(&raw)?)
+            }
+            Perturbation::None | Perturbation::DeadSensor(_) | Perturbation::WheelBias(_) => trial,
+        })
+    }
+
+    /// The perturbations of a randomised trial's draw ([`Draw`]), in the order noise, sensor
+    /// scale, wheel bias, radius.
+    pub fn of_draw(draw: &Draw) -> Vec<Perturbation> {
+        let mut all = Vec::with_capacity(4);
+        all.extend(draw.noise.map(Perturbation::Noise));
+        all.extend(draw.sensor_scale.map(Perturbation::TableScale));
+        all.extend(draw.wheel_bias.map(Perturbation::WheelBias));
+        all.extend(draw.radius.map(Perturbation::Radius));
+        all
+    }
+
     /// A short name (`noise=0.1`, `dead=3`, …).
     pub fn label(&self) -> String {
         match *self {
@@ -64,10 +103,10 @@ impl Perturbation {
 }
 
 /// A network with a dead sensor or biased wheels.
-struct Perturbed<'a> {
-    net: &'a mut Mlp,
-    dead: Option<usize>,
-    bias: f64,
+pub(crate) struct Perturbed<'a> {
+    pub(crate) net: &'a mut Mlp,
+    pub(crate) dead: Option<usize>,
+    pub(crate) bias: f64,
 }
 
 impl Controller for Perturbed<'_> {
@@ -160,28 +199,13 @@ impl Experiment {
     /// This experiment with the trial parameters `p` changes (dead sensors and wheel bias are
     /// the controller's: unchanged here).
     fn perturbed(&self, p: Perturbation) -> Result<Experiment, FieldError> {
-        let mut trial = self.trial;
-        match p {
-            Perturbation::Noise(n) => trial = trial.with_noise(n),
-            Perturbation::TableScale(k) => {
-                let table = match trial.sensor_model() {
-                    SensorModel::Table(TableRef(t)) => t.clone(),
-                    _ => SensorTable::khepera(),
-                };
-                trial = trial.with_sensor_table(table.scaled(k).intern());
-            }
-            Perturbation::Radius(r) => {
-                let b = trial.robot();
-                let raw = RawRobot {
-                    radius: r,
-                    wheel_base: b.wheel_base(),
-                    v_max: b.v_max(),
-                    motion: b.motion(),
-                };
-                trial = trial.with_robot(Khepera::from_raw(&raw)?);
-            }
-            _ => return Ok(self.clone()),
+        if matches!(
+            p,
+            Perturbation::None | Perturbation::DeadSensor(_) | Perturbation::WheelBias(_)
+        ) {
+            return Ok(self.clone());
         }
+        let trial = p.apply(self.trial)?;
         let mut exp = self.clone();
         exp.arenas = (self.arenas.iter())
             .map(|a| Arena::new(a.room().clone(), &trial))

@@ -19,6 +19,9 @@ pub mod purpose {
     pub const ONLINE: u64 = 7;
     /// The seeds of a multi-seed study (`reproduce --seeds N`).
     pub const STUDY: u64 = 8;
+    /// The draw of an evaluation trial's randomised robot (`[trial.randomise]`), derived from
+    /// the trial's own seed.
+    pub const RANDOMISE: u64 = 9;
 }
 
 /// The random streams of one experiment, all derived from its base seed: one named method per

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::params::{FieldError, Num, check};
+use crate::simulation::randomise::{Randomise, RawRandomise};
 use crate::simulation::robot::{Khepera, Motion, RawRobot};
 use crate::simulation::sensor::{SensorModel, TableRef};
 use crate::simulation::sensor_table::SensorTable;
@@ -58,6 +59,9 @@ pub struct RawTrial {
     pub sensor_table: Option<String>,
     /// [`TrialParams::end_at_home`].
     pub end_at_home: bool,
+    /// `[trial.randomise]` ([`TrialParams::randomise_of`]), absent when nothing is randomised.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub randomise: Option<RawRandomise>,
 }
 
 impl Default for RawTrial {
@@ -70,6 +74,7 @@ impl Default for RawTrial {
             sensor_model: d.sensor_model,
             sensor_table: None,
             end_at_home: d.end_at_home,
+            randomise: None,
         }
     }
 }
@@ -135,6 +140,28 @@ impl TrialParams {
             },
         )?;
         Ok(trial)
+    }
+
+    /// Checks `[trial.randomise]` of `t` (checked into these parameters) for the body `robot`:
+    /// the ranges each evaluation trial of the evolution draws its robot from; `None` when
+    /// nothing is randomised.
+    pub fn randomise_of(
+        &self,
+        t: &RawTrial,
+        robot: &RawRobot,
+    ) -> Result<Option<Randomise>, FieldError> {
+        let Some(raw) = &t.randomise else {
+            return Ok(None);
+        };
+        check(
+            raw.sensor_scale.is_none() || t.sensor_model == SensorModel::Sampled,
+            "trial.randomise.sensor_scale",
+            || {
+                "scales the readings of a sensor table, which the \"sampled\" sensor model reads; remove it or set trial.sensor_model = \"sampled\"".into()
+            },
+        )?;
+        let step = |noise| self.with_noise(noise).max_step();
+        Randomise::from_raw(raw, robot, step, self.noise)
     }
 
     /// The same parameters, the `sampled` model reading `table` instead of the built-in tables

@@ -1,0 +1,149 @@
+//! `robustness.csv` and `robustness.md`: a run's best robot under the perturbations a real
+//! robot brings ([`fuzzymotiv::experiment::Experiment::robustness`]), per perturbation the mean
+//! and 95 % bootstrap interval of F and of each behaviour term. `fuzzymotiv robustness` and
+//! `fm.robustness` both go through [`robustness_of_run`].
+
+use std::path::Path;
+
+use fuzzymotiv::experiment::{Perturbation, RobustnessRow};
+use fuzzymotiv::statistics::{mean, mean_interval};
+use serde::{Deserialize, Serialize};
+
+use crate::files::error::CliError;
+use crate::files::inputs::load_config;
+use crate::records::genome::{locate, read_genome};
+use crate::records::{Fixed, to_csv};
+
+/// The measures of a row, in column order: the column stem and the words a table or figure
+/// shows.
+pub const MEASURES: [(&str, &str); 4] = [
+    ("f", "F"),
+    ("exploration", "exploration a"),
+    ("homing", "homing g"),
+    ("battery", "battery b"),
+];
+
+/// One perturbation: its trials and, per measure of [`MEASURES`], the mean over the trials
+/// with the bounds of its 95 % percentile bootstrap interval (2000 resamples).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RobustnessRecord {
+    /// The perturbation's label (`none`, `noise=0.1`, `dead=3`, …).
+    pub perturbation: String,
+    /// Trials (per room × rooms).
+    pub trials: usize,
+    /// Mean F.
+    pub f: Fixed<6>,
+    /// Its interval's lower bound.
+    pub f_lo: Fixed<6>,
+    /// Its interval's upper bound.
+    pub f_hi: Fixed<6>,
+    /// Mean exploration term `a`.
+    pub exploration: Fixed<6>,
+    /// Its interval's lower bound.
+    pub exploration_lo: Fixed<6>,
+    /// Its interval's upper bound.
+    pub exploration_hi: Fixed<6>,
+    /// Mean homing term `g`.
+    pub homing: Fixed<6>,
+    /// Its interval's lower bound.
+    pub homing_lo: Fixed<6>,
+    /// Its interval's upper bound.
+    pub homing_hi: Fixed<6>,
+    /// Mean battery term `b`.
+    pub battery: Fixed<6>,
+    /// Its interval's lower bound.
+    pub battery_lo: Fixed<6>,
+    /// Its interval's upper bound.
+    pub battery_hi: Fixed<6>,
+}
+
+impl RobustnessRecord {
+    /// The record of the `k`-th row of a study (its bootstrap on stream `k + 1`).
+    pub fn of(k: usize, row: &RobustnessRow) -> RobustnessRecord {
+        let [f, e, h, b] = [&row.f, &row.exploration, &row.homing, &row.battery].map(|v| {
+            let (lo, hi) = mean_interval(v, 0.95, 2000, k as u64 + 1);
+            (Fixed(mean(v)), Fixed(lo), Fixed(hi))
+        });
+        RobustnessRecord {
+            perturbation: row.perturbation.label(),
+            trials: row.f.len(),
+            f: f.0,
+            f_lo: f.1,
+            f_hi: f.2,
+            exploration: e.0,
+            exploration_lo: e.1,
+            exploration_hi: e.2,
+            homing: h.0,
+            homing_lo: h.1,
+            homing_hi: h.2,
+            battery: b.0,
+            battery_lo: b.1,
+            battery_hi: b.2,
+        }
+    }
+
+    /// Per measure of [`MEASURES`]: (mean, lower bound, upper bound).
+    pub fn measures(&self) -> [(f64, f64, f64); 4] {
+        [
+            (self.f, self.f_lo, self.f_hi),
+            (self.exploration, self.exploration_lo, self.exploration_hi),
+            (self.homing, self.homing_lo, self.homing_hi),
+            (self.battery, self.battery_lo, self.battery_hi),
+        ]
+        .map(|(m, lo, hi)| (m.0, lo.0, hi.0))
+    }
+}
+
+/// `robustness.csv`'s text.
+pub fn robustness_csv(records: &[RobustnessRecord]) -> String {
+    to_csv(records)
+}
+
+/// `robustness.md`'s text: one table row per perturbation, each measure as `mean [lo, hi]`.
+pub fn robustness_md(records: &[RobustnessRecord]) -> String {
+    let mut md = String::from("| perturbation |");
+    for (k, (_, words)) in MEASURES.iter().enumerate() {
+        md.push_str(&format!(
+            " {words}{} |",
+            if k == 0 { " (95 % CI)" } else { "" }
+        ));
+    }
+    md.push_str(&format!("\n|---|{}\n", "---|".repeat(MEASURES.len())));
+    for r in records {
+        md.push_str(&format!("| {} |", r.perturbation));
+        for (m, lo, hi) in r.measures() {
+            md.push_str(&format!(" {m:.3} [{lo:.3}, {hi:.3}] |"));
+        }
+        md.push('\n');
+    }
+    md
+}
+
+/// The robustness study of a run directory's best robot: the standard perturbations
+/// ([`Perturbation::standard`]), `trials` trials per room and perturbation on paired streams.
+pub fn robustness_of_run(run: &Path, trials: usize) -> Result<Vec<RobustnessRecord>, CliError> {
+    let (genome_path, config) = locate(run)?;
+    let Some(config) = config else {
+        return Err(CliError::input(format!(
+            "{}: no config.resolved.toml beside the genome; robustness needs a run directory",
+            run.display()
+        )));
+    };
+    if !(2..=10_000).contains(&trials) {
+        return Err(CliError::input(format!(
+            "trials must be a whole number in 2..=10000 (an interval needs two trials), got {trials}"
+        )));
+    }
+    let genome = read_genome(&genome_path)?;
+    let loaded = load_config(Some(&config), &[], None)?;
+    let exp = &loaded.experiment;
+    let perturbations = Perturbation::standard(exp.trial_params().robot().radius());
+    let rows = exp
+        .robustness(&genome.weights, &perturbations, trials)
+        .map_err(|e| CliError::input(format!("{}: {e}", genome_path.display())))?;
+    Ok(rows
+        .iter()
+        .enumerate()
+        .map(|(k, r)| RobustnessRecord::of(k, r))
+        .collect())
+}

@@ -1,0 +1,212 @@
+//! `robustness.svg`: a run's best robot under each perturbation
+//! ([`RobustnessRecord`]s), one panel per measure (F, exploration, homing, battery), the
+//! perturbations down the side, each the mean (dot) with its 95 % interval (line) against the
+//! unperturbed robot's mean (dashed line) and interval (grey band).
+
+use std::fmt::Write as _;
+
+use fuzzymotiv_records::records::robustness::{MEASURES, RobustnessRecord};
+
+use crate::plot::{Ticks, esc, open, px, text_width};
+
+const PANEL_W: f64 = 190.0;
+const GAP: f64 = 16.0;
+const ROW_H: f64 = 18.0;
+const TOP: f64 = 58.0;
+const LEGEND_H: f64 = 50.0;
+
+/// Colour of a perturbation whose interval leaves out the unperturbed mean, and of one that
+/// holds it.
+const CHANGED: &str = "#d62728";
+const SAME: &str = "#1f77b4";
+
+/// The figure of `records`, titled `title`; the unperturbed robot is the record labelled
+/// `none` (else the first).
+pub fn robustness_svg(title: &str, records: &[RobustnessRecord]) -> String {
+    let label_w = records
+        .iter()
+        .map(|r| text_width(&r.perturbation, false))
+        .fold(60.0, f64::max)
+        + 16.0;
+    let rows = records.len().max(1) as f64;
+    let w = label_w + (PANEL_W + GAP) * MEASURES.len() as f64;
+    let h = TOP + ROW_H * rows + 30.0 + LEGEND_H;
+    let mut svg = open(format_args!("{w:.0}"), format_args!("{h:.0}"), 11);
+    let _ = writeln!(
+        svg,
+        "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"8\" y=\"20\" font-size=\"14\" font-weight=\"bold\">{}</text>",
+        esc(title)
+    );
+    let base = records
+        .iter()
+        .position(|r| r.perturbation == "none")
+        .unwrap_or(0);
+    for (k, r) in records.iter().enumerate() {
+        let y = TOP + ROW_H * (k as f64 + 0.5);
+        let weight = if k == base {
+            " font-weight=\"bold\""
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            svg,
+            "<text x=\"{}\" y=\"{}\" text-anchor=\"end\"{weight}>{}</text>",
+            px(label_w - 8.0),
+            px(y + 4.0),
+            esc(&r.perturbation)
+        );
+    }
+    for m in 0..MEASURES.len() {
+        let x0 = label_w + (PANEL_W + GAP) * m as f64;
+        panel(&mut svg, records, m, base, x0);
+    }
+    legend(&mut svg, h - LEGEND_H + 8.0);
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// Panel `m` (a measure of [`MEASURES`]) with its left edge at `x0`.
+fn panel(svg: &mut String, records: &[RobustnessRecord], m: usize, base: usize, x0: f64) {
+    let values: Vec<(f64, f64, f64)> = records.iter().map(|r| r.measures()[m]).collect();
+    let lo = values
+        .iter()
+        .map(|v| v.1.min(v.0))
+        .fold(f64::INFINITY, f64::min);
+    let hi = values
+        .iter()
+        .map(|v| v.2.max(v.0))
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (lo, hi) = if hi > lo {
+        (lo, hi)
+    } else {
+        (lo - 0.05, hi + 0.05)
+    };
+    // A margin keeps the extreme marks off the frame and the edge ticks' labels apart.
+    let pad = (hi - lo) * 0.06;
+    let (first, last) = (lo - pad, hi + pad);
+    let ticks = Ticks::nice(lo, hi, 5, false);
+    let (left, right) = (x0 + 6.0, x0 + PANEL_W - 6.0);
+    let x = |v: f64| px(left + (v - first) / (last - first) * (right - left));
+    let bottom = TOP + ROW_H * records.len() as f64;
+    let _ = writeln!(
+        svg,
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-weight=\"bold\">{}</text>\n<rect x=\"{}\" y=\"{TOP}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#ccc\"/>",
+        px((left + right) / 2.0),
+        TOP - 10.0,
+        esc(MEASURES[m].1),
+        px(left),
+        px(right - left),
+        px(bottom - TOP),
+    );
+    for &t in &ticks.values {
+        let _ = writeln!(
+            svg,
+            "<line x1=\"{0}\" x2=\"{0}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#888\"/><text x=\"{0}\" y=\"{3}\" text-anchor=\"middle\" fill=\"#555\">{4}</text>",
+            x(t),
+            px(bottom),
+            px(bottom + 4.0),
+            px(bottom + 16.0),
+            ticks.label(t)
+        );
+    }
+    if let Some(&(bm, blo, bhi)) = values.get(base) {
+        let _ = writeln!(
+            svg,
+            "<rect x=\"{}\" y=\"{TOP}\" width=\"{}\" height=\"{}\" fill=\"#000\" fill-opacity=\"0.07\"/>\n<line x1=\"{3}\" x2=\"{3}\" y1=\"{TOP}\" y2=\"{4}\" stroke=\"#555\" stroke-dasharray=\"3,3\"/>",
+            x(blo),
+            px(x(bhi) - x(blo)),
+            px(bottom - TOP),
+            x(bm),
+            px(bottom),
+        );
+    }
+    let base_mean = values.get(base).map_or(f64::NAN, |v| v.0);
+    for (k, (r, &(mean, lo, hi))) in records.iter().zip(&values).enumerate() {
+        let y = px(TOP + ROW_H * (k as f64 + 0.5));
+        let colour = if k != base && (base_mean < lo || base_mean > hi) {
+            CHANGED
+        } else {
+            SAME
+        };
+        let _ = writeln!(
+            svg,
+            "<line x1=\"{}\" x2=\"{}\" y1=\"{y}\" y2=\"{y}\" stroke=\"{colour}\" stroke-width=\"2\"/><circle cx=\"{}\" cy=\"{y}\" r=\"3.5\" fill=\"{colour}\"><title>{}, {}: {mean:.3} [{lo:.3}, {hi:.3}]</title></circle>",
+            x(lo),
+            x(hi),
+            x(mean),
+            esc(&r.perturbation),
+            esc(MEASURES[m].1),
+        );
+    }
+}
+
+/// What the colours and marks mean, from `top`.
+fn legend(svg: &mut String, top: f64) {
+    let entries = [
+        (CHANGED, "interval leaves out the unperturbed mean"),
+        (SAME, "interval holds the unperturbed mean"),
+    ];
+    for (k, (colour, text)) in entries.iter().enumerate() {
+        let y = top + 15.0 * k as f64;
+        let _ = writeln!(
+            svg,
+            "<line x1=\"10\" x2=\"30\" y1=\"{0}\" y2=\"{0}\" stroke=\"{colour}\" stroke-width=\"2\"/><circle cx=\"20\" cy=\"{0}\" r=\"3.5\" fill=\"{colour}\"/><text x=\"36\" y=\"{1}\">{text}</text>",
+            px(y - 4.0),
+            px(y),
+        );
+    }
+    let _ = writeln!(
+        svg,
+        "<text x=\"10\" y=\"{}\" fill=\"#555\">dot: mean; line: 95 % bootstrap interval; dashed line and grey band: the unperturbed robot (none)</text>",
+        px(top + 30.0)
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fuzzymotiv_records::records::Fixed;
+
+    fn record(label: &str, f: f64) -> RobustnessRecord {
+        let v = |x: f64| Fixed(x);
+        RobustnessRecord {
+            perturbation: label.into(),
+            trials: 4,
+            f: v(f),
+            f_lo: v(f - 0.05),
+            f_hi: v(f + 0.05),
+            exploration: v(0.5),
+            exploration_lo: v(0.4),
+            exploration_hi: v(0.6),
+            homing: v(0.2),
+            homing_lo: v(0.1),
+            homing_hi: v(0.3),
+            battery: v(0.9),
+            battery_lo: v(0.9),
+            battery_hi: v(0.9),
+        }
+    }
+
+    /// Every perturbation is named, every measure has a panel, and a perturbation whose
+    /// interval leaves out the unperturbed mean is drawn in the "changed" colour.
+    #[test]
+    fn the_figure_names_every_perturbation_and_marks_the_ones_that_change_f() {
+        let records = [
+            record("none", 0.6),
+            record("dead=3", 0.2),
+            record("table×0.7", 0.62),
+        ];
+        let svg = robustness_svg("Robustness", &records);
+        for r in &records {
+            assert!(
+                svg.contains(&format!(">{}</text>", r.perturbation)),
+                "{svg}"
+            );
+        }
+        for (_, words) in MEASURES {
+            assert!(svg.contains(&format!(">{words}</text>")), "{words}");
+        }
+        assert_eq!(svg.matches(&format!("stroke=\"{CHANGED}\"")).count(), 2); // dead=3 + legend
+        assert!(svg.ends_with("</svg>\n"));
+    }
+}
