@@ -6,9 +6,9 @@
 #
 # KIND is the record folder and DIR the finished study's output directory:
 #   five-seed=results-5          (fuzzymotiv reproduce --seeds 5 --out results-5)
-#   ten-seed=results-10          (fuzzymotiv reproduce --out results-10)
+#   ten-seed=results-10          (fuzzymotiv reproduce --seeds 10 --out results-10)
 #   twenty-seed=results-20       (fuzzymotiv reproduce --seeds 20 --out results-20)
-#   search-strength=results-search-strength   (fuzzymotiv reproduce --search-strength)
+#   search-strength=results-search-strength   (fuzzymotiv reproduce --search-strength --seeds 10)
 #   ablation=results-ablation    (fuzzymotiv reproduce --ablation --seeds 5)
 #   orientation=results-orientation           (fuzzymotiv reproduce --orientation)
 #   replication=results-replication           (fuzzymotiv reproduce --replication --seeds 20)

@@ -26,7 +26,8 @@ const BLOCK_END: &str = "<!-- end record -->";
 const VALUE_START: &str = "<!-- value ";
 const VALUE_END: &str = "<!-- end -->";
 const RENDERERS: &str = "rooms, claims, room-means, fig6, search-strength, \
-    search-strength-exploration, ablation-claims, ablation-means, orientation, levels";
+    search-strength-exploration, ablation-claims, ablation-means, orientation, levels, \
+    replication, behaviour, combination-claims";
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -688,6 +689,116 @@ fn level_mean(
     })
 }
 
+/// The claims from two base seeds and pooled: `replication.csv` of `reproduce --replication`.
+fn replication(dir: &Path, file: &str) -> Rendered {
+    let header = [
+        "claim",
+        "base seed 1",
+        "base seed 11",
+        "pooled",
+        "effect [95 % CI]",
+        "p",
+        "MDD",
+        "at the edge",
+        "verdict",
+    ];
+    let mut rows = Vec::new();
+    for r in read_csv(dir, file)? {
+        let stats = match opt_num(&r, "effect")? {
+            Some(d) => format!(
+                "{} [{}, {}] | {} | {}",
+                signed(d, 1),
+                signed(num(&r, "ci_low")?, 1),
+                signed(num(&r, "ci_high")?, 1),
+                fixed(num(&r, "p")?, 3),
+                fixed(num(&r, "mdd")?, 1)
+            ),
+            None => "— | — | —".into(),
+        };
+        rows.push(format!(
+            "| {} | {} | {} | {} | {stats} | {} | **{}** |",
+            claim_name(&r)?,
+            cell(&r, "verdict_a")?,
+            cell(&r, "verdict_b")?,
+            cell(&r, "verdict_pooled")?,
+            if cell(&r, "at_edge")? == "true" {
+                "yes"
+            } else {
+                "no"
+            },
+            cell(&r, "verdict")?
+        ));
+    }
+    Ok(table(&header, rows))
+}
+
+/// The claims under each combination (`COMBINATION/claims.csv` of `reproduce --combination`):
+/// per combination, each comparison claim's verdict with high and low.
+fn combination_claims(dir: &Path, folder: &str) -> Rendered {
+    let header = [
+        "combination",
+        "explores more",
+        "more battery",
+        "recognises better",
+        "homes less",
+    ];
+    let mut rows = Vec::new();
+    for (name, sub) in [
+        ("tsk (the paper's)", "default"),
+        ("weighted-sum", "weighted-sum"),
+        ("weighted-squares", "weighted-squares"),
+    ] {
+        let mut cells = Vec::new();
+        for r in read_csv(&dir.join(folder), &format!("{sub}/claims.csv"))? {
+            if !is_summary_claim(&r)? || opt_num(&r, "p")?.is_none() {
+                continue;
+            }
+            let (high, low) = high_low(cell(&r, "evidence")?)?;
+            cells.push(format!("{} ({high} vs {low})", cell(&r, "verdict")?));
+        }
+        rows.push(format!("| {name} | {} |", cells.join(" | ")));
+    }
+    Ok(table(&header, rows))
+}
+
+/// Each baseline combination against the TSK: `behaviour.csv` of `reproduce --combination`.
+fn behaviour(dir: &Path, file: &str) -> Rendered {
+    let header = [
+        "combination",
+        "setting",
+        "measure",
+        "baseline",
+        "TSK",
+        "baseline − TSK [95 % CI]",
+        "p",
+        "detectable",
+        "verdict",
+    ];
+    let mut rows = Vec::new();
+    for r in read_csv(dir, file)? {
+        let verdict = cell(&r, "verdict")?;
+        rows.push(format!(
+            "| {} | {} | {} | {} | {} | {} [{}, {}] | {} | {} | {} |",
+            cell(&r, "combination")?,
+            cell(&r, "setting")?,
+            cell(&r, "measure")?,
+            fixed(num(&r, "mean_combination")?, 1),
+            fixed(num(&r, "mean_tsk")?, 1),
+            signed(num(&r, "difference")?, 1),
+            signed(num(&r, "ci_low")?, 1),
+            signed(num(&r, "ci_high")?, 1),
+            fixed(num(&r, "p")?, 3),
+            fixed(num(&r, "detectable")?, 1),
+            if verdict == "higher" || verdict == "lower" {
+                format!("**{verdict}**")
+            } else {
+                verdict.to_string()
+            }
+        ));
+    }
+    Ok(table(&header, rows))
+}
+
 /// Renders a table marker's spec (`PATH: RENDERER [ARGS]`) from the records in `dir`.
 fn render_block(dir: &Path, spec: &str) -> Rendered {
     let (path, how) = spec
@@ -712,6 +823,9 @@ fn render_block(dir: &Path, spec: &str) -> Rendered {
         "ablation-means" => ablation_means(dir, path),
         "orientation" => orientation(dir, path),
         "levels" => levels(dir, path, &args),
+        "replication" => replication(dir, path),
+        "behaviour" => behaviour(dir, path),
+        "combination-claims" => combination_claims(dir, path),
         other => Err(format!(
             "unknown renderer `{other}`; the renderers are {RENDERERS}"
         )),

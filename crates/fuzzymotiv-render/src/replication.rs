@@ -369,14 +369,18 @@ fn panel(
         };
         let _ = writeln!(
             s,
-            r#"<circle cx="{}" cy="{}" r="5" fill="{}"/><text x="{}" y="{}" text-anchor="end">pooled {} seeds: p = {:.4}</text>"#,
+            r#"<circle cx="{}" cy="{}" r="5" fill="{}"/><text x="{}" y="{}" text-anchor="end">pooled {} seeds: p {}</text>"#,
             x(max_n),
             y(st.p),
             colour(2),
             x1 - 8.0,
             px(ly),
             st.seeds,
-            st.p
+            esc(&if st.p < 1e-4 {
+                "< 0.0001".to_string()
+            } else {
+                format!("= {:.4}", st.p)
+            })
         );
     }
 }
@@ -398,6 +402,25 @@ mod tests {
                 agree,
             })
             .collect()
+    }
+
+    /// A pooled p below 0.0001 is written as "< 0.0001", escaped: the figure stays valid XML.
+    #[test]
+    fn a_tiny_pooled_p_is_escaped_in_the_figure() {
+        let claim: ClaimRecord = serde_json::from_str(
+            r#"{"claim": "c", "evidence": "", "holds": true, "stats": {"seeds": 40,
+            "difference": -13.0, "ci_low": -18.0, "ci_high": -8.0, "p": 0.0, "min_p": 0.0,
+            "alpha": 0.05, "verdict": "holds", "mdd": 6.8}}"#,
+        )
+        .unwrap();
+        let mut by = rows(&[true, true]);
+        for r in &mut by {
+            r.p_a = vec![Some(0.5)];
+            r.p_b = vec![Some(0.01)];
+        }
+        let svg = replication_svg([1, 11], &[claim], &by);
+        assert!(svg.contains("p &lt; 0.0001"), "{svg}");
+        assert!(!svg.contains("p < 0.0001"));
     }
 
     /// The seeds needed are where agreement starts and lasts: a late disagreement moves it on,
