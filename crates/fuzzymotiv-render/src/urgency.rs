@@ -390,9 +390,11 @@ fn panel(s: &mut String, (ox, oy): (f64, f64), k: usize, points: &[Option<(f64, 
         .map(|p| p.2)
         .fold(f64::NEG_INFINITY, f64::max);
     let pad = ((hi - lo) * 0.08).max(0.5);
-    let ticks = Ticks::nice(lo - pad, hi + pad, 5, false);
+    // Every measure is at least 0: no negative axis below a flat line at 0.
+    let bottom = (lo - pad).max(0.0);
+    let ticks = Ticks::nice(bottom, hi + pad, 5, false);
     let (v0, v1) = (
-        ticks.values[0].min(lo - pad),
+        ticks.values[0].min(bottom),
         ticks.values.last().map_or(hi + pad, |t| t.max(hi + pad)),
     );
     let y = |v: f64| px(y0 + (y1 - y0) * (v - v0) / (v1 - v0).max(1e-9));

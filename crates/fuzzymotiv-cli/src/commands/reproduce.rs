@@ -844,10 +844,11 @@ pub(crate) fn write_setting_figure(
 ) -> Result<FitnessPanel, CliError> {
     let m = study.median();
     let ctx = &study.contexts[m];
+    // `(C,H,O,E) = [..]` for the paper's four motivations, every weight by name for others.
     let title = format!(
-        "{} (C,H,O,E) = {:?}, {}",
+        "{} {}, {}",
         study.setting.name,
-        ctx.motivations.as_array(),
+        ctx.motivations.label(),
         study.median_label()
     );
     write_figure_at(
@@ -860,7 +861,12 @@ pub(crate) fn write_setting_figure(
         rasteriser(args.png),
     )?;
     // The legend says what is drawn over how many seeds.
-    let panel = format!("{} {:?}", study.setting.name, ctx.motivations.as_array());
+    // (The name of a setting beyond the paper's four motivations says what it varies.)
+    let panel = if ctx.motivations.table.is_empty() {
+        format!("{} {:?}", study.setting.name, ctx.motivations.as_array())
+    } else {
+        study.setting.name.to_string()
+    };
     Ok(study.fitness_panel(&panel))
 }
 
