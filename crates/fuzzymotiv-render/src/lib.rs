@@ -20,3 +20,4 @@ pub mod study;
 pub mod svg;
 pub mod tables;
 pub mod terms;
+pub mod urgency;

@@ -19,8 +19,14 @@ pub struct Setting {
     pub tag: &'static str,
     /// Built-in config.
     pub config: &'static str,
-    /// The paper's table: room, average fitness, % exploration, % recognition, % battery.
-    pub paper: [(&'static str, f64, f64, f64, f64); 5],
+    /// Config overrides of this setting (applied before the study's and the user's).
+    pub sets: &'static [&'static str],
+    /// Built-in rooms (the file's path as configs name it, its text) that the config's `rooms`
+    /// choose from; empty: the config's rooms are the built-in names or files it names.
+    pub rooms: &'static [(&'static str, &'static str)],
+    /// The paper's table: room, average fitness, % exploration, % recognition, % battery;
+    /// empty for a setting the paper did not run.
+    pub paper: &'static [(&'static str, f64, f64, f64, f64)],
 }
 
 /// The paper's two settings (Tables 1 and 2).
@@ -29,7 +35,9 @@ pub const SETTINGS: [Setting; 2] = [
         name: "high-curiosity",
         tag: "high_curiosity",
         config: include_str!("../../../configs/high-curiosity.toml"),
-        paper: [
+        sets: &[],
+        rooms: &[],
+        paper: &[
             ("H", 0.6421, 93.84, 80.00, 79.19),
             ("T", 0.6686, 91.77, 100.00, 78.45),
             ("L", 0.6507, 97.04, 100.00, 79.58),
@@ -41,7 +49,9 @@ pub const SETTINGS: [Setting; 2] = [
         name: "low-curiosity",
         tag: "low_curiosity",
         config: include_str!("../../../configs/low-curiosity.toml"),
-        paper: [
+        sets: &[],
+        rooms: &[],
+        paper: &[
             ("H", 0.2465, 54.66, 20.00, 57.90),
             ("T", 0.2694, 57.84, 0.00, 59.66),
             ("L", 0.2707, 57.93, 0.00, 59.67),

@@ -14,3 +14,4 @@ pub mod robustness;
 pub mod rooms;
 pub mod run;
 pub mod sweep;
+pub mod urgency;

@@ -49,7 +49,7 @@ use crate::progress::{JobsProgress, Progress};
 /// Arguments of `fuzzymotiv reproduce`.
 #[derive(clap::Args)]
 #[command(
-    mut_arg("out", |a| a.help("Output directory [default: results; with --quick results-quick; with --orientation results-orientation(-quick); with --ablation results-ablation(-quick); with --search-strength results-search-strength(-quick)]. Another study's results there are kept unless --force")),
+    mut_arg("out", |a| a.help("Output directory [default: results; with --quick results-quick; with --orientation results-orientation(-quick); with --ablation results-ablation(-quick); with --search-strength results-search-strength(-quick); with --combination, --replication or --urgency results-combination, results-replication or results-urgency (-quick)]. Another study's results there are kept unless --force")),
     mut_arg("force", |a| a.help("Replace another study's results in --out (or an unfinished one) and start over")),
     mut_arg("seed", |a| a.help("Base seed, a whole number from 0 to 2^53 − 1: the study's first seed is this seed, the others derive from it [default: 1]")),
 )]
@@ -101,6 +101,13 @@ pub struct ReproduceArgs {
     /// many seeds on both base seeds give the pooled verdicts (EXPERIMENTS.md: why N seeds).
     #[arg(long, conflicts_with_all = ["orientation", "ablation", "search_strength", "combination"])]
     pub replication: bool,
+    /// Run the urgency study instead: the fetch mission (configs/fetch.toml: the paper's rooms
+    /// with a goal zone in the far corner, built in) with urgency weights 0, 0.1, 0.2 and 0.3
+    /// taken from curiosity of the high-curiosity setting, the same seeds for each; success
+    /// rate, time to the goal, exploration, battery and homing per weight, and each step up in
+    /// urgency compared (EXPERIMENTS.md: the paper's future work).
+    #[arg(long, conflicts_with_all = ["orientation", "ablation", "search_strength", "combination", "replication"])]
+    pub urgency: bool,
 }
 
 impl ReproduceArgs {
@@ -123,6 +130,8 @@ impl ReproduceArgs {
                 "results-combination"
             } else if self.replication {
                 "results-replication"
+            } else if self.urgency {
+                "results-urgency"
             } else {
                 "results"
             };
@@ -148,17 +157,23 @@ fn load_one(
         sets.push("ga.generations=30".to_string());
     }
     sets.push(format!("seed={seed}"));
+    sets.extend(setting.sets.iter().map(|s| s.to_string()));
     sets.extend(variant.sets.iter().map(|s| s.to_string()));
     sets.extend(args.sets.iter().cloned());
     let source = format!("built-in config {}", setting.name);
     let mut raw = RawConfig::parse(setting.config, &source, &sets)?;
-    if !variant.first_release_rooms {
+    let files: Vec<(String, &str)> = if variant.first_release_rooms {
+        (FIRST_RELEASE_ROOMS.iter())
+            .map(|(name, text)| (format!("rooms/first-release/{name}.toml"), *text))
+            .collect()
+    } else if !setting.rooms.is_empty() {
+        chosen_rooms(&raw.rooms, setting)?
+    } else {
         return resolve(raw, std::path::Path::new("."), &source);
-    }
+    };
     let mut rooms = Vec::new();
     raw.rooms.clear();
-    for (name, text) in FIRST_RELEASE_ROOMS {
-        let file = format!("rooms/first-release/{name}.toml");
+    for (file, text) in files {
         rooms.push(
             fuzzymotiv::simulation::Room::from_toml_str(text, &file).map_err(CliError::from)?,
         );
@@ -168,13 +183,45 @@ fn load_one(
     Ok(Loaded { raw, experiment })
 }
 
+/// The built-in rooms of `setting` that its config's `rooms` name (by the file's path, its
+/// name without `.toml`, or its room name); a room it does not have is refused, naming them.
+fn chosen_rooms(
+    names: &[String],
+    setting: &Setting,
+) -> Result<Vec<(String, &'static str)>, CliError> {
+    let stem = |f: &str| {
+        let base = f.rsplit('/').next().unwrap_or(f);
+        base.strip_suffix(".toml").unwrap_or(base).to_string()
+    };
+    names
+        .iter()
+        .map(|name| {
+            (setting.rooms.iter())
+                .find(|(file, _)| stem(file) == stem(name))
+                .map(|(file, text)| (file.to_string(), *text))
+                .ok_or_else(|| {
+                    let known: Vec<String> = setting.rooms.iter().map(|(f, _)| stem(f)).collect();
+                    CliError::input(format!(
+                        "rooms: `{name}` is not one of the rooms of the study's setting {} (it \
+                         has its rooms built in: {}); choose among those, e.g. --set \
+                         'rooms=[\"{}\"]'",
+                        setting.name,
+                        known.join(", "),
+                        known[0]
+                    ))
+                })
+        })
+        .collect()
+}
+
 /// The configs of every (setting, seed), validated before anything is written.
-fn load_settings(
+pub(crate) fn load_settings(
     args: &ReproduceArgs,
+    settings: &[Setting],
     seeds: &[u64],
     variant: &Variant,
 ) -> Result<Vec<Vec<Loaded>>, CliError> {
-    SETTINGS
+    settings
         .iter()
         .map(|s| {
             seeds
@@ -188,8 +235,9 @@ fn load_settings(
 /// Evolves every (setting, seed) of a variant into `dir/SETTING/seed-NN/` (the seed's index,
 /// [`seed_dir`]), as many runs at a
 /// time as there are threads ([`run_concurrently`]).
-fn run_study<'a>(
+pub(crate) fn run_study<'a>(
     args: &ReproduceArgs,
+    settings: &'a [Setting],
     seeds: &[u64],
     loaded: &[Vec<Loaded>],
     dir: &Path,
@@ -197,7 +245,7 @@ fn run_study<'a>(
     label: &str,
 ) -> Result<Vec<SettingRuns<'a>>, CliError> {
     let n = seeds.len();
-    let runs: Vec<(&Setting, usize, &Loaded)> = SETTINGS
+    let runs: Vec<(&Setting, usize, &Loaded)> = settings
         .iter()
         .zip(loaded)
         .flat_map(|(setting, loaded)| loaded.iter().enumerate().map(move |(k, l)| (setting, k, l)))
@@ -210,7 +258,7 @@ fn run_study<'a>(
         execute_or_resume(l, &run_dir, &progress, rasteriser(args.png))
     })?;
     let mut finished = finished.into_iter();
-    Ok(SETTINGS
+    Ok(settings
         .iter()
         .zip(loaded)
         .map(|(setting, loaded)| SettingRuns {
@@ -242,9 +290,9 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     }
     let start = Instant::now();
     let seeds = study_seeds(&args);
-    let loaded = load_settings(&args, &seeds, &DEFAULT_MODEL)?;
+    let loaded = load_settings(&args, &SETTINGS, &seeds, &DEFAULT_MODEL)?;
     let out = args.out_dir();
-    let Some(staged) = open_out(&args, &out, &[(DEFAULT_MODEL.name, &loaded)])? else {
+    let Some(staged) = open_out(&args, &out, &SETTINGS, &[(DEFAULT_MODEL.name, &loaded)])? else {
         return Ok(());
     };
     let progress = Progress::new(
@@ -252,7 +300,15 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
         SETTINGS.len() * seeds.len(),
         args.output.quiet,
     );
-    let studies = run_study(&args, &seeds, &loaded, &staged.staging, &progress, "")?;
+    let studies = run_study(
+        &args,
+        &SETTINGS,
+        &seeds,
+        &loaded,
+        &staged.staging,
+        &progress,
+        "",
+    )?;
     progress.finish();
     let (claims, tables) = write_study(&args, args.seed(), &staged.staging, &studies, start)?;
     commit(staged, start)?;
@@ -260,7 +316,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     print_claims(&claims)
 }
 
-fn study_seeds(args: &ReproduceArgs) -> Vec<u64> {
+pub(crate) fn study_seeds(args: &ReproduceArgs) -> Vec<u64> {
     seeds_of(args.seed(), args.seeds)
 }
 
@@ -299,11 +355,11 @@ fn run_variants_measuring<T>(
     refuse_variant_keys(&args.sets, variants)?;
     let loaded = variants
         .iter()
-        .map(|v| load_settings(args, seeds, v))
+        .map(|v| load_settings(args, &SETTINGS, seeds, v))
         .collect::<Result<Vec<_>, CliError>>()?;
     let out = args.out_dir();
     let pairs: Vec<_> = variants.iter().map(|v| v.name).zip(&loaded).collect();
-    let Some(staged) = open_out(args, &out, &pairs)? else {
+    let Some(staged) = open_out(args, &out, &SETTINGS, &pairs)? else {
         return Ok(None);
     };
     let progress = Progress::new(
@@ -315,7 +371,7 @@ fn run_variants_measuring<T>(
     for (variant, loaded) in variants.iter().zip(loaded) {
         let dir = staged.staging.join(variant.name);
         let label = format!("{} · ", variant.name);
-        let studies = run_study(args, seeds, &loaded, &dir, &progress, &label)?;
+        let studies = run_study(args, &SETTINGS, seeds, &loaded, &dir, &progress, &label)?;
         let (claims, _) = write_study(args, args.seed(), &dir, &studies, Instant::now())?;
         let measured = measure(&loaded, &studies)?;
         rows.push(((variant, claims), measured));
@@ -324,9 +380,20 @@ fn run_variants_measuring<T>(
     Ok(Some((staged, rows)))
 }
 
+/// A part of a study that sets config keys itself: its name, what it is, its overrides.
+pub(crate) type Part<'a> = (&'a str, &'a str, &'a [&'a str]);
+
 /// A `--set` of a key that a variant sets itself would make the variants one study (the user's
 /// value comes last): refused, naming the variant.
 fn refuse_variant_keys(sets: &[String], variants: &[Variant]) -> Result<(), CliError> {
+    let parts: Vec<Part<'_>> = (variants.iter())
+        .map(|v| (v.name, v.what, v.sets))
+        .collect();
+    refuse_own_keys(sets, &parts)
+}
+
+/// A `--set` of a key that a part of the study sets itself: refused, naming the part.
+pub(crate) fn refuse_own_keys(sets: &[String], parts: &[Part<'_>]) -> Result<(), CliError> {
     let key = |set: &str| {
         set.split_once('=')
             .map_or(set, |(k, _)| k)
@@ -335,14 +402,13 @@ fn refuse_variant_keys(sets: &[String], variants: &[Variant]) -> Result<(), CliE
     };
     for set in sets {
         let user = key(set);
-        for v in variants {
-            let clash = (v.sets.iter().map(|s| key(s)))
+        for (name, what, own_sets) in parts {
+            let clash = (own_sets.iter().map(|s| key(s)))
                 .find(|own| *own == user || own.starts_with(&format!("{user}.")));
             if let Some(own) = clash {
                 return Err(CliError::input(format!(
-                    "--set {set}: this study sets `{own}` itself (its part `{}`: {}); leave the \
-                     --set out, or run `fuzzymotiv reproduce --set {set}` for one study",
-                    v.name, v.what
+                    "--set {set}: this study sets `{own}` itself (its part `{name}`: {what}); \
+                     leave the --set out, or run `fuzzymotiv reproduce --set {set}` for one study"
                 )));
             }
         }
@@ -466,12 +532,12 @@ fn replication(args: &ReproduceArgs) -> Result<(), CliError> {
     let bases = [args.seed(), args.seed().saturating_add(10)];
     let seeds = bases.map(|b| seeds_of(b, args.seeds));
     let names = bases.map(|b| format!("base-{b}"));
-    let loaded = [0, 1].map(|i| load_settings(args, &seeds[i], &DEFAULT_MODEL));
+    let loaded = [0, 1].map(|i| load_settings(args, &SETTINGS, &seeds[i], &DEFAULT_MODEL));
     let [la, lb] = loaded;
     let loaded = [la?, lb?];
     let parts: Vec<(&str, &Vec<Vec<Loaded>>)> =
         names.iter().map(String::as_str).zip(&loaded).collect();
-    let Some(staged) = open_out(args, &args.out_dir(), &parts)? else {
+    let Some(staged) = open_out(args, &args.out_dir(), &SETTINGS, &parts)? else {
         return Ok(());
     };
     let progress = Progress::new(
@@ -482,7 +548,7 @@ fn replication(args: &ReproduceArgs) -> Result<(), CliError> {
     for (i, loaded) in loaded.iter().enumerate() {
         let dir = staged.staging.join(&names[i]);
         let label = format!("{} · ", names[i]);
-        let studies = run_study(args, &seeds[i], loaded, &dir, &progress, &label)?;
+        let studies = run_study(args, &SETTINGS, &seeds[i], loaded, &dir, &progress, &label)?;
         write_study(args, bases[i], &dir, &studies, Instant::now())?;
     }
     progress.finish();
@@ -588,7 +654,7 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
 }
 
 /// Renames the staged output into place and says where it went and how long it took.
-fn commit(staged: StagedDir, start: Instant) -> Result<(), CliError> {
+pub(crate) fn commit(staged: StagedDir, start: Instant) -> Result<(), CliError> {
     let out = staged.commit()?;
     note!(
         "wrote {} ({:.1} s)",
@@ -599,7 +665,10 @@ fn commit(staged: StagedDir, start: Instant) -> Result<(), CliError> {
 }
 
 /// Every run of a study by its path in the output, with its resolved config.
-fn run_configs(variants: &[(&str, &Vec<Vec<Loaded>>)]) -> Vec<(String, String)> {
+fn run_configs(
+    settings: &[Setting],
+    variants: &[(&str, &Vec<Vec<Loaded>>)],
+) -> Vec<(String, String)> {
     let prefix = |name: &str| {
         if variants.len() == 1 {
             String::new()
@@ -610,7 +679,7 @@ fn run_configs(variants: &[(&str, &Vec<Vec<Loaded>>)]) -> Vec<(String, String)> 
     variants
         .iter()
         .flat_map(|(v, loaded)| {
-            SETTINGS
+            settings
                 .iter()
                 .zip(loaded.iter())
                 .flat_map(move |(s, seeds)| {
@@ -641,6 +710,8 @@ fn identity(args: &ReproduceArgs, runs: &[(String, String)]) -> Vec<(String, Str
         "combination"
     } else if args.replication {
         "replication"
+    } else if args.urgency {
+        "urgency"
     } else {
         "study"
     };
@@ -656,12 +727,13 @@ fn identity(args: &ReproduceArgs, runs: &[(String, String)]) -> Vec<(String, Str
 /// holds this very study (nothing to do but the missing PNGs with `--png`); an unfinished study
 /// of the same configs is reopened (its finished runs are read back, the others resume); another
 /// study is replaced only with `--force`.
-fn open_out(
+pub(crate) fn open_out(
     args: &ReproduceArgs,
     out: &Path,
+    settings: &[Setting],
     variants: &[(&str, &Vec<Vec<Loaded>>)],
 ) -> Result<Option<StagedDir>, CliError> {
-    let runs = run_configs(variants);
+    let runs = run_configs(settings, variants);
     let id = identity(args, &runs);
     // A study written before identity.json existed is recognised by its runs' configs.
     let legacy = !args.output.force
@@ -765,17 +837,18 @@ fn write_study(
 
 /// The setting's trajectories figure (its median seed's best robot); returns its panel of the
 /// study's fitness figure (medians and inter-quartile bands over seeds).
-fn write_setting_figure(
+pub(crate) fn write_setting_figure(
     args: &ReproduceArgs,
     dir: &Path,
     study: &SettingRuns<'_>,
 ) -> Result<FitnessPanel, CliError> {
     let m = study.median();
     let ctx = &study.contexts[m];
+    // `(C,H,O,E) = [..]` for the paper's four motivations, every weight by name for others.
     let title = format!(
-        "{} (C,H,O,E) = {:?}, {}",
+        "{} {}, {}",
         study.setting.name,
-        ctx.motivations.as_array(),
+        ctx.motivations.label(),
         study.median_label()
     );
     write_figure_at(
@@ -788,7 +861,12 @@ fn write_setting_figure(
         rasteriser(args.png),
     )?;
     // The legend says what is drawn over how many seeds.
-    let panel = format!("{} {:?}", study.setting.name, ctx.motivations.as_array());
+    // (The name of a setting beyond the paper's four motivations says what it varies.)
+    let panel = if ctx.motivations.table.is_empty() {
+        format!("{} {:?}", study.setting.name, ctx.motivations.as_array())
+    } else {
+        study.setting.name.to_string()
+    };
     Ok(study.fitness_panel(&panel))
 }
 

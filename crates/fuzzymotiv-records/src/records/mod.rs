@@ -56,6 +56,7 @@ pub mod genome;
 pub mod replication;
 pub mod robustness;
 pub mod test_runs;
+pub mod urgency;
 
 /// The model version of a record that names none: written before model versions were
 /// recorded, by model 1.
