@@ -13,8 +13,8 @@ use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::note;
 
 use crate::commands::{
-    bench, calibrate, claims, compare, export, fuzzy, lab, replay, reproduce, robustness, rooms,
-    run, sweep, urgency,
+    bench, calibrate, claims, compare, export, fuzzy, lab, recognise, replay, reproduce,
+    robustness, rooms, run, sweep, urgency,
 };
 
 /// Evolutionary behaviour learning for a simulated Khepera robot under fuzzy motivations.
@@ -46,6 +46,9 @@ enum Command {
     /// Evaluate a run's best robot under the perturbations a real robot brings (sensor noise,
     /// sensor sensitivity, a dead sensor, wheel bias, a larger body) on paired streams.
     Robustness(robustness::RobustnessArgs),
+    /// Recognise the room of a real robot's logs with a run's room model (its SOM): one CSV
+    /// per log, a row per step with the action or the motor outputs.
+    Recognise(recognise::RecogniseArgs),
     /// Recompute a finished study's claims from its records (summary.json), e.g. at another
     /// significance level: effect, interval, p-value, verdict and minimum detectable difference.
     Claims(claims::ClaimsArgs),
@@ -101,6 +104,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         Command::Export(args) => export::export(args),
         Command::Calibrate(args) => calibrate::calibrate_command(args),
         Command::Robustness(args) => robustness::robustness(args),
+        Command::Recognise(args) => recognise::recognise(args),
         Command::Claims(args) => claims::claims_command(args),
         Command::Compare(args) => compare::compare_command(args),
         Command::Fuzzy(args) => fuzzy::fuzzy(args),

@@ -8,6 +8,7 @@ pub mod compare;
 pub mod export;
 pub mod fuzzy;
 pub mod lab;
+pub mod recognise;
 pub mod replay;
 pub mod reproduce;
 pub mod robustness;

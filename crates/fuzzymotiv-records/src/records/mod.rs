@@ -54,6 +54,7 @@ pub mod context;
 pub mod export;
 pub mod genome;
 pub mod replication;
+pub mod robot_log;
 pub mod robustness;
 pub mod test_runs;
 pub mod urgency;

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::experiment::{Experiment, Run};
 use crate::fitness::terms::{FitnessTerms, largest_distance};
-use crate::modelling::aem::environment_vector;
+use crate::modelling::aem::{Action, environment_vector};
 use crate::modelling::recognition::{Confusion, Recognizer};
 use crate::modelling::som::SomError;
 use crate::random::rng::rng_from_seed;
@@ -60,6 +60,51 @@ impl Experiment {
         100.0 * ms.sqrt() / largest_distance(self.arenas[room].room())
     }
 
+    /// The SOM and room instances trained on `instances` (one per room) on the SOM stream of
+    /// `run`; none with AEM disabled. [`Experiment::environment_modelling`] trains it so.
+    fn train_recognizer(
+        &self,
+        instances: &[InstanceRun],
+        run: &Run,
+    ) -> Result<Option<Recognizer>, SomError> {
+        if !self.aem.enabled() {
+            return Ok(None);
+        }
+        let vectors: Vec<Vec<f64>> = instances
+            .iter()
+            .map(|i| environment_vector(&i.trajectory.actions, self.aem.encoder()))
+            .collect();
+        let mut som_rng = rng_from_seed(self.streams().som(run.tag));
+        Recognizer::train(&vectors, self.aem.som(), self.aem.threshold(), &mut som_rng).map(Some)
+    }
+
+    /// The recogniser `network` gets in `run`'s room modelling: its instance runs, then the SOM
+    /// trained on them — the same one [`Experiment::environment_modelling`] tests (the same
+    /// streams, so the same bits). None with AEM disabled.
+    pub fn recognizer(&self, network: &Mlp, run: &Run) -> Result<Option<Recognizer>, SomError> {
+        let instances: Vec<InstanceRun> = (0..self.arenas.len())
+            .into_par_iter()
+            .map(|r| self.instance_run(network, run, r))
+            .collect();
+        self.train_recognizer(&instances, run)
+    }
+
+    /// Recognises the room of an action sequence of any length (e.g. a real robot's log): its
+    /// first `trial.steps` actions, a shorter one padded with `Straight` as the simulator
+    /// labels the idle steps after a trial ended at home; encoded as the room modelling does.
+    /// Returns the room (none: not recognised) and the SOM's winning node.
+    pub fn recognise_actions(
+        &self,
+        recognizer: &Recognizer,
+        actions: &[Action],
+    ) -> Result<(Option<usize>, usize), SomError> {
+        let steps = self.trial.steps();
+        let mut padded: Vec<Action> = actions.iter().copied().take(steps).collect();
+        padded.resize(steps, Action::Straight);
+        let v = environment_vector(&padded, self.aem.encoder());
+        Ok((recognizer.recognise(&v)?, recognizer.som.winner(&v)?))
+    }
+
     /// Action-based environment modelling with one robot (its network): an instance run per room, SOM
     /// training, then `test_runs` recognition tests per room (docs/model.md §9–§10). With AEM disabled
     /// the instance runs are still made (for figures) and the test runs still measure
@@ -70,21 +115,7 @@ impl Experiment {
             .into_par_iter()
             .map(|r| self.instance_run(network, run, r))
             .collect();
-        let recognizer = if self.aem.enabled() {
-            let vectors: Vec<Vec<f64>> = instances
-                .iter()
-                .map(|i| environment_vector(&i.trajectory.actions, self.aem.encoder()))
-                .collect();
-            let mut som_rng = rng_from_seed(self.streams().som(run.tag));
-            Some(Recognizer::train(
-                &vectors,
-                self.aem.som(),
-                self.aem.threshold(),
-                &mut som_rng,
-            )?)
-        } else {
-            None
-        };
+        let recognizer = self.train_recognizer(&instances, run)?;
         let tests = self.recognition_tests(network, run, recognizer.as_ref())?;
         let mut confusion = Confusion::new(rooms);
         let mut per_room: Vec<AemRoom> = instances

@@ -1,0 +1,49 @@
+//! `fuzzymotiv recognise`: the rooms a run's room model recognises in a real robot's logs
+//! ([`fuzzymotiv_io::records::robot_log::recognise_logs`] over the library's
+//! `Experiment::recognizer` and `Experiment::recognise_actions`).
+
+use std::path::PathBuf;
+
+use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_files};
+use fuzzymotiv_io::records::robot_log::{recognise_logs, recognition_csv, recognition_md};
+use fuzzymotiv_io::{note, outln};
+
+/// Arguments of `fuzzymotiv recognise`.
+#[derive(clap::Args)]
+pub struct RecogniseArgs {
+    /// A run directory (its best_genome.json and config.resolved.toml; all-rooms training).
+    #[arg(value_name = "RUN_DIR")]
+    pub run: PathBuf,
+    /// The logs: CSV files, one row per step, with an `action` column (straight, left, right,
+    /// back) or `m_left` and `m_right` (motor outputs in [0, 1]); other columns are read past.
+    #[arg(value_name = "LOG", required = true)]
+    pub logs: Vec<PathBuf>,
+    /// Also write recognised.csv and recognised.md into this directory (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Replace existing files of these names that hold something else.
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// Entry point of `fuzzymotiv recognise`.
+pub fn recognise(args: RecogniseArgs) -> Result<(), CliError> {
+    let records = recognise_logs(&args.run, &args.logs)?;
+    let md = recognition_md(&args.run, &records);
+    if let Some(out) = &args.out {
+        let files = vec![
+            (
+                out.join("recognised.csv"),
+                recognition_csv(&records).into_bytes(),
+            ),
+            (out.join("recognised.md"), md.clone().into_bytes()),
+        ];
+        if check_files(&files, "--out", args.force)? == FilesState::Write {
+            std::fs::create_dir_all(out).map_err(|e| io_err(out, e))?;
+            write_files(&files)?;
+            note!("wrote {}", out.display());
+        }
+    }
+    outln!("{md}")
+}

@@ -1,0 +1,160 @@
+//! `fuzzymotiv recognise RUN LOG…`: the rooms a run's room model recognises in a robot's logs
+//! (one CSV per log: the action per step, or the motor outputs).
+
+mod common;
+
+use std::path::Path;
+
+use common::{Fm, ok, stderr, stdout};
+
+const SIZES: [&str; 5] = [
+    "ga.population=10",
+    "ga.generations=3",
+    "trial.steps=150",
+    "aem.epochs=50",
+    "aem.test_runs=3",
+];
+
+const ROOMS: [&str; 5] = ["H", "T", "L", "square", "rectangle"];
+
+/// A tiny run and the replays of its room-modelling runs (`DIR/rep-ROOM.csv`).
+fn run_and_replays(dir: &Path) {
+    let config = common::repo().join("configs/high-curiosity.toml");
+    Fm::new(["run", config.to_str().unwrap(), "--quiet"])
+        .out(&dir.join("run"))
+        .sets(&SIZES)
+        .ok();
+    let run = dir.join("run");
+    let rep = dir.join("rep");
+    ok(&[
+        "replay",
+        run.to_str().unwrap(),
+        "--out",
+        rep.to_str().unwrap(),
+    ]);
+}
+
+/// The replay's motor outputs alone, as a log with `m_left` and `m_right` columns.
+fn motors_log(replay: &Path, out: &Path) {
+    let text = std::fs::read_to_string(replay).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (l, r) = (col("mL"), col("mR"));
+    let mut log = String::from("t,m_left,m_right\n");
+    for (k, line) in lines.enumerate() {
+        let cells: Vec<&str> = line.split(',').collect();
+        log.push_str(&format!("{k},{},{}\n", cells[l], cells[r]));
+    }
+    std::fs::write(out, log).unwrap();
+}
+
+/// Each room-modelling run's replay is recognised as its own room, at its stored instance's
+/// node (the SOM rebuilt as the run trained it); a log of motor outputs is read too.
+#[test]
+fn each_replay_is_recognised_as_its_room_from_actions_or_motors() {
+    let tmp = tempfile::tempdir().unwrap();
+    run_and_replays(tmp.path());
+    let summary = std::fs::read_to_string(tmp.path().join("run/summary.json")).unwrap();
+    let r_nodes: Vec<String> = summary
+        .split("\"r_node\":")
+        .skip(1)
+        .map(|s| {
+            s.trim_start()
+                .split([',', '\n', '}'])
+                .next()
+                .unwrap()
+                .trim()
+                .to_string()
+        })
+        .collect();
+    assert_eq!(r_nodes.len(), ROOMS.len(), "{summary}");
+    let run = tmp.path().join("run");
+    let mut args = vec!["recognise".to_string(), run.display().to_string()];
+    for room in ROOMS {
+        args.push(
+            tmp.path()
+                .join(format!("rep-{room}.csv"))
+                .display()
+                .to_string(),
+        );
+    }
+    let out = tmp.path().join("rec");
+    args.extend(["--out".into(), out.display().to_string()]);
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = ok(&refs);
+    let csv = std::fs::read_to_string(out.join("recognised.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), ROOMS.len(), "{csv}");
+    for ((row, room), node) in rows.iter().zip(ROOMS).zip(&r_nodes) {
+        assert_eq!(row[1], "150", "the final pose row is no step: {csv}");
+        assert_eq!(row[3], room, "{csv}");
+        assert_eq!(row[4], node, "{csv}");
+    }
+    assert_eq!(
+        stdout(&o).trim_end(),
+        std::fs::read_to_string(out.join("recognised.md"))
+            .unwrap()
+            .trim_end()
+    );
+    let motors = tmp.path().join("motors-T.csv");
+    motors_log(&tmp.path().join("rep-T.csv"), &motors);
+    // Motor outputs are labelled by the wheels model's rule, without the simulator's wheel
+    // noise (with `actions` motion it labels the noisy speeds), so the counts may differ by the
+    // steps that noise moved across the tolerance; every row is a step.
+    let o = ok(&["recognise", run.to_str().unwrap(), motors.to_str().unwrap()]);
+    let line = stdout(&o)
+        .lines()
+        .find(|l| l.contains("motors-T.csv"))
+        .unwrap()
+        .to_string();
+    let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+    assert_eq!(&cells[2..4], &["150", "150"], "{line}");
+    let counts: usize = cells[6]
+        .split(" / ")
+        .map(|c| c.parse::<usize>().unwrap())
+        .sum();
+    assert_eq!(counts, 150, "{line}");
+}
+
+/// A bad log exits 2 naming the file, the line and the field; nothing is written.
+#[test]
+fn a_bad_log_is_refused_naming_its_file_line_and_field() {
+    let tmp = tempfile::tempdir().unwrap();
+    run_and_replays(tmp.path());
+    let run = tmp.path().join("run");
+    let out = tmp.path().join("rec");
+    let cases = [
+        (
+            "step,action\n0,straight\n1,sideways\n",
+            "line 3: field `action`: `sideways` is not an action",
+        ),
+        (
+            "t,m_left,m_right\n0,0.5,1.5\n",
+            "line 2: field `m_right`: `1.5` is not a motor output",
+        ),
+        (
+            "t,speed\n0,1\n",
+            "neither an `action` column nor `m_left` and `m_right`",
+        ),
+        ("step,action\n", "the log has no steps"),
+    ];
+    for (k, (text, want)) in cases.iter().enumerate() {
+        let log = tmp.path().join(format!("bad-{k}.csv"));
+        std::fs::write(&log, text).unwrap();
+        let o = Fm::new(["recognise", run.to_str().unwrap(), log.to_str().unwrap()])
+            .out(&out)
+            .run();
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.contains(&format!("bad-{k}.csv")) && e.contains(want),
+            "{e}"
+        );
+        assert!(!out.exists(), "nothing written");
+    }
+}

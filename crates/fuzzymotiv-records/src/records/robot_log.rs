@@ -1,0 +1,215 @@
+//! `fuzzymotiv recognise`: rooms recognised from a real robot's logs by a run's room model.
+//!
+//! A log is a CSV file, one row per control step, with a header naming its columns:
+//! - `action`: the step's action label, `straight`, `left` (+30°), `right` (−30°) or `back`
+//!   (180°), as the simulator's `actions` motion executes them; or, instead,
+//! - `m_left`, `m_right`: the network's motor outputs in [0, 1], labelled by the `wheels`
+//!   model's rule with the run's `aem.action_tolerance` (with `actions` motion the simulator
+//!   labels the speeds after its wheel noise, so a step near the tolerance may be labelled
+//!   otherwise than it executed: log the executed action where the robot knows it);
+//! - any other columns (e.g. `ir0`…`ir7`, `x`, `y`, `heading`, a time stamp) are read past;
+//! - a row whose action (or both motor outputs) is empty holds no step (e.g. the final pose
+//!   that `fuzzymotiv replay`'s CSV ends with, so a replay is a log too) and is skipped.
+//!
+//! The run's recogniser is rebuilt from its best robot exactly as its room modelling trained it
+//! (`Experiment::recognizer`), and each log's first `trial.steps` actions are recognised
+//! (`Experiment::recognise_actions`).
+
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::modelling::Action;
+use serde::{Deserialize, Serialize};
+
+use crate::files::error::CliError;
+use crate::files::inputs::load_config;
+use crate::records::genome::{locate, read_genome};
+use crate::records::to_csv;
+
+/// One log's answer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RecognitionRecord {
+    /// The log file, as given.
+    pub log: String,
+    /// Its steps (rows).
+    pub steps: usize,
+    /// The steps recognised: the first `trial.steps` (a shorter log is padded as idle steps).
+    pub used: usize,
+    /// The room recognised, empty when none is (the SOM's gate or a tie).
+    pub room: String,
+    /// The SOM's winning node.
+    pub winner: usize,
+    /// Steps per action: straight, left, right, back.
+    pub straight: usize,
+    /// Left turns (+30°).
+    pub left: usize,
+    /// Right turns (−30°).
+    pub right: usize,
+    /// Turns on the spot (180°).
+    pub back: usize,
+}
+
+/// `recognised.csv`'s text.
+pub fn recognition_csv(records: &[RecognitionRecord]) -> String {
+    to_csv(records)
+}
+
+/// `recognised.md`'s text: one row per log.
+pub fn recognition_md(run: &Path, records: &[RecognitionRecord]) -> String {
+    let mut md = format!(
+        "Rooms recognised by the room model of {} (its best robot's SOM, rebuilt as its run trained it).\n\n| log | steps | used | room | SOM winner | straight / left / right / back |\n|---|---|---|---|---|---|\n",
+        run.display()
+    );
+    for r in records {
+        let room = if r.room.is_empty() {
+            "not recognised"
+        } else {
+            &r.room
+        };
+        md.push_str(&format!(
+            "| {} | {} | {} | {room} | {} | {} / {} / {} / {} |\n",
+            r.log, r.steps, r.used, r.winner, r.straight, r.left, r.right, r.back
+        ));
+    }
+    md
+}
+
+/// The action label of a log's `action` cell.
+fn action_of(word: &str) -> Option<Action> {
+    match word.trim().to_ascii_lowercase().as_str() {
+        "straight" => Some(Action::Straight),
+        "left" | "left30" => Some(Action::Left30),
+        "right" | "right30" => Some(Action::Right30),
+        "back" | "turn180" => Some(Action::Turn180),
+        _ => None,
+    }
+}
+
+/// Which columns give a log's actions.
+enum Source {
+    Labels(usize),
+    Motors(usize, usize),
+}
+
+/// Reads a log's actions (see the module's docs); `tolerance` labels motor outputs.
+pub fn read_robot_log(path: &Path, tolerance: f64) -> Result<Vec<Action>, CliError> {
+    let name = path.display();
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .map_err(|e| CliError::input(format!("{name}: cannot read the log: {e}")))?;
+    let headers = reader
+        .headers()
+        .map_err(|e| CliError::input(format!("{name}: cannot read the header: {e}")))?
+        .clone();
+    let column = |c: &str| headers.iter().position(|h| h == c);
+    let source = match (column("action"), column("m_left"), column("m_right")) {
+        (Some(a), _, _) => Source::Labels(a),
+        (None, Some(l), Some(r)) => Source::Motors(l, r),
+        _ => {
+            return Err(CliError::input(format!(
+                "{name}: the header has neither an `action` column nor `m_left` and `m_right`; \
+                 a log names each step's action (straight, left, right, back) or the motor \
+                 outputs in [0, 1] (docs/guide/real-robot.md)"
+            )));
+        }
+    };
+    let mut actions = Vec::new();
+    for (k, row) in reader.records().enumerate() {
+        let line = k + 2;
+        let row = row.map_err(|e| CliError::input(format!("{name}: line {line}: {e}")))?;
+        let cell = |i: usize| row.get(i).unwrap_or("");
+        let empty = match source {
+            Source::Labels(a) => cell(a).is_empty(),
+            Source::Motors(l, r) => cell(l).is_empty() && cell(r).is_empty(),
+        };
+        if empty {
+            continue;
+        }
+        actions.push(match source {
+            Source::Labels(a) => action_of(cell(a)).ok_or_else(|| {
+                CliError::input(format!(
+                    "{name}: line {line}: field `action`: `{}` is not an action; write straight, left, right or back",
+                    cell(a)
+                ))
+            })?,
+            Source::Motors(l, r) => {
+                let motor = |i: usize, field: &str| -> Result<f64, CliError> {
+                    cell(i)
+                        .parse::<f64>()
+                        .ok()
+                        .filter(|v| (0.0..=1.0).contains(v))
+                        .ok_or_else(|| {
+                            CliError::input(format!(
+                                "{name}: line {line}: field `{field}`: `{}` is not a motor output; write a number from 0 to 1",
+                                cell(i)
+                            ))
+                        })
+                };
+                Action::from_motors(motor(l, "m_left")?, motor(r, "m_right")?, tolerance)
+            }
+        });
+    }
+    if actions.is_empty() {
+        return Err(CliError::input(format!(
+            "{name}: the log has no steps (rows after the header)"
+        )));
+    }
+    Ok(actions)
+}
+
+/// The rooms a run directory's room model recognises in `logs` (see the module's docs).
+pub fn recognise_logs(run: &Path, logs: &[PathBuf]) -> Result<Vec<RecognitionRecord>, CliError> {
+    let (genome_path, config) = locate(run)?;
+    let Some(config) = config else {
+        return Err(CliError::input(format!(
+            "{}: no config.resolved.toml beside the genome; recognise needs a run directory",
+            run.display()
+        )));
+    };
+    let genome = read_genome(&genome_path)?;
+    let loaded = load_config(Some(&config), &[], None)?;
+    let exp = &loaded.experiment;
+    let runs = exp.runs();
+    let [one] = runs.as_slice() else {
+        return Err(CliError::input(format!(
+            "{}: the run trains one robot per room (training = \"per-room\"), so it has no one room model for a robot's log; recognise needs an all-rooms run",
+            config.display()
+        )));
+    };
+    let network = exp
+        .network(&genome.weights)
+        .map_err(|e| CliError::input(format!("{}: {e}", genome_path.display())))?;
+    let tolerance = exp.trial_params().action_tolerance();
+    let logs: Vec<(String, Vec<Action>)> = logs
+        .iter()
+        .map(|p| Ok((p.display().to_string(), read_robot_log(p, tolerance)?)))
+        .collect::<Result<_, CliError>>()?;
+    let recognizer = exp
+        .recognizer(&network, one)
+        .map_err(|e| CliError::input(format!("{}: {e}", run.display())))?
+        .ok_or_else(|| {
+            CliError::input(format!(
+                "{}: room modelling is off in this run (aem.enabled = false): it has no room model",
+                config.display()
+            ))
+        })?;
+    logs.into_iter()
+        .map(|(log, actions)| {
+            let (room, winner) = exp
+                .recognise_actions(&recognizer, &actions)
+                .map_err(|e| CliError::input(format!("{log}: {e}")))?;
+            let count = |a: Action| actions.iter().filter(|&&b| b == a).count();
+            Ok(RecognitionRecord {
+                steps: actions.len(),
+                used: actions.len().min(exp.trial_params().steps()),
+                room: room.map_or(String::new(), |r| exp.arenas()[r].room().name.clone()),
+                winner,
+                straight: count(Action::Straight),
+                left: count(Action::Left30),
+                right: count(Action::Right30),
+                back: count(Action::Turn180),
+                log,
+            })
+        })
+        .collect()
+}
