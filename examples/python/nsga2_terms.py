@@ -280,6 +280,8 @@ def main() -> None:
     for name in ("population", "generations", "repeats"):
         if getattr(args, name) < 1:
             fail(f"--{name} {getattr(args, name)}: expected a whole number of at least 1")
+    if args.steps is not None and args.steps < 1:
+        fail(f"--steps {args.steps}: expected a whole number of at least 1")
     outputs = [args.out / n for n in ("front.svg", "front.csv", "robots.csv", "front.png")][: 4 if args.png else 3]
     if args.out.exists() and not args.out.is_dir():
         fail(f"--out {args.out}: a file, not a directory")
@@ -288,7 +290,7 @@ def main() -> None:
              "add --force to replace them")
     study = None if args.study is None else Study(args.study)
     config_file = None if study is None else study.config_file
-    steps = args.steps or (400 if study is None else int(study.config["trial"]["steps"]))
+    steps = args.steps if args.steps is not None else 400 if study is None else int(study.config["trial"]["steps"])
     energy = "use" if study is None else str(study.config["fitness"]["energy"])
     if study is not None and steps != study.config["trial"]["steps"]:
         print(f"note: the study's robots evolved with trial.steps = {study.config['trial']['steps']}, "
