@@ -13,6 +13,7 @@
 #   orientation=results-orientation           (fuzzymotiv reproduce --orientation)
 #   replication=results-replication           (fuzzymotiv reproduce --replication --seeds 20)
 #   combination=results-combination           (fuzzymotiv reproduce --combination)
+#   urgency=results-urgency                   (fuzzymotiv reproduce --urgency)
 #   maps/o-fixed=out/maps/o-fixed   (fuzzymotiv sweep configs/motivation-map.toml … + merge)
 #   maps/o-free=out/maps/o-free     (fuzzymotiv sweep configs/motivation-map-o-free.toml … + merge)
 #
@@ -74,12 +75,14 @@ files_of() { # KIND DIR
             for base in "$dir"/base-*/; do
                 echo "$(basename "$base")/claims.csv"
             done ;;
+        urgency)
+            echo urgency.csv urgency_seeds.csv summary.json ;;
         combination)
             echo behaviour.csv summary.json
             for c in default weighted-sum weighted-squares; do
                 echo "$c/claims.csv $c/table1.csv $c/table2.csv"
             done ;;
-        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination" ;;
+        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, urgency" ;;
     esac
 }
 

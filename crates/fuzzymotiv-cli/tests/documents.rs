@@ -27,7 +27,7 @@ const VALUE_START: &str = "<!-- value ";
 const VALUE_END: &str = "<!-- end -->";
 const RENDERERS: &str = "rooms, claims, room-means, fig6, search-strength, \
     search-strength-exploration, ablation-claims, ablation-means, orientation, levels, \
-    replication, behaviour, combination-claims";
+    replication, behaviour, combination-claims, urgency, nsga-robots";
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -761,6 +761,92 @@ fn combination_claims(dir: &Path, folder: &str) -> Rendered {
     Ok(table(&header, rows))
 }
 
+/// Where each setting's robots sit against the NSGA-II front: `robots.csv` of
+/// examples/python/nsga2_terms.py (per setting: the robots' mean objectives, and how many are on,
+/// beyond or dominated by the front, with the mean distance).
+fn nsga_robots(dir: &Path, file: &str) -> Rendered {
+    let header = [
+        "setting",
+        "robots",
+        "mean a / g / b",
+        "on the front",
+        "beyond it",
+        "dominated",
+        "mean distance",
+    ];
+    let all = read_csv(dir, file)?;
+    let mut settings: Vec<String> = Vec::new();
+    for r in &all {
+        let s = cell(r, "setting")?.to_string();
+        if !settings.contains(&s) {
+            settings.push(s);
+        }
+    }
+    let mut rows = Vec::new();
+    for s in settings {
+        let mine: Vec<&Row> = all.iter().filter(|r| r["setting"] == s).collect();
+        let avg = |c: &str| -> Result<f64, String> {
+            let v = mine
+                .iter()
+                .map(|r| num(r, c))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(mean(&v))
+        };
+        let count = |p: &str| mine.iter().filter(|r| r["position"].starts_with(p)).count();
+        rows.push(format!(
+            "| {s} | {} | {} / {} / {} | {} | {} | {} | {} |",
+            mine.len(),
+            fixed(avg("a")?, 3),
+            fixed(avg("g")?, 3),
+            fixed(avg("b")?, 3),
+            count("on"),
+            count("beyond"),
+            count("dominated"),
+            fixed(avg("distance_to_front")?, 3)
+        ));
+    }
+    Ok(table(&header, rows))
+}
+
+/// Each step up in urgency: `urgency.csv` of `reproduce --urgency`.
+fn urgency(dir: &Path, file: &str) -> Rendered {
+    let header = [
+        "measure",
+        "u",
+        "seeds",
+        "lower u",
+        "higher u",
+        "difference [95 % CI]",
+        "p",
+        "detectable",
+        "verdict",
+    ];
+    let mut rows = Vec::new();
+    for r in read_csv(dir, file)? {
+        let verdict = cell(&r, "verdict")?;
+        rows.push(format!(
+            "| {} | {} → {} | {} | {} | {} | {} [{}, {}] | {} | {} | {} |",
+            cell(&r, "measure")?,
+            cell(&r, "from")?,
+            cell(&r, "to")?,
+            cell(&r, "pairs")?,
+            fixed(num(&r, "mean_from")?, 1),
+            fixed(num(&r, "mean_to")?, 1),
+            signed(num(&r, "difference")?, 1),
+            signed(num(&r, "ci_low")?, 1),
+            signed(num(&r, "ci_high")?, 1),
+            fixed(num(&r, "p")?, 3),
+            fixed(num(&r, "detectable")?, 1),
+            if verdict == "higher" || verdict == "lower" {
+                format!("**{verdict}**")
+            } else {
+                verdict.to_string()
+            }
+        ));
+    }
+    Ok(table(&header, rows))
+}
+
 /// Each baseline combination against the TSK: `behaviour.csv` of `reproduce --combination`.
 fn behaviour(dir: &Path, file: &str) -> Rendered {
     let header = [
@@ -826,6 +912,8 @@ fn render_block(dir: &Path, spec: &str) -> Rendered {
         "replication" => replication(dir, path),
         "behaviour" => behaviour(dir, path),
         "combination-claims" => combination_claims(dir, path),
+        "urgency" => urgency(dir, path),
+        "nsga-robots" => nsga_robots(dir, path),
         other => Err(format!(
             "unknown renderer `{other}`; the renderers are {RENDERERS}"
         )),

@@ -845,10 +845,12 @@ pub(crate) fn write_setting_figure(
     let m = study.median();
     let ctx = &study.contexts[m];
     // `(C,H,O,E) = [..]` for the paper's four motivations, every weight by name for others.
+    // A list of named weights follows the setting's name after a colon, as a run's title.
+    let label = ctx.motivations.label();
+    let sep = if label.starts_with('(') { " " } else { ": " };
     let title = format!(
-        "{} {}, {}",
+        "{}{sep}{label}, {}",
         study.setting.name,
-        ctx.motivations.label(),
         study.median_label()
     );
     write_figure_at(
