@@ -54,7 +54,7 @@ from .rollouts import (
     simulate,
 )
 from .sweeps import Job, Plan, SweepResult, merge, plan, run_job, sweep
-from .real_robot import export_controller, robustness
+from .real_robot import export_controller, recognise, robustness
 from .tables import Table
 from .trials import TermFunction, Trials
 
@@ -94,6 +94,7 @@ __all__ = [
     "load_room",
     "merge",
     "plan",
+    "recognise",
     "robustness",
     "rooms",
     "run",

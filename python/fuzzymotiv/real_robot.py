@@ -5,7 +5,7 @@ robustness to the reality gap, as ``fuzzymotiv robustness`` measures it (docs/gu
 from __future__ import annotations
 
 import os
-from typing import List, Literal, Optional, Union
+from typing import List, Literal, Optional, Sequence, Union
 
 from . import _fuzzymotiv as _native
 from .tables import Table, table_of
@@ -61,3 +61,19 @@ def robustness(run_dir: PathLike, *, trials: int = 10) -> Table:
             f"trials must be a whole number in 2..=10000 (an interval needs two trials), got {trials}"
         )
     return table_of(_native.robustness(os.fspath(run_dir), trials))
+
+
+def recognise(run_dir: PathLike, logs: Sequence[PathLike]) -> Table:
+    """The rooms the run's room model (its best robot's SOM, rebuilt as the run trained it)
+    recognises in a robot's ``logs``: CSV files, one row per step, with an ``action`` column
+    (``straight``, ``left``, ``right``, ``back``) or ``m_left`` and ``m_right`` (motor outputs in
+    [0, 1]). One row per log, the rows of ``fuzzymotiv recognise RUN_DIR LOG…``'s
+    ``recognised.csv``: ``log``, ``steps``, ``used``, ``room`` (empty: not recognised),
+    ``winner`` (the SOM node), ``straight``, ``left``, ``right``, ``back``. A bad log raises
+    ``FuzzymotivError`` naming its file, line and field (docs/guide/real-robot.md).
+    """
+    if isinstance(logs, (str, os.PathLike)):
+        raise TypeError("logs must be a list of paths, not one path")
+    if not logs:
+        raise _native.FuzzymotivError("name at least one log")
+    return table_of(_native.recognise(os.fspath(run_dir), [os.fspath(p) for p in logs]))

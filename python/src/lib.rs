@@ -48,6 +48,7 @@ mod frames;
 mod ga;
 mod gym;
 mod problem;
+mod recognise;
 mod robustness;
 mod stats;
 mod sweep;
@@ -994,6 +995,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(export_fll, m)?)?;
     m.add_function(wrap_pyfunction!(export::export_controller, m)?)?;
     m.add_function(wrap_pyfunction!(robustness::robustness, m)?)?;
+    m.add_function(wrap_pyfunction!(recognise::recognise, m)?)?;
     m.add_function(wrap_pyfunction!(rooms, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;

@@ -71,3 +71,25 @@ def test_robustness_names_bad_input(run_dir, tmp_path):
         fm.robustness(run_dir, trials=1)
     with pytest.raises(fm.FuzzymotivError, match="not a run directory"):
         fm.robustness(tmp_path, trials=3)
+
+
+def test_recognise_gives_the_rows_the_cli_writes(run_dir, tmp_path, cli):
+    run_cli(cli, "replay", run_dir, "--out", tmp_path / "rep")
+    logs = [tmp_path / f"rep-{room}.csv" for room in ("H", "square")]
+    table = fm.recognise(run_dir, logs)
+    run_cli(cli, "recognise", run_dir, *logs, "--out", tmp_path / "rec")
+    text = (tmp_path / "rec" / "recognised.csv").read_text().splitlines()
+    header = text[0].split(",")
+    assert list(table) == header
+    assert table.rows == 2
+    for k, line in enumerate(text[1:]):
+        cells = line.split(",")
+        assert str(table["room"][k]) == cells[header.index("room")]
+        assert int(table["winner"][k]) == int(cells[header.index("winner")])
+
+
+def test_recognise_names_a_bad_log(run_dir, tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("step,action\n0,sideways\n")
+    with pytest.raises(fm.FuzzymotivError, match="line 2: field `action`"):
+        fm.recognise(run_dir, [bad])

@@ -1,0 +1,45 @@
+//! `fm.recognise`: the rooms a run's room model recognises in a robot's logs, the rows of
+//! `fuzzymotiv recognise`'s recognised.csv as columns.
+
+use std::path::PathBuf;
+
+use fuzzymotiv_io::records::robot_log::recognise_logs;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::py_err;
+
+/// The rooms the run directory `run`'s room model recognises in `logs` (CSV files, one row
+/// per step), as columns: `log`, `steps`, `used`, `room` (empty: not recognised), `winner`,
+/// `straight`, `left`, `right`, `back`.
+#[pyfunction]
+pub(crate) fn recognise<'py>(
+    py: Python<'py>,
+    run: PathBuf,
+    logs: Vec<PathBuf>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let records = py.detach(|| recognise_logs(&run, &logs)).map_err(py_err)?;
+    let d = PyDict::new(py);
+    d.set_item(
+        "log",
+        records.iter().map(|r| r.log.clone()).collect::<Vec<_>>(),
+    )?;
+    d.set_item("steps", records.iter().map(|r| r.steps).collect::<Vec<_>>())?;
+    d.set_item("used", records.iter().map(|r| r.used).collect::<Vec<_>>())?;
+    d.set_item(
+        "room",
+        records.iter().map(|r| r.room.clone()).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "winner",
+        records.iter().map(|r| r.winner).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "straight",
+        records.iter().map(|r| r.straight).collect::<Vec<_>>(),
+    )?;
+    d.set_item("left", records.iter().map(|r| r.left).collect::<Vec<_>>())?;
+    d.set_item("right", records.iter().map(|r| r.right).collect::<Vec<_>>())?;
+    d.set_item("back", records.iter().map(|r| r.back).collect::<Vec<_>>())?;
+    Ok(d)
+}
