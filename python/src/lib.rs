@@ -706,6 +706,11 @@ fn run<'py>(
 struct Control {
     cancel: AtomicBool,
     finished: AtomicBool,
+    /// Progress callbacks made, and how many of them the Python thread has checked Ctrl-C
+    /// after: the worker waits after each callback until it has, so a Ctrl-C raised during a
+    /// callback stops the run at the next generation, however fast the generations are.
+    called: std::sync::atomic::AtomicUsize,
+    checked: std::sync::atomic::AtomicUsize,
     callback_error: Mutex<Option<PyErr>>,
     interrupted: Mutex<Option<PyErr>>,
 }
@@ -729,6 +734,10 @@ impl Control {
                     *self.callback_error.lock().expect("not poisoned") = Some(e);
                     self.cancel.store(true, Ordering::SeqCst);
                 }
+                let call = self.called.fetch_add(1, Ordering::SeqCst) + 1;
+                while self.checked.load(Ordering::SeqCst) < call {
+                    std::thread::sleep(Duration::from_micros(200));
+                }
             }
             if self.cancel.load(Ordering::SeqCst) {
                 ControlFlow::Break(())
@@ -738,23 +747,38 @@ impl Control {
         }
     }
 
-    /// Waits (without the GIL, checking for Ctrl-C every 100 ms) until the worker is done.
+    /// Waits (without the GIL, checking for Ctrl-C every 100 ms and after every progress
+    /// callback) until the worker is done, and
+    /// checks once more after it is: a Ctrl-C that came during a run shorter than the check's
+    /// period is never lost (it raises here, not later in unrelated code).
     fn wait(&self, py: Python<'_>) {
-        while !self.finished.load(Ordering::SeqCst) {
-            py.detach(|| {
-                for _ in 0..20 {
-                    if self.finished.load(Ordering::SeqCst) {
-                        break;
+        loop {
+            let done = self.finished.load(Ordering::SeqCst);
+            if !done {
+                py.detach(|| {
+                    for _ in 0..500 {
+                        let waiting = self.called.load(Ordering::SeqCst)
+                            > self.checked.load(Ordering::SeqCst);
+                        if waiting || self.finished.load(Ordering::SeqCst) {
+                            break;
+                        }
+                        std::thread::sleep(Duration::from_micros(200));
                     }
-                    std::thread::sleep(Duration::from_millis(5));
-                }
-            });
+                });
+            }
+            let called = self.called.load(Ordering::SeqCst);
             let mut interrupted = self.interrupted.lock().expect("not poisoned");
             if interrupted.is_none()
                 && let Err(e) = py.check_signals()
             {
                 *interrupted = Some(e);
                 self.cancel.store(true, Ordering::SeqCst);
+            }
+            drop(interrupted);
+            // Checked after every callback made so far: the worker may go on.
+            self.checked.store(called, Ordering::SeqCst);
+            if done {
+                break;
             }
         }
     }
