@@ -1069,7 +1069,7 @@ fn render_document(text: &str, dir: &Path) -> Result<(String, Vec<Difference>), 
     Ok((new_text, differences))
 }
 
-/// A line with each `<!-- value SPEC -->TEXT<!-- end -->` re-rendered.
+/// A line with each `<!-- value RECORD: SELECTOR… COLUMN FORMAT -->TEXT<!-- end -->` re-rendered.
 fn render_values(line: &str, dir: &Path) -> Result<String, String> {
     let mut out = String::new();
     let mut rest = line;
