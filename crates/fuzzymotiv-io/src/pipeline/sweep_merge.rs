@@ -5,13 +5,15 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use fuzzymotiv::fitness::PAPER_MOTIVATIONS;
 use fuzzymotiv::statistics;
 
 use crate::files::error::CliError;
 use crate::files::guard::write_atomic;
 use crate::note;
 use crate::records::{
-    AggregateRow, Job, METRICS, RunSummary, SweepResultRow, SweepResults, read_json, to_csv,
+    AggregateRow, Job, METRICS, MotivationsRecord, RunSummary, SweepResultRow, SweepResults,
+    read_json, to_csv,
 };
 use crate::render::svg::{SettingPoint, sweep_summary_svg};
 use crate::render::tables::STD_IS_SAMPLE;
@@ -109,7 +111,14 @@ fn collect_results(dir: &Path, jobs: &[Job]) -> Result<(SweepResults, usize), Cl
                     .map_or(String::new(), |(_, v)| cell_of_toml(v))
             })
             .collect();
+        let others = other_motivations(&summary.motivations);
+        for (name, _) in &others {
+            if !results.motivations.contains(name) {
+                results.motivations.push(name.clone());
+            }
+        }
         for r in &summary.rooms {
+            results.missions |= r.mission_done_pct.is_some();
             results.rows.push(SweepResultRow {
                 job_id: job.id.clone(),
                 index: job.index,
@@ -126,10 +135,36 @@ fn collect_results(dir: &Path, jobs: &[Job]) -> Result<(SweepResults, usize), Cl
                     Some(r.battery_pct),
                     Some(r.homing_pct),
                 ],
+                other_weights: Vec::new(),
+                mission_done_pct: r.mission_done_pct,
             });
         }
+        let first = results.rows.len() - summary.rooms.len();
+        for row in &mut results.rows[first..] {
+            row.other_weights = weights_of(&others, &results.motivations);
+        }
+    }
+    // A job planned before a later job's motivation was seen has no value there.
+    let n = results.motivations.len();
+    for row in &mut results.rows {
+        row.other_weights.resize(n, None);
     }
     Ok((results, missing))
+}
+
+/// A job's motivations beyond the paper's four, with their weights.
+fn other_motivations(m: &MotivationsRecord) -> Vec<(String, f64)> {
+    (m.table.iter())
+        .filter(|e| !PAPER_MOTIVATIONS.contains(&e.name.as_str()))
+        .map(|e| (e.name.clone(), e.weight))
+        .collect()
+}
+
+/// The weights of `others` in the order of `columns` (none where the job lacks one).
+fn weights_of(others: &[(String, f64)], columns: &[String]) -> Vec<Option<f64>> {
+    (columns.iter())
+        .map(|c| others.iter().find(|(n, _)| n == c).map(|(_, w)| *w))
+        .collect()
 }
 
 /// A TOML value as a CSV cell: strings without their quotes, anything else as written.

@@ -8,6 +8,7 @@ use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use fuzzymotiv::experiment::{RawConfig, at_line};
+use fuzzymotiv::fitness::PAPER_MOTIVATIONS as MOTIVATIONS;
 use fuzzymotiv::random::{Streams, hash_str};
 use serde::Deserialize;
 
@@ -22,9 +23,10 @@ struct RawSweep {
     /// Replicates (seeds) per point; default 1.
     #[serde(default = "one")]
     replicates: usize,
-    /// Explicit motivation points (C, H, O, E).
+    /// Explicit motivation points: `[C, H, O, E]`, one weight per motivation of the base
+    /// config in its order, or `{ name = weight, … }` (the others keep the base config's).
     #[serde(default)]
-    motivations: Vec<[f64; 4]>,
+    motivations: Vec<toml::Value>,
     /// All motivation points on a simplex grid.
     #[serde(default)]
     simplex: Option<RawSimplex>,
@@ -93,8 +95,6 @@ impl BaseMotivations {
 
 /// Most jobs one sweep file may plan.
 const MAX_JOBS: usize = 100_000;
-
-const MOTIVATIONS: [&str; 4] = ["curiosity", "homing", "orientation", "energy"];
 
 /// A parsed sweep: the base config text, where it came from and the jobs.
 pub struct Sweep {
@@ -267,8 +267,9 @@ fn motivation_points(
     base: &BaseMotivations,
     source: &str,
 ) -> Result<Vec<Option<Point>>, CliError> {
-    let paper = |p: &[f64; 4]| (MOTIVATIONS.iter().map(|n| n.to_string()).zip(*p)).collect();
-    let mut points: Vec<Point> = sweep.motivations.iter().map(paper).collect();
+    let mut points: Vec<Point> = (sweep.motivations.iter().enumerate())
+        .map(|(i, v)| explicit_point(v, base, &format!("sweep.motivations[{i}]"), source))
+        .collect::<Result<_, _>>()?;
     if let Some(simplex) = &sweep.simplex {
         points.extend(simplex_points(simplex, base, source)?);
     }
@@ -277,6 +278,67 @@ fn motivation_points(
     } else {
         points.into_iter().map(Some).collect()
     })
+}
+
+/// One explicit point: a list of weights (the paper's four, or one per motivation of the base
+/// config, in its order) or a table of weights by name (the others keep the base config's).
+fn explicit_point(
+    value: &toml::Value,
+    base: &BaseMotivations,
+    field: &str,
+    source: &str,
+) -> Result<Point, CliError> {
+    let weight = |v: &toml::Value, at: &str| -> Result<f64, CliError> {
+        match v {
+            toml::Value::Float(x) if x.is_finite() => Ok(*x),
+            toml::Value::Integer(x) => Ok(*x as f64),
+            _ => Err(err(
+                source,
+                at,
+                format!("expected a weight (a number), got {v}"),
+            )),
+        }
+    };
+    let known = base.names.join(", ");
+    match value {
+        toml::Value::Array(list) => {
+            let names: Vec<&str> = match list.len() {
+                n if n == base.names.len() => base.names.iter().map(String::as_str).collect(),
+                4 => MOTIVATIONS.to_vec(),
+                n => {
+                    let why = format!(
+                        "{n} weights; give 4 (curiosity, homing, orientation, energy) or one per motivation of the config ({known}), or name them: {{ curiosity = 0.5, … }}"
+                    );
+                    return Err(err(source, field, why));
+                }
+            };
+            (names.iter().zip(list).enumerate())
+                .map(|(j, (n, v))| Ok((n.to_string(), weight(v, &format!("{field}[{j}]"))?)))
+                .collect()
+        }
+        toml::Value::Table(table) if !table.is_empty() => {
+            let mut point = Vec::new();
+            // In the base config's order, so that a point's name does not depend on how the
+            // sweep file lists it.
+            for name in &base.names {
+                if let Some(v) = table.get(name) {
+                    point.push((name.clone(), weight(v, &format!("{field}.{name}"))?));
+                }
+            }
+            if let Some(stray) = table.keys().find(|k| !base.names.contains(k)) {
+                let why = format!("the config has no motivation {stray:?}; it has {known}");
+                return Err(err(source, &format!("{field}.{stray}"), why));
+            }
+            Ok(point)
+        }
+        _ => Err(err(
+            source,
+            field,
+            format!(
+                "expected a list of weights [C, H, O, E] or a table {{ name = weight, … }}, got {value}"
+            ),
+        )),
+    }
 }
 
 /// Every combination of the `[sweep.grid]` values, as (key, value) lists in key order.
@@ -541,6 +603,65 @@ mod tests {
             urgency.experiment.motivations().weight_of("urgency"),
             Some(1.0)
         );
+    }
+
+    #[test]
+    fn explicit_points_name_their_motivations_or_give_one_weight_each() {
+        let sweep = five(
+            "[sweep]\nmotivations = [{ urgency = 0.3, curiosity = 0.6 }, [0.2, 0.1, 0.0, 0.0, 0.7]]\n",
+        )
+        .unwrap();
+        let settings: Vec<&str> = sweep.jobs.iter().map(|j| j.setting.as_str()).collect();
+        assert_eq!(
+            settings,
+            [
+                "curiosity=0.6,urgency=0.3",
+                "curiosity=0.2,homing=0.1,orientation=0,energy=0,urgency=0.7",
+            ]
+        );
+        let named = sweep.load_job(&sweep.jobs[0]).unwrap();
+        let m = named.experiment.motivations();
+        // Homing keeps the base config's 0.1.
+        assert_eq!(
+            (
+                m.weight_of("curiosity"),
+                m.weight_of("homing"),
+                m.weight_of("urgency")
+            ),
+            (Some(0.6), Some(0.1), Some(0.3))
+        );
+    }
+
+    #[test]
+    fn an_explicit_point_with_a_stray_name_or_count_says_what_would_be_right() {
+        let cases = [
+            (
+                "[{ hunger = 1.0 }]",
+                "sweep.motivations[0].hunger",
+                "it has curiosity, homing",
+            ),
+            ("[[0.5, 0.5]]", "sweep.motivations[0]", "2 weights; give 4"),
+            (
+                "[[0.5, 0.5, 0.0, \"x\", 0.0]]",
+                "sweep.motivations[0][3]",
+                "expected a weight",
+            ),
+            (
+                "[0.5]",
+                "sweep.motivations[0]",
+                "expected a list of weights",
+            ),
+        ];
+        for (points, field, what) in cases {
+            let Err(e) = five(&format!("[sweep]\nmotivations = {points}\n")) else {
+                panic!("{points} planned");
+            };
+            let message = e.to_string();
+            assert!(
+                message.contains(&format!("`{field}`")) && message.contains(what),
+                "{points}: {message}"
+            );
+        }
     }
 
     #[test]

@@ -1181,6 +1181,12 @@ pub const METRICS: [&str; 5] = [
 /// Prefix of the `results.csv` columns of `[sweep.grid]` keys.
 pub const GRID_PREFIX: &str = "grid.";
 
+/// Prefix of the `results.csv` columns of motivations beyond the paper's four.
+pub const MOTIVATION_PREFIX: &str = "motivation.";
+
+/// The `results.csv` column of the % of test runs whose mission was done.
+const MISSION_DONE: &str = "mission_done_pct";
+
 /// One row of `results.csv`: one room of one job.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepResultRow {
@@ -1203,13 +1209,23 @@ pub struct SweepResultRow {
     pub room: String,
     /// The room's row of the job's table, in [`METRICS`] order (six decimals).
     pub values: [Option<f64>; 5],
+    /// The weight of each motivation of [`SweepResults::motivations`] (none where the job's
+    /// config lacks it).
+    pub other_weights: Vec<Option<f64>>,
+    /// The % of test runs whose mission was done, when the job follows missions.
+    pub mission_done_pct: Option<f64>,
 }
 
 /// `results.csv`: the columns `job_id, index, setting, replicate, seed, curiosity, homing,
-/// orientation, energy` (the motivation weights), one `grid.KEY` column per swept key,
-/// `room`, then the results [`METRICS`].
+/// orientation, energy` (the motivation weights), one `motivation.NAME` column per other
+/// motivation of a job, one `grid.KEY` column per swept key, `room`, the results [`METRICS`],
+/// then `mission_done_pct` when a job follows missions.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SweepResults {
+    /// The motivations beyond the paper's four, in column order (first seen first).
+    pub motivations: Vec<String>,
+    /// Whether a job follows missions (then the `mission_done_pct` column).
+    pub missions: bool,
     /// The swept `[sweep.grid]` keys, in column order.
     pub grid: Vec<String>,
     /// One row per (job, room).
@@ -1231,9 +1247,17 @@ const RESULT_HEAD: [&str; 9] = [
 impl SweepResults {
     fn header(&self) -> Vec<String> {
         let mut h: Vec<String> = RESULT_HEAD.map(String::from).to_vec();
+        h.extend(
+            self.motivations
+                .iter()
+                .map(|k| format!("{MOTIVATION_PREFIX}{k}")),
+        );
         h.extend(self.grid.iter().map(|k| format!("{GRID_PREFIX}{k}")));
         h.push("room".into());
         h.extend(METRICS.map(String::from));
+        if self.missions {
+            h.push(MISSION_DONE.into());
+        }
         h
     }
 
@@ -1249,13 +1273,17 @@ impl SweepResults {
                 r.replicate.to_string(),
                 r.seed.to_string(),
             ];
+            let six = |v: Option<f64>| v.map_or(String::new(), |v| Fixed::<6>(v).to_string());
             cells.extend(r.motivations.as_array().map(|v| v.to_string()));
+            cells.extend(
+                (r.other_weights.iter()).map(|v| v.map_or(String::new(), |v| v.to_string())),
+            );
             cells.extend(r.grid.iter().cloned());
             cells.push(r.room.clone());
-            cells.extend(
-                r.values
-                    .map(|v| v.map_or(String::new(), |v| Fixed::<6>(v).to_string())),
-            );
+            cells.extend(r.values.map(six));
+            if self.missions {
+                cells.push(six(r.mission_done_pct));
+            }
             write_row(&mut w, cells);
         }
         csv_text(w)
@@ -1269,6 +1297,10 @@ impl SweepResults {
             .iter()
             .filter_map(|h| h.strip_prefix(GRID_PREFIX).map(String::from))
             .collect();
+        let motivations: Vec<String> = (t.headers.iter())
+            .filter_map(|h| h.strip_prefix(MOTIVATION_PREFIX).map(String::from))
+            .collect();
+        let missions = t.headers.iter().any(|h| h == MISSION_DONE);
         let rows = (0..t.rows.len())
             .map(|i| {
                 Ok(SweepResultRow {
@@ -1296,10 +1328,23 @@ impl SweepResults {
                         t.get_opt(i, METRICS[3])?,
                         t.get_opt(i, METRICS[4])?,
                     ],
+                    other_weights: (motivations.iter())
+                        .map(|k| t.get_opt(i, &format!("{MOTIVATION_PREFIX}{k}")))
+                        .collect::<Result<_, _>>()?,
+                    mission_done_pct: if missions {
+                        t.get_opt(i, MISSION_DONE)?
+                    } else {
+                        None
+                    },
                 })
             })
             .collect::<Result<_, CliError>>()?;
-        Ok(SweepResults { grid, rows })
+        Ok(SweepResults {
+            motivations,
+            missions,
+            grid,
+            rows,
+        })
     }
 }
 
