@@ -129,7 +129,7 @@ pub fn continue_runs(dir: &Path, exp: &Experiment) -> Result<Vec<Continued>, Cli
 /// then evolves the remaining generations and writes the run. `dir` is only read.
 pub fn stage_continued(dir: &Path, old: &Loaded, new: &Loaded, out: &Path) -> Result<(), CliError> {
     let continued = continue_runs(dir, &old.experiment)?;
-    let mut checkpoint = Checkpoint::fresh(&new.experiment.runs());
+    let mut checkpoint = Checkpoint::fresh(&new.experiment, &new.experiment.runs());
     for (saved, c) in checkpoint.runs.iter_mut().zip(&continued) {
         *saved = CheckpointRun {
             label: saved.label.clone(),

@@ -169,7 +169,7 @@ impl<'a> Session<'a> {
             progress.note(&cp.resume_note(out, exp.ga().generations()));
             cp
         } else {
-            Checkpoint::fresh(&runs)
+            Checkpoint::fresh(exp, &runs)
         };
         Ok(Session {
             staged,

@@ -34,8 +34,19 @@ pub struct Checkpoint {
     /// Wall time (s) of the run so far, over all sessions.
     #[serde(default)]
     pub wall_seconds: f64,
+    /// The names of the experiment's user-defined terms, in the order their values stand in
+    /// each generation record's `terms.user` (absent when it has none): a checkpoint is never
+    /// continued by an experiment whose user terms differ, so a value never moves to another
+    /// term.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub user_terms: Vec<String>,
     /// One entry per run.
     pub runs: Vec<CheckpointRun>,
+}
+
+/// The names of `exp`'s user-defined terms, in registration order.
+fn user_term_names(exp: &Experiment) -> Vec<String> {
+    exp.user_terms().iter().map(|u| u.name.clone()).collect()
 }
 
 /// One run's saved state.
@@ -104,13 +115,14 @@ impl CheckpointRun {
 }
 
 impl Checkpoint {
-    /// No generation done yet.
-    pub fn fresh(runs: &[Run]) -> Self {
+    /// No generation of `exp`'s runs done yet.
+    pub fn fresh(exp: &Experiment, runs: &[Run]) -> Self {
         Checkpoint {
             format: 1,
             version: fuzzymotiv::VERSION.to_string(),
             model: fuzzymotiv::MODEL_VERSION,
             wall_seconds: 0.0,
+            user_terms: user_term_names(exp),
             runs: runs
                 .iter()
                 .map(|r| CheckpointRun {
@@ -141,7 +153,7 @@ impl Checkpoint {
     ) -> Result<Self, CliError> {
         if !path.is_file() {
             // Killed before the first generation finished: start over.
-            return Ok(Self::fresh(runs));
+            return Ok(Self::fresh(exp, runs));
         }
         let text = std::fs::read_to_string(path).map_err(|e| io_err(path, e))?;
         let cp: Checkpoint = serde_json::from_str(&text).map_err(|e| {
@@ -158,6 +170,17 @@ impl Checkpoint {
                 path.display(),
                 cp.model,
                 fuzzymotiv::MODEL_VERSION
+            )));
+        }
+        let names = user_term_names(exp);
+        if cp.user_terms != names {
+            return Err(CliError::input(format!(
+                "{}: field `user_terms`: its generation records hold the values of the user terms \
+                 {:?}, and this experiment registers {:?}; register the same terms in the same \
+                 order to continue it, or {remedy}",
+                path.display(),
+                cp.user_terms,
+                names
             )));
         }
         let ok = cp.runs.len() == runs.len()
@@ -208,5 +231,66 @@ impl Checkpoint {
     /// Writes the checkpoint (atomically).
     pub fn save(&self, path: &Path) -> Result<(), CliError> {
         write_atomic(path, serde_json::to_vec(self).expect("serialisable"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use fuzzymotiv::experiment::UserTerm;
+
+    use super::*;
+
+    /// The paper's four and a fifth motivation weighing a term named `name` (registered as
+    /// supplied, whatever it is called).
+    fn experiment(name: &str, registered: &[&str]) -> Experiment {
+        let text = format!(
+            "[ga]\npopulation = 4\ngenerations = 2\n[aem]\nenabled = false\n[motivations]\n\
+             curiosity = 0.7\nhoming = 0.1\norientation = 0.0\nenergy = 0.0\n{name} = 0.2\n"
+        );
+        let raw = fuzzymotiv::RawConfig::parse(&text, "mine.toml", &[]).unwrap();
+        let rooms = vec![fuzzymotiv::Room::builtin("H").unwrap()];
+        let terms: Vec<UserTerm> = registered.iter().map(|n| UserTerm::supplied(*n)).collect();
+        Experiment::with_terms(&raw, rooms, &terms, "mine.toml").unwrap()
+    }
+
+    #[test]
+    fn a_checkpoint_names_its_user_terms_and_is_not_continued_with_others() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(CHECKPOINT);
+        let smooth = experiment("smooth", &["smooth", "spare"]);
+        Checkpoint::fresh(&smooth, &smooth.runs())
+            .save(&path)
+            .unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            text.contains(r#""user_terms":["smooth","spare"]"#),
+            "{text}"
+        );
+        assert!(Checkpoint::load(&path, &smooth.runs(), &smooth).is_ok());
+        // The same names in another order would move each value to the other term.
+        let swapped = experiment("smooth", &["spare", "smooth"]);
+        let Err(e) = Checkpoint::load(&path, &swapped.runs(), &swapped) else {
+            panic!("a checkpoint was continued with its user terms swapped");
+        };
+        let message = e.to_string();
+        assert!(
+            message.contains("field `user_terms`")
+                && message.contains(r#"["smooth", "spare"]"#)
+                && message.contains(r#"["spare", "smooth"]"#),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn a_paper_checkpoint_writes_no_user_terms() {
+        let raw = fuzzymotiv::RawConfig::parse("[aem]\nenabled = false\n", "paper.toml", &[]).unwrap();
+        let exp = Experiment::new(
+            &raw,
+            vec![fuzzymotiv::Room::builtin("H").unwrap()],
+            "paper.toml",
+        )
+        .unwrap();
+        let json = serde_json::to_string(&Checkpoint::fresh(&exp, &exp.runs())).unwrap();
+        assert!(!json.contains("user_terms"), "{json}");
     }
 }
