@@ -197,3 +197,46 @@ fn a_sweep_over_named_motivations_merges_their_weights_and_missions_done() {
     // Written and read by the same code: the file reads back to its own bytes.
     assert_eq!(results.to_csv(), csv);
 }
+
+#[test]
+fn the_report_shows_every_motivation_and_a_motivations_own_labels() {
+    let dir = tempfile::tempdir().unwrap();
+    let rooms = repo().join("rooms");
+    let config = format!(
+        "rooms = [\"{}\", \"{}\"]\n[aem]\nenabled = false\n[ga]\npopulation = 6\ngenerations = 2\n\
+         [trial]\nsteps = 60\n[motivations]\ncuriosity = 0.5\nhoming = 0.1\norientation = 0.0\n\
+         energy = 0.1\nhurry = {{ weight = 0.3, term = \"urgency\", peaks = [0, 0.5, 1] }}\n",
+        rooms.join("fetch-H.toml").display(),
+        rooms.join("fetch-T.toml").display(),
+    );
+    let file = dir.path().join("hurry.toml");
+    std::fs::write(&file, config).unwrap();
+    let out = dir.path().join("run");
+    ok(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let page = read(&out.join("report.html"));
+    for bar in ["<span>curiosity C</span>", "<span>hurry (urgency)</span>"] {
+        assert!(page.contains(bar), "no bar {bar}");
+    }
+    // Four inputs of five labels and hurry's three: 5⁴ · 3 rules, at most 2⁵ firing.
+    assert!(
+        page.contains("M₁ × … × M_N = 5 × 5 × 5 × 5 × 3 = 1875 rules")
+            && page.contains("at most 2^5 = 32 rules fire at once"),
+        "the rule text does not follow the five inputs"
+    );
+    assert!(
+        page.contains(">Membership of hurry&#39;s input (urgency) in its own labels</text>")
+            || page.contains(">Membership of hurry's input (urgency) in its own labels</text>")
+    );
+    assert!(
+        page.contains("<th>urgency</th>"),
+        "no urgency column in the table of F"
+    );
+    assert!(page.contains(
+        "motivations curiosity = 0.5, homing = 0.1, orientation = 0, energy = 0.1, hurry = 0.3"
+    ));
+}

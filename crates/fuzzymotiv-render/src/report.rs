@@ -14,12 +14,12 @@ use serde_json::{Value, json};
 
 use crate::plot::{colour, esc};
 use crate::study::Setting;
-use crate::svg::{
-    SomRoom, best_paths_svg, fitness_svg, membership_svg, som_svg, terms_svg_with, trajectories_svg,
-};
-use crate::terms::{NAMES, html, terms};
+use crate::svg::{SomRoom, best_paths_svg, fitness_svg, som_svg, terms_svg_with, trajectories_svg};
+use crate::terms::NAMES;
 use fuzzymotiv_records::records::context::RenderContext;
-use fuzzymotiv_records::records::{Finished, RoomFuzzy, RoomRow};
+use fuzzymotiv_records::records::{Finished, RoomRow};
+
+mod fuzzy;
 
 const CSS: &str = include_str!("report/report.css");
 const SCRIPT: &str = include_str!("report/replay.js");
@@ -365,19 +365,27 @@ pub fn replay_page(
     page.finish()
 }
 
-/// The motivations as "(C, H, O, E)" numbers.
+/// The motivations as "(C, H, O, E)" numbers, or "(name = weight, …)" for others.
 pub fn xs(ctx: &RenderContext) -> String {
     let m = &ctx.motivations;
-    format!(
-        "({}, {}, {}, {})",
-        m.curiosity, m.homing, m.orientation, m.energy
-    )
+    if m.table.is_empty() {
+        format!(
+            "({}, {}, {}, {})",
+            m.curiosity, m.homing, m.orientation, m.energy
+        )
+    } else {
+        format!("({})", m.label())
+    }
 }
 
 fn setting_line(ctx: &RenderContext) -> String {
+    let motivations = if ctx.motivations.table.is_empty() {
+        format!("(C, H, O, E) = {}", xs(ctx))
+    } else {
+        ctx.motivations.label()
+    };
     format!(
-        "motivations (C, H, O, E) = {} · rooms {} · {} · population {} × {} generations · {} steps per trial",
-        xs(ctx),
+        "motivations {motivations} · rooms {} · {} · population {} × {} generations · {} steps per trial",
         ctx.room_names().join(", "),
         match ctx.training {
             Training::AllRooms => "one robot evolved in all rooms",
@@ -472,7 +480,7 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
         "fuzzy",
         "Fuzzy fitness of the best robot",
     );
-    fuzzy_part(page, s);
+    fuzzy::fuzzy_part(page, s);
 
     // Paths and replay.
     heading(page, level, s.id, "paths", "Paths and replay");
@@ -567,86 +575,6 @@ fn paths_part(page: &mut Page, s: &Section<'_>) {
         })
         .collect();
     page.replay(ctx, rooms);
-}
-
-/// The motivations as bars, the terms and how F is computed, the membership functions.
-fn fuzzy_intro(page: &mut Page, ctx: &RenderContext) {
-    let m = &ctx.motivations;
-    page.push("<p>The robot's <b>motivations</b> X weight the four fitness terms Y it is measured on:</p>\n<div class=\"bars\">\n");
-    for (name, v, colour) in [
-        ("curiosity C", m.curiosity, "#2ca02c"),
-        ("homing H", m.homing, "#9467bd"),
-        ("orientation O", m.orientation, "#8c564b"),
-        ("energy E", m.energy, "#ff7f0e"),
-    ] {
-        let _ = writeln!(
-            page.body,
-            "<span>{name}</span><div class=\"bar\"><span style=\"width:{:.1}%;background:{colour}\"></span></div><span>{v}</span>",
-            100.0 * v
-        );
-    }
-    // The terms as this run's homing, motion and energy modes define them (docs/model.md §7).
-    page.push("</div>\n<dl class=\"terms\">");
-    for t in terms(ctx.homing, ctx.motion, ctx.energy) {
-        let _ = write!(
-            page.body,
-            "<dt>{}</dt><dd><b>{}</b>: {}</dd>",
-            t.symbol,
-            esc(t.title),
-            html(&t.definition.join(" "))
-        );
-    }
-    let fuzzy = &ctx.fuzzy;
-    let labels = fuzzy.label_names.len();
-    let _ = writeln!(
-        page.body,
-        "</dl>\
-<p><b>How F is computed.</b> Each term y is described by fuzzy labels, very low (V.L.) to very high (V.H.) by default, with the membership functions below. A rule takes one label per term, e.g. \"if a is H and g is L and l is V.L. and b is H\"; with {labels} labels there are {labels}⁴ = {rules} rules. A rule fires with strength w = the smallest membership of its four labels, and proposes f = C·a·c(label of a) + H·g·c(label of g) + O·l·c(label of l) + E·b·c(label of b), where c = {:?} rises with the label. The fitness is the weighted mean <b>F = Σ w·f / Σ w</b>; since every value lies between two label peaks, at most 16 rules fire at once.</p>",
-        fuzzy.coefficients,
-        rules = fuzzy.rule_count,
-    );
-    figure(
-        page,
-        &membership_svg(&fuzzy.peaks, &fuzzy.label_names),
-        "Triangular membership functions: each value belongs to at most two neighbouring labels, and its memberships add up to 1.",
-    );
-}
-
-fn fuzzy_part(page: &mut Page, s: &Section<'_>) {
-    fuzzy_intro(page, s.ctx);
-    page.push(
-        "<p>The best robot of the last generation, as the GA evaluated it (one trial per room, \
-         with noise). F is its fitness in that room; the robot's overall fitness is the mean F over \
-         its rooms. Open a row's rules to see how F came about.</p>\n",
-    );
-    page.push("<table><tr><th>room</th><th>a</th><th>g</th><th>l</th><th>b</th><th>F</th><th class=\"left\">firing rules</th></tr>\n");
-    for room in &s.done.fuzzy {
-        let t = room.terms;
-        let rules = rules_html(s.ctx, room);
-        let _ = writeln!(
-            page.body,
-            "<tr><td>{}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td><td><b>{:.4}</b></td><td class=\"left\"><details><summary>{} rules</summary>{rules}</details></td></tr>",
-            esc(&room.room),
-            t.a,
-            t.g,
-            t.l,
-            t.b,
-            room.f,
-            room.explanation.rules.len()
-        );
-    }
-    page.push("</table>\n");
-    for evo in &s.done.outcome.evolutions {
-        let e = &evo.evaluations[evo.best];
-        let _ = writeln!(
-            page.body,
-            "<p class=\"note\">Best robot of run “{}”: individual {} of generation {}, fitness (mean F over its rooms) = {:.4}.</p>",
-            esc(&evo.run.label),
-            evo.best,
-            evo.history.len().saturating_sub(1),
-            e.fitness
-        );
-    }
 }
 
 fn aem_part(page: &mut Page, s: &Section<'_>, names: &[String]) {
@@ -785,45 +713,4 @@ fn files_list() -> String {
     }
     s.push_str("</ul>\n");
     s
-}
-
-/// One room's firing rules as an HTML table, with the sums that give F.
-fn rules_html(ctx: &RenderContext, room: &RoomFuzzy) -> String {
-    let (ex, y) = (&room.explanation, &room.inputs);
-    let mut rules = String::from(
-        "<table><tr><th>rule</th><th class=\"left\">if …</th><th>w</th><th>f</th><th>w·f</th></tr>",
-    );
-    let mut sum_wf = 0.0;
-    for rule in &ex.rules {
-        let cond = ex
-            .inputs
-            .iter()
-            .zip(&rule.label_names)
-            .map(|(i, n)| format!("{i} is {n}"))
-            .collect::<Vec<_>>()
-            .join(" and ");
-        sum_wf += rule.weight * rule.output;
-        let _ = write!(
-            rules,
-            "<tr><td>{}</td><td class=\"rule-if\">{}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td></tr>",
-            rule.number,
-            esc(&cond),
-            rule.weight,
-            rule.output,
-            rule.weight * rule.output
-        );
-    }
-    let _ = write!(
-        rules,
-        "<tr><th colspan=\"2\" class=\"left\">Σ</th><th>{:.4}</th><th></th><th>{sum_wf:.4}</th></tr></table><p class=\"note\">F = Σ w·f / Σ w = {sum_wf:.4} / {:.4} = {:.4}; inputs Y = ({:.3}, {:.3}, {:.3}, {:.3}), motivations X = {}.</p>",
-        ex.weight_sum,
-        ex.weight_sum,
-        ex.fitness,
-        y[0],
-        y[1],
-        y[2],
-        y[3],
-        xs(ctx)
-    );
-    rules
 }

@@ -724,6 +724,16 @@ pub fn terms_svg_with(
 
 /// The triangular membership functions μ(y) of the fuzzy labels (V.L. … V.H. by default).
 pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
+    membership_svg_of(
+        peaks,
+        names,
+        "Membership of a fitness value y in each label",
+        "fitness value y (a, g, l or b)",
+    )
+}
+
+/// [`membership_svg`] with its own title and x-axis label (a motivation's own labels).
+pub fn membership_svg_of(peaks: &[f64], names: &[String], title: &str, x_label: &str) -> String {
     let (w, h) = (420.0, 214.0);
     let (x0, x1, y0, y1) = (50.0, w - 15.0, h - 49.0, 48.0);
     let (lo, hi) = (
@@ -736,8 +746,9 @@ pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
     let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
     let _ = writeln!(
         s,
-        r#"<text x="{}" y="16" text-anchor="middle" font-weight="bold">Membership of a fitness value y in each label</text>"#,
-        (x0 + x1) / 2.0
+        r#"<text x="{}" y="16" text-anchor="middle" font-weight="bold">{}</text>"#,
+        (x0 + x1) / 2.0,
+        esc(title)
     );
     let _ = writeln!(
         s,
@@ -766,13 +777,7 @@ pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
             xx = x(v)
         );
     }
-    axis_labels(
-        &mut s,
-        (x0, x1, y0, y1),
-        h - 8.0,
-        "fitness value y (a, g, l or b)",
-        "μ(y)",
-    );
+    axis_labels(&mut s, (x0, x1, y0, y1), h - 8.0, x_label, "μ(y)");
     membership_triangles(&mut s, peaks, names, (lo, hi), &x, &y);
     s.push_str("</svg>\n");
     s

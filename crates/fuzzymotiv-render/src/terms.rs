@@ -101,6 +101,24 @@ pub fn terms(homing: Homing, motion: Motion, energy: EnergyMode) -> [Term; 4] {
     })
 }
 
+/// The definition of a mission term (docs/model.md §7) in one sentence, by name; `None` for
+/// another name.
+pub fn mission_term_definition(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "goal" => {
+            "1 once the robot's centre has been in the room's goal zone, else 1 − (closest approach to the zone) / (the room's largest distance)."
+        }
+        "urgency" => {
+            "1 − t_done / T, with t_done the step at which the mission (waypoints, then the goal) is done; 0 if it is never done."
+        }
+        "waypoints" => {
+            "the fraction of the room's waypoints visited (in order by default, `fitness.waypoints = \"any-order\"` otherwise)."
+        }
+        "safety" => "1 − the share of executed steps whose move was blocked by a wall.",
+        _ => return None,
+    })
+}
+
 /// A sentence as HTML: escaped, `code` in backticks as `<code>`.
 pub fn html(text: &str) -> String {
     esc(text)

@@ -283,7 +283,8 @@ mod tests {
 
     #[test]
     fn a_paper_checkpoint_writes_no_user_terms() {
-        let raw = fuzzymotiv::RawConfig::parse("[aem]\nenabled = false\n", "paper.toml", &[]).unwrap();
+        let raw =
+            fuzzymotiv::RawConfig::parse("[aem]\nenabled = false\n", "paper.toml", &[]).unwrap();
         let exp = Experiment::new(
             &raw,
             vec![fuzzymotiv::Room::builtin("H").unwrap()],

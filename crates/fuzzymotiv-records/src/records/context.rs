@@ -62,8 +62,54 @@ pub struct FuzzySetting {
     pub coefficients: Vec<f64>,
     /// The label names, lowest first.
     pub label_names: Vec<String>,
-    /// Number of rules (labels⁴).
+    /// Number of rules (Π M_i: labels⁴ for the paper's four).
     pub rule_count: usize,
+    /// The motivations with labels of their own, in input order (none for the paper's model).
+    pub own_labels: Vec<OwnLabels>,
+}
+
+/// A motivation's own labels (`peaks`, `coefficients` in its `[motivations]` table).
+#[derive(Debug, Clone, PartialEq)]
+pub struct OwnLabels {
+    /// The motivation's name.
+    pub motivation: String,
+    /// The term it weighs.
+    pub term: String,
+    /// Its label peaks.
+    pub peaks: Vec<f64>,
+    /// Its coefficients, one per label.
+    pub coefficients: Vec<f64>,
+    /// Its label names, lowest first.
+    pub label_names: Vec<String>,
+}
+
+impl FuzzySetting {
+    /// The rule base of `tsk` over the motivations `m`.
+    fn of(tsk: &fuzzymotiv::fitness::TskFitness, m: &fuzzymotiv::fitness::Motivations) -> Self {
+        FuzzySetting {
+            peaks: tsk.peaks().to_vec(),
+            coefficients: tsk.coefficients().to_vec(),
+            label_names: label_names(tsk.labels()),
+            rule_count: tsk.rule_count(m),
+            own_labels: (m.iter())
+                .filter_map(|x| {
+                    let own = x.labels()?;
+                    Some(OwnLabels {
+                        motivation: x.name().to_string(),
+                        term: x.term().to_string(),
+                        peaks: own.peaks().to_vec(),
+                        coefficients: own.coefficients().to_vec(),
+                        label_names: label_names(own.labels()),
+                    })
+                })
+                .collect(),
+        }
+    }
+}
+
+/// The names of `m` labels, lowest first.
+fn label_names(m: usize) -> Vec<String> {
+    (0..m).map(|k| label_name(k, m)).collect()
 }
 
 /// Room recognition's sizes (docs/model.md §9).
@@ -95,14 +141,7 @@ impl RenderContext {
             robot_radius: trial.robot().radius(),
             dt: trial.dt(),
             motivations: MotivationsRecord::of(exp.motivations()),
-            fuzzy: FuzzySetting {
-                peaks: tsk.peaks().to_vec(),
-                coefficients: tsk.coefficients().to_vec(),
-                label_names: (0..tsk.labels())
-                    .map(|k| label_name(k, tsk.labels()))
-                    .collect(),
-                rule_count: tsk.rule_count(exp.motivations()),
-            },
+            fuzzy: FuzzySetting::of(tsk, exp.motivations()),
             energy: exp.energy(),
             homing: exp.homing(),
             motion: trial.robot().motion(),
