@@ -141,7 +141,7 @@ impl Setting {
             Some(r) => r.clone(),
             None => loaded.experiment.room_names()[0].clone(),
         };
-        single_room(&loaded, &room)
+        single_room(&loaded, &room, &[])
     }
 }
 
