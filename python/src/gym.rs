@@ -91,8 +91,8 @@ impl GymCore {
     fn fresh(&self, room: usize, base: u64, chooser: Rng64) -> Env {
         let s = &self.slots[room];
         let steps = s.exp.trial_params().steps();
-        let trajectory = (!self.user.is_empty())
-            .then(|| Trajectory::starting_at(s.arena.room().home, steps));
+        let trajectory =
+            (!self.user.is_empty()).then(|| Trajectory::starting_at(s.arena.room().home, steps));
         Env {
             room,
             episode: s.exp.episode(s.arena.clone(), base, &s.run, 0),
@@ -144,7 +144,10 @@ impl GymCore {
         if let Some(trajectory) = &mut env.trajectory {
             trajectory.observe(&step);
             if over {
-                env.episode.run().rest().for_each(|idle| trajectory.observe(&idle));
+                env.episode
+                    .run()
+                    .rest()
+                    .for_each(|idle| trajectory.observe(&idle));
             }
         }
         let home = env.episode.run().ended_at_home();
@@ -204,7 +207,9 @@ impl GymCore {
 }
 
 /// The keys of a step's `info` (a supplied term may not take one's name).
-const INFO_KEYS: [&str; 10] = ["a", "g", "l", "b", "x", "y", "heading", "t", "room", "action"];
+const INFO_KEYS: [&str; 10] = [
+    "a", "g", "l", "b", "x", "y", "heading", "t", "room", "action",
+];
 
 /// Terms Python supplies (`terms=`): with their function, for the reward at the end, and named
 /// apart from `info`'s keys.
@@ -220,7 +225,10 @@ fn check_gym_terms(terms: &[String], reward: Reward, supplied: bool) -> PyResult
             "reward: \"per-step\" cannot be used with terms= (a term of your own is a value of the whole trial, computed once at the episode's end); use reward=\"end\"",
         ));
     }
-    if let Some(t) = terms.iter().find(|t| INFO_KEYS.contains(&t.as_str()) || t.starts_with('_')) {
+    if let Some(t) = terms
+        .iter()
+        .find(|t| INFO_KEYS.contains(&t.as_str()) || t.starts_with('_'))
+    {
         return Err(input_err(format!(
             "terms[{t:?}]: the env reports each term of your own in `info` by its name, and {t:?} is taken (info has {INFO_KEYS:?} and their `_name` masks); name the term otherwise"
         )));

@@ -4,9 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
+use fuzzymotiv::experiment::RoomScore;
 use fuzzymotiv::experiment::UserTerm;
 use fuzzymotiv::experiment::{Evaluation, Experiment, RawConfig, RoomFile, RoomFiles, Setup};
-use fuzzymotiv::experiment::RoomScore;
 use fuzzymotiv::fitness::{FitnessTerms, LIBRARY_TERMS, TermId, UserValues};
 use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv_io::files::error::CliError;
@@ -227,7 +227,10 @@ pub(crate) fn supplied_values(
 /// One finished trial in the one room of `exp` (an experiment of [`crate::gym::single_room`]):
 /// its terms and its whole trajectory (`T` steps, the idle rest after an end at home included),
 /// as [`supply_trials`] takes it.
-pub(crate) fn one_trial(terms: FitnessTerms, trajectory: Trajectory) -> (Evaluation, Vec<Trajectory>) {
+pub(crate) fn one_trial(
+    terms: FitnessTerms,
+    trajectory: Trajectory,
+) -> (Evaluation, Vec<Trajectory>) {
     let executed = trajectory.idle.iter().filter(|&&idle| !idle).count();
     let score = RoomScore {
         f: 0.0,
