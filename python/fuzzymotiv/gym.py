@@ -257,7 +257,7 @@ class KheperaEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
             raise ResetNeeded("render: no episode yet; call reset() first")
         path, text, sets = self._source
         room = self._room_args[self._room] if len(self._room_args) > 1 else self._room_args[0]
-        return _native.last_frame(self.trajectory(), room, self.size, path, text, sets)
+        return _native.last_frame(self.trajectory(), room, self.size, path, text, sets, self._user)
 
 
 def _check_seed(seed: Any) -> None:

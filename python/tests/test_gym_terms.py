@@ -194,6 +194,20 @@ def test_a_bad_term_raises_naming_it_and_the_env_needs_a_reset(returned, says):
         assert np.all(np.asarray(rewards[-1]) == 0.0625)
 
 
+def test_render_draws_an_env_whose_config_weighs_a_term_of_your_own():
+    """render() loads the env's config with its terms (the motivation weighing one is known)."""
+    if not hasattr(fm, "frames"):
+        pytest.skip("fm.frames lands from the frames branch")
+    env = fmgym.KheperaEnv("H", config_text=one_term("mine"), terms={"mine": constant(0.5)},
+                           render_mode="rgb_array", size=96)
+    env.reset(seed=0)
+    for _ in range(5):
+        env.step(np.array([0.9, 0.4], dtype=np.float32))
+    frame = env.render()
+    expected = fm.frames(env.trajectory(), "H", size=96, config_text=SHORT)[-1]
+    assert frame.shape == (96, 96, 3) and np.array_equal(frame, expected)
+
+
 def test_simulate_takes_terms_as_problem_does():
     """fm.simulate(terms=...): the term called once with the trial as (1, 1), its value by name
     in the result and in F; the same checks as fm.Problem's."""
