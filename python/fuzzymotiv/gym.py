@@ -27,6 +27,19 @@ at home (``trial.end_at_home``), ``truncated`` at ``T`` = ``trial.steps``. ``inf
 terms so far ``a``, ``g``, ``l``, ``b``, the pose ``x``, ``y`` (mm), ``heading`` (rad), the
 step count ``t``, the ``room`` and the executed ``action``.
 
+Terms of your own (``terms={"name": fn}``, as :class:`fuzzymotiv.Problem` takes them; a
+config's motivation may weigh them): at an episode's last step ``fn`` is called once with the
+finished trial as a :class:`fuzzymotiv.Trials` of shape ``(1, 1)`` (arrays ``(1, 1, T + 1)``,
+the idle rest after an end at home included, as ``fm.Problem`` gives a trial), its value goes
+into F with the library's terms — the reward is then ``fm.simulate(genome, room, seed,
+terms=...)["F"]``, bit for bit — and ``info[name]`` holds it (at the last step only; the vector
+env's ``info[name]`` is NaN, ``info["_name"]`` False, for the envs whose episode did not end,
+and its term functions are called once per room with the episodes that ended at a step). Values
+are checked as ``fm.Problem`` checks them: out of [0, 1], NaN, the wrong shape, or an exception
+raise :class:`FuzzymotivError` naming the term, and the env then needs ``reset()`` (a step
+raises :class:`ResetNeeded`). ``reward="per-step"`` is refused with terms of your own: a term
+is a value of the whole trial (what ``fm.Problem`` gives it), not defined for the trial so far.
+
 :class:`KheperaVectorEnv` steps all its environments in Rust in one call. It follows
 Gymnasium 1.x's **next-step autoreset** (``metadata["autoreset_mode"] ==
 AutoresetMode.NEXT_STEP``): the step after an env's episode ended resets that env (a new room
@@ -37,7 +50,7 @@ observation with reward 0 and ``terminated = truncated = False``.
 from __future__ import annotations
 
 import os
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import gymnasium as gym
 import numpy as np
@@ -49,6 +62,7 @@ from gymnasium.vector.utils import batch_space
 from ._checks import FloatArray, _real_array
 from ._fuzzymotiv import FuzzymotivError, ResetNeeded
 from .config import _config_args, _sets
+from .trials import TermFunction, _supplier, _term_names
 from . import _fuzzymotiv as _native
 
 ACTIONS = ("straight", "left30", "right30", "turn180")
@@ -81,10 +95,22 @@ def _dtype(dtype: Any) -> "np.dtype[Any]":
     return d
 
 
-def _core(room: Any, num_envs: int, source: Source, reward: str, dtype: "np.dtype[Any]") -> Any:
-    """The native core of ``num_envs`` envs; ``source`` is (config path, config text, sets)."""
+Terms = Optional[Mapping[str, TermFunction]]
+"""Terms of your own (``terms={"name": fn}``), as :class:`fuzzymotiv.Problem` takes them."""
+
+
+def _core(
+    room: Any, num_envs: int, source: Source, reward: str, dtype: "np.dtype[Any]", terms: Terms
+) -> Any:
+    """The native core of ``num_envs`` envs; ``source`` is (config path, config text, sets);
+    ``terms`` the terms of your own (their names, and the function that supplies their values
+    for a batch of finished trials, as :class:`fuzzymotiv.Problem` has it)."""
     path, text, sets = source
-    return _native.GymCore(_rooms(room), num_envs, path, text, sets, reward, dtype == np.float64)
+    names = [] if terms is None else _term_names(terms)
+    supply = _supplier(dict(terms)) if terms is not None and names else None
+    return _native.GymCore(
+        _rooms(room), num_envs, path, text, sets, reward, dtype == np.float64, names, supply
+    )
 
 
 def _spaces(dtype: "np.dtype[Any]", discrete: bool) -> Tuple["spaces.Space[Any]", "spaces.Space[Any]"]:
@@ -135,6 +161,7 @@ class KheperaEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
         discrete: bool = False,
         render_mode: Optional[str] = None,
         size: int = 256,
+        terms: Terms = None,
     ) -> None:
         if render_mode not in (None, "rgb_array"):
             raise FuzzymotivError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
@@ -142,7 +169,8 @@ class KheperaEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
         self._room_args = _rooms(room)
         # The config as the native code takes it, kept for render() (same robot, same rooms).
         self._source = (*_config_args(config, config_text), _sets(overrides))
-        self._core = _core(self._room_args, 1, self._source, reward, self._dtype)
+        self._core = _core(self._room_args, 1, self._source, reward, self._dtype, terms)
+        self._user: List[str] = [] if terms is None else list(terms)
         self.observation_space, self.action_space = _spaces(self._dtype, discrete)
         self.rooms: List[str] = list(self._core.room_names)
         self.max_steps: int = self._core.max_steps
@@ -193,6 +221,9 @@ class KheperaEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
         action = int(native["action"][0])
         if action >= 0:
             info["action"] = ACTIONS[action]
+        for name in self._user:
+            if native[f"_{name}"][0]:
+                info[name] = float(native[name][0])
         return info
 
     def _record(self, seen: Obs, info: Dict[str, Any]) -> None:
@@ -226,7 +257,7 @@ class KheperaEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
             raise ResetNeeded("render: no episode yet; call reset() first")
         path, text, sets = self._source
         room = self._room_args[self._room] if len(self._room_args) > 1 else self._room_args[0]
-        return _native.last_frame(self.trajectory(), room, self.size, path, text, sets)
+        return _native.last_frame(self.trajectory(), room, self.size, path, text, sets, self._user)
 
 
 def _check_seed(seed: Any) -> None:
@@ -280,13 +311,14 @@ class KheperaVectorEnv(VectorEnv[npt.NDArray[np.floating[Any]], npt.NDArray[Any]
         reward: str = "end",
         dtype: Any = np.float32,
         discrete: bool = False,
+        terms: Terms = None,
     ) -> None:
         if not isinstance(num_envs, (int, np.integer)) or isinstance(num_envs, bool) or num_envs < 1:
             raise FuzzymotivError(f"num_envs: expected a whole number >= 1, got {num_envs!r}")
         self.num_envs = int(num_envs)
         self._dtype = _dtype(dtype)
         source = (*_config_args(config, config_text), _sets(overrides))
-        self._core = _core(room, self.num_envs, source, reward, self._dtype)
+        self._core = _core(room, self.num_envs, source, reward, self._dtype, terms)
         self._discrete = discrete
         self.single_observation_space, self.single_action_space = _spaces(self._dtype, discrete)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)

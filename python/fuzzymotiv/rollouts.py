@@ -12,6 +12,7 @@ from . import _fuzzymotiv as _native
 from ._checks import FloatArray, _float_array, _real_array, _whole
 from ._fuzzymotiv import FuzzymotivError
 from .config import Config, Overrides, _config_args, _sets
+from .trials import TermFunction, _supplier, _term_names
 
 __all__ = ["Home", "HomeZone", "RoomInfo", "Trajectory", "frames", "load_room", "rooms",
            "save_gif", "simulate"]
@@ -99,6 +100,7 @@ def simulate(
     overrides: Overrides = None,
     *,
     config_text: Optional[str] = None,
+    terms: Optional[Mapping[str, TermFunction]] = None,
 ) -> Trajectory:
     """Run ``genome`` (the network's weights) for one trial from home in ``room`` (a room of the
     config, a built-in room or a room file) under base seed ``seed`` — exactly the trial of
@@ -112,13 +114,22 @@ def simulate(
     ``F`` under the config's motivations. ``seed`` is a whole number from 0 to 2^53 − 1; NaN
     or infinite weights raise :class:`FuzzymotivError`.
 
+    ``terms={"name": fn}`` supplies terms of your own as :class:`fuzzymotiv.Problem` takes them
+    (a config's motivation may weigh them): ``fn`` is called once with the trial as a
+    :class:`fuzzymotiv.Trials` of shape ``(1, 1)``; its value is in the result by name and
+    sets ``F``.
+
     >>> tr = simulate(np.zeros(68), "H", seed=3, overrides={"trial.steps": 20})
     >>> tr["x"].shape, tr["sensors"].shape, str(tr["action"][0])
     ((21,), (20, 8), 'straight')
     """
     path, text = _config_args(config, config_text)
     weights = _real_array("genome", genome, "a vector of weights").ravel().tolist()
-    trajectory = _native.simulate(weights, os.fspath(room), seed, path, text, _sets(overrides))
+    names = [] if terms is None else _term_names(terms)
+    supply = _supplier(dict(terms)) if terms is not None and names else None
+    trajectory = _native.simulate(
+        weights, os.fspath(room), seed, path, text, _sets(overrides), names, supply
+    )
     return cast(Trajectory, trajectory)
 
 

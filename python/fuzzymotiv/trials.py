@@ -102,6 +102,15 @@ def _values(name: str, value: Any, shape: tuple[int, int]) -> npt.NDArray[np.flo
     return v
 
 
+def _called(name: str, fn: TermFunction, trials: Trials) -> Any:
+    """``fn(trials)``; an exception it raises becomes :class:`FuzzymotivError` naming the term
+    (the original chained as its cause)."""
+    try:
+        return fn(trials)
+    except Exception as e:
+        raise FuzzymotivError(f"terms[{name!r}]: the function raised {type(e).__name__}: {e}") from e
+
+
 def _supplier(terms: Mapping[str, TermFunction]) -> Callable[[Dict[str, Any]], npt.NDArray[np.float64]]:
     """The native evaluation's callback: the trials made into :class:`Trials`, each term
     function called once, their checked values stacked ``(pop, rooms, terms)``."""
@@ -109,7 +118,7 @@ def _supplier(terms: Mapping[str, TermFunction]) -> Callable[[Dict[str, Any]], n
     def supply(native: Dict[str, Any]) -> npt.NDArray[np.float64]:
         trials = Trials(**native)
         shape = trials.shape
-        values = [_values(name, fn(trials), shape) for name, fn in terms.items()]
+        values = [_values(name, _called(name, fn, trials), shape) for name, fn in terms.items()]
         return np.ascontiguousarray(np.stack(values, axis=-1))
 
     return supply

@@ -22,7 +22,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::gym::single_room;
-use crate::{config_err, finite, input_err, instance_of, load, seed_arg};
+use crate::terms::load_with_terms;
+use crate::{config_err, finite, input_err, instance_of, seed_arg};
 
 /// The columns of a trajectory dict, as the Python layer hands them over (float64 arrays, a
 /// list of action labels, a list of booleans).
@@ -111,6 +112,9 @@ pub(crate) struct Setting {
     sets: Vec<String>,
     room: Option<String>,
     seed: Option<u64>,
+    /// The names of terms Python supplies, which the config's motivations may weigh (the
+    /// Gymnasium env's `terms=`; nothing is computed from them here).
+    terms: Vec<String>,
 }
 
 impl Setting {
@@ -128,6 +132,7 @@ impl Setting {
             sets,
             room,
             seed: seed.map(|s| seed_arg(&s)).transpose()?,
+            terms: Vec::new(),
         })
     }
 
@@ -135,13 +140,14 @@ impl Setting {
     /// first), and, as `replay` and `fm.simulate`, no recognition or online orientation.
     fn experiment(&self) -> PyResult<Experiment> {
         let path = self.config_path.as_deref();
+        let (text, sets) = (self.config_text.as_deref(), &self.sets);
         let loaded =
-            load(path, self.config_text.as_deref(), &self.sets, self.seed).map_err(config_err)?;
+            load_with_terms(path, text, sets, self.seed, &self.terms).map_err(config_err)?;
         let room = match &self.room {
             Some(r) => r.clone(),
             None => loaded.experiment.room_names()[0].clone(),
         };
-        single_room(&loaded, &room)
+        single_room(&loaded, &room, &self.terms)
     }
 }
 
@@ -220,7 +226,8 @@ pub(crate) fn frames<'py>(
 /// The `(H, W, 3)` uint8 frame of a trajectory dict's last pose, drawn alone (the Gymnasium
 /// env's `render()`: one frame per call, with the env's config and overrides).
 #[pyfunction]
-#[pyo3(signature = (source, room=None, size=320, config_path=None, config_text=None, sets=Vec::new()))]
+#[pyo3(signature = (source, room=None, size=320, config_path=None, config_text=None, sets=Vec::new(), terms=Vec::new()))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn last_frame<'py>(
     py: Python<'py>,
     source: &Bound<'py, PyDict>,
@@ -229,8 +236,10 @@ pub(crate) fn last_frame<'py>(
     config_path: Option<PathBuf>,
     config_text: Option<String>,
     sets: Vec<String>,
+    terms: Vec<String>,
 ) -> PyResult<Bound<'py, PyArray3<u8>>> {
-    let setting = Setting::of_args(room, None, config_path, config_text, sets)?;
+    let mut setting = Setting::of_args(room, None, config_path, config_text, sets)?;
+    setting.terms = terms;
     let f = draw(
         py,
         source.as_any(),

@@ -17,24 +17,27 @@ use fuzzymotiv::random::{Rng, Rng64, index, rng_from_seed};
 use fuzzymotiv::simulation::Action;
 use fuzzymotiv::simulation::Arena;
 use fuzzymotiv::simulation::{Controller, INPUTS, Mlp};
-use fuzzymotiv_io::files::inputs::{Loaded, resolve, room_entry};
+use fuzzymotiv::simulation::{StepObserver, Trajectory};
+use fuzzymotiv_io::files::inputs::{Loaded, room_entry};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
-use crate::{config_err, input_err, load};
+use crate::terms::{load_with_terms, one_trial, resolve_with_terms, supply_trials};
+use crate::{ResetNeeded, config_err, input_err};
 
 /// The experiment of one trial in `room` (a room of the config, a built-in room or a room
 /// file), as `fuzzymotiv replay --room ROOM` and `fm.simulate` build it: that room only, and
-/// neither recognition nor online orientation (they change no trajectory).
-pub(crate) fn single_room(loaded: &Loaded, room: &str) -> PyResult<Experiment> {
+/// neither recognition nor online orientation (they change no trajectory). `user`: the names
+/// of the terms Python supplies (`terms=`).
+pub(crate) fn single_room(loaded: &Loaded, room: &str, user: &[String]) -> PyResult<Experiment> {
     let entry = room_entry("room", room, loaded).map_err(config_err)?;
     let mut raw = loaded.raw.clone();
     raw.rooms = vec![entry];
     raw.aem.enabled = false;
     raw.fitness.orientation = OrientationMode::Offline;
-    Ok(resolve(raw, Path::new("."), "(simulate)")
+    Ok(resolve_with_terms(raw, Path::new("."), "(simulate)", user)
         .map_err(config_err)?
         .experiment)
 }
@@ -55,6 +58,8 @@ struct Env {
     ended: bool,
     /// F of the terms after the last step (per-step reward).
     last_f: f64,
+    /// The trial so far, recorded when Python supplies terms (they are computed from it).
+    trajectory: Option<Trajectory>,
 }
 
 /// What the reward is: F at the end, or the change of F of the terms so far.
@@ -71,23 +76,39 @@ pub struct GymCore {
     envs: Vec<Env>,
     reward: Reward,
     float64: bool,
+    /// The names of the terms Python supplies (`terms=`), and the function that computes
+    /// their values from a batch of finished trials (`fuzzymotiv.trials._supplier`).
+    user: Vec<String>,
+    supply: Option<Py<PyAny>>,
+    /// Set when supplying the terms at an episode's end failed: steps are refused until a
+    /// reset (that step's results were lost).
+    needs_reset: bool,
 }
 
 impl GymCore {
-    /// A trial in slot `room` under base seed `base`.
-    fn episode(&self, room: usize, base: u64) -> Episode<Arc<Arena>, Rng64> {
+    /// An env at the start of a trial in slot `room` under base seed `base`; its later
+    /// autoresets draw from `chooser`.
+    fn fresh(&self, room: usize, base: u64, chooser: Rng64) -> Env {
         let s = &self.slots[room];
-        s.exp.episode(s.arena.clone(), base, &s.run, 0)
+        let steps = s.exp.trial_params().steps();
+        let trajectory =
+            (!self.user.is_empty()).then(|| Trajectory::starting_at(s.arena.room().home, steps));
+        Env {
+            room,
+            episode: s.exp.episode(s.arena.clone(), base, &s.run, 0),
+            chooser,
+            ended: false,
+            last_f: 0.0,
+            trajectory,
+        }
     }
 
     /// Env `i`'s next episode, its room and base seed drawn from its chooser (autoreset).
     fn autoreset(&mut self, i: usize) {
-        let chooser = &mut self.envs[i].chooser;
-        let room = index(chooser, self.slots.len());
+        let mut chooser = self.envs[i].chooser.clone();
+        let room = index(&mut chooser, self.slots.len());
         let base = chooser.next_u64() & JSON_EXACT;
-        let episode = self.episode(room, base);
-        let env = &mut self.envs[i];
-        (env.room, env.episode, env.ended, env.last_f) = (room, episode, false, 0.0);
+        self.envs[i] = self.fresh(room, base, chooser);
     }
 
     /// Observations as a `(N, 8)` array of IR / 1023 in the env's dtype.
@@ -120,6 +141,15 @@ impl GymCore {
         };
         let action = ACTIONS.iter().position(|&a| a == step.action).unwrap_or(0) as i64;
         let over = env.episode.is_over();
+        if let Some(trajectory) = &mut env.trajectory {
+            trajectory.observe(&step);
+            if over {
+                env.episode
+                    .run()
+                    .rest()
+                    .for_each(|idle| trajectory.observe(&idle));
+            }
+        }
         let home = env.episode.run().ended_at_home();
         let f = match (reward, over) {
             (Reward::PerStep, _) | (Reward::End, true) => {
@@ -135,6 +165,75 @@ impl GymCore {
         env.ended = over;
         (r, home, over && !home, action)
     }
+}
+
+impl GymCore {
+    /// The supplied terms of the envs whose episode ended at this step, as `fm.Problem`
+    /// supplies them: one call of `supply` per room with those trials, their values into
+    /// `out`'s info and their F (with the library's terms) as the reward.
+    fn supply_ended(&mut self, py: Python<'_>, out: &mut Out) -> PyResult<()> {
+        let Some(supply) = &self.supply else {
+            return Ok(());
+        };
+        let supply = supply.bind(py);
+        for slot in 0..self.slots.len() {
+            let ended: Vec<usize> = (0..self.envs.len())
+                .filter(|&i| self.envs[i].room == slot && (out.terminated[i] || out.truncated[i]))
+                .collect();
+            if ended.is_empty() {
+                continue;
+            }
+            let recorded = (ended.iter())
+                .map(|&i| {
+                    let env = &mut self.envs[i];
+                    let trajectory = env.trajectory.take().expect("recorded with terms=");
+                    one_trial(env.episode.terms(), trajectory)
+                })
+                .collect();
+            let s = &self.slots[slot];
+            let name = &s.arena.room().name;
+            let evals = supply_trials(py, &s.exp, name, recorded, &self.user, supply)?;
+            for (&i, e) in ended.iter().zip(evals) {
+                out.reward[i] = e.fitness;
+                let values = e.per_room[0].terms.user;
+                for (column, &v) in out.user.iter_mut().zip(values.as_slice()) {
+                    column[i] = v;
+                }
+                out.user_given[i] = true;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The keys of a step's `info` (a supplied term may not take one's name).
+const INFO_KEYS: [&str; 10] = [
+    "a", "g", "l", "b", "x", "y", "heading", "t", "room", "action",
+];
+
+/// Terms Python supplies (`terms=`): with their function, for the reward at the end, and named
+/// apart from `info`'s keys.
+fn check_gym_terms(terms: &[String], reward: Reward, supplied: bool) -> PyResult<()> {
+    if terms.is_empty() {
+        return Ok(());
+    }
+    if !supplied {
+        return Err(input_err("terms: term names given without their function"));
+    }
+    if reward == Reward::PerStep {
+        return Err(input_err(
+            "reward: \"per-step\" cannot be used with terms= (a term of your own is a value of the whole trial, computed once at the episode's end); use reward=\"end\"",
+        ));
+    }
+    if let Some(t) = terms
+        .iter()
+        .find(|t| INFO_KEYS.contains(&t.as_str()) || t.starts_with('_'))
+    {
+        return Err(input_err(format!(
+            "terms[{t:?}]: the env reports each term of your own in `info` by its name, and {t:?} is taken (info has {INFO_KEYS:?} and their `_name` masks); name the term otherwise"
+        )));
+    }
+    Ok(())
 }
 
 /// One env's action.
@@ -198,9 +297,11 @@ const MAX_ENVS: usize = 1 << 20;
 
 #[pymethods]
 impl GymCore {
-    /// `num_envs` trials, each in one of `rooms` (room names or files), under the config.
+    /// `num_envs` trials, each in one of `rooms` (room names or files), under the config;
+    /// `terms` names the terms Python supplies, `supply` computes them from finished trials.
     #[new]
-    #[pyo3(signature = (rooms, num_envs, config_path=None, config_text=None, sets=Vec::new(), reward="end", float64=false))]
+    #[pyo3(signature = (rooms, num_envs, config_path=None, config_text=None, sets=Vec::new(), reward="end", float64=false, terms=Vec::new(), supply=None))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         rooms: Vec<String>,
         num_envs: usize,
@@ -209,6 +310,8 @@ impl GymCore {
         sets: Vec<String>,
         reward: &str,
         float64: bool,
+        terms: Vec<String>,
+        supply: Option<Py<PyAny>>,
     ) -> PyResult<Self> {
         let reward = match reward {
             "end" => Reward::End,
@@ -228,11 +331,18 @@ impl GymCore {
                  {num_envs}; use several vector envs"
             )));
         }
-        let loaded = load(config_path.as_deref(), config_text.as_deref(), &sets, None)
-            .map_err(config_err)?;
+        check_gym_terms(&terms, reward, supply.is_some())?;
+        let loaded = load_with_terms(
+            config_path.as_deref(),
+            config_text.as_deref(),
+            &sets,
+            None,
+            &terms,
+        )
+        .map_err(config_err)?;
         let slots = (rooms.iter())
             .map(|r| {
-                let exp = single_room(&loaded, r)?;
+                let exp = single_room(&loaded, r, &terms)?;
                 let (arena, run) = (Arc::new(exp.arenas()[0].clone()), exp.runs().remove(0));
                 let exp = Arc::new(exp);
                 Ok(Slot { exp, arena, run })
@@ -243,18 +353,13 @@ impl GymCore {
             envs: Vec::with_capacity(num_envs),
             reward,
             float64,
+            user: terms,
+            supply,
+            needs_reset: false,
         };
         for i in 0..num_envs {
-            let episode = core.episode(0, i as u64);
-            let chooser = rng_from_seed(i as u64);
-            let (room, ended, last_f) = (0, false, 0.0);
-            (core.envs).push(Env {
-                room,
-                episode,
-                chooser,
-                ended,
-                last_f,
-            });
+            let env = core.fresh(0, i as u64, rng_from_seed(i as u64));
+            core.envs.push(env);
         }
         Ok(core)
     }
@@ -286,41 +391,45 @@ impl GymCore {
         if i >= self.envs.len() || room >= self.slots.len() {
             return Err(input_err(format!("reset: no env {i} or room slot {room}")));
         }
-        let episode = self.episode(room, seed);
         let chooser = rng_from_seed(derive(seed, &[0x0067_796d]));
-        self.envs[i] = Env {
-            room,
-            episode,
-            chooser,
-            ended: false,
-            last_f: 0.0,
-        };
+        self.envs[i] = self.fresh(room, seed, chooser);
+        self.needs_reset = false;
         Ok(())
     }
 
     /// Steps every env once: `actions` is `(N, 2)` float64 motor outputs or `(N,)` int64
     /// action indices. Returns `(obs, reward, terminated, truncated, info)`, arrays over the
-    /// envs; `info` holds `a`, `g`, `l`, `b`, `x`, `y`, `heading`, `t` and `room` (the slot).
+    /// envs; `info` holds `a`, `g`, `l`, `b`, `x`, `y`, `heading`, `t` and `room` (the slot),
+    /// and each supplied term by name (NaN, and `_name` False, until the episode's end).
     fn step<'py>(
         &mut self,
         py: Python<'py>,
         actions: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyTuple>> {
+        if self.needs_reset {
+            return Err(ResetNeeded::new_err(
+                "step: the last step's episode end failed (a term of `terms=` raised or returned a bad value), so its results were lost; call reset() first",
+            ));
+        }
         let n = self.envs.len();
         let acts = self::actions(n, actions)?;
-        let mut out = Out::with_capacity(n);
+        let mut out = Out::with_capacity(n, self.user.len());
         py.detach(|| {
             for (i, act) in acts.into_iter().enumerate() {
                 let (r, term, trunc, action) = self.step_one(i, act);
                 out.push(&mut self.envs[i], r, (term, trunc), action);
             }
         });
+        if let Err(e) = self.supply_ended(py, &mut out) {
+            self.needs_reset = true;
+            return Err(e);
+        }
         out.into_py(py, self)
     }
 
     /// The envs now: `(obs, info)` as `step` gives them (for `reset`; `action` -1).
     fn state<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        let mut out = Out::with_capacity(self.envs.len());
+        let mut out = Out::with_capacity(self.envs.len(), self.user.len());
         for env in &mut self.envs {
             out.push(env, 0.0, (false, false), -1);
         }
@@ -340,10 +449,13 @@ struct Out {
     t: Vec<i64>,
     room: Vec<i64>,
     action: Vec<i64>,
+    /// Each supplied term's value per env (NaN until its episode's end) and whether it is given.
+    user: Vec<Vec<f64>>,
+    user_given: Vec<bool>,
 }
 
 impl Out {
-    fn with_capacity(n: usize) -> Out {
+    fn with_capacity(n: usize, user: usize) -> Out {
         Out {
             obs: Vec::with_capacity(n),
             reward: Vec::with_capacity(n),
@@ -353,6 +465,8 @@ impl Out {
             t: Vec::with_capacity(n),
             room: Vec::with_capacity(n),
             action: Vec::with_capacity(n),
+            user: vec![Vec::with_capacity(n); user],
+            user_given: Vec::with_capacity(n),
         }
     }
 
@@ -384,6 +498,10 @@ impl Out {
         self.t.push(env.episode.run().t() as i64);
         self.room.push(env.room as i64);
         self.action.push(action);
+        for column in &mut self.user {
+            column.push(f64::NAN);
+        }
+        self.user_given.push(false);
     }
 
     fn into_py<'py>(self, py: Python<'py>, core: &GymCore) -> PyResult<Bound<'py, PyTuple>> {
@@ -399,6 +517,13 @@ impl Out {
         let all = PyArray1::from_vec(py, vec![true; self.reward.len()]);
         for name in names.into_iter().chain(["t", "room", "action"]) {
             info.set_item(format!("_{name}"), &all)?;
+        }
+        if !self.user.is_empty() {
+            let given = PyArray1::from_vec(py, self.user_given);
+            for (name, column) in core.user.iter().zip(self.user) {
+                info.set_item(name, PyArray1::from_vec(py, column))?;
+                info.set_item(format!("_{name}"), &given)?;
+            }
         }
         let items: [Bound<'py, PyAny>; 5] = [
             core.obs_array(py, self.obs),

@@ -901,9 +901,12 @@ fn rooms_dict<'py>(py: Python<'py>, rows: &[RoomRow]) -> PyResult<Bound<'py, PyD
 }
 
 /// One trial of `genome` in `room` under base seed `seed`, exactly as `fuzzymotiv replay
-/// --room ROOM --seed SEED` runs it (the room-modelling stream of that seed).
+/// --room ROOM --seed SEED` runs it (the room-modelling stream of that seed). With `terms`
+/// (the names of terms Python supplies), `supply` is called once with the trial as a
+/// `(1, 1, T + 1)` batch; their values, by name, set F.
 #[pyfunction]
-#[pyo3(signature = (genome, room, seed, config_path=None, config_text=None, sets=Vec::new()))]
+#[pyo3(signature = (genome, room, seed, config_path=None, config_text=None, sets=Vec::new(), terms=Vec::new(), supply=None))]
+#[allow(clippy::too_many_arguments)]
 fn simulate<'py>(
     py: Python<'py>,
     genome: Vec<f64>,
@@ -912,6 +915,8 @@ fn simulate<'py>(
     config_path: Option<PathBuf>,
     config_text: Option<String>,
     sets: Vec<String>,
+    terms: Vec<String>,
+    supply: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let seed = seed_arg(&seed)?;
     finite(
@@ -920,24 +925,39 @@ fn simulate<'py>(
         |k| format!("weight {k}"),
         "expected the network's weights",
     )?;
-    let loaded = load(
+    let loaded = terms::load_with_terms(
         config_path.as_deref(),
         config_text.as_deref(),
         &sets,
         Some(seed),
+        &terms,
     )
     .map_err(config_err)?;
     // As `replay`: neither recognition nor online orientation changes a trajectory.
-    let exp = gym::single_room(&loaded, &room)?;
+    let exp = gym::single_room(&loaded, &room, &terms)?;
     let instance = instance_of(py, &exp, &genome)?;
     let d = trajectory_dict(py, &instance.trajectory)?;
-    let terms = instance.terms;
-    d.set_item("a", terms.a)?;
-    d.set_item("g", terms.g)?;
-    d.set_item("l", terms.l)?;
-    d.set_item("b", terms.b)?;
-    d.set_item("F", instance.f)?;
-    d.set_item("room", &exp.arenas()[0].room().name)?;
+    let name = &exp.arenas()[0].room().name;
+    let (mut values, mut f) = (instance.terms, instance.f);
+    if let (false, Some(supply)) = (terms.is_empty(), &supply) {
+        let trial = terms::one_trial(values, instance.trajectory);
+        let e = terms::supply_trials(py, &exp, name, vec![trial], &terms, supply)?.remove(0);
+        (values, f) = (e.per_room[0].terms, e.fitness);
+    }
+    d.set_item("a", values.a)?;
+    d.set_item("g", values.g)?;
+    d.set_item("l", values.l)?;
+    d.set_item("b", values.b)?;
+    for (t, v) in terms.iter().zip(values.user.as_slice()) {
+        if d.contains(t)? || ["F", "room", "seed"].contains(&t.as_str()) {
+            return Err(input_err(format!(
+                "terms[{t:?}]: simulate reports each term of your own by its name, and {t:?} is one of its other columns; name the term otherwise"
+            )));
+        }
+        d.set_item(t, v)?;
+    }
+    d.set_item("F", f)?;
+    d.set_item("room", name)?;
     d.set_item("seed", seed)?;
     Ok(d)
 }

@@ -4,9 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
+use fuzzymotiv::experiment::RoomScore;
 use fuzzymotiv::experiment::UserTerm;
 use fuzzymotiv::experiment::{Evaluation, Experiment, RawConfig, RoomFile, RoomFiles, Setup};
-use fuzzymotiv::fitness::{LIBRARY_TERMS, TermId};
+use fuzzymotiv::fitness::{FitnessTerms, LIBRARY_TERMS, TermId, UserValues};
 use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::inputs::{Loaded, resolve};
@@ -221,4 +222,51 @@ pub(crate) fn supplied_values(
         evals[i].per_room[r].terms.user.as_mut_slice()[k] = v;
     }
     Ok(())
+}
+
+/// One finished trial in the one room of `exp` (an experiment of [`crate::gym::single_room`]):
+/// its terms and its whole trajectory (`T` steps, the idle rest after an end at home included),
+/// as [`supply_trials`] takes it.
+pub(crate) fn one_trial(
+    terms: FitnessTerms,
+    trajectory: Trajectory,
+) -> (Evaluation, Vec<Trajectory>) {
+    let executed = trajectory.idle.iter().filter(|&&idle| !idle).count();
+    let score = RoomScore {
+        f: 0.0,
+        terms,
+        executed,
+    };
+    let evaluation = Evaluation {
+        fitness: 0.0,
+        per_room: vec![score],
+    };
+    (evaluation, vec![trajectory])
+}
+
+/// The terms Python supplies for finished trials in `room`, the one room of `exp`, as
+/// `fm.Problem` gets them: `supply(trials)` called once with the trials as a `(n, 1, T + 1)`
+/// batch, its values checked ([`supplied_values`]) and F refitted ([`Experiment::refit`]).
+/// Returns each trial's evaluation: its terms with the supplied values, its F.
+pub(crate) fn supply_trials(
+    py: Python<'_>,
+    exp: &Experiment,
+    room: &str,
+    mut recorded: Vec<(Evaluation, Vec<Trajectory>)>,
+    names: &[String],
+    supply: &Bound<'_, PyAny>,
+) -> PyResult<Vec<Evaluation>> {
+    for (e, _) in &mut recorded {
+        for s in &mut e.per_room {
+            s.terms.user = UserValues::zeros(names.len());
+        }
+    }
+    let trials = record(py, exp, &[room.to_string()], &recorded)?;
+    let values = supply.call1((trials,))?;
+    let mut evals: Vec<Evaluation> = recorded.into_iter().map(|(e, _)| e).collect();
+    supplied_values(&values, names, &mut evals)?;
+    for e in &mut evals {
+        exp.refit(e);
+    }
+    Ok(evals)
 }

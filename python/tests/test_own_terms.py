@@ -190,3 +190,16 @@ def test_guide_term_of_your_own_runs_as_written(doc_blocks, capsys):
     out = capsys.readouterr().out.splitlines()
     assert out[0] == "['a', 'g', 'l', 'b', 'smoothness']"
     assert out[1].startswith("[") and len(out[1].strip("[]").split()) == 3
+
+
+def test_a_term_function_that_raises_is_a_fuzzymotiv_error_naming_it():
+    """An exception inside a term function comes back as FuzzymotivError naming the term, the
+    original chained as its cause."""
+
+    def broken(trials):
+        raise ZeroDivisionError("division by zero")
+
+    p = fm.Problem(config_text=one_term("wobble"), terms={"wobble": broken})
+    with pytest.raises(fm.FuzzymotivError, match=r"terms\['wobble'\]: the function raised ZeroDivisionError") as e:
+        p.evaluate(genomes(p))
+    assert isinstance(e.value.__cause__, ZeroDivisionError)
