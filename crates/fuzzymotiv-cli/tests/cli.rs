@@ -1349,6 +1349,90 @@ fn lab_start_failures_are_the_users_to_fix() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
 }
 
+/// `lab --config FILE` reads the config as `run` does, before anything listens or is written:
+/// a bad field, room, room file, term or size over the lab's limits exits 2 naming the file
+/// and the field (here with the port busy, so the config is seen to be checked first), prints
+/// no address and leaves no lab directory.
+#[test]
+fn lab_config_that_cannot_run_exits_2_naming_file_and_field_before_listening() {
+    let dir = tempfile::tempdir().unwrap();
+    let busy = std::net::TcpListener::bind(("127.0.0.1", 0)).unwrap();
+    let port = busy.local_addr().unwrap().port().to_string();
+    let lab_dir = dir.path().join("lab");
+    std::fs::write(
+        dir.path().join("r.toml"),
+        "name = \"r\"\noutline = [[0,0],[100,0]]\nhome = { x = 10, y = 10, heading_deg = 0 }\n",
+    )
+    .unwrap();
+    for (name, text, file, field) in [
+        (
+            "field",
+            "[ga]\npopulation = -3\n",
+            "field.toml",
+            "field `ga.population`",
+        ),
+        (
+            "room",
+            "rooms = [\"nope.toml\"]\n",
+            "room.toml",
+            "field `rooms[0]`",
+        ),
+        (
+            "roomfile",
+            "rooms = [\"r.toml\"]\n",
+            "r.toml",
+            "field `outline`",
+        ),
+        (
+            "size",
+            "[ga]\npopulation = 1000\n",
+            "size.toml",
+            "more than the lab allows",
+        ),
+        (
+            "term",
+            "[motivations]\ncuriosity = 0.5\nrush = { weight = 0.3, term = \"hurry\" }\n",
+            "term.toml",
+            "field `motivations.rush`",
+        ),
+    ] {
+        let config = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&config, text).unwrap();
+        let o = run(&[
+            "lab",
+            "--config",
+            config.to_str().unwrap(),
+            "--port",
+            &port,
+            "--dir",
+            lab_dir.to_str().unwrap(),
+        ]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert!(err.contains(file) && err.contains(field), "{name}: {err}");
+        assert!(
+            !err.contains("port is in use") && !err.contains("panicked"),
+            "{name}: {err}"
+        );
+        assert!(String::from_utf8_lossy(&o.stdout).is_empty(), "{name}");
+        assert!(!lab_dir.exists(), "{name}");
+    }
+    let missing = dir.path().join("missing.toml");
+    let o = run(&[
+        "lab",
+        "--config",
+        missing.to_str().unwrap(),
+        "--port",
+        &port,
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("missing.toml: cannot read config file"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 /// Each of bench's sizes is checked on its own: the message names the option, its range and
 /// the value given (no unbounded --steps).
 #[test]

@@ -25,9 +25,15 @@ struct LabProcess {
 
 impl LabProcess {
     fn start(dir: &std::path::Path) -> LabProcess {
+        LabProcess::start_with(dir, &[])
+    }
+
+    /// With more arguments (`--config FILE`).
+    fn start_with(dir: &std::path::Path, more: &[&str]) -> LabProcess {
         let mut child = Command::new(env!("CARGO_BIN_EXE_fuzzymotiv"))
             .args(["lab", "--port", "0", "--threads", "2", "--dir"])
             .arg(dir)
+            .args(more)
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
             .spawn()
@@ -548,6 +554,111 @@ fn a_fetch_config_shows_five_sliders_and_evolves_towards_a_goal_drawn_on_the_can
     );
     d.script("window.scrollTo(0, 0);");
     let shot = target_dir().join("lab-fetch-screenshot.png");
+    std::fs::write(&shot, d.full_page_png()).unwrap();
+    eprintln!("screenshot: {}", shot.display());
+    let console = d.console_errors();
+    assert!(console.is_empty(), "console errors: {console:?}");
+}
+
+/// The checkbox of the listed room whose label starts with `label`.
+fn room_box(d: &Driver, label: &str) -> String {
+    d.find_xpath(&format!(
+        "//div[@id='room-choices']//label[starts-with(normalize-space(), '{label}')]/input"
+    ))
+    .unwrap_or_else(|| panic!("no room labelled `{label}`"))
+}
+
+#[test]
+#[ignore = "needs chromium: run by .ci/run"]
+fn the_lab_started_on_fetch_toml_shows_its_sliders_and_rooms_with_goals_and_runs_in_them() {
+    require_browser();
+    let tmp = tempfile::tempdir().unwrap();
+    let config = concat!(env!("CARGO_MANIFEST_DIR"), "/../../configs/fetch.toml");
+    let lab = LabProcess::start_with(&tmp.path().join("lab"), &["--config", config]);
+    let mut d = Driver::start();
+    d.new_session(&tmp.path().join("chromium-profile"));
+    d.goto(&lab.url);
+    wait_for(
+        &d,
+        30,
+        "the page",
+        "return document.querySelectorAll('#room-choices .thumb').length >= 10;",
+    );
+
+    // Five sliders at the fetch weights, urgency labelled with its term.
+    let sliders = d.script("return Array.from(document.querySelectorAll('#sliders input[type=range]')).map(function (s) { return [s.id, +s.value]; });");
+    assert_eq!(
+        sliders,
+        json!([
+            ["slider-curiosity", 0.5],
+            ["slider-homing", 0.1],
+            ["slider-orientation", 0],
+            ["slider-energy", 0.1],
+            ["slider-urgency", 0.3]
+        ])
+    );
+    labelled(&d, "Urgency (urgency)");
+    let note = d.script(
+        "var p = document.getElementById('start-config'); return p.hidden ? null : p.textContent;",
+    );
+    let note = note.as_str().unwrap();
+    assert!(
+        note.starts_with("Started on ") && note.contains("configs/fetch.toml"),
+        "{note}"
+    );
+    assert!(
+        note.contains("5 motivations") && note.contains("5 rooms chosen"),
+        "{note}"
+    );
+
+    // Its rooms first, chosen, each with its goal drawn; the built-in rooms listed, not chosen.
+    let rooms = d.script("return Array.from(document.querySelectorAll('#room-choices .thumb')).slice(0, 6).map(function (t) { return [t.querySelector('label').textContent.trim(), t.querySelector('input').checked, t.querySelectorAll('circle.goal').length]; });");
+    assert_eq!(
+        rooms,
+        json!([
+            ["fetch-H (config) (goal)", true, 1],
+            ["fetch-T (config) (goal)", true, 1],
+            ["fetch-L (config) (goal)", true, 1],
+            ["fetch-square (config) (goal)", true, 1],
+            ["fetch-rectangle (config) (goal)", true, 1],
+            ["H", false, 0]
+        ])
+    );
+    // The form: the config's name, GA size (200 × 200, the paper preset) and trial steps.
+    let form = d.script("return ['run-name', 'ga-preset', 'population', 'generations', 'steps', 'motion'].map(function (i) { return document.getElementById(i).value; });");
+    assert_eq!(
+        form,
+        json!(["fetch", "paper", "200", "200", "400", "actions"])
+    );
+
+    // A small run in two of its rooms: the paths drawn in them, goals and all.
+    for label in [
+        "fetch-T (config)",
+        "fetch-L (config)",
+        "fetch-rectangle (config)",
+    ] {
+        let b = room_box(&d, label);
+        d.cmd("POST", &format!("/element/{b}/click"), json!({}));
+    }
+    type_into(&d, &labelled(&d, "Population"), "6");
+    type_into(&d, &labelled(&d, "Generations"), "2");
+    type_into(&d, &labelled(&d, "Steps"), "100");
+    d.click_button("Evolve");
+    wait_for(
+        &d,
+        300,
+        "the run to finish",
+        "return window.labTimes.finished;",
+    );
+    let status = d.script("return document.getElementById('run-status').textContent;");
+    assert!(status.as_str().unwrap().ends_with("finished"), "{status}");
+    let paths = d.script("return Array.from(document.querySelectorAll('#paths .thumb')).map(function (t) { return [t.querySelector('svg').getAttribute('aria-label'), t.querySelectorAll('circle.goal').length]; });");
+    assert_eq!(
+        paths,
+        json!([["path in fetch-H", 1], ["path in fetch-square", 1]])
+    );
+    d.script("window.scrollTo(0, 0);");
+    let shot = target_dir().join("lab-config-screenshot.png");
     std::fs::write(&shot, d.full_page_png()).unwrap();
     eprintln!("screenshot: {}", shot.display());
     let console = d.console_errors();

@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 /// and its layer. A module imports only from its own layer and the ones below it. Imports are
 /// read inside a crate only, so the numbers order the modules of one crate; they go on rising
 /// from crate to crate in Cargo's order.
-const LAYERS: [(&str, usize); 33] = [
+const LAYERS: [(&str, usize); 34] = [
     // fuzzymotiv, the library: the pipeline's subsystems
     ("lib::params", 0),     // FieldError: the one error of every input
     ("lib::random", 0),     // seeded streams, noise
@@ -50,6 +50,7 @@ const LAYERS: [(&str, usize); 33] = [
     ("lab::motivations", 14), // the sliders' motivations: presets, a config's, explain over N
     ("lab::settings", 15),    // the page's settings → the CLI's config checks
     ("lab::runs", 16),        // the run list, the queue and the worker
+    ("lab::start", 16),       // the config the lab starts on (--config)
     ("lab::compare", 17),     // two runs side by side, the library's statistics
     ("lab::api", 18),         // the routes
     ("lab::server", 19),      // start and stop

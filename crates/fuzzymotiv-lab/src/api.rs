@@ -26,11 +26,14 @@ use crate::motivations;
 use crate::rooms::{self, RoomRequest};
 use crate::runs::{Runs, Status};
 use crate::settings::Settings;
+use crate::start::StartConfig;
 
 /// What every handler shares.
 pub struct AppState {
     pub dir: std::path::PathBuf,
     pub runs: Arc<Runs>,
+    /// The config the lab started on (`--config`), if any.
+    pub start: Option<StartConfig>,
     /// Turns true when the lab stops: event streams end.
     pub closing: watch::Receiver<bool>,
 }
@@ -59,9 +62,9 @@ pub fn router(state: Arc<AppState>) -> Router {
         .with_state(state)
 }
 
-/// Presets (each motivation preset a slider list), limits and the TSK's membership
-/// functions, for the page to draw.
-async fn info() -> Result<Json<Value>, ApiError> {
+/// Presets (each motivation preset a slider list), limits, the TSK's membership functions and
+/// the config the lab started on (`start`, null without `--config`), for the page to draw.
+async fn info(State(s): Shared) -> Result<Json<Value>, ApiError> {
     let tsk = TskFitness::paper();
     let mut motivations = serde_json::Map::new();
     for (name, raw) in motivations::presets() {
@@ -74,6 +77,7 @@ async fn info() -> Result<Json<Value>, ApiError> {
             "motivations": motivations,
             "ga": { "quick": [30, 30], "medium": [80, 80], "paper": [200, 200] },
         },
+        "start": s.start.as_ref().map(StartConfig::view),
         "terms": fuzzymotiv::fitness::LIBRARY_TERMS,
         "peaks": tsk.peaks(),
         "limits": { "population": limits::MAX_POPULATION, "generations": limits::MAX_GENERATIONS,
@@ -120,8 +124,11 @@ async fn config_motivations(body: Bytes) -> Result<Json<Value>, ApiError> {
     ))
 }
 
+/// The start config's room files first, then the built-in rooms and the lab's saved ones.
 async fn room_list(State(s): Shared) -> Json<Value> {
-    Json(json!(rooms::list(&s.dir)))
+    let saved = rooms::list(&s.dir);
+    let config = s.start.iter().flat_map(StartConfig::room_views);
+    Json(json!(config.chain(&saved).collect::<Vec<_>>()))
 }
 
 /// Checks a drawn or uploaded room (and saves it with `save`): 200 with the room, or 400
@@ -331,7 +338,7 @@ async fn run_config(State(s): Shared, UrlPath(id): UrlPath<String>) -> Result<Re
     let entry = s.runs.get(&id).ok_or_else(|| no_run(&id))?;
     let text = match &entry.settings {
         Some(settings) => {
-            let loaded = settings.load(&s.dir)?;
+            let loaded = s.runs.load(settings)?;
             fuzzymotiv_io::files::inputs::resolved_toml(&loaded.raw)
         }
         None => std::fs::read_to_string(s.runs.run_dir(&id).join("config.resolved.toml"))

@@ -35,5 +35,6 @@ mod runs;
 mod security;
 mod server;
 mod settings;
+mod start;
 
 pub use server::{Lab, LabOptions};

@@ -41,6 +41,8 @@ pub struct RoomView {
     /// The entry a run's settings name it by (`H`, or `U.toml`).
     pub entry: String,
     pub builtin: bool,
+    /// A room of the config the lab started on (`--config`).
+    pub config: bool,
     pub room: Room,
 }
 
@@ -184,6 +186,7 @@ pub fn list(dir: &Path) -> Vec<RoomView> {
         Room::builtin(name).map(|room| RoomView {
             entry: name.to_string(),
             builtin: true,
+            config: false,
             room,
         })
     });
@@ -194,6 +197,7 @@ pub fn list(dir: &Path) -> Vec<RoomView> {
         Some(RoomView {
             entry,
             builtin: false,
+            config: false,
             room,
         })
     });

@@ -135,6 +135,8 @@ impl Shows for RunEntry {
 /// The runs of a lab and its queue.
 pub struct Runs {
     dir: PathBuf,
+    /// The room files of the config the lab started on, which runs may name.
+    config_rooms: Vec<String>,
     list: Mutex<Vec<Arc<RunEntry>>>,
     queue: Mutex<VecDeque<Arc<RunEntry>>>,
     wake: Condvar,
@@ -143,10 +145,12 @@ pub struct Runs {
 }
 
 impl Runs {
-    /// The runs of `dir`: the finished run directories under `DIR/runs/`.
-    pub fn open(dir: &Path) -> Self {
+    /// The runs of `dir`: the finished run directories under `DIR/runs/`; runs may name the
+    /// room files `config_rooms` (the start config's).
+    pub fn open(dir: &Path, config_rooms: Vec<String>) -> Self {
         let runs = Self {
             dir: dir.to_path_buf(),
+            config_rooms,
             list: Mutex::new(Vec::new()),
             queue: Mutex::new(VecDeque::new()),
             wake: Condvar::new(),
@@ -181,13 +185,21 @@ impl Runs {
             .collect()
     }
 
+    /// Checks `settings` and resolves them into a config ready to run.
+    pub fn load(
+        &self,
+        settings: &Settings,
+    ) -> Result<fuzzymotiv_io::files::inputs::Loaded, ApiError> {
+        settings.load(&self.dir, &self.config_rooms)
+    }
+
     pub fn get(&self, id: &str) -> Option<Arc<RunEntry>> {
         self.list().iter().find(|e| e.id == id).cloned()
     }
 
     /// Queues a run of `settings` (checked first: a bad one is refused here, not later).
     pub fn submit(&self, settings: Settings) -> Result<Arc<RunEntry>, ApiError> {
-        let loaded = settings.load(&self.dir)?;
+        let loaded = self.load(&settings)?;
         if self.closing.load(Ordering::SeqCst) {
             return Err(ApiError::busy("the lab is shutting down"));
         }
@@ -314,7 +326,7 @@ impl Runs {
         let Some(settings) = &entry.settings else {
             return (Status::Failed, None, Some("a run without settings".into()));
         };
-        let loaded = match settings.load(&self.dir) {
+        let loaded = match self.load(settings) {
             Ok(l) => l,
             Err(e) => return (Status::Failed, None, Some(e.message)),
         };

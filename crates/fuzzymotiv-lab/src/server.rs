@@ -12,6 +12,7 @@ use tokio::sync::watch;
 use crate::api::{AppState, router};
 use crate::runs::Runs;
 use crate::security::{Access, guard, random_token};
+use crate::start::StartConfig;
 
 /// How to start a lab.
 #[derive(Debug, Clone)]
@@ -27,6 +28,9 @@ pub struct LabOptions {
     pub threads: Option<usize>,
     /// The access token; default a new random one (so a restart shuts out open pages).
     pub token: Option<String>,
+    /// A config file the page opens on (its motivations, rooms and the settings the lab's
+    /// form has), read and checked at start as `fuzzymotiv run` reads it.
+    pub config: Option<PathBuf>,
 }
 
 impl LabOptions {
@@ -38,6 +42,7 @@ impl LabOptions {
             bind: IpAddr::V4(Ipv4Addr::LOCALHOST),
             threads: None,
             token: None,
+            config: None,
         }
     }
 }
@@ -102,6 +107,9 @@ impl Lab {
         if let Some(n) = opts.threads {
             check_threads(n as i128).map_err(|m| CliError::input(format!("--threads {m}")))?;
         }
+        // The config before anything listens or is written: a bad one leaves nothing behind.
+        let start = opts.config.as_deref().map(StartConfig::load).transpose()?;
+        let config_rooms = start.as_ref().map(StartConfig::room_files);
         // Bound first: a busy port leaves no directory behind.
         let listener = bind(&opts)?;
         if opts.dir.exists() && !opts.dir.is_dir() {
@@ -139,11 +147,12 @@ impl Lab {
             any_ip_port: addr.ip().is_unspecified().then_some(addr.port()),
             cookie: format!("fuzzymotiv_lab_{}", addr.port()),
         });
-        let runs = Arc::new(Runs::open(&dir));
+        let runs = Arc::new(Runs::open(&dir, config_rooms.unwrap_or_default()));
         let (closing, closed) = watch::channel(false);
         let state = Arc::new(AppState {
             dir: dir.clone(),
             runs: runs.clone(),
+            start,
             closing: closed.clone(),
         });
         let app = router(state).layer(axum::middleware::from_fn_with_state(access, guard));

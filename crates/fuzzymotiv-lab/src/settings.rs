@@ -66,7 +66,7 @@ fn default_size() -> usize {
 
 impl Settings {
     /// The settings as a config document (TOML), read by the CLI's parser.
-    fn document(&self) -> String {
+    pub fn document(&self) -> String {
         use toml::{Table, Value};
         let mut doc = Table::new();
         doc.insert("name".into(), Value::String(self.name.clone()));
@@ -104,11 +104,12 @@ impl Settings {
         toml::to_string(&doc).unwrap_or_default()
     }
 
-    /// The lab's own limits (the library accepts larger runs; a shared server does not).
-    fn check_limits(&self) -> Result<(), ApiError> {
+    /// The lab's own limits (the library accepts larger runs; a shared server does not);
+    /// `source` names the settings in the message.
+    pub fn check_limits(&self, source: &str) -> Result<(), ApiError> {
         let over = |field: &str, got: usize, max: usize| {
             ApiError::bad(format!(
-                "{SOURCE}: field `{field}`: {got} is more than the lab allows ({max}; run larger experiments with `fuzzymotiv run`)"
+                "{source}: field `{field}`: {got} is more than the lab allows ({max}; run larger experiments with `fuzzymotiv run`)"
             ))
         };
         if self.population > MAX_POPULATION {
@@ -127,16 +128,22 @@ impl Settings {
         Ok(())
     }
 
-    /// The rooms must be built-in or saved in the lab: no path reaches outside its directory.
-    fn check_rooms(&self, dir: &Path) -> Result<(), ApiError> {
+    /// The rooms must be built-in, saved in the lab, or room files of the config the lab
+    /// started on (`config_rooms`, absolute paths): no other path reaches outside its directory.
+    fn check_rooms(&self, dir: &Path, config_rooms: &[String]) -> Result<(), ApiError> {
         for (i, entry) in self.rooms.iter().flatten().enumerate() {
-            if Room::builtin(entry).is_some() {
+            if Room::builtin(entry).is_some() || config_rooms.contains(entry) {
                 continue;
             }
             let stem = entry.strip_suffix(".toml").unwrap_or("");
             if !valid_room_name(stem) || !dir.join(ROOM_DIR).join(entry).is_file() {
+                let config = if config_rooms.is_empty() {
+                    ""
+                } else {
+                    " nor a room file of the config the lab started on"
+                };
                 return Err(ApiError::bad(format!(
-                    "{SOURCE}: field `rooms[{i}]`: `{entry}` is neither a built-in room (H, T, L, square, rectangle) nor a room saved in the lab (NAME.toml, see the room list)"
+                    "{SOURCE}: field `rooms[{i}]`: `{entry}` is neither a built-in room (H, T, L, square, rectangle) nor a room saved in the lab (NAME.toml, see the room list){config}"
                 )));
             }
         }
@@ -144,10 +151,10 @@ impl Settings {
     }
 
     /// Checks the settings and resolves them into a config ready to run (room files from
-    /// `DIR/rooms/`).
-    pub fn load(&self, dir: &Path) -> Result<Loaded, ApiError> {
-        self.check_limits()?;
-        self.check_rooms(dir)?;
+    /// `DIR/rooms/`, or the start config's `config_rooms`).
+    pub fn load(&self, dir: &Path, config_rooms: &[String]) -> Result<Loaded, ApiError> {
+        self.check_limits(SOURCE)?;
+        self.check_rooms(dir, config_rooms)?;
         let raw = RawConfig::parse(&self.document(), SOURCE, &[])
             .map_err(|e| ApiError::bad(e.to_string()))?;
         Ok(resolve(raw, &dir.join(ROOM_DIR), SOURCE)?)

@@ -82,10 +82,15 @@ struct Client {
 
 impl Client {
     fn start() -> Client {
+        Client::start_on(None)
+    }
+    /// A lab started on `config` (`--config`).
+    fn start_on(config: Option<&Path>) -> Client {
         let tmp = tempfile::tempdir().unwrap();
         let mut opts = LabOptions::new(tmp.path().join("lab"));
         opts.port = 0;
         opts.threads = Some(2);
+        opts.config = config.map(Path::to_path_buf);
         Client {
             lab: Lab::start(opts).expect("lab starts"),
             _tmp: tmp,
@@ -898,4 +903,146 @@ fn a_bad_goal_or_waypoint_gets_400_naming_the_room_file_field() {
         e.contains("field `rooms[0]`") && e.contains("has no"),
         "{e}"
     );
+}
+
+/// A file of the repository (configs/, rooms/).
+fn repo_file(path: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(path)
+}
+
+#[test]
+fn a_lab_started_on_a_config_opens_on_its_motivations_rooms_and_settings() {
+    let c = Client::start_on(Some(&repo_file("configs/fetch.toml")));
+    let info = c.get("/api/info").json();
+    let start = &info["start"];
+    assert!(
+        start["config"]
+            .as_str()
+            .unwrap()
+            .ends_with("configs/fetch.toml")
+    );
+    assert_eq!(
+        start["motivations"], info["presets"]["motivations"]["fetch"],
+        "the sliders of configs/fetch.toml: the paper's four and urgency"
+    );
+    let s = &start["settings"];
+    assert_eq!(
+        (s["name"].as_str(), s["seed"].as_u64()),
+        (Some("fetch"), Some(1))
+    );
+    assert_eq!(
+        (s["population"].as_u64(), s["generations"].as_u64()),
+        (Some(200), Some(200))
+    );
+    assert_eq!(
+        (s["motion"].as_str(), s["recognition"].as_bool()),
+        (Some("actions"), Some(true))
+    );
+    assert_eq!(
+        start["not_set"],
+        json!([]),
+        "the lab sets everything fetch.toml sets"
+    );
+    let rooms: Vec<String> = serde_json::from_value(s["rooms"].clone()).unwrap();
+    let names = ["H", "T", "L", "square", "rectangle"];
+    assert_eq!(rooms.len(), 5);
+    for (entry, name) in rooms.iter().zip(names) {
+        assert!(Path::new(entry).is_absolute(), "{entry}");
+        assert!(
+            entry.ends_with(&format!("rooms/fetch-{name}.toml")),
+            "{entry}"
+        );
+    }
+
+    // The room list: the config's room files first, with their goals, then the built-in ones.
+    let list = c.get("/api/rooms").json();
+    let list = list.as_array().unwrap();
+    for (view, entry) in list.iter().zip(&rooms) {
+        assert_eq!(view["entry"], json!(entry));
+        assert_eq!(
+            (view["config"].as_bool(), view["builtin"].as_bool()),
+            (Some(true), Some(false))
+        );
+        let goal = &view["room"]["mission"]["goal"];
+        assert!(goal["radius"].as_f64().unwrap() > 0.0, "{view}");
+    }
+    assert_eq!(
+        list[0]["room"]["mission"]["goal"]["centre"],
+        json!({ "x": 730.0, "y": 730.0 })
+    );
+    assert_eq!(list[5]["entry"], "H");
+    assert_eq!(list[5]["config"], false);
+
+    // A run in two of them, which its resolved config names.
+    let mut run = small(2, 5);
+    run["rooms"] = json!([rooms[0], rooms[3]]);
+    run["motivations"] = json!({ "curiosity": 0.5, "homing": 0.1, "orientation": 0.0,
+                                 "energy": 0.1, "urgency": 0.3 });
+    let a = c.post("/api/runs", &run);
+    assert_eq!(a.status, 201, "{}", a.body);
+    let id = a.json()["id"].as_str().unwrap().to_string();
+    let end = events(&c, &id).pop().unwrap();
+    assert_eq!(end.1["status"], "finished", "{}", end.1);
+    let config = c.get(&format!("/api/runs/{id}/config.toml")).body;
+    assert!(config.contains(&format!("\"{}\"", rooms[0])), "{config}");
+}
+
+#[test]
+fn runs_name_only_the_room_files_of_the_config_the_lab_started_on() {
+    let other = repo_file("rooms/U.toml").canonicalize().unwrap();
+    let mut run = small(2, 5);
+    run["rooms"] = json!(["H", other.display().to_string()]);
+    for c in [
+        Client::start(),
+        Client::start_on(Some(&repo_file("configs/fetch.toml"))),
+    ] {
+        let a = c.post("/api/runs", &run);
+        assert_eq!(a.status, 400, "{}", a.body);
+        let e = a.json()["error"].as_str().unwrap().to_string();
+        assert!(e.starts_with("lab settings: field `rooms[1]`: "), "{e}");
+    }
+    let c = Client::start();
+    assert_eq!(c.get("/api/info").json()["start"], Value::Null);
+}
+
+#[test]
+fn a_start_config_names_the_keys_the_lab_cannot_set() {
+    let tmp = tempfile::tempdir().unwrap();
+    let config = tmp.path().join("other.toml");
+    std::fs::write(
+        &config,
+        "name = \"other\"\nseed = 7\nrooms = [\"H\", \"T\"]\ntraining = \"per-room\"\n\
+         [ga]\npopulation = 12\ngenerations = 3\nelite = 3\n[trial]\nsteps = 150\nnoise = 0.05\n\
+         [robot]\nmotion = \"wheels\"\n[aem]\nenabled = false\n",
+    )
+    .unwrap();
+    let c = Client::start_on(Some(&config));
+    let start = c.get("/api/info").json()["start"].clone();
+    assert_eq!(
+        start["not_set"],
+        json!(["ga.elite", "training", "trial.noise"])
+    );
+    let s = &start["settings"];
+    assert_eq!(
+        (
+            s["seed"].as_u64(),
+            s["population"].as_u64(),
+            s["generations"].as_u64()
+        ),
+        (Some(7), Some(12), Some(3))
+    );
+    assert_eq!(
+        (s["steps"].as_u64(), s["motion"].as_str()),
+        (Some(150), Some("wheels"))
+    );
+    assert_eq!(
+        (s["recognition"].as_bool(), s["rooms"].clone()),
+        (Some(false), json!(["H", "T"]))
+    );
+    // Built-in rooms are listed once, as built-in.
+    let list = c.get("/api/rooms").json();
+    assert_eq!(list[0]["entry"], "H");
+    assert_eq!(list[0]["config"], false);
 }

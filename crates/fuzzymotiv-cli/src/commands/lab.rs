@@ -34,6 +34,13 @@ pub struct LabArgs {
     /// `_` (e.g. from `openssl rand -hex 16`).
     #[arg(long, value_name = "TOKEN", value_parser = token)]
     token: Option<String>,
+    /// Open the page on this experiment config (TOML, as `fuzzymotiv run CONFIG` reads it):
+    /// its motivations as the sliders, its rooms (room files listed beside the built-in
+    /// rooms, the goals drawn) chosen for a run, and its name, seed, GA size, steps, motion
+    /// model and room recognition in the form. Keys the lab cannot set (e.g. `training`,
+    /// `[fuzzy]`) are named on the page. A bad file stops the lab before it starts (exit 2).
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
 }
 
 /// `--token`'s value: long enough not to be guessed, and safe in a URL and a cookie.
@@ -72,6 +79,7 @@ pub fn lab(args: LabArgs) -> Result<(), CliError> {
     opts.port = args.port;
     opts.threads = args.threads;
     opts.token = args.token;
+    opts.config = args.config;
     if let Some(bind) = args.bind {
         if !bind.is_loopback() {
             note!(

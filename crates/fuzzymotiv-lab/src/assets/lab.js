@@ -227,7 +227,8 @@ async function loadRooms() {
     cb.addEventListener('change', () => { if (cb.checked) lab.chosen.add(r.entry); else lab.chosen.delete(r.entry); });
     const m = r.room.mission || {};
     const mission = [m.goal ? 'goal' : '', m.waypoints && m.waypoints.length ? `${m.waypoints.length} waypoints` : ''].filter(Boolean).join(', ');
-    label.appendChild(document.createTextNode(` ${r.room.name}${r.builtin ? '' : ' (drawn)'}${mission ? ` (${mission})` : ''}`));
+    const from = r.config ? ' (config)' : r.builtin ? '' : ' (drawn)';
+    label.appendChild(document.createTextNode(` ${r.room.name}${from}${mission ? ` (${mission})` : ''}`));
     const edit = html('button', 'Edit', d);
     edit.type = 'button';
     edit.className = 'small';
@@ -464,13 +465,40 @@ function gaPreset() {
   const v = $('ga-preset').value, sizes = { quick: [30, 30], medium: [80, 80], paper: [200, 200] }[v];
   if (sizes) { $('population').value = sizes[0]; $('generations').value = sizes[1]; }
 }
-// A run's settings; room recognition needs two rooms, so one room runs without it.
+// A run's settings; room recognition needs two rooms, so one room runs without it. Steps left
+// empty are the config default.
 function settings() {
   const rooms = lab.rooms.filter((r) => lab.chosen.has(r.entry)).map((r) => r.entry);
-  return { name: $('run-name').value, seed: Number($('seed').value),
+  const out = { name: $('run-name').value, seed: Number($('seed').value),
     motivations: motivationsSpec(),
     population: Number($('population').value), generations: Number($('generations').value),
     motion: $('motion').value, rooms, recognition: $('recognition').checked && rooms.length >= 2 };
+  if ($('steps').value !== '') out.steps = Number($('steps').value);
+  return out;
+}
+// The page opened by `fuzzymotiv lab --config FILE`: the config's rooms chosen, the settings the
+// form has filled in, and the keys the lab cannot set named (its motivations are the sliders).
+function applyStart(start) {
+  const s = start.settings;
+  lab.chosen = new Set(s.rooms);
+  $('run-name').value = s.name;
+  $('seed').value = s.seed;
+  $('population').value = s.population;
+  $('generations').value = s.generations;
+  const preset = Object.entries(lab.info.presets.ga).find(([, [p, g]]) => p === s.population && g === s.generations);
+  $('ga-preset').value = preset ? preset[0] : 'custom';
+  if (s.motion) $('motion').value = s.motion;
+  if (s.steps) $('steps').value = s.steps;
+  $('recognition').checked = s.recognition !== false;
+  const msg = $('start-config');
+  msg.hidden = false;
+  msg.className = 'ok';
+  msg.textContent = `Started on ${start.config}: its ${start.motivations.length} motivations (1), its ` +
+    `${s.rooms.length} room${s.rooms.length === 1 ? '' : 's'} chosen (2), and its name, seed, GA size, steps, motion model and ` +
+    'room recognition (3). ' + (start.not_set.length
+    ? `The lab cannot set ${start.not_set.join(', ')}: its runs take the defaults there; for those, run ` +
+      `\`fuzzymotiv run ${start.config}\`.`
+    : 'The lab sets all of its settings.');
 }
 async function evolve() {
   try {
@@ -635,8 +663,9 @@ async function compare() {
 // ---- start ----------------------------------------------------------------------------------
 async function start() {
   lab.info = await api('GET', '/api/info');
-  const presets = lab.info.presets.motivations;
-  setMotivations(presets['high curiosity']);
+  const presets = lab.info.presets.motivations, start = lab.info.start;
+  setMotivations(start ? start.motivations : presets['high curiosity']);
+  if (start) applyStart(start);
   drawMembership(lab.info.peaks);
   [['preset-high', 'high curiosity'], ['preset-low', 'low curiosity'], ['preset-fetch', 'fetch']].forEach(([id, name]) =>
     $(id).addEventListener('click', () => setMotivations(presets[name])));
