@@ -157,10 +157,10 @@ fn check_missions(motivation: &str, id: TermId, rooms: &[Room]) -> Result<(), Fi
     for (i, room) in rooms.iter().enumerate() {
         let (goal, waypoints) = mission_of(room);
         let missing = match id {
-            TermId::Goal if goal.is_none() => "a goal zone (goal = { x, y, radius })",
+            TermId::Goal if goal.is_none() => "goal zone (goal = { x, y, radius })",
             TermId::Waypoints if waypoints.is_empty() => "waypoints ([[waypoints]] x, y, radius)",
             TermId::Urgency if goal.is_none() && waypoints.is_empty() => {
-                "a mission (a goal zone or waypoints)"
+                "mission (neither a goal zone nor waypoints)"
             }
             _ => continue,
         };
