@@ -50,8 +50,10 @@ def robustness(run_dir: PathLike, *, trials: int = 10) -> Table:
     perturbation, the rows of ``fuzzymotiv robustness RUN_DIR``'s ``robustness.csv``.
 
     Columns: ``perturbation`` (its label, ``none`` first), ``trials``, then for ``f``,
-    ``exploration``, ``homing`` and ``battery`` the mean and the bounds of its 95 % bootstrap
-    interval (``f``, ``f_lo``, ``f_hi``, ...). A directory that is not a run, or ``trials``
+    ``exploration``, ``homing``, ``battery`` and, for a run with one room model (room modelling
+    on, all-rooms training), ``recognition`` (the share of trials the unperturbed robot's room
+    model recognises as their room) the mean and the bounds of its 95 % bootstrap interval
+    (``f``, ``f_lo``, ``f_hi``, ...). A directory that is not a run, or ``trials``
     outside 2..=10000, raises ``FuzzymotivError`` naming it.
     """
     if isinstance(trials, bool) or not isinstance(trials, int):

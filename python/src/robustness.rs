@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::records::robustness::{MEASURES, robustness_of_run};
+use fuzzymotiv_io::records::robustness::{measures_of, robustness_of_run};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -11,7 +11,8 @@ use crate::py_err;
 
 /// The robustness study of the run directory `run` (`trials` trials per room and
 /// perturbation), as columns: `perturbation`, `trials`, then per measure its mean and the
-/// bounds of its 95 % interval (`f`, `f_lo`, `f_hi`, `exploration`, …).
+/// bounds of its 95 % interval (`f`, `f_lo`, `f_hi`, `exploration`, …, and `recognition`
+/// for a run with one room model).
 #[pyfunction]
 #[pyo3(signature = (run, trials=10))]
 pub(crate) fn robustness<'py>(
@@ -27,7 +28,7 @@ pub(crate) fn robustness<'py>(
     d.set_item("perturbation", labels)?;
     let counts: Vec<usize> = records.iter().map(|r| r.trials).collect();
     d.set_item("trials", counts)?;
-    for (m, (stem, _)) in MEASURES.iter().enumerate() {
+    for (m, (stem, _)) in measures_of(&records).iter().enumerate() {
         for (k, suffix) in ["", "_lo", "_hi"].iter().enumerate() {
             let column: Vec<f64> = records
                 .iter()

@@ -64,6 +64,9 @@ def test_robustness_gives_the_rows_the_cli_writes(run_dir, tmp_path, cli):
             assert f"{table[name][k]:.6f}" == f"{float(cell):.6f}", (name, k)
     assert table["perturbation"][0] == "none"
     assert all(table["f_lo"] <= table["f"]) and all(table["f"] <= table["f_hi"])
+    # The run models its rooms: each perturbation's trials are also recognised by that model.
+    assert list(table)[-3:] == ["recognition", "recognition_lo", "recognition_hi"]
+    assert all((0 <= table["recognition"]) & (table["recognition"] <= 1))
 
 
 def test_robustness_names_bad_input(run_dir, tmp_path):

@@ -52,7 +52,13 @@ fn robustness_writes_one_row_and_one_figure_row_per_perturbation_and_keeps_earli
             assert!(c[1] <= c[0] && c[0] <= c[2], "{line}");
         }
     }
+    // The run has one room model: each perturbation's trials are recognised by it too.
+    assert!(
+        lines[0].ends_with(",recognition,recognition_lo,recognition_hi"),
+        "{csv}"
+    );
     let svg = std::fs::read_to_string(out.join("robustness.svg")).unwrap();
+    assert!(svg.contains(">recognised</text>"), "no recognition panel");
     for line in &lines[1..] {
         let label = line.split(',').next().unwrap();
         assert!(
@@ -192,4 +198,32 @@ fn bad_randomise_ranges_exit_2_naming_the_file_and_the_key() {
         assert!(err.contains(says), "{table}: {err}");
         assert!(!out.exists(), "{table}");
     }
+}
+
+/// Without room modelling there is no room model to recognise with: no recognition column.
+#[test]
+fn robustness_of_a_run_without_room_modelling_has_no_recognition() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_dir = dir.path().join("run");
+    let config = repo().join("configs/tiny.toml");
+    let mut args = small_run(&config, &run_dir, "1");
+    args.extend(["--set".into(), "aem.enabled=false".into()]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    ok(&args);
+    let out = dir.path().join("rob");
+    ok(&[
+        "robustness",
+        run_dir.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--trials",
+        "2",
+    ]);
+    let csv = std::fs::read_to_string(out.join("robustness.csv")).unwrap();
+    assert!(
+        csv.lines().next().unwrap().ends_with(",battery_hi"),
+        "{csv}"
+    );
+    let md = std::fs::read_to_string(out.join("robustness.md")).unwrap();
+    assert!(!md.contains("recognised"), "{md}");
 }

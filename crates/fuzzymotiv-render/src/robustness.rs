@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv_records::records::robustness::{MEASURES, RobustnessRecord};
+use fuzzymotiv_records::records::robustness::{RobustnessRecord, measures_of};
 
 use crate::plot::{Ticks, esc, open, px, text_width};
 
@@ -29,7 +29,8 @@ pub fn robustness_svg(title: &str, records: &[RobustnessRecord]) -> String {
         .fold(60.0, f64::max)
         + 16.0;
     let rows = records.len().max(1) as f64;
-    let w = label_w + (PANEL_W + GAP) * MEASURES.len() as f64;
+    let measures = measures_of(records);
+    let w = label_w + (PANEL_W + GAP) * measures.len() as f64;
     let h = TOP + ROW_H * rows + 30.0 + LEGEND_H;
     let mut svg = open(format_args!("{w:.0}"), format_args!("{h:.0}"), 11);
     let _ = writeln!(
@@ -56,17 +57,23 @@ pub fn robustness_svg(title: &str, records: &[RobustnessRecord]) -> String {
             esc(&r.perturbation)
         );
     }
-    for m in 0..MEASURES.len() {
+    for (m, (_, words)) in measures.iter().enumerate() {
         let x0 = label_w + (PANEL_W + GAP) * m as f64;
-        panel(&mut svg, records, m, base, x0);
+        panel(&mut svg, records, (m, words), base, x0);
     }
     legend(&mut svg, h - LEGEND_H + 8.0);
     svg.push_str("</svg>\n");
     svg
 }
 
-/// Panel `m` (a measure of [`MEASURES`]) with its left edge at `x0`.
-fn panel(svg: &mut String, records: &[RobustnessRecord], m: usize, base: usize, x0: f64) {
+/// Panel `m` (a measure of [`measures_of`], shown as `words`) with its left edge at `x0`.
+fn panel(
+    svg: &mut String,
+    records: &[RobustnessRecord],
+    (m, words): (usize, &str),
+    base: usize,
+    x0: f64,
+) {
     let values: Vec<(f64, f64, f64)> = records.iter().map(|r| r.measures()[m]).collect();
     let lo = values
         .iter()
@@ -93,7 +100,7 @@ fn panel(svg: &mut String, records: &[RobustnessRecord], m: usize, base: usize, 
         "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-weight=\"bold\">{}</text>\n<rect x=\"{}\" y=\"{TOP}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#ccc\"/>",
         px((left + right) / 2.0),
         TOP - 10.0,
-        esc(MEASURES[m].1),
+        esc(words),
         px(left),
         px(right - left),
         px(bottom - TOP),
@@ -135,7 +142,7 @@ fn panel(svg: &mut String, records: &[RobustnessRecord], m: usize, base: usize, 
             x(hi),
             x(mean),
             esc(&r.perturbation),
-            esc(MEASURES[m].1),
+            esc(words),
         );
     }
 }
@@ -184,6 +191,9 @@ mod tests {
             battery: v(0.9),
             battery_lo: v(0.9),
             battery_hi: v(0.9),
+            recognition: Some(v(0.75)),
+            recognition_lo: Some(v(0.5)),
+            recognition_hi: Some(v(1.0)),
         }
     }
 
@@ -203,7 +213,8 @@ mod tests {
                 "{svg}"
             );
         }
-        for (_, words) in MEASURES {
+        assert_eq!(measures_of(&records).len(), 5);
+        for (_, words) in measures_of(&records) {
             assert!(svg.contains(&format!(">{words}</text>")), "{words}");
         }
         assert_eq!(svg.matches(&format!("stroke=\"{CHANGED}\"")).count(), 2); // dead=3 + legend

@@ -15,12 +15,14 @@ use crate::records::genome::{locate, read_genome};
 use crate::records::{Fixed, to_csv};
 
 /// The measures of a row, in column order: the column stem and the words a table or figure
-/// shows.
-pub const MEASURES: [(&str, &str); 4] = [
+/// shows. The last, recognition, is there only for a run with one room model (room modelling
+/// on, all-rooms training): [`RobustnessRecord::measures`].
+pub const MEASURES: [(&str, &str); 5] = [
     ("f", "F"),
     ("exploration", "exploration a"),
     ("homing", "homing g"),
     ("battery", "battery b"),
+    ("recognition", "recognised"),
 ];
 
 /// One perturbation: its trials and, per measure of [`MEASURES`], the mean over the trials
@@ -55,15 +57,27 @@ pub struct RobustnessRecord {
     pub battery_lo: Fixed<6>,
     /// Its interval's upper bound.
     pub battery_hi: Fixed<6>,
+    /// The share of trials whose actions the unperturbed robot's room model recognised as
+    /// their room (none without one room model).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub recognition: Option<Fixed<6>>,
+    /// Its interval's lower bound.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub recognition_lo: Option<Fixed<6>>,
+    /// Its interval's upper bound.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub recognition_hi: Option<Fixed<6>>,
 }
 
 impl RobustnessRecord {
     /// The record of the `k`-th row of a study (its bootstrap on stream `k + 1`).
     pub fn of(k: usize, row: &RobustnessRow) -> RobustnessRecord {
-        let [f, e, h, b] = [&row.f, &row.exploration, &row.homing, &row.battery].map(|v| {
+        let stats = |v: &Vec<f64>| {
             let (lo, hi) = mean_interval(v, 0.95, 2000, k as u64 + 1);
             (Fixed(mean(v)), Fixed(lo), Fixed(hi))
-        });
+        };
+        let [f, e, h, b] = [&row.f, &row.exploration, &row.homing, &row.battery].map(stats);
+        let r = (!row.recognised.is_empty()).then(|| stats(&row.recognised));
         RobustnessRecord {
             perturbation: row.perturbation.label(),
             trials: row.f.len(),
@@ -79,19 +93,36 @@ impl RobustnessRecord {
             battery: b.0,
             battery_lo: b.1,
             battery_hi: b.2,
+            recognition: r.map(|r| r.0),
+            recognition_lo: r.map(|r| r.1),
+            recognition_hi: r.map(|r| r.2),
         }
     }
 
-    /// Per measure of [`MEASURES`]: (mean, lower bound, upper bound).
-    pub fn measures(&self) -> [(f64, f64, f64); 4] {
-        [
+    /// Per measure of [`MEASURES`] the record has (recognition only with a room model):
+    /// (mean, lower bound, upper bound).
+    pub fn measures(&self) -> Vec<(f64, f64, f64)> {
+        let mut all = vec![
             (self.f, self.f_lo, self.f_hi),
             (self.exploration, self.exploration_lo, self.exploration_hi),
             (self.homing, self.homing_lo, self.homing_hi),
             (self.battery, self.battery_lo, self.battery_hi),
-        ]
-        .map(|(m, lo, hi)| (m.0, lo.0, hi.0))
+        ];
+        if let (Some(m), Some(lo), Some(hi)) =
+            (self.recognition, self.recognition_lo, self.recognition_hi)
+        {
+            all.push((m, lo, hi));
+        }
+        all.into_iter()
+            .map(|(m, lo, hi)| (m.0, lo.0, hi.0))
+            .collect()
     }
+}
+
+/// The measures of [`MEASURES`] that `records` have: recognition when the first has it.
+pub fn measures_of(records: &[RobustnessRecord]) -> &'static [(&'static str, &'static str)] {
+    let n = records.first().map_or(4, |r| r.measures().len());
+    &MEASURES[..n]
 }
 
 /// `robustness.csv`'s text.
@@ -101,14 +132,15 @@ pub fn robustness_csv(records: &[RobustnessRecord]) -> String {
 
 /// `robustness.md`'s text: one table row per perturbation, each measure as `mean [lo, hi]`.
 pub fn robustness_md(records: &[RobustnessRecord]) -> String {
+    let measures = measures_of(records);
     let mut md = String::from("| perturbation |");
-    for (k, (_, words)) in MEASURES.iter().enumerate() {
+    for (k, (_, words)) in measures.iter().enumerate() {
         md.push_str(&format!(
             " {words}{} |",
             if k == 0 { " (95 % CI)" } else { "" }
         ));
     }
-    md.push_str(&format!("\n|---|{}\n", "---|".repeat(MEASURES.len())));
+    md.push_str(&format!("\n|---|{}\n", "---|".repeat(measures.len())));
     for r in records {
         md.push_str(&format!("| {} |", r.perturbation));
         for (m, lo, hi) in r.measures() {
@@ -138,9 +170,19 @@ pub fn robustness_of_run(run: &Path, trials: usize) -> Result<Vec<RobustnessReco
     let loaded = load_config(Some(&config), &[], None)?;
     let exp = &loaded.experiment;
     let perturbations = Perturbation::standard(exp.trial_params().robot().radius());
+    let at = |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome_path.display()));
+    // The room model the robot built unperturbed (one, with all-rooms training): is a
+    // perturbed trial still recognised as its room?
+    let recognizer = match exp.runs().as_slice() {
+        [one] => {
+            let network = exp.network(&genome.weights).map_err(|e| at(&e))?;
+            exp.recognizer(&network, one).map_err(|e| at(&e))?
+        }
+        _ => None,
+    };
     let rows = exp
-        .robustness(&genome.weights, &perturbations, trials)
-        .map_err(|e| CliError::input(format!("{}: {e}", genome_path.display())))?;
+        .robustness_recognising(&genome.weights, &perturbations, trials, recognizer.as_ref())
+        .map_err(|e| at(&e))?;
     Ok(rows
         .iter()
         .enumerate()

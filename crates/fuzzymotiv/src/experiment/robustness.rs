@@ -12,6 +12,7 @@
 //! ```
 
 use crate::experiment::Experiment;
+use crate::modelling::{Recognizer, SomError};
 use crate::params::FieldError;
 use crate::random::seed::hash_str;
 use crate::simulation::controller::{Controller, GenomeError, INPUTS, Mlp, OUTPUTS};
@@ -19,7 +20,7 @@ use crate::simulation::randomise::Draw;
 use crate::simulation::robot::{Khepera, RawRobot};
 use crate::simulation::sensor::{SensorModel, TableRef};
 use crate::simulation::sensor_table::SensorTable;
-use crate::simulation::trial::Arena;
+use crate::simulation::trial::{ActionLog, Arena};
 use crate::simulation::trial_params::TrialParams;
 
 /// One perturbation of the simulated robot.
@@ -131,6 +132,9 @@ pub enum RobustnessError {
     /// A perturbation the robot cannot take (e.g. a body too large for its step).
     #[error("perturbation: {0}")]
     Perturbation(#[from] FieldError),
+    /// The room model cannot take a trial's actions (it was trained for another experiment).
+    #[error("room model: {0}")]
+    Recognition(#[from] SomError),
 }
 
 /// F and behaviour of every trial under one perturbation (trial `k` of room `r` at index
@@ -147,6 +151,9 @@ pub struct RobustnessRow {
     pub homing: Vec<f64>,
     /// Each trial's battery term `b`.
     pub battery: Vec<f64>,
+    /// Per trial, 1 when the room model recognised its actions as its own room, else 0 (empty
+    /// when no room model was given: [`Experiment::robustness_recognising`]).
+    pub recognised: Vec<f64>,
 }
 
 impl Experiment {
@@ -158,6 +165,19 @@ impl Experiment {
         perturbations: &[Perturbation],
         trials: usize,
     ) -> Result<Vec<RobustnessRow>, RobustnessError> {
+        self.robustness_recognising(genome, perturbations, trials, None)
+    }
+
+    /// [`Experiment::robustness`], and with a room model (the unperturbed robot's,
+    /// [`Experiment::recognizer`]) whether each trial's actions are recognised as its room:
+    /// does the robot still know where it is when its body or sensors differ?
+    pub fn robustness_recognising(
+        &self,
+        genome: &[f64],
+        perturbations: &[Perturbation],
+        trials: usize,
+        recognizer: Option<&Recognizer>,
+    ) -> Result<Vec<RobustnessRow>, RobustnessError> {
         let net = self.network(genome)?;
         let mut rows = Vec::with_capacity(perturbations.len());
         for &p in perturbations {
@@ -168,6 +188,7 @@ impl Experiment {
                 exploration: Vec::new(),
                 homing: Vec::new(),
                 battery: Vec::new(),
+                recognised: Vec::new(),
             };
             for room in 0..exp.arenas.len() {
                 for k in 0..trials {
@@ -184,7 +205,17 @@ impl Experiment {
                             _ => 0.0,
                         },
                     };
-                    let (terms, _, _) = exp.observed_trial(&mut c, room, seed, &mut ());
+                    let terms = match recognizer {
+                        None => exp.observed_trial(&mut c, room, seed, &mut ()).0,
+                        Some(rec) => {
+                            let mut log = ActionLog::default();
+                            let (terms, _, _) = exp.observed_trial(&mut c, room, seed, &mut log);
+                            let (answer, _) = exp.recognise_actions(rec, &log.actions)?;
+                            row.recognised
+                                .push(f64::from(u8::from(answer == Some(room))));
+                            terms
+                        }
+                    };
                     row.f.push(exp.fuzzy_fitness(&terms));
                     row.exploration.push(terms.a);
                     row.homing.push(terms.g);
@@ -257,6 +288,37 @@ mod tests {
             assert_eq!(row.exploration, rows[0].exploration);
         }
         assert_eq!(rows[0].f.len(), 6);
+    }
+
+    /// Recognising the trials' actions watches them without changing them: the same F and
+    /// terms as without a room model, and one 0/1 answer per trial.
+    #[test]
+    fn recognising_the_trials_leaves_them_unchanged() {
+        let (exp, genome) = setup();
+        let net = exp.network(&genome).unwrap();
+        let run = &exp.runs()[0];
+        let rec = exp
+            .recognizer(&net, run)
+            .unwrap()
+            .expect("room modelling is on");
+        let all = [
+            Perturbation::None,
+            Perturbation::DeadSensor(2),
+            Perturbation::Noise(0.2),
+        ];
+        let plain = exp.robustness(&genome, &all, 3).unwrap();
+        let seen = exp
+            .robustness_recognising(&genome, &all, 3, Some(&rec))
+            .unwrap();
+        for (p, s) in plain.iter().zip(&seen) {
+            assert_eq!(
+                (&p.f, &p.exploration, &p.battery),
+                (&s.f, &s.exploration, &s.battery)
+            );
+            assert!(p.recognised.is_empty());
+            assert_eq!(s.recognised.len(), s.f.len());
+            assert!(s.recognised.iter().all(|&v| v == 0.0 || v == 1.0));
+        }
     }
 
     /// A perturbation that matters changes the trials.
