@@ -664,3 +664,91 @@ fn the_lab_started_on_fetch_toml_shows_its_sliders_and_rooms_with_goals_and_runs
     let console = d.console_errors();
     assert!(console.is_empty(), "console errors: {console:?}");
 }
+
+#[test]
+#[ignore = "needs chromium: run by .ci/run"]
+fn the_fitness_combination_is_chosen_explained_and_reported_in_chromium() {
+    require_browser();
+    let tmp = tempfile::tempdir().unwrap();
+    let lab = LabProcess::start(&tmp.path().join("lab"));
+    let mut d = Driver::start();
+    d.new_session(&tmp.path().join("chromium-profile"));
+    d.goto(&lab.url);
+    wait_for(
+        &d,
+        30,
+        "the page",
+        "return document.querySelectorAll('#room-choices .thumb').length >= 5;",
+    );
+    let select = labelled(&d, "Fitness combination");
+    assert_eq!(
+        d.script("return document.getElementById('combine').value;"),
+        "tsk",
+        "the TSK by default"
+    );
+
+    // What would F be: the TSK's F, then the weighted sum's beside it once chosen.
+    d.click_button("Explain F");
+    let tsk = wait_for(
+        &d,
+        10,
+        "F explained",
+        "var p = document.getElementById('explain-f'); return p ? p.textContent : null;",
+    );
+    assert!(tsk.as_str().unwrap().contains("firing rule"), "{tsk}");
+    let option = d
+        .find_xpath(
+            "//select[@id='combine']/option[starts-with(normalize-space(), 'weighted sum')]",
+        )
+        .expect("a weighted sum option");
+    d.cmd("POST", &format!("/element/{option}/click"), json!({}));
+    assert!(d.displayed(&select));
+    let sum = wait_for(
+        &d,
+        10,
+        "F under the weighted sum",
+        "var p = document.getElementById('explain-f'); return p && /under a weighted sum/.test(p.textContent) ? p.textContent : null;",
+    );
+    assert!(
+        sum.as_str().unwrap().contains("The TSK would give F = "),
+        "{sum}"
+    );
+
+    // A small run under it: the result, the run list and the downloaded config say so.
+    type_into(&d, &labelled(&d, "Population"), "6");
+    type_into(&d, &labelled(&d, "Generations"), "2");
+    type_into(&d, &labelled(&d, "Steps"), "100");
+    d.click_button("Evolve");
+    wait_for(
+        &d,
+        300,
+        "the run to finish",
+        "return window.labTimes.finished;",
+    );
+    let said = d.script("return document.getElementById('result-combine').textContent;");
+    assert_eq!(said, "F combined by a weighted sum (F = Σ Xᵢ·Yᵢ).");
+    let listed = wait_for(
+        &d,
+        10,
+        "the run listed",
+        "var c = document.querySelector('#run-list tbody td:nth-child(2)'); return c && /weighted-sum/.test(c.textContent) ? c.textContent : null;",
+    );
+    assert!(
+        listed.as_str().unwrap().ends_with(" by weighted-sum"),
+        "{listed}"
+    );
+    let config = d.script("var x = new XMLHttpRequest(); x.open('GET', document.getElementById('download-config').href, false); x.send(); return x.responseText;");
+    assert!(
+        config
+            .as_str()
+            .unwrap()
+            .contains("combine = \"weighted-sum\""),
+        "{config}"
+    );
+    d.script("window.scrollTo(0, 0);");
+    let shot = target_dir().join("lab-combine-screenshot.png");
+    std::fs::write(&shot, d.full_page_png()).unwrap();
+    eprintln!("screenshot: {}", shot.display());
+    let console = d.console_errors();
+    assert!(console.is_empty(), "console errors: {console:?}");
+}

@@ -13,6 +13,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
 use futures_util::Stream;
+use fuzzymotiv::experiment::Combination;
 use fuzzymotiv::fitness::TskFitness;
 use fuzzymotiv_io::files::guard::{OutState, Spelling, StagedDir, check_out_as};
 use serde::Deserialize;
@@ -93,19 +94,25 @@ struct ExplainRequest {
     motivations: Value,
     /// `[a, g, l, b]` (one value per motivation), or `{ term: value }`.
     fitness: Value,
+    /// The run form's `[fitness] combine`; default the TSK.
+    #[serde(default)]
+    combine: Combination,
 }
 
-/// "What would F be": the library's explain (F and the firing rules) over N inputs.
+/// "What would F be": the library's explain (the TSK's F and its firing rules) over N inputs,
+/// and F under the chosen combination (`combined`; the TSK's F when it is the TSK).
 async fn explain(body: Bytes) -> Result<Json<Value>, ApiError> {
     let req: ExplainRequest = parse_body(&body)?;
     let m = motivations::explain_motivations(req.motivations)?;
     let y = motivations::explain_inputs(&m, req.fitness)?;
-    let x = TskFitness::paper().explain(&m, &y);
+    let tsk = TskFitness::paper();
+    let x = tsk.explain(&m, &y);
+    let combined = req.combine.fitness(&tsk, &m, &y);
     let names: Vec<&str> = m.iter().map(|m| m.name()).collect();
     Ok(Json(
         json!({ "fitness": x.fitness, "rules": x.rules, "weight_sum": x.weight_sum,
         "inputs": x.inputs, "names": names, "weights": m.weights(),
-        "motivations": m.as_array() }),
+        "motivations": m.as_array(), "combine": req.combine, "combined": combined }),
     ))
 }
 

@@ -155,5 +155,6 @@ pub fn result(exp: &Experiment, done: &Finished) -> Value {
         "paths": { "generation": exp.ga().generations().saturating_sub(1), "rooms": paths, "final": true },
         "recognition": confusion,
         "wall_seconds": done.wall_seconds,
+        "combine": exp.combination(),
     })
 }

@@ -362,7 +362,7 @@ impl Runs {
 fn about(s: &Settings, raw: &fuzzymotiv::experiment::RawConfig) -> Value {
     let m = &raw.motivations.list;
     json!({ "name": raw.name, "seed": raw.seed, "population": s.population,
-            "generations": s.generations, "rooms": raw.rooms,
+            "generations": s.generations, "rooms": raw.rooms, "combine": raw.fitness.combine,
             "motivations": m.iter().map(|(_, w)| w.weight()).collect::<Vec<_>>(),
             "motivation_names": m.iter().map(|(n, _)| n).collect::<Vec<_>>() })
 }

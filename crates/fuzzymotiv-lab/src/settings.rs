@@ -52,6 +52,11 @@ pub struct Settings {
     /// default the config's (on).
     #[serde(default)]
     pub recognition: Option<bool>,
+    /// `fitness.combine`: how the motivations combine the terms into F, "tsk",
+    /// "weighted-sum" or "weighted-squares"; default the config's (the TSK). Left out of the
+    /// settings shown when not given, as before it existed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub combine: Option<String>,
 }
 
 fn default_name() -> String {
@@ -68,6 +73,7 @@ impl Settings {
     /// The settings as a config document (TOML), read by the CLI's parser.
     pub fn document(&self) -> String {
         use toml::{Table, Value};
+        let section = |key: &str, v: Value| Value::Table(Table::from_iter([(key.to_string(), v)]));
         let mut doc = Table::new();
         doc.insert("name".into(), Value::String(self.name.clone()));
         doc.insert(
@@ -90,16 +96,23 @@ impl Settings {
         );
         doc.insert("ga".into(), Value::Table(ga));
         if let Some(steps) = self.steps {
-            let trial = Table::from_iter([("steps".to_string(), Value::Integer(steps as i64))]);
-            doc.insert("trial".into(), Value::Table(trial));
+            doc.insert(
+                "trial".into(),
+                section("steps", Value::Integer(steps as i64)),
+            );
         }
         if let Some(on) = self.recognition {
-            let aem = Table::from_iter([("enabled".to_string(), Value::Boolean(on))]);
-            doc.insert("aem".into(), Value::Table(aem));
+            doc.insert("aem".into(), section("enabled", Value::Boolean(on)));
         }
         if let Some(motion) = &self.motion {
-            let robot = Table::from_iter([("motion".to_string(), Value::String(motion.clone()))]);
-            doc.insert("robot".into(), Value::Table(robot));
+            doc.insert(
+                "robot".into(),
+                section("motion", Value::String(motion.clone())),
+            );
+        }
+        if let Some(combine) = &self.combine {
+            let combine = Value::String(combine.clone());
+            doc.insert("fitness".into(), section("combine", combine));
         }
         toml::to_string(&doc).unwrap_or_default()
     }

@@ -100,6 +100,9 @@ fn settings_of(raw: &RawConfig) -> Settings {
         steps: Some(raw.trial.steps),
         rooms: Some(raw.rooms.clone()),
         recognition: Some(raw.aem.enabled),
+        combine: serde_json::to_value(raw.fitness.combine)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string)),
     }
 }
 

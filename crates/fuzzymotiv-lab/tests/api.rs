@@ -1046,3 +1046,152 @@ fn a_start_config_names_the_keys_the_lab_cannot_set() {
     assert_eq!(list[0]["entry"], "H");
     assert_eq!(list[0]["config"], false);
 }
+
+/// The run's generations, as `generations.csv` holds them.
+fn generations_csv(c: &Client, id: &str) -> String {
+    std::fs::read_to_string(c.lab.dir().join("runs").join(id).join("generations.csv")).unwrap()
+}
+
+/// Starts `settings`, waits for the end; the run's id.
+fn finished_run(c: &Client, settings: &Value) -> String {
+    let a = c.post("/api/runs", settings);
+    assert_eq!(a.status, 201, "{}", a.body);
+    let id = a.json()["id"].as_str().unwrap().to_string();
+    let end = events(c, &id).pop().unwrap();
+    assert_eq!(end.1["status"], "finished", "{}", end.1);
+    id
+}
+
+#[test]
+fn a_weighted_sum_run_writes_its_combination_and_evolves_on_another_f() {
+    let c = Client::start();
+    let tsk = finished_run(&c, &small(2, 5));
+    let mut s = small(2, 5);
+    s["combine"] = json!("weighted-sum");
+    let sum = finished_run(&c, &s);
+
+    // The downloaded config and the run directory's config and report say it; the TSK run's
+    // settings and config are as before the option (no `combine` anywhere).
+    let config = c.get(&format!("/api/runs/{sum}/config.toml")).body;
+    assert!(
+        config.contains("[fitness]") && config.contains("combine = \"weighted-sum\""),
+        "{config}"
+    );
+    let dir = c.lab.dir().join("runs").join(&sum);
+    let resolved = std::fs::read_to_string(dir.join("config.resolved.toml")).unwrap();
+    assert!(
+        resolved.contains("combine = \"weighted-sum\""),
+        "{resolved}"
+    );
+    let report = std::fs::read_to_string(dir.join("report.html")).unwrap();
+    assert!(
+        report.contains("combine = &quot;weighted-sum&quot;"),
+        "the report's configuration names the combination"
+    );
+    let default = c.get(&format!("/api/runs/{tsk}/config.toml")).body;
+    assert!(!default.contains("combine"), "{default}");
+    let detail = c.get(&format!("/api/runs/{tsk}")).json();
+    assert!(detail["settings"].get("combine").is_none(), "{detail}");
+    assert_eq!(detail["result"]["combine"], "tsk");
+    assert_eq!(
+        c.get(&format!("/api/runs/{sum}")).json()["result"]["combine"],
+        "weighted-sum"
+    );
+
+    // The same seed, another F: the curves differ from the first generation on.
+    assert_ne!(generations_csv(&c, &tsk), generations_csv(&c, &sum));
+    let best = |id: &str| {
+        let csv = generations_csv(&c, id);
+        let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let col = head.iter().position(|h| *h == "best").unwrap();
+        csv.lines()
+            .nth(1)
+            .unwrap()
+            .split(',')
+            .nth(col)
+            .unwrap()
+            .to_string()
+    };
+    assert_ne!(best(&tsk), best(&sum));
+}
+
+#[test]
+fn an_unknown_fitness_combination_gets_400_naming_the_field_and_the_choices() {
+    let c = Client::start();
+    let mut s = small(2, 5);
+    s["combine"] = json!("product");
+    let a = c.post("/api/runs", &s);
+    assert_eq!(a.status, 400, "{}", a.body);
+    let e = a.json()["error"].as_str().unwrap().to_string();
+    assert!(
+        e.starts_with("lab settings: field `fitness.combine`"),
+        "{e}"
+    );
+    assert!(
+        e.contains("weighted-sum") && e.contains("weighted-squares"),
+        "{e}"
+    );
+    let a = c.post(
+        "/api/explain",
+        &json!({ "motivations": [0.5, 0.3, 0.0, 0.2], "fitness": [0.9, 0.5, 0.0, 0.8],
+                 "combine": "product" }),
+    );
+    assert_eq!(a.status, 400, "{}", a.body);
+    let e = a.json()["error"].as_str().unwrap().to_string();
+    assert!(e.starts_with("request body: field `combine`"), "{e}");
+    assert!(
+        e.contains("weighted-sum") && e.contains("weighted-squares"),
+        "{e}"
+    );
+}
+
+#[test]
+fn explain_gives_f_under_the_chosen_combination_beside_the_tsks() {
+    let c = Client::start();
+    let ask = |combine: Option<&str>| {
+        let mut body =
+            json!({ "motivations": [0.5, 0.3, 0.0, 0.2], "fitness": [0.9, 0.5, 0.0, 0.8] });
+        if let Some(k) = combine {
+            body["combine"] = json!(k);
+        }
+        let a = c.post("/api/explain", &body);
+        assert_eq!(a.status, 200, "{}", a.body);
+        a.json()
+    };
+    let tsk = ask(None);
+    assert_eq!(tsk["combine"], "tsk");
+    assert_eq!(tsk["combined"], tsk["fitness"]);
+    let sum = ask(Some("weighted-sum"));
+    assert_eq!(sum["combine"], "weighted-sum");
+    assert_eq!(
+        sum["fitness"], tsk["fitness"],
+        "the rules shown are the TSK's"
+    );
+    assert_eq!(sum["rules"], tsk["rules"]);
+    let f = sum["combined"].as_f64().unwrap();
+    assert!(
+        (f - (0.5 * 0.9 + 0.3 * 0.5 + 0.2 * 0.8)).abs() < 1e-12,
+        "{f}"
+    );
+    let squares = ask(Some("weighted-squares"))["combined"].as_f64().unwrap();
+    assert!(
+        (squares - (0.5 * 0.81 + 0.3 * 0.25 + 0.2 * 0.64)).abs() < 1e-12,
+        "{squares}"
+    );
+}
+
+#[test]
+fn a_start_config_sets_the_fitness_combination() {
+    let tmp = tempfile::tempdir().unwrap();
+    let config = tmp.path().join("baseline.toml");
+    std::fs::write(
+        &config,
+        "name = \"baseline\"\nrooms = [\"H\", \"T\"]\n[ga]\npopulation = 12\ngenerations = 3\n\
+         [fitness]\ncombine = \"weighted-squares\"\n",
+    )
+    .unwrap();
+    let c = Client::start_on(Some(&config));
+    let start = c.get("/api/info").json()["start"].clone();
+    assert_eq!(start["settings"]["combine"], "weighted-squares");
+    assert_eq!(start["not_set"], json!([]), "the lab sets fitness.combine");
+}

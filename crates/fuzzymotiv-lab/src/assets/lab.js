@@ -154,14 +154,23 @@ function drawMembership(peaks) {
     el('text', { x: X(p), y: 105, 'font-size': 10, 'text-anchor': 'middle' }, svg).textContent = p;
   });
 }
+// The fitness combinations of the run form (`[fitness] combine`), as the page names them.
+const COMBINE = { tsk: 'the TSK rule base', 'weighted-sum': 'a weighted sum (F = Σ Xᵢ·Yᵢ)',
+  'weighted-squares': 'weighted squares (F = Σ Xᵢ·Yᵢ²)' };
+// F under the run form's combination; the firing rules are the TSK's (a baseline has none).
 async function explainF() {
   const y = {};
   inputNames().forEach((k) => { y[k] = Number($(`explain-${k}`).value); });
+  const body = { motivations: motivationsSpec(), fitness: y };
+  if ($('combine').value !== 'tsk') body.combine = $('combine').value;
   try {
-    const r = await api('POST', '/api/explain', { motivations: motivationsSpec(), fitness: y });
+    const r = await api('POST', '/api/explain', body);
     const out = $('explain-out');
     out.replaceChildren();
-    html('p', `F = ${r.fitness.toFixed(6)} from ${r.rules.length} firing rule(s) (Σw = ${r.weight_sum.toFixed(4)})`, out).id = 'explain-f';
+    const rules = `${r.rules.length} firing rule(s) (Σw = ${r.weight_sum.toFixed(4)})`;
+    html('p', r.combine === 'tsk' ? `F = ${r.fitness.toFixed(6)} from ${rules}`
+      : `F = ${r.combined.toFixed(6)} under ${COMBINE[r.combine]}, the fitness combination chosen in 3. ` +
+        `The TSK would give F = ${r.fitness.toFixed(6)} from ${rules}:`, out).id = 'explain-f';
     const t = html('table', undefined, out);
     const head = html('tr', undefined, t);
     ['rule', ...r.inputs.map((k) => `${k} is`), 'w', 'f'].forEach((h) => html('th', h, head));
@@ -466,7 +475,7 @@ function gaPreset() {
   if (sizes) { $('population').value = sizes[0]; $('generations').value = sizes[1]; }
 }
 // A run's settings; room recognition needs two rooms, so one room runs without it. Steps left
-// empty are the config default.
+// empty are the config default; the TSK (the default combination) is not sent.
 function settings() {
   const rooms = lab.rooms.filter((r) => lab.chosen.has(r.entry)).map((r) => r.entry);
   const out = { name: $('run-name').value, seed: Number($('seed').value),
@@ -474,6 +483,7 @@ function settings() {
     population: Number($('population').value), generations: Number($('generations').value),
     motion: $('motion').value, rooms, recognition: $('recognition').checked && rooms.length >= 2 };
   if ($('steps').value !== '') out.steps = Number($('steps').value);
+  if ($('combine').value !== 'tsk') out.combine = $('combine').value;
   return out;
 }
 // The page opened by `fuzzymotiv lab --config FILE`: the config's rooms chosen, the settings the
@@ -490,12 +500,13 @@ function applyStart(start) {
   if (s.motion) $('motion').value = s.motion;
   if (s.steps) $('steps').value = s.steps;
   $('recognition').checked = s.recognition !== false;
+  if (s.combine) $('combine').value = s.combine;
   const msg = $('start-config');
   msg.hidden = false;
   msg.className = 'ok';
   msg.textContent = `Started on ${start.config}: its ${start.motivations.length} motivations (1), its ` +
-    `${s.rooms.length} room${s.rooms.length === 1 ? '' : 's'} chosen (2), and its name, seed, GA size, steps, motion model and ` +
-    'room recognition (3). ' + (start.not_set.length
+    `${s.rooms.length} room${s.rooms.length === 1 ? '' : 's'} chosen (2), and its name, seed, GA size, steps, motion model, ` +
+    'room recognition and fitness combination (3). ' + (start.not_set.length
     ? `The lab cannot set ${start.not_set.join(', ')}: its runs take the defaults there; for those, run ` +
       `\`fuzzymotiv run ${start.config}\`.`
     : 'The lab sets all of its settings.');
@@ -568,6 +579,7 @@ function showResult(id, result) {
   const box = $('result-table');
   box.replaceChildren();
   table(result.rows, box, result.paths);
+  if (result.combine) html('p', `F combined by ${COMBINE[result.combine]}.`, box).id = 'result-combine';
   html('p', `Wall time ${result.wall_seconds.toFixed(1)} s.`, box);
   $('save-name').value = id;
   $('download-config').href = `/api/runs/${encodeURIComponent(id)}/config.toml`;
@@ -600,8 +612,9 @@ async function refreshRuns() {
     const m = Array.isArray(r.about.motivations) ? r.about.motivations : NAMES.map((k) => r.about.motivations[k]);
     const paper = names.length === 4 && names.every((n, k) => n === NAMES[k]);
     html('td', r.id, tr);
-    html('td', paper ? `(${m.map((v) => Number(v).toFixed(2)).join(', ')})`
-      : names.map((n, k) => `${LETTERS[n] || n} ${Number(m[k]).toFixed(2)}`).join(', '), tr);
+    const combine = r.about.combine && r.about.combine !== 'tsk' ? ` by ${r.about.combine}` : '';
+    html('td', (paper ? `(${m.map((v) => Number(v).toFixed(2)).join(', ')})`
+      : names.map((n, k) => `${LETTERS[n] || n} ${Number(m[k]).toFixed(2)}`).join(', ')) + combine, tr);
     html('td', `${r.about.population} × ${r.about.generations}`, tr);
     html('td', r.status + (r.queue_position ? ` (queue ${r.queue_position})` : ''), tr);
     const td = html('td', undefined, tr);
@@ -671,6 +684,7 @@ async function start() {
     $(id).addEventListener('click', () => setMotivations(presets[name])));
   $('config-file').addEventListener('change', (ev) => { const f = ev.target.files[0]; if (f) loadConfig(f); });
   $('explain-button').addEventListener('click', explainF);
+  $('combine').addEventListener('change', () => { if ($('explain-out').childElementCount) explainF(); });
   $('ga-preset').addEventListener('change', gaPreset);
   ['population', 'generations'].forEach((id) => $(id).addEventListener('input', () => { $('ga-preset').value = 'custom'; }));
   $('evolve').addEventListener('click', evolve);

@@ -9,7 +9,7 @@ use crate::experiment::config::{Combination, EnergyMode};
 use crate::fitness::terms::{
     FitnessTerms, LIBRARY_TERMS, MAX_USER_TERMS, MissionTracker, Term, TermId, WaypointOrder,
 };
-use crate::fitness::{MAX_MOTIVATIONS, Motivations};
+use crate::fitness::{MAX_MOTIVATIONS, Motivations, TskFitness};
 use crate::params::FieldError;
 use crate::simulation::room::{HomeZone, Room};
 
@@ -183,6 +183,19 @@ fn weighted(x: &Motivations, y: &[f64], g: impl Fn(f64) -> f64) -> f64 {
         .sum()
 }
 
+impl Combination {
+    /// F of the fuzzy inputs `y` (one per motivation of `x`) under this combination: the TSK
+    /// `tsk`'s, or a baseline's (the F of a trial, and of the lab's "What would F be?").
+    #[inline]
+    pub fn fitness(self, tsk: &TskFitness, x: &Motivations, y: &[f64]) -> f64 {
+        match self {
+            Combination::Tsk => tsk.evaluate(x, y),
+            Combination::WeightedSum => weighted(x, y, |v| v),
+            Combination::WeightedSquares => weighted(x, y, |v| v * v),
+        }
+    }
+}
+
 impl Experiment {
     /// The fuzzy inputs `Y` for a trial's terms, one per motivation (with `energy =
     /// "conserve"`, the battery term is `1 − b`).
@@ -207,11 +220,7 @@ impl Experiment {
             };
         }
         let y = &y[..self.plan.inputs.len()];
-        match self.combine {
-            Combination::Tsk => self.fuzzy.evaluate(&self.motivations, y),
-            Combination::WeightedSum => weighted(&self.motivations, y, |v| v),
-            Combination::WeightedSquares => weighted(&self.motivations, y, |v| v * v),
-        }
+        self.combine.fitness(&self.fuzzy, &self.motivations, y)
     }
 
     /// How the motivations combine the terms.
