@@ -124,3 +124,33 @@ fn replication_runs_two_base_seeds_and_pools_their_claims() {
         stderr(&again)
     );
 }
+
+/// A run under a baseline says in its report that F is not the TSK's, and its rules' notes
+/// say what the TSK would give; a TSK run's report says neither.
+#[test]
+fn a_baseline_runs_report_says_its_f_is_not_the_tsks() {
+    let tmp = tempfile::tempdir().unwrap();
+    let config = tmp.path().join("c.toml");
+    std::fs::write(&config, "name = \"c\"\n").unwrap();
+    for (combine, baseline) in [("weighted-sum", true), ("tsk", false)] {
+        let out = tmp.path().join(combine);
+        let set = format!("fitness.combine=\"{combine}\"");
+        Fm::new(["run", config.to_str().unwrap(), "--quiet"])
+            .out(&out)
+            .sets(&SIZES)
+            .sets(&[set.as_str()])
+            .ok();
+        let page = read(out.join("report.html"));
+        assert_eq!(
+            page.contains("This run&#39;s F is not the TSK&#39;s")
+                || page.contains("This run's F is not the TSK's"),
+            baseline,
+            "{combine}"
+        );
+        assert_eq!(
+            page.contains("The TSK would give F = Σ w·f / Σ w"),
+            baseline,
+            "{combine}"
+        );
+    }
+}

@@ -3,7 +3,7 @@
 //! ([`RenderContext::of`]), so that rendering reads records and this, never the live
 //! experiment.
 
-use fuzzymotiv::experiment::{EnergyMode, OrientationMode, Training};
+use fuzzymotiv::experiment::{Combination, EnergyMode, OrientationMode, Training};
 use fuzzymotiv::fitness::Homing;
 use fuzzymotiv::fitness::label_name;
 use fuzzymotiv::simulation::Motion;
@@ -37,6 +37,8 @@ pub struct RenderContext {
     pub motivations: MotivationsRecord,
     /// The TSK's rule base.
     pub fuzzy: FuzzySetting,
+    /// How F combines the motivations (the TSK, or a baseline).
+    pub combine: Combination,
     /// Whether the fuzzy input of b is b or 1 − b.
     pub energy: EnergyMode,
     /// How g is measured.
@@ -142,6 +144,7 @@ impl RenderContext {
             dt: trial.dt(),
             motivations: MotivationsRecord::of(exp.motivations()),
             fuzzy: FuzzySetting::of(tsk, exp.motivations()),
+            combine: exp.combination(),
             energy: exp.energy(),
             homing: exp.homing(),
             motion: trial.robot().motion(),

@@ -5,6 +5,7 @@
 
 use std::fmt::Write as _;
 
+use fuzzymotiv::experiment::Combination;
 use fuzzymotiv_records::records::RoomFuzzy;
 use fuzzymotiv_records::records::context::{OwnLabels, RenderContext};
 
@@ -100,6 +101,7 @@ fn fuzzy_intro(page: &mut Page, ctx: &RenderContext) {
     } else {
         rule_text(page, ctx);
     }
+    baseline_text(page, ctx);
     let fuzzy = &ctx.fuzzy;
     figure(
         page,
@@ -153,6 +155,22 @@ fn rule_text(page: &mut Page, ctx: &RenderContext) {
         fuzzy.coefficients,
         1u64 << n.min(63),
         rules = fuzzy.rule_count,
+    );
+}
+
+/// For a run whose F is a baseline combination, not the TSK: what F is instead.
+fn baseline_text(page: &mut Page, ctx: &RenderContext) {
+    let (what, key) = match ctx.combine {
+        Combination::Tsk => return,
+        Combination::WeightedSum => ("a weighted sum, F = Σ Xᵢ·Yᵢ", "weighted-sum"),
+        Combination::WeightedSquares => (
+            "a weighted sum of squares, F = Σ Xᵢ·Yᵢ² (the TSK's value on its peaks)",
+            "weighted-squares",
+        ),
+    };
+    let _ = writeln!(
+        page.body,
+        "<p><b>This run's F is not the TSK's.</b> It combines the motivations by {what} (<code>fitness.combine = \"{key}\"</code>, a baseline); the evolution, the column F below and every fitness of this report are that. The rule base is described, and each room's rules are listed, to show what the TSK would give for the same terms.</p>"
     );
 }
 
@@ -265,12 +283,17 @@ fn rules_html(ctx: &RenderContext, room: &RoomFuzzy) -> String {
     let inputs: Vec<String> = y.iter().map(|v| format!("{v:.3}")).collect();
     let _ = write!(
         rules,
-        "<tr><th colspan=\"2\" class=\"left\">Σ</th><th>{:.4}</th><th></th><th>{sum_wf:.4}</th></tr></table><p class=\"note\">F = Σ w·f / Σ w = {sum_wf:.4} / {:.4} = {:.4}; inputs Y = ({}), motivations X = {}.</p>",
+        "<tr><th colspan=\"2\" class=\"left\">Σ</th><th>{:.4}</th><th></th><th>{sum_wf:.4}</th></tr></table><p class=\"note\">{tsk}F = Σ w·f / Σ w = {sum_wf:.4} / {:.4} = {:.4}; inputs Y = ({}), motivations X = {}.</p>",
         ex.weight_sum,
         ex.weight_sum,
         ex.fitness,
         inputs.join(", "),
-        xs(ctx)
+        xs(ctx),
+        tsk = if ctx.combine == Combination::Tsk {
+            ""
+        } else {
+            "The TSK would give "
+        },
     );
     rules
 }
