@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::statistics::{Comparison, Settings, paired};
+use fuzzymotiv::statistics::{Comparison, Expect, Settings, paired};
 use fuzzymotiv_records::records::combination::BehaviourRow;
 use fuzzymotiv_records::records::{ClaimRecord, StudySummary, TableRow};
 
@@ -97,15 +97,7 @@ pub fn behaviour_rows(
 
 fn row(combination: &str, setting: &str, measure: &str, c: &Comparison) -> BehaviourRow {
     // As the claims' verdicts: a difference within what the design detects is inconclusive.
-    let verdict = if c.mdd.is_some_and(|m| c.difference.abs() < m) {
-        "inconclusive"
-    } else if c.p < c.alpha && c.difference > 0.0 {
-        "higher"
-    } else if c.p < c.alpha && c.difference < 0.0 {
-        "lower"
-    } else {
-        "not significant"
-    };
+    let verdict = c.verdict_with_power(Expect::Higher).direction_label();
     BehaviourRow {
         combination: combination.into(),
         setting: setting.into(),

@@ -7,7 +7,7 @@
 
 use std::fmt::Write as _;
 
-use fuzzymotiv::statistics::{Comparison, Settings, mean_interval, mean_std, paired};
+use fuzzymotiv::statistics::{Comparison, Expect, Settings, mean_interval, mean_std, paired};
 use fuzzymotiv_records::records::Finished;
 use fuzzymotiv_records::records::urgency::{UrgencyRow, UrgencySeed};
 
@@ -175,16 +175,8 @@ pub fn comparisons(per_seed: &[UrgencySeed]) -> Vec<UrgencyRow> {
 }
 
 fn row(measure: &str, (from, to): (f64, f64), pairs: usize, c: &Comparison) -> UrgencyRow {
-    // The project's rule: a difference within what the design detects is inconclusive.
-    let verdict = if c.mdd.is_some_and(|m| c.difference.abs() < m) {
-        "inconclusive"
-    } else if c.p < c.alpha && c.difference > 0.0 {
-        "higher"
-    } else if c.p < c.alpha && c.difference < 0.0 {
-        "lower"
-    } else {
-        "not significant"
-    };
+    // As the claims' verdicts: a difference within what the design detects is inconclusive.
+    let verdict = c.verdict_with_power(Expect::Higher).direction_label();
     UrgencyRow {
         measure: measure.into(),
         from,
