@@ -7,6 +7,7 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::statistics::{Comparison, Settings, paired};
 use fuzzymotiv_records::records::combination::BehaviourRow;
+use fuzzymotiv_records::records::paired::PairedStats;
 use fuzzymotiv_records::records::{ClaimRecord, StudySummary, TableRow};
 
 use crate::plot::{Ticks, colour, esc, open, px, text_width};
@@ -96,28 +97,14 @@ pub fn behaviour_rows(
 }
 
 fn row(combination: &str, setting: &str, measure: &str, c: &Comparison) -> BehaviourRow {
-    // As the claims' verdicts: a difference within what the design detects is inconclusive.
-    let verdict = if c.mdd.is_some_and(|m| c.difference.abs() < m) {
-        "inconclusive"
-    } else if c.p < c.alpha && c.difference > 0.0 {
-        "higher"
-    } else if c.p < c.alpha && c.difference < 0.0 {
-        "lower"
-    } else {
-        "not significant"
-    };
     BehaviourRow {
         combination: combination.into(),
         setting: setting.into(),
         measure: measure.into(),
         mean_combination: c.mean_a,
         mean_tsk: c.mean_b,
-        difference: c.difference,
-        ci_low: c.ci_low,
-        ci_high: c.ci_high,
-        p: c.p,
-        detectable: c.mdd.unwrap_or(f64::NAN),
-        verdict: verdict.into(),
+        // As the claims' verdicts: a difference within what the design detects is inconclusive.
+        stats: PairedStats::of(c),
     }
 }
 
@@ -173,12 +160,12 @@ pub fn behaviour_table(rows: &[BehaviourRow], seeds: usize) -> (String, String) 
             r.measure,
             r.mean_combination,
             r.mean_tsk,
-            r.difference,
-            r.ci_low,
-            r.ci_high,
-            r.p,
-            r.detectable,
-            r.verdict
+            r.stats.difference,
+            r.stats.ci_low,
+            r.stats.ci_high,
+            r.stats.p,
+            r.stats.detectable.unwrap_or(f64::NAN),
+            r.stats.verdict
         );
         let _ = writeln!(
             csv,
@@ -188,12 +175,12 @@ pub fn behaviour_table(rows: &[BehaviourRow], seeds: usize) -> (String, String) 
             r.measure,
             r.mean_combination,
             r.mean_tsk,
-            r.difference,
-            r.ci_low,
-            r.ci_high,
-            r.p,
-            r.detectable,
-            r.verdict
+            r.stats.difference,
+            r.stats.ci_low,
+            r.stats.ci_high,
+            r.stats.p,
+            r.stats.detectable.unwrap_or(f64::NAN),
+            r.stats.verdict
         );
     }
     (md, csv)
@@ -264,7 +251,7 @@ fn draw_panel(
     ox: f64,
 ) {
     let (lo, hi) = rows.iter().fold((0.0f64, 0.0f64), |(lo, hi), r| {
-        (lo.min(r.ci_low), hi.max(r.ci_high))
+        (lo.min(r.stats.ci_low), hi.max(r.stats.ci_high))
     });
     let pad = ((hi - lo) * 0.08).max(0.5);
     let ticks = Ticks::nice(lo - pad, hi + pad, 5, false);
@@ -317,7 +304,8 @@ fn draw_panel(
                 continue;
             };
             let x = cx + (c as f64 - (combos.len() as f64 - 1.0) / 2.0) * 14.0;
-            let fill = if r.verdict == "not significant" || r.verdict == "inconclusive" {
+            let fill = if r.stats.verdict == "not significant" || r.stats.verdict == "inconclusive"
+            {
                 "white"
             } else {
                 colour(c)
@@ -325,14 +313,14 @@ fn draw_panel(
             let _ = writeln!(
                 s,
                 r#"<line x1="{x}" x2="{x}" y1="{}" y2="{}" stroke="{col}" stroke-width="2"/><circle cx="{x}" cy="{}" r="4" fill="{fill}" stroke="{col}" stroke-width="2"><title>{} {} {}: {:+.2} (p = {:.3})</title></circle>"#,
-                px(y(r.ci_low)),
-                px(y(r.ci_high)),
-                px(y(r.difference)),
+                px(y(r.stats.ci_low)),
+                px(y(r.stats.ci_high)),
+                px(y(r.stats.difference)),
                 esc(combo),
                 esc(setting),
                 esc(title),
-                r.difference,
-                r.p,
+                r.stats.difference,
+                r.stats.p,
                 x = px(x),
                 col = colour(c),
             );
@@ -351,17 +339,19 @@ mod tests {
             measure: measure.into(),
             mean_combination: 50.0 + d,
             mean_tsk: 50.0,
-            difference: d,
-            ci_low: d - 2.0,
-            ci_high: d + 2.0,
-            p,
-            detectable: 3.0,
-            verdict: if p < 0.05 {
-                "higher"
-            } else {
-                "not significant"
-            }
-            .into(),
+            stats: PairedStats {
+                difference: d,
+                ci_low: d - 2.0,
+                ci_high: d + 2.0,
+                p,
+                detectable: Some(3.0),
+                verdict: if p < 0.05 {
+                    "higher"
+                } else {
+                    "not significant"
+                }
+                .into(),
+            },
         }
     }
 

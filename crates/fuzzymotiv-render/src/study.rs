@@ -447,7 +447,7 @@ fn compare_claim(
         p: s.p,
         min_p: s.min_p,
         alpha,
-        verdict: claim_verdict(&s, expect).into(),
+        verdict: s.verdict_with_power(expect).label().into(),
         mdd: s.mdd,
         rooms: room_claims(hc, lc, column, expect, &options),
     });
@@ -457,17 +457,6 @@ fn compare_claim(
         evidence,
         stats,
         curves: Vec::new(),
-    }
-}
-
-/// A comparison claim's verdict: "inconclusive" when the effect lies within the difference
-/// the seeds detect with 80 % power (|effect| < MDD: the study is at the edge of its power and
-/// another base seed may give the other verdict), else the test's verdict.
-fn claim_verdict(c: &statistics::Comparison, expect: Expect) -> &'static str {
-    if c.mdd.is_some_and(|m| c.difference.abs() < m) {
-        "inconclusive"
-    } else {
-        c.verdict(expect).label()
     }
 }
 

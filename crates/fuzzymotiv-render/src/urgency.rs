@@ -9,6 +9,7 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::statistics::{Comparison, Settings, mean_interval, mean_std, paired};
 use fuzzymotiv_records::records::Finished;
+use fuzzymotiv_records::records::paired::PairedStats;
 use fuzzymotiv_records::records::urgency::{UrgencyRow, UrgencySeed};
 
 use crate::plot::{Ticks, colour, esc, open, px};
@@ -175,16 +176,6 @@ pub fn comparisons(per_seed: &[UrgencySeed]) -> Vec<UrgencyRow> {
 }
 
 fn row(measure: &str, (from, to): (f64, f64), pairs: usize, c: &Comparison) -> UrgencyRow {
-    // The project's rule: a difference within what the design detects is inconclusive.
-    let verdict = if c.mdd.is_some_and(|m| c.difference.abs() < m) {
-        "inconclusive"
-    } else if c.p < c.alpha && c.difference > 0.0 {
-        "higher"
-    } else if c.p < c.alpha && c.difference < 0.0 {
-        "lower"
-    } else {
-        "not significant"
-    };
     UrgencyRow {
         measure: measure.into(),
         from,
@@ -192,12 +183,8 @@ fn row(measure: &str, (from, to): (f64, f64), pairs: usize, c: &Comparison) -> U
         pairs,
         mean_from: c.mean_b,
         mean_to: c.mean_a,
-        difference: c.difference,
-        ci_low: c.ci_low,
-        ci_high: c.ci_high,
-        p: c.p,
-        detectable: c.mdd,
-        verdict: verdict.into(),
+        // As the claims' verdicts: a difference within what the design detects is inconclusive.
+        stats: PairedStats::of(c),
     }
 }
 
@@ -246,7 +233,7 @@ pub fn urgency_table(
         "measure,from,to,pairs,mean_from,mean_to,difference,ci_low,ci_high,p,detectable,verdict\n",
     );
     for r in rows {
-        let detectable = r.detectable.map_or("—".into(), |d| format!("{d:.1}"));
+        let detectable = r.stats.detectable.map_or("—".into(), |d| format!("{d:.1}"));
         let _ = writeln!(
             md,
             "| {} | {:.1} → {:.1} | {} | {:.1} | {:.1} | {:+.1} ({:+.1}, {:+.1}) | {:.3} | {detectable} | {} |",
@@ -256,11 +243,11 @@ pub fn urgency_table(
             r.pairs,
             r.mean_from,
             r.mean_to,
-            r.difference,
-            r.ci_low,
-            r.ci_high,
-            r.p,
-            r.verdict
+            r.stats.difference,
+            r.stats.ci_low,
+            r.stats.ci_high,
+            r.stats.p,
+            r.stats.verdict
         );
         let _ = writeln!(
             csv,
@@ -271,12 +258,12 @@ pub fn urgency_table(
             r.pairs,
             r.mean_from,
             r.mean_to,
-            r.difference,
-            r.ci_low,
-            r.ci_high,
-            r.p,
-            r.detectable.map_or(String::new(), |d| d.to_string()),
-            r.verdict
+            r.stats.difference,
+            r.stats.ci_low,
+            r.stats.ci_high,
+            r.stats.p,
+            r.stats.detectable.map_or(String::new(), |d| d.to_string()),
+            r.stats.verdict
         );
     }
     (md, csv)
@@ -506,11 +493,11 @@ mod tests {
         assert_eq!(rows.len(), 4 * 4 + 2);
         let success = &rows[0];
         assert_eq!((success.from, success.to, success.pairs), (0.0, 0.1, 5));
-        assert!((success.difference - 20.0).abs() < 1e-9);
-        assert!((time[0].difference + 40.0).abs() < 1e-9);
+        assert!((success.stats.difference - 20.0).abs() < 1e-9);
+        assert!((time[0].stats.difference + 40.0).abs() < 1e-9);
         // The same difference at every seed: no spread, detectable 0, and p the smallest
         // five sign flips give (1/16) is not below α.
-        assert_eq!(success.verdict, "not significant");
+        assert_eq!(success.stats.verdict, "not significant");
         let (md, csv) = urgency_table(&study(), &rows, "prov");
         assert_eq!(csv.lines().count(), 1 + rows.len());
         assert!(md.contains("| 0.0 | (0.8, 0.1, 0, 0.1, 0.0) |"), "{md}");

@@ -190,15 +190,19 @@ pub enum Verdict {
     Holds,
     /// The difference has the opposite sign and p < α.
     Opposite,
-    /// p ≥ α (or no difference): the data cannot tell.
+    /// p ≥ α (or no difference, or a NaN one): the data cannot tell.
     NotSignificant,
+    /// |difference| < the minimum detectable difference, whatever p: the design is at the edge
+    /// of its power and another base seed may give the other verdict
+    /// ([`Comparison::verdict_with_power`]).
+    Inconclusive,
 }
 
 impl Verdict {
     /// The verdict on a claim from a difference a − b and its two-sided p-value.
     pub fn of(difference: f64, p: f64, expect: Expect, alpha: f64) -> Verdict {
         let significant = p < alpha; // false for a NaN p
-        if !significant || difference == 0.0 {
+        if !significant || difference == 0.0 || difference.is_nan() {
             return Verdict::NotSignificant;
         }
         if (difference > 0.0) == (expect == Expect::Higher) {
@@ -208,12 +212,23 @@ impl Verdict {
         }
     }
 
-    /// "holds", "opposite" or "not significant".
+    /// "holds", "opposite", "not significant" or "inconclusive".
     pub fn label(self) -> &'static str {
         match self {
             Verdict::Holds => "holds",
             Verdict::Opposite => "opposite",
             Verdict::NotSignificant => "not significant",
+            Verdict::Inconclusive => "inconclusive",
+        }
+    }
+
+    /// The label of a verdict on "a is higher than b" said as a direction: "higher" (holds),
+    /// "lower" (opposite), else [`Verdict::label`].
+    pub fn direction_label(self) -> &'static str {
+        match self {
+            Verdict::Holds => "higher",
+            Verdict::Opposite => "lower",
+            other => other.label(),
         }
     }
 }
@@ -256,6 +271,16 @@ impl Comparison {
     /// The verdict on "a is `expect` than b" at this comparison's α.
     pub fn verdict(&self, expect: Expect) -> Verdict {
         Verdict::of(self.difference, self.p, expect, self.alpha)
+    }
+
+    /// The project's verdict rule: [`Verdict::Inconclusive`] when the effect lies within the
+    /// difference the design detects (|difference| < `mdd`), else [`Comparison::verdict`].
+    pub fn verdict_with_power(&self, expect: Expect) -> Verdict {
+        if self.mdd.is_some_and(|m| self.difference.abs() < m) {
+            Verdict::Inconclusive
+        } else {
+            self.verdict(expect)
+        }
     }
 
     /// Whether this design can reach p < α at all (its smallest p-value is below α).

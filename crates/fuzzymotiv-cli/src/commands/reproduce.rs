@@ -290,30 +290,45 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     }
     let start = Instant::now();
     let seeds = study_seeds(&args);
-    let loaded = load_settings(&args, &SETTINGS, &seeds, &DEFAULT_MODEL)?;
-    let out = args.out_dir();
-    let Some(staged) = open_out(&args, &out, &SETTINGS, &[(DEFAULT_MODEL.name, &loaded)])? else {
+    let Some((staged, studies)) = run_one_study(&args, &SETTINGS, &seeds, DEFAULT_MODEL.name)?
+    else {
         return Ok(());
+    };
+    let (claims, tables) = write_study(&args, args.seed(), &staged.staging, &studies, start)?;
+    commit(staged, start)?;
+    fuzzymotiv_io::out!("{tables}")?;
+    print_claims(&claims)
+}
+
+/// One study of `settings` under the default model, `name` in the output's identity: every
+/// (setting, seed) config loaded and validated, `--out` opened ([`open_out`]) and every run
+/// evolved into the staging directory ([`run_study`]). `None` when `--out` already holds it.
+pub(crate) fn run_one_study<'a>(
+    args: &ReproduceArgs,
+    settings: &'a [Setting],
+    seeds: &[u64],
+    name: &str,
+) -> Result<Option<(StagedDir, Vec<SettingRuns<'a>>)>, CliError> {
+    let loaded = load_settings(args, settings, seeds, &DEFAULT_MODEL)?;
+    let Some(staged) = open_out(args, &args.out_dir(), settings, &[(name, &loaded)])? else {
+        return Ok(None);
     };
     let progress = Progress::new(
         &loaded[0][0].experiment,
-        SETTINGS.len() * seeds.len(),
+        settings.len() * seeds.len(),
         args.output.quiet,
     );
     let studies = run_study(
-        &args,
-        &SETTINGS,
-        &seeds,
+        args,
+        settings,
+        seeds,
         &loaded,
         &staged.staging,
         &progress,
         "",
     )?;
     progress.finish();
-    let (claims, tables) = write_study(&args, args.seed(), &staged.staging, &studies, start)?;
-    commit(staged, start)?;
-    fuzzymotiv_io::out!("{tables}")?;
-    print_claims(&claims)
+    Ok(Some((staged, studies)))
 }
 
 pub(crate) fn study_seeds(args: &ReproduceArgs) -> Vec<u64> {
@@ -450,11 +465,7 @@ fn search_strength(args: &ReproduceArgs) -> Result<(), CliError> {
         variants: SEARCH_STRENGTH
             .iter()
             .zip(&studies)
-            .map(|(v, s)| VariantSummary {
-                name: v.name.into(),
-                switched_back: v.what.into(),
-                claims: s.claims.clone(),
-            })
+            .map(|(v, s)| variant_summary(v, &s.claims))
             .collect(),
         wall_seconds: start.elapsed().as_secs_f64(),
     };
@@ -508,11 +519,7 @@ fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
         overrides: args.sets.clone(),
         combinations: rows
             .iter()
-            .map(|(v, claims)| VariantSummary {
-                name: v.name.into(),
-                switched_back: v.what.into(),
-                claims: claims.clone(),
-            })
+            .map(|(v, claims)| variant_summary(v, claims))
             .collect(),
         behaviour,
         end_spreads: spreads,
@@ -640,17 +647,23 @@ fn ablation(args: &ReproduceArgs) -> Result<(), CliError> {
         overrides: args.sets.clone(),
         variants: rows
             .iter()
-            .map(|(v, claims)| VariantSummary {
-                name: v.name.into(),
-                switched_back: v.what.into(),
-                claims: claims.clone(),
-            })
+            .map(|(v, claims)| variant_summary(v, claims))
             .collect(),
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;
     commit(staged, start)?;
     fuzzymotiv_io::outln!("{md}")
+}
+
+/// A variant's record in a study of variants' `summary.json`: its name, what it is and its
+/// claims.
+fn variant_summary(variant: &Variant, claims: &[ClaimRecord]) -> VariantSummary {
+    VariantSummary {
+        name: variant.name.into(),
+        switched_back: variant.what.into(),
+        claims: claims.to_vec(),
+    }
 }
 
 /// Renames the staged output into place and says where it went and how long it took.

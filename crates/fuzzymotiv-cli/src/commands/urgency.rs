@@ -10,7 +10,7 @@ use fuzzymotiv_io::pipeline::lanes::set_threads;
 use fuzzymotiv_io::records::urgency::{UrgencySeed, UrgencySummary};
 use fuzzymotiv_io::records::{PROGRAM, to_json};
 use fuzzymotiv_io::render::figures::write_figure_at;
-use fuzzymotiv_io::render::study::{DEFAULT_MODEL, SettingRuns};
+use fuzzymotiv_io::render::study::SettingRuns;
 use fuzzymotiv_io::render::svg::fitness_panels_svg;
 use fuzzymotiv_io::render::tables::Provenance;
 use fuzzymotiv_io::render::urgency::{
@@ -18,11 +18,9 @@ use fuzzymotiv_io::render::urgency::{
 };
 
 use crate::commands::reproduce::{
-    Part, ReproduceArgs, commit, load_settings, open_out, refuse_own_keys, run_study, study_seeds,
-    write_setting_figure,
+    Part, ReproduceArgs, commit, refuse_own_keys, run_one_study, study_seeds, write_setting_figure,
 };
 use crate::png::rasteriser;
-use crate::progress::Progress;
 
 /// What each setting sets itself (a `--set` of it is refused).
 const OWN: &str = "urgency's weight u and curiosity 0.8 − u";
@@ -36,25 +34,9 @@ pub fn urgency(args: ReproduceArgs) -> Result<(), CliError> {
     let parts: Vec<Part<'_>> = URGENCY.iter().map(|s| (s.name, OWN, s.sets)).collect();
     refuse_own_keys(&args.sets, &parts)?;
     let seeds = study_seeds(&args);
-    let loaded = load_settings(&args, &URGENCY, &seeds, &DEFAULT_MODEL)?;
-    let Some(staged) = open_out(&args, &args.out_dir(), &URGENCY, &[("urgency", &loaded)])? else {
+    let Some((staged, studies)) = run_one_study(&args, &URGENCY, &seeds, "urgency")? else {
         return Ok(());
     };
-    let progress = Progress::new(
-        &loaded[0][0].experiment,
-        URGENCY.len() * seeds.len(),
-        args.output.quiet,
-    );
-    let studies = run_study(
-        &args,
-        &URGENCY,
-        &seeds,
-        &loaded,
-        &staged.staging,
-        &progress,
-        "",
-    )?;
-    progress.finish();
     let per_seed = seed_records(&studies);
     let rows = comparisons(&per_seed);
     let prov = Provenance::new(&seeds, &studies[0].contexts[0], args.quick);

@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::records::paired::PairedStats;
 use crate::records::{ClaimRecord, VariantSummary};
 
 /// One measure of one setting: a baseline against the TSK, paired by seed.
@@ -18,19 +19,11 @@ pub struct BehaviourRow {
     pub mean_combination: f64,
     /// Mean over seeds under the TSK.
     pub mean_tsk: f64,
-    /// Baseline − TSK, mean of the per-seed differences.
-    pub difference: f64,
-    /// Its 95 % bootstrap interval.
-    pub ci_low: f64,
-    /// Upper bound.
-    pub ci_high: f64,
-    /// Two-sided sign-flip permutation p-value.
-    pub p: f64,
-    /// The smallest difference the design detects with 80 % power.
-    pub detectable: f64,
-    /// `higher` / `lower` under the baseline (p < α and at least the detectable difference),
-    /// `inconclusive` (a difference within the detectable one), or `not significant`.
-    pub verdict: String,
+    /// Baseline − TSK (a = the baseline, b = the TSK): the difference, its interval, p, the
+    /// detectable difference (in `behaviour.csv` `NaN` where there is none) and the verdict
+    /// (`higher` / `lower` under the baseline).
+    #[serde(flatten)]
+    pub stats: PairedStats,
 }
 
 /// `reproduce --combination`'s `summary.json`.

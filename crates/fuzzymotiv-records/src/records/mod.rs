@@ -53,6 +53,7 @@ pub mod compare;
 pub mod context;
 pub mod export;
 pub mod genome;
+pub mod paired;
 pub mod replication;
 pub mod robot_log;
 pub mod robustness;

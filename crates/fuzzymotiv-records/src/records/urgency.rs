@@ -4,6 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::records::paired::PairedStats;
+
 /// One seed under one urgency weight: the best robot's test runs, means over rooms.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct UrgencySeed {
@@ -43,19 +45,10 @@ pub struct UrgencyRow {
     pub mean_from: f64,
     /// Mean over those seeds at `to`.
     pub mean_to: f64,
-    /// `to` − `from`, the mean of the per-seed differences.
-    pub difference: f64,
-    /// Its 95 % bootstrap interval.
-    pub ci_low: f64,
-    /// Upper bound.
-    pub ci_high: f64,
-    /// Two-sided sign-flip permutation p-value.
-    pub p: f64,
-    /// The smallest difference the design detects with 80 % power; none without spread.
-    pub detectable: Option<f64>,
-    /// `higher` / `lower` at `to` (p < α and at least the detectable difference),
-    /// `inconclusive` (a difference within the detectable one) or `not significant`.
-    pub verdict: String,
+    /// `to` − `from` (a = the higher weight, b = the lower): the difference, its interval, p,
+    /// the detectable difference and the verdict (`higher` / `lower` at `to`).
+    #[serde(flatten)]
+    pub stats: PairedStats,
 }
 
 /// `reproduce --urgency`'s `summary.json`.

@@ -188,3 +188,42 @@ fn mean_std_is_the_sample_std_and_zero_for_one_value() {
     let (m, s) = mean_std(&[]);
     assert!(m.is_nan() && s == 0.0);
 }
+
+/// Six positive differences 1..6 (p = 2/64 < 0.05, MDD ≈ 2.1 < 3.5): the test's verdict;
+/// the same comparison with a detectable difference above |3.5| is inconclusive whatever p,
+/// and without one (no spread) the test's verdict again.
+#[test]
+fn an_effect_within_the_detectable_difference_is_inconclusive() {
+    let a = [2.0, 3.0, 4.0, 5.0, 6.0, 7.0];
+    let mut c = paired(&a, &[1.0; 6], &Settings::default()).unwrap();
+    assert_eq!((c.difference, c.p), (3.5, 1.0 / 32.0));
+    assert!(c.mdd.is_some_and(|m| m < 3.5), "{:?}", c.mdd);
+    assert_eq!(c.verdict_with_power(Expect::Higher), Verdict::Holds);
+    assert_eq!(c.verdict_with_power(Expect::Lower), Verdict::Opposite);
+    assert_eq!(
+        c.verdict_with_power(Expect::Higher).direction_label(),
+        "higher"
+    );
+    assert_eq!(
+        c.verdict_with_power(Expect::Lower).direction_label(),
+        "lower"
+    );
+    c.mdd = Some(3.6);
+    assert_eq!(c.verdict_with_power(Expect::Higher), Verdict::Inconclusive);
+    assert_eq!(Verdict::Inconclusive.label(), "inconclusive");
+    assert_eq!(Verdict::Inconclusive.direction_label(), "inconclusive");
+    c.mdd = None;
+    assert_eq!(c.verdict_with_power(Expect::Higher), Verdict::Holds);
+    c.p = 0.5;
+    assert_eq!(
+        c.verdict_with_power(Expect::Higher).direction_label(),
+        "not significant"
+    );
+}
+
+/// A difference with no sign (NaN) says nothing, even at a small p.
+#[test]
+fn a_nan_difference_is_not_significant() {
+    let v = Verdict::of(f64::NAN, 0.001, Expect::Higher, 0.05);
+    assert_eq!(v, Verdict::NotSignificant);
+}
