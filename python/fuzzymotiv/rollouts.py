@@ -179,6 +179,7 @@ def frames(
     config_text: Optional[str] = None,
     overrides: Overrides = None,
     seed: Optional[int] = None,
+    terms: Optional[Mapping[str, TermFunction]] = None,
 ) -> npt.NDArray[np.uint8]:
     """Frames of a rollout as a ``(T, H, W, 3)`` uint8 array (RGB, ``H = W = size``): the room,
     home zone, the path so far, the robot's body and heading, its eight IR rays (grey and thin
@@ -193,7 +194,9 @@ def frames(
     ``room``, else the config's first room. The config also gives the robot's size and sensor
     model. A frame is drawn at poses 0, ``stride``, 2·``stride``, … and at the last pose, so
     ``frames[-1]`` is always where the rollout ends (``stride=len(x)`` draws only the first and
-    the last). ``size`` is 64 to 2048 pixels. Same input → the same bytes.
+    the last). ``size`` is 64 to 2048 pixels. ``terms`` (as :class:`Problem` takes them) lets
+    a config weigh terms of your own; a path does not depend on F, so they are not called.
+    Same input → the same bytes.
 
     >>> tr = simulate(np.zeros(68), "H", seed=3, overrides={"trial.steps": 20})
     >>> frames(tr, size=96, stride=5).shape
@@ -203,6 +206,7 @@ def frames(
     return _native.frames(
         _rollout(trajectory_or_genome), _room_arg(trajectory_or_genome, room),
         _whole("size", size), _whole("stride", stride), seed, path, text, _sets(overrides),
+        [] if terms is None else _term_names(terms),
     )
 
 
@@ -219,13 +223,14 @@ def save_gif(
     config_text: Optional[str] = None,
     overrides: Overrides = None,
     seed: Optional[int] = None,
+    terms: Optional[Mapping[str, TermFunction]] = None,
 ) -> int:
     """Write an animated GIF (looping; the last frame held for a second) to ``path`` and return
     its number of frames.
 
     ``frames_or_trajectory`` is a ``(T, H, W, 3)`` uint8 array (e.g. from :func:`frames`), or
     anything :func:`frames` takes, drawn with its ``room``, ``size``, ``stride``, ``config``,
-    ``overrides`` and ``seed``. Colours are mapped to one fixed 256-colour palette that holds
+    ``overrides``, ``seed`` and ``terms``. Colours are mapped to one fixed 256-colour palette that holds
     the frames' own colours exactly. ``fps`` is 0.01 to 50. The file is written atomically;
     a file with other contents is kept unless ``force=True`` (the same bytes again: nothing to
     do), and a directory, link or device is never replaced.
@@ -248,5 +253,5 @@ def save_gif(
     return _native.save_gif(
         source, os.fspath(path), float(fps), bool(force),
         _room_arg(frames_or_trajectory, room), _whole("size", size), _whole("stride", stride),
-        seed, cfg_path, text, _sets(overrides),
+        seed, cfg_path, text, _sets(overrides), [] if terms is None else _term_names(terms),
     )

@@ -97,7 +97,7 @@ def _values(name: str, value: Any, shape: tuple[int, int]) -> npt.NDArray[np.flo
     if len(bad):
         i, r = (int(k) for k in bad[0])
         raise FuzzymotivError(
-            f"terms[{name!r}]: `{v[i, r]!r}` (genome {i}, room {r}) is not a number in [0, 1]; a term's value must be one (NaN is not)"
+            f"terms[{name!r}]: `{float(v[i, r])!r}` (genome {i}, room {r}) is not a number in [0, 1]; a term's value must be one (NaN is not)"
         )
     return v
 

@@ -113,7 +113,8 @@ pub(crate) struct Setting {
     room: Option<String>,
     seed: Option<u64>,
     /// The names of terms Python supplies, which the config's motivations may weigh (the
-    /// Gymnasium env's `terms=`; nothing is computed from them here).
+    /// `terms=` of the Gymnasium env, `fm.frames` and `fm.save_gif`; nothing is computed from
+    /// them here: a rollout's path does not depend on F).
     terms: Vec<String>,
 }
 
@@ -203,7 +204,7 @@ fn options(size: i64, stride: i64) -> PyResult<FrameOptions> {
 
 /// `(T, H, W, 3)` uint8 frames of a trajectory dict or a genome (`fm.frames`).
 #[pyfunction]
-#[pyo3(signature = (source, room=None, size=320, stride=1, seed=None, config_path=None, config_text=None, sets=Vec::new()))]
+#[pyo3(signature = (source, room=None, size=320, stride=1, seed=None, config_path=None, config_text=None, sets=Vec::new(), terms=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn frames<'py>(
     py: Python<'py>,
@@ -215,8 +216,10 @@ pub(crate) fn frames<'py>(
     config_path: Option<PathBuf>,
     config_text: Option<String>,
     sets: Vec<String>,
+    terms: Vec<String>,
 ) -> PyResult<Bound<'py, PyArray4<u8>>> {
-    let setting = Setting::of_args(room, seed, config_path, config_text, sets)?;
+    let mut setting = Setting::of_args(room, seed, config_path, config_text, sets)?;
+    setting.terms = terms;
     let f = draw(py, source, &setting, options(size, stride)?, render)?;
     let (h, w) = (f.height as usize, f.width as usize);
     let a = Array4::from_shape_vec((f.len(), h, w, 3), f.rgb).expect("T × H × W × 3");
@@ -277,7 +280,7 @@ fn gif_of_array(py: Python<'_>, a: &PyReadonlyArray4<'_, u8>, delay: u16) -> PyR
 /// Writes the animated GIF of frames (an array) or of a rollout to `path` through the output
 /// guard (`fm.save_gif`); returns the number of frames.
 #[pyfunction]
-#[pyo3(signature = (source, path, fps=25.0, force=false, room=None, size=320, stride=1, seed=None, config_path=None, config_text=None, sets=Vec::new()))]
+#[pyo3(signature = (source, path, fps=25.0, force=false, room=None, size=320, stride=1, seed=None, config_path=None, config_text=None, sets=Vec::new(), terms=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn save_gif<'py>(
     py: Python<'py>,
@@ -292,12 +295,14 @@ pub(crate) fn save_gif<'py>(
     config_path: Option<PathBuf>,
     config_text: Option<String>,
     sets: Vec<String>,
+    terms: Vec<String>,
 ) -> PyResult<usize> {
     let delay = delay_of(fps).map_err(|e| input_err(format!("fps: {e}")))?;
     let (bytes, count) = if let Ok(a) = source.extract::<PyReadonlyArray4<'_, u8>>() {
         (gif_of_array(py, &a, delay)?, a.shape()[0])
     } else {
-        let setting = Setting::of_args(room, seed, config_path, config_text, sets)?;
+        let mut setting = Setting::of_args(room, seed, config_path, config_text, sets)?;
+        setting.terms = terms;
         // Drawn and encoded a frame at a time (as `replay --gif`): any length fits in memory.
         draw(
             py,

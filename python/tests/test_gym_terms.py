@@ -226,3 +226,29 @@ def test_guide_gym_term_of_your_own_runs_as_written(doc_blocks, capsys):
     exec(compile(code, "docs/guide/motivations.md (gym term)", "exec"), {})
     out = capsys.readouterr().out
     assert out.startswith("F = 0.") and "smoothness = 0." in out, out
+
+
+def test_frames_and_gifs_of_a_config_weighing_a_term_of_your_own(tmp_path):
+    """fm.frames and fm.save_gif take terms= as fm.Problem does: the config parses, the term is
+    not called (a path does not depend on F), and the genome's frames are those of its
+    simulated trajectory; without terms= the config's unknown term is named."""
+    config = SHORT + SMOOTH_WEIGHED
+    calls = []
+
+    def smooth(trials):
+        calls.append(1)
+        return smoothness(trials)
+
+    genome = np.zeros(68)
+    tr = fm.simulate(genome, "H", seed=3, config_text=config, terms={"smooth": smooth})
+    calls.clear()
+    from_genome = fm.frames(genome, "H", size=64, stride=10, seed=3, config_text=config,
+                            terms={"smooth": smooth})
+    from_trajectory = fm.frames(tr, size=64, stride=10, config_text=config, terms={"smooth": smooth})
+    assert np.array_equal(from_genome, from_trajectory)
+    n = fm.save_gif(genome, tmp_path / "a.gif", room="H", size=64, stride=10, seed=3,
+                    config_text=config, terms={"smooth": smooth})
+    assert n == from_genome.shape[0] and (tmp_path / "a.gif").stat().st_size > 0
+    assert calls == []
+    with pytest.raises(fm.FuzzymotivError, match="smooth"):
+        fm.frames(genome, "H", size=64, config_text=config)
