@@ -11,7 +11,9 @@ use crate::py_err;
 
 /// The rooms the run directory `run`'s room model recognises in `logs` (CSV files, one row
 /// per step), as columns: `log`, `steps`, `used`, `room` (empty: not recognised), `winner`,
-/// `straight`, `left`, `right`, `back`.
+/// `straight`, `left`, `right`, `back`, and the gate's reasons: `r_node` (the recognised
+/// room's r-node), `node_distance` (|winner − r_node|), `gate` (`aem.threshold`) and
+/// `vector_distance` (to the room's stored vector); None where no room is recognised.
 #[pyfunction]
 pub(crate) fn recognise<'py>(
     py: Python<'py>,
@@ -41,5 +43,18 @@ pub(crate) fn recognise<'py>(
     d.set_item("left", records.iter().map(|r| r.left).collect::<Vec<_>>())?;
     d.set_item("right", records.iter().map(|r| r.right).collect::<Vec<_>>())?;
     d.set_item("back", records.iter().map(|r| r.back).collect::<Vec<_>>())?;
+    d.set_item(
+        "r_node",
+        records.iter().map(|r| r.r_node).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "node_distance",
+        records.iter().map(|r| r.node_distance).collect::<Vec<_>>(),
+    )?;
+    d.set_item("gate", records.iter().map(|r| r.gate).collect::<Vec<_>>())?;
+    d.set_item(
+        "vector_distance",
+        records.iter().map(|r| r.vector_distance).collect::<Vec<_>>(),
+    )?;
     Ok(d)
 }

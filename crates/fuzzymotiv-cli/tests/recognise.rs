@@ -50,7 +50,8 @@ fn motors_log(replay: &Path, out: &Path) {
 }
 
 /// Each room-modelling run's replay is recognised as its own room, at its stored instance's
-/// node (the SOM rebuilt as the run trained it); a log of motor outputs is read too.
+/// node (the SOM rebuilt as the run trained it) with the gate's distance 0 and the stored
+/// vector itself; a log of motor outputs is read too.
 #[test]
 fn each_replay_is_recognised_as_its_room_from_actions_or_motors() {
     let tmp = tempfile::tempdir().unwrap();
@@ -94,7 +95,11 @@ fn each_replay_is_recognised_as_its_room_from_actions_or_motors() {
         assert_eq!(row[1], "150", "the final pose row is no step: {csv}");
         assert_eq!(row[3], room, "{csv}");
         assert_eq!(row[4], node, "{csv}");
+        // The gate's reasons: the replay is the room's stored instance itself, so its r-node
+        // is the winner (distance 0 of the gate's 10 nodes) and its vector is the stored one.
+        assert_eq!(&row[9..], &[node.as_str(), "0", "10", "0.0"], "{csv}");
     }
+    assert!(csv.starts_with("log,steps,used,room,winner,straight,left,right,back,r_node,node_distance,gate,vector_distance\n"), "{csv}");
     assert_eq!(
         stdout(&o).trim_end(),
         std::fs::read_to_string(out.join("recognised.md"))
