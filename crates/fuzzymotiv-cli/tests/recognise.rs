@@ -163,3 +163,60 @@ fn a_bad_log_is_refused_naming_its_file_line_and_field() {
         assert!(!out.exists(), "nothing written");
     }
 }
+
+/// `replay --log` draws a path from a log's `x`, `y` columns over one room: a config of several
+/// rooms without `--room`, a log without positions or with a bad number exits 2 naming the
+/// file (the line and the column); nothing is written.
+#[test]
+fn replay_log_is_refused_without_a_room_or_positions_naming_the_file_line_and_column() {
+    let tmp = tempfile::tempdir().unwrap();
+    run_and_replays(tmp.path());
+    let run = tmp.path().join("run");
+    let out = tmp.path().join("drawn").join("replay.html");
+    let good = tmp.path().join("rep-T.csv");
+    let cases = [
+        (
+            None,
+            "x,y\n1,2\n",
+            "--log: the config has 5 rooms (H, T, L, square, rectangle); a log is drawn over the room it was recorded in, so say which with --room ROOM",
+        ),
+        (
+            Some("T"),
+            "t,action\n0,straight\n",
+            "the header has no `x` and `y` columns",
+        ),
+        (
+            Some("T"),
+            "t,x,y\n0,100,200\n1,100.5,abc\n",
+            "line 3: field `y`: `abc` is not a position",
+        ),
+        (
+            Some("T"),
+            "t,x_mm,y_mm\n0,inf,200\n",
+            "line 2: field `x_mm`: `inf` is not a position",
+        ),
+        (Some("T"), "t,x,y\n0,,\n", "the log has no positions"),
+    ];
+    for (k, (room, text, want)) in cases.iter().enumerate() {
+        let log = tmp.path().join(format!("bad-{k}.csv"));
+        std::fs::write(&log, text).unwrap();
+        let mut fm = Fm::new(["replay", run.to_str().unwrap()])
+            .arg("--log")
+            .arg(&good)
+            .arg("--log")
+            .arg(&log)
+            .arg("--out")
+            .arg(&out);
+        if let Some(room) = room {
+            fm = fm.arg("--room").arg(room);
+        }
+        let o = fm.run();
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert!(e.contains(want), "{e}");
+        if room.is_some() {
+            assert!(e.contains(&format!("bad-{k}.csv")), "{e}");
+        }
+        assert!(!out.parent().unwrap().exists(), "nothing written");
+    }
+}
