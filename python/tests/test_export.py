@@ -1,6 +1,7 @@
 """fm.export_controller writes what `fuzzymotiv export` writes, through the same output guard."""
 
 import json
+import math
 
 import pytest
 
@@ -96,7 +97,7 @@ def test_recognise_gives_the_rows_the_cli_writes(run_dir, tmp_path, cli):
             distance = float(cells[header.index("vector_distance")])
             assert float(table["vector_distance"][k]) == distance
         else:
-            assert table["r_node"][k] is None and cells[header.index("r_node")] == ""
+            assert math.isnan(table["r_node"][k]) and cells[header.index("r_node")] == ""
 
 
 def test_recognise_names_a_bad_log(run_dir, tmp_path):
