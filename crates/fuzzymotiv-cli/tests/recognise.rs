@@ -220,3 +220,28 @@ fn replay_log_is_refused_without_a_room_or_positions_naming_the_file_line_and_co
         assert!(!out.parent().unwrap().exists(), "nothing written");
     }
 }
+
+/// A logged path with positions outside the room (another frame or other units) is drawn with a
+/// warning that counts them.
+#[test]
+fn replay_log_warns_of_positions_outside_the_room() {
+    let tmp = tempfile::tempdir().unwrap();
+    run_and_replays(tmp.path());
+    let run = tmp.path().join("run");
+    let log = tmp.path().join("metres.csv");
+    std::fs::write(&log, "t,x,y\n0,0.1,0.1\n1,5000,0.2\n2,0.3,-900\n").unwrap();
+    let out = tmp.path().join("drawn").join("replay.html");
+    let o = Fm::new(["replay", run.to_str().unwrap(), "--room", "square"])
+        .arg("--log")
+        .arg(&log)
+        .arg("--out")
+        .arg(&out)
+        .ok();
+    let e = stderr(&o);
+    assert!(
+        e.contains("metres.csv: 2 of 3 positions lie outside room square"),
+        "{e}"
+    );
+    let svg = std::fs::read_to_string(out.with_extension("svg")).unwrap();
+    assert!(svg.contains("logged path:"), "drawn all the same");
+}

@@ -1,6 +1,6 @@
 //! `fuzzymotiv recognise`: the rooms a run's room model recognises in a real robot's logs
 //! ([`fuzzymotiv_io::records::robot_log::recognise_logs`] over the library's
-//! `Experiment::recognizer` and `Experiment::recognise_actions`).
+//! `Experiment::recognizer` and `Experiment::explain_actions`).
 
 use std::path::PathBuf;
 

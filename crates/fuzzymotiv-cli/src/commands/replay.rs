@@ -5,7 +5,8 @@
 //! a room's stored instance), so `replay RUN_DIR` redraws exactly the paths of the run's
 //! `report.html`; `--seed N` replays under another base seed. Same genome, room and seed → the
 //! same trajectory, byte for byte. `--gif` adds an animated GIF per room
-//! ([`fuzzymotiv_io::render::frames`]).
+//! ([`fuzzymotiv_io::render::frames`]); `--log` draws a robot's logged path over its room
+//! (read by [`fuzzymotiv_io::records::robot_log::RobotLog`], as `recognise` reads it).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
