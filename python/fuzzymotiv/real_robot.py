@@ -71,7 +71,10 @@ def recognise(run_dir: PathLike, logs: Sequence[PathLike]) -> Table:
     (``straight``, ``left``, ``right``, ``back``) or ``m_left`` and ``m_right`` (motor outputs in
     [0, 1]). One row per log, the rows of ``fuzzymotiv recognise RUN_DIR LOG…``'s
     ``recognised.csv``: ``log``, ``steps``, ``used``, ``room`` (empty: not recognised),
-    ``winner`` (the SOM node), ``straight``, ``left``, ``right``, ``back``. A bad log raises
+    ``winner`` (the SOM node), ``straight``, ``left``, ``right``, ``back``, and the gate's
+    reasons: ``r_node`` (the recognised room's r-node), ``node_distance`` (|winner − r_node|),
+    ``gate`` (``aem.threshold``, the widest node distance that passes) and ``vector_distance``
+    (the log's distance to the room's stored vector), NaN where no room is recognised. A bad log raises
     ``FuzzymotivError`` naming its file, line and field (docs/guide/real-robot.md).
     """
     if isinstance(logs, (str, os.PathLike)):

@@ -11,7 +11,10 @@ use crate::py_err;
 
 /// The rooms the run directory `run`'s room model recognises in `logs` (CSV files, one row
 /// per step), as columns: `log`, `steps`, `used`, `room` (empty: not recognised), `winner`,
-/// `straight`, `left`, `right`, `back`.
+/// `straight`, `left`, `right`, `back`, and the gate's reasons: `r_node` (the recognised
+/// room's r-node), `node_distance` (|winner − r_node|), `gate` (`aem.threshold`) and
+/// `vector_distance` (to the room's stored vector), floats, NaN where no room is recognised
+/// (as `fm.read_table` reads the CSV's empty cells).
 #[pyfunction]
 pub(crate) fn recognise<'py>(
     py: Python<'py>,
@@ -41,5 +44,23 @@ pub(crate) fn recognise<'py>(
     d.set_item("left", records.iter().map(|r| r.left).collect::<Vec<_>>())?;
     d.set_item("right", records.iter().map(|r| r.right).collect::<Vec<_>>())?;
     d.set_item("back", records.iter().map(|r| r.back).collect::<Vec<_>>())?;
+    d.set_item(
+        "r_node",
+        records.iter().map(|r| nan_if_none(r.r_node.map(|n| n as f64))).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "node_distance",
+        records.iter().map(|r| nan_if_none(r.node_distance.map(|n| n as f64))).collect::<Vec<_>>(),
+    )?;
+    d.set_item("gate", records.iter().map(|r| r.gate).collect::<Vec<_>>())?;
+    d.set_item(
+        "vector_distance",
+        records.iter().map(|r| nan_if_none(r.vector_distance)).collect::<Vec<_>>(),
+    )?;
     Ok(d)
+}
+
+/// A missing number as NaN, a column's empty cell.
+fn nan_if_none(v: Option<f64>) -> f64 {
+    v.unwrap_or(f64::NAN)
 }

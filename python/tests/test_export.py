@@ -1,6 +1,7 @@
 """fm.export_controller writes what `fuzzymotiv export` writes, through the same output guard."""
 
 import json
+import math
 
 import pytest
 
@@ -89,6 +90,14 @@ def test_recognise_gives_the_rows_the_cli_writes(run_dir, tmp_path, cli):
         cells = line.split(",")
         assert str(table["room"][k]) == cells[header.index("room")]
         assert int(table["winner"][k]) == int(cells[header.index("winner")])
+        assert int(table["gate"][k]) == int(cells[header.index("gate")])
+        if cells[header.index("room")]:
+            assert int(table["r_node"][k]) == int(cells[header.index("r_node")])
+            assert int(table["node_distance"][k]) <= int(table["gate"][k])
+            distance = float(cells[header.index("vector_distance")])
+            assert float(table["vector_distance"][k]) == distance
+        else:
+            assert math.isnan(table["r_node"][k]) and cells[header.index("r_node")] == ""
 
 
 def test_recognise_names_a_bad_log(run_dir, tmp_path):

@@ -442,3 +442,138 @@ fn onnx_export_agrees_with_the_simulator_under_onnxruntime() {
         assert!(diff <= 1e-6, "genome {g}: onnxruntime differs by {diff:e}");
     }
 }
+
+/// A robot's log of `tr`'s executed steps written through the compiled exported controller
+/// `exe`: per step the recorded IR readings, the motor outputs the C gives for them, and the
+/// pose at the step's start; a last row holds the final pose only (no step). Checks that the
+/// C's motor outputs are the simulator's, bit for bit.
+fn log_through_c(exe: &Path, tr: &Trajectory, log: &Path) {
+    let steps: Vec<usize> = (0..tr.len()).filter(|&t| !tr.idle[t]).collect();
+    let input: String = (steps.iter())
+        .map(|&t| {
+            let bits: Vec<String> = (tr.sensors[t].iter())
+                .map(|v| format!("{:x}", v.to_bits()))
+                .collect();
+            format!("S {}\n", bits.join(" "))
+        })
+        .collect();
+    let got = run_driver(exe, &input);
+    assert_eq!(got.len(), steps.len());
+    let mut text = String::from("ir0,ir1,ir2,ir3,ir4,ir5,ir6,ir7,m_left,m_right,x,y,heading\n");
+    for (&t, line) in steps.iter().zip(&got) {
+        let motor = |k: usize| {
+            let word = line.split_whitespace().nth(k).unwrap();
+            f64::from_bits(u64::from_str_radix(word, 16).unwrap())
+        };
+        let (ml, mr) = (motor(0), motor(1));
+        assert_eq!([ml.to_bits(), mr.to_bits()], tr.motors[t].map(f64::to_bits));
+        let ir: Vec<String> = tr.sensors[t].iter().map(f64::to_string).collect();
+        let p = tr.poses[t];
+        text.push_str(&format!(
+            "{},{ml},{mr},{},{},{}\n",
+            ir.join(","),
+            p.x,
+            p.y,
+            p.heading
+        ));
+    }
+    let end = tr.poses[tr.executed()];
+    text.push_str(&format!(",,,,,,,,,,{},{},{}\n", end.x, end.y, end.heading));
+    std::fs::write(log, text).unwrap();
+}
+
+/// `fuzzymotiv recognise`'s CSV row for `log`, without the log's name and its step counts.
+fn recognised(run_dir: &Path, log: &Path, out: &Path) -> Vec<String> {
+    ok(&[
+        "recognise",
+        run_dir.to_str().unwrap(),
+        log.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let csv = std::fs::read_to_string(out.join("recognised.csv")).unwrap();
+    let row: Vec<String> = csv
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(String::from)
+        .collect();
+    // room, winner, then r_node, node_distance, gate, vector_distance.
+    [&row[3..5], &row[9..]].concat()
+}
+
+/// The `points` of the first `<polyline` in `svg` that contains `marker`.
+fn polyline_points<'a>(svg: &'a str, marker: &str) -> &'a str {
+    let line = (svg.lines())
+        .find(|l| l.starts_with("<polyline") && l.contains(marker))
+        .unwrap_or_else(|| panic!("no polyline with {marker}"));
+    line.split("points=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+}
+
+/// The loop a robot runs, open-loop on the simulator's own readings: each room's replayed IR
+/// readings go through the compiled exported C controller, whose motor outputs, bit-exact on
+/// recorded readings, equal the simulator's; logged as a robot would (ir0..ir7, m_left,
+/// m_right, x, y, heading), the log is recognised as the same room at the same SOM node (with
+/// the same gate's distance and vector distance) as the replay itself, and `replay --log`
+/// draws its path over the simulated one, point for point.
+#[test]
+fn a_log_written_through_the_exported_c_is_recognised_and_drawn_like_its_replay() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_dir = tiny_run(dir.path());
+    let c_dir = dir.path().join("controller");
+    let run_arg = run_dir.to_str().unwrap();
+    ok(&[
+        "export",
+        run_arg,
+        "--to",
+        "c",
+        "--out",
+        c_dir.to_str().unwrap(),
+    ]);
+    let exe = compile_driver(&c_dir);
+    let page = dir.path().join("replay").join("replay.html");
+    ok(&["replay", run_arg, "--out", page.to_str().unwrap()]);
+    let doc: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(page.with_extension("json")).unwrap()).unwrap();
+    let rooms = doc["rooms"].as_array().unwrap();
+    assert_eq!(rooms.len(), 2);
+    for room in rooms {
+        let name = room["room"].as_str().unwrap();
+        let tr: Trajectory = serde_json::from_value(room["trajectory"].clone()).unwrap();
+        let log = dir.path().join(format!("robot-{name}.csv"));
+        log_through_c(&exe, &tr, &log);
+        let replayed = dir.path().join("replay").join(format!("replay-{name}.csv"));
+        let want = recognised(&run_dir, &replayed, &dir.path().join(format!("rec-{name}")));
+        let got = recognised(&run_dir, &log, &dir.path().join(format!("log-{name}")));
+        assert_eq!(got, want, "{name}");
+        assert_eq!(want[0], name, "the replay is recognised as its room");
+        let drawn = dir.path().join(format!("drawn-{name}")).join("replay.html");
+        let o = ok(&[
+            "replay",
+            run_arg,
+            "--room",
+            name,
+            "--log",
+            log.to_str().unwrap(),
+            "--out",
+            drawn.to_str().unwrap(),
+        ]);
+        assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+        let svg = std::fs::read_to_string(drawn.with_extension("svg")).unwrap();
+        let logged = polyline_points(&svg, "class=\"logged\"");
+        assert_eq!(logged, polyline_points(&svg, "#d62728"), "{name}");
+        assert_eq!(logged.split_whitespace().count(), tr.executed() + 1);
+        assert!(
+            svg.contains(&format!("logged path: {}", log.display())),
+            "{svg}"
+        );
+        let html = std::fs::read_to_string(&drawn).unwrap();
+        assert!(html.contains("class=\"logged\""), "the page draws it too");
+    }
+}

@@ -50,7 +50,8 @@ fn motors_log(replay: &Path, out: &Path) {
 }
 
 /// Each room-modelling run's replay is recognised as its own room, at its stored instance's
-/// node (the SOM rebuilt as the run trained it); a log of motor outputs is read too.
+/// node (the SOM rebuilt as the run trained it) with the gate's distance 0 and the stored
+/// vector itself; a log of motor outputs is read too.
 #[test]
 fn each_replay_is_recognised_as_its_room_from_actions_or_motors() {
     let tmp = tempfile::tempdir().unwrap();
@@ -94,7 +95,11 @@ fn each_replay_is_recognised_as_its_room_from_actions_or_motors() {
         assert_eq!(row[1], "150", "the final pose row is no step: {csv}");
         assert_eq!(row[3], room, "{csv}");
         assert_eq!(row[4], node, "{csv}");
+        // The gate's reasons: the replay is the room's stored instance itself, so its r-node
+        // is the winner (distance 0 of the gate's 10 nodes) and its vector is the stored one.
+        assert_eq!(&row[9..], &[node.as_str(), "0", "10", "0.0"], "{csv}");
     }
+    assert!(csv.starts_with("log,steps,used,room,winner,straight,left,right,back,r_node,node_distance,gate,vector_distance\n"), "{csv}");
     assert_eq!(
         stdout(&o).trim_end(),
         std::fs::read_to_string(out.join("recognised.md"))
@@ -157,4 +162,86 @@ fn a_bad_log_is_refused_naming_its_file_line_and_field() {
         );
         assert!(!out.exists(), "nothing written");
     }
+}
+
+/// `replay --log` draws a path from a log's `x`, `y` columns over one room: a config of several
+/// rooms without `--room`, a log without positions or with a bad number exits 2 naming the
+/// file (the line and the column); nothing is written.
+#[test]
+fn replay_log_is_refused_without_a_room_or_positions_naming_the_file_line_and_column() {
+    let tmp = tempfile::tempdir().unwrap();
+    run_and_replays(tmp.path());
+    let run = tmp.path().join("run");
+    let out = tmp.path().join("drawn").join("replay.html");
+    let good = tmp.path().join("rep-T.csv");
+    let cases = [
+        (
+            None,
+            "x,y\n1,2\n",
+            "--log: the config has 5 rooms (H, T, L, square, rectangle); a log is drawn over the room it was recorded in, so say which with --room ROOM",
+        ),
+        (
+            Some("T"),
+            "t,action\n0,straight\n",
+            "the header has no `x` and `y` columns",
+        ),
+        (
+            Some("T"),
+            "t,x,y\n0,100,200\n1,100.5,abc\n",
+            "line 3: field `y`: `abc` is not a position",
+        ),
+        (
+            Some("T"),
+            "t,x_mm,y_mm\n0,inf,200\n",
+            "line 2: field `x_mm`: `inf` is not a position",
+        ),
+        (Some("T"), "t,x,y\n0,,\n", "the log has no positions"),
+    ];
+    for (k, (room, text, want)) in cases.iter().enumerate() {
+        let log = tmp.path().join(format!("bad-{k}.csv"));
+        std::fs::write(&log, text).unwrap();
+        let mut fm = Fm::new(["replay", run.to_str().unwrap()])
+            .arg("--log")
+            .arg(&good)
+            .arg("--log")
+            .arg(&log)
+            .arg("--out")
+            .arg(&out);
+        if let Some(room) = room {
+            fm = fm.arg("--room").arg(room);
+        }
+        let o = fm.run();
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert!(e.contains(want), "{e}");
+        if room.is_some() {
+            assert!(e.contains(&format!("bad-{k}.csv")), "{e}");
+        }
+        assert!(!out.parent().unwrap().exists(), "nothing written");
+    }
+}
+
+/// A logged path with positions outside the room (another frame or other units) is drawn with a
+/// warning that counts them.
+#[test]
+fn replay_log_warns_of_positions_outside_the_room() {
+    let tmp = tempfile::tempdir().unwrap();
+    run_and_replays(tmp.path());
+    let run = tmp.path().join("run");
+    let log = tmp.path().join("metres.csv");
+    std::fs::write(&log, "t,x,y\n0,0.1,0.1\n1,5000,0.2\n2,0.3,-900\n").unwrap();
+    let out = tmp.path().join("drawn").join("replay.html");
+    let o = Fm::new(["replay", run.to_str().unwrap(), "--room", "square"])
+        .arg("--log")
+        .arg(&log)
+        .arg("--out")
+        .arg(&out)
+        .ok();
+    let e = stderr(&o);
+    assert!(
+        e.contains("metres.csv: 2 of 3 positions lie outside room square"),
+        "{e}"
+    );
+    let svg = std::fs::read_to_string(out.with_extension("svg")).unwrap();
+    assert!(svg.contains("logged path:"), "drawn all the same");
 }

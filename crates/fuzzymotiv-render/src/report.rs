@@ -14,7 +14,10 @@ use serde_json::{Value, json};
 
 use crate::plot::{colour, esc};
 use crate::study::Setting;
-use crate::svg::{SomRoom, best_paths_svg, fitness_svg, som_svg, terms_svg_with, trajectories_svg};
+use crate::svg::{
+    LoggedPath, SomRoom, best_paths_svg, fitness_svg, som_svg, terms_svg_with,
+    trajectories_svg_with,
+};
 use crate::terms::NAMES;
 use fuzzymotiv_records::records::context::RenderContext;
 use fuzzymotiv_records::records::{Finished, RoomRow};
@@ -333,6 +336,18 @@ pub fn replay_page(
     ctx: &RenderContext,
     trials: &[(usize, String, InstanceRun)],
 ) -> String {
+    replay_page_with(title, about, ctx, trials, &[])
+}
+
+/// [`replay_page`] with logged paths drawn over their rooms in the figure
+/// ([`trajectories_svg_with`]; `fuzzymotiv replay --log`).
+pub fn replay_page_with(
+    title: &str,
+    about: &str,
+    ctx: &RenderContext,
+    trials: &[(usize, String, InstanceRun)],
+    logs: &[LoggedPath],
+) -> String {
     let mut page = Page::new(title.to_string());
     let _ = writeln!(
         page.body,
@@ -352,10 +367,16 @@ pub fn replay_page(
         .iter()
         .map(|(r, _, run)| (&ctx.rooms[*r], &run.trajectory))
         .collect();
+    let caption = "Top-down view of every replayed room: green circle = home pose, red line = path, filled circle = where the trial ended.";
+    let logged = " Dashed, in a colour of its own: a logged path (--log), a square at its end.";
     figure(
         &mut page,
-        &trajectories_svg("Replayed paths", &pairs),
-        "Top-down view of every replayed room: green circle = home pose, red line = path, filled circle = where the trial ended.",
+        &trajectories_svg_with("Replayed paths", &pairs, logs),
+        &if logs.is_empty() {
+            caption.to_string()
+        } else {
+            format!("{caption}{logged}")
+        },
     );
     let rooms = trials
         .iter()

@@ -267,12 +267,37 @@ impl Projection {
 /// Rooms drawn to scale side by side, each with its home zone, the path with a marker per
 /// executed step, the home pose and the end point (ringed when the trial ended at home).
 pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
+    trajectories_svg_with(title, rooms, &[])
+}
+
+/// A logged path drawn over a room of [`trajectories_svg_with`] (e.g. a robot's tracked pose).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoggedPath {
+    /// Its legend text (e.g. the log's file).
+    pub label: String,
+    /// The index, in the figure's rooms, of the room it was logged in.
+    pub room: usize,
+    /// Its positions in mm, in the room's frame.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// The colours of logged paths, in turn (none is a colour the rooms, zones or paths use).
+const LOG_COLOURS: [&str; 4] = ["#0e7c86", "#8c564b", "#1a1a6e", "#7f7f00"];
+
+/// [`trajectories_svg`] with `logs` drawn over their rooms, each dashed in a colour of its own
+/// with an end square, and a legend line each under the caption (without logs the figure is
+/// [`trajectories_svg`]'s, byte for byte).
+pub fn trajectories_svg_with(
+    title: &str,
+    rooms: &[(&Room, &Trajectory)],
+    logs: &[LoggedPath],
+) -> String {
     let scale = 0.3; // px per mm
     let pad = 20.0;
     let mut x_off = pad;
     let mut parts = String::new();
     let mut max_h: f64 = 0.0;
-    for (room, tr) in rooms {
+    for (i, (room, tr)) in rooms.iter().enumerate() {
         let (lo, hi) = room.bounds();
         let (w, h) = ((hi.x - lo.x) * scale, (hi.y - lo.y) * scale);
         max_h = max_h.max(h);
@@ -288,6 +313,9 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         draw_mission(&mut parts, room, &p);
         draw_path(&mut parts, tr, &p);
         draw_home_and_end(&mut parts, room, tr, &p);
+        for (k, log) in logs.iter().enumerate().filter(|(_, l)| l.room == i) {
+            draw_logged_path(&mut parts, log, log_colour(k), &p);
+        }
         let _ = writeln!(
             parts,
             r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
@@ -304,11 +332,24 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         mission_caption(rooms.iter().map(|(r, _)| *r))
     );
     let caption = caption.as_str();
-    let width = x_off
-        .max(2.0 * pad + text_width(title, true))
-        .max(2.0 * pad + text_width(caption, false));
+    let legend: Vec<String> = logs
+        .iter()
+        .map(|l| {
+            format!(
+                "logged path: {} ({} positions; a square at its end)",
+                l.label,
+                l.points.len()
+            )
+        })
+        .collect();
+    let width = legend.iter().fold(
+        x_off
+            .max(2.0 * pad + text_width(title, true))
+            .max(2.0 * pad + text_width(caption, false)),
+        |w, t| w.max(2.0 * pad + LEGEND_SWATCH + text_width(t, false)),
+    );
     let (caption_y, bar_y) = (40.0 + max_h + 40.0, 40.0 + max_h + 60.0);
-    let height = bar_y + 12.0;
+    let height = bar_y + 12.0 + LEGEND_LINE * legend.len() as f64;
     let mut s = open(format_args!("{width:.0}"), format_args!("{height:.0}"), 12);
     let _ = writeln!(
         s,
@@ -328,9 +369,52 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
         bar_y - 4.0,
         pad + bar + 6.0,
     );
+    for (k, text) in legend.iter().enumerate() {
+        let y = bar_y + LEGEND_LINE * (k + 1) as f64;
+        let _ = writeln!(
+            s,
+            r##"<line x1="{pad}" x2="{:.1}" y1="{:.0}" y2="{:.0}" stroke="{c}" stroke-width="2" stroke-dasharray="5 3"/><text x="{:.1}" y="{y:.0}" fill="{c}">{}</text>"##,
+            pad + LEGEND_SWATCH - 6.0,
+            y - 4.0,
+            y - 4.0,
+            pad + LEGEND_SWATCH,
+            esc(text),
+            c = log_colour(k)
+        );
+    }
     s.push_str(&parts);
     s.push_str("</svg>\n");
     s
+}
+
+/// The height of a logged path's legend line, and the width of its swatch (px).
+const LEGEND_LINE: f64 = 18.0;
+const LEGEND_SWATCH: f64 = 30.0;
+
+/// The colour of the `k`-th logged path.
+fn log_colour(k: usize) -> &'static str {
+    LOG_COLOURS[k % LOG_COLOURS.len()]
+}
+
+/// A logged path: a dashed polyline through its positions and a square at its end.
+fn draw_logged_path(parts: &mut String, log: &LoggedPath, colour: &str, p: &Projection) {
+    let path: String = log
+        .points
+        .iter()
+        .map(|&(x, y)| format!("{:.1},{:.1} ", p.x(x), p.y(y)))
+        .collect();
+    let _ = writeln!(
+        parts,
+        r##"<polyline class="logged" points="{path}" fill="none" stroke="{colour}" stroke-width="1.5" stroke-dasharray="5 3"/>"##
+    );
+    if let Some(&(x, y)) = log.points.last() {
+        let _ = writeln!(
+            parts,
+            r##"<rect x="{:.1}" y="{:.1}" width="6" height="6" fill="{colour}"/>"##,
+            p.x(x) - 3.0,
+            p.y(y) - 3.0
+        );
+    }
 }
 
 /// A room's outline, home zone and obstacles. The zone is its disc within the room's

@@ -6,5 +6,5 @@ pub(crate) mod recognition;
 pub(crate) mod som;
 
 pub use aem::{Action, AemParams, DEFAULT_ACTION_TOLERANCE, Encoder};
-pub use recognition::{Confusion, Recognizer, RoomInstance};
+pub use recognition::{Chosen, Confusion, Explanation, Recognizer, RoomInstance};
 pub use som::{RawSom, Som, SomError, SomParams};

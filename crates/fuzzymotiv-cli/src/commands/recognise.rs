@@ -1,6 +1,6 @@
 //! `fuzzymotiv recognise`: the rooms a run's room model recognises in a real robot's logs
 //! ([`fuzzymotiv_io::records::robot_log::recognise_logs`] over the library's
-//! `Experiment::recognizer` and `Experiment::recognise_actions`).
+//! `Experiment::recognizer` and `Experiment::explain_actions`).
 
 use std::path::PathBuf;
 
@@ -16,7 +16,10 @@ pub struct RecogniseArgs {
     #[arg(value_name = "RUN_DIR")]
     pub run: PathBuf,
     /// The logs: CSV files, one row per step, with an `action` column (straight, left, right,
-    /// back) or `m_left` and `m_right` (motor outputs in [0, 1]); other columns are read past.
+    /// back) or `m_left` and `m_right` (motor outputs in [0, 1]); other columns (`ir0`…`ir7`,
+    /// a pose `x`, `y`, `heading`) are read past. Per log the answer gives the room, the SOM's
+    /// winner, the room's r-node and their distance in nodes against the gate's width
+    /// (`aem.threshold`), and the log's distance to the room's stored vector.
     #[arg(value_name = "LOG", required = true)]
     pub logs: Vec<PathBuf>,
     /// Also write recognised.csv and recognised.md into this directory (created if missing).

@@ -5,7 +5,8 @@
 //! a room's stored instance), so `replay RUN_DIR` redraws exactly the paths of the run's
 //! `report.html`; `--seed N` replays under another base seed. Same genome, room and seed → the
 //! same trajectory, byte for byte. `--gif` adds an animated GIF per room
-//! ([`fuzzymotiv_io::render::frames`]).
+//! ([`fuzzymotiv_io::render::frames`]); `--log` draws a robot's logged path over its room
+//! (read by [`fuzzymotiv_io::records::robot_log::RobotLog`], as `recognise` reads it).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -24,10 +25,11 @@ use fuzzymotiv_io::note;
 use fuzzymotiv_io::records::PROGRAM;
 use fuzzymotiv_io::records::context::RenderContext;
 use fuzzymotiv_io::records::genome::{SavedGenome, locate, read_genome};
+use fuzzymotiv_io::records::robot_log::RobotLog;
 use fuzzymotiv_io::render::frames::animate::delay_of;
 use fuzzymotiv_io::render::frames::{self, FrameOptions, Track};
-use fuzzymotiv_io::render::report::{replay_page, xs};
-use fuzzymotiv_io::render::svg::trajectories_svg;
+use fuzzymotiv_io::render::report::{replay_page_with, xs};
+use fuzzymotiv_io::render::svg::{LoggedPath, trajectories_svg_with};
 
 use crate::png::svg_to_png;
 
@@ -90,6 +92,12 @@ pub struct ReplayArgs {
         requires = "gif"
     )]
     pub fps: f64,
+    /// A robot's log (CSV with `x` and `y` columns: mm in the room's frame; `x_mm`, `y_mm` too)
+    /// whose path is drawn, dashed in a colour of its own, over the replayed room in STEM.svg
+    /// and the page (docs/guide/real-robot.md). Repeat for several logs. With a config of
+    /// several rooms, --room says which room the logs were recorded in.
+    #[arg(long, value_name = "LOG")]
+    pub log: Vec<PathBuf>,
     /// Replace existing files of these names that hold something else (only regular files:
     /// a directory, device or link is never replaced). The same replay again changes nothing.
     #[arg(long)]
@@ -193,6 +201,7 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         None => loaded.raw.rooms.clone(),
     };
     raw.network.hidden = genome.hidden;
+    let logs = logged_paths(&args.log, &raw.rooms)?;
     // Replaying needs neither room recognition nor online orientation (they would demand more
     // rooms); neither changes a trajectory.
     raw.aem.enabled = false;
@@ -205,7 +214,52 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     } else {
         None
     };
-    write_replay(&args, &ctx, &genome, &source_name, &trials, gifs)
+    warn_outside(&logs, &loaded.experiment);
+    write_replay(&args, &ctx, &genome, &source_name, &trials, gifs, &logs)
+}
+
+/// The paths of `--log`, each over the replay's one room (several rooms: `--room` must say
+/// which); refused before anything is replayed.
+fn logged_paths(logs: &[PathBuf], rooms: &[String]) -> Result<Vec<LoggedPath>, CliError> {
+    if logs.is_empty() {
+        return Ok(Vec::new());
+    }
+    if rooms.len() != 1 {
+        return Err(CliError::input(format!(
+            "--log: the config has {} rooms ({}); a log is drawn over the room it was recorded in, so say which with --room ROOM",
+            rooms.len(),
+            rooms.join(", ")
+        )));
+    }
+    logs.iter()
+        .map(|path| {
+            Ok(LoggedPath {
+                label: path.display().to_string(),
+                room: 0,
+                points: RobotLog::read(path)?.path()?,
+            })
+        })
+        .collect()
+}
+
+/// A warning per logged path with positions outside its room's outline's bounds (mm in
+/// another frame, or in other units, draw outside the room).
+fn warn_outside(logs: &[LoggedPath], exp: &Experiment) {
+    for log in logs {
+        let room = exp.arenas()[log.room].room();
+        let (lo, hi) = room.bounds();
+        let outside = (log.points.iter())
+            .filter(|&&(x, y)| x < lo.x || x > hi.x || y < lo.y || y > hi.y)
+            .count();
+        if outside > 0 {
+            note!(
+                "warning: {}: {outside} of {} positions lie outside room {}; --log wants x and y in mm, in the room's frame",
+                log.label,
+                log.points.len(),
+                room.name
+            );
+        }
+    }
 }
 
 /// The frame options and delay of `--gif` (`--size`, `--stride`, `--fps`), for the trial's robot.
@@ -347,6 +401,7 @@ fn write_replay(
     source_name: &str,
     trials: &[(usize, String, InstanceRun)],
     gifs: Option<(FrameOptions, u16)>,
+    logs: &[LoggedPath],
 ) -> Result<(), CliError> {
     let out = &args.out;
     let (dir, stem) = out_parts(out)?;
@@ -370,7 +425,7 @@ fn write_replay(
         .map(|(r, _, run)| (&ctx.rooms[*r], &run.trajectory))
         .collect();
     let title = format!("Replay of {genome_path} (seed {})", ctx.seed);
-    let svg = trajectories_svg(&title, &pairs);
+    let svg = trajectories_svg_with(&title, &pairs, logs);
     let svg_path = dir.join(format!("{stem}.svg"));
     if args.png {
         let png_path = svg_path.with_extension("png");
@@ -384,7 +439,7 @@ fn write_replay(
         xs(ctx),
         ctx.steps
     );
-    let page = replay_page("fuzzymotiv replay", &about, ctx, trials);
+    let page = replay_page_with("fuzzymotiv replay", &about, ctx, trials, logs);
     files.push((out.clone(), page.into_bytes()));
     let state = check_files(&files, "--out", args.force)?;
     if state == FilesState::Write {

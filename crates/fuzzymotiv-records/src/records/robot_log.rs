@@ -7,13 +7,17 @@
 //!   model's rule with the run's `aem.action_tolerance` (with `actions` motion the simulator
 //!   labels the speeds after its wheel noise, so a step near the tolerance may be labelled
 //!   otherwise than it executed: log the executed action where the robot knows it);
-//! - any other columns (e.g. `ir0`…`ir7`, `x`, `y`, `heading`, a time stamp) are read past;
+//! - optionally the tracked pose, `x`, `y` (mm, in the room's frame; `x_mm`, `y_mm` as a
+//!   replay's CSV names them) and `heading`: `fuzzymotiv replay --log` draws the path;
+//! - any other columns (e.g. `ir0`…`ir7`, a time stamp) are read past;
 //! - a row whose action (or both motor outputs) is empty holds no step (e.g. the final pose
 //!   that `fuzzymotiv replay`'s CSV ends with, so a replay is a log too) and is skipped.
 //!
 //! The run's recogniser is rebuilt from its best robot exactly as its room modelling trained it
 //! (`Experiment::recognizer`), and each log's first `trial.steps` actions are recognised
-//! (`Experiment::recognise_actions`).
+//! (`Experiment::explain_actions`: the room, the SOM's winner, the recognised room's r-node, their
+//! distance in nodes against the gate's width `aem.threshold`, and the distance of the log's
+//! vector to the room's stored vector).
 
 use std::path::{Path, PathBuf};
 
@@ -46,6 +50,16 @@ pub struct RecognitionRecord {
     pub right: usize,
     /// Turns on the spot (180°).
     pub back: usize,
+    /// The recognised room's r-node (its stored instance's winning node); empty when none is.
+    pub r_node: Option<usize>,
+    /// `|winner − r_node|` in nodes, at most `gate`; empty when no room is recognised.
+    pub node_distance: Option<usize>,
+    /// The SOM gate's width (`aem.threshold`): a room is a candidate when its r-node lies
+    /// within this many nodes of the winner.
+    pub gate: usize,
+    /// The Euclidean distance of the log's environment vector to the recognised room's stored
+    /// vector (the nearest-neighbour step); empty when no room is recognised.
+    pub vector_distance: Option<f64>,
 }
 
 /// `recognised.csv`'s text.
@@ -56,8 +70,9 @@ pub fn recognition_csv(records: &[RecognitionRecord]) -> String {
 /// `recognised.md`'s text: one row per log.
 pub fn recognition_md(run: &Path, records: &[RecognitionRecord]) -> String {
     let mut md = format!(
-        "Rooms recognised by the room model of {} (its best robot's SOM, rebuilt as its run trained it).\n\n| log | steps | used | room | SOM winner | straight / left / right / back |\n|---|---|---|---|---|---|\n",
-        run.display()
+        "Rooms recognised by the room model of {} (its best robot's SOM, rebuilt as its run trained it). The gate: a room is a candidate when its r-node lies within {} nodes of the SOM's winner; the nearest candidate's stored vector wins.\n\n| log | steps | used | room | SOM winner | straight / left / right / back | r-node (distance / gate) | vector distance |\n|---|---|---|---|---|---|---|---|\n",
+        run.display(),
+        records.first().map_or(0, |r| r.gate)
     );
     for r in records {
         let room = if r.room.is_empty() {
@@ -65,8 +80,15 @@ pub fn recognition_md(run: &Path, records: &[RecognitionRecord]) -> String {
         } else {
             &r.room
         };
+        let gate = match (r.r_node, r.node_distance) {
+            (Some(n), Some(d)) => format!("{n} ({d} / {})", r.gate),
+            _ => format!("– (gate {})", r.gate),
+        };
+        let distance = r
+            .vector_distance
+            .map_or("–".to_string(), |d| format!("{d:.4}"));
         md.push_str(&format!(
-            "| {} | {} | {} | {room} | {} | {} / {} / {} / {} |\n",
+            "| {} | {} | {} | {room} | {} | {} / {} / {} / {} | {gate} | {distance} |\n",
             r.log, r.steps, r.used, r.winner, r.straight, r.left, r.right, r.back
         ));
     }
@@ -90,71 +112,151 @@ enum Source {
     Motors(usize, usize),
 }
 
-/// Reads a log's actions (see the module's docs); `tolerance` labels motor outputs.
-pub fn read_robot_log(path: &Path, tolerance: f64) -> Result<Vec<Action>, CliError> {
-    let name = path.display();
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| CliError::input(format!("{name}: cannot read the log: {e}")))?;
-    let headers = reader
-        .headers()
-        .map_err(|e| CliError::input(format!("{name}: cannot read the header: {e}")))?
-        .clone();
-    let column = |c: &str| headers.iter().position(|h| h == c);
-    let source = match (column("action"), column("m_left"), column("m_right")) {
-        (Some(a), _, _) => Source::Labels(a),
-        (None, Some(l), Some(r)) => Source::Motors(l, r),
-        _ => {
+/// A log as read: its header and its rows with their line numbers (see the module's docs).
+/// [`RobotLog::actions`] gives `fuzzymotiv recognise` its actions, [`RobotLog::path`] gives
+/// `fuzzymotiv replay --log` its path: one reader for both.
+pub struct RobotLog {
+    name: String,
+    headers: csv::StringRecord,
+    rows: Vec<(usize, csv::StringRecord)>,
+}
+
+impl RobotLog {
+    /// Reads a log's header and rows; errors name the file (and the line).
+    pub fn read(path: &Path) -> Result<RobotLog, CliError> {
+        let name = path.display().to_string();
+        let mut reader = csv::ReaderBuilder::new()
+            .trim(csv::Trim::All)
+            .from_path(path)
+            .map_err(|e| CliError::input(format!("{name}: cannot read the log: {e}")))?;
+        let headers = reader
+            .headers()
+            .map_err(|e| CliError::input(format!("{name}: cannot read the header: {e}")))?
+            .clone();
+        let rows = reader
+            .records()
+            .enumerate()
+            .map(|(k, row)| {
+                row.map(|row| (k + 2, row))
+                    .map_err(|e| CliError::input(format!("{name}: line {}: {e}", k + 2)))
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(RobotLog {
+            name,
+            headers,
+            rows,
+        })
+    }
+
+    /// The log's file, as given.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The index of the first of `names` the header has.
+    fn column(&self, names: &[&str]) -> Option<usize> {
+        names
+            .iter()
+            .find_map(|c| self.headers.iter().position(|h| h == *c))
+    }
+
+    /// The log's actions (see the module's docs); `tolerance` labels motor outputs.
+    pub fn actions(&self, tolerance: f64) -> Result<Vec<Action>, CliError> {
+        let name = &self.name;
+        let source = match (
+            self.column(&["action"]),
+            self.column(&["m_left"]),
+            self.column(&["m_right"]),
+        ) {
+            (Some(a), _, _) => Source::Labels(a),
+            (None, Some(l), Some(r)) => Source::Motors(l, r),
+            _ => {
+                return Err(CliError::input(format!(
+                    "{name}: the header has neither an `action` column nor `m_left` and `m_right`; \
+                     a log names each step's action (straight, left, right, back) or the motor \
+                     outputs in [0, 1] (docs/guide/real-robot.md)"
+                )));
+            }
+        };
+        let mut actions = Vec::new();
+        for (line, row) in &self.rows {
+            let cell = |i: usize| row.get(i).unwrap_or("");
+            let action = match source {
+                Source::Labels(a) if cell(a).is_empty() => continue,
+                Source::Motors(l, r) if cell(l).is_empty() && cell(r).is_empty() => continue,
+                Source::Labels(a) => action_of(cell(a)).ok_or_else(|| {
+                    CliError::input(format!(
+                        "{name}: line {line}: field `action`: `{}` is not an action; write straight, left, right or back",
+                        cell(a)
+                    ))
+                })?,
+                Source::Motors(l, r) => {
+                    let motor = |i: usize, field: &str| -> Result<f64, CliError> {
+                        cell(i)
+                            .parse::<f64>()
+                            .ok()
+                            .filter(|v| (0.0..=1.0).contains(v))
+                            .ok_or_else(|| {
+                                CliError::input(format!(
+                                    "{name}: line {line}: field `{field}`: `{}` is not a motor output; write a number from 0 to 1",
+                                    cell(i)
+                                ))
+                            })
+                    };
+                    Action::from_motors(motor(l, "m_left")?, motor(r, "m_right")?, tolerance)
+                }
+            };
+            actions.push(action);
+        }
+        if actions.is_empty() {
             return Err(CliError::input(format!(
-                "{name}: the header has neither an `action` column nor `m_left` and `m_right`; \
-                 a log names each step's action (straight, left, right, back) or the motor \
-                 outputs in [0, 1] (docs/guide/real-robot.md)"
+                "{name}: the log has no steps (rows after the header)"
             )));
         }
-    };
-    let mut actions = Vec::new();
-    for (k, row) in reader.records().enumerate() {
-        let line = k + 2;
-        let row = row.map_err(|e| CliError::input(format!("{name}: line {line}: {e}")))?;
-        let cell = |i: usize| row.get(i).unwrap_or("");
-        let empty = match source {
-            Source::Labels(a) => cell(a).is_empty(),
-            Source::Motors(l, r) => cell(l).is_empty() && cell(r).is_empty(),
+        Ok(actions)
+    }
+
+    /// The logged path: the `x`, `y` columns (or `x_mm`, `y_mm`, as a replay's CSV names
+    /// them), mm in the room's frame, one point per row that has them (a row with both empty
+    /// is read past).
+    pub fn path(&self) -> Result<Vec<(f64, f64)>, CliError> {
+        let name = &self.name;
+        let (Some(x), Some(y)) = (self.column(&["x", "x_mm"]), self.column(&["y", "y_mm"])) else {
+            return Err(CliError::input(format!(
+                "{name}: the header has no `x` and `y` columns; --log draws a logged path, so each \
+                 row needs the robot's position in mm in the room's frame, `x` and `y` (or `x_mm` \
+                 and `y_mm`, as a replay's CSV has them) (docs/guide/real-robot.md)"
+            )));
         };
-        if empty {
-            continue;
-        }
-        actions.push(match source {
-            Source::Labels(a) => action_of(cell(a)).ok_or_else(|| {
-                CliError::input(format!(
-                    "{name}: line {line}: field `action`: `{}` is not an action; write straight, left, right or back",
-                    cell(a)
-                ))
-            })?,
-            Source::Motors(l, r) => {
-                let motor = |i: usize, field: &str| -> Result<f64, CliError> {
-                    cell(i)
-                        .parse::<f64>()
-                        .ok()
-                        .filter(|v| (0.0..=1.0).contains(v))
-                        .ok_or_else(|| {
-                            CliError::input(format!(
-                                "{name}: line {line}: field `{field}`: `{}` is not a motor output; write a number from 0 to 1",
-                                cell(i)
-                            ))
-                        })
-                };
-                Action::from_motors(motor(l, "m_left")?, motor(r, "m_right")?, tolerance)
+        let mut points = Vec::new();
+        for (line, row) in &self.rows {
+            let cell = |i: usize| row.get(i).unwrap_or("");
+            if cell(x).is_empty() && cell(y).is_empty() {
+                continue;
             }
-        });
+            let coordinate = |i: usize| -> Result<f64, CliError> {
+                cell(i).parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
+                    CliError::input(format!(
+                        "{name}: line {line}: field `{}`: `{}` is not a position; write a number (mm)",
+                        &self.headers[i],
+                        cell(i)
+                    ))
+                })
+            };
+            points.push((coordinate(x)?, coordinate(y)?));
+        }
+        if points.is_empty() {
+            return Err(CliError::input(format!(
+                "{name}: the log has no positions (rows with `x` and `y`)"
+            )));
+        }
+        Ok(points)
     }
-    if actions.is_empty() {
-        return Err(CliError::input(format!(
-            "{name}: the log has no steps (rows after the header)"
-        )));
-    }
-    Ok(actions)
+}
+
+/// Reads a log's actions (see the module's docs); `tolerance` labels motor outputs.
+pub fn read_robot_log(path: &Path, tolerance: f64) -> Result<Vec<Action>, CliError> {
+    RobotLog::read(path)?.actions(tolerance)
 }
 
 /// The rooms a run directory's room model recognises in `logs` (see the module's docs).
@@ -195,15 +297,20 @@ pub fn recognise_logs(run: &Path, logs: &[PathBuf]) -> Result<Vec<RecognitionRec
         })?;
     logs.into_iter()
         .map(|(log, actions)| {
-            let (room, winner) = exp
-                .recognise_actions(&recognizer, &actions)
+            let why = exp
+                .explain_actions(&recognizer, &actions)
                 .map_err(|e| CliError::input(format!("{log}: {e}")))?;
             let count = |a: Action| actions.iter().filter(|&&b| b == a).count();
+            let chosen = why.chosen;
             Ok(RecognitionRecord {
                 steps: actions.len(),
                 used: actions.len().min(exp.trial_params().steps()),
-                room: room.map_or(String::new(), |r| exp.arenas()[r].room().name.clone()),
-                winner,
+                room: chosen.map_or(String::new(), |c| exp.arenas()[c.room].room().name.clone()),
+                winner: why.winner,
+                r_node: chosen.map(|c| c.r_node),
+                node_distance: chosen.map(|c| c.node_distance),
+                gate: why.threshold,
+                vector_distance: chosen.map(|c| c.vector_distance),
                 straight: count(Action::Straight),
                 left: count(Action::Left30),
                 right: count(Action::Right30),

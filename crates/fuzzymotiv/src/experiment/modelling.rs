@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::experiment::{Experiment, Run};
 use crate::fitness::terms::{FitnessTerms, largest_distance};
 use crate::modelling::aem::{Action, environment_vector};
-use crate::modelling::recognition::{Confusion, Recognizer};
+use crate::modelling::recognition::{Confusion, Explanation, Recognizer};
 use crate::modelling::som::SomError;
 use crate::random::rng::rng_from_seed;
 use crate::simulation::controller::Mlp;
@@ -98,11 +98,28 @@ impl Experiment {
         recognizer: &Recognizer,
         actions: &[Action],
     ) -> Result<(Option<usize>, usize), SomError> {
+        let v = self.log_vector(actions);
+        Ok((recognizer.recognise(&v)?, recognizer.som.winner(&v)?))
+    }
+
+    /// [`Experiment::recognise_actions`] with its reasons ([`Recognizer::explain`]): the SOM's
+    /// winner, the gate's width and, when a room is recognised, its r-node, their distance in
+    /// nodes and the distance of the sequence's vector to the room's stored vector.
+    pub fn explain_actions(
+        &self,
+        recognizer: &Recognizer,
+        actions: &[Action],
+    ) -> Result<Explanation, SomError> {
+        recognizer.explain(&self.log_vector(actions))
+    }
+
+    /// The environment vector of an action sequence's first `trial.steps` actions, padded with
+    /// `Straight` (see [`Experiment::recognise_actions`]).
+    fn log_vector(&self, actions: &[Action]) -> Vec<f64> {
         let steps = self.trial.steps();
         let mut padded: Vec<Action> = actions.iter().copied().take(steps).collect();
         padded.resize(steps, Action::Straight);
-        let v = environment_vector(&padded, self.aem.encoder());
-        Ok((recognizer.recognise(&v)?, recognizer.som.winner(&v)?))
+        environment_vector(&padded, self.aem.encoder())
     }
 
     /// Action-based environment modelling with one robot (its network): an instance run per room, SOM

@@ -74,7 +74,32 @@ impl Recognizer {
     /// Errors if `v` or a candidate's vector does not match the map's dimension.
     pub fn recognise(&self, v: &[f64]) -> Result<Option<usize>, SomError> {
         let r = self.som.winner(v)?;
-        let mut best: Option<(usize, f64)> = None;
+        Ok(self.choose(v, r)?.map(|(inst, _)| inst.room))
+    }
+
+    /// Why [`Recognizer::recognise`] answers as it does for `v`: the SOM's winning node and,
+    /// when a room is recognised, the chosen instance, its r-node's distance from the winner
+    /// (within the gate, `threshold`) and the Euclidean distance of `v` to its stored vector.
+    /// The room is always [`Recognizer::recognise`]'s; errors as it does.
+    pub fn explain(&self, v: &[f64]) -> Result<Explanation, SomError> {
+        let winner = self.som.winner(v)?;
+        let chosen = self.choose(v, winner)?.map(|(inst, d)| Chosen {
+            room: inst.room,
+            r_node: inst.r_node,
+            node_distance: inst.r_node.abs_diff(winner),
+            vector_distance: d.sqrt(),
+        });
+        Ok(Explanation {
+            winner,
+            threshold: self.threshold,
+            chosen,
+        })
+    }
+
+    /// The candidate instance (r-node within `threshold` of the winner `r`) nearest to `v`,
+    /// with its squared distance (∞ for NaN); `None` when there is none or rooms tie.
+    fn choose(&self, v: &[f64], r: usize) -> Result<Option<(&RoomInstance, f64)>, SomError> {
+        let mut best: Option<(&RoomInstance, f64)> = None;
         let mut tied = false;
         for inst in &self.instances {
             if inst.r_node.abs_diff(r) > self.threshold {
@@ -92,20 +117,41 @@ impl Recognizer {
             match best {
                 Some((_, bd)) if d > bd => {}
                 // An exact tie between different rooms: the nearest room is undefined.
-                Some((room, bd)) if d == bd && room != inst.room => tied = true,
+                Some((b, bd)) if d == bd && b.room != inst.room => tied = true,
                 Some((_, bd)) if d == bd => {}
                 _ => {
-                    best = Some((inst.room, d));
+                    best = Some((inst, d));
                     tied = false;
                 }
             }
         }
-        Ok(if tied {
-            None
-        } else {
-            best.map(|(room, _)| room)
-        })
+        Ok(if tied { None } else { best })
     }
+}
+
+/// [`Recognizer::explain`]'s answer: the SOM's gate and nearest-neighbour step for one vector.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Explanation {
+    /// The SOM's winning node for the vector.
+    pub winner: usize,
+    /// The gate's width: an instance is a candidate when its r-node lies within this many
+    /// nodes of the winner.
+    pub threshold: usize,
+    /// The instance recognised, none when no r-node passes the gate or rooms tie.
+    pub chosen: Option<Chosen>,
+}
+
+/// The instance a vector is recognised as (see [`Explanation`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Chosen {
+    /// Its room (an index into the caller's room list).
+    pub room: usize,
+    /// Its r-node.
+    pub r_node: usize,
+    /// `|winner − r_node|`, in nodes: at most the gate's width.
+    pub node_distance: usize,
+    /// The Euclidean distance of the vector to the instance's stored vector (∞ for NaN).
+    pub vector_distance: f64,
 }
 
 /// The reference nearest to `v`, or `None` when two or more references tie at the smallest
@@ -257,6 +303,89 @@ mod tests {
         assert_eq!(rec.recognise(&[9.0]).unwrap(), Some(1));
         let empty = Recognizer::from_parts(line_som(), vec![], 10);
         assert_eq!(empty.recognise(&[3.0]).unwrap(), None);
+    }
+
+    #[test]
+    fn explain_gives_the_gate_and_the_nearest_step_of_recognise() {
+        let inst = vec![
+            RoomInstance {
+                room: 0,
+                vector: vec![5.4],
+                r_node: 0,
+            },
+            RoomInstance {
+                room: 1,
+                vector: vec![0.0],
+                r_node: 5,
+            },
+            RoomInstance {
+                room: 2,
+                vector: vec![-3.0],
+                r_node: 6,
+            },
+            RoomInstance {
+                room: 3,
+                vector: vec![3.0],
+                r_node: 6,
+            },
+        ];
+        let rec = Recognizer::from_parts(line_som(), inst, 1);
+        // 5.0 wins node 5: rooms 1, 2, 3 pass the gate, room 3's vector is nearest (2.0 away).
+        let e = rec.explain(&[5.0]).unwrap();
+        assert_eq!((e.winner, e.threshold), (5, 1));
+        assert_eq!(
+            e.chosen,
+            Some(Chosen {
+                room: 3,
+                r_node: 6,
+                node_distance: 1,
+                vector_distance: 2.0
+            })
+        );
+        // 9.0 wins node 9: no r-node within 1 node.
+        assert_eq!(rec.explain(&[9.0]).unwrap().chosen, None);
+        // Whatever the vector, explain's room is recognise's.
+        for x in [
+            -4.0,
+            -1.0,
+            0.0,
+            1.5,
+            2.7,
+            3.0,
+            4.2,
+            5.0,
+            5.5,
+            6.0,
+            7.0,
+            9.0,
+            f64::NAN,
+        ] {
+            let e = rec.explain(&[x]).unwrap();
+            assert_eq!(
+                e.chosen.map(|c| c.room),
+                rec.recognise(&[x]).unwrap(),
+                "{x}"
+            );
+            assert_eq!(e.winner, rec.som.winner(&[x]).unwrap(), "{x}");
+        }
+        let tied = Recognizer::from_parts(
+            line_som(),
+            vec![
+                RoomInstance {
+                    room: 0,
+                    vector: vec![4.0],
+                    r_node: 5,
+                },
+                RoomInstance {
+                    room: 1,
+                    vector: vec![6.0],
+                    r_node: 5,
+                },
+            ],
+            10,
+        );
+        assert_eq!(tied.explain(&[5.0]).unwrap().chosen, None);
+        assert!(tied.explain(&[5.5]).unwrap().chosen.is_some());
     }
 
     #[test]
