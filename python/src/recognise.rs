@@ -46,16 +46,25 @@ pub(crate) fn recognise<'py>(
     d.set_item("back", records.iter().map(|r| r.back).collect::<Vec<_>>())?;
     d.set_item(
         "r_node",
-        records.iter().map(|r| nan_if_none(r.r_node.map(|n| n as f64))).collect::<Vec<_>>(),
+        records
+            .iter()
+            .map(|r| nan_if_none(r.r_node.map(|n| n as f64)))
+            .collect::<Vec<_>>(),
     )?;
     d.set_item(
         "node_distance",
-        records.iter().map(|r| nan_if_none(r.node_distance.map(|n| n as f64))).collect::<Vec<_>>(),
+        records
+            .iter()
+            .map(|r| nan_if_none(r.node_distance.map(|n| n as f64)))
+            .collect::<Vec<_>>(),
     )?;
     d.set_item("gate", records.iter().map(|r| r.gate).collect::<Vec<_>>())?;
     d.set_item(
         "vector_distance",
-        records.iter().map(|r| nan_if_none(r.vector_distance)).collect::<Vec<_>>(),
+        records
+            .iter()
+            .map(|r| nan_if_none(r.vector_distance))
+            .collect::<Vec<_>>(),
     )?;
     Ok(d)
 }
