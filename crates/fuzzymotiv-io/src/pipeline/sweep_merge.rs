@@ -111,10 +111,9 @@ fn collect_results(dir: &Path, jobs: &[Job]) -> Result<(SweepResults, usize), Cl
                     .map_or(String::new(), |(_, v)| cell_of_toml(v))
             })
             .collect();
-        let others = other_motivations(&summary.motivations);
-        for (name, _) in &others {
-            if !results.motivations.contains(name) {
-                results.motivations.push(name.clone());
+        for name in other_motivations(&summary.motivations) {
+            if !results.motivations.iter().any(|m| m == name) {
+                results.motivations.push(name.to_string());
             }
         }
         for r in &summary.rooms {
@@ -139,31 +138,26 @@ fn collect_results(dir: &Path, jobs: &[Job]) -> Result<(SweepResults, usize), Cl
                 mission_done_pct: r.mission_done_pct,
             });
         }
-        let first = results.rows.len() - summary.rooms.len();
-        for row in &mut results.rows[first..] {
-            row.other_weights = weights_of(&others, &results.motivations);
-        }
     }
-    // A job planned before a later job's motivation was seen has no value there.
-    let n = results.motivations.len();
+    // Once every job's motivations are known: each row's weight in each column (none where
+    // its job lacks that motivation).
     for row in &mut results.rows {
-        row.other_weights.resize(n, None);
+        row.other_weights = weights_of(&row.motivations, &results.motivations);
     }
     Ok((results, missing))
 }
 
-/// A job's motivations beyond the paper's four, with their weights.
-fn other_motivations(m: &MotivationsRecord) -> Vec<(String, f64)> {
+/// The names of a job's motivations beyond the paper's four.
+fn other_motivations(m: &MotivationsRecord) -> impl Iterator<Item = &str> {
     (m.table.iter())
-        .filter(|e| !PAPER_MOTIVATIONS.contains(&e.name.as_str()))
-        .map(|e| (e.name.clone(), e.weight))
-        .collect()
+        .map(|e| e.name.as_str())
+        .filter(|name| !PAPER_MOTIVATIONS.contains(name))
 }
 
-/// The weights of `others` in the order of `columns` (none where the job lacks one).
-fn weights_of(others: &[(String, f64)], columns: &[String]) -> Vec<Option<f64>> {
+/// The weights of the motivations named by `columns` in `m` (none where it lacks one).
+fn weights_of(m: &MotivationsRecord, columns: &[String]) -> Vec<Option<f64>> {
     (columns.iter())
-        .map(|c| others.iter().find(|(n, _)| n == c).map(|(_, w)| *w))
+        .map(|c| m.table.iter().find(|e| e.name == *c).map(|e| e.weight))
         .collect()
 }
 
