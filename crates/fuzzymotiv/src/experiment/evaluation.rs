@@ -13,6 +13,7 @@ use crate::modelling::aem::{Action, environment_vector};
 use crate::modelling::recognition::nearest_unique;
 use crate::random::rng::rng_from_seed;
 use crate::simulation::controller::{Controller, GenomeError, Mlp};
+use crate::simulation::lanes::{LaneTrial, lanes_fit, walk_lanes};
 use crate::simulation::randomise::Draw;
 use crate::simulation::robot::Pose;
 use crate::simulation::trial::{ActionLog, Arena, StepObserver, Trajectory, simulate};
@@ -75,12 +76,8 @@ impl Experiment {
         extra: &mut O,
     ) -> (FitnessTerms, usize, Pose) {
         let mut rng = rng_from_seed(seed);
-        let mut recorder = TermsRecorder::new(arena, self.homing);
-        if let Some(tracker) = self.plan.tracker(arena.room()) {
-            recorder = recorder.with_mission(tracker);
-        }
-        let computed = self.plan.user.iter().any(|u| u.term.is_some());
-        let (last, trajectory) = if computed {
+        let mut recorder = self.recorder(arena);
+        let (last, trajectory) = if self.computes_user_terms() {
             let mut trajectory = Trajectory::starting_at(arena.room().home, self.trial.steps());
             let mut obs = (&mut recorder, (&mut *extra, &mut trajectory));
             (
@@ -91,12 +88,33 @@ impl Experiment {
             let mut obs = (&mut recorder, &mut *extra);
             (simulate(arena, network, &mut rng, &mut obs), None)
         };
-        let mut terms = recorder.finish();
-        terms.user = UserValues::zeros(self.plan.user.len());
+        let mut terms = self.recorded_terms(&recorder);
         if let Some(trajectory) = trajectory {
             self.user_values(arena, &trajectory, &mut terms);
         }
         (terms, recorder.executed(), last)
+    }
+
+    /// What records an evaluation trial's terms in `arena` (the mission's included).
+    fn recorder<'a>(&self, arena: &'a Arena) -> TermsRecorder<&'a Arena> {
+        let recorder = TermsRecorder::new(arena, self.homing);
+        match self.plan.tracker(arena.room()) {
+            Some(tracker) => recorder.with_mission(tracker),
+            None => recorder,
+        }
+    }
+
+    /// The terms `recorder` recorded, the user-defined ones still 0.
+    fn recorded_terms(&self, recorder: &TermsRecorder<&Arena>) -> FitnessTerms {
+        let mut terms = recorder.finish();
+        terms.user = UserValues::zeros(self.plan.user.len());
+        terms
+    }
+
+    /// Whether some user-defined term is computed from the trial's record (a Rust
+    /// [`crate::fitness::terms::Term`]), so that every step must be recorded.
+    fn computes_user_terms(&self) -> bool {
+        self.plan.user.iter().any(|u| u.term.is_some())
     }
 
     /// An evolution's evaluation trial: [`Experiment::recorded_trial`], or with
@@ -243,30 +261,91 @@ impl Experiment {
                 s.terms.l = l;
             }
         }
-        for s in &mut per_room {
-            s.f = self.fuzzy_fitness(&s.terms);
-        }
-        let fitness = per_room.iter().map(|s| s.f).sum::<f64>() / per_room.len() as f64;
-        Evaluation { fitness, per_room }
+        self.scored(per_room)
     }
 
     /// Evaluates a population in parallel (results in index order, independent of threads).
+    /// With `actions` motion, sensor and wheel noise and the 8-6-2 network (the paper's robot),
+    /// the trials of a room run four at a time in lock-step, their noise and networks in
+    /// vector lanes; that changes no result.
     pub fn evaluate_population(
         &self,
         population: &Population,
         run: &Run,
         generation: usize,
     ) -> Vec<Evaluation> {
-        population
+        let networks: Vec<Mlp> = population
             .par_iter()
+            .map(|g| Mlp::of_checked(population.shape(), g))
+            .collect();
+        let batches: Vec<&[Mlp]> = networks.chunks(LANE_BATCH).collect();
+        batches
+            .into_par_iter()
             .enumerate()
-            .map(|(i, g)| {
-                let mut network = Mlp::of_checked(population.shape(), g);
-                self.evaluate_with(&mut network, run, generation, i)
-            })
+            .flat_map_iter(|(b, nets)| self.evaluate_batch(nets, b * LANE_BATCH, run, generation))
             .collect()
     }
+
+    /// Evaluates the individuals `first..` whose networks are `nets`: in the lanes when every
+    /// trial fits them, else one individual at a time ([`Experiment::evaluate_with`]).
+    fn evaluate_batch(
+        &self,
+        nets: &[Mlp],
+        first: usize,
+        run: &Run,
+        generation: usize,
+    ) -> Vec<Evaluation> {
+        let online =
+            self.orientation == OrientationMode::Online && self.motivations.orientation() > 0.0;
+        let fit = self.randomise.is_none()
+            && !online
+            && !self.computes_user_terms()
+            && run.rooms.iter().all(|&r| {
+                let arena = &self.arenas[r];
+                nets.iter().all(|n| lanes_fit(arena, n))
+            });
+        if !fit {
+            return (nets.iter().enumerate())
+                .map(|(i, n)| self.evaluate_with(&mut n.clone(), run, generation, first + i))
+                .collect();
+        }
+        let mut per_room = vec![Vec::with_capacity(run.rooms.len()); nets.len()];
+        for &r in &run.rooms {
+            let arena = &self.arenas[r];
+            let mut trials: Vec<_> = (nets.iter().enumerate())
+                .map(|(i, net)| LaneTrial {
+                    net,
+                    seed: self.eval_seed(run, generation, first + i, r),
+                    observer: self.recorder(arena),
+                    last: arena.room().home,
+                })
+                .collect();
+            walk_lanes(arena, &mut trials);
+            for (scores, trial) in per_room.iter_mut().zip(&trials) {
+                scores.push(RoomScore {
+                    f: 0.0,
+                    terms: self.recorded_terms(&trial.observer),
+                    executed: trial.observer.executed(),
+                });
+            }
+        }
+        per_room.into_iter().map(|s| self.scored(s)).collect()
+    }
+
+    /// An evaluation of the per-room scores `per_room` (terms measured, F not yet combined).
+    fn scored(&self, mut per_room: Vec<RoomScore>) -> Evaluation {
+        for s in &mut per_room {
+            s.f = self.fuzzy_fitness(&s.terms);
+        }
+        let fitness = per_room.iter().map(|s| s.f).sum::<f64>() / per_room.len() as f64;
+        Evaluation { fitness, per_room }
+    }
 }
+
+/// Individuals per task of [`Experiment::evaluate_population`]: enough for the lanes to stay
+/// full (a lane idles only once fewer trials than lanes are left), few enough to share a
+/// population among threads.
+const LANE_BATCH: usize = 20;
 
 /// F and terms of one individual in one room.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -310,6 +389,42 @@ impl Evaluation {
 mod tests {
     use super::*;
     use crate::experiment::testing::{ORIENTED, experiment};
+
+    /// A population evaluated in the lanes (`evaluate_population`) scores exactly as each
+    /// individual evaluated alone (`evaluate`, which runs `simulate`): every bit of every F,
+    /// term and executed count, for an evolved population whose trials end at home at
+    /// different steps, and for a batch whose networks do not all fit the lanes.
+    #[test]
+    fn lanes_score_a_population_as_its_individuals_alone() {
+        let exp = experiment(&["ga.population=24", "ga.generations=4", "trial.steps=250"]);
+        let run = &exp.runs()[0];
+        let evolved = exp.evolve(run, &mut |_| std::ops::ControlFlow::Continue(()));
+        let mut population = Population {
+            shape: exp.shape,
+            genomes: evolved.unwrap().population,
+        };
+        let alone = |population: &Population| -> Vec<Evaluation> {
+            (0..population.len())
+                .map(|i| exp.evaluate(&population.network(i), run, 3, i))
+                .collect()
+        };
+        let lanes = exp.evaluate_population(&population, run, 3);
+        assert_eq!(format!("{lanes:?}"), format!("{:?}", alone(&population)));
+        let steps = exp.trial.steps();
+        let executed: Vec<usize> = lanes
+            .iter()
+            .flat_map(|e| &e.per_room)
+            .map(|s| s.executed)
+            .collect();
+        assert!(
+            executed.iter().any(|&n| n < steps),
+            "no trial ended at home: {executed:?}"
+        );
+        // A weight that is not finite sends its batch (and only its batch) the individual way.
+        population.genomes[5][7] = f64::INFINITY;
+        let mixed = exp.evaluate_population(&population, run, 3);
+        assert_eq!(format!("{mixed:?}"), format!("{:?}", alone(&population)));
+    }
 
     /// Online l is exactly the off-line 1-NN computation on the same trajectories, run on the
     /// derived streams (EVAL for the first run, ONLINE for the second).

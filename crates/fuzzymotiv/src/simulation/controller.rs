@@ -191,6 +191,25 @@ impl Mlp {
     pub fn shape(&self) -> MlpShape {
         self.shape
     }
+
+    /// The hidden layer's weights by input (the biases, then each input's weight into every
+    /// hidden unit) and the output layer's (per output `[bias, hidden weights]`).
+    pub(crate) fn layers(&self) -> (&[f64], &[f64]) {
+        (&self.by_input, &self.out_weights)
+    }
+
+    /// The outputs when every input is 0 (open floor), computed once.
+    pub(crate) fn idle_outputs(&self) -> [f64; OUTPUTS] {
+        self.idle_out
+    }
+
+    /// Whether every weight is finite (then `w · 0 = ±0` for each of them).
+    pub(crate) fn is_finite(&self) -> bool {
+        self.by_input
+            .iter()
+            .chain(&self.out_weights)
+            .all(|w| w.is_finite())
+    }
 }
 
 /// The hidden layer's weighted sums, input by input: each unit's sum is

@@ -788,6 +788,18 @@ pub(crate) struct Sensed {
     walls: Walls,
 }
 
+impl Sensed {
+    /// What an `actions` step read: `sensors` (noise included) and whether a straight move is
+    /// `blocked`.
+    #[inline(always)]
+    pub(crate) fn straight(sensors: [f64; INPUTS], blocked: bool) -> Sensed {
+        Sensed {
+            sensors,
+            walls: Walls::Straight(blocked),
+        }
+    }
+}
+
 impl Walk {
     /// At the room's home pose, not yet escaped.
     #[inline]
@@ -840,12 +852,28 @@ impl Walk {
     where
         R: Rng + ?Sized,
     {
+        let mut sensed = self.read(arena, memo);
+        perturb_sensors(&mut sensed.sensors, arena.params.noise, SENSOR_MAX, rng);
+        sensed
+    }
+
+    /// What the robot sees from its pose and whether a straight move is blocked (`actions`
+    /// motion; [`Arena::sight`]).
+    #[inline(always)]
+    pub(crate) fn sight(&self, arena: &Arena, memo: Option<&mut Table>) -> Sight {
+        let step = arena.params.straight_step();
+        arena.sight(memo, self.pose.position(), self.dir, self.cell, step)
+    }
+
+    /// [`Walk::sense`] before the noise: the sensor values the pose gives and what the move
+    /// will be tested against.
+    #[inline(always)]
+    pub(crate) fn read(&self, arena: &Arena, memo: Option<&mut Table>) -> Sensed {
         let params = &arena.params;
         let pos = self.pose.position();
-        let (mut sensors, walls) = match params.robot.motion() {
+        let (sensors, walls) = match params.robot.motion() {
             Motion::Actions => {
-                let step = params.straight_step();
-                let sight = arena.sight(memo, pos, self.dir, self.cell, step);
+                let sight = self.sight(arena, memo);
                 (sight.sensors, Walls::Straight(sight.blocked))
             }
             Motion::Wheels => {
@@ -856,7 +884,6 @@ impl Walk {
                 )
             }
         };
-        perturb_sensors(&mut sensors, params.noise, SENSOR_MAX, rng);
         Sensed { sensors, walls }
     }
 
@@ -878,13 +905,30 @@ impl Walk {
     where
         R: Rng + ?Sized,
     {
+        let v_max = arena.params.robot.v_max();
+        let speeds = motors.map(|m| (2.0 * m - 1.0) * v_max);
+        let noisy = [
+            perturb(speeds[0], arena.params.noise, rng),
+            perturb(speeds[1], arena.params.noise, rng),
+        ];
+        self.act_noisy(t, arena, sensed, motors, noisy, forced)
+    }
+
+    /// [`Walk::act`] once the wheel noise is drawn: `noisy` are the commanded speeds of
+    /// `motors` with their noise.
+    #[inline(always)]
+    pub(crate) fn act_noisy(
+        &mut self,
+        t: usize,
+        arena: &Arena,
+        sensed: &Sensed,
+        motors: [f64; 2],
+        noisy: [f64; 2],
+        forced: Option<Action>,
+    ) -> (Step, bool) {
         let params = &arena.params;
         let (motion, v_max) = (params.robot.motion(), params.robot.v_max());
         let speeds = motors.map(|m| (2.0 * m - 1.0) * v_max);
-        let noisy = [
-            perturb(speeds[0], params.noise, rng),
-            perturb(speeds[1], params.noise, rng),
-        ];
         let labelled = || motion.label(motors, noisy, v_max, params.action_tolerance);
         let action = match (forced, motion) {
             (Some(a), Motion::Actions) => a,

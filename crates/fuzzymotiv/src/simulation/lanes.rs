@@ -1,0 +1,531 @@
+//! Trials in lock-step: four trials of one arena stepped together, their sensor noise and
+//! their networks computed across the four in vector lanes, each lane taking the next trial
+//! as soon as its own ends.
+//!
+//! A trial of [`simulate`](crate::simulation::trial::simulate) is one long chain of dependent
+//! operations (pose → sensors → two logistic layers → action → next pose); four independent
+//! chains side by side keep the processor busy while each waits, and the network's arithmetic
+//! for four robots takes the instructions of one. Every trial takes exactly the steps
+//! `simulate` takes: the same operations in the same order on each lane's own numbers, its own
+//! random stream drawn in the same order (ten draws per step: eight sensors, two wheels), the
+//! same observer calls. The one difference in the arithmetic is that a lane adds `w · 0` for a
+//! sensor that reads 0, which `simulate`'s network skips: with finite weights that term is ±0,
+//! which leaves a sum unchanged except for the sign of a zero sum, and `logistic(±0)` is the
+//! same 0.5. The tests below compare whole trajectories with `simulate`'s.
+
+use crate::simulation::controller::{INPUTS, Mlp, OUTPUTS};
+use crate::simulation::math::logistic_lanes;
+use crate::simulation::memo::{Table, memo_live, with_table};
+use crate::simulation::robot::{Motion, Pose};
+use crate::simulation::sensor::SENSOR_MAX;
+use crate::simulation::trial::{Arena, Isa, Sensed, StepObserver, Walk};
+
+/// Trials stepped together.
+pub(crate) const LANES: usize = 4;
+/// The hidden units of the networks the lanes run (the default 8-6-2).
+const HIDDEN: usize = 6;
+/// Random draws per step: the eight sensors', then the two wheels'.
+const DRAWS: usize = INPUTS + 2;
+
+/// One trial for [`walk_lanes`]: its network, the seed of its random stream (the stream of
+/// [`rng_from_seed`](crate::random::rng::rng_from_seed)) and what watches its steps; `last` is
+/// its final pose once it has run.
+pub(crate) struct LaneTrial<'a, O> {
+    pub(crate) net: &'a Mlp,
+    pub(crate) seed: u64,
+    pub(crate) observer: O,
+    pub(crate) last: Pose,
+}
+
+/// Whether [`walk_lanes`] can run `net`'s trials in `arena`: `actions` motion with noise (so
+/// every step takes its ten draws), the 8-6-2 network, finite weights.
+pub(crate) fn lanes_fit(arena: &Arena, net: &Mlp) -> bool {
+    let params = arena.params();
+    params.robot.motion() == Motion::Actions
+        && params.noise > 0.0
+        && net.shape().hidden() == HIDDEN
+        && net.is_finite()
+}
+
+/// Runs every trial of `trials` in `arena` (each as [`simulate`](crate::simulation::trial::simulate)
+/// would, from the room's home pose), four at a time. Each trial must fit ([`lanes_fit`]).
+pub(crate) fn walk_lanes<O: StepObserver>(arena: &Arena, trials: &mut [LaneTrial<'_, O>]) {
+    debug_assert!(trials.iter().all(|t| lanes_fit(arena, t.net)));
+    let isa = Isa::detected();
+    match arena.memo_owner() {
+        Some(owner) => with_table(owner, memo_live, |table| walk_on(isa, arena, trials, table)),
+        None => walk_on(isa, arena, trials, None),
+    }
+}
+
+/// [`walk`] compiled for `isa`, which the processor must have ([`Isa::detected`]).
+fn walk_on<O: StepObserver>(
+    isa: Isa,
+    arena: &Arena,
+    trials: &mut [LaneTrial<'_, O>],
+    memo: Option<&mut Table>,
+) {
+    match isa {
+        Isa::Baseline => walk(arena, trials, memo),
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
+        Isa::Avx2 => unsafe { walk_avx2(arena, trials, memo) },
+    }
+}
+
+/// [`walk`] with AVX2 instructions (the lanes of the noise and the network in one register).
+///
+/// # Safety
+/// The processor must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn walk_avx2<O: StepObserver>(
+    arena: &Arena,
+    trials: &mut [LaneTrial<'_, O>],
+    memo: Option<&mut Table>,
+) {
+    walk(arena, trials, memo)
+}
+
+/// The step loop of the lanes: read and draw lane by lane, add the sensor noise and run the
+/// networks across the lanes, then act and report lane by lane; a lane whose trial ends
+/// reports its idle steps and takes the next trial.
+#[inline(always)]
+fn walk<O: StepObserver>(
+    arena: &Arena,
+    trials: &mut [LaneTrial<'_, O>],
+    mut memo: Option<&mut Table>,
+) {
+    let params = arena.params();
+    let (lo, hi) = (1.0 - params.noise, 1.0 + params.noise);
+    let v_max = params.robot.v_max();
+    let mut lanes = Lanes::new(arena);
+    let mut next = 0;
+    for l in 0..LANES {
+        next = lanes.load(l, next, arena, trials);
+    }
+    while lanes.trial.iter().any(Option::is_some) {
+        let mut raw = [[0.0; LANES]; INPUTS];
+        let mut blocked = [false; LANES];
+        for l in 0..LANES {
+            if lanes.trial[l].is_some() {
+                let sight = lanes.walk[l].sight(arena, memo.as_deref_mut());
+                for (r, v) in raw.iter_mut().zip(sight.sensors) {
+                    r[l] = v;
+                }
+                blocked[l] = sight.blocked;
+            }
+        }
+        // Plain loops, not `array::from_fn`, here and below: a closure the compiler leaves out
+        // of line would run without this function's AVX2.
+        let mut draws = [[0.0; LANES]; DRAWS];
+        for d in &mut draws {
+            *d = lanes.streams.next_units();
+        }
+        // The sensor noise (`perturb_sensors`) and the network's inputs (`inputs_of`).
+        let mut x = [[0.0; LANES]; INPUTS];
+        for k in 0..INPUTS {
+            for l in 0..LANES {
+                let v = raw[k][l];
+                let noisy = if v == 0.0 {
+                    v
+                } else {
+                    (v * (lo + (hi - lo) * draws[k][l])).clamp(0.0, SENSOR_MAX)
+                };
+                raw[k][l] = noisy;
+                x[k][l] = if noisy == 0.0 {
+                    0.0
+                } else {
+                    noisy / SENSOR_MAX
+                };
+            }
+        }
+        // In open floor every input of a lane is 0 (a third of the study's steps); when that
+        // holds for all four, each network's output is the one it computed at the start.
+        let motors = match x.iter().flatten().all(|&v| v == 0.0) {
+            true => lanes.idle,
+            false => lanes.network(&x),
+        };
+        for l in 0..LANES {
+            let Some(j) = lanes.trial[l] else { continue };
+            let mut sensors = [0.0; INPUTS];
+            for (v, r) in sensors.iter_mut().zip(&raw) {
+                *v = r[l];
+            }
+            let sensed = Sensed::straight(sensors, blocked[l]);
+            let m = [motors[0][l], motors[1][l]];
+            // The wheel noise (`perturb`), in the order `Walk::act` draws it.
+            let mut noisy = [0.0; 2];
+            for (w, n) in noisy.iter_mut().enumerate() {
+                *n = (2.0 * m[w] - 1.0) * v_max * (lo + (hi - lo) * draws[INPUTS + w][l]);
+            }
+            let t = lanes.t[l];
+            let (step, home) = lanes.walk[l].act_noisy(t, arena, &sensed, m, noisy, None);
+            let trial = &mut trials[j];
+            trial.observer.observe(&step);
+            lanes.t[l] = t + 1;
+            if t + 1 == params.steps || (params.end_at_home && home) || trial.observer.finished() {
+                for t in t + 1..params.steps {
+                    trial.observer.observe(&lanes.walk[l].idle(t));
+                }
+                trial.last = lanes.walk[l].pose();
+                next = lanes.load(l, next, arena, trials);
+            }
+        }
+    }
+}
+
+/// The lanes' random streams: xoshiro256++ (the generator of
+/// [`rng_from_seed`](crate::random::rng::rng_from_seed), `rand_xoshiro`'s), one stream per
+/// lane, its state word `i` of lane `l` in `s[i][l]` so that a draw for every lane is one
+/// vector operation per step of the generator.
+struct Streams {
+    s: [[u64; LANES]; 4],
+}
+
+impl Streams {
+    /// Lane `l` starts the stream of `seed` as `rng_from_seed` does: the state is four
+    /// outputs of SplitMix64 from `seed`. (They are never all 0, the one state xoshiro
+    /// cannot take: SplitMix64's output function is a bijection of its counter, which is
+    /// different for each of the four.)
+    fn start(&mut self, l: usize, seed: u64) {
+        let mut x = seed;
+        for word in &mut self.s {
+            x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = x;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            word[l] = z ^ (z >> 31);
+        }
+    }
+
+    /// The next draw of every lane, as a uniform draw from [0, 1) with 53 random bits
+    /// ([`uniform01`](crate::random::rng::uniform01)'s value).
+    #[inline(always)]
+    fn next_units(&mut self) -> [f64; LANES] {
+        let [s0, s1, s2, s3] = &mut self.s;
+        let mut out = [0.0; LANES];
+        for l in 0..LANES {
+            let n = s0[l]
+                .wrapping_add(s3[l])
+                .rotate_left(23)
+                .wrapping_add(s0[l]);
+            let t = s1[l] << 17;
+            s2[l] ^= s0[l];
+            s3[l] ^= s1[l];
+            s1[l] ^= s2[l];
+            s0[l] ^= s3[l];
+            s2[l] ^= t;
+            s3[l] = s3[l].rotate_left(45);
+            out[l] = unit(n);
+        }
+        out
+    }
+}
+
+/// `(n >> 11) as f64 · 2⁻⁵³`, [`uniform01`](crate::random::rng::uniform01)'s value of the 64
+/// bits `n`, with operations that have vector forms. `m = n >> 11 < 2⁵³` is split into its
+/// high 21 and low 32 bits, each written into the significand of a double whose value is then
+/// exactly `2⁸⁴ + high·2³²` and `2⁵² + low`; subtracting `2⁸⁴ + 2⁵²` from the first and adding
+/// the second gives `m` exactly (every intermediate value is a whole multiple of its own
+/// precision below 2⁵³), and the scaling by a power of two is exact.
+#[inline(always)]
+fn unit(n: u64) -> f64 {
+    let m = n >> 11;
+    let high = f64::from_bits((m >> 32) | 0x4530_0000_0000_0000);
+    let low = f64::from_bits((m & 0xffff_ffff) | 0x4330_0000_0000_0000);
+    let m = (high - f64::from_bits(0x4530_0000_0010_0000)) + low;
+    m * (1.0 / (1u64 << 53) as f64)
+}
+
+/// The state of the four lanes.
+struct Lanes {
+    /// The random stream of each lane's trial.
+    streams: Streams,
+    /// The trial each lane runs (`None` once no trial is left for it).
+    trial: [Option<usize>; LANES],
+    walk: [Walk; LANES],
+    /// The step each lane is at.
+    t: [usize; LANES],
+    /// `hidden[k][h][l]`: lane `l`'s weight of input `k` into hidden unit `h` (`k` = 0: the
+    /// bias), [`Mlp::layers`]' order across the lanes.
+    hidden: [[[f64; LANES]; HIDDEN]; INPUTS + 1],
+    /// `out[o][k][l]`: lane `l`'s weight of hidden unit `k` into output `o` (`k` = 0: the bias).
+    out: [[[f64; LANES]; HIDDEN + 1]; OUTPUTS],
+    /// `idle[o][l]`: lane `l`'s output `o` when all its inputs are 0 ([`Mlp::idle_outputs`]).
+    idle: [[f64; LANES]; OUTPUTS],
+}
+
+impl Lanes {
+    fn new(arena: &Arena) -> Lanes {
+        Lanes {
+            streams: Streams { s: [[0; LANES]; 4] },
+            trial: [None; LANES],
+            walk: [Walk::at_home(arena); LANES],
+            t: [0; LANES],
+            hidden: [[[0.0; LANES]; HIDDEN]; INPUTS + 1],
+            out: [[[0.0; LANES]; HIDDEN + 1]; OUTPUTS],
+            idle: [[0.5; LANES]; OUTPUTS],
+        }
+    }
+
+    /// Puts the first trial from `next` on that has steps to run into lane `l` (a trial of no
+    /// steps ends at home at once); returns the next trial not yet taken.
+    fn load<O>(
+        &mut self,
+        l: usize,
+        mut next: usize,
+        arena: &Arena,
+        trials: &mut [LaneTrial<'_, O>],
+    ) -> usize {
+        self.trial[l] = None;
+        while let Some(trial) = trials.get_mut(next) {
+            next += 1;
+            if arena.params().steps == 0 {
+                trial.last = arena.room().home;
+                continue;
+            }
+            let (hidden, out) = trial.net.layers();
+            for (k, row) in hidden.chunks_exact(HIDDEN).enumerate() {
+                for (h, &w) in row.iter().enumerate() {
+                    self.hidden[k][h][l] = w;
+                }
+            }
+            for (o, row) in out.chunks_exact(HIDDEN + 1).enumerate() {
+                for (k, &w) in row.iter().enumerate() {
+                    self.out[o][k][l] = w;
+                }
+            }
+            for (idle, m) in self.idle.iter_mut().zip(trial.net.idle_outputs()) {
+                idle[l] = m;
+            }
+            self.streams.start(l, trial.seed);
+            self.trial[l] = Some(next - 1);
+            self.walk[l] = Walk::at_home(arena);
+            self.t[l] = 0;
+            break;
+        }
+        next
+    }
+
+    /// The four networks on their inputs `x[k][l]` (input `k` of lane `l`): each unit's sum
+    /// `bias + w₁·x₁ + … + w₈·x₈` in that order, as `Mlp::step` adds it, then the logistic
+    /// units of a layer together ([`logistic_lanes`]: the scalar function's bits).
+    #[inline(always)]
+    fn network(&self, x: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; OUTPUTS] {
+        let mut sums = self.hidden[0];
+        for (k, xk) in x.iter().enumerate() {
+            for (s, w) in sums.iter_mut().zip(&self.hidden[k + 1]) {
+                for l in 0..LANES {
+                    s[l] += w[l] * xk[l];
+                }
+            }
+        }
+        let hidden = logistic_lanes::<{ HIDDEN * LANES }>(flat(&sums));
+        let mut out = [[0.0; LANES]; OUTPUTS];
+        for (o, w) in out.iter_mut().zip(&self.out) {
+            *o = w[0];
+            for k in 0..HIDDEN {
+                for l in 0..LANES {
+                    o[l] += w[k + 1][l] * hidden[k * LANES + l];
+                }
+            }
+        }
+        let flat = logistic_lanes::<{ OUTPUTS * LANES }>(flat(&out));
+        for (o, row) in out.iter_mut().zip(flat.chunks_exact(LANES)) {
+            o.copy_from_slice(row);
+        }
+        out
+    }
+}
+
+/// `rows` laid end to end.
+#[inline(always)]
+fn flat<const R: usize, const N: usize>(rows: &[[f64; LANES]; R]) -> [f64; N] {
+    debug_assert_eq!(R * LANES, N);
+    let mut out = [0.0; N];
+    for (chunk, row) in out.chunks_exact_mut(LANES).zip(rows) {
+        chunk.copy_from_slice(row);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::random::rng::{rng_from_seed, uniform};
+    use crate::simulation::controller::MlpShape;
+    use crate::simulation::room::Room;
+    use crate::simulation::trial::{Trajectory, TrialParams, simulate};
+
+    fn arena(room: &str, end_at_home: bool, steps: usize) -> Arena {
+        let params = TrialParams {
+            end_at_home,
+            steps,
+            ..TrialParams::default()
+        };
+        Arena::new(Room::builtin(room).unwrap(), &params)
+    }
+
+    fn networks(n: usize, seed: u64, scale: f64) -> Vec<Mlp> {
+        let shape = MlpShape::default();
+        let mut rng = rng_from_seed(seed);
+        (0..n)
+            .map(|_| {
+                let g: Vec<f64> = (0..shape.genome_len())
+                    .map(|_| uniform(&mut rng, -scale, scale))
+                    .collect();
+                Mlp::from_genome(shape, &g).unwrap()
+            })
+            .collect()
+    }
+
+    /// Every trial run in the lanes records the same trajectory, bit for bit, as the same
+    /// trial run alone by `simulate`: rooms with and without walls near home, trials that end
+    /// at home at different steps (so lanes are refilled mid-walk), fewer trials than lanes,
+    /// small and large weights (sums past the logistic's fast range), memo on and off.
+    #[test]
+    fn lanes_take_the_steps_simulate_takes_bit_for_bit() {
+        for (room, end, steps, n, scale) in [
+            ("H", true, 400, 13, 1.0),
+            ("H", false, 150, 9, 1.0),
+            ("T", true, 300, 7, 5.0),
+            ("square", true, 200, 3, 1.0),
+            ("L", false, 120, 6, 800.0),
+            ("rectangle", true, 0, 5, 1.0),
+        ] {
+            for memo in [true, false] {
+                let arena = match memo {
+                    true => arena(room, end, steps),
+                    false => arena(room, end, steps).without_memo(),
+                };
+                let executed = check_lanes(&arena, n, scale);
+                // Trials end at different steps (their observers stop them), so lanes are
+                // refilled while the others walk on.
+                let mut ends = executed.clone();
+                ends.dedup();
+                assert!(steps == 0 || ends.len() > 2, "{room}: {executed:?}");
+            }
+        }
+    }
+
+    /// A trajectory that asks its trial to end after a number of steps of its own (trial `i`:
+    /// 17 + 29·i) or at its end.
+    #[derive(Debug)]
+    struct Until {
+        path: Trajectory,
+        stop: usize,
+    }
+
+    impl Until {
+        fn new(arena: &Arena, i: usize) -> Until {
+            let steps = arena.params().steps;
+            Until {
+                path: Trajectory::starting_at(arena.room().home, steps),
+                stop: 17 + 29 * i,
+            }
+        }
+    }
+
+    impl StepObserver for Until {
+        fn observe(&mut self, step: &crate::simulation::trial::Step) {
+            self.path.observe(step);
+        }
+
+        fn finished(&self) -> bool {
+            self.path.poses.len() > self.stop
+        }
+    }
+
+    /// Runs `n` random trials in `arena` in the lanes and alone, requires the same
+    /// trajectories and final poses, and returns each trial's executed steps.
+    fn check_lanes(arena: &Arena, n: usize, scale: f64) -> Vec<usize> {
+        let (room, steps) = (&arena.room().name, arena.params().steps);
+        let nets = networks(n, steps as u64 + n as u64, scale);
+        let seed = |i: usize| 1000 + i as u64;
+        let mut trials: Vec<_> = nets
+            .iter()
+            .enumerate()
+            .map(|(i, net)| LaneTrial {
+                net,
+                seed: seed(i),
+                observer: Until::new(arena, i),
+                last: Pose::new(f64::NAN, f64::NAN, f64::NAN),
+            })
+            .collect();
+        assert!(trials.iter().all(|t| lanes_fit(arena, t.net)));
+        walk_lanes(arena, &mut trials);
+        let mut executed = Vec::new();
+        for (i, trial) in trials.iter().enumerate() {
+            let mut alone = Until::new(arena, i);
+            let mut rng = rng_from_seed(seed(i));
+            let last = simulate(arena, &mut nets[i].clone(), &mut rng, &mut alone);
+            let what = format!("{room}, trial {i}");
+            // Debug prints each f64 so that it reads back to the same bits (−0 included).
+            let (lanes, alone_text) = (format!("{:?}", trial.observer), format!("{alone:?}"));
+            assert!(lanes == alone_text, "{what}: the trajectories differ");
+            let bits = |p: Pose| [p.x, p.y, p.heading].map(f64::to_bits);
+            assert_eq!(bits(trial.last), bits(last), "{what}");
+            executed.push(alone.path.idle.iter().filter(|&&idle| !idle).count());
+        }
+        executed
+    }
+
+    /// The lanes' streams are `rng_from_seed`'s, draw for draw, and their units
+    /// `uniform01`'s, for random and extreme bits.
+    #[test]
+    fn lane_streams_are_rng_from_seed_and_units_uniform01() {
+        let seeds = [0, 1, 2, u64::MAX, 0x9e37_79b9_7f4a_7c15, 12_345_678_901];
+        let mut streams = Streams { s: [[0; LANES]; 4] };
+        for chunk in seeds.chunks(LANES) {
+            let mut rngs: Vec<_> = chunk.iter().map(|&s| rng_from_seed(s)).collect();
+            for (l, &s) in chunk.iter().enumerate() {
+                streams.start(l, s);
+            }
+            for _ in 0..1000 {
+                let units = streams.next_units();
+                for (l, rng) in rngs.iter_mut().enumerate() {
+                    let want = crate::random::rng::uniform01(rng);
+                    assert_eq!(units[l].to_bits(), want.to_bits());
+                }
+            }
+        }
+        let mut rng = rng_from_seed(7);
+        let edges = [
+            0,
+            1,
+            2047,
+            2048,
+            u64::MAX,
+            u64::MAX - 2047,
+            1 << 63,
+            (1 << 43) - 1,
+        ];
+        let random = (0..10_000).map(|_| crate::random::rng::Rng::next_u64(&mut rng));
+        for n in edges.into_iter().chain(random) {
+            let want = (n >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+            assert_eq!(unit(n).to_bits(), want.to_bits(), "{n:#x}");
+        }
+    }
+
+    /// Networks that the lanes do not run are told apart: another hidden size, a weight that
+    /// is not finite, `wheels` motion, no noise.
+    #[test]
+    fn lanes_fit_only_what_they_run_exactly() {
+        let arena = arena("H", true, 10);
+        let net = &networks(1, 1, 1.0)[0];
+        assert!(lanes_fit(&arena, net));
+        let shape = MlpShape::with_hidden(5).unwrap();
+        let other = Mlp::from_genome(shape, &vec![0.1; shape.genome_len()]).unwrap();
+        assert!(!lanes_fit(&arena, &other));
+        let mut g = vec![0.1; MlpShape::default().genome_len()];
+        g[20] = f64::INFINITY;
+        let inf = Mlp::from_genome(MlpShape::default(), &g).unwrap();
+        assert!(!lanes_fit(&arena, &inf));
+        let quiet = Arena::new(
+            Room::builtin("H").unwrap(),
+            &TrialParams::default().with_noise(0.0),
+        );
+        assert!(!lanes_fit(&quiet, net));
+    }
+}
