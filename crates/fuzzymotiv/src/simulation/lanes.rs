@@ -122,24 +122,7 @@ fn walk<O: StepObserver>(
         for d in &mut draws {
             *d = lanes.streams.next_units();
         }
-        // The sensor noise (`perturb_sensors`) and the network's inputs (`inputs_of`).
-        let mut x = [[0.0; LANES]; INPUTS];
-        for k in 0..INPUTS {
-            for l in 0..LANES {
-                let v = raw[k][l];
-                let noisy = if v == 0.0 {
-                    v
-                } else {
-                    (v * (lo + (hi - lo) * draws[k][l])).clamp(0.0, SENSOR_MAX)
-                };
-                raw[k][l] = noisy;
-                x[k][l] = if noisy == 0.0 {
-                    0.0
-                } else {
-                    noisy / SENSOR_MAX
-                };
-            }
-        }
+        let x = add_sensor_noise(&mut raw, &draws, (lo, hi));
         // In open floor every input of a lane is 0 (a third of the study's steps); when that
         // holds for all four, each network's output is the one it computed at the start.
         let motors = match x.iter().flatten().all(|&v| v == 0.0) {
@@ -173,6 +156,35 @@ fn walk<O: StepObserver>(
             }
         }
     }
+}
+
+/// Adds the sensor noise to the readings `raw[k][l]` (sensor `k` of lane `l`) with the step's
+/// uniform draws `draws` on [`lo`, `hi`), as `perturb_sensors` does one robot's, and returns the
+/// network's inputs, the noisy readings / 1023 (`inputs_of`).
+#[inline(always)]
+fn add_sensor_noise(
+    raw: &mut [[f64; LANES]; INPUTS],
+    draws: &[[f64; LANES]; DRAWS],
+    (lo, hi): (f64, f64),
+) -> [[f64; LANES]; INPUTS] {
+    let mut x = [[0.0; LANES]; INPUTS];
+    for k in 0..INPUTS {
+        for l in 0..LANES {
+            let v = raw[k][l];
+            let noisy = if v == 0.0 {
+                v
+            } else {
+                (v * (lo + (hi - lo) * draws[k][l])).clamp(0.0, SENSOR_MAX)
+            };
+            raw[k][l] = noisy;
+            x[k][l] = if noisy == 0.0 {
+                0.0
+            } else {
+                noisy / SENSOR_MAX
+            };
+        }
+    }
+    x
 }
 
 /// The lanes' random streams: xoshiro256++ (the generator of
