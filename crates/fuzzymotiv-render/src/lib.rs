@@ -12,6 +12,7 @@ pub mod compare;
 pub mod figures;
 pub mod frames;
 pub mod plot;
+pub mod power;
 pub mod replication;
 pub mod report;
 pub mod robustness;

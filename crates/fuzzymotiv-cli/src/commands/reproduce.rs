@@ -28,6 +28,7 @@ use fuzzymotiv_io::render::combination::{
     COMBINATION, behaviour_rows, behaviour_svg, behaviour_table,
 };
 use fuzzymotiv_io::render::figures::write_figure_at;
+use fuzzymotiv_io::render::power::StudyDesign;
 use fuzzymotiv_io::render::replication::{
     replication as replication_of, replication_svg, replication_table, seeds_csv,
 };
@@ -35,7 +36,7 @@ use fuzzymotiv_io::render::report::{Section, reproduce_page};
 use fuzzymotiv_io::render::strength::{SEARCH_STRENGTH, strength_svg, strength_table};
 use fuzzymotiv_io::render::study::{
     ABLATION, CLAIMS_ALPHA, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns,
-    Variant, claims, overall, seed_dir, seed_index,
+    Variant, overall, seed_dir, seed_index, study_claims,
 };
 use fuzzymotiv_io::render::svg::{FitnessPanel, best_paths_svg, fitness_panels_svg};
 use fuzzymotiv_io::render::tables::{
@@ -294,7 +295,9 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     else {
         return Ok(());
     };
-    let (claims, tables) = write_study(&args, args.seed(), &staged.staging, &studies, start)?;
+    let design = Some(design_of(&args, &studies));
+    let (claims, tables) =
+        write_study(&args, args.seed(), &staged.staging, &studies, design, start)?;
     commit(staged, start)?;
     fuzzymotiv_io::out!("{tables}")?;
     print_claims(&claims)
@@ -387,7 +390,8 @@ fn run_variants_measuring<T>(
         let dir = staged.staging.join(variant.name);
         let label = format!("{} · ", variant.name);
         let studies = run_study(args, &SETTINGS, seeds, &loaded, &dir, &progress, &label)?;
-        let (claims, _) = write_study(args, args.seed(), &dir, &studies, Instant::now())?;
+        // A variant's claims are compared with the other variants' as they are: no marks.
+        let (claims, _) = write_study(args, args.seed(), &dir, &studies, None, Instant::now())?;
         let measured = measure(&loaded, &studies)?;
         rows.push(((variant, claims), measured));
     }
@@ -556,7 +560,8 @@ fn replication(args: &ReproduceArgs) -> Result<(), CliError> {
         let dir = staged.staging.join(&names[i]);
         let label = format!("{} · ", names[i]);
         let studies = run_study(args, &SETTINGS, &seeds[i], loaded, &dir, &progress, &label)?;
-        write_study(args, bases[i], &dir, &studies, Instant::now())?;
+        let design = Some(design_of(args, &studies));
+        write_study(args, bases[i], &dir, &studies, design, Instant::now())?;
     }
     progress.finish();
     let [a, b] = [0, 1]
@@ -791,13 +796,29 @@ fn rows_exp(args: &ReproduceArgs, seeds: &[u64]) -> Result<Loaded, CliError> {
     load_one(args, &SETTINGS[0], seeds[0], &DEFAULT_MODEL)
 }
 
-/// Tables, figures, claims, `report.html` and `summary.json` of a study in `dir`.
+/// The design of a study of the paper's two settings, as the replication's claims at the edge
+/// are kept for ([`mark_at_edge`](fuzzymotiv_io::render::power::mark_at_edge)).
+fn design_of(args: &ReproduceArgs, studies: &[SettingRuns<'_>]) -> StudyDesign {
+    let ctx = &studies[0].contexts[0];
+    StudyDesign {
+        model: fuzzymotiv::MODEL_VERSION,
+        population: ctx.population,
+        generations: ctx.generations,
+        quick: args.quick,
+        overrides: !args.sets.is_empty(),
+        seeds: studies[0].seeds.len(),
+    }
+}
+
+/// Tables, figures, claims, `report.html` and `summary.json` of a study in `dir`; `design`
+/// marks the claims at the edge of its power ([`study_claims`]; none for a variant).
 /// Returns the claims and the tables to print once the study is in place.
 fn write_study(
     args: &ReproduceArgs,
     base: u64,
     dir: &Path,
     studies: &[SettingRuns<'_>],
+    design: Option<StudyDesign>,
     start: Instant,
 ) -> Result<(Vec<ClaimRecord>, String), CliError> {
     let mut printed = String::new();
@@ -821,7 +842,7 @@ fn write_study(
     let fitness = fitness_panels_svg(&panels);
     write_figure_at(&dir.join("fitness.svg"), &fitness, rasteriser(args.png))?;
     let settings: Vec<_> = studies.iter().map(SettingRuns::summary).collect();
-    let claims = claims(&settings, CLAIMS_ALPHA);
+    let claims = study_claims(&settings, CLAIMS_ALPHA, design.as_ref());
     let (md, csv) = claims_table(&claims, &provenance);
     write_atomic(&dir.join("claims.md"), &md)?;
     write_atomic(&dir.join("claims.csv"), &csv)?;
