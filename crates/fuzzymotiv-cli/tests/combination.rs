@@ -3,7 +3,9 @@
 
 mod common;
 
-use common::{Fm, stderr, stdout};
+use std::path::Path;
+
+use common::{Fm, assert_killed_study_resumes, stderr, stdout};
 
 const SIZES: [&str; 6] = [
     "ga.population=10",
@@ -58,6 +60,53 @@ fn combination_runs_each_combination_and_compares_their_behaviour() {
     assert!(md.contains("| tsk | the paper's TSK rule base |"), "{md}");
     let svg = read(out.join("behaviour.svg"));
     assert!(svg.contains("% optimal exploration") && svg.contains("weighted-sum − TSK"));
+}
+
+/// A study's command line at the tiny sizes, one thread (the runs go one after another, so
+/// the kill points fall in known runs whatever the machine).
+fn tiny(study: &str, seeds: &str, out: &Path) -> Fm {
+    Fm::new([
+        "reproduce",
+        study,
+        "--seeds",
+        seeds,
+        "--quiet",
+        "--threads",
+        "1",
+    ])
+    .out(out)
+    .sets(&SIZES)
+}
+
+/// `reproduce --combination` killed at deterministic points (as kill -9 would) resumes with the
+/// same command and ends with the files of an uninterrupted study: the end spreads measured
+/// on runs read back are the ones measured on runs just evolved.
+#[test]
+fn killed_combination_resumes_to_the_files_of_an_uninterrupted_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    // 3 combinations × 2 settings × 2 seeds × 3 generations = 36, one run after another. The
+    // kills fall in the TSK's first run (2), in the weighted sum's second (16 in all: the TSK's
+    // runs then finished and read back) and in the weighted squares' last (33).
+    assert_killed_study_resumes(
+        |out| tiny("--combination", "2", out),
+        &tmp.path().join("c"),
+        &[2, 14, 17],
+    );
+}
+
+/// `reproduce --replication` killed at deterministic points resumes with the same command and
+/// ends with the files of an uninterrupted study.
+#[test]
+fn killed_replication_resumes_to_the_files_of_an_uninterrupted_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    // 2 base seeds × 2 settings × 2 seeds × 3 generations = 24, one run after another. The
+    // kills fall in base seed 1's first run (2), on base seed 1's very last checkpoint (12 in
+    // all: its runs' records not yet written) and in base seed 11's last run (22).
+    assert_killed_study_resumes(
+        |out| tiny("--replication", "2", out),
+        &tmp.path().join("r"),
+        &[2, 10, 10],
+    );
 }
 
 /// A --set of the key the study varies is refused: it would make the three studies one.
