@@ -60,6 +60,46 @@ fn combination_runs_each_combination_and_compares_their_behaviour() {
     assert!(md.contains("| tsk | the paper's TSK rule base |"), "{md}");
     let svg = read(out.join("behaviour.svg"));
     assert!(svg.contains("% optimal exploration") && svg.contains("weighted-sum − TSK"));
+
+    // Per baseline and comparison claim, the claim's effect against the TSK's: each effect is
+    // the one of that combination's own claims, the difference theirs.
+    let differences = summary["claim_differences"].as_array().unwrap();
+    assert_eq!(differences.len(), 2 * 4, "{differences:?}");
+    let effect = |combination: &str, claim: &str| {
+        let dir = if combination == "tsk" {
+            "default"
+        } else {
+            combination
+        };
+        let s: serde_json::Value =
+            serde_json::from_str(&read(out.join(dir).join("summary.json"))).unwrap();
+        let c = (s["claims"].as_array().unwrap().iter())
+            .find(|c| c["claim"] == claim)
+            .unwrap_or_else(|| panic!("{claim} not in {dir}"));
+        c["stats"]["difference"].as_f64().unwrap()
+    };
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-9 * (1.0 + a.abs());
+    for r in differences {
+        let (name, claim) = (
+            r["combination"].as_str().unwrap(),
+            r["claim"].as_str().unwrap(),
+        );
+        let (mine, tsk) = (effect(name, claim), effect("tsk", claim));
+        assert!(
+            close(r["effect_combination"].as_f64().unwrap(), mine),
+            "{r}"
+        );
+        assert!(close(r["effect_tsk"].as_f64().unwrap(), tsk), "{r}");
+        assert!(close(r["difference"].as_f64().unwrap(), mine - tsk), "{r}");
+        let line = format!("| {name} | {claim} | {mine:+.1} | {tsk:+.1} |");
+        assert!(md.contains(&line), "{line} not in {md}");
+    }
+    let csv = read(out.join("claim_differences.csv"));
+    assert_eq!(csv.lines().count(), 1 + differences.len());
+    assert!(
+        md.contains("Does the combination change the claims' effects?"),
+        "{md}"
+    );
 }
 
 /// A study's command line at the tiny sizes, one thread (the runs go one after another, so

@@ -25,7 +25,8 @@ use fuzzymotiv_io::records::{
     read_json, to_json,
 };
 use fuzzymotiv_io::render::combination::{
-    COMBINATION, behaviour_rows, behaviour_svg, behaviour_table,
+    COMBINATION, behaviour_rows, behaviour_svg, behaviour_table, claim_difference_rows,
+    claim_difference_table,
 };
 use fuzzymotiv_io::render::figures::write_figure_at;
 use fuzzymotiv_io::render::replication::{
@@ -92,8 +93,8 @@ pub struct ReproduceArgs {
     pub search_strength: bool,
     /// Run the combination study instead: the study under the paper's TSK and under the two
     /// baselines of `[fitness] combine` (a weighted sum, a weighted sum of squares), the
-    /// claims under each and, between each baseline and the TSK, the paired statistics of the
-    /// behaviour (EXPERIMENTS.md: does the fuzzy combination matter?).
+    /// claims under each and, between each baseline and the TSK, the paired statistics of each
+    /// claim's effect and of the behaviour (EXPERIMENTS.md: does the fuzzy combination matter?).
     #[arg(long, conflicts_with_all = ["orientation", "ablation", "search_strength"])]
     pub combination: bool,
     /// Run the replication study instead: the study at base seed --seed and at --seed + 10
@@ -475,8 +476,9 @@ fn search_strength(args: &ReproduceArgs) -> Result<(), CliError> {
 }
 
 /// `reproduce --combination`: the study under every combination of [`COMBINATION`], the claims
-/// under each, and each baseline's behaviour against the TSK's (`combination.md`,
-/// `behaviour.csv`, `behaviour.svg`, `summary.json`).
+/// under each, each claim's effect and each baseline's behaviour against the TSK's
+/// (`combination.md`, `claim_differences.csv`, `behaviour.csv`, `behaviour.svg`,
+/// `summary.json`).
 fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
     let start = Instant::now();
     let seeds = study_seeds(args);
@@ -492,6 +494,7 @@ fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
     let named: Vec<(&str, &StudySummary)> =
         COMBINATION.iter().map(|v| v.name).zip(&studies).collect();
     let behaviour = behaviour_rows(&named, &spreads);
+    let claim_differences = claim_difference_rows(&named);
     let prov = Provenance::new(
         &seeds,
         &RenderContext::of(&rows_exp(args, &seeds)?),
@@ -499,8 +502,10 @@ fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
     );
     let (table, csv) = behaviour_table(&behaviour, seeds.len());
     let claims = fuzzymotiv_io::render::combination::claims_table(&rows, &prov.line());
-    let md = format!("{claims}\n\n{table}");
+    let (differences, differences_csv) = claim_difference_table(&claim_differences, seeds.len());
+    let md = format!("{claims}\n\n{differences}\n\n{table}");
     staged.write("combination.md", &md)?;
+    staged.write("claim_differences.csv", &differences_csv)?;
     staged.write("behaviour.csv", &csv)?;
     write_figure_at(
         &staged.staging.join("behaviour.svg"),
@@ -523,6 +528,7 @@ fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
             .collect(),
         behaviour,
         end_spreads: spreads,
+        claim_differences,
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;
