@@ -100,6 +100,30 @@ fn combination_runs_each_combination_and_compares_their_behaviour() {
         md.contains("Does the combination change the claims' effects?"),
         "{md}"
     );
+    assert_study_page(
+        &out,
+        "Does the fuzzy combination matter?",
+        &md,
+        "weighted-sum − TSK",
+    );
+    let page = read(out.join("report.html"));
+    for dir in ["default", "weighted-sum", "weighted-squares"] {
+        assert!(
+            page.contains(&format!("<a href=\"{dir}/report.html\">")),
+            "{dir}"
+        );
+    }
+}
+
+/// The study's `report.html` has its title, every table row of its Markdown as an HTML row
+/// (as many rows as the Markdown has table lines, less their rules) and its figure, inline.
+fn assert_study_page(out: &Path, title: &str, md: &str, in_figure: &str) {
+    let page = read(out.join("report.html"));
+    assert!(page.contains(&format!("<h1>{title}</h1>")), "{page}");
+    let table_lines = md.lines().filter(|l| l.starts_with('|')).count();
+    let rules = md.lines().filter(|l| l.starts_with("|---")).count();
+    assert_eq!(page.matches("<tr>").count(), table_lines - rules, "{page}");
+    assert!(page.contains("<svg") && page.contains(in_figure), "{page}");
 }
 
 /// A study's command line at the tiny sizes, one thread (the runs go one after another, so
@@ -202,6 +226,12 @@ fn replication_runs_two_base_seeds_and_pools_their_claims() {
     assert_eq!(seeds.lines().count(), 1 + 2 * 6);
     let svg = read(out.join("replication.svg"));
     assert!(svg.contains("base seed 11") && svg.contains("seeds per base seed"));
+    assert_study_page(
+        &out,
+        "Verdicts that replicate: the study at two base seeds",
+        &md,
+        "seeds per base seed",
+    );
     // Run again: the study is there, nothing to do.
     let again = Fm::new(["reproduce", "--replication", "--seeds", "3"])
         .out(&out)

@@ -32,7 +32,7 @@ use fuzzymotiv_io::render::figures::write_figure_at;
 use fuzzymotiv_io::render::replication::{
     replication as replication_of, replication_svg, replication_table, seeds_csv,
 };
-use fuzzymotiv_io::render::report::{Section, reproduce_page};
+use fuzzymotiv_io::render::report::{Section, reproduce_page, study_page};
 use fuzzymotiv_io::render::strength::{SEARCH_STRENGTH, strength_svg, strength_table};
 use fuzzymotiv_io::render::study::{
     ABLATION, CLAIMS_ALPHA, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns,
@@ -507,10 +507,27 @@ fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
     staged.write("combination.md", &md)?;
     staged.write("claim_differences.csv", &differences_csv)?;
     staged.write("behaviour.csv", &csv)?;
+    let figure = behaviour_svg(&behaviour);
     write_figure_at(
         &staged.staging.join("behaviour.svg"),
-        &behaviour_svg(&behaviour),
+        &figure,
         rasteriser(args.png),
+    )?;
+    let parts: Vec<(String, String)> = (COMBINATION.iter())
+        .map(|v| (format!("{}/report.html", v.name), v.name.to_string()))
+        .collect();
+    staged.write(
+        "report.html",
+        study_page(
+            "Does the fuzzy combination matter?",
+            start.elapsed().as_secs_f64(),
+            &md,
+            &[(
+                figure.as_str(),
+                "Each baseline − TSK per measure and setting, paired by seed, with its 95 % interval; a filled point is significant and at least the detectable difference.",
+            )],
+            &parts,
+        ),
     )?;
     let summary = CombinationSummary {
         program: PROGRAM.into(),
@@ -574,10 +591,27 @@ fn replication(args: &ReproduceArgs) -> Result<(), CliError> {
     staged.write("replication.md", &md)?;
     staged.write("replication.csv", &csv)?;
     staged.write("replication_seeds.csv", seeds_csv(&pooled, &by_seeds))?;
+    let figure = replication_svg(bases, &pooled, &by_seeds);
     write_figure_at(
         &staged.staging.join("replication.svg"),
-        &replication_svg(bases, &pooled, &by_seeds),
+        &figure,
         rasteriser(args.png),
+    )?;
+    let parts: Vec<(String, String)> = (names.iter())
+        .map(|n| (format!("{n}/report.html"), n.clone()))
+        .collect();
+    staged.write(
+        "report.html",
+        study_page(
+            "Verdicts that replicate: the study at two base seeds",
+            start.elapsed().as_secs_f64(),
+            &md,
+            &[(
+                figure.as_str(),
+                "Per number of seeds, each claim's verdict at both base seeds (replication_seeds.csv).",
+            )],
+            &parts,
+        ),
     )?;
     let summary = ReplicationSummary {
         program: PROGRAM.into(),
