@@ -78,7 +78,7 @@ files_of() { # KIND DIR
         urgency)
             echo urgency.csv urgency_seeds.csv summary.json ;;
         combination)
-            echo behaviour.csv summary.json
+            echo behaviour.csv claim_differences.csv summary.json
             for c in default weighted-sum weighted-squares; do
                 echo "$c/claims.csv $c/table1.csv $c/table2.csv"
             done ;;

@@ -112,6 +112,20 @@ fn urgency_runs_four_weights_on_the_fetch_rooms_and_its_outputs_agree() {
         "{svg}"
     );
     assert!(out.join("fitness.svg").is_file());
+    // The study's page: every row of its tables, its figures (the median seeds' trajectories
+    // too) and each run's own report.
+    let page = read(out.join("report.html"));
+    assert!(page.contains("<h1>Urgency for missions"), "{page}");
+    let table_rows = md
+        .lines()
+        .filter(|l| l.starts_with('|') && !l.starts_with("|---"));
+    assert_eq!(page.matches("<tr>").count(), table_rows.count(), "{page}");
+    assert!(page.contains("% success") && page.contains("urgency u"));
+    assert_eq!(page.matches("the median seed").count(), 4, "{page}");
+    assert!(
+        page.contains(r#"<a href="urgency-0.3/seed-2/report.html">"#),
+        "{page}"
+    );
 }
 
 /// The study's files without what holds wall times (`wall_seconds`, the report pages).

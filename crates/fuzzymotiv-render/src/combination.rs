@@ -1,17 +1,18 @@
 //! `reproduce --combination`: does the fuzzy combination matter? The paper's study under the
 //! TSK (the default) and under the two baselines of `[fitness] combine` (docs/model.md §8), and,
 //! between each baseline and the TSK, the paired statistics of the behaviour the robots evolved
-//! (exploration, homing, battery, recognition: each seed's mean over rooms, paired by seed).
+//! (exploration, homing, battery, recognition: each seed's mean over rooms, paired by seed) and
+//! of each comparison claim's effect (high − low curiosity: the difference in differences).
 
 use std::fmt::Write as _;
 
 use fuzzymotiv::statistics::{Comparison, Settings, paired};
-use fuzzymotiv_records::records::combination::BehaviourRow;
+use fuzzymotiv_records::records::combination::{BehaviourRow, ClaimDifferenceRow};
 use fuzzymotiv_records::records::paired::PairedStats;
 use fuzzymotiv_records::records::{ClaimRecord, StudySummary, TableRow};
 
 use crate::plot::{Ticks, colour, esc, open, px, text_width};
-use crate::study::{DEFAULT_MODEL, Variant};
+use crate::study::{COMPARISON_CLAIMS, DEFAULT_MODEL, Variant, seed_means};
 use crate::tables::verdict;
 
 /// The study under each combination: the TSK first (the default model), then the baselines.
@@ -106,6 +107,90 @@ fn row(combination: &str, setting: &str, measure: &str, c: &Comparison) -> Behav
         // As the claims' verdicts: a difference within what the design detects is inconclusive.
         stats: PairedStats::of(c),
     }
+}
+
+/// Per seed, a claim's high − low (each setting's mean over rooms of `column`), for a study
+/// of the paper's two settings (high curiosity first); none if a value is missing.
+fn claim_effects(study: &StudySummary, column: fn(&TableRow) -> Option<f64>) -> Option<Vec<f64>> {
+    let [high, low] = study.settings.as_slice() else {
+        return None;
+    };
+    let (h, l) = (seed_means(high, column)?, seed_means(low, column)?);
+    (h.len() == l.len()).then(|| h.iter().zip(&l).map(|(h, l)| h - l).collect())
+}
+
+/// Every baseline against the TSK (the first study), per comparison claim: the difference in
+/// differences, (high − low)_baseline − (high − low)_TSK paired by seed, with `compare`'s
+/// statistics (as the behaviour rows). Claims a study cannot test (recognition without room
+/// modelling) are left out.
+pub fn claim_difference_rows(studies: &[(&str, &StudySummary)]) -> Vec<ClaimDifferenceRow> {
+    let Some(((_, tsk), rest)) = studies.split_first() else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for (name, study) in rest {
+        for (claim, column, _) in COMPARISON_CLAIMS {
+            let (Some(a), Some(b)) = (claim_effects(study, column), claim_effects(tsk, column))
+            else {
+                continue;
+            };
+            if a.len() != b.len() || a.len() < 2 {
+                continue;
+            }
+            let Ok(c) = paired(&a, &b, &Settings::default()) else {
+                continue;
+            };
+            out.push(ClaimDifferenceRow {
+                combination: (*name).into(),
+                claim: claim.into(),
+                effect_combination: c.mean_a,
+                effect_tsk: c.mean_b,
+                stats: PairedStats::of(&c),
+            });
+        }
+    }
+    out
+}
+
+/// The claims' differences between combinations as (Markdown, CSV).
+pub fn claim_difference_table(rows: &[ClaimDifferenceRow], seeds: usize) -> (String, String) {
+    let mut md = format!(
+        "Does the combination change the claims' effects? Per claim, each baseline's high − low against the TSK's, paired by seed ({seeds} seeds; per seed (high − low)_baseline − (high − low)_TSK, each setting's value its mean over rooms; 95 % bootstrap interval, two-sided sign-flip permutation p, α = 0.05; \"detectable\" is the smallest difference this design finds with 80 % power; a difference within it is \"inconclusive\", whatever p; \"higher\"/\"lower\": a larger/smaller high − low under the baseline).\n\n| combination | claim | high − low, baseline | high − low, TSK | difference (95 % CI) | p | detectable | verdict |\n|---|---|---|---|---|---|---|---|\n"
+    );
+    let mut csv = String::from(
+        "combination,claim,effect_combination,effect_tsk,difference,ci_low,ci_high,p,detectable,verdict\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:+.1} | {:+.1} | {:+.1} ({:+.1}, {:+.1}) | {:.3} | {:.1} | {} |",
+            r.combination,
+            r.claim,
+            r.effect_combination,
+            r.effect_tsk,
+            r.stats.difference,
+            r.stats.ci_low,
+            r.stats.ci_high,
+            r.stats.p,
+            r.stats.detectable.unwrap_or(f64::NAN),
+            r.stats.verdict
+        );
+        let _ = writeln!(
+            csv,
+            "{},\"{}\",{},{},{},{},{},{},{},{}",
+            r.combination,
+            r.claim,
+            r.effect_combination,
+            r.effect_tsk,
+            r.stats.difference,
+            r.stats.ci_low,
+            r.stats.ci_high,
+            r.stats.p,
+            r.stats.detectable.unwrap_or(f64::NAN),
+            r.stats.verdict
+        );
+    }
+    (md, csv)
 }
 
 /// The claims under each combination, one row per combination, as Markdown (after `prov`, the
@@ -353,6 +438,63 @@ mod tests {
                 .into(),
             },
         }
+    }
+
+    /// A study's records (the committed five-seed study) and a copy whose high-curiosity
+    /// battery is `shift` points higher in every room of seed `k` for each `k` in `seeds`.
+    fn shifted(shift: f64, seeds: &[usize]) -> (StudySummary, StudySummary) {
+        let tsk: StudySummary =
+            serde_json::from_str(include_str!("../../../docs/results/five-seed/summary.json"))
+                .unwrap();
+        let mut other = tsk.clone();
+        for &k in seeds {
+            for r in &mut other.settings[0].per_seed[k].rows {
+                r.battery_pct = r.battery_pct.map(|b| b + shift);
+            }
+        }
+        (tsk, other)
+    }
+
+    /// Per claim, the baseline's high − low against the TSK's, paired by seed: a baseline
+    /// whose high-curiosity battery is 4 points higher in every seed has a battery effect 4
+    /// points larger (every seed the same: p is the smallest five seeds give), and the other
+    /// claims' effects the TSK's (difference 0, not significant); the table and the CSV have a
+    /// row each.
+    #[test]
+    fn each_claims_effect_is_compared_between_combinations_paired_by_seed() {
+        let (tsk, sum) = shifted(4.0, &[0, 1, 2, 3, 4]);
+        let rows = claim_difference_rows(&[("tsk", &tsk), ("weighted-sum", &sum)]);
+        assert_eq!(rows.len(), COMPARISON_CLAIMS.len(), "{rows:?}");
+        for r in &rows {
+            let battery = r.claim.contains("battery");
+            let want = if battery { 4.0 } else { 0.0 };
+            assert!((r.stats.difference - want).abs() < 1e-9, "{r:?}");
+            assert!(
+                (r.effect_combination - r.effect_tsk - want).abs() < 1e-9,
+                "{r:?}"
+            );
+            assert_eq!(r.combination, "weighted-sum");
+            if battery {
+                assert!((r.stats.p - 2.0 / 32.0).abs() < 1e-12, "{r:?}");
+            } else {
+                assert_eq!(r.stats.verdict, "not significant", "{r:?}");
+            }
+        }
+        // One seed shifted: the effect differs by 4 / 5 on average, not in every seed.
+        let (tsk, one) = shifted(4.0, &[2]);
+        let rows = claim_difference_rows(&[("tsk", &tsk), ("weighted-squares", &one)]);
+        let battery = rows.iter().find(|r| r.claim.contains("battery")).unwrap();
+        assert!((battery.stats.difference - 0.8).abs() < 1e-9, "{battery:?}");
+        assert!(battery.stats.p > 0.05, "{battery:?}");
+        let (md, csv) = claim_difference_table(&rows, 5);
+        assert_eq!(
+            md.matches("\n| weighted-squares | high curiosity").count(),
+            4,
+            "{md}"
+        );
+        assert!(md.contains("| +0.8 ("), "{md}");
+        assert_eq!(csv.lines().count(), 1 + 4);
+        assert!(csv.contains("weighted-squares,\"high curiosity uses more battery\","));
     }
 
     /// The table has a row per comparison and the figure a panel per measure, each point with

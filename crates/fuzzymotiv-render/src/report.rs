@@ -287,6 +287,104 @@ pub fn reproduce_page(
     page.finish()
 }
 
+/// `report.html` of a study of studies (`reproduce --combination`, `--replication`,
+/// `--urgency`): its tables (the Markdown it prints, [`markdown_html`]), its figures with their
+/// captions, and links to the reports of its parts (relative paths).
+pub fn study_page(
+    title: &str,
+    wall: f64,
+    markdown: &str,
+    figures: &[(&str, &str)],
+    links: &[(String, String)],
+) -> String {
+    let mut page = Page::new(format!("fuzzymotiv — {title}"));
+    let _ = writeln!(
+        page.body,
+        "<h1>{}</h1>\n<p class=\"meta\">{} · wall time of this invocation {wall:.2} s</p>",
+        esc(title),
+        esc(&fuzzymotiv::provenance())
+    );
+    page.push(&markdown_html(markdown));
+    for (svg, caption) in figures {
+        figure(&mut page, svg, caption);
+    }
+    if !links.is_empty() {
+        page.push("<h2 id=\"parts\">Its parts' own reports</h2>\n<ul>\n");
+        for (href, label) in links {
+            let _ = writeln!(
+                page.body,
+                "<li><a href=\"{}\">{}</a></li>",
+                esc(href),
+                esc(label)
+            );
+        }
+        page.push("</ul>\n");
+    }
+    page.finish()
+}
+
+/// The Markdown the study commands print, as HTML: each run of `|` lines a table (its second
+/// line, the `|---|` rule, dropped; the first the header), every other non-empty line a
+/// paragraph of its own; everything escaped, `**bold**` cells kept bold.
+pub fn markdown_html(md: &str) -> String {
+    let cells = |line: &str| -> Vec<String> {
+        let inner = line.trim().trim_start_matches('|').trim_end_matches('|');
+        inner.split('|').map(|c| bold(&esc(c.trim()))).collect()
+    };
+    let mut html = String::new();
+    let mut table: Vec<&str> = Vec::new();
+    let flush = |table: &mut Vec<&str>, html: &mut String| {
+        if table.is_empty() {
+            return;
+        }
+        html.push_str("<table>\n");
+        for (k, line) in table.iter().enumerate() {
+            if k == 1 && line.trim_start_matches('|').starts_with("---") {
+                continue;
+            }
+            let tag = if k == 0 { "th" } else { "td" };
+            html.push_str("<tr>");
+            for c in cells(line) {
+                let _ = write!(html, "<{tag}>{c}</{tag}>");
+            }
+            html.push_str("</tr>\n");
+        }
+        html.push_str("</table>\n");
+        table.clear();
+    };
+    for line in md.lines() {
+        if line.trim_start().starts_with('|') {
+            table.push(line);
+            continue;
+        }
+        flush(&mut table, &mut html);
+        if !line.trim().is_empty() {
+            let _ = writeln!(html, "<p>{}</p>", bold(&esc(line.trim())));
+        }
+    }
+    flush(&mut table, &mut html);
+    html
+}
+
+/// `**x**` (already escaped text) as `<b>x</b>`.
+fn bold(text: &str) -> String {
+    let parts: Vec<&str> = text.split("**").collect();
+    if parts.len() < 3 || parts.len().is_multiple_of(2) {
+        return text.to_string();
+    }
+    parts
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            if k % 2 == 1 {
+                format!("<b>{p}</b>")
+            } else {
+                (*p).to_string()
+            }
+        })
+        .collect()
+}
+
 /// The headline numbers of every setting: mean % exploration, % recognition and % battery,
 /// with the paper's beside them.
 fn overview_table(page: &mut Page, sections: &[Section<'_>]) {
@@ -734,4 +832,30 @@ fn files_list() -> String {
     }
     s.push_str("</ul>\n");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    /// A study's Markdown becomes paragraphs and tables (the rule line dropped, the first line
+    /// the header), escaped, bold kept; the page holds its figures, captions and links.
+    #[test]
+    fn a_study_page_holds_its_tables_figures_and_parts() {
+        let md = "GA 10 × 3 <seeds>\n\n| a | b |\n|---|---|\n| 1 | **higher** |\n| 2 | x |\ntail";
+        let html = super::markdown_html(md);
+        assert_eq!(
+            html,
+            "<p>GA 10 × 3 &lt;seeds&gt;</p>\n<table>\n<tr><th>a</th><th>b</th></tr>\n<tr><td>1</td><td><b>higher</b></td></tr>\n<tr><td>2</td><td>x</td></tr>\n</table>\n<p>tail</p>\n"
+        );
+        let page = super::study_page(
+            "The study",
+            1.5,
+            md,
+            &[("<svg id=\"f\"></svg>", "The figure.")],
+            &[("default/report.html".into(), "default".into())],
+        );
+        assert!(page.contains("<h1>The study</h1>"), "{page}");
+        assert!(page.contains("<svg id=\"f\"></svg>") && page.contains("The figure."));
+        assert!(page.contains(r#"<a href="default/report.html">default</a>"#));
+        assert!(page.contains("<td><b>higher</b></td>"));
+    }
 }

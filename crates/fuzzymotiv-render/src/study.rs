@@ -374,7 +374,32 @@ pub fn generation_stat(study: &SettingRuns<'_>, last: bool, best: bool) -> f64 {
 }
 
 /// A column of a seed's table (see [`TableRow`]).
-type Column = fn(&TableRow) -> Option<f64>;
+pub type Column = fn(&TableRow) -> Option<f64>;
+
+/// The paper's comparison claims, high against low curiosity paired by seed: the claim in
+/// words, the measure (a column of the tables) and the direction the paper expects.
+pub const COMPARISON_CLAIMS: [(&str, Column, Expect); 4] = [
+    (
+        "high curiosity explores more than low curiosity",
+        |r| r.exploration_pct,
+        Expect::Higher,
+    ),
+    (
+        "high curiosity uses more battery",
+        |r| r.battery_pct,
+        Expect::Higher,
+    ),
+    (
+        "high curiosity recognises rooms better",
+        |r| r.recognition_pct,
+        Expect::Higher,
+    ),
+    (
+        "high curiosity returns home less (lower % homing)",
+        |r| r.homing_pct,
+        Expect::Lower,
+    ),
+];
 
 /// Per seed, the mean over rooms of `column`; none if a value is missing.
 pub fn seed_means(setting: &SettingSummary, column: Column) -> Option<Vec<f64>> {
@@ -641,27 +666,11 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
     let curves = |test: fn(&SettingSummary, &Settings) -> Option<CurveStats>| {
         settings.iter().filter_map(|s| test(s, &options)).collect()
     };
-    vec![
-        compare(
-            "high curiosity explores more than low curiosity",
-            |r| r.exploration_pct,
-            Expect::Higher,
-        ),
-        compare(
-            "high curiosity uses more battery",
-            |r| r.battery_pct,
-            Expect::Higher,
-        ),
-        compare(
-            "high curiosity recognises rooms better",
-            |r| r.recognition_pct,
-            Expect::Higher,
-        ),
-        compare(
-            "high curiosity returns home less (lower % homing)",
-            |r| r.homing_pct,
-            Expect::Lower,
-        ),
+    let mut out: Vec<ClaimRecord> = COMPARISON_CLAIMS
+        .iter()
+        .map(|&(claim, column, expect)| compare(claim, column, expect))
+        .collect();
+    out.extend([
         ClaimRecord {
             claim: "first-generation mean F about 0.1 (between 0.05 and 0.15)".into(),
             holds: first.iter().all(|f| (0.05..=0.15).contains(f)),
@@ -681,7 +690,8 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
             curves: curves(rise_stats),
             at_edge: None,
         },
-    ]
+    ]);
+    out
 }
 
 #[cfg(test)]

@@ -25,14 +25,15 @@ use fuzzymotiv_io::records::{
     read_json, to_json,
 };
 use fuzzymotiv_io::render::combination::{
-    COMBINATION, behaviour_rows, behaviour_svg, behaviour_table,
+    COMBINATION, behaviour_rows, behaviour_svg, behaviour_table, claim_difference_rows,
+    claim_difference_table,
 };
 use fuzzymotiv_io::render::figures::write_figure_at;
 use fuzzymotiv_io::render::power::StudyDesign;
 use fuzzymotiv_io::render::replication::{
     replication as replication_of, replication_svg, replication_table, seeds_csv,
 };
-use fuzzymotiv_io::render::report::{Section, reproduce_page};
+use fuzzymotiv_io::render::report::{Section, reproduce_page, study_page};
 use fuzzymotiv_io::render::strength::{SEARCH_STRENGTH, strength_svg, strength_table};
 use fuzzymotiv_io::render::study::{
     ABLATION, CLAIMS_ALPHA, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns,
@@ -93,8 +94,8 @@ pub struct ReproduceArgs {
     pub search_strength: bool,
     /// Run the combination study instead: the study under the paper's TSK and under the two
     /// baselines of `[fitness] combine` (a weighted sum, a weighted sum of squares), the
-    /// claims under each and, between each baseline and the TSK, the paired statistics of the
-    /// behaviour (EXPERIMENTS.md: does the fuzzy combination matter?).
+    /// claims under each and, between each baseline and the TSK, the paired statistics of each
+    /// claim's effect and of the behaviour (EXPERIMENTS.md: does the fuzzy combination matter?).
     #[arg(long, conflicts_with_all = ["orientation", "ablation", "search_strength"])]
     pub combination: bool,
     /// Run the replication study instead: the study at base seed --seed and at --seed + 10
@@ -479,8 +480,9 @@ fn search_strength(args: &ReproduceArgs) -> Result<(), CliError> {
 }
 
 /// `reproduce --combination`: the study under every combination of [`COMBINATION`], the claims
-/// under each, and each baseline's behaviour against the TSK's (`combination.md`,
-/// `behaviour.csv`, `behaviour.svg`, `summary.json`).
+/// under each, each claim's effect and each baseline's behaviour against the TSK's
+/// (`combination.md`, `claim_differences.csv`, `behaviour.csv`, `behaviour.svg`,
+/// `summary.json`).
 fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
     let start = Instant::now();
     let seeds = study_seeds(args);
@@ -496,6 +498,7 @@ fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
     let named: Vec<(&str, &StudySummary)> =
         COMBINATION.iter().map(|v| v.name).zip(&studies).collect();
     let behaviour = behaviour_rows(&named, &spreads);
+    let claim_differences = claim_difference_rows(&named);
     let prov = Provenance::new(
         &seeds,
         &RenderContext::of(&rows_exp(args, &seeds)?),
@@ -503,13 +506,32 @@ fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
     );
     let (table, csv) = behaviour_table(&behaviour, seeds.len());
     let claims = fuzzymotiv_io::render::combination::claims_table(&rows, &prov.line());
-    let md = format!("{claims}\n\n{table}");
+    let (differences, differences_csv) = claim_difference_table(&claim_differences, seeds.len());
+    let md = format!("{claims}\n\n{differences}\n\n{table}");
     staged.write("combination.md", &md)?;
+    staged.write("claim_differences.csv", &differences_csv)?;
     staged.write("behaviour.csv", &csv)?;
+    let figure = behaviour_svg(&behaviour);
     write_figure_at(
         &staged.staging.join("behaviour.svg"),
-        &behaviour_svg(&behaviour),
+        &figure,
         rasteriser(args.png),
+    )?;
+    let parts: Vec<(String, String)> = (COMBINATION.iter())
+        .map(|v| (format!("{}/report.html", v.name), v.name.to_string()))
+        .collect();
+    staged.write(
+        "report.html",
+        study_page(
+            "Does the fuzzy combination matter?",
+            start.elapsed().as_secs_f64(),
+            &md,
+            &[(
+                figure.as_str(),
+                "Each baseline − TSK per measure and setting, paired by seed, with its 95 % interval; a filled point is significant and at least the detectable difference.",
+            )],
+            &parts,
+        ),
     )?;
     let summary = CombinationSummary {
         program: PROGRAM.into(),
@@ -527,6 +549,7 @@ fn combination(args: &ReproduceArgs) -> Result<(), CliError> {
             .collect(),
         behaviour,
         end_spreads: spreads,
+        claim_differences,
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;
@@ -573,10 +596,27 @@ fn replication(args: &ReproduceArgs) -> Result<(), CliError> {
     staged.write("replication.md", &md)?;
     staged.write("replication.csv", &csv)?;
     staged.write("replication_seeds.csv", seeds_csv(&pooled, &by_seeds))?;
+    let figure = replication_svg(bases, &pooled, &by_seeds);
     write_figure_at(
         &staged.staging.join("replication.svg"),
-        &replication_svg(bases, &pooled, &by_seeds),
+        &figure,
         rasteriser(args.png),
+    )?;
+    let parts: Vec<(String, String)> = (names.iter())
+        .map(|n| (format!("{n}/report.html"), n.clone()))
+        .collect();
+    staged.write(
+        "report.html",
+        study_page(
+            "Verdicts that replicate: the study at two base seeds",
+            start.elapsed().as_secs_f64(),
+            &md,
+            &[(
+                figure.as_str(),
+                "Per number of seeds, each claim's verdict at both base seeds (replication_seeds.csv).",
+            )],
+            &parts,
+        ),
     )?;
     let summary = ReplicationSummary {
         program: PROGRAM.into(),

@@ -6,10 +6,12 @@
 use std::time::Instant;
 
 use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_io::files::guard::io_err;
 use fuzzymotiv_io::pipeline::lanes::set_threads;
 use fuzzymotiv_io::records::urgency::{UrgencySeed, UrgencySummary};
 use fuzzymotiv_io::records::{PROGRAM, to_json};
 use fuzzymotiv_io::render::figures::write_figure_at;
+use fuzzymotiv_io::render::report::study_page;
 use fuzzymotiv_io::render::study::SettingRuns;
 use fuzzymotiv_io::render::svg::fitness_panels_svg;
 use fuzzymotiv_io::render::tables::Provenance;
@@ -45,18 +47,16 @@ pub fn urgency(args: ReproduceArgs) -> Result<(), CliError> {
     staged.write("urgency.csv", &csv)?;
     staged.write("urgency_seeds.csv", seeds_csv(&per_seed))?;
     let png = rasteriser(args.png);
-    write_figure_at(
-        &staged.staging.join("urgency.svg"),
-        &urgency_svg(&per_seed),
-        png,
-    )?;
+    let figure = urgency_svg(&per_seed);
+    write_figure_at(&staged.staging.join("urgency.svg"), &figure, png)?;
     let panels = (studies.iter())
         .map(|study| write_setting_figure(&args, &staged.staging, study))
         .collect::<Result<Vec<_>, CliError>>()?;
-    write_figure_at(
-        &staged.staging.join("fitness.svg"),
-        &fitness_panels_svg(&panels),
-        png,
+    let fitness = fitness_panels_svg(&panels);
+    write_figure_at(&staged.staging.join("fitness.svg"), &fitness, png)?;
+    staged.write(
+        "report.html",
+        page(&staged.staging, &studies, &md, &figure, &fitness, start)?,
     )?;
     let summary = UrgencySummary {
         program: PROGRAM.into(),
@@ -76,6 +76,56 @@ pub fn urgency(args: ReproduceArgs) -> Result<(), CliError> {
     staged.write("summary.json", to_json(&summary))?;
     commit(staged, start)?;
     fuzzymotiv_io::outln!("{md}")
+}
+
+/// The study's `report.html`: its table, its figure, the fitness figure and each weight's
+/// median-seed trajectories (read back from `dir`, where they were just written).
+fn page(
+    dir: &std::path::Path,
+    studies: &[SettingRuns<'_>],
+    md: &str,
+    figure: &str,
+    fitness: &str,
+    start: Instant,
+) -> Result<String, CliError> {
+    let trajectories = (studies.iter())
+        .map(|s| {
+            let path = dir.join(format!("trajectories_{}.svg", s.setting.tag));
+            std::fs::read_to_string(&path)
+                .map(|svg| {
+                    (
+                        svg,
+                        format!("{}: the median seed's best robot.", s.setting.name),
+                    )
+                })
+                .map_err(|e| io_err(&path, e))
+        })
+        .collect::<Result<Vec<_>, CliError>>()?;
+    let mut figures = vec![
+        (
+            figure,
+            "Each measure against urgency's weight: means over seeds with 95 % intervals.",
+        ),
+        (
+            fitness,
+            "Fitness evolution per weight: medians over seeds with inter-quartile bands.",
+        ),
+    ];
+    figures.extend(trajectories.iter().map(|(s, c)| (s.as_str(), c.as_str())));
+    let parts: Vec<(String, String)> = (studies.iter())
+        .flat_map(|s| (0..s.finished.len()).map(move |k| (s, k)))
+        .map(|(s, k)| {
+            let dir = s.run_dir(k);
+            (format!("{dir}/report.html"), dir)
+        })
+        .collect();
+    Ok(study_page(
+        "Urgency for missions: the fetch mission at four urgency weights",
+        start.elapsed().as_secs_f64(),
+        md,
+        &figures,
+        &parts,
+    ))
 }
 
 /// Every weight's seeds, weight by weight ([`seed_record`]).

@@ -167,3 +167,80 @@ pub fn summary_without_time(dir: &Path) -> serde_json::Value {
         .expect("a wall time");
     v
 }
+
+/// The files under `dir` ([`tree`]) without what holds wall times: every `summary.json`'s
+/// `wall_seconds` (at any depth) removed and the report pages left out.
+pub fn results(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    fn strip(v: &mut serde_json::Value) {
+        match v {
+            serde_json::Value::Object(m) => {
+                m.remove("wall_seconds");
+                m.values_mut().for_each(strip);
+            }
+            serde_json::Value::Array(a) => a.iter_mut().for_each(strip),
+            _ => {}
+        }
+    }
+    tree(dir)
+        .into_iter()
+        .filter(|(p, _)| p.extension().is_none_or(|e| e != "html"))
+        .map(|(p, bytes)| {
+            if p.file_name().is_some_and(|n| n == "summary.json") {
+                let mut v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+                strip(&mut v);
+                (p, v.to_string().into_bytes())
+            } else {
+                (p, bytes)
+            }
+        })
+        .collect()
+}
+
+/// Asserts that two outputs hold the same results ([`results`]), naming the files that differ
+/// (not dumping their bytes).
+pub fn assert_same_results(got: &Path, want: &Path) {
+    let (got, want) = (results(got), results(want));
+    let names = |r: &[(PathBuf, Vec<u8>)]| r.iter().map(|(p, _)| p.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&got), names(&want), "not the same files");
+    let differ: Vec<&PathBuf> = (got.iter().zip(&want))
+        .filter(|(a, b)| a.1 != b.1)
+        .map(|(a, _)| &a.0)
+        .collect();
+    assert!(differ.is_empty(), "these files differ: {differ:?}");
+}
+
+/// Runs `study(out)` killed (as `kill -9` would: `FUZZYMOTIV_TEST_ABORT_AFTER`, a deterministic
+/// point) after each of `kills` checkpointed generations in turn, asserting each left nothing
+/// in place; then the same command resumes (saying so) and ends with the files of
+/// `reference`, an uninterrupted run of the same command; run again, it has nothing to do.
+pub fn assert_killed_study_resumes(study: impl Fn(&Path) -> Fm, out: &Path, kills: &[usize]) {
+    use std::os::unix::process::ExitStatusExt;
+    let reference = out.with_extension("reference");
+    study(&reference).ok();
+    for n in kills {
+        let o = study(out)
+            .env("FUZZYMOTIV_TEST_ABORT_AFTER", &n.to_string())
+            .run();
+        assert_eq!(
+            o.status.signal(),
+            Some(6),
+            "not aborted after {n}: {}",
+            stderr(&o)
+        );
+        assert!(!out.exists(), "a killed study is not in place");
+    }
+    let o = study(out).ok();
+    assert!(
+        stderr(&o).contains("resuming the unfinished study"),
+        "{}",
+        stderr(&o)
+    );
+    assert_same_results(out, &reference);
+    assert_eq!(
+        stdout(&o),
+        stdout(&study(&out.with_extension("again")).ok()),
+        "the resumed study prints what an uninterrupted one prints"
+    );
+    let o = study(out).ok();
+    assert!(stderr(&o).contains("nothing to do"), "{}", stderr(&o));
+}

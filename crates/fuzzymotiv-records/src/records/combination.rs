@@ -26,6 +26,26 @@ pub struct BehaviourRow {
     pub stats: PairedStats,
 }
 
+/// One comparison claim (high − low curiosity on a measure, paired by seed) under a baseline
+/// against the TSK: the difference in differences, per seed (high − low)_baseline −
+/// (high − low)_TSK, paired by seed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClaimDifferenceRow {
+    /// The baseline (`weighted-sum`, `weighted-squares`).
+    pub combination: String,
+    /// The claim, as the claims tables word it.
+    pub claim: String,
+    /// The claim's effect under the baseline: mean over seeds of high − low.
+    pub effect_combination: f64,
+    /// The claim's effect under the TSK.
+    pub effect_tsk: f64,
+    /// Baseline's effect − TSK's effect, paired by seed (a = the baseline's high − low, b = the
+    /// TSK's): the difference, its interval, p, the detectable difference and the verdict
+    /// (`higher` / `lower`: a larger / smaller high − low under the baseline).
+    #[serde(flatten)]
+    pub stats: PairedStats,
+}
+
 /// `reproduce --combination`'s `summary.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CombinationSummary {
@@ -56,6 +76,10 @@ pub struct CombinationSummary {
     /// centroid in % of the room's largest distance, mean over rooms.
     #[serde(default)]
     pub end_spreads: Vec<Vec<Vec<f64>>>,
+    /// Each baseline against the TSK, per comparison claim: whether the claim's effect differs
+    /// (none in files written before it was measured).
+    #[serde(default)]
+    pub claim_differences: Vec<ClaimDifferenceRow>,
     /// Wall time (s).
     pub wall_seconds: f64,
 }
