@@ -26,6 +26,23 @@ fn calibrate_writes_a_table_that_a_run_reads() {
         "{}",
         stderr(&out)
     );
+    // The guide quotes the estimate calibrate prints for this file, in its config and its text.
+    let printed = stderr(&out)
+        .split("sensor noise estimate: trial.noise = ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .unwrap()
+        .to_string();
+    let guide = std::fs::read_to_string(repo().join("docs/guide/real-robot.md")).unwrap();
+    for quoted in [
+        format!("noise = {printed} "),
+        format!("prints `trial.noise = {printed}`"),
+    ] {
+        assert!(
+            guide.contains(&quoted),
+            "real-robot.md does not quote `{quoted}`"
+        );
+    }
     let written = std::fs::read_to_string(&table).unwrap();
     assert!(written.contains("[[sensor.7.ray]]"), "{written}");
     // Again: the same table, nothing to do; another file is kept without --force.
