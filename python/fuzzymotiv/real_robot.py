@@ -1,6 +1,7 @@
 """A run's evolved controller for a real robot: C99 (the simulator's outputs bit for bit) or a
 self-describing JSON document or an ONNX model, as ``fuzzymotiv export`` writes them; and its
-robustness to the reality gap, as ``fuzzymotiv robustness`` measures it (docs/guide/real-robot.md)."""
+robustness to the reality gap, as ``fuzzymotiv robustness`` measures it; and the rooms a robot's
+logs are recognised as, as ``fuzzymotiv recognise`` says."""
 
 from __future__ import annotations
 
@@ -47,7 +48,12 @@ def robustness(run_dir: PathLike, *, trials: int = 10) -> Table:
     """The run's best robot under the perturbations a real robot brings (sensor and wheel
     noise, the sensor table scaled, each sensor dead, a wheel-speed bias, a larger body), with
     ``trials`` trials per room on the same random streams under every perturbation: one row per
-    perturbation, the rows of ``fuzzymotiv robustness RUN_DIR``'s ``robustness.csv``.
+    perturbation, the rows of ``fuzzymotiv robustness RUN_DIR``'s ``robustness.csv``. A run
+    whose sensors are the ``linear`` model has no table to scale, so no ``table×k`` rows. What
+    the rows change: ``noise=n`` is sensor and wheel noise together; ``wheels×k`` scales both
+    wheel speeds alike, which with ``actions`` motion (exact steps) only moves the thresholds
+    of the action labels; ``radius=r`` enlarges the body for collisions only, the sensors
+    staying at the Khepera's positions (``robustness.md`` ends with these notes).
 
     Columns: ``perturbation`` (its label, ``none`` first), ``trials``, then for ``f``,
     ``exploration``, ``homing``, ``battery`` and, for a run with one room model (room modelling
@@ -75,7 +81,9 @@ def recognise(run_dir: PathLike, logs: Sequence[PathLike]) -> Table:
     reasons: ``r_node`` (the recognised room's r-node), ``node_distance`` (|winner − r_node|),
     ``gate`` (``aem.threshold``, the widest node distance that passes) and ``vector_distance``
     (the log's distance to the room's stored vector), NaN where no room is recognised. A bad log raises
-    ``FuzzymotivError`` naming its file, line and field (docs/guide/real-robot.md).
+    ``FuzzymotivError`` naming its file, line and field. ``mL`` and ``mR`` are read as
+    ``m_left`` and ``m_right`` (a ``fuzzymotiv replay`` CSV is a log too); other columns
+    (``ir0`` ... ``ir7``, a time stamp) are read past.
     """
     if isinstance(logs, (str, os.PathLike)):
         raise TypeError("logs must be a list of paths, not one path")

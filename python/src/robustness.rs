@@ -22,7 +22,8 @@ pub(crate) fn robustness<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let records = py
         .detach(|| robustness_of_run(&run, trials))
-        .map_err(py_err)?;
+        .map_err(py_err)?
+        .records;
     let d = PyDict::new(py);
     let labels: Vec<&str> = records.iter().map(|r| r.perturbation.as_str()).collect();
     d.set_item("perturbation", labels)?;

@@ -26,6 +26,23 @@ fn calibrate_writes_a_table_that_a_run_reads() {
         "{}",
         stderr(&out)
     );
+    // The guide quotes the estimate calibrate prints for this file, in its config and its text.
+    let printed = stderr(&out)
+        .split("sensor noise estimate: trial.noise = ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .unwrap()
+        .to_string();
+    let guide = std::fs::read_to_string(repo().join("docs/guide/real-robot.md")).unwrap();
+    for quoted in [
+        format!("noise = {printed} "),
+        format!("prints `trial.noise = {printed}`"),
+    ] {
+        assert!(
+            guide.contains(&quoted),
+            "real-robot.md does not quote `{quoted}`"
+        );
+    }
     let written = std::fs::read_to_string(&table).unwrap();
     assert!(written.contains("[[sensor.7.ray]]"), "{written}");
     // Again: the same table, nothing to do; another file is kept without --force.
@@ -141,4 +158,89 @@ fn bad_measurements_and_tables_exit_2_naming_the_file_and_field() {
         "{e}"
     );
     assert!(!run_dir.exists());
+}
+
+/// The medians of a measurements CSV per sensor and distance, rounded to whole readings as the
+/// table holds them (computed here from the file, not taken from `calibrate`).
+fn medians_of(csv: &str) -> std::collections::BTreeMap<(usize, u32), f64> {
+    let mut by: std::collections::BTreeMap<(usize, u32), Vec<f64>> = Default::default();
+    for line in csv.lines().skip_while(|l| l.starts_with('#')).skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        by.entry((f[0].parse().unwrap(), f[1].parse().unwrap()))
+            .or_default()
+            .push(f[2].parse().unwrap());
+    }
+    by.into_iter()
+        .map(|(k, mut v)| {
+            v.sort_by(f64::total_cmp);
+            let n = v.len();
+            let m = if n % 2 == 1 {
+                v[n / 2]
+            } else {
+                (v[n / 2 - 1] + v[n / 2]) / 2.0
+            };
+            (k, m.round())
+        })
+        .collect()
+}
+
+/// A table `calibrate` made from bench measurements, named by `trial.sensor_table`, makes the
+/// simulated sensors read the measured medians: each sensor turned to face a wall at a gap
+/// just short of a measured distance reads that distance's median (the first sample at or
+/// beyond the wall), and nothing beyond the farthest one.
+#[test]
+fn a_calibrated_table_changes_the_sensor_readings_as_its_data_says() {
+    use fuzzymotiv::simulation::{Arena, Pose, Room, SENSOR_LAYOUT, SENSORS};
+    let dir = tempfile::tempdir().unwrap();
+    let csv = repo().join("crates/fuzzymotiv-cli/tests/fixtures/calibrate/bench.csv");
+    let table = dir.path().join("bench.toml");
+    ok(&[
+        "calibrate",
+        csv.to_str().unwrap(),
+        "--out",
+        table.to_str().unwrap(),
+    ]);
+    let config = dir.path().join("c.toml");
+    std::fs::write(&config, "[trial]\nsensor_table = \"bench.toml\"\n").unwrap();
+    let loaded = fuzzymotiv_io::files::inputs::load_config(Some(&config), &[], None).unwrap();
+    let arena = Arena::new(
+        Room::builtin("square").unwrap(),
+        loaded.experiment.trial_params(),
+    );
+    let built_in = Arena::new(
+        Room::builtin("square").unwrap(),
+        &fuzzymotiv::simulation::TrialParams::default(),
+    );
+    // Sensor `s` facing the x = 800 wall of the square room, `gap` mm from it, at y = 400.
+    let facing_wall = |s: usize, gap: f64| {
+        let m = SENSOR_LAYOUT[s];
+        let heading = -m.facing_deg.to_radians();
+        let (sin, cos) = heading.sin_cos();
+        let x = 800.0 - gap - (m.x * cos - m.y * sin);
+        let y = 400.0 - (m.x * sin + m.y * cos);
+        Pose::new(x, y, heading)
+    };
+    let medians = medians_of(&std::fs::read_to_string(&csv).unwrap());
+    let mut differs = 0;
+    for s in 0..SENSORS {
+        let rows: Vec<(f64, f64)> = medians
+            .iter()
+            .filter(|((t, _), _)| *t == s)
+            .map(|(&(_, d), &m)| (f64::from(d), m))
+            .collect();
+        assert!(rows.len() >= 2, "sensor {s}: {rows:?}");
+        for &(d, median) in &rows {
+            for gap in [d - 0.25, d - 0.01] {
+                let pose = facing_wall(s, gap);
+                let got = arena.read_sensors(&pose)[s];
+                assert_eq!(got, median, "sensor {s}, wall {gap} mm away");
+                differs += usize::from(built_in.read_sensors(&pose)[s] != got);
+            }
+        }
+        // Beyond the farthest measured distance the sensor reads nothing.
+        let far = rows.last().unwrap().0;
+        assert_eq!(arena.read_sensors(&facing_wall(s, far + 0.25))[s], 0.0);
+    }
+    // The bench table is not the built-in Khepera one: most of these readings differ from it.
+    assert!(differs > SENSORS * 5, "{differs}");
 }

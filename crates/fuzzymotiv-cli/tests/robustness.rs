@@ -66,6 +66,17 @@ fn robustness_writes_one_row_and_one_figure_row_per_perturbation_and_keeps_earli
             "{label} not in the figure"
         );
     }
+    // The table's notes say what the perturbations change for this robot (`actions` motion).
+    let md = std::fs::read_to_string(out.join("robustness.md")).unwrap();
+    let notes = md
+        .split("\nNotes:\n")
+        .nth(1)
+        .expect("robustness.md has notes");
+    for start in ["- noise=n sets trial.noise", "- wheels×k", "- radius=r"] {
+        assert!(notes.contains(start), "{start}: {notes}");
+    }
+    assert!(notes.contains("`actions` motion"), "{notes}");
+    assert!(!notes.contains("no table×k rows"), "{notes}");
     ok(&args); // the same study again: the same files, nothing to do
     let mut other = args.to_vec();
     other[5] = "4";

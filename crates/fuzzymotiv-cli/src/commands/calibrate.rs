@@ -32,7 +32,7 @@ pub fn calibrate_command(args: CalibrateArgs) -> Result<(), CliError> {
     let rows = read_measurements(&args.measurements)?;
     let c = calibrate(&rows).map_err(|e| field_error(e.in_source(&source)))?;
     let header = format!(
-        "Sensor table written by `fuzzymotiv calibrate` from {source}:\nper sensor and distance the median reading (docs/guide/real-robot.md).\nRelative spread of the readings {:.4}: trial.noise = {:.3}.",
+        "Sensor table written by `fuzzymotiv calibrate` from {source}:\nper sensor and distance the median reading (rounded; neighbours pooled where medians rose\nwith distance). The simulator reads, per ray, the reading of the first distance at or beyond\nthe wall it sees, 0 beyond the last; name this file in a config as trial.sensor_table.\nRelative spread of the readings {:.4}: trial.noise = {:.3}.",
         c.relative_spread, c.noise
     );
     let files = [(args.out.clone(), c.table.to_toml(&header).into_bytes())];

@@ -94,7 +94,8 @@ pub struct ReplayArgs {
     pub fps: f64,
     /// A robot's log (CSV with `x` and `y` columns: mm in the room's frame; `x_mm`, `y_mm` too)
     /// whose path is drawn, dashed in a colour of its own, over the replayed room in STEM.svg
-    /// and the page (docs/guide/real-robot.md). Repeat for several logs. With a config of
+    /// and the page; other columns are read past (a replay's own CSV is such a log). Repeat
+    /// for several logs. With a config of
     /// several rooms, --room says which room the logs were recorded in.
     #[arg(long, value_name = "LOG")]
     pub log: Vec<PathBuf>,

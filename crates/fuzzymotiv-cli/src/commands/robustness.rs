@@ -36,8 +36,9 @@ pub struct RobustnessArgs {
 
 /// Entry point of `fuzzymotiv robustness`.
 pub fn robustness(args: RobustnessArgs) -> Result<(), CliError> {
-    let records = robustness_of_run(&args.run, args.trials as usize)?;
-    let md = robustness_md(&records);
+    let study = robustness_of_run(&args.run, args.trials as usize)?;
+    let records = study.records;
+    let md = robustness_md(&records, &study.notes);
     let name = args.run.canonicalize().unwrap_or_else(|_| args.run.clone());
     let name = name.file_name().map_or(name.as_os_str(), |n| n);
     let title = format!("Robustness of {}'s best robot", name.to_string_lossy());

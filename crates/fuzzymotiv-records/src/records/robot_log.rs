@@ -3,13 +3,15 @@
 //! A log is a CSV file, one row per control step, with a header naming its columns:
 //! - `action`: the step's action label, `straight`, `left` (+30°), `right` (−30°) or `back`
 //!   (180°), as the simulator's `actions` motion executes them; or, instead,
-//! - `m_left`, `m_right`: the network's motor outputs in [0, 1], labelled by the `wheels`
-//!   model's rule with the run's `aem.action_tolerance` (with `actions` motion the simulator
-//!   labels the speeds after its wheel noise, so a step near the tolerance may be labelled
-//!   otherwise than it executed: log the executed action where the robot knows it);
+//! - `m_left`, `m_right` (or `mL`, `mR`, as a replay's CSV names them): the network's motor
+//!   outputs in [0, 1], labelled by the `wheels` model's rule with the run's
+//!   `aem.action_tolerance` (with `actions` motion the simulator labels the speeds after its
+//!   wheel noise, so a step near the tolerance may be labelled otherwise than it executed: log
+//!   the executed action where the robot knows it);
 //! - optionally the tracked pose, `x`, `y` (mm, in the room's frame; `x_mm`, `y_mm` as a
 //!   replay's CSV names them) and `heading`: `fuzzymotiv replay --log` draws the path;
-//! - any other columns (e.g. `ir0`…`ir7`, a time stamp) are read past;
+//! - any other columns (e.g. `ir0`…`ir7`, or a replay's `s0`…`s7` and `heading_rad`, a time
+//!   stamp) are read past;
 //! - a row whose action (or both motor outputs) is empty holds no step (e.g. the final pose
 //!   that `fuzzymotiv replay`'s CSV ends with, so a replay is a log too) and is skipped.
 //!
@@ -165,16 +167,18 @@ impl RobotLog {
         let name = &self.name;
         let source = match (
             self.column(&["action"]),
-            self.column(&["m_left"]),
-            self.column(&["m_right"]),
+            self.column(&["m_left", "mL"]),
+            self.column(&["m_right", "mR"]),
         ) {
             (Some(a), _, _) => Source::Labels(a),
             (None, Some(l), Some(r)) => Source::Motors(l, r),
             _ => {
                 return Err(CliError::input(format!(
                     "{name}: the header has neither an `action` column nor `m_left` and `m_right`; \
-                     a log names each step's action (straight, left, right, back) or the motor \
-                     outputs in [0, 1] (docs/guide/real-robot.md)"
+                     a log names each step's action in a column `action` (straight, left, right or \
+                     back) or its motor outputs in [0, 1] in two columns `m_left` and `m_right` \
+                     (`mL` and `mR`, as a replay's CSV names them); found: {}",
+                    self.headers.iter().collect::<Vec<_>>().join(", ")
                 )));
             }
         };
@@ -224,8 +228,10 @@ impl RobotLog {
         let (Some(x), Some(y)) = (self.column(&["x", "x_mm"]), self.column(&["y", "y_mm"])) else {
             return Err(CliError::input(format!(
                 "{name}: the header has no `x` and `y` columns; --log draws a logged path, so each \
-                 row needs the robot's position in mm in the room's frame, `x` and `y` (or `x_mm` \
-                 and `y_mm`, as a replay's CSV has them) (docs/guide/real-robot.md)"
+                 row needs the robot's position in mm in the room's frame (origin and axes as the \
+                 room file's), `x` and `y` (or `x_mm` and `y_mm`, as a replay's CSV has them); \
+                 found: {}",
+                self.headers.iter().collect::<Vec<_>>().join(", ")
             )));
         };
         let mut points = Vec::new();
@@ -319,4 +325,59 @@ pub fn recognise_logs(run: &Path, logs: &[PathBuf]) -> Result<Vec<RecognitionRec
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `text` as a log file of its own (removed at the end of the test).
+    struct TempLog(PathBuf);
+
+    impl TempLog {
+        fn new(tag: &str, text: &str) -> TempLog {
+            let path = std::env::temp_dir().join(format!(
+                "fuzzymotiv-robot-log-{}-{tag}.csv",
+                std::process::id()
+            ));
+            std::fs::write(&path, text).unwrap();
+            TempLog(path)
+        }
+    }
+
+    impl Drop for TempLog {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_file(&self.0);
+        }
+    }
+
+    /// A replay's CSV names the motor outputs `mL`, `mR` and the readings `s0`…`s7`; a robot's
+    /// log `m_left`, `m_right` and `ir0`…`ir7`: both read as the same steps.
+    #[test]
+    fn replay_and_log_column_names_give_the_same_actions() {
+        let rows = ["0.9,0.9", "0.2,0.9", "0.9,0.1", "0.1,0.2", "0.6,0.55"];
+        let log = |motors: &str, sensors: &str| {
+            let mut t = format!("{sensors},{motors},heading\n");
+            for r in rows {
+                t.push_str(&format!("0,0,0,0,0,0,0,0,{r},0.0\n"));
+            }
+            t
+        };
+        let irs = "ir0,ir1,ir2,ir3,ir4,ir5,ir6,ir7";
+        let ss = "s0,s1,s2,s3,s4,s5,s6,s7";
+        let robot = TempLog::new("robot", &log("m_left,m_right", irs));
+        let replay = TempLog::new("replay", &log("mL,mR", ss));
+        let a = read_robot_log(&robot.0, 0.25).unwrap();
+        let b = read_robot_log(&replay.0, 0.25).unwrap();
+        assert_eq!(a, b);
+        let distinct: std::collections::BTreeSet<String> =
+            a.iter().map(|x| format!("{x:?}")).collect();
+        assert_eq!(distinct.len(), 4, "{a:?}");
+        // Neither pair: the message says what would be right and what was found.
+        let none = TempLog::new("none", &log("left,right", irs));
+        let e = read_robot_log(&none.0, 0.25).unwrap_err().to_string();
+        assert!(e.contains("`m_left` and `m_right`"), "{e}");
+        assert!(e.contains("found: ir0, ir1"), "{e}");
+        assert!(!e.contains("docs/"), "{e}");
+    }
 }

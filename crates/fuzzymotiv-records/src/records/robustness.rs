@@ -130,8 +130,19 @@ pub fn robustness_csv(records: &[RobustnessRecord]) -> String {
     to_csv(records)
 }
 
-/// `robustness.md`'s text: one table row per perturbation, each measure as `mean [lo, hi]`.
-pub fn robustness_md(records: &[RobustnessRecord]) -> String {
+/// A robustness study of a run: its rows and what they change ([`Perturbation::notes`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobustnessStudy {
+    /// One record per perturbation, `none` first.
+    pub records: Vec<RobustnessRecord>,
+    /// One sentence per perturbation family present (what it changes and what not), and the
+    /// rows left out for this robot.
+    pub notes: Vec<String>,
+}
+
+/// `robustness.md`'s text: one table row per perturbation, each measure as `mean [lo, hi]`,
+/// then the `notes` as a list.
+pub fn robustness_md(records: &[RobustnessRecord], notes: &[String]) -> String {
     let measures = measures_of(records);
     let mut md = String::from("| perturbation |");
     for (k, (_, words)) in measures.iter().enumerate() {
@@ -148,12 +159,18 @@ pub fn robustness_md(records: &[RobustnessRecord]) -> String {
         }
         md.push('\n');
     }
+    if !notes.is_empty() {
+        md.push_str("\nNotes:\n\n");
+        for n in notes {
+            md.push_str(&format!("- {n}\n"));
+        }
+    }
     md
 }
 
 /// The robustness study of a run directory's best robot: the standard perturbations
-/// ([`Perturbation::standard`]), `trials` trials per room and perturbation on paired streams.
-pub fn robustness_of_run(run: &Path, trials: usize) -> Result<Vec<RobustnessRecord>, CliError> {
+/// ([`Perturbation::standard_for`] the run's robot), `trials` trials per room and perturbation on paired streams.
+pub fn robustness_of_run(run: &Path, trials: usize) -> Result<RobustnessStudy, CliError> {
     let (genome_path, config) = locate(run)?;
     let Some(config) = config else {
         return Err(CliError::input(format!(
@@ -169,7 +186,7 @@ pub fn robustness_of_run(run: &Path, trials: usize) -> Result<Vec<RobustnessReco
     let genome = read_genome(&genome_path)?;
     let loaded = load_config(Some(&config), &[], None)?;
     let exp = &loaded.experiment;
-    let perturbations = Perturbation::standard(exp.trial_params().robot().radius());
+    let perturbations = Perturbation::standard_for(exp.trial_params());
     let at = |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome_path.display()));
     // The room model the robot built unperturbed (one, with all-rooms training): is a
     // perturbed trial still recognised as its room?
@@ -183,9 +200,12 @@ pub fn robustness_of_run(run: &Path, trials: usize) -> Result<Vec<RobustnessReco
     let rows = exp
         .robustness_recognising(&genome.weights, &perturbations, trials, recognizer.as_ref())
         .map_err(|e| at(&e))?;
-    Ok(rows
-        .iter()
-        .enumerate()
-        .map(|(k, r)| RobustnessRecord::of(k, r))
-        .collect())
+    Ok(RobustnessStudy {
+        records: rows
+            .iter()
+            .enumerate()
+            .map(|(k, r)| RobustnessRecord::of(k, r))
+            .collect(),
+        notes: Perturbation::notes(&perturbations, exp.trial_params()),
+    })
 }

@@ -17,7 +17,7 @@ use crate::params::FieldError;
 use crate::random::seed::hash_str;
 use crate::simulation::controller::{Controller, GenomeError, INPUTS, Mlp, OUTPUTS};
 use crate::simulation::randomise::Draw;
-use crate::simulation::robot::{Khepera, RawRobot};
+use crate::simulation::robot::{Khepera, Motion, RawRobot};
 use crate::simulation::sensor::{SensorModel, TableRef};
 use crate::simulation::sensor_table::SensorTable;
 use crate::simulation::trial::{ActionLog, Arena};
@@ -53,15 +53,46 @@ impl Perturbation {
         all
     }
 
+    /// The standard set ([`Perturbation::standard`]) that a robot with `trial`'s parameters
+    /// can take: without the `table×k` rows when its sensors are not read from a table
+    /// (`sensor_model = "linear"`: [`Perturbation::applies_to`]).
+    pub fn standard_for(trial: &TrialParams) -> Vec<Perturbation> {
+        Perturbation::standard(trial.robot().radius())
+            .into_iter()
+            .filter(|p| p.applies_to(trial))
+            .collect()
+    }
+
+    /// Whether a robot with `trial`'s parameters can take this perturbation: every one except
+    /// scaling the sensor table of a robot whose sensors have none (`sensor_model =
+    /// "linear"`; scaling the built-in Khepera tables instead would change its sensors, not
+    /// scale them).
+    pub fn applies_to(&self, trial: &TrialParams) -> bool {
+        !matches!(
+            (self, trial.sensor_model()),
+            (Perturbation::TableScale(_), SensorModel::Linear)
+        )
+    }
+
     /// The trial parameters `trial` under this perturbation (dead sensors and wheel bias are
-    /// the controller's: unchanged here); an error for a body the robot cannot take.
+    /// the controller's: unchanged here); an error for a body the robot cannot take, or for
+    /// a table scale when the sensors are the `linear` model's (no table to scale).
     pub fn apply(&self, trial: TrialParams) -> Result<TrialParams, FieldError> {
         Ok(match *self {
             Perturbation::Noise(n) => trial.with_noise(n),
             Perturbation::TableScale(k) => {
                 let table = match trial.sensor_model() {
                     SensorModel::Table(TableRef(t)) => t.clone(),
-                    _ => SensorTable::khepera(),
+                    SensorModel::Sampled => SensorTable::khepera(),
+                    SensorModel::Linear => {
+                        return Err(FieldError::new(
+                            "trial.sensor_model",
+                            format!(
+                                "{}: the \"linear\" sensor model has no sensor table to scale; a table scale applies to the \"sampled\" model (the built-in Khepera tables or trial.sensor_table)",
+                                self.label()
+                            ),
+                        ));
+                    }
                 };
                 trial.with_sensor_table(table.scaled(k).intern())
             }
@@ -77,6 +108,32 @@ impl Perturbation {
             }
             Perturbation::None | Perturbation::DeadSensor(_) | Perturbation::WheelBias(_) => trial,
         })
+    }
+
+    /// What a reader of a study of `perturbations` on a robot with `trial`'s parameters should
+    /// know about what they change (one sentence per family present), and the rows of the
+    /// standard set left out because the robot cannot take them.
+    pub fn notes(perturbations: &[Perturbation], trial: &TrialParams) -> Vec<String> {
+        let has = |f: fn(&Perturbation) -> bool| perturbations.iter().any(f);
+        let mut notes = Vec::new();
+        if trial.sensor_model() == SensorModel::Linear
+            && !has(|p| matches!(p, Perturbation::TableScale(_)))
+        {
+            notes.push("no table×k rows: this robot's sensors are the \"linear\" model, which has no sensor table to scale (scaling the built-in Khepera tables instead would change its sensors, not scale them)".to_string());
+        }
+        if has(|p| matches!(p, Perturbation::Noise(_))) {
+            notes.push("noise=n sets trial.noise, which perturbs the wheel speeds as well as the sensor readings (each multiplied by U(1 − n, 1 + n)): these rows are sensor and wheel noise together".to_string());
+        }
+        if has(|p| matches!(p, Perturbation::WheelBias(_))) {
+            notes.push(match trial.robot().motion() {
+                Motion::Actions => "wheels×k scales both motor commands' speeds alike; with `actions` motion the executed step is exact (a straight step is always v_max·dt), so the bias only moves the thresholds by which motor outputs become actions: the robot drives neither slower nor faster, and never curves".to_string(),
+                Motion::Wheels => "wheels×k scales both wheel speeds alike: the robot drives slower or faster but does not curve (a left/right imbalance is not modelled)".to_string(),
+            });
+        }
+        if has(|p| matches!(p, Perturbation::Radius(_))) {
+            notes.push("radius=r enlarges the body for collisions only: the sensors stay at the Khepera's mount positions (about 25 mm from the centre), inside a larger body rather than on its edge".to_string());
+        }
+        notes
     }
 
     /// The perturbations of a randomised trial's draw ([`Draw`]), in the order noise, sensor
@@ -319,6 +376,53 @@ mod tests {
             assert_eq!(s.recognised.len(), s.f.len());
             assert!(s.recognised.iter().all(|&v| v == 0.0 || v == 1.0));
         }
+    }
+
+    /// A robot with `linear` sensors has no table to scale: the standard set leaves the
+    /// `table×k` rows out (and says so), and applying one is an error rather than a swap to
+    /// the scaled Khepera tables; with the `sampled` model the rows stay.
+    #[test]
+    fn a_linear_sensor_robot_gets_no_table_scale_rows() {
+        let sets = [
+            "trial.steps=60".to_string(),
+            "trial.sensor_model=\"linear\"".to_string(),
+        ];
+        let raw = RawConfig::parse("rooms = [\"square\", \"H\"]", "c", &sets).unwrap();
+        let exp = Setup::resolve(raw, "c", &BuiltinRoomsOnly)
+            .unwrap()
+            .experiment;
+        let trial = *exp.trial_params();
+        let all = Perturbation::standard_for(&trial);
+        let scaled = |ps: &[Perturbation]| {
+            ps.iter()
+                .filter(|p| matches!(p, Perturbation::TableScale(_)))
+                .count()
+        };
+        assert_eq!(scaled(&all), 0, "{all:?}");
+        let standard = Perturbation::standard(trial.robot().radius());
+        assert_eq!(all.len() + scaled(&standard), standard.len());
+        let e = Perturbation::TableScale(1.3).apply(trial).unwrap_err();
+        assert_eq!(e.field, "trial.sensor_model", "{e}");
+        let notes = Perturbation::notes(&all, &trial);
+        assert!(notes[0].starts_with("no table×k rows"), "{notes:?}");
+        let (sampled, _) = setup();
+        let rows = Perturbation::standard_for(sampled.trial_params());
+        assert_eq!(scaled(&rows), 4);
+        let notes = Perturbation::notes(&rows, sampled.trial_params());
+        assert!(
+            notes.iter().all(|n| !n.starts_with("no table×k")),
+            "{notes:?}"
+        );
+        assert!(
+            notes
+                .iter()
+                .any(|n| n.starts_with("wheels×k") && n.contains("`actions` motion")),
+            "{notes:?}"
+        );
+        // The linear robot's own sensors, unscaled, still run under every other row.
+        let genome = vec![0.1; exp.shape.genome_len()];
+        let rows = exp.robustness(&genome, &all, 2).unwrap();
+        assert_eq!(rows.len(), all.len());
     }
 
     /// A perturbation that matters changes the trials.

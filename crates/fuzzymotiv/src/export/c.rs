@@ -9,7 +9,7 @@ use crate::simulation::math::{
     EXP_MAX, EXP_MIN, EXP2_TABLE, INV_LN2_N, LN2_HI_N, LN2_LO_N, TO_INT,
 };
 use crate::simulation::robot::Motion;
-use crate::simulation::sensor::SENSOR_MAX;
+use crate::simulation::sensor::{SENSOR_LAYOUT, SENSOR_MAX};
 
 /// The exported C: a header and a source file (file names [`CSources::HEADER_NAME`] and
 /// [`CSources::SOURCE_NAME`]; the source includes the header by that name).
@@ -66,9 +66,15 @@ const HEADER: &str = r#"/* fm_controller.h: an evolved fuzzymotiv controller (ne
  * default rounding mode (round to nearest, which every C program starts in: this code neither
  * reads nor changes the floating-point environment). No libm, no allocation, no state.
  *
- * Inputs: the eight IR readings in the simulator's scale 0..1023 (sensor 0 to 7 as
- * docs/model.md section 3 places them; readings above 1023 are taken as 1023), scaled to
- * reading / 1023. Outputs: motors[0] = mL, motors[1] = mR in [0, 1]; the wheel speeds are
+ * Inputs: the eight IR readings in the simulator's scale 0..1023 (readings above 1023 are
+ * taken as 1023; a larger reading means a nearer wall), scaled to reading / 1023, in this
+ * order: the sensors as the simulator places them on the body, in mm from the robot's centre
+ * (x forward, y to the left) and facing in degrees counter-clockwise from forward (the
+ * classic Khepera layout; wire your robot's sensors to these slots):
+ *
+@LAYOUT@
+ *
+ * Outputs: motors[0] = mL, motors[1] = mR in [0, 1]; the wheel speeds are
  * (2m - 1) * FM_V_MAX mm/s. *action is the step's action label (FM_ACTION_*), taken from
  * @LABELLED@.
  */
@@ -99,7 +105,12 @@ void fm_controller_step(const uint16_t ir[8], double motors[2], int *action);
  * not whole numbers). */
 void fm_controller_step_readings(const double ir[8], double motors[2], int *action);
 
-/* The library's exp and logistic 1 / (1 + exp(-x)), bit for bit. */
+/* fuzzymotiv's own exp (not libm's: ported here so that the results are the same bits on
+ * every platform): Cody-Waite reduction x = (128 m + j) ln2/128 + r with |r| <= ln2/256, a
+ * 128-entry table of 2^(j/128) as double-doubles and a degree-5 polynomial, no division;
+ * within 1 ulp of a correctly rounded exp for normal results, +inf above 709.78, 0 below
+ * -745.13. fm_logistic(x) = 1 / (1 + fm_exp(-x)), the hidden and output units' activation.
+ * Both give the simulator's bits exactly. */
 double fm_exp(double x);
 double fm_logistic(double x);
 
@@ -127,7 +138,7 @@ typedef union {
     uint64_t u;
 } fm_bits;
 
-/* The library's constants (crates/fuzzymotiv/src/simulation/math.rs), exact. */
+/* The constants of fuzzymotiv's exp (see fm_exp in fm_controller.h), exact. */
 static const double TO_INT = @TO_INT@;
 static const double INV_LN2_N = @INV_LN2_N@;
 static const double LN2_HI_N = @LN2_HI_N@;
@@ -283,6 +294,20 @@ void fm_controller_step(const uint16_t ir[8], double motors[2], int *action)
 }
 "#;
 
+/// The sensor layout as comment lines of the header: one per input, its position and facing.
+fn layout_comment() -> String {
+    let mut lines = vec![" *   ir[k]   x (mm)   y (mm)   facing".to_string()];
+    for (k, m) in SENSOR_LAYOUT.iter().enumerate() {
+        lines.push(format!(
+            " *   ir[{k}] {:>8} {:>8} {:>7}",
+            format!("{:.1}", m.x),
+            format!("{:.1}", m.y),
+            format!("{:+}", m.facing_deg)
+        ));
+    }
+    lines.join("\n")
+}
+
 /// The header and source of `c`.
 pub(crate) fn sources(c: &ExportedController) -> CSources {
     let h = c.shape.hidden();
@@ -315,6 +340,7 @@ pub(crate) fn sources(c: &ExportedController) -> CSources {
             ("@H@", h.to_string()),
             ("@PROVENANCE@", crate::provenance()),
             ("@LABELLED@", labelled.to_string()),
+            ("@LAYOUT@", layout_comment()),
             ("@VMAX@", hex_double(c.v_max)),
             ("@TOL@", hex_double(c.tolerance)),
             (
@@ -360,5 +386,36 @@ mod tests {
         assert_eq!(hex_double(TO_INT), "0x1.8000000000000p+52");
         assert_eq!(hex_double(f64::from_bits(1)), "0x0.0000000000001p-1022");
         assert_eq!(hex_double(f64::MAX), "0x1.fffffffffffffp+1023");
+    }
+
+    /// Someone handed the two files (or the JSON) has no repository: they name no path of it,
+    /// and the header lists every input's sensor position and facing itself.
+    #[test]
+    fn the_exported_files_stand_alone() {
+        use crate::simulation::controller::MlpShape;
+        use crate::simulation::trial_params::TrialParams;
+        let shape = MlpShape::with_hidden(2).unwrap();
+        let genome = vec![0.25; shape.genome_len()];
+        let c = ExportedController::new(shape, &genome, &TrialParams::default()).unwrap();
+        let CSources { header, source } = c.c();
+        for text in [&header, &source, &c.json()] {
+            for path in ["docs/", "crates/", ".rs", ".md"] {
+                assert!(!text.contains(path), "{path} in:\n{text}");
+            }
+        }
+        for (k, m) in SENSOR_LAYOUT.iter().enumerate() {
+            let row = format!(
+                " *   ir[{k}] {:>8} {:>8} {:>7}\n",
+                format!("{:.1}", m.x),
+                format!("{:.1}", m.y),
+                format!("{:+}", m.facing_deg)
+            );
+            assert!(header.contains(&row), "no row for sensor {k}:\n{header}");
+        }
+        assert!(
+            header.contains(" *   ir[2]     24.5      5.5      +0\n"),
+            "{header}"
+        );
+        assert!(header.contains("fm_logistic(x) = 1 / (1 + fm_exp(-x))"));
     }
 }

@@ -132,7 +132,7 @@ impl ControllerDoc {
                 activation: ActivationDoc {
                     name: "logistic".into(),
                     formula: "1 / (1 + exp(-x))".into(),
-                    exp: "fuzzymotiv's own exp (crates/fuzzymotiv/src/simulation/math.rs): Cody-Waite reduction x = k*ln2/128 + r, a 128-entry double-double table of 2^(j/128) and a degree-5 polynomial, IEEE-754 binary64 + - * / only; fm_exp in `fuzzymotiv export --to c` is the same operations in the same order. Within 1 ulp of a correctly rounded exp, so a libm exp agrees to about 1e-15 but not bit for bit".into(),
+                    exp: "fuzzymotiv's own exp (not libm's, so that every platform gives the same bits): Cody-Waite reduction x = k*ln2/128 + r with |r| <= ln2/256, a 128-entry double-double table of 2^(j/128) and a degree-5 polynomial, IEEE-754 binary64 + - * / only; fm_exp in `fuzzymotiv export --to c` is the same operations in the same order. Within 1 ulp of a correctly rounded exp, so a libm exp agrees to about 1e-15 but not bit for bit".into(),
                 },
                 sum: "each unit: bias, then + w_k * x_k for k = 1, 2, ... in order (binary64, round to nearest, no fused multiply-add); inputs exactly 0 may be skipped (same result)".into(),
                 weight_order: format!(

@@ -127,7 +127,9 @@ impl SensorTable {
             let Some(s) = s else {
                 return Err(FieldError::new(
                     format!("sensor.{key}"),
-                    format!("sensors are numbered 0 to 7 (docs/model.md §3), got \"{key}\""),
+                    format!(
+                        "sensors are numbered 0 to 7 (0 left, 1 front-left, 2 and 3 front, 4 front-right, 5 right, 6 and 7 back), got \"{key}\""
+                    ),
                 ));
             };
             own[s] = Some(check_rays(&rays.ray, &format!("sensor.{key}.ray"))?);
