@@ -175,9 +175,12 @@ impl TermId {
 /// motivation"). Register it with [`crate::Experiment::with_terms`] under a name a
 /// motivation's `term` can use; an experiment with one records each trial's steps for it.
 pub trait Term: Send + Sync + std::fmt::Debug {
-    /// The term's value for one finished trial, in [0, 1]. As every fuzzy input, a value
-    /// outside is clamped to [0, 1] and NaN counts as 0 (the library cannot stop a trial on a
-    /// term's word; check your term's range in its own tests).
+    /// The term's value for one finished trial, in [0, 1].
+    ///
+    /// # Panics
+    ///
+    /// A value outside [0, 1], or NaN, is a bug in the term: the evaluation panics naming the
+    /// term and the value (it is not clamped, which would hide the bug in F).
     fn value(&self, trial: &TrialRecord<'_>) -> f64;
 }
 
