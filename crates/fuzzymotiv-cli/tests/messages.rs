@@ -93,24 +93,21 @@ fn negative_numbers_reach_the_options_own_check() {
         msg.contains("--motivations") && msg.contains("curiosity") && msg.contains("-0.2"),
         "{msg}"
     );
-    // Fitness values are clamped to [0, 1], as the help says: -5 is 0.
-    let clamped = Fm::new([
+    // A fitness value is a term in [0, 1]: -5 reaches that check and is refused, naming a.
+    let o = Fm::new([
         "fuzzy",
         "--motivations",
         "0.8,0.1,0,0.1",
         "--fitness",
         "-5,0,0,0",
     ])
-    .ok();
-    let zero = Fm::new([
-        "fuzzy",
-        "--motivations",
-        "0.8,0.1,0,0.1",
-        "--fitness",
-        "0,0,0,0",
-    ])
-    .ok();
-    assert_eq!(common::stdout(&clamped), common::stdout(&zero));
+    .run();
+    let msg = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{msg}");
+    assert!(
+        msg.contains("--fitness") && msg.contains("`a` is -5") && msg.contains("[0, 1]"),
+        "{msg}"
+    );
     for (command, option) in [
         (&["claims", "study", "--alpha", "-0.5"][..], "--alpha"),
         (&["lab", "--port", "-1"][..], "--port"),
@@ -191,4 +188,84 @@ fn type_errors_state_the_fields_real_range() {
             "{set}: {msg}"
         );
     }
+}
+
+/// `fuzzy` with motivations X and fitness values Y: its exit code and stderr.
+fn fuzzy(x: &str, y: &str) -> (Option<i32>, String) {
+    let o = Fm::new(["fuzzy", "--motivations", x, "--fitness", y]).run();
+    let msg = stderr(&o);
+    assert!(!msg.contains("panicked"), "{msg}");
+    (o.status.code(), msg)
+}
+
+/// A fitness term outside [0, 1] or not a number, in either form, exits 2 naming the term and
+/// the range; the bounds themselves are fine.
+#[test]
+fn fuzzy_refuses_fitness_terms_outside_0_1_naming_the_term() {
+    let paper = "0.8,0.1,0,0.1";
+    let five = "curiosity=0.5,homing=0.1,orientation=0,energy=0.1,urgency=0.3";
+    for (x, y, term) in [
+        (paper, "0.5,1.5,0,0", "`g` is 1.5"),
+        (paper, "0.5,0.5,0,-0.01", "`b` is -0.01"),
+        (paper, "a=0.5,g=0.5,l=2,b=0", "`l` is 2"),
+        (
+            five,
+            "a=0.5,g=0.5,l=0,b=0,urgency=1.25",
+            "`urgency` is 1.25",
+        ),
+    ] {
+        let (code, msg) = fuzzy(x, y);
+        assert_eq!(code, Some(2), "{y}: {msg}");
+        assert!(
+            msg.contains("--fitness") && msg.contains(term) && msg.contains("outside [0, 1]"),
+            "{y}: {msg}"
+        );
+    }
+    for (x, y, named) in [
+        (paper, "0.5,nan,0,0", "`nan` (g)"),
+        (five, "a=0.5,g=0.5,l=0,b=0,urgency=NaN", "`urgency=NaN`"),
+    ] {
+        let (code, msg) = fuzzy(x, y);
+        assert_eq!(code, Some(2), "{y}: {msg}");
+        assert!(
+            msg.contains(named) && msg.contains("not a finite number"),
+            "{msg}"
+        );
+    }
+    assert_eq!(fuzzy(paper, "0,1,0,1").0, Some(0));
+    assert_eq!(fuzzy(five, "a=1,g=0,l=0,b=1,urgency=0").0, Some(0));
+}
+
+/// The named form's own errors: a motivation whose name is no term, a fitness value for no
+/// input, an input without a value, the positional form for other motivations than the
+/// paper's four, and named weights not summing to 1; each exits 2 naming the culprit.
+#[test]
+fn fuzzy_named_form_errors_name_the_motivation_or_term() {
+    let (code, msg) = fuzzy("curiosity=0.5,foo=0.5", "a=0.5,foo=0.5");
+    assert_eq!(code, Some(2), "{msg}");
+    assert!(
+        msg.contains("--motivations") && msg.contains("`foo`") && msg.contains("does not exist"),
+        "{msg}"
+    );
+    assert!(msg.contains("urgency"), "the known terms are listed: {msg}");
+    let (code, msg) = fuzzy("curiosity=0.5,urgency=0.5", "a=0.5,urgency=0.5,goal=0.2");
+    assert_eq!(code, Some(2), "{msg}");
+    assert!(
+        msg.contains("--fitness") && msg.contains("`goal` is not an input"),
+        "{msg}"
+    );
+    let (code, msg) = fuzzy("curiosity=0.5,urgency=0.5", "a=0.5");
+    assert_eq!(code, Some(2), "{msg}");
+    assert!(msg.contains("no value for `urgency`"), "{msg}");
+    let (code, msg) = fuzzy("curiosity=0.5,urgency=0.5", "0.5,0.5");
+    assert_eq!(code, Some(2), "{msg}");
+    assert!(msg.contains("--fitness a=0.5,urgency=0.5"), "{msg}");
+    let (code, msg) = fuzzy("curiosity=0.5,urgency=0.3", "a=0.5,urgency=0.5");
+    assert_eq!(code, Some(2), "{msg}");
+    assert!(
+        msg.contains("--motivations") && msg.contains("sum to 1"),
+        "{msg}"
+    );
+    let (code, msg) = fuzzy("curiosity=0.5,urgency=0.5", "a=0.5,urgency=0.5");
+    assert_eq!(code, Some(0), "{msg}");
 }

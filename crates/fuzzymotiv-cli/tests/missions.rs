@@ -240,3 +240,52 @@ fn the_report_shows_every_motivation_and_a_motivations_own_labels() {
         "motivations curiosity = 0.5, homing = 0.1, orientation = 0, energy = 0.1, hurry = 0.3"
     ));
 }
+
+/// `fuzzymotiv run c.toml` with `[motivations]` `table` (and the built-in rooms) is refused:
+/// exit 2, nothing written, no panic; its stderr.
+fn run_refused_with_motivations(dir: &Path, table: &str) -> String {
+    let cfg = dir.join("c.toml");
+    std::fs::write(&cfg, format!("[motivations]\n{table}")).unwrap();
+    let out = dir.join("o");
+    let o = common::Fm::new(["run", cfg.to_str().unwrap()])
+        .out(&out)
+        .sets(&SMALL)
+        .run();
+    let e = common::stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(!out.exists(), "a refused run wrote {}", out.display());
+    assert!(!e.contains("panicked"), "{e}");
+    assert!(e.contains("c.toml"), "the file is named: {e}");
+    e
+}
+
+/// Nine motivations (at most eight), five whose weights sum to 1.2, and a motivation bound to
+/// a term that does not exist: each exits 2 naming the file and the field, writing nothing.
+#[test]
+fn bad_motivation_tables_exit_2_naming_the_file_and_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let nine: String = (0..9)
+        .map(|k| format!("m{k} = {{ weight = 0.1, term = \"a\" }}\n"))
+        .collect();
+    let e = run_refused_with_motivations(dir.path(), &nine);
+    assert!(
+        e.contains("`motivations`") && e.contains("from 1 to 8"),
+        "{e}"
+    );
+    let five = "curiosity = 0.5\nhoming = 0.2\norientation = 0.0\nenergy = 0.2\n\
+                care = { weight = 0.3, term = \"safety\" }\n";
+    let e = run_refused_with_motivations(dir.path(), five);
+    assert!(
+        e.contains("`motivations`") && e.contains("sum to 1") && e.contains("1.2"),
+        "{e}"
+    );
+    assert!(e.contains("care 0.3"), "each weight is shown: {e}");
+    let e = run_refused_with_motivations(
+        dir.path(),
+        "curiosity = 0.5\nhoming = 0.0\nenergy = 0.0\nrush = { weight = 0.5, term = \"speed\" }\n",
+    );
+    assert!(
+        e.contains("`motivations.rush`") && e.contains("\"speed\"") && e.contains("does not exist"),
+        "{e}"
+    );
+}

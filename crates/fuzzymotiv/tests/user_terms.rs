@@ -58,3 +58,53 @@ fn an_unregistered_term_names_its_motivation() {
     assert_eq!(e.field, "motivations.smooth");
     assert_eq!(e.source_name, "mine.toml");
 }
+
+/// A term that returns a fixed value, to check the range.
+#[derive(Debug)]
+struct Fixed(f64);
+
+impl Term for Fixed {
+    fn value(&self, _: &TrialRecord<'_>) -> f64 {
+        self.0
+    }
+}
+
+/// An evaluation with the term `smooth` returning `value`.
+fn evaluate_with_smooth(value: f64) -> f64 {
+    let exp = experiment(&[UserTerm::computed("smooth", Arc::new(Fixed(value)))]).unwrap();
+    let run = &exp.runs()[0];
+    let network = exp.initial_population(run).network(0);
+    exp.evaluate(&network, run, 0, 0).per_room[0]
+        .terms
+        .user
+        .as_slice()[0]
+}
+
+/// The bounds are values like any other.
+#[test]
+fn a_term_at_its_bounds_is_taken_as_it_is() {
+    assert_eq!(evaluate_with_smooth(0.0), 0.0);
+    assert_eq!(evaluate_with_smooth(1.0), 1.0);
+}
+
+/// A value above 1 is a bug in the term: the evaluation panics naming the term and the value
+/// (not clamped to 1).
+#[test]
+#[should_panic(expected = "the user-defined term \"smooth\" returned 1.5, outside [0, 1]")]
+fn a_term_above_1_panics_naming_it() {
+    evaluate_with_smooth(1.5);
+}
+
+/// A negative value, too.
+#[test]
+#[should_panic(expected = "the user-defined term \"smooth\" returned -0.25, outside [0, 1]")]
+fn a_negative_term_panics_naming_it() {
+    evaluate_with_smooth(-0.25);
+}
+
+/// NaN is not counted as 0.
+#[test]
+#[should_panic(expected = "the user-defined term \"smooth\" returned NaN, outside [0, 1]")]
+fn a_nan_term_panics_naming_it() {
+    evaluate_with_smooth(f64::NAN);
+}

@@ -14,7 +14,7 @@ pub struct FuzzyArgs {
     /// name, e.g. curiosity=0.6,homing=0.1,orientation=0,energy=0.1,urgency=0.2.
     #[arg(long, allow_hyphen_values = true, value_name = "C,H,O,E|name=w,…")]
     motivations: String,
-    /// Fitness values a,g,l,b (each clamped to [0, 1]), e.g. 0.95,0.5,0,0.79; or by term,
+    /// Fitness values a,g,l,b (each in [0, 1]), e.g. 0.95,0.5,0,0.79; or by term,
     /// e.g. a=0.95,g=0.5,l=0,b=0.79,urgency=0.4.
     #[arg(
         long,
@@ -133,9 +133,36 @@ fn motivations_of(text: &str) -> Result<fuzzymotiv::fitness::Motivations, CliErr
             x.join(", ")
         );
     }
-    normalised
+    let m = normalised
         .validated(&TskFitness::paper())
-        .map_err(|e| CliError::input(format!("--motivations: {}", e.reason)))
+        .map_err(|e| CliError::input(format!("--motivations: {}", e.reason)))?;
+    check_library_terms(&m)?;
+    Ok(m)
+}
+
+/// Each motivation named by --motivations weighs a term of the library (there are no user
+/// terms here).
+fn check_library_terms(m: &fuzzymotiv::fitness::Motivations) -> Result<(), CliError> {
+    use fuzzymotiv::fitness::{LIBRARY_TERMS, TermId};
+    match m.iter().find(|x| TermId::library(x.term()).is_none()) {
+        None => Ok(()),
+        Some(x) => Err(CliError::input(format!(
+            "--motivations: `{}` weighs the term `{}`, which does not exist; a motivation named here weighs the term of its own name, one of {} (curiosity, homing, orientation and energy weigh a, g, l and b)",
+            x.name(),
+            x.term(),
+            LIBRARY_TERMS.join(", ")
+        ))),
+    }
+}
+
+/// Each fitness value in [0, 1] (a term outside is an error, not clamped).
+fn check_range(names: &[String], y: &[f64]) -> Result<(), CliError> {
+    match names.iter().zip(y).find(|(_, v)| !(0.0..=1.0).contains(*v)) {
+        None => Ok(()),
+        Some((name, v)) => Err(CliError::input(format!(
+            "--fitness: `{name}` is {v}, outside [0, 1]; a fitness term is a value from 0 to 1"
+        ))),
+    }
 }
 
 /// The fitness values of --fitness, one per motivation: a,g,l,b positionally for the paper's
@@ -152,7 +179,9 @@ fn fitness_of(text: &str, m: &fuzzymotiv::fitness::Motivations) -> Result<Vec<f6
                     .join(",")
             )));
         }
-        return Ok(parse_four(text, "--fitness", ["a", "g", "l", "b"])?.to_vec());
+        let y = parse_four(text, "--fitness", ["a", "g", "l", "b"])?;
+        check_range(&["a", "g", "l", "b"].map(String::from), &y)?;
+        return Ok(y.to_vec());
     };
     let inputs = m.input_names();
     if let Some((extra, _)) = named.iter().find(|(n, _)| !inputs.contains(n)) {
@@ -161,7 +190,7 @@ fn fitness_of(text: &str, m: &fuzzymotiv::fitness::Motivations) -> Result<Vec<f6
             inputs.join(", ")
         )));
     }
-    inputs
+    let y = inputs
         .iter()
         .map(|i| {
             named
@@ -175,7 +204,9 @@ fn fitness_of(text: &str, m: &fuzzymotiv::fitness::Motivations) -> Result<Vec<f6
                     ))
                 })
         })
-        .collect()
+        .collect::<Result<Vec<f64>, CliError>>()?;
+    check_range(&inputs, &y)?;
+    Ok(y)
 }
 
 /// Entry point of `fuzzymotiv fuzzy`.

@@ -18,6 +18,17 @@ use crate::simulation::randomise::Draw;
 use crate::simulation::robot::Pose;
 use crate::simulation::trial::{ActionLog, Arena, StepObserver, Trajectory, simulate};
 
+/// A user term's value, which must be in [0, 1]: a value outside, or NaN, is a bug in the term
+/// ([`crate::fitness::Term`]) and panics naming it (the evaluation has no error to return, and
+/// clamping would hide the bug in F).
+fn checked_value(name: &str, value: f64) -> f64 {
+    assert!(
+        (0.0..=1.0).contains(&value),
+        "the user-defined term {name:?} returned {value}, outside [0, 1]: a term's value must be in [0, 1] (a bug in the term)"
+    );
+    value
+}
+
 impl Experiment {
     /// The experiment's network for `genome`: an error when its length is not the network's
     /// ([`crate::simulation::controller::MlpShape::genome_len`]).
@@ -185,7 +196,7 @@ impl Experiment {
                     trajectory,
                     terms,
                 };
-                *v = term.value(&record);
+                *v = checked_value(&u.name, term.value(&record));
             }
         }
         terms.user = values;

@@ -432,6 +432,59 @@ mod tests {
         assert!((0.0..=1.0).contains(&safety));
     }
 
+    /// `fitness.end_at_mission = true` ends each evaluation trial the step its mission is done,
+    /// in the lanes (`evaluate_population`) as in `evaluate`: a goal zone around home is
+    /// reached at step 1 whatever the robot does, so every trial executes 1 step (urgency
+    /// 1 − 1/80); without the option the same trials run on.
+    #[test]
+    fn end_at_mission_ends_each_evaluation_trial_when_its_mission_is_done() {
+        let room = Room::from_toml_str(
+            "name='m'\noutline=[[0,0],[800,0],[800,400],[0,400]]\nhome={x=100,y=200,heading_deg=0}\ngoal={x=100,y=200,radius=100}\n",
+            "m.toml",
+        )
+        .unwrap();
+        let build = |end: bool| {
+            let text = format!(
+                "[ga]\npopulation = 8\ngenerations = 2\n[trial]\nsteps = 80\n[aem]\nenabled = false\n[motivations]\ncuriosity = 0.5\nhoming = 0.0\nenergy = 0.0\nhurry = {{ weight = 0.5, term = \"urgency\" }}\n[fitness]\nend_at_mission = {end}\n"
+            );
+            let raw = RawConfig::parse(&text, "c.toml", &[]).unwrap();
+            Experiment::with_terms(&raw, vec![room.clone()], &[], "c.toml").unwrap()
+        };
+        let scores = |exp: &Experiment| {
+            let run = &exp.runs()[0];
+            let population = exp.initial_population(run);
+            let lanes = exp.evaluate_population(&population, run, 0);
+            let alone: Vec<_> = (0..population.len())
+                .map(|i| exp.evaluate(&population.network(i), run, 0, i))
+                .collect();
+            assert_eq!(format!("{lanes:?}"), format!("{alone:?}"));
+            lanes
+                .into_iter()
+                .flat_map(|e| e.per_room)
+                .collect::<Vec<_>>()
+        };
+        let ending = scores(&build(true));
+        assert_eq!(ending.len(), 8);
+        for s in &ending {
+            let m = s.terms.mission.unwrap();
+            assert_eq!((s.executed, m.done_at), (1, Some(1)), "{s:?}");
+            assert_eq!(m.urgency, 1.0 - 1.0 / 80.0);
+        }
+        let going_on = scores(&build(false));
+        for (on, ended) in going_on.iter().zip(&ending) {
+            let m = on.terms.mission.unwrap();
+            assert_eq!(m.done_at, Some(1));
+            assert!(on.executed > 1, "{on:?}");
+            assert!(on.terms.b >= ended.terms.b, "{on:?} vs {ended:?}");
+        }
+        // The instance run (replays, figures) ends there too.
+        let exp = build(true);
+        let run = &exp.runs()[0];
+        let instance = exp.instance_run(&exp.initial_population(run).network(0), run, 0);
+        assert_eq!(instance.trajectory.executed(), 1);
+        assert_eq!(instance.trajectory.len(), 80);
+    }
+
     /// The safety term is 1 − (blocked moves / executed steps) of the trial.
     #[test]
     fn safety_counts_the_blocked_moves() {

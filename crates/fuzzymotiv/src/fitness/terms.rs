@@ -175,9 +175,12 @@ impl TermId {
 /// motivation"). Register it with [`crate::Experiment::with_terms`] under a name a
 /// motivation's `term` can use; an experiment with one records each trial's steps for it.
 pub trait Term: Send + Sync + std::fmt::Debug {
-    /// The term's value for one finished trial, in [0, 1]. As every fuzzy input, a value
-    /// outside is clamped to [0, 1] and NaN counts as 0 (the library cannot stop a trial on a
-    /// term's word; check your term's range in its own tests).
+    /// The term's value for one finished trial, in [0, 1].
+    ///
+    /// # Panics
+    ///
+    /// A value outside [0, 1], or NaN, is a bug in the term: the evaluation panics naming the
+    /// term and the value (it is not clamped, which would hide the bug in F).
     fn value(&self, trial: &TrialRecord<'_>) -> f64;
 }
 
@@ -695,6 +698,164 @@ mod tests {
         let d_max = 760.0 * 2f64.sqrt();
         assert!((t.g - (1.0 - 160.0 / d_max)).abs() < 1e-9, "{t:?}");
         assert_eq!(t.b, 1.0);
+    }
+
+    /// A room 800 × 400 mm, home at (100, 200) heading +x, for the mission terms; `mission` is
+    /// its goal and waypoints (room-file TOML). Its largest distance is √(800² + 400²).
+    fn mission_room(mission: &str) -> Room {
+        let text = format!(
+            "name='m'\noutline=[[0,0],[800,0],[800,400],[0,400]]\nhome={{x=100,y=200,heading_deg=0}}\n{mission}"
+        );
+        Room::from_toml_str(&text, "m.toml").unwrap()
+    }
+
+    /// The terms and trajectory of a scripted `actions` trial of `steps` steps in `room`,
+    /// following its mission (waypoints counted by `order`; ending when done with `end`).
+    fn mission_trial(
+        room: &Room,
+        steps: usize,
+        order: WaypointOrder,
+        end: bool,
+        script: Vec<[f64; 2]>,
+    ) -> (MissionTerms, Trajectory) {
+        let arena = Arena::new(room.clone(), &params(Motion::Actions, steps));
+        let tracker = MissionTracker::new(
+            room,
+            room.mission.goal,
+            room.mission.waypoints.clone(),
+            order,
+            end,
+        );
+        let mut observer = (
+            TermsRecorder::new(&arena, Homing::Escape).with_mission(tracker),
+            Trajectory::starting_at(room.home, steps),
+        );
+        crate::simulation::trial::simulate(
+            &arena,
+            &mut Script(script, 0),
+            &mut rng_from_seed(3),
+            &mut observer,
+        );
+        let terms = observer.0.finish();
+        (terms.mission.expect("the mission is followed"), observer.1)
+    }
+
+    /// A goal zone at (700, 200), radius 60, on the robot's straight path.
+    const GOAL: &str = "goal={x=700,y=200,radius=60}\n";
+
+    /// goal = 1 − (closest approach to the zone's rim) / (the room's largest distance) when the
+    /// zone is never reached; urgency 0 (never done).
+    #[test]
+    fn goal_not_reached_is_one_minus_the_closest_approach_over_the_largest_distance() {
+        let room = mission_room(GOAL);
+        assert_eq!(
+            largest_distance(&room),
+            (800f64 * 800.0 + 400.0 * 400.0).sqrt()
+        );
+        // 21 moves of 8 mm to x = 268 (out of the home zone, radius 160 around x = 100), a
+        // half turn, then back: x = 260 is inside the zone again and the trial ends there. The
+        // closest approach is at x = 268, 372 mm from the rim (700 − 60 − 268), not the final
+        // x = 260.
+        let mut script = vec![STRAIGHT; 21];
+        script.push(BACK);
+        script.extend([STRAIGHT; 40]);
+        let (m, tr) = mission_trial(&room, 60, WaypointOrder::InOrder, false, script);
+        assert_eq!(tr.poses[21].x, 268.0);
+        assert_eq!(tr.executed(), 23, "ended at home");
+        assert_eq!(tr.poses[23].x, 260.0);
+        let expected = 1.0 - 372.0 / (800f64 * 800.0 + 400.0 * 400.0).sqrt();
+        assert!((m.goal - expected).abs() < 1e-12, "{m:?} vs {expected}");
+        assert_eq!((m.urgency, m.done_at), (0.0, None));
+        // No waypoints: the waypoints term is 0.
+        assert_eq!(m.waypoints, 0.0);
+    }
+
+    /// goal = 1 once the centre has been in the zone (even if the robot drives on), urgency
+    /// = 1 − t_done / T with t_done the 1-based step it got there.
+    #[test]
+    fn a_goal_reached_at_step_68_of_100_gives_goal_1_and_urgency_0_32() {
+        let room = mission_room(GOAL);
+        // x = 100 + 8k enters the zone (x ≥ 640) at k = 68 and drives on to the far wall.
+        let (m, tr) = mission_trial(&room, 100, WaypointOrder::InOrder, false, vec![STRAIGHT]);
+        assert_eq!(tr.poses[68].x, 644.0);
+        assert_eq!(tr.poses[67].x, 636.0);
+        assert!(tr.poses[100].x > 700.0 + 60.0, "drove past the goal");
+        assert_eq!(m.goal, 1.0);
+        assert_eq!(m.done_at, Some(68));
+        assert_eq!(m.urgency, 1.0 - 68.0 / 100.0);
+        assert!((m.urgency - 0.32).abs() < 1e-12);
+        assert_eq!(
+            tr.executed(),
+            100,
+            "without end_at_mission the trial goes on"
+        );
+    }
+
+    /// With `end_at_mission`, the trial ends the step its mission is done: step 68 of 100, the
+    /// 32 left idle, standing in the goal.
+    #[test]
+    fn end_at_mission_ends_the_trial_the_step_the_mission_is_done() {
+        let room = mission_room(GOAL);
+        let (m, tr) = mission_trial(&room, 100, WaypointOrder::InOrder, true, vec![STRAIGHT]);
+        assert_eq!(tr.executed(), 68);
+        assert_eq!(tr.len(), 100);
+        assert!(tr.idle[68..].iter().all(|&i| i) && tr.idle[..68].iter().all(|&i| !i));
+        assert!(tr.poses[68..].iter().all(|p| p.x == 644.0));
+        assert_eq!((m.goal, m.done_at), (1.0, Some(68)));
+        assert_eq!(m.urgency, 1.0 - 68.0 / 100.0);
+        // A mission never done does not end the trial.
+        let (m, tr) = mission_trial(&room, 60, WaypointOrder::InOrder, true, vec![STRAIGHT]);
+        assert_eq!((tr.executed(), m.done_at, m.urgency), (60, None, 0.0));
+    }
+
+    /// Waypoints listed (500, 200), (300, 200), (300, 340): the straight path passes (300, 200)
+    /// at step 20 and (500, 200) at step 45 and never the third.
+    const THREE_WAYPOINTS: &str =
+        "waypoints=[{x=500,y=200,radius=40},{x=300,y=200,radius=40},{x=300,y=340,radius=40}]\n";
+
+    /// in-order counts a waypoint only after the ones before it: the first listed is visited
+    /// (after the second was passed), so 1 of 3; any-order counts both passed: 2 of 3.
+    #[test]
+    fn waypoints_count_the_fraction_visited_in_order_or_in_any_order() {
+        let room = mission_room(THREE_WAYPOINTS);
+        let (m, tr) = mission_trial(&room, 60, WaypointOrder::InOrder, false, vec![STRAIGHT]);
+        assert_eq!((tr.poses[20].x, tr.poses[45].x), (260.0, 460.0));
+        assert_eq!(m.waypoints, 1.0 / 3.0);
+        assert_eq!((m.urgency, m.done_at), (0.0, None));
+        let (m, _) = mission_trial(&room, 60, WaypointOrder::AnyOrder, false, vec![STRAIGHT]);
+        assert_eq!(m.waypoints, 2.0 / 3.0);
+        assert_eq!((m.urgency, m.done_at), (0.0, None));
+        // The goal term is 0 without a goal.
+        assert_eq!(m.goal, 0.0);
+    }
+
+    /// A mission of waypoints alone is done when the last counts: in any order at step 45 of
+    /// 60 (urgency 1 − 45/60); in order never (the first listed comes after the second).
+    #[test]
+    fn a_waypoint_mission_is_done_when_every_waypoint_counts() {
+        let room = mission_room("waypoints=[{x=500,y=200,radius=40},{x=300,y=200,radius=40}]\n");
+        let (m, _) = mission_trial(&room, 60, WaypointOrder::AnyOrder, false, vec![STRAIGHT]);
+        assert_eq!((m.waypoints, m.done_at), (1.0, Some(45)));
+        assert_eq!(m.urgency, 1.0 - 45.0 / 60.0);
+        let (m, tr) = mission_trial(&room, 60, WaypointOrder::AnyOrder, true, vec![STRAIGHT]);
+        assert_eq!((tr.executed(), m.done_at), (45, Some(45)));
+        let (m, _) = mission_trial(&room, 60, WaypointOrder::InOrder, false, vec![STRAIGHT]);
+        assert_eq!((m.waypoints, m.done_at, m.urgency), (0.5, None, 0.0));
+        // Listed in the order the path meets them, in order counts both, done at step 45.
+        let room = mission_room("waypoints=[{x=300,y=200,radius=40},{x=500,y=200,radius=40}]\n");
+        let (m, _) = mission_trial(&room, 60, WaypointOrder::InOrder, false, vec![STRAIGHT]);
+        assert_eq!((m.waypoints, m.done_at), (1.0, Some(45)));
+    }
+
+    /// With waypoints and a goal, reaching the goal is not the mission: the goal term is 1,
+    /// but the mission is done only once the waypoints are visited too, so urgency stays 0.
+    #[test]
+    fn the_goal_alone_does_not_finish_a_mission_with_waypoints_left() {
+        let room = mission_room(&format!("{GOAL}waypoints=[{{x=300,y=340,radius=40}}]\n"));
+        let (m, tr) = mission_trial(&room, 100, WaypointOrder::InOrder, true, vec![STRAIGHT]);
+        assert_eq!((m.goal, m.waypoints), (1.0, 0.0));
+        assert_eq!((m.urgency, m.done_at), (0.0, None));
+        assert_eq!(tr.executed(), 100);
     }
 
     #[test]
