@@ -8,6 +8,7 @@
 #   five-seed=results-5          (fuzzymotiv reproduce --seeds 5 --out results-5)
 #   ten-seed=results-10          (fuzzymotiv reproduce --seeds 10 --out results-10)
 #   twenty-seed=results-20       (fuzzymotiv reproduce --seeds 20 --out results-20)
+#   twenty-seed-base-11=results-20-base-11 (fuzzymotiv reproduce --seed 11 --seeds 20 --out results-20-base-11)
 #   search-strength=results-search-strength   (fuzzymotiv reproduce --search-strength --seeds 10)
 #   ablation=results-ablation    (fuzzymotiv reproduce --ablation --seeds 5)
 #   orientation=results-orientation           (fuzzymotiv reproduce --orientation)
@@ -52,7 +53,7 @@ check_model() { # SUMMARY
 files_of() { # KIND DIR
     local kind=$1 dir=$2
     case $kind in
-        five-seed | ten-seed | twenty-seed)
+        five-seed | ten-seed | twenty-seed | twenty-seed-base-11)
             echo table1.csv table2.csv table1_seeds.csv table2_seeds.csv claims.csv summary.json ;;
         search-strength)
             echo search_strength.csv summary.json
@@ -82,7 +83,7 @@ files_of() { # KIND DIR
             for c in default weighted-sum weighted-squares; do
                 echo "$c/claims.csv $c/table1.csv $c/table2.csv"
             done ;;
-        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, urgency" ;;
+        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, twenty-seed-base-11, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, urgency" ;;
     esac
 }
 

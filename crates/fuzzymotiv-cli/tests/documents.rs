@@ -948,7 +948,7 @@ fn select<'a>(rows: &'a [Row], selectors: &[(&str, char, &str)]) -> Result<&'a R
 
 /// Renders a value marker's spec: `FILE.csv: SELECTOR… COLUMN FORMAT`, where a selector is
 /// `column=text` (equal) or `column~text` (contains), or `FILE.json: /JSON/POINTER FORMAT`; the
-/// format is `.N` (N decimals) or `+.N` (with its sign).
+/// format is `.N` (N decimals), `+.N` (with its sign) or `text` (the record's text as it is).
 fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
     let (path, how) = spec
         .split_once(": ")
@@ -959,6 +959,9 @@ fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
             "`{spec}` needs selectors, a column and a format (e.g. `.1`)"
         ));
     };
+    if *format == "text" {
+        return text_value(dir, path, selectors, column);
+    }
     let x = if path.ends_with(".json") {
         if !selectors.is_empty() {
             return Err(format!(
@@ -983,6 +986,21 @@ fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
     } else {
         fixed(x, digits)
     })
+}
+
+/// A value marker's text as it stands in its record (format `text`): a JSON string at a
+/// pointer, or a CSV cell.
+fn text_value(dir: &Path, path: &str, selectors: &[&str], column: &str) -> Result<String, String> {
+    if path.ends_with(".json") {
+        let json = read_json(dir, path)?;
+        return json
+            .pointer(column)
+            .and_then(serde_json::Value::as_str)
+            .map(String::from)
+            .ok_or_else(|| format!("{path} has no text at {column}"));
+    }
+    let rows = read_csv(dir, path)?;
+    Ok(cell(select(&rows, &parse_selectors(selectors)?)?, column)?.to_string())
 }
 
 fn parse_selectors<'a>(selectors: &[&'a str]) -> Result<Vec<(&'a str, char, &'a str)>, String> {
