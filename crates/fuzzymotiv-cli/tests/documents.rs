@@ -27,7 +27,7 @@ const VALUE_START: &str = "<!-- value ";
 const VALUE_END: &str = "<!-- end -->";
 const RENDERERS: &str = "rooms, claims, room-means, fig6, search-strength, \
     search-strength-exploration, ablation-claims, ablation-means, orientation, levels, \
-    replication, behaviour, combination-claims, urgency, nsga-robots";
+    replication, behaviour, claim-differences, combination-claims, urgency, nsga-robots";
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -885,6 +885,43 @@ fn behaviour(dir: &Path, file: &str) -> Rendered {
     Ok(table(&header, rows))
 }
 
+/// Each baseline's claim effects against the TSK's (`claim_differences.csv` of
+/// `reproduce --combination`): per claim, high − low under each, their difference, p, verdict.
+fn claim_differences(dir: &Path, file: &str) -> Rendered {
+    let header = [
+        "combination",
+        "claim",
+        "high − low, baseline",
+        "high − low, TSK",
+        "baseline − TSK [95 % CI]",
+        "p",
+        "detectable",
+        "verdict",
+    ];
+    let mut rows = Vec::new();
+    for r in read_csv(dir, file)? {
+        let verdict = cell(&r, "verdict")?;
+        rows.push(format!(
+            "| {} | {} | {} | {} | {} [{}, {}] | {} | {} | {} |",
+            cell(&r, "combination")?,
+            cell(&r, "claim")?,
+            signed(num(&r, "effect_combination")?, 1),
+            signed(num(&r, "effect_tsk")?, 1),
+            signed(num(&r, "difference")?, 1),
+            signed(num(&r, "ci_low")?, 1),
+            signed(num(&r, "ci_high")?, 1),
+            fixed(num(&r, "p")?, 3),
+            fixed(num(&r, "detectable")?, 1),
+            if verdict == "higher" || verdict == "lower" {
+                format!("**{verdict}**")
+            } else {
+                verdict.to_string()
+            }
+        ));
+    }
+    Ok(table(&header, rows))
+}
+
 /// Renders a table marker's spec (`PATH: RENDERER [ARGS]`) from the records in `dir`.
 fn render_block(dir: &Path, spec: &str) -> Rendered {
     let (path, how) = spec
@@ -910,6 +947,7 @@ fn render_block(dir: &Path, spec: &str) -> Rendered {
         "orientation" => orientation(dir, path),
         "levels" => levels(dir, path, &args),
         "replication" => replication(dir, path),
+        "claim-differences" => claim_differences(dir, path),
         "behaviour" => behaviour(dir, path),
         "combination-claims" => combination_claims(dir, path),
         "urgency" => urgency(dir, path),
