@@ -17,34 +17,6 @@ fn tree(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
     common::tree(dir).into_iter().collect()
 }
 
-/// `tree` without what holds wall times (`summary.json`'s `wall_seconds`, the report pages).
-fn results(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    tree(dir)
-        .into_iter()
-        .filter(|(p, _)| p.extension().is_none_or(|e| e != "html"))
-        .map(|(p, bytes)| {
-            if p.file_name().is_some_and(|n| n == "summary.json") {
-                let mut v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
-                strip_wall(&mut v);
-                (p, v.to_string().into_bytes())
-            } else {
-                (p, bytes)
-            }
-        })
-        .collect()
-}
-
-fn strip_wall(v: &mut serde_json::Value) {
-    match v {
-        serde_json::Value::Object(m) => {
-            m.remove("wall_seconds");
-            m.values_mut().for_each(strip_wall);
-        }
-        serde_json::Value::Array(a) => a.iter_mut().for_each(strip_wall),
-        _ => {}
-    }
-}
-
 /// `configs/tiny.toml` run with the `SMALL` sizes into `out`.
 fn tiny_run(out: &Path) {
     let cfg = repo().join("configs/tiny.toml");
@@ -61,21 +33,6 @@ fn small_sweep(population: usize, generations: usize, replicates: usize) -> Stri
         .replace("population = 40", &format!("population = {population}"))
         .replace("generations = 40", &format!("generations = {generations}"))
         .replace("replicates = 3", &format!("replicates = {replicates}"))
-}
-
-/// Asserts that two outputs hold the same results ([`results`]), naming the files that differ
-/// (not dumping their bytes).
-fn assert_same_results(got: &Path, want: &Path) {
-    let (got, want) = (results(got), results(want));
-    let names = |r: &[(PathBuf, Vec<u8>)]| r.iter().map(|(p, _)| p.clone()).collect::<Vec<_>>();
-    assert_eq!(names(&got), names(&want), "not the same files");
-    let differ: Vec<&PathBuf> = got
-        .iter()
-        .zip(&want)
-        .filter(|(a, b)| a.1 != b.1)
-        .map(|(a, _)| &a.0)
-        .collect();
-    assert!(differ.is_empty(), "these files differ: {differ:?}");
 }
 
 /// A small study's command line into `out`.
@@ -151,7 +108,7 @@ fn killed_reproduce_resumes_to_the_files_of_an_uninterrupted_study() {
         "{}",
         stderr(&o)
     );
-    assert_same_results(&out, &reference);
+    common::assert_same_results(&out, &reference);
     assert_eq!(
         stdout(&o),
         stdout(&study(dir.path().join("again").as_path()).ok())
@@ -199,7 +156,7 @@ fn killed_ablation_resumes_with_the_same_command() {
     let out = dir.path().join("killed");
     aborted(ablation(&out), 7);
     ablation(&out).ok();
-    assert_same_results(&out, &reference);
+    common::assert_same_results(&out, &reference);
 }
 
 /// `sweep --out` is protected: a directory of the user's, a run directory and the
@@ -718,7 +675,7 @@ fn killed_between_population_and_commit_finishes() {
         .ok();
     assert!(stderr(&o).contains("evolution finished"), "{}", stderr(&o));
     assert!(!staging.exists());
-    assert_same_results(&out, &reference);
+    common::assert_same_results(&out, &reference);
 }
 
 /// Output files get the usual permissions (0o666 less the umask, as a plain write gives them),

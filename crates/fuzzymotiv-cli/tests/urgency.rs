@@ -128,33 +128,6 @@ fn urgency_runs_four_weights_on_the_fetch_rooms_and_its_outputs_agree() {
     );
 }
 
-/// The study's files without what holds wall times (`wall_seconds`, the report pages).
-fn results(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    fn strip(v: &mut serde_json::Value) {
-        match v {
-            serde_json::Value::Object(m) => {
-                m.remove("wall_seconds");
-                m.values_mut().for_each(strip);
-            }
-            serde_json::Value::Array(a) => a.iter_mut().for_each(strip),
-            _ => {}
-        }
-    }
-    common::tree(dir)
-        .into_iter()
-        .filter(|(p, _)| p.extension().is_none_or(|e| e != "html"))
-        .map(|(p, bytes)| {
-            if p.file_name().is_some_and(|n| n == "summary.json") {
-                let mut v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
-                strip(&mut v);
-                (p, v.to_string().into_bytes())
-            } else {
-                (p, bytes)
-            }
-        })
-        .collect()
-}
-
 /// Killed at deterministic points (as kill -9 would), the same command resumes and ends with
 /// the files of an uninterrupted study; run again, it has nothing to do.
 #[test]
@@ -179,7 +152,7 @@ fn killed_urgency_study_resumes_to_the_files_of_an_uninterrupted_one() {
         "{}",
         stderr(&o)
     );
-    let (got, want) = (results(&out), results(&reference));
+    let (got, want) = (common::results(&out), common::results(&reference));
     let names = |r: &[(PathBuf, Vec<u8>)]| r.iter().map(|(p, _)| p.clone()).collect::<Vec<_>>();
     assert_eq!(names(&got), names(&want));
     let differ: Vec<&PathBuf> = (got.iter().zip(&want))
