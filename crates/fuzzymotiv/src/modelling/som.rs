@@ -6,6 +6,7 @@
 
 use crate::params::{BIG, FieldError, Num, check};
 use crate::random::rng::{Rng, shuffle, uniform};
+use crate::simulation::trial::Isa;
 
 /// The most nodes a map may have.
 pub const MAX_NODES: usize = 100_000;
@@ -233,6 +234,151 @@ fn winner_flat(weights: &[f64], dim: usize, v: &[f64]) -> usize {
     best
 }
 
+/// [`fit`] compiled for `isa`, which the processor must have ([`Isa::detected`]).
+fn fit_on<R: Rng + ?Sized>(
+    isa: Isa,
+    weights: &mut [f64],
+    dim: usize,
+    data: &[Vec<f64>],
+    params: &SomParams,
+    rng: &mut R,
+) {
+    match isa {
+        Isa::Baseline => fit(weights, dim, data, params, rng),
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
+        Isa::Avx2 => unsafe { fit_avx2(weights, dim, data, params, rng) },
+    }
+}
+
+/// [`fit`] with AVX2 instructions: four dimensions per vector operation instead of two. The
+/// same IEEE-754 operations in the same order (AVX2 does not enable FMA), so the same bits.
+///
+/// # Safety
+/// The processor must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn fit_avx2<R: Rng + ?Sized>(
+    weights: &mut [f64],
+    dim: usize,
+    data: &[Vec<f64>],
+    params: &SomParams,
+    rng: &mut R,
+) {
+    fit(weights, dim, data, params, rng)
+}
+
+/// The epochs of [`Som::train`] on the initial `weights` (flat, rows of length `dim > 0`).
+///
+/// Two shortcuts, neither of which changes a bit of the result:
+/// - the winner search starts from the vector's winner of its previous presentation and
+///   gives up on a node once its partial distance exceeds the best so far
+///   ([`sq_dist_within`]); a node with an equal distance and a lower index still wins;
+/// - a node whose step `α·h` is exactly 0 (far from the winner once σ is small) is not
+///   visited, when the rates are at most 1 and the data at most 10³⁰⁰ in size: then every
+///   update is a convex combination of finite numbers and no weight overflows, so
+///   `w + 0·(x − w)` is `w` for every weight but −0, and no weight is ever −0 (the initial
+///   weights are `lo + (hi − lo)·u` with `hi − lo ≥ 0`, and a sum is −0 only when both terms
+///   are).
+#[inline(always)]
+fn fit<R: Rng + ?Sized>(
+    weights: &mut [f64],
+    dim: usize,
+    data: &[Vec<f64>],
+    params: &SomParams,
+    rng: &mut R,
+) {
+    let nodes = weights.len() / dim;
+    let mut order: Vec<usize> = (0..data.len()).collect();
+    let mut last_win = vec![0; data.len()];
+    // h by index distance |j − winner|, recomputed per epoch.
+    let mut h_by_dist = vec![0.0f64; nodes];
+    let skip_zero_steps = params.rate_start <= 1.0
+        && params.rate_end <= 1.0
+        && data.iter().flatten().all(|x| x.abs() <= 1e300);
+    for epoch in 0..params.epochs {
+        let sigma = SomParams::schedule(params.sigma_start, params.sigma_end, epoch, params.epochs);
+        let rate = SomParams::schedule(params.rate_start, params.rate_end, epoch, params.epochs);
+        let inv = 1.0 / (2.0 * sigma * sigma);
+        for (d, h) in h_by_dist.iter_mut().enumerate() {
+            let df = d as f64;
+            *h = (-df * df * inv).exp();
+        }
+        for (i, o) in order.iter_mut().enumerate() {
+            *o = i;
+        }
+        shuffle(rng, &mut order);
+        for &i in &order {
+            let x = data[i].as_slice();
+            let win = winner_from(weights, dim, x, last_win[i]);
+            last_win[i] = win;
+            for (j, w) in weights.chunks_exact_mut(dim).enumerate() {
+                let step = rate * h_by_dist[j.abs_diff(win)];
+                if step == 0.0 && skip_zero_steps {
+                    continue;
+                }
+                for (wk, &xk) in w.iter_mut().zip(x) {
+                    *wk += step * (xk - *wk);
+                }
+            }
+        }
+    }
+}
+
+/// [`winner_flat`]'s answer (the nearest row, ties → lowest index), found by measuring row
+/// `hint` first and then giving up on each other row as soon as its partial distance exceeds
+/// the best so far.
+#[inline(always)]
+fn winner_from(weights: &[f64], dim: usize, v: &[f64], hint: usize) -> usize {
+    let row = |j: usize| &weights[j * dim..(j + 1) * dim];
+    let mut best = hint;
+    let mut best_d = sq_dist(row(hint), v);
+    if !best_d.is_finite() {
+        return winner_flat(weights, dim, v); // NaN and ∞ rows never win there: keep its rule
+    }
+    for j in (0..weights.len() / dim).filter(|&j| j != hint) {
+        if let Some(d) = sq_dist_within(row(j), v, best_d)
+            && (d < best_d || (d == best_d && j < best))
+        {
+            best_d = d;
+            best = j;
+        }
+    }
+    best
+}
+
+/// [`sq_dist`] of `a` and `b` (equal lengths), or `None` once it is sure to exceed `bound`.
+///
+/// Every 32 elements the four partial sums are combined as [`sq_dist`] combines them at the
+/// end; the partial sums only grow (each adds a square ≥ 0) and rounding is monotone, so
+/// [`sq_dist`]'s result is at least that value, and a value above `bound` means a result above
+/// it. When the row is measured to the end, the result is [`sq_dist`]'s, bit for bit.
+#[inline(always)]
+fn sq_dist_within(a: &[f64], b: &[f64], bound: f64) -> Option<f64> {
+    const CHECK: usize = 8;
+    let mut acc = [0.0f64; 4];
+    let ca = a.chunks_exact(4);
+    let cb = b.chunks_exact(4);
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (c, (x, y)) in ca.zip(cb).enumerate() {
+        for k in 0..4 {
+            let d = x[k] - y[k];
+            acc[k] += d * d;
+        }
+        if c % CHECK == CHECK - 1 && (acc[0] + acc[1]) + (acc[2] + acc[3]) > bound {
+            return None;
+        }
+    }
+    let mut tail = 0.0;
+    for (x, y) in ra.iter().zip(rb) {
+        let d = x - y;
+        tail += d * d;
+    }
+    Some((acc[0] + acc[1]) + (acc[2] + acc[3]) + tail)
+}
+
 impl Som {
     /// Trains a map on `data` (all vectors of equal, non-zero length, finite values).
     ///
@@ -287,34 +433,7 @@ impl Som {
             }
         }
 
-        let mut order: Vec<usize> = (0..data.len()).collect();
-        // h by index distance |j − winner|, recomputed per epoch.
-        let mut h_by_dist = vec![0.0f64; nodes];
-        for epoch in 0..params.epochs {
-            let sigma =
-                SomParams::schedule(params.sigma_start, params.sigma_end, epoch, params.epochs);
-            let rate =
-                SomParams::schedule(params.rate_start, params.rate_end, epoch, params.epochs);
-            let inv = 1.0 / (2.0 * sigma * sigma);
-            for (d, h) in h_by_dist.iter_mut().enumerate() {
-                let df = d as f64;
-                *h = (-df * df * inv).exp();
-            }
-            for (i, o) in order.iter_mut().enumerate() {
-                *o = i;
-            }
-            shuffle(rng, &mut order);
-            for &i in &order {
-                let x = data[i].as_slice();
-                let win = winner_flat(&weights, dim, x);
-                for (j, w) in weights.chunks_exact_mut(dim).enumerate() {
-                    let step = rate * h_by_dist[j.abs_diff(win)];
-                    for (wk, &xk) in w.iter_mut().zip(x) {
-                        *wk += step * (xk - *wk);
-                    }
-                }
-            }
-        }
+        fit_on(Isa::detected(), &mut weights, dim, data, params, rng);
         Ok(Som {
             nodes,
             dim,
@@ -383,7 +502,7 @@ impl Som {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::random::rng::{rng_from_seed, uniform};
+    use crate::random::rng::{Rng64, index, rng_from_seed, uniform};
 
     fn clusters(seed: u64) -> (Vec<Vec<f64>>, Vec<usize>) {
         let centres = [
@@ -591,5 +710,133 @@ mod tests {
             zero.winner(&[]),
             Err(SomError::Inconsistent { .. })
         ));
+    }
+
+    /// The epochs as [`Som::train`] ran them before its shortcuts: every node measured in
+    /// full, every node updated.
+    fn fit_plain(
+        weights: &mut [f64],
+        dim: usize,
+        data: &[Vec<f64>],
+        p: &SomParams,
+        rng: &mut Rng64,
+    ) {
+        let nodes = weights.len() / dim;
+        let mut order: Vec<usize> = (0..data.len()).collect();
+        let mut h_by_dist = vec![0.0f64; nodes];
+        for epoch in 0..p.epochs {
+            let sigma = SomParams::schedule(p.sigma_start, p.sigma_end, epoch, p.epochs);
+            let rate = SomParams::schedule(p.rate_start, p.rate_end, epoch, p.epochs);
+            let inv = 1.0 / (2.0 * sigma * sigma);
+            for (d, h) in h_by_dist.iter_mut().enumerate() {
+                let df = d as f64;
+                *h = (-df * df * inv).exp();
+            }
+            for (i, o) in order.iter_mut().enumerate() {
+                *o = i;
+            }
+            shuffle(rng, &mut order);
+            for &i in &order {
+                let x = data[i].as_slice();
+                let win = winner_flat(weights, dim, x);
+                for (j, w) in weights.chunks_exact_mut(dim).enumerate() {
+                    let step = rate * h_by_dist[j.abs_diff(win)];
+                    for (wk, &xk) in w.iter_mut().zip(x) {
+                        *wk += step * (xk - *wk);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Both compiled forms of the training, with their shortcuts, leave every weight with the
+    /// bits of the plain training: chain-code-like walks, repeated vectors (ties), every
+    /// length mod 4, maps of 1 to 128 nodes, σ small enough that far nodes get a zero step,
+    /// and rates above 1 (no skipping).
+    #[test]
+    fn shortcuts_train_the_plain_maps_bit_for_bit() {
+        let mut isas = vec![Isa::Baseline];
+        if Isa::detected() != Isa::Baseline {
+            isas.push(Isa::detected());
+        }
+        let mut draws = rng_from_seed(41);
+        let cases = [
+            (128, 400, 5, 60, 32.0, 0.3, 0.5),
+            (128, 37, 5, 40, 4.0, 0.2, 0.5),
+            (17, 8, 9, 50, 8.0, 0.5, 1.0),
+            (40, 33, 4, 30, 2.0, 0.1, 2.0),
+            (1, 6, 3, 10, 1.0, 1.0, 0.5),
+            (2, 1, 6, 20, 1.0, 0.05, 0.9),
+        ];
+        for (nodes, dim, n, epochs, sigma_start, sigma_end, rate_start) in cases {
+            let mut data: Vec<Vec<f64>> = (0..n)
+                .map(|_| {
+                    let mut code = 0i64;
+                    (0..dim)
+                        .map(|_| {
+                            code += index(&mut draws, 5) as i64 - 2;
+                            code as f64 / 12.0
+                        })
+                        .collect()
+                })
+                .collect();
+            data.push(data[0].clone());
+            let p = checked(RawSom {
+                nodes,
+                epochs,
+                sigma_start,
+                sigma_end,
+                rate_start,
+                rate_end: 0.01,
+            });
+            let init: Vec<f64> = (0..nodes * dim)
+                .map(|_| uniform(&mut draws, -3.0, 3.0))
+                .collect();
+            let mut plain = init.clone();
+            fit_plain(&mut plain, dim, &data, &p, &mut rng_from_seed(7));
+            for &isa in &isas {
+                let mut fast = init.clone();
+                fit_on(isa, &mut fast, dim, &data, &p, &mut rng_from_seed(7));
+                let bits = |w: &[f64]| w.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&fast), bits(&plain), "{isa:?}, {nodes} nodes × {dim}");
+            }
+        }
+    }
+
+    /// The winner search with a hint answers as the plain one for every hint, including rows
+    /// at equal distances (the lowest wins) and rows at infinite or NaN distances.
+    #[test]
+    fn winner_from_any_hint_is_the_plain_winner() {
+        let dim = 5;
+        let rows: Vec<f64> = [
+            [1.0, 2.0, 3.0, 4.0, 5.0],
+            [0.0, 0.0, 0.0, 0.0, 1.0],
+            [1.0, 2.0, 3.0, 4.0, 5.0],
+            [0.0, 0.0, 0.0, 0.0, 1.0],
+            [9.0, 9.0, 9.0, 9.0, 9.0],
+        ]
+        .concat();
+        for v in [
+            [0.0; 5],
+            [1.0, 2.0, 3.0, 4.0, 5.0],
+            [9.0; 5],
+            [5.0, 4.0, 3.0, 2.0, 1.0],
+        ] {
+            for hint in 0..5 {
+                assert_eq!(
+                    winner_from(&rows, dim, &v, hint),
+                    winner_flat(&rows, dim, &v)
+                );
+            }
+        }
+        let mut odd = rows.clone();
+        odd[0] = f64::NAN;
+        odd[10] = f64::INFINITY;
+        odd[11] = f64::MAX;
+        for v in [[0.0; 5], [9.0; 5]] {
+            for hint in 0..5 {
+                assert_eq!(winner_from(&odd, dim, &v, hint), winner_flat(&odd, dim, &v));
+            }
+        }
     }
 }
