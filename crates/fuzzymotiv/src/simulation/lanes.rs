@@ -125,7 +125,8 @@ fn walk<O: StepObserver>(
         let x = add_sensor_noise(&mut raw, &draws, (lo, hi));
         // In open floor every input of a lane is 0 (a third of the study's steps); when that
         // holds for all four, each network's output is the one it computed at the start.
-        let motors = match x.iter().flatten().all(|&v| v == 0.0) {
+        // A fold, not `all`: no early exit, so the test is a few vector compares.
+        let motors = match x.iter().flatten().fold(true, |z, &v| z & (v == 0.0)) {
             true => lanes.idle,
             false => lanes.network(&x),
         };
@@ -167,21 +168,17 @@ fn add_sensor_noise(
     draws: &[[f64; LANES]; DRAWS],
     (lo, hi): (f64, f64),
 ) -> [[f64; LANES]; INPUTS] {
+    // Both sides of each choice are computed for every lane and one is picked, so that the
+    // loop runs in vector lanes without branches; the picked values are those of the branches.
     let mut x = [[0.0; LANES]; INPUTS];
     for k in 0..INPUTS {
         for l in 0..LANES {
             let v = raw[k][l];
-            let noisy = if v == 0.0 {
-                v
-            } else {
-                (v * (lo + (hi - lo) * draws[k][l])).clamp(0.0, SENSOR_MAX)
-            };
+            let scaled = (v * (lo + (hi - lo) * draws[k][l])).clamp(0.0, SENSOR_MAX);
+            let noisy = if v == 0.0 { v } else { scaled };
             raw[k][l] = noisy;
-            x[k][l] = if noisy == 0.0 {
-                0.0
-            } else {
-                noisy / SENSOR_MAX
-            };
+            let input = noisy / SENSOR_MAX;
+            x[k][l] = if noisy == 0.0 { 0.0 } else { input };
         }
     }
     x
