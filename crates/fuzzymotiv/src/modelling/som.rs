@@ -247,8 +247,6 @@ fn fit_on<R: Rng + ?Sized>(
         Isa::Baseline => fit(weights, dim, data, params, rng),
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
         Isa::Avx2 => unsafe { fit_avx2(weights, dim, data, params, rng) },
     }
 }
