@@ -66,7 +66,7 @@ fn walk_on<O: StepObserver>(
     memo: Option<&mut Table>,
 ) {
     match isa {
-        Isa::Baseline => walk(arena, trials, memo),
+        Isa::Baseline => walk::<false, O>(arena, trials, memo),
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
         Isa::Avx2 => unsafe { walk_avx2(arena, trials, memo) },
@@ -84,14 +84,15 @@ unsafe fn walk_avx2<O: StepObserver>(
     trials: &mut [LaneTrial<'_, O>],
     memo: Option<&mut Table>,
 ) {
-    walk(arena, trials, memo)
+    walk::<true, O>(arena, trials, memo)
 }
 
 /// The step loop of the lanes: read and draw lane by lane, add the sensor noise and run the
 /// networks across the lanes, then act and report lane by lane; a lane whose trial ends
-/// reports its idle steps and takes the next trial.
+/// reports its idle steps and takes the next trial. `AVX2`: the loop is compiled with AVX2
+/// ([`walk_avx2`]), so that its explicit AVX2 parts may run.
 #[inline(always)]
-fn walk<O: StepObserver>(
+fn walk<const AVX2: bool, O: StepObserver>(
     arena: &Arena,
     trials: &mut [LaneTrial<'_, O>],
     mut memo: Option<&mut Table>,
@@ -120,7 +121,7 @@ fn walk<O: StepObserver>(
         // of line would run without this function's AVX2.
         let mut draws = [[0.0; LANES]; DRAWS];
         for d in &mut draws {
-            *d = lanes.streams.next_units();
+            *d = lanes.streams.next_units::<AVX2>();
         }
         let x = add_sensor_noise(&mut raw, &draws, (lo, hi));
         // In open floor every input of a lane is 0 (a third of the study's steps); when that
@@ -209,9 +210,10 @@ impl Streams {
     }
 
     /// The next draw of every lane, as a uniform draw from [0, 1) with 53 random bits
-    /// ([`uniform01`](crate::random::rng::uniform01)'s value).
+    /// ([`uniform01`](crate::random::rng::uniform01)'s value). `AVX2`: the caller is compiled
+    /// with AVX2 ([`walk_avx2`]).
     #[inline(always)]
-    fn next_units(&mut self) -> [f64; LANES] {
+    fn next_units<const AVX2: bool>(&mut self) -> [f64; LANES] {
         let [s0, s1, s2, s3] = &mut self.s;
         let mut out = [0.0; LANES];
         for l in 0..LANES {
@@ -225,10 +227,49 @@ impl Streams {
             s1[l] ^= s2[l];
             s0[l] ^= s3[l];
             s2[l] ^= t;
-            s3[l] = s3[l].rotate_left(45);
             out[l] = unit(n);
         }
+        rotate_left_45::<AVX2>(s3);
         out
+    }
+}
+
+/// Each word of `s` turned left by 45 bits. The compiler does the rotation of four words lane
+/// by lane (AVX2 has no rotation of 64-bit lanes); in the AVX2 form it is two shifts and an
+/// or across the lanes.
+#[inline(always)]
+fn rotate_left_45<const AVX2: bool>(s: &mut [u64; LANES]) {
+    #[cfg(target_arch = "x86_64")]
+    if AVX2 {
+        // SAFETY: `AVX2` is only set in `walk_avx2`, which runs only on processors with AVX2.
+        unsafe { rotate_left_45_avx2(s) };
+        return;
+    }
+    for w in s {
+        *w = w.rotate_left(45);
+    }
+}
+
+/// [`rotate_left_45`] in AVX2 instructions.
+///
+/// # Safety
+/// The processor must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn rotate_left_45_avx2(s: &mut [u64; LANES]) {
+    use std::arch::x86_64::{
+        __m256i, _mm256_loadu_si256, _mm256_or_si256, _mm256_slli_epi64, _mm256_srli_epi64,
+        _mm256_storeu_si256,
+    };
+    const { assert!(LANES * 64 == 256, "four lanes are one AVX2 register") };
+    let p = s.as_mut_ptr().cast::<__m256i>();
+    // SAFETY: `s` is 256 bits (`LANES` u64), valid for reads and writes; the unaligned forms
+    // need no alignment.
+    unsafe {
+        let v = _mm256_loadu_si256(p);
+        let turned = _mm256_or_si256(_mm256_slli_epi64::<45>(v), _mm256_srli_epi64::<19>(v));
+        _mm256_storeu_si256(p, turned);
     }
 }
 
@@ -480,22 +521,29 @@ mod tests {
         executed
     }
 
-    /// The lanes' streams are `rng_from_seed`'s, draw for draw, and their units
-    /// `uniform01`'s, for random and extreme bits.
+    /// The lanes' streams are `rng_from_seed`'s, draw for draw, in the plain form and (where
+    /// the processor has it) the AVX2 form, and their units `uniform01`'s, for random and
+    /// extreme bits.
     #[test]
     fn lane_streams_are_rng_from_seed_and_units_uniform01() {
         let seeds = [0, 1, 2, u64::MAX, 0x9e37_79b9_7f4a_7c15, 12_345_678_901];
-        let mut streams = Streams { s: [[0; LANES]; 4] };
-        for chunk in seeds.chunks(LANES) {
-            let mut rngs: Vec<_> = chunk.iter().map(|&s| rng_from_seed(s)).collect();
-            for (l, &s) in chunk.iter().enumerate() {
-                streams.start(l, s);
-            }
-            for _ in 0..1000 {
-                let units = streams.next_units();
-                for (l, rng) in rngs.iter_mut().enumerate() {
-                    let want = crate::random::rng::uniform01(rng);
-                    assert_eq!(units[l].to_bits(), want.to_bits());
+        let avx2 = Isa::detected() == Isa::Avx2;
+        for form in [false, true].into_iter().filter(|&f| !f || avx2) {
+            let mut streams = Streams { s: [[0; LANES]; 4] };
+            for chunk in seeds.chunks(LANES) {
+                let mut rngs: Vec<_> = chunk.iter().map(|&s| rng_from_seed(s)).collect();
+                for (l, &s) in chunk.iter().enumerate() {
+                    streams.start(l, s);
+                }
+                for _ in 0..1000 {
+                    let units = match form {
+                        false => streams.next_units::<false>(),
+                        true => streams.next_units::<true>(),
+                    };
+                    for (l, rng) in rngs.iter_mut().enumerate() {
+                        let want = crate::random::rng::uniform01(rng);
+                        assert_eq!(units[l].to_bits(), want.to_bits(), "AVX2 form: {form}");
+                    }
                 }
             }
         }
