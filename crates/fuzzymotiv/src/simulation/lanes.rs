@@ -15,7 +15,7 @@
 
 use crate::simulation::controller::{INPUTS, Mlp, OUTPUTS};
 use crate::simulation::math::logistic_lanes;
-use crate::simulation::memo::{Table, memo_live, with_table};
+use crate::simulation::memo::{Sight, Table, memo_live, with_table};
 use crate::simulation::robot::{Motion, Pose};
 use crate::simulation::sensor::SENSOR_MAX;
 use crate::simulation::trial::{Arena, Isa, Sensed, StepObserver, Walk};
@@ -106,15 +106,18 @@ fn walk<const AVX2: bool, O: StepObserver>(
         next = lanes.load(l, next, arena, trials);
     }
     while lanes.trial.iter().any(Option::is_some) {
-        let mut raw = [[0.0; LANES]; INPUTS];
-        let mut blocked = [false; LANES];
+        let mut sights = [Sight::CLEAR; LANES];
         for l in 0..LANES {
             if lanes.trial[l].is_some() {
-                let sight = lanes.walk[l].sight(arena, memo.as_deref_mut());
-                for (r, v) in raw.iter_mut().zip(sight.sensors) {
-                    r[l] = v;
-                }
-                blocked[l] = sight.blocked;
+                sights[l] = lanes.walk[l].sight(arena, memo.as_deref_mut());
+            }
+        }
+        // Sensor `k` of every lane side by side, for the vector lanes below (a whole-array
+        // transposition, which the compiler does with shuffles).
+        let mut raw = [[0.0; LANES]; INPUTS];
+        for (k, r) in raw.iter_mut().enumerate() {
+            for l in 0..LANES {
+                r[l] = sights[l].sensors[k];
             }
         }
         // Plain loops, not `array::from_fn`, here and below: a closure the compiler leaves out
@@ -131,13 +134,15 @@ fn walk<const AVX2: bool, O: StepObserver>(
             true => lanes.idle,
             false => lanes.network(&x),
         };
+        let mut noisy_sensors = [[0.0; INPUTS]; LANES];
+        for (l, sensors) in noisy_sensors.iter_mut().enumerate() {
+            for k in 0..INPUTS {
+                sensors[k] = raw[k][l];
+            }
+        }
         for l in 0..LANES {
             let Some(j) = lanes.trial[l] else { continue };
-            let mut sensors = [0.0; INPUTS];
-            for (v, r) in sensors.iter_mut().zip(&raw) {
-                *v = r[l];
-            }
-            let sensed = Sensed::straight(sensors, blocked[l]);
+            let sensed = Sensed::straight(noisy_sensors[l], sights[l].blocked);
             let m = [motors[0][l], motors[1][l]];
             // The wheel noise (`perturb`), in the order `Walk::act` draws it.
             let mut noisy = [0.0; 2];
