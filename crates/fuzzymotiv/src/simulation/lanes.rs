@@ -126,13 +126,16 @@ fn walk<const AVX2: bool, O: StepObserver>(
         for d in &mut draws {
             *d = lanes.streams.next_units::<AVX2>();
         }
-        let x = add_sensor_noise(&mut raw, &draws, (lo, hi));
-        // In open floor every input of a lane is 0 (a third of the study's steps); when that
-        // holds for all four, each network's output is the one it computed at the start.
-        // A fold, not `all`: no early exit, so the test is a few vector compares.
-        let motors = match x.iter().flatten().fold(true, |z, &v| z & (v == 0.0)) {
+        add_sensor_noise(&mut raw, &draws, (lo, hi));
+        // In open floor every reading of a lane is 0 (a third of the study's steps), and so
+        // every input; when that holds for all four, each network's output is the one it
+        // computed at the start. (Tested on the readings, not on the inputs, so that the test
+        // does not wait for the division; should a reading give an input of 0, the network
+        // computes the same outputs from it.) A fold, not `all`: no early exit, so the test is a
+        // few vector compares.
+        let motors = match raw.iter().flatten().fold(true, |z, &v| z & (v == 0.0)) {
             true => lanes.idle,
-            false => lanes.network(&x),
+            false => lanes.network(&inputs_of(&raw)),
         };
         let mut noisy_sensors = [[0.0; INPUTS]; LANES];
         for (l, sensors) in noisy_sensors.iter_mut().enumerate() {
@@ -166,25 +169,33 @@ fn walk<const AVX2: bool, O: StepObserver>(
 }
 
 /// Adds the sensor noise to the readings `raw[k][l]` (sensor `k` of lane `l`) with the step's
-/// uniform draws `draws` on [`lo`, `hi`), as `perturb_sensors` does one robot's, and returns the
-/// network's inputs, the noisy readings / 1023 (`inputs_of`).
+/// uniform draws `draws` on [`lo`, `hi`), as `perturb_sensors` does one robot's.
 #[inline(always)]
 fn add_sensor_noise(
     raw: &mut [[f64; LANES]; INPUTS],
     draws: &[[f64; LANES]; DRAWS],
     (lo, hi): (f64, f64),
-) -> [[f64; LANES]; INPUTS] {
+) {
     // Both sides of each choice are computed for every lane and one is picked, so that the
     // loop runs in vector lanes without branches; the picked values are those of the branches.
-    let mut x = [[0.0; LANES]; INPUTS];
     for k in 0..INPUTS {
         for l in 0..LANES {
             let v = raw[k][l];
             let scaled = (v * (lo + (hi - lo) * draws[k][l])).clamp(0.0, SENSOR_MAX);
-            let noisy = if v == 0.0 { v } else { scaled };
-            raw[k][l] = noisy;
-            let input = noisy / SENSOR_MAX;
-            x[k][l] = if noisy == 0.0 { 0.0 } else { input };
+            raw[k][l] = if v == 0.0 { v } else { scaled };
+        }
+    }
+}
+
+/// The networks' inputs of the noisy readings `noisy[k][l]`: each / 1023, 0 for a reading of 0
+/// (`inputs_of`).
+#[inline(always)]
+fn inputs_of(noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; INPUTS] {
+    let mut x = [[0.0; LANES]; INPUTS];
+    for k in 0..INPUTS {
+        for l in 0..LANES {
+            let input = noisy[k][l] / SENSOR_MAX;
+            x[k][l] = if noisy[k][l] == 0.0 { 0.0 } else { input };
         }
     }
     x
