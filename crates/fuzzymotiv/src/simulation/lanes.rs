@@ -107,9 +107,9 @@ fn walk<const AVX2: bool, O: StepObserver>(
     }
     while lanes.trial.iter().any(Option::is_some) {
         let mut sights = [Sight::CLEAR; LANES];
-        for l in 0..LANES {
-            if lanes.trial[l].is_some() {
-                sights[l] = lanes.walk[l].sight(arena, memo.as_deref_mut());
+        for ((sight, walk), trial) in sights.iter_mut().zip(&lanes.walk).zip(&lanes.trial) {
+            if trial.is_some() {
+                *sight = walk.sight(arena, memo.as_deref_mut());
             }
         }
         // Sensor `k` of every lane side by side, for the vector lanes below (a whole-array
