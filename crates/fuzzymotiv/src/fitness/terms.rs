@@ -509,7 +509,9 @@ impl<A: Borrow<Arena>> TermsRecorder<A> {
 }
 
 impl<A: Borrow<Arena>> StepObserver for TermsRecorder<A> {
-    #[inline]
+    // Always inlined: in the step loops it then reads the step's fields where they were
+    // computed, instead of a call with the step written out to memory.
+    #[inline(always)]
     fn observe(&mut self, s: &Step) {
         let k = s
             .cell
