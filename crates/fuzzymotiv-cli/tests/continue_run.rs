@@ -155,6 +155,19 @@ fn what_cannot_be_continued_is_a_clear_error() {
     // --generations without --continue, --continue without --out.
     let o = Fm::new(["run", "--generations", "4"]).run();
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    // Beside a config it would otherwise be ignored (the config's generations run).
+    let o = Fm::new(["run"])
+        .arg(done.join("config.resolved.toml"))
+        .arg("--generations")
+        .arg("4")
+        .out(&new)
+        .run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--set ga.generations=N"),
+        "{}",
+        stderr(&o)
+    );
     let o = Fm::new(["run", "--continue"])
         .arg(&done)
         .arg("--generations")

@@ -73,6 +73,13 @@ enum Target {
 /// Entry point of `fuzzymotiv run`.
 pub fn run(args: RunArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
+    if args.generations.is_some() && args.continue_from.is_none() {
+        // clap's `requires` does not catch it beside a CONFIG; unchecked, it would be ignored.
+        return Err(CliError::input(
+            "--generations N goes with --continue DIR (the total to continue it to); \
+             to run a config for N generations, use --set ga.generations=N",
+        ));
+    }
     let target = match (&args.resume, &args.config) {
         _ if args.continue_from.is_some() => continue_target(&args)?,
         (Some(dir), _) => resume_target(dir)?,
