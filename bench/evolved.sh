@@ -9,8 +9,8 @@
 # time on robots that do. This evolves the run to generation 100 once with each build (a
 # build continues only a run of its own model), then times `run --continue BASE --generations
 # 200 --threads 1`, R rounds (default 5), alternating with REV's build when --against is
-# given, and prints each round and the median user CPU of each build. FUZZYMOTIV_REV / FUZZYMOTIV_BIN as in bench/run.sh
-# choose the build measured (default: the working tree).
+# given, and prints each round and the median user CPU of each build. FUZZYMOTIV_REV /
+# FUZZYMOTIV_BIN as in bench/run.sh choose the build measured (default: the working tree).
 set -euo pipefail
 
 HERE="$(cd "$(dirname "$0")" && pwd)"
