@@ -535,6 +535,12 @@ impl<A: Borrow<Arena>> StepObserver for TermsRecorder<A> {
             .as_ref()
             .is_some_and(|m| m.end_when_done && m.done_at.is_some())
     }
+
+    /// The terms come from poses, cells, energies and idle flags, never from motors or speeds.
+    #[inline]
+    fn reads_motors(&self) -> bool {
+        false
+    }
 }
 
 #[cfg(test)]

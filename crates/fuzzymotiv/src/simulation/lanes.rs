@@ -12,9 +12,18 @@
 //! sensor that reads 0, which `simulate`'s network skips: with finite weights that term is ±0,
 //! which leaves a sum unchanged except for the sign of a zero sum, and `logistic(±0)` is the
 //! same 0.5. The tests below compare whole trajectories with `simulate`'s.
+//!
+//! With `actions` motion a step's network outputs matter only through its action, so when no
+//! observer reads the outputs ([`StepObserver::reads_motors`]: the evaluation's fitness terms)
+//! the lanes first compute them roughly (inputs times 1/1023, [`logistic_rough_lanes`]) with a
+//! bound on how far each can be from the exact output, and keep them when every lane's action
+//! is the same for all outputs within the bounds ([`actions_are_certain`]); otherwise (4 steps
+//! of the lanes in 10,000 on evolved robots: generations 101–200 of the high-curiosity run)
+//! they compute the exact outputs. The actions, and so every pose, cell and term, are the exact
+//! ones; only the steps' `motors` and `speeds` are rough.
 
 use crate::simulation::controller::{INPUTS, Mlp, OUTPUTS};
-use crate::simulation::math::logistic_lanes;
+use crate::simulation::math::{LOGISTIC_ROUGH_ERR, logistic_lanes, logistic_rough_lanes};
 use crate::simulation::memo::{Sight, Table, memo_live, with_table};
 use crate::simulation::robot::{Motion, Pose};
 use crate::simulation::sensor::SENSOR_MAX;
@@ -99,7 +108,9 @@ fn walk<const AVX2: bool, O: StepObserver>(
 ) {
     let params = arena.params();
     let (lo, hi) = (1.0 - params.noise, 1.0 + params.noise);
-    let v_max = params.robot.v_max();
+    let (v_max, tolerance) = (params.robot.v_max(), params.action_tolerance());
+    // Whether the steps must carry the networks' exact outputs, or only exact actions.
+    let exact = trials.iter().any(|t| t.observer.reads_motors());
     let mut lanes = Lanes::new(arena);
     let mut next = 0;
     for l in 0..LANES {
@@ -135,7 +146,8 @@ fn walk<const AVX2: bool, O: StepObserver>(
         // few vector compares.
         let motors = match raw.iter().flatten().fold(true, |z, &v| z & (v == 0.0)) {
             true => lanes.idle,
-            false => lanes.network(&inputs_of(&raw)),
+            false if exact => lanes.network::<false>(&inputs_of(&raw)),
+            false => lanes.network_for_actions(&raw, &draws, (lo, hi), tolerance),
         };
         let mut noisy_sensors = [[0.0; INPUTS]; LANES];
         for (l, sensors) in noisy_sensors.iter_mut().enumerate() {
@@ -196,6 +208,19 @@ fn inputs_of(noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; INPUTS] {
         for l in 0..LANES {
             let input = noisy[k][l] / SENSOR_MAX;
             x[k][l] = if noisy[k][l] == 0.0 { 0.0 } else { input };
+        }
+    }
+    x
+}
+
+/// The networks' rough inputs of the noisy readings `noisy[k][l]`: each times 1/1023, within
+/// 2⁻⁵³ (relative) of [`inputs_of`]'s quotient and without its division.
+#[inline(always)]
+fn rough_inputs_of(noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; INPUTS] {
+    let mut x = [[0.0; LANES]; INPUTS];
+    for k in 0..INPUTS {
+        for l in 0..LANES {
+            x[k][l] = noisy[k][l] * (1.0 / SENSOR_MAX);
         }
     }
     x
@@ -320,6 +345,9 @@ struct Lanes {
     out: [[[f64; LANES]; HIDDEN + 1]; OUTPUTS],
     /// `idle[o][l]`: lane `l`'s output `o` when all its inputs are 0 ([`Mlp::idle_outputs`]).
     idle: [[f64; LANES]; OUTPUTS],
+    /// `rough[o][l]`: how far lane `l`'s output `o` computed with the rough logistic can be
+    /// from the exact one ([`rough_output_bound`]).
+    rough: [[f64; LANES]; OUTPUTS],
 }
 
 impl Lanes {
@@ -332,6 +360,7 @@ impl Lanes {
             hidden: [[[0.0; LANES]; HIDDEN]; INPUTS + 1],
             out: [[[0.0; LANES]; HIDDEN + 1]; OUTPUTS],
             idle: [[0.5; LANES]; OUTPUTS],
+            rough: [[f64::INFINITY; LANES]; OUTPUTS],
         }
     }
 
@@ -357,10 +386,18 @@ impl Lanes {
                     self.hidden[k][h][l] = w;
                 }
             }
+            let mut hidden_sums = [0.0f64; HIDDEN];
+            for row in hidden.chunks_exact(HIDDEN) {
+                for (sum, w) in hidden_sums.iter_mut().zip(row) {
+                    *sum += w.abs();
+                }
+            }
+            let hidden_sum = hidden_sums.iter().fold(0.0, |a, &b| f64::max(a, b));
             for (o, row) in out.chunks_exact(HIDDEN + 1).enumerate() {
                 for (k, &w) in row.iter().enumerate() {
                     self.out[o][k][l] = w;
                 }
+                self.rough[o][l] = rough_output_bound(row, hidden_sum);
             }
             for (idle, m) in self.idle.iter_mut().zip(trial.net.idle_outputs()) {
                 idle[l] = m;
@@ -374,11 +411,44 @@ impl Lanes {
         next
     }
 
+    /// Outputs of the four networks on the noisy readings `noisy` that choose the same actions
+    /// as the exact ones ([`Lanes::network`] of [`inputs_of`]): the rough outputs (each reading
+    /// times 1/1023 instead of divided by it, then the rough logistic) when, for every lane
+    /// that runs a trial, no output within the rough ones' bounds could choose another action
+    /// with the step's wheel noise (`draws`, on [`lo`, `hi`)) and `tolerance`
+    /// ([`actions_are_certain`]), else the exact outputs. Only for observers that do not read
+    /// the outputs.
+    #[inline(always)]
+    fn network_for_actions(
+        &self,
+        noisy: &[[f64; LANES]; INPUTS],
+        draws: &[[f64; LANES]; DRAWS],
+        (lo, hi): (f64, f64),
+        tolerance: f64,
+    ) -> [[f64; LANES]; OUTPUTS] {
+        let rough = self.network::<true>(&rough_inputs_of(noisy));
+        let mut certain = true;
+        for l in 0..LANES {
+            let noise = [INPUTS, INPUTS + 1].map(|d| lo + (hi - lo) * draws[d][l]);
+            let m = [rough[0][l], rough[1][l]];
+            let bound = [self.rough[0][l], self.rough[1][l]];
+            let sure = actions_are_certain(m, bound, noise, tolerance);
+            certain &= sure | self.trial[l].is_none();
+        }
+        #[cfg(test)]
+        tests::count_rough(certain);
+        match certain {
+            true => rough,
+            false => self.network::<false>(&inputs_of(noisy)),
+        }
+    }
+
     /// The four networks on their inputs `x[k][l]` (input `k` of lane `l`): each unit's sum
     /// `bias + w₁·x₁ + … + w₈·x₈` in that order, as `Mlp::step` adds it, then the logistic
-    /// units of a layer together ([`logistic_lanes`]: the scalar function's bits).
+    /// units of a layer together ([`logistic_lanes`]: the scalar function's bits; `ROUGH`:
+    /// [`logistic_rough_lanes`], for [`Lanes::network_for_actions`]).
     #[inline(always)]
-    fn network(&self, x: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; OUTPUTS] {
+    fn network<const ROUGH: bool>(&self, x: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; OUTPUTS] {
         let mut sums = self.hidden[0];
         for (k, xk) in x.iter().enumerate() {
             for (s, w) in sums.iter_mut().zip(&self.hidden[k + 1]) {
@@ -387,7 +457,10 @@ impl Lanes {
                 }
             }
         }
-        let hidden = logistic_lanes::<{ HIDDEN * LANES }>(flat(&sums));
+        let hidden = match ROUGH {
+            false => logistic_lanes::<{ HIDDEN * LANES }>(flat(&sums)),
+            true => logistic_rough_lanes::<{ HIDDEN * LANES }>(flat(&sums)),
+        };
         let mut out = [[0.0; LANES]; OUTPUTS];
         for (o, w) in out.iter_mut().zip(&self.out) {
             *o = w[0];
@@ -397,12 +470,50 @@ impl Lanes {
                 }
             }
         }
-        let flat = logistic_lanes::<{ OUTPUTS * LANES }>(flat(&out));
+        let flat = match ROUGH {
+            false => logistic_lanes::<{ OUTPUTS * LANES }>(flat(&out)),
+            true => logistic_rough_lanes::<{ OUTPUTS * LANES }>(flat(&out)),
+        };
         for (o, row) in out.iter_mut().zip(flat.chunks_exact(LANES)) {
             o.copy_from_slice(row);
         }
         out
     }
+}
+
+/// How far a rough output ([`Lanes::network_for_actions`]) can be from the exact one, for the
+/// output unit whose weights are `row` (bias first) in a network whose hidden units' sums of
+/// `|w|` are at most `hidden_sum`. Each rough input is within 2⁻⁵³ (relative) of the exact one
+/// and in [0, 1], so a hidden unit's sum, added in the same order, is within
+/// `hidden_sum · 10⁻¹⁴` (that and the roundings of both sums); the exact logistic has slope
+/// ≤ ¼ and is within 4 ulp of the true function, the rough one within `ε`
+/// ([`LOGISTIC_ROUGH_ERR`]) of the exact one, so each hidden value is within
+/// `e = ε + hidden_sum · 10⁻¹⁴`. The output's sum is then within `W·(e + 10⁻¹⁴)` (`W` = the
+/// sum of `|w|` of `row`) and the output within `e + W·(e + 10⁻¹⁴)/4 + 10⁻¹⁴`, taken 1 % wider
+/// for the rounding of this bound. Infinite or NaN for weights whose sums overflow: then no
+/// action is certain.
+fn rough_output_bound(row: &[f64], hidden_sum: f64) -> f64 {
+    let w: f64 = row.iter().map(|w| w.abs()).sum();
+    let e = LOGISTIC_ROUGH_ERR + hidden_sum * 1e-14;
+    1.01 * (e + w * (e + 1e-14) / 4.0 + 1e-14)
+}
+
+/// Whether the action [`Motion::label`](crate::simulation::robot::Motion::label) gives is the
+/// same for every pair of outputs within `bound` of `m`, with the step's wheel noise factors
+/// `noise` (each in [1 − noise, 1 + noise)) and the action `tolerance`. The labels compare the
+/// noisy speeds `s = (2m − 1)·noise` (scaled by `v_max` and back) with 0 (a turn back when both
+/// are below) and their difference with `±tolerance`; an output within `b` of `m` moves its
+/// speed by at most `2·noise·b`, the roundings by less than 10⁻¹², so each comparison is certain
+/// when its margin exceeds that. A branch-free test (NaN is never certain).
+#[inline(always)]
+fn actions_are_certain(m: [f64; 2], bound: [f64; 2], noise: [f64; 2], tolerance: f64) -> bool {
+    let s = [0, 1].map(|w| (2.0 * m[w] - 1.0) * noise[w]);
+    let e = [0, 1].map(|w| 2.0 * noise[w] * bound[w] + 1e-12);
+    let (d, ed) = (s[1] - s[0], e[0] + e[1] + 1e-12);
+    (s[0].abs() > e[0])
+        & (s[1].abs() > e[1])
+        & ((d - tolerance).abs() > ed)
+        & ((d + tolerance).abs() > ed)
 }
 
 /// `rows` laid end to end.
@@ -465,7 +576,7 @@ mod tests {
                     true => arena(room, end, steps),
                     false => arena(room, end, steps).without_memo(),
                 };
-                let executed = check_lanes(&arena, n, scale);
+                let executed = check_lanes(&arena, n, scale, true);
                 // Trials end at different steps (their observers stop them), so lanes are
                 // refilled while the others walk on.
                 let mut ends = executed.clone();
@@ -475,37 +586,169 @@ mod tests {
         }
     }
 
+    thread_local! {
+        /// Steps of this thread's lanes whose actions came from the rough outputs, and those
+        /// that needed the exact ones.
+        static ROUGH: std::cell::Cell<[usize; 2]> = const { std::cell::Cell::new([0; 2]) };
+    }
+
+    /// Counts a step of [`Lanes::network_for_actions`].
+    pub(super) fn count_rough(certain: bool) {
+        ROUGH.with(|c| {
+            let mut n = c.get();
+            n[usize::from(!certain)] += 1;
+            c.set(n);
+        });
+    }
+
     /// A trajectory that asks its trial to end after a number of steps of its own (trial `i`:
-    /// 17 + 29·i) or at its end.
+    /// 17 + 29·i) or at its end. With `motors` false it does not read the steps' motors and
+    /// speeds (it records them as 0), so the lanes may choose actions from rough outputs.
     #[derive(Debug)]
     struct Until {
         path: Trajectory,
         stop: usize,
+        motors: bool,
     }
 
     impl Until {
-        fn new(arena: &Arena, i: usize) -> Until {
+        fn new(arena: &Arena, i: usize, motors: bool) -> Until {
             let steps = arena.params().steps;
             Until {
                 path: Trajectory::starting_at(arena.room().home, steps),
                 stop: 17 + 29 * i,
+                motors,
             }
         }
     }
 
     impl StepObserver for Until {
         fn observe(&mut self, step: &crate::simulation::trial::Step) {
-            self.path.observe(step);
+            match self.motors {
+                true => self.path.observe(step),
+                false => self.path.observe(&crate::simulation::trial::Step {
+                    motors: [0.0; 2],
+                    speeds: [0.0; 2],
+                    ..*step
+                }),
+            }
         }
 
         fn finished(&self) -> bool {
             self.path.poses.len() > self.stop
         }
+
+        fn reads_motors(&self) -> bool {
+            self.motors
+        }
+    }
+
+    /// Trials whose observers do not read the motors take, bit for bit, the steps that
+    /// `simulate` takes (every field but the motors and speeds, which are rough), both when the
+    /// rough outputs decide the actions and when a margin is too thin and the exact outputs
+    /// are computed: weights small enough that the outputs stay near ½ (speeds near 0, so
+    /// the exact outputs are often needed), and larger ones.
+    #[test]
+    fn rough_actions_are_the_exact_actions() {
+        ROUGH.with(|c| c.set([0; 2]));
+        for (room, end, steps, n, scale) in [
+            ("H", true, 400, 13, 1.0),
+            ("H", false, 300, 9, 2e-5),
+            ("T", true, 300, 7, 5.0),
+            ("square", false, 250, 6, 0.05),
+            ("L", false, 120, 6, 800.0),
+            ("rectangle", true, 200, 5, 0.3),
+        ] {
+            for memo in [true, false] {
+                let arena = match memo {
+                    true => arena(room, end, steps),
+                    false => arena(room, end, steps).without_memo(),
+                };
+                check_lanes(&arena, n, scale, false);
+            }
+        }
+        let [rough, exact] = ROUGH.with(std::cell::Cell::get);
+        assert!(rough > 1000 && exact > 100, "rough {rough}, exact {exact}");
+    }
+
+    /// The rough outputs' bound holds: for random weights of several scales and inputs, each
+    /// rough output is within its lane's bound of the exact output.
+    #[test]
+    fn rough_outputs_are_within_their_bounds() {
+        let arena = arena("H", true, 10);
+        for (i, scale) in [0.01, 1.0, 10.0, 100.0, 800.0].into_iter().enumerate() {
+            let nets = networks(LANES, 40 + i as u64, scale);
+            let mut lanes = Lanes::new(&arena);
+            let mut trials: Vec<_> = (nets.iter())
+                .map(|net| LaneTrial {
+                    net,
+                    seed: 1,
+                    observer: (),
+                    last: arena.room().home,
+                })
+                .collect();
+            let mut next = 0;
+            for l in 0..LANES {
+                next = lanes.load(l, next, &arena, &mut trials);
+            }
+            let mut rng = rng_from_seed(7 + i as u64);
+            for _ in 0..2000 {
+                let mut noisy = [[0.0; LANES]; INPUTS];
+                for v in noisy.iter_mut().flatten() {
+                    *v = uniform(&mut rng, 0.0, SENSOR_MAX);
+                }
+                let rough = lanes.network::<true>(&rough_inputs_of(&noisy));
+                let exact = lanes.network::<false>(&inputs_of(&noisy));
+                for (o, l) in (0..OUTPUTS).flat_map(|o| (0..LANES).map(move |l| (o, l))) {
+                    let gap = (rough[o][l] - exact[o][l]).abs();
+                    assert!(
+                        gap <= lanes.rough[o][l],
+                        "scale {scale}: {gap} > {}",
+                        lanes.rough[o][l]
+                    );
+                }
+            }
+        }
+    }
+
+    /// The test of certainty takes the labels' side of every comparison: outputs that would
+    /// change the action inside the bound are not certain, outputs well clear of every edge
+    /// are, and NaN never is.
+    #[test]
+    fn certainty_needs_every_margin() {
+        use crate::simulation::robot::Action;
+        let (noise, tol) = ([1.0, 1.0], 0.25);
+        let label = |m: [f64; 2]| Action::from_speeds(2.0 * m[0] - 1.0, 2.0 * m[1] - 1.0, tol);
+        let b = [1e-4; 2];
+        // Clear of every edge: certain, and every output in the bound labels alike.
+        for m in [[0.9, 0.95], [0.1, 0.2], [0.3, 0.9], [0.9, 0.3]] {
+            assert!(actions_are_certain(m, b, noise, tol), "{m:?}");
+            for dm in [[-1e-4, 1e-4], [1e-4, -1e-4], [1e-4, 1e-4], [-1e-4, -1e-4]] {
+                assert_eq!(label([m[0] + dm[0], m[1] + dm[1]]), label(m), "{m:?}");
+            }
+        }
+        // On an edge: a speed at 0, a difference at ±tolerance.
+        for m in [
+            [0.5 + 5e-5, 0.2],
+            [0.2, 0.5 - 5e-5],
+            [0.6, 0.725 + 5e-5],
+            [0.725, 0.6],
+        ] {
+            assert!(!actions_are_certain(m, b, noise, tol), "{m:?}");
+        }
+        assert!(!actions_are_certain([f64::NAN, 0.9], b, noise, tol));
+        assert!(!actions_are_certain(
+            [0.9, 0.1],
+            [f64::INFINITY; 2],
+            noise,
+            tol
+        ));
     }
 
     /// Runs `n` random trials in `arena` in the lanes and alone, requires the same
-    /// trajectories and final poses, and returns each trial's executed steps.
-    fn check_lanes(arena: &Arena, n: usize, scale: f64) -> Vec<usize> {
+    /// trajectories and final poses, and returns each trial's executed steps. `motors`: whether
+    /// the observers read (and so compare) the motors and speeds.
+    fn check_lanes(arena: &Arena, n: usize, scale: f64, motors: bool) -> Vec<usize> {
         let (room, steps) = (&arena.room().name, arena.params().steps);
         let nets = networks(n, steps as u64 + n as u64, scale);
         let seed = |i: usize| 1000 + i as u64;
@@ -515,7 +758,7 @@ mod tests {
             .map(|(i, net)| LaneTrial {
                 net,
                 seed: seed(i),
-                observer: Until::new(arena, i),
+                observer: Until::new(arena, i, motors),
                 last: Pose::new(f64::NAN, f64::NAN, f64::NAN),
             })
             .collect();
@@ -523,7 +766,7 @@ mod tests {
         walk_lanes(arena, &mut trials);
         let mut executed = Vec::new();
         for (i, trial) in trials.iter().enumerate() {
-            let mut alone = Until::new(arena, i);
+            let mut alone = Until::new(arena, i, motors);
             let mut rng = rng_from_seed(seed(i));
             let last = simulate(arena, &mut nets[i].clone(), &mut rng, &mut alone);
             let what = format!("{room}, trial {i}");

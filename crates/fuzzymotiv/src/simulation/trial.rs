@@ -610,6 +610,16 @@ pub trait StepObserver {
     fn finished(&self) -> bool {
         false
     }
+
+    /// Whether `observe` reads a step's `motors` or `speeds`. Default: yes. When no observer of
+    /// a batch of trials does (the fitness terms, the action log), the lanes may choose a
+    /// step's action from rough network outputs whenever the exact ones could not choose
+    /// another, and report the rough outputs in `motors` and `speeds`; every other field of the
+    /// step is exact ([`crate::simulation::lanes`]).
+    #[inline]
+    fn reads_motors(&self) -> bool {
+        true
+    }
 }
 
 impl<O: StepObserver + ?Sized> StepObserver for &mut O {
@@ -622,10 +632,20 @@ impl<O: StepObserver + ?Sized> StepObserver for &mut O {
     fn finished(&self) -> bool {
         (**self).finished()
     }
+
+    #[inline]
+    fn reads_motors(&self) -> bool {
+        (**self).reads_motors()
+    }
 }
 
 impl StepObserver for () {
     fn observe(&mut self, _: &Step) {}
+
+    #[inline]
+    fn reads_motors(&self) -> bool {
+        false
+    }
 }
 
 impl<A: StepObserver, B: StepObserver> StepObserver for (A, B) {
@@ -637,6 +657,11 @@ impl<A: StepObserver, B: StepObserver> StepObserver for (A, B) {
     #[inline]
     fn finished(&self) -> bool {
         self.0.finished() || self.1.finished()
+    }
+
+    #[inline]
+    fn reads_motors(&self) -> bool {
+        self.0.reads_motors() || self.1.reads_motors()
     }
 }
 
@@ -1116,6 +1141,11 @@ impl StepObserver for ActionLog {
     #[inline]
     fn observe(&mut self, s: &Step) {
         self.actions.push(s.action);
+    }
+
+    #[inline]
+    fn reads_motors(&self) -> bool {
+        false
     }
 }
 
