@@ -612,10 +612,10 @@ pub trait StepObserver {
     }
 
     /// Whether `observe` reads a step's `motors` or `speeds`. Default: yes. When no observer of
-    /// a batch of trials does (the fitness terms, the action log), the lanes may choose a
-    /// step's action from rough network outputs whenever the exact ones could not choose
-    /// another, and report the rough outputs in `motors` and `speeds`; every other field of the
-    /// step is exact ([`crate::simulation::lanes`]).
+    /// a batch of evaluation trials does (the fitness terms, the action log), the lock-step
+    /// lanes of the evaluation may choose a step's action from rough network outputs whenever
+    /// the exact ones could not choose another, and report the rough outputs in `motors` and
+    /// `speeds`; every other field of the step is exact.
     #[inline]
     fn reads_motors(&self) -> bool {
         true
