@@ -110,7 +110,7 @@ fn walk<const AVX2: bool, O: StepObserver>(
     let (lo, hi) = (1.0 - params.noise, 1.0 + params.noise);
     let (v_max, tolerance) = (params.robot.v_max(), params.action_tolerance());
     // Whether the steps must carry the networks' exact outputs, or only exact actions.
-    let exact = trials.iter().any(|t| t.observer.reads_motors());
+    let exact = !rough_speeds_fit(v_max) || trials.iter().any(|t| t.observer.reads_motors());
     let mut lanes = Lanes::new(arena);
     let mut next = 0;
     for l in 0..LANES {
@@ -214,7 +214,7 @@ fn inputs_of(noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; INPUTS] {
 }
 
 /// The networks' rough inputs of the noisy readings `noisy[k][l]`: each times 1/1023, within
-/// 2⁻⁵³ (relative) of [`inputs_of`]'s quotient and without its division.
+/// one ulp (2⁻⁵², relative) of [`inputs_of`]'s quotient and without its division.
 #[inline(always)]
 fn rough_inputs_of(noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; INPUTS] {
     let mut x = [[0.0; LANES]; INPUTS];
@@ -483,19 +483,30 @@ impl Lanes {
 
 /// How far a rough output ([`Lanes::network_for_actions`]) can be from the exact one, for the
 /// output unit whose weights are `row` (bias first) in a network whose hidden units' sums of
-/// `|w|` are at most `hidden_sum`. Each rough input is within 2⁻⁵³ (relative) of the exact one
-/// and in [0, 1], so a hidden unit's sum, added in the same order, is within
-/// `hidden_sum · 10⁻¹⁴` (that and the roundings of both sums); the exact logistic has slope
-/// ≤ ¼ and is within 4 ulp of the true function, the rough one within `ε`
-/// ([`LOGISTIC_ROUGH_ERR`]) of the exact one, so each hidden value is within
-/// `e = ε + hidden_sum · 10⁻¹⁴`. The output's sum is then within `W·(e + 10⁻¹⁴)` (`W` = the
-/// sum of `|w|` of `row`) and the output within `e + W·(e + 10⁻¹⁴)/4 + 10⁻¹⁴`, taken 1 % wider
-/// for the rounding of this bound. Infinite or NaN for weights whose sums overflow: then no
-/// action is certain.
+/// `|w|` are at most `hidden_sum`. Each rough input is within one ulp (2⁻⁵², relative) of the
+/// exact one and in [0, 1], so a hidden unit's sum, added in the same order, is within
+/// `hidden_sum · 10⁻¹⁴` (that and the roundings of both sums, about `hidden_sum · 2.4·10⁻¹⁵`).
+/// The exact logistic is within a few ulp (under 10⁻¹⁵) of the true function, whose slope is
+/// ≤ ¼, so two exact values are within a quarter of their arguments' distance plus 10⁻¹⁴; the
+/// rough logistic is within `ε` ([`LOGISTIC_ROUGH_ERR`]) of the exact one. Each hidden value
+/// is thus within `e = ε + hidden_sum · 10⁻¹⁴ + 10⁻¹⁴`, the output's sum within
+/// `W·(e + 10⁻¹⁴)` (`W` = the sum of `|w|` of `row`) and the output within
+/// `e + W·(e + 10⁻¹⁴)/4 + 10⁻¹⁴`, taken 1 % wider for the rounding of this bound. Infinite or
+/// NaN for weights whose sums overflow: then no action is certain.
 fn rough_output_bound(row: &[f64], hidden_sum: f64) -> f64 {
     let w: f64 = row.iter().map(|w| w.abs()).sum();
-    let e = LOGISTIC_ROUGH_ERR + hidden_sum * 1e-14;
+    let e = LOGISTIC_ROUGH_ERR + hidden_sum * 1e-14 + 1e-14;
     1.01 * (e + w * (e + 1e-14) / 4.0 + 1e-14)
+}
+
+/// Whether the labels' speeds stay far from the ends of the double range with this `v_max`,
+/// which [`actions_are_certain`] needs: a speed it certifies is at least 10⁻¹² in units of
+/// `v_max` and at most 1.5 (the noise is at most 0.5), so with `v_max` in [10⁻²⁹⁰, 10³⁰⁰]
+/// every speed it certifies is a normal number, rounded by at most 2⁻⁵³ of itself, and
+/// `speed / v_max` is within a few ulp of `(2m − 1)·noise`. A robot outside that range (valid,
+/// if absurd: only `v_max > 0` is required) always takes the exact outputs.
+fn rough_speeds_fit(v_max: f64) -> bool {
+    (1e-290..=1e300).contains(&v_max)
 }
 
 /// Whether the action [`Motion::label`](crate::simulation::robot::Motion::label) gives is the
@@ -503,8 +514,9 @@ fn rough_output_bound(row: &[f64], hidden_sum: f64) -> f64 {
 /// `noise` (each in [1 − noise, 1 + noise)) and the action `tolerance`. The labels compare the
 /// noisy speeds `s = (2m − 1)·noise` (scaled by `v_max` and back) with 0 (a turn back when both
 /// are below) and their difference with `±tolerance`; an output within `b` of `m` moves its
-/// speed by at most `2·noise·b`, the roundings by less than 10⁻¹², so each comparison is certain
-/// when its margin exceeds that. A branch-free test (NaN is never certain).
+/// speed by at most `2·noise·b`, the roundings (with `v_max` in the range of
+/// [`rough_speeds_fit`]) by less than 10⁻¹², so each comparison is certain when its margin
+/// exceeds that. A branch-free test (NaN is never certain).
 #[inline(always)]
 fn actions_are_certain(m: [f64; 2], bound: [f64; 2], noise: [f64; 2], tolerance: f64) -> bool {
     let s = [0, 1].map(|w| (2.0 * m[w] - 1.0) * noise[w]);
@@ -737,6 +749,11 @@ mod tests {
             assert!(!actions_are_certain(m, b, noise, tol), "{m:?}");
         }
         assert!(!actions_are_certain([f64::NAN, 0.9], b, noise, tol));
+        // Speeds that would be subnormal or overflow in the labels never take the rough path.
+        assert!(rough_speeds_fit(80.0) && rough_speeds_fit(1e-290) && rough_speeds_fit(1e300));
+        for v_max in [5e-324, f64::MIN_POSITIVE, 1e-291, 1e301, f64::MAX, f64::NAN] {
+            assert!(!rough_speeds_fit(v_max), "{v_max}");
+        }
         assert!(!actions_are_certain(
             [0.9, 0.1],
             [f64::INFINITY; 2],

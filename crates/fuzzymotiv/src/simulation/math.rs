@@ -281,11 +281,12 @@ pub(crate) const LOGISTIC_ROUGH_ERR: f64 = 4e-6;
 /// A rough [`logistic`] of each lane, within [`LOGISTIC_ROUGH_ERR`] of it for every `f64` (NaN
 /// for NaN), in a few vector instructions per four lanes: no table, no branch, no exact
 /// rounding. `e^(−x) = 2^t`, `t = −x·log₂e` clamped to ±60 (beyond, both functions are within
-/// 10⁻²⁶ of 0 or 1), is split into `2^k · 2^f` with `k` the integer nearest `t`, `|f| ≤ ½`, and
-/// `2^f = e^(f·ln 2)` is a degree-5 Taylor polynomial (relative error under 3.4·10⁻⁶, which the
-/// logistic's slope `σ(1 − σ) ≤ ¼` turns into 8.5·10⁻⁷). For a decision taken on the value
-/// with a margin wider than the error, never for a number that is kept: the lanes choose an
-/// action with it when no exact value could choose another ([`crate::simulation::lanes`]).
+/// 2⁻⁶⁰ ≈ 10⁻¹⁸ of 0 or 1), is split into `2^k · 2^f` with `k` the integer nearest `t`,
+/// `|f| ≤ ½`, and `2^f = e^(f·ln 2)` is a degree-5 Taylor polynomial (relative error under
+/// 3.4·10⁻⁶, which the logistic's slope `σ(1 − σ) ≤ ¼` turns into 8.5·10⁻⁷). For a decision
+/// taken on the value with a margin wider than the error, never for a number that is kept: the
+/// lanes choose an action with it when no exact value could choose another
+/// ([`crate::simulation::lanes`]).
 #[inline(always)]
 pub(crate) fn logistic_rough_lanes<const L: usize>(x: [f64; L]) -> [f64; L] {
     let mut out = [0.0; L];
