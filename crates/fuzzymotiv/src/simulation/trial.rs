@@ -81,11 +81,7 @@ impl Arena {
     pub fn new(room: Room, params: &TrialParams) -> Arena {
         let walls = room.walls();
         let (lo, hi) = room.bounds();
-        let grid = Grid {
-            origin: lo,
-            cols: (((hi.x - lo.x) / CELL).ceil() as usize).max(1),
-            rows: (((hi.y - lo.y) / CELL).ceil() as usize).max(1),
-        };
+        let grid = Grid::new(lo, hi);
         let radius = params.robot.radius();
         let near_reach = sensing_reach(params.sensor_model).max(radius + params.max_step());
         // A wall can matter to a robot in a cell if it is within reach of some point of the cell.
@@ -166,9 +162,11 @@ impl Arena {
     #[inline]
     pub fn cell_of(&self, p: Vec2) -> usize {
         let g = &self.grid;
-        // Clamped to ≥ 0 first, so truncation equals floor.
-        let i = ((p.x - g.origin.x) / CELL).clamp(0.0, (g.cols - 1) as f64) as usize;
-        let j = ((p.y - g.origin.y) / CELL).clamp(0.0, (g.rows - 1) as f64) as usize;
+        // Clamped to ≥ 0 first, so truncation equals floor; then below 400 (the coordinates
+        // are within ±`MAX_COORD`), so a conversion to `u32` (fewer instructions than to
+        // `usize`) loses nothing.
+        let i = ((p.x - g.origin.x) / CELL).clamp(0.0, g.last[0]) as u32 as usize;
+        let j = ((p.y - g.origin.y) / CELL).clamp(0.0, g.last[1]) as u32 as usize;
         j * g.cols + i
     }
 
@@ -393,9 +391,24 @@ struct Grid {
     origin: Vec2,
     cols: usize,
     rows: usize,
+    /// The last column's and the last row's index, as numbers (for [`Arena::cell_of`]).
+    last: [f64; 2],
 }
 
 impl Grid {
+    /// The cells covering the bounding box from `lo` to `hi`.
+    fn new(lo: Vec2, hi: Vec2) -> Grid {
+        let cols = (((hi.x - lo.x) / CELL).ceil() as usize).max(1);
+        let rows = (((hi.y - lo.y) / CELL).ceil() as usize).max(1);
+        let last = [(cols - 1) as f64, (rows - 1) as f64];
+        Grid {
+            origin: lo,
+            cols,
+            rows,
+            last,
+        }
+    }
+
     fn cells(&self) -> usize {
         self.cols * self.rows
     }
@@ -1176,6 +1189,39 @@ mod tests {
 
     fn square() -> Arena {
         Arena::new(Room::builtin("square").unwrap(), &TrialParams::default())
+    }
+
+    /// `cell_of` is the clamped floor of the position in cells, computed in `usize`, for
+    /// points inside, on the edges of and far outside the grid of rooms of every size.
+    #[test]
+    fn cells_are_the_clamped_floor_of_the_position() {
+        let far = crate::simulation::room::MAX_COORD;
+        for name in ["square", "H", "T", "L", "rectangle"] {
+            let a = Arena::new(Room::builtin(name).unwrap(), &TrialParams::default());
+            let g = &a.grid;
+            let plain = |p: Vec2| {
+                let i = ((p.x - g.origin.x) / CELL).clamp(0.0, (g.cols - 1) as f64) as usize;
+                let j = ((p.y - g.origin.y) / CELL).clamp(0.0, (g.rows - 1) as f64) as usize;
+                j * g.cols + i
+            };
+            let mut xs = vec![
+                -far,
+                3.0 * -far,
+                g.origin.x,
+                g.origin.x - 1e-9,
+                far,
+                3.0 * far,
+            ];
+            xs.extend((0..=4 * g.cols.max(g.rows)).map(|k| g.origin.x + 12.5 * k as f64));
+            xs.extend((0..997).map(|k| g.origin.x - 60.0 + 0.73 * k as f64));
+            for &x in &xs {
+                for &y in &xs {
+                    let p = Vec2::new(x, y - g.origin.x + g.origin.y);
+                    assert_eq!(a.cell_of(p), plain(p), "{name} at {p:?}");
+                }
+            }
+            assert_eq!(a.cell_of(Vec2::new(far, far)), g.cells() - 1);
+        }
     }
 
     #[test]
