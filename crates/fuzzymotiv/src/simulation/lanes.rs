@@ -9,7 +9,8 @@
 //! `simulate` takes: the same operations in the same order on each lane's own numbers, its own
 //! random stream drawn in the same order (ten draws per step: eight sensors, two wheels), the
 //! same observer calls. The one difference in the arithmetic is that a lane adds `w · 0` for a
-//! sensor that reads 0, which `simulate`'s network skips: with finite weights that term is ±0,
+//! sensor that reads 0 (unless it reads +0 in all four lanes: then all skip it), which
+//! `simulate`'s network skips: with finite weights that term is ±0,
 //! which leaves a sum unchanged except for the sign of a zero sum, and `logistic(±0)` is the
 //! same 0.5. The tests below compare whole trajectories with `simulate`'s.
 //!
@@ -123,28 +124,23 @@ fn walk<const AVX2: bool, O: StepObserver>(
                 *sight = walk.sight(arena, memo.as_deref_mut());
             }
         }
-        // Sensor `k` of every lane side by side, for the vector lanes below (a whole-array
-        // transposition, which the compiler does with shuffles).
-        let mut raw = [[0.0; LANES]; INPUTS];
-        for (k, r) in raw.iter_mut().enumerate() {
-            for l in 0..LANES {
-                r[l] = sights[l].sensors[k];
-            }
-        }
+        // Sensor `k` of every lane side by side, for the vector lanes below.
+        let mut raw = side_by_side::<AVX2>(&sights);
         // Plain loops, not `array::from_fn`, here and below: a closure the compiler leaves out
         // of line would run without this function's AVX2.
         let mut draws = [[0.0; LANES]; DRAWS];
         for d in &mut draws {
             *d = lanes.streams.next_units::<AVX2>();
         }
-        add_sensor_noise(&mut raw, &draws, (lo, hi));
         // In open floor every reading of a lane is 0 (a third of the study's steps), and so
-        // every input; when that holds for all four, each network's output is the one it
-        // computed at the start. (Tested on the readings, not on the inputs, so that the test
-        // does not wait for the division; should a reading give an input of 0, the network
-        // computes the same outputs from it.) A fold, not `all`: no early exit, so the test is a
-        // few vector compares.
-        let motors = match raw.iter().flatten().fold(true, |z, &v| z & (v == 0.0)) {
+        // every noisy reading and input; when that holds for all four, each network's output
+        // is the one it computed at the start. Tested on the bits of the readings before the
+        // noise, so that the test waits for nothing: one vector `or` per sensor. (A reading of
+        // −0, or one whose noisy reading or input is 0, runs the networks, which compute the
+        // same outputs from inputs of ±0.)
+        let open_floor = raw.iter().flatten().fold(0, |z, &v| z | v.to_bits()) == 0;
+        add_sensor_noise(&mut raw, &draws, (lo, hi));
+        let motors = match open_floor {
             true => lanes.idle,
             false if exact => lanes.network::<false>(&inputs_of(&raw)),
             false => lanes.network_for_actions(&raw, &draws, (lo, hi), tolerance),
@@ -182,6 +178,57 @@ fn walk<const AVX2: bool, O: StepObserver>(
     }
 }
 
+/// `raw[k][l]`: sensor `k` of lane `l`'s sight (the readings transposed). The compiler moves
+/// the 32 values one by one; the AVX2 form is eight loads and sixteen shuffles.
+#[inline(always)]
+fn side_by_side<const AVX2: bool>(sights: &[Sight; LANES]) -> [[f64; LANES]; INPUTS] {
+    let mut raw = [[0.0; LANES]; INPUTS];
+    #[cfg(target_arch = "x86_64")]
+    if AVX2 {
+        // SAFETY: `AVX2` is only set in `walk_avx2`, which runs only on processors with AVX2.
+        unsafe { side_by_side_avx2(sights, &mut raw) };
+        return raw;
+    }
+    for (k, r) in raw.iter_mut().enumerate() {
+        for l in 0..LANES {
+            r[l] = sights[l].sensors[k];
+        }
+    }
+    raw
+}
+
+/// [`side_by_side`] in AVX2 instructions: each block of four sensors of the four lanes is a
+/// 4 × 4 transposition (pairs interleaved within halves, then halves exchanged).
+///
+/// # Safety
+/// The processor must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn side_by_side_avx2(sights: &[Sight; LANES], raw: &mut [[f64; LANES]; INPUTS]) {
+    use std::arch::x86_64::{
+        _mm256_loadu_pd, _mm256_permute2f128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd,
+        _mm256_unpacklo_pd,
+    };
+    const { assert!(LANES == 4 && INPUTS % 4 == 0, "blocks of four doubles") };
+    for b in 0..INPUTS / 4 {
+        // SAFETY: every pointer is to four consecutive `f64` inside `sights[l].sensors` or
+        // `raw` (4·b + 3 < INPUTS); the unaligned forms need no alignment.
+        unsafe {
+            let row = |l: usize| _mm256_loadu_pd(sights[l].sensors[4 * b..].as_ptr());
+            let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
+            let (t0, t1) = (_mm256_unpacklo_pd(r0, r1), _mm256_unpackhi_pd(r0, r1));
+            let (t2, t3) = (_mm256_unpacklo_pd(r2, r3), _mm256_unpackhi_pd(r2, r3));
+            // Rows 4·b … 4·b + 3 of `raw`, end to end.
+            let out = raw[4 * b..].as_mut_ptr().cast::<f64>();
+            _mm256_storeu_pd(out, _mm256_permute2f128_pd::<0x20>(t0, t2));
+            _mm256_storeu_pd(out.add(LANES), _mm256_permute2f128_pd::<0x20>(t1, t3));
+            _mm256_storeu_pd(out.add(2 * LANES), _mm256_permute2f128_pd::<0x31>(t0, t2));
+            _mm256_storeu_pd(out.add(3 * LANES), _mm256_permute2f128_pd::<0x31>(t1, t3));
+        }
+    }
+}
+
 /// Adds the sensor noise to the readings `raw[k][l]` (sensor `k` of lane `l`) with the step's
 /// uniform draws `draws` on [`lo`, `hi`), as `perturb_sensors` does one robot's.
 #[inline(always)]
@@ -190,13 +237,15 @@ fn add_sensor_noise(
     draws: &[[f64; LANES]; DRAWS],
     (lo, hi): (f64, f64),
 ) {
-    // Both sides of each choice are computed for every lane and one is picked, so that the
-    // loop runs in vector lanes without branches; the picked values are those of the branches.
+    // `perturb_sensors` keeps a reading of 0 and clamps a scaled one to [0, 1023]. A reading is
+    // in [0, 1023] and the noise factor in [0.5, 1.5] (the noise level is at most 0.5), so the
+    // product of a reading of ±0 is that same zero, and a product is never below 0: only the
+    // upper end of the clamp can act. So one product and one minimum per value, in vector
+    // lanes without a branch, give the bits of `perturb_sensors`' branches.
+    debug_assert!(lo > 0.0 && hi.is_finite());
     for k in 0..INPUTS {
         for l in 0..LANES {
-            let v = raw[k][l];
-            let scaled = (v * (lo + (hi - lo) * draws[k][l])).clamp(0.0, SENSOR_MAX);
-            raw[k][l] = if v == 0.0 { v } else { scaled };
+            raw[k][l] = (raw[k][l] * (lo + (hi - lo) * draws[k][l])).min(SENSOR_MAX);
         }
     }
 }
@@ -447,13 +496,18 @@ impl Lanes {
     }
 
     /// The four networks on their inputs `x[k][l]` (input `k` of lane `l`): each unit's sum
-    /// `bias + w₁·x₁ + … + w₈·x₈` in that order, as `Mlp::step` adds it, then the logistic
+    /// `bias + w₁·x₁ + … + w₈·x₈` in that order, as `Mlp::step` adds it (it skips an input of
+    /// 0; here an input of +0 in all four lanes is skipped, as most are, and any other added:
+    /// `w · 0` changes no sum but the sign of a zero one), then the logistic
     /// units of a layer together ([`logistic_lanes`]: the scalar function's bits; `ROUGH`:
     /// [`logistic_rough_lanes`], for [`Lanes::network_for_actions`]).
     #[inline(always)]
     fn network<const ROUGH: bool>(&self, x: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; OUTPUTS] {
         let mut sums = self.hidden[0];
         for (k, xk) in x.iter().enumerate() {
+            if xk.iter().fold(0, |z, v| z | v.to_bits()) == 0 {
+                continue;
+            }
             for (s, w) in sums.iter_mut().zip(&self.hidden[k + 1]) {
                 for l in 0..LANES {
                     s[l] += w[l] * xk[l];
@@ -846,6 +900,33 @@ mod tests {
 
     /// Networks that the lanes do not run are told apart: another hidden size, a weight that
     /// is not finite, `wheels` motion, no noise.
+    /// The AVX2 transposition of the lanes' readings is the plain one, value for value (with
+    /// distinct bits in every place, and the signs of zeros).
+    #[test]
+    fn readings_side_by_side_in_both_forms() {
+        if Isa::detected() == Isa::Baseline {
+            return; // no AVX2 here: only the plain form runs
+        }
+        let mut sights = [Sight::CLEAR; LANES];
+        for (l, sight) in sights.iter_mut().enumerate() {
+            for (k, v) in sight.sensors.iter_mut().enumerate() {
+                *v = (10 * l + k) as f64 + 0.25;
+            }
+        }
+        sights[2].sensors[5] = -0.0;
+        let plain = side_by_side::<false>(&sights);
+        for (k, row) in plain.iter().enumerate() {
+            for (l, v) in row.iter().enumerate() {
+                assert_eq!(v.to_bits(), sights[l].sensors[k].to_bits());
+            }
+        }
+        let avx2 = side_by_side::<true>(&sights);
+        assert_eq!(
+            flat::<INPUTS, 32>(&avx2).map(f64::to_bits),
+            flat(&plain).map(f64::to_bits)
+        );
+    }
+
     #[test]
     fn lanes_fit_only_what_they_run_exactly() {
         let arena = arena("H", true, 10);
