@@ -138,7 +138,7 @@ fn walk<const AVX2: bool, O: StepObserver>(
         // noise, so that the test waits for nothing: one vector `or` per sensor. (A reading of
         // −0, or one whose noisy reading or input is 0, runs the networks, which compute the
         // same outputs from inputs of ±0.)
-        let open_floor = raw.iter().flatten().fold(0, |z, &v| z | v.to_bits()) == 0;
+        let open_floor = all_plus_zero(raw.iter().flatten());
         add_sensor_noise(&mut raw, &draws, (lo, hi));
         let motors = match open_floor {
             true => lanes.idle,
@@ -176,6 +176,13 @@ fn walk<const AVX2: bool, O: StepObserver>(
             }
         }
     }
+}
+
+/// Whether every one of `values` is +0: their bits ORed together (no compare, no early exit, so
+/// a few vector `or`s for an array).
+#[inline(always)]
+fn all_plus_zero<'a>(values: impl IntoIterator<Item = &'a f64>) -> bool {
+    values.into_iter().fold(0, |z, v| z | v.to_bits()) == 0
 }
 
 /// `raw[k][l]`: sensor `k` of lane `l`'s sight (the readings transposed). The compiler moves
@@ -505,7 +512,7 @@ impl Lanes {
     fn network<const ROUGH: bool>(&self, x: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; OUTPUTS] {
         let mut sums = self.hidden[0];
         for (k, xk) in x.iter().enumerate() {
-            if xk.iter().fold(0, |z, v| z | v.to_bits()) == 0 {
+            if all_plus_zero(xk) {
                 continue;
             }
             for (s, w) in sums.iter_mut().zip(&self.hidden[k + 1]) {
@@ -898,8 +905,6 @@ mod tests {
         }
     }
 
-    /// Networks that the lanes do not run are told apart: another hidden size, a weight that
-    /// is not finite, `wheels` motion, no noise.
     /// The AVX2 transposition of the lanes' readings is the plain one, value for value (with
     /// distinct bits in every place, and the signs of zeros).
     #[test]
@@ -927,6 +932,8 @@ mod tests {
         );
     }
 
+    /// Networks that the lanes do not run are told apart: another hidden size, a weight that
+    /// is not finite, `wheels` motion, no noise.
     #[test]
     fn lanes_fit_only_what_they_run_exactly() {
         let arena = arena("H", true, 10);
