@@ -4,6 +4,7 @@
 
 pub(crate) mod controller;
 pub(crate) mod geom;
+pub(crate) mod isa;
 pub(crate) mod lanes;
 pub(crate) mod math;
 pub(crate) mod memo;

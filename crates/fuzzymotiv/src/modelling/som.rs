@@ -6,7 +6,7 @@
 
 use crate::params::{BIG, FieldError, Num, check};
 use crate::random::rng::{Rng, shuffle, uniform};
-use crate::simulation::trial::Isa;
+use crate::simulation::isa::Isa;
 
 /// The most nodes a map may have.
 pub const MAX_NODES: usize = 100_000;

@@ -255,7 +255,7 @@ fn step_fixed<const H: usize>(
 }
 
 impl Controller for Mlp {
-    // Always inlined: the step loop is also compiled for AVX2 (`trial::Isa`), and a network
+    // Always inlined: the step loop is also compiled for AVX2 (`isa::Isa`), and a network
     // called out of line would run the baseline code there.
     #[inline(always)]
     fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {

@@ -244,6 +244,14 @@ impl PreparedSegment {
         e.dot(e)
     }
 
+    /// The wall's start, its direction `b − a` and the reciprocal of its squared length (0 for
+    /// a point), for casts that redo [`PreparedSegment::dist2_to`] and
+    /// [`PreparedSegment::lower_ray_hits`] in vector lanes.
+    #[inline]
+    pub(crate) fn parts(&self) -> (Vec2, Vec2, f64) {
+        (self.a, self.d, self.inv_len2)
+    }
+
     /// Lowers each `nearest[r]` to the distance at which the ray from `origin` along `dirs[r]`
     /// hits this wall, when it does. The same arithmetic, bit for bit, as
     /// [`Segment::ray_hit`]; the part that does not depend on the direction (`a − origin` and

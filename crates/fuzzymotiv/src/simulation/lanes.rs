@@ -24,11 +24,12 @@
 //! ones; only the steps' `motors` and `speeds` are rough.
 
 use crate::simulation::controller::{INPUTS, Mlp, OUTPUTS};
+use crate::simulation::isa::Isa;
 use crate::simulation::math::{LOGISTIC_ROUGH_ERR, logistic_lanes, logistic_rough_lanes};
 use crate::simulation::memo::{Sight, Table, memo_live, with_table};
 use crate::simulation::robot::{Motion, Pose};
 use crate::simulation::sensor::SENSOR_MAX;
-use crate::simulation::trial::{Arena, Isa, Sensed, StepObserver, Walk};
+use crate::simulation::trial::{Arena, Sensed, StepObserver, Walk};
 
 /// Trials stepped together.
 pub(crate) const LANES: usize = 4;

@@ -5,9 +5,12 @@
 //! to each of the twelve headings of the [`Compass`] (the same products a turn per step would
 //! compute, done once). [`Eyes::read`] casts them: a wall farther from a sensor than its
 //! longest ray cannot change the sensor's value, so it is skipped; the others are tested
-//! against every ray of the sensor at once ([`PreparedSegment::lower_ray_hits`]).
+//! against every ray of the sensor at once ([`PreparedSegment::lower_ray_hits`]). On the
+//! compass with three rays a sensor, on processors with AVX2, four sensors are cast together in
+//! vector lanes ([`Eyes::cast_avx2`]), with the same bits.
 
 use crate::simulation::geom::{PreparedSegment, Vec2};
+use crate::simulation::isa::Isa;
 use crate::simulation::robot::Compass;
 use crate::simulation::sensor::SENSORS as INPUTS;
 use crate::simulation::sensor::{RayMount, SENSOR_MAX, SensorModel, ray_count, rays};
@@ -18,6 +21,16 @@ use crate::simulation::sensor::{RayMount, SENSOR_MAX, SensorModel, ray_count, ra
 pub struct TurnedRays {
     origins: [Vec2; INPUTS],
     dirs: [[Vec2; 3]; INPUTS],
+    /// The same numbers sensor by sensor side by side.
+    side: SideBySide,
+}
+
+/// The eight sensors' rays side by side, for casting them in vector lanes: `origin[c][s]` is
+/// coordinate `c` (x, y) of sensor `s`'s origin, `dir[r][c][s]` of its ray `r`'s direction.
+#[derive(Debug, Clone, Copy)]
+struct SideBySide {
+    origin: [[f64; INPUTS]; 2],
+    dir: [[[f64; INPUTS]; 2]; 3],
 }
 
 /// The eight sensors of one response model, ready to read.
@@ -32,6 +45,8 @@ pub struct Eyes {
     range2: f64,
     /// The rays turned to each compass heading.
     compass: [TurnedRays; 12],
+    /// The instructions this processor runs ([`Eyes::cast_avx2`] needs AVX2).
+    isa: Isa,
 }
 
 impl Eyes {
@@ -39,10 +54,10 @@ impl Eyes {
     pub fn new(model: SensorModel, compass: &Compass) -> Eyes {
         let mounts = rays(model);
         let per_sensor = ray_count(model);
-        let body = TurnedRays {
-            origins: mounts.map(|m| m[0].origin),
-            dirs: mounts.map(|m| m.map(|r| Vec2::from_angle(r.angle))),
-        };
+        let body = TurnedRays::new(
+            mounts.map(|m| m[0].origin),
+            mounts.map(|m| m.map(|r| Vec2::from_angle(r.angle))),
+        );
         let range = mounts
             .iter()
             .flat_map(|m| m[..per_sensor].iter())
@@ -55,6 +70,7 @@ impl Eyes {
             per_sensor,
             range2: range * range,
             compass: std::array::from_fn(|k| body.turned(compass.sin[k], compass.cos[k])),
+            isa: Isa::detected(),
         }
     }
 
@@ -74,8 +90,13 @@ impl Eyes {
         walls: &[PreparedSegment],
         near: &[u32],
     ) -> [f64; INPUTS] {
-        match self.per_sensor {
-            3 => self.read_rays::<3>(pos, facing, walls, near),
+        match (self.per_sensor, facing) {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
+            (3, Facing::Compass(t)) if self.isa == Isa::Avx2 => unsafe {
+                self.cast_avx2(pos, &t.side, walls, near)
+            },
+            (3, _) => self.read_rays::<3>(pos, facing, walls, near),
             _ => self.read_rays::<1>(pos, facing, walls, near),
         }
     }
@@ -108,6 +129,117 @@ impl Eyes {
             let mut total = 0.0;
             for (ray, &d) in self.mounts[s][..N].iter().zip(&nearest) {
                 total += ray.value(d);
+            }
+            *o = total.min(SENSOR_MAX);
+        }
+        out
+    }
+
+    /// [`Eyes::read_rays`] with three rays a sensor, `rays` turned in advance, in AVX2 vector
+    /// lanes: for each half of the sensors and each near wall, the four sensors' distance test
+    /// ([`PreparedSegment::dist2_to`]), then, when one of them is in range, the hits of their
+    /// three rays ([`PreparedSegment::lower_ray_hits`]) with those out of range masked off, as
+    /// the scalar loop skips them. The same operations on the same numbers, so the same bits;
+    /// a ray's nearest hit is the minimum over the walls, whatever their order (its zero may
+    /// have either sign, which no ray's value tells apart).
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn cast_avx2(
+        &self,
+        pos: Vec2,
+        rays: &SideBySide,
+        walls: &[PreparedSegment],
+        near: &[u32],
+    ) -> [f64; INPUTS] {
+        use std::arch::x86_64::{
+            _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_pd, _mm256_and_pd,
+            _mm256_blendv_pd, _mm256_cmp_pd, _mm256_div_pd, _mm256_loadu_pd, _mm256_max_pd,
+            _mm256_min_pd, _mm256_movemask_pd, _mm256_mul_pd, _mm256_or_pd, _mm256_set1_pd,
+            _mm256_setzero_pd, _mm256_storeu_pd, _mm256_sub_pd,
+        };
+        const { assert!(INPUTS == 8, "two halves of four sensors") };
+        let mut nearest = [[f64::INFINITY; INPUTS]; 3];
+        for half in [0, 4] {
+            // SAFETY: every load and store is of four consecutive `f64` from `half` ≤ 4 in an
+            // array of eight; the unaligned forms need no alignment.
+            unsafe {
+                let four = |a: &[f64; INPUTS]| _mm256_loadu_pd(a[half..].as_ptr());
+                let ox = _mm256_add_pd(_mm256_set1_pd(pos.x), four(&rays.origin[0]));
+                let oy = _mm256_add_pd(_mm256_set1_pd(pos.y), four(&rays.origin[1]));
+                let dirs = [0, 1, 2].map(|r| (four(&rays.dir[r][0]), four(&rays.dir[r][1])));
+                let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
+                let range2 = _mm256_set1_pd(self.range2);
+                let mut best = [_mm256_set1_pd(f64::INFINITY); 3];
+                for &k in near {
+                    let (a, d, inv_len2) = walls[k as usize].parts();
+                    let (ax, ay) = (_mm256_set1_pd(a.x), _mm256_set1_pd(a.y));
+                    let (dx, dy) = (_mm256_set1_pd(d.x), _mm256_set1_pd(d.y));
+                    // `dist2_to`: w = p − a, t = (w·d)/|d|² in [0, 1] (`max` then `min` with
+                    // the operands in the order that keeps a −0 or a NaN, as `clamp`), e = w − d·t.
+                    let (px, py) = (_mm256_sub_pd(ox, ax), _mm256_sub_pd(oy, ay));
+                    let dot = _mm256_add_pd(_mm256_mul_pd(px, dx), _mm256_mul_pd(py, dy));
+                    let t = _mm256_mul_pd(dot, _mm256_set1_pd(inv_len2));
+                    let t = _mm256_min_pd(one, _mm256_max_pd(zero, t));
+                    let ex = _mm256_sub_pd(px, _mm256_mul_pd(dx, t));
+                    let ey = _mm256_sub_pd(py, _mm256_mul_pd(dy, t));
+                    let dist2 = _mm256_add_pd(_mm256_mul_pd(ex, ex), _mm256_mul_pd(ey, ey));
+                    let seen = _mm256_cmp_pd::<_CMP_LE_OQ>(dist2, range2);
+                    if _mm256_movemask_pd(seen) == 0 {
+                        continue;
+                    }
+                    // `lower_ray_hits`: w = a − origin, t = (w × d)/(dir × d) ≥ 0 and
+                    // u = (w × dir)/(dir × d) in [0, 1], tested without dividing.
+                    let (wx, wy) = (_mm256_sub_pd(ax, ox), _mm256_sub_pd(ay, oy));
+                    let t_num = _mm256_sub_pd(_mm256_mul_pd(wx, dy), _mm256_mul_pd(wy, dx));
+                    let t_ahead = _mm256_cmp_pd::<_CMP_GE_OQ>(t_num, zero);
+                    let t_behind = _mm256_cmp_pd::<_CMP_LE_OQ>(t_num, zero);
+                    for (b, &(rx, ry)) in best.iter_mut().zip(&dirs) {
+                        let denom = _mm256_sub_pd(_mm256_mul_pd(rx, dy), _mm256_mul_pd(ry, dx));
+                        let u = _mm256_sub_pd(_mm256_mul_pd(wx, ry), _mm256_mul_pd(wy, rx));
+                        let ahead = _mm256_and_pd(
+                            _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(denom, zero), t_ahead),
+                            _mm256_and_pd(
+                                _mm256_cmp_pd::<_CMP_GE_OQ>(u, zero),
+                                _mm256_cmp_pd::<_CMP_LE_OQ>(u, denom),
+                            ),
+                        );
+                        let behind = _mm256_and_pd(
+                            _mm256_and_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(denom, zero), t_behind),
+                            _mm256_and_pd(
+                                _mm256_cmp_pd::<_CMP_LE_OQ>(u, zero),
+                                _mm256_cmp_pd::<_CMP_GE_OQ>(u, denom),
+                            ),
+                        );
+                        let hit = _mm256_and_pd(_mm256_or_pd(ahead, behind), seen);
+                        let q = _mm256_div_pd(t_num, denom);
+                        *b = _mm256_blendv_pd(*b, _mm256_min_pd(q, *b), hit);
+                    }
+                }
+                for (n, b) in nearest.iter_mut().zip(best) {
+                    _mm256_storeu_pd(n[half..].as_mut_ptr(), b);
+                }
+            }
+        }
+        self.values(&nearest)
+    }
+
+    /// The sensors' values from their three rays' nearest hits `nearest[r][s]` (∞ for none),
+    /// as [`Eyes::read_rays`] adds them; a sensor none of whose rays hits reads +0, which is
+    /// also what its three values of 0 add to.
+    #[cfg(target_arch = "x86_64")]
+    #[inline]
+    fn values(&self, nearest: &[[f64; INPUTS]; 3]) -> [f64; INPUTS] {
+        let mut out = [0.0; INPUTS];
+        for (s, o) in out.iter_mut().enumerate() {
+            if nearest.iter().all(|n| n[s] == f64::INFINITY) {
+                continue;
+            }
+            let mut total = 0.0;
+            for (ray, n) in self.mounts[s].iter().zip(nearest) {
+                total += ray.value(n[s]);
             }
             *o = total.min(SENSOR_MAX);
         }
@@ -151,12 +283,25 @@ impl Facing<'_> {
 }
 
 impl TurnedRays {
+    /// The rays with sensor origins `origins` and directions `dirs`.
+    fn new(origins: [Vec2; INPUTS], dirs: [[Vec2; 3]; INPUTS]) -> TurnedRays {
+        let side = SideBySide {
+            origin: [origins.map(|o| o.x), origins.map(|o| o.y)],
+            dir: std::array::from_fn(|r| [dirs.map(|d| d[r].x), dirs.map(|d| d[r].y)]),
+        };
+        TurnedRays {
+            origins,
+            dirs,
+            side,
+        }
+    }
+
     /// These rays turned by the rotation with sine `s` and cosine `c`.
     fn turned(&self, s: f64, c: f64) -> TurnedRays {
-        TurnedRays {
-            origins: self.origins.map(|v| v.rotate_by(s, c)),
-            dirs: self.dirs.map(|d| d.map(|v| v.rotate_by(s, c))),
-        }
+        TurnedRays::new(
+            self.origins.map(|v| v.rotate_by(s, c)),
+            self.dirs.map(|d| d.map(|v| v.rotate_by(s, c))),
+        )
     }
 }
 
@@ -181,6 +326,57 @@ mod tests {
                 assert_eq!(fresh.dirs(&eyes.body, s), table.dirs(&eyes.body, s));
             }
         }
+    }
+
+    /// The AVX2 cast reads, bit for bit, what the scalar one reads: every room's walls, listed
+    /// in order, backwards and a few at a time, from poses in and around the rooms (on walls,
+    /// at corners, outside), on all twelve headings, with the built-in sensors and a sensor
+    /// table's.
+    #[test]
+    fn vector_cast_reads_what_the_scalar_cast_reads() {
+        use crate::simulation::room::{BUILTIN_ROOMS, Room};
+        use crate::simulation::sensor::TableRef;
+        use crate::simulation::sensor_table::SensorTable;
+        if Isa::detected() == Isa::Baseline {
+            return; // nothing to compare
+        }
+        let table = SensorModel::Table(TableRef(SensorTable::khepera().intern()));
+        let mut lit = 0;
+        for model in [SensorModel::Sampled, table] {
+            let compass = Compass::new(0.7);
+            let eyes = Eyes::new(model, &compass);
+            assert_eq!(eyes.per_sensor, 3);
+            for name in BUILTIN_ROOMS {
+                let room = Room::builtin(name).unwrap();
+                let walls: Vec<_> = room.walls().iter().map(PreparedSegment::new).collect();
+                let all: Vec<u32> = (0..walls.len() as u32).collect();
+                let backwards: Vec<u32> = all.iter().rev().copied().collect();
+                let (lo, hi) = room.bounds();
+                for i in 0..1500 {
+                    let f = |n: usize, m: usize| (i * n % m) as f64 / m as f64;
+                    let mut pos = Vec2::new(
+                        lo.x - 60.0 + (hi.x - lo.x + 120.0) * f(37, 997),
+                        lo.y - 60.0 + (hi.y - lo.y + 120.0) * f(53, 991),
+                    );
+                    if i % 5 == 0 {
+                        pos = walls[i % walls.len()].parts().0; // on a wall's end
+                    }
+                    let dir = i % 12;
+                    let facing = Facing::Compass(eyes.on_compass(dir));
+                    let few = &all[i % all.len()..(i % all.len() + 3).min(all.len())];
+                    for near in [&all[..], &backwards[..], few] {
+                        let scalar = eyes.read_rays::<3>(pos, facing, &walls, near);
+                        let vector = eyes.read(pos, facing, &walls, near);
+                        assert_eq!(scalar.map(f64::to_bits), vector.map(f64::to_bits));
+                        lit += scalar.iter().filter(|&&v| v > 0.0).count();
+                    }
+                }
+            }
+        }
+        assert!(
+            lit > 10_000,
+            "{lit}: too few sensors saw a wall to test anything"
+        );
     }
 
     /// A wall beyond every ray's range is skipped and reads 0, as a wall not listed at all.

@@ -1,0 +1,27 @@
+//! Which instructions the hot loops are compiled for, detected once per call at run time.
+
+/// Which instructions a loop (a trial's steps, the lanes, a look's rays, the SOM) is compiled
+/// for. Both forms run the same IEEE-754 operations in the same order (no fused multiply-add:
+/// Rust never contracts `a * b + c`, and `avx2` does not enable FMA), so every result has the
+/// same bits; AVX2 only does more lanes per instruction (the network's six hidden units in two
+/// vector operations instead of three) and has three-operand forms that save register copies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Isa {
+    /// The build's baseline (x86-64: SSE2).
+    Baseline,
+    /// x86-64 with AVX2, when the processor has it (checked at run time).
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+}
+
+impl Isa {
+    /// The best form this processor runs.
+    #[inline]
+    pub(crate) fn detected() -> Isa {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            return Isa::Avx2;
+        }
+        Isa::Baseline
+    }
+}
