@@ -47,6 +47,9 @@ pub struct Eyes {
     compass: [TurnedRays; 12],
     /// The instructions this processor runs ([`Eyes::cast_avx2`] needs AVX2).
     isa: Isa,
+    /// The built-in sample table each of the three rays of every sensor reads, when all
+    /// sensors' rays read them alike (the `sampled` model), for [`Eyes::cast_avx2`].
+    tables: Option<[&'static [(f64, f64); 5]; 3]>,
 }
 
 impl Eyes {
@@ -71,6 +74,7 @@ impl Eyes {
             range2: range * range,
             compass: std::array::from_fn(|k| body.turned(compass.sin[k], compass.cos[k])),
             isa: Isa::detected(),
+            tables: shared_tables(&mounts),
         }
     }
 
@@ -162,6 +166,7 @@ impl Eyes {
         };
         const { assert!(INPUTS == 8, "two halves of four sensors") };
         let mut nearest = [[f64::INFINITY; INPUTS]; 3];
+        let mut out = [0.0; INPUTS];
         for half in [0, 4] {
             // SAFETY: every load and store is of four consecutive `f64` from `half` ≤ 4 in an
             // array of eight; the unaligned forms need no alignment.
@@ -218,12 +223,25 @@ impl Eyes {
                         *b = _mm256_blendv_pd(*b, _mm256_min_pd(q, *b), hit);
                     }
                 }
+                if let Some(tables) = self.tables {
+                    // `read_rays`' sum in its order, from 0, and its minimum.
+                    let mut total = zero;
+                    for (b, table) in best.into_iter().zip(tables) {
+                        total = _mm256_add_pd(total, table_values(b, table));
+                    }
+                    let total = _mm256_min_pd(total, _mm256_set1_pd(SENSOR_MAX));
+                    _mm256_storeu_pd(out[half..].as_mut_ptr(), total);
+                    continue;
+                }
                 for (n, b) in nearest.iter_mut().zip(best) {
                     _mm256_storeu_pd(n[half..].as_mut_ptr(), b);
                 }
             }
         }
-        self.values(&nearest)
+        if self.tables.is_none() {
+            out = self.values(&nearest);
+        }
+        out
     }
 
     /// The sensors' values from their three rays' nearest hits `nearest[r][s]` (∞ for none),
@@ -280,6 +298,43 @@ impl Facing<'_> {
             Facing::Angle { sin, cos } => body.dirs[s].map(|d| d.rotate_by(sin, cos)),
         }
     }
+}
+
+/// The sample table each ray `r` of every sensor reads, when each reads a built-in one and all
+/// sensors alike.
+fn shared_tables(mounts: &[[RayMount; 3]; INPUTS]) -> Option<[&'static [(f64, f64); 5]; 3]> {
+    let tables = [0, 1, 2].map(|r| mounts[0][r].builtin_table());
+    let alike = mounts
+        .iter()
+        .all(|m| (0..3).all(|r| m[r].builtin_table() == tables[r]));
+    match tables {
+        [Some(a), Some(b), Some(c)] if alike => Some([a, b, c]),
+        _ => None,
+    }
+}
+
+/// [`RayMount::value`] of each lane's distance `d` for a ray reading `table`: the value of the
+/// first sample at or beyond it, 0 beyond the last (and for ∞), chosen from the last sample to
+/// the first.
+///
+/// # Safety
+/// The processor must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn table_values(
+    d: std::arch::x86_64::__m256d,
+    table: &[(f64, f64); 5],
+) -> std::arch::x86_64::__m256d {
+    use std::arch::x86_64::{
+        _CMP_LE_OQ, _mm256_blendv_pd, _mm256_cmp_pd, _mm256_set1_pd, _mm256_setzero_pd,
+    };
+    let mut value = _mm256_setzero_pd();
+    for &(s, v) in table.iter().rev() {
+        let within = _mm256_cmp_pd::<_CMP_LE_OQ>(d, _mm256_set1_pd(s));
+        value = _mm256_blendv_pd(value, _mm256_set1_pd(v), within);
+    }
+    value
 }
 
 impl TurnedRays {

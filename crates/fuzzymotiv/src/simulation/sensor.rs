@@ -76,6 +76,16 @@ impl RayMount {
         }
     }
 
+    /// The built-in sample table this ray reads ([`RayMount::value`]: the value of the first
+    /// sample at or beyond the distance, 0 beyond the last), if it reads one.
+    pub(crate) fn builtin_table(&self) -> Option<&'static [(f64, f64); 5]> {
+        match self.kind {
+            0 => Some(&AXIS_SAMPLES),
+            1 => Some(&SIDE_SAMPLES),
+            _ => None,
+        }
+    }
+
     /// The ray's value for a wall at distance `d` along it (`f64::INFINITY` for none).
     ///
     /// ```
