@@ -141,11 +141,25 @@ fn walk<const AVX2: bool, O: StepObserver>(
         // same outputs from inputs of ±0.)
         let open_floor = all_plus_zero(raw.iter().flatten());
         add_sensor_noise(&mut raw, &draws, (lo, hi));
+        // The wheels' noise factors (`perturb`), in the order `Walk::act` draws them.
+        let mut factors = [[0.0; LANES]; 2];
+        for (f, d) in factors.iter_mut().zip(&draws[INPUTS..]) {
+            for l in 0..LANES {
+                f[l] = lo + (hi - lo) * d[l];
+            }
+        }
         let motors = match open_floor {
             true => lanes.idle,
             false if exact => lanes.network::<false>(&inputs_of(&raw)),
-            false => lanes.network_for_actions(&raw, &draws, (lo, hi), tolerance),
+            false => lanes.network_for_actions(&raw, &factors, tolerance),
         };
+        // The noisy speeds of every lane, as `perturb` computes them.
+        let mut speeds = [[0.0; LANES]; 2];
+        for ((s, m), f) in speeds.iter_mut().zip(&motors).zip(&factors) {
+            for l in 0..LANES {
+                s[l] = (2.0 * m[l] - 1.0) * v_max * f[l];
+            }
+        }
         let mut noisy_sensors = [[0.0; INPUTS]; LANES];
         for (l, sensors) in noisy_sensors.iter_mut().enumerate() {
             for k in 0..INPUTS {
@@ -156,13 +170,7 @@ fn walk<const AVX2: bool, O: StepObserver>(
             let Some(j) = lanes.trial[l] else { continue };
             let sensed = Sensed::straight(noisy_sensors[l], sights[l].blocked);
             let m = [motors[0][l], motors[1][l]];
-            // The wheel noise (`perturb`), in the order `Walk::act` draws it; the factors are
-            // the ones `Lanes::network_for_actions` certifies the action with (one helper for
-            // both made this loop 3-4 % slower on evolved robots, so the expression is twice).
-            let mut noisy = [0.0; 2];
-            for (w, n) in noisy.iter_mut().enumerate() {
-                *n = (2.0 * m[w] - 1.0) * v_max * (lo + (hi - lo) * draws[INPUTS + w][l]);
-            }
+            let noisy = [speeds[0][l], speeds[1][l]];
             let t = lanes.t[l];
             let (step, home) = lanes.walk[l].act_noisy(t, arena, &sensed, m, noisy, None);
             let trial = &mut trials[j];
@@ -474,22 +482,20 @@ impl Lanes {
     /// as the exact ones ([`Lanes::network`] of [`inputs_of`]): the rough outputs (each reading
     /// times 1/1023 instead of divided by it, then the rough logistic) when, for every lane
     /// that runs a trial, no output within the rough ones' bounds could choose another action
-    /// with the step's wheel noise (`draws`, on [`lo`, `hi`)) and `tolerance`
-    /// ([`actions_are_certain`]), else the exact outputs. Only for observers that do not read
-    /// the outputs.
+    /// with the step's wheel noise factors `factors[w][l]` (wheel `w` of lane `l`) and
+    /// `tolerance` ([`actions_are_certain`]), else the exact outputs. Only for observers that
+    /// do not read the outputs.
     #[inline(always)]
     fn network_for_actions(
         &self,
         noisy: &[[f64; LANES]; INPUTS],
-        draws: &[[f64; LANES]; DRAWS],
-        (lo, hi): (f64, f64),
+        factors: &[[f64; LANES]; 2],
         tolerance: f64,
     ) -> [[f64; LANES]; OUTPUTS] {
         let rough = self.network::<true>(&rough_inputs_of(noisy));
         let mut certain = true;
         for l in 0..LANES {
-            // The wheel factors exactly as `walk` computes them for the step's speeds.
-            let noise = [INPUTS, INPUTS + 1].map(|d| lo + (hi - lo) * draws[d][l]);
+            let noise = [factors[0][l], factors[1][l]];
             let m = [rough[0][l], rough[1][l]];
             let bound = [self.rough[0][l], self.rough[1][l]];
             let sure = actions_are_certain(m, bound, noise, tolerance);
