@@ -173,9 +173,12 @@ impl Table {
     ) -> Sight {
         let key = Key::new(pos, dir);
         let set = self.set(&key);
-        let sight = match set[0].read(&key).or_else(|| set[1].read(&key)) {
-            Some(sight) => sight,
-            None => {
+        // Which way holds the pose is chosen without a branch (it is either, unpredictably);
+        // only a miss branches.
+        let (first, second) = (set[0].holds(&key), set[1].holds(&key));
+        let sight = match first | second {
+            true => set[usize::from(!first)].sight(),
+            false => {
                 let sight = look();
                 // The newer of the set's two poses stays; the older makes room.
                 set[1] = set[0];
@@ -333,13 +336,28 @@ impl Slot {
         }
     }
 
+    /// Whether this slot holds the pose `key`: its bits XORed and ORed, so that the compiler
+    /// makes no branch of each comparison (which of a set's two slots holds a pose is
+    /// unpredictable).
     #[inline]
-    fn read(&self, key: &Key) -> Option<Sight> {
-        let hit = self.x == key.x && self.y == key.y && self.values[0] >> DIR_SHIFT == key.dir;
-        hit.then(|| Sight {
+    fn holds(&self, key: &Key) -> bool {
+        let dir = u64::from((self.values[0] >> DIR_SHIFT) ^ key.dir);
+        ((self.x ^ key.x) | (self.y ^ key.y) | dir) == 0
+    }
+
+    /// The sight this slot holds.
+    #[inline]
+    fn sight(&self) -> Sight {
+        Sight {
             sensors: self.values.map(|v| f64::from(v & VALUE_BITS)),
             blocked: self.values[0] & BLOCKED_BIT != 0,
-        })
+        }
+    }
+
+    /// The sight of the pose `key`, if this slot holds it.
+    #[cfg(test)]
+    fn read(&self, key: &Key) -> Option<Sight> {
+        self.holds(key).then(|| self.sight())
     }
 }
 
