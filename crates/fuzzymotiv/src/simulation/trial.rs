@@ -248,7 +248,18 @@ impl Arena {
         let r2 = self.near_reach * self.near_reach;
         // A culling test: `near_reach` keeps a 1e-6 mm margin over every distance that can
         // matter, far above the rounding of the division-free test (see `PreparedSegment`).
-        for &k in self.cell_list(cell) {
+        let list = self.cell_list(cell);
+        if list.len() <= NEAR_CAP {
+            // Every wall fits: each is written and counted only if near, without a branch
+            // (whether a wall is near is unpredictable).
+            for &k in list {
+                near.walls[near.len] = k;
+                near.len += usize::from(self.prepared[k as usize].dist2_to(p) <= r2);
+            }
+            near.cell = cell;
+            return near;
+        }
+        for &k in list {
             if self.prepared[k as usize].dist2_to(p) <= r2 {
                 if near.len == NEAR_CAP {
                     near.overflow = true;
@@ -380,9 +391,10 @@ impl Arena {
     #[inline]
     pub(crate) fn overlaps_near(&self, p: Vec2, near: &NearWalls) -> bool {
         let r2 = self.radius * self.radius;
-        self.near_list(near)
-            .iter()
-            .any(|&k| self.walls[k as usize].dist2_to(p) < r2)
+        // Every wall tested, without an early exit (which wall overlaps is unpredictable).
+        self.near_list(near).iter().fold(false, |any, &k| {
+            any | (self.walls[k as usize].dist2_to(p) < r2)
+        })
     }
 }
 
