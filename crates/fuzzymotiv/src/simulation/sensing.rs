@@ -14,6 +14,8 @@ use crate::simulation::isa::Isa;
 use crate::simulation::robot::Compass;
 use crate::simulation::sensor::SENSORS as INPUTS;
 use crate::simulation::sensor::{RayMount, SENSOR_MAX, SensorModel, ray_count, rays};
+#[cfg(target_arch = "x86_64")]
+use std::arch::x86_64::__m256d;
 
 /// The sensors' rays turned to one heading: each sensor's origin relative to the body centre
 /// and its ray directions, in the world frame.
@@ -139,13 +141,9 @@ impl Eyes {
         out
     }
 
-    /// [`Eyes::read_rays`] with three rays a sensor, `rays` turned in advance, in AVX2 vector
-    /// lanes: for each half of the sensors and each near wall, the four sensors' distance test
-    /// ([`PreparedSegment::dist2_to`]), then, when one of them is in range, the hits of their
-    /// three rays ([`PreparedSegment::lower_ray_hits`]) with those out of range masked off, as
-    /// the scalar loop skips them. The same operations on the same numbers, so the same bits;
-    /// a ray's nearest hit is the minimum over the walls, whatever their order (its zero may
-    /// have either sign, which no ray's value tells apart).
+    /// [`Eyes::read_rays`] with three rays a sensor, `rays` turned in advance, four sensors at a
+    /// time in AVX2 vector lanes ([`nearest_hits_avx2`]), the `sampled` model's values too
+    /// ([`table_values`]). The same operations on the same numbers, so the same bits.
     ///
     /// # Safety
     /// The processor must have AVX2.
@@ -159,83 +157,29 @@ impl Eyes {
         near: &[u32],
     ) -> [f64; INPUTS] {
         use std::arch::x86_64::{
-            _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_pd, _mm256_and_pd,
-            _mm256_blendv_pd, _mm256_cmp_pd, _mm256_div_pd, _mm256_loadu_pd, _mm256_max_pd,
-            _mm256_min_pd, _mm256_movemask_pd, _mm256_mul_pd, _mm256_or_pd, _mm256_set1_pd,
-            _mm256_setzero_pd, _mm256_storeu_pd, _mm256_sub_pd,
+            _mm256_add_pd, _mm256_min_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_storeu_pd,
         };
         const { assert!(INPUTS == 8, "two halves of four sensors") };
         let mut nearest = [[f64::INFINITY; INPUTS]; 3];
         let mut out = [0.0; INPUTS];
         for half in [0, 4] {
-            // SAFETY: every load and store is of four consecutive `f64` from `half` ≤ 4 in an
-            // array of eight; the unaligned forms need no alignment.
+            let best = nearest_hits_avx2(pos, rays, half, self.range2, walls, near);
+            // SAFETY: every store is of four consecutive `f64` from `half` ≤ 4 in an array of
+            // eight; the unaligned form needs no alignment.
             unsafe {
-                let four = |a: &[f64; INPUTS]| _mm256_loadu_pd(a[half..].as_ptr());
-                let ox = _mm256_add_pd(_mm256_set1_pd(pos.x), four(&rays.origin[0]));
-                let oy = _mm256_add_pd(_mm256_set1_pd(pos.y), four(&rays.origin[1]));
-                let dirs = [0, 1, 2].map(|r| (four(&rays.dir[r][0]), four(&rays.dir[r][1])));
-                let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
-                let range2 = _mm256_set1_pd(self.range2);
-                let mut best = [_mm256_set1_pd(f64::INFINITY); 3];
-                for &k in near {
-                    let (a, d, inv_len2) = walls[k as usize].parts();
-                    let (ax, ay) = (_mm256_set1_pd(a.x), _mm256_set1_pd(a.y));
-                    let (dx, dy) = (_mm256_set1_pd(d.x), _mm256_set1_pd(d.y));
-                    // `dist2_to`: w = p − a, t = (w·d)/|d|² in [0, 1] (`max` then `min` with
-                    // the operands in the order that keeps a −0 or a NaN, as `clamp`), e = w − d·t.
-                    let (px, py) = (_mm256_sub_pd(ox, ax), _mm256_sub_pd(oy, ay));
-                    let dot = _mm256_add_pd(_mm256_mul_pd(px, dx), _mm256_mul_pd(py, dy));
-                    let t = _mm256_mul_pd(dot, _mm256_set1_pd(inv_len2));
-                    let t = _mm256_min_pd(one, _mm256_max_pd(zero, t));
-                    let ex = _mm256_sub_pd(px, _mm256_mul_pd(dx, t));
-                    let ey = _mm256_sub_pd(py, _mm256_mul_pd(dy, t));
-                    let dist2 = _mm256_add_pd(_mm256_mul_pd(ex, ex), _mm256_mul_pd(ey, ey));
-                    let seen = _mm256_cmp_pd::<_CMP_LE_OQ>(dist2, range2);
-                    if _mm256_movemask_pd(seen) == 0 {
-                        continue;
+                let Some(tables) = self.tables else {
+                    for (n, b) in nearest.iter_mut().zip(best) {
+                        _mm256_storeu_pd(n[half..].as_mut_ptr(), b);
                     }
-                    // `lower_ray_hits`: w = a − origin, t = (w × d)/(dir × d) ≥ 0 and
-                    // u = (w × dir)/(dir × d) in [0, 1], tested without dividing.
-                    let (wx, wy) = (_mm256_sub_pd(ax, ox), _mm256_sub_pd(ay, oy));
-                    let t_num = _mm256_sub_pd(_mm256_mul_pd(wx, dy), _mm256_mul_pd(wy, dx));
-                    let t_ahead = _mm256_cmp_pd::<_CMP_GE_OQ>(t_num, zero);
-                    let t_behind = _mm256_cmp_pd::<_CMP_LE_OQ>(t_num, zero);
-                    for (b, &(rx, ry)) in best.iter_mut().zip(&dirs) {
-                        let denom = _mm256_sub_pd(_mm256_mul_pd(rx, dy), _mm256_mul_pd(ry, dx));
-                        let u = _mm256_sub_pd(_mm256_mul_pd(wx, ry), _mm256_mul_pd(wy, rx));
-                        let ahead = _mm256_and_pd(
-                            _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(denom, zero), t_ahead),
-                            _mm256_and_pd(
-                                _mm256_cmp_pd::<_CMP_GE_OQ>(u, zero),
-                                _mm256_cmp_pd::<_CMP_LE_OQ>(u, denom),
-                            ),
-                        );
-                        let behind = _mm256_and_pd(
-                            _mm256_and_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(denom, zero), t_behind),
-                            _mm256_and_pd(
-                                _mm256_cmp_pd::<_CMP_LE_OQ>(u, zero),
-                                _mm256_cmp_pd::<_CMP_GE_OQ>(u, denom),
-                            ),
-                        );
-                        let hit = _mm256_and_pd(_mm256_or_pd(ahead, behind), seen);
-                        let q = _mm256_div_pd(t_num, denom);
-                        *b = _mm256_blendv_pd(*b, _mm256_min_pd(q, *b), hit);
-                    }
-                }
-                if let Some(tables) = self.tables {
-                    // `read_rays`' sum in its order, from 0, and its minimum.
-                    let mut total = zero;
-                    for (b, table) in best.into_iter().zip(tables) {
-                        total = _mm256_add_pd(total, table_values(b, table));
-                    }
-                    let total = _mm256_min_pd(total, _mm256_set1_pd(SENSOR_MAX));
-                    _mm256_storeu_pd(out[half..].as_mut_ptr(), total);
                     continue;
+                };
+                // `read_rays`' sum in its order, from 0, and its minimum.
+                let mut total = _mm256_setzero_pd();
+                for (b, table) in best.into_iter().zip(tables) {
+                    total = _mm256_add_pd(total, table_values(b, table));
                 }
-                for (n, b) in nearest.iter_mut().zip(best) {
-                    _mm256_storeu_pd(n[half..].as_mut_ptr(), b);
-                }
+                let total = _mm256_min_pd(total, _mm256_set1_pd(SENSOR_MAX));
+                _mm256_storeu_pd(out[half..].as_mut_ptr(), total);
             }
         }
         if self.tables.is_none() {
@@ -300,6 +244,113 @@ impl Facing<'_> {
     }
 }
 
+/// The nearest hit of each of the three rays of sensors `half` … `half + 3` (∞ for none), for
+/// a robot centred at `pos` with the `near` walls: for each wall the four sensors' distance test
+/// ([`PreparedSegment::dist2_to`]), then, when one of them is in range, the hits of their three
+/// rays ([`lower_hits_avx2`]) with those out of range masked off, as [`Eyes::read_rays`] skips
+/// them. A ray's nearest hit is the minimum over the walls, whatever their order (its zero may
+/// have either sign, which no ray's value tells apart).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn nearest_hits_avx2(
+    pos: Vec2,
+    rays: &SideBySide,
+    half: usize,
+    range2: f64,
+    walls: &[PreparedSegment],
+    near: &[u32],
+) -> [__m256d; 3] {
+    use std::arch::x86_64::{
+        _CMP_LE_OQ, _mm256_add_pd, _mm256_cmp_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd,
+        _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_sub_pd,
+    };
+    // SAFETY: every load is of four consecutive `f64` from `half` ≤ 4 in an array of eight; the
+    // unaligned form needs no alignment.
+    let four = |a: &[f64; INPUTS]| unsafe { _mm256_loadu_pd(a[half..].as_ptr()) };
+    let o = (
+        _mm256_add_pd(_mm256_set1_pd(pos.x), four(&rays.origin[0])),
+        _mm256_add_pd(_mm256_set1_pd(pos.y), four(&rays.origin[1])),
+    );
+    let dirs = [0, 1, 2].map(|r| (four(&rays.dir[r][0]), four(&rays.dir[r][1])));
+    let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
+    let mut best = [_mm256_set1_pd(f64::INFINITY); 3];
+    for &k in near {
+        let (a, d, inv_len2) = walls[k as usize].parts();
+        let a = (_mm256_set1_pd(a.x), _mm256_set1_pd(a.y));
+        let d = (_mm256_set1_pd(d.x), _mm256_set1_pd(d.y));
+        // `dist2_to`: w = p − a, t = (w·d)/|d|² in [0, 1] (`max` then `min` with the operands
+        // in the order that keeps a −0 or a NaN, as `clamp`), e = w − d·t.
+        let (px, py) = (_mm256_sub_pd(o.0, a.0), _mm256_sub_pd(o.1, a.1));
+        let dot = _mm256_add_pd(_mm256_mul_pd(px, d.0), _mm256_mul_pd(py, d.1));
+        let t = _mm256_mul_pd(dot, _mm256_set1_pd(inv_len2));
+        let t = _mm256_min_pd(one, _mm256_max_pd(zero, t));
+        let ex = _mm256_sub_pd(px, _mm256_mul_pd(d.0, t));
+        let ey = _mm256_sub_pd(py, _mm256_mul_pd(d.1, t));
+        let dist2 = _mm256_add_pd(_mm256_mul_pd(ex, ex), _mm256_mul_pd(ey, ey));
+        let seen = _mm256_cmp_pd::<_CMP_LE_OQ>(dist2, _mm256_set1_pd(range2));
+        if _mm256_movemask_pd(seen) != 0 {
+            lower_hits_avx2(&mut best, o, &dirs, (a, d), seen);
+        }
+    }
+    best
+}
+
+/// Lowers each ray's `best` hit, in the lanes `seen`, to where it meets the wall from `a` along
+/// `d`, when it does, for sensors at `o` with ray directions `dirs`: [`PreparedSegment::
+/// lower_ray_hits`]' operations, w = a − origin, t = (w × d)/(dir × d) ≥ 0 and
+/// u = (w × dir)/(dir × d) in [0, 1], tested without dividing.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn lower_hits_avx2(
+    best: &mut [__m256d; 3],
+    o: Pair,
+    dirs: &[Pair; 3],
+    (a, d): Wall4,
+    seen: __m256d,
+) {
+    use std::arch::x86_64::{
+        _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_and_pd, _mm256_blendv_pd,
+        _mm256_cmp_pd, _mm256_div_pd, _mm256_min_pd, _mm256_mul_pd, _mm256_or_pd,
+        _mm256_setzero_pd, _mm256_sub_pd,
+    };
+    let zero = _mm256_setzero_pd();
+    let cross = |u: Pair, v: Pair| _mm256_sub_pd(_mm256_mul_pd(u.0, v.1), _mm256_mul_pd(u.1, v.0));
+    let w = (_mm256_sub_pd(a.0, o.0), _mm256_sub_pd(a.1, o.1));
+    let t_num = cross(w, d);
+    let t_ahead = _mm256_cmp_pd::<_CMP_GE_OQ>(t_num, zero);
+    let t_behind = _mm256_cmp_pd::<_CMP_LE_OQ>(t_num, zero);
+    for (b, &dir) in best.iter_mut().zip(dirs) {
+        let (denom, u) = (cross(dir, d), cross(w, dir));
+        let ahead = _mm256_and_pd(
+            _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(denom, zero), t_ahead),
+            _mm256_and_pd(
+                _mm256_cmp_pd::<_CMP_GE_OQ>(u, zero),
+                _mm256_cmp_pd::<_CMP_LE_OQ>(u, denom),
+            ),
+        );
+        let behind = _mm256_and_pd(
+            _mm256_and_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(denom, zero), t_behind),
+            _mm256_and_pd(
+                _mm256_cmp_pd::<_CMP_LE_OQ>(u, zero),
+                _mm256_cmp_pd::<_CMP_GE_OQ>(u, denom),
+            ),
+        );
+        let hit = _mm256_and_pd(_mm256_or_pd(ahead, behind), seen);
+        let q = _mm256_div_pd(t_num, denom);
+        *b = _mm256_blendv_pd(*b, _mm256_min_pd(q, *b), hit);
+    }
+}
+
+/// Four lanes of x and y.
+#[cfg(target_arch = "x86_64")]
+type Pair = (__m256d, __m256d);
+
+/// A wall's start and direction, each coordinate in all four lanes.
+#[cfg(target_arch = "x86_64")]
+type Wall4 = (Pair, Pair);
+
 /// The sample table each ray `r` of every sensor reads, when each reads a built-in one and all
 /// sensors alike.
 fn shared_tables(mounts: &[[RayMount; 3]; INPUTS]) -> Option<[&'static [(f64, f64); 5]; 3]> {
@@ -322,10 +373,7 @@ fn shared_tables(mounts: &[[RayMount; 3]; INPUTS]) -> Option<[&'static [(f64, f6
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
-fn table_values(
-    d: std::arch::x86_64::__m256d,
-    table: &[(f64, f64); 5],
-) -> std::arch::x86_64::__m256d {
+fn table_values(d: __m256d, table: &[(f64, f64); 5]) -> __m256d {
     use std::arch::x86_64::{
         _CMP_LE_OQ, _mm256_blendv_pd, _mm256_cmp_pd, _mm256_set1_pd, _mm256_setzero_pd,
     };
