@@ -366,10 +366,8 @@ fn shared_tables(mounts: &[[RayMount; 3]; INPUTS]) -> Option<[&'static [(f64, f6
 
 /// [`RayMount::value`] of each lane's distance `d` for a ray reading `table`: the value of the
 /// first sample at or beyond it, 0 beyond the last (and for ∞), chosen from the last sample to
-/// the first.
-///
-/// # Safety
-/// The processor must have AVX2.
+/// the first. (Like the other AVX2 helpers here, safe to call only from code compiled for AVX2,
+/// which the compiler checks.)
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
