@@ -1,4 +1,4 @@
-//! Which instructions the hot loops are compiled for, detected once per call at run time.
+//! Which instructions the hot loops are compiled for, detected at run time.
 
 /// Which instructions a loop (a trial's steps, the lanes, a look's rays, the SOM) is compiled
 /// for. Both forms run the same IEEE-754 operations in the same order (no fused multiply-add:

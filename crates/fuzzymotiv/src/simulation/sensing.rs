@@ -132,13 +132,20 @@ impl Eyes {
             if dirs.is_none() {
                 continue; // no wall in range: the sensor reads 0
             }
-            let mut total = 0.0;
-            for (ray, &d) in self.mounts[s][..N].iter().zip(&nearest) {
-                total += ray.value(d);
-            }
-            *o = total.min(SENSOR_MAX);
+            *o = self.sensor_value(s, nearest);
         }
         out
+    }
+
+    /// Sensor `s`'s value from its rays' nearest hits `hits` (∞ for none): the rays' values
+    /// added in order from 0, at most 1023.
+    #[inline]
+    fn sensor_value(&self, s: usize, hits: impl IntoIterator<Item = f64>) -> f64 {
+        let mut total = 0.0;
+        for (ray, d) in self.mounts[s].iter().zip(hits) {
+            total += ray.value(d);
+        }
+        total.min(SENSOR_MAX)
     }
 
     /// [`Eyes::read_rays`] with three rays a sensor, `rays` turned in advance, four sensors at a
@@ -189,7 +196,7 @@ impl Eyes {
     }
 
     /// The sensors' values from their three rays' nearest hits `nearest[r][s]` (∞ for none),
-    /// as [`Eyes::read_rays`] adds them; a sensor none of whose rays hits reads +0, which is
+    /// as [`Eyes::read_rays`] adds them ([`Eyes::sensor_value`]); a sensor none of whose rays hits reads +0, which is
     /// also what its three values of 0 add to.
     #[cfg(target_arch = "x86_64")]
     #[inline]
@@ -199,11 +206,7 @@ impl Eyes {
             if nearest.iter().all(|n| n[s] == f64::INFINITY) {
                 continue;
             }
-            let mut total = 0.0;
-            for (ray, n) in self.mounts[s].iter().zip(nearest) {
-                total += ray.value(n[s]);
-            }
-            *o = total.min(SENSOR_MAX);
+            *o = self.sensor_value(s, nearest.iter().map(|n| n[s]));
         }
         out
     }
