@@ -40,6 +40,9 @@ pub struct Arena {
     grid: Grid,
     cell_start: Vec<u32>,
     cell_walls: Vec<u32>,
+    /// Whether a cell's list of walls within reach is not empty: one load for the step loop's
+    /// test of open floor ([`Arena::sight`]).
+    walled: Vec<bool>,
     reachable: Vec<bool>,
     reachable_count: usize,
     d_max: f64,
@@ -96,6 +99,7 @@ impl Arena {
                 room.contains(c) && walls.iter().all(|w| w.dist2_to(c) >= radius * radius)
             })
             .collect();
+        let walled = cell_start.windows(2).map(|w| w[0] != w[1]).collect();
         let list = |k: usize| &cell_walls[cell_start[k] as usize..cell_start[k + 1] as usize];
         let reachable = grid.reachable(&valid, room.home.position(), radius, &walls, list);
         let compass = Compass::new(room.home.heading);
@@ -107,6 +111,7 @@ impl Arena {
             reachable,
             cell_start,
             cell_walls,
+            walled,
             d_max: room.max_home_distance(),
             room,
             params: *params,
@@ -163,11 +168,8 @@ impl Arena {
     #[inline]
     pub fn cell_of(&self, p: Vec2) -> usize {
         let g = &self.grid;
-        // Clamped to ≥ 0 first, so truncation equals floor; then below 400 (the coordinates
-        // are within ±`MAX_COORD`), so a conversion to `u32` (fewer instructions than to
-        // `usize`) loses nothing.
-        let i = ((p.x - g.origin.x) / CELL).clamp(0.0, g.last[0]) as u32 as usize;
-        let j = ((p.y - g.origin.y) / CELL).clamp(0.0, g.last[1]) as u32 as usize;
+        let i = grid_index((p.x - g.origin.x) / CELL, g.last[0]);
+        let j = grid_index((p.y - g.origin.y) / CELL, g.last[1]);
         j * g.cols + i
     }
 
@@ -342,7 +344,7 @@ impl Arena {
         cell: usize,
         step: f64,
     ) -> Sight {
-        if self.cell_list(cell).is_empty() {
+        if !self.walled[cell] {
             return Sight::CLEAR;
         }
         match memo {
@@ -396,6 +398,21 @@ impl Arena {
             any | (self.walls[k as usize].dist2_to(p) < r2)
         })
     }
+}
+
+/// `v` (a coordinate in cells from the grid's origin) truncated to a column or row index in
+/// `0..=last`: below 0 (or NaN) is 0, above `last` is `last`. Clamped to ≥ 0 first, so
+/// truncation equals floor. `max` then `min` rather than `f64::clamp`, whose check that its
+/// bounds are in order and whose NaN case cost branches in the step loop; the same index for
+/// every `v` (`clamp` keeps NaN, which `as` turns into 0).
+#[inline(always)]
+fn grid_index(v: f64, last: f64) -> usize {
+    debug_assert!((0.0..=f64::from(u32::MAX)).contains(&last));
+    let v = v.max(0.0).min(last);
+    // SAFETY: `v` is a number (`max` returns 0 for NaN) in `[0, last]`, and `last` (a grid's
+    // last index, below 400: the coordinates are within ±`MAX_COORD`) fits a `u32`, so the
+    // truncation is in range.
+    unsafe { v.to_int_unchecked::<u32>() as usize }
 }
 
 /// The 50 mm cells over a room's bounding box, row by row from `origin`.
