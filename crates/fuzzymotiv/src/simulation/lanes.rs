@@ -16,11 +16,11 @@
 //!
 //! With `actions` motion a step's network outputs matter only through its action, so when no
 //! observer reads the outputs ([`StepObserver::reads_motors`]: the evaluation's fitness terms)
-//! the lanes first compute them roughly (inputs times 1/1023, [`logistic_rough_lanes`]) with a
-//! bound on how far each can be from the exact output, and keep them when every lane's action
-//! is the same for all outputs within the bounds ([`actions_are_certain`]); otherwise (4 steps
-//! of the lanes in 10,000 on evolved robots: generations 101–200 of the high-curiosity run)
-//! they compute the exact outputs. The actions, and so every pose, cell and term, are the exact
+//! the lanes first compute them roughly (in single precision, eight numbers to a vector
+//! instruction: [`Lanes::rough_network`]) with a bound on how far each can be from the exact
+//! output, and keep them when every lane's action is the same for all outputs within the bounds
+//! ([`actions_are_certain`]); otherwise (7 steps of the lanes in 10,000 on evolved robots:
+//! generations 101–200 of the high-curiosity run) they compute the exact outputs. The actions, and so every pose, cell and term, are the exact
 //! ones; only the steps' `motors` and `speeds` are rough.
 
 use crate::simulation::controller::{INPUTS, Mlp, OUTPUTS};
@@ -150,7 +150,7 @@ fn walk<const AVX2: bool, O: StepObserver>(
         }
         let motors = match open_floor {
             true => lanes.idle,
-            false if exact => lanes.network::<false>(&inputs_of(&raw)),
+            false if exact => lanes.network(&inputs_of(&raw)),
             false => lanes.network_for_actions(&raw, &factors, tolerance),
         };
         // The noisy speeds of every lane, as `perturb` computes them.
@@ -280,19 +280,6 @@ fn inputs_of(noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; INPUTS] {
     x
 }
 
-/// The networks' rough inputs of the noisy readings `noisy[k][l]`: each times 1/1023, within
-/// one ulp (2⁻⁵², relative) of [`inputs_of`]'s quotient and without its division.
-#[inline(always)]
-fn rough_inputs_of(noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; INPUTS] {
-    let mut x = [[0.0; LANES]; INPUTS];
-    for k in 0..INPUTS {
-        for l in 0..LANES {
-            x[k][l] = noisy[k][l] * (1.0 / SENSOR_MAX);
-        }
-    }
-    x
-}
-
 /// The lanes' random streams: xoshiro256++ (the generator of
 /// [`rng_from_seed`](crate::random::rng::rng_from_seed), `rand_xoshiro`'s), one stream per
 /// lane, its state word `i` of lane `l` in `s[i][l]` so that a draw for every lane is one
@@ -412,8 +399,14 @@ struct Lanes {
     out: [[[f64; LANES]; HIDDEN + 1]; OUTPUTS],
     /// `idle[o][l]`: lane `l`'s output `o` when all its inputs are 0 ([`Mlp::idle_outputs`]).
     idle: [[f64; LANES]; OUTPUTS],
-    /// `rough[o][l]`: how far lane `l`'s output `o` computed with the rough logistic can be
-    /// from the exact one ([`rough_output_bound`]).
+    /// `rough_hidden[k][h · LANES + l]`: `hidden[k][h][l]` in single precision, for
+    /// [`Lanes::rough_network`]; the weights of the inputs (`k` ≥ 1) divided by 1023 first, so
+    /// that the network takes the readings as they are.
+    rough_hidden: [[f32; HIDDEN * LANES]; INPUTS + 1],
+    /// `rough_out[k][o · LANES + l]`: `out[o][k][l]` in single precision.
+    rough_out: [[f32; OUTPUTS * LANES]; HIDDEN + 1],
+    /// `rough[o][l]`: how far lane `l`'s output `o` of [`Lanes::rough_network`] can be from
+    /// the exact one ([`rough_output_bound`]).
     rough: [[f64; LANES]; OUTPUTS],
 }
 
@@ -427,6 +420,8 @@ impl Lanes {
             hidden: [[[0.0; LANES]; HIDDEN]; INPUTS + 1],
             out: [[[0.0; LANES]; HIDDEN + 1]; OUTPUTS],
             idle: [[0.5; LANES]; OUTPUTS],
+            rough_hidden: [[0.0; HIDDEN * LANES]; INPUTS + 1],
+            rough_out: [[0.0; OUTPUTS * LANES]; HIDDEN + 1],
             rough: [[f64::INFINITY; LANES]; OUTPUTS],
         }
     }
@@ -451,6 +446,8 @@ impl Lanes {
             for (k, row) in hidden.chunks_exact(HIDDEN).enumerate() {
                 for (h, &w) in row.iter().enumerate() {
                     self.hidden[k][h][l] = w;
+                    let w = if k == 0 { w } else { w / SENSOR_MAX };
+                    self.rough_hidden[k][h * LANES + l] = w as f32;
                 }
             }
             let mut hidden_sums = [0.0f64; HIDDEN];
@@ -463,6 +460,7 @@ impl Lanes {
             for (o, row) in out.chunks_exact(HIDDEN + 1).enumerate() {
                 for (k, &w) in row.iter().enumerate() {
                     self.out[o][k][l] = w;
+                    self.rough_out[k][o * LANES + l] = w as f32;
                 }
                 self.rough[o][l] = rough_output_bound(row, hidden_sum);
             }
@@ -479,8 +477,8 @@ impl Lanes {
     }
 
     /// Outputs of the four networks on the noisy readings `noisy` that choose the same actions
-    /// as the exact ones ([`Lanes::network`] of [`inputs_of`]): the rough outputs (each reading
-    /// times 1/1023 instead of divided by it, then the rough logistic) when, for every lane
+    /// as the exact ones ([`Lanes::network`] of [`inputs_of`]): the rough outputs
+    /// ([`Lanes::rough_network`]) when, for every lane
     /// that runs a trial, no output within the rough ones' bounds could choose another action
     /// with the step's wheel noise factors `factors[w][l]` (wheel `w` of lane `l`) and
     /// `tolerance` ([`actions_are_certain`]), else the exact outputs. Only for observers that
@@ -492,7 +490,7 @@ impl Lanes {
         factors: &[[f64; LANES]; 2],
         tolerance: f64,
     ) -> [[f64; LANES]; OUTPUTS] {
-        let rough = self.network::<true>(&rough_inputs_of(noisy));
+        let rough = self.rough_network(noisy);
         let mut certain = true;
         for l in 0..LANES {
             let noise = [factors[0][l], factors[1][l]];
@@ -505,7 +503,7 @@ impl Lanes {
         tests::count_rough(certain);
         match certain {
             true => rough,
-            false => self.network::<false>(&inputs_of(noisy)),
+            false => self.network(&inputs_of(noisy)),
         }
     }
 
@@ -513,10 +511,9 @@ impl Lanes {
     /// `bias + w₁·x₁ + … + w₈·x₈` in that order, as `Mlp::step` adds it (it skips an input of
     /// 0; here an input of +0 in all four lanes is skipped, as most are, and any other added:
     /// `w · 0` changes no sum but the sign of a zero one), then the logistic
-    /// units of a layer together ([`logistic_lanes`]: the scalar function's bits; `ROUGH`:
-    /// [`logistic_rough_lanes`], for [`Lanes::network_for_actions`]).
+    /// units of a layer together ([`logistic_lanes`]: the scalar function's bits).
     #[inline(always)]
-    fn network<const ROUGH: bool>(&self, x: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; OUTPUTS] {
+    fn network(&self, x: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; OUTPUTS] {
         let mut sums = self.hidden[0];
         for (k, xk) in x.iter().enumerate() {
             if all_plus_zero(xk) {
@@ -528,10 +525,7 @@ impl Lanes {
                 }
             }
         }
-        let hidden = match ROUGH {
-            false => logistic_lanes::<{ HIDDEN * LANES }>(flat(&sums)),
-            true => logistic_rough_lanes::<{ HIDDEN * LANES }>(flat(&sums)),
-        };
+        let hidden = logistic_lanes::<{ HIDDEN * LANES }>(flat(&sums));
         let mut out = [[0.0; LANES]; OUTPUTS];
         for (o, w) in out.iter_mut().zip(&self.out) {
             *o = w[0];
@@ -541,34 +535,94 @@ impl Lanes {
                 }
             }
         }
-        let flat = match ROUGH {
-            false => logistic_lanes::<{ OUTPUTS * LANES }>(flat(&out)),
-            true => logistic_rough_lanes::<{ OUTPUTS * LANES }>(flat(&out)),
-        };
+        let flat = logistic_lanes::<{ OUTPUTS * LANES }>(flat(&out));
         for (o, row) in out.iter_mut().zip(flat.chunks_exact(LANES)) {
             o.copy_from_slice(row);
         }
         out
     }
+
+    /// The four networks' outputs on the noisy readings `noisy[k][l]`, roughly: in single
+    /// precision, eight numbers to a vector instruction (two hidden units of the four lanes,
+    /// or both outputs), with the weights of [`Lanes::load`] (the inputs' divided by 1023, so
+    /// the readings go in as they are), sums in their own order and
+    /// [`logistic_rough_lanes`]. Within [`Lanes::rough`] of the exact outputs
+    /// ([`rough_output_bound`]); for [`Lanes::network_for_actions`].
+    #[inline(always)]
+    fn rough_network(&self, noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; OUTPUTS] {
+        let hidden = logistic_rough_lanes::<{ HIDDEN * LANES }>(self.rough_sums(noisy));
+        let mut out = self.rough_out[0];
+        for h in 0..HIDDEN {
+            let w = self.rough_out[h + 1].chunks_exact(LANES);
+            for (o, w) in out.chunks_exact_mut(LANES).zip(w) {
+                for l in 0..LANES {
+                    o[l] += w[l] * hidden[h * LANES + l];
+                }
+            }
+        }
+        let m = logistic_rough_lanes::<{ OUTPUTS * LANES }>(out);
+        let mut outputs = [[0.0; LANES]; OUTPUTS];
+        for (o, row) in outputs.iter_mut().zip(m.chunks_exact(LANES)) {
+            for l in 0..LANES {
+                o[l] = f64::from(row[l]);
+            }
+        }
+        outputs
+    }
+
+    /// The hidden units' sums of [`Lanes::rough_network`]: `sums[h · LANES + l]`, unit `h` of
+    /// lane `l`, in single precision (an input of +0 in every lane skipped, as in
+    /// [`Lanes::network`]).
+    #[inline(always)]
+    fn rough_sums(&self, noisy: &[[f64; LANES]; INPUTS]) -> [f32; HIDDEN * LANES] {
+        let mut sums = self.rough_hidden[0];
+        for (k, rk) in noisy.iter().enumerate() {
+            if all_plus_zero(rk) {
+                continue;
+            }
+            let mut r = [0.0f32; LANES];
+            for l in 0..LANES {
+                r[l] = rk[l] as f32;
+            }
+            for (h, s) in sums.chunks_exact_mut(LANES).enumerate() {
+                let w = &self.rough_hidden[k + 1][h * LANES..(h + 1) * LANES];
+                for l in 0..LANES {
+                    s[l] += w[l] * r[l];
+                }
+            }
+        }
+        sums
+    }
 }
 
-/// How far a rough output ([`Lanes::network_for_actions`]) can be from the exact one, for the
+/// How far a rough output ([`Lanes::rough_network`]) can be from the exact one, for the
 /// output unit whose weights are `row` (bias first) in a network whose hidden units' sums of
-/// `|w|` are at most `hidden_sum`. Each rough input is within one ulp (2⁻⁵², relative) of the
-/// exact one and in [0, 1], so a hidden unit's sum, added in the same order, is within
-/// `hidden_sum · 10⁻¹⁴` (that and the roundings of both sums, about `hidden_sum · 2.4·10⁻¹⁵`).
-/// The exact logistic is within a few ulp (under 10⁻¹⁵) of the true function, whose slope is
-/// ≤ ¼, so two exact values are within a quarter of their arguments' distance plus 10⁻¹⁴; the
-/// rough logistic is within `ε` ([`LOGISTIC_ROUGH_ERR`]) of the exact one. Each hidden value
-/// is thus within `e = ε + hidden_sum · 10⁻¹⁴ + 10⁻¹⁴`, the output's sum within
-/// `W·(e + 10⁻¹⁴)` (`W` = the sum of `|w|` of `row`) and the output within
-/// `e + W·(e + 10⁻¹⁴)/4 + 10⁻¹⁴`, taken 1 % wider for the rounding of this bound. Infinite or
-/// NaN for weights whose sums overflow: then no action is certain.
+/// `|w|` are at most `hidden_sum`. The rough network rounds to single precision (`u` = 2⁻²⁴)
+/// the weights (those of the inputs after the division by 1023), the readings, each product
+/// and each sum: a hidden unit's sum is within about `11u` of its terms' sum of magnitudes
+/// (three roundings in a product, eight in the sums), which is at most `hidden_sum` (each
+/// reading ≤ 1023, so each exact input ≤ 1), so within `c · hidden_sum` of the exact sum,
+/// `c` = [`ROUGH_SUM_ERR`] (the exact sum's own roundings are far smaller). The exact
+/// logistic is within a few ulp (under 10⁻¹⁵) of the true function, whose slope is ≤ ¼, and
+/// the rough logistic within `ε` ([`LOGISTIC_ROUGH_ERR`]) of the exact one of its argument, so
+/// each hidden value is within `e = ε + c · hidden_sum / 4 + 10⁻¹⁴`; the output's sum (seven
+/// products of values ≤ 1 + e, each rounded like the hidden ones) within `W·(e + c)` (`W` =
+/// the sum of `|w|` of `row`), and the output within `ε + W·(e + c)/4 + 10⁻¹⁴`, taken 1 %
+/// wider for the rounding of this bound. Infinite when a sum of `|w|` exceeds 10³⁰ or is NaN
+/// (single precision could overflow): then no action is certain.
 fn rough_output_bound(row: &[f64], hidden_sum: f64) -> f64 {
     let w: f64 = row.iter().map(|w| w.abs()).sum();
-    let e = LOGISTIC_ROUGH_ERR + hidden_sum * 1e-14 + 1e-14;
-    1.01 * (e + w * (e + 1e-14) / 4.0 + 1e-14)
+    if !(hidden_sum <= 1e30 && w <= 1e30) {
+        return f64::INFINITY;
+    }
+    let e = LOGISTIC_ROUGH_ERR + ROUGH_SUM_ERR * hidden_sum / 4.0 + 1e-14;
+    1.01 * (LOGISTIC_ROUGH_ERR + w * (e + ROUGH_SUM_ERR) / 4.0 + 1e-14)
 }
+
+/// How far a sum of [`Lanes::rough_network`] can be from the exact one, per unit of its terms'
+/// magnitudes ([`rough_output_bound`]): 16·2⁻²⁴ ≈ 9.5·10⁻⁷ covers the eleven roundings, and
+/// 10⁻⁶ more than that.
+const ROUGH_SUM_ERR: f64 = 1e-6;
 
 /// Whether the labels' speeds stay far from the ends of the double range with this `v_max`,
 /// which [`actions_are_certain`] needs: a speed it certifies is at least 10⁻¹² in units of
@@ -780,8 +834,8 @@ mod tests {
                 for v in noisy.iter_mut().flatten() {
                     *v = uniform(&mut rng, 0.0, SENSOR_MAX);
                 }
-                let rough = lanes.network::<true>(&rough_inputs_of(&noisy));
-                let exact = lanes.network::<false>(&inputs_of(&noisy));
+                let rough = lanes.rough_network(&noisy);
+                let exact = lanes.network(&inputs_of(&noisy));
                 for (o, l) in (0..OUTPUTS).flat_map(|o| (0..LANES).map(move |l| (o, l))) {
                     let gap = (rough[o][l] - exact[o][l]).abs();
                     assert!(
@@ -792,6 +846,53 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The rough hidden sums are within `ROUGH_SUM_ERR` per unit of their terms' magnitudes of
+    /// the exact ones, and come near that bound (so that a bound much too tight fails):
+    /// random weights of several scales, random readings, and some readings of 0.
+    #[test]
+    fn rough_sums_within_their_share_of_the_bound() {
+        let arena = arena("H", true, 10);
+        let mut rng = rng_from_seed(61);
+        let mut worst = 0.0f64;
+        for scale in [0.3, 1.0, 50.0, 1e4] {
+            let nets = networks(LANES, scale as u64 + 3, scale);
+            let mut lanes = Lanes::new(&arena);
+            let mut trials: Vec<_> = (nets.iter())
+                .map(|net| LaneTrial {
+                    net,
+                    seed: 1,
+                    observer: (),
+                    last: arena.room().home,
+                })
+                .collect();
+            let mut next = 0;
+            for l in 0..LANES {
+                next = lanes.load(l, next, &arena, &mut trials);
+            }
+            for i in 0..5000 {
+                let mut noisy = [[0.0; LANES]; INPUTS];
+                for v in noisy.iter_mut().flatten() {
+                    *v = uniform(&mut rng, 0.0, SENSOR_MAX);
+                }
+                noisy[i % INPUTS] = [0.0; LANES];
+                let rough = lanes.rough_sums(&noisy);
+                let x = inputs_of(&noisy);
+                for (h, l) in (0..HIDDEN).flat_map(|h| (0..LANES).map(move |l| (h, l))) {
+                    let bias = lanes.hidden[0][h][l];
+                    let (mut exact, mut size) = (bias, bias.abs());
+                    for (w, xk) in lanes.hidden[1..].iter().zip(&x) {
+                        exact += w[h][l] * xk[l];
+                        size += (w[h][l] * xk[l]).abs();
+                    }
+                    let share = (f64::from(rough[h * LANES + l]) - exact).abs() / size;
+                    assert!(share <= ROUGH_SUM_ERR, "scale {scale}: {share}");
+                    worst = worst.max(share);
+                }
+            }
+        }
+        assert!(worst > ROUGH_SUM_ERR / 8.0, "{worst}: far below the bound");
     }
 
     /// The test of certainty takes the labels' side of every comparison: outputs that would

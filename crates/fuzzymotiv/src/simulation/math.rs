@@ -275,29 +275,36 @@ pub fn logistic_lanes<const L: usize>(x: [f64; L]) -> [f64; L] {
 }
 
 /// Largest distance of [`logistic_rough_lanes`] from [`logistic`], with room to spare: the
-/// analysis gives 8.5·10⁻⁷ and the module's test fails above a quarter of this bound.
-pub(crate) const LOGISTIC_ROUGH_ERR: f64 = 4e-6;
+/// analysis gives 1.2·10⁻⁶ and the module's test fails above a quarter of this bound.
+pub(crate) const LOGISTIC_ROUGH_ERR: f64 = 6e-6;
 
-/// A rough [`logistic`] of each lane, within [`LOGISTIC_ROUGH_ERR`] of it for every `f64` (NaN
-/// for NaN), in a few vector instructions per four lanes: no table, no branch, no exact
-/// rounding. `e^(−x) = 2^t`, `t = −x·log₂e` clamped to ±60 (beyond, both functions are within
+/// A rough [`logistic`] of each lane in single precision, within [`LOGISTIC_ROUGH_ERR`] of
+/// the exact one of the same argument for every `f32` (NaN for NaN), in a few vector
+/// instructions per eight lanes: no table, no branch, no division but the last.
+/// `e^(−x) = 2^t`, `t = −x·log₂e` clamped to ±60 (beyond, both functions are within
 /// 2⁻⁶⁰ ≈ 10⁻¹⁸ of 0 or 1), is split into `2^k · 2^f` with `k` the integer nearest `t`,
-/// `|f| ≤ ½`, and `2^f = e^(f·ln 2)` is a degree-5 Taylor polynomial (relative error under
-/// 3.4·10⁻⁶, which the logistic's slope `σ(1 − σ) ≤ ¼` turns into 8.5·10⁻⁷). For a decision
-/// taken on the value with a margin wider than the error, never for a number that is kept: the
-/// lanes choose an action with it when no exact value could choose another
-/// ([`crate::simulation::lanes`]).
+/// `|f| ≤ ½`, and `2^f = e^(f·ln 2)` is a degree-5 Taylor polynomial: its relative error is
+/// under 3.4·10⁻⁶, the dozen single-precision roundings (`u` = 2⁻²⁴ each) add about 8·10⁻⁷,
+/// and the logistic's slope `σ(1 − σ) ≤ ¼` turns the sum into 1.1·10⁻⁶, and the last
+/// roundings into 1.2·10⁻⁶. (`t`'s own rounding, up to 60·u, matters only where `σ(1 − σ)`
+/// is small.) For a decision taken on the value with a margin wider than the error, never for
+/// a number that is kept: the lanes choose an action with it when no exact value could choose
+/// another ([`crate::simulation::lanes`]).
 #[inline(always)]
-pub(crate) fn logistic_rough_lanes<const L: usize>(x: [f64; L]) -> [f64; L] {
+pub(crate) fn logistic_rough_lanes<const L: usize>(x: [f32; L]) -> [f32; L] {
+    // 1.5·2²³: adding it rounds a number of magnitude below 2²² to an integer.
+    const TO_INT: f32 = 12_582_912.0;
     let mut out = [0.0; L];
     for l in 0..L {
-        let t = (-x[l] * std::f64::consts::LOG2_E).clamp(-60.0, 60.0);
+        let t = (-x[l] * std::f32::consts::LOG2_E).clamp(-60.0, 60.0);
         let s = t + TO_INT;
-        let f = (t - (s - TO_INT)) * std::f64::consts::LN_2;
-        let p = 1.0 + f * (1.0 + f * (0.5 + f * (1.0 / 6.0 + f * (1.0 / 24.0 + f / 120.0))));
-        // `k` from the bits of `s`, as in `reduce`; `2^k` is normal for |k| ≤ 60.
+        let f = (t - (s - TO_INT)) * std::f32::consts::LN_2;
+        let p =
+            1.0 + f * (1.0 + f * (0.5 + f * (1.0 / 6.0 + f * (1.0 / 24.0 + f * (1.0 / 120.0)))));
+        // `k` from the bits of `s` (one binade, so the bits count whole numbers); `2^k` is
+        // normal for |k| ≤ 60.
         let k = s.to_bits().wrapping_sub(TO_INT.to_bits());
-        out[l] = 1.0 / (1.0 + p * f64::from_bits(k.wrapping_add(0x3ff) << 52));
+        out[l] = 1.0 / (1.0 + p * f32::from_bits(k.wrapping_add(127) << 23));
     }
     out
 }
@@ -562,26 +569,20 @@ mod tests {
     /// between two integers, and NaN.
     #[test]
     fn rough_logistic_within_a_quarter_of_its_bound() {
-        let far = [
-            60.0 / std::f64::consts::LOG2_E,
-            41.5,
-            745.0,
-            1e300,
-            f64::MAX,
-        ];
+        let far = [60.0 / std::f32::consts::LOG2_E, 41.5, 745.0, 1e30, f32::MAX];
         let halves = (-120..=120).map(|k| (k as f64 + 0.5) / std::f64::consts::LOG2_E);
         let xs = points(2_000_000, -50.0, 50.0, 31)
             .chain(points(200_000, -1000.0, 1000.0, 32))
-            .chain(far.iter().flat_map(|&x| [x, -x]))
+            .chain(far.iter().flat_map(|&x| [f64::from(x), -f64::from(x)]))
             .chain([0.0, -0.0, f64::INFINITY, f64::NEG_INFINITY])
             .chain(halves);
         let mut worst = 0.0f64;
-        let xs: Vec<f64> = xs.collect();
-        for chunk in xs.chunks(4) {
-            let mut lanes = [0.0; 4];
+        let xs: Vec<f32> = xs.map(|x| x as f32).collect();
+        for chunk in xs.chunks(8) {
+            let mut lanes = [0.0; 8];
             lanes[..chunk.len()].copy_from_slice(chunk);
             for (x, y) in lanes.iter().zip(logistic_rough_lanes(lanes)) {
-                worst = worst.max((y - logistic(*x)).abs());
+                worst = worst.max((f64::from(y) - logistic(f64::from(*x))).abs());
             }
         }
         assert!(worst <= LOGISTIC_ROUGH_ERR / 4.0, "{worst}");
@@ -589,7 +590,7 @@ mod tests {
             worst > 1e-8,
             "{worst}: the test no longer measures the polynomial"
         );
-        assert!(logistic_rough_lanes([f64::NAN; 2])[0].is_nan());
+        assert!(logistic_rough_lanes([f32::NAN; 2])[0].is_nan());
     }
 
     #[test]
