@@ -25,6 +25,8 @@
 
 use crate::simulation::controller::{INPUTS, Mlp, OUTPUTS};
 use crate::simulation::isa::Isa;
+#[cfg(target_arch = "x86_64")]
+use crate::simulation::math::logistic_rough_avx2;
 use crate::simulation::math::{LOGISTIC_ROUGH_ERR, logistic_lanes, logistic_rough_lanes};
 use crate::simulation::memo::{Sight, Table, memo_live, with_table};
 use crate::simulation::robot::{Motion, Pose};
@@ -79,17 +81,19 @@ fn walk_on<O: StepObserver>(
     match isa {
         Isa::Baseline => walk::<false, O>(arena, trials, memo),
         #[cfg(target_arch = "x86_64")]
-        // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
+        // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 and FMA
+        // (`Isa::detected`).
         Isa::Avx2 => unsafe { walk_avx2(arena, trials, memo) },
     }
 }
 
-/// [`walk`] with AVX2 instructions (the lanes of the noise and the network in one register).
+/// [`walk`] with AVX2 instructions (the lanes of the noise and the network in one register),
+/// and FMA in the rough network ([`rough_network_avx2`]).
 ///
 /// # Safety
-/// The processor must have AVX2.
+/// The processor must have AVX2 and FMA.
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn walk_avx2<O: StepObserver>(
     arena: &Arena,
     trials: &mut [LaneTrial<'_, O>],
@@ -151,7 +155,7 @@ fn walk<const AVX2: bool, O: StepObserver>(
         let motors = match open_floor {
             true => lanes.idle,
             false if exact => lanes.network(&inputs_of(&raw)),
-            false => lanes.network_for_actions(&raw, &factors, tolerance),
+            false => lanes.network_for_actions::<AVX2>(&raw, &factors, tolerance),
         };
         // The noisy speeds of every lane, as `perturb` computes them.
         let mut speeds = [[0.0; LANES]; 2];
@@ -484,13 +488,13 @@ impl Lanes {
     /// `tolerance` ([`actions_are_certain`]), else the exact outputs. Only for observers that
     /// do not read the outputs.
     #[inline(always)]
-    fn network_for_actions(
+    fn network_for_actions<const AVX2: bool>(
         &self,
         noisy: &[[f64; LANES]; INPUTS],
         factors: &[[f64; LANES]; 2],
         tolerance: f64,
     ) -> [[f64; LANES]; OUTPUTS] {
-        let rough = self.rough_network(noisy);
+        let rough = self.rough_network::<AVX2>(noisy);
         let mut certain = true;
         for l in 0..LANES {
             let noise = [factors[0][l], factors[1][l]];
@@ -547,17 +551,31 @@ impl Lanes {
     /// or both outputs), with the weights of [`Lanes::load`] (the inputs' divided by 1023, so
     /// the readings go in as they are), sums in their own order and
     /// [`logistic_rough_lanes`]. Within [`Lanes::rough`] of the exact outputs
-    /// ([`rough_output_bound`]); for [`Lanes::network_for_actions`].
+    /// ([`rough_output_bound`]); for [`Lanes::network_for_actions`]. `AVX2`: the caller is
+    /// compiled with AVX2 and FMA ([`walk_avx2`]), and the AVX2 form runs
+    /// ([`rough_network_avx2`]).
     #[inline(always)]
-    fn rough_network(&self, noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; OUTPUTS] {
+    fn rough_network<const AVX2: bool>(
+        &self,
+        noisy: &[[f64; LANES]; INPUTS],
+    ) -> [[f64; LANES]; OUTPUTS] {
+        #[cfg(target_arch = "x86_64")]
+        if AVX2 {
+            // SAFETY: `AVX2` is only set in `walk_avx2`, which runs only on processors with AVX2
+            // and FMA.
+            return unsafe { rough_network_avx2(&self.rough_hidden, &self.rough_out, noisy) };
+        }
         let hidden = logistic_rough_lanes::<{ HIDDEN * LANES }>(self.rough_sums(noisy));
         let mut out = self.rough_out[0];
-        for h in 0..HIDDEN {
-            let w = self.rough_out[h + 1].chunks_exact(LANES);
-            for (o, w) in out.chunks_exact_mut(LANES).zip(w) {
-                for l in 0..LANES {
-                    o[l] += w[l] * hidden[h * LANES + l];
-                }
+        for (h, w) in self.rough_out[1..].iter().enumerate() {
+            // Unit `h` of the four lanes once for each output, so that both outputs' sums
+            // take one vector operation.
+            let mut y = [0.0f32; OUTPUTS * LANES];
+            for (i, y) in y.iter_mut().enumerate() {
+                *y = hidden[h * LANES + i % LANES];
+            }
+            for i in 0..OUTPUTS * LANES {
+                out[i] += w[i] * y[i];
             }
         }
         let m = logistic_rough_lanes::<{ OUTPUTS * LANES }>(out);
@@ -571,15 +589,13 @@ impl Lanes {
     }
 
     /// The hidden units' sums of [`Lanes::rough_network`]: `sums[h · LANES + l]`, unit `h` of
-    /// lane `l`, in single precision (an input of +0 in every lane skipped, as in
-    /// [`Lanes::network`]).
+    /// lane `l`, in single precision. Every input is added (one whose reading is 0 in all four
+    /// lanes adds zeros): eight instructions cost less than a branch on the readings, which
+    /// is as good as random.
     #[inline(always)]
     fn rough_sums(&self, noisy: &[[f64; LANES]; INPUTS]) -> [f32; HIDDEN * LANES] {
         let mut sums = self.rough_hidden[0];
         for (k, rk) in noisy.iter().enumerate() {
-            if all_plus_zero(rk) {
-                continue;
-            }
             let mut r = [0.0f32; LANES];
             for l in 0..LANES {
                 r[l] = rk[l] as f32;
@@ -593,6 +609,73 @@ impl Lanes {
         }
         sums
     }
+}
+
+/// [`Lanes::rough_network`] in AVX2 and FMA instructions, from the lanes' single-precision
+/// weights `hidden_w` and `out_w` ([`Lanes::rough_hidden`], [`Lanes::rough_out`]): the hidden
+/// sums in three registers (two units of the four lanes each), each reading converted once and
+/// put in both halves; the outputs' sums in one (both outputs of the four lanes), each hidden
+/// value put in both halves; products and sums fused ([`logistic_rough_avx2`]'s too), which
+/// rounds less than the plain form, so the same bound holds.
+///
+/// # Safety
+/// The processor must have AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+unsafe fn rough_network_avx2(
+    hidden_w: &[[f32; HIDDEN * LANES]; INPUTS + 1],
+    out_w: &[[f32; OUTPUTS * LANES]; HIDDEN + 1],
+    noisy: &[[f64; LANES]; INPUTS],
+) -> [[f64; LANES]; OUTPUTS] {
+    use std::arch::x86_64::{
+        _mm256_add_ps, _mm256_castps256_ps128, _mm256_cvtpd_ps, _mm256_cvtps_pd,
+        _mm256_extractf128_ps, _mm256_fmadd_ps, _mm256_loadu_pd, _mm256_loadu_ps,
+        _mm256_permute2f128_ps, _mm256_set_m128, _mm256_setzero_ps, _mm256_storeu_pd,
+    };
+    const {
+        assert!(
+            HIDDEN * LANES == 24 && OUTPUTS * LANES == 8,
+            "three and one registers"
+        )
+    };
+    let mut outputs = [[0.0; LANES]; OUTPUTS];
+    // SAFETY: each load reads eight `f32` at 0, 8 or 16 of a 24-`f32` row of `hidden_w`, or a
+    // whole 8-`f32` row of `out_w`, or a row of four `f64` of `noisy`; each store writes a row
+    // of four `f64` of `outputs`; the unaligned forms need no alignment.
+    unsafe {
+        // Each sum in two chains, the even inputs' from the bias and the odd inputs', added at
+        // the end: half the fused steps one after another.
+        let (bias, zero) = (hidden_w[0].as_ptr(), _mm256_setzero_ps());
+        let mut even = [0, 8, 16].map(|q| _mm256_loadu_ps(bias.add(q)));
+        let mut odd = [zero; 3];
+        for (k, (w, r)) in hidden_w[1..].iter().zip(noisy).enumerate() {
+            let r = _mm256_cvtpd_ps(_mm256_loadu_pd(r.as_ptr()));
+            let r = _mm256_set_m128(r, r);
+            let sums = if k % 2 == 0 { &mut even } else { &mut odd };
+            for (q, sum) in sums.iter_mut().enumerate() {
+                *sum = _mm256_fmadd_ps(_mm256_loadu_ps(w.as_ptr().add(8 * q)), r, *sum);
+            }
+        }
+        // The outputs' sums likewise: the even units' from the bias, the odd units'.
+        let (mut out_even, mut out_odd) = (_mm256_loadu_ps(out_w[0].as_ptr()), zero);
+        for q in 0..3 {
+            // Units 2q and 2q + 1 of the four lanes, each then in both halves.
+            let y = logistic_rough_avx2(_mm256_add_ps(even[q], odd[q]));
+            let (lo, hi) = (
+                _mm256_permute2f128_ps::<0x00>(y, y),
+                _mm256_permute2f128_ps::<0x11>(y, y),
+            );
+            let w = |h: usize| _mm256_loadu_ps(out_w[h + 1].as_ptr());
+            out_even = _mm256_fmadd_ps(w(2 * q), lo, out_even);
+            out_odd = _mm256_fmadd_ps(w(2 * q + 1), hi, out_odd);
+        }
+        let m = logistic_rough_avx2(_mm256_add_ps(out_even, out_odd));
+        let (m0, m1) = (_mm256_castps256_ps128(m), _mm256_extractf128_ps::<1>(m));
+        _mm256_storeu_pd(outputs[0].as_mut_ptr(), _mm256_cvtps_pd(m0));
+        _mm256_storeu_pd(outputs[1].as_mut_ptr(), _mm256_cvtps_pd(m1));
+    }
+    outputs
 }
 
 /// How far a rough output ([`Lanes::rough_network`]) can be from the exact one, for the
@@ -809,7 +892,8 @@ mod tests {
     }
 
     /// The rough outputs' bound holds: for random weights of several scales and inputs, each
-    /// rough output is within its lane's bound of the exact output.
+    /// rough output, of the plain form and (where the processor has it) the AVX2 form, is
+    /// within its lane's bound of the exact output.
     #[test]
     fn rough_outputs_are_within_their_bounds() {
         let arena = arena("H", true, 10);
@@ -834,15 +918,20 @@ mod tests {
                 for v in noisy.iter_mut().flatten() {
                     *v = uniform(&mut rng, 0.0, SENSOR_MAX);
                 }
-                let rough = lanes.rough_network(&noisy);
                 let exact = lanes.network(&inputs_of(&noisy));
-                for (o, l) in (0..OUTPUTS).flat_map(|o| (0..LANES).map(move |l| (o, l))) {
-                    let gap = (rough[o][l] - exact[o][l]).abs();
-                    assert!(
-                        gap <= lanes.rough[o][l],
-                        "scale {scale}: {gap} > {}",
-                        lanes.rough[o][l]
-                    );
+                let mut forms = vec![lanes.rough_network::<false>(&noisy)];
+                if Isa::detected() != Isa::Baseline {
+                    forms.push(lanes.rough_network::<true>(&noisy));
+                }
+                for rough in forms {
+                    for (o, l) in (0..OUTPUTS).flat_map(|o| (0..LANES).map(move |l| (o, l))) {
+                        let gap = (rough[o][l] - exact[o][l]).abs();
+                        assert!(
+                            gap <= lanes.rough[o][l],
+                            "scale {scale}: {gap} > {}",
+                            lanes.rough[o][l]
+                        );
+                    }
                 }
             }
         }
