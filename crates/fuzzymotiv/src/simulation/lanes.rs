@@ -123,10 +123,12 @@ fn walk<const AVX2: bool, O: StepObserver>(
         next = lanes.load(l, next, arena, trials);
     }
     while lanes.trial.iter().any(Option::is_some) {
-        let mut sights = [Sight::CLEAR; LANES];
-        for ((sight, walk), trial) in sights.iter_mut().zip(&lanes.walk).zip(&lanes.trial) {
-            if trial.is_some() {
-                *sight = walk.sight(arena, memo.as_deref_mut());
+        let (mut sights, mut ahead) = ([Sight::CLEAR; LANES], [0; LANES]);
+        for l in 0..LANES {
+            if lanes.trial[l].is_some() {
+                sights[l] = lanes.walk[l].sight(arena, memo.as_deref_mut());
+                // Taken now, off the chain from the network's outputs to the next pose.
+                ahead[l] = lanes.walk[l].ahead_cell(arena);
             }
         }
         // Sensor `k` of every lane side by side, for the vector lanes below.
@@ -176,7 +178,8 @@ fn walk<const AVX2: bool, O: StepObserver>(
             let m = [motors[0][l], motors[1][l]];
             let noisy = [speeds[0][l], speeds[1][l]];
             let t = lanes.t[l];
-            let (step, home) = lanes.walk[l].act_noisy(t, arena, &sensed, m, noisy, None);
+            let how = (None, Some(ahead[l]));
+            let (step, home) = lanes.walk[l].act_noisy(t, arena, &sensed, m, noisy, how);
             let trial = &mut trials[j];
             trial.observer.observe(&step);
             lanes.t[l] = t + 1;

@@ -899,6 +899,15 @@ impl Walk {
         sensed
     }
 
+    /// The cell a straight move from the pose now would end in (`actions` motion): known
+    /// before the step's action, so the lanes take it early and a move need not wait for it.
+    #[inline(always)]
+    pub(crate) fn ahead_cell(&self, arena: &Arena) -> usize {
+        let step = arena.params.straight_step();
+        let (p, _) = arena.after(self.pose.position(), self.dir, Action::Straight, step);
+        arena.cell_of(p)
+    }
+
     /// What the robot sees from its pose and whether a straight move is blocked (`actions`
     /// motion; [`Arena::sight`]).
     #[inline(always)]
@@ -953,11 +962,12 @@ impl Walk {
             perturb(speeds[0], arena.params.noise, rng),
             perturb(speeds[1], arena.params.noise, rng),
         ];
-        self.act_noisy(t, arena, sensed, motors, noisy, forced)
+        self.act_noisy(t, arena, sensed, motors, noisy, (forced, None))
     }
 
     /// [`Walk::act`] once the wheel noise is drawn: `noisy` are the commanded speeds of
-    /// `motors` with their noise.
+    /// `motors` with their noise. `ahead`: the cell a straight move from here reaches
+    /// ([`Walk::ahead_cell`]), when the caller has it (`actions` motion).
     #[inline(always)]
     pub(crate) fn act_noisy(
         &mut self,
@@ -966,7 +976,7 @@ impl Walk {
         sensed: &Sensed,
         motors: [f64; 2],
         noisy: [f64; 2],
-        forced: Option<Action>,
+        (forced, ahead): (Option<Action>, Option<usize>),
     ) -> (Step, bool) {
         let params = &arena.params;
         let (motion, v_max) = (params.robot.motion(), params.robot.v_max());
@@ -976,7 +986,7 @@ impl Walk {
             (Some(a), Motion::Actions) => a,
             _ => labelled(),
         };
-        let collided = self.execute(action, noisy, arena, params, &sensed.walls);
+        let collided = self.execute(action, noisy, arena, &sensed.walls, ahead);
         let inside = arena.room.home_zone.contains(self.pose.position());
         self.escaped |= !inside;
         let step = Step {
@@ -997,15 +1007,17 @@ impl Walk {
 
     /// Moves by `action` (`actions` motion) or the `noisy` wheel speeds (`wheels`); a move
     /// into one of the `walls` is undone, its heading change kept. Returns whether it collided.
+    /// `ahead`: the cell of the straight move's end, if known ([`Walk::act_noisy`]).
     #[inline(always)]
     fn execute(
         &mut self,
         action: Action,
         noisy: [f64; 2],
         arena: &Arena,
-        params: &TrialParams,
         walls: &Walls,
+        ahead: Option<usize>,
     ) -> bool {
+        let params = &arena.params;
         let pose = self.pose;
         let (candidate, next_dir) = match params.robot.motion() {
             Motion::Actions => Motion::execute(
@@ -1035,7 +1047,8 @@ impl Walk {
         } else {
             self.pose = candidate;
             if moved {
-                self.cell = arena.cell_of(self.pose.position());
+                // `actions` motion moves only straight on, so its end is `ahead`'s cell.
+                self.cell = ahead.unwrap_or_else(|| arena.cell_of(self.pose.position()));
             }
         }
         collided
