@@ -828,12 +828,14 @@ mod tests {
         });
     }
 
-    /// A trajectory that asks its trial to end after a number of steps of its own (trial `i`:
-    /// 17 + 29·i) or at its end. With `motors` false it does not read the steps' motors and
-    /// speeds (it records them as 0), so the lanes may choose actions from rough outputs.
+    /// A trajectory, with each step's grid cell, that asks its trial to end after a number of
+    /// steps of its own (trial `i`: 17 + 29·i) or at its end. With `motors` false it does not
+    /// read the steps' motors and speeds (it records them as 0), so the lanes may choose
+    /// actions from rough outputs.
     #[derive(Debug)]
     struct Until {
         path: Trajectory,
+        cells: Vec<Option<usize>>,
         stop: usize,
         motors: bool,
     }
@@ -843,6 +845,7 @@ mod tests {
             let steps = arena.params().steps;
             Until {
                 path: Trajectory::starting_at(arena.room().home, steps),
+                cells: Vec::new(),
                 stop: 17 + 29 * i,
                 motors,
             }
@@ -851,6 +854,7 @@ mod tests {
 
     impl StepObserver for Until {
         fn observe(&mut self, step: &crate::simulation::trial::Step) {
+            self.cells.push(step.cell);
             match self.motors {
                 true => self.path.observe(step),
                 false => self.path.observe(&crate::simulation::trial::Step {

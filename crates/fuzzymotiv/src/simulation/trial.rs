@@ -966,8 +966,9 @@ impl Walk {
     }
 
     /// [`Walk::act`] once the wheel noise is drawn: `noisy` are the commanded speeds of
-    /// `motors` with their noise. `ahead`: the cell a straight move from here reaches
-    /// ([`Walk::ahead_cell`]), when the caller has it (`actions` motion).
+    /// `motors` with their noise; `forced`, an action chosen from outside (`actions` motion);
+    /// `ahead`, the cell a straight move from here ends in ([`Walk::ahead_cell`]), when the
+    /// caller has it (`actions` motion).
     #[inline(always)]
     pub(crate) fn act_noisy(
         &mut self,
