@@ -19,8 +19,11 @@
 //! entry fit in 32 bytes; the caller must not use the memo for other values.
 //!
 //! Lookups land all over a table, so with ordinary 4 KiB pages most of them also missed the
-//! processor's address cache (TLB). Each table is therefore one 2 MiB block on a 2 MiB boundary,
-//! which Linux is asked to back with a single transparent huge page.
+//! processor's address cache (TLB). Each table is therefore one 8 MiB block on an 8 MiB
+//! boundary, which Linux is asked to back with transparent huge pages (four of 2 MiB). A thread
+//! thus keeps at most 64 MiB of tables (the paper's study, five rooms: 40 MiB a thread); a
+//! quarter of that size computes about a fifth more sights, which cost a paper-scale study
+//! 2–4 % of its time (bench/README.md, "Shorter chains in the lanes").
 //!
 //! Which arenas share tables is decided process-wide: arenas equal in every bit a sight reads
 //! ([`SightKey`]) hold the same memo number ([`MemoClaim`]) in a registry that forgets a number
@@ -36,8 +39,8 @@ use std::sync::{Arc, LazyLock, Mutex, MutexGuard, PoisonError, Weak};
 use crate::simulation::geom::Vec2;
 use crate::simulation::sensor::{SENSORS as INPUTS, SensorModel};
 
-/// Entries per table (2¹⁶: 2 MiB).
-pub const SLOTS: usize = 1 << 16;
+/// Entries per table (2¹⁸: 8 MiB).
+pub const SLOTS: usize = 1 << 18;
 
 /// Slots a pose may take (a set: two slots of 32 bytes, one cache line).
 const WAYS: usize = 2;
@@ -201,8 +204,8 @@ impl Table {
     }
 }
 
-/// A table's [`SLOTS`] slots: one block of [`Slots::BYTES`] (2 MiB) aligned to its size, so
-/// that it is exactly one huge page, which Linux is asked for (`madvise(MADV_HUGEPAGE)`) before
+/// A table's [`SLOTS`] slots: one block of [`Slots::BYTES`] (8 MiB) aligned to its size, so
+/// that it is exactly four huge pages, which Linux is asked for (`madvise(MADV_HUGEPAGE)`) before
 /// the block is first written. Where the advice is refused or unknown (another system,
 /// transparent huge pages switched off) the block is ordinary memory: only speed differs.
 struct Slots(NonNull<Slot>);
@@ -467,7 +470,7 @@ mod tests {
         let mut slots = Slots::new();
         assert_eq!(slots.len(), SLOTS);
         assert_eq!(slots.as_ptr() as usize % Slots::BYTES, 0);
-        assert_eq!(Slots::BYTES, 2 << 20);
+        assert_eq!(Slots::BYTES, 8 << 20);
         let key = Key::new(Vec2::new(1.5, -2.0), 3);
         assert!(slots.iter().all(|s| s.read(&key).is_none()));
         let last = SLOTS - 1;
