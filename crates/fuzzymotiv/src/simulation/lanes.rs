@@ -20,8 +20,9 @@
 //! instruction: [`Lanes::rough_network`]) with a bound on how far each can be from the exact
 //! output, and keep them when every lane's action is the same for all outputs within the bounds
 //! ([`actions_are_certain`]); otherwise (7 steps of the lanes in 10,000 on evolved robots:
-//! generations 101–200 of the high-curiosity run) they compute the exact outputs. The actions, and so every pose, cell and term, are the exact
-//! ones; only the steps' `motors` and `speeds` are rough.
+//! generations 101–200 of the high-curiosity run) they compute the exact outputs. The actions,
+//! and so every pose, cell and term, are the exact ones; only the steps' `motors` and `speeds`
+//! are rough.
 
 use crate::simulation::controller::{INPUTS, Mlp, OUTPUTS};
 use crate::simulation::isa::Isa;
@@ -615,11 +616,13 @@ impl Lanes {
 }
 
 /// [`Lanes::rough_network`] in AVX2 and FMA instructions, from the lanes' single-precision
-/// weights `hidden_w` and `out_w` ([`Lanes::rough_hidden`], [`Lanes::rough_out`]): the hidden
-/// sums in three registers (two units of the four lanes each), each reading converted once and
-/// put in both halves; the outputs' sums in one (both outputs of the four lanes), each hidden
-/// value put in both halves; products and sums fused ([`logistic_rough_avx2`]'s too), which
-/// rounds less than the plain form, so the same bound holds.
+/// weights `hidden_w` and `out_w` ([`Lanes::rough_hidden`], [`Lanes::rough_out`]), arranged
+/// so that few steps wait on one another (a mispredicted action waits for the whole network):
+/// the hidden sums in three registers (two units of the four lanes each), each in two chains
+/// (even and odd inputs) added at the end, each reading converted once and put in both halves;
+/// the outputs' sums in one register (both outputs of the four lanes), again in two chains,
+/// each hidden value put in both halves; products and sums fused ([`logistic_rough_avx2`]'s
+/// too). That rounds less than the plain form, so the same bound holds.
 ///
 /// # Safety
 /// The processor must have AVX2 and FMA.
