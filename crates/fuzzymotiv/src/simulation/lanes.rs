@@ -901,6 +901,24 @@ mod tests {
         assert!(rough > 1000 && exact > 100, "rough {rough}, exact {exact}");
     }
 
+    /// Lanes with the networks `nets` (one a lane) loaded in `arena`.
+    fn loaded(arena: &Arena, nets: &[Mlp]) -> Lanes {
+        let mut lanes = Lanes::new(arena);
+        let mut trials: Vec<_> = (nets.iter())
+            .map(|net| LaneTrial {
+                net,
+                seed: 1,
+                observer: (),
+                last: arena.room().home,
+            })
+            .collect();
+        let mut next = 0;
+        for l in 0..LANES {
+            next = lanes.load(l, next, arena, &mut trials);
+        }
+        lanes
+    }
+
     /// The rough outputs' bound holds: for random weights of several scales and inputs, each
     /// rough output, of the plain form and (where the processor has it) the AVX2 form, is
     /// within its lane's bound of the exact output.
@@ -909,19 +927,7 @@ mod tests {
         let arena = arena("H", true, 10);
         for (i, scale) in [0.01, 1.0, 10.0, 100.0, 800.0].into_iter().enumerate() {
             let nets = networks(LANES, 40 + i as u64, scale);
-            let mut lanes = Lanes::new(&arena);
-            let mut trials: Vec<_> = (nets.iter())
-                .map(|net| LaneTrial {
-                    net,
-                    seed: 1,
-                    observer: (),
-                    last: arena.room().home,
-                })
-                .collect();
-            let mut next = 0;
-            for l in 0..LANES {
-                next = lanes.load(l, next, &arena, &mut trials);
-            }
+            let lanes = loaded(&arena, &nets);
             let mut rng = rng_from_seed(7 + i as u64);
             for _ in 0..2000 {
                 let mut noisy = [[0.0; LANES]; INPUTS];
@@ -957,19 +963,7 @@ mod tests {
         let mut worst = 0.0f64;
         for scale in [0.3, 1.0, 50.0, 1e4] {
             let nets = networks(LANES, scale as u64 + 3, scale);
-            let mut lanes = Lanes::new(&arena);
-            let mut trials: Vec<_> = (nets.iter())
-                .map(|net| LaneTrial {
-                    net,
-                    seed: 1,
-                    observer: (),
-                    last: arena.room().home,
-                })
-                .collect();
-            let mut next = 0;
-            for l in 0..LANES {
-                next = lanes.load(l, next, &arena, &mut trials);
-            }
+            let lanes = loaded(&arena, &nets);
             for i in 0..5000 {
                 let mut noisy = [[0.0; LANES]; INPUTS];
                 for v in noisy.iter_mut().flatten() {
