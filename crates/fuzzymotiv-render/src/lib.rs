@@ -12,7 +12,6 @@ pub mod compare;
 pub mod figures;
 pub mod frames;
 pub mod plot;
-pub mod power;
 pub mod replication;
 pub mod report;
 pub mod robustness;

@@ -4,7 +4,6 @@
 
 use fuzzymotiv::statistics::{self, Expect, Settings, Verdict, mean_std, quantile};
 
-use crate::power;
 use crate::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
 use fuzzymotiv_records::records::context::RenderContext;
 use fuzzymotiv_records::records::{
@@ -483,7 +482,6 @@ fn compare_claim(
         evidence,
         stats,
         curves: Vec::new(),
-        at_edge: None,
     }
 }
 
@@ -632,21 +630,6 @@ fn rise_stats(setting: &SettingSummary, options: &Settings) -> Option<CurveStats
     })
 }
 
-/// The claims a study reports: [`claims`] at `alpha`, and, at [`CLAIMS_ALPHA`] for a study of
-/// `design` (none for a variant of the model), the claims the replication found at the edge of
-/// that design's power marked "inconclusive" ([`power::mark_at_edge`]).
-pub fn study_claims(
-    settings: &[SettingSummary],
-    alpha: f64,
-    design: Option<&power::StudyDesign>,
-) -> Vec<ClaimRecord> {
-    let mut claims = claims(settings, alpha);
-    if let Some(design) = design.filter(|_| alpha == CLAIMS_ALPHA) {
-        power::mark_at_edge(&mut claims, design);
-    }
-    claims
-}
-
 /// The paper's claims from a study's records (`settings[0]` high curiosity, `settings[1]`
 /// low, as in `summary.json`): high vs low curiosity, each tested at level `alpha` (paired
 /// over seeds, see `fuzzymotiv::statistics`), and Fig. 6's fitness curves: `holds` on the
@@ -677,7 +660,6 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
             evidence: format!("high {:.3}, low {:.3}", first[0], first[1]),
             stats: None,
             curves: curves(first_f_stats),
-            at_edge: None,
         },
         ClaimRecord {
             claim: "mean F rises over the generations".into(),
@@ -688,7 +670,6 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
             ),
             stats: None,
             curves: curves(rise_stats),
-            at_edge: None,
         },
     ]);
     out

@@ -244,36 +244,6 @@ fn claims_method(claims: &[ClaimRecord]) -> String {
         alpha = s.alpha,
         n = s.seeds,
         min_p = s.min_p,
-    ) + &at_edge_note(claims)
-}
-
-/// For a study of the replicated design, which claims are reported "inconclusive" because the
-/// replication found them at the edge of its power, with each claim's own verdict; empty when
-/// none is.
-fn at_edge_note(claims: &[ClaimRecord]) -> String {
-    let marked: Vec<String> = claims
-        .iter()
-        .filter_map(|c| {
-            let e = c.at_edge.as_ref()?;
-            Some(format!(
-                "\"{}\" (pooled effect {:+.1} within one study's MDD {:.1}; this study's own test: {})",
-                c.claim, e.pooled_effect, e.one_study_mdd, e.own_verdict
-            ))
-        })
-        .collect();
-    let Some(e) = claims.iter().find_map(|c| c.at_edge.as_ref()) else {
-        return String::new();
-    };
-    let bases: Vec<String> = e.base_seeds.iter().map(u64::to_string).collect();
-    format!(
-        "\n\nAt the edge of this study's power: the replication of this design ({} paired seeds \
-         pooled from base seeds {}) found no number of seeds at which both base seeds' verdicts \
-         agree, and these claims' pooled effects within the difference one such study detects, \
-         so this study reports them \"inconclusive\" whatever its own p (another base seed would \
-         likely give another verdict): {}.",
-        e.pooled_seeds,
-        bases.join(" and "),
-        marked.join("; ")
     )
 }
 

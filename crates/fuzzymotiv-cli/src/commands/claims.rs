@@ -9,8 +9,7 @@ use fuzzymotiv_io::files::guard::{
 };
 use fuzzymotiv_io::note;
 use fuzzymotiv_io::records::{StudySummary, read_json};
-use fuzzymotiv_io::render::power::StudyDesign;
-use fuzzymotiv_io::render::study::{CLAIMS_ALPHA, claims_stem, study_claims};
+use fuzzymotiv_io::render::study::{CLAIMS_ALPHA, claims, claims_stem};
 use fuzzymotiv_io::render::tables::{Provenance, claims_table};
 
 /// Arguments of `fuzzymotiv claims`.
@@ -59,19 +58,9 @@ pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
         generations: summary.generations,
         quick: summary.quick,
     };
-    // The claims the study marked at the edge of its power stay marked (its design is the
-    // replicated one); a study that marked none (another design, a variant, an older file)
-    // keeps its own verdicts.
-    let marked = summary.claims.iter().any(|c| c.at_edge.is_some());
-    let design = StudyDesign {
-        model: summary.model,
-        population: summary.population,
-        generations: summary.generations,
-        quick: summary.quick,
-        overrides: !summary.overrides.is_empty(),
-        seeds: summary.seeds.len(),
-    };
-    let recomputed = study_claims(&summary.settings, args.alpha, marked.then_some(&design));
+    // Each verdict from the study's own records by the stated rule, whatever an earlier
+    // build wrote in summary.json.
+    let recomputed = claims(&summary.settings, args.alpha);
     let (md, csv) = claims_table(&recomputed, &provenance);
     let (dir, files) = claims_files(&args, md.clone(), csv);
     // Messages name --out only when the user gave it.

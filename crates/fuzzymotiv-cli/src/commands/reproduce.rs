@@ -29,7 +29,6 @@ use fuzzymotiv_io::render::combination::{
     claim_difference_table,
 };
 use fuzzymotiv_io::render::figures::write_figure_at;
-use fuzzymotiv_io::render::power::StudyDesign;
 use fuzzymotiv_io::render::replication::{
     replication as replication_of, replication_svg, replication_table, seeds_csv,
 };
@@ -37,7 +36,7 @@ use fuzzymotiv_io::render::report::{Section, reproduce_page, study_page};
 use fuzzymotiv_io::render::strength::{SEARCH_STRENGTH, strength_svg, strength_table};
 use fuzzymotiv_io::render::study::{
     ABLATION, CLAIMS_ALPHA, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns,
-    Variant, overall, seed_dir, seed_index, study_claims,
+    Variant, overall, claims as paper_claims, seed_dir, seed_index,
 };
 use fuzzymotiv_io::render::svg::{FitnessPanel, best_paths_svg, fitness_panels_svg};
 use fuzzymotiv_io::render::tables::{
@@ -61,8 +60,8 @@ pub struct ReproduceArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Number of seeds per setting; tables give mean ± std over them and every seed's values.
-    /// Twenty by default: from eleven seeds on, the verdicts of the claims not at the edge of
-    /// their power agree at two base seeds (docs/guide/cli.md: why twenty seeds).
+    /// Twenty by default: from eleven seeds on, homing's verdict and Fig. 6's checks agree at
+    /// two base seeds (docs/guide/cli.md: why twenty seeds).
     #[arg(long, allow_hyphen_values = true, default_value_t = 20, value_parser = clap::builder::RangedI64ValueParser::<u64>::new().range(1..=1000))]
     pub seeds: u64,
     /// A fast look: GA 30 × 30 instead of the paper's 200 × 200.
@@ -296,9 +295,7 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     else {
         return Ok(());
     };
-    let design = Some(design_of(&args, &studies));
-    let (claims, tables) =
-        write_study(&args, args.seed(), &staged.staging, &studies, design, start)?;
+    let (claims, tables) = write_study(&args, args.seed(), &staged.staging, &studies, start)?;
     commit(staged, start)?;
     fuzzymotiv_io::out!("{tables}")?;
     print_claims(&claims)
@@ -391,8 +388,7 @@ fn run_variants_measuring<T>(
         let dir = staged.staging.join(variant.name);
         let label = format!("{} · ", variant.name);
         let studies = run_study(args, &SETTINGS, seeds, &loaded, &dir, &progress, &label)?;
-        // A variant's claims are compared with the other variants' as they are: no marks.
-        let (claims, _) = write_study(args, args.seed(), &dir, &studies, None, Instant::now())?;
+        let (claims, _) = write_study(args, args.seed(), &dir, &studies, Instant::now())?;
         let measured = measure(&loaded, &studies)?;
         rows.push(((variant, claims), measured));
     }
@@ -583,8 +579,7 @@ fn replication(args: &ReproduceArgs) -> Result<(), CliError> {
         let dir = staged.staging.join(&names[i]);
         let label = format!("{} · ", names[i]);
         let studies = run_study(args, &SETTINGS, &seeds[i], loaded, &dir, &progress, &label)?;
-        let design = Some(design_of(args, &studies));
-        write_study(args, bases[i], &dir, &studies, design, Instant::now())?;
+        write_study(args, bases[i], &dir, &studies, Instant::now())?;
     }
     progress.finish();
     let [a, b] = [0, 1]
@@ -836,29 +831,14 @@ fn rows_exp(args: &ReproduceArgs, seeds: &[u64]) -> Result<Loaded, CliError> {
     load_one(args, &SETTINGS[0], seeds[0], &DEFAULT_MODEL)
 }
 
-/// The design of a study of the paper's two settings, as the replication's claims at the edge
-/// are kept for ([`mark_at_edge`](fuzzymotiv_io::render::power::mark_at_edge)).
-fn design_of(args: &ReproduceArgs, studies: &[SettingRuns<'_>]) -> StudyDesign {
-    let ctx = &studies[0].contexts[0];
-    StudyDesign {
-        model: fuzzymotiv::MODEL_VERSION,
-        population: ctx.population,
-        generations: ctx.generations,
-        quick: args.quick,
-        overrides: !args.sets.is_empty(),
-        seeds: studies[0].seeds.len(),
-    }
-}
-
-/// Tables, figures, claims, `report.html` and `summary.json` of a study in `dir`; `design`
-/// marks the claims at the edge of its power ([`study_claims`]; none for a variant).
+/// Tables, figures, claims, `report.html` and `summary.json` of a study in `dir`; the claims
+/// are the study's own, each verdict from its records by the stated rule ([`paper_claims`]).
 /// Returns the claims and the tables to print once the study is in place.
 fn write_study(
     args: &ReproduceArgs,
     base: u64,
     dir: &Path,
     studies: &[SettingRuns<'_>],
-    design: Option<StudyDesign>,
     start: Instant,
 ) -> Result<(Vec<ClaimRecord>, String), CliError> {
     let mut printed = String::new();
@@ -882,7 +862,7 @@ fn write_study(
     let fitness = fitness_panels_svg(&panels);
     write_figure_at(&dir.join("fitness.svg"), &fitness, rasteriser(args.png))?;
     let settings: Vec<_> = studies.iter().map(SettingRuns::summary).collect();
-    let claims = study_claims(&settings, CLAIMS_ALPHA, design.as_ref());
+    let claims = paper_claims(&settings, CLAIMS_ALPHA);
     let (md, csv) = claims_table(&claims, &provenance);
     write_atomic(&dir.join("claims.md"), &md)?;
     write_atomic(&dir.join("claims.csv"), &csv)?;

@@ -941,29 +941,6 @@ pub struct ClaimRecord {
     /// the checks of Fig. 6's curves and in files written before them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stats: Option<ClaimStats>,
-    /// For a study of the replicated design, a claim the replication found at the edge of its
-    /// power: reported "inconclusive", with the study's own verdict kept here (none otherwise,
-    /// and in files written before it).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub at_edge: Option<AtEdgeNote>,
-}
-
-/// Why a claim of a study is reported "inconclusive" whatever its own p: the replication of
-/// the study's design (two base seeds, their seeds pooled) found its pooled effect within the
-/// difference one study detects.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct AtEdgeNote {
-    /// The verdict of the study's own test ("holds", "not significant", …).
-    pub own_verdict: String,
-    /// The replication's pooled effect (high − low, points).
-    pub pooled_effect: f64,
-    /// The larger of the replication's two base seeds' MDDs (one study's detectable
-    /// difference, 80 % power).
-    pub one_study_mdd: f64,
-    /// Seeds pooled by the replication.
-    pub pooled_seeds: usize,
-    /// The replication's base seeds.
-    pub base_seeds: Vec<u64>,
 }
 
 /// One setting's test of a Fig. 6 claim over seeds: the first generation's mean F against the
