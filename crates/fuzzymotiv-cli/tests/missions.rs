@@ -289,3 +289,49 @@ fn bad_motivation_tables_exit_2_naming_the_file_and_field() {
         "{e}"
     );
 }
+
+/// `robustness` of a five-motivation mission run reports, beside F, a, g and b, the share of
+/// missions done and every term beyond a, g, l, b that `table.md` shows (urgency, the fifth
+/// motivation's, among them): in the CSV, the Markdown and the figure.
+#[test]
+fn robustness_of_a_mission_run_reports_urgency_and_missions_done() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = fetch_run(dir.path(), &[]);
+    let out = dir.path().join("rob");
+    common::Fm::new(["robustness", run.to_str().unwrap(), "--trials", "2"])
+        .out(&out)
+        .ok();
+    let csv = read(&out.join("robustness.csv"));
+    let header = csv.lines().next().unwrap();
+    let extra = ["missions_done", "goal", "urgency", "safety"]
+        .map(|m| format!("{m},{m}_lo,{m}_hi"))
+        .join(",");
+    assert!(
+        header.ends_with(&format!(",battery_hi,{extra}")),
+        "{header}"
+    );
+    for line in csv.lines().skip(1) {
+        let v: Vec<f64> = (line.split(',').skip(2))
+            .map(|x| x.parse().unwrap())
+            .collect();
+        assert_eq!(v.len(), 3 * 8, "{line}");
+        for c in v.chunks(3) {
+            assert!(c[1] <= c[0] && c[0] <= c[2], "{line}");
+        }
+    }
+    let md = read(&out.join("robustness.md"));
+    assert!(
+        md.lines()
+            .next()
+            .unwrap()
+            .ends_with("| battery b | missions done | goal | urgency | safety |"),
+        "{md}"
+    );
+    let svg = read(&out.join("robustness.svg"));
+    for panel in ["missions done", "urgency"] {
+        assert!(
+            svg.contains(&format!(">{panel}</text>")),
+            "no {panel} panel"
+        );
+    }
+}

@@ -1,5 +1,6 @@
 //! `robustness.svg`: a run's best robot under each perturbation
-//! ([`RobustnessRecord`]s), one panel per measure (F, exploration, homing, battery), the
+//! ([`RobustnessRecord`]s), one panel per measure (F, exploration, homing, battery, and a
+//! run's recognition, missions done and terms beyond a, g, l, b: [`measures_of`]), the
 //! perturbations down the side, each the mean (dot) with its 95 % interval (line) against the
 //! unperturbed robot's mean (dashed line) and interval (grey band).
 
@@ -194,6 +195,7 @@ mod tests {
             recognition: Some(v(0.75)),
             recognition_lo: Some(v(0.5)),
             recognition_hi: Some(v(1.0)),
+            extra: Vec::new(),
         }
     }
 

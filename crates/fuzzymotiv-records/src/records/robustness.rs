@@ -1,22 +1,26 @@
 //! `robustness.csv` and `robustness.md`: a run's best robot under the perturbations a real
 //! robot brings ([`fuzzymotiv::experiment::Experiment::robustness`]), per perturbation the mean
-//! and 95 % bootstrap interval of F and of each behaviour term. `fuzzymotiv robustness` and
-//! `fm.robustness` both go through [`robustness_of_run`].
+//! and 95 % bootstrap interval of F and of each behaviour term. A run that follows missions or
+//! weighs terms of its own has more columns, after the paper's: the share of missions done and
+//! each term beyond a, g, l, b that `table.md` shows ([`crate::records::extra_terms`]).
+//! `fuzzymotiv robustness` and `fm.robustness` both go through [`robustness_of_run`].
 
 use std::path::Path;
 
 use fuzzymotiv::experiment::{Perturbation, RobustnessRow};
+use fuzzymotiv::fitness::TermId;
 use fuzzymotiv::statistics::{mean, mean_interval};
 use serde::{Deserialize, Serialize};
 
 use crate::files::error::CliError;
 use crate::files::inputs::load_config;
 use crate::records::genome::{locate, read_genome};
-use crate::records::{Fixed, to_csv};
+use crate::records::{Fixed, csv_text, csv_writer, extra_terms, to_csv, write_row};
 
 /// The measures of a row, in column order: the column stem and the words a table or figure
 /// shows. The last, recognition, is there only for a run with one room model (room modelling
-/// on, all-rooms training): [`RobustnessRecord::measures`].
+/// on, all-rooms training): [`RobustnessRecord::measures`]. A run's measures beyond these
+/// follow them ([`RobustnessRecord::extra`]).
 pub const MEASURES: [(&str, &str); 5] = [
     ("f", "F"),
     ("exploration", "exploration a"),
@@ -67,18 +71,62 @@ pub struct RobustnessRecord {
     /// Its interval's upper bound.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub recognition_hi: Option<Fixed<6>>,
+    /// The measures of a run beyond the paper's, in column order after them: the share of
+    /// trials whose mission was done (`missions_done`, when the run follows missions), then
+    /// each term beyond a, g, l, b the run measures, by name ([`extra_terms`]); none for the
+    /// paper's model (columns written by [`robustness_csv`]).
+    #[serde(skip)]
+    pub extra: Vec<ExtraMeasure>,
 }
 
+/// One measure of a [`RobustnessRecord`] beyond the paper's: its mean over the trials and the
+/// bounds of its 95 % interval.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExtraMeasure {
+    /// The column stem (`missions_done`, or the term's name).
+    pub stem: String,
+    /// The words a table or figure shows (`missions done`, or the term's name).
+    pub words: String,
+    /// The mean.
+    pub mean: Fixed<6>,
+    /// Its interval's lower bound.
+    pub lo: Fixed<6>,
+    /// Its interval's upper bound.
+    pub hi: Fixed<6>,
+}
+
+/// The stem of the share of missions done.
+pub const MISSIONS_DONE: (&str, &str) = ("missions_done", "missions done");
+
 impl RobustnessRecord {
-    /// The record of the `k`-th row of a study (its bootstrap on stream `k + 1`).
-    pub fn of(k: usize, row: &RobustnessRow) -> RobustnessRecord {
+    /// The record of the `k`-th row of a study (its bootstrap on stream `k + 1`), with a
+    /// measure per term of `extra` (by name; [`extra_terms`]) that the row kept.
+    pub fn of(k: usize, row: &RobustnessRow, extra: &[(String, TermId)]) -> RobustnessRecord {
         let stats = |v: &Vec<f64>| {
             let (lo, hi) = mean_interval(v, 0.95, 2000, k as u64 + 1);
             (Fixed(mean(v)), Fixed(lo), Fixed(hi))
         };
         let [f, e, h, b] = [&row.f, &row.exploration, &row.homing, &row.battery].map(stats);
         let r = (!row.recognised.is_empty()).then(|| stats(&row.recognised));
+        let done = (!row.missions_done.is_empty()).then_some((MISSIONS_DONE, &row.missions_done));
+        let terms = extra.iter().filter_map(|(name, id)| {
+            let (_, values) = row.terms.iter().find(|(t, _)| t == id)?;
+            Some(((name.as_str(), name.as_str()), values))
+        });
+        let extra = (done.into_iter().chain(terms))
+            .map(|((stem, words), values)| {
+                let (mean, lo, hi) = stats(values);
+                ExtraMeasure {
+                    stem: stem.to_string(),
+                    words: words.to_string(),
+                    mean,
+                    lo,
+                    hi,
+                }
+            })
+            .collect();
         RobustnessRecord {
+            extra,
             perturbation: row.perturbation.label(),
             trials: row.f.len(),
             f: f.0,
@@ -99,8 +147,8 @@ impl RobustnessRecord {
         }
     }
 
-    /// Per measure of [`MEASURES`] the record has (recognition only with a room model):
-    /// (mean, lower bound, upper bound).
+    /// Per measure the record has ([`measures_of`]: those of [`MEASURES`], recognition only
+    /// with a room model, then [`RobustnessRecord::extra`]): (mean, lower bound, upper bound).
     pub fn measures(&self) -> Vec<(f64, f64, f64)> {
         let mut all = vec![
             (self.f, self.f_lo, self.f_hi),
@@ -113,21 +161,57 @@ impl RobustnessRecord {
         {
             all.push((m, lo, hi));
         }
+        all.extend(self.extra.iter().map(|e| (e.mean, e.lo, e.hi)));
         all.into_iter()
             .map(|(m, lo, hi)| (m.0, lo.0, hi.0))
             .collect()
     }
 }
 
-/// The measures of [`MEASURES`] that `records` have: recognition when the first has it.
-pub fn measures_of(records: &[RobustnessRecord]) -> &'static [(&'static str, &'static str)] {
-    let n = records.first().map_or(4, |r| r.measures().len());
-    &MEASURES[..n]
+/// The measures that `records` have, (column stem, words) in [`RobustnessRecord::measures`]
+/// order: those of [`MEASURES`] (recognition when the first record has it), then the first
+/// record's [`RobustnessRecord::extra`].
+pub fn measures_of(records: &[RobustnessRecord]) -> Vec<(String, String)> {
+    let Some(first) = records.first() else {
+        return own(&MEASURES[..4]);
+    };
+    let paper = first.measures().len() - first.extra.len();
+    let mut all = own(&MEASURES[..paper]);
+    all.extend(
+        first
+            .extra
+            .iter()
+            .map(|e| (e.stem.clone(), e.words.clone())),
+    );
+    all
 }
 
-/// `robustness.csv`'s text.
+fn own(measures: &[(&str, &str)]) -> Vec<(String, String)> {
+    (measures.iter())
+        .map(|(stem, words)| (stem.to_string(), words.to_string()))
+        .collect()
+}
+
+/// `robustness.csv`'s text: per measure of [`measures_of`] its mean and bounds (`f`, `f_lo`,
+/// `f_hi`, …). Records of the paper's model give the bytes they always gave.
 pub fn robustness_csv(records: &[RobustnessRecord]) -> String {
-    to_csv(records)
+    if records.iter().all(|r| r.extra.is_empty()) {
+        return to_csv(records);
+    }
+    let mut w = csv_writer();
+    let mut header = vec!["perturbation".to_string(), "trials".to_string()];
+    for (stem, _) in measures_of(records) {
+        header.extend(["", "_lo", "_hi"].map(|s| format!("{stem}{s}")));
+    }
+    write_row(&mut w, header);
+    for r in records {
+        let mut cells = vec![r.perturbation.clone(), r.trials.to_string()];
+        for (m, lo, hi) in r.measures() {
+            cells.extend([m, lo, hi].map(|v| Fixed::<6>(v).to_string()));
+        }
+        write_row(&mut w, cells);
+    }
+    csv_text(w)
 }
 
 /// A robustness study of a run: its rows and what they change ([`Perturbation::notes`]).
@@ -200,11 +284,12 @@ pub fn robustness_of_run(run: &Path, trials: usize) -> Result<RobustnessStudy, C
     let rows = exp
         .robustness_recognising(&genome.weights, &perturbations, trials, recognizer.as_ref())
         .map_err(|e| at(&e))?;
+    let extra = extra_terms(exp);
     Ok(RobustnessStudy {
         records: rows
             .iter()
             .enumerate()
-            .map(|(k, r)| RobustnessRecord::of(k, r))
+            .map(|(k, r)| RobustnessRecord::of(k, r, &extra))
             .collect(),
         notes: Perturbation::notes(&perturbations, exp.trial_params()),
     })

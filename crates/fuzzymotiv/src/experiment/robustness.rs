@@ -1,6 +1,7 @@
 //! Robustness to the reality gap (issue 37, item 3; the library's part): an evolved network
 //! evaluated under the perturbations a real robot brings, on paired streams (the same seeds
-//! for every perturbation), F and behaviour per trial.
+//! for every perturbation), F and behaviour per trial: the paper's terms, and on a run that
+//! follows missions or weighs terms of its own, those terms and whether each mission was done.
 //!
 //! ```
 //! use fuzzymotiv::experiment::{BuiltinRoomsOnly, Perturbation, RawConfig, Setup};
@@ -12,6 +13,7 @@
 //! ```
 
 use crate::experiment::Experiment;
+use crate::fitness::{FitnessTerms, TermId};
 use crate::modelling::{Recognizer, SomError};
 use crate::params::FieldError;
 use crate::random::seed::hash_str;
@@ -211,6 +213,45 @@ pub struct RobustnessRow {
     /// Per trial, 1 when the room model recognised its actions as its own room, else 0 (empty
     /// when no room model was given: [`Experiment::robustness_recognising`]).
     pub recognised: Vec<f64>,
+    /// Per trial, 1 when its mission was done (its room's waypoints visited and its goal
+    /// reached), else 0; empty when the experiment follows no mission
+    /// ([`Experiment::measures_mission`]).
+    pub missions_done: Vec<f64>,
+    /// Each trial's value of every term the experiment measures beyond a, g, l, b
+    /// ([`Experiment::robustness_terms`]): the mission terms when it follows missions, then
+    /// its user-defined terms; empty for the paper's model.
+    pub terms: Vec<(TermId, Vec<f64>)>,
+}
+
+impl RobustnessRow {
+    /// An empty row of `p` with a column per term of `terms`.
+    fn new(perturbation: Perturbation, terms: &[TermId]) -> RobustnessRow {
+        RobustnessRow {
+            perturbation,
+            f: Vec::new(),
+            exploration: Vec::new(),
+            homing: Vec::new(),
+            battery: Vec::new(),
+            recognised: Vec::new(),
+            missions_done: Vec::new(),
+            terms: terms.iter().map(|&id| (id, Vec::new())).collect(),
+        }
+    }
+
+    /// Adds one trial's terms, F `f` under them.
+    fn push(&mut self, terms: &FitnessTerms, f: f64, mission: bool) {
+        self.f.push(f);
+        self.exploration.push(terms.a);
+        self.homing.push(terms.g);
+        self.battery.push(terms.b);
+        if mission {
+            let done = terms.mission.is_some_and(|m| m.done_at.is_some());
+            self.missions_done.push(f64::from(u8::from(done)));
+        }
+        for (id, values) in &mut self.terms {
+            values.push(terms.get(*id));
+        }
+    }
 }
 
 impl Experiment {
@@ -236,17 +277,11 @@ impl Experiment {
         recognizer: Option<&Recognizer>,
     ) -> Result<Vec<RobustnessRow>, RobustnessError> {
         let net = self.network(genome)?;
+        let extra = self.robustness_terms();
         let mut rows = Vec::with_capacity(perturbations.len());
         for &p in perturbations {
             let exp = self.perturbed(p)?;
-            let mut row = RobustnessRow {
-                perturbation: p,
-                f: Vec::new(),
-                exploration: Vec::new(),
-                homing: Vec::new(),
-                battery: Vec::new(),
-                recognised: Vec::new(),
-            };
+            let mut row = RobustnessRow::new(p, &extra);
             for room in 0..exp.arenas.len() {
                 for k in 0..trials {
                     let seed = hash_str(&format!("robustness/{}/{k}/{room}", self.seed));
@@ -273,15 +308,29 @@ impl Experiment {
                             terms
                         }
                     };
-                    row.f.push(exp.fuzzy_fitness(&terms));
-                    row.exploration.push(terms.a);
-                    row.homing.push(terms.g);
-                    row.battery.push(terms.b);
+                    row.push(&terms, exp.fuzzy_fitness(&terms), self.measures_mission());
                 }
             }
             rows.push(row);
         }
         Ok(rows)
+    }
+
+    /// The terms beyond a, g, l, b whose values a robustness row keeps
+    /// ([`RobustnessRow::terms`]): the four mission terms when the experiment follows missions
+    /// ([`Experiment::measures_mission`]), then each user-defined term; none for the paper's
+    /// model.
+    pub fn robustness_terms(&self) -> Vec<TermId> {
+        let mission = [
+            TermId::Goal,
+            TermId::Urgency,
+            TermId::Waypoints,
+            TermId::Safety,
+        ];
+        let mission = mission.into_iter().filter(|_| self.measures_mission());
+        mission
+            .chain((0..self.user_terms().len()).map(TermId::User))
+            .collect()
     }
 
     /// This experiment with the trial parameters `p` changes (dead sensors and wheel bias are
@@ -345,6 +394,8 @@ mod tests {
             assert_eq!(row.exploration, rows[0].exploration);
         }
         assert_eq!(rows[0].f.len(), 6);
+        // The paper's model keeps no mission and no term beyond a, g, l, b.
+        assert!(rows[0].missions_done.is_empty() && rows[0].terms.is_empty());
     }
 
     /// Recognising the trials' actions watches them without changing them: the same F and
