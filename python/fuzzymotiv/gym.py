@@ -4,7 +4,9 @@
 
 * ``fuzzymotiv/Khepera-v0``: observation ``Box(0, 1, (8,))`` — the eight IR sensors / 1023,
   noise included (what the network reads); action ``Box(0, 1, (2,))`` — the two motor outputs
-  ``mL, mR`` the network gives the simulator (clipped to [0, 1]);
+  ``mL, mR`` the network gives the simulator; a finite value outside [0, 1] is clipped to it
+  (``(5, -5)`` is ``(1, 0)``, as ``gymnasium.wrappers.ClipAction`` would make it), NaN or an
+  infinity raises :class:`fuzzymotiv.FuzzymotivError`;
 * ``fuzzymotiv/KheperaDiscrete-v0``: the same with ``Discrete(4)`` actions, executed as given
   (0 ``straight``, 1 ``left30``, 2 ``right30``, 3 ``turn180``; ``motion = "actions"``).
 
@@ -273,8 +275,9 @@ def _check_seed(seed: Any) -> None:
 
 def _actions(action: Any, n: int, discrete: bool) -> npt.NDArray[Any]:
     """The actions of ``n`` environments as the native step takes them: ``(n,)`` int64 action
-    numbers, or ``(n, 2)`` float64 motor outputs. Anything else is a FuzzymotivError saying
-    what was expected (no silent rounding of 1.7 to 1)."""
+    numbers, or ``(n, 2)`` float64 motor outputs (the native step clips them to [0, 1], the
+    Box's bounds). Anything else is a FuzzymotivError saying what was expected (no silent
+    rounding of 1.7 to 1, no NaN or infinity clipped into a number)."""
     a = np.asarray(action)
     numeric = a.dtype.kind in "iu" or (a.dtype.kind == "f" and bool(np.all(np.isfinite(a))))
     if discrete:
@@ -287,8 +290,9 @@ def _actions(action: Any, n: int, discrete: bool) -> npt.NDArray[Any]:
         return a.astype(np.int64).reshape(n)
     if a.size != 2 * n or not numeric:
         raise FuzzymotivError(
-            f"action: expected {n} pair(s) of finite motor outputs in [0, 1] (shape ({n}, 2) "
-            f"or ({2 * n},)), got {action!r}"
+            f"action: expected {n} pair(s) of finite motor outputs (shape ({n}, 2) or "
+            f"({2 * n},)); values outside [0, 1] are clipped to it, NaN and infinities "
+            f"refused; got {action!r}"
         )
     return a.astype(np.float64).reshape(n, 2)
 

@@ -163,6 +163,29 @@ def test_vector_env_steps_like_single_envs_and_autoresets_next_step():
     assert (info["action"] == -1).all()
 
 
+def test_box_actions_outside_0_1_are_clipped_and_nan_is_refused_naming_the_range():
+    """As Gymnasium users expect of a Box action (docs/guide/gymnasium.md): (5, −5) steps as
+    (1, 0), in the env and the vector env; NaN, which no clip makes a number, is refused."""
+    clipped, bounds = (fmgym.KheperaEnv("H", overrides=SHORT, dtype=np.float64) for _ in range(2))
+    clipped.reset(seed=4)
+    bounds.reset(seed=4)
+    for _ in range(10):
+        o1, r1, te1, tu1, i1 = clipped.step(np.array([5.0, -5.0]))
+        o2, r2, te2, tu2, i2 = bounds.step(np.array([1.0, 0.0]))
+        assert np.array_equal(o1, o2) and (r1, te1, tu1) == (r2, te2, tu2)
+        assert (i1["x"], i1["y"], i1["heading"]) == (i2["x"], i2["y"], i2["heading"])
+    says = r"action: expected 1 pair\(s\) of finite motor outputs .*; values outside \[0, 1\] are clipped to it, NaN and infinities refused; got array\(\[nan"
+    with pytest.raises(fm.FuzzymotivError, match=says):
+        clipped.step(np.array([np.nan, 0.5]))
+    vec = fmgym.KheperaVectorEnv(2, "H", overrides=SHORT, dtype=np.float64)
+    again = fmgym.KheperaVectorEnv(2, "H", overrides=SHORT, dtype=np.float64)
+    vec.reset(seed=9)
+    again.reset(seed=9)
+    a = vec.step(np.array([[5.0, -5.0], [0.3, 2.0]]))
+    b = again.step(np.array([[1.0, 0.0], [0.3, 1.0]]))
+    assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
+
+
 def test_vector_env_passes_gymnasiums_vector_checks():
     from gymnasium.utils.env_checker import data_equivalence
 
