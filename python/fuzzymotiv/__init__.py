@@ -38,6 +38,7 @@ from ._fuzzymotiv import (
     OutputExistsError,
     ResetNeeded,
 )
+from ._checks import MotivationWeights
 from .config import Config, Overrides
 from .fuzzy import Coefficients, Explanation, FiringRule, export_fll, fuzzy_fitness
 from .optimisers import DESCRIPTORS, GA, Best, Evaluation, GAState, Problem, RunResult, run
@@ -72,6 +73,7 @@ __all__ = [
     "FuzzymotivOSError",
     "GA",
     "GAState",
+    "MotivationWeights",
     "Home",
     "HomeZone",
     "Job",

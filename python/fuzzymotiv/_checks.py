@@ -4,7 +4,7 @@ whole numbers (each refusal a FuzzymotivError naming the argument)."""
 from __future__ import annotations
 
 import operator
-from typing import Any, List, Mapping, Sequence, Union
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -12,8 +12,12 @@ import numpy.typing as npt
 from ._fuzzymotiv import FuzzymotivError
 
 Motivations = Union[Sequence[float], Mapping[str, float]]
-"""(C, H, O, E): four numbers, or a dict with the config's keys (``curiosity``, ``homing``,
-``orientation``, ``energy``; missing ones 0)."""
+"""The motivations' weights X: numbers in [0, 1] summing to 1, one per motivation (1 to 8):
+four are the paper's (C, H, O, E), any other number are named ``x1``, ``x2``, ... (weighing
+``y1``, ``y2``, ...); or a dict of name to weight (only the paper's keys ``curiosity``,
+``homing``, ``orientation``, ``energy``: those four, missing ones 0; any other key: exactly the
+motivations given, in that order, each weighing the term of its own name, the paper's four
+a, g, l, b); or :attr:`fuzzymotiv.Problem.motivations` (a :class:`MotivationWeights`)."""
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -21,26 +25,64 @@ FloatArray = npt.NDArray[np.float64]
 _MOTIVATION_KEYS = ("curiosity", "homing", "orientation", "energy")
 
 
-def _motivations(motivations: Any) -> List[float]:
-    """(C, H, O, E) from a sequence of four numbers or a dict with the config's keys."""
+class MotivationWeights(Tuple[float, ...]):
+    """The weights of a config's motivations, in input order (the order of the TSK's inputs,
+    of :attr:`fuzzymotiv.Problem.term_names` and of the last axis of ``evaluate``'s terms): a
+    tuple of floats — ``(C, H, O, E)`` for the paper's four, every other motivation after
+    them — with their names in :attr:`names`. ``as_dict()`` gives ``{name: weight}``; it
+    equals a plain tuple of the same weights, and :func:`fuzzymotiv.fuzzy_fitness` takes it.
+
+    >>> w = MotivationWeights([0.5, 0.1, 0.0, 0.1, 0.3], ["curiosity", "homing", "orientation", "energy", "urgency"])
+    >>> w == (0.5, 0.1, 0.0, 0.1, 0.3), w.as_dict()["urgency"]
+    (True, 0.3)
+    """
+
+    names: Tuple[str, ...]
+    """The motivations' names, in the order of the weights."""
+
+    def __new__(cls, weights: Iterable[float], names: Iterable[str]) -> "MotivationWeights":
+        w = tuple(float(v) for v in weights)
+        n = tuple(str(v) for v in names)
+        if len(w) != len(n):
+            raise FuzzymotivError(f"MotivationWeights: {len(w)} weights but {len(n)} names")
+        self = super().__new__(cls, w)
+        self.names = n
+        return self
+
+    def __getnewargs__(self) -> Tuple[Tuple[float, ...], Tuple[str, ...]]:
+        return (tuple(self), self.names)
+
+    def as_dict(self) -> Dict[str, float]:
+        """``{name: weight}``, in input order."""
+        return dict(zip(self.names, self))
+
+    def __repr__(self) -> str:
+        return "MotivationWeights(" + ", ".join(f"{n}={w!r}" for n, w in zip(self.names, self)) + ")"
+
+
+def _motivations(motivations: Any) -> Tuple[List[float], Optional[List[str]]]:
+    """The weights and, unless they are the paper's four given as such (then None), the names
+    of the motivations (see :data:`Motivations`)."""
+    if isinstance(motivations, MotivationWeights):
+        return list(motivations), list(motivations.names)
     if isinstance(motivations, Mapping):
-        unknown = set(motivations) - set(_MOTIVATION_KEYS)
-        if unknown:
-            raise FuzzymotivError(
-                f"motivations: unknown key(s) {sorted(unknown)}; expected {list(_MOTIVATION_KEYS)}"
-            )
-        return [float(motivations.get(k, 0.0)) for k in _MOTIVATION_KEYS]
+        names = [str(k) for k in motivations]
+        if not all(isinstance(k, str) for k in motivations):
+            raise FuzzymotivError(f"motivations: a motivation's name must be a string, got keys {list(motivations)!r}")
+        try:
+            weights = {k: float(v) for k, v in motivations.items()}
+        except (TypeError, ValueError):
+            raise FuzzymotivError(f"motivations: expected a number for each motivation, got {dict(motivations)!r}") from None
+        if set(names) <= set(_MOTIVATION_KEYS):
+            return [weights.get(k, 0.0) for k in _MOTIVATION_KEYS], None
+        return [weights[k] for k in names], names
     try:
         values = [float(v) for v in motivations]
     except (TypeError, ValueError):
         raise FuzzymotivError(
-            f"motivations: expected four numbers (C, H, O, E), got {motivations!r}"
+            f"motivations: expected numbers, one weight per motivation (the paper's four: C, H, O, E), got {motivations!r}"
         ) from None
-    if len(values) != 4:
-        raise FuzzymotivError(
-            f"motivations: expected four numbers (C, H, O, E), got {len(values)}"
-        )
-    return values
+    return values, None
 
 
 _KINDS = {"c": "complex numbers", "O": "Python objects", "U": "strings", "S": "bytes", "b": "booleans"}

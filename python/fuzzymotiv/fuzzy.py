@@ -73,42 +73,47 @@ def fuzzy_fitness(
     peaks: Optional[Sequence[float]] = None,
     coefficients: Coefficients = None,
 ) -> Union[float, FloatArray, Explanation, List[Explanation]]:
-    """The TSK motivation fitness F of fitness terms Y = (a, g, l, b) under motivations
-    X = (C, H, O, E).
+    """The TSK motivation fitness F of fitness terms Y under motivations X: for the paper's
+    four, Y = (a, g, l, b) under X = (C, H, O, E); for N motivations (1 to 8), one term per
+    motivation, in the motivations' order.
 
-    ``terms`` is one vector of four values (→ float) or an ``n × 4`` array (→ numpy array of n
-    values). Terms are clamped to [0, 1]. ``explain=True`` returns, for one vector, a dict
-    ``{"fitness", "weight_sum", "rules", "text"}`` whose ``rules`` are the firing rules
-    (number, labels, label names, weight w, output f); for an array, a list of such dicts.
-    ``peaks`` and ``coefficients`` (``"linear"``, ``"ratio"`` or a list) default to the paper's.
-    NaN or infinite values anywhere raise :class:`FuzzymotivError` naming the argument, the
-    position and the value (as the CLI refuses them).
+    ``motivations`` is N weights (four: the paper's C, H, O, E), a dict of name to weight, or
+    :attr:`Problem.motivations` (a :class:`MotivationWeights`); ``fm.fuzzy_fitness(
+    problem.motivations, ev.terms[:, r])`` gives room r's F of a problem's evaluation (with the
+    shared labels). ``terms`` is one vector of N values (→ float) or an ``n × N`` array (→
+    numpy array of n values). Terms are clamped to [0, 1]. ``explain=True`` returns, for one
+    vector, a dict ``{"fitness", "weight_sum", "rules", "text"}`` whose ``rules`` are the
+    firing rules (number, labels, label names, weight w, output f); for an array, a list of
+    such dicts. ``peaks`` and ``coefficients`` (``"linear"``, ``"ratio"`` or a list) default
+    to the paper's. Fewer than 1 or more than 8 motivations, a number of terms other than
+    theirs, and NaN or infinite values anywhere raise :class:`FuzzymotivError` naming the
+    argument (and the position and the value, as the CLI refuses them).
 
     >>> round(fuzzy_fitness([.8, .1, 0, .1], [.95, .5, 0, .79]), 6)
     0.79722
     >>> [r["number"] for r in fuzzy_fitness([.8, .1, 0, .1], [1, .25, 0, 0], explain=True)["rules"]]
     [10]
+    >>> x = {"curiosity": .5, "homing": .1, "orientation": 0, "energy": .1, "urgency": .3}
+    >>> round(fuzzy_fitness(x, [.95, .5, 0, .79, .6]), 6)
+    0.633828
     """
-    x = _motivations(motivations)
-    y = _real_array("terms", terms, "a vector of 4 or an n × 4 array")
+    x, names = _motivations(motivations)
+    y = _real_array("terms", terms, "a vector or an n × N array (N motivations)")
     coef = coefficients
     pk = None if peaks is None else [float(p) for p in peaks]
     if y.ndim == 1:
-        if y.shape != (4,):
-            raise FuzzymotivError(f"terms: expected four values (a, g, l, b), got {y.shape[0]}")
         if explain:
-            return cast(Explanation, _native.explain(x, y.tolist(), pk, coef))
-        return _native.fuzzy_fitness_one(x, y.tolist(), pk, coef)
+            return cast(Explanation, _native.explain(x, y.tolist(), pk, coef, names))
+        return _native.fuzzy_fitness_one(x, y.tolist(), pk, coef, names)
     if y.ndim == 2:
-        if y.shape[1] != 4:
-            raise FuzzymotivError(
-                f"terms: expected an n × 4 array of (a, g, l, b), got shape {y.shape}"
-            )
-        many = _native.fuzzy_fitness_many(x, np.ascontiguousarray(y), pk, coef)  # checks every row
+        # Checks the shape and every row.
+        many = _native.fuzzy_fitness_many(x, np.ascontiguousarray(y), pk, coef, names)
         if explain:
-            return [cast(Explanation, _native.explain(x, row.tolist(), pk, coef)) for row in y]
+            return [cast(Explanation, _native.explain(x, row.tolist(), pk, coef, names)) for row in y]
         return many
-    raise FuzzymotivError(f"terms: expected a vector of 4 or an n × 4 array, got shape {y.shape}")
+    raise FuzzymotivError(
+        f"terms: expected a vector of {len(x)} or an n × {len(x)} array, one value per motivation, got shape {y.shape}"
+    )
 
 
 def export_fll(
@@ -124,18 +129,16 @@ def export_fll(
     to ``path`` (atomically; a file with other contents is kept unless ``force=True``, the same
     text again is nothing to do, and a directory, link or device is never replaced).
 
-    The text is the same as ``fuzzymotiv fuzzy --motivations C,H,O,E --export-fll FILE``.
+    The text is the same as ``fuzzymotiv fuzzy --motivations C,H,O,E --export-fll FILE`` (for
+    N motivations ``--motivations name=w,...``: ``motivations`` as :func:`fuzzy_fitness` takes
+    them, 5^N rules).
 
     >>> text = export_fll([.8, .1, 0, .1])
     >>> text.count("\\n  rule: ")
     625
     """
     pk = None if peaks is None else [float(p) for p in peaks]
+    x, names = _motivations(motivations)
     return _native.export_fll(
-        _motivations(motivations),
-        None if path is None else os.fspath(path),
-        pk,
-        coefficients,
-        name,
-        force,
+        x, None if path is None else os.fspath(path), pk, coefficients, name, force, names
     )

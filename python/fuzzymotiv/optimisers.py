@@ -12,7 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _fuzzymotiv as _native
-from ._checks import FloatArray, _float_array
+from ._checks import FloatArray, MotivationWeights, _float_array
 from ._fuzzymotiv import DependencyNotInstalled, FuzzymotivError
 from .config import Config, Overrides, _config_args, _sets
 from .tables import Table, table_of
@@ -30,7 +30,11 @@ class RunResult:
             that file holds (9 decimals), with or without ``out``: a :class:`Table` (a dict of
             numpy arrays, whatever is installed; ``.to_pandas()`` for a DataFrame).
         rooms: the per-room table (``room, average_fitness, exploration_pct,
-            recognition_pct, battery_pct, homing_pct, r_node``), a :class:`Table`.
+            recognition_pct, battery_pct, homing_pct, r_node``; a mission run's also
+            ``mission_done_pct``, the % of test runs whose mission was done, and, for each term
+            measured beyond a, g, l, b — the mission terms, terms of your own —
+            ``terms_pct.NAME``, its mean over the test runs in %: table.md's columns), a
+            :class:`Table`.
         best_genome: the best robot's weights (numpy array; the first run's for per-room
             training, as ``best_genome.json``'s ``weights``).
         best_genomes: per run label, the best robot's weights.
@@ -95,6 +99,7 @@ def run(
     progress: Union[None, bool, Progress] = None,
     force: bool = False,
     config_text: Optional[str] = None,
+    terms: Optional[Mapping[str, TermFunction]] = None,
 ) -> RunResult:
     """Evolve controllers as ``fuzzymotiv run`` does and return a :class:`RunResult`.
 
@@ -115,6 +120,18 @@ def run(
     discards the unfinished run); a directory that is not a fuzzymotiv output is never
     replaced, and ``out`` cannot be the current directory.
 
+    ``terms`` adds terms of your own, as :class:`Problem` takes them (``{"name": fn}``, a
+    config's motivation weighing ``name``): the library calls ``fn`` with every finished trial
+    (each evaluation trial, room-modelling run and test run) as a :class:`Trials` of shape
+    ``(1, 1)``, as ``fm.simulate(..., terms=...)`` does, so the run, its files
+    (``summary.json``'s and table.md's ``% name``, the report) and :attr:`RunResult.rooms`
+    (``terms_pct.name``) have the term. The calls hold the GIL, one at a time: a term in
+    Python slows a run down. A value out of [0, 1], NaN, the wrong shape, anything but numbers,
+    or an exception raises :class:`FuzzymotivError` naming the term and stops the run (with
+    ``out``, the unfinished run stays at ``OUT.partial/`` and resumes as after Ctrl-C). The
+    CLI has no Python: ``fuzzymotiv replay`` and ``report`` of such a run directory refuse
+    its config, whose motivation weighs a term they do not know.
+
     The run releases the GIL; Ctrl-C raises KeyboardInterrupt after the current generation.
     Same config and seed → the same numbers as the CLI.
 
@@ -126,8 +143,11 @@ def run(
     out_path = None if out is None else os.fspath(out)
     if out_path == "":
         raise FuzzymotivError("out: an empty path; give a directory, e.g. out=\"runs/tiny\"")
+    names = [] if terms is None else _term_names(terms)
+    suppliers = [(n, _supplier({n: terms[n]})) for n in names] if terms is not None else []
     native = _native.run(
-        path, text, sets, threads, out_path, _progress_callback(progress), seed, bool(force)
+        path, text, sets, threads, out_path, _progress_callback(progress), seed, bool(force),
+        suppliers,
     )
     return RunResult(native, None if out_path is None else Path(out_path))
 
@@ -169,8 +189,14 @@ class Problem:
     [0, 1], NaN or the wrong shape raises :class:`FuzzymotivError` naming the term. Trials are
     recorded only when ``terms`` is given.
 
+    A problem only evaluates: room modelling never runs, so a one-room config needs no
+    ``aem.enabled = false``.
+
     Attributes: ``genome_size`` (weights per genome), ``rooms`` (the rooms each genome is
-    evaluated in), ``motivations`` (C, H, O, E; 0 for one the config lacks), ``term_names``
+    evaluated in), ``motivations`` (every motivation's weight, in input order, as a
+    :class:`MotivationWeights`: a tuple — ``(C, H, O, E)`` for the paper's four, each other
+    motivation after them, e.g. urgency's — with the names in ``.names`` and
+    ``.as_dict()``), ``term_names``
     (the N fuzzy inputs' names: the last axis of ``terms``), ``seed``, ``run`` (``"all"`` or
     the room), ``population`` and ``generations`` (the config's GA sizes), ``hidden``,
     ``steps``.
@@ -206,7 +232,7 @@ class Problem:
         )
         self.genome_size: int = self._native.genome_size
         self.rooms: List[str] = self._native.rooms
-        self.motivations: Tuple[float, float, float, float] = self._native.motivations
+        self.motivations = MotivationWeights(self._native.motivations, self._native.motivation_names)
         self.seed: int = self._native.seed
         self.run: str = self._native.label
         self.population, self.generations = self._native.ga_sizes

@@ -10,6 +10,7 @@ from typing import Any, Callable, Dict, List, Mapping
 import numpy as np
 import numpy.typing as npt
 
+from ._checks import _KINDS
 from ._fuzzymotiv import FuzzymotivError
 
 __all__ = ["TermFunction", "Trials"]
@@ -83,12 +84,21 @@ def _term_names(terms: Mapping[str, TermFunction]) -> List[str]:
 def _values(name: str, value: Any, shape: tuple[int, int]) -> npt.NDArray[np.float64]:
     """A term function's result as a ``shape`` float array of values in [0, 1], or
     :class:`FuzzymotivError` naming the term."""
+    expected = f"expected an array of shape {shape} (genomes, rooms) of numbers in [0, 1]"
     try:
-        v = np.asarray(value, dtype=np.float64)
+        raw = np.asarray(value)
     except (TypeError, ValueError):
+        raise FuzzymotivError(f"terms[{name!r}]: returned {type(value).__name__}, {expected}") from None
+    if raw.dtype.kind not in "iufb":
+        # numpy would read the strings "0.5" as numbers: a term returns numbers, not text.
+        got = _KINDS.get(raw.dtype.kind, "no numbers")
+        first = raw.reshape(-1)[0] if raw.size else None
+        sample = repr(first.item() if isinstance(first, np.generic) else first)
         raise FuzzymotivError(
-            f"terms[{name!r}]: returned {type(value).__name__}, expected an array of shape {shape} (genomes, rooms) of numbers in [0, 1]"
-        ) from None
+            f"terms[{name!r}]: returned {type(value).__name__} ({got}, dtype {raw.dtype}, "
+            f"e.g. {sample}), {expected}"
+        )
+    v = raw.astype(np.float64)
     if v.shape != shape:
         raise FuzzymotivError(
             f"terms[{name!r}]: returned shape {v.shape}, expected {shape} (genomes, rooms), one value in [0, 1] per trial"

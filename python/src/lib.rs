@@ -14,10 +14,12 @@ use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::InstanceRun;
-use fuzzymotiv::experiment::RawConfig;
 use fuzzymotiv::experiment::RunError;
 use fuzzymotiv::experiment::{GenerationState, Observer};
-use fuzzymotiv::fitness::{CoefficientScheme, Motivations, TskFitness};
+use fuzzymotiv::fitness::{
+    CoefficientScheme, MAX_MOTIVATIONS, Motivation, Motivations, PAPER_MOTIVATIONS, PAPER_TERMS,
+    TskFitness,
+};
 use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 use fuzzymotiv_io::files::error::CliError;
@@ -190,16 +192,104 @@ fn finite(
     }
 }
 
-const MOTIVATION_NAMES: [&str; 4] = ["C", "H", "O", "E"];
-const TERM_NAMES: [&str; 4] = ["a", "g", "l", "b"];
+/// The motivations of `fm.fuzzy_fitness` and `fm.export_fll`, with what their errors call
+/// each motivation and each term: C, H, O, E and a, g, l, b for the paper's four, else their
+/// names and the TSK's input names.
+struct Inputs {
+    m: Motivations,
+    paper: bool,
+}
 
-fn terms_finite(terms: &[f64; 4]) -> PyResult<()> {
-    finite(
-        "terms",
-        terms,
-        |k| TERM_NAMES[k].into(),
-        "expected four numbers (a, g, l, b)",
-    )
+impl Inputs {
+    /// What an error calls term `k`.
+    fn term(&self, k: usize) -> String {
+        if self.paper {
+            PAPER_TERMS[k].into()
+        } else {
+            self.m.input_names()[k].clone()
+        }
+    }
+
+    /// The terms, listed: `a, g, l, b` for the paper's four.
+    fn term_list(&self) -> String {
+        self.m.input_names().join(", ")
+    }
+
+    /// How many terms, in words for the paper's four (`four numbers (a, g, l, b)`).
+    fn count(&self) -> String {
+        match self.m.len() {
+            4 => "four".into(),
+            n => n.to_string(),
+        }
+    }
+
+    /// `terms` has one finite value per motivation.
+    fn check_terms(&self, terms: &[f64]) -> PyResult<()> {
+        if terms.len() != self.m.len() {
+            return Err(input_err(format!(
+                "terms: expected {} values ({}), one per motivation, got {}",
+                self.count(),
+                self.term_list(),
+                terms.len()
+            )));
+        }
+        let usage = format!("expected {} numbers ({})", self.count(), self.term_list());
+        finite("terms", terms, |k| self.term(k), &usage)
+    }
+}
+
+/// The term a motivation named `name` weighs in `fm.fuzzy_fitness`: the paper's four their
+/// own (a, g, l, b), `x1`… (unnamed weights) `y1`…, any other the term of its own name.
+fn term_of(name: &str) -> String {
+    if let Some(k) = PAPER_MOTIVATIONS.iter().position(|n| *n == name) {
+        return PAPER_TERMS[k].into();
+    }
+    match name.strip_prefix('x') {
+        Some(k) if !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()) => format!("y{k}"),
+        _ => name.into(),
+    }
+}
+
+/// Motivations as the CLI reads them (a sum within 1e-3 of 1 is normalised, silently here; the
+/// normalised values are what is used): `weights` named `names`, or, without names, the
+/// paper's C, H, O, E for four weights and `x1`, …, `xN` (weighing `y1`, …) for any other
+/// number from 1 to [`MAX_MOTIVATIONS`].
+fn motivations(weights: &[f64], names: Option<Vec<String>>) -> PyResult<Inputs> {
+    let n = weights.len();
+    if !(1..=MAX_MOTIVATIONS).contains(&n) {
+        return Err(input_err(format!(
+            "motivations: expected 1 to {MAX_MOTIVATIONS} weights, one per motivation (the paper's four: C, H, O, E), got {n}"
+        )));
+    }
+    let names = match names {
+        Some(names) if names.len() == n => names,
+        Some(names) => {
+            return Err(input_err(format!(
+                "motivations: {n} weights but {} names",
+                names.len()
+            )));
+        }
+        None if n == 4 => PAPER_MOTIVATIONS.map(String::from).to_vec(),
+        None => (1..=n).map(|k| format!("x{k}")).collect(),
+    };
+    let paper = names == PAPER_MOTIVATIONS;
+    let usage = if paper {
+        "expected four numbers (C, H, O, E)".to_string()
+    } else {
+        format!("expected {n} numbers ({})", names.join(", "))
+    };
+    let short = |k: usize| match paper {
+        true => ["C", "H", "O", "E"][k].to_string(),
+        false => names[k].clone(),
+    };
+    finite("motivations", weights, short, &usage)?;
+    let list = (names.iter().zip(weights))
+        .map(|(name, &w)| Motivation::new(name.clone(), w, term_of(name)))
+        .collect();
+    let m = Motivations::from_list(list)
+        .map(|(m, _)| m)
+        .map_err(|e| input_err(format!("motivations: {e}")))?;
+    Ok(Inputs { m, paper })
 }
 
 /// The largest `threads`, the CLI's `--threads` bound ([`fuzzymotiv_io::files::inputs::MAX_THREADS`],
@@ -262,20 +352,6 @@ fn input_err(message: impl Into<String>) -> PyErr {
     FuzzymotivError::new_err(message.into())
 }
 
-/// Motivations as the CLI reads them: a sum within 1e-3 of 1 is normalised (silently here;
-/// the normalised values are what is used).
-fn motivations(x: [f64; 4]) -> PyResult<Motivations> {
-    finite(
-        "motivations",
-        &x,
-        |k| MOTIVATION_NAMES[k].into(),
-        "expected four numbers (C, H, O, E)",
-    )?;
-    Motivations::normalised(x[0], x[1], x[2], x[3])
-        .map(|(m, _)| m)
-        .map_err(|e| input_err(format!("motivations: {e}")))
-}
-
 /// The TSK from optional peaks and coefficients (`"linear"`, `"ratio"` or a list).
 fn tsk(peaks: Option<Vec<f64>>, coefficients: Option<&Bound<'_, PyAny>>) -> PyResult<TskFitness> {
     let peaks = peaks.unwrap_or_else(|| fuzzymotiv::fitness::PAPER_PEAKS.to_vec());
@@ -316,50 +392,56 @@ fn tsk(peaks: Option<Vec<f64>>, coefficients: Option<&Bound<'_, PyAny>>) -> PyRe
     result.map_err(|e| input_err(e.to_string()))
 }
 
-/// F for one term vector `[a, g, l, b]`.
+/// F for one term vector (`[a, g, l, b]` for the paper's four), one value per motivation.
 #[pyfunction]
-#[pyo3(signature = (motivations, terms, peaks=None, coefficients=None))]
+#[pyo3(signature = (motivations, terms, peaks=None, coefficients=None, names=None))]
 fn fuzzy_fitness_one(
-    motivations: [f64; 4],
-    terms: [f64; 4],
+    motivations: Vec<f64>,
+    terms: Vec<f64>,
     peaks: Option<Vec<f64>>,
     coefficients: Option<&Bound<'_, PyAny>>,
+    names: Option<Vec<String>>,
 ) -> PyResult<f64> {
-    let x = self::motivations(motivations)?;
-    terms_finite(&terms)?;
-    Ok(tsk(peaks, coefficients)?.evaluate(&x, &terms))
+    let x = self::motivations(&motivations, names)?;
+    x.check_terms(&terms)?;
+    Ok(tsk(peaks, coefficients)?.evaluate(&x.m, &terms))
 }
 
-/// F for every row of an `n × 4` float64 array.
+/// F for every row of an `n × N` float64 array (N motivations).
 #[pyfunction]
-#[pyo3(signature = (motivations, terms, peaks=None, coefficients=None))]
+#[pyo3(signature = (motivations, terms, peaks=None, coefficients=None, names=None))]
 fn fuzzy_fitness_many<'py>(
     py: Python<'py>,
-    motivations: [f64; 4],
+    motivations: Vec<f64>,
     terms: PyReadonlyArray2<'py, f64>,
     peaks: Option<Vec<f64>>,
     coefficients: Option<&Bound<'py, PyAny>>,
+    names: Option<Vec<String>>,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let x = self::motivations(motivations)?;
+    let x = self::motivations(&motivations, names)?;
     let t = tsk(peaks, coefficients)?;
-    if terms.shape()[1] != 4 {
+    let n = x.m.len();
+    let usage = format!("expected an n × {n} array of ({})", x.term_list());
+    if terms.shape()[1] != n {
+        let [rows, cols] = [terms.shape()[0], terms.shape()[1]];
         return Err(input_err(format!(
-            "terms: expected an n × 4 array of (a, g, l, b), got shape {:?}",
-            terms.shape()
+            "terms: {usage}, one column per motivation, got shape ({rows}, {cols})"
         )));
     }
     let view = terms.as_array();
     if let Some(((i, j), v)) = view.indexed_iter().find(|(_, v)| !v.is_finite()) {
         return Err(input_err(format!(
-            "terms: `{}` (row {i}, {}) is not a finite number; expected an n × 4 array of (a, g, l, b)",
+            "terms: `{}` (row {i}, {}) is not a finite number; {usage}",
             py_float(*v),
-            TERM_NAMES[j]
+            x.term(j)
         )));
     }
-    let out: Vec<f64> = view
-        .rows()
-        .into_iter()
-        .map(|r| t.evaluate(&x, &[r[0], r[1], r[2], r[3]]))
+    let mut row = vec![0.0; n];
+    let out: Vec<f64> = (view.rows().into_iter())
+        .map(|r| {
+            row.iter_mut().zip(r).for_each(|(o, &v)| *o = v);
+            t.evaluate(&x.m, &row)
+        })
         .collect();
     Ok(PyArray1::from_vec(py, out))
 }
@@ -367,17 +449,18 @@ fn fuzzy_fitness_many<'py>(
 /// F with its firing rules: `{"fitness", "weight_sum", "rules": [{"number", "labels",
 /// "label_names", "weight", "output"}]}`.
 #[pyfunction]
-#[pyo3(signature = (motivations, terms, peaks=None, coefficients=None))]
+#[pyo3(signature = (motivations, terms, peaks=None, coefficients=None, names=None))]
 fn explain<'py>(
     py: Python<'py>,
-    motivations: [f64; 4],
-    terms: [f64; 4],
+    motivations: Vec<f64>,
+    terms: Vec<f64>,
     peaks: Option<Vec<f64>>,
     coefficients: Option<&Bound<'py, PyAny>>,
+    names: Option<Vec<String>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let x = self::motivations(motivations)?;
-    terms_finite(&terms)?;
-    let e = tsk(peaks, coefficients)?.explain(&x, &terms);
+    let x = self::motivations(&motivations, names)?;
+    x.check_terms(&terms)?;
+    let e = tsk(peaks, coefficients)?.explain(&x.m, &terms);
     let d = PyDict::new(py);
     d.set_item("fitness", e.fitness)?;
     d.set_item("weight_sum", e.weight_sum)?;
@@ -398,16 +481,18 @@ fn explain<'py>(
 
 /// The FLL text of the TSK; written (atomically) to `path` when given.
 #[pyfunction]
-#[pyo3(signature = (motivations, path=None, peaks=None, coefficients=None, name=None, force=false))]
+#[pyo3(signature = (motivations, path=None, peaks=None, coefficients=None, name=None, force=false, names=None))]
+#[allow(clippy::too_many_arguments)]
 fn export_fll(
-    motivations: [f64; 4],
+    motivations: Vec<f64>,
     path: Option<PathBuf>,
     peaks: Option<Vec<f64>>,
     coefficients: Option<&Bound<'_, PyAny>>,
     name: Option<String>,
     force: bool,
+    names: Option<Vec<String>>,
 ) -> PyResult<String> {
-    let x = self::motivations(motivations)?;
+    let x = self::motivations(&motivations, names)?.m;
     let t = tsk(peaks, coefficients)?;
     let name = name.unwrap_or_else(|| {
         path.as_ref()
@@ -493,13 +578,8 @@ fn load(
     match config_text {
         None => load_config(config_path, sets, seed),
         Some(text) => {
-            let mut sets = sets.to_vec();
-            if let Some(s) = seed {
-                sets.push(format!("seed={s}"));
-            }
-            let source = "(config text)";
-            let raw = RawConfig::parse(text, source, &sets)?;
-            resolve(raw, Path::new("."), source)
+            let (raw, base, source) = terms::parse_config(None, Some(text), sets, seed)?;
+            resolve(raw, &base, &source)
         }
     }
 }
@@ -642,8 +722,9 @@ fn generations_done(loaded: &Loaded, dir: &Path) -> usize {
 /// Evolves as `fuzzymotiv run` does. Returns a dict of plain columns; see `fuzzymotiv.run`.
 /// With `out`, the directory is checked as `fuzzymotiv run --out` checks it: the same finished
 /// run is read back, an unfinished one resumed, another output replaced only with `force`.
+/// `terms`: (name, `supply`) of each term Python computes ([`terms::PyTerm`]).
 #[pyfunction]
-#[pyo3(signature = (config_path=None, config_text=None, sets=Vec::new(), threads=None, out=None, progress=None, seed=None, force=false))]
+#[pyo3(signature = (config_path=None, config_text=None, sets=Vec::new(), threads=None, out=None, progress=None, seed=None, force=false, terms=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 fn run<'py>(
     py: Python<'py>,
@@ -655,11 +736,20 @@ fn run<'py>(
     progress: Option<Py<PyAny>>,
     seed: Option<Bound<'py, PyAny>>,
     force: bool,
+    terms: Vec<(String, Py<PyAny>)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let pool = thread_pool(threads.as_ref())?;
     let seed = seed.as_ref().map(seed_arg).transpose()?;
-    let loaded =
-        load(config_path.as_deref(), config_text.as_deref(), &sets, seed).map_err(config_err)?;
+    let failed = terms::TermFailure::default();
+    let loaded = terms::load_with_py_terms(
+        config_path.as_deref(),
+        config_text.as_deref(),
+        &sets,
+        seed,
+        terms,
+        &failed,
+    )
+    .map_err(config_err)?;
     let out = match out {
         None => None,
         Some(dir) => {
@@ -696,6 +786,10 @@ fn run<'py>(
         control.wait(py);
         worker.join().expect("worker panics are caught")
     });
+    // A term of Python's that failed stopped the run: its error, not the unwinding's.
+    if let Some(e) = failed.lock().ok().and_then(|mut f| f.take()) {
+        return Err(e);
+    }
     let output = control.outcome(result)?;
     run_dict(py, output)
 }
@@ -897,6 +991,21 @@ fn rooms_dict<'py>(py: Python<'py>, rows: &[RoomRow]) -> PyResult<Bound<'py, PyD
     rooms.set_item("battery_pct", rcol(&|r| r.battery_pct))?;
     rooms.set_item("homing_pct", rcol(&|r| r.homing_pct))?;
     rooms.set_item("r_node", rows.iter().map(|r| r.r_node).collect::<Vec<_>>())?;
+    // A mission run's columns, as table.md has them: % missions done, then one per term
+    // measured beyond a, g, l, b (`terms_pct.NAME`, summary.json's `terms_pct`).
+    if rows.iter().any(|r| r.mission_done_pct.is_some()) {
+        rooms.set_item(
+            "mission_done_pct",
+            rcol(&|r| r.mission_done_pct.unwrap_or(f64::NAN)),
+        )?;
+    }
+    let mut terms: Vec<&String> = rows.iter().flat_map(|r| r.terms_pct.keys()).collect();
+    terms.sort();
+    terms.dedup();
+    for name in terms {
+        let values = rcol(&|r| r.terms_pct.get(name).copied().unwrap_or(f64::NAN));
+        rooms.set_item(format!("terms_pct.{name}"), values)?;
+    }
     Ok(rooms)
 }
 

@@ -21,7 +21,7 @@ use numpy::{IntoPyArray, PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 
-use crate::terms::{load_with_terms, record, resolve_with_terms, supplied_values};
+use crate::terms::{load_with_terms, parse_config, record, resolve_with_terms, supplied_values};
 use crate::{config_err, input_err, py_float, seed_arg, thread_pool, whole_number};
 
 /// Distinct seeds whose experiments a problem keeps (besides its own).
@@ -213,14 +213,15 @@ impl Problem {
     ) -> PyResult<Problem> {
         let pool = thread_pool(threads.as_ref())?;
         let seed = seed.as_ref().map(seed_arg).transpose()?;
-        let loaded = load_with_terms(
-            config_path.as_deref(),
-            config_text.as_deref(),
-            &sets,
-            seed,
-            &terms,
-        )
-        .map_err(config_err)?;
+        let (path, text) = (config_path.as_deref(), config_text.as_deref());
+        let (raw, _, _) = parse_config(path, text, &sets, seed).map_err(config_err)?;
+        // A problem only evaluates fitness: room modelling (AEM), which needs two rooms, never
+        // runs, so a one-room config needs no `aem.enabled = false`.
+        let mut sets = sets;
+        if raw.rooms.len() < 2 {
+            sets.push("aem.enabled=false".into());
+        }
+        let loaded = load_with_terms(path, text, &sets, seed, &terms).map_err(config_err)?;
         let exp = loaded.experiment;
         let runs = exp.runs();
         let labels: Vec<&str> = runs.iter().map(|r| r.label.as_str()).collect();
@@ -283,11 +284,18 @@ impl Problem {
         self.run.rooms.iter().map(|&r| names[r].clone()).collect()
     }
 
-    /// The motivations (C, H, O, E), normalised as the config loader does.
+    /// The weights of every motivation of the config, in input order (the paper's C, H, O, E
+    /// first when it has them), normalised as the config loader does.
     #[getter]
-    fn motivations(&self) -> (f64, f64, f64, f64) {
+    fn motivations(&self) -> Vec<f64> {
+        self.exp.motivations().weights()
+    }
+
+    /// The names of the motivations, in the order of `motivations`.
+    #[getter]
+    fn motivation_names(&self) -> Vec<String> {
         let m = self.exp.motivations();
-        (m.curiosity(), m.homing(), m.orientation(), m.energy())
+        m.iter().map(|x| x.name().to_string()).collect()
     }
 
     /// The config's base seed.

@@ -3,11 +3,12 @@
 //! values it returns checked and filled in.
 
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 use fuzzymotiv::experiment::RoomScore;
 use fuzzymotiv::experiment::UserTerm;
 use fuzzymotiv::experiment::{Evaluation, Experiment, RawConfig, RoomFile, RoomFiles, Setup};
-use fuzzymotiv::fitness::{FitnessTerms, LIBRARY_TERMS, TermId, UserValues};
+use fuzzymotiv::fitness::{FitnessTerms, LIBRARY_TERMS, Term, TermId, TrialRecord, UserValues};
 use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::inputs::{Loaded, resolve};
@@ -54,7 +55,17 @@ pub(crate) fn resolve_with_terms(
         return resolve(raw, base, source);
     }
     let user: Vec<UserTerm> = user.iter().map(UserTerm::supplied).collect();
-    let setup = Setup::resolve_with_terms(raw, source, &RoomDir(base), &user)?;
+    resolve_with_user(raw, base, source, &user)
+}
+
+/// `resolve`, with the terms `user` registered.
+fn resolve_with_user(
+    raw: RawConfig,
+    base: &Path,
+    source: &str,
+    user: &[UserTerm],
+) -> Result<Loaded, CliError> {
+    let setup = Setup::resolve_with_terms(raw, source, &RoomDir(base), user)?;
     Ok(Loaded {
         raw: setup.raw,
         experiment: setup.experiment,
@@ -72,6 +83,19 @@ pub(crate) fn load_with_terms(
     if user.is_empty() {
         return load(config_path, config_text, sets, seed);
     }
+    let (raw, base, source) = parse_config(config_path, config_text, sets, seed)?;
+    resolve_with_terms(raw, &base, &source, user)
+}
+
+/// A config parsed the CLI's way, not yet resolved: a file (`config_path`, its folder the base
+/// of its room files), TOML text or the built-in defaults (the working directory the base),
+/// with `--set` overrides and a seed. Returns the raw config, the base and the source's name.
+pub(crate) fn parse_config(
+    config_path: Option<&Path>,
+    config_text: Option<&str>,
+    sets: &[String],
+    seed: Option<u64>,
+) -> Result<(RawConfig, PathBuf, String), CliError> {
     let mut sets = sets.to_vec();
     if let Some(s) = seed {
         sets.push(format!("seed={s}"));
@@ -92,7 +116,7 @@ pub(crate) fn load_with_terms(
         ),
     };
     let raw = RawConfig::parse(&text, &source, &sets)?;
-    resolve_with_terms(raw, &base, &source, user)
+    Ok((raw, base, source))
 }
 
 /// A `(pop, rooms, len)` array of `f(trajectory)`'s values.
@@ -121,6 +145,17 @@ pub(crate) fn record<'py>(
     recorded: &[(Evaluation, Vec<Trajectory>)],
 ) -> PyResult<Bound<'py, PyDict>> {
     let steps = exp.trial_params().steps();
+    record_trials(py, steps, exp.measures_mission(), rooms, recorded)
+}
+
+/// [`record`] of trials of `steps` steps, with the mission terms when `mission`.
+fn record_trials<'py>(
+    py: Python<'py>,
+    steps: usize,
+    mission: bool,
+    rooms: &[String],
+    recorded: &[(Evaluation, Vec<Trajectory>)],
+) -> PyResult<Bound<'py, PyDict>> {
     let (pop, n_rooms) = (recorded.len(), rooms.len());
     let d = PyDict::new(py);
     let poses = steps + 1;
@@ -178,7 +213,7 @@ pub(crate) fn record<'py>(
     )?;
     d.set_item("rooms", rooms.to_vec())?;
     let terms = PyDict::new(py);
-    let measured = if exp.measures_mission() { 8 } else { 4 };
+    let measured = if mission { 8 } else { 4 };
     for name in &LIBRARY_TERMS[..measured] {
         let id = TermId::library(name).expect("a library term");
         let values: Vec<f64> = (recorded.iter())
@@ -269,4 +304,91 @@ pub(crate) fn supply_trials(
         exp.refit(e);
     }
     Ok(evals)
+}
+
+/// The first error of a term Python computes during `fm.run` (`terms=`), shared by its terms
+/// and the run, which raises it.
+pub(crate) type TermFailure = Arc<Mutex<Option<PyErr>>>;
+
+/// What a [`PyTerm`] unwinds with after keeping its error in its [`TermFailure`]: not a panic
+/// (no message is printed); `fm.run` catches it and raises the kept error.
+struct TermFailed;
+
+/// A term of `fm.run(terms={"name": fn})`: computed by the library from each finished trial
+/// (an evaluation trial, a room-modelling run or a test run), as its own terms are, by
+/// `supply(trials)` (`fuzzymotiv.trials._supplier` of the one term) called with the trial as a
+/// `(1, 1)` batch, as `fm.simulate(terms=...)` gives it. A value outside [0, 1], of the wrong
+/// shape or type, or an exception is kept in `failed`, and the run stops ([`TermFailed`]).
+pub(crate) struct PyTerm {
+    name: String,
+    supply: Py<PyAny>,
+    failed: TermFailure,
+}
+
+impl std::fmt::Debug for PyTerm {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "PyTerm({:?})", self.name)
+    }
+}
+
+impl PyTerm {
+    /// The term's value of `trial`, or why there is none.
+    fn call(&self, py: Python<'_>, trial: &TrialRecord<'_>) -> PyResult<f64> {
+        let mut terms = *trial.terms;
+        terms.user = UserValues::zeros(1);
+        let room = trial.arena.room().name.clone();
+        let recorded = vec![one_trial(terms, trial.trajectory.clone())];
+        let steps = trial.trajectory.actions.len();
+        let mission = trial.terms.mission.is_some();
+        let trials = record_trials(py, steps, mission, &[room], &recorded)?;
+        let values = self.supply.bind(py).call1((trials,))?;
+        let mut evals: Vec<Evaluation> = recorded.into_iter().map(|(e, _)| e).collect();
+        supplied_values(&values, std::slice::from_ref(&self.name), &mut evals)?;
+        Ok(evals[0].per_room[0].terms.user.as_slice()[0])
+    }
+}
+
+impl Term for PyTerm {
+    fn value(&self, trial: &TrialRecord<'_>) -> f64 {
+        let failed = || self.failed.lock().map_or(true, |f| f.is_some());
+        if failed() {
+            std::panic::resume_unwind(Box::new(TermFailed));
+        }
+        match Python::attach(|py| self.call(py, trial)) {
+            Ok(v) => v,
+            Err(e) => {
+                if let Ok(mut f) = self.failed.lock() {
+                    f.get_or_insert(e);
+                }
+                std::panic::resume_unwind(Box::new(TermFailed))
+            }
+        }
+    }
+}
+
+/// `load`, with the terms `terms` (name, `supply`) that Python computes registered as
+/// [`PyTerm`]s sharing `failed`.
+pub(crate) fn load_with_py_terms(
+    config_path: Option<&Path>,
+    config_text: Option<&str>,
+    sets: &[String],
+    seed: Option<u64>,
+    terms: Vec<(String, Py<PyAny>)>,
+    failed: &TermFailure,
+) -> Result<Loaded, CliError> {
+    if terms.is_empty() {
+        return load(config_path, config_text, sets, seed);
+    }
+    let (raw, base, source) = parse_config(config_path, config_text, sets, seed)?;
+    let user: Vec<UserTerm> = (terms.into_iter())
+        .map(|(name, supply)| {
+            let term = PyTerm {
+                name: name.clone(),
+                supply,
+                failed: failed.clone(),
+            };
+            UserTerm::computed(name, Arc::new(term))
+        })
+        .collect();
+    resolve_with_user(raw, &base, &source, &user)
 }

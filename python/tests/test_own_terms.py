@@ -75,7 +75,7 @@ def test_a_user_term_changes_f_beside_the_paper_four():
         (lambda t: np.full(t.shape, -0.1), r"`-0\.1` \(genome 0, room 0\) is not a number in \[0, 1\]"),
         (lambda t: np.where(np.arange(2) == 1, np.nan, 0.5) * np.ones(t.shape), r"`nan` \(genome 0, room 1\)"),
         (lambda t: np.zeros(t.shape[0]), r"returned shape \(3,\), expected \(3, 2\)"),
-        (lambda t: "smooth", r"returned str, expected an array of shape \(3, 2\)"),
+        (lambda t: "smooth", r"returned str \(strings, dtype <U6, e\.g\. 'smooth'\), expected an array of shape \(3, 2\)"),
     ],
 )
 def test_bad_term_values_raise_naming_the_term(returned, says):
