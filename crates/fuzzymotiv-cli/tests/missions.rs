@@ -335,3 +335,46 @@ fn robustness_of_a_mission_run_reports_urgency_and_missions_done() {
         );
     }
 }
+
+/// `compare` of two five-motivation mission runs compares, beside the paper's measures, the
+/// share of missions done and every term beyond a, g, l, b that both runs' `table.md` shows
+/// (urgency, the fifth motivation's, among them): in compare.csv, compare.md and the figure.
+#[test]
+fn compare_of_two_mission_runs_compares_urgency_and_missions_done() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    std::fs::create_dir_all(&a).unwrap();
+    std::fs::create_dir_all(&b).unwrap();
+    let run_a = fetch_run(&a, &[]);
+    let run_b = fetch_run(&b, &["seed=2"]);
+    let out = dir.path().join("cmp");
+    common::Fm::new(["compare", run_a.to_str().unwrap(), run_b.to_str().unwrap()])
+        .out(&out)
+        .ok();
+    let rows = fuzzymotiv_io::records::compare::read(&out.join("compare.csv")).unwrap();
+    let mut metrics: Vec<&str> = rows.iter().map(|r| r.metric.as_str()).collect();
+    metrics.dedup();
+    assert_eq!(
+        metrics,
+        [
+            "exploration_pct",
+            "battery_pct",
+            "homing_pct",
+            "mission_done_pct",
+            "goal_pct",
+            "urgency_pct",
+            "safety_pct"
+        ]
+    );
+    let urgency: Vec<&str> = (rows.iter())
+        .filter(|r| r.metric == "urgency_pct")
+        .map(|r| r.room.as_str())
+        .collect();
+    assert_eq!(urgency.len(), 6, "five rooms and overall: {urgency:?}");
+    let md = read(&out.join("compare.md"));
+    for heading in ["## fetch: % missions done", "## fetch: % urgency"] {
+        assert!(md.contains(heading), "no {heading}:\n{md}");
+    }
+    let svg = read(&out.join("compare.svg"));
+    assert!(svg.contains(">% urgency</text>"), "no urgency panel");
+}

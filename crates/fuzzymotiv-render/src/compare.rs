@@ -1,7 +1,10 @@
 //! `fuzzymotiv compare`'s numbers and pages: two settings' metrics per room and over all rooms,
 //! each compared with `fuzzymotiv::statistics` (paired when the two share their seeds, else
 //! unpaired), as [`CompareRow`]s, a Markdown page and a figure of the differences with their
-//! intervals per room.
+//! intervals per room. Beside the paper's metrics ([`METRICS`]), the measures of runs that
+//! follow missions or weigh terms of their own — `mission_done_pct` and `NAME_pct` per term
+//! beyond a, g, l, b ([`MISSION_DONE`], [`term_metric`]) — are compared when both sides have
+//! them.
 
 use std::fmt::Write as _;
 
@@ -10,6 +13,7 @@ use fuzzymotiv::statistics::{self, Comparison, Settings, StatsError};
 use crate::plot::{esc, open};
 use fuzzymotiv_records::records::METRICS;
 use fuzzymotiv_records::records::compare::{CompareRow, OVERALL};
+pub use fuzzymotiv_records::records::test_runs::{MISSION_DONE, term_metric};
 
 /// The metrics in words, in [`METRICS`] order, and their decimals.
 pub const METRIC_LABELS: [(&str, usize); 5] = [
@@ -20,23 +24,38 @@ pub const METRIC_LABELS: [(&str, usize); 5] = [
     ("% homing", 1),
 ];
 
-/// One seed, replicate or test run of a setting: per room, its values in [`METRICS`] order
-/// (none where it has no value).
+/// One seed, replicate or test run of a setting: per room, its values in its group's
+/// [`Group::metrics`] order (none where it has no value).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Unit {
     /// What pairs it with a unit of the other side: its seed (and test run).
     pub key: String,
     /// Per room, the values.
-    pub rooms: Vec<[Option<f64>; 5]>,
+    pub rooms: Vec<Vec<Option<f64>>>,
 }
 
-/// One setting of an output: its name and its units.
+/// One setting of an output: its name, its metrics and its units.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Group {
     /// The setting's name.
     pub name: String,
+    /// The metrics of its units' values, in order: [`METRICS`], then its own (e.g.
+    /// [`MISSION_DONE`], `goal_pct`) when it has them.
+    pub metrics: Vec<String>,
     /// Its seeds, replicates or test runs.
     pub units: Vec<Unit>,
+}
+
+impl Group {
+    /// A group of the paper's metrics ([`METRICS`]) and `extra` ones after them.
+    pub fn new(name: impl Into<String>, extra: &[String], units: Vec<Unit>) -> Group {
+        let metrics = METRICS.iter().map(|m| m.to_string());
+        Group {
+            name: name.into(),
+            metrics: metrics.chain(extra.iter().cloned()).collect(),
+            units,
+        }
+    }
 }
 
 /// For each unit of `a`, the unit of `b` with the same key, when the two have the same keys
@@ -59,9 +78,10 @@ fn values(g: &Group, order: &[usize], room: Option<usize>, m: usize) -> Option<V
         .map(|&k| {
             let rooms = &g.units[k].rooms;
             match room {
-                Some(r) => rooms.get(r)?[m],
+                Some(r) => rooms.get(r)?.get(m).copied().flatten(),
                 None => {
-                    let v: Option<Vec<f64>> = rooms.iter().map(|r| r[m]).collect();
+                    let v: Option<Vec<f64>> =
+                        rooms.iter().map(|r| r.get(m).copied().flatten()).collect();
                     v.filter(|v| !v.is_empty()).map(|v| statistics::mean(&v))
                 }
             }
@@ -69,9 +89,10 @@ fn values(g: &Group, order: &[usize], room: Option<usize>, m: usize) -> Option<V
         .collect()
 }
 
-/// Compares setting `a` with `b` on every metric, in every room of `rooms` and over all rooms:
-/// paired when [`pairing`] finds the same seeds, else unpaired. Room p-values are
-/// Holm-adjusted over the rooms of a metric. Metrics without values on both sides are left out.
+/// Compares setting `a` with `b` on every metric of `a` that `b` has too, in every room of
+/// `rooms` and over all rooms: paired when [`pairing`] finds the same seeds, else unpaired. Room
+/// p-values are Holm-adjusted over the rooms of a metric. Metrics without values on both sides
+/// are left out.
 pub fn compare_groups(
     a: &Group,
     b: &Group,
@@ -83,8 +104,8 @@ pub fn compare_groups(
     let order_b = pairs
         .clone()
         .unwrap_or_else(|| (0..b.units.len()).collect());
-    let test = |room: Option<usize>, m: usize| -> Result<Option<Comparison>, StatsError> {
-        let (Some(va), Some(vb)) = (values(a, &order_a, room, m), values(b, &order_b, room, m))
+    let test = |room: Option<usize>, (ma, mb)| -> Result<Option<Comparison>, StatsError> {
+        let (Some(va), Some(vb)) = (values(a, &order_a, room, ma), values(b, &order_b, room, mb))
         else {
             return Ok(None);
         };
@@ -101,32 +122,35 @@ pub fn compare_groups(
         format!("{} vs {}", a.name, b.name)
     };
     let mut out = Vec::new();
-    for m in 0..METRICS.len() {
+    for (ma, metric) in a.metrics.iter().enumerate() {
+        let Some(mb) = b.metrics.iter().position(|m| m == metric) else {
+            continue;
+        };
         let mut tested = Vec::new();
         for (r, room) in rooms.iter().enumerate() {
-            if let Some(c) = test(Some(r), m)? {
+            if let Some(c) = test(Some(r), (ma, mb))? {
                 tested.push((room.as_str(), c));
             }
         }
         let p: Vec<f64> = tested.iter().map(|(_, c)| c.p).collect();
         for ((room, c), p_holm) in tested.iter().zip(statistics::holm(&p)) {
-            out.push(row(&setting, m, room, c, p_holm));
+            out.push(row(&setting, metric, room, c, p_holm));
         }
-        if let Some(c) = test(None, m)? {
-            out.push(row(&setting, m, OVERALL, &c, c.p));
+        if let Some(c) = test(None, (ma, mb))? {
+            out.push(row(&setting, metric, OVERALL, &c, c.p));
         }
     }
     Ok(out)
 }
 
-fn row(setting: &str, m: usize, room: &str, c: &Comparison, p_holm: f64) -> CompareRow {
+fn row(setting: &str, metric: &str, room: &str, c: &Comparison, p_holm: f64) -> CompareRow {
     let (design, n_a, n_b) = match c.design {
         statistics::Design::Paired { n } => ("paired", n, n),
         statistics::Design::Unpaired { n_a, n_b } => ("unpaired", n_a, n_b),
     };
     CompareRow {
         setting: setting.into(),
-        metric: METRICS[m].into(),
+        metric: metric.into(),
         room: room.into(),
         design: design.into(),
         n_a,
@@ -143,12 +167,20 @@ fn row(setting: &str, m: usize, room: &str, c: &Comparison, p_holm: f64) -> Comp
     }
 }
 
-/// The label and decimals of a metric's name in [`METRICS`].
-pub fn metric_label(metric: &str) -> (&'static str, usize) {
-    METRICS
-        .iter()
-        .position(|m| *m == metric)
-        .map_or(("?", 3), |k| METRIC_LABELS[k])
+/// The label and decimals of a metric's name: one of [`METRICS`], [`MISSION_DONE`] ("% missions
+/// done") or a term's ([`term_metric`]: "% NAME").
+pub fn metric_label(metric: &str) -> (String, usize) {
+    if let Some(k) = METRICS.iter().position(|m| *m == metric) {
+        let (label, d) = METRIC_LABELS[k];
+        return (label.to_string(), d);
+    }
+    if metric == MISSION_DONE {
+        return ("% missions done".to_string(), 1);
+    }
+    match metric.strip_suffix("_pct") {
+        Some(term) => (format!("% {term}"), 1),
+        None => (metric.to_string(), 3),
+    }
 }
 
 /// The rows of `rows` in (setting, metric) blocks, in their order.
@@ -298,7 +330,7 @@ fn panel(svg: &mut String, block: &[CompareRow], (x0, y0): (f64, f64), labels: b
         "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\" font-weight=\"bold\">{}</text>\n<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\" fill=\"#555\">{}</text>\n<rect x=\"{left:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" fill=\"none\" stroke=\"#ccc\"/>\n<line x1=\"{:.1}\" x2=\"{:.1}\" y1=\"{:.1}\" y2=\"{bottom:.1}\" stroke=\"#888\" stroke-dasharray=\"3,3\"/>",
         (left + right) / 2.0,
         y0 + 4.0,
-        esc(label),
+        esc(&label),
         (left + right) / 2.0,
         y0 + 17.0,
         esc(&block[0].setting),

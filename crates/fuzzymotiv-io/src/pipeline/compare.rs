@@ -1,7 +1,10 @@
 //! `fuzzymotiv compare A B`: two outputs of the same kind and rooms — two run directories (over
 //! their test runs, `test_runs.csv`), two studies (over seeds) or settings of sweeps (over
 //! replicates) — read from their records, checked, and compared setting by setting
-//! ([`crate::render::compare`]): `compare.md`, `compare.csv` and `compare.svg`.
+//! ([`crate::render::compare`]): `compare.md`, `compare.csv` and `compare.svg`. Beside the
+//! paper's metrics, two runs that follow missions or weigh terms of their own are compared on
+//! `% missions done` and each term beyond a, g, l, b that both have (their `test_runs.csv`), and
+//! two sweeps on `% missions done` when both follow missions.
 
 use std::path::{Path, PathBuf};
 
@@ -9,8 +12,12 @@ use fuzzymotiv::statistics::Settings;
 
 use crate::files::error::CliError;
 use crate::records::compare::{self as compare_csv, CompareRow};
-use crate::records::{RunSummary, StudySummary, SweepResults, TableRow, read_json, test_runs};
-use crate::render::compare::{Group, Unit, compare_groups, compare_md, compare_svg, pairing};
+use crate::records::{
+    METRICS, RunSummary, StudySummary, SweepResults, TableRow, read_json, test_runs,
+};
+use crate::render::compare::{
+    Group, MISSION_DONE, Unit, compare_groups, compare_md, compare_svg, pairing,
+};
 
 /// What an output directory is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -90,8 +97,8 @@ pub fn load(dir: &Path, which: &str) -> Result<Side, CliError> {
     }
 }
 
-fn row_values(r: &TableRow) -> [Option<f64>; 5] {
-    [
+fn row_values(r: &TableRow) -> Vec<Option<f64>> {
+    vec![
         r.average_fitness,
         r.exploration_pct,
         r.recognition_pct,
@@ -108,16 +115,14 @@ fn load_study(dir: &Path) -> Result<Side, CliError> {
     let groups = s
         .settings
         .iter()
-        .map(|g| Group {
-            name: g.name.clone(),
-            units: g
-                .per_seed
-                .iter()
+        .map(|g| {
+            let units = (g.per_seed.iter())
                 .map(|seed| Unit {
                     key: format!("seed {}", seed.seed),
                     rooms: seed.rows.iter().map(row_values).collect(),
                 })
-                .collect(),
+                .collect();
+            Group::new(g.name.clone(), &[], units)
         })
         .collect();
     Ok(Side {
@@ -133,18 +138,24 @@ fn load_run(dir: &Path) -> Result<Side, CliError> {
     let rows = test_runs::read(dir)?;
     let rooms: Vec<String> = s.rooms.iter().map(|r| r.room.clone()).collect();
     let tests = rows.iter().map(|r| r.test + 1).max().unwrap_or(0);
+    // The run's own measures (missions done, terms beyond a, g, l, b), by their columns.
+    let extra: Vec<String> = rows.first().map_or(Vec::new(), |r| {
+        r.extra.iter().map(|(c, _)| c.clone()).collect()
+    });
+    let values = |r: &test_runs::TestRunRow| {
+        let (a, b, g) = (r.exploration_pct, r.battery_pct, r.homing_pct);
+        let paper = [None, Some(a), r.recognition_pct, Some(b), Some(g)];
+        let own = (extra.iter()).map(|c| r.extra.iter().find(|(k, _)| k == c).map(|e| e.1));
+        paper.into_iter().chain(own).collect()
+    };
     let units = (0..tests)
         .map(|k| Unit {
             key: format!("seed {} test {k}", s.seed),
-            rooms: rooms
-                .iter()
+            rooms: (rooms.iter())
                 .map(|room| {
-                    rows.iter()
+                    (rows.iter())
                         .find(|r| r.test == k && &r.room == room)
-                        .map_or([None; 5], |r| {
-                            let v = [r.exploration_pct, r.battery_pct, r.homing_pct];
-                            [None, Some(v[0]), r.recognition_pct, Some(v[1]), Some(v[2])]
-                        })
+                        .map_or(Vec::new(), values)
                 })
                 .collect(),
         })
@@ -153,10 +164,7 @@ fn load_run(dir: &Path) -> Result<Side, CliError> {
         dir: dir.into(),
         kind: Kind::Run,
         rooms,
-        groups: vec![Group {
-            name: s.name,
-            units,
-        }],
+        groups: vec![Group::new(s.name, &extra, units)],
     })
 }
 
@@ -179,10 +187,9 @@ fn load_sweep(dir: &Path, at: &str) -> Result<Side, CliError> {
         let g = match groups.iter().position(|g| g.name == r.setting) {
             Some(g) => g,
             None => {
-                groups.push(Group {
-                    name: r.setting.clone(),
-                    units: Vec::new(),
-                });
+                let extra = [MISSION_DONE.to_string()];
+                let extra = if results.missions { &extra[..] } else { &[] };
+                groups.push(Group::new(r.setting.clone(), extra, Vec::new()));
                 groups.len() - 1
             }
         };
@@ -195,8 +202,11 @@ fn load_sweep(dir: &Path, at: &str) -> Result<Side, CliError> {
             });
         }
         let unit = units.iter_mut().find(|u| u.key == key).expect("just added");
-        unit.rooms.resize(room + 1, [None; 5]);
-        unit.rooms[room] = r.values;
+        unit.rooms.resize(room + 1, Vec::new());
+        unit.rooms[room] = r.values.to_vec();
+        if results.missions {
+            unit.rooms[room].push(r.mission_done_pct);
+        }
     }
     Ok(Side {
         dir: dir.into(),
@@ -331,7 +341,8 @@ pub fn compare(
         rows.extend(found);
         designs.push_str(&design_line(a.kind, g, h));
     }
-    let head = head(a, b, &designs, alpha);
+    let own = rows.iter().any(|r| !METRICS.contains(&r.metric.as_str()));
+    let head = head(a, b, &designs, alpha) + if own { OWN_METRICS } else { "" };
     let md = compare_md(&head, &rows, alpha);
     let title = format!("A − B per room: {} vs {}", a.dir.display(), b.dir.display());
     let svg = compare_svg(&title, &rows, alpha);
@@ -371,6 +382,12 @@ fn design_line(kind: Kind, g: &Group, h: &Group) -> String {
         ),
     }
 }
+
+/// What `compare.md` says of the metrics beyond the paper's, when it has some.
+const OWN_METRICS: &str = "\nBeyond the paper's metrics, the measures both sides have of runs \
+    that follow missions or weigh terms of their own: `% missions done` (per test run 100 if its \
+    mission was done, else 0) and `% NAME`, the mean 100·term, for each term beyond a, g, l, b \
+    (the columns of their `table.md`).\n";
 
 fn head(a: &Side, b: &Side, designs: &str, alpha: f64) -> String {
     format!(

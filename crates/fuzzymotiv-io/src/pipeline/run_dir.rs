@@ -264,7 +264,7 @@ fn write_run(
     staged.write("recognition.csv", RecognitionTable::of(exp, done).to_csv())?;
     staged.write(
         test_runs::TEST_RUNS,
-        test_runs::to_text(&test_runs::test_runs(done)),
+        test_runs::to_text(&test_runs::test_runs(done, &extra_terms(exp))),
     )?;
     staged.write(
         "table.md",
