@@ -1391,7 +1391,7 @@ fn lab_config_that_cannot_run_exits_2_naming_file_and_field_before_listening() {
         ),
         (
             "term",
-            "[motivations]\ncuriosity = 0.5\nrush = { weight = 0.3, term = \"hurry\" }\n",
+            "[motivations]\ncuriosity = 0.7\nrush = { weight = 0.3, term = \"hurry\" }\n",
             "term.toml",
             "field `motivations.rush`",
         ),
@@ -1448,4 +1448,55 @@ fn bench_names_the_option_out_of_range() {
         let want = format!("{option}: must be from {range}, got {value}");
         assert!(stderr(&o).contains(&want), "{}", stderr(&o));
     }
+}
+
+/// Issue #52 item 3: `fuzzy --motivations curiosity=0.7,urgency=0.3` and a config's
+/// `[motivations]` of the same two names build the same two-input TSK (the config no longer
+/// adds the paper's other three and fails "must sum to 1, got 1.2"); the config runs, and its
+/// F under the library is the number `fuzzy` prints.
+#[test]
+fn fuzzy_and_a_config_read_the_same_motivation_names_alike() {
+    let o = run(&[
+        "fuzzy",
+        "--motivations",
+        "urgency=0.3,curiosity=0.7",
+        "--fitness",
+        "a=0.9,urgency=0.5",
+        "--explain",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let printed = stdout(&o);
+    let motivations = "[motivations]\ncuriosity = 0.7\nurgency = 0.3\n";
+    let raw = fuzzymotiv::RawConfig::parse(motivations, "c.toml", &[]).unwrap();
+    let tsk = fuzzymotiv::fitness::TskFitness::paper();
+    let m = raw.motivations.validated(&tsk).unwrap();
+    assert_eq!(m.input_names(), ["a", "urgency"]);
+    let f = tsk.evaluate(&m, &[0.9, 0.5]);
+    assert_eq!(printed.lines().next(), Some(format!("{f:.12}").as_str()));
+    assert!(
+        printed.ends_with('\n'),
+        "--explain ends its last line: {printed:?}"
+    );
+
+    let tmp = tempfile::tempdir().unwrap();
+    let config = tmp.path().join("two.toml");
+    let room = repo().join("rooms/fetch-H.toml");
+    let text = format!("rooms = [{:?}]\n{motivations}", room.display().to_string());
+    std::fs::write(&config, text).unwrap();
+    let out = tmp.path().join("out");
+    let o = Fm::new(["run".as_ref(), config.as_os_str()])
+        .out(&out)
+        .sets(&SMALL)
+        .sets(&["aem.enabled=false"])
+        .ok();
+    assert!(
+        stderr(&o).contains("leaves out `homing`, `orientation` and `energy` of the paper's four"),
+        "{}",
+        stderr(&o)
+    );
+    let resolved = std::fs::read_to_string(out.join("config.resolved.toml")).unwrap();
+    assert!(
+        resolved.contains("[motivations]\ncuriosity = 0.7\nurgency = 0.3\n\n"),
+        "{resolved}"
+    );
 }

@@ -30,7 +30,104 @@ fn a_nan_motivation_is_blamed_on_its_own_field() {
             msg.contains(&format!("field `motivations.{name}`")) && msg.contains("NaN"),
             "{name}: {msg}"
         );
-        assert_eq!(msg.matches("motivations.").count(), 1, "{name}: {msg}");
+        let (source, rest) = msg.split_once(": field ").unwrap();
+        assert_eq!(
+            source,
+            format!("error: --set motivations.{name}=nan"),
+            "{msg}"
+        );
+        assert_eq!(rest.matches("motivations.").count(), 1, "{name}: {msg}");
+    }
+}
+
+/// Issue #52 item 7: a bad value given by `--set` is named as that `--set`, not as the file,
+/// whether reading (a string for a number) or checking (a population of 1) refuses it; a
+/// value of the file is still the file's.
+#[test]
+fn a_bad_set_value_is_blamed_on_the_set_not_the_file() {
+    for set in ["ga.population=x", "ga.population=1", "ga={population=1}"] {
+        let msg = refused_run(&[set]);
+        assert!(
+            msg.starts_with(&format!("error: --set {set}: field `ga.population`: ")),
+            "{set}: {msg}"
+        );
+    }
+    let msg = refused_run(&["ga.generations=2", "motivations.homing=0.3"]);
+    assert!(
+        msg.starts_with("error: ")
+            && msg.contains("high-curiosity.toml")
+            && msg.contains("sum to 1"),
+        "{msg}"
+    );
+}
+
+/// Issue #52 item 7: every config or room-file message names the whole path of its field:
+/// a table's missing key (`motivations.x.weight`, `waypoints[1].y`), coefficients in plain
+/// words (not serde's "untagged enum"), an empty motivation name, a motivation spelled with a
+/// capital (a name, not a sum error).
+#[test]
+fn config_and_room_messages_name_the_whole_field_path() {
+    let dir = tempfile::tempdir().unwrap();
+    let check = |text: &str, field: &str, says: &str| {
+        let cfg = dir.path().join("c.toml");
+        std::fs::write(&cfg, text).unwrap();
+        let o = Fm::new(["run".as_ref(), cfg.as_os_str()])
+            .out(&dir.path().join("out"))
+            .run();
+        let msg = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{text}: {msg}");
+        assert!(
+            msg.contains(&format!("c.toml: field `{field}`: ")) && msg.contains(says),
+            "{text}: {msg}"
+        );
+        assert!(
+            !msg.contains("untagged") && !msg.contains("panicked"),
+            "{msg}"
+        );
+    };
+    check(
+        "[motivations]\nx = { term = \"a\" }\n",
+        "motivations.x.weight",
+        "missing field",
+    );
+    check(
+        "[motivations.x]\nterm = \"a\"\n",
+        "motivations.x.weight",
+        "missing field",
+    );
+    check(
+        "[fuzzy]\ncoefficients = \"lin\"\n",
+        "fuzzy.coefficients",
+        "\"linear\", \"ratio\" or a list",
+    );
+    check("[motivations]\n\"\" = 1.0\n", "motivations", "empty name");
+    check(
+        "[motivations]\nCuriosity = 0.8\nhoming = 0.1\norientation = 0.0\nenergy = 0.1\n",
+        "motivations.Curiosity",
+        "did you mean `curiosity`?",
+    );
+    let room = dir.path().join("r.toml");
+    let outline = "name = \"r\"\noutline = [[0,0],[800,0],[800,800],[0,800]]\n";
+    let waypoints =
+        "[[waypoints]]\nx = 300\ny = 300\nradius = 40\n[[waypoints]]\nx = 500\nradius = 40\n";
+    for (text, field) in [
+        (
+            format!("{outline}home = {{ x = 40, y = 40, heading_deg = 0 }}\n{waypoints}"),
+            "waypoints[1].y",
+        ),
+        (
+            format!("{outline}home = {{ x = 40, heading_deg = 0 }}\n"),
+            "home.y",
+        ),
+    ] {
+        std::fs::write(&room, text).unwrap();
+        let o = Fm::new(["rooms".as_ref(), "--check".as_ref(), room.as_os_str()]).run();
+        let msg = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{msg}");
+        assert!(
+            msg.contains(&format!("r.toml: field `{field}`: missing field")),
+            "{msg}"
+        );
     }
 }
 

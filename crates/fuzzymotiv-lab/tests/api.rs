@@ -715,7 +715,7 @@ fn explain_takes_named_motivations_and_terms_as_well_as_the_four_numbers() {
     );
     let a = c.post(
         "/api/explain",
-        &json!({ "motivations": { "curiosity": 0.5, "energy": 0.1, "hurry": { "weight": 0.3, "term": "speed" } },
+        &json!({ "motivations": { "curiosity": 0.6, "energy": 0.1, "hurry": { "weight": 0.3, "term": "speed" } },
                  "fitness": { "a": 0.9 } }),
     );
     assert_eq!(a.status, 400);

@@ -24,7 +24,7 @@ pub use config::{
 };
 pub use config::{
     Combination, ConfigError, EnergyMode, MAX_SEED, OrientationMode, RawConfig, Training,
-    apply_sets, at_line,
+    apply_sets, at_line, blame_set,
 };
 pub use descriptors::Descriptors;
 pub use evaluation::{Evaluation, RoomScore};

@@ -82,7 +82,9 @@ impl std::fmt::Display for Num {
     }
 }
 
-/// Best guess at the key a TOML error refers to: the key on the line of the error span.
+/// Best guess at the key a TOML error refers to: the key on the line of the error span, with
+/// the path of the table it is in (`motivations.x`, `waypoints[1].x`); for a missing field, the
+/// field under the table that lacks it (`motivations.x.weight`, `waypoints[0].y`, `home.y`).
 pub(crate) fn field_from_toml_message(
     msg: &str,
     text: &str,
@@ -95,35 +97,99 @@ pub(crate) fn field_from_toml_message(
     };
     if msg.contains("missing field") {
         if let Some(f) = from_message() {
-            return f;
+            return match span.and_then(|span| value_path_at(text, span.start)) {
+                Some(table) if !table.is_empty() => format!("{table}.{f}"),
+                _ => f,
+            };
         }
     }
-    if let Some(span) = span {
-        let start = span.start.min(text.len());
-        let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
-        let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
-        let line = &text[line_start..line_end];
-        if let Some(eq) = line.find('=') {
-            let key = line[..eq].trim();
-            if !key.is_empty() && !key.starts_with('[') {
-                // Prefix with the enclosing table, if any.
-                let table = text[..line_start]
-                    .lines()
-                    .rev()
-                    .find(|l| l.trim_start().starts_with('['))
-                    .map(|l| l.trim().trim_matches(|c| c == '[' || c == ']').to_string());
-                return match table {
-                    Some(t) if !t.is_empty() => format!("{t}.{key}"),
-                    _ => key.to_string(),
-                };
-            }
-        }
-        if line.trim_start().starts_with('[') {
-            return line
-                .trim()
-                .trim_matches(|c| c == '[' || c == ']')
-                .to_string();
-        }
+    if let Some(path) = span.and_then(|span| key_path_at(text, span.start)) {
+        return path;
     }
     from_message().unwrap_or_else(|| "(document)".to_string())
+}
+
+/// The line of `text` around byte `at`: (its start, the line).
+fn line_at(text: &str, at: usize) -> (usize, &str) {
+    let at = at.min(text.len());
+    let start = text[..at].rfind('\n').map_or(0, |i| i + 1);
+    let end = text[at..].find('\n').map_or(text.len(), |i| at + i);
+    (start, &text[start..end])
+}
+
+/// The path of a table header line (`[a.b]` → `a.b`, the third `[[w]]` → `w[2]`), counting the
+/// same `[[…]]` headers before byte `line_start`; `None` for another line.
+fn header_path(text: &str, line_start: usize, line: &str) -> Option<String> {
+    let line = line.trim();
+    if let Some(name) = line.strip_prefix("[[").and_then(|l| l.split("]]").next()) {
+        let name = name.trim();
+        let header = |l: &str| {
+            let l = l.trim();
+            l.strip_prefix("[[")
+                .and_then(|l| l.split("]]").next())
+                .is_some_and(|n| n.trim() == name)
+        };
+        let index = text[..line_start].lines().filter(|l| header(l)).count();
+        return Some(format!("{name}[{index}]"));
+    }
+    let name = line.strip_prefix('[')?.split(']').next()?.trim();
+    Some(name.to_string())
+}
+
+/// The path of the table the line starting at `line_start` is in (empty at the top).
+fn enclosing_table(text: &str, line_start: usize) -> String {
+    let mut offset = line_start;
+    for line in text[..line_start].lines().rev() {
+        offset -= line.len() + 1;
+        if line.trim_start().starts_with('[') {
+            return header_path(text, offset.min(line_start), line).unwrap_or_default();
+        }
+    }
+    String::new()
+}
+
+/// `table.key` of the `key = …` line around byte `at` (or the header's path on a header line).
+fn key_path_at(text: &str, at: usize) -> Option<String> {
+    let (start, line) = line_at(text, at);
+    if line.trim_start().starts_with('[') {
+        return header_path(text, start, line);
+    }
+    let key = line[..line.find('=')?].trim();
+    if key.is_empty() {
+        return None;
+    }
+    Some(match enclosing_table(text, start) {
+        t if t.is_empty() => key.to_string(),
+        t => format!("{t}.{key}"),
+    })
+}
+
+/// The path of the value (a table) that starts at byte `at`: a header's table, an inline table
+/// `key = { … }`, or element i of `key = [{ … }, { … }]`.
+fn value_path_at(text: &str, at: usize) -> Option<String> {
+    let (start, line) = line_at(text, at);
+    let key = key_path_at(text, at)?;
+    if line.trim_start().starts_with('[') {
+        return Some(key);
+    }
+    let eq = line.find('=')?;
+    let within = &line[eq + 1..(at - start).clamp(eq + 1, line.len())];
+    if !within.trim_start().starts_with('[') {
+        return Some(key);
+    }
+    let mut depth = 0usize;
+    let mut index = 0usize;
+    for c in within.chars() {
+        match c {
+            '{' => {
+                if depth == 0 {
+                    index += 1;
+                }
+                depth += 1;
+            }
+            '}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    Some(format!("{key}[{}]", index.saturating_sub(usize::from(depth > 0))))
 }

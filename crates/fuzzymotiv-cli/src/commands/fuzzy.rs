@@ -101,17 +101,19 @@ fn parse_named(text: &str, option: &str) -> Result<Option<Vec<(String, f64)>>, C
 }
 
 /// The motivations of --motivations: the paper's C,H,O,E, or named ones (each weighing the
-/// term of its own name; curiosity, homing, orientation and energy weigh a, g, l and b).
+/// term of its own name; curiosity, homing, orientation and energy weigh a, g, l and b), read
+/// as a config's `[motivations]` reads the same names: those named and no others, the paper's
+/// first, then the others alphabetically.
 fn motivations_of(text: &str) -> Result<fuzzymotiv::fitness::Motivations, CliError> {
     use fuzzymotiv::fitness::{RawMotivation, RawMotivations, TskFitness};
     let raw = match parse_named(text, "--motivations")? {
         None => RawMotivations::paper(parse_four(text, "--motivations", ["C", "H", "O", "E"])?),
-        Some(named) => RawMotivations {
-            list: named
+        // As a config's [motivations] reads the same names: these and no others, in its order.
+        Some(named) => RawMotivations::named(
+            named
                 .into_iter()
-                .map(|(n, w)| (n, RawMotivation::Weight(w)))
-                .collect(),
-        },
+                .map(|(n, w)| (n, RawMotivation::Weight(w))),
+        ),
     };
     let mut normalised = raw.clone();
     let paper = !text.contains('=');
@@ -219,7 +221,7 @@ pub fn fuzzy(args: FuzzyArgs) -> Result<(), CliError> {
         let f = tsk.evaluate(&m, &y);
         outln!("{f:.12}")?;
         if args.explain {
-            fuzzymotiv_io::out!("{}", tsk.explain(&m, &y))?;
+            outln!("{}", tsk.explain(&m, &y))?;
         }
     }
     if let Some(path) = &args.export_fll {

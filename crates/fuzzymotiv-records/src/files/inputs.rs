@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::RawConfig;
-use fuzzymotiv::experiment::{RoomFile, RoomFiles, Setup, parse_room_file};
+use fuzzymotiv::experiment::{RoomFile, RoomFiles, Setup, SetupError, blame_set, parse_room_file};
 use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 
 use crate::files::error::CliError;
@@ -93,7 +93,11 @@ pub fn load_config(
         ),
     };
     let raw = RawConfig::parse(&text, &source, &sets)?;
-    resolve(raw, &base, &source)
+    // A value of a --set is named as such, not as the file's.
+    resolve(raw, &base, &source).map_err(|e| match e {
+        CliError::Setup(SetupError::Field(f)) => SetupError::Field(blame_set(f, &sets)).into(),
+        e => e,
+    })
 }
 
 /// The largest number of worker threads (`--threads` of every command, the lab's runs,

@@ -173,9 +173,11 @@ impl RawConfig {
         if sets.is_empty() {
             return Self::from_text(text, source_name);
         }
+        default_motivations_for_sets(&mut table, sets);
         apply_sets(&mut table, sets)?;
         let merged = toml::to_string(&table).map_err(|e| err("(document)", e.to_string()))?;
         Self::from_text(&merged, &format!("{source_name} (with --set overrides)"))
+            .map_err(|e| blame_set(e, sets))
     }
 
     fn from_text(text: &str, source_name: &str) -> Result<RawConfig, ConfigError> {
@@ -320,6 +322,49 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
     Ok(())
 }
 
+/// A `--set motivations.…` changes the config's motivations as they stand: where the document
+/// has no `[motivations]` (or an empty one), those are the paper's four with their defaults, so
+/// they are written out first (a table in the file defines the whole set; docs/model.md §8).
+fn default_motivations_for_sets(table: &mut toml::Table, sets: &[String]) {
+    let touches = |set: &String| {
+        let key = set.split_once('=').map_or(set.as_str(), |(k, _)| k).trim();
+        key == "motivations" || key.starts_with("motivations.")
+    };
+    let empty = match table.get("motivations") {
+        None => true,
+        Some(toml::Value::Table(t)) => t.is_empty(),
+        Some(_) => false,
+    };
+    if empty && sets.iter().any(touches) {
+        if let Ok(defaults) = toml::Value::try_from(RawMotivations::default()) {
+            table.insert("motivations".into(), defaults);
+        }
+    }
+}
+
+/// The error `e` of a value given by `--set` named as coming from that `--set KEY=VALUE`, not
+/// from the file: its field is the key set, inside it (`ga={population=1}` → `ga.population`)
+/// or holds it (`motivations.x.weight` → `motivations.x`, but not a whole section such as
+/// `motivations`, whose error may come from the file as well); other errors as they are.
+pub fn blame_set(e: FieldError, sets: &[String]) -> FieldError {
+    let inside = |a: &str, b: &str| {
+        a.strip_prefix(b)
+            .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
+    };
+    let field = e.field.as_str();
+    let set = sets.iter().rev().find(|set| {
+        let key = set.split_once('=').map_or(set.as_str(), |(k, _)| k).trim();
+        !key.is_empty() && (inside(field, key) || (field.contains('.') && inside(key, field)))
+    });
+    match set {
+        Some(set) => FieldError {
+            source_name: format!("--set {set}"),
+            ..e
+        },
+        None => e,
+    }
+}
+
 /// Sets `t[key]` to `value`; where both are tables, key by key (recursively), so that the
 /// table's other keys stay.
 fn merge_value(t: &mut toml::Table, key: &str, value: toml::Value) {
@@ -395,5 +440,54 @@ mod tests {
         assert_eq!(e.field, "trial.sensor_model", "{e}");
         let e = RawConfig::parse("seed = [", "c.toml", &[]).unwrap_err();
         assert_eq!(e.field, "seed", "{e}");
+    }
+
+    /// `--set motivations.NAME=…` on a config without `[motivations]` changes the paper's four
+    /// that the config stands for (as before); on a written table, that table.
+    #[test]
+    fn a_set_motivation_changes_the_configs_motivations_as_they_stand() {
+        let sets = [
+            "motivations.curiosity=0.5".to_string(),
+            "motivations.homing=0.4".into(),
+        ];
+        let raw = RawConfig::parse("seed = 3\n", "c.toml", &sets).unwrap();
+        assert_eq!(
+            raw.motivations,
+            crate::fitness::RawMotivations::paper([0.5, 0.4, 0.0, 0.1])
+        );
+        let written = "[motivations]\ncuriosity = 0.6\nurgency = 0.4\n";
+        let sets = [
+            "motivations.urgency=0.3".to_string(),
+            "motivations.homing=0.1".into(),
+        ];
+        let raw = RawConfig::parse(written, "c.toml", &sets).unwrap();
+        assert_eq!(
+            raw.motivations
+                .list
+                .iter()
+                .map(|(n, _)| n.as_str())
+                .collect::<Vec<_>>(),
+            ["curiosity", "homing", "urgency"]
+        );
+    }
+
+    /// A bad value of a `--set` is named as that `--set`, not as the file's (issue #52 item 7).
+    #[test]
+    fn a_value_given_by_set_is_blamed_on_the_set_not_the_file() {
+        let sets = ["ga.population=x".to_string()];
+        let e = RawConfig::parse("[ga]\npopulation = 4\n", "g.toml", &sets).unwrap_err();
+        assert_eq!(e.source_name, "--set ga.population=x", "{e}");
+        assert_eq!(e.field, "ga.population", "{e}");
+        let sets = [
+            "ga={population=1}".to_string(),
+            "motivations.x.weight=2".into(),
+        ];
+        let checked = |field: &str| FieldError::new(field, "bad").in_source("g.toml");
+        let blamed = |field: &str| blame_set(checked(field), &sets).source_name;
+        assert_eq!(blamed("ga.population"), "--set ga={population=1}");
+        assert_eq!(blamed("motivations.x"), "--set motivations.x.weight=2");
+        // A whole section's error (the motivations' sum) may come from the file as well.
+        assert_eq!(blamed("motivations"), "g.toml");
+        assert_eq!(blamed("trial.steps"), "g.toml");
     }
 }

@@ -101,11 +101,12 @@ impl Setup {
             rooms.push(resolve_room(i, entry, source_name, files)?);
         }
         let shared = raw.fuzzy.validated().ok();
-        let notes = shared
+        let mut notes: Vec<String> = shared
             .and_then(|shared| raw.motivations.normalise(&shared))
             .map(|sum| normalised_note(source_name, sum, &raw.motivations))
             .into_iter()
             .collect();
+        notes.extend(left_out_note(source_name, &raw.motivations));
         let table = resolve_sensor_table(&mut raw.trial.sensor_table, source_name, files)?;
         let experiment = Experiment::with_sensor_table(&raw, rooms, &[], table, source_name)?;
         Ok(Setup {
@@ -191,6 +192,25 @@ pub fn parse_room_file(text: &str, source_name: &str) -> Result<Room, SetupError
 }
 
 /// What normalising the motivations did: `(C, H, O, E) = [..]` for the paper's four.
+/// When `[motivations]` names some of the paper's four but not all: those left out are no
+/// motivations here (a table defines the whole set; an earlier release added them with their
+/// defaults), said once so that an older config's different meaning is not silent.
+fn left_out_note(source_name: &str, m: &RawMotivations) -> Option<String> {
+    let left = m.paper_left_out();
+    let (last, first) = left.split_last()?;
+    let names = match first {
+        [] => format!("`{last}`"),
+        _ => format!("`{}` and `{last}`", first.join("`, `")),
+    };
+    let inputs: Vec<&str> = m.list.iter().map(|(n, _)| n.as_str()).collect();
+    Some(format!(
+        "{source_name}: [motivations] leaves out {names} of the paper's four, so the motivations \
+         are {} alone: a table defines the whole set (write e.g. `{last} = 0.0` to keep the \
+         paper's four)",
+        inputs.join(", ")
+    ))
+}
+
 fn normalised_note(source_name: &str, sum: f64, m: &RawMotivations) -> String {
     let paper = m.list.len() == 4
         && m.list

@@ -9,7 +9,7 @@ use crate::experiment::config::{Combination, EnergyMode};
 use crate::fitness::terms::{
     FitnessTerms, LIBRARY_TERMS, MAX_USER_TERMS, MissionTracker, Term, TermId, WaypointOrder,
 };
-use crate::fitness::{MAX_MOTIVATIONS, Motivations, TskFitness};
+use crate::fitness::{MAX_MOTIVATIONS, Motivations, PAPER_MOTIVATIONS, TskFitness};
 use crate::params::FieldError;
 use crate::simulation::room::{HomeZone, Room};
 
@@ -142,13 +142,18 @@ fn check_user_terms(user: &[UserTerm]) -> Result<(), FieldError> {
 fn unknown_term(motivation: &str, term: &str, user: &[UserTerm]) -> FieldError {
     let mut known: Vec<&str> = LIBRARY_TERMS.to_vec();
     known.extend(user.iter().map(|u| u.name.as_str()));
-    FieldError::new(
-        format!("motivations.{motivation}"),
-        format!(
-            "weighs the term {term:?}, which does not exist; a motivation weighs one of the terms {} (write {motivation} = {{ weight = …, term = \"…\" }}; a motivation without `term` weighs the term of its own name)",
-            known.join(", ")
-        ),
-    )
+    let mut reason = format!(
+        "weighs the term {term:?}, which does not exist; a motivation weighs one of the terms {} (write {motivation} = {{ weight = …, term = \"…\" }}; a motivation without `term` weighs the term of its own name)",
+        known.join(", ")
+    );
+    let spelled = |n: &&str| *n != term && n.eq_ignore_ascii_case(term);
+    let like = (PAPER_MOTIVATIONS.iter().copied())
+        .chain(known.iter().copied())
+        .find(|n| spelled(&n));
+    if let Some(like) = like {
+        reason = format!("{reason}. Names are case-sensitive: did you mean `{like}`?");
+    }
+    FieldError::new(format!("motivations.{motivation}"), reason)
 }
 
 /// A mission term needs its mission in every room: `goal` a goal, `waypoints` waypoints,

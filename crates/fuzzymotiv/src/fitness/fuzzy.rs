@@ -149,7 +149,9 @@ pub enum FuzzyError {
 }
 
 /// Coefficient array of `[fuzzy]`: a scheme name or explicit values (default `"linear"`).
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+/// Read by hand, so that a wrong value is answered in plain words (`"linear"`, `"ratio"` or a
+/// list of numbers) rather than serde's "did not match any variant of untagged enum".
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 #[serde(untagged)]
 pub enum Coefficients {
     /// `"linear"` (default) or `"ratio"`.
@@ -167,6 +169,37 @@ pub struct RawFuzzy {
     pub peaks: Vec<f64>,
     /// Coefficient array, one per label; default `"linear"`.
     pub coefficients: Coefficients,
+}
+
+impl<'de> serde::Deserialize<'de> for Coefficients {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::{self, SeqAccess, Visitor};
+        const EXPECTED: &str = "\"linear\", \"ratio\" or a list of numbers, one per peak";
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = Coefficients;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(EXPECTED)
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Coefficients, E> {
+                match v {
+                    "linear" => Ok(Coefficients::Scheme(CoefficientScheme::Linear)),
+                    "ratio" => Ok(Coefficients::Scheme(CoefficientScheme::Ratio)),
+                    _ => Err(E::custom(format!(
+                        "unknown coefficients {v:?}; expected {EXPECTED}"
+                    ))),
+                }
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Coefficients, A::Error> {
+                let mut values = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(MAX_LABELS));
+                while let Some(v) = seq.next_element::<f64>()? {
+                    values.push(v);
+                }
+                Ok(Coefficients::Values(values))
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
 impl Default for Coefficients {

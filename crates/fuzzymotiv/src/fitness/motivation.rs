@@ -15,11 +15,13 @@
 //! hurry = { weight = 0.2, term = "urgency" }
 //! ```
 //!
-//! The paper's four are motivations whenever the table names one of them or names none (those
-//! not named take their defaults, 0.8, 0.1, 0 and 0.1, as before); they come first, in that
-//! order, and the others follow in alphabetical order of their names (which fixes the rule
-//! numbering). A motivation without `term` weighs the term of its own name (curiosity → a,
-//! homing → g, orientation → l, energy → b).
+//! A table that names any motivation defines the whole set: nothing is added to it (naming
+//! `curiosity` and `urgency` makes two motivations, as `fuzzymotiv fuzzy --motivations` reads
+//! the same names). No table, or an empty one, means the paper's four with their defaults
+//! (0.8, 0.1, 0, 0.1). Those of the paper's four that are named come first, in that order, and
+//! the others follow in alphabetical order of their names (which fixes the rule numbering). A
+//! motivation without `term` weighs the term of its own name (curiosity → a, homing → g,
+//! orientation → l, energy → b).
 
 use std::collections::BTreeMap;
 use std::fmt;
@@ -389,8 +391,9 @@ impl<'de> Deserialize<'de> for RawMotivation {
     }
 }
 
-/// `[motivations]` in a config, as written, with the paper's four filled in as the module
-/// documentation says: the paper's four first (in paper order), then the others by name.
+/// `[motivations]` in a config, as written (the paper's four when nothing is written), in
+/// input order as the module documentation says: those of the paper's four that are named
+/// first (in paper order), then the others by name.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RawMotivations {
     /// `(name, motivation)` in input order.
@@ -415,23 +418,40 @@ impl RawMotivations {
         RawMotivations { list }
     }
 
-    /// Puts the written motivations in input order, filling in the paper's four when the table
-    /// names one of them or none.
+    /// The motivations named in `written` (a name given twice keeps its last value; callers
+    /// that must refuse that check it first), in input order: those of the paper's four that
+    /// are named, in paper order, then the others by name. Nothing written is the paper's
+    /// high-curiosity setting; otherwise nothing is added.
+    pub fn named(written: impl IntoIterator<Item = (String, RawMotivation)>) -> RawMotivations {
+        Self::ordered(written.into_iter().collect())
+    }
+
     fn ordered(mut written: BTreeMap<String, RawMotivation>) -> RawMotivations {
-        let mut list = Vec::new();
-        let with_paper =
-            written.is_empty() || PAPER_MOTIVATIONS.iter().any(|n| written.contains_key(*n));
-        if with_paper {
-            let defaults = Motivations::high_curiosity();
-            for (k, name) in PAPER_MOTIVATIONS.iter().enumerate() {
-                let m = written
-                    .remove(*name)
-                    .unwrap_or(RawMotivation::Weight(defaults.list[k].weight));
-                list.push((name.to_string(), m));
-            }
+        if written.is_empty() {
+            let x = Motivations::high_curiosity().as_array();
+            return Self::paper(x);
         }
+        let mut list: Vec<(String, RawMotivation)> = PAPER_MOTIVATIONS
+            .iter()
+            .filter_map(|name| written.remove(*name).map(|m| (name.to_string(), m)))
+            .collect();
         list.extend(written);
         RawMotivations { list }
+    }
+
+    /// The paper's motivations this set leaves out when it names some but not all four (none
+    /// otherwise): what an earlier release added with their defaults, and no longer does.
+    pub fn paper_left_out(&self) -> Vec<&'static str> {
+        let named = |n: &str| self.list.iter().any(|(m, _)| m == n);
+        let left: Vec<&'static str> = PAPER_MOTIVATIONS
+            .into_iter()
+            .filter(|n| !named(n))
+            .collect();
+        if left.len() == PAPER_MOTIVATIONS.len() {
+            Vec::new()
+        } else {
+            left
+        }
     }
 
     /// The weight written for `name`, if any.
@@ -483,6 +503,15 @@ fn motivation_of(
     raw: &RawMotivation,
     shared: &TskFitness,
 ) -> Result<Motivation, FieldError> {
+    if name.trim().is_empty() {
+        return Err(FieldError::new(
+            "motivations",
+            format!(
+                "a motivation has the empty name {name:?}; each motivation needs a name, e.g. \
+                 curiosity = 0.8 or hurry = {{ weight = 0.2, term = \"urgency\" }}"
+            ),
+        ));
+    }
     let default_term = PAPER_MOTIVATIONS
         .iter()
         .position(|n| *n == name)
@@ -515,5 +544,63 @@ impl<'de> Deserialize<'de> for RawMotivations {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let written = BTreeMap::<String, RawMotivation>::deserialize(d)?;
         Ok(RawMotivations::ordered(written))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `[motivations]` as a config holds it (`text` is the table's body).
+    fn read(body: &str) -> RawMotivations {
+        #[derive(Deserialize)]
+        struct Doc {
+            #[serde(default)]
+            motivations: RawMotivations,
+        }
+        toml::from_str::<Doc>(body).unwrap().motivations
+    }
+
+    fn names(m: &RawMotivations) -> Vec<&str> {
+        m.list.iter().map(|(n, _)| n.as_str()).collect()
+    }
+
+    /// Issue #52 item 3: naming curiosity and urgency makes those two motivations, as
+    /// `fuzzy --motivations curiosity=0.7,urgency=0.3` reads them; no paper motivation is added.
+    #[test]
+    fn a_motivations_table_defines_the_whole_set_and_adds_none_of_the_papers_four() {
+        let written = read("[motivations]\nurgency = 0.3\ncuriosity = 0.7\n");
+        assert_eq!(names(&written), ["curiosity", "urgency"]);
+        let m = written.validated(&TskFitness::paper()).unwrap();
+        assert_eq!(m.weights(), [0.7, 0.3]);
+        let by_hand = RawMotivations::named([
+            ("urgency".to_string(), RawMotivation::Weight(0.3)),
+            ("curiosity".to_string(), RawMotivation::Weight(0.7)),
+        ]);
+        assert_eq!(by_hand, written);
+        assert_eq!(
+            written.paper_left_out(),
+            ["homing", "orientation", "energy"]
+        );
+    }
+
+    /// No table, or an empty one, is the paper's high-curiosity four (the default run's).
+    #[test]
+    fn no_motivations_table_or_an_empty_one_is_the_papers_four() {
+        for text in ["", "[motivations]\n"] {
+            let m = read(text);
+            assert_eq!(m, RawMotivations::paper([0.8, 0.1, 0.0, 0.1]));
+            assert!(m.paper_left_out().is_empty());
+        }
+    }
+
+    /// An empty name is refused naming `motivations`, before the sum is checked.
+    #[test]
+    fn an_empty_motivation_name_is_refused_as_such() {
+        let e = read("[motivations]\n\"\" = 1.0\n")
+            .validated(&TskFitness::paper())
+            .unwrap_err();
+        assert_eq!(e.field, "motivations");
+        assert!(e.reason.contains("empty name"), "{e}");
     }
 }
