@@ -791,7 +791,7 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
         let e = bad_mission("goal={x=700,y=200}");
         assert!(e.to_string().contains("radius"), "{e}");
         let e = bad_mission("[[waypoints]]\nx=300\ny=200\nradius=40\nsize=3");
-        assert_eq!(e.field, "waypoints.size");
+        assert_eq!(e.field, "waypoints[0].size");
     }
 
     /// A goal behind a wall with no gap the body fits through is refused when the file is read.
@@ -816,6 +816,49 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
             "ok.toml",
         )
         .unwrap();
+    }
+
+    /// Issue #52 item 6: a goal the robot drives through from home (heading 0°, along y = 40)
+    /// or reaches along a wall or into a corner is accepted, decided at the robot's scale (the
+    /// body radius), not by whether a 50 mm cell's centre lies in it.
+    #[test]
+    fn a_goal_the_robot_drives_through_is_reachable() {
+        let room =
+            "name='g'\noutline=[[0,0],[800,0],[800,800],[0,800]]\nhome={x=40,y=40,heading_deg=0}\n";
+        for goal in [
+            "x=100,y=40,radius=30",
+            "x=300,y=40,radius=20",
+            "x=750,y=400,radius=20",
+            "x=780,y=780,radius=50",
+        ] {
+            let r = Room::from_toml_str(&format!("{room}goal={{{goal}}}\n"), "g.toml");
+            assert!(r.is_ok(), "{goal}: {r:?}");
+        }
+    }
+
+    /// A goal nearer the walls than the body radius everywhere, or cut off from home by a gap
+    /// narrower than the body, is still refused, and the message says which.
+    #[test]
+    fn an_unreachable_goal_is_refused_saying_truly_why() {
+        let room =
+            "name='g'\noutline=[[0,0],[800,0],[800,800],[0,800]]\nhome={x=40,y=40,heading_deg=0}\n";
+        let e = Room::from_toml_str(&format!("{room}goal={{x=790,y=790,radius=10}}\n"), "g.toml")
+            .unwrap_err();
+        assert_eq!(e.field, "goal");
+        assert!(
+            e.reason
+                .contains("every point of it is nearer a wall than that"),
+            "{e}"
+        );
+        assert!(e.reason.contains("body radius 27.5 mm"), "{e}");
+        let dumbbell = "name='d'\noutline=[[0,0],[400,0],[400,180],[500,180],[500,0],[900,0],[900,400],[500,400],[500,220],[400,220],[400,400],[0,400]]\nhome={x=100,y=100,heading_deg=0}\ngoal={x=700,y=200,radius=50}\n";
+        let e = Room::from_toml_str(dumbbell, "d.toml").unwrap_err();
+        assert_eq!(e.field, "goal");
+        assert!(e.reason.contains("cut off from home"), "{e}");
+        assert!(!e.reason.contains("nearer a wall"), "{e}");
+        // A gap wider than the body opens the way.
+        let wide = dumbbell.replace("180],", "120],").replace("220],", "280],");
+        assert!(Room::from_toml_str(&wide, "d.toml").is_ok());
     }
 
     /// A zone whose centre is too close to a wall for the body's centre can still be reached

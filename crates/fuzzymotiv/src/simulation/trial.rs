@@ -191,25 +191,98 @@ impl Arena {
     /// The first zone of the room's mission (the goal, then the waypoints in order) that the
     /// robot cannot reach from home, as an error in its room-file field (`goal`,
     /// `waypoints[2]`, …), or `None` when every zone can be reached. A zone can be reached when
-    /// the cell of its centre, or a cell whose centre lies in the zone, is one of the cells the
-    /// flood fill from home reaches (docs/model.md §7).
+    /// the robot's centre can enter it: some point of it where the body fits (inside the room,
+    /// at least the body radius from every wall) is connected to home, i.e. is the centre of a
+    /// cell the flood fill from home reaches, or slides in a straight line to home or to such a
+    /// cell around it (docs/model.md §4, §7).
     pub fn unreachable_mission_zone(&self) -> Option<FieldError> {
-        let reached = |zone: &Zone| {
-            self.is_reachable(self.cell_of(zone.centre))
-                || (0..self.cell_count())
-                    .any(|k| self.reachable[k] && zone.contains(self.grid.centre(k)))
+        let (field, zone) = self
+            .room
+            .mission
+            .zones()
+            .find(|(_, z)| !self.zone_reached(z))?;
+        let r = self.radius;
+        let why = if self.zone_has_room(&zone) {
+            "the points of it that far from every wall are cut off from home by walls or \
+             obstacles (no passage the body fits through leads there)"
+        } else {
+            "every point of it is nearer a wall than that"
         };
-        let (field, zone) = self.room.mission.zones().find(|(_, z)| !reached(z))?;
         Some(FieldError::new(
             field,
             format!(
-                "the zone centred at ({}, {}) with radius {} cannot be reached from home by a robot of body radius {} mm (it is cut off by walls or obstacles, or too close to them); move it into the part of the room connected to home",
+                "the zone centred at ({}, {}) with radius {} cannot be reached from home by a robot of body radius {r} mm, whose centre stays at least {r} mm from every wall: {why}; move it, or make it larger, into the part of the room connected to home",
                 Num(zone.centre.x),
                 Num(zone.centre.y),
                 Num(zone.radius),
-                self.radius
             ),
         ))
+    }
+
+    /// Whether the robot's centre can enter `zone` ([`Arena::unreachable_mission_zone`]): a
+    /// reachable cell's centre inside it, or a point of it sampled every
+    /// [`Arena::zone_step`] around the reachable cells that joins home.
+    fn zone_reached(&self, zone: &Zone) -> bool {
+        if (0..self.cell_count()).any(|k| self.reachable[k] && zone.contains(self.grid.centre(k))) {
+            return true;
+        }
+        let home = self.room.home.position();
+        let step = self.zone_step(zone);
+        self.cells_meeting(zone)
+            .filter(|&k| {
+                self.grid.around(k).any(|n| self.reachable[n])
+                    || self.grid.centre(k).dist(home) <= 3.0 * CELL
+            })
+            .any(|k| {
+                let (lo, hi) = self.grid.bounds(k);
+                lattice(zone, step, lo, hi).any(|p| self.fits(p) && self.joins_home(p))
+            })
+    }
+
+    /// Whether some point of `zone` (sampled on at most about 512 × 512 points) is one where
+    /// the body fits, connected to home or not.
+    fn zone_has_room(&self, zone: &Zone) -> bool {
+        let step = self.zone_step(zone).max(zone.radius / 256.0);
+        let reach = Vec2::new(zone.radius, zone.radius);
+        lattice(zone, step, zone.centre - reach, zone.centre + reach).any(|p| self.fits(p))
+    }
+
+    /// The spacing of the points of `zone` tried: a tenth of the zone's or the body's radius,
+    /// whichever is smaller, within [0.25, 5] mm.
+    fn zone_step(&self, zone: &Zone) -> f64 {
+        (zone.radius.min(self.radius) / 10.0).clamp(0.25, 5.0)
+    }
+
+    /// The cells of the grid whose square meets `zone`'s bounding box.
+    fn cells_meeting(&self, zone: &Zone) -> impl Iterator<Item = usize> + '_ {
+        let g = &self.grid;
+        let index = |v: f64, o: f64, last: f64| grid_index((v - o) / CELL, last);
+        let (c, r) = (zone.centre, zone.radius);
+        let (i0, i1) = (
+            index(c.x - r, g.origin.x, g.last[0]),
+            index(c.x + r, g.origin.x, g.last[0]),
+        );
+        let (j0, j1) = (
+            index(c.y - r, g.origin.y, g.last[1]),
+            index(c.y + r, g.origin.y, g.last[1]),
+        );
+        (j0..=j1).flat_map(move |j| (i0..=i1).map(move |i| j * g.cols + i))
+    }
+
+    /// Whether the body fits at `p`: inside the room and at least its radius from every wall.
+    fn fits(&self, p: Vec2) -> bool {
+        let r2 = self.radius * self.radius;
+        self.room.contains(p) && self.walls.iter().all(|w| w.dist2_to(p) >= r2)
+    }
+
+    /// Whether the body at `p` slides in a straight line to home (within two cells) or to the
+    /// centre of a reachable cell of the 3 × 3 around `p`'s.
+    fn joins_home(&self, p: Vec2) -> bool {
+        let slides = |to: Vec2| clear(Segment::new(p, to), self.walls.iter(), self.radius);
+        let home = self.room.home.position();
+        (p.dist(home) <= 2.0 * CELL && slides(home))
+            || (self.grid.around(self.cell_of(p)))
+                .any(|k| self.reachable[k] && slides(self.grid.centre(k)))
     }
 
     /// Indices of the walls that can matter to a robot whose centre is in `cell`.
@@ -464,6 +537,23 @@ impl Grid {
         (start, list)
     }
 
+    /// Cell `k` and its 8 neighbours (those inside the grid).
+    fn around(&self, k: usize) -> impl Iterator<Item = usize> + '_ {
+        let (i, j) = ((k % self.cols) as i64, (k / self.cols) as i64);
+        let (cols, rows) = (self.cols as i64, self.rows as i64);
+        (-1..=1)
+            .flat_map(move |dj| (-1..=1).map(move |di| (i + di, j + dj)))
+            .filter(move |&(i, j)| (0..cols).contains(&i) && (0..rows).contains(&j))
+            .map(move |(i, j)| (j * cols + i) as usize)
+    }
+
+    /// The corners (lowest, highest) of cell `k`'s square.
+    fn bounds(&self, k: usize) -> (Vec2, Vec2) {
+        let half = Vec2::new(CELL / 2.0, CELL / 2.0);
+        let c = self.centre(k);
+        (c - half, c + half)
+    }
+
     /// Cell `k`'s 4-neighbours (`usize::MAX` where the grid ends).
     fn neighbours(&self, k: usize) -> [usize; 4] {
         let (i, j) = (k % self.cols, k / self.cols);
@@ -568,6 +658,27 @@ pub fn check_missions_reachable(rooms: &[Room], radius: f64) -> Result<(), Field
         }
     }
     Ok(())
+}
+
+/// The points of `zone` on the lattice of spacing `step` through its centre, within the box
+/// from `lo` to `hi` (the centre first when it is in the box).
+fn lattice(zone: &Zone, step: f64, lo: Vec2, hi: Vec2) -> impl Iterator<Item = Vec2> + '_ {
+    let c = zone.centre;
+    let range = |lo: f64, hi: f64, c: f64| {
+        let (a, b) = (((lo - c) / step).ceil(), ((hi - c) / step).floor());
+        // Within ±MAX_COORD / 0.25 mm: the counts fit an i64.
+        (a as i64)..=(b as i64)
+    };
+    let (xs, ys) = (range(lo.x, hi.x, c.x), range(lo.y, hi.y, c.y));
+    let centre = (xs.contains(&0) && ys.contains(&0)).then_some(c);
+    let grid = ys.flat_map(move |j| {
+        let xs = xs.clone();
+        xs.map(move |i| Vec2::new(c.x + i as f64 * step, c.y + j as f64 * step))
+    });
+    centre
+        .into_iter()
+        .chain(grid)
+        .filter(move |&p| zone.contains(p))
 }
 
 /// Whether a body of `radius` can slide along `path` without touching one of `walls`.
