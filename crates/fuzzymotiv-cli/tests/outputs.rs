@@ -104,3 +104,91 @@ fn help_and_version_on_a_full_stdout_are_a_one_line_error() {
         assert!(o.status.success() && !o.stdout.is_empty(), "{args:?}");
     }
 }
+
+/// `recognise`, `robustness`, `compare` and `export --to c` write a few files into `--out DIR`
+/// through the same guard as `run`: the current directory, a device, a regular file and `-`
+/// (standard output takes one file) are refused with status 2 before any work, naming `--out`
+/// and what it is; nothing is written. The one-file outputs (`calibrate`'s table,
+/// `export --to json`) refuse a device and keep another file, as `replay` does.
+#[test]
+fn out_of_the_commands_writing_into_a_directory_or_a_file_is_guarded_like_the_others() {
+    let tmp = tempfile::tempdir().unwrap();
+    let run = tmp.path().join("run");
+    tiny_run(&run).arg("--quiet").ok();
+    let log = tmp.path().join("log.csv");
+    std::fs::write(&log, "action\nstraight\nleft\n").unwrap();
+    let mine = tmp.path().join("mine.txt");
+    std::fs::write(&mine, "mine").unwrap();
+    let work = tmp.path().join("work");
+    std::fs::create_dir(&work).unwrap();
+    let (r, m) = (run.to_str().unwrap(), mine.to_str().unwrap());
+    let into_directory = [
+        vec!["recognise", r, log.to_str().unwrap()],
+        vec!["robustness", r, "--trials", "2"],
+        vec!["compare", r, r],
+        vec!["export", r, "--to", "c"],
+    ];
+    for args in &into_directory {
+        for (out, what) in [
+            (".", "is the current directory"),
+            ("/dev/full", "is a device, not a directory"),
+            (m, "is a regular file, not a directory"),
+            ("-", "`-` is standard output, which takes one file"),
+        ] {
+            let msg = refused(Fm::new(args).arg("--out").arg(out).in_dir(&work));
+            assert!(
+                msg.contains(&format!("--out {out}: {what}")),
+                "{args:?} --out {out}: {msg}"
+            );
+        }
+    }
+    let bench = repo().join("configs/sensors/khepera-bench.csv");
+    let one_file = [
+        vec!["calibrate", bench.to_str().unwrap()],
+        vec!["export", r, "--to", "json"],
+    ];
+    for args in &one_file {
+        for (out, what) in [
+            ("/dev/full", "is a device, which is never replaced"),
+            (
+                m,
+                "the file exists with other contents and is kept; pass --force",
+            ),
+        ] {
+            let msg = refused(Fm::new(args).arg("--out").arg(out).in_dir(&work));
+            assert!(
+                msg.contains(&format!("--out {out}: {what}")),
+                "{args:?} --out {out}: {msg}"
+            );
+        }
+    }
+    assert_eq!(std::fs::read_to_string(&mine).unwrap(), "mine");
+    assert!(std::fs::read_dir(&work).unwrap().next().is_none());
+}
+
+/// `--out -` of an output that is one file (`calibrate`'s sensor table, `export --to json`)
+/// is standard output, as `fuzzy --export-fll -` is: the bytes the file would hold, and no file
+/// named `-`.
+#[test]
+fn out_dash_of_a_one_file_output_is_standard_output() {
+    let tmp = tempfile::tempdir().unwrap();
+    let run = tmp.path().join("run");
+    tiny_run(&run).arg("--quiet").ok();
+    let bench = repo().join("configs/sensors/khepera-bench.csv");
+    let r = run.to_str().unwrap();
+    for (args, file) in [
+        (vec!["calibrate", bench.to_str().unwrap()], "table.toml"),
+        (vec!["export", r, "--to", "json"], "controller.json"),
+    ] {
+        let path = tmp.path().join(file);
+        let written = Fm::new(&args).out(&path).ok();
+        let o = Fm::new(&args).arg("--out").arg("-").in_dir(tmp.path()).ok();
+        assert_eq!(o.stdout, std::fs::read(&path).unwrap(), "{args:?}");
+        assert!(!tmp.path().join("-").exists(), "{args:?}");
+        if args[0] == "calibrate" {
+            // The spread goes to standard error when the table takes standard output.
+            assert!(common::stdout(&written).starts_with("sensor,distance_mm"));
+            assert!(stderr(&o).contains("sensor,distance_mm"), "{}", stderr(&o));
+        }
+    }
+}

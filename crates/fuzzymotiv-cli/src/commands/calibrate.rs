@@ -7,9 +7,10 @@ use std::path::{Path, PathBuf};
 use fuzzymotiv::experiment::SetupError;
 use fuzzymotiv::params::FieldError;
 use fuzzymotiv::simulation::{Calibration, Measurement, calibrate};
+use fuzzymotiv_io::files::bounded::{InputKind, csv_refusal, open_input};
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{FilesState, check_files, write_files};
-use fuzzymotiv_io::{note, outln};
+use fuzzymotiv_io::{note, out, outln};
 
 /// Arguments of `fuzzymotiv calibrate`.
 #[derive(clap::Args)]
@@ -18,7 +19,8 @@ pub struct CalibrateArgs {
     /// (0–1023), one row per reading, several readings per distance (other columns are ignored).
     #[arg(value_name = "MEASUREMENTS.csv")]
     pub measurements: PathBuf,
-    /// The sensor table file to write (TOML, for `trial.sensor_table`).
+    /// The sensor table file to write (TOML, for `trial.sensor_table`; `-`: standard output,
+    /// and the spread per sensor and distance then goes to standard error).
     #[arg(long, value_name = "TABLE.toml")]
     pub out: PathBuf,
     /// Replace an existing file of that name that holds something else.
@@ -35,7 +37,12 @@ pub fn calibrate_command(args: CalibrateArgs) -> Result<(), CliError> {
         "Sensor table written by `fuzzymotiv calibrate` from {source}:\nper sensor and distance the median reading (rounded; neighbours pooled where medians rose\nwith distance). The simulator reads, per ray, the reading of the first distance at or beyond\nthe wall it sees, 0 beyond the last; name this file in a config as trial.sensor_table.\nRelative spread of the readings {:.4}: trial.noise = {:.3}.",
         c.relative_spread, c.noise
     );
-    let files = [(args.out.clone(), c.table.to_toml(&header).into_bytes())];
+    let table = c.table.to_toml(&header);
+    if args.out.as_os_str() == "-" {
+        out!("{table}")?;
+        return show(&c, false);
+    }
+    let files = [(args.out.clone(), table.into_bytes())];
     if check_files(&files, "--out", args.force)? == FilesState::Write {
         write_files(&files)?;
         note!("wrote {}", args.out.display());
@@ -45,27 +52,31 @@ pub fn calibrate_command(args: CalibrateArgs) -> Result<(), CliError> {
             args.out.display()
         );
     }
-    show(&c)
+    show(&c, true)
 }
 
 fn field_error(e: FieldError) -> CliError {
     CliError::Setup(SetupError::Field(e))
 }
 
-/// The spread per sensor and distance (standard output), then the noise estimate.
-fn show(c: &Calibration) -> Result<(), CliError> {
-    outln!("sensor,distance_mm,readings,median,mean,std,std_over_mean")?;
+/// The spread per sensor and distance (on standard output, else standard error), then the
+/// noise estimate.
+fn show(c: &Calibration, on_stdout: bool) -> Result<(), CliError> {
+    let line = |text: String| {
+        if on_stdout {
+            outln!("{text}")
+        } else {
+            note!("{text}");
+            Ok(())
+        }
+    };
+    line("sensor,distance_mm,readings,median,mean,std,std_over_mean".into())?;
     for s in &c.spread {
         let rel = s.relative().map_or(String::new(), |r| format!("{r:.4}"));
-        outln!(
+        line(format!(
             "{},{},{},{},{:.2},{:.2},{rel}",
-            s.sensor,
-            s.distance_mm,
-            s.count,
-            s.median,
-            s.mean,
-            s.std
-        )?;
+            s.sensor, s.distance_mm, s.count, s.median, s.mean, s.std
+        ))?;
     }
     for line in &c.notes {
         note!("note: {line}");
@@ -93,15 +104,17 @@ struct Row {
 /// the row and the column.
 fn read_measurements(path: &Path) -> Result<Vec<Measurement>, CliError> {
     let source = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CliError::input(format!("{source}: cannot read the measurements: {e}")))?;
+    let input = open_input(path, InputKind::table("measurements file"))?;
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
-        .from_reader(text.as_bytes());
+        .from_reader(input);
     let headers = reader
         .headers()
-        .map_err(|e| CliError::input(format!("{source}: not a CSV file: {e}")))?
+        .map_err(|e| {
+            csv_refusal(&e)
+                .unwrap_or_else(|| CliError::input(format!("{source}: not a CSV file: {e}")))
+        })?
         .clone();
     for column in ["sensor", "distance_mm", "reading"] {
         if !headers.iter().any(|h| h == column) {
@@ -117,6 +130,9 @@ fn read_measurements(path: &Path) -> Result<Vec<Measurement>, CliError> {
     let mut rows = Vec::new();
     for (i, record) in reader.deserialize::<Row>().enumerate() {
         let row = record.map_err(|e| {
+            if let Some(refused) = csv_refusal(&e) {
+                return refused;
+            }
             let column = e
                 .position()
                 .and(match e.kind() {

@@ -4,9 +4,7 @@
 use std::path::PathBuf;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{
-    FilesState, check_files, io_err, refuse_staging_name, write_files,
-};
+use fuzzymotiv_io::files::guard::{check_files_dir, io_err, write_into};
 use fuzzymotiv_io::pipeline::compare::{check_comparable, choose, compare, load};
 use fuzzymotiv_io::render::study::CLAIMS_ALPHA;
 
@@ -46,7 +44,11 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
             fuzzymotiv::params::Num(args.alpha)
         )));
     }
-    refuse_staging_name(&args.out)?;
+    check_files_dir(
+        &args.out,
+        "--out",
+        &["compare.md", "compare.csv", "compare.svg"],
+    )?;
     let a = load(&args.a, "A")?;
     let b = load(&args.b, "B")?;
     check_comparable(&a, &b)?;
@@ -63,16 +65,7 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
         files.push((path, png));
     }
     files.push((out.join("compare.svg"), done.svg.into_bytes()));
-    if out.exists() && !out.is_dir() {
-        return Err(CliError::input(format!(
-            "--out {}: exists and is not a directory; give a directory",
-            out.display()
-        )));
-    }
-    if check_files(&files, "--out", args.force)? == FilesState::Write {
-        std::fs::create_dir_all(out).map_err(|e| io_err(out, e))?;
-        write_files(&files)?;
-    }
+    write_into(out, &files, "--out", args.force)?;
     fuzzymotiv_io::out!("{}", done.md)?;
     Ok(())
 }

@@ -2,11 +2,14 @@
 //! motor outputs the simulator's bit for bit), a self-describing JSON document or an ONNX model
 //! ([`fuzzymotiv::export`], [`fuzzymotiv_io::records::export`]; docs/guide/real-robot.md).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
+use fuzzymotiv_io::files::console::write_out_bytes;
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::note;
-use fuzzymotiv_io::records::export::{ExportRequest, ExportTarget, export_controller};
+use fuzzymotiv_io::records::export::{
+    ExportRequest, ExportTarget, build_export, export_controller,
+};
 
 /// What `--to` writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -32,7 +35,7 @@ pub struct ExportArgs {
     #[arg(long, value_enum)]
     pub to: Target,
     /// Where: a directory for `c` (created if missing; receives fm_controller.h and
-    /// fm_controller.c), a file for `json` and `onnx`.
+    /// fm_controller.c), a file for `json` and `onnx` (`-`: standard output).
     #[arg(long, value_name = "PATH")]
     pub out: PathBuf,
     /// The config whose robot the controller drives [default: the run's own config].
@@ -49,7 +52,7 @@ pub struct ExportArgs {
 
 /// Entry point of `fuzzymotiv export`.
 pub fn export(args: ExportArgs) -> Result<(), CliError> {
-    let done = export_controller(&ExportRequest {
+    let req = ExportRequest {
         source: &args.source,
         config: args.config.as_deref(),
         room: args.room.as_deref(),
@@ -62,13 +65,17 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
         force: args.force,
         room_option: "--room",
         out_option: "--out",
-    })?;
-    let config =
-        (done.config.as_ref()).map_or("(built-in defaults)".into(), |p| p.display().to_string());
-    note!("config: {config}");
-    for line in &done.notes {
-        note!("{line}");
+    };
+    if args.out.as_os_str() == "-" && args.to != Target::C {
+        let built = build_export(&req)?;
+        said(built.config.as_deref(), &built.notes);
+        let [(_, bytes)] = built.files.as_slice() else {
+            unreachable!("a JSON or ONNX export is one file")
+        };
+        return write_out_bytes(bytes);
     }
+    let done = export_controller(&req)?;
+    said(done.config.as_deref(), &done.notes);
     for path in &done.files {
         fuzzymotiv_io::outln!("{}", path.display())?;
     }
@@ -85,4 +92,13 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
         );
     }
     Ok(())
+}
+
+/// The config used and the export's notes, on standard error.
+fn said(config: Option<&Path>, notes: &[String]) {
+    let config = config.map_or("(built-in defaults)".into(), |p| p.display().to_string());
+    note!("config: {config}");
+    for line in notes {
+        note!("{line}");
+    }
 }

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_files};
+use fuzzymotiv_io::files::guard::{FilesState, check_files_dir, write_into};
 use fuzzymotiv_io::records::robot_log::{recognise_logs, recognition_csv, recognition_md};
 use fuzzymotiv_io::{note, outln};
 
@@ -32,20 +32,21 @@ pub struct RecogniseArgs {
 
 /// Entry point of `fuzzymotiv recognise`.
 pub fn recognise(args: RecogniseArgs) -> Result<(), CliError> {
+    const NAMES: [&str; 2] = ["recognised.csv", "recognised.md"];
+    if let Some(out) = &args.out {
+        check_files_dir(out, "--out", &NAMES)?;
+    }
     let records = recognise_logs(&args.run, &args.logs)?;
     let md = recognition_md(&args.run, &records);
     if let Some(out) = &args.out {
         let files = vec![
-            (
-                out.join("recognised.csv"),
-                recognition_csv(&records).into_bytes(),
-            ),
-            (out.join("recognised.md"), md.clone().into_bytes()),
+            (out.join(NAMES[0]), recognition_csv(&records).into_bytes()),
+            (out.join(NAMES[1]), md.clone().into_bytes()),
         ];
-        if check_files(&files, "--out", args.force)? == FilesState::Write {
-            std::fs::create_dir_all(out).map_err(|e| io_err(out, e))?;
-            write_files(&files)?;
+        if write_into(out, &files, "--out", args.force)? == FilesState::Write {
             note!("wrote {}", out.display());
+        } else {
+            note!("{} already holds these files; nothing to do", out.display());
         }
     }
     outln!("{md}")

@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_files};
+use fuzzymotiv_io::files::guard::{FilesState, check_files_dir, io_err, write_into};
 use fuzzymotiv_io::records::robustness::{robustness_csv, robustness_md, robustness_of_run};
 use fuzzymotiv_io::render::robustness::robustness_svg;
 use fuzzymotiv_io::{note, outln};
@@ -36,6 +36,11 @@ pub struct RobustnessArgs {
 
 /// Entry point of `fuzzymotiv robustness`.
 pub fn robustness(args: RobustnessArgs) -> Result<(), CliError> {
+    let mut names = vec!["robustness.csv", "robustness.md", "robustness.svg"];
+    if args.png {
+        names.push("robustness.png");
+    }
+    check_files_dir(&args.out, "--out", &names)?;
     let study = robustness_of_run(&args.run, args.trials as usize)?;
     let records = study.records;
     let md = robustness_md(&records, &study.notes);
@@ -56,9 +61,11 @@ pub fn robustness(args: RobustnessArgs) -> Result<(), CliError> {
         files.push((path, png));
     }
     files.push((args.out.join("robustness.svg"), svg.into_bytes()));
-    if check_files(&files, "--out", args.force)? == FilesState::Write {
-        std::fs::create_dir_all(&args.out).map_err(|e| io_err(&args.out, e))?;
-        write_files(&files)?;
+    if write_into(&args.out, &files, "--out", args.force)? == FilesState::Same {
+        note!(
+            "{} already holds these files; nothing to do",
+            args.out.display()
+        );
     }
     note!(
         "{} perturbations × {} trials per room",

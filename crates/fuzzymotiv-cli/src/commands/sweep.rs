@@ -3,12 +3,13 @@
 
 use std::path::PathBuf;
 
+use fuzzymotiv_io::files::bounded::read_input;
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_atomic, write_files};
 use fuzzymotiv_io::pipeline::lanes::set_threads;
 use fuzzymotiv_io::pipeline::sweep_jobs::run_jobs;
 use fuzzymotiv_io::pipeline::sweep_merge::merge_dir;
-use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
+use fuzzymotiv_io::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
 
 use crate::png::{add_pngs, svg_to_png};
 use crate::progress::JobsProgress;
@@ -121,7 +122,7 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
     let sweep = Sweep::load(&args.sweep)?;
     let selected = select(&args, sweep.jobs.len())?;
-    let text = std::fs::read_to_string(&args.sweep).map_err(|e| io_err(&args.sweep, e))?;
+    let text = read_input(&args.sweep, SWEEP_FILE)?;
     let progress = JobsProgress::new(args.quiet);
     run_jobs(&sweep, &text, &selected, &args.out, args.force, &progress)
 }

@@ -12,8 +12,9 @@ use fuzzymotiv::fitness::PAPER_MOTIVATIONS as MOTIVATIONS;
 use fuzzymotiv::random::{Streams, hash_str};
 use serde::Deserialize;
 
+use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
-use crate::files::inputs::{Loaded, resolve};
+use crate::files::inputs::{Loaded, ROOM_FILE, resolve};
 use crate::records::Job;
 
 /// The `[sweep]` table.
@@ -119,12 +120,13 @@ fn fmt_value(v: f64) -> String {
     }
 }
 
+/// A sweep file, read whole (at most [`crate::files::bounded::TEXT_LIMIT`] bytes).
+pub const SWEEP_FILE: InputKind = InputKind::text("sweep file");
+
 impl Sweep {
     /// Reads a sweep file and expands its jobs (each validated as a config).
     pub fn load(path: &Path) -> Result<Sweep, CliError> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            CliError::input(format!("{}: cannot read sweep file: {e}", path.display()))
-        })?;
+        let text = read_input(path, SWEEP_FILE)?;
         let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         Self::parse_str(&text, &path.display().to_string(), &base_dir)
     }
@@ -201,7 +203,7 @@ impl Sweep {
             // the plan's: `Job::model`).
             let mut resolved = raw.to_toml();
             for room in &raw.rooms {
-                if let Ok(text) = std::fs::read_to_string(self.base_dir.join(room)) {
+                if let Ok(text) = read_input(&self.base_dir.join(room), ROOM_FILE) {
                     resolved.push_str(&text);
                 }
             }

@@ -21,6 +21,15 @@ pub fn write_out(args: Arguments<'_>) -> Result<(), CliError> {
         .map_err(stdout_error)
 }
 
+/// Writes `bytes` (a file's contents, `--out -`) to standard output; a failure becomes a
+/// [`CliError`] (see the module docs).
+pub fn write_out_bytes(bytes: &[u8]) -> Result<(), CliError> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(bytes)
+        .and_then(|()| out.flush())
+        .map_err(stdout_error)
+}
+
 /// Writes to standard error, ignoring failures (a closed stderr drops the note).
 pub fn write_err(args: Arguments<'_>) {
     let _ = std::io::stderr().lock().write_fmt(args);

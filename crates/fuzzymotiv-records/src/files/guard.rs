@@ -518,7 +518,8 @@ pub fn check_files(
             }
             .into());
         }
-        if std::fs::read(path).is_ok_and(|have| have == *bytes) {
+        if meta.len() == bytes.len() as u64 && std::fs::read(path).is_ok_and(|have| have == *bytes)
+        {
             continue;
         }
         same = false;
@@ -535,6 +536,42 @@ pub fn check_files(
     } else {
         FilesState::Write
     })
+}
+
+/// `--out DIR` of an output of a few files written into a directory (`recognise`,
+/// `robustness`, `compare`, `export --to c`: their `names`), checked before any work as
+/// [`check_out`] checks an output directory: `-` is refused (standard output takes one file),
+/// so are the current directory (or one holding it), a name ending in `.partial` and anything
+/// that is not a directory (a file, a device, a link: said which). The files themselves are
+/// then checked by [`check_files`] and written by [`write_into`].
+pub fn check_files_dir(dir: &Path, option: &str, names: &[&str]) -> Result<(), CliError> {
+    if dir.as_os_str() == "-" {
+        return Err(OutputError::StdoutForSeveral {
+            option: option.to_string(),
+            files: names.iter().map(|n| n.to_string()).collect(),
+        }
+        .into());
+    }
+    refuse_current_dir(dir)?;
+    refuse_staging_name(dir)?;
+    refuse_non_directory(dir)
+}
+
+/// Writes `files`, all in the directory `dir` (created if missing), through the guard
+/// ([`check_files`], then [`write_files`]); `dir` was checked by [`check_files_dir`]. Returns
+/// [`FilesState::Same`] when they already held these bytes (nothing written).
+pub fn write_into(
+    dir: &Path,
+    files: &[(PathBuf, Vec<u8>)],
+    option: &str,
+    force: bool,
+) -> Result<FilesState, CliError> {
+    let state = check_files(files, option, force)?;
+    if state == FilesState::Write {
+        std::fs::create_dir_all(dir).map_err(|e| io_err(dir, e))?;
+        write_files(files)?;
+    }
+    Ok(state)
 }
 
 /// Writes a checked set of files: every one to a new temporary file first (all of them, so a

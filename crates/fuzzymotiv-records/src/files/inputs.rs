@@ -7,13 +7,19 @@ use fuzzymotiv::experiment::RawConfig;
 use fuzzymotiv::experiment::{RoomFile, RoomFiles, Setup, SetupError, blame_set, parse_room_file};
 use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 
+use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
 use crate::note;
 
+/// A config file, read whole (at most [`crate::files::bounded::TEXT_LIMIT`] bytes).
+pub const CONFIG: InputKind = InputKind::text("config file");
+
+/// A room file, read whole (at most [`crate::files::bounded::TEXT_LIMIT`] bytes).
+pub const ROOM_FILE: InputKind = InputKind::text("room file");
+
 /// Reads and validates a room file.
 pub fn load_room_file(path: &Path) -> Result<Room, CliError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CliError::input(format!("{}: cannot read room file: {e}", path.display())))?;
+    let text = read_input(path, ROOM_FILE)?;
     Ok(parse_room_file(&text, &path.display().to_string())?)
 }
 
@@ -34,8 +40,7 @@ impl RoomFiles for RoomDir<'_> {
         if !path.is_file() {
             return Ok(None);
         }
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("{}: cannot read room file: {e}", path.display()))?;
+        let text = read_input(&path, ROOM_FILE).map_err(|e| e.to_string())?;
         let source_name = path.display().to_string();
         let abs: PathBuf = path.canonicalize().unwrap_or(path);
         Ok(Some(RoomFile {
@@ -80,9 +85,7 @@ pub fn load_config(
     }
     let (text, source, base) = match path {
         Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| {
-                CliError::input(format!("{}: cannot read config file: {e}", p.display()))
-            })?;
+            let text = read_input(p, CONFIG)?;
             let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
             (text, p.display().to_string(), base)
         }
@@ -168,8 +171,11 @@ pub fn resolved_toml(raw: &RawConfig) -> String {
 pub fn room_file_lines(raw: &RawConfig) -> Vec<String> {
     (raw.rooms.iter())
         .filter(|entry| Path::new(entry).is_absolute())
-        .map(|entry| match std::fs::read(entry) {
-            Ok(bytes) => format!("# Room file {entry}: FNV-1a {:016x}\n", fnv1a(&bytes)),
+        .map(|entry| match read_input(Path::new(entry), ROOM_FILE) {
+            Ok(text) => format!(
+                "# Room file {entry}: FNV-1a {:016x}\n",
+                fnv1a(text.as_bytes())
+            ),
             Err(_) => format!("# Room file {entry}: unreadable\n"),
         })
         .collect()
@@ -179,8 +185,7 @@ pub fn room_file_lines(raw: &RawConfig) -> Vec<String> {
 /// used (its `# Room file` lines; a run written before they were recorded has none, and is
 /// taken as it is); else an error ending in `remedy`.
 pub fn rooms_unchanged(config: &Path, loaded: &Loaded, remedy: &str) -> Result<(), CliError> {
-    let text =
-        std::fs::read_to_string(config).map_err(|e| crate::files::guard::io_err(config, e))?;
+    let text = read_input(config, CONFIG)?;
     let saved = saved_room_file_lines(&text);
     let now = room_file_lines(&loaded.raw);
     match saved.iter().find(|l| !now.contains(l)) {

@@ -1,8 +1,9 @@
-//! The file layer: the output guard every writer goes through ([`guard`]), config and room
-//! loading ([`inputs`]), the error with its exit codes ([`error`]) and the guard's refusals
-//! ([`refusal`]), the terminal
+//! The file layer: the output guard every writer goes through ([`guard`]), the bounded reader
+//! every input file goes through ([`bounded`]), config and room loading ([`inputs`]), the
+//! error with its exit codes ([`error`]) and the guard's refusals ([`refusal`]), the terminal
 //! ([`console`]: `out!`, `outln!`, `note!`) and a sweep job's lock ([`job_lock`]).
 
+pub mod bounded;
 pub mod console;
 pub mod error;
 pub mod guard;

@@ -116,6 +116,13 @@ pub enum OutputError {
         /// What it is ([`what_it_is`](crate::files::guard::what_it_is)).
         what: &'static str,
     },
+    /// `-` (standard output, one file) named as the directory of an output of several files.
+    StdoutForSeveral {
+        /// The option naming the directory (e.g. `--out`).
+        option: String,
+        /// The names of the files the output writes into its directory.
+        files: Vec<String>,
+    },
     /// A file to write exists with other contents: kept unless forced.
     FileDiffers {
         /// The option naming it, or "" when the file goes to the command's own place.
@@ -206,6 +213,12 @@ impl OutputError {
                     "" => "move it away",
                     _ => "give the path of a new or regular file",
                 }
+            ),
+            Self::StdoutForSeveral { option, files } => format!(
+                "{option} -: `-` is standard output, which takes one file, and this output is \
+                 {} files ({}) written into a directory; give a directory, e.g. {option} results",
+                files.len(),
+                files.join(", ")
             ),
             Self::FileDiffers { option, path } => format!(
                 "{}: the file exists with other contents and is kept; pass {force} to replace \

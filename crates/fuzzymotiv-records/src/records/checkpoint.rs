@@ -8,8 +8,9 @@ use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::experiment::{GenerationRecord, GenerationState, Population, Stopped};
 use serde::{Deserialize, Serialize};
 
+use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
-use crate::files::guard::{io_err, write_atomic};
+use crate::files::guard::write_atomic;
 
 /// File name of the checkpoint inside the staging directory.
 pub const CHECKPOINT: &str = "checkpoint.json";
@@ -155,7 +156,7 @@ impl Checkpoint {
             // Killed before the first generation finished: start over.
             return Ok(Self::fresh(exp, runs));
         }
-        let text = std::fs::read_to_string(path).map_err(|e| io_err(path, e))?;
+        let text = read_input(path, InputKind::record("checkpoint"))?;
         let cp: Checkpoint = serde_json::from_str(&text).map_err(|e| {
             CliError::input(format!(
                 "{}: not a fuzzymotiv checkpoint: {e}",

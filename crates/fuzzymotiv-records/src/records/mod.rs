@@ -45,6 +45,7 @@ use fuzzymotiv::simulation::Trajectory;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
+use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
 
 pub mod checkpoint;
@@ -1153,7 +1154,7 @@ impl Job {
 
     /// Reads `plan.jsonl`.
     pub fn read_plan(path: &Path) -> Result<Vec<Job>, CliError> {
-        let text = read_text(path, "the plan (is this a sweep directory?)")?;
+        let text = read_input(path, InputKind::record("sweep plan"))?;
         let jobs: Vec<Job> = (text.lines().enumerate())
             .filter(|(_, l)| !l.trim().is_empty())
             .map(|(i, l)| parse_json(l, &format!("{}: line {}", path.display(), i + 1)))
@@ -1441,15 +1442,14 @@ fn csv_text(w: csv::Writer<Vec<u8>>) -> String {
     String::from_utf8(bytes).expect("cells are text")
 }
 
-fn read_text(path: &Path, what: &str) -> Result<String, CliError> {
-    std::fs::read_to_string(path)
-        .map_err(|e| CliError::input(format!("{}: cannot read {what}: {e}", path.display())))
-}
+/// A record file fuzzymotiv wrote (JSON or CSV), read back whole (at most
+/// [`crate::files::bounded::RECORD_LIMIT`] bytes).
+const RECORD: InputKind = InputKind::record("record file");
 
 /// Reads a JSON record file; a missing or malformed field is an input error naming the file
 /// and the field.
 pub fn read_json<T: DeserializeOwned>(path: &Path) -> Result<T, CliError> {
-    let text = read_text(path, "the file")?;
+    let text = read_input(path, RECORD)?;
     parse_json(&text, &path.display().to_string())
 }
 
@@ -1475,7 +1475,7 @@ pub fn parse_json<T: DeserializeOwned>(text: &str, source: &str) -> Result<T, Cl
 /// Reads a CSV record file into rows of `T`; a missing or malformed cell is an input error
 /// naming the file, the line and the column.
 pub fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>, CliError> {
-    let text = read_text(path, "the file")?;
+    let text = read_input(path, RECORD)?;
     let mut rdr = csv::Reader::from_reader(text.as_bytes());
     let headers = rdr.headers().map_err(|e| csv_error(path, None, e))?.clone();
     rdr.deserialize()
@@ -1512,7 +1512,7 @@ struct CsvTable {
 
 impl CsvTable {
     fn read(path: &Path) -> Result<CsvTable, CliError> {
-        let text = read_text(path, "the file")?;
+        let text = read_input(path, RECORD)?;
         let mut rdr = csv::Reader::from_reader(text.as_bytes());
         let headers = rdr
             .headers()

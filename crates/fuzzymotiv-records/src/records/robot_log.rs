@@ -21,11 +21,13 @@
 //! distance in nodes against the gate's width `aem.threshold`, and the distance of the log's
 //! vector to the room's stored vector).
 
+use std::fs::File;
 use std::path::{Path, PathBuf};
 
 use fuzzymotiv::modelling::Action;
 use serde::{Deserialize, Serialize};
 
+use crate::files::bounded::{Bounded, InputKind, csv_refusal, open_input};
 use crate::files::error::CliError;
 use crate::files::inputs::load_config;
 use crate::records::genome::{locate, read_genome};
@@ -114,39 +116,92 @@ enum Source {
     Motors(usize, usize),
 }
 
-/// A log as read: its header and its rows with their line numbers (see the module's docs).
-/// [`RobotLog::actions`] gives `fuzzymotiv recognise` its actions, [`RobotLog::path`] gives
-/// `fuzzymotiv replay --log` its path: one reader for both.
+/// The input kind of a robot's log: read line by line, at most
+/// [`crate::files::bounded::LOG_LIMIT`] bytes.
+pub const LOG: InputKind = InputKind::log("log file");
+
+/// A log being read: its header, then its rows one at a time (see the module's docs), so that
+/// memory does not grow with the log. [`RobotLog::actions`] gives `fuzzymotiv recognise` its
+/// actions, [`RobotLog::path`] gives `fuzzymotiv replay --log` its path: one reader for both.
 pub struct RobotLog {
     name: String,
     headers: csv::StringRecord,
-    rows: Vec<(usize, csv::StringRecord)>,
+    reader: csv::Reader<Bounded<File>>,
+}
+
+/// A log's steps as `recognise` uses them: the first actions (as many as a trial has steps)
+/// and how many steps of each action the whole log holds.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LogActions {
+    /// The first actions, at most the number asked for.
+    pub first: Vec<Action>,
+    /// The steps (rows with an action) of the whole log.
+    pub steps: usize,
+    /// Steps per action over the whole log: straight, left, right, back.
+    pub counts: [usize; 4],
+}
+
+impl LogActions {
+    /// The steps of the whole log that were `action`.
+    pub fn count(&self, action: Action) -> usize {
+        self.counts[action_index(action)]
+    }
+}
+
+/// Where `action` is counted in [`LogActions::counts`].
+fn action_index(action: Action) -> usize {
+    match action {
+        Action::Straight => 0,
+        Action::Left30 => 1,
+        Action::Right30 => 2,
+        Action::Turn180 => 3,
+    }
+}
+
+/// Calls `f` with each row of `reader` and its line, one row in memory at a time; errors name
+/// the file `name` and the line.
+fn each_row(
+    reader: &mut csv::Reader<Bounded<File>>,
+    name: &str,
+    mut f: impl FnMut(u64, &csv::StringRecord) -> Result<(), CliError>,
+) -> Result<(), CliError> {
+    let mut row = csv::StringRecord::new();
+    loop {
+        let more = reader.read_record(&mut row).map_err(|e| {
+            csv_refusal(&e).unwrap_or_else(|| {
+                let at = e
+                    .position()
+                    .map_or(String::new(), |p| format!(" line {}:", p.line()));
+                CliError::input(format!("{name}:{at} {e}"))
+            })
+        })?;
+        if !more {
+            return Ok(());
+        }
+        f(row.position().map_or(0, |p| p.line()), &row)?;
+    }
 }
 
 impl RobotLog {
-    /// Reads a log's header and rows; errors name the file (and the line).
+    /// Opens a log and reads its header; errors name the file (and the line).
     pub fn read(path: &Path) -> Result<RobotLog, CliError> {
-        let name = path.display().to_string();
+        let input = open_input(path, LOG)?;
+        let name = input.name().to_string();
         let mut reader = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
-            .from_path(path)
-            .map_err(|e| CliError::input(format!("{name}: cannot read the log: {e}")))?;
+            .from_reader(input);
         let headers = reader
             .headers()
-            .map_err(|e| CliError::input(format!("{name}: cannot read the header: {e}")))?
+            .map_err(|e| {
+                csv_refusal(&e).unwrap_or_else(|| {
+                    CliError::input(format!("{name}: cannot read the header: {e}"))
+                })
+            })?
             .clone();
-        let rows = reader
-            .records()
-            .enumerate()
-            .map(|(k, row)| {
-                row.map(|row| (k + 2, row))
-                    .map_err(|e| CliError::input(format!("{name}: line {}: {e}", k + 2)))
-            })
-            .collect::<Result<_, _>>()?;
         Ok(RobotLog {
             name,
             headers,
-            rows,
+            reader,
         })
     }
 
@@ -162,68 +217,60 @@ impl RobotLog {
             .find_map(|c| self.headers.iter().position(|h| h == *c))
     }
 
-    /// The log's actions (see the module's docs); `tolerance` labels motor outputs.
-    pub fn actions(&self, tolerance: f64) -> Result<Vec<Action>, CliError> {
-        let name = &self.name;
-        let source = match (
+    /// Which columns give the log's actions; an error says what a log needs.
+    fn source(&self) -> Result<Source, CliError> {
+        match (
             self.column(&["action"]),
             self.column(&["m_left", "mL"]),
             self.column(&["m_right", "mR"]),
         ) {
-            (Some(a), _, _) => Source::Labels(a),
-            (None, Some(l), Some(r)) => Source::Motors(l, r),
-            _ => {
-                return Err(CliError::input(format!(
-                    "{name}: the header has neither an `action` column nor `m_left` and `m_right`; \
-                     a log names each step's action in a column `action` (straight, left, right or \
-                     back) or its motor outputs in [0, 1] in two columns `m_left` and `m_right` \
-                     (`mL` and `mR`, as a replay's CSV names them); found: {}",
-                    self.headers.iter().collect::<Vec<_>>().join(", ")
-                )));
-            }
-        };
-        let mut actions = Vec::new();
-        for (line, row) in &self.rows {
-            let cell = |i: usize| row.get(i).unwrap_or("");
-            let action = match source {
-                Source::Labels(a) if cell(a).is_empty() => continue,
-                Source::Motors(l, r) if cell(l).is_empty() && cell(r).is_empty() => continue,
-                Source::Labels(a) => action_of(cell(a)).ok_or_else(|| {
-                    CliError::input(format!(
-                        "{name}: line {line}: field `action`: `{}` is not an action; write straight, left, right or back",
-                        cell(a)
-                    ))
-                })?,
-                Source::Motors(l, r) => {
-                    let motor = |i: usize, field: &str| -> Result<f64, CliError> {
-                        cell(i)
-                            .parse::<f64>()
-                            .ok()
-                            .filter(|v| (0.0..=1.0).contains(v))
-                            .ok_or_else(|| {
-                                CliError::input(format!(
-                                    "{name}: line {line}: field `{field}`: `{}` is not a motor output; write a number from 0 to 1",
-                                    cell(i)
-                                ))
-                            })
-                    };
-                    Action::from_motors(motor(l, "m_left")?, motor(r, "m_right")?, tolerance)
-                }
-            };
-            actions.push(action);
+            (Some(a), _, _) => Ok(Source::Labels(a)),
+            (None, Some(l), Some(r)) => Ok(Source::Motors(l, r)),
+            _ => Err(CliError::input(format!(
+                "{}: the header has neither an `action` column nor `m_left` and `m_right`; \
+                 a log names each step's action in a column `action` (straight, left, right or \
+                 back) or its motor outputs in [0, 1] in two columns `m_left` and `m_right` \
+                 (`mL` and `mR`, as a replay's CSV names them); found: {}",
+                self.name,
+                self.headers.iter().collect::<Vec<_>>().join(", ")
+            ))),
         }
-        if actions.is_empty() {
+    }
+
+    /// The log's actions (see the module's docs): the first `keep` of them and each action's
+    /// count over the whole log; `tolerance` labels motor outputs.
+    pub fn actions(self, tolerance: f64, keep: usize) -> Result<LogActions, CliError> {
+        let source = self.source()?;
+        let RobotLog {
+            name, mut reader, ..
+        } = self;
+        let mut got = LogActions {
+            first: Vec::new(),
+            steps: 0,
+            counts: [0; 4],
+        };
+        each_row(&mut reader, &name, |line, row| {
+            if let Some(action) = action_in(&name, line, row, &source, tolerance)? {
+                if got.first.len() < keep {
+                    got.first.push(action);
+                }
+                got.steps += 1;
+                got.counts[action_index(action)] += 1;
+            }
+            Ok(())
+        })?;
+        if got.steps == 0 {
             return Err(CliError::input(format!(
                 "{name}: the log has no steps (rows after the header)"
             )));
         }
-        Ok(actions)
+        Ok(got)
     }
 
     /// The logged path: the `x`, `y` columns (or `x_mm`, `y_mm`, as a replay's CSV names
     /// them), mm in the room's frame, one point per row that has them (a row with both empty
     /// is read past).
-    pub fn path(&self) -> Result<Vec<(f64, f64)>, CliError> {
+    pub fn path(self) -> Result<Vec<(f64, f64)>, CliError> {
         let name = &self.name;
         let (Some(x), Some(y)) = (self.column(&["x", "x_mm"]), self.column(&["y", "y_mm"])) else {
             return Err(CliError::input(format!(
@@ -234,23 +281,29 @@ impl RobotLog {
                 self.headers.iter().collect::<Vec<_>>().join(", ")
             )));
         };
+        let RobotLog {
+            name,
+            headers,
+            mut reader,
+        } = self;
         let mut points = Vec::new();
-        for (line, row) in &self.rows {
+        each_row(&mut reader, &name, |line, row| {
             let cell = |i: usize| row.get(i).unwrap_or("");
             if cell(x).is_empty() && cell(y).is_empty() {
-                continue;
+                return Ok(());
             }
             let coordinate = |i: usize| -> Result<f64, CliError> {
                 cell(i).parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
                     CliError::input(format!(
                         "{name}: line {line}: field `{}`: `{}` is not a position; write a number (mm)",
-                        &self.headers[i],
+                        &headers[i],
                         cell(i)
                     ))
                 })
             };
             points.push((coordinate(x)?, coordinate(y)?));
-        }
+            Ok(())
+        })?;
         if points.is_empty() {
             return Err(CliError::input(format!(
                 "{name}: the log has no positions (rows with `x` and `y`)"
@@ -260,9 +313,48 @@ impl RobotLog {
     }
 }
 
-/// Reads a log's actions (see the module's docs); `tolerance` labels motor outputs.
-pub fn read_robot_log(path: &Path, tolerance: f64) -> Result<Vec<Action>, CliError> {
-    RobotLog::read(path)?.actions(tolerance)
+/// The action of a log's row (none for a row without one), or an error naming the file, the
+/// line and the field.
+fn action_in(
+    name: &str,
+    line: u64,
+    row: &csv::StringRecord,
+    source: &Source,
+    tolerance: f64,
+) -> Result<Option<Action>, CliError> {
+    let cell = |i: usize| row.get(i).unwrap_or("");
+    match *source {
+        Source::Labels(a) if cell(a).is_empty() => Ok(None),
+        Source::Motors(l, r) if cell(l).is_empty() && cell(r).is_empty() => Ok(None),
+        Source::Labels(a) => action_of(cell(a)).map(Some).ok_or_else(|| {
+            CliError::input(format!(
+                "{name}: line {line}: field `action`: `{}` is not an action; write straight, left, right or back",
+                cell(a)
+            ))
+        }),
+        Source::Motors(l, r) => {
+            let motor = |i: usize, field: &str| -> Result<f64, CliError> {
+                cell(i)
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|v| (0.0..=1.0).contains(v))
+                    .ok_or_else(|| {
+                        CliError::input(format!(
+                            "{name}: line {line}: field `{field}`: `{}` is not a motor output; write a number from 0 to 1",
+                            cell(i)
+                        ))
+                    })
+            };
+            let (ml, mr) = (motor(l, "m_left")?, motor(r, "m_right")?);
+            Ok(Some(Action::from_motors(ml, mr, tolerance)))
+        }
+    }
+}
+
+/// Reads a log's actions (see the module's docs): the first `keep` and each action's count;
+/// `tolerance` labels motor outputs.
+pub fn read_robot_log(path: &Path, tolerance: f64, keep: usize) -> Result<LogActions, CliError> {
+    RobotLog::read(path)?.actions(tolerance, keep)
 }
 
 /// The rooms a run directory's room model recognises in `logs` (see the module's docs).
@@ -288,9 +380,15 @@ pub fn recognise_logs(run: &Path, logs: &[PathBuf]) -> Result<Vec<RecognitionRec
         .network(&genome.weights)
         .map_err(|e| CliError::input(format!("{}: {e}", genome_path.display())))?;
     let tolerance = exp.trial_params().action_tolerance();
-    let logs: Vec<(String, Vec<Action>)> = logs
+    let steps = exp.trial_params().steps();
+    let logs: Vec<(String, LogActions)> = logs
         .iter()
-        .map(|p| Ok((p.display().to_string(), read_robot_log(p, tolerance)?)))
+        .map(|p| {
+            Ok((
+                p.display().to_string(),
+                read_robot_log(p, tolerance, steps)?,
+            ))
+        })
         .collect::<Result<_, CliError>>()?;
     let recognizer = exp
         .recognizer(&network, one)
@@ -304,13 +402,13 @@ pub fn recognise_logs(run: &Path, logs: &[PathBuf]) -> Result<Vec<RecognitionRec
     logs.into_iter()
         .map(|(log, actions)| {
             let why = exp
-                .explain_actions(&recognizer, &actions)
+                .explain_actions(&recognizer, &actions.first)
                 .map_err(|e| CliError::input(format!("{log}: {e}")))?;
-            let count = |a: Action| actions.iter().filter(|&&b| b == a).count();
+            let count = |a: Action| actions.count(a);
             let chosen = why.chosen;
             Ok(RecognitionRecord {
-                steps: actions.len(),
-                used: actions.len().min(exp.trial_params().steps()),
+                steps: actions.steps,
+                used: actions.first.len(),
                 room: chosen.map_or(String::new(), |c| exp.arenas()[c.room].room().name.clone()),
                 winner: why.winner,
                 r_node: chosen.map(|c| c.r_node),
@@ -367,15 +465,15 @@ mod tests {
         let ss = "s0,s1,s2,s3,s4,s5,s6,s7";
         let robot = TempLog::new("robot", &log("m_left,m_right", irs));
         let replay = TempLog::new("replay", &log("mL,mR", ss));
-        let a = read_robot_log(&robot.0, 0.25).unwrap();
-        let b = read_robot_log(&replay.0, 0.25).unwrap();
+        let a = read_robot_log(&robot.0, 0.25, 10).unwrap();
+        let b = read_robot_log(&replay.0, 0.25, 10).unwrap();
         assert_eq!(a, b);
         let distinct: std::collections::BTreeSet<String> =
-            a.iter().map(|x| format!("{x:?}")).collect();
+            a.first.iter().map(|x| format!("{x:?}")).collect();
         assert_eq!(distinct.len(), 4, "{a:?}");
         // Neither pair: the message says what would be right and what was found.
         let none = TempLog::new("none", &log("left,right", irs));
-        let e = read_robot_log(&none.0, 0.25).unwrap_err().to_string();
+        let e = read_robot_log(&none.0, 0.25, 10).unwrap_err().to_string();
         assert!(e.contains("`m_left` and `m_right`"), "{e}");
         assert!(e.contains("found: ir0, ir1"), "{e}");
         assert!(!e.contains("docs/"), "{e}");
