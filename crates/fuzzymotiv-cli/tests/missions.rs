@@ -60,13 +60,6 @@ fn five_motivation_run_records_urgency_and_goal_by_name() {
     let room = &summary["rooms"][0];
     assert!(room["mission_done_pct"].is_number(), "{room}");
     assert!(room["terms_pct"]["goal"].is_number(), "{room}");
-    let terms = read(&run.join("terms.svg"));
-    for name in ["a exploration", "goal", "urgency", "safety"] {
-        assert!(
-            terms.contains(&format!(">{name}</text>")),
-            "no {name} curve:\n{terms}"
-        );
-    }
     let md = read(&run.join("table.md"));
     assert!(
         md.lines()
@@ -95,6 +88,14 @@ fn paper_run_records_have_no_extra_terms() {
         assert!(!summary.contains(word), "{word} in {summary}");
     }
     assert!(!read(&out.join("best_genome.json")).contains("\"terms\": {"));
+    // The paper's words, table and curves: the four terms, named by their symbols.
+    let page = read(&out.join("report.html"));
+    assert!(page.contains("F combines four measured fitness terms (exploration a, homing g"));
+    assert!(page.contains("<th>% homing</th></tr>"));
+    let terms = read(&out.join("terms.svg"));
+    for name in ["a exploration", "g homing", "l recognition", "b battery"] {
+        assert!(terms.contains(&format!(">{name}</text>")), "no {name}");
+    }
 }
 
 #[test]
@@ -377,4 +378,69 @@ fn compare_of_two_mission_runs_compares_urgency_and_missions_done() {
     }
     let svg = read(&out.join("compare.svg"));
     assert!(svg.contains(">% urgency</text>"), "no urgency panel");
+}
+
+/// The terms figure of a five-motivation mission run draws one curve per motivation, its
+/// legend naming the motivation as the title does, with the term it weighs (`curiosity (a)`,
+/// `urgency`); the mission terms no motivation weighs (goal, safety) are not drawn.
+#[test]
+fn terms_figure_of_a_mission_run_names_each_motivation_with_its_term_and_draws_no_unweighted_term()
+{
+    let dir = tempfile::tempdir().unwrap();
+    let run = fetch_run(dir.path(), &[]);
+    let svg = read(&run.join("terms.svg"));
+    assert!(svg.contains("energy = 0.1, urgency = 0.3</text>"), "{svg}");
+    let legends = [
+        "curiosity (a)",
+        "homing (g)",
+        "orientation (l)",
+        "energy (b)",
+        "urgency",
+    ];
+    for name in legends {
+        assert!(
+            svg.contains(&format!(">{name}</text>")),
+            "no {name}:\n{svg}"
+        );
+    }
+    assert_eq!(svg.matches("<polyline").count(), legends.len(), "{svg}");
+    for name in ["goal", "safety", "a exploration"] {
+        assert!(!svg.contains(&format!(">{name}</text>")), "{name}:\n{svg}");
+    }
+}
+
+/// `report.html` of a five-motivation mission run says how many terms F combines and names
+/// them with the five motivations and the terms it measures besides; its table of results per
+/// room has `table.md`'s further columns, "% missions done" and each term's.
+#[test]
+fn report_of_a_mission_run_names_its_five_terms_and_has_the_missions_done_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = fetch_run(dir.path(), &[]);
+    let page = read(&run.join("report.html"));
+    assert!(
+        page.contains(
+            "F combines five measured fitness terms (exploration a, homing g, recognition l, \
+             battery b, urgency) through a fuzzy rule base weighted by the robot's five \
+             <i>motivations</i> (curiosity, homing, orientation, energy, urgency)"
+        ),
+        "the intro does not name the run's terms"
+    );
+    assert!(page.contains("also measures goal and safety, which no motivation weighs"));
+    assert!(!page.contains("combines four"));
+    let md = read(&run.join("table.md"));
+    let header = md.lines().next().unwrap();
+    let further: Vec<&str> = (header.split(" | "))
+        .skip_while(|c| *c != "% homing")
+        .skip(1)
+        .map(|c| c.trim_end_matches(" |"))
+        .collect();
+    assert_eq!(
+        further,
+        ["% missions done", "% goal", "% safety", "% urgency"]
+    );
+    let th: String = further.iter().map(|c| format!("<th>{c}</th>")).collect();
+    assert!(
+        page.contains(&format!("<th>% homing</th>{th}</tr>")),
+        "the table of results per room lacks {th}"
+    );
 }

@@ -15,9 +15,10 @@ use serde_json::{Value, json};
 use crate::plot::{colour, esc};
 use crate::study::Setting;
 use crate::svg::{
-    LoggedPath, SomRoom, best_paths_svg, fitness_svg, som_svg, terms_svg_with,
+    LoggedPath, SomRoom, best_paths_svg, fitness_svg, som_svg, term_curves, terms_svg_of,
     trajectories_svg_with,
 };
+use crate::tables::{extra_cells, extra_columns};
 use crate::terms::NAMES;
 use fuzzymotiv_records::records::context::RenderContext;
 use fuzzymotiv_records::records::{Finished, RoomRow};
@@ -201,7 +202,7 @@ pub fn run_page(ctx: &RenderContext, done: &Finished) -> String {
         done.wall_seconds,
         esc(&setting_line(ctx))
     );
-    page.push(&intro());
+    page.push(&intro(Some(ctx)));
     let section = Section {
         id: "run",
         title: ctx.name.clone(),
@@ -239,7 +240,7 @@ pub fn reproduce_page(
             format!(" · overrides: {}", esc(&overrides.join(", ")))
         }
     );
-    page.push(&intro());
+    page.push(&intro(None));
     page.push(
         "<p>Two motivation settings from the paper are evolved separately: <b>high curiosity</b> \
          (C, H, O, E) = (0.8, 0.1, 0, 0.1) and <b>low curiosity</b> (0.5, 0.3, 0, 0.2). The paper \
@@ -516,7 +517,12 @@ fn setting_line(ctx: &RenderContext) -> String {
     )
 }
 
-fn intro() -> String {
+/// The page's opening paragraph: the paper's words, or for a run of other motivations (`ctx`
+/// with a motivation table) the number and names of its terms and motivations.
+fn intro(ctx: Option<&RenderContext>) -> String {
+    if let Some(ctx) = ctx.filter(|c| !c.motivations.table.is_empty()) {
+        return motivations_intro(ctx);
+    }
     let names: Vec<String> = NAMES
         .iter()
         .map(|(symbol, name, _)| format!("{name} {symbol}"))
@@ -528,6 +534,93 @@ fn intro() -> String {
          robot's <i>motivations</i> (curiosity C, homing H, orientation O, energy E). The best robot of \
          the last generation is then asked to recognise rooms from its own sequence of actions.</p>\n",
         names.join(", ")
+    )
+}
+
+/// [`intro`] of a run whose motivations are not the paper's four: F combines the terms its
+/// motivations weigh (their number and names), and the terms it measures besides are named.
+fn motivations_intro(ctx: &RenderContext) -> String {
+    let table = &ctx.motivations.table;
+    let mut terms: Vec<&str> = Vec::new();
+    for m in table {
+        if !terms.contains(&m.term.as_str()) {
+            terms.push(&m.term);
+        }
+    }
+    let term_words: Vec<String> = (terms.iter())
+        .map(|t| match NAMES.iter().find(|(symbol, ..)| symbol == t) {
+            Some((symbol, name, _)) => format!("{name} {symbol}"),
+            None => t.to_string(),
+        })
+        .collect();
+    let names: Vec<&str> = table.iter().map(|m| m.name.as_str()).collect();
+    let unweighted = unweighted_terms(ctx);
+    let besides = if unweighted.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " The run also measures {}, which no motivation weighs: they are reported in the results per room, not combined into F.",
+            esc(&and_list(&unweighted))
+        )
+    };
+    format!(
+        "<p>A population of simulated Khepera robots, each controlled by a small neural network, is \
+         evolved by a genetic algorithm. A robot's fitness F combines {} measured fitness terms \
+         ({}) through a fuzzy rule base weighted by the robot's {} <i>motivations</i> ({}), each \
+         weighing one of these terms.{besides} The best robot of the last generation is then \
+         asked to recognise rooms from its own sequence of actions.</p>\n",
+        count_word(terms.len()),
+        esc(&term_words.join(", ")),
+        count_word(names.len()),
+        esc(&names.join(", "))
+    )
+}
+
+/// The terms a run measures beyond a, g, l, b that none of its motivations weighs (a
+/// mission's `goal` and `safety` when only `urgency` is weighed).
+fn unweighted_terms(ctx: &RenderContext) -> Vec<&str> {
+    let weighed = |name: &str| ctx.motivations.table.iter().any(|m| m.term == name);
+    (ctx.extra_terms.iter())
+        .map(|(name, _)| name.as_str())
+        .filter(|name| !weighed(name))
+        .collect()
+}
+
+/// `a`, `a and b`, `a, b and c`.
+fn and_list(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// A count of motivations or terms (at most 8) in words.
+fn count_word(n: usize) -> String {
+    const WORDS: [&str; 9] = [
+        "no", "one", "two", "three", "four", "five", "six", "seven", "eight",
+    ];
+    WORDS.get(n).map_or(n.to_string(), |w| w.to_string())
+}
+
+/// The caption of the terms figure: the paper's, or for other motivations what its curves
+/// are and which measured terms it leaves out.
+fn terms_caption(ctx: &RenderContext) -> String {
+    const PAPER: &str = "The population's mean fitness terms per generation: which behaviour the motivations pushed the population towards.";
+    if ctx.motivations.table.is_empty() {
+        return PAPER.to_string();
+    }
+    let unweighted = unweighted_terms(ctx);
+    let left_out = if unweighted.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " The terms no motivation weighs ({}) are not drawn: the results per room give their values.",
+            and_list(&unweighted)
+        )
+    };
+    format!(
+        "The population's mean of each motivation's term per generation, one curve per motivation, named with the term it weighs in brackets when the two names differ: which behaviour the motivations pushed the population towards.{left_out}"
     )
 }
 
@@ -583,8 +676,11 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     );
     figure(
         page,
-        &terms_svg_with(&panels, &s.ctx.extra_terms),
-        "The population's mean fitness terms per generation: which behaviour the motivations pushed the population towards.",
+        &terms_svg_of(
+            &panels,
+            &term_curves(&s.ctx.motivations.table, &s.ctx.extra_terms),
+        ),
+        &terms_caption(s.ctx),
     );
 
     // Per-room table.
@@ -625,10 +721,18 @@ fn render_section(page: &mut Page, s: &Section<'_>, level: u8) {
     );
 }
 
-/// The per-room table, with the paper's values on the reproduce page.
+/// The per-room table, with the paper's values on the reproduce page; a run that follows
+/// missions or measures more terms has `table.md`'s further columns ([`extra_columns`]).
 fn rooms_table(page: &mut Page, s: &Section<'_>) {
     let done = s.done;
-    page.push("<table><tr><th>room</th><th>average fitness</th><th>% optimal exploration</th><th>% recognition</th><th>% battery usage</th><th>% homing</th></tr>\n");
+    let extra = extra_columns(&done.rows);
+    let head: String = (extra.iter())
+        .map(|c| format!("<th>{}</th>", esc(c)))
+        .collect();
+    let _ = writeln!(
+        page.body,
+        "<table><tr><th>room</th><th>average fitness</th><th>% optimal exploration</th><th>% recognition</th><th>% battery usage</th><th>% homing</th>{head}</tr>"
+    );
     for r in &done.rows {
         let p = s
             .paper
@@ -637,9 +741,12 @@ fn rooms_table(page: &mut Page, s: &Section<'_>) {
             Some(v) => format!(" <span class=\"paper\">(paper {v:.digits$})</span>"),
             None => String::new(),
         };
+        let cells: String = (extra_cells(r).iter())
+            .map(|c| format!("<td>{c}</td>"))
+            .collect();
         let _ = writeln!(
             page.body,
-            "<tr><td>{}</td><td>{:.4}{}</td><td>{:.1}{}</td><td>{}{}</td><td>{:.1}{}</td><td>{:.1}</td></tr>",
+            "<tr><td>{}</td><td>{:.4}{}</td><td>{:.1}{}</td><td>{}{}</td><td>{:.1}{}</td><td>{:.1}</td>{cells}</tr>",
             esc(&r.room),
             r.average_fitness,
             paper(p.map(|p| p.1), 4),
@@ -655,8 +762,13 @@ fn rooms_table(page: &mut Page, s: &Section<'_>) {
     }
     let _ = writeln!(
         page.body,
-        "</table>\n<p class=\"caption\"><b>average fitness</b>: mean F of the final generation's population in that room. The other columns come from {} test runs of the best robot per room (fresh noise each): <b>% optimal exploration</b> = mean 100·a, <b>% recognition</b> = share of test runs whose room was recognised correctly, <b>% battery usage</b> = mean 100·b, <b>% homing</b> = mean 100·g.{}</p>",
+        "</table>\n<p class=\"caption\"><b>average fitness</b>: mean F of the final generation's population in that room. The other columns come from {} test runs of the best robot per room (fresh noise each): <b>% optimal exploration</b> = mean 100·a, <b>% recognition</b> = share of test runs whose room was recognised correctly, <b>% battery usage</b> = mean 100·b, <b>% homing</b> = mean 100·g.{}{}</p>",
         s.ctx.aem.test_runs,
+        if extra.is_empty() {
+            ""
+        } else {
+            " <b>% missions done</b> = share of test runs whose mission was done (the room's waypoints visited and its goal reached); <b>% <i>term</i></b> = mean 100·term of each term beyond a, g, l, b the run measures (whether a motivation weighs it or not)."
+        },
         if s.paper.is_some() {
             " Grey: the paper's value (Tables 1 and 2)."
         } else {

@@ -10,6 +10,7 @@ use fuzzymotiv::fitness::TermId;
 use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv::simulation::{HomeZone, Room};
 use fuzzymotiv::simulation::{Vec2, point_in_polygon};
+use fuzzymotiv_records::records::MotivationEntry;
 
 /// One panel of [`fitness_panels_svg`]: curves per generation with shaded bands.
 pub struct FitnessPanel {
@@ -705,27 +706,94 @@ fn axis_labels(
     );
 }
 
-/// Picks one fitness term of a generation record.
-type TermOf = fn(&GenerationRecord) -> f64;
-
 /// One panel per run: the population means of the fitness terms a, g, l, b per generation.
 pub fn terms_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
-    terms_svg_with(panels, &[])
+    terms_svg_of(panels, &term_curves(&[], &[]))
 }
+
+/// The paper's terms in the terms figure: term, legend and colour.
+const PAPER_TERM_CURVES: [(TermId, &str, &str); 4] = [
+    (TermId::A, "a exploration", "#2ca02c"),
+    (TermId::G, "g homing", "#9467bd"),
+    (TermId::L, "l recognition", "#8c564b"),
+    (TermId::B, "b battery", "#ff7f0e"),
+];
 
 /// Colours of the terms beyond a, g, l, b in the terms figure, in turn.
 const EXTRA_TERM_COLOURS: [&str; 6] = [
     "#d62728", "#17becf", "#bcbd22", "#e377c2", "#7f7f7f", "#1f77b4",
 ];
 
-/// [`terms_svg`] with a curve per term of `extra` (by name: the mission terms, user terms)
-/// after the paper's four.
-pub fn terms_svg_with(
-    panels: &[(String, Vec<GenerationRecord>)],
-    extra: &[(String, TermId)],
-) -> String {
+/// One curve of the terms figure: its legend, colour and term.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TermCurve {
+    /// The legend.
+    pub label: String,
+    /// The colour.
+    pub colour: &'static str,
+    /// The term drawn.
+    pub term: TermId,
+}
+
+/// The curves of a run's terms figure. The paper's motivations (`table` empty: a run record's
+/// [`MotivationsRecord::table`]) give the paper's a, g, l, b. Others give one curve per
+/// motivation, in input order, named as its title names it with the term it weighs
+/// ([`motivation_label`]: `curiosity (a)`, `urgency`, `hurry (urgency)`), the paper's terms in
+/// their colours; the terms no motivation weighs (a mission's `goal` and `safety` when only
+/// `urgency` is weighed) are not drawn: `extra` ([`extra_terms`]) resolves the user terms.
+///
+/// [`MotivationsRecord::table`]: fuzzymotiv_records::records::MotivationsRecord
+/// [`extra_terms`]: fuzzymotiv_records::records::extra_terms
+pub fn term_curves(table: &[MotivationEntry], extra: &[(String, TermId)]) -> Vec<TermCurve> {
+    if table.is_empty() {
+        return (PAPER_TERM_CURVES.iter())
+            .map(|&(term, label, colour)| TermCurve {
+                label: label.into(),
+                colour,
+                term,
+            })
+            .collect();
+    }
+    let mut others = 0;
+    let mut curves = Vec::new();
+    for m in table {
+        let user = || extra.iter().find(|(n, _)| *n == m.term).map(|(_, id)| *id);
+        let Some(term) = TermId::library(&m.term).or_else(user) else {
+            continue;
+        };
+        let colour = match PAPER_TERM_CURVES.iter().find(|(t, ..)| *t == term) {
+            Some((_, _, c)) => c,
+            None => {
+                others += 1;
+                EXTRA_TERM_COLOURS[(others - 1) % EXTRA_TERM_COLOURS.len()]
+            }
+        };
+        let label = motivation_label(m);
+        curves.push(TermCurve {
+            label,
+            colour,
+            term,
+        });
+    }
+    curves
+}
+
+/// A motivation with the term it weighs: its name, and the term in brackets when the two
+/// differ (`curiosity (a)`, `hurry (urgency)`, `urgency`).
+pub fn motivation_label(m: &MotivationEntry) -> String {
+    if m.name == m.term {
+        m.name.clone()
+    } else {
+        format!("{} ({})", m.name, m.term)
+    }
+}
+
+/// The terms figure of `curves` ([`term_curves`]): one panel per run, a curve per term.
+pub fn terms_svg_of(panels: &[(String, Vec<GenerationRecord>)], curves: &[TermCurve]) -> String {
     let ph = 300.0;
-    let (ml, mr, mt, mb) = (50.0, 135.0, 30.0, 40.0);
+    // The legend's column: 135 px, wider for a longer name than the paper's.
+    let legend = (curves.iter()).map(|c| px(text_width(&c.label, false) + 30.0));
+    let (ml, mr, mt, mb) = (50.0, legend.fold(135.0, f64::max), 30.0, 40.0);
     let widths: Vec<f64> = panels
         .iter()
         // The title is centred over the plot area, left of the panel's centre.
@@ -734,21 +802,6 @@ pub fn terms_svg_with(
     let width = px(widths.iter().sum::<f64>().max(1.0));
     let mut s = open(width, ph, 12);
     let _ = writeln!(s, r#"<rect width="{width}" height="{ph}" fill="white"/>"#);
-    let paper: [(&str, &str, TermOf); 4] = [
-        ("a exploration", "#2ca02c", |r| r.terms.a),
-        ("g homing", "#9467bd", |r| r.terms.g),
-        ("l recognition", "#8c564b", |r| r.terms.l),
-        ("b battery", "#ff7f0e", |r| r.terms.b),
-    ];
-    type Pick<'a> = Box<dyn Fn(&GenerationRecord) -> f64 + 'a>;
-    let mut series: Vec<(String, &str, Pick)> = (paper.into_iter())
-        .map(|(l, c, f)| (l.to_string(), c, Box::new(f) as Pick))
-        .collect();
-    for (k, (name, id)) in extra.iter().enumerate() {
-        let pick = move |r: &GenerationRecord| r.terms.get(*id);
-        let colour = EXTRA_TERM_COLOURS[k % EXTRA_TERM_COLOURS.len()];
-        series.push((name.clone(), colour, Box::new(pick)));
-    }
     let mut ox = 0.0;
     for ((name, hist), pw) in panels.iter().zip(&widths) {
         let (x0, x1, y0, y1) = (ox + ml, ox + pw - mr, ph - mb, mt);
@@ -763,7 +816,13 @@ pub fn terms_svg_with(
             "population mean",
         );
         let mut ly = y1 + 10.0;
-        for (label, colour, pick) in &series {
+        for TermCurve {
+            label,
+            colour,
+            term,
+        } in curves
+        {
+            let pick = |r: &GenerationRecord| r.terms.get(*term);
             let pts: String = hist
                 .iter()
                 .enumerate()
@@ -784,10 +843,11 @@ pub fn terms_svg_with(
             let lx = px(x1 + 10.0);
             let _ = writeln!(
                 s,
-                r#"<line x1="{lx}" x2="{}" y1="{ly}" y2="{ly}" stroke="{colour}"{dash}/><text x="{}" y="{}">{label}</text>"#,
+                r#"<line x1="{lx}" x2="{}" y1="{ly}" y2="{ly}" stroke="{colour}"{dash}/><text x="{}" y="{}">{}</text>"#,
                 px(lx + 16.0),
                 px(lx + 20.0),
-                ly + 4.0
+                ly + 4.0,
+                esc(label)
             );
             if zero {
                 ly += 14.0;
@@ -1489,6 +1549,42 @@ mod tests {
         assert_compact_numbers(&fitness_svg(&runs), "fitness");
         assert_compact_numbers(&terms_svg(&runs), "terms");
         assert_compact_numbers(&membership_svg(&[0.0, 0.3, 1.0], &[]), "membership");
+    }
+
+    /// Other motivations than the paper's: a curve per motivation, named with its term, in
+    /// input order; the terms no motivation weighs (goal, safety) get none. The paper's: a, g,
+    /// l, b as always.
+    #[test]
+    fn term_curves_follow_the_motivations_and_leave_out_unweighted_terms() {
+        let m = |name: &str, term: &str| MotivationEntry {
+            name: name.into(),
+            term: term.into(),
+            weight: 0.5,
+        };
+        let extra = [
+            ("goal".to_string(), TermId::Goal),
+            ("urgency".to_string(), TermId::Urgency),
+            ("safety".to_string(), TermId::Safety),
+        ];
+        let curves = term_curves(&[m("curiosity", "a"), m("hurry", "urgency")], &extra);
+        let shown: Vec<(&str, TermId)> =
+            curves.iter().map(|c| (c.label.as_str(), c.term)).collect();
+        assert_eq!(
+            shown,
+            [
+                ("curiosity (a)", TermId::A),
+                ("hurry (urgency)", TermId::Urgency)
+            ]
+        );
+        assert_eq!(curves[0].colour, "#2ca02c");
+        let paper: Vec<String> = term_curves(&[], &extra)
+            .into_iter()
+            .map(|c| c.label)
+            .collect();
+        assert_eq!(
+            paper,
+            ["a exploration", "g homing", "l recognition", "b battery"]
+        );
     }
 
     #[test]

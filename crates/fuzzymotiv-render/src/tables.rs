@@ -45,8 +45,9 @@ pub fn table_markdown(rows: &[RoomRow]) -> String {
     s
 }
 
-/// The headers of the extra columns of the per-room table (none for the paper's model).
-fn extra_columns(rows: &[RoomRow]) -> Vec<String> {
+/// The headers of the extra columns of the per-room table (none for the paper's model), for
+/// `table.md` and the report's table alike.
+pub(crate) fn extra_columns(rows: &[RoomRow]) -> Vec<String> {
     let Some(r) = rows.first() else {
         return Vec::new();
     };
@@ -56,8 +57,8 @@ fn extra_columns(rows: &[RoomRow]) -> Vec<String> {
         .collect()
 }
 
-/// A row's cells in the extra columns.
-fn extra_cells(r: &RoomRow) -> Vec<String> {
+/// A row's cells in the extra columns ([`extra_columns`]).
+pub(crate) fn extra_cells(r: &RoomRow) -> Vec<String> {
     let done = r.mission_done_pct.map(|p| format!("{p:.0}"));
     done.into_iter()
         .chain(r.terms_pct.values().map(|v| format!("{v:.1}")))

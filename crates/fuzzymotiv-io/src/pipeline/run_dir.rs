@@ -24,7 +24,7 @@ use crate::records::{
 };
 use crate::render::figures::{Rasterise, add_missing_pngs, write_figure};
 use crate::render::report;
-use crate::render::svg::{best_paths_svg, fitness_svg, terms_svg_with};
+use crate::render::svg::{best_paths_svg, fitness_svg, term_curves, terms_svg_of};
 use crate::render::tables::{provenance_line, table_markdown};
 
 /// What is about to run, said before the first generation (which may take long).
@@ -270,7 +270,7 @@ fn write_run(
         "table.md",
         table_markdown(&done.rows) + &provenance_line(&ctx),
     )?;
-    write_run_figures(staged, &ctx, done, png, &extra_terms(exp))?;
+    write_run_figures(staged, &ctx, done, png)?;
     staged.write("summary.json", to_json(&RunSummary::of(exp, done)))?;
     // The last checkpoint (in memory: the file may already be gone, when a run killed after
     // this step resumes from population.json) holds the final population: kept as
@@ -294,7 +294,6 @@ fn write_run_figures(
     ctx: &RenderContext,
     done: &Finished,
     png: Option<&dyn Rasterise>,
-    extra: &[(String, fuzzymotiv::fitness::TermId)],
 ) -> Result<(), CliError> {
     let setting = format!("{} {}", ctx.name, ctx.motivations.label());
     let panels: Vec<_> = done
@@ -310,7 +309,8 @@ fn write_run_figures(
         })
         .collect();
     write_figure(staged, "fitness", &fitness_svg(&panels), png)?;
-    let terms = terms_svg_with(&panels, extra);
+    let curves = term_curves(&ctx.motivations.table, &ctx.extra_terms);
+    let terms = terms_svg_of(&panels, &curves);
     write_figure(staged, "terms", &terms, png)?;
     let title = if ctx.motivations.table.is_empty() {
         format!(
