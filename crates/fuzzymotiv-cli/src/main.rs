@@ -37,8 +37,8 @@ enum Command {
     Reproduce(reproduce::ReproduceArgs),
     /// Run a saved genome again: write its trajectory (CSV, JSON) and a replay page (HTML).
     Replay(replay::ReplayArgs),
-    /// Export an evolved controller for a real robot: C99 (the simulator's outputs bit for bit)
-    /// or a self-describing JSON document.
+    /// Export an evolved controller for a real robot: C99 (the simulator's outputs bit for bit),
+    /// a self-describing JSON document or an ONNX model.
     Export(export::ExportArgs),
     /// Turn bench measurements of a robot's IR sensors (CSV) into a sensor table file for
     /// `trial.sensor_table`, and estimate the sensor noise from their spread.

@@ -388,11 +388,7 @@ fn export_c_refuses_a_file_as_its_directory() {
         file.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("is a regular file, not a directory"),
-        "{}",
-        stderr(&o)
-    );
+    assert!(stderr(&o).contains("is not a directory"), "{}", stderr(&o));
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
 }
 
@@ -579,5 +575,28 @@ fn a_log_written_through_the_exported_c_is_recognised_and_drawn_like_its_replay(
         );
         let html = std::fs::read_to_string(&drawn).unwrap();
         assert!(html.contains("class=\"logged\""), "the page draws it too");
+    }
+}
+
+/// Issue #52 item 7: an all-rooms run's genome lists its one robot under `runs`; export no
+/// longer calls that "a robot per room", and `--room H` says the file holds one robot for all
+/// rooms instead of "its rooms are all". `--help` and `export --help` name ONNX.
+#[test]
+fn an_all_rooms_genome_is_not_said_to_hold_a_robot_per_room() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_dir = tiny_run(dir.path());
+    let out = dir.path().join("c.json");
+    let (src, dst) = (run_dir.to_str().unwrap(), out.to_str().unwrap());
+    let o = ok(&["export", src, "--to", "json", "--out", dst]);
+    assert!(!stderr(&o).contains("robot per room"), "{}", stderr(&o));
+    let o = run(&["export", src, "--to", "json", "--out", dst, "--room", "H"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("holds one robot for all rooms") && !stderr(&o).contains("are all"),
+        "{}",
+        stderr(&o)
+    );
+    for help in [&["--help"][..], &["export", "--help"]] {
+        assert!(stdout(&ok(help)).contains("ONNX"), "{help:?}");
     }
 }

@@ -50,6 +50,10 @@ use crate::simulation::room::Room;
 use crate::simulation::sensor_table::SensorTable;
 use crate::simulation::trial::{Arena, TrialParams};
 
+/// The label of the one evolution of all-rooms training (per-room training labels each by its
+/// room); `best_genome.json` lists it under `runs`.
+pub const ALL_ROOMS_RUN: &str = "all";
+
 /// A validated experiment: its fields are private (read through the accessors below), so their
 /// invariants hold and nothing downstream re-checks these values.
 #[derive(Debug, Clone)]
@@ -250,7 +254,7 @@ impl Experiment {
     pub fn runs(&self) -> Vec<Run> {
         match self.training {
             Training::AllRooms => vec![Run {
-                label: "all".into(),
+                label: ALL_ROOMS_RUN.into(),
                 tag: 0,
                 rooms: (0..self.arenas.len()).collect(),
             }],

@@ -1,6 +1,6 @@
 //! The ONNX form of an exported controller: the network as an ONNX graph (opset 13) in double
-//! precision, its input the eight raw readings (scaled by the graph as the simulator scales
-//! them), its output the two motor outputs. The protobuf messages are declared here for the
+//! precision, its input the eight raw readings (clamped to 1023 and scaled by the graph as the
+//! C and the simulator do), its output the two motor outputs. The protobuf messages are declared here for the
 //! subset of `onnx.proto` the graph needs (field numbers as in ONNX 1.x) and written with
 //! `prost`.
 //!
@@ -191,7 +191,9 @@ fn initialisers(c: &ExportedController) -> Vec<TensorProto> {
 /// The ONNX model's bytes.
 pub(crate) fn model(c: &ExportedController) -> Vec<u8> {
     let nodes = vec![
-        node("Div", &["ir", "reading_max"], "x"),
+        // Readings above 1023 count as 1023, as in the C and the JSON's scaling.
+        node("Min", &["ir", "reading_max"], "ir_clamped"),
+        node("Div", &["ir_clamped", "reading_max"], "x"),
         node("MatMul", &["x", "w1"], "x_w1"),
         node("Add", &["x_w1", "b1"], "hidden_sum"),
         node("Sigmoid", &["hidden_sum"], "hidden"),
@@ -214,7 +216,7 @@ pub(crate) fn model(c: &ExportedController) -> Vec<u8> {
         ir_version: 8,
         producer_name: "fuzzymotiv".into(),
         producer_version: crate::VERSION.into(),
-        doc_string: "An evolved fuzzymotiv controller: ir [N, 8] raw readings 0..1023 -> motors [N, 2] (mL, mR in [0, 1]; wheel speed (2m - 1) * v_max). Agrees with the simulator to ~1e-15, not bit for bit (MatMul's summation order, the runtime's exp).".into(),
+        doc_string: "An evolved fuzzymotiv controller: ir [N, 8] raw readings 0..1023 (a larger one counts as 1023) -> motors [N, 2] (mL, mR in [0, 1]; wheel speed (2m - 1) * v_max). Agrees with the simulator to ~1e-15, not bit for bit (MatMul's summation order, the runtime's exp).".into(),
         graph: Some(graph),
         opset_import: vec![OperatorSetIdProto {
             domain: String::new(),
@@ -227,4 +229,75 @@ pub(crate) fn model(c: &ExportedController) -> Vec<u8> {
         ],
     };
     model.encode_to_vec()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulation::{MlpShape, TrialParams};
+
+    /// The graph run by hand (its seven operators, `[N, K]` tensors row by row) on `ir`.
+    fn run(model: &[u8], ir: &[[f64; INPUTS]]) -> Vec<f64> {
+        let graph = ModelProto::decode(model).unwrap().graph.unwrap();
+        let mut values: std::collections::HashMap<String, (Vec<i64>, Vec<f64>)> =
+            (graph.initializer.iter())
+                .map(|t| (t.name.clone(), (t.dims.clone(), t.double_data.clone())))
+                .collect();
+        let rows = ir.len() as i64;
+        values.insert("ir".into(), (vec![rows, INPUTS as i64], ir.concat()));
+        for n in &graph.node {
+            let (a, b) = (&values[&n.input[0]], n.input.get(1).map(|i| &values[i]));
+            let pair = |f: fn(f64, f64) -> f64| {
+                let (_, b) = b.unwrap();
+                let data = (a.1.iter().enumerate())
+                    .map(|(i, &x)| f(x, b[i % b.len()]))
+                    .collect();
+                (a.0.clone(), data)
+            };
+            let out = match n.op_type.as_str() {
+                "Min" => pair(f64::min),
+                "Div" => pair(|x, y| x / y),
+                "Add" => pair(|x, y| x + y),
+                "Sigmoid" => (
+                    a.0.clone(),
+                    a.1.iter().map(|x| 1.0 / (1.0 + (-x).exp())).collect(),
+                ),
+                "MatMul" => {
+                    let (bd, bv) = b.unwrap();
+                    let (k, m) = (bd[0] as usize, bd[1] as usize);
+                    let data = (a.1.chunks(k))
+                        .flat_map(|row| {
+                            (0..m).map(move |j| (0..k).map(|i| row[i] * bv[i * m + j]).sum())
+                        })
+                        .collect();
+                    (vec![a.0[0], m as i64], data)
+                }
+                op => panic!("operator {op} not run here"),
+            };
+            values.insert(n.output[0].clone(), out);
+        }
+        values.remove("motors").unwrap().1
+    }
+
+    /// Issue #52 item 7: a reading above 1023 (65535 from a 16-bit sensor) counts as 1023 in
+    /// the ONNX graph, as in the C and the JSON's scaling, so it gives the motors of 1023.
+    #[test]
+    fn onnx_clamps_readings_above_1023_as_c_and_json_do() {
+        let shape = MlpShape::default();
+        let genome: Vec<f64> = (0..shape.genome_len())
+            .map(|i| ((i * 7 % 11) as f64 - 5.0) / 3.0)
+            .collect();
+        let c = ExportedController::new(shape, &genome, &TrialParams::default()).unwrap();
+        let model = c.onnx();
+        let at = |v: f64| [v, 0.0, 200.0, v, 1023.0, 0.0, v, 5.0];
+        let motors = run(&model, &[at(65535.0), at(1023.0), at(1024.5)]);
+        assert_eq!(motors[0..2], motors[2..4], "65535 counts as 1023");
+        assert_eq!(motors[4..6], motors[2..4], "1024.5 counts as 1023");
+        let lower = run(&model, &[at(512.0)]);
+        assert_ne!(
+            lower[..],
+            motors[2..4],
+            "readings below 1023 are read as they are"
+        );
+    }
 }
