@@ -388,7 +388,11 @@ fn export_c_refuses_a_file_as_its_directory() {
         file.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).contains("is not a directory"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("is a regular file, not a directory"),
+        "{}",
+        stderr(&o)
+    );
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
 }
 

@@ -7,7 +7,7 @@ use fuzzymotiv::export::{CSources, ExportedController};
 use fuzzymotiv::simulation::MlpShape;
 
 use crate::files::error::CliError;
-use crate::files::guard::{FilesState, check_files, io_err, write_files};
+use crate::files::guard::{FilesState, check_files, check_files_dir, write_files, write_into};
 use crate::files::inputs::load_config;
 use crate::records::genome::{SavedGenome, locate, read_genome};
 
@@ -75,10 +75,30 @@ pub struct Exported {
     pub notes: Vec<String>,
 }
 
-/// Loads the genome and config, builds the export and writes it through the output guard
-/// (another file is kept unless `force`; the same export again writes nothing; nothing is
-/// written half-way).
-pub fn export_controller(req: &ExportRequest) -> Result<Exported, CliError> {
+/// An export built and not yet written: its files (paths and contents) and what it was made
+/// of.
+#[derive(Debug, Clone)]
+pub struct Export {
+    /// The files, in order, with their contents.
+    pub files: Vec<(PathBuf, Vec<u8>)>,
+    /// The genome file.
+    pub genome: PathBuf,
+    /// The config used (`None`: the built-in defaults).
+    pub config: Option<PathBuf>,
+    /// Hidden units.
+    pub hidden: usize,
+    /// Notes for the user (e.g. which robot of a per-room genome).
+    pub notes: Vec<String>,
+}
+
+/// Loads the genome and config and builds the export's files, writing nothing; the C
+/// export's directory is checked first ([`check_files_dir`]: not `-`, the current directory or
+/// something other than a directory).
+pub fn build_export(req: &ExportRequest) -> Result<Export, CliError> {
+    if req.to == ExportTarget::C {
+        let names = [CSources::HEADER_NAME, CSources::SOURCE_NAME];
+        check_files_dir(req.out, req.out_option, &names)?;
+    }
     let (genome_path, found_config) = locate(req.source)?;
     let config = req.config.map(Path::to_path_buf).or(found_config);
     let genome = read_genome(&genome_path)?;
@@ -99,24 +119,42 @@ pub fn export_controller(req: &ExportRequest) -> Result<Exported, CliError> {
     let controller = ExportedController::new(shape, weights, loaded.experiment.trial_params())
         .map_err(|e| in_file(&format!("field `weights`: {e}")))?;
     let files = match req.to {
-        ExportTarget::C => c_files(req, &controller.c())?,
+        ExportTarget::C => c_files(req.out, &controller.c()),
         ExportTarget::Json => vec![(req.out.to_path_buf(), controller.json().into_bytes())],
         ExportTarget::Onnx => vec![(req.out.to_path_buf(), controller.onnx())],
     };
-    let state = check_files(&files, req.out_option, req.force)?;
-    if state == FilesState::Write {
-        if req.to == ExportTarget::C {
-            std::fs::create_dir_all(req.out).map_err(|e| io_err(req.out, e))?;
-        }
-        write_files(&files)?;
-    }
-    Ok(Exported {
-        files: files.into_iter().map(|(p, _)| p).collect(),
-        unchanged: state == FilesState::Same,
+    Ok(Export {
+        files,
         genome: genome_path,
         config,
         hidden: genome.hidden,
         notes,
+    })
+}
+
+/// Loads the genome and config, builds the export and writes it through the output guard
+/// (another file is kept unless `force`; the same export again writes nothing; nothing is
+/// written half-way).
+pub fn export_controller(req: &ExportRequest) -> Result<Exported, CliError> {
+    let built = build_export(req)?;
+    let (option, force) = (req.out_option, req.force);
+    let state = match req.to {
+        ExportTarget::C => write_into(req.out, &built.files, option, force)?,
+        ExportTarget::Json | ExportTarget::Onnx => {
+            let state = check_files(&built.files, option, force)?;
+            if state == FilesState::Write {
+                write_files(&built.files)?;
+            }
+            state
+        }
+    };
+    Ok(Exported {
+        files: built.files.into_iter().map(|(p, _)| p).collect(),
+        unchanged: state == FilesState::Same,
+        genome: built.genome,
+        config: built.config,
+        hidden: built.hidden,
+        notes: built.notes,
     })
 }
 
@@ -154,19 +192,9 @@ fn chosen_weights<'a>(
     }
 }
 
-/// The C files in the directory `out` (refused when `out` is something else than a directory).
-fn c_files(req: &ExportRequest, c: &CSources) -> Result<Vec<(PathBuf, Vec<u8>)>, CliError> {
-    let out = req.out;
-    if out.exists() && !out.is_dir() {
-        return Err(CliError::input(format!(
-            "{} {}: is not a directory; the C export writes {} and {} into a directory (created if missing), e.g. controller/",
-            req.out_option,
-            out.display(),
-            CSources::HEADER_NAME,
-            CSources::SOURCE_NAME
-        )));
-    }
-    Ok(vec![
+/// The C files in the directory `out` (checked by [`check_files_dir`]).
+fn c_files(out: &Path, c: &CSources) -> Vec<(PathBuf, Vec<u8>)> {
+    vec![
         (
             out.join(CSources::HEADER_NAME),
             c.header.clone().into_bytes(),
@@ -175,5 +203,5 @@ fn c_files(req: &ExportRequest, c: &CSources) -> Result<Vec<(PathBuf, Vec<u8>)>,
             out.join(CSources::SOURCE_NAME),
             c.source.clone().into_bytes(),
         ),
-    ])
+    ]
 }
