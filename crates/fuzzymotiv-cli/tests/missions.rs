@@ -140,9 +140,9 @@ fn paper_figures_draw_no_mission() {
     assert!(!svg.contains("#ff7f0e") && !svg.contains("goal"), "{svg}");
 }
 
-#[test]
-fn a_sweep_over_named_motivations_merges_their_weights_and_missions_done() {
-    let dir = tempfile::tempdir().unwrap();
+/// A small merged sweep of the fetch mission over two motivation settings (curiosity 0.7 with
+/// urgency 0.1; fetch's own) in two rooms, into `dir/out`.
+fn fetch_sweep(dir: &Path) -> PathBuf {
     let rooms = repo().join("rooms");
     let sweep = format!(
         "rooms = [\"{}\", \"{}\"]\n[aem]\nenabled = false\n[ga]\npopulation = 6\ngenerations = 2\n\
@@ -152,9 +152,9 @@ fn a_sweep_over_named_motivations_merges_their_weights_and_missions_done() {
         rooms.join("fetch-H.toml").display(),
         rooms.join("fetch-T.toml").display(),
     );
-    let file = dir.path().join("sweep.toml");
+    let file = dir.join("sweep.toml");
     std::fs::write(&file, sweep).unwrap();
-    let out = dir.path().join("out");
+    let out = dir.join("out");
     ok(&[
         "sweep",
         file.to_str().unwrap(),
@@ -162,6 +162,13 @@ fn a_sweep_over_named_motivations_merges_their_weights_and_missions_done() {
         out.to_str().unwrap(),
     ]);
     ok(&["merge", out.to_str().unwrap()]);
+    out
+}
+
+#[test]
+fn a_sweep_over_named_motivations_merges_their_weights_and_missions_done() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = fetch_sweep(dir.path());
     let csv = read(&out.join("results.csv"));
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     assert_eq!(
@@ -443,4 +450,27 @@ fn report_of_a_mission_run_names_its_five_terms_and_has_the_missions_done_column
         page.contains(&format!("<th>% homing</th>{th}</tr>")),
         "the table of results per room lacks {th}"
     );
+}
+
+/// `compare` of two settings of a mission sweep compares their % missions done too.
+#[test]
+fn compare_of_two_mission_sweep_settings_compares_missions_done() {
+    let dir = tempfile::tempdir().unwrap();
+    let sweep = fetch_sweep(dir.path());
+    let out = dir.path().join("cmp");
+    let (a, b) = (
+        "curiosity=0.7,urgency=0.1",
+        "curiosity=0.5,homing=0.1,orientation=0,energy=0.1,urgency=0.3",
+    );
+    let s = sweep.to_str().unwrap();
+    common::Fm::new(["compare", s, s, "--setting", a, "--setting", b])
+        .out(&out)
+        .ok();
+    let rows = fuzzymotiv_io::records::compare::read(&out.join("compare.csv")).unwrap();
+    let done = rows
+        .iter()
+        .filter(|r| r.metric == "mission_done_pct")
+        .count();
+    assert_eq!(done, 3, "two rooms and overall");
+    assert!(read(&out.join("compare.md")).contains(": % missions done\n"));
 }
