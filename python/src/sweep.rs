@@ -5,11 +5,12 @@
 
 use std::path::{Path, PathBuf};
 
+use fuzzymotiv_io::files::bounded::read_input;
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::pipeline::progress::NoProgress;
 use fuzzymotiv_io::pipeline::sweep_jobs::{prepare_sweep_dir, run_one_job};
 use fuzzymotiv_io::pipeline::sweep_merge::write_merge;
-use fuzzymotiv_io::pipeline::sweep_plan::Sweep;
+use fuzzymotiv_io::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
 use pyo3::prelude::*;
 
 use crate::{config_err, py_err};
@@ -40,9 +41,7 @@ pub fn sweep_plan(
     py.detach(|| {
         let (text, source, base_dir) = match (path, text) {
             (Some(p), _) => {
-                let text = std::fs::read_to_string(&p).map_err(|e| {
-                    CliError::input(format!("{}: cannot read sweep file: {e}", p.display()))
-                })?;
+                let text = read_input(&p, SWEEP_FILE)?;
                 let dir = absolute(p.parent().unwrap_or(Path::new("")))?;
                 (text, p.display().to_string(), dir)
             }

@@ -10,8 +10,9 @@ use fuzzymotiv::experiment::UserTerm;
 use fuzzymotiv::experiment::{Evaluation, Experiment, RawConfig, RoomFile, RoomFiles, Setup};
 use fuzzymotiv::fitness::{FitnessTerms, LIBRARY_TERMS, Term, TermId, TrialRecord, UserValues};
 use fuzzymotiv::simulation::Trajectory;
+use fuzzymotiv_io::files::bounded::read_input;
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::inputs::{Loaded, resolve};
+use fuzzymotiv_io::files::inputs::{CONFIG, Loaded, ROOM_FILE, resolve};
 use numpy::ndarray::{Array2, Array3, Array4};
 use numpy::{IntoPyArray, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -28,8 +29,7 @@ impl RoomFiles for RoomDir<'_> {
         if !path.is_file() {
             return Ok(None);
         }
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("{}: cannot read room file: {e}", path.display()))?;
+        let text = read_input(&path, ROOM_FILE).map_err(|e| e.to_string())?;
         let source_name = path.display().to_string();
         let abs: PathBuf = path.canonicalize().unwrap_or(path);
         Ok(Some(RoomFile {
@@ -103,9 +103,7 @@ pub(crate) fn parse_config(
     let (text, source, base) = match (config_text, config_path) {
         (Some(text), _) => (text.to_string(), "(config text)".into(), PathBuf::from(".")),
         (None, Some(p)) => {
-            let text = std::fs::read_to_string(p).map_err(|e| {
-                CliError::input(format!("{}: cannot read config file: {e}", p.display()))
-            })?;
+            let text = read_input(p, CONFIG)?;
             let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
             (text, p.display().to_string(), base)
         }

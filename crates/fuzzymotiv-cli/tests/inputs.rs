@@ -9,36 +9,22 @@ mod common;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::{Command, Output};
 
-use common::{Fm, SMALL, repo, stderr, stdout};
+use common::{Fm, SMALL, repo, stderr, stdout, within_a_minute};
 
 /// Address space the commands may use (KiB, for `ulimit -v`).
 const MEMORY_KIB: u32 = 1_000_000;
 
 /// `fuzzymotiv ARGS` under `ulimit -v` [`MEMORY_KIB`], killed (and the test failed) if it is
-/// still running after 60 s.
+/// still running after a minute ([`within_a_minute`]).
 fn bounded(args: &[&str]) -> Output {
-    let mut child = Command::new("sh")
-        .arg("-c")
+    let mut sh = Command::new("sh");
+    sh.arg("-c")
         .arg(format!("ulimit -v {MEMORY_KIB}; exec \"$0\" \"$@\""))
         .arg(env!("CARGO_BIN_EXE_fuzzymotiv"))
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("sh runs");
-    let start = Instant::now();
-    while child.try_wait().expect("wait").is_none() {
-        if start.elapsed() > Duration::from_secs(60) {
-            let _ = child.kill();
-            let o = child.wait_with_output().unwrap();
-            panic!("fuzzymotiv {args:?} still ran after 60 s: {}", stderr(&o));
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    child.wait_with_output().unwrap()
+        .args(args);
+    within_a_minute(sh)
 }
 
 /// `fuzzymotiv ARGS` refused with status 2 in bounded memory; its message, which names `file`

@@ -192,3 +192,30 @@ fn out_dash_of_a_one_file_output_is_standard_output() {
         }
     }
 }
+
+/// An output directory whose `config.resolved.toml` is a FIFO beside a `summary.json` is not
+/// read to find whether it holds this run: it is another run's, refused with status 2 at once
+/// (no read that waits on the pipe without end).
+#[test]
+fn an_output_whose_identity_file_is_a_fifo_is_refused_without_reading_it() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("summary.json"), "{}").unwrap();
+    let fifo = out.join("config.resolved.toml");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap();
+    assert!(made.success());
+    let cfg = repo().join("configs/tiny.toml");
+    let mut cmd = common::bin();
+    cmd.arg("run").arg(&cfg).arg("--out").arg(&out);
+    let o = common::within_a_minute(cmd);
+    let msg = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{msg}");
+    assert!(
+        msg.contains("holds the results of a different run"),
+        "{msg}"
+    );
+}

@@ -60,6 +60,28 @@ pub fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
+/// The output of `cmd`, which must end by itself: a command still running after a minute is
+/// killed and fails the test (a refusal must not wait on a pipe or read without end), so the
+/// suite never hangs.
+pub fn within_a_minute(mut cmd: Command) -> Output {
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let shown = format!("{cmd:?}");
+    let mut child = (cmd.stdout(Stdio::piped()).stderr(Stdio::piped()))
+        .spawn()
+        .expect("command runs");
+    let start = Instant::now();
+    while child.try_wait().expect("wait").is_none() {
+        if start.elapsed() > Duration::from_secs(60) {
+            let _ = child.kill();
+            let o = child.wait_with_output().unwrap();
+            panic!("{shown} still ran after 60 s: {}", stderr(&o));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
 /// Small GA, trials and AEM sizes (`--set` values) for tests that need a quick run.
 pub const SMALL: [&str; 5] = [
     "ga.population=10",

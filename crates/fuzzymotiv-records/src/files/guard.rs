@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
 pub use crate::files::refusal::{CLI, OutputError, PYTHON, Spelling};
 use crate::note;
@@ -370,7 +371,11 @@ fn out_state(dir: &Path, id: &Identity, force: bool) -> Result<(OutState, bool),
 fn other_model(dir: &Path, id: &Identity) -> Option<u32> {
     const WRITTEN: &str = "Resolved configuration written by fuzzymotiv ";
     let (name, _) = id.first()?;
-    let text = std::fs::read_to_string(dir.join(name)).ok()?;
+    let path = dir.join(name);
+    if !path.is_file() {
+        return None;
+    }
+    let text = read_input(&path, InputKind::record("record file")).ok()?;
     let after = &text[text.find(WRITTEN)? + WRITTEN.len()..];
     let line = after.split(['\n', '\\']).next().unwrap_or("");
     let model = match line.split_once(", model ") {
@@ -380,11 +385,14 @@ fn other_model(dir: &Path, id: &Identity) -> Option<u32> {
     (model != fuzzymotiv::MODEL_VERSION).then_some(model)
 }
 
-/// Whether every identity file under `dir` has exactly the expected contents.
+/// Whether every identity file under `dir` has exactly the expected contents (a regular file
+/// of another length is not read).
 pub fn matches(dir: &Path, id: &Identity) -> bool {
     !id.is_empty()
         && id.iter().all(|(name, want)| {
-            std::fs::read_to_string(dir.join(name)).is_ok_and(|have| have == *want)
+            let path = dir.join(name);
+            std::fs::metadata(&path).is_ok_and(|m| m.is_file() && m.len() == want.len() as u64)
+                && std::fs::read_to_string(&path).is_ok_and(|have| have == *want)
         })
 }
 
