@@ -11,7 +11,7 @@ pub(crate) mod terms;
 pub use episode::Episode;
 pub use fll::to_fll;
 pub use fuzzy::{
-    CoefficientScheme, Coefficients, FuzzyError, MAX_COEFFICIENT_MAGNITUDE, MAX_LABELS,
+    CoefficientScheme, Coefficients, FuzzyError, LABEL_RANGE, MAX_LABELS,
     MOTIVATION_NORMALISE_TOLERANCE, MOTIVATION_SUM_TOLERANCE, PAPER_LABEL_NAMES, PAPER_PEAKS,
     RawFuzzy, TskFitness, label_name,
 };

@@ -37,9 +37,11 @@ pub const MOTIVATION_NORMALISE_TOLERANCE: f64 = 1e-3;
 /// `M^4` representable in `usize` on every supported platform.
 pub const MAX_LABELS: usize = 255;
 
-/// Largest absolute coefficient accepted by [`TskFitness::new`]; keeps every
-/// rule output `f[n]` finite.
-pub const MAX_COEFFICIENT_MAGNITUDE: f64 = 1e300;
+/// The range of every peak and every coefficient accepted by [`TskFitness::new`]: a fitness
+/// term is a value in [0, 1], and with coefficients in [0, 1] every rule output `f[n]` (a mean
+/// of coefficients weighted by the motivations) and so F are too, as the tables and figures
+/// show them (docs/model.md §8).
+pub const LABEL_RANGE: std::ops::RangeInclusive<f64> = 0.0..=1.0;
 
 /// Label names used when there are exactly five labels (`M = 5`), from the
 /// lowest peak to the highest.
@@ -95,9 +97,11 @@ pub enum FuzzyError {
         /// Maximum allowed ([`MAX_LABELS`]).
         max: usize,
     },
-    /// A peak is NaN or infinite.
-    #[error("{of}peaks must be finite numbers, got {value} at position {index} (0-based)")]
-    NonFinitePeak {
+    /// A peak is not a number in [0, 1] ([`LABEL_RANGE`]).
+    #[error(
+        "{of}peaks must be numbers from 0 to 1 (a fitness term is a value in [0, 1]), got {} at position {index} (0-based)", Num(*.value)
+    )]
+    PeakOutOfRange {
         /// Where the labels were given: `fuzzy.` or `motivations.NAME.`.
         of: String,
         /// 0-based position in the list.
@@ -113,16 +117,6 @@ pub enum FuzzyError {
         /// The rejected list.
         peaks: Vec<f64>,
     },
-    /// Two neighbouring peaks are so far apart that their gap overflows.
-    #[error("{of}peaks gap between {low} and {high} is too large to represent")]
-    PeakGapTooLarge {
-        /// Where the labels were given: `fuzzy.` or `motivations.NAME.`.
-        of: String,
-        /// Lower peak.
-        low: f64,
-        /// Upper peak.
-        high: f64,
-    },
     /// The coefficient list length differs from the number of peaks.
     #[error("{of}coefficients must have {expected} values (one per label), got {got}")]
     CoefficientCount {
@@ -133,10 +127,9 @@ pub enum FuzzyError {
         /// Number of coefficients given.
         got: usize,
     },
-    /// A coefficient is NaN, infinite or larger in magnitude than
-    /// [`MAX_COEFFICIENT_MAGNITUDE`].
+    /// A coefficient is not a number in [0, 1] ([`LABEL_RANGE`]).
     #[error(
-        "{of}coefficients must be finite numbers with magnitude at most 1e300, got {} at position {index} (0-based)", Num(*.value)
+        "{of}coefficients must be numbers from 0 to 1 (so that F, a weighted mean of them, is a fitness in [0, 1]), got {} at position {index} (0-based)", Num(*.value)
     )]
     InvalidCoefficient {
         /// Where the labels were given: `fuzzy.` or `motivations.NAME.`.
@@ -233,9 +226,8 @@ impl FuzzyError {
                 Some(format!("{of}coefficients"))
             }
             FuzzyError::PeakCount { of, .. }
-            | FuzzyError::NonFinitePeak { of, .. }
-            | FuzzyError::PeaksNotIncreasing { of, .. }
-            | FuzzyError::PeakGapTooLarge { of, .. } => Some(format!("{of}peaks")),
+            | FuzzyError::PeakOutOfRange { of, .. }
+            | FuzzyError::PeaksNotIncreasing { of, .. } => Some(format!("{of}peaks")),
             _ => None,
         }
     }
@@ -329,12 +321,11 @@ impl Candidates {
 impl TskFitness {
     /// Validates and builds a fuzzy fitness function.
     ///
-    /// `peaks`: 2..=[`MAX_LABELS`] finite, strictly increasing values (the
+    /// `peaks`: 2..=[`MAX_LABELS`] strictly increasing values in [0, 1] ([`LABEL_RANGE`]; the
     /// first need not be 0 nor the last 1); label `m` is a triangle peaking at
     /// `peaks[m]` and reaching zero at its neighbours' peaks, the first and
     /// last labels being shoulders (1 beyond their peak).
-    /// `coefficients`: one finite value per peak (magnitude at most
-    /// [`MAX_COEFFICIENT_MAGNITUDE`]); see [`CoefficientScheme::values`].
+    /// `coefficients`: one value in [0, 1] per peak; see [`CoefficientScheme::values`].
     pub fn new(peaks: Vec<f64>, coefficients: Vec<f64>) -> Result<Self, FuzzyError> {
         Self::new_in(peaks, coefficients, "fuzzy.")
     }
@@ -350,17 +341,13 @@ impl TskFitness {
                 max: MAX_LABELS,
             });
         }
-        if let Some((index, &value)) = peaks.iter().enumerate().find(|(_, p)| !p.is_finite()) {
-            return Err(FuzzyError::NonFinitePeak { of, index, value });
+        if let Some((index, &value)) =
+            (peaks.iter().enumerate()).find(|(_, p)| !LABEL_RANGE.contains(*p))
+        {
+            return Err(FuzzyError::PeakOutOfRange { of, index, value });
         }
-        for pair in peaks.windows(2) {
-            let (low, high) = (pair[0], pair[1]);
-            if low >= high {
-                return Err(FuzzyError::PeaksNotIncreasing { of, peaks });
-            }
-            if !(high - low).is_finite() {
-                return Err(FuzzyError::PeakGapTooLarge { of, low, high });
-            }
+        if peaks.windows(2).any(|pair| pair[0] >= pair[1]) {
+            return Err(FuzzyError::PeaksNotIncreasing { of, peaks });
         }
         if coefficients.len() != peaks.len() {
             return Err(FuzzyError::CoefficientCount {
@@ -372,7 +359,7 @@ impl TskFitness {
         if let Some((index, &value)) = coefficients
             .iter()
             .enumerate()
-            .find(|(_, c)| !(c.is_finite() && c.abs() <= MAX_COEFFICIENT_MAGNITUDE))
+            .find(|(_, c)| !LABEL_RANGE.contains(*c))
         {
             return Err(FuzzyError::InvalidCoefficient { of, index, value });
         }
@@ -495,7 +482,7 @@ mod tests {
         let ts = [
             TskFitness::paper(),
             TskFitness::with_scheme(vec![0.1, 0.3, 0.35, 0.9], CoefficientScheme::Ratio).unwrap(),
-            TskFitness::with_scheme(vec![-1.0, 2.0], CoefficientScheme::Linear).unwrap(),
+            TskFitness::with_scheme(vec![0.2, 0.7], CoefficientScheme::Linear).unwrap(),
         ];
         for t in &ts {
             for i in -300..=1300 {
@@ -543,9 +530,9 @@ mod tests {
         );
 
         let err = TskFitness::new(vec![0.0, f64::NAN, 1.0], lin(3)).unwrap_err();
-        assert!(matches!(err, FuzzyError::NonFinitePeak { index: 1, .. }));
+        assert!(matches!(err, FuzzyError::PeakOutOfRange { index: 1, .. }));
         let err = TskFitness::new(vec![0.0, f64::INFINITY], lin(2)).unwrap_err();
-        assert!(matches!(err, FuzzyError::NonFinitePeak { .. }));
+        assert!(matches!(err, FuzzyError::PeakOutOfRange { .. }));
         let err = TskFitness::new(vec![0.0, 1.0], vec![0.0, f64::NAN]).unwrap_err();
         assert!(matches!(
             err,
@@ -558,14 +545,32 @@ mod tests {
             Err(FuzzyError::PeakCount { count: 1, .. })
         ));
         assert!(TskFitness::new(vec![], vec![]).is_err());
-        assert!(matches!(
-            TskFitness::new(vec![-f64::MAX, f64::MAX], lin(2)),
-            Err(FuzzyError::PeakGapTooLarge { .. })
-        ));
         assert_eq!(
             TskFitness::new(PAPER_PEAKS.to_vec(), lin(5)),
             Ok(TskFitness::paper())
         );
+    }
+
+    /// Issue #52 item 7: peaks and coefficients are numbers in [0, 1], so that F is a fitness
+    /// in [0, 1]; ±1e300 (F 3e299, std inf, 300-digit tables) and peaks outside are refused
+    /// naming the list and the value, compactly.
+    #[test]
+    fn peaks_and_coefficients_outside_0_1_are_refused() {
+        let err = TskFitness::new(vec![0.0, 1.0], vec![0.0, 1e300]).unwrap_err();
+        assert!(matches!(
+            err,
+            FuzzyError::InvalidCoefficient { index: 1, .. }
+        ));
+        assert!(err.to_string().contains("from 0 to 1") && err.to_string().contains("got 1e300"));
+        assert!(TskFitness::new(vec![0.0, 1.0], vec![-1e300, 1.0]).is_err());
+        assert!(TskFitness::new(vec![0.0, 1.0], vec![-0.1, 1.0]).is_err());
+        let err = TskFitness::new(vec![-1.0, 2.0], vec![0.0, 1.0]).unwrap_err();
+        assert!(
+            matches!(err, FuzzyError::PeakOutOfRange { index: 0, .. }),
+            "{err}"
+        );
+        assert!(TskFitness::new(vec![0.0, 1.5], vec![0.0, 1.0]).is_err());
+        assert!(TskFitness::new(vec![0.0, 1.0], vec![0.0, 1.0]).is_ok());
     }
 
     #[test]

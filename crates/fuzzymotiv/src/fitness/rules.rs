@@ -374,10 +374,10 @@ mod tests {
         let ts = [
             TskFitness::paper(),
             TskFitness::with_scheme(PAPER_PEAKS.to_vec(), CoefficientScheme::Ratio).unwrap(),
-            TskFitness::new(vec![0.1, 0.3, 0.35, 0.9], vec![-0.5, 2.0, 0.3, 1.0]).unwrap(),
+            TskFitness::new(vec![0.1, 0.3, 0.35, 0.9], vec![0.05, 0.9, 0.3, 1.0]).unwrap(),
             TskFitness::with_scheme(vec![0.0, 1.0], CoefficientScheme::Linear).unwrap(),
             TskFitness::with_scheme(
-                vec![0.0, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.2],
+                vec![0.0, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0],
                 CoefficientScheme::Linear,
             )
             .unwrap(),
