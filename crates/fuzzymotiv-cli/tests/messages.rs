@@ -366,3 +366,45 @@ fn fuzzy_named_form_errors_name_the_motivation_or_term() {
     let (code, msg) = fuzzy("curiosity=0.5,urgency=0.5", "a=0.5,urgency=0.5");
     assert_eq!(code, Some(0), "{msg}");
 }
+
+/// Issue #52 item 7: a record file holding an array where its object belongs says so, not
+/// serde's "expected struct BestGenome with 11 elements" or an element's type; a wrong value
+/// names its field in plain words ("expected a number", not "f64").
+#[test]
+fn a_genome_file_holding_an_array_says_an_object_was_expected() {
+    let dir = tempfile::tempdir().unwrap();
+    let genome = dir.path().join("best_genome.json");
+    let out = dir.path().join("c.json");
+    for (text, says) in [
+        (
+            "[]",
+            "expected a JSON object { \"key\": value, … } (a BestGenome record), got an array",
+        ),
+        (
+            "[1, 2]",
+            "expected a JSON object { \"key\": value, … } (a BestGenome record), got an array",
+        ),
+        (
+            "{\"shape\": {\"hidden\": 6}, \"weights\": [1, \"a\"]}",
+            "field `weights[1]`: invalid type: string \"a\", expected a number",
+        ),
+    ] {
+        std::fs::write(&genome, text).unwrap();
+        let o = Fm::new([
+            "export".as_ref(),
+            genome.as_os_str(),
+            "--to".as_ref(),
+            "json".as_ref(),
+        ])
+        .out(&out)
+        .run();
+        let msg = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{text}: {msg}");
+        assert!(msg.contains(says), "{text}: {msg}");
+        assert!(
+            !msg.contains("elements") && !msg.contains("f64"),
+            "{text}: {msg}"
+        );
+        assert!(!out.exists());
+    }
+}

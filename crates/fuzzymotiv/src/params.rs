@@ -191,5 +191,8 @@ fn value_path_at(text: &str, at: usize) -> Option<String> {
             _ => {}
         }
     }
-    Some(format!("{key}[{}]", index.saturating_sub(usize::from(depth > 0))))
+    Some(format!(
+        "{key}[{}]",
+        index.saturating_sub(usize::from(depth > 0))
+    ))
 }

@@ -1461,15 +1461,33 @@ pub fn parse_json<T: DeserializeOwned>(text: &str, source: &str) -> Result<T, Cl
         let inner = e.into_inner();
         if inner.classify() != serde_json::error::Category::Data {
             CliError::input(format!("{source}: not valid JSON: {inner}"))
+        } else if let Some(record) = array_for_record::<T>(&field, &inner.to_string()) {
+            // serde reads an array as a struct's fields in order: say what was expected.
+            CliError::input(format!(
+                "{source}: expected a JSON object {{ \"key\": value, … }} (a {record} record), got an array"
+            ))
         } else if field == "." {
             CliError::input(format!("{source}: {inner}"))
         } else {
+            let inner = inner.to_string().replace("expected f64", "expected a number");
             CliError::input(format!("{source}: field `{field}`: {inner}"))
         }
     })?;
     de.end()
         .map_err(|e| CliError::input(format!("{source}: not valid JSON: {e}")))?;
     Ok(value)
+}
+
+/// The record `T` when an array was read where its object belongs: serde then reads the
+/// array as the struct's fields in order and says "invalid length 0, expected struct
+/// BestGenome with 11 elements" or fails on an element (`field` `[1]`).
+fn array_for_record<T>(field: &str, message: &str) -> Option<&'static str> {
+    let name = std::any::type_name::<T>();
+    let record = name.rsplit("::").next().unwrap_or(name);
+    let is_struct = !name.contains('<') && record.chars().next().is_some_and(char::is_uppercase);
+    let as_fields = message.contains(&format!("expected struct {record}"))
+        || (field.starts_with('[') && !field.contains('.'));
+    (is_struct && as_fields).then_some(record)
 }
 
 /// Reads a CSV record file into rows of `T`; a missing or malformed cell is an input error
