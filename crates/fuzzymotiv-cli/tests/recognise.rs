@@ -245,3 +245,34 @@ fn replay_log_warns_of_positions_outside_the_room() {
     let svg = std::fs::read_to_string(out.with_extension("svg")).unwrap();
     assert!(svg.contains("logged path:"), "drawn all the same");
 }
+
+/// Issue #52 item 7: a log longer than a trial is recognised from its first `trial.steps`
+/// steps ("used"), and the actions it reports are counted over those steps, not the whole log.
+#[test]
+fn the_actions_of_a_long_log_are_counted_over_the_steps_used() {
+    let tmp = tempfile::tempdir().unwrap();
+    let config = common::repo().join("configs/high-curiosity.toml");
+    let run = tmp.path().join("run");
+    Fm::new(["run", config.to_str().unwrap(), "--quiet"])
+        .out(&run)
+        .sets(&SIZES)
+        .ok();
+    let log = tmp.path().join("long.csv");
+    let mut text = String::from("action\n");
+    text.push_str(&"straight\n".repeat(150));
+    text.push_str(&"back\n".repeat(250));
+    std::fs::write(&log, text).unwrap();
+    let out = tmp.path().join("rec");
+    ok(&[
+        "recognise",
+        run.to_str().unwrap(),
+        log.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let csv = std::fs::read_to_string(out.join("recognised.csv")).unwrap();
+    let row: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
+    // log, steps, used, room, winner, straight, left, right, back
+    assert_eq!((row[1], row[2]), ("400", "150"), "{csv}");
+    assert_eq!(row[5..9], ["150", "0", "0", "0"], "{csv}");
+}

@@ -46,7 +46,8 @@ pub struct RecognitionRecord {
     pub room: String,
     /// The SOM's winning node.
     pub winner: usize,
-    /// Steps per action: straight, left, right, back.
+    /// Steps per action among the steps used (the `used` first ones, those recognised):
+    /// straight, left, right, back.
     pub straight: usize,
     /// Left turns (+30°).
     pub left: usize,
@@ -404,7 +405,8 @@ pub fn recognise_logs(run: &Path, logs: &[PathBuf]) -> Result<Vec<RecognitionRec
             let why = exp
                 .explain_actions(&recognizer, &actions.first)
                 .map_err(|e| CliError::input(format!("{log}: {e}")))?;
-            let count = |a: Action| actions.count(a);
+            // The actions of the steps recognised, as `used` says, not of the whole log.
+            let count = |a: Action| actions.first.iter().filter(|&&x| x == a).count();
             let chosen = why.chosen;
             Ok(RecognitionRecord {
                 steps: actions.steps,
