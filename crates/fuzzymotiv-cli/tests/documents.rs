@@ -1336,3 +1336,58 @@ fn a_value_reads_a_json_pointer() {
         "F <!-- value study/summary.json: /settings/0/mean +.2 -->−0.12<!-- end -->\n"
     );
 }
+
+/// Issue #52 item 7: the README gives the default study's time as docs/guide/performance.md
+/// measured it (the first twenty-seed row, rounded to the second), in both places it says it,
+/// and the CLI guide names the study's run directories up to the default number of seeds.
+#[test]
+fn the_readme_and_cli_guide_state_the_default_study_as_measured() {
+    let read = |p: &str| fs::read_to_string(root().join(p)).unwrap();
+    let (readme, performance, cli) = (
+        read("README.md"),
+        read("docs/guide/performance.md"),
+        read("docs/guide/cli.md"),
+    );
+    let row = (performance.lines())
+        .find(|l| l.contains("**the paper's twenty-seed study**"))
+        .unwrap();
+    let measured: f64 = row
+        .split("wall time (")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    let seconds = format!("{} s", measured.round());
+    assert!(!readme.contains("four minutes"), "README: an old time");
+    assert_eq!(
+        readme.matches(&seconds).count(),
+        2,
+        "README quotes {seconds} twice"
+    );
+    assert_eq!(readme.matches("about a minute and a half").count(), 2);
+    let help = std::process::Command::new(env!("CARGO_BIN_EXE_fuzzymotiv"))
+        .args(["reproduce", "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8(help.stdout).unwrap();
+    let seeds_line = help
+        .lines()
+        .find(|l| l.contains("--seeds <SEEDS>"))
+        .unwrap();
+    let seeds: usize = (seeds_line
+        .split("[default: ")
+        .nth(1)
+        .unwrap()
+        .split(']')
+        .next())
+    .unwrap()
+    .parse()
+    .unwrap();
+    assert!(
+        cli.contains(&format!("`seed-{seeds:02}/`")),
+        "cli.md: the last seed directory"
+    );
+}
