@@ -240,12 +240,22 @@ fn claims_method(claims: &[ClaimRecord]) -> String {
          study is at the edge of its power, and a study of as many seeds at another base seed \
          may well give the other verdict (EXPERIMENTS.md: verdicts that replicate). The last \
          two rows check Fig. 6's curves on means over seeds.\n\n\
-         Note: with {n} paired seeds the smallest two-sided p is 2/2^{n} = {min_p:.4} (1/16 \
+         Note: with {n} paired seeds the smallest two-sided p is 2/2^{n} = {min_p} (1/16 \
          for five seeds), {reach}.",
         alpha = s.alpha,
         n = s.seeds,
-        min_p = s.min_p,
+        min_p = p_text(s.min_p),
     )
+}
+
+/// A p-value as the tables show it: four decimals (`0.0312`), or, below 0.0001, two
+/// significant digits in scientific notation (`1.9e-6` for 2/2^20), never `0.0000`.
+pub fn p_text(p: f64) -> String {
+    if p > 0.0 && p < 1e-4 {
+        format!("{p:.1e}")
+    } else {
+        format!("{p:.4}")
+    }
 }
 
 /// The statistics cells of a claim (difference with interval, p, MDD), dashes without them.
@@ -253,7 +263,7 @@ fn claim_cells(c: &ClaimRecord) -> [String; 3] {
     match &c.stats {
         Some(s) => [
             format!("{:+.1} [{:+.1}, {:+.1}]", s.difference, s.ci_low, s.ci_high),
-            format!("{:.4}", s.p),
+            p_text(s.p),
             s.mdd.map_or("—".into(), |m| format!("{m:.1}")),
         ],
         None => ["—".into(), "—".into(), "—".into()],
@@ -336,8 +346,14 @@ fn curve_claims_md(claims: &[ClaimRecord]) -> String {
             any = true;
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.3} [{:.3}, {:.3}] | {:.4} | {} |",
-                c.claim, r.setting, r.value, r.ci_low, r.ci_high, r.p, r.verdict
+                "| {} | {} | {:.3} [{:.3}, {:.3}] | {} | {} |",
+                c.claim,
+                r.setting,
+                r.value,
+                r.ci_low,
+                r.ci_high,
+                p_text(r.p),
+                r.verdict
             );
         }
     }
@@ -355,8 +371,15 @@ fn room_claims_md(claims: &[ClaimRecord]) -> String {
             any = true;
             let _ = writeln!(
                 md,
-                "| {} | {} | {:+.1} [{:+.1}, {:+.1}] | {:.4} | {:.4} | {} |",
-                c.claim, r.room, r.difference, r.ci_low, r.ci_high, r.p, r.p_holm, r.verdict
+                "| {} | {} | {:+.1} [{:+.1}, {:+.1}] | {} | {} | {} |",
+                c.claim,
+                r.room,
+                r.difference,
+                r.ci_low,
+                r.ci_high,
+                p_text(r.p),
+                p_text(r.p_holm),
+                r.verdict
             );
         }
     }
@@ -421,13 +444,13 @@ fn room_claims_html(claims: &[ClaimRecord]) -> String {
             };
             let _ = writeln!(
                 html,
-                "<tr>{claim}<td class=\"left\">{}</td><td>{:+.1} [{:+.1}, {:+.1}]</td><td>{:.4}</td><td>{:.4}</td><td class=\"{}\">{}</td></tr>",
+                "<tr>{claim}<td class=\"left\">{}</td><td>{:+.1} [{:+.1}, {:+.1}]</td><td>{}</td><td>{}</td><td class=\"{}\">{}</td></tr>",
                 esc(&r.room),
                 r.difference,
                 r.ci_low,
                 r.ci_high,
-                r.p,
-                r.p_holm,
+                p_text(r.p),
+                p_text(r.p_holm),
                 verdict_class(&r.verdict),
                 r.verdict
             );
@@ -448,13 +471,13 @@ fn curve_claims_html(claims: &[ClaimRecord]) -> String {
             any = true;
             let _ = writeln!(
                 html,
-                "<tr><td class=\"left\">{}</td><td>{}</td><td>{:.3} [{:.3}, {:.3}]</td><td>{:.4}</td><td class=\"{}\">{}</td></tr>",
+                "<tr><td class=\"left\">{}</td><td>{}</td><td>{:.3} [{:.3}, {:.3}]</td><td>{}</td><td class=\"{}\">{}</td></tr>",
                 esc(&c.claim),
                 esc(&r.setting),
                 r.value,
                 r.ci_low,
                 r.ci_high,
-                r.p,
+                p_text(r.p),
                 verdict_class(&r.verdict),
                 r.verdict
             );
@@ -542,4 +565,47 @@ pub fn spread_html(study: &SettingRuns<'_>) -> String {
         study.median_label()
     );
     html
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fuzzymotiv_records::records::ClaimStats;
+
+    /// Issue #52 item 7: with twenty paired seeds the smallest p, 2/2^20, is printed as 1.9e-6
+    /// in claims.md's note and in its p column, not as 0.0000; a larger p keeps four decimals.
+    #[test]
+    fn the_smallest_p_of_twenty_seeds_is_printed_readably() {
+        let min_p = 2.0 / 2f64.powi(20);
+        assert_eq!(p_text(min_p), "1.9e-6");
+        assert_eq!(p_text(0.5), "0.5000");
+        assert_eq!(p_text(0.0), "0.0000");
+        let claim = ClaimRecord {
+            claim: "high curiosity explores more than low curiosity".into(),
+            curves: Vec::new(),
+            evidence: "high 91.2 % vs low 89.5 %".into(),
+            holds: true,
+            stats: Some(ClaimStats {
+                seeds: 20,
+                difference: 1.7,
+                ci_low: 1.0,
+                ci_high: 2.4,
+                p: min_p,
+                min_p,
+                alpha: 0.05,
+                verdict: "holds".into(),
+                mdd: Some(0.8),
+                rooms: Vec::new(),
+            }),
+        };
+        let prov = Provenance {
+            seeds: (1..=20).collect(),
+            population: 200,
+            generations: 200,
+            quick: false,
+        };
+        let (md, _) = claims_table(&[claim], &prov);
+        assert!(md.contains("2/2^20 = 1.9e-6 (1/16"), "{md}");
+        assert!(md.contains("| 1.9e-6 |") && !md.contains("0.0000"), "{md}");
+    }
 }
