@@ -16,6 +16,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 /// Seconds between two plain progress lines.
 const PLAIN_INTERVAL: Duration = Duration::from_secs(5);
 
+/// Generations timed before an ETA is shown. The first one warms up (rooms prepared, tables of
+/// sightings filled, threads started) and says little of the rest: the rate comes from the
+/// generations after it, so none is shown before a few of them are done.
+const ETA_AFTER: u64 = 3;
+
 /// Progress over all generations of one or more experiments, or a view of it for one run
 /// ([`Progress::named`]); runs may go on side by side, each with its own view.
 pub struct Progress {
@@ -37,6 +42,8 @@ struct Shared {
     pos: AtomicU64,
     skipped: AtomicU64,
     start: Instant,
+    /// When the first generation timed here was done (the end of the warm-up).
+    first_done: OnceLock<Instant>,
     /// The names of the runs going on, shown before the bar.
     running: Mutex<Vec<String>>,
 }
@@ -57,7 +64,7 @@ impl Progress {
             let bar = ProgressBar::new(total);
             bar.set_style(
                 ProgressStyle::with_template(
-                    "{prefix} [{elapsed_precise}] {wide_bar} gen {pos}/{len} {msg} (eta {eta})",
+                    "{prefix} [{elapsed_precise}] {wide_bar} gen {pos}/{len} {msg}",
                 )
                 .expect("valid template"),
             );
@@ -81,6 +88,7 @@ impl Progress {
             pos: AtomicU64::new(0),
             skipped: AtomicU64::new(0),
             start: Instant::now(),
+            first_done: OnceLock::new(),
             running: Mutex::new(Vec::new()),
         };
         Self {
@@ -121,9 +129,13 @@ impl Progress {
     /// Generation `g` (1-based) of `of` of run `run` finished with best F `best`.
     pub fn generation(&self, run: &str, g: usize, of: usize, best: f64) {
         let shared = &self.shared;
+        shared.first_done.get_or_init(Instant::now);
         shared.bar.inc(1);
-        shared.bar.set_message(format!("best F {best:.3}"));
         shared.pos.fetch_add(1, Ordering::Relaxed);
+        let eta = self
+            .eta()
+            .map_or(String::new(), |e| format!(" (eta {})", clock(e)));
+        shared.bar.set_message(format!("best F {best:.3}{eta}"));
         if shared.quiet || !shared.plain {
             return;
         }
@@ -139,14 +151,9 @@ impl Progress {
     fn line(&self, run: &str, g: usize, of: usize, best: f64) -> String {
         let shared = &self.shared;
         let elapsed = shared.start.elapsed().as_secs_f64();
-        let pos = shared.pos.load(Ordering::Relaxed);
-        let timed = (pos - shared.skipped.load(Ordering::Relaxed)) as f64;
-        let left = shared.total.saturating_sub(pos) as f64;
-        let eta = if timed > 0.0 {
-            clock(elapsed / timed * left)
-        } else {
-            "?".to_string()
-        };
+        let eta = self
+            .eta()
+            .map_or("? (after a few generations)".to_string(), clock);
         let name = self.name.as_deref().unwrap_or("");
         let run = if run.is_empty() || run == "all" {
             String::new()
@@ -157,6 +164,15 @@ impl Progress {
             "{name}{run}: generation {g}/{of}, best F {best:.3}, elapsed {}, ETA {eta}",
             clock(elapsed)
         )
+    }
+
+    /// Seconds left, once [`ETA_AFTER`] generations were timed here ([`eta_seconds`]).
+    fn eta(&self) -> Option<f64> {
+        let shared = &self.shared;
+        let pos = shared.pos.load(Ordering::Relaxed);
+        let timed = pos.saturating_sub(shared.skipped.load(Ordering::Relaxed));
+        let since_first = shared.first_done.get()?.elapsed().as_secs_f64();
+        eta_seconds(since_first, timed, shared.total.saturating_sub(pos))
     }
 
     /// Removes the bar.
@@ -271,6 +287,13 @@ fn bar_prefix(running: &[String]) -> String {
     }
 }
 
+/// The seconds the `left` generations will take, from the rate of those done since the first
+/// one timed (`since_first` seconds for `timed − 1` generations): none before [`ETA_AFTER`]
+/// generations are timed, so that the warm-up of the first is not extrapolated.
+fn eta_seconds(since_first: f64, timed: u64, left: u64) -> Option<f64> {
+    (timed >= ETA_AFTER).then(|| since_first / (timed - 1) as f64 * left as f64)
+}
+
 /// Seconds as `m:ss` (or `h:mm:ss`).
 fn clock(seconds: f64) -> String {
     let s = seconds.round() as u64;
@@ -293,6 +316,22 @@ mod tests {
         assert_eq!(bar_prefix(&names(1)), "seed 1");
         assert_eq!(bar_prefix(&names(2)), "seed 1 + seed 2");
         assert_eq!(bar_prefix(&names(5)), "seed 1 + 4 more");
+    }
+
+    /// Issue #52 item 7: no ETA is shown until a few generations are done, and then it comes
+    /// from the generations after the first: a first generation of 10 s (its warm-up) and
+    /// generations of 1 s after it give 97 s for 97 left, not the 970 s the first would give.
+    #[test]
+    fn the_first_eta_is_not_extrapolated_from_the_warm_up() {
+        assert_eq!(eta_seconds(0.0, 1, 99), None);
+        assert_eq!(eta_seconds(1.0, 2, 98), None);
+        assert_eq!(eta_seconds(2.0, 3, 97), Some(97.0));
+        let p = Progress::with_bar(ProgressBar::hidden(), true, true, 100);
+        p.generation("all", 1, 100, 0.5);
+        assert!(
+            p.line("all", 1, 100, 0.5)
+                .contains("ETA ? (after a few generations)")
+        );
     }
 
     /// A view leaves the list when dropped; views of the same name come and go one by one.
