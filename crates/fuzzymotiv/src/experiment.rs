@@ -27,8 +27,10 @@ pub use config::{
     apply_sets, at_line, blame_set,
 };
 pub use descriptors::Descriptors;
-pub use evaluation::{Evaluation, RoomScore};
-pub use evolution::{Evolution, GenerationRecord, GenerationState, Observer, Population, Stopped};
+pub use evaluation::{Evaluation, RoomScore, TermError};
+pub use evolution::{
+    Evolution, EvolveError, GenerationRecord, GenerationState, Observer, Population, Stopped,
+};
 pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
 pub use outcome::{Outcome, RunError, Start};
 pub use robustness::{Perturbation, RobustnessError, RobustnessRow};

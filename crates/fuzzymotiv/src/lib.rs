@@ -73,7 +73,7 @@ pub mod statistics;
 
 pub use experiment::config::RawConfig;
 pub use experiment::evolution::{
-    Evolution, GenerationRecord, GenerationState, Observer, Population, Stopped,
+    Evolution, EvolveError, GenerationRecord, GenerationState, Observer, Population, Stopped,
 };
 pub use experiment::outcome::{Interrupted, Outcome, RunError, RunObserver, Start};
 pub use experiment::setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError};

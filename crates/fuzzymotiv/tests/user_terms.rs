@@ -87,24 +87,35 @@ fn a_term_at_its_bounds_is_taken_as_it_is() {
     assert_eq!(evaluate_with_smooth(1.0), 1.0);
 }
 
-/// A value above 1 is a bug in the term: the evaluation panics naming the term and the value
-/// (not clamped to 1).
+/// Issue #52 item 7: a value outside [0, 1], or NaN, is a bug in the term. The evaluation keeps
+/// it as it came (not clamped, not counted as 0), `check_terms` names the term and the value,
+/// and evolving returns that as an error (`RunError::Term`), never a panic.
 #[test]
-#[should_panic(expected = "the user-defined term \"smooth\" returned 1.5, outside [0, 1]")]
-fn a_term_above_1_panics_naming_it() {
-    evaluate_with_smooth(1.5);
-}
-
-/// A negative value, too.
-#[test]
-#[should_panic(expected = "the user-defined term \"smooth\" returned -0.25, outside [0, 1]")]
-fn a_negative_term_panics_naming_it() {
-    evaluate_with_smooth(-0.25);
-}
-
-/// NaN is not counted as 0.
-#[test]
-#[should_panic(expected = "the user-defined term \"smooth\" returned NaN, outside [0, 1]")]
-fn a_nan_term_panics_naming_it() {
-    evaluate_with_smooth(f64::NAN);
+fn a_term_outside_0_1_or_nan_is_an_error_of_the_run_not_a_panic() {
+    for (value, shown) in [(1.5, "1.5"), (-0.25, "-0.25"), (f64::NAN, "NaN")] {
+        let kept = evaluate_with_smooth(value);
+        assert!(kept.to_bits() == value.to_bits(), "{value}: kept {kept}");
+        let exp = experiment(&[UserTerm::computed("smooth", Arc::new(Fixed(value)))]).unwrap();
+        let run = &exp.runs()[0];
+        let network = exp.initial_population(run).network(0);
+        let evaluation = exp.evaluate(&network, run, 0, 0);
+        let e = exp
+            .check_terms(evaluation.per_room.iter().map(|s| &s.terms))
+            .unwrap_err();
+        assert_eq!(
+            (e.term.as_str(), e.value.to_bits()),
+            ("smooth", value.to_bits())
+        );
+        let Err(e) = exp.run(&mut |_, _| std::ops::ControlFlow::Continue(())) else {
+            panic!("{value}: the run went on");
+        };
+        let message = e.to_string();
+        assert!(matches!(e, fuzzymotiv::RunError::Term(_)), "{message}");
+        assert!(
+            message.contains(&format!(
+                "the user-defined term \"smooth\" returned {shown}, outside [0, 1]"
+            )),
+            "{message}"
+        );
+    }
 }

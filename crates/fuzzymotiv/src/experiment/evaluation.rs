@@ -11,6 +11,7 @@ use crate::experiment::{Experiment, Perturbation, Run};
 use crate::fitness::terms::{FitnessTerms, TermsRecorder, TrialRecord, UserValues};
 use crate::modelling::aem::{Action, environment_vector};
 use crate::modelling::recognition::nearest_unique;
+use crate::params::Num;
 use crate::random::rng::rng_from_seed;
 use crate::simulation::controller::{Controller, GenomeError, Mlp};
 use crate::simulation::lanes::{LaneTrial, lanes_fit, walk_lanes};
@@ -18,15 +19,20 @@ use crate::simulation::randomise::Draw;
 use crate::simulation::robot::Pose;
 use crate::simulation::trial::{ActionLog, Arena, StepObserver, Trajectory, simulate};
 
-/// A user term's value, which must be in [0, 1]: a value outside, or NaN, is a bug in the term
-/// ([`crate::fitness::Term`]) and panics naming it (the evaluation has no error to return, and
-/// clamping would hide the bug in F).
-fn checked_value(name: &str, value: f64) -> f64 {
-    assert!(
-        (0.0..=1.0).contains(&value),
-        "the user-defined term {name:?} returned {value}, outside [0, 1]: a term's value must be in [0, 1] (a bug in the term)"
-    );
-    value
+/// A user-defined term ([`crate::fitness::Term`]) that returned a value outside [0, 1], or
+/// NaN: a bug in the term. The evaluation keeps the value as it came (clamping would hide the
+/// bug in F); [`Experiment::check_terms`] finds it, and evolving or modelling the rooms
+/// returns it as an error ([`crate::experiment::RunError::Term`]), never a panic.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "the user-defined term {term:?} returned {}, outside [0, 1]: a term's value must be in [0, 1] (a bug in the term)",
+    Num(*.value)
+)]
+pub struct TermError {
+    /// The term's name.
+    pub term: String,
+    /// The value it returned.
+    pub value: f64,
 }
 
 impl Experiment {
@@ -196,10 +202,36 @@ impl Experiment {
                     trajectory,
                     terms,
                 };
-                *v = checked_value(&u.name, term.value(&record));
+                *v = term.value(&record);
             }
         }
         terms.user = values;
+    }
+
+    /// The first value outside [0, 1] (or NaN) of a user-defined term computed here (a Rust
+    /// [`crate::fitness::Term`]; the values a front supplies are its own to check) in `terms`.
+    pub fn check_terms<'a>(
+        &self,
+        terms: impl IntoIterator<Item = &'a FitnessTerms>,
+    ) -> Result<(), TermError> {
+        let computed: Vec<usize> = (self.plan.user.iter().enumerate())
+            .filter(|(_, u)| u.term.is_some())
+            .map(|(k, _)| k)
+            .collect();
+        if computed.is_empty() {
+            return Ok(());
+        }
+        for t in terms {
+            let values = t.user.as_slice();
+            for &k in &computed {
+                let value = values.get(k).copied().unwrap_or(0.0);
+                if !(0.0..=1.0).contains(&value) {
+                    let term = self.plan.user[k].name.clone();
+                    return Err(TermError { term, value });
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Recomputes an evaluation's F (each room's, then their mean) from its terms: for a front

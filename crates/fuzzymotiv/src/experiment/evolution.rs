@@ -36,7 +36,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::evolution::ga::{Genome, Stats, initial_population, next_generation};
 pub use crate::evolution::population::{Population, PopulationError};
-use crate::experiment::evaluation::Evaluation;
+use crate::experiment::evaluation::{Evaluation, TermError};
 use crate::experiment::{Experiment, Run};
 use crate::fitness::terms::FitnessTerms;
 use crate::random::rng::rng_from_seed;
@@ -121,7 +121,7 @@ impl Experiment {
         &self,
         run: &Run,
         on_generation: &mut Observer<'_>,
-    ) -> Result<Evolution, Stopped> {
+    ) -> Result<Evolution, EvolveError> {
         let population = self.initial_population(run);
         self.evolve_from(run, 0, population, Vec::new(), on_generation)
     }
@@ -130,7 +130,8 @@ impl Experiment {
     /// the generations before it; the result equals an uninterrupted [`Experiment::evolve`],
     /// because every random stream is derived from (run, generation, individual, room). When the
     /// observer breaks after a generation that is not the last, the run stops there:
-    /// [`Stopped`] holds what [`Experiment::evolve_from`] needs to continue it.
+    /// [`Stopped`] holds what [`Experiment::evolve_from`] needs to continue it. A user-defined
+    /// term that returns a value outside [0, 1] ends it with [`EvolveError::Term`].
     pub fn evolve_from(
         &self,
         run: &Run,
@@ -138,10 +139,15 @@ impl Experiment {
         mut population: Population,
         mut history: Vec<GenerationRecord>,
         on_generation: &mut Observer<'_>,
-    ) -> Result<Evolution, Stopped> {
+    ) -> Result<Evolution, EvolveError> {
         let mut g = generation;
         loop {
             let evals = self.evaluate_population(&population, run, g);
+            self.check_terms(
+                evals
+                    .iter()
+                    .flat_map(|e| e.per_room.iter().map(|s| &s.terms)),
+            )?;
             history.push(self.generation_record(g, &evals));
             if g + 1 >= self.ga.generations() {
                 // The last generation: the evolution is complete whatever the observer says.
@@ -169,11 +175,11 @@ impl Experiment {
                 next: Some(&next[..]),
             });
             if flow.is_break() {
-                return Err(Stopped {
+                return Err(EvolveError::Stopped(Stopped {
                     generation: g + 1,
                     population: next,
                     history,
-                });
+                }));
             }
             population = next;
             g += 1;
@@ -216,6 +222,17 @@ pub struct GenerationRecord {
 /// An observer of an evolution, called after every generation: it returns
 /// [`ControlFlow::Break`] to stop the run there (stopping is data, not a panic).
 pub type Observer<'a> = dyn FnMut(&GenerationState<'_>) -> ControlFlow<()> + 'a;
+
+/// Why an evolution ended before its last generation.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EvolveError {
+    /// Its observer stopped it ([`ControlFlow::Break`]).
+    #[error("the evolution was stopped after generation {}", .0.generation)]
+    Stopped(Stopped),
+    /// A user-defined term returned a value outside [0, 1].
+    #[error(transparent)]
+    Term(#[from] TermError),
+}
 
 /// An evolution stopped by its observer: what [`Experiment::evolve_from`] continues it from.
 #[derive(Debug, Clone, PartialEq)]
@@ -359,6 +376,9 @@ mod tests {
                 }
             })
             .expect_err("stopped after generation 2");
+        let super::EvolveError::Stopped(stopped) = stopped else {
+            panic!("stopped by its observer: {stopped}")
+        };
         assert_eq!(stopped.generation, 2);
         assert_eq!(stopped.history, full.history[..2]);
         let resumed = exp

@@ -7,8 +7,9 @@ use std::ops::ControlFlow;
 
 use crate::experiment::Experiment;
 use crate::experiment::config::Training;
+use crate::experiment::evaluation::TermError;
 use crate::experiment::evolution::{
-    Evolution, GenerationRecord, GenerationState, Population, Stopped,
+    Evolution, EvolveError, GenerationRecord, GenerationState, Population, Stopped,
 };
 use crate::experiment::modelling::{AemReport, InstanceRun};
 use crate::modelling::som::SomError;
@@ -77,6 +78,9 @@ pub enum RunError {
     /// Environment modelling failed.
     #[error("environment modelling failed: {0}")]
     Modelling(#[from] SomError),
+    /// A user-defined term returned a value outside [0, 1] (a bug in the term).
+    #[error(transparent)]
+    Term(#[from] TermError),
 }
 
 impl Experiment {
@@ -118,8 +122,12 @@ impl Experiment {
                     history,
                 } => Ok(self.finished(run, population, history)),
             };
-            let evolution = evolution
-                .map_err(|stopped| RunError::Interrupted(Interrupted { run: k, stopped }))?;
+            let evolution = evolution.map_err(|e| match e {
+                EvolveError::Stopped(stopped) => {
+                    RunError::Interrupted(Interrupted { run: k, stopped })
+                }
+                EvolveError::Term(e) => RunError::Term(e),
+            })?;
             evolutions.push(evolution);
         }
         let modelling = self.model_rooms(&evolutions)?;
@@ -135,7 +143,9 @@ impl Experiment {
         let mut reports = Vec::with_capacity(evolutions.len());
         for evo in evolutions {
             let best = self.network(&evo.population[evo.best])?;
-            reports.push(self.environment_modelling(&best, &evo.run)?);
+            let report = self.environment_modelling(&best, &evo.run)?;
+            self.check_terms(report.rooms.iter().map(|r| &r.instance.terms))?;
+            reports.push(report);
         }
         Ok(reports)
     }

@@ -179,8 +179,9 @@ pub trait Term: Send + Sync + std::fmt::Debug {
     ///
     /// # Panics
     ///
-    /// A value outside [0, 1], or NaN, is a bug in the term: the evaluation panics naming the
-    /// term and the value (it is not clamped, which would hide the bug in F).
+    /// A value outside [0, 1], or NaN, is a bug in the term: it is not clamped (which would
+    /// hide the bug in F), and evolving returns an error naming the term and the value
+    /// ([`crate::experiment::TermError`], `RunError::Term`), never a panic.
     fn value(&self, trial: &TrialRecord<'_>) -> f64;
 }
 
