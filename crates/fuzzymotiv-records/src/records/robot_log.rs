@@ -131,32 +131,13 @@ pub struct RobotLog {
 }
 
 /// A log's steps as `recognise` uses them: the first actions (as many as a trial has steps)
-/// and how many steps of each action the whole log holds.
+/// and the number of steps of the whole log.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct LogActions {
     /// The first actions, at most the number asked for.
     pub first: Vec<Action>,
     /// The steps (rows with an action) of the whole log.
     pub steps: usize,
-    /// Steps per action over the whole log: straight, left, right, back.
-    pub counts: [usize; 4],
-}
-
-impl LogActions {
-    /// The steps of the whole log that were `action`.
-    pub fn count(&self, action: Action) -> usize {
-        self.counts[action_index(action)]
-    }
-}
-
-/// Where `action` is counted in [`LogActions::counts`].
-fn action_index(action: Action) -> usize {
-    match action {
-        Action::Straight => 0,
-        Action::Left30 => 1,
-        Action::Right30 => 2,
-        Action::Turn180 => 3,
-    }
 }
 
 /// Calls `f` with each row of `reader` and its line, one row in memory at a time; errors name
@@ -238,8 +219,8 @@ impl RobotLog {
         }
     }
 
-    /// The log's actions (see the module's docs): the first `keep` of them and each action's
-    /// count over the whole log; `tolerance` labels motor outputs.
+    /// The log's actions (see the module's docs): the first `keep` of them and the number of
+    /// steps of the whole log; `tolerance` labels motor outputs.
     pub fn actions(self, tolerance: f64, keep: usize) -> Result<LogActions, CliError> {
         let source = self.source()?;
         let RobotLog {
@@ -248,7 +229,6 @@ impl RobotLog {
         let mut got = LogActions {
             first: Vec::new(),
             steps: 0,
-            counts: [0; 4],
         };
         each_row(&mut reader, &name, |line, row| {
             if let Some(action) = action_in(&name, line, row, &source, tolerance)? {
@@ -256,7 +236,6 @@ impl RobotLog {
                     got.first.push(action);
                 }
                 got.steps += 1;
-                got.counts[action_index(action)] += 1;
             }
             Ok(())
         })?;
@@ -352,7 +331,7 @@ fn action_in(
     }
 }
 
-/// Reads a log's actions (see the module's docs): the first `keep` and each action's count;
+/// Reads a log's actions (see the module's docs): the first `keep` and the number of steps;
 /// `tolerance` labels motor outputs.
 pub fn read_robot_log(path: &Path, tolerance: f64, keep: usize) -> Result<LogActions, CliError> {
     RobotLog::read(path)?.actions(tolerance, keep)
