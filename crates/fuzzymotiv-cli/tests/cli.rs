@@ -219,9 +219,14 @@ fn bad_configs_exit_2_and_name_the_field() {
             e.contains(&format!("`{field}`")),
             "case {k}: message should name `{field}`: {e}"
         );
+        // A value given by --set is named as that --set (issue #52 item 7), others by the file.
+        let source = match extra {
+            ["--set", set] => format!("--set {set}"),
+            _ => format!("bad{k}.toml"),
+        };
         assert!(
-            e.contains(&format!("bad{k}.toml")),
-            "case {k}: message should name the file: {e}"
+            e.contains(&source),
+            "case {k}: message should name {source}: {e}"
         );
         assert!(!e.contains("panicked"), "case {k}: {e}");
         assert!(
@@ -307,8 +312,11 @@ fn a_bad_goal_in_a_room_file_exits_2_naming_the_file_and_field_and_writes_nothin
         &gap,
         &["robot.radius=60", "rooms=[\"r.toml\"]", "aem.enabled=false"],
     );
+    // The room list came from --set, so the message names that --set (issue #52 item 7).
     assert!(
-        e.contains("c.toml") && e.contains("`rooms[0]`") && e.contains("room \"r\", field `goal`"),
+        e.contains("--set rooms=")
+            && e.contains("`rooms[0]`")
+            && e.contains("room \"r\", field `goal`"),
         "{e}"
     );
     assert!(e.contains("cannot be reached from home"), "{e}");
