@@ -187,3 +187,26 @@ fn a_large_log_is_recognised_in_bounded_memory() {
         "{rows} rows: {md}"
     );
 }
+
+/// A room file or sensor table a config names is read with the same bounds: one over 16 MiB
+/// is refused naming it and what it is.
+#[test]
+fn an_oversized_room_file_or_sensor_table_named_by_a_config_is_refused_naming_it() {
+    let tmp = tempfile::tempdir().unwrap();
+    let big = tmp.path().join("big.toml");
+    std::fs::write(&big, "# a comment\n".repeat(1_500_000)).unwrap();
+    let out = tmp.path().join("out");
+    for (config, what) in [
+        ("rooms = [\"big.toml\"]\n", "room file"),
+        ("[trial]\nsensor_table = \"big.toml\"\n", "sensor table file"),
+    ] {
+        let cfg = tmp.path().join("c.toml");
+        std::fs::write(&cfg, config).unwrap();
+        refused(
+            &["run", s(&cfg), "--out", s(&out)],
+            s(&big),
+            &format!("is larger than the 16 MiB a {what} may be"),
+        );
+    }
+    assert!(!out.exists());
+}

@@ -17,6 +17,10 @@ pub const CONFIG: InputKind = InputKind::text("config file");
 /// A room file, read whole (at most [`crate::files::bounded::TEXT_LIMIT`] bytes).
 pub const ROOM_FILE: InputKind = InputKind::text("room file");
 
+/// A sensor table file (`trial.sensor_table`), read whole (at most
+/// [`crate::files::bounded::TEXT_LIMIT`] bytes).
+pub const SENSOR_TABLE: InputKind = InputKind::text("sensor table file");
+
 /// Reads and validates a room file.
 pub fn load_room_file(path: &Path) -> Result<Room, CliError> {
     let text = read_input(path, ROOM_FILE)?;
@@ -34,13 +38,14 @@ pub struct Loaded {
 /// Room files of a config: paths relative to the config file's folder, recorded absolute.
 struct RoomDir<'a>(&'a Path);
 
-impl RoomFiles for RoomDir<'_> {
-    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+impl RoomDir<'_> {
+    /// The file `entry` names (relative to the folder), read as a file of `kind`.
+    fn find_as(&self, entry: &str, kind: InputKind) -> Result<Option<RoomFile>, String> {
         let path = self.0.join(entry);
         if !path.is_file() {
             return Ok(None);
         }
-        let text = read_input(&path, ROOM_FILE).map_err(|e| e.to_string())?;
+        let text = read_input(&path, kind).map_err(|e| e.to_string())?;
         let source_name = path.display().to_string();
         let abs: PathBuf = path.canonicalize().unwrap_or(path);
         Ok(Some(RoomFile {
@@ -48,6 +53,16 @@ impl RoomFiles for RoomDir<'_> {
             source_name,
             entry: abs.display().to_string(),
         }))
+    }
+}
+
+impl RoomFiles for RoomDir<'_> {
+    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        self.find_as(entry, ROOM_FILE)
+    }
+
+    fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        self.find_as(entry, SENSOR_TABLE)
     }
 
     fn looked_for(&self, entry: &str) -> String {
