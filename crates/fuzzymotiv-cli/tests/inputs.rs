@@ -198,7 +198,10 @@ fn an_oversized_room_file_or_sensor_table_named_by_a_config_is_refused_naming_it
     let out = tmp.path().join("out");
     for (config, what) in [
         ("rooms = [\"big.toml\"]\n", "room file"),
-        ("[trial]\nsensor_table = \"big.toml\"\n", "sensor table file"),
+        (
+            "[trial]\nsensor_table = \"big.toml\"\n",
+            "sensor table file",
+        ),
     ] {
         let cfg = tmp.path().join("c.toml");
         std::fs::write(&cfg, config).unwrap();
