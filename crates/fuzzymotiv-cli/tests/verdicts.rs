@@ -245,7 +245,7 @@ fn claims_recomputes_a_committed_study_to_its_committed_verdicts() {
     for study in PAPER_STUDIES {
         let tmp = tempfile::tempdir().unwrap();
         let out = tmp.path().join("claims");
-        Fm::new(&["claims"])
+        Fm::new(["claims"])
             .arg(results().join(study))
             .arg("--out")
             .arg(&out)
