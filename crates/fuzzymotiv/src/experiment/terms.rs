@@ -149,7 +149,7 @@ fn unknown_term(motivation: &str, term: &str, user: &[UserTerm]) -> FieldError {
     let spelled = |n: &&str| *n != term && n.eq_ignore_ascii_case(term);
     let like = (PAPER_MOTIVATIONS.iter().copied())
         .chain(known.iter().copied())
-        .find(|n| spelled(&n));
+        .find(spelled);
     if let Some(like) = like {
         reason = format!("{reason}. Names are case-sensitive: did you mean `{like}`?");
     }
