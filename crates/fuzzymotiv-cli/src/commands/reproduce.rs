@@ -36,7 +36,7 @@ use fuzzymotiv_io::render::report::{Section, reproduce_page, study_page};
 use fuzzymotiv_io::render::strength::{SEARCH_STRENGTH, strength_svg, strength_table};
 use fuzzymotiv_io::render::study::{
     ABLATION, CLAIMS_ALPHA, DEFAULT_MODEL, FIRST_RELEASE_ROOMS, SETTINGS, Setting, SettingRuns,
-    Variant, overall, claims as paper_claims, seed_dir, seed_index,
+    Variant, claims as paper_claims, overall, seed_dir, seed_index,
 };
 use fuzzymotiv_io::render::svg::{FitnessPanel, best_paths_svg, fitness_panels_svg};
 use fuzzymotiv_io::render::tables::{
