@@ -272,7 +272,7 @@ fn not_readable(meta: &std::fs::Metadata) -> Option<&'static str> {
     if t.is_file() {
         None
     } else {
-        Some(crate::files::guard::what_it_is(meta))
+        Some(what_it_is(meta))
     }
 }
 
@@ -287,6 +287,36 @@ pub fn read_input(path: &Path, kind: InputKind) -> Result<String, CliError> {
         })
     })?;
     Ok(text)
+}
+
+/// What a file-system entry is, for messages: "a regular file", "a directory", "a symbolic
+/// link", "a FIFO (named pipe)", "a socket", "a device"; "not a regular file or directory"
+/// when it is none of these.
+pub fn what_it_is(meta: &std::fs::Metadata) -> &'static str {
+    let t = meta.file_type();
+    if t.is_symlink() {
+        return "a symbolic link";
+    }
+    if t.is_dir() {
+        return "a directory";
+    }
+    if t.is_file() {
+        return "a regular file";
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+        if t.is_block_device() || t.is_char_device() {
+            return "a device";
+        }
+    }
+    "not a regular file or directory"
 }
 
 #[cfg(test)]

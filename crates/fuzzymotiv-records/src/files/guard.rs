@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::files::bounded::{InputKind, read_input};
+use crate::files::bounded::{InputKind, read_input, what_it_is};
 use crate::files::error::CliError;
 pub use crate::files::refusal::{CLI, OutputError, PYTHON, Spelling};
 use crate::note;
@@ -415,36 +415,6 @@ pub fn refuse_non_directory(dir: &Path) -> Result<(), CliError> {
         .into()),
         _ => Ok(()),
     }
-}
-
-/// What a file-system entry is, for messages: "a regular file", "a directory", "a symbolic
-/// link", "a FIFO (named pipe)", "a socket", "a device"; "not a regular file or directory"
-/// when it is none of these.
-pub fn what_it_is(meta: &std::fs::Metadata) -> &'static str {
-    let t = meta.file_type();
-    if t.is_symlink() {
-        return "a symbolic link";
-    }
-    if t.is_dir() {
-        return "a directory";
-    }
-    if t.is_file() {
-        return "a regular file";
-    }
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if t.is_fifo() {
-            return "a FIFO (named pipe)";
-        }
-        if t.is_socket() {
-            return "a socket";
-        }
-        if t.is_block_device() || t.is_char_device() {
-            return "a device";
-        }
-    }
-    "not a regular file or directory"
 }
 
 /// `--out NAME.partial`: refused, since `NAME.partial` is where the output `--out NAME` is

@@ -50,7 +50,7 @@ pub enum OutputError {
     NotADirectory {
         /// The output directory.
         dir: PathBuf,
-        /// What it is instead ([`what_it_is`](crate::files::guard::what_it_is)).
+        /// What it is instead ([`what_it_is`](crate::files::bounded::what_it_is)).
         what: &'static str,
     },
     /// A directory that is not a fuzzymotiv output: never replaced.
@@ -113,7 +113,7 @@ pub enum OutputError {
         option: String,
         /// The file.
         path: PathBuf,
-        /// What it is ([`what_it_is`](crate::files::guard::what_it_is)).
+        /// What it is ([`what_it_is`](crate::files::bounded::what_it_is)).
         what: &'static str,
     },
     /// `-` (standard output, one file) named as the directory of an output of several files.
