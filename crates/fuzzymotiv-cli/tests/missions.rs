@@ -249,6 +249,42 @@ fn the_report_shows_every_motivation_and_a_motivations_own_labels() {
     ));
 }
 
+/// `report.html` of a run of two motivations, curiosity and urgency, counts two inputs in its
+/// rule text (5 × 5 rules, the smallest of two labels, at most 2² firing) and its membership
+/// figure names their terms a and urgency, not the paper's four.
+#[test]
+fn report_of_a_two_motivation_run_counts_two_inputs_and_names_their_terms() {
+    let dir = tempfile::tempdir().unwrap();
+    let rooms = repo().join("rooms");
+    let config = format!(
+        "rooms = [\"{}\", \"{}\"]\n[aem]\nenabled = false\n[ga]\npopulation = 6\ngenerations = 2\n\
+         [trial]\nsteps = 60\n[motivations]\ncuriosity = 0.7\nurgency = 0.3\n",
+        rooms.join("fetch-H.toml").display(),
+        rooms.join("fetch-T.toml").display(),
+    );
+    let file = dir.path().join("two.toml");
+    std::fs::write(&file, config).unwrap();
+    let out = dir.path().join("run");
+    ok(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let page = read(&out.join("report.html"));
+    for text in [
+        "M₁ × … × M_N = 5 × 5 = 25 rules",
+        "the smallest membership of its 2 labels",
+        "at most 2^2 = 4 rules fire at once",
+        "fitness value y (a or urgency)",
+    ] {
+        assert!(page.contains(text), "the report lacks {text:?}");
+    }
+    for text in ["× 5 × 5 × 5", "of its 4 labels", "2^4", "a, g, l or b"] {
+        assert!(!page.contains(text), "the report still says {text:?}");
+    }
+}
+
 /// `fuzzymotiv run c.toml` with `[motivations]` `table` (and the built-in rooms) is refused:
 /// exit 2, nothing written, no panic; its stderr.
 fn run_refused_with_motivations(dir: &Path, table: &str) -> String {

@@ -588,10 +588,20 @@ fn unweighted_terms(ctx: &RenderContext) -> Vec<&str> {
 
 /// `a`, `a and b`, `a, b and c`.
 fn and_list(items: &[&str]) -> String {
+    joined_list(items, "and")
+}
+
+/// `a`, `a or b`, `a, b or c`.
+fn or_list(items: &[&str]) -> String {
+    joined_list(items, "or")
+}
+
+/// The items joined by commas, the last by `word`.
+fn joined_list(items: &[&str], word: &str) -> String {
     match items {
         [] => String::new(),
         [one] => one.to_string(),
-        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+        [rest @ .., last] => format!("{} {word} {last}", rest.join(", ")),
     }
 }
 

@@ -866,12 +866,16 @@ pub fn terms_svg_of(panels: &[(String, Vec<GenerationRecord>)], curves: &[TermCu
     s
 }
 
-/// The triangular membership functions μ(y) of the fuzzy labels (V.L. … V.H. by default).
+/// The title of the shared labels' membership figure.
+pub const MEMBERSHIP_TITLE: &str = "Membership of a fitness value y in each label";
+
+/// The triangular membership functions μ(y) of the fuzzy labels (V.L. … V.H. by default), for
+/// the paper's four terms (the report names the run's own terms through [`membership_svg_of`]).
 pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
     membership_svg_of(
         peaks,
         names,
-        "Membership of a fitness value y in each label",
+        MEMBERSHIP_TITLE,
         "fitness value y (a, g, l or b)",
     )
 }

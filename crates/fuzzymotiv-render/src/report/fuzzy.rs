@@ -9,9 +9,9 @@ use fuzzymotiv::experiment::Combination;
 use fuzzymotiv_records::records::RoomFuzzy;
 use fuzzymotiv_records::records::context::{OwnLabels, RenderContext};
 
-use super::{Page, Section, figure, xs};
+use super::{Page, Section, figure, or_list, xs};
 use crate::plot::{colour, esc};
-use crate::svg::{membership_svg, membership_svg_of};
+use crate::svg::{MEMBERSHIP_TITLE, membership_svg_of};
 use crate::terms::{html, mission_term_definition, terms};
 
 /// The paper's motivations: name, symbol and bar colour.
@@ -21,6 +21,9 @@ const PAPER_BARS: [(&str, &str, &str); 4] = [
     ("orientation", "O", "#8c564b"),
     ("energy", "E", "#ff7f0e"),
 ];
+
+/// The terms the paper's four motivations weigh, in the order of [`PAPER_BARS`].
+const PAPER_TERMS: [&str; 4] = ["a", "g", "l", "b"];
 
 /// The palette colours the paper's bars leave free, for the other motivations.
 const OTHER_COLOURS: [usize; 6] = [0, 3, 6, 8, 9, 7];
@@ -105,7 +108,12 @@ fn fuzzy_intro(page: &mut Page, ctx: &RenderContext) {
     let fuzzy = &ctx.fuzzy;
     figure(
         page,
-        &membership_svg(&fuzzy.peaks, &fuzzy.label_names),
+        &membership_svg_of(
+            &fuzzy.peaks,
+            &fuzzy.label_names,
+            MEMBERSHIP_TITLE,
+            &format!("fitness value y ({})", or_list(&shared_terms(ctx))),
+        ),
         "Triangular membership functions: each value belongs to at most two neighbouring labels, and its memberships add up to 1.",
     );
     for own in &fuzzy.own_labels {
@@ -174,9 +182,38 @@ fn baseline_text(page: &mut Page, ctx: &RenderContext) {
     );
 }
 
-/// The number of motivations (inputs) of the run.
+/// The number of motivations (inputs) of the run: its table's, or the paper's four.
 fn input_count(ctx: &RenderContext) -> usize {
-    ctx.motivations.table.len().max(4)
+    match ctx.motivations.table.len() {
+        0 => PAPER_BARS.len(),
+        n => n,
+    }
+}
+
+/// The terms of the inputs on the shared labels, in input order (all of them if every
+/// motivation has labels of its own): the paper's a, g, l and b, or the run's own.
+fn shared_terms(ctx: &RenderContext) -> Vec<&str> {
+    let inputs: Vec<(&str, &str)> = if ctx.motivations.table.is_empty() {
+        PAPER_BARS
+            .iter()
+            .map(|(name, ..)| *name)
+            .zip(PAPER_TERMS)
+            .collect()
+    } else {
+        (ctx.motivations.table.iter())
+            .map(|e| (e.name.as_str(), e.term.as_str()))
+            .collect()
+    };
+    let own = |name: &str| ctx.fuzzy.own_labels.iter().any(|o| o.motivation == name);
+    let shared: Vec<&str> = (inputs.iter())
+        .filter(|(name, _)| !own(name))
+        .map(|(_, term)| *term)
+        .collect();
+    if shared.is_empty() {
+        inputs.iter().map(|(_, term)| *term).collect()
+    } else {
+        shared
+    }
 }
 
 /// The own labels of input `i`, if its motivation has some.
