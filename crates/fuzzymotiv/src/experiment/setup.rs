@@ -197,18 +197,27 @@ pub fn parse_room_file(text: &str, source_name: &str) -> Result<Room, SetupError
 /// defaults), said once so that an older config's different meaning is not silent.
 fn left_out_note(source_name: &str, m: &RawMotivations) -> Option<String> {
     let left = m.paper_left_out();
-    let (last, first) = left.split_last()?;
-    let names = match first {
-        [] => format!("`{last}`"),
-        _ => format!("`{}` and `{last}`", first.join("`, `")),
-    };
+    if left.is_empty() {
+        return None;
+    }
+    let each = |f: fn(&str) -> String| and_joined(&left.iter().map(|n| f(n)).collect::<Vec<_>>());
+    let names = each(|n| format!("`{n}`"));
+    let zeros = each(|n| format!("`{n} = 0.0`"));
     let inputs: Vec<&str> = m.list.iter().map(|(n, _)| n.as_str()).collect();
     Some(format!(
         "{source_name}: [motivations] leaves out {names} of the paper's four, so the motivations \
-         are {} alone: a table defines the whole set (write e.g. `{last} = 0.0` to keep the \
-         paper's four)",
+         are {} alone: a table defines the whole set (write {zeros} to keep the paper's four)",
         inputs.join(", ")
     ))
+}
+
+/// `a`, `a and b`, `a, b and c`.
+fn and_joined(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
 }
 
 fn normalised_note(source_name: &str, sum: f64, m: &RawMotivations) -> String {
@@ -290,6 +299,36 @@ mod tests {
             e.to_string()
                 .starts_with("mine.toml: not valid TOML (line 1"),
             "{e}"
+        );
+    }
+
+    /// A table that leaves out three of the paper's four says to write all three at 0, not
+    /// one of them.
+    #[test]
+    fn the_left_out_note_names_every_paper_motivation_left_out() {
+        let c = RawConfig::parse(
+            "[motivations]\ncuriosity = 0.7\nurgency = 0.3\n",
+            "two.toml",
+            &[],
+        )
+        .unwrap();
+        let note = left_out_note("two.toml", &c.motivations).unwrap();
+        assert!(
+            note.contains(
+                "(write `homing = 0.0`, `orientation = 0.0` and `energy = 0.0` to keep the paper's four)"
+            ),
+            "{note}"
+        );
+        let c = RawConfig::parse(
+            "[motivations]\ncuriosity = 0.8\nhoming = 0.1\norientation = 0.1\n",
+            "three.toml",
+            &[],
+        )
+        .unwrap();
+        let note = left_out_note("three.toml", &c.motivations).unwrap();
+        assert!(
+            note.contains("(write `energy = 0.0` to keep the paper's four)"),
+            "{note}"
         );
     }
 
