@@ -131,6 +131,41 @@ fn config_and_room_messages_name_the_whole_field_path() {
     }
 }
 
+/// A weight out of [0, 1] or NaN is blamed on `motivations.x.weight` when written in a table
+/// (`[motivations.x] weight = -1`, `x = { weight = -1 }`) and on `motivations.x` when written
+/// as `x = -1`.
+#[test]
+fn a_bad_motivation_weight_names_the_weight_key_of_a_table() {
+    let dir = tempfile::tempdir().unwrap();
+    for value in ["-1", "nan"] {
+        for (text, field) in [
+            (
+                format!("[motivations.x]\nweight = {value}\n"),
+                "motivations.x.weight",
+            ),
+            (
+                format!("[motivations]\nx = {{ weight = {value} }}\n"),
+                "motivations.x.weight",
+            ),
+            (format!("[motivations]\nx = {value}\n"), "motivations.x"),
+        ] {
+            let cfg = dir.path().join("c.toml");
+            std::fs::write(&cfg, &text).unwrap();
+            let o = Fm::new(["run".as_ref(), cfg.as_os_str()])
+                .out(&dir.path().join("out"))
+                .run();
+            let msg = stderr(&o);
+            assert_eq!(o.status.code(), Some(2), "{text}: {msg}");
+            assert!(
+                msg.contains(&format!(
+                    "c.toml: field `{field}`: x must be a number in [0, 1]"
+                )),
+                "{text}: {msg}"
+            );
+        }
+    }
+}
+
 /// Every command that takes `--threads` refuses a number outside 1..=256 (and a negative one,
 /// which clap would otherwise take for an option) with status 2 and a message naming
 /// `--threads`, the range and the value, before starting anything.

@@ -488,12 +488,24 @@ impl RawMotivations {
         }
         Motivations::from_list(list).map_err(|e| {
             let field = match &e {
-                FuzzyError::MotivationOutOfRange { name, .. }
-                | FuzzyError::DuplicateMotivation { name } => format!("motivations.{name}"),
+                FuzzyError::MotivationOutOfRange { name, .. } => self.weight_field(name),
+                FuzzyError::DuplicateMotivation { name } => format!("motivations.{name}"),
                 _ => "motivations".to_string(),
             };
             FieldError::new(field, e.to_string())
         })
+    }
+
+    /// Where `name`'s weight is written: `motivations.NAME` for `NAME = 0.2`,
+    /// `motivations.NAME.weight` for a table.
+    fn weight_field(&self, name: &str) -> String {
+        let table =
+            (self.list.iter()).any(|(n, m)| n == name && matches!(m, RawMotivation::Table(_)));
+        if table {
+            format!("motivations.{name}.weight")
+        } else {
+            format!("motivations.{name}")
+        }
     }
 }
 
