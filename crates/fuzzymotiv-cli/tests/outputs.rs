@@ -106,7 +106,7 @@ fn help_and_version_on_a_full_stdout_are_a_one_line_error() {
 }
 
 /// `recognise`, `robustness`, `compare` and `export --to c` write a few files into `--out DIR`
-/// through the same guard as `run`: the current directory, a device, a regular file and `-`
+/// (and `claims`' claims.md and claims.csv) through the same guard as `run`: the current directory, a device, a regular file and `-`
 /// (standard output takes one file) are refused with status 2 before any work, naming `--out`
 /// and what it is; nothing is written. The one-file outputs (`calibrate`'s table,
 /// `export --to json`) refuse a device and keep another file, as `replay` does.
@@ -122,11 +122,13 @@ fn out_of_the_commands_writing_into_a_directory_or_a_file_is_guarded_like_the_ot
     let work = tmp.path().join("work");
     std::fs::create_dir(&work).unwrap();
     let (r, m) = (run.to_str().unwrap(), mine.to_str().unwrap());
+    let study = repo().join("docs/results/twenty-seed");
     let into_directory = [
         vec!["recognise", r, log.to_str().unwrap()],
         vec!["robustness", r, "--trials", "2"],
         vec!["compare", r, r],
         vec!["export", r, "--to", "c"],
+        vec!["claims", study.to_str().unwrap()],
     ];
     for args in &into_directory {
         for (out, what) in [
@@ -164,6 +166,27 @@ fn out_of_the_commands_writing_into_a_directory_or_a_file_is_guarded_like_the_ot
     }
     assert_eq!(std::fs::read_to_string(&mine).unwrap(), "mine");
     assert!(std::fs::read_dir(&work).unwrap().next().is_none());
+}
+
+/// `claims --out DIR` a second time finds claims.md and claims.csv already holding these
+/// claims: it says so (naming both files) and writes nothing, as the other commands do.
+#[test]
+fn claims_again_into_the_same_out_says_the_files_are_already_there_and_unchanged() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("claims");
+    let study = repo().join("docs/results/twenty-seed");
+    let first = Fm::new(["claims"]).arg(&study).out(&out).ok();
+    assert!(stderr(&first).contains("wrote "), "{}", stderr(&first));
+    let written = std::fs::read(out.join("claims.md")).unwrap();
+    let again = Fm::new(["claims"]).arg(&study).out(&out).ok();
+    let said = stderr(&again);
+    assert!(
+        said.contains("claims.md and ")
+            && said.contains("claims.csv already hold these claims; nothing to do"),
+        "{said}"
+    );
+    assert!(!said.contains("wrote "), "{said}");
+    assert_eq!(std::fs::read(out.join("claims.md")).unwrap(), written);
 }
 
 /// `--out -` of an output that is one file (`calibrate`'s sensor table, `export --to json`)

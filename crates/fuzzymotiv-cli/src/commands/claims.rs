@@ -4,9 +4,7 @@
 use std::path::PathBuf;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{
-    FilesState, check_files, io_err, refuse_staging_name, write_files,
-};
+use fuzzymotiv_io::files::guard::{FilesState, check_files_dir, write_into};
 use fuzzymotiv_io::note;
 use fuzzymotiv_io::records::{StudySummary, read_json};
 use fuzzymotiv_io::render::study::{CLAIMS_ALPHA, claims, claims_stem};
@@ -42,7 +40,7 @@ pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
         )));
     }
     if let Some(out) = &args.out {
-        refuse_staging_name(out)?;
+        check_files_dir(out, "--out", &["claims.md", "claims.csv"])?;
     }
     let summary: StudySummary = read_json(&args.dir.join("summary.json"))?;
     if summary.settings.len() != 2 {
@@ -65,14 +63,11 @@ pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
     let (dir, files) = claims_files(&args, md.clone(), csv);
     // Messages name --out only when the user gave it.
     let option = if args.out.is_some() { "--out" } else { "" };
-    if check_files(&files, option, args.force)? == FilesState::Write {
-        std::fs::create_dir_all(&dir).map_err(|e| io_err(&dir, e))?;
-        write_files(&files)?;
-        note!(
-            "wrote {} and {}",
-            files[0].0.display(),
-            files[1].0.display()
-        );
+    let (md_path, csv_path) = (files[0].0.display(), files[1].0.display());
+    if write_into(&dir, &files, option, args.force)? == FilesState::Write {
+        note!("wrote {md_path} and {csv_path}");
+    } else {
+        note!("{md_path} and {csv_path} already hold these claims; nothing to do");
     }
     fuzzymotiv_io::out!("{md}")?;
     Ok(())
