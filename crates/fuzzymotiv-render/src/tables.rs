@@ -5,11 +5,12 @@
 use std::fmt::Write as _;
 
 use fuzzymotiv::experiment::Training;
+use fuzzymotiv::statistics::{EXACT_LIMIT, PERMUTATION_RESAMPLES};
 
 use crate::plot::esc;
 use crate::study::{SettingRuns, Variant, metrics, paper_row, room_stats, seed_index};
 use fuzzymotiv_records::records::context::RenderContext;
-use fuzzymotiv_records::records::{ClaimRecord, RoomRow};
+use fuzzymotiv_records::records::{ClaimRecord, ClaimStats, RoomRow};
 
 /// The per-room table as Markdown: the paper's columns, then, for an experiment that measures
 /// more terms, "% missions done" (the share of test runs whose mission was done) and one
@@ -220,14 +221,6 @@ fn claims_method(claims: &[ClaimRecord]) -> String {
     let Some(s) = claims.iter().find_map(|c| c.stats.as_ref()) else {
         return "The paper's claims, on means over rooms and seeds.".into();
     };
-    let reach = if s.min_p < s.alpha {
-        format!("below α = {}", s.alpha)
-    } else {
-        format!(
-            "not below α = {}, so no claim can be shown with {} seeds, whatever its size",
-            s.alpha, s.seeds
-        )
-    };
     format!(
         "The paper's claims. High against low curiosity: per seed, each setting's mean over \
          rooms; the settings share each seed's random streams, so the design is paired. The \
@@ -240,12 +233,43 @@ fn claims_method(claims: &[ClaimRecord]) -> String {
          study is at the edge of its power, and a study of as many seeds at another base seed \
          may well give the other verdict (EXPERIMENTS.md: verdicts that replicate). The last \
          two rows check Fig. 6's curves on means over seeds.\n\n\
-         Note: with {n} paired seeds the smallest two-sided p is 2/2^{n} = {min_p} (1/16 \
-         for five seeds), {reach}.",
+         Note: {note}",
         alpha = s.alpha,
-        n = s.seeds,
-        min_p = p_text(s.min_p),
+        note = min_p_note(s),
     )
+}
+
+/// The note on the smallest p-value the claims' seeds can give, as the sign-flip test finds it
+/// ([`fuzzymotiv::statistics::sign_flip_p`]): up to 2^n = [`EXACT_LIMIT`] sign patterns all are
+/// enumerated (smallest p 2/2^n); beyond, p is estimated from [`PERMUTATION_RESAMPLES`]
+/// random patterns with the observed one counted once more, so the smallest is 2/(K + 1),
+/// above the exact 2/2^n.
+fn min_p_note(s: &ClaimStats) -> String {
+    let n = s.seeds;
+    let reach = if s.min_p < s.alpha {
+        format!("below α = {}", s.alpha)
+    } else {
+        format!(
+            "not below α = {}, so no claim can be shown with {n} seeds, whatever its size",
+            s.alpha
+        )
+    };
+    let min_p = p_text(s.min_p);
+    if n < 64 && 1u64 << n <= EXACT_LIMIT {
+        format!(
+            "with {n} paired seeds p enumerates all 2^{n} sign patterns: the smallest two-sided \
+             p is 2/2^{n} = {min_p} (1/16 for five seeds), {reach}."
+        )
+    } else {
+        format!(
+            "with {n} paired seeds (more than {limit}) p is estimated from {k} random sign \
+             patterns, the observed one counted once more: the smallest it can give is \
+             2/({k} + 1) = {min_p} (the exact floor 2/2^{n} would be {exact}), {reach}.",
+            limit = EXACT_LIMIT.trailing_zeros(),
+            k = PERMUTATION_RESAMPLES,
+            exact = p_text(2.0 / 2f64.powi(n as i32)),
+        )
+    }
 }
 
 /// A p-value as the tables show it: four decimals (`0.0312`), or, below 0.0001, two
@@ -570,42 +594,77 @@ pub fn spread_html(study: &SettingRuns<'_>) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fuzzymotiv_records::records::ClaimStats;
 
-    /// Issue #52 item 7: with twenty paired seeds the smallest p, 2/2^20, is printed as 1.9e-6
-    /// in claims.md's note and in its p column, not as 0.0000; a larger p keeps four decimals.
-    #[test]
-    fn the_smallest_p_of_twenty_seeds_is_printed_readably() {
-        let min_p = 2.0 / 2f64.powi(20);
-        assert_eq!(p_text(min_p), "1.9e-6");
-        assert_eq!(p_text(0.5), "0.5000");
-        assert_eq!(p_text(0.0), "0.0000");
-        let claim = ClaimRecord {
+    /// A claim over `seeds` paired seeds with p-value `p` and smallest attainable p `min_p`.
+    fn claim_over(seeds: usize, p: f64, min_p: f64) -> ClaimRecord {
+        ClaimRecord {
             claim: "high curiosity explores more than low curiosity".into(),
             curves: Vec::new(),
             evidence: "high 91.2 % vs low 89.5 %".into(),
             holds: true,
             stats: Some(ClaimStats {
-                seeds: 20,
+                seeds,
                 difference: 1.7,
                 ci_low: 1.0,
                 ci_high: 2.4,
-                p: min_p,
+                p,
                 min_p,
                 alpha: 0.05,
                 verdict: "holds".into(),
                 mdd: Some(0.8),
                 rooms: Vec::new(),
             }),
-        };
-        let prov = Provenance {
-            seeds: (1..=20).collect(),
+        }
+    }
+
+    fn provenance_of(seeds: u64) -> Provenance {
+        Provenance {
+            seeds: (1..=seeds).collect(),
             population: 200,
             generations: 200,
             quick: false,
-        };
-        let (md, _) = claims_table(&[claim], &prov);
-        assert!(md.contains("2/2^20 = 1.9e-6 (1/16"), "{md}");
+        }
+    }
+
+    /// Issue #52 item 7: a p below 0.0001 is printed in claims.md's p column as 1.9e-6, not as
+    /// 0.0000; a larger p keeps four decimals.
+    #[test]
+    fn the_smallest_p_of_twenty_seeds_is_printed_readably() {
+        let p = 2.0 / 2f64.powi(20);
+        assert_eq!(p_text(p), "1.9e-6");
+        assert_eq!(p_text(0.5), "0.5000");
+        assert_eq!(p_text(0.0), "0.0000");
+        let resampled = 2.0 / (PERMUTATION_RESAMPLES + 1) as f64;
+        let (md, _) = claims_table(&[claim_over(20, p, resampled)], &provenance_of(20));
         assert!(md.contains("| 1.9e-6 |") && !md.contains("0.0000"), "{md}");
+    }
+
+    /// Issue #52: the note on the smallest p says how p was found. Up to 16 seeds every sign
+    /// pattern is enumerated (2/2^n); beyond, p is estimated from PERMUTATION_RESAMPLES random
+    /// patterns, whose floor 2/(K + 1) = 2.0e-5 is said, and 2/2^20 only as the exact floor.
+    #[test]
+    fn the_note_on_the_smallest_p_says_whether_p_is_exact_or_resampled() {
+        let (five, _) = claims_table(&[claim_over(5, 0.0625, 0.0625)], &provenance_of(5));
+        assert!(
+            five.contains(
+                "with 5 paired seeds p enumerates all 2^5 sign patterns: the smallest two-sided p \
+                 is 2/2^5 = 0.0625 (1/16 for five seeds), not below α = 0.05"
+            ),
+            "{five}"
+        );
+        let resampled = 2.0 / (PERMUTATION_RESAMPLES + 1) as f64;
+        let (twenty, _) = claims_table(&[claim_over(20, resampled, resampled)], &provenance_of(20));
+        assert!(
+            twenty.contains(
+                "with 20 paired seeds (more than 16) p is estimated from 99999 random sign \
+                 patterns, the observed one counted once more: the smallest it can give is \
+                 2/(99999 + 1) = 2.0e-5 (the exact floor 2/2^20 would be 1.9e-6), below α = 0.05."
+            ),
+            "{twenty}"
+        );
+        assert!(
+            !twenty.contains("smallest two-sided p is 2/2^20"),
+            "{twenty}"
+        );
     }
 }

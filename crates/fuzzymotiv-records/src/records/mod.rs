@@ -984,7 +984,8 @@ pub struct ClaimStats {
     pub ci_high: f64,
     /// Two-sided sign-flip permutation p-value.
     pub p: f64,
-    /// The smallest p-value this many seeds can give (2 / 2^seeds).
+    /// The smallest p-value the test can give with these seeds: 2 / 2^seeds up to 16 seeds
+    /// (every sign pattern), else 2 / (resamples + 1) (random sign patterns).
     pub min_p: f64,
     /// The significance level of the verdict.
     pub alpha: f64,
