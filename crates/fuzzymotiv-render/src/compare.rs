@@ -11,6 +11,7 @@ use std::fmt::Write as _;
 use fuzzymotiv::statistics::{self, Comparison, Settings, StatsError};
 
 use crate::plot::{esc, open};
+use crate::tables::p_text;
 use fuzzymotiv_records::records::METRICS;
 use fuzzymotiv_records::records::compare::{CompareRow, OVERALL};
 pub use fuzzymotiv_records::records::test_runs::{MISSION_DONE, term_metric};
@@ -200,7 +201,8 @@ pub fn blocks(rows: &[CompareRow]) -> Vec<&[CompareRow]> {
 }
 
 /// `compare.md`: `head` (what was compared, the design, the method), then one table per
-/// setting and metric: means, A − B with its interval, p, Holm p and MDD; `*` marks p < α.
+/// setting and metric: means, A − B with its interval, p, Holm p ([`p_text`]: never `0.0000`)
+/// and MDD; `*` marks p < α.
 pub fn compare_md(head: &str, rows: &[CompareRow], alpha: f64) -> String {
     let mut md = format!("{head}\n");
     for block in blocks(rows) {
@@ -214,7 +216,7 @@ pub fn compare_md(head: &str, rows: &[CompareRow], alpha: f64) -> String {
             let star = if r.p_holm < alpha { " *" } else { "" };
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {:.d$} | {:.d$} | {:+.d$} [{:+.d$}, {:+.d$}] | {:.4} | {:.4}{star} | {} |",
+                "| {} | {} | {} | {:.d$} | {:.d$} | {:+.d$} [{:+.d$}, {:+.d$}] | {} | {}{star} | {} |",
                 r.room,
                 r.n_a,
                 r.n_b,
@@ -223,8 +225,8 @@ pub fn compare_md(head: &str, rows: &[CompareRow], alpha: f64) -> String {
                 r.difference,
                 r.ci_low,
                 r.ci_high,
-                r.p,
-                r.p_holm,
+                p_text(r.p),
+                p_text(r.p_holm),
                 r.mdd.map_or("—".into(), |m| format!("{m:.d$}"))
             );
         }
@@ -359,7 +361,7 @@ fn panel(svg: &mut String, block: &[CompareRow], (x0, y0): (f64, f64), labels: b
         }
         let _ = writeln!(
             svg,
-            "<line x1=\"{:.1}\" x2=\"{:.1}\" y1=\"{y:.1}\" y2=\"{y:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n<circle cx=\"{:.1}\" cy=\"{y:.1}\" r=\"3.5\" fill=\"{colour}\"><title>{}: {:+.d$} [{:+.d$}, {:+.d$}], p = {:.4}</title></circle>",
+            "<line x1=\"{:.1}\" x2=\"{:.1}\" y1=\"{y:.1}\" y2=\"{y:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n<circle cx=\"{:.1}\" cy=\"{y:.1}\" r=\"3.5\" fill=\"{colour}\"><title>{}: {:+.d$} [{:+.d$}, {:+.d$}], p = {}</title></circle>",
             x(r.ci_low),
             x(r.ci_high),
             x(r.difference),
@@ -367,7 +369,7 @@ fn panel(svg: &mut String, block: &[CompareRow], (x0, y0): (f64, f64), labels: b
             r.difference,
             r.ci_low,
             r.ci_high,
-            r.p
+            p_text(r.p)
         );
     }
     let _ = writeln!(
@@ -378,4 +380,37 @@ fn panel(svg: &mut String, block: &[CompareRow], (x0, y0): (f64, f64), labels: b
         bottom + 13.0,
         reach
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue #52: a p below 0.0001 (and its Holm p) is printed in compare.md as claims.md
+    /// prints it ([`p_text`]: `1.0e-5`), never as `0.0000`; so is the figure's tooltip.
+    #[test]
+    fn a_small_p_in_compare_md_is_printed_readably_not_as_zero() {
+        let row = CompareRow {
+            setting: "high vs low".into(),
+            metric: "exploration_pct".into(),
+            room: OVERALL.into(),
+            design: "paired".into(),
+            n_a: 20,
+            n_b: 20,
+            mean_a: 91.2,
+            mean_b: 89.5,
+            difference: 1.7,
+            ci_low: 1.0,
+            ci_high: 2.4,
+            p: 1e-5,
+            exact: false,
+            p_holm: 1e-5,
+            mdd: Some(0.8),
+        };
+        let md = compare_md("# Compare", std::slice::from_ref(&row), 0.05);
+        assert!(md.contains("| 1.0e-5 | 1.0e-5 * |"), "{md}");
+        assert!(!md.contains("0.0000"), "{md}");
+        let svg = compare_svg("Compare", &[row], 0.05);
+        assert!(svg.contains("p = 1.0e-5</title>"), "{svg}");
+    }
 }
