@@ -138,8 +138,9 @@ impl OutputError {
         let (out, force) = (s.out, s.force);
         match self {
             Self::CurrentDir { dir } => format!(
-                "{out} {}: is the current directory (or holds it); an output directory is written \
-                 beside and then renamed into place, so give a new directory, e.g. {out} results",
+                "{out} {}: is the current directory (or holds it); every output goes into a \
+                 directory of its own, which a run or study writes beside and then renames into \
+                 place, so give a new directory, e.g. {out} results",
                 dir.display()
             ),
             Self::StagingName { dir } => format!(
