@@ -6,6 +6,7 @@ logs are recognised as, as ``fuzzymotiv recognise`` says."""
 from __future__ import annotations
 
 import os
+import sys
 from typing import List, Literal, Optional, Sequence, Union
 
 from . import _fuzzymotiv as _native
@@ -26,6 +27,10 @@ def export_controller(
     """Exports the controller of a run directory (or a ``best_genome.json``, its robot from the
     ``config.resolved.toml`` beside it or ``config``) and returns the paths written.
 
+    ``out="-"`` with ``to="json"`` writes the document to ``sys.stdout`` (text) and with
+    ``to="onnx"`` the model to ``sys.stdout.buffer`` (bytes), as ``--out -`` does, and returns
+    ``[]`` (no file written); ``to="c"`` writes two files, so ``out="-"`` raises ``ValueError``.
+
     ``to="c"``: ``out`` is a directory (created if missing) receiving ``fm_controller.h`` and
     ``fm_controller.c``; ``to="json"``: ``out`` is the JSON file; ``to="onnx"``: ``out`` is the
     ONNX model. Other files there are kept
@@ -34,11 +39,22 @@ def export_controller(
     robot evolved in that room (per-room training). The same as ``fuzzymotiv export
     RUN_OR_GENOME --to TO --out OUT``.
     """
+    config_path = None if config is None else os.fspath(config)
+    if os.fspath(out) == "-":
+        data = _native.export_controller_bytes(os.fspath(run_or_genome), to, config_path, room)
+        if to == "onnx":
+            sys.stdout.flush()
+            sys.stdout.buffer.write(data)
+            sys.stdout.buffer.flush()
+        else:
+            sys.stdout.write(data.decode("utf-8"))
+            sys.stdout.flush()
+        return []
     return _native.export_controller(
         os.fspath(run_or_genome),
         to,
         os.fspath(out),
-        None if config is None else os.fspath(config),
+        config_path,
         room,
         force,
     )

@@ -2,8 +2,12 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::records::export::{ExportRequest, ExportTarget, export_controller as export};
+use fuzzymotiv_io::records::export::{
+    ExportRequest, ExportTarget, build_export, export_controller as export,
+};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyBytes;
 
 use crate::py_err;
 
@@ -33,4 +37,40 @@ pub(crate) fn export_controller(
     })
     .map_err(py_err)?;
     Ok(done.files.iter().map(|p| p.display().to_string()).collect())
+}
+
+/// The one file of the JSON or ONNX export of `source`, as bytes, written nowhere: what
+/// `fm.export_controller(..., out="-")` writes to standard output, as `fuzzymotiv export
+/// --out -` does. A C export (two files) raises `ValueError`.
+#[pyfunction]
+#[pyo3(signature = (source, to, config=None, room=None))]
+pub(crate) fn export_controller_bytes<'py>(
+    py: Python<'py>,
+    source: PathBuf,
+    to: &str,
+    config: Option<PathBuf>,
+    room: Option<String>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let to = ExportTarget::parse("to", to).map_err(py_err)?;
+    if to == ExportTarget::C {
+        return Err(PyValueError::new_err(
+            "out: `-` (standard output) takes one file, but to=\"c\" writes two \
+             (fm_controller.h and fm_controller.c); pass a directory",
+        ));
+    }
+    let built = build_export(&ExportRequest {
+        source: &source,
+        config: config.as_deref(),
+        room: room.as_deref(),
+        to,
+        out: std::path::Path::new("-"),
+        force: false,
+        room_option: "room",
+        out_option: "out",
+    })
+    .map_err(py_err)?;
+    let [(_, bytes)] = built.files.as_slice() else {
+        unreachable!("a JSON or ONNX export is one file")
+    };
+    Ok(PyBytes::new(py, bytes))
 }

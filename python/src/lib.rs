@@ -1147,6 +1147,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(explain, m)?)?;
     m.add_function(wrap_pyfunction!(export_fll, m)?)?;
     m.add_function(wrap_pyfunction!(export::export_controller, m)?)?;
+    m.add_function(wrap_pyfunction!(export::export_controller_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(robustness::robustness, m)?)?;
     m.add_function(wrap_pyfunction!(recognise::recognise, m)?)?;
     m.add_function(wrap_pyfunction!(rooms, m)?)?;

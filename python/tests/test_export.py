@@ -105,3 +105,18 @@ def test_recognise_names_a_bad_log(run_dir, tmp_path):
     bad.write_text("step,action\n0,sideways\n")
     with pytest.raises(fm.FuzzymotivError, match="line 2: field `action`"):
         fm.recognise(run_dir, [bad])
+
+
+def test_export_controller_to_dash_writes_one_file_formats_to_stdout_and_no_file(
+    run_dir, tmp_path, monkeypatch, capsysbinary, cli
+):
+    monkeypatch.chdir(tmp_path)
+    run_cli(cli, "export", run_dir, "--to", "json", "--out", tmp_path / "cli.json")
+    run_cli(cli, "export", run_dir, "--to", "onnx", "--out", tmp_path / "cli.onnx")
+    assert fm.export_controller(run_dir, to="json", out="-") == []
+    assert capsysbinary.readouterr().out == (tmp_path / "cli.json").read_bytes()
+    assert fm.export_controller(run_dir, to="onnx", out="-") == []
+    assert capsysbinary.readouterr().out == (tmp_path / "cli.onnx").read_bytes()
+    with pytest.raises(ValueError, match="to=\"c\" writes two"):
+        fm.export_controller(run_dir, to="c", out="-")
+    assert not (tmp_path / "-").exists()
