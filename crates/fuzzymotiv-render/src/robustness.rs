@@ -76,23 +76,7 @@ fn panel(
     x0: f64,
 ) {
     let values: Vec<(f64, f64, f64)> = records.iter().map(|r| r.measures()[m]).collect();
-    let lo = values
-        .iter()
-        .map(|v| v.1.min(v.0))
-        .fold(f64::INFINITY, f64::min);
-    let hi = values
-        .iter()
-        .map(|v| v.2.max(v.0))
-        .fold(f64::NEG_INFINITY, f64::max);
-    let (lo, hi) = if hi > lo {
-        (lo, hi)
-    } else {
-        (lo - 0.05, hi + 0.05)
-    };
-    // A margin keeps the extreme marks off the frame and the edge ticks' labels apart.
-    let pad = (hi - lo) * 0.06;
-    let (first, last) = (lo - pad, hi + pad);
-    let ticks = Ticks::nice(lo, hi, 5, false);
+    let (first, last, ticks) = axis(&values);
     let (left, right) = (x0 + 6.0, x0 + PANEL_W - 6.0);
     let x = |v: f64| px(left + (v - first) / (last - first) * (right - left));
     let bottom = TOP + ROW_H * records.len() as f64;
@@ -148,6 +132,37 @@ fn panel(
     }
 }
 
+/// The bounds of every measure of the figure: F, the terms and the shares (recognition,
+/// missions done) are all values in [0, 1].
+const BOUNDS: (f64, f64) = (0.0, 1.0);
+
+/// A panel's axis over `values` ((mean, lower bound, upper bound) per perturbation): the
+/// drawn range (`first`, `last`) and its ticks. The ticks span the values; values all alike
+/// get a span of 0.05 either side, cut at [`BOUNDS`] (all 0: 0 … 0.05; a share all 1: 0.95
+/// … 1), so no tick lies beyond what the measure can be.
+fn axis(values: &[(f64, f64, f64)]) -> (f64, f64, Ticks) {
+    let lo = values
+        .iter()
+        .map(|v| v.1.min(v.0))
+        .fold(f64::INFINITY, f64::min);
+    let hi = values
+        .iter()
+        .map(|v| v.2.max(v.0))
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (lo, hi) = if hi > lo {
+        (lo, hi)
+    } else {
+        // A value beyond the bounds (none should be) stays on the axis.
+        (
+            (lo - 0.05).max(BOUNDS.0.min(lo)),
+            (hi + 0.05).min(BOUNDS.1.max(hi)),
+        )
+    };
+    // A margin keeps the extreme marks off the frame and the edge ticks' labels apart.
+    let pad = (hi - lo) * 0.06;
+    (lo - pad, hi + pad, Ticks::nice(lo, hi, 5, false))
+}
+
 /// What the colours and marks mean, from `top`.
 fn legend(svg: &mut String, top: f64) {
     let entries = [
@@ -197,6 +212,22 @@ mod tests {
             recognition_hi: Some(v(1.0)),
             extra: Vec::new(),
         }
+    }
+
+    /// A panel whose values are all 0 (a term no trial scored) has its axis from 0 up, and
+    /// one whose values are all 1 (a full battery) has no tick above 1.
+    #[test]
+    fn an_all_zero_measure_starts_at_0_and_a_share_axis_does_not_exceed_1() {
+        let (_, _, zero) = axis(&[(0.0, 0.0, 0.0), (0.0, 0.0, 0.0)]);
+        assert_eq!(zero.values.first(), Some(&0.0), "{zero:?}");
+        assert!(zero.values.iter().all(|&t| t >= 0.0), "{zero:?}");
+        let (_, _, full) = axis(&[(1.0, 1.0, 1.0)]);
+        assert!(full.values.iter().all(|&t| t <= 1.0), "{full:?}");
+        assert_eq!(full.values.last(), Some(&1.0), "{full:?}");
+        // Values that differ keep the axis they always had.
+        let (first, last, ticks) = axis(&[(0.5, 0.4, 0.6), (0.2, 0.1, 0.3)]);
+        assert!((first - (0.1 - 0.03)).abs() < 1e-12 && (last - (0.6 + 0.03)).abs() < 1e-12);
+        assert_eq!(ticks, Ticks::nice(0.1, 0.6, 5, false));
     }
 
     /// Every perturbation is named, every measure has a panel, and a perturbation whose
