@@ -14,6 +14,7 @@ use fuzzymotiv::statistics::{self, BOOTSTRAP_RESAMPLES, Settings, mean_interval}
 
 use super::study::{CLAIMS_ALPHA, COMPARISON_CLAIMS, Variant, seed_means};
 use crate::plot::{Ticks, colour, esc, open, text_width};
+use crate::tables::p_text;
 use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};
 
 /// Picks one column of a table row.
@@ -132,14 +133,14 @@ fn claim_row(md: &mut String, csv: &mut String, study: &StudySummary, c: &ClaimR
     let (high, low) = means.unwrap_or((None, None));
     let _ = writeln!(
         md,
-        "| {pop} | {} | {} % | {} % | {:+.1} [{:+.1}, {:+.1}] | {:.4} | {} | {} |",
+        "| {pop} | {} | {} % | {} % | {:+.1} [{:+.1}, {:+.1}] | {} | {} | {} |",
         c.claim,
         num(high, 1),
         num(low, 1),
         s.difference,
         s.ci_low,
         s.ci_high,
-        s.p,
+        p_text(s.p),
         s.verdict,
         num(s.mdd, 1),
     );
@@ -152,7 +153,7 @@ fn claim_row(md: &mut String, csv: &mut String, study: &StudySummary, c: &ClaimR
         s.difference,
         s.ci_low,
         s.ci_high,
-        s.p,
+        p_text(s.p),
         s.verdict,
         num(s.mdd, 4),
         s.seeds
@@ -192,7 +193,7 @@ fn exploration_rows(md: &mut String, csv: &mut String, studies: &[StudySummary])
         let (cell, p) = versus.as_ref().map_or(("—".into(), "—".into()), |v| {
             (
                 format!("{:+.1} [{:+.1}, {:+.1}]", v.difference, v.ci_low, v.ci_high),
-                format!("{:.4}", v.p),
+                p_text(v.p),
             )
         });
         let _ = writeln!(md, "| {pop} | {m:.1} [{lo:.1}, {hi:.1}] | {cell} | {p} |");
