@@ -338,7 +338,7 @@ fn bad_motivation_tables_exit_2_naming_the_file_and_field() {
 /// missions done and every term beyond a, g, l, b that `table.md` shows (urgency, the fifth
 /// motivation's, among them): in the CSV, the Markdown and the figure.
 #[test]
-fn robustness_of_a_mission_run_reports_urgency_and_missions_done() {
+fn robustness_of_a_mission_run_reports_urgency_and_missions_done_in_table_md_order() {
     let dir = tempfile::tempdir().unwrap();
     let run = fetch_run(dir.path(), &[]);
     let out = dir.path().join("rob");
@@ -347,7 +347,7 @@ fn robustness_of_a_mission_run_reports_urgency_and_missions_done() {
         .ok();
     let csv = read(&out.join("robustness.csv"));
     let header = csv.lines().next().unwrap();
-    let extra = ["missions_done", "goal", "urgency", "safety"]
+    let extra = ["missions_done", "goal", "safety", "urgency"]
         .map(|m| format!("{m},{m}_lo,{m}_hi"))
         .join(",");
     assert!(
@@ -368,9 +368,34 @@ fn robustness_of_a_mission_run_reports_urgency_and_missions_done() {
         md.lines()
             .next()
             .unwrap()
-            .ends_with("| battery b | missions done | goal | urgency | safety |"),
+            .ends_with("| battery b | missions done | goal | safety | urgency |"),
         "{md}"
     );
+    // The same terms in the same order as the run's table.md.
+    let table = read(&run.join("table.md"));
+    let columns = |line: &str| -> Vec<String> {
+        let cells = line.split('|').map(|c| c.trim().trim_start_matches("% "));
+        cells
+            .skip_while(|c| *c != "missions done")
+            .map(String::from)
+            .collect()
+    };
+    let table_header = table
+        .lines()
+        .find(|l| l.contains("% missions done"))
+        .unwrap();
+    assert_eq!(
+        columns(md.lines().next().unwrap()),
+        columns(table_header),
+        "{table}"
+    );
+    let stems: Vec<String> = (header.split(',').skip_while(|c| *c != "missions_done"))
+        .filter(|c| !c.ends_with("_lo") && !c.ends_with("_hi"))
+        .map(|c| c.replace('_', " "))
+        .collect();
+    let mut in_table = columns(table_header);
+    in_table.retain(|c| !c.is_empty());
+    assert_eq!(stems, in_table, "{header}");
     let svg = read(&out.join("robustness.svg"));
     for panel in ["missions done", "urgency"] {
         assert!(
@@ -406,8 +431,8 @@ fn compare_of_two_mission_runs_compares_urgency_and_missions_done() {
             "homing_pct",
             "mission_done_pct",
             "goal_pct",
-            "urgency_pct",
-            "safety_pct"
+            "safety_pct",
+            "urgency_pct"
         ]
     );
     let urgency: Vec<&str> = (rows.iter())

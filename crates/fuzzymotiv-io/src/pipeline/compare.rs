@@ -138,10 +138,19 @@ fn load_run(dir: &Path) -> Result<Side, CliError> {
     let rows = test_runs::read(dir)?;
     let rooms: Vec<String> = s.rooms.iter().map(|r| r.room.clone()).collect();
     let tests = rows.iter().map(|r| r.test + 1).max().unwrap_or(0);
-    // The run's own measures (missions done, terms beyond a, g, l, b), by their columns.
-    let extra: Vec<String> = rows.first().map_or(Vec::new(), |r| {
-        r.extra.iter().map(|(c, _)| c.clone()).collect()
-    });
+    // The run's own measures (missions done, then the terms beyond a, g, l, b in the tables'
+    // order), by their columns.
+    let (done, terms): (Vec<String>, Vec<String>) =
+        rows.first().map_or_else(Default::default, |r| {
+            r.extra
+                .iter()
+                .map(|(c, _)| c.clone())
+                .partition(|c| c == MISSION_DONE)
+        });
+    let mut extra = done;
+    extra.extend(test_runs::in_table_order(terms, |c| {
+        test_runs::metric_term(c)
+    }));
     let values = |r: &test_runs::TestRunRow| {
         let (a, b, g) = (r.exploration_pct, r.battery_pct, r.homing_pct);
         let paper = [None, Some(a), r.recognition_pct, Some(b), Some(g)];

@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use crate::files::error::CliError;
 use crate::files::inputs::load_config;
 use crate::records::genome::{locate, read_genome};
+use crate::records::test_runs::in_table_order;
 use crate::records::{Fixed, csv_text, csv_writer, extra_terms, to_csv, write_row};
 
 /// The measures of a row, in column order: the column stem and the words a table or figure
@@ -284,7 +285,7 @@ pub fn robustness_of_run(run: &Path, trials: usize) -> Result<RobustnessStudy, C
     let rows = exp
         .robustness_recognising(&genome.weights, &perturbations, trials, recognizer.as_ref())
         .map_err(|e| at(&e))?;
-    let extra = extra_terms(exp);
+    let extra = in_table_order(extra_terms(exp), |(name, _)| name);
     Ok(RobustnessStudy {
         records: rows
             .iter()

@@ -52,6 +52,19 @@ pub fn term_metric(term: &str) -> String {
     format!("{term}_pct")
 }
 
+/// The term of a [`term_metric`] column (`goal` of `goal_pct`).
+pub fn metric_term(column: &str) -> &str {
+    column.strip_suffix("_pct").unwrap_or(column)
+}
+
+/// The terms beyond a, g, l, b (each known by `name`) in the one order every table lists them:
+/// by name, as `table.md`'s per-room columns do (a room row's `terms_pct` is a map by name);
+/// `robustness.*` and `compare.*` follow it.
+pub fn in_table_order<T>(mut terms: Vec<T>, name: impl Fn(&T) -> &str) -> Vec<T> {
+    terms.sort_by(|a, b| name(a).cmp(name(b)));
+    terms
+}
+
 /// The columns of the paper's model, in order.
 const COLUMNS: [&str; 7] = [
     "room",
