@@ -125,6 +125,31 @@ fn fetch_run_draws_its_goal_in_the_figure_the_replay_and_the_report() {
     );
 }
 
+/// `replay` of a run whose rooms have a goal and no waypoints prints each room's goal term and
+/// leaves out the waypoints term, which does not apply there (no `waypoints = 0.000`).
+#[test]
+fn replay_of_rooms_without_waypoints_prints_no_waypoints_term() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = fetch_run(dir.path(), &[]);
+    let page = dir.path().join("replay.html");
+    let out = ok(&[
+        "replay",
+        run.to_str().unwrap(),
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    let text = common::stdout(&out) + &common::stderr(&out);
+    let lines: Vec<&str> = text.lines().filter(|l| l.contains(", F = ")).collect();
+    assert_eq!(lines.len(), 5, "one line per room:\n{text}");
+    for line in lines {
+        assert!(
+            line.contains(", goal = ") && line.contains(", urgency = "),
+            "{line}"
+        );
+        assert!(!line.contains("waypoints"), "{line}");
+    }
+}
+
 #[test]
 fn paper_figures_draw_no_mission() {
     let dir = tempfile::tempdir().unwrap();

@@ -14,6 +14,7 @@ use std::path::{Path, PathBuf};
 use fuzzymotiv::experiment::InstanceRun;
 use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::experiment::{OrientationMode, Training};
+use fuzzymotiv::fitness::MissionTerms;
 use fuzzymotiv::simulation::MlpShape;
 use fuzzymotiv::simulation::{Trajectory, TrialParams};
 use rayon::prelude::*;
@@ -349,13 +350,7 @@ fn room_files(
         let csv = dir.join(format!("{stem}-{}.csv", file_tag(name)));
         files.push((csv.clone(), trajectory_csv(&run.trajectory).into_bytes()));
         let (tr, terms) = (&run.trajectory, run.terms);
-        let mission = terms.mission.map_or(String::new(), |m| {
-            let done = m.done_at.map_or("not done".into(), |t| format!("done at step {t}"));
-            format!(
-                ", goal = {:.3}, urgency = {:.3}, waypoints = {:.3}, safety = {:.3} (mission {done})",
-                m.goal, m.urgency, m.waypoints, m.safety
-            )
-        });
+        let mission = (terms.mission).map_or(String::new(), |m| mission_text(&m, &ctx.rooms[*r]));
         lines.push(format!(
             "{name}: a = {:.3}, g = {:.3}, b = {:.3}{mission}, F = {:.4}, {} collisions → {}",
             terms.a,
@@ -379,6 +374,25 @@ fn room_files(
         rooms_json.push(room_json);
     }
     (lines, rooms_json)
+}
+
+/// A replay line's mission terms: `goal` only for a room with a goal zone and `waypoints` only
+/// for one with waypoints (as `table.md` has no column for a zone no room has), then
+/// `urgency`, `safety` and whether the mission was done.
+fn mission_text(m: &MissionTerms, room: &fuzzymotiv::simulation::Room) -> String {
+    let mut text = String::new();
+    if room.mission.goal.is_some() {
+        let _ = write!(text, ", goal = {:.3}", m.goal);
+    }
+    let _ = write!(text, ", urgency = {:.3}", m.urgency);
+    if !room.mission.waypoints.is_empty() {
+        let _ = write!(text, ", waypoints = {:.3}", m.waypoints);
+    }
+    let done = m
+        .done_at
+        .map_or("not done".into(), |t| format!("done at step {t}"));
+    let _ = write!(text, ", safety = {:.3} (mission {done})", m.safety);
+    text
 }
 
 /// A room's mission in the replay's JSON, only when it has one (the paper's replays keep their
