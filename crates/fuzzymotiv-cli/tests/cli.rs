@@ -57,6 +57,39 @@ fn fuzzy_rejects_bad_motivations_with_exit_2() {
     assert!(!stderr(&o).contains("panicked"));
 }
 
+/// `rooms --check` names every quantity it prints (area, perimeter, home pose with units) and
+/// the room's mission: its goal zone, its waypoints, or that it has none.
+#[test]
+fn rooms_check_names_each_quantity_and_the_rooms_mission() {
+    let files = [
+        "rooms/fetch-square.toml",
+        "rooms/patrol.toml",
+        "rooms/U.toml",
+    ];
+    let paths: Vec<String> = (files.iter())
+        .map(|f| repo().join(f).to_str().unwrap().to_string())
+        .collect();
+    let mut args = vec!["rooms", "--check"];
+    args.extend(paths.iter().map(String::as_str));
+    let out = stdout(&ok(&args));
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 3, "{out}");
+    assert!(
+        lines[0].ends_with(
+            "fetch-square.toml: room fetch-square, area 0.640 m², perimeter 3.200 m, home (40, 40) mm heading 0°, goal (730, 730) radius 60 mm"
+        ),
+        "{out}"
+    );
+    assert!(
+        lines[1].contains("3 waypoints in file order: (125, 125) radius 60 mm, "),
+        "{out}"
+    );
+    assert!(
+        lines[2].ends_with("no mission (no goal zone or waypoints)"),
+        "{out}"
+    );
+}
+
 #[test]
 fn rooms_lists_builtins_and_checks_files() {
     let o = run(&["rooms"]);

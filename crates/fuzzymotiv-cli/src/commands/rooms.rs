@@ -33,7 +33,7 @@ pub fn rooms(args: RoomsArgs) -> Result<(), CliError> {
     let mut failures = Vec::new();
     for path in &args.check {
         match inputs::load_room_file(path) {
-            Ok(r) => print_room(&format!("ok  {}: ", path.display()), &r)?,
+            Ok(r) => outln!("ok  {}: {}", path.display(), checked_room(&r))?,
             Err(e) => failures.push(e.to_string()),
         }
     }
@@ -53,5 +53,38 @@ fn print_room(prefix: &str, r: &fuzzymotiv::simulation::Room) -> Result<(), CliE
         r.home.x,
         r.home.y,
         r.home.heading.to_degrees().round()
+    )
+}
+
+/// What `rooms --check` says of a valid room, each quantity named: its name, area, perimeter,
+/// home pose and mission (goal zone, waypoints in order) or that it has none.
+fn checked_room(r: &fuzzymotiv::simulation::Room) -> String {
+    let zone = |z: &fuzzymotiv::simulation::HomeZone| {
+        format!("({}, {}) radius {} mm", z.centre.x, z.centre.y, z.radius)
+    };
+    let mut mission = Vec::new();
+    if let Some(goal) = &r.mission.goal {
+        mission.push(format!("goal {}", zone(goal)));
+    }
+    if !r.mission.waypoints.is_empty() {
+        let each: Vec<String> = r.mission.waypoints.iter().map(zone).collect();
+        mission.push(format!(
+            "{} waypoints in file order: {}",
+            each.len(),
+            each.join(", ")
+        ));
+    }
+    if mission.is_empty() {
+        mission.push("no mission (no goal zone or waypoints)".into());
+    }
+    format!(
+        "room {}, area {:.3} m², perimeter {:.3} m, home ({}, {}) mm heading {}°, {}",
+        r.name,
+        r.area() / 1e6,
+        r.perimeter() / 1e3,
+        r.home.x,
+        r.home.y,
+        r.home.heading.to_degrees().round(),
+        mission.join(", ")
     )
 }
