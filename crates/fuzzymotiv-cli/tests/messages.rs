@@ -166,6 +166,49 @@ fn a_bad_motivation_weight_names_the_weight_key_of_a_table() {
     }
 }
 
+/// A room file's bad value or unknown key inside an inline table is named down to its key
+/// (`goal.y`, `home_zone.y`, `waypoints[0].colour`, `waypoints[1].y`), and a string for a
+/// number says "expected a number", not serde's "expected f64".
+#[test]
+fn room_messages_name_the_key_inside_an_inline_table_and_say_a_number() {
+    let dir = tempfile::tempdir().unwrap();
+    let room = dir.path().join("r.toml");
+    let head = "name = \"r\"\noutline = [[0,0],[800,0],[800,800],[0,800]]\n\
+                home = { x = 40, y = 40, heading_deg = 0 }\n";
+    for (text, field, says) in [
+        (
+            "goal = { x = 100, y = \"q\", radius = 30 }",
+            "goal.y",
+            "expected a number",
+        ),
+        (
+            "home_zone = { x = 100, y = \"q\", radius = 30 }",
+            "home_zone.y",
+            "expected a number",
+        ),
+        (
+            "waypoints = [{ x = 100, y = 100, radius = 30, colour = 1 }]",
+            "waypoints[0].colour",
+            "unknown field `colour`",
+        ),
+        (
+            "waypoints = [{ x = 100, y = 100, radius = 30 }, { x = 1, y = \"q\", radius = 30 }]",
+            "waypoints[1].y",
+            "expected a number",
+        ),
+    ] {
+        std::fs::write(&room, format!("{head}{text}\n")).unwrap();
+        let o = Fm::new(["rooms".as_ref(), "--check".as_ref(), room.as_os_str()]).run();
+        let msg = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{text}: {msg}");
+        assert!(
+            msg.contains(&format!("r.toml: field `{field}`: ")) && msg.contains(says),
+            "{text}: {msg}"
+        );
+        assert!(!msg.contains("f64") && !msg.contains("panicked"), "{msg}");
+    }
+}
+
 /// Every command that takes `--threads` refuses a number outside 1..=256 (and a negative one,
 /// which clap would otherwise take for an option) with status 2 and a message naming
 /// `--threads`, the range and the value, before starting anything.

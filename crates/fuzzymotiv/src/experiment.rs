@@ -11,7 +11,6 @@ pub(crate) mod evaluation;
 pub(crate) mod evolution;
 pub(crate) mod modelling;
 pub(crate) mod outcome;
-mod plain;
 pub(crate) mod recorded;
 pub(crate) mod robustness;
 pub(crate) mod setup;

@@ -4,6 +4,8 @@
 //! [`crate::modelling::aem::AemParams::from_raw`], …) and [`crate::experiment::Experiment::new`] composes
 //! the checks, naming the source.
 
+pub(crate) mod plain;
+
 /// A value that cannot be used: the file (or other source), the field and the reason.
 ///
 /// ```
@@ -103,7 +105,7 @@ pub(crate) fn field_from_toml_message(
             };
         }
     }
-    if let Some(path) = span.and_then(|span| key_path_at(text, span.start)) {
+    if let Some(path) = span.and_then(|span| value_path_at(text, span.start)) {
         return path;
     }
     from_message().unwrap_or_else(|| "(document)".to_string())
@@ -164,35 +166,89 @@ fn key_path_at(text: &str, at: usize) -> Option<String> {
     })
 }
 
-/// The path of the value (a table) that starts at byte `at`: a header's table, an inline table
-/// `key = { … }`, or element i of `key = [{ … }, { … }]`.
+/// The path of the value or key at byte `at`: a header's table, `table.key` of a `key = …`
+/// line, and within an inline value on it the entry (`goal.y`) or element (`waypoints[1]`)
+/// it lies in, down to the key standing at `at` (`waypoints[0].colour`).
 fn value_path_at(text: &str, at: usize) -> Option<String> {
     let (start, line) = line_at(text, at);
     let key = key_path_at(text, at)?;
     if line.trim_start().starts_with('[') {
         return Some(key);
     }
+    // On the key, or at the end of the line (where a syntax error stops): the line's key.
     let eq = line.find('=')?;
-    let within = &line[eq + 1..(at - start).clamp(eq + 1, line.len())];
-    if !within.trim_start().starts_with('[') {
+    if at - start <= eq || at - start >= line.len() {
         return Some(key);
     }
-    let mut depth = 0usize;
-    let mut index = 0usize;
-    for c in within.chars() {
-        match c {
-            '{' => {
-                if depth == 0 {
-                    index += 1;
+    let key_here: String = (text[at..].chars())
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_' || *c == '-')
+        .collect();
+    Some(key + &inline_suffix(&line[eq + 1..at - start], &key_here))
+}
+
+/// One level of an inline value read by [`inline_suffix`]: a table with the key of its
+/// current entry (still being read while `in_key`), or an array with its current element.
+enum Level {
+    Table { key: String, in_key: bool },
+    Array(usize),
+}
+
+/// The path inside an inline value whose text up to the position is `within`: `.key` for a
+/// table's entry, `[i]` for an array's element; `key_here` is the key at the position, for a
+/// position where a key stands.
+fn inline_suffix(within: &str, key_here: &str) -> String {
+    let mut levels: Vec<Level> = Vec::new();
+    let mut chars = within.chars();
+    while let Some(c) = chars.next() {
+        let top = levels.last_mut();
+        match (c, top) {
+            ('"' | '\'', top) => {
+                let mut s = String::new();
+                let mut escaped = false;
+                for d in chars.by_ref() {
+                    if d == c && !escaped {
+                        break;
+                    }
+                    escaped = c == '"' && d == '\\' && !escaped;
+                    s.push(d);
                 }
-                depth += 1;
+                if let Some(Level::Table { key, in_key: true }) = top {
+                    key.push_str(&s);
+                }
             }
-            '}' => depth = depth.saturating_sub(1),
+            ('{', _) => levels.push(Level::Table {
+                key: String::new(),
+                in_key: true,
+            }),
+            ('[', _) => levels.push(Level::Array(0)),
+            ('}' | ']', _) => drop(levels.pop()),
+            (',', Some(Level::Array(i))) => *i += 1,
+            (',', Some(Level::Table { key, in_key })) => {
+                key.clear();
+                *in_key = true;
+            }
+            ('=', Some(Level::Table { in_key, .. })) => *in_key = false,
+            (c, Some(Level::Table { key, in_key: true })) if !c.is_whitespace() => key.push(c),
             _ => {}
         }
     }
-    Some(format!(
-        "{key}[{}]",
-        index.saturating_sub(usize::from(depth > 0))
-    ))
+    let last = levels.len().saturating_sub(1);
+    let mut path = String::new();
+    for (i, level) in levels.iter().enumerate() {
+        match level {
+            Level::Array(k) => path.push_str(&format!("[{k}]")),
+            Level::Table { key, in_key } => {
+                let key = if *in_key && i == last {
+                    key_here
+                } else {
+                    key.trim()
+                };
+                if !key.is_empty() {
+                    path.push('.');
+                    path.push_str(key);
+                }
+            }
+        }
+    }
+    path
 }

@@ -181,22 +181,23 @@ impl RawConfig {
     }
 
     fn from_text(text: &str, source_name: &str) -> Result<RawConfig, ConfigError> {
-        let raw: RawConfig = super::plain::from_str(text).map_err(|e| {
-            let msg = e.message().trim().to_string();
-            let field = field_from_toml_message(&msg, text, e.span());
-            // Line numbers only point into the user's own file, not a document with overrides.
-            let at = if source_name.ends_with("(with --set overrides)") {
-                String::new()
-            } else {
-                at_line(text, e.span())
-            };
-            let reason = format!("{msg}{at}{}", room_file_hint(&msg));
-            ConfigError {
-                source_name: source_name.to_string(),
-                field,
-                reason,
-            }
-        })?;
+        let raw: RawConfig =
+            crate::params::plain::from_str(text, whole_number_range).map_err(|e| {
+                let msg = e.message().trim().to_string();
+                let field = field_from_toml_message(&msg, text, e.span());
+                // Line numbers only point into the user's own file, not a document with overrides.
+                let at = if source_name.ends_with("(with --set overrides)") {
+                    String::new()
+                } else {
+                    at_line(text, e.span())
+                };
+                let reason = format!("{msg}{at}{}", room_file_hint(&msg));
+                ConfigError {
+                    source_name: source_name.to_string(),
+                    field,
+                    reason,
+                }
+            })?;
         if raw.seed > MAX_SEED {
             return Err(ConfigError {
                 source_name: source_name.to_string(),
@@ -228,9 +229,9 @@ pub fn at_line(text: &str, span: Option<std::ops::Range<usize>>) -> String {
 }
 
 /// The range of a whole-number field as its own check states it (a type error, e.g. `1.5` or
-/// `-1`, is reported while reading, before that check runs: [`super::plain`]), from the
+/// `-1`, is reported while reading, before that check runs: [`crate::params::plain`]), from the
 /// constants the checks use; "≥ 0" for a field that takes any.
-pub(super) fn whole_number_range(field: &str) -> String {
+pub(crate) fn whole_number_range(field: &str) -> String {
     use crate::modelling::{aem::MAX_TEST_RUNS, som::MAX_NODES};
     use crate::simulation::{controller::MlpShape, trial::MAX_STEPS};
     let (low, high) = match field {

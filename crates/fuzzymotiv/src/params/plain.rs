@@ -1,8 +1,9 @@
-//! A config's TOML read with its type errors in plain words: a field that takes a whole number,
-//! a number or true/false says so ("expected a whole number from 2 to 1000000", "expected a
-//! number (e.g. 0.5)", "expected true or false") where serde would name its Rust type ("expected
-//! u64"). The words are produced by the visitors that read the values, which know the field's
-//! path and so its range ([`whole_number_range`]); nothing is rewritten afterwards.
+//! A config's or a room file's TOML read with its type errors in plain words: a field that takes
+//! a whole number, a number or true/false says so ("expected a whole number from 2 to 1000000",
+//! "expected a number (e.g. 0.5)", "expected true or false") where serde would name its Rust type
+//! ("expected u64", "expected f64"). The words are produced by the visitors that read the
+//! values, which know the field's path and so its range (the reader's `whole_number_range`, e.g.
+//! the config's); nothing is rewritten afterwards.
 //!
 //! [`Plain`] wraps TOML's deserializer: it follows the path through tables, options and arrays,
 //! and reads every bool, integer and float with a [`Typed`] visitor whose `expecting` is the
@@ -16,20 +17,48 @@ use serde::de::{
     Visitor,
 };
 
-use super::config::whole_number_range;
-
-/// Reads `text` as a `T` (a config), type errors in plain words.
-pub(super) fn from_str<'de, T: de::Deserialize<'de>>(text: &'de str) -> Result<T, toml::de::Error> {
+/// Reads `text` as a `T` (a config, a room), type errors in plain words; a whole number is
+/// said to be `whole_number_range(path)`, e.g. "from 2 to 1000000" for `ga.population`.
+pub(crate) fn from_str<'de, T: de::Deserialize<'de>>(
+    text: &'de str,
+    whole_number_range: fn(&str) -> String,
+) -> Result<T, toml::de::Error> {
     T::deserialize(Plain {
         inner: toml::Deserializer::parse(text)?,
-        path: String::new(),
+        path: Path {
+            keys: String::new(),
+            whole_number_range,
+        },
     })
 }
 
-/// A deserializer at `path` (dotted keys, empty at the document).
+/// Where a value is: its dotted keys (empty at the document), and how the reader words the
+/// range of a whole number there.
+#[derive(Clone)]
+struct Path {
+    keys: String,
+    whole_number_range: fn(&str) -> String,
+}
+
+impl Path {
+    /// The path of the entry `key` of the table here.
+    fn child(&self, key: &str) -> Path {
+        let keys = if self.keys.is_empty() {
+            key.to_string()
+        } else {
+            format!("{}.{key}", self.keys)
+        };
+        Path {
+            keys,
+            ..self.clone()
+        }
+    }
+}
+
+/// A deserializer at `path`.
 struct Plain<D> {
     inner: D,
-    path: String,
+    path: Path,
 }
 
 /// What a scalar field takes, in the words of its messages.
@@ -195,7 +224,7 @@ impl<'de, D: Deserializer<'de>> Deserializer<'de> for Plain<D> {
 struct Typed<V> {
     inner: V,
     kind: Kind,
-    path: String,
+    path: Path,
 }
 
 impl<'de, V: Visitor<'de>> Visitor<'de> for Typed<V> {
@@ -206,7 +235,11 @@ impl<'de, V: Visitor<'de>> Visitor<'de> for Typed<V> {
             Kind::Bool => f.write_str("true or false"),
             Kind::Number => f.write_str("a number (e.g. 0.5)"),
             Kind::Unsigned(_) | Kind::Signed(..) => {
-                write!(f, "a whole number {}", whole_number_range(&self.path))
+                write!(
+                    f,
+                    "a whole number {}",
+                    (self.path.whole_number_range)(&self.path.keys)
+                )
             }
         }
     }
@@ -254,7 +287,7 @@ impl<'de, V: Visitor<'de>> Visitor<'de> for Typed<V> {
 /// the field's, every value goes to it), with the path handed down to what it contains.
 struct Nested<V> {
     inner: V,
-    path: String,
+    path: Path,
 }
 
 impl<'de, V: Visitor<'de>> Visitor<'de> for Nested<V> {
@@ -325,7 +358,7 @@ impl<'de, A: SeqAccess<'de>> SeqAccess<'de> for Nested<A> {
 /// A table's entries, each value at the path of its key.
 struct Table<A> {
     inner: A,
-    path: String,
+    path: Path,
     key: String,
 }
 
@@ -343,11 +376,7 @@ impl<'de, A: MapAccess<'de>> MapAccess<'de> for Table<A> {
     }
 
     fn next_value_seed<T: DeserializeSeed<'de>>(&mut self, seed: T) -> Result<T::Value, A::Error> {
-        let path = if self.path.is_empty() {
-            self.key.clone()
-        } else {
-            format!("{}.{}", self.path, self.key)
-        };
+        let path = self.path.child(&self.key);
         self.inner.next_value_seed(At { inner: seed, path })
     }
 
@@ -375,7 +404,7 @@ impl<'de, K: DeserializeSeed<'de>> DeserializeSeed<'de> for Key<'_, K> {
 /// A value read at `path`.
 struct At<T> {
     inner: T,
-    path: String,
+    path: Path,
 }
 
 impl<'de, T: DeserializeSeed<'de>> DeserializeSeed<'de> for At<T> {
@@ -391,7 +420,7 @@ impl<'de, T: DeserializeSeed<'de>> DeserializeSeed<'de> for At<T> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::config::RawConfig;
+    use crate::experiment::config::{RawConfig, whole_number_range};
 
     /// The reason of the error of `text` read as a config.
     fn reason(text: &str) -> String {
@@ -480,19 +509,27 @@ mod tests {
         struct Doc {
             x: Either,
         }
-        let e = super::from_str::<Doc>("x = { weight = \"a\" }\n")
+        let e = super::from_str::<Doc>("x = { weight = \"a\" }\n", whole_number_range)
             .err()
             .unwrap();
         assert_eq!(
             e.message(),
             "invalid type: string \"a\", expected a number (e.g. 0.5)"
         );
-        let e = super::from_str::<Doc>("x = true\n").err().unwrap();
+        let e = super::from_str::<Doc>("x = true\n", whole_number_range)
+            .err()
+            .unwrap();
         assert_eq!(
             e.message(),
             "invalid type: boolean `true`, expected a weight or a table"
         );
-        let read = |text| super::from_str::<Doc>(text).ok().unwrap().x.0;
+        let read = |text| {
+            super::from_str::<Doc>(text, whole_number_range)
+                .ok()
+                .unwrap()
+                .x
+                .0
+        };
         assert_eq!(
             (read("x = 0.5"), read("x = { weight = 0.25 }")),
             (0.5, 0.25)

@@ -350,7 +350,8 @@ impl Room {
     /// Parses a room file and checks its geometry (docs/model.md §4), but not that its mission
     /// is reachable: [`Room::from_toml_str`] (beside the arena's flood fill) does both.
     pub(crate) fn geometry_from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
-        let raw: RawRoom = toml::from_str(text).map_err(|e| {
+        // A room's values are numbers and names, no whole numbers: their range is not asked.
+        let raw: RawRoom = crate::params::plain::from_str(text, |_| "≥ 0".into()).map_err(|e| {
             let msg = e.message().to_string();
             let field = field_from_toml_message(&msg, text, e.span());
             FieldError::new(field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline, optional goal = {{ x, y, radius }}, optional [[waypoints]] x, y, radius)")).in_source(source_name)
@@ -783,9 +784,9 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
     }
 
     #[test]
-    fn an_unknown_or_missing_key_in_goal_names_goal() {
+    fn an_unknown_or_missing_key_in_goal_names_the_key_under_goal() {
         let e = bad_mission("goal={x=700,y=200,radius=50,colour='red'}");
-        assert_eq!(e.field, "goal");
+        assert_eq!(e.field, "goal.colour");
         assert!(e.reason.contains("colour"), "{e}");
         assert!(e.reason.contains("optional goal = { x, y, radius }"), "{e}");
         let e = bad_mission("goal={x=700,y=200}");
