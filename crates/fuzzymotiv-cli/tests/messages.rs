@@ -61,6 +61,17 @@ fn a_bad_set_value_is_blamed_on_the_set_not_the_file() {
     );
 }
 
+/// Motivations that no longer sum to 1 after a `--set` are named as the file with that
+/// `--set` (the sum comes from both), not as the file alone; a `--set` elsewhere is not named.
+#[test]
+fn a_motivation_sum_off_after_a_set_names_the_file_with_that_set() {
+    let msg = refused_run(&["ga.generations=2", "motivations.homing=0.3"]);
+    let says = "high-curiosity.toml with --set motivations.homing=0.3: field `motivations`: \
+                motivations must sum to 1";
+    assert!(msg.starts_with("error: ") && msg.contains(says), "{msg}");
+    assert!(!msg.contains("ga.generations"), "{msg}");
+}
+
 /// Issue #52 item 7: every config or room-file message names the whole path of its field:
 /// a table's missing key (`motivations.x.weight`, `waypoints[1].y`), coefficients in plain
 /// words (not serde's "untagged enum"), an empty motivation name, a motivation spelled with a

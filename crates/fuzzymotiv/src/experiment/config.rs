@@ -346,23 +346,41 @@ fn default_motivations_for_sets(table: &mut toml::Table, sets: &[String]) {
 /// The error `e` of a value given by `--set` named as coming from that `--set KEY=VALUE`, not
 /// from the file: its field is the key set, inside it (`ga={population=1}` → `ga.population`)
 /// or holds it (`motivations.x.weight` → `motivations.x`, but not a whole section such as
-/// `motivations`, whose error may come from the file as well); other errors as they are.
+/// `motivations`, whose error may come from the file as well: that is named as the file with
+/// the `--set`s inside it, `c.toml with --set motivations.curiosity=0.8`); other errors as
+/// they are.
 pub fn blame_set(e: FieldError, sets: &[String]) -> FieldError {
     let inside = |a: &str, b: &str| {
         a.strip_prefix(b)
             .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
     };
     let field = e.field.as_str();
+    let key = |set: &str| {
+        set.split_once('=')
+            .map_or(set, |(k, _)| k)
+            .trim()
+            .to_string()
+    };
     let set = sets.iter().rev().find(|set| {
-        let key = set.split_once('=').map_or(set.as_str(), |(k, _)| k).trim();
-        !key.is_empty() && (inside(field, key) || (field.contains('.') && inside(key, field)))
+        let key = key(set);
+        !key.is_empty() && (inside(field, &key) || (field.contains('.') && inside(&key, field)))
     });
-    match set {
-        Some(set) => FieldError {
+    if let Some(set) = set {
+        return FieldError {
             source_name: format!("--set {set}"),
             ..e
-        },
-        None => e,
+        };
+    }
+    let within: Vec<&str> = (sets.iter())
+        .filter(|set| inside(&key(set), field))
+        .map(String::as_str)
+        .collect();
+    if within.is_empty() {
+        return e;
+    }
+    FieldError {
+        source_name: format!("{} with --set {}", e.source_name, within.join(", --set ")),
+        ..e
     }
 }
 
