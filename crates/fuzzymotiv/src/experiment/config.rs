@@ -505,8 +505,11 @@ mod tests {
         let blamed = |field: &str| blame_set(checked(field), &sets).source_name;
         assert_eq!(blamed("ga.population"), "--set ga={population=1}");
         assert_eq!(blamed("motivations.x"), "--set motivations.x.weight=2");
-        // A whole section's error (the motivations' sum) may come from the file as well.
-        assert_eq!(blamed("motivations"), "g.toml");
+        // A whole section's error (the motivations' sum) comes from the file with the --set.
+        assert_eq!(
+            blamed("motivations"),
+            "g.toml with --set motivations.x.weight=2"
+        );
         assert_eq!(blamed("trial.steps"), "g.toml");
     }
 }
