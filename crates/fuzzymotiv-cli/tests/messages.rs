@@ -384,6 +384,22 @@ fn fuzzy(x: &str, y: &str) -> (Option<i32>, String) {
     (o.status.code(), msg)
 }
 
+/// `fuzzy --motivations Curiosity=1` gets the hint a config's `Curiosity = 1` gets: names are
+/// case-sensitive, did you mean `curiosity`?
+#[test]
+fn fuzzy_motivation_spelled_with_a_capital_gets_the_configs_case_hint() {
+    let (code, msg) = fuzzy("Curiosity=1", "a=1");
+    assert_eq!(code, Some(2), "{msg}");
+    assert!(
+        msg.contains("`Curiosity`")
+            && msg.contains("Names are case-sensitive: did you mean `curiosity`?"),
+        "{msg}"
+    );
+    let (code, msg) = fuzzy("hurry=1", "hurry=1");
+    assert_eq!(code, Some(2), "{msg}");
+    assert!(!msg.contains("did you mean"), "{msg}");
+}
+
 /// A fitness term outside [0, 1] or not a number, in either form, exits 2 naming the term and
 /// the range; the bounds themselves are fine.
 #[test]

@@ -34,7 +34,7 @@ pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
 pub use outcome::{Outcome, RunError, Start};
 pub use robustness::{Perturbation, RobustnessError, RobustnessRow};
 pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, parse_room_file};
-pub use terms::UserTerm;
+pub use terms::{UserTerm, case_hint};
 
 use serde::{Deserialize, Serialize};
 

@@ -149,10 +149,11 @@ fn check_library_terms(m: &fuzzymotiv::fitness::Motivations) -> Result<(), CliEr
     match m.iter().find(|x| TermId::library(x.term()).is_none()) {
         None => Ok(()),
         Some(x) => Err(CliError::input(format!(
-            "--motivations: `{}` weighs the term `{}`, which does not exist; a motivation named here weighs the term of its own name, one of {} (curiosity, homing, orientation and energy weigh a, g, l and b)",
+            "--motivations: `{}` weighs the term `{}`, which does not exist; a motivation named here weighs the term of its own name, one of {} (curiosity, homing, orientation and energy weigh a, g, l and b){}",
             x.name(),
             x.term(),
-            LIBRARY_TERMS.join(", ")
+            LIBRARY_TERMS.join(", "),
+            fuzzymotiv::experiment::case_hint(x.term(), &LIBRARY_TERMS)
         ))),
     }
 }

@@ -146,14 +146,21 @@ fn unknown_term(motivation: &str, term: &str, user: &[UserTerm]) -> FieldError {
         "weighs the term {term:?}, which does not exist; a motivation weighs one of the terms {} (write {motivation} = {{ weight = …, term = \"…\" }}; a motivation without `term` weighs the term of its own name)",
         known.join(", ")
     );
-    let spelled = |n: &&str| *n != term && n.eq_ignore_ascii_case(term);
-    let like = (PAPER_MOTIVATIONS.iter().copied())
-        .chain(known.iter().copied())
-        .find(spelled);
-    if let Some(like) = like {
-        reason = format!("{reason}. Names are case-sensitive: did you mean `{like}`?");
-    }
+    reason.push_str(&case_hint(term, &known));
     FieldError::new(format!("motivations.{motivation}"), reason)
+}
+
+/// For a name that is one of the paper's motivations or of the `known` terms but for its case
+/// (`Curiosity`): ". Names are case-sensitive: did you mean `curiosity`?"; otherwise nothing.
+/// A config's `[motivations]` and `fuzzy --motivations` give the same hint.
+pub fn case_hint(name: &str, known: &[&str]) -> String {
+    let spelled = |n: &&str| *n != name && n.eq_ignore_ascii_case(name);
+    (PAPER_MOTIVATIONS.iter().copied())
+        .chain(known.iter().copied())
+        .find(spelled)
+        .map_or_else(String::new, |like| {
+            format!(". Names are case-sensitive: did you mean `{like}`?")
+        })
 }
 
 /// A mission term needs its mission in every room: `goal` a goal, `waypoints` waypoints,
