@@ -175,21 +175,7 @@ impl OutputError {
                 first_three(files)
             ),
             Self::Unfinished { .. } => self.render_unfinished(s),
-            Self::WouldReplace { dir, model } => format!(
-                "{out} {}: holds {}; they are kept. Choose another {out}, or pass {force} to \
-                 replace them",
-                dir.display(),
-                match model {
-                    Some(m) => format!(
-                        "the results of model {m} of fuzzymotiv (this build is model {}, whose \
-                         results differ)",
-                        fuzzymotiv::MODEL_VERSION
-                    ),
-                    None => "the results of a different run (another config, seed, size or \
-                             command)"
-                        .into(),
-                }
-            ),
+            Self::WouldReplace { dir, model } => would_replace(s, dir, *model),
             Self::OtherPlan { dir, why } => format!(
                 "{out} {}: holds a sweep of another plan ({why}); its results are kept. Choose \
                  another {out}, pass {force} to replace that sweep, or run the sweep file that \
@@ -207,29 +193,14 @@ impl OutputError {
                  (e.g. a name ending in .html for a page)",
                 path.display()
             ),
-            Self::NotAFile { option, path, what } => format!(
-                "{}: is {what}, which is never replaced (not even with {force}); {}",
-                named(option, path),
-                match option.as_str() {
-                    "" => "move it away",
-                    _ => "give the path of a new or regular file",
-                }
-            ),
+            Self::NotAFile { option, path, what } => not_a_file(s, option, path, what),
             Self::StdoutForSeveral { option, files } => format!(
                 "{option} -: `-` is standard output, which takes one file, and this output is \
                  {} files ({}) written into a directory; give a directory, e.g. {option} results",
                 files.len(),
                 files.join(", ")
             ),
-            Self::FileDiffers { option, path } => format!(
-                "{}: the file exists with other contents and is kept; pass {force} to replace \
-                 it{}",
-                named(option, path),
-                match option.as_str() {
-                    "" => String::new(),
-                    _ => format!(", or choose another {option}"),
-                }
-            ),
+            Self::FileDiffers { option, path } => file_differs(s, option, path),
         }
     }
 
@@ -290,6 +261,53 @@ fn first_three(files: &[PathBuf]) -> String {
         "{}{}",
         shown.join(", "),
         if files.len() > 3 { ", …" } else { "" }
+    )
+}
+
+/// The refusal of an output directory holding other results.
+fn would_replace(s: &Spelling, dir: &Path, model: Option<u32>) -> String {
+    let (out, force) = (s.out, s.force);
+    format!(
+        "{out} {}: holds {}; they are kept. Choose another {out}, or pass {force} to \
+         replace them",
+        dir.display(),
+        match model {
+            Some(m) => format!(
+                "the results of model {m} of fuzzymotiv (this build is model {}, whose \
+                 results differ)",
+                fuzzymotiv::MODEL_VERSION
+            ),
+            None => "the results of a different run (another config, seed, size or \
+                     command)"
+                .into(),
+        }
+    )
+}
+
+/// The refusal of a file that is not a regular file.
+fn not_a_file(s: &Spelling, option: &str, path: &Path, what: &str) -> String {
+    let force = s.force;
+    format!(
+        "{}: is {what}, which is never replaced (not even with {force}); {}",
+        named(option, path),
+        match option {
+            "" => "move it away",
+            _ => "give the path of a new or regular file",
+        }
+    )
+}
+
+/// The refusal of a file that exists with other contents.
+fn file_differs(s: &Spelling, option: &str, path: &Path) -> String {
+    let force = s.force;
+    format!(
+        "{}: the file exists with other contents and is kept; pass {force} to replace \
+         it{}",
+        named(option, path),
+        match option {
+            "" => String::new(),
+            _ => format!(", or choose another {option}"),
+        }
     )
 }
 
