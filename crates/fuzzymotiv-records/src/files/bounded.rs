@@ -171,14 +171,21 @@ impl<R: Read> Bounded<R> {
                 size(self.kind.limit)
             )));
         }
-        let bad = self.utf8_error(buf);
+        let not_utf8 = |line: u64, b: u8| {
+            format!(
+                "line {line}: byte 0x{b:02x} is not UTF-8 text; a {what} is UTF-8 text (save it as UTF-8)"
+            )
+        };
+        let bad = match self.utf8_error(buf) {
+            // The carried bytes end the last read and are not a newline: the line is this one.
+            Some(NotUtf8::Carried(b)) => return Err(self.refuse(not_utf8(self.line, b))),
+            Some(NotUtf8::At(at)) => Some(at),
+            None => None,
+        };
         let upto = bad.map_or(buf.len(), |at| at + 1);
         for (i, &b) in buf[..upto].iter().enumerate() {
             if Some(i) == bad {
-                return Err(self.refuse(format!(
-                    "line {}: byte 0x{b:02x} is not UTF-8 text; a {what} is UTF-8 text (save it as UTF-8)",
-                    self.line
-                )));
+                return Err(self.refuse(not_utf8(self.line, b)));
             }
             if b == 0 {
                 return Err(self.refuse(format!(
@@ -204,8 +211,9 @@ impl<R: Read> Bounded<R> {
     }
 
     /// Where in `buf` the first byte that is not UTF-8 lies (after the bytes carried from the
-    /// last read; a sequence cut at the end of `buf` is carried to the next).
-    fn utf8_error(&mut self, buf: &[u8]) -> Option<usize> {
+    /// last read; a sequence cut at the end of `buf` is carried to the next), or the carried
+    /// byte that is not (a sequence cut at the end of the last read that `buf` breaks).
+    fn utf8_error(&mut self, buf: &[u8]) -> Option<NotUtf8> {
         let carried = self.carry.len();
         let joined;
         let bytes = if carried == 0 {
@@ -223,9 +231,19 @@ impl<R: Read> Bounded<R> {
                 self.carry = bytes[e.valid_up_to()..].to_vec();
                 None
             }
-            Err(e) => Some(e.valid_up_to().saturating_sub(carried).min(buf.len() - 1)),
+            Err(e) if e.valid_up_to() < carried => Some(NotUtf8::Carried(bytes[e.valid_up_to()])),
+            Err(e) => Some(NotUtf8::At((e.valid_up_to() - carried).min(buf.len() - 1))),
         }
     }
+}
+
+/// The first byte of a read that is not UTF-8 ([`Bounded::utf8_error`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum NotUtf8 {
+    /// A byte carried from the last read, with its value.
+    Carried(u8),
+    /// The byte at this index of the read.
+    At(usize),
 }
 
 impl<R: Read> Read for Bounded<R> {
@@ -365,6 +383,28 @@ mod tests {
         );
         let e = read_all(b"ab\ncd\0", InputKind::text("config"), 3).unwrap_err();
         assert!(e.contains("line 2: a NUL byte"), "{e}");
+    }
+
+    #[test]
+    fn a_sequence_cut_between_reads_and_broken_by_the_next_read_names_its_first_byte_and_line() {
+        // Latin-1 "né,x": 0xE9 starts a 3-byte sequence that the ',' of the next read breaks.
+        let bad = b"a,b\nn\xe9,x\n";
+        for chunk in 1..5 {
+            let e = read_all(bad, InputKind::text("sensor table"), chunk).unwrap_err();
+            assert!(
+                e.starts_with("f.csv: line 2: byte 0xe9 is not UTF-8"),
+                "chunk {chunk}: {e}"
+            );
+        }
+        // Two carried bytes (0xE2 0x82 of '€') broken by the next read: the first is named.
+        let bad = b"a\nb\n\xe2\x82x\n";
+        for chunk in 1..7 {
+            let e = read_all(bad, InputKind::text("sensor table"), chunk).unwrap_err();
+            assert!(
+                e.starts_with("f.csv: line 3: byte 0xe2 is not UTF-8"),
+                "chunk {chunk}: {e}"
+            );
+        }
     }
 
     #[test]
