@@ -61,6 +61,36 @@ fn a_bad_set_value_is_blamed_on_the_set_not_the_file() {
     );
 }
 
+/// A `--set` of a whole table is not blamed for a value of the file it does not hold
+/// (`population = 1` in the file, `--set ga={generations=5}`), nor a `--set` of a motivation's
+/// weight for the term the file gives it: both are named as the file with that `--set`.
+#[test]
+fn a_set_is_not_blamed_for_a_value_of_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let refused = |text: &str, set: &str| {
+        let cfg = dir.path().join("c.toml");
+        std::fs::write(&cfg, text).unwrap();
+        let o = Fm::new(["run".as_ref(), cfg.as_os_str()])
+            .out(&dir.path().join("out"))
+            .sets(&[set])
+            .run();
+        assert_eq!(o.status.code(), Some(2), "{set}: {}", stderr(&o));
+        assert!(!dir.path().join("out").exists(), "{set} wrote output");
+        stderr(&o)
+    };
+    let msg = refused("[ga]\npopulation = 1\n", "ga={generations=5}");
+    assert!(
+        msg.contains("c.toml with --set ga={generations=5}: field `ga.population`"),
+        "{msg}"
+    );
+    let text = "[motivations]\nx = { weight = 0.5, term = \"nope\" }\ncuriosity = 0.5\n";
+    let msg = refused(text, "motivations.x.weight=0.5");
+    assert!(
+        msg.contains("c.toml with --set motivations.x.weight=0.5: field `motivations.x"),
+        "{msg}"
+    );
+}
+
 /// Motivations that no longer sum to 1 after a `--set` are named as the file with that
 /// `--set` (the sum comes from both), not as the file alone; a `--set` elsewhere is not named.
 #[test]

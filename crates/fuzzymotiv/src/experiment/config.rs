@@ -277,8 +277,8 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
         };
         let key = key.trim();
         let value = value.trim();
-        let parsed: toml::Value = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
-            Ok(mut t) => {
+        let parsed: toml::Value = match set_value_table(value) {
+            Some(mut t) => {
                 let v = t.remove("v");
                 if !t.is_empty() {
                     return Err(ConfigError {
@@ -292,7 +292,7 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
                 }
                 v.unwrap_or(toml::Value::String(value.to_string()))
             }
-            Err(_) => toml::Value::String(value.to_string()),
+            None => toml::Value::String(value.to_string()),
         };
         let parts: Vec<&str> = key.split('.').collect();
         if parts.iter().any(|p| p.is_empty()) {
@@ -344,35 +344,25 @@ fn default_motivations_for_sets(table: &mut toml::Table, sets: &[String]) {
 }
 
 /// The error `e` of a value given by `--set` named as coming from that `--set KEY=VALUE`, not
-/// from the file: its field is the key set, inside it (`ga={population=1}` → `ga.population`)
-/// or holds it (`motivations.x.weight` → `motivations.x`, but not a whole section such as
-/// `motivations`, whose error may come from the file as well: that is named as the file with
-/// the `--set`s inside it, `c.toml with --set motivations.curiosity=0.8`); other errors as
-/// they are.
+/// from the file: its field is the key set or lies inside what the `--set`'s value gives
+/// (`ga={population=1}` → `ga.population`, but not `ga={generations=5}` → `ga.population`, a
+/// value of the file). An error in a table a `--set` reaches into, or in a table holding the
+/// key set (`motivations.x` after `--set motivations.x.weight=…`, the motivations' sum after
+/// `--set motivations.curiosity=…`), may come from the file as well: it is named as the file
+/// with those `--set`s, `c.toml with --set motivations.curiosity=0.8`; other errors as they are.
 pub fn blame_set(e: FieldError, sets: &[String]) -> FieldError {
-    let inside = |a: &str, b: &str| {
-        a.strip_prefix(b)
-            .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
-    };
     let field = e.field.as_str();
-    let key = |set: &str| {
-        set.split_once('=')
-            .map_or(set, |(k, _)| k)
-            .trim()
-            .to_string()
-    };
-    let set = sets.iter().rev().find(|set| {
-        let key = key(set);
-        !key.is_empty() && (inside(field, &key) || (field.contains('.') && inside(&key, field)))
-    });
-    if let Some(set) = set {
+    if let Some(set) = sets.iter().rev().find(|set| set_gives(set, field)) {
         return FieldError {
             source_name: format!("--set {set}"),
             ..e
         };
     }
     let within: Vec<&str> = (sets.iter())
-        .filter(|set| inside(&key(set), field))
+        .filter(|set| {
+            let key = set_key(set);
+            !key.is_empty() && (inside(key, field) || inside(field, key))
+        })
         .map(String::as_str)
         .collect();
     if within.is_empty() {
@@ -382,6 +372,52 @@ pub fn blame_set(e: FieldError, sets: &[String]) -> FieldError {
         source_name: format!("{} with --set {}", e.source_name, within.join(", --set ")),
         ..e
     }
+}
+
+/// Whether the field path `a` is `b` or lies under it (`b.…`, `b[…]`).
+fn inside(a: &str, b: &str) -> bool {
+    a.strip_prefix(b)
+        .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
+}
+
+/// The key of `--set KEY=VALUE`.
+fn set_key(set: &str) -> &str {
+    set.split_once('=').map_or(set, |(k, _)| k).trim()
+}
+
+/// `v = VALUE` read as TOML, if it is.
+fn set_value_table(value: &str) -> Option<toml::Table> {
+    toml::from_str::<toml::Table>(&format!("v = {value}")).ok()
+}
+
+/// Whether `--set KEY=VALUE` gives the value of `field`: `field` is `KEY` (or an element of
+/// it, `KEY[i]`), or `KEY.rest` where VALUE is a table holding `rest`.
+fn set_gives(set: &str, field: &str) -> bool {
+    let key = set_key(set);
+    let Some(rest) = field.strip_prefix(key).filter(|_| !key.is_empty()) else {
+        return false;
+    };
+    if rest.is_empty() || rest.starts_with('[') {
+        return true;
+    }
+    let Some(rest) = rest.strip_prefix('.') else {
+        return false;
+    };
+    let value = set.split_once('=').map_or("", |(_, v)| v);
+    let Some(mut value) = set_value_table(value).and_then(|mut t| t.remove("v")) else {
+        return false;
+    };
+    for part in rest.split('.') {
+        let name = part.split_once('[').map_or(part, |(n, _)| n);
+        match value {
+            toml::Value::Table(mut t) => match t.remove(name) {
+                Some(v) => value = v,
+                None => return false,
+            },
+            _ => return false,
+        }
+    }
+    true
 }
 
 /// Sets `t[key]` to `value`; where both are tables, key by key (recursively), so that the
@@ -504,12 +540,38 @@ mod tests {
         let checked = |field: &str| FieldError::new(field, "bad").in_source("g.toml");
         let blamed = |field: &str| blame_set(checked(field), &sets).source_name;
         assert_eq!(blamed("ga.population"), "--set ga={population=1}");
-        assert_eq!(blamed("motivations.x"), "--set motivations.x.weight=2");
+        assert_eq!(
+            blamed("motivations.x.weight"),
+            "--set motivations.x.weight=2"
+        );
         // A whole section's error (the motivations' sum) comes from the file with the --set.
         assert_eq!(
             blamed("motivations"),
             "g.toml with --set motivations.x.weight=2"
         );
         assert_eq!(blamed("trial.steps"), "g.toml");
+    }
+
+    /// A `--set` of a whole table is blamed only for what its value holds, and a `--set` of
+    /// one key of a table not for the table's other keys: those come from the file, named as
+    /// the file with the `--set`.
+    #[test]
+    fn a_set_is_blamed_only_for_what_its_value_holds() {
+        let sets = [
+            "ga={population=1}".to_string(),
+            "motivations.x.weight=2".into(),
+        ];
+        let checked = |field: &str| FieldError::new(field, "bad").in_source("g.toml");
+        let blamed = |field: &str| blame_set(checked(field), &sets).source_name;
+        assert_eq!(blamed("ga.population"), "--set ga={population=1}");
+        assert_eq!(
+            blamed("ga.generations"),
+            "g.toml with --set ga={population=1}"
+        );
+        assert_eq!(
+            blamed("motivations.x"),
+            "g.toml with --set motivations.x.weight=2"
+        );
+        assert_eq!(blamed("motivations.x.term"), "g.toml");
     }
 }
