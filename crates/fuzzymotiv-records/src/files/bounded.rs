@@ -295,10 +295,15 @@ fn not_readable(meta: &std::fs::Metadata) -> Option<&'static str> {
 }
 
 /// Reads the whole input file `path` of `kind` as text ([`open_input`]; at most
-/// [`InputKind::limit`] bytes of UTF-8 text).
+/// [`InputKind::limit`] bytes of UTF-8 text). The text is reserved once from the length of a
+/// regular file (at most the limit and one byte, enough to see a file over it), so that a file
+/// near the limit does not make the text grow by doubling to twice the limit.
 pub fn read_input(path: &Path, kind: InputKind) -> Result<String, CliError> {
     let mut input = open_input(path, kind)?;
-    let mut text = String::new();
+    let length = (input.inner.metadata().ok())
+        .filter(|meta| meta.is_file())
+        .map_or(0, |meta| meta.len().min(kind.limit + 1));
+    let mut text = String::with_capacity(usize::try_from(length).unwrap_or(0));
     input.read_to_string(&mut text).map_err(|e| {
         refusal(&e).unwrap_or_else(|| {
             CliError::input(format!("{}: cannot read {}: {e}", input.name, kind.what))
@@ -405,6 +410,27 @@ mod tests {
                 "chunk {chunk}: {e}"
             );
         }
+    }
+
+    #[test]
+    fn a_regular_file_is_read_into_text_reserved_once_from_its_length() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("record.json");
+        let body = "x".repeat(5000);
+        std::fs::write(&path, &body).unwrap();
+        let text = read_input(&path, InputKind::record("record file")).unwrap();
+        assert_eq!(text, body);
+        // Grown by doubling, the text would hold 8192 bytes or more.
+        assert!(text.capacity() <= body.len() + 1, "{}", text.capacity());
+        let kind = InputKind {
+            limit: 100,
+            ..InputKind::text("config")
+        };
+        let e = read_input(&path, kind).unwrap_err().to_string();
+        assert!(
+            e.contains("is larger than the 100 bytes a config may be"),
+            "{e}"
+        );
     }
 
     #[test]

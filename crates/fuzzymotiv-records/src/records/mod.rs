@@ -1494,7 +1494,11 @@ fn array_for_record<T>(field: &str, message: &str) -> Option<&'static str> {
 /// Reads a CSV record file into rows of `T`; a missing or malformed cell is an input error
 /// naming the file, the line and the column.
 pub fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>, CliError> {
-    let text = read_input(path, RECORD)?;
+    parse_csv(&read_input(path, RECORD)?, path)
+}
+
+/// [`read_csv`] of the text of `path`, already read.
+fn parse_csv<T: DeserializeOwned>(text: &str, path: &Path) -> Result<Vec<T>, CliError> {
     let mut rdr = csv::Reader::from_reader(text.as_bytes());
     let headers = rdr.headers().map_err(|e| csv_error(path, None, e))?.clone();
     rdr.deserialize()
@@ -1531,7 +1535,11 @@ struct CsvTable {
 
 impl CsvTable {
     fn read(path: &Path) -> Result<CsvTable, CliError> {
-        let text = read_input(path, RECORD)?;
+        CsvTable::parse(&read_input(path, RECORD)?, path)
+    }
+
+    /// [`CsvTable::read`] of the text of `path`, already read.
+    fn parse(text: &str, path: &Path) -> Result<CsvTable, CliError> {
         let mut rdr = csv::Reader::from_reader(text.as_bytes());
         let headers = rdr
             .headers()

@@ -11,8 +11,11 @@ use std::path::Path;
 use fuzzymotiv::fitness::TermId;
 use serde::{Deserialize, Serialize};
 
+use crate::files::bounded::read_input;
 use crate::files::error::CliError;
-use crate::records::{CsvTable, Finished, csv_text, csv_writer, read_csv, to_csv, write_row};
+use crate::records::{
+    CsvTable, Finished, RECORD, csv_text, csv_writer, parse_csv, to_csv, write_row,
+};
 
 /// The file's name in a run directory.
 pub const TEST_RUNS: &str = "test_runs.csv";
@@ -148,8 +151,9 @@ pub fn read(dir: &Path) -> Result<Vec<TestRunRow>, CliError> {
             dir.join("config.resolved.toml").display()
         )));
     }
-    let mut rows: Vec<TestRunRow> = read_csv(&path)?;
-    let table = CsvTable::read(&path)?;
+    let text = read_input(&path, RECORD)?;
+    let mut rows: Vec<TestRunRow> = parse_csv(&text, &path)?;
+    let table = CsvTable::parse(&text, &path)?;
     let extra: Vec<String> = (table.headers.iter())
         .filter(|h| !COLUMNS.contains(&h.as_str()))
         .cloned()
