@@ -318,19 +318,22 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
                 }
             };
         }
-        merge_value(t, parts[parts.len() - 1], parsed);
+        if key == "motivations" {
+            // A [motivations] table defines the whole set (docs/model.md §8).
+            t.insert(key.to_string(), parsed);
+        } else {
+            merge_value(t, parts[parts.len() - 1], parsed);
+        }
     }
     Ok(())
 }
 
-/// A `--set motivations.…` changes the config's motivations as they stand: where the document
-/// has no `[motivations]` (or an empty one), those are the paper's four with their defaults, so
-/// they are written out first (a table in the file defines the whole set; docs/model.md §8).
+/// A `--set motivations.NAME…` changes the config's motivations as they stand: where the
+/// document has no `[motivations]` (or an empty one), those are the paper's four with their
+/// defaults, so they are written out first (a table in the file defines the whole set;
+/// docs/model.md §8). A bare `--set motivations={…}` is a table of its own: it replaces them.
 fn default_motivations_for_sets(table: &mut toml::Table, sets: &[String]) {
-    let touches = |set: &String| {
-        let key = set.split_once('=').map_or(set.as_str(), |(k, _)| k).trim();
-        key == "motivations" || key.starts_with("motivations.")
-    };
+    let touches = |set: &String| set_key(set).starts_with("motivations.");
     let empty = match table.get("motivations") {
         None => true,
         Some(toml::Value::Table(t)) => t.is_empty(),
@@ -573,5 +576,21 @@ mod tests {
             "g.toml with --set motivations.x.weight=2"
         );
         assert_eq!(blamed("motivations.x.term"), "g.toml");
+    }
+
+    /// `--set motivations={…}` defines the whole set, as a `[motivations]` table does: the
+    /// paper's four are not added first (without a table) nor the file's kept (with one).
+    #[test]
+    fn a_set_of_the_whole_motivations_table_replaces_the_set() {
+        let sets = ["motivations={curiosity=0.7,urgency=0.3}".to_string()];
+        let names = |text: &str| {
+            let raw = RawConfig::parse(text, "c.toml", &sets).unwrap();
+            (raw.motivations.list.iter())
+                .map(|(n, w)| (n.clone(), w.weight()))
+                .collect::<Vec<_>>()
+        };
+        let two = vec![("curiosity".to_string(), 0.7), ("urgency".to_string(), 0.3)];
+        assert_eq!(names("seed = 3\n"), two);
+        assert_eq!(names("[motivations]\nhoming = 0.5\nenergy = 0.5\n"), two);
     }
 }
