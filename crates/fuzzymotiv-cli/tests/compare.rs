@@ -147,6 +147,36 @@ fn runs_are_compared_over_their_test_runs() {
     assert!(!dir.join("x").exists());
 }
 
+/// The same comparison into the same --out again: its files already hold these bytes, so they
+/// are left alone and the command says so (as robustness, recognise and claims do).
+#[test]
+fn the_same_comparison_again_says_its_files_are_left_alone() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let rooms = "\"H\", \"square\"";
+    let a = small_run(dir, "a", 1, rooms, &[]);
+    let b = small_run(dir, "b", 2, rooms, &[]);
+    let out = dir.join("ab");
+    let first = compare(&a, &b, &out, &[]);
+    assert!(first.status.success(), "{}", stderr(&first));
+    assert!(
+        !stderr(&first).contains("nothing to do"),
+        "{}",
+        stderr(&first)
+    );
+    let again = compare(&a, &b, &out, &[]);
+    assert!(again.status.success(), "{}", stderr(&again));
+    assert!(
+        stderr(&again).contains(&format!(
+            "{} already holds these files; nothing to do",
+            out.display()
+        )),
+        "{}",
+        stderr(&again)
+    );
+    assert_eq!(stdout(&again), stdout(&first));
+}
+
 /// A small study with the seeds 1 and 2.
 fn small_study(dir: &Path, name: &str, seed: &str) -> PathBuf {
     let out = dir.join(name);

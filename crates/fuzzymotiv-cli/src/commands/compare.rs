@@ -4,7 +4,8 @@
 use std::path::PathBuf;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{check_files_dir, io_err, write_into};
+use fuzzymotiv_io::files::guard::{FilesState, check_files_dir, io_err, write_into};
+use fuzzymotiv_io::note;
 use fuzzymotiv_io::pipeline::compare::{check_comparable, choose, compare, load};
 use fuzzymotiv_io::render::study::CLAIMS_ALPHA;
 
@@ -65,7 +66,9 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
         files.push((path, png));
     }
     files.push((out.join("compare.svg"), done.svg.into_bytes()));
-    write_into(out, &files, "--out", args.force)?;
+    if write_into(out, &files, "--out", args.force)? == FilesState::Same {
+        note!("{} already holds these files; nothing to do", out.display());
+    }
     fuzzymotiv_io::out!("{}", done.md)?;
     Ok(())
 }
