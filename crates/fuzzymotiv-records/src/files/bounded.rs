@@ -1,15 +1,16 @@
 //! Reading the user's files with bounds: every input file (configs, room files, sweep files,
-//! sensor tables, robot logs, genome files, a run's or study's records) is read through
-//! [`open_input`] or [`read_input`], so that a device, an endless pipe or a binary file is
-//! refused at once with exit code 2, naming the file and what would be right, and memory stays
-//! bounded.
+//! sensor table files, `calibrate`'s measurements, robot logs, genome files, a run's or study's
+//! records) is read through [`open_input`] or [`read_input`], so that a device, an endless pipe
+//! or a binary file is refused at once with exit code 2, naming the file and what would be
+//! right, and memory stays bounded.
 //!
 //! - Only a regular file or a pipe (a FIFO, `/dev/stdin` fed by a pipe) is read; a directory,
 //!   a device (`/dev/zero`, a terminal) or a socket is refused before a byte is read.
 //! - At most [`InputKind::limit`] bytes are read: a file or pipe holding more is refused once
 //!   the limit is passed (the reader stops there).
-//! - A line of a file read line by line (a log, a sensor table) is at most
-//!   [`LINE_LIMIT`] bytes.
+//! - A line of a file read line by line (a robot's log, `calibrate`'s measurements) is at most
+//!   [`LINE_LIMIT`] bytes; a file read whole (a config, a room file, a sensor table file, a
+//!   record) has no line limit.
 //! - Text is UTF-8 without NUL bytes: the first byte that breaks this is refused with its line.
 
 use std::fmt;
@@ -20,8 +21,8 @@ use std::path::Path;
 use crate::files::error::CliError;
 
 /// The most bytes of a file the user writes by hand or with a script: a config, a room file,
-/// a sweep file, a sensor table, a genome file given to `export` (16 MiB; the largest of these
-/// fuzzymotiv writes, a genome of 1024 hidden units, is about 300 KB).
+/// a sweep file, a sensor table file, `calibrate`'s measurements (16 MiB). A genome file given
+/// to `export` is read as a record ([`RECORD_LIMIT`], through `read_json`).
 pub const TEXT_LIMIT: u64 = 16 << 20;
 
 /// The most bytes of a robot's log (`recognise`, `replay --log`), read line by line: 256 MiB
@@ -32,7 +33,8 @@ pub const LOG_LIMIT: u64 = 256 << 20;
 /// files, a checkpoint): 1 GiB (a checkpoint holds the whole population's weights).
 pub const RECORD_LIMIT: u64 = 1 << 30;
 
-/// The most bytes of one line of a file read line by line (a log, a sensor table): 1 MiB.
+/// The most bytes of one line of a file read line by line (a robot's log, `calibrate`'s
+/// measurements): 1 MiB.
 pub const LINE_LIMIT: u64 = 1 << 20;
 
 /// A kind of input file: what it is called in messages, the most bytes it may hold, and
