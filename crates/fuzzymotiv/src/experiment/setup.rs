@@ -191,35 +191,14 @@ pub fn parse_room_file(text: &str, source_name: &str) -> Result<Room, SetupError
     Ok(Room::from_toml_str(text, source_name)?)
 }
 
-/// What normalising the motivations did: `(C, H, O, E) = [..]` for the paper's four.
-/// When `[motivations]` names some of the paper's four but not all: those left out are no
-/// motivations here (a table defines the whole set; an earlier release added them with their
-/// defaults), said once so that an older config's different meaning is not silent.
+/// The note of a `[motivations]` that names some of the paper's four but not all
+/// ([`RawMotivations::left_out_said`]), naming `source_name`.
 fn left_out_note(source_name: &str, m: &RawMotivations) -> Option<String> {
-    let left = m.paper_left_out();
-    if left.is_empty() {
-        return None;
-    }
-    let each = |f: fn(&str) -> String| and_joined(&left.iter().map(|n| f(n)).collect::<Vec<_>>());
-    let names = each(|n| format!("`{n}`"));
-    let zeros = each(|n| format!("`{n} = 0.0`"));
-    let inputs: Vec<&str> = m.list.iter().map(|(n, _)| n.as_str()).collect();
-    Some(format!(
-        "{source_name}: [motivations] leaves out {names} of the paper's four, so the motivations \
-         are {} alone: a table defines the whole set (write {zeros} to keep the paper's four)",
-        inputs.join(", ")
-    ))
+    m.left_out_said()
+        .map(|said| format!("{source_name}: {said}"))
 }
 
-/// `a`, `a and b`, `a, b and c`.
-fn and_joined(items: &[String]) -> String {
-    match items {
-        [] => String::new(),
-        [one] => one.clone(),
-        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
-    }
-}
-
+/// What normalising the motivations did: `(C, H, O, E) = [..]` for the paper's four.
 fn normalised_note(source_name: &str, sum: f64, m: &RawMotivations) -> String {
     let paper = m.list.len() == 4
         && m.list
@@ -300,6 +279,35 @@ mod tests {
                 .starts_with("mine.toml: not valid TOML (line 1"),
             "{e}"
         );
+    }
+
+    /// A config relying on the earlier fill-in (`curiosity = 0.8` alone, once 0.8/0.1/0/0.1)
+    /// is refused for its sum with the reason: a table defines the whole set, and which of
+    /// the paper's four it leaves out.
+    #[test]
+    fn a_sum_error_of_a_table_leaving_out_paper_motivations_says_a_table_defines_the_set() {
+        let c = RawConfig::parse("[motivations]\ncuriosity = 0.8\n", "old.toml", &[]).unwrap();
+        let Err(SetupError::Field(e)) = Setup::resolve(c, "old.toml", &BuiltinRoomsOnly) else {
+            panic!("a sum of 0.8 is refused for a field");
+        };
+        assert_eq!(
+            (e.source_name.as_str(), e.field.as_str()),
+            ("old.toml", "motivations")
+        );
+        assert!(
+            e.reason.starts_with("motivations must sum to 1, got 0.8"),
+            "{e}"
+        );
+        assert!(
+            e.reason.contains(
+                "leaves out `homing`, `orientation` and `energy` of the paper's four, so the \
+                 motivations are curiosity alone: a table defines the whole set"
+            ),
+            "{e}"
+        );
+        let c = RawConfig::parse("[motivations]\nx = 0.5\n", "new.toml", &[]).unwrap();
+        let e = Setup::resolve(c, "new.toml", &BuiltinRoomsOnly).unwrap_err();
+        assert!(!e.to_string().contains("paper's four"), "{e}");
     }
 
     /// A table that leaves out three of the paper's four says to write all three at 0, not

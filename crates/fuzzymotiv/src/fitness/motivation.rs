@@ -454,6 +454,27 @@ impl RawMotivations {
         }
     }
 
+    /// When this set names some of the paper's four but not all: that those left out are no
+    /// motivations here (a table defines the whole set; an earlier release added them with
+    /// their defaults), for the note of a config that runs and the sum error of one that does
+    /// not, so that an older config's different meaning is not silent.
+    pub fn left_out_said(&self) -> Option<String> {
+        let left = self.paper_left_out();
+        if left.is_empty() {
+            return None;
+        }
+        let each =
+            |f: fn(&str) -> String| and_joined(&left.iter().map(|n| f(n)).collect::<Vec<_>>());
+        let names = each(|n| format!("`{n}`"));
+        let zeros = each(|n| format!("`{n} = 0.0`"));
+        let inputs: Vec<&str> = self.list.iter().map(|(n, _)| n.as_str()).collect();
+        Some(format!(
+            "[motivations] leaves out {names} of the paper's four, so the motivations are {} \
+             alone: a table defines the whole set (write {zeros} to keep the paper's four)",
+            inputs.join(", ")
+        ))
+    }
+
     /// The weight written for `name`, if any.
     pub fn weight_of(&self, name: &str) -> Option<f64> {
         self.list
@@ -492,7 +513,13 @@ impl RawMotivations {
                 FuzzyError::DuplicateMotivation { name } => format!("motivations.{name}"),
                 _ => "motivations".to_string(),
             };
-            FieldError::new(field, e.to_string())
+            let left_out = (matches!(e, FuzzyError::MotivationSum { .. }))
+                .then(|| self.left_out_said())
+                .flatten();
+            match left_out {
+                Some(said) => FieldError::new(field, format!("{e}; {said}")),
+                None => FieldError::new(field, e.to_string()),
+            }
         })
     }
 
@@ -506,6 +533,15 @@ impl RawMotivations {
         } else {
             format!("motivations.{name}")
         }
+    }
+}
+
+/// `a`, `a and b`, `a, b and c`.
+fn and_joined(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
     }
 }
 
