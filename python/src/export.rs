@@ -69,8 +69,5 @@ pub(crate) fn export_controller_bytes<'py>(
         out_option: "out",
     })
     .map_err(py_err)?;
-    let [(_, bytes)] = built.files.as_slice() else {
-        unreachable!("a JSON or ONNX export is one file")
-    };
-    Ok(PyBytes::new(py, bytes))
+    Ok(PyBytes::new(py, built.single_file("out").map_err(py_err)?))
 }

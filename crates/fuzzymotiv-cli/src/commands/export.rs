@@ -69,10 +69,7 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
     if args.out.as_os_str() == "-" && args.to != Target::C {
         let built = build_export(&req)?;
         said(built.config.as_deref(), &built.notes);
-        let [(_, bytes)] = built.files.as_slice() else {
-            unreachable!("a JSON or ONNX export is one file")
-        };
-        return write_out_bytes(bytes);
+        return write_out_bytes(built.single_file("--out")?);
     }
     let done = export_controller(&req)?;
     said(done.config.as_deref(), &done.notes);

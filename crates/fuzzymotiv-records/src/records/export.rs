@@ -91,6 +91,29 @@ pub struct Export {
     pub notes: Vec<String>,
 }
 
+impl Export {
+    /// The bytes of an export of one file (JSON, ONNX), for standard output; an export of more
+    /// (C: a header and a source) is an input error naming `out_option`, since `-` takes one
+    /// file.
+    pub fn single_file(&self, out_option: &str) -> Result<&[u8], CliError> {
+        match self.files.as_slice() {
+            [(_, bytes)] => Ok(bytes),
+            files => {
+                let names: Vec<String> = (files.iter())
+                    .map(|(path, _)| path.file_name().unwrap_or(path.as_os_str()))
+                    .map(|name| name.to_string_lossy().into_owned())
+                    .collect();
+                Err(CliError::input(format!(
+                    "{out_option}: `-` (standard output) takes one file, but this export has {} \
+                     ({}); pass a directory",
+                    files.len(),
+                    names.join(", ")
+                )))
+            }
+        }
+    }
+}
+
 /// Loads the genome and config and builds the export's files, writing nothing; the C
 /// export's directory is checked first ([`check_files_dir`]: not `-`, the current directory or
 /// something other than a directory).
@@ -204,4 +227,35 @@ fn c_files(out: &Path, c: &CSources) -> Vec<(PathBuf, Vec<u8>)> {
             c.source.clone().into_bytes(),
         ),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn export_of(files: &[&str]) -> Export {
+        Export {
+            files: (files.iter())
+                .map(|name| (PathBuf::from(name), name.as_bytes().to_vec()))
+                .collect(),
+            genome: PathBuf::from("best_genome.json"),
+            config: None,
+            hidden: 6,
+            notes: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn an_export_of_one_file_gives_its_bytes_and_one_of_two_files_is_refused_for_standard_output() {
+        let one = export_of(&["controller.json"]);
+        assert_eq!(one.single_file("--out").unwrap(), b"controller.json");
+        let two = export_of(&["out/fm_controller.h", "out/fm_controller.c"]);
+        let e = two.single_file("--out").unwrap_err();
+        assert!(e.is_input());
+        assert_eq!(
+            e.to_string(),
+            "--out: `-` (standard output) takes one file, but this export has 2 \
+             (fm_controller.h, fm_controller.c); pass a directory"
+        );
+    }
 }
