@@ -9,6 +9,7 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::experiment::InstanceRun;
 use fuzzymotiv::experiment::Training;
+use fuzzymotiv::params::joined_list;
 use fuzzymotiv::simulation::SENSOR_LAYOUT;
 use serde_json::{Value, json};
 
@@ -560,7 +561,7 @@ fn motivations_intro(ctx: &RenderContext) -> String {
     } else {
         format!(
             " The run also measures {}, which no motivation weighs: they are reported in the results per room, not combined into F.",
-            esc(&and_list(&unweighted))
+            esc(&joined_list(&unweighted, "and"))
         )
     };
     format!(
@@ -586,25 +587,6 @@ fn unweighted_terms(ctx: &RenderContext) -> Vec<&str> {
         .collect()
 }
 
-/// `a`, `a and b`, `a, b and c`.
-fn and_list(items: &[&str]) -> String {
-    joined_list(items, "and")
-}
-
-/// `a`, `a or b`, `a, b or c`.
-fn or_list(items: &[&str]) -> String {
-    joined_list(items, "or")
-}
-
-/// The items joined by commas, the last by `word`.
-fn joined_list(items: &[&str], word: &str) -> String {
-    match items {
-        [] => String::new(),
-        [one] => one.to_string(),
-        [rest @ .., last] => format!("{} {word} {last}", rest.join(", ")),
-    }
-}
-
 /// A count of motivations or terms (at most 8) in words.
 fn count_word(n: usize) -> String {
     const WORDS: [&str; 9] = [
@@ -626,7 +608,7 @@ fn terms_caption(ctx: &RenderContext) -> String {
     } else {
         format!(
             " The terms no motivation weighs ({}) are not drawn: the results per room give their values.",
-            and_list(&unweighted)
+            joined_list(&unweighted, "and")
         )
     };
     format!(

@@ -41,6 +41,24 @@ impl FieldError {
     }
 }
 
+/// The items joined by commas, the last by `word` (`"and"`, `"or"`), for messages and reports:
+///
+/// ```
+/// use fuzzymotiv::params::joined_list;
+/// assert_eq!(joined_list(&["a"], "and"), "a");
+/// assert_eq!(joined_list(&["a", "b", "c"], "or"), "a, b or c");
+/// ```
+pub fn joined_list<S: AsRef<str>>(items: &[S], word: &str) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.as_ref().to_string(),
+        [rest @ .., last] => {
+            let rest: Vec<&str> = rest.iter().map(AsRef::as_ref).collect();
+            format!("{} {word} {}", rest.join(", "), last.as_ref())
+        }
+    }
+}
+
 /// The largest count most integer parameters accept (10⁶).
 pub const BIG: usize = 1_000_000;
 

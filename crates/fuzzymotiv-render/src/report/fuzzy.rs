@@ -6,10 +6,11 @@
 use std::fmt::Write as _;
 
 use fuzzymotiv::experiment::Combination;
+use fuzzymotiv::params::joined_list;
 use fuzzymotiv_records::records::RoomFuzzy;
 use fuzzymotiv_records::records::context::{OwnLabels, RenderContext};
 
-use super::{Page, Section, figure, or_list, xs};
+use super::{Page, Section, figure, xs};
 use crate::plot::{colour, esc};
 use crate::svg::{MEMBERSHIP_TITLE, membership_svg_of};
 use crate::terms::{html, mission_term_definition, terms};
@@ -112,7 +113,10 @@ fn fuzzy_intro(page: &mut Page, ctx: &RenderContext) {
             &fuzzy.peaks,
             &fuzzy.label_names,
             MEMBERSHIP_TITLE,
-            &format!("fitness value y ({})", or_list(&shared_terms(ctx))),
+            &format!(
+                "fitness value y ({})",
+                joined_list(&shared_terms(ctx), "or")
+            ),
         ),
         "Triangular membership functions: each value belongs to at most two neighbouring labels, and its memberships add up to 1.",
     );

@@ -33,7 +33,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::fitness::fuzzy::{
     Coefficients, FuzzyError, MOTIVATION_NORMALISE_TOLERANCE, MOTIVATION_SUM_TOLERANCE, TskFitness,
 };
-use crate::params::FieldError;
+use crate::params::{FieldError, joined_list};
 
 /// The most motivations a config may declare (the TSK then has up to 2^8 firing rules).
 pub const MAX_MOTIVATIONS: usize = 8;
@@ -463,8 +463,9 @@ impl RawMotivations {
         if left.is_empty() {
             return None;
         }
-        let each =
-            |f: fn(&str) -> String| and_joined(&left.iter().map(|n| f(n)).collect::<Vec<_>>());
+        let each = |f: fn(&str) -> String| {
+            joined_list(&left.iter().map(|n| f(n)).collect::<Vec<_>>(), "and")
+        };
         let names = each(|n| format!("`{n}`"));
         let zeros = each(|n| format!("`{n} = 0.0`"));
         let inputs: Vec<&str> = self.list.iter().map(|(n, _)| n.as_str()).collect();
@@ -533,15 +534,6 @@ impl RawMotivations {
         } else {
             format!("motivations.{name}")
         }
-    }
-}
-
-/// `a`, `a and b`, `a, b and c`.
-fn and_joined(items: &[String]) -> String {
-    match items {
-        [] => String::new(),
-        [one] => one.clone(),
-        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
     }
 }
 
