@@ -14,15 +14,14 @@ from ._fuzzymotiv import FuzzymotivError
 Motivations = Union[Sequence[float], Mapping[str, float]]
 """The motivations' weights X: numbers in [0, 1] summing to 1, one per motivation (1 to 8):
 four are the paper's (C, H, O, E), any other number are named ``x1``, ``x2``, ... (weighing
-``y1``, ``y2``, ...); or a dict of name to weight (only the paper's keys ``curiosity``,
-``homing``, ``orientation``, ``energy``: those four, missing ones 0; any other key: exactly the
-motivations given, in that order, each weighing the term of its own name, the paper's four
-a, g, l, b); or :attr:`fuzzymotiv.Problem.motivations` (a :class:`MotivationWeights`)."""
+``y1``, ``y2``, ...); or a dict of name to weight: exactly the motivations it names, none
+added (``{"curiosity": .7, "homing": .3}`` is two motivations, as ``fuzzymotiv fuzzy
+--motivations curiosity=0.7,homing=0.3`` and a config's ``[motivations]`` read them), in the
+dict's order, each weighing the term of its own name (``curiosity``, ``homing``,
+``orientation``, ``energy``: a, g, l, b); or :attr:`fuzzymotiv.Problem.motivations` (a
+:class:`MotivationWeights`)."""
 
 FloatArray = npt.NDArray[np.float64]
-
-
-_MOTIVATION_KEYS = ("curiosity", "homing", "orientation", "energy")
 
 
 class MotivationWeights(Tuple[float, ...]):
@@ -73,8 +72,7 @@ def _motivations(motivations: Any) -> Tuple[List[float], Optional[List[str]]]:
             weights = {k: float(v) for k, v in motivations.items()}
         except (TypeError, ValueError):
             raise FuzzymotivError(f"motivations: expected a number for each motivation, got {dict(motivations)!r}") from None
-        if set(names) <= set(_MOTIVATION_KEYS):
-            return [weights.get(k, 0.0) for k in _MOTIVATION_KEYS], None
+        # Exactly the motivations named, in the dict's order (nothing of the paper's four added).
         return [weights[k] for k in names], names
     try:
         values = [float(v) for v in motivations]

@@ -77,7 +77,12 @@ def fuzzy_fitness(
     four, Y = (a, g, l, b) under X = (C, H, O, E); for N motivations (1 to 8), one term per
     motivation, in the motivations' order.
 
-    ``motivations`` is N weights (four: the paper's C, H, O, E), a dict of name to weight, or
+    ``motivations`` is N weights (four: the paper's C, H, O, E), a dict of name to weight
+    (exactly the motivations it names, with the terms in the dict's order:
+    ``{"curiosity": .7, "homing": .3}`` takes Y = (a, g), as ``fuzzymotiv fuzzy --motivations
+    curiosity=0.7,homing=0.3``; a dict in another order than the CLI's — the paper's first,
+    then the others alphabetically — gives the same F but for rounding in the last bits, and
+    rules numbered in the dict's order), or
     :attr:`Problem.motivations` (a :class:`MotivationWeights`); ``fm.fuzzy_fitness(
     problem.motivations, ev.terms[:, r])`` gives room r's F of a problem's evaluation (with the
     shared labels). ``terms`` is one vector of N values (→ float) or an ``n × N`` array (→
@@ -131,7 +136,7 @@ def export_fll(
 
     The text is the same as ``fuzzymotiv fuzzy --motivations C,H,O,E --export-fll FILE`` (for
     N motivations ``--motivations name=w,...``: ``motivations`` as :func:`fuzzy_fitness` takes
-    them, 5^N rules).
+    them, 5^N rules; a dict's inputs in its order, the CLI's for a dict in the CLI's order).
 
     >>> text = export_fll([.8, .1, 0, .1])
     >>> text.count("\\n  rule: ")

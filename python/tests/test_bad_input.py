@@ -38,8 +38,8 @@ def test_nan_and_inf_in_fuzzy_fitness_are_refused_naming_argument_position_value
         "motivations: `nan` (H) is not a finite number; expected four numbers (C, H, O, E)",
     )
     refused(
-        lambda: fm.fuzzy_fitness({"curiosity": INF}, [1, 1, 1, 1]),
-        "motivations: `inf` (C) is not a finite number; expected four numbers (C, H, O, E)",
+        lambda: fm.fuzzy_fitness({"curiosity": INF}, [1]),
+        "motivations: `inf` (curiosity) is not a finite number; expected 1 numbers (curiosity)",
     )
     many = np.ones((5, 4))
     many[3, 2] = INF

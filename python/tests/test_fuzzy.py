@@ -56,7 +56,7 @@ def test_explain_lists_the_firing_rules():
 
 
 def test_motivations_as_dict_and_custom_fuzzy_settings():
-    d = {"curiosity": 0.8, "homing": 0.1, "energy": 0.1}
+    d = {"curiosity": 0.8, "homing": 0.1, "orientation": 0, "energy": 0.1}
     assert fm.fuzzy_fitness(d, [0.95, 0.5, 0, 0.79]) == fm.fuzzy_fitness([0.8, 0.1, 0, 0.1], [0.95, 0.5, 0, 0.79])
     r = fm.fuzzy_fitness([0.25] * 4, [1, 1, 1, 1], coefficients="ratio")
     assert r == pytest.approx(1.0)
@@ -195,3 +195,22 @@ def test_fll_with_five_motivations_agrees_with_pyfuzzylite_and_the_cli(cli, tmp_
         values = ",".join(f"{n}={v!r}" for n, v in zip(names, row))
         out = run_cli(cli, "fuzzy", "--motivations", x, "--fitness", values).stdout
         assert abs(float(out.split()[0]) - f) < 1e-9, (values, out, f)
+
+
+def test_a_dict_of_paper_motivations_means_exactly_those_named(cli):
+    # As `fuzzymotiv fuzzy --motivations curiosity=0.7,homing=0.3` and a config's
+    # [motivations]: two motivations (nothing of the paper's four added), Y of two terms in the
+    # dict's order.
+    x = {"curiosity": 0.7, "homing": 0.3}
+    for a, g in [(0.95, 0.5), (0.2, 0.9), (1, 0)]:
+        p = run_cli(cli, "fuzzy", "--motivations", "curiosity=0.7,homing=0.3", "--fitness", f"a={a},g={g}")
+        want = float(p.stdout.split()[0])
+        assert f"{fm.fuzzy_fitness(x, [a, g]):.12f}" == f"{want:.12f}"
+        assert f"{fm.fuzzy_fitness({'homing': 0.3, 'curiosity': 0.7}, [g, a]):.12f}" == f"{want:.12f}"
+        assert fm.fuzzy_fitness(x, [[a, g]])[0] == fm.fuzzy_fitness(x, [a, g])
+    assert len(fm.fuzzy_fitness(x, [1, 0.25], explain=True)["rules"][0]["labels"]) == 2
+    with pytest.raises(fm.FuzzymotivError, match=r"terms: expected 2 values \(a, g\)"):
+        fm.fuzzy_fitness(x, [0.95, 0.5, 0, 0.79])
+    fll = fm.export_fll(x)
+    assert fll == run_cli(cli, "fuzzy", "--motivations", "curiosity=0.7,homing=0.3", "--export-fll", "-").stdout
+    assert fll.count("\n  rule: ") == 25
