@@ -22,5 +22,6 @@ pub use motivation::{
 pub use rules::{Explanation, FiringRule};
 pub use terms::{
     FitnessTerms, Homing, LIBRARY_TERMS, MAX_USER_TERMS, MissionTerms, MissionTracker,
-    TERM_ALIASES, Term, TermId, TermsRecorder, TrialRecord, UserValues, WaypointOrder,
+    RECORD_COLUMN_NAMES, TERM_ALIASES, Term, TermId, TermsRecorder, TrialRecord, UserValues,
+    WaypointOrder,
 };

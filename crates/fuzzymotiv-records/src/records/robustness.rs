@@ -295,3 +295,57 @@ pub fn robustness_of_run(run: &Path, trials: usize) -> Result<RobustnessStudy, C
         notes: Perturbation::notes(&perturbations, exp.trial_params()),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fuzzymotiv::fitness::RECORD_COLUMN_NAMES;
+
+    /// Every fixed column `robustness.csv` writes (the paper's measures, recognition and the
+    /// missions done, each with `_lo` and `_hi`), less `_lo`/`_hi`, is a name the engine refuses
+    /// to a user term, so no term's `NAME`, `NAME_lo` or `NAME_hi` repeats one.
+    #[test]
+    fn every_fixed_robustness_column_is_a_name_a_user_term_cannot_take() {
+        let x = Fixed(0.0);
+        let record = RobustnessRecord {
+            perturbation: "none".into(),
+            trials: 2,
+            f: x,
+            f_lo: x,
+            f_hi: x,
+            exploration: x,
+            exploration_lo: x,
+            exploration_hi: x,
+            homing: x,
+            homing_lo: x,
+            homing_hi: x,
+            battery: x,
+            battery_lo: x,
+            battery_hi: x,
+            recognition: Some(x),
+            recognition_lo: Some(x),
+            recognition_hi: Some(x),
+            extra: vec![ExtraMeasure {
+                stem: MISSIONS_DONE.0.to_string(),
+                words: MISSIONS_DONE.1.to_string(),
+                mean: x,
+                lo: x,
+                hi: x,
+            }],
+        };
+        let text = robustness_csv(&[record]);
+        let header = text.lines().next().unwrap();
+        assert_eq!(
+            header.split(',').count(),
+            2 + 3 * (MEASURES.len() + 1),
+            "{header}"
+        );
+        for column in header.split(',') {
+            let stem = ["_lo", "_hi"]
+                .iter()
+                .find_map(|s| column.strip_suffix(s))
+                .unwrap_or(column);
+            assert!(RECORD_COLUMN_NAMES.contains(&stem), "{column}");
+        }
+    }
+}

@@ -166,3 +166,35 @@ pub fn read(dir: &Path) -> Result<Vec<TestRunRow>, CliError> {
     }
     Ok(rows)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fuzzymotiv::fitness::RECORD_COLUMN_NAMES;
+
+    /// Every fixed column `test_runs.csv` writes (the paper's and the missions'), less `_pct`,
+    /// is a name the engine refuses to a user term, so no term's `NAME_pct` repeats one.
+    #[test]
+    fn every_fixed_test_runs_column_is_a_name_a_user_term_cannot_take() {
+        let row = TestRunRow {
+            room: "r".into(),
+            test: 0,
+            exploration_pct: 0.0,
+            recognition_pct: Some(0.0),
+            battery_pct: 0.0,
+            homing_pct: 0.0,
+            answer: None,
+            extra: vec![(MISSION_DONE.to_string(), 0.0)],
+        };
+        let text = to_text(&[row]);
+        let header = text.lines().next().unwrap();
+        assert!(header.starts_with(&COLUMNS.join(",")), "{header}");
+        assert!(header.ends_with(MISSION_DONE), "{header}");
+        for column in header.split(',') {
+            assert!(
+                RECORD_COLUMN_NAMES.contains(&metric_term(column)),
+                "{column}"
+            );
+        }
+    }
+}

@@ -7,10 +7,11 @@ use std::sync::Arc;
 use crate::experiment::Experiment;
 use crate::experiment::config::{Combination, EnergyMode};
 use crate::fitness::terms::{
-    FitnessTerms, LIBRARY_TERMS, MAX_USER_TERMS, MissionTracker, Term, TermId, WaypointOrder,
+    FitnessTerms, LIBRARY_TERMS, MAX_USER_TERMS, MissionTracker, RECORD_COLUMN_NAMES, Term, TermId,
+    WaypointOrder,
 };
 use crate::fitness::{MAX_MOTIVATIONS, Motivations, PAPER_MOTIVATIONS, TskFitness};
-use crate::params::FieldError;
+use crate::params::{FieldError, joined_list};
 use crate::simulation::room::{HomeZone, Room};
 
 /// A term registered with an experiment under a name a motivation's `term` can use: computed by
@@ -110,7 +111,8 @@ pub(crate) fn mission_of(room: &Room) -> (Option<HomeZone>, Vec<HomeZone>) {
     (room.mission.goal, room.mission.waypoints.clone())
 }
 
-/// At most [`MAX_USER_TERMS`], named apart from each other and from the library's terms.
+/// At most [`MAX_USER_TERMS`], named apart from each other, from the library's terms and from
+/// the records' columns ([`RECORD_COLUMN_NAMES`]).
 fn check_user_terms(user: &[UserTerm]) -> Result<(), FieldError> {
     if user.len() > MAX_USER_TERMS {
         return Err(FieldError::new(
@@ -135,8 +137,33 @@ fn check_user_terms(user: &[UserTerm]) -> Result<(), FieldError> {
                 "a user-defined term needs its own plain name (letters, digits, '_' or '-', at most 40), not one of the library's terms (a, g, l, b, goal, urgency, waypoints, safety) nor another user term's",
             ));
         }
+        if names_a_record_column(&u.name, user) {
+            return Err(FieldError::new(
+                format!("terms.{}", u.name),
+                format!(
+                    "is a name the records already give a column (test_runs.csv writes a term NAME as NAME_pct, robustness.csv as NAME, NAME_lo and NAME_hi), so a user-defined term cannot be named {}, nor any of these, a library term or another user term followed by _lo or _hi; name it otherwise, e.g. my_{}",
+                    joined_list(&RECORD_COLUMN_NAMES, "or"),
+                    u.name
+                ),
+            ));
+        }
     }
     Ok(())
+}
+
+/// Whether a term `name` would write a column the records already have: `name`, or `name`
+/// without a `_lo`/`_hi`, is one of [`RECORD_COLUMN_NAMES`]; or `name` without it is a library
+/// term or one of the `user` terms (whose robustness column `name` would repeat).
+fn names_a_record_column(name: &str, user: &[UserTerm]) -> bool {
+    let stem = ["_lo", "_hi"]
+        .iter()
+        .find_map(|s| name.strip_suffix(s))
+        .filter(|stem| !stem.is_empty());
+    let reserved = |n: &str| RECORD_COLUMN_NAMES.contains(&n);
+    reserved(name)
+        || stem.is_some_and(|s| {
+            reserved(s) || TermId::library(s).is_some() || user.iter().any(|o| o.name == s)
+        })
 }
 
 fn unknown_term(motivation: &str, term: &str, user: &[UserTerm]) -> FieldError {
@@ -424,6 +451,48 @@ mod tests {
         for s in &e.per_room {
             assert_eq!(s.terms.user.as_slice(), [0.25]);
             assert_eq!(s.f, 0.0625);
+        }
+    }
+
+    /// A user term named like a column the records write for the paper's measures or the
+    /// missions (`recognition` → `recognition_pct`, `mission_done` → `mission_done_pct`, `f`,
+    /// `missions_done`, or `NAME_lo`/`NAME_hi` of a column or term) is an input error naming the
+    /// term, saying which names are taken and suggesting another; other names, and the
+    /// library's terms as motivation terms, still work.
+    #[test]
+    fn a_user_term_named_like_a_record_column_is_refused() {
+        let config = "[motivations]\nsafety = 0.5\nsmooth = { weight = 0.5, term = \"smooth\" }\n";
+        for taken in [
+            "recognition",
+            "mission_done",
+            "missions_done",
+            "f",
+            "trials",
+            "homing_lo",
+            "goal_hi",
+            "smooth_lo",
+        ] {
+            let user = [UserTerm::supplied("smooth"), UserTerm::supplied(taken)];
+            let e = build(config, &user).unwrap_err();
+            assert_eq!(e.field, format!("terms.{taken}"), "{e}");
+            assert!(
+                e.reason
+                    .contains("recognition, battery, homing, mission_done"),
+                "{e}"
+            );
+            assert!(e.reason.contains(&format!("e.g. my_{taken}")), "{e}");
+        }
+        for free in ["my_recognition", "recognised", "lo", "_hi"] {
+            let user = [UserTerm::supplied("smooth"), UserTerm::supplied(free)];
+            build(config, &user).unwrap_or_else(|e| panic!("{free}: {e}"));
+        }
+        for library in LIBRARY_TERMS
+            .iter()
+            .filter(|t| !["goal", "waypoints", "urgency"].contains(t))
+        {
+            let config = format!("[motivations]\nm = {{ weight = 1.0, term = \"{library}\" }}\n");
+            build(&config, &[UserTerm::supplied("smooth")])
+                .unwrap_or_else(|e| panic!("{library}: {e}"));
         }
     }
 

@@ -108,6 +108,27 @@ impl<'de> Deserialize<'de> for UserValues {
 /// mission terms.
 pub const LIBRARY_TERMS: [&str; 8] = ["a", "g", "l", "b", "goal", "urgency", "waypoints", "safety"];
 
+/// Names a user-defined term cannot take because the records already name a column so: the
+/// stems of the fixed columns of `test_runs.csv` (`NAME_pct`) and `robustness.csv` (`NAME`,
+/// `NAME_lo`, `NAME_hi`): the paper's measures, the missions done, and the rows' labels. A term
+/// `NAME` writes the columns `NAME_pct` and `NAME`, `NAME_lo`, `NAME_hi`, so these, the library's
+/// terms and [`TERM_ALIASES`] stay apart from every user term's columns (the records crate
+/// asserts its columns are all here).
+pub const RECORD_COLUMN_NAMES: [&str; 12] = [
+    "room",
+    "test",
+    "answer",
+    "exploration",
+    "recognition",
+    "battery",
+    "homing",
+    "mission_done",
+    "perturbation",
+    "trials",
+    "f",
+    "missions_done",
+];
+
 /// Other names accepted for the paper's terms in a config (`term = "exploration"`).
 pub const TERM_ALIASES: [(&str, &str); 4] = [
     ("exploration", "a"),
