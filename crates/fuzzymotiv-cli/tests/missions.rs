@@ -231,18 +231,18 @@ fn a_sweep_over_named_motivations_merges_their_weights_and_missions_done() {
     assert_eq!(results.to_csv(), csv);
 }
 
-#[test]
-fn the_report_shows_every_motivation_and_a_motivations_own_labels() {
+/// `report.html` of a small run in fetch-H and fetch-T under the `[motivations]` table
+/// `motivations` (its lines, TOML).
+fn report_of_fetch_run(motivations: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
     let rooms = repo().join("rooms");
     let config = format!(
         "rooms = [\"{}\", \"{}\"]\n[aem]\nenabled = false\n[ga]\npopulation = 6\ngenerations = 2\n\
-         [trial]\nsteps = 60\n[motivations]\ncuriosity = 0.5\nhoming = 0.1\norientation = 0.0\n\
-         energy = 0.1\nhurry = {{ weight = 0.3, term = \"urgency\", peaks = [0, 0.5, 1] }}\n",
+         [trial]\nsteps = 60\n[motivations]\n{motivations}",
         rooms.join("fetch-H.toml").display(),
         rooms.join("fetch-T.toml").display(),
     );
-    let file = dir.path().join("hurry.toml");
+    let file = dir.path().join("motivations.toml");
     std::fs::write(&file, config).unwrap();
     let out = dir.path().join("run");
     ok(&[
@@ -251,7 +251,15 @@ fn the_report_shows_every_motivation_and_a_motivations_own_labels() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    let page = read(&out.join("report.html"));
+    read(&out.join("report.html"))
+}
+
+#[test]
+fn the_report_shows_every_motivation_and_a_motivations_own_labels() {
+    let page = report_of_fetch_run(
+        "curiosity = 0.5\nhoming = 0.1\norientation = 0.0\nenergy = 0.1\n\
+         hurry = { weight = 0.3, term = \"urgency\", peaks = [0, 0.5, 1] }\n",
+    );
     for bar in ["<span>curiosity C</span>", "<span>hurry (urgency)</span>"] {
         assert!(page.contains(bar), "no bar {bar}");
     }
@@ -279,24 +287,7 @@ fn the_report_shows_every_motivation_and_a_motivations_own_labels() {
 /// figure names their terms a and urgency, not the paper's four.
 #[test]
 fn report_of_a_two_motivation_run_counts_two_inputs_and_names_their_terms() {
-    let dir = tempfile::tempdir().unwrap();
-    let rooms = repo().join("rooms");
-    let config = format!(
-        "rooms = [\"{}\", \"{}\"]\n[aem]\nenabled = false\n[ga]\npopulation = 6\ngenerations = 2\n\
-         [trial]\nsteps = 60\n[motivations]\ncuriosity = 0.7\nurgency = 0.3\n",
-        rooms.join("fetch-H.toml").display(),
-        rooms.join("fetch-T.toml").display(),
-    );
-    let file = dir.path().join("two.toml");
-    std::fs::write(&file, config).unwrap();
-    let out = dir.path().join("run");
-    ok(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let page = read(&out.join("report.html"));
+    let page = report_of_fetch_run("curiosity = 0.7\nurgency = 0.3\n");
     for text in [
         "M₁ × … × M_N = 5 × 5 = 25 rules",
         "the smallest membership of its 2 labels",

@@ -536,23 +536,6 @@ mod tests {
         let e = RawConfig::parse("[ga]\npopulation = 4\n", "g.toml", &sets).unwrap_err();
         assert_eq!(e.source_name, "--set ga.population=x", "{e}");
         assert_eq!(e.field, "ga.population", "{e}");
-        let sets = [
-            "ga={population=1}".to_string(),
-            "motivations.x.weight=2".into(),
-        ];
-        let checked = |field: &str| FieldError::new(field, "bad").in_source("g.toml");
-        let blamed = |field: &str| blame_set(checked(field), &sets).source_name;
-        assert_eq!(blamed("ga.population"), "--set ga={population=1}");
-        assert_eq!(
-            blamed("motivations.x.weight"),
-            "--set motivations.x.weight=2"
-        );
-        // A whole section's error (the motivations' sum) comes from the file with the --set.
-        assert_eq!(
-            blamed("motivations"),
-            "g.toml with --set motivations.x.weight=2"
-        );
-        assert_eq!(blamed("trial.steps"), "g.toml");
     }
 
     /// A `--set` of a whole table is blamed only for what its value holds, and a `--set` of
@@ -576,6 +559,16 @@ mod tests {
             "g.toml with --set motivations.x.weight=2"
         );
         assert_eq!(blamed("motivations.x.term"), "g.toml");
+        assert_eq!(
+            blamed("motivations.x.weight"),
+            "--set motivations.x.weight=2"
+        );
+        // A whole section's error (the motivations' sum) comes from the file with the --set.
+        assert_eq!(
+            blamed("motivations"),
+            "g.toml with --set motivations.x.weight=2"
+        );
+        assert_eq!(blamed("trial.steps"), "g.toml");
     }
 
     /// `--set motivations={…}` defines the whole set, as a `[motivations]` table does: the
