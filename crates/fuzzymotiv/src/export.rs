@@ -19,10 +19,12 @@
 
 pub(crate) mod c;
 pub(crate) mod json;
+pub(crate) mod kit;
 pub(crate) mod onnx;
 
 pub use c::CSources;
 pub use json::{ControllerDoc, FORMAT, FORMAT_VERSION};
+pub use kit::{Kit, KitFile, KitRobot};
 
 use crate::simulation::controller::{GenomeError, MlpShape};
 use crate::simulation::robot::Motion;
@@ -53,6 +55,7 @@ pub struct ExportedController {
     pub(crate) v_max: f64,
     pub(crate) motion: Motion,
     pub(crate) tolerance: f64,
+    pub(crate) robot: KitRobot,
 }
 
 impl ExportedController {
@@ -73,12 +76,26 @@ impl ExportedController {
             v_max: params.robot().v_max(),
             motion: params.robot().motion(),
             tolerance: params.action_tolerance(),
+            robot: KitRobot {
+                name: "khepera".into(),
+                sensors: shape.inputs(),
+                reading_max: crate::simulation::SENSOR_MAX,
+                v_max: params.robot().v_max(),
+                wheel_base: params.robot().wheel_base(),
+                dt: params.dt(),
+                turn_deg: 30.0,
+            },
         })
     }
 
     /// The network's shape.
     pub fn shape(&self) -> MlpShape {
         self.shape
+    }
+
+    /// The robot the controller drives, as a deployment kit needs it.
+    pub fn robot(&self) -> &KitRobot {
+        &self.robot
     }
 
     /// The weights, in the genome's order.
