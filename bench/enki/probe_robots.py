@@ -30,6 +30,8 @@ Run from the repository root (about 30 s):
 
     /usr/bin/python3 bench/enki/probe_robots.py            # writes bench/enki/probe_robots.csv
     /usr/bin/python3 bench/enki/probe_robots.py --samples 101 --out /tmp/probe.csv
+    /usr/bin/python3 bench/enki/probe_robots.py --out /tmp/probe.csv --bench configs/sensors
+        # also configs/sensors/{epuck2,thymio2}-enki-bench.csv, calibrate's input format
 
 Deterministic only up to Enki's noise (its random generator is seeded by Enki, not here); the
 committed CSV is one run. Units: Enki works in cm; this script converts to mm.
@@ -235,10 +237,28 @@ def print_table(name, rows):
     print("reading = [" + ", ".join(str(r) for _, r in samples) + "]\n")
 
 
+def write_bench(name, robot, path, per_distance=5):
+    """Enki's robot as if measured on a bench, in `fuzzymotiv calibrate`'s format: every sensor
+    alike, so sensor 0 only (its table then serves all), head-on, every 5 mm out to 5 mm beyond
+    the range, `per_distance` readings each, rounded to whole numbers as firmware reports them."""
+    last_mm = int(robot["range_cm"] * 10) + 5
+    with open(path, "w") as f:
+        f.write(f"# Enki's {name} model measured as on a bench (bench/enki/probe_robots.py --bench):\n"
+                f"# its sensor {robot['sensor']} head-on to a wall, {per_distance} readings per distance,"
+                " Enki's noise included.\n# Not a real robot: a stand-in for your own measurements.\n"
+                "sensor,distance_mm,reading\n")
+        for d in range(5, last_mm + 1, 5):
+            readings = measure(robot, d / 10.0, 0.0, per_distance)
+            for v in readings or []:
+                f.write(f"0,{d},{round(v)}\n")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--samples", type=int, default=2001, help="readings per pose")
     parser.add_argument("--out", default="bench/enki/probe_robots.csv", help="CSV to write")
+    parser.add_argument("--bench", metavar="DIR",
+                        help="also write DIR/<robot>-enki-bench.csv for `fuzzymotiv calibrate`")
     args = parser.parse_args()
     if args.samples < 1:
         parser.error("--samples must be at least 1")
@@ -248,6 +268,8 @@ def main():
         rows = probe(name, robot, args.samples, [float(d) for d in range(0, last_mm + 1)])
         print_table(name, rows)
         all_rows.extend(rows)
+        if args.bench:
+            write_bench(name, robot, f"{args.bench}/{name}-enki-bench.csv")
     with open(args.out, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(all_rows[0].keys()), lineterminator="\n")
         writer.writeheader()
