@@ -10,7 +10,6 @@ use std::fmt::Write as _;
 use fuzzymotiv::experiment::InstanceRun;
 use fuzzymotiv::experiment::Training;
 use fuzzymotiv::params::joined_list;
-use fuzzymotiv::simulation::SENSOR_LAYOUT;
 use serde_json::{Value, json};
 
 use crate::plot::{colour, esc};
@@ -28,9 +27,6 @@ mod fuzzy;
 
 const CSS: &str = include_str!("report/report.css");
 const SCRIPT: &str = include_str!("report/replay.js");
-
-/// Length of the drawn IR rays (mm): about the reach of the sampled sensor model.
-const RAY_MM: f64 = 50.0;
 
 /// A page being assembled: HTML body and the replay data its widgets read.
 pub struct Page {
@@ -57,12 +53,20 @@ impl Page {
     /// Adds a replay widget for the given rooms (from [`replay_room`]) at this point of the page.
     pub fn replay(&mut self, ctx: &RenderContext, rooms: Vec<Value>) {
         let k = self.replays.len();
+        let robot = ctx.robot;
+        // Each sensor's axis ray, drawn to its range (the farthest wall it can read).
+        let axes = fuzzymotiv::simulation::rays(ctx.sensor_model, robot);
+        let sensors = (robot.mounts().iter().zip(&axes))
+            .map(|(m, r)| [m.x, m.y, m.facing_deg, r[0].range()])
+            .collect::<Vec<_>>();
         self.replays.push(json!({
             "robot": {
+                "name": robot.name(),
                 "radius": ctx.robot_radius,
                 "dt": ctx.dt,
-                "ray": RAY_MM,
-                "sensors": SENSOR_LAYOUT.iter().map(|m| [m.x, m.y, m.facing_deg]).collect::<Vec<_>>(),
+                "max": robot.reading_max(),
+                "sensors": sensors,
+                "names": robot.labels(),
             },
             "rooms": rooms,
         }));
@@ -142,7 +146,9 @@ pub fn replay_room(ctx: &RenderContext, room: usize, run_label: &str, run: &Inst
         "x": tr.poses.iter().map(|p| r1(p.x)).collect::<Vec<_>>(),
         "y": tr.poses.iter().map(|p| r1(p.y)).collect::<Vec<_>>(),
         "h": tr.poses.iter().map(|p| r3(p.heading)).collect::<Vec<_>>(),
-        "s": tr.sensors.iter().map(|s| s.map(|v| v.round() as i64)).collect::<Vec<_>>(),
+        "s": (tr.sensors.iter())
+            .map(|s| s.iter().map(|v| v.round() as i64).collect::<Vec<_>>())
+            .collect::<Vec<_>>(),
         "m": tr.motors.iter().map(|m| m.map(r3)).collect::<Vec<_>>(),
         "zone": [r1(zone.centre.x), r1(zone.centre.y), r1(zone.radius)],
         "executed": tr.executed(),

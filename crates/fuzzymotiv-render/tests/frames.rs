@@ -19,7 +19,7 @@ use fuzzymotiv_render::frames::{FrameOptions, Frames, Track, View, gif, render};
 struct WallShy;
 
 impl Controller for WallShy {
-    fn step(&mut self, s: &[f64; 8]) -> [f64; 2] {
+    fn step(&mut self, s: &[f64]) -> [f64; 2] {
         match (s[2].max(s[1]) > 0.3, s[3].max(s[4]) > 0.3) {
             (true, true) => [0.0, 0.0],
             (false, true) | (true, false) => [0.0, 1.0],

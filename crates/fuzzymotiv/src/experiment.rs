@@ -47,6 +47,7 @@ use crate::random::seed::{Streams, hash_str};
 use crate::simulation::controller::MlpShape;
 use crate::simulation::randomise::Randomise;
 use crate::simulation::robot::KHEPERA_RADIUS;
+use crate::simulation::robot_spec::RobotSpec;
 use crate::simulation::room::Room;
 use crate::simulation::sensor_table::SensorTable;
 use crate::simulation::trial::{Arena, TrialParams};
@@ -94,36 +95,53 @@ impl Experiment {
         user: &[UserTerm],
         source_name: &str,
     ) -> Result<Experiment, ConfigError> {
-        Self::build(raw, rooms, user, None).map_err(|e| e.in_source(source_name))
+        Self::build(raw, rooms, user, ReadFiles::default()).map_err(|e| e.in_source(source_name))
     }
 
-    /// [`Experiment::with_terms`], the `sampled` sensors reading `sensor_table` (the file
-    /// `trial.sensor_table` names, read by the front end: [`crate::experiment::Setup::resolve`]).
-    pub fn with_sensor_table(
+    /// [`Experiment::with_terms`], with the files the config names read by the front end
+    /// ([`crate::experiment::Setup::resolve`]): the robot file `robot.file` names and the sensor
+    /// table `trial.sensor_table` names.
+    pub fn with_files(
         raw: &RawConfig,
         rooms: Vec<Room>,
         user: &[UserTerm],
-        sensor_table: Option<&'static SensorTable>,
+        files: ReadFiles,
         source_name: &str,
     ) -> Result<Experiment, ConfigError> {
-        Self::build(raw, rooms, user, sensor_table).map_err(|e| e.in_source(source_name))
+        Self::build(raw, rooms, user, files).map_err(|e| e.in_source(source_name))
     }
 
     fn build(
         raw: &RawConfig,
         rooms: Vec<Room>,
         user: &[UserTerm],
-        sensor_table: Option<&'static SensorTable>,
+        files: ReadFiles,
     ) -> Result<Experiment, FieldError> {
         check_name(&raw.name)?;
         check_rooms(&rooms)?;
         let fuzzy = raw.fuzzy.validated()?;
         let motivations = raw.motivations.validated(&fuzzy)?;
         let ga = GaParams::from_raw(&raw.ga)?;
-        let trial = TrialParams::from_raw(&raw.trial, &raw.robot, raw.aem.action_tolerance)?;
-        let trial = match (&raw.trial.sensor_table, sensor_table) {
+        let spec = robot_of(&raw.robot, files.robot)?;
+        let tolerance = raw.aem.action_tolerance;
+        let trial = TrialParams::from_raw(&raw.trial, &raw.robot, spec, tolerance)?;
+        let trial = match (&raw.trial.sensor_table, files.sensor_table) {
             (None, _) => trial,
-            (Some(_), Some(table)) => trial.with_sensor_table(table),
+            (Some(_), Some(table)) => {
+                check(
+                    table.sensors() == spec.sensors(),
+                    "trial.sensor_table",
+                    || {
+                        format!(
+                            "the table gives {} sensors, the robot {} has {}: a sensor table has one entry per sensor of the robot",
+                            table.sensors(),
+                            spec.name(),
+                            spec.sensors()
+                        )
+                    },
+                )?;
+                trial.with_sensor_table(table)
+            }
             (Some(file), None) => {
                 return Err(FieldError::new(
                     "trial.sensor_table",
@@ -133,7 +151,7 @@ impl Experiment {
                 ));
             }
         };
-        let shape = raw.network.shape()?;
+        let shape = raw.network.shape()?.with_inputs(spec.sensors())?;
         let aem = AemParams::from_raw(&raw.aem, trial.steps(), rooms.len())?;
         check(
             raw.fitness.orientation != OrientationMode::Online
@@ -142,7 +160,7 @@ impl Experiment {
             || "\"online\" needs training = \"all-rooms\" with at least 2 rooms".into(),
         )?;
         check_clearance(&rooms, trial.robot().radius())?;
-        let randomise = trial.randomise_of(&raw.trial, &raw.robot)?;
+        let randomise = trial.randomise_of(&raw.trial)?;
         if let Some((_, largest)) = randomise.and_then(|r| r.radius) {
             check_clearance(&rooms, largest)
                 .map_err(|e| FieldError::new("trial.randomise.radius", e.reason))?;
@@ -320,6 +338,36 @@ fn check_rooms(rooms: &[Room]) -> Result<(), FieldError> {
 }
 
 /// Room files are validated against the Khepera; a bigger body needs its own check.
+/// The files a front end read for a config ([`Experiment::with_files`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ReadFiles {
+    /// The sensor table file `trial.sensor_table` names.
+    pub sensor_table: Option<&'static SensorTable>,
+    /// The robot file `robot.file` names (a built-in robot needs none).
+    pub robot: Option<&'static RobotSpec>,
+}
+
+/// The robot a config names: `read` (the file a front end read), else the built-in robot
+/// `robot.file` names, else the paper's Khepera.
+fn robot_of(
+    raw: &crate::simulation::RawRobot,
+    read: Option<&'static RobotSpec>,
+) -> Result<&'static RobotSpec, FieldError> {
+    match (read, raw.file.as_deref()) {
+        (Some(spec), _) => Ok(spec),
+        (None, None) => Ok(RobotSpec::khepera()),
+        (None, Some(name)) => RobotSpec::builtin(name).ok_or_else(|| {
+            FieldError::new(
+                "robot.file",
+                format!(
+                    "\"{name}\" is not a built-in robot ({}) and the robot file was not read: a front end reads it (Setup::resolve)",
+                    crate::simulation::BUILTIN_ROBOTS.join(", ")
+                ),
+            )
+        }),
+    }
+}
+
 fn check_clearance(rooms: &[Room], radius: f64) -> Result<(), FieldError> {
     crate::simulation::check_missions_reachable(rooms, radius)?;
     if radius <= KHEPERA_RADIUS {

@@ -36,6 +36,16 @@ pub enum ExportError {
     /// The genome's length is not its network's.
     #[error(transparent)]
     Length(#[from] GenomeError),
+    /// The network's inputs are not the robot's sensors.
+    #[error("the network has {network} inputs, the robot {robot} has {sensors} sensors")]
+    Inputs {
+        /// The network's inputs.
+        network: usize,
+        /// The robot's name.
+        robot: String,
+        /// Its sensors.
+        sensors: usize,
+    },
     /// A weight is NaN or infinite (no evolved genome has one).
     #[error("weight {index} is {value}, not a finite number")]
     NotFinite {
@@ -67,6 +77,14 @@ impl ExportedController {
         params: &TrialParams,
     ) -> Result<ExportedController, ExportError> {
         shape.check(genome)?;
+        let spec = params.robot().spec();
+        if shape.inputs() != spec.sensors() {
+            return Err(ExportError::Inputs {
+                network: shape.inputs(),
+                robot: spec.name().into(),
+                sensors: spec.sensors(),
+            });
+        }
         if let Some((index, &value)) = genome.iter().enumerate().find(|(_, w)| !w.is_finite()) {
             return Err(ExportError::NotFinite { index, value });
         }
@@ -77,9 +95,9 @@ impl ExportedController {
             motion: params.robot().motion(),
             tolerance: params.action_tolerance(),
             robot: KitRobot {
-                name: "khepera".into(),
+                name: params.robot().spec().name().into(),
                 sensors: shape.inputs(),
-                reading_max: crate::simulation::SENSOR_MAX,
+                reading_max: params.robot().spec().reading_max(),
                 v_max: params.robot().v_max(),
                 wheel_base: params.robot().wheel_base(),
                 dt: params.dt(),

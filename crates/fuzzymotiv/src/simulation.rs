@@ -10,6 +10,7 @@ pub(crate) mod math;
 pub(crate) mod memo;
 pub(crate) mod randomise;
 pub(crate) mod robot;
+pub(crate) mod robot_spec;
 pub(crate) mod room;
 pub(crate) mod sensing;
 pub(crate) mod sensor;
@@ -23,14 +24,16 @@ pub use controller::{Controller, GenomeError, INPUTS, Mlp, MlpShape, OUTPUTS};
 pub use geom::{PreparedSegment, Segment, Vec2, edges, point_in_polygon, signed_area};
 pub use math::logistic_lanes;
 pub use randomise::{Draw, Randomise, RawRandomise};
-pub use robot::{Action, Compass, Khepera, Motion, Pose, RawRobot, drive, wrap_angle};
+pub use robot::{Action, Compass, Motion, Pose, RawRobot, Robot, drive, wrap_angle};
+pub use robot_spec::{BUILTIN_ROBOTS, RawRobotFile, RawSensor, RobotSpec};
 pub use room::{BUILTIN_ROOMS, HomeZone, Mission, Room, RoomError, Zone};
 pub use sensor::{
-    RayMount, SENSOR_LAYOUT, SENSOR_MAX, SENSORS, SensorModel, SensorMount, TableRef, rays,
+    MAX_SENSORS, RayMount, Readings, SENSOR_LAYOUT, SENSOR_MAX, SENSORS, SensorModel, SensorMount,
+    TableRef, rays,
 };
 pub use sensor_table::{
-    Calibration, Measurement, RawRay, RawSensorRays, RawSensorTable, SensorTable, Spread, TableRay,
-    calibrate,
+    Calibration, Measurement, RawRay, RawSensorRays, RawSensorTable, SensorScale, SensorTable,
+    Spread, TableRay, calibrate,
 };
 pub use stepper::TrialRun;
 pub use trial::{

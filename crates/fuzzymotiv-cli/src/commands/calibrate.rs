@@ -15,10 +15,15 @@ use fuzzymotiv_io::{note, out, outln};
 /// Arguments of `fuzzymotiv calibrate`.
 #[derive(clap::Args)]
 pub struct CalibrateArgs {
-    /// Bench measurements: a CSV file with the columns sensor (0–7), distance_mm and reading
-    /// (0–1023), one row per reading, several readings per distance (other columns are ignored).
+    /// Bench measurements: a CSV file with the columns sensor (0 to the robot's last: 0–7 on
+    /// the Khepera), distance_mm and reading (0 to the robot's reading_max: 0–1023 on the
+    /// Khepera), one row per reading, several readings per distance (other columns are ignored).
     #[arg(value_name = "MEASUREMENTS.csv")]
     pub measurements: PathBuf,
+    /// The robot measured: a built-in robot (khepera, epuck2, thymio2) or a robot file; its
+    /// sensor count and reading scale check the measurements.
+    #[arg(long, value_name = "NAME|ROBOT.toml", default_value = "khepera")]
+    pub robot: String,
     /// The sensor table file to write (TOML, for `trial.sensor_table`; `-`: standard output,
     /// and the spread per sensor and distance then goes to standard error).
     #[arg(long, value_name = "TABLE.toml")]
@@ -31,11 +36,14 @@ pub struct CalibrateArgs {
 /// Entry point of `fuzzymotiv calibrate`.
 pub fn calibrate_command(args: CalibrateArgs) -> Result<(), CliError> {
     let source = args.measurements.display().to_string();
+    let robot = fuzzymotiv_io::files::inputs::load_robot(&args.robot, "--robot")?;
     let rows = read_measurements(&args.measurements)?;
-    let c = calibrate(&rows).map_err(|e| field_error(e.in_source(&source)))?;
+    let c = calibrate(&rows, robot.scale()).map_err(|e| field_error(e.in_source(&source)))?;
     let header = format!(
-        "Sensor table written by `fuzzymotiv calibrate` from {source}:\nper sensor and distance the median reading (rounded; neighbours pooled where medians rose\nwith distance). The simulator reads, per ray, the reading of the first distance at or beyond\nthe wall it sees, 0 beyond the last; name this file in a config as trial.sensor_table.\nRelative spread of the readings {:.4}: trial.noise = {:.3}.",
-        c.relative_spread, c.noise
+        "Sensor table written by `fuzzymotiv calibrate` from {source}:\nper sensor and distance the median reading (rounded; neighbours pooled where medians rose\nwith distance). The simulator reads, per ray, the reading of the first distance at or beyond\nthe wall it sees, 0 beyond the last; name this file in a config as trial.sensor_table.\n{}Relative spread of the readings {:.4}: trial.noise = {:.3}.",
+        robot_line(robot),
+        c.relative_spread,
+        c.noise
     );
     let table = c.table.to_toml(&header);
     if args.out.as_os_str() == "-" {
@@ -53,6 +61,21 @@ pub fn calibrate_command(args: CalibrateArgs) -> Result<(), CliError> {
         );
     }
     show(&c, true)
+}
+
+/// The header line naming the robot a table is for (none for the Khepera, whose tables were
+/// written before robots were named).
+fn robot_line(robot: &fuzzymotiv::simulation::RobotSpec) -> String {
+    if robot.name() == "khepera" {
+        String::new()
+    } else {
+        format!(
+            "For the robot {} ({} sensors, readings 0–{}).\n",
+            robot.name(),
+            robot.sensors(),
+            robot.reading_max()
+        )
+    }
 }
 
 fn field_error(e: FieldError) -> CliError {

@@ -124,13 +124,13 @@ fn file_tag(name: &str) -> String {
 /// whether the step was idle (after the trial ended at home); a last row `t = steps` holds the
 /// final pose only.
 pub fn trajectory_csv(tr: &Trajectory) -> String {
-    let mut s = String::from(
-        "step,x_mm,y_mm,heading_rad,s0,s1,s2,s3,s4,s5,s6,s7,mL,mR,action,collision,idle\n",
-    );
+    let sensors = tr.sensors.first().map_or(8, |s| s.len());
+    let columns: String = (0..sensors).map(|k| format!("s{k},")).collect();
+    let mut s = format!("step,x_mm,y_mm,heading_rad,{columns}mL,mR,action,collision,idle\n");
     for t in 0..tr.len() {
         let p = tr.poses[t];
         let _ = write!(s, "{t},{},{},{}", num(p.x), num(p.y), num(p.heading));
-        for v in tr.sensors[t] {
+        for &v in tr.sensors[t].iter() {
             let _ = write!(s, ",{}", num(v));
         }
         let [ml, mr] = tr.motors[t];
@@ -147,11 +147,12 @@ pub fn trajectory_csv(tr: &Trajectory) -> String {
     if let Some(p) = tr.poses.last() {
         let _ = writeln!(
             s,
-            "{},{},{},{},,,,,,,,,,,,,",
+            "{},{},{},{}{}",
             tr.len(),
             num(p.x),
             num(p.y),
-            num(p.heading)
+            num(p.heading),
+            ",".repeat(sensors + 5)
         );
     }
     s

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::RawConfig;
 use fuzzymotiv::experiment::{RoomFile, RoomFiles, Setup, SetupError, blame_set, parse_room_file};
+use fuzzymotiv::simulation::{BUILTIN_ROBOTS, RobotSpec};
 use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 
 use crate::files::bounded::{InputKind, read_input};
@@ -21,10 +22,32 @@ pub const ROOM_FILE: InputKind = InputKind::text("room file");
 /// [`crate::files::bounded::TEXT_LIMIT`] bytes).
 pub const SENSOR_TABLE: InputKind = InputKind::text("sensor table file");
 
+/// A robot file (`robot.file`, `--robot`).
+pub const ROBOT_FILE: InputKind = InputKind::text("robot file");
+
 /// Reads and validates a room file.
 pub fn load_room_file(path: &Path) -> Result<Room, CliError> {
     let text = read_input(path, ROOM_FILE)?;
     Ok(parse_room_file(&text, &path.display().to_string())?)
+}
+
+/// The robot `entry` names (a command-line option `option`): a built-in robot, or a robot
+/// file read and checked (errors name the file and its field).
+pub fn load_robot(entry: &str, option: &str) -> Result<&'static RobotSpec, CliError> {
+    if let Some(robot) = RobotSpec::builtin(entry) {
+        return Ok(robot);
+    }
+    let path = Path::new(entry);
+    if !path.is_file() {
+        return Err(CliError::input(format!(
+            "{option} {entry}: neither a built-in robot ({}) nor a robot file",
+            BUILTIN_ROBOTS.join(", ")
+        )));
+    }
+    let text = read_input(path, ROBOT_FILE)?;
+    let robot = RobotSpec::from_toml_str(&text, &path.display().to_string())
+        .map_err(|e| CliError::Setup(fuzzymotiv::experiment::SetupError::Field(e)))?;
+    Ok(robot.intern())
 }
 
 /// A config ready to run: the raw document (room paths made absolute) and the experiment.
@@ -63,6 +86,10 @@ impl RoomFiles for RoomDir<'_> {
 
     fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, String> {
         self.find_as(entry, SENSOR_TABLE)
+    }
+
+    fn find_robot(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        self.find_as(entry, ROBOT_FILE)
     }
 
     fn looked_for(&self, entry: &str) -> String {

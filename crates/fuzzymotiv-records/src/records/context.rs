@@ -31,6 +31,10 @@ pub struct RenderContext {
     pub steps: usize,
     /// Robot body radius (mm), for the replay.
     pub robot_radius: f64,
+    /// The robot (its sensors' layout, names and largest reading), for the replay.
+    pub robot: &'static fuzzymotiv::simulation::RobotSpec,
+    /// The sensor response model, for the replay's rays.
+    pub sensor_model: fuzzymotiv::simulation::SensorModel,
     /// Step length (s), for the replay.
     pub dt: f64,
     /// The motivations X = (C, H, O, E).
@@ -141,6 +145,8 @@ impl RenderContext {
             generations: exp.ga().generations(),
             steps: trial.steps(),
             robot_radius: trial.robot().radius(),
+            robot: trial.robot().spec(),
+            sensor_model: trial.sensor_model(),
             dt: trial.dt(),
             motivations: MotivationsRecord::of(exp.motivations()),
             fuzzy: FuzzySetting::of(tsk, exp.motivations()),

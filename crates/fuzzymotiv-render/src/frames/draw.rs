@@ -2,7 +2,7 @@
 //! the path so far, the IR rays, the body and heading, and the labels.
 
 use fuzzymotiv::simulation::{HomeZone, Room};
-use fuzzymotiv::simulation::{RayMount, SENSOR_MAX, SENSORS, rays};
+use fuzzymotiv::simulation::{RayMount, rays};
 use fuzzymotiv::simulation::{Segment, Vec2};
 use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Mask, Paint, Path, PathBuilder, Pixmap, Rect, Stroke,
@@ -24,7 +24,7 @@ pub struct Painter<'a> {
     background: Pixmap,
     walls: Vec<Segment>,
     /// Each sensor's axis ray (robot frame), drawn as its ray.
-    axes: [RayMount; SENSORS],
+    axes: Vec<RayMount>,
     /// Line widths scale with the frame: 1 at 320 pixels.
     k: f32,
 }
@@ -89,7 +89,11 @@ impl<'a> Painter<'a> {
     pub fn new(room: &'a Room, track: Track<'a>, opts: FrameOptions) -> Result<Self, String> {
         track.check()?;
         let view = View::new(room, opts.size());
-        let axes = rays(opts.sensor_model()).map(|r| r[0]);
+        let robot = opts.robot();
+        let axes = rays(opts.sensor_model(), robot)[..robot.sensors()]
+            .iter()
+            .map(|r| r[0])
+            .collect();
         let mut painter = Painter {
             room,
             track,
@@ -197,9 +201,11 @@ impl<'a> Painter<'a> {
         }
     }
 
-    /// The eight IR sensors' axis rays at pose `t`: from the sensor to the first wall, at most
-    /// the ray's range; grey and thin for nothing seen, red and thick for a wall at contact.
-    fn draw_rays(&self, t: usize, reading: &[f64; SENSORS], frame: &mut Pixmap) {
+    /// The robot's IR sensors' axis rays at pose `t`: from the sensor to the first wall, at
+    /// most the ray's range; grey and thin for nothing seen, red and thick for a wall at
+    /// contact.
+    fn draw_rays(&self, t: usize, reading: &[f64], frame: &mut Pixmap) {
+        let max = self.opts.robot().reading_max();
         let pose = self.track.poses[t];
         for (ray, &v) in self.axes.iter().zip(reading) {
             let origin = pose.position() + ray.origin.rotate(pose.heading);
@@ -212,12 +218,12 @@ impl<'a> Painter<'a> {
             let mut pb = PathBuilder::new();
             pb.move_to(x0, y0);
             pb.line_to(x1, y1);
-            let width = (1.0 + 3.0 * (v / SENSOR_MAX).clamp(0.0, 1.0) as f32) * self.k;
+            let width = (1.0 + 3.0 * (v / max).clamp(0.0, 1.0) as f32) * self.k;
             if let Some(path) = pb.finish() {
                 let s = stroke(width, LineCap::Butt);
                 frame.stroke_path(
                     &path,
-                    &paint(ray_colour(v)),
+                    &paint(ray_colour(v, max)),
                     &s,
                     Transform::identity(),
                     None,

@@ -3,8 +3,8 @@
 
 use fuzzymotiv::simulation::Room;
 use fuzzymotiv::simulation::Vec2;
-use fuzzymotiv::simulation::{Action, Khepera, Pose};
-use fuzzymotiv::simulation::{SENSOR_MAX, SENSORS, SensorModel};
+use fuzzymotiv::simulation::{Action, Pose};
+use fuzzymotiv::simulation::{Readings, RobotSpec, SensorModel};
 use fuzzymotiv::simulation::{Trajectory, TrialParams};
 
 use crate::frames::font::GLYPH_H;
@@ -61,10 +61,10 @@ pub fn action_colour(a: Action) -> [u8; 3] {
     }
 }
 
-/// The colour of an IR ray reading `v` (raw, 0–1023): grey for nothing, red for a wall at
-/// contact, as the report draws them.
-pub fn ray_colour(v: f64) -> [u8; 3] {
-    let t = (v / SENSOR_MAX).clamp(0.0, 1.0);
+/// The colour of an IR ray reading `v` (raw, 0 to the robot's largest reading `max`): grey
+/// for nothing, red for a wall at contact, as the report draws them.
+pub fn ray_colour(v: f64, max: f64) -> [u8; 3] {
+    let t = (v / max).clamp(0.0, 1.0);
     let mix = |a: u8, b: u8| (f64::from(a) + (f64::from(b) - f64::from(a)) * t).round() as u8;
     [0, 1, 2].map(|k| mix(RAY_LOW[k], RAY_HIGH[k]))
 }
@@ -89,6 +89,7 @@ pub struct FrameOptions {
     stride: usize,
     radius: f64,
     sensor_model: SensorModel,
+    robot: &'static RobotSpec,
 }
 
 impl FrameOptions {
@@ -110,8 +111,9 @@ impl FrameOptions {
         Ok(FrameOptions {
             size,
             stride,
-            radius: Khepera::default().radius(),
+            radius: RobotSpec::khepera().radius(),
             sensor_model: SensorModel::default(),
+            robot: RobotSpec::khepera(),
         })
     }
 
@@ -120,6 +122,7 @@ impl FrameOptions {
         FrameOptions {
             radius: trial.robot().radius(),
             sensor_model: trial.sensor_model(),
+            robot: trial.robot().spec(),
             ..self
         }
     }
@@ -142,6 +145,11 @@ impl FrameOptions {
     /// The IR sensor model (whose axis rays are drawn).
     pub fn sensor_model(&self) -> SensorModel {
         self.sensor_model
+    }
+
+    /// The robot whose sensors are drawn (its layout and largest reading).
+    pub fn robot(&self) -> &'static RobotSpec {
+        self.robot
     }
 
     /// The pose of each frame: `0, stride, 2·stride, …`, and the last pose when the stride
@@ -171,7 +179,7 @@ pub struct Track<'a> {
     /// The poses (mm, rad).
     pub poses: &'a [Pose],
     /// The IR readings at each pose.
-    pub sensors: Option<&'a [[f64; SENSORS]]>,
+    pub sensors: Option<&'a [Readings]>,
     /// The action taken from each pose.
     pub actions: Option<&'a [Action]>,
     /// Whether each step was idle.
@@ -326,9 +334,10 @@ mod tests {
 
     #[test]
     fn ray_colours_run_from_grey_to_red() {
-        assert_eq!(ray_colour(0.0), RAY_LOW);
-        assert_eq!(ray_colour(1023.0), RAY_HIGH);
-        assert_eq!(ray_colour(5000.0), RAY_HIGH);
+        assert_eq!(ray_colour(0.0, 1023.0), RAY_LOW);
+        assert_eq!(ray_colour(1023.0, 1023.0), RAY_HIGH);
+        assert_eq!(ray_colour(5000.0, 1023.0), RAY_HIGH);
+        assert_eq!(ray_colour(2000.0, 4000.0), ray_colour(511.5, 1023.0));
         assert_eq!(action_named("turn180"), Some(Action::Turn180));
         assert_eq!(action_named("jump"), None);
     }
@@ -336,7 +345,7 @@ mod tests {
     #[test]
     fn a_track_names_its_bad_column() {
         let poses = [Pose::new(0.0, 0.0, 0.0), Pose::new(1.0, 0.0, 0.0)];
-        let sensors = [[0.0; SENSORS]; 3];
+        let sensors = [Readings::zeros(8); 3];
         let t = Track {
             poses: &poses,
             sensors: Some(&sensors),

@@ -1,5 +1,5 @@
 // Replay widget of fuzzymotiv reports: draws a room top-down and replays the best robot's trial
-// step by step (body, heading, the 8 IR readings, visited cells, action label).
+// step by step (body, heading, the robot's IR readings, visited cells, action label).
 // Data: the JSON in <script id="fm-data">; one widget per <div class="replay" data-replay="k">.
 // For tests and curious readers, window.fuzzymotivReplays[k] holds each widget's live state
 // (room, step, playing, x, y, heading, action) and the room canvas mirrors it in data-* attributes.
@@ -10,8 +10,6 @@
   var ARROW = { S: "\u2191", L: "\u21b0", R: "\u21b1", T: "\u27f2" };
   var ACOLOUR = { S: "#4c78a8", L: "#54a24b", R: "#e45756", T: "#b279a2" };
   var SPEEDS = [0.25, 0.5, 1, 2, 4, 8];
-  var SENSOR_NAMES = ["s0 left", "s1 front-left", "s2 front", "s3 front", "s4 front-right",
-    "s5 right", "s6 back", "s7 back"];
   var CELL = 50;
   window.fuzzymotivReplays = [];
 
@@ -32,7 +30,7 @@
     return "rgb(" + pa.map(function (v, i) { return Math.round(v + (pb[i] - v) * t); }).join(",") + ")";
   }
 
-  function sensorColour(v) { return mix("#c8c8c8", "#d62728", Math.min(1, Math.max(0, v / 1023))); }
+  function sensorColour(v, max) { return mix("#c8c8c8", "#d62728", Math.min(1, Math.max(0, v / max))); }
 
   // Per-room derived data: bounds, cell of every pose, first visit of every cell.
   function prepare(room) {
@@ -104,9 +102,10 @@
     var side = el("div", { class: "side" }, stage);
     var actionEl = el("div", { class: "action" }, side);
     var collEl = el("div", {}, side);
-    el("div", { text: "Infrared sensors (0 = nothing within reach, 1023 = touching a wall):" }, side);
+    var MAX = robot.max;
+    el("div", { text: "Infrared sensors of the " + robot.name + " (0 = nothing within reach, " + MAX + " = touching a wall):" }, side);
     var sbars = el("div", { class: "sbars" }, side);
-    var sensorRows = SENSOR_NAMES.map(function (name) {
+    var sensorRows = robot.names.map(function (name) {
       el("span", { text: name }, sbars);
       var bar = el("div", { class: "sbar" }, sbars);
       var fill = el("span", {}, bar);
@@ -232,10 +231,10 @@
         var mx = x + c * m[0] - s * m[1], my = y + s * m[0] + c * m[1];
         var d = h + m[2] * Math.PI / 180;
         var v = reading ? reading[i] : 0;
-        var len = rayLength(r.prep.walls, mx, my, Math.cos(d), Math.sin(d), robot.ray);
+        var len = rayLength(r.prep.walls, mx, my, Math.cos(d), Math.sin(d), m[3]);
         ctx.beginPath(); ctx.moveTo(px(r, mx), py(r, my));
         ctx.lineTo(px(r, mx + len * Math.cos(d)), py(r, my + len * Math.sin(d)));
-        ctx.strokeStyle = sensorColour(v); ctx.lineWidth = 1 + 4 * v / 1023; ctx.stroke();
+        ctx.strokeStyle = sensorColour(v, MAX); ctx.lineWidth = 1 + 4 * v / MAX; ctx.stroke();
       });
       ctx.beginPath(); ctx.arc(px(r, x), py(r, y), robot.radius * view.scale, 0, 2 * Math.PI);
       ctx.fillStyle = "rgba(31,119,180,0.25)"; ctx.fill();
@@ -290,8 +289,8 @@
       var reading = t < r.steps ? r.s[t] : null;
       sensorRows.forEach(function (row, i) {
         var v = reading ? reading[i] : 0;
-        row.fill.style.width = (100 * v / 1023).toFixed(1) + "%";
-        row.fill.style.background = sensorColour(Math.max(v, 300));
+        row.fill.style.width = (100 * v / MAX).toFixed(1) + "%";
+        row.fill.style.background = sensorColour(Math.max(v, 0.3 * MAX), MAX);
         row.val.textContent = reading ? String(v) : "\u2013";
       });
       var m = t < r.steps ? r.m[t] : null;

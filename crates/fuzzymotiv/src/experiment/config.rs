@@ -476,7 +476,7 @@ mod tests {
         assert_eq!(raw.ga.population, 50);
         assert_eq!(raw.ga.generations, 3);
         assert_eq!(raw.trial.steps, 200);
-        assert_eq!(raw.trial.noise, 0.0);
+        assert_eq!(raw.trial.noise, Some(0.0));
     }
 
     #[test]

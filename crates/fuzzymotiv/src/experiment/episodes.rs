@@ -33,7 +33,7 @@ impl Experiment {
 mod tests {
     use crate::experiment::testing::experiment;
     use crate::random::rng::{rng_from_seed, uniform};
-    use crate::simulation::controller::{Controller, INPUTS};
+    use crate::simulation::controller::Controller;
     use crate::simulation::trial::{StepObserver, Trajectory};
     use std::sync::Arc;
 
@@ -56,7 +56,8 @@ mod tests {
             let mut tr = Trajectory::starting_at(home, 120);
             let mut driver = net.clone();
             while !ep.is_over() {
-                let inputs: [f64; INPUTS] = ep.observe().map(|v| v / 1023.0);
+                let mut inputs = ep.observe();
+                inputs.iter_mut().for_each(|v| *v /= 1023.0);
                 tr.observe(&ep.step(driver.step(&inputs)));
             }
             ep.run().rest().for_each(|s| tr.observe(&s));

@@ -405,6 +405,7 @@ mod tests {
         assert_eq!(
             e,
             GenomeError {
+                inputs: 8,
                 hidden: 6,
                 expected: 68,
                 actual: 67

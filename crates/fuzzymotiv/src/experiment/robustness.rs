@@ -17,11 +17,10 @@ use crate::fitness::{FitnessTerms, TermId};
 use crate::modelling::{Recognizer, SomError};
 use crate::params::FieldError;
 use crate::random::seed::hash_str;
-use crate::simulation::controller::{Controller, GenomeError, INPUTS, Mlp, OUTPUTS};
+use crate::simulation::controller::{Controller, GenomeError, Mlp, OUTPUTS};
 use crate::simulation::randomise::Draw;
-use crate::simulation::robot::{Khepera, Motion, RawRobot};
-use crate::simulation::sensor::{SensorModel, TableRef};
-use crate::simulation::sensor_table::SensorTable;
+use crate::simulation::robot::Motion;
+use crate::simulation::sensor::{Readings, SensorModel, TableRef};
 use crate::simulation::trial::{ActionLog, Arena};
 use crate::simulation::trial_params::TrialParams;
 
@@ -43,13 +42,13 @@ pub enum Perturbation {
 }
 
 impl Perturbation {
-    /// The set: noise 0–20 %, table ±30 %, each dead sensor, wheel bias ±10 %, a body
-    /// 10 % and 20 % larger than `radius`.
-    pub fn standard(radius: f64) -> Vec<Perturbation> {
+    /// The set: noise 0–20 %, table ±30 %, each of the robot's `sensors` dead, wheel
+    /// bias ±10 %, a body 10 % and 20 % larger than `radius`.
+    pub fn standard(radius: f64, sensors: usize) -> Vec<Perturbation> {
         let mut all = vec![Perturbation::None];
         all.extend([0.0, 0.05, 0.1, 0.15, 0.2].map(Perturbation::Noise));
         all.extend([0.7, 0.85, 1.15, 1.3].map(Perturbation::TableScale));
-        all.extend((0..INPUTS).map(Perturbation::DeadSensor));
+        all.extend((0..sensors).map(Perturbation::DeadSensor));
         all.extend([-0.1, -0.05, 0.05, 0.1].map(Perturbation::WheelBias));
         all.extend([1.1, 1.2].map(|k| Perturbation::Radius(radius * k)));
         all
@@ -59,7 +58,7 @@ impl Perturbation {
     /// can take: without the `table×k` rows when its sensors are not read from a table
     /// (`sensor_model = "linear"`: [`Perturbation::applies_to`]).
     pub fn standard_for(trial: &TrialParams) -> Vec<Perturbation> {
-        Perturbation::standard(trial.robot().radius())
+        Perturbation::standard(trial.robot().radius(), trial.robot().sensors())
             .into_iter()
             .filter(|p| p.applies_to(trial))
             .collect()
@@ -85,28 +84,30 @@ impl Perturbation {
             Perturbation::TableScale(k) => {
                 let table = match trial.sensor_model() {
                     SensorModel::Table(TableRef(t)) => t.clone(),
-                    SensorModel::Sampled => SensorTable::khepera(),
+                    SensorModel::Sampled => trial.robot().spec().table().clone(),
                     SensorModel::Linear => {
                         return Err(FieldError::new(
                             "trial.sensor_model",
                             format!(
-                                "{}: the \"linear\" sensor model has no sensor table to scale; a table scale applies to the \"sampled\" model (the built-in Khepera tables or trial.sensor_table)",
+                                "{}: the \"linear\" sensor model has no sensor table to scale; a table scale applies to the \"sampled\" model (the robot file's tables or trial.sensor_table)",
                                 self.label()
                             ),
                         ));
                     }
                 };
-                trial.with_sensor_table(table.scaled(k).intern())
+                let max = trial.robot().spec().reading_max();
+                trial.with_sensor_table(table.scaled(k, max).intern())
             }
             Perturbation::Radius(r) => {
                 let b = trial.robot();
-                let raw = RawRobot {
-                    radius: r,
-                    wheel_base: b.wheel_base(),
-                    v_max: b.v_max(),
+                let raw = crate::simulation::RawRobot {
+                    file: None,
+                    radius: Some(r),
+                    wheel_base: Some(b.wheel_base()),
+                    v_max: Some(b.v_max()),
                     motion: b.motion(),
                 };
-                trial.with_robot(Khepera::from_raw(&raw)?)
+                trial.with_robot(crate::simulation::Robot::from_raw(&raw, b.spec())?)
             }
             Perturbation::None | Perturbation::DeadSensor(_) | Perturbation::WheelBias(_) => trial,
         })
@@ -121,7 +122,7 @@ impl Perturbation {
         if trial.sensor_model() == SensorModel::Linear
             && !has(|p| matches!(p, Perturbation::TableScale(_)))
         {
-            notes.push("no table×k rows: this robot's sensors are the \"linear\" model, which has no sensor table to scale (scaling the built-in Khepera tables instead would change its sensors, not scale them)".to_string());
+            notes.push("no table×k rows: this robot's sensors are the \"linear\" model, which has no sensor table to scale (scaling the robot file's tables instead would change its sensors, not scale them)".to_string());
         }
         if has(|p| matches!(p, Perturbation::Noise(_))) {
             notes.push("noise=n sets trial.noise, which perturbs the wheel speeds as well as the sensor readings (each multiplied by U(1 − n, 1 + n)): these rows are sensor and wheel noise together".to_string());
@@ -170,8 +171,8 @@ pub(crate) struct Perturbed<'a> {
 }
 
 impl Controller for Perturbed<'_> {
-    fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
-        let mut x = *inputs;
+    fn step(&mut self, inputs: &[f64]) -> [f64; OUTPUTS] {
+        let mut x = Readings::from_slice(inputs);
         if let Some(s) = self.dead {
             x[s] = 0.0;
         }
@@ -450,7 +451,7 @@ mod tests {
                 .count()
         };
         assert_eq!(scaled(&all), 0, "{all:?}");
-        let standard = Perturbation::standard(trial.robot().radius());
+        let standard = Perturbation::standard(trial.robot().radius(), 8);
         assert_eq!(all.len() + scaled(&standard), standard.len());
         let e = Perturbation::TableScale(1.3).apply(trial).unwrap_err();
         assert_eq!(e.field, "trial.sensor_model", "{e}");
@@ -480,7 +481,7 @@ mod tests {
     #[test]
     fn blinding_the_robot_changes_its_trials() {
         let (exp, genome) = setup();
-        let all: Vec<Perturbation> = (0..INPUTS).map(Perturbation::DeadSensor).collect();
+        let all: Vec<Perturbation> = (0..8).map(Perturbation::DeadSensor).collect();
         let base = exp.robustness(&genome, &[Perturbation::None], 2).unwrap();
         let rows = exp.robustness(&genome, &all, 2).unwrap();
         let changed = rows.iter().filter(|r| r.f != base[0].f).count();

@@ -16,12 +16,13 @@
 //! assert!((setup.experiment.motivations().as_array().iter().sum::<f64>() - 1.0).abs() < 1e-12);
 //! ```
 
-use crate::experiment::Experiment;
 use crate::experiment::config::{RawConfig, at_line};
+use crate::experiment::{Experiment, ReadFiles};
 use crate::fitness::{PAPER_MOTIVATIONS, RawMotivations};
 use crate::params::FieldError;
+use crate::simulation::robot_spec::{BUILTIN_ROBOTS, RobotSpec};
 use crate::simulation::room::{BUILTIN_ROOMS, Room};
-use crate::simulation::sensor_table::SensorTable;
+use crate::simulation::sensor_table::{SensorScale, SensorTable};
 
 /// A room file as a front end found it.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,6 +47,12 @@ pub trait RoomFiles {
 
     /// The sensor table file `trial.sensor_table` names (found as room files are, by default).
     fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        self.find(entry)
+    }
+
+    /// The robot file `robot.file` names when it is not a built-in robot (found as room files
+    /// are, by default).
+    fn find_robot(&self, entry: &str) -> Result<Option<RoomFile>, String> {
         self.find(entry)
     }
 }
@@ -107,8 +114,16 @@ impl Setup {
             .into_iter()
             .collect();
         notes.extend(left_out_note(source_name, &raw.motivations));
-        let table = resolve_sensor_table(&mut raw.trial.sensor_table, source_name, files)?;
-        let experiment = Experiment::with_sensor_table(&raw, rooms, &[], table, source_name)?;
+        let robot = resolve_robot(&mut raw.robot.file, source_name, files)?;
+        raw.robot = raw.robot.resolved(robot);
+        raw.trial = raw.trial.resolved(robot);
+        let scale = robot.scale();
+        let table = resolve_sensor_table(&mut raw.trial.sensor_table, source_name, files, scale)?;
+        let read = ReadFiles {
+            sensor_table: table,
+            robot: Some(robot),
+        };
+        let experiment = Experiment::with_files(&raw, rooms, &[], read, source_name)?;
         Ok(Setup {
             raw,
             experiment,
@@ -149,6 +164,7 @@ fn resolve_sensor_table(
     entry: &mut Option<String>,
     source_name: &str,
     files: &dyn RoomFiles,
+    scale: SensorScale,
 ) -> Result<Option<&'static SensorTable>, SetupError> {
     let Some(name) = entry.as_mut() else {
         return Ok(None);
@@ -165,17 +181,53 @@ fn resolve_sensor_table(
             .in_source(source_name)
             .into());
     };
-    if let Err(e) = toml::from_str::<toml::Table>(&file.text) {
-        return Err(SetupError::RoomFile(format!(
+    check_toml(&file)?;
+    let table = SensorTable::from_toml_str_for(&file.text, &file.source_name, scale)?;
+    *name = file.entry;
+    Ok(Some(table.intern()))
+}
+
+/// A TOML syntax error in `file`, naming the file and the line.
+fn check_toml(file: &RoomFile) -> Result<(), SetupError> {
+    match toml::from_str::<toml::Table>(&file.text) {
+        Ok(_) => Ok(()),
+        Err(e) => Err(SetupError::RoomFile(format!(
             "{}: not valid TOML{}: {}",
             file.source_name,
             at_line(&file.text, e.span()),
             e.message().trim()
-        )));
+        ))),
     }
-    let table = SensorTable::from_toml_str(&file.text, &file.source_name)?;
+}
+
+/// The robot a config names (`robot.file`): a built-in robot, or the robot file read through
+/// `files` and checked (errors name the robot file and its field), its entry rewritten as the
+/// file asks; the paper's Khepera when it names none.
+fn resolve_robot(
+    entry: &mut Option<String>,
+    source_name: &str,
+    files: &dyn RoomFiles,
+) -> Result<&'static RobotSpec, SetupError> {
+    let Some(name) = entry.as_mut() else {
+        return Ok(RobotSpec::khepera());
+    };
+    if let Some(robot) = RobotSpec::builtin(name) {
+        return Ok(robot);
+    }
+    let Some(file) = files.find_robot(name).map_err(SetupError::RoomFile)? else {
+        let reason = format!(
+            "\"{name}\" is neither a built-in robot ({}) nor a robot file (looked for {})",
+            BUILTIN_ROBOTS.join(", "),
+            files.looked_for(name)
+        );
+        return Err(FieldError::new("robot.file", reason)
+            .in_source(source_name)
+            .into());
+    };
+    check_toml(&file)?;
+    let robot = RobotSpec::from_toml_str(&file.text, &file.source_name)?;
     *name = file.entry;
-    Ok(Some(table.intern()))
+    Ok(robot.intern())
 }
 
 /// Parses and validates a room file's text: a TOML syntax error names the line, a wrong or

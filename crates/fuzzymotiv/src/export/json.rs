@@ -4,9 +4,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::ExportedController;
-use crate::simulation::controller::{INPUTS, OUTPUTS};
+use crate::simulation::controller::OUTPUTS;
 use crate::simulation::robot::Motion;
-use crate::simulation::sensor::SENSOR_MAX;
 
 /// The document's `format` field.
 pub const FORMAT: &str = "fuzzymotiv-controller";
@@ -125,8 +124,8 @@ impl ControllerDoc {
             provenance: crate::provenance(),
             model_version: crate::MODEL_VERSION,
             network: NetworkDoc {
-                layout: format!("{INPUTS}-{h}-{OUTPUTS}"),
-                inputs: INPUTS,
+                layout: format!("{}-{h}-{OUTPUTS}", c.robot.sensors),
+                inputs: c.robot.sensors,
                 hidden: h,
                 outputs: OUTPUTS,
                 activation: ActivationDoc {
@@ -143,8 +142,8 @@ impl ControllerDoc {
                 weight_bits: c.weights.iter().map(|w| format!("0x{:016x}", w.to_bits())).collect(),
             },
             inputs: InputsDoc {
-                sensors: (0..INPUTS).map(|k| format!("ir{k}")).collect(),
-                reading_max: SENSOR_MAX,
+                sensors: (0..c.robot.sensors).map(|k| format!("ir{k}")).collect(),
+                reading_max: c.robot.reading_max,
                 scaling: "x = reading / 1023 (reading 0 gives exactly 0); readings are in the simulator's scale 0..1023 (clamp a larger one to 1023)".into(),
             },
             outputs: OutputsDoc {

@@ -10,8 +10,7 @@
 use prost::Message;
 
 use super::ExportedController;
-use crate::simulation::controller::{INPUTS, OUTPUTS};
-use crate::simulation::sensor::SENSOR_MAX;
+use crate::simulation::controller::OUTPUTS;
 
 /// `TensorProto.DataType.DOUBLE`.
 const DOUBLE: i32 = 11;
@@ -169,19 +168,20 @@ fn node(op: &str, inputs: &[&str], output: &str) -> NodeProto {
 /// `b2` `[2]` (transposed from the genome's per-unit rows) and the reading scale.
 fn initialisers(c: &ExportedController) -> Vec<TensorProto> {
     let h = c.shape.hidden();
-    let (hidden_w, out_w) = c.weights.split_at(h * (INPUTS + 1));
-    let w1 = (0..INPUTS)
-        .flat_map(|i| (0..h).map(move |j| hidden_w[j * (INPUTS + 1) + 1 + i]))
+    let n = c.robot.sensors;
+    let (hidden_w, out_w) = c.weights.split_at(h * (n + 1));
+    let w1 = (0..n)
+        .flat_map(|i| (0..h).map(move |j| hidden_w[j * (n + 1) + 1 + i]))
         .collect();
-    let b1 = (0..h).map(|j| hidden_w[j * (INPUTS + 1)]).collect();
+    let b1 = (0..h).map(|j| hidden_w[j * (n + 1)]).collect();
     let w2 = (0..h)
         .flat_map(|j| (0..OUTPUTS).map(move |o| out_w[o * (h + 1) + 1 + j]))
         .collect();
     let b2 = (0..OUTPUTS).map(|o| out_w[o * (h + 1)]).collect();
     let h = h as i64;
     vec![
-        tensor("reading_max", &[], vec![SENSOR_MAX]),
-        tensor("w1", &[INPUTS as i64, h], w1),
+        tensor("reading_max", &[], vec![c.robot.reading_max]),
+        tensor("w1", &[n as i64, h], w1),
         tensor("b1", &[h], b1),
         tensor("w2", &[h, OUTPUTS as i64], w2),
         tensor("b2", &[OUTPUTS as i64], b2),
@@ -203,9 +203,9 @@ pub(crate) fn model(c: &ExportedController) -> Vec<u8> {
     ];
     let graph = GraphProto {
         node: nodes,
-        name: format!("fuzzymotiv_8_{}_2", c.shape.hidden()),
+        name: format!("fuzzymotiv_{}_{}_2", c.robot.sensors, c.shape.hidden()),
         initializer: initialisers(c),
-        input: vec![batch_of("ir", INPUTS as i64)],
+        input: vec![batch_of("ir", c.robot.sensors as i64)],
         output: vec![batch_of("motors", OUTPUTS as i64)],
     };
     let meta = |k: &str, v: String| StringStringEntryProto {
@@ -216,7 +216,11 @@ pub(crate) fn model(c: &ExportedController) -> Vec<u8> {
         ir_version: 8,
         producer_name: "fuzzymotiv".into(),
         producer_version: crate::VERSION.into(),
-        doc_string: "An evolved fuzzymotiv controller: ir [N, 8] raw readings 0..1023 (a larger one counts as 1023) -> motors [N, 2] (mL, mR in [0, 1]; wheel speed (2m - 1) * v_max). Agrees with the simulator to ~1e-15, not bit for bit (MatMul's summation order, the runtime's exp).".into(),
+        doc_string: format!(
+            "An evolved fuzzymotiv controller: ir [N, {n}] raw readings 0..{max} (a larger one counts as {max}) -> motors [N, 2] (mL, mR in [0, 1]; wheel speed (2m - 1) * v_max). Agrees with the simulator to ~1e-15, not bit for bit (MatMul's summation order, the runtime's exp).",
+            n = c.robot.sensors,
+            max = c.robot.reading_max
+        ),
         graph: Some(graph),
         opset_import: vec![OperatorSetIdProto {
             domain: String::new(),
@@ -237,14 +241,14 @@ mod tests {
     use crate::simulation::{MlpShape, TrialParams};
 
     /// The graph run by hand (its seven operators, `[N, K]` tensors row by row) on `ir`.
-    fn run(model: &[u8], ir: &[[f64; INPUTS]]) -> Vec<f64> {
+    fn run(model: &[u8], ir: &[[f64; 8]]) -> Vec<f64> {
         let graph = ModelProto::decode(model).unwrap().graph.unwrap();
         let mut values: std::collections::HashMap<String, (Vec<i64>, Vec<f64>)> =
             (graph.initializer.iter())
                 .map(|t| (t.name.clone(), (t.dims.clone(), t.double_data.clone())))
                 .collect();
         let rows = ir.len() as i64;
-        values.insert("ir".into(), (vec![rows, INPUTS as i64], ir.concat()));
+        values.insert("ir".into(), (vec![rows, 8], ir.concat()));
         for n in &graph.node {
             let (a, b) = (&values[&n.input[0]], n.input.get(1).map(|i| &values[i]));
             let pair = |f: fn(f64, f64) -> f64| {

@@ -9,7 +9,6 @@ use std::borrow::Borrow;
 
 use crate::fitness::terms::{FitnessTerms, Homing, TermsRecorder};
 use crate::random::rng::Rng;
-use crate::simulation::controller::INPUTS;
 use crate::simulation::robot::Action;
 use crate::simulation::stepper::TrialRun;
 use crate::simulation::trial::{Arena, Step, StepObserver};
@@ -45,7 +44,7 @@ impl<A: Borrow<Arena> + Clone, R: Rng> Episode<A, R> {
     }
 
     /// The sensor values of the next step ([`TrialRun::observe`]).
-    pub fn observe(&mut self) -> [f64; INPUTS] {
+    pub fn observe(&mut self) -> crate::simulation::Readings {
         self.run.observe()
     }
 
@@ -95,7 +94,7 @@ mod tests {
     #[derive(Clone)]
     struct OutAndBack(usize);
     impl Controller for OutAndBack {
-        fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
+        fn step(&mut self, _: &[f64]) -> [f64; 2] {
             self.0 += 1;
             if self.0 == 31 { [0.0, 0.0] } else { [1.0, 1.0] }
         }
@@ -111,7 +110,8 @@ mod tests {
         simulate(arena, &mut driver.clone(), &mut rng_from_seed(9), &mut rec);
         let mut ep = Episode::new(arena, Homing::Escape, rng_from_seed(9));
         while !ep.is_over() {
-            let inputs = ep.observe().map(|v| v / 1023.0);
+            let mut inputs = ep.observe();
+            inputs.iter_mut().for_each(|v| *v /= 1023.0);
             ep.step(driver.step(&inputs));
         }
         (ep.terms(), rec.finish(), ep.run().ended_at_home())

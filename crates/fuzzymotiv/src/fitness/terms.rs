@@ -570,7 +570,7 @@ mod tests {
     use super::*;
     use crate::modelling::aem::DEFAULT_ACTION_TOLERANCE;
     use crate::random::rng::rng_from_seed;
-    use crate::simulation::controller::{Controller, INPUTS};
+    use crate::simulation::controller::Controller;
     use crate::simulation::robot::{Motion, RawRobot};
     use crate::simulation::room::Room;
     use crate::simulation::trial::{RawTrial, TrialParams, run_trial};
@@ -578,7 +578,7 @@ mod tests {
     /// A controller that plays a fixed list of motor outputs, then repeats the last one.
     struct Script(Vec<[f64; 2]>, usize);
     impl Controller for Script {
-        fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
+        fn step(&mut self, _: &[f64]) -> [f64; 2] {
             let m = self.0[self.1.min(self.0.len() - 1)];
             self.1 += 1;
             m
@@ -591,12 +591,18 @@ mod tests {
             motion,
             ..RawRobot::default()
         };
-        TrialParams::from_raw(&trial, &robot, DEFAULT_ACTION_TOLERANCE).unwrap()
+        TrialParams::from_raw(
+            &trial,
+            &robot,
+            crate::simulation::RobotSpec::khepera(),
+            DEFAULT_ACTION_TOLERANCE,
+        )
+        .unwrap()
     }
 
     fn params(motion: Motion, steps: usize) -> TrialParams {
         let trial = RawTrial {
-            noise: 0.0,
+            noise: Some(0.0),
             steps,
             ..RawTrial::default()
         };
@@ -700,7 +706,7 @@ mod tests {
         // Without end_at_home the robot drives on to the far wall.
         let p = checked(
             RawTrial {
-                noise: 0.0,
+                noise: Some(0.0),
                 end_at_home: false,
                 ..RawTrial::default()
             },

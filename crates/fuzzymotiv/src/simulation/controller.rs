@@ -2,22 +2,26 @@
 
 use serde::{Deserialize, Serialize};
 
-/// Number of network inputs (the eight IR sensors).
+/// Number of network inputs of the paper's Khepera (its eight IR sensors); a robot file's
+/// robot has one input per sensor ([`MlpShape::inputs`]).
 pub const INPUTS: usize = crate::simulation::sensor::SENSORS;
 /// Number of network outputs (left and right motor).
 pub const OUTPUTS: usize = 2;
 
-/// Maps normalised sensor readings (each in [0, 1]) to motor outputs `mL, mR` in [0, 1].
+/// Maps normalised sensor readings (each in [0, 1], one per sensor of the robot) to motor
+/// outputs `mL, mR` in [0, 1].
 pub trait Controller {
     /// One network step.
-    fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS];
+    fn step(&mut self, inputs: &[f64]) -> [f64; OUTPUTS];
 }
 
-/// The shape of the MLP: 8 inputs → `hidden` logistic units → 2 logistic outputs, with biases.
-/// Built only by checking ([`MlpShape::with_hidden`], [`RawNetwork::shape`]) or as the paper's
-/// ([`MlpShape::default`]).
+/// The shape of the MLP: N inputs (one per sensor of the robot; the Khepera's 8) → `hidden`
+/// logistic units → 2 logistic outputs, with biases. Built only by checking
+/// ([`MlpShape::with_hidden`], [`RawNetwork::shape`], [`MlpShape::with_inputs`]) or as the
+/// paper's ([`MlpShape::default`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MlpShape {
+    inputs: usize,
     hidden: usize,
 }
 
@@ -25,6 +29,7 @@ impl Default for MlpShape {
     /// The paper's 8-6-2 network.
     fn default() -> Self {
         MlpShape {
+            inputs: INPUTS,
             hidden: MlpShape::DEFAULT_HIDDEN,
         }
     }
@@ -60,8 +65,8 @@ impl MlpShape {
     /// The most hidden units a network may have.
     pub const MAX_HIDDEN: usize = 1024;
 
-    /// The shape with `hidden` hidden units, in 1..=[`MlpShape::MAX_HIDDEN`]; an error names
-    /// `network.hidden`.
+    /// The shape with the Khepera's 8 inputs and `hidden` hidden units, in
+    /// 1..=[`MlpShape::MAX_HIDDEN`]; an error names `network.hidden`.
     ///
     /// ```
     /// use fuzzymotiv::simulation::MlpShape;
@@ -74,12 +79,31 @@ impl MlpShape {
             "network.hidden",
             || format!("must be in 1..={}, got {hidden}", Self::MAX_HIDDEN),
         )?;
-        Ok(MlpShape { hidden })
+        Ok(MlpShape {
+            inputs: INPUTS,
+            hidden,
+        })
     }
 
-    /// Inputs: the eight IR sensors ([`INPUTS`]).
+    /// The same shape with `inputs` inputs (a robot's sensors: 1 to
+    /// [`crate::simulation::MAX_SENSORS`]); an error names `robot` (the robot file gives them).
+    ///
+    /// ```
+    /// use fuzzymotiv::simulation::MlpShape;
+    /// let thymio = MlpShape::default().with_inputs(7).unwrap();
+    /// assert_eq!((thymio.inputs(), thymio.genome_len()), (7, 62));
+    /// ```
+    pub fn with_inputs(self, inputs: usize) -> Result<MlpShape, crate::params::FieldError> {
+        let most = crate::simulation::MAX_SENSORS;
+        crate::params::check((1..=most).contains(&inputs), "robot", || {
+            format!("a network has 1 to {most} inputs (one per sensor), got {inputs}")
+        })?;
+        Ok(MlpShape { inputs, ..self })
+    }
+
+    /// Inputs: one per sensor of the robot (the Khepera's eight IR sensors: [`INPUTS`]).
     pub fn inputs(&self) -> usize {
-        INPUTS
+        self.inputs
     }
 
     /// Hidden units; default 6 ([`MlpShape::DEFAULT_HIDDEN`]); range 1..=1024.
@@ -92,14 +116,14 @@ impl MlpShape {
         OUTPUTS
     }
 
-    /// Genome length: per hidden unit `[bias, 8 weights]`, then per output `[bias, hidden
-    /// weights]`. 68 for the paper's 8-6-2.
+    /// Genome length: per hidden unit `[bias, N input weights]`, then per output `[bias,
+    /// hidden weights]`. 68 for the paper's 8-6-2.
     ///
     /// ```
     /// assert_eq!(fuzzymotiv::simulation::MlpShape::default().genome_len(), 68);
     /// ```
     pub fn genome_len(&self) -> usize {
-        self.hidden * (INPUTS + 1) + OUTPUTS * (self.hidden + 1)
+        self.hidden * (self.inputs + 1) + OUTPUTS * (self.hidden + 1)
     }
 }
 
@@ -110,6 +134,7 @@ impl MlpShape {
             Ok(())
         } else {
             Err(GenomeError {
+                inputs: self.inputs,
                 hidden: self.hidden,
                 expected: self.genome_len(),
                 actual: genome.len(),
@@ -126,8 +151,10 @@ impl MlpShape {
 /// assert_eq!(e.to_string(), "a genome of the 8-6-2 network has 68 weights, got 67");
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("a genome of the 8-{hidden}-2 network has {expected} weights, got {actual}")]
+#[error("a genome of the {inputs}-{hidden}-2 network has {expected} weights, got {actual}")]
 pub struct GenomeError {
+    /// The network's inputs.
+    pub inputs: usize,
     /// The network's hidden units.
     pub hidden: usize,
     /// The network's genome length ([`MlpShape::genome_len`]).
@@ -153,7 +180,7 @@ pub struct Mlp {
     by_input: Vec<f64>,
     hidden: Vec<f64>,
     /// The outputs when every input is 0, computed once: the hidden units are then
-    /// `logistic(bias)` (in open floor all eight sensors read 0, and a term `w · 0` adds ±0,
+    /// `logistic(bias)` (in open floor all sensors read 0, and a term `w · 0` adds ±0,
     /// which changes no sum that reaches the logistic: `exp(±0)` is 1 either way), so these
     /// are the loop's results bit for bit.
     idle_out: [f64; OUTPUTS],
@@ -170,13 +197,14 @@ impl Mlp {
     /// The network of `genome`, whose length is `shape`'s (checked by the caller).
     pub(crate) fn of_checked(shape: MlpShape, genome: &[f64]) -> Self {
         debug_assert_eq!(genome.len(), shape.genome_len());
-        let (hidden_w, out_w) = genome.split_at(shape.hidden * (INPUTS + 1));
+        let n = shape.inputs;
+        let (hidden_w, out_w) = genome.split_at(shape.hidden * (n + 1));
         let idle_hidden: Vec<f64> = hidden_w
-            .chunks_exact(INPUTS + 1)
+            .chunks_exact(n + 1)
             .map(|w| logistic(w[0]))
             .collect();
-        let by_input = (0..=INPUTS)
-            .flat_map(|k| hidden_w.chunks_exact(INPUTS + 1).map(move |w| w[k]))
+        let by_input = (0..=n)
+            .flat_map(|k| hidden_w.chunks_exact(n + 1).map(move |w| w[k]))
             .collect();
         Self {
             shape,
@@ -213,12 +241,12 @@ impl Mlp {
 }
 
 /// The hidden layer's weighted sums, input by input: each unit's sum is
-/// `bias + w₁·x₁ + … + w₈·x₈` added in that order, as the genome lays it out, but inputs that
+/// `bias + w₁·x₁ + … + w_N·x_N` added in that order, as the genome lays it out, but inputs that
 /// are exactly 0 (a sensor that sees nothing: most of them, most of the time) are skipped.
 /// Adding `w · 0 = ±0` leaves a sum unchanged except for the sign of a zero sum, and
 /// `logistic(−0) = logistic(+0) = 0.5`, so the outputs are the same bits.
 #[inline(always)]
-fn hidden_sums(by_input: &[f64], inputs: &[f64; INPUTS], sums: &mut [f64]) {
+fn hidden_sums(by_input: &[f64], inputs: &[f64], sums: &mut [f64]) {
     let h = sums.len();
     sums.copy_from_slice(&by_input[..h]);
     for (row, &x) in by_input[h..].chunks_exact(h).zip(inputs) {
@@ -235,13 +263,9 @@ fn hidden_sums(by_input: &[f64], inputs: &[f64; INPUTS], sums: &mut [f64]) {
 /// unrolls and vectorises, and each layer's logistic units done together
 /// ([`logistic_lanes`]: the scalar function's bits).
 #[inline(always)]
-fn step_fixed<const H: usize>(
-    by_input: &[f64],
-    out_w: &[f64],
-    inputs: &[f64; INPUTS],
-) -> [f64; OUTPUTS] {
+fn step_fixed<const H: usize>(by_input: &[f64], out_w: &[f64], inputs: &[f64]) -> [f64; OUTPUTS] {
     let mut hidden = [0.0; H];
-    hidden_sums(&by_input[..H * (INPUTS + 1)], inputs, &mut hidden);
+    hidden_sums(&by_input[..H * (inputs.len() + 1)], inputs, &mut hidden);
     let hidden = logistic_lanes(hidden);
     let mut out = [0.0; OUTPUTS];
     for (o, w) in out.iter_mut().zip(out_w.chunks_exact(H + 1)) {
@@ -258,7 +282,8 @@ impl Controller for Mlp {
     // Always inlined: the step loop is also compiled for AVX2 (`isa::Isa`), and a network
     // called out of line would run the baseline code there.
     #[inline(always)]
-    fn step(&mut self, inputs: &[f64; INPUTS]) -> [f64; OUTPUTS] {
+    fn step(&mut self, inputs: &[f64]) -> [f64; OUTPUTS] {
+        debug_assert_eq!(inputs.len(), self.shape.inputs, "one input per sensor");
         if inputs.iter().all(|&x| x == 0.0) {
             return self.idle_out;
         }

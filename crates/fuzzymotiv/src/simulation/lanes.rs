@@ -31,7 +31,7 @@ use crate::simulation::math::logistic_rough_avx2;
 use crate::simulation::math::{LOGISTIC_ROUGH_ERR, logistic_lanes, logistic_rough_lanes};
 use crate::simulation::memo::{Sight, Table, memo_live, with_table};
 use crate::simulation::robot::{Motion, Pose};
-use crate::simulation::sensor::SENSOR_MAX;
+use crate::simulation::sensor::{Readings, SENSOR_MAX};
 use crate::simulation::trial::{Arena, Sensed, StepObserver, Walk};
 
 /// Trials stepped together.
@@ -52,10 +52,14 @@ pub(crate) struct LaneTrial<'a, O> {
 }
 
 /// Whether [`walk_lanes`] can run `net`'s trials in `arena`: `actions` motion with noise (so
-/// every step takes its ten draws), the 8-6-2 network, finite weights.
+/// every step takes its ten draws), eight sensors reading 0–1023 (the Khepera's), the 8-6-2
+/// network, finite weights.
 pub(crate) fn lanes_fit(arena: &Arena, net: &Mlp) -> bool {
     let params = arena.params();
+    let spec = params.robot.spec();
     params.robot.motion() == Motion::Actions
+        && spec.sensors() == INPUTS
+        && spec.reading_max() == SENSOR_MAX
         && params.noise > 0.0
         && net.shape().hidden() == HIDDEN
         && net.is_finite()
@@ -175,7 +179,10 @@ fn walk<const AVX2: bool, O: StepObserver>(
         }
         for l in 0..LANES {
             let Some(j) = lanes.trial[l] else { continue };
-            let sensed = Sensed::straight(noisy_sensors[l], sights[l].blocked);
+            let sensed = Sensed::straight(
+                Readings::from_eight(noisy_sensors[l], INPUTS),
+                sights[l].blocked,
+            );
             let m = [motors[0][l], motors[1][l]];
             let noisy = [speeds[0][l], speeds[1][l]];
             let t = lanes.t[l];
@@ -186,7 +193,7 @@ fn walk<const AVX2: bool, O: StepObserver>(
             lanes.t[l] = t + 1;
             if t + 1 == params.steps || (params.end_at_home && home) || trial.observer.finished() {
                 for t in t + 1..params.steps {
-                    trial.observer.observe(&lanes.walk[l].idle(t));
+                    trial.observer.observe(&lanes.walk[l].idle(t, INPUTS));
                 }
                 trial.last = lanes.walk[l].pose();
                 next = lanes.load(l, next, arena, trials);

@@ -37,7 +37,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, LazyLock, Mutex, MutexGuard, PoisonError, Weak};
 
 use crate::simulation::geom::Vec2;
-use crate::simulation::sensor::{SENSORS as INPUTS, SensorModel};
+use crate::simulation::sensor::SensorModel;
+
+/// The most sensors a sight holds (a robot with more is never remembered).
+pub(crate) const SIGHT_SENSORS: usize = 8;
+use SIGHT_SENSORS as INPUTS;
 
 /// Entries per table (2¹⁸: 8 MiB).
 pub const SLOTS: usize = 1 << 18;

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use crate::params::{FieldError, Num, check};
 use crate::random::rng::{rng_from_seed, uniform};
 use crate::random::seed::{derive, purpose};
-use crate::simulation::robot::{Khepera, RawRobot};
+use crate::simulation::robot::{RawRobot, Robot};
 
 /// `[trial.randomise]` as written: each key a range `[low, high]`; an omitted key is not
 /// randomised. See [`Randomise`] for the ranges allowed.
@@ -96,7 +96,7 @@ impl Randomise {
     /// noise level `noise`; `None` when no key is given (nothing randomised).
     pub fn from_raw(
         raw: &RawRandomise,
-        robot: &RawRobot,
+        robot: &Robot,
         step: impl Fn(f64) -> f64,
         noise: f64,
     ) -> Result<Option<Randomise>, FieldError> {
@@ -122,13 +122,20 @@ impl Randomise {
             radius: range(
                 raw.radius,
                 "trial.randomise.radius",
-                (0.0, 80.0),
+                (0.0, 500.0),
                 "a body radius in mm",
             )?,
         };
         if let Some((lo, hi)) = r.radius {
             for radius in [lo, hi] {
-                Khepera::from_raw(&RawRobot { radius, ..*robot }).map_err(|e| {
+                let raw = RawRobot {
+                    radius: Some(radius),
+                    wheel_base: Some(robot.wheel_base()),
+                    v_max: Some(robot.v_max()),
+                    file: None,
+                    motion: robot.motion(),
+                };
+                Robot::from_raw(&raw, robot.spec()).map_err(|e| {
                     FieldError::new(
                         "trial.randomise.radius",
                         e.reason.replace("got", "got an end"),
@@ -177,7 +184,7 @@ mod tests {
     use super::*;
 
     fn checked(raw: RawRandomise) -> Result<Option<Randomise>, FieldError> {
-        Randomise::from_raw(&raw, &RawRobot::default(), |n| 8.0 * (1.0 + n), 0.06)
+        Randomise::from_raw(&raw, &Robot::default(), |n| 8.0 * (1.0 + n), 0.06)
     }
 
     #[test]

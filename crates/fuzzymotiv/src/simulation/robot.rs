@@ -1,4 +1,4 @@
-//! The Khepera I body: pose, physical parameters and the two motion models — the paper's
+//! The robot's body: pose, physical parameters (from its robot file) and the two motion models — the paper's
 //! executed actions ([`Motion::Actions`]) and continuous differential drive ([`Motion::Wheels`]).
 
 use serde::{Deserialize, Serialize};
@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 use crate::params::{FieldError, Num, check};
 use crate::simulation::geom::Vec2;
 use crate::simulation::math;
+use crate::simulation::robot_spec::RobotSpec;
 
 /// Default signed-speed difference (fractions of `v_max`) separating a turn from a straight
 /// step (config key `aem.action_tolerance`).
@@ -70,60 +71,138 @@ pub fn wrap_angle(theta: f64) -> f64 {
     t
 }
 
-/// `[robot]` in a config, as written: see [`Khepera`] for each field's unit, default and
-/// range; [`Khepera::from_raw`] checks them.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+/// `[robot]` in a config, as written: which robot (`file`: a built-in robot's name or a robot
+/// file's path; the Khepera when absent) and what of its file the config overrides; see
+/// [`Robot`] for each field's unit and range; [`Robot::from_raw`] checks them. A config may
+/// also name the robot alone: `robot = "epuck2"`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct RawRobot {
-    /// [`Khepera::radius`].
-    pub radius: f64,
-    /// [`Khepera::wheel_base`].
-    pub wheel_base: f64,
-    /// [`Khepera::v_max`].
-    pub v_max: f64,
-    /// [`Khepera::motion`].
+    /// A built-in robot ([`crate::simulation::BUILTIN_ROBOTS`]) or a robot file's path;
+    /// `None`: the paper's Khepera.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// [`Robot::radius`]; `None`: the robot file's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    /// [`Robot::wheel_base`]; `None`: the robot file's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wheel_base: Option<f64>,
+    /// [`Robot::v_max`]; `None`: the robot file's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub v_max: Option<f64>,
+    /// [`Robot::motion`].
     pub motion: Motion,
 }
 
-impl Default for RawRobot {
+/// `[robot]` as a table (the fields of [`RawRobot`]).
+#[derive(Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct RawRobotTable {
+    file: Option<String>,
+    radius: Option<f64>,
+    wheel_base: Option<f64>,
+    v_max: Option<f64>,
+    motion: Motion,
+}
+
+impl Default for RawRobotTable {
     fn default() -> Self {
-        let d = Khepera::default();
-        Self {
-            radius: d.radius,
-            wheel_base: d.wheel_base,
-            v_max: d.v_max,
-            motion: d.motion,
+        let RawRobot {
+            file,
+            radius,
+            wheel_base,
+            v_max,
+            motion,
+        } = RawRobot::default();
+        RawRobotTable {
+            file,
+            radius,
+            wheel_base,
+            v_max,
+            motion,
         }
     }
 }
 
-/// Physical parameters of the Khepera I and its motion model, checked (see docs/model.md):
-/// built by [`Khepera::from_raw`] (or [`Khepera::default`]). All lengths in mm, speeds in mm/s.
+impl<'de> Deserialize<'de> for RawRobot {
+    /// A table of [`RawRobot`]'s fields, or a string naming the robot (`robot = "epuck2"`).
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Form;
+        impl<'de> serde::de::Visitor<'de> for Form {
+            type Value = RawRobot;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a robot's name or robot file (\"epuck2\"), or a [robot] table")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<RawRobot, E> {
+                Ok(RawRobot {
+                    file: Some(v.to_string()),
+                    ..RawRobot::default()
+                })
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<RawRobot, A::Error> {
+                let de = serde::de::value::MapAccessDeserializer::new(map);
+                let t = RawRobotTable::deserialize(de)?;
+                Ok(RawRobot {
+                    file: t.file,
+                    radius: t.radius,
+                    wheel_base: t.wheel_base,
+                    v_max: t.v_max,
+                    motion: t.motion,
+                })
+            }
+        }
+        d.deserialize_any(Form)
+    }
+}
+
+impl RawRobot {
+    /// The same, every value the config leaves to the robot file taken from `spec`, and the
+    /// paper's Khepera named by no file (the same run as a config that names none).
+    pub fn resolved(&self, spec: &RobotSpec) -> RawRobot {
+        let file = match self.file.as_deref() {
+            Some("khepera") | None => None,
+            Some(f) => Some(f.to_string()),
+        };
+        RawRobot {
+            file,
+            radius: Some(self.radius.unwrap_or(spec.radius())),
+            wheel_base: Some(self.wheel_base.unwrap_or(spec.wheel_base())),
+            v_max: Some(self.v_max.unwrap_or(spec.v_max())),
+            motion: self.motion,
+        }
+    }
+}
+
+/// A robot's body, wheels and sensors and its motion model, checked (see docs/model.md): its
+/// robot file ([`RobotSpec`]) with what a config overrides, built by [`Robot::from_raw`] (or
+/// [`Robot::default`], the paper's Khepera). All lengths in mm, speeds in mm/s.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Khepera {
+pub struct Robot {
     radius: f64,
     wheel_base: f64,
     v_max: f64,
     motion: Motion,
+    spec: &'static RobotSpec,
 }
 
-impl Khepera {
-    /// Body radius (mm); default 27.5 (diameter 55 mm); range [r, 80] where r ≈ 25.1 mm is
-    /// the IR sensors' distance from the centre.
+impl Robot {
+    /// Body radius (mm); the robot file's (Khepera: 27.5, a 55 mm body) unless the config
+    /// sets `robot.radius`; at least the farthest sensor's distance from the centre, at most
+    /// 500.
     #[inline]
     pub fn radius(&self) -> f64 {
         self.radius
     }
 
-    /// Distance between the wheels (mm); default 53 (used by `wheels` motion only); range
+    /// Distance between the wheels (mm); Khepera 53 (used by `wheels` motion only); range
     /// (0, 1000].
     #[inline]
     pub fn wheel_base(&self) -> f64 {
         self.wheel_base
     }
 
-    /// Maximum wheel speed (mm/s); default 80; > 0, finite. With `actions` motion a straight
-    /// step moves `v_max · dt` (8 mm by default).
+    /// Maximum wheel speed (mm/s); Khepera 80; > 0, finite. With `actions` motion a straight
+    /// step moves `v_max · dt` (8 mm on the Khepera).
     #[inline]
     pub fn v_max(&self) -> f64 {
         self.v_max
@@ -135,40 +214,67 @@ impl Khepera {
         self.motion
     }
 
-    /// Checks `[robot]` against the ranges documented on the accessors, naming the first
-    /// field out of range as `robot.FIELD`.
-    pub fn from_raw(raw: &RawRobot) -> Result<Khepera, FieldError> {
-        check(
-            raw.v_max.is_finite() && raw.v_max > 0.0,
-            "robot.v_max",
-            || format!("must be a speed > 0 (mm/s), got {}", Num(raw.v_max)),
-        )?;
-        // The sensor mounts are fixed (docs/model.md §3): they must sit inside the body, and a
-        // body far larger than the sensors' reach would be blind.
-        let mounts = crate::simulation::sensor::SENSOR_LAYOUT
-            .iter()
+    /// The robot file: name, sensors and their response, reading scale.
+    #[inline]
+    pub fn spec(&self) -> &'static RobotSpec {
+        self.spec
+    }
+
+    /// Number of proximity sensors (the network's inputs).
+    #[inline]
+    pub fn sensors(&self) -> usize {
+        self.spec.sensors()
+    }
+
+    /// The same robot with body radius `radius` (for perturbation studies and randomised
+    /// trials; checked by the caller).
+    pub(crate) fn with_radius(self, radius: f64) -> Robot {
+        Robot { radius, ..self }
+    }
+
+    /// Checks `[robot]` for the robot file `spec` against the ranges documented on the
+    /// accessors, naming the first field out of range as `robot.FIELD`.
+    pub fn from_raw(raw: &RawRobot, spec: &'static RobotSpec) -> Result<Robot, FieldError> {
+        let raw = raw.resolved(spec);
+        let (radius, wheel_base, v_max) = (
+            raw.radius.unwrap_or_default(),
+            raw.wheel_base.unwrap_or_default(),
+            raw.v_max.unwrap_or_default(),
+        );
+        check(v_max.is_finite() && v_max > 0.0, "robot.v_max", || {
+            format!("must be a speed > 0 (mm/s), got {}", Num(v_max))
+        })?;
+        // The sensors must sit inside the body.
+        let mounts = (spec.mounts().iter())
             .map(|m| m.x.hypot(m.y))
             .fold(0.0, f64::max);
+        let most = if spec.is_khepera_layout() {
+            80.0
+        } else {
+            500.0
+        };
         check(
-            raw.radius.is_finite() && raw.radius >= mounts && raw.radius <= 80.0,
+            radius.is_finite() && radius >= mounts && radius <= most,
             "robot.radius",
             || {
                 format!(
-                    "must be in [{mounts:.2}, 80] mm (the IR sensors sit {mounts:.2} mm from the centre and see 58 mm), got {}",
-                    Num(raw.radius)
+                    "must be in [{mounts:.2}, {most}] mm (the {}'s IR sensors sit up to {mounts:.2} mm from the centre), got {}",
+                    spec.name(),
+                    Num(radius)
                 )
             },
         )?;
         check(
-            raw.wheel_base.is_finite() && raw.wheel_base > 0.0 && raw.wheel_base <= 1000.0,
+            wheel_base.is_finite() && wheel_base > 0.0 && wheel_base <= 1000.0,
             "robot.wheel_base",
-            || format!("must be in (0, 1000] mm, got {}", Num(raw.wheel_base)),
+            || format!("must be in (0, 1000] mm, got {}", Num(wheel_base)),
         )?;
-        Ok(Khepera {
-            radius: raw.radius,
-            wheel_base: raw.wheel_base,
-            v_max: raw.v_max,
+        Ok(Robot {
+            radius,
+            wheel_base,
+            v_max,
             motion: raw.motion,
+            spec,
         })
     }
 }
@@ -320,13 +426,16 @@ impl Compass {
 /// The Khepera's body radius (mm), also used to validate room files.
 pub const KHEPERA_RADIUS: f64 = 27.5;
 
-impl Default for Khepera {
+impl Default for Robot {
+    /// The paper's Khepera with `actions` motion.
     fn default() -> Self {
+        let spec = RobotSpec::khepera();
         Self {
-            radius: KHEPERA_RADIUS,
-            wheel_base: 53.0,
-            v_max: 80.0,
+            radius: spec.radius(),
+            wheel_base: spec.wheel_base(),
+            v_max: spec.v_max(),
             motion: Motion::Actions,
+            spec,
         }
     }
 }

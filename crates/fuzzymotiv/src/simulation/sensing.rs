@@ -1,4 +1,4 @@
-//! What the eight IR sensors read: their rays turned to the robot's heading and cast against
+//! What the IR sensors read: their rays turned to the robot's heading and cast against
 //! the walls near it.
 //!
 //! [`Eyes`] holds the sensors' rays in the body frame and, for `actions` motion, already turned
@@ -7,13 +7,16 @@
 //! longest ray cannot change the sensor's value, so it is skipped; the others are tested
 //! against every ray of the sensor at once ([`PreparedSegment::lower_ray_hits`]). On the
 //! compass with three rays a sensor, on processors with AVX2, four sensors are cast together in
-//! vector lanes ([`Eyes::cast_avx2`]), with the same bits.
+//! vector lanes ([`Eyes::cast_avx2`]), with the same bits. A robot has up to
+//! [`crate::simulation::MAX_SENSORS`]
+//! sensors; the arrays hold that many, and only the robot's first `n` are read.
 
 use crate::simulation::geom::{PreparedSegment, Vec2};
 use crate::simulation::isa::Isa;
 use crate::simulation::robot::Compass;
-use crate::simulation::sensor::SENSORS as INPUTS;
-use crate::simulation::sensor::{RayMount, SENSOR_MAX, SensorModel, ray_count, rays};
+use crate::simulation::robot_spec::RobotSpec;
+use crate::simulation::sensor::MAX_SENSORS as INPUTS;
+use crate::simulation::sensor::{RayMount, Readings, SensorModel, ray_count, rays};
 #[cfg(target_arch = "x86_64")]
 use std::arch::x86_64::__m256d;
 
@@ -27,7 +30,7 @@ pub struct TurnedRays {
     side: SideBySide,
 }
 
-/// The eight sensors' rays side by side, for casting them in vector lanes: `origin[c][s]` is
+/// The sensors' rays side by side, for casting them in vector lanes: `origin[c][s]` is
 /// coordinate `c` (x, y) of sensor `s`'s origin, `dir[r][c][s]` of its ray `r`'s direction.
 #[derive(Debug, Clone, Copy)]
 struct SideBySide {
@@ -35,10 +38,14 @@ struct SideBySide {
     dir: [[[f64; INPUTS]; 2]; 3],
 }
 
-/// The eight sensors of one response model, ready to read.
+/// A robot's sensors with one response model, ready to read.
 #[derive(Debug, Clone)]
 pub struct Eyes {
     mounts: [[RayMount; 3]; INPUTS],
+    /// The robot's number of sensors (the first `n` of the arrays).
+    n: usize,
+    /// The largest value a sensor reads (the robot's `reading_max`).
+    max: f64,
     /// The rays at heading 0 (body frame): origins and unit directions.
     body: TurnedRays,
     /// Rays per sensor (3 with `sampled`, 1 with `linear`).
@@ -55,15 +62,16 @@ pub struct Eyes {
 }
 
 impl Eyes {
-    /// The sensors of `model`, with their rays turned to each heading of `compass`.
-    pub fn new(model: SensorModel, compass: &Compass) -> Eyes {
-        let mounts = rays(model);
-        let per_sensor = ray_count(model);
+    /// The sensors of `robot` with `model`, their rays turned to each heading of `compass`.
+    pub fn new(model: SensorModel, robot: &RobotSpec, compass: &Compass) -> Eyes {
+        let mounts = rays(model, robot);
+        let n = robot.sensors();
+        let per_sensor = ray_count(model, robot);
         let body = TurnedRays::new(
             mounts.map(|m| m[0].origin),
             mounts.map(|m| m.map(|r| Vec2::from_angle(r.angle))),
         );
-        let range = mounts
+        let range = mounts[..n]
             .iter()
             .flat_map(|m| m[..per_sensor].iter())
             .map(|r| r.range())
@@ -71,12 +79,14 @@ impl Eyes {
             + 1e-6;
         Eyes {
             mounts,
+            n,
+            max: robot.reading_max(),
             body,
             per_sensor,
             range2: range * range,
             compass: std::array::from_fn(|k| body.turned(compass.sin[k], compass.cos[k])),
             isa: Isa::detected(),
-            tables: shared_tables(&mounts),
+            tables: shared_tables(&mounts[..n]),
         }
     }
 
@@ -86,8 +96,14 @@ impl Eyes {
         &self.compass[dir]
     }
 
-    /// Noise-free sensor values (0–1023) of a robot centred at `pos` facing `facing`, seeing
-    /// the walls `near` (indices into `walls`).
+    /// The robot's number of sensors.
+    #[inline]
+    pub fn count(&self) -> usize {
+        self.n
+    }
+
+    /// Noise-free sensor values (0 to the robot's `reading_max`) of a robot centred at `pos`
+    /// facing `facing`, seeing the walls `near` (indices into `walls`).
     #[inline]
     pub fn read(
         &self,
@@ -95,7 +111,7 @@ impl Eyes {
         facing: Facing<'_>,
         walls: &[PreparedSegment],
         near: &[u32],
-    ) -> [f64; INPUTS] {
+    ) -> Readings {
         match (self.per_sensor, facing) {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
@@ -115,8 +131,8 @@ impl Eyes {
         facing: Facing<'_>,
         walls: &[PreparedSegment],
         near: &[u32],
-    ) -> [f64; INPUTS] {
-        let mut out = [0.0; INPUTS];
+    ) -> Readings {
+        let mut out = Readings::zeros(self.n);
         for (s, o) in out.iter_mut().enumerate() {
             let origin = pos + facing.origin(&self.body, s);
             let mut nearest = [f64::INFINITY; N];
@@ -138,14 +154,14 @@ impl Eyes {
     }
 
     /// Sensor `s`'s value from its rays' nearest hits `hits` (∞ for none): the rays' values
-    /// added in order from 0, at most 1023.
+    /// added in order from 0, at most the robot's `reading_max`.
     #[inline]
     fn sensor_value(&self, s: usize, hits: impl IntoIterator<Item = f64>) -> f64 {
         let mut total = 0.0;
         for (ray, d) in self.mounts[s].iter().zip(hits) {
             total += ray.value(d);
         }
-        total.min(SENSOR_MAX)
+        total.min(self.max)
     }
 
     /// [`Eyes::read_rays`] with three rays a sensor, `rays` turned in advance, four sensors at a
@@ -162,17 +178,19 @@ impl Eyes {
         rays: &SideBySide,
         walls: &[PreparedSegment],
         near: &[u32],
-    ) -> [f64; INPUTS] {
+    ) -> Readings {
         use std::arch::x86_64::{
             _mm256_add_pd, _mm256_min_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_storeu_pd,
         };
-        const { assert!(INPUTS == 8, "two halves of four sensors") };
+        const { assert!(INPUTS % 4 == 0, "blocks of four sensors") };
         let mut nearest = [[f64::INFINITY; INPUTS]; 3];
         let mut out = [0.0; INPUTS];
-        for half in [0, 4] {
+        // Blocks of four sensors; a block's sensors past the robot's last have no rays (their
+        // directions are 0: no ray meets a wall) and read 0, which is not kept.
+        for half in (0..self.n).step_by(4) {
             let best = nearest_hits_avx2(pos, rays, half, self.range2, walls, near);
-            // SAFETY: every store is of four consecutive `f64` from `half` ≤ 4 in an array of
-            // eight; the unaligned form needs no alignment.
+            // SAFETY: every store is of four consecutive `f64` from `half`, a multiple of 4 below
+            // `INPUTS` (a multiple of 4); the unaligned form needs no alignment.
             unsafe {
                 let Some(tables) = self.tables else {
                     for (n, b) in nearest.iter_mut().zip(best) {
@@ -185,14 +203,16 @@ impl Eyes {
                 for (b, table) in best.into_iter().zip(tables) {
                     total = _mm256_add_pd(total, table_values(b, table));
                 }
-                let total = _mm256_min_pd(total, _mm256_set1_pd(SENSOR_MAX));
+                let total = _mm256_min_pd(total, _mm256_set1_pd(self.max));
                 _mm256_storeu_pd(out[half..].as_mut_ptr(), total);
             }
         }
         if self.tables.is_none() {
-            out = self.values(&nearest);
+            return self.values(&nearest);
         }
-        out
+        let mut readings = Readings::zeros(self.n);
+        readings.copy_from_slice(&out[..self.n]);
+        readings
     }
 
     /// The sensors' values from their three rays' nearest hits `nearest[r][s]` (∞ for none),
@@ -200,8 +220,8 @@ impl Eyes {
     /// also what its three values of 0 add to.
     #[cfg(target_arch = "x86_64")]
     #[inline]
-    fn values(&self, nearest: &[[f64; INPUTS]; 3]) -> [f64; INPUTS] {
-        let mut out = [0.0; INPUTS];
+    fn values(&self, nearest: &[[f64; INPUTS]; 3]) -> Readings {
+        let mut out = Readings::zeros(self.n);
         for (s, o) in out.iter_mut().enumerate() {
             if nearest.iter().all(|n| n[s] == f64::INFINITY) {
                 continue;
@@ -268,8 +288,8 @@ fn nearest_hits_avx2(
         _CMP_LE_OQ, _mm256_add_pd, _mm256_cmp_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd,
         _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_sub_pd,
     };
-    // SAFETY: every load is of four consecutive `f64` from `half` ≤ 4 in an array of eight; the
-    // unaligned form needs no alignment.
+    // SAFETY: every load is of four consecutive `f64` from `half`, a multiple of 4 below
+    // `INPUTS` (a multiple of 4); the unaligned form needs no alignment.
     let four = |a: &[f64; INPUTS]| unsafe { _mm256_loadu_pd(a[half..].as_ptr()) };
     let o = (
         _mm256_add_pd(_mm256_set1_pd(pos.x), four(&rays.origin[0])),
@@ -356,7 +376,7 @@ type Wall4 = (Pair, Pair);
 
 /// The sample table each ray `r` of every sensor reads, when each reads a built-in one and all
 /// sensors alike.
-fn shared_tables(mounts: &[[RayMount; 3]; INPUTS]) -> Option<[&'static [(f64, f64); 5]; 3]> {
+fn shared_tables(mounts: &[[RayMount; 3]]) -> Option<[&'static [(f64, f64); 5]; 3]> {
     let tables = [0, 1, 2].map(|r| mounts[0][r].builtin_table());
     let alike = mounts
         .iter()
@@ -418,14 +438,14 @@ mod tests {
     #[test]
     fn compass_rays_equal_rays_turned_per_step() {
         let compass = Compass::new(0.3);
-        let eyes = Eyes::new(SensorModel::Sampled, &compass);
+        let eyes = Eyes::new(SensorModel::Sampled, RobotSpec::khepera(), &compass);
         for k in 0..12 {
             let (sin, cos) = (compass.sin[k], compass.cos[k]);
             let (fresh, table) = (
                 Facing::Angle { sin, cos },
                 Facing::Compass(eyes.on_compass(k)),
             );
-            for s in 0..INPUTS {
+            for s in 0..eyes.n {
                 assert_eq!(fresh.origin(&eyes.body, s), table.origin(&eyes.body, s));
                 assert_eq!(fresh.dirs(&eyes.body, s), table.dirs(&eyes.body, s));
             }
@@ -448,7 +468,7 @@ mod tests {
         let mut lit = 0;
         for model in [SensorModel::Sampled, table] {
             let compass = Compass::new(0.7);
-            let eyes = Eyes::new(model, &compass);
+            let eyes = Eyes::new(model, RobotSpec::khepera(), &compass);
             assert_eq!(eyes.per_sensor, 3);
             for name in BUILTIN_ROOMS {
                 let room = Room::builtin(name).unwrap();
@@ -471,7 +491,8 @@ mod tests {
                     for near in [&all[..], &backwards[..], few] {
                         let scalar = eyes.read_rays::<3>(pos, facing, &walls, near);
                         let vector = eyes.read(pos, facing, &walls, near);
-                        assert_eq!(scalar.map(f64::to_bits), vector.map(f64::to_bits));
+                        let bits = |r: &Readings| r.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                        assert_eq!(bits(&scalar), bits(&vector));
                         lit += scalar.iter().filter(|&&v| v > 0.0).count();
                     }
                 }
@@ -486,7 +507,11 @@ mod tests {
     /// A wall beyond every ray's range is skipped and reads 0, as a wall not listed at all.
     #[test]
     fn far_walls_read_zero() {
-        let eyes = Eyes::new(SensorModel::Sampled, &Compass::new(0.0));
+        let eyes = Eyes::new(
+            SensorModel::Sampled,
+            RobotSpec::khepera(),
+            &Compass::new(0.0),
+        );
         let far =
             PreparedSegment::new(&Segment::new(Vec2::new(90.0, -50.0), Vec2::new(90.0, 50.0)));
         let near =

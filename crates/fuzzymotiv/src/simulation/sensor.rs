@@ -1,23 +1,27 @@
-//! The eight infrared proximity sensors: their layout (a named table) and response models.
+//! The infrared proximity sensors: their layout (a robot file's `[[sensor]]`, the Khepera's
+//! by default) and response models.
 
 use serde::{Deserialize, Serialize};
 
 use crate::simulation::geom::Vec2;
 use crate::simulation::sensor_table::SensorTable;
 
+use crate::simulation::robot_spec::RobotSpec;
 pub use crate::simulation::sensor_layout::{
-    AXIS_SAMPLES, LINEAR_RANGE, SENSOR_LAYOUT, SENSOR_MAX, SENSORS, SIDE_RAY_DEG, SIDE_SAMPLES,
-    SensorMount,
+    AXIS_SAMPLES, MAX_SENSORS, Readings, SENSOR_LAYOUT, SENSOR_MAX, SENSORS, SIDE_RAY_DEG,
+    SIDE_SAMPLES, SensorMount,
 };
 
-/// How a sensor turns wall distances into a value in [0, 1023].
+/// How a sensor turns wall distances into a value in [0, reading_max] (1023 on the Khepera).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SensorModel {
-    /// Three rays (axis, ±24.2°) read through the classic simulator's sample tables (default).
+    /// The robot file's rays and sample tables (default); the Khepera's: three rays (axis,
+    /// ±24.2°) read through the classic simulator's sample tables.
     #[default]
     Sampled,
-    /// One axis ray, `1023·(1 − d/50)` below 50 mm.
+    /// One axis ray, `reading_max·(1 − d/linear_range)` below `linear_range` (the Khepera's:
+    /// `1023·(1 − d/50)` below 50 mm).
     Linear,
     /// `sampled` reading a sensor table file instead of the built-in tables
     /// (`trial.sensor_table`; never written in a config: the file is named there).
@@ -63,6 +67,8 @@ pub struct RayMount {
     kind: u8,
     /// The samples of a sensor table file's ray (kind 3; empty for a ray that reads nothing).
     samples: &'static [(f64, f64)],
+    /// The `linear` model's range (mm) and largest value (kind 2).
+    linear: (f64, f64),
 }
 
 impl RayMount {
@@ -72,7 +78,7 @@ impl RayMount {
             0 => AXIS_SAMPLES[4].0,
             1 => SIDE_SAMPLES[4].0,
             3 => self.samples.last().map_or(0.0, |s| s.0),
-            _ => LINEAR_RANGE,
+            _ => self.linear.0,
         }
     }
 
@@ -89,8 +95,8 @@ impl RayMount {
     /// The ray's value for a wall at distance `d` along it (`f64::INFINITY` for none).
     ///
     /// ```
-    /// use fuzzymotiv::simulation::{SensorModel, rays};
-    /// let axis = rays(SensorModel::Sampled)[2][0];
+    /// use fuzzymotiv::simulation::{RobotSpec, SensorModel, rays};
+    /// let axis = rays(SensorModel::Sampled, RobotSpec::khepera())[2][0];
     /// assert_eq!(axis.value(15.0), 750.0); // first sample at or beyond 15 mm is 20 mm
     /// assert_eq!(axis.value(58.0), 40.0);
     /// assert_eq!(axis.value(60.0), 0.0);
@@ -102,8 +108,9 @@ impl RayMount {
             1 => &SIDE_SAMPLES,
             3 => return table_value(self.samples, d),
             _ => {
-                return if d < LINEAR_RANGE {
-                    SENSOR_MAX * (1.0 - d / LINEAR_RANGE)
+                let (range, max) = self.linear;
+                return if d < range {
+                    max * (1.0 - d / range)
                 } else {
                     0.0
                 };
@@ -131,85 +138,77 @@ fn table_value(samples: &[(f64, f64)], d: f64) -> f64 {
     }
 }
 
-/// The rays of every sensor for a model: `rays(model)[sensor]` lists up to 3 rays (unused
-/// entries have `angle = NaN` and are skipped via `ray_count`).
-pub fn rays(model: SensorModel) -> [[RayMount; 3]; 8] {
+/// The rays of every sensor of `robot` for a model: `rays(model, robot)[sensor]` lists up to 3
+/// rays (unused entries have `angle = NaN` and are skipped via `ray_count`); sensors past the
+/// robot's last have none. The Khepera's `sampled` rays read the built-in tables.
+pub fn rays(model: SensorModel, robot: &RobotSpec) -> [[RayMount; 3]; MAX_SENSORS] {
     let side = SIDE_RAY_DEG.to_radians();
-    let mut out = [[RayMount {
+    let linear = (robot.linear_range(), robot.reading_max());
+    let unused = RayMount {
         origin: Vec2::new(0.0, 0.0),
         angle: f64::NAN,
         kind: 2,
         samples: &[],
-    }; 3]; 8];
-    for (s, m) in SENSOR_LAYOUT.iter().enumerate() {
+        linear,
+    };
+    let mut out = [[unused; 3]; MAX_SENSORS];
+    let table = match model {
+        SensorModel::Sampled if robot.is_khepera_layout() => None,
+        SensorModel::Sampled => Some(robot.table()),
+        SensorModel::Table(TableRef(t)) => Some(t),
+        SensorModel::Linear => None,
+    };
+    for (s, m) in robot.mounts().iter().enumerate() {
         let origin = Vec2::new(m.x, m.y);
         let axis = m.facing_deg.to_radians();
-        match model {
-            SensorModel::Sampled => {
-                out[s] = [
-                    RayMount {
-                        origin,
-                        angle: axis,
-                        kind: 0,
-                        samples: &[],
-                    },
-                    RayMount {
-                        origin,
-                        angle: axis + side,
-                        kind: 1,
-                        samples: &[],
-                    },
-                    RayMount {
-                        origin,
-                        angle: axis - side,
-                        kind: 1,
-                        samples: &[],
-                    },
-                ];
-            }
-            SensorModel::Linear => {
-                out[s][0] = RayMount {
-                    origin,
-                    angle: axis,
-                    kind: 2,
-                    samples: &[],
-                }
-            }
-            SensorModel::Table(TableRef(table)) => {
+        let ray = |angle: f64, kind: u8, samples: &'static [(f64, f64)]| RayMount {
+            origin,
+            angle,
+            kind,
+            samples,
+            linear,
+        };
+        out[s] = match (model, table) {
+            (SensorModel::Linear, _) => [ray(axis, 2, &[]), unused, unused],
+            (_, None) => [
+                ray(axis, 0, &[]),
+                ray(axis + side, 1, &[]),
+                ray(axis - side, 1, &[]),
+            ],
+            (_, Some(table)) => {
                 let own = table.rays_of(s);
                 // Sensors with fewer rays than 3 get rays along the axis that read nothing.
-                out[s] = std::array::from_fn(|k| RayMount {
-                    origin,
-                    angle: axis + own.get(k).map_or(0.0, |r| r.angle_deg().to_radians()),
-                    kind: 3,
-                    samples: own.get(k).map_or(&[], |r| r.samples()),
-                });
+                std::array::from_fn(|k| {
+                    let turn = own.get(k).map_or(0.0, |r| r.angle_deg().to_radians());
+                    ray(axis + turn, 3, own.get(k).map_or(&[], |r| r.samples()))
+                })
             }
-        }
+        };
     }
     out
 }
 
 /// Rays per sensor in a model.
-pub fn ray_count(model: SensorModel) -> usize {
-    match model {
-        SensorModel::Sampled => 3,
-        SensorModel::Linear => 1,
-        SensorModel::Table(TableRef(t)) => {
-            if (0..SENSORS).all(|s| t.rays_of(s).len() == 1) {
-                1
-            } else {
-                3
-            }
-        }
+pub fn ray_count(model: SensorModel, robot: &RobotSpec) -> usize {
+    let table = match model {
+        SensorModel::Linear => return 1,
+        SensorModel::Sampled if robot.is_khepera_layout() => return 3,
+        SensorModel::Sampled => robot.table(),
+        SensorModel::Table(TableRef(t)) => t,
+    };
+    if (0..table.sensors()).all(|s| table.rays_of(s).len() == 1) {
+        1
+    } else {
+        3
     }
 }
 
 /// Farthest distance from the robot's centre at which any ray of the model can see a wall (mm).
-pub fn sensing_reach(model: SensorModel) -> f64 {
-    let rays = rays(model);
-    let n = ray_count(model);
-    rays.iter()
+pub fn sensing_reach(model: SensorModel, robot: &RobotSpec) -> f64 {
+    let rays = rays(model, robot);
+    let n = ray_count(model, robot);
+    rays[..robot.sensors()]
+        .iter()
         .flat_map(|r| r[..n].iter())
         .map(|r| r.origin.norm() + r.range())
         .fold(0.0, f64::max)
@@ -221,7 +220,7 @@ mod tests {
 
     #[test]
     fn side_ray_table() {
-        let side = rays(SensorModel::Sampled)[0][1];
+        let side = rays(SensorModel::Sampled, RobotSpec::khepera())[0][1];
         assert_eq!(side.value(0.0), 1023.0);
         assert_eq!(side.value(5.7), 1023.0);
         assert_eq!(side.value(5.8), 800.0);
@@ -231,7 +230,7 @@ mod tests {
 
     #[test]
     fn linear_model() {
-        let r = rays(SensorModel::Linear)[2][0];
+        let r = rays(SensorModel::Linear, RobotSpec::khepera())[2][0];
         assert_eq!(r.value(0.0), 1023.0);
         assert_eq!(r.value(25.0), 511.5);
         assert_eq!(r.value(50.0), 0.0);
@@ -239,7 +238,7 @@ mod tests {
 
     #[test]
     fn reach_covers_front_sensor() {
-        let reach = sensing_reach(SensorModel::Sampled);
+        let reach = sensing_reach(SensorModel::Sampled, RobotSpec::khepera());
         // Front sensors 2, 3 sit at |(24.5, 5.5)| = 25.11 mm from the centre; plus 58 mm axis range.
         assert!(
             (reach - (24.5f64.hypot(5.5) + 58.0)).abs() < 1e-9,

@@ -83,3 +83,108 @@ pub const SIDE_SAMPLES: [(f64, f64); 5] = [
 ];
 /// Range of the `linear` model (mm).
 pub const LINEAR_RANGE: f64 = 50.0;
+
+/// The most proximity sensors a robot may have (a robot file's `[[sensor]]` entries).
+pub const MAX_SENSORS: usize = 24;
+
+/// One reading of every sensor of a robot (its `len` sensors, 1 to [`MAX_SENSORS`]), in the
+/// robot's order: a slice of values ([`std::ops::Deref`]) kept without allocation.
+///
+/// ```
+/// use fuzzymotiv::simulation::Readings;
+/// let mut r = Readings::zeros(7);
+/// r[2] = 512.0;
+/// assert_eq!(r.len(), 7);
+/// assert_eq!(&r[..3], [0.0, 0.0, 512.0]);
+/// assert_eq!(Readings::from_slice(&r), r);
+/// ```
+#[derive(Clone, Copy)]
+pub struct Readings {
+    values: [f64; MAX_SENSORS],
+    len: u8,
+}
+
+impl Readings {
+    /// `len` readings of 0 (`len` at most [`MAX_SENSORS`]).
+    #[inline]
+    pub fn zeros(len: usize) -> Readings {
+        assert!(len <= MAX_SENSORS, "{len} sensors: at most {MAX_SENSORS}");
+        Readings {
+            values: [0.0; MAX_SENSORS],
+            len: len as u8,
+        }
+    }
+
+    /// The readings `values` (at most [`MAX_SENSORS`]).
+    pub fn from_slice(values: &[f64]) -> Readings {
+        let mut r = Readings::zeros(values.len());
+        r.values[..values.len()].copy_from_slice(values);
+        r
+    }
+
+    /// The first eight readings as an array (zeros past `len`).
+    #[inline]
+    pub(crate) fn first_eight(&self) -> [f64; 8] {
+        std::array::from_fn(|k| self.values[k])
+    }
+
+    /// Eight readings, of which the first `len` count.
+    #[inline]
+    pub(crate) fn from_eight(values: [f64; 8], len: usize) -> Readings {
+        let mut r = Readings::zeros(len);
+        r.values[..8].copy_from_slice(&values);
+        r
+    }
+}
+
+impl std::ops::Deref for Readings {
+    type Target = [f64];
+    #[inline]
+    fn deref(&self) -> &[f64] {
+        &self.values[..usize::from(self.len)]
+    }
+}
+
+impl std::ops::DerefMut for Readings {
+    #[inline]
+    fn deref_mut(&mut self) -> &mut [f64] {
+        &mut self.values[..usize::from(self.len)]
+    }
+}
+
+impl PartialEq for Readings {
+    fn eq(&self, other: &Self) -> bool {
+        **self == **other
+    }
+}
+
+impl std::fmt::Debug for Readings {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+impl serde::Serialize for Readings {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.iter())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Readings {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let values = Vec::<f64>::deserialize(d)?;
+        if values.len() > MAX_SENSORS {
+            return Err(serde::de::Error::invalid_length(
+                values.len(),
+                &"at most 24 readings",
+            ));
+        }
+        Ok(Readings::from_slice(&values))
+    }
+}
+
+impl<const N: usize> PartialEq<[f64; N]> for Readings {
+    fn eq(&self, other: &[f64; N]) -> bool {
+        **self == other[..]
+    }
+}

@@ -28,6 +28,24 @@ use crate::simulation::sensor_layout::{
     AXIS_SAMPLES, SENSOR_MAX, SENSORS, SIDE_RAY_DEG, SIDE_SAMPLES,
 };
 
+/// The sensors a table is for: how many, and the largest reading (a robot file's
+/// `[[sensor]]` count and `reading_max`; the Khepera's are 8 and 1023).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SensorScale {
+    /// Number of sensors (1 to [`crate::simulation::MAX_SENSORS`]).
+    pub sensors: usize,
+    /// Largest reading (a whole number).
+    pub reading_max: f64,
+}
+
+impl SensorScale {
+    /// The paper's Khepera: eight sensors reading 0–1023.
+    pub const KHEPERA: SensorScale = SensorScale {
+        sensors: SENSORS,
+        reading_max: SENSOR_MAX,
+    };
+}
+
 /// The most rays a sensor may have.
 pub const MAX_RAYS: usize = 3;
 /// The most samples a ray may have.
@@ -73,7 +91,7 @@ pub struct RawSensorTable {
     /// The rays of every sensor not listed under `sensor`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub ray: Vec<RawRay>,
-    /// Sensors with their own rays, by number ("0" to "7").
+    /// Sensors with their own rays, by number ("0" to the robot's last).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub sensor: BTreeMap<String, RawSensorRays>,
 }
@@ -97,44 +115,71 @@ impl TableRay {
     }
 }
 
-/// A checked sensor table: 1 to 3 rays for each of the eight sensors.
+/// A checked sensor table: 1 to 3 rays for each sensor of a robot.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SensorTable {
-    rays: [Vec<TableRay>; SENSORS],
+    rays: Vec<Vec<TableRay>>,
 }
 
 impl SensorTable {
-    /// Parses and checks a table file's text; errors name `source_name` and the field.
+    /// Parses and checks a table file's text for the Khepera's eight sensors; errors name
+    /// `source_name` and the field.
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<SensorTable, FieldError> {
+        Self::from_toml_str_for(text, source_name, SensorScale::KHEPERA)
+    }
+
+    /// Parses and checks a table file's text for the sensors `scale`; errors name
+    /// `source_name` and the field.
+    pub fn from_toml_str_for(
+        text: &str,
+        source_name: &str,
+        scale: SensorScale,
+    ) -> Result<SensorTable, FieldError> {
         let raw: RawSensorTable = toml::from_str(text).map_err(|e| {
             let msg = e.message().trim().to_string();
             FieldError::new(field_from_toml_message(&msg, text, e.span()), msg)
                 .in_source(source_name)
         })?;
-        SensorTable::from_raw(&raw).map_err(|e| e.in_source(source_name))
+        SensorTable::from_raw_for(&raw, scale).map_err(|e| e.in_source(source_name))
     }
 
-    /// Checks a table as written, naming the first wrong field.
+    /// Checks a table as written for the Khepera's eight sensors, naming the first wrong field.
     pub fn from_raw(raw: &RawSensorTable) -> Result<SensorTable, FieldError> {
+        Self::from_raw_for(raw, SensorScale::KHEPERA)
+    }
+
+    /// Checks a table as written for the sensors `scale`, naming the first wrong field.
+    pub fn from_raw_for(
+        raw: &RawSensorTable,
+        scale: SensorScale,
+    ) -> Result<SensorTable, FieldError> {
         let default = if raw.ray.is_empty() {
             None
         } else {
-            Some(check_rays(&raw.ray, "ray")?)
+            Some(check_rays(&raw.ray, "ray", scale.reading_max)?)
         };
-        let mut own: [Option<Vec<TableRay>>; SENSORS] = Default::default();
+        let n = scale.sensors;
+        let mut own: Vec<Option<Vec<TableRay>>> = vec![None; n];
         for (key, rays) in &raw.sensor {
-            let s = key.parse::<usize>().ok().filter(|&s| s < SENSORS);
+            let s = key.parse::<usize>().ok().filter(|&s| s < n);
             let Some(s) = s else {
                 return Err(FieldError::new(
                     format!("sensor.{key}"),
                     format!(
-                        "sensors are numbered 0 to 7 (0 left, 1 front-left, 2 and 3 front, 4 front-right, 5 right, 6 and 7 back), got \"{key}\""
+                        "sensors are numbered 0 to {} ({}), got \"{key}\"",
+                        n - 1,
+                        if n == SENSORS {
+                            "0 left, 1 front-left, 2 and 3 front, 4 front-right, 5 right, 6 and 7 back on the Khepera"
+                        } else {
+                            "in the robot file's [[sensor]] order"
+                        }
                     ),
                 ));
             };
-            own[s] = Some(check_rays(&rays.ray, &format!("sensor.{key}.ray"))?);
+            let field = format!("sensor.{key}.ray");
+            own[s] = Some(check_rays(&rays.ray, &field, scale.reading_max)?);
         }
-        let mut out: [Vec<TableRay>; SENSORS] = Default::default();
+        let mut out: Vec<Vec<TableRay>> = vec![Vec::new(); n];
         for (s, slot) in out.iter_mut().enumerate() {
             *slot = match (own[s].take(), &default) {
                 (Some(r), _) => r,
@@ -165,22 +210,36 @@ impl SensorTable {
             ray(-SIDE_RAY_DEG, &SIDE_SAMPLES),
         ];
         SensorTable {
-            rays: std::array::from_fn(|_| rays.clone()),
+            rays: vec![rays; SENSORS],
         }
     }
 
-    /// The rays of sensor `s` (0–7).
+    /// Number of sensors.
+    pub fn sensors(&self) -> usize {
+        self.rays.len()
+    }
+
+    /// The largest reading any sensor of the table gives (the sum of its rays' nearest
+    /// samples).
+    pub fn largest_reading(&self) -> f64 {
+        (self.rays.iter())
+            .map(|rays| rays.iter().map(|r| r.samples[0].1).sum::<f64>())
+            .fold(0.0, f64::max)
+    }
+
+    /// The rays of sensor `s` (0 to [`SensorTable::sensors`] − 1).
     pub fn rays_of(&self, s: usize) -> &[TableRay] {
         &self.rays[s]
     }
 
     /// The same table with every reading multiplied by `factor`, rounded to a whole number and
-    /// capped at 1023 (a more or less sensitive sensor; still a valid table for `factor ≥ 0`).
-    pub fn scaled(&self, factor: f64) -> SensorTable {
+    /// capped at `reading_max` (a more or less sensitive sensor; still a valid table for
+    /// `factor ≥ 0`).
+    pub fn scaled(&self, factor: f64, reading_max: f64) -> SensorTable {
         let mut t = self.clone();
         for ray in t.rays.iter_mut().flatten() {
             for (_, v) in &mut ray.samples {
-                *v = (*v * factor).round().clamp(0.0, SENSOR_MAX);
+                *v = (*v * factor).round().clamp(0.0, reading_max);
             }
         }
         t
@@ -189,7 +248,7 @@ impl SensorTable {
     /// The table as a file (every sensor's rays written out), with `header` as comment lines.
     pub fn to_toml(&self, header: &str) -> String {
         let raw = RawSensorTable {
-            sensor: (0..SENSORS)
+            sensor: (0..self.rays.len())
                 .map(|s| {
                     let ray = self.rays[s]
                         .iter()
@@ -223,20 +282,21 @@ impl SensorTable {
     }
 }
 
-/// Checks the rays of one sensor (or the default rays), `field` naming them.
-fn check_rays(rays: &[RawRay], field: &str) -> Result<Vec<TableRay>, FieldError> {
+/// Checks the rays of one sensor (or the default rays), `field` naming them, readings in
+/// 0..=`max`.
+fn check_rays(rays: &[RawRay], field: &str, max: f64) -> Result<Vec<TableRay>, FieldError> {
     check((1..=MAX_RAYS).contains(&rays.len()), field, || {
         format!("a sensor has 1 to {MAX_RAYS} rays, got {}", rays.len())
     })?;
     rays.iter()
         .enumerate()
-        .map(|(k, r)| check_ray(r, &format!("{field}[{k}]")))
+        .map(|(k, r)| check_ray(r, &format!("{field}[{k}]"), max))
         .collect()
 }
 
 /// Checks one ray: the angle, the distances (finite, increasing, 2 to 64 of them, within
-/// 0..=1000 mm) and the readings (as many, whole numbers in 0..=1023, not increasing).
-fn check_ray(r: &RawRay, field: &str) -> Result<TableRay, FieldError> {
+/// 0..=1000 mm) and the readings (as many, whole numbers in 0..=`max`, not increasing).
+fn check_ray(r: &RawRay, field: &str, max: f64) -> Result<TableRay, FieldError> {
     let f = |name: &str| format!("{field}.{name}");
     check(
         r.angle_deg.is_finite() && (-90.0..=90.0).contains(&r.angle_deg),
@@ -284,11 +344,12 @@ fn check_ray(r: &RawRay, field: &str) -> Result<TableRay, FieldError> {
     })?;
     for (i, &x) in v.iter().enumerate() {
         check(
-            x.is_finite() && (0.0..=SENSOR_MAX).contains(&x) && x.fract() == 0.0,
+            x.is_finite() && (0.0..=max).contains(&x) && x.fract() == 0.0,
             &f("reading"),
             || {
                 format!(
-                    "entry {i} must be a whole number in 0..=1023, got {}",
+                    "entry {i} must be a whole number in 0..={}, got {}",
+                    Num(max),
                     Num(x)
                 )
             },
@@ -311,11 +372,11 @@ fn check_ray(r: &RawRay, field: &str) -> Result<TableRay, FieldError> {
 /// One bench measurement: sensor `sensor` facing a wall `distance_mm` away read `reading`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Measurement {
-    /// Sensor number (0–7).
+    /// Sensor number (0 to the robot's last).
     pub sensor: usize,
     /// Distance from the sensor to the wall, along its axis (mm).
     pub distance_mm: f64,
-    /// The raw reading (0–1023).
+    /// The raw reading (0 to the robot's `reading_max`).
     pub reading: f64,
 }
 
@@ -346,7 +407,7 @@ impl Spread {
 /// What [`calibrate`] makes of bench measurements.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Calibration {
-    /// The table: one axis ray per sensor (one sensor measured: its ray for all eight).
+    /// The table: one axis ray per sensor (one sensor measured: its ray for all).
     pub table: SensorTable,
     /// Per sensor and distance: count, median, mean, std.
     pub spread: Vec<Spread>,
@@ -363,12 +424,12 @@ pub struct Calibration {
 /// Turns bench measurements into a table: per sensor and distance the median reading (rounded
 /// to a whole number), made non-increasing with distance by pooling neighbours that rise
 /// (weighted by their counts); the spread of the readings is the sensor noise estimate. Every
-/// sensor 0–7 measured, or a single one (its table then serves all eight); each measured sensor
-/// needs at least 2 distances. Errors name the `row` (1-based data row) or the sensor.
-pub fn calibrate(rows: &[Measurement]) -> Result<Calibration, FieldError> {
+/// sensor of `scale` measured, or a single one (its table then serves all); each measured
+/// sensor needs at least 2 distances. Errors name the `row` (1-based data row) or the sensor.
+pub fn calibrate(rows: &[Measurement], scale: SensorScale) -> Result<Calibration, FieldError> {
     let mut by: BTreeMap<usize, BTreeMap<u64, Vec<f64>>> = BTreeMap::new();
     for (i, m) in rows.iter().enumerate() {
-        check_measurement(m, i + 1)?;
+        check_measurement(m, i + 1, scale)?;
         let d = by.entry(m.sensor).or_default();
         d.entry(m.distance_mm.to_bits())
             .or_default()
@@ -376,11 +437,13 @@ pub fn calibrate(rows: &[Measurement]) -> Result<Calibration, FieldError> {
     }
     let sensors: Vec<usize> = by.keys().copied().collect();
     check(
-        sensors.len() == 1 || sensors.len() == SENSORS,
+        sensors.len() == 1 || sensors.len() == scale.sensors,
         "sensor",
         || {
             format!(
-                "measure every sensor 0–7, or one sensor for all eight; got sensors {sensors:?}"
+                "measure every sensor 0–{}, or one sensor for all {}; got sensors {sensors:?}",
+                scale.sensors - 1,
+                scale.sensors
             )
         },
     )?;
@@ -410,15 +473,15 @@ pub fn calibrate(rows: &[Measurement]) -> Result<Calibration, FieldError> {
             distance_mm: groups.iter().map(|g| g.0).collect(),
             reading: fitted
                 .iter()
-                .map(|v| v.round().clamp(0.0, SENSOR_MAX))
+                .map(|v| v.round().clamp(0.0, scale.reading_max))
                 .collect(),
         });
         spread.extend(stats);
     }
     let raw = if rays.len() == 1 {
         notes.push(format!(
-            "only sensor {} was measured: its table serves all eight sensors",
-            sensors[0]
+            "only sensor {} was measured: its table serves all {} sensors",
+            sensors[0], scale.sensors
         ));
         RawSensorTable {
             ray: rays,
@@ -435,7 +498,7 @@ pub fn calibrate(rows: &[Measurement]) -> Result<Calibration, FieldError> {
             ..RawSensorTable::default()
         }
     };
-    let table = SensorTable::from_raw(&raw)?;
+    let table = SensorTable::from_raw_for(&raw, scale)?;
     // Σ std / Σ mean: readings near 0 (the converter's offset, not the multiplicative noise the
     // simulator models) weigh as little as they read.
     let repeated = spread.iter().filter(|g| g.count >= 2);
@@ -451,9 +514,13 @@ pub fn calibrate(rows: &[Measurement]) -> Result<Calibration, FieldError> {
 }
 
 /// Checks one measurement (`row`: its 1-based data row).
-fn check_measurement(m: &Measurement, row: usize) -> Result<(), FieldError> {
-    check(m.sensor < SENSORS, "sensor", || {
-        format!("row {row}: sensors are numbered 0 to 7, got {}", m.sensor)
+fn check_measurement(m: &Measurement, row: usize, scale: SensorScale) -> Result<(), FieldError> {
+    check(m.sensor < scale.sensors, "sensor", || {
+        format!(
+            "row {row}: sensors are numbered 0 to {}, got {}",
+            scale.sensors - 1,
+            m.sensor
+        )
     })?;
     check(
         m.distance_mm.is_finite() && (0.0..=MAX_DISTANCE_MM).contains(&m.distance_mm),
@@ -466,11 +533,12 @@ fn check_measurement(m: &Measurement, row: usize) -> Result<(), FieldError> {
         },
     )?;
     check(
-        m.reading.is_finite() && (0.0..=SENSOR_MAX).contains(&m.reading),
+        m.reading.is_finite() && (0.0..=scale.reading_max).contains(&m.reading),
         "reading",
         || {
             format!(
-                "row {row}: must be a reading in [0, 1023], got {}",
+                "row {row}: must be a reading in [0, {}], got {}",
+                Num(scale.reading_max),
                 Num(m.reading)
             )
         },
@@ -583,7 +651,7 @@ mod tests {
             m(50.0, 10.0),
             m(50.0, 30.0),
         ];
-        let c = calibrate(&rows).unwrap();
+        let c = calibrate(&rows, SensorScale::KHEPERA).unwrap();
         assert_eq!(
             c.table.rays_of(0)[0].samples(),
             [(10.0, 950.0), (30.0, 310.0), (50.0, 20.0)]
@@ -601,20 +669,27 @@ mod tests {
             distance_mm: d,
             reading: v,
         };
-        let c = calibrate(&[m(10.0, 800.0), m(20.0, 100.0), m(30.0, 120.0), m(40.0, 0.0)]).unwrap();
+        let c = calibrate(
+            &[m(10.0, 800.0), m(20.0, 100.0), m(30.0, 120.0), m(40.0, 0.0)],
+            SensorScale::KHEPERA,
+        )
+        .unwrap();
         assert_eq!(
             c.table.rays_of(0)[0].samples(),
             [(10.0, 800.0), (20.0, 110.0), (30.0, 110.0), (40.0, 0.0)]
         );
         assert_eq!(c.notes.len(), 2, "{:?}", c.notes);
-        let e = calibrate(&[
-            m(10.0, 800.0),
-            Measurement {
-                sensor: 1,
-                distance_mm: 10.0,
-                reading: 5.0,
-            },
-        ])
+        let e = calibrate(
+            &[
+                m(10.0, 800.0),
+                Measurement {
+                    sensor: 1,
+                    distance_mm: 10.0,
+                    reading: 5.0,
+                },
+            ],
+            SensorScale::KHEPERA,
+        )
         .unwrap_err();
         assert_eq!(e.field, "sensor", "{e}");
     }

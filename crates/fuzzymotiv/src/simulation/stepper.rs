@@ -23,8 +23,8 @@
 use std::borrow::Borrow;
 
 use crate::random::rng::Rng;
-use crate::simulation::controller::INPUTS;
 use crate::simulation::robot::{Action, Pose};
+use crate::simulation::sensor::Readings;
 use crate::simulation::trial::{Arena, Sensed, Step, Walk, inputs_of};
 
 /// A trial in an arena (`A`: `&Arena`, or an owning handle such as `Arc<Arena>`), with the
@@ -91,19 +91,20 @@ impl<A: Borrow<Arena>, R: Rng> TrialRun<A, R> {
         self.home || self.t >= self.arena().params().steps()
     }
 
-    /// The sensor values (0–1023, noise included) that step `t` reads; the first call of a
-    /// step draws its sensor noise, later calls return the same values. All 0 once the run is
-    /// over (as an idle step records).
-    pub fn observe(&mut self) -> [f64; INPUTS] {
+    /// The sensor values (0 to the robot's `reading_max`, noise included) that step `t`
+    /// reads, one per sensor; the first call of a step draws its sensor noise, later calls
+    /// return the same values. All 0 once the run is over (as an idle step records).
+    pub fn observe(&mut self) -> Readings {
         if self.is_over() {
-            return [0.0; INPUTS];
+            return Readings::zeros(self.arena().sensors());
         }
         self.sensed().sensors
     }
 
-    /// [`TrialRun::observe`] as the network's inputs: each value / 1023, in [0, 1].
-    pub fn inputs(&mut self) -> [f64; INPUTS] {
-        inputs_of(&self.observe())
+    /// [`TrialRun::observe`] as the network's inputs: each value / `reading_max`, in [0, 1].
+    pub fn inputs(&mut self) -> Readings {
+        let max = self.arena().params().robot().spec().reading_max();
+        inputs_of(&self.observe(), max)
     }
 
     /// Step `t` with the motor outputs `mL, mR` ∈ [0, 1] (what the network would give for
@@ -130,7 +131,8 @@ impl<A: Borrow<Arena>, R: Rng> TrialRun<A, R> {
         } else {
             self.t
         };
-        (self.t..end).map(|t| self.walk.idle(t))
+        let n = self.arena().sensors();
+        (self.t..end).map(move |t| self.walk.idle(t, n))
     }
 
     /// The sensors of step `t`, read (and their noise drawn) at the first call.
@@ -148,7 +150,7 @@ impl<A: Borrow<Arena>, R: Rng> TrialRun<A, R> {
     fn advance(&mut self, motors: [f64; 2], forced: Option<Action>) -> Step {
         if self.is_over() {
             let last = self.arena().params().steps().saturating_sub(1);
-            return self.walk.idle(self.t.min(last));
+            return self.walk.idle(self.t.min(last), self.arena().sensors());
         }
         let sensed = self.sensed();
         let arena = self.arena.borrow();
@@ -191,7 +193,9 @@ mod tests {
             motion,
             ..RawRobot::default()
         };
-        let params = TrialParams::from_raw(&raw, &robot, 0.25).unwrap();
+        let params =
+            TrialParams::from_raw(&raw, &robot, crate::simulation::RobotSpec::khepera(), 0.25)
+                .unwrap();
         Arena::new(Room::builtin(room).unwrap(), &params)
     }
 
@@ -212,7 +216,7 @@ mod tests {
         out: usize,
     }
     impl Controller for OutAndBack {
-        fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
+        fn step(&mut self, _: &[f64]) -> [f64; 2] {
             self.t += 1;
             if self.t == self.out + 1 {
                 [0.0, 0.0]
@@ -294,7 +298,7 @@ mod tests {
         assert!(run.is_over());
         let s = run.step([1.0, 1.0]);
         assert!(s.idle && s.t == 399 && run.t() == 400);
-        assert_eq!(run.observe(), [0.0; INPUTS]);
+        assert_eq!(run.observe(), [0.0; 8]);
         assert_eq!(run.rest().count(), 0);
     }
 }

@@ -13,15 +13,16 @@ use serde::{Deserialize, Serialize};
 use crate::params::{FieldError, Num};
 use crate::random::noise::{perturb, perturb_sensors};
 use crate::random::rng::Rng;
-use crate::simulation::controller::{Controller, INPUTS};
+use crate::simulation::controller::Controller;
 use crate::simulation::geom::{PreparedSegment, Segment, Vec2};
 use crate::simulation::isa::Isa;
-use crate::simulation::memo::{MemoClaim, Owner, Sight, SightKey, Table, memo_live};
+use crate::simulation::memo::{MemoClaim, Owner, SIGHT_SENSORS, Sight, SightKey, Table, memo_live};
 use crate::simulation::robot::Action;
-use crate::simulation::robot::{Compass, Khepera, Motion, Pose, RawRobot, drive};
+use crate::simulation::robot::{Compass, Motion, Pose, Robot, drive};
 use crate::simulation::room::{Room, RoomError, Zone};
 use crate::simulation::sensing::{Eyes, Facing};
-use crate::simulation::sensor::{SENSOR_MAX, SensorModel, sensing_reach};
+use crate::simulation::sensor::Readings;
+use crate::simulation::sensor::{SensorModel, sensing_reach};
 pub use crate::simulation::trial_params::{MAX_STEPS, RawTrial, TrialParams};
 
 /// Side of a grid cell (mm): the exploration grid of docs/model.md §7 and the wall-culling grid.
@@ -87,7 +88,8 @@ impl Arena {
         let (lo, hi) = room.bounds();
         let grid = Grid::new(lo, hi);
         let radius = params.robot.radius();
-        let near_reach = sensing_reach(params.sensor_model).max(radius + params.max_step());
+        let spec = params.robot.spec();
+        let near_reach = sensing_reach(params.sensor_model, spec).max(radius + params.max_step());
         // A wall can matter to a robot in a cell if it is within reach of some point of the cell.
         let (cell_start, cell_walls) = grid.cull(
             &walls,
@@ -118,12 +120,15 @@ impl Arena {
             radius,
             near_reach: near_reach + 1e-6,
             compass,
-            eyes: Eyes::new(params.sensor_model, &compass),
+            eyes: Eyes::new(params.sensor_model, spec, &compass),
             memo: None,
         };
-        // Only whole-number sensor values fit the memo (docs/model.md §3).
-        let memo = SensorModel::whole_valued(params.sensor_model)
-            .then(|| MemoClaim::of(SightKey::of(&arena)));
+        // Only whole-number sensor values in 0–1023 of at most eight sensors fit the memo
+        // (docs/model.md §3).
+        let fits = SensorModel::whole_valued(params.sensor_model)
+            && spec.sensors() <= SIGHT_SENSORS
+            && spec.reading_max() <= 1023.0;
+        let memo = fits.then(|| MemoClaim::of(SightKey::of(&arena)));
         Arena { memo, ..arena }
     }
 
@@ -297,8 +302,14 @@ impl Arena {
         self.overlaps_near(p, &self.near_walls(p))
     }
 
-    /// Noise-free sensor values (0–1023) at `pose`.
-    pub fn read_sensors(&self, pose: &Pose) -> [f64; INPUTS] {
+    /// The robot's number of sensors.
+    #[inline]
+    pub fn sensors(&self) -> usize {
+        self.eyes.count()
+    }
+
+    /// Noise-free sensor values (0 to the robot's `reading_max`) at `pose`.
+    pub fn read_sensors(&self, pose: &Pose) -> Readings {
         let near = self.near_walls(pose.position());
         self.read_sensors_near(pose, &near)
     }
@@ -364,9 +375,9 @@ impl Arena {
 
     /// Sensor values at `pose` given its [`Arena::near_walls`].
     #[inline]
-    pub(crate) fn read_sensors_near(&self, pose: &Pose, near: &NearWalls) -> [f64; INPUTS] {
+    pub(crate) fn read_sensors_near(&self, pose: &Pose, near: &NearWalls) -> Readings {
         if near.is_empty() {
-            return [0.0; INPUTS];
+            return Readings::zeros(self.sensors());
         }
         let (sin, cos) = crate::simulation::math::sin_cos(pose.heading);
         let facing = Facing::Angle { sin, cos };
@@ -386,9 +397,9 @@ impl Arena {
         pos: Vec2,
         dir: usize,
         near: &NearWalls,
-    ) -> [f64; INPUTS] {
+    ) -> Readings {
         if near.is_empty() {
-            return [0.0; INPUTS];
+            return Readings::zeros(self.sensors());
         }
         let facing = Facing::Compass(self.eyes.on_compass(dir));
         self.eyes
@@ -451,14 +462,23 @@ impl Arena {
         (pose.position(), dir)
     }
 
-    /// [`Arena::sight`], computed: the sensors cast, the straight move tested.
+    /// [`Arena::sight`], computed: the sensors cast, the straight move tested (a robot of at
+    /// most [`SIGHT_SENSORS`] sensors).
     fn look(&self, pos: Vec2, dir: usize, cell: usize, step: f64) -> Sight {
+        let (sensors, blocked) = self.look_any(pos, dir, cell, step);
+        Sight {
+            sensors: sensors.first_eight(),
+            blocked,
+        }
+    }
+
+    /// What a robot centred at `pos` facing compass direction `dir` in `cell` reads, and
+    /// whether a straight move of `step` mm would overlap a wall, for any number of sensors.
+    fn look_any(&self, pos: Vec2, dir: usize, cell: usize, step: f64) -> (Readings, bool) {
         let near = self.near_walls_in(pos, cell);
         let (ahead, _) = self.after(pos, dir, Action::Straight, step);
-        Sight {
-            sensors: self.read_sensors_on_compass(pos, dir, &near),
-            blocked: ahead != pos && self.overlaps_near(ahead, &near),
-        }
+        let sensors = self.read_sensors_on_compass(pos, dir, &near);
+        (sensors, ahead != pos && self.overlaps_near(ahead, &near))
     }
 
     /// Whether a body centred at `p` overlaps one of the `near` walls (computed for a point
@@ -635,10 +655,7 @@ impl Room {
 /// ([`Arena::unreachable_mission_zone`]; the other trial parameters their defaults): the first
 /// room whose mission is not, as an error in `rooms[i]` naming the room and its field.
 pub fn check_missions_reachable(rooms: &[Room], radius: f64) -> Result<(), FieldError> {
-    let robot = Khepera::from_raw(&RawRobot {
-        radius,
-        ..RawRobot::default()
-    })?;
+    let robot = Robot::default().with_radius(radius);
     let params = TrialParams {
         robot,
         ..TrialParams::default()
@@ -710,8 +727,9 @@ impl NearWalls {
 pub struct Step {
     /// Step index, 0-based.
     pub t: usize,
-    /// Sensor values (0–1023, noise included) read at the start of the step (0 when idle).
-    pub sensors: [f64; INPUTS],
+    /// Sensor values (0 to the robot's `reading_max`, noise included) read at the start of
+    /// the step (0 when idle), one per sensor.
+    pub sensors: Readings,
     /// Motor outputs `mL, mR` ∈ [0, 1] (0.5, 0.5 when idle: the network is not run).
     pub motors: [f64; 2],
     /// Commanded wheel speeds `sL, sR` (mm/s, before noise; 0 when idle).
@@ -735,11 +753,12 @@ pub struct Step {
 }
 
 impl Step {
-    /// An idle step `t` at `pose` (after the trial ended at home).
-    pub fn idle(t: usize, pose: Pose, cell: Option<usize>, escaped: bool) -> Step {
+    /// An idle step `t` at `pose` (after the trial ended at home) of a robot with `sensors`
+    /// sensors.
+    pub fn idle(t: usize, sensors: usize, pose: Pose, cell: Option<usize>, escaped: bool) -> Step {
         Step {
             t,
-            sensors: [0.0; INPUTS],
+            sensors: Readings::zeros(sensors),
             motors: [0.5; 2],
             speeds: [0.0; 2],
             pose,
@@ -915,7 +934,7 @@ where
         }
     }
     for t in t..params.steps {
-        observer.observe(&walk.idle(t));
+        observer.observe(&walk.idle(t, arena.sensors()));
     }
     walk.pose
 }
@@ -937,7 +956,7 @@ pub(crate) struct Walk {
 /// and what the move will be tested against.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Sensed {
-    pub(crate) sensors: [f64; INPUTS],
+    pub(crate) sensors: Readings,
     walls: Walls,
 }
 
@@ -945,7 +964,7 @@ impl Sensed {
     /// What an `actions` step read: `sensors` (noise included) and whether a straight move is
     /// `blocked`.
     #[inline(always)]
-    pub(crate) fn straight(sensors: [f64; INPUTS], blocked: bool) -> Sensed {
+    pub(crate) fn straight(sensors: Readings, blocked: bool) -> Sensed {
         Sensed {
             sensors,
             walls: Walls::Straight(blocked),
@@ -973,11 +992,12 @@ impl Walk {
 
     /// The idle step `t` at the pose now (after the trial ended at home).
     #[inline]
-    pub(crate) fn idle(&self, t: usize) -> Step {
-        Step::idle(t, self.pose, Some(self.cell), self.escaped)
+    pub(crate) fn idle(&self, t: usize, sensors: usize) -> Step {
+        Step::idle(t, sensors, self.pose, Some(self.cell), self.escaped)
     }
 
-    /// Step `t`: [`Walk::sense`], run the network on the sensors / 1023, then [`Walk::act`].
+    /// Step `t`: [`Walk::sense`], run the network on the sensors / `reading_max`, then
+    /// [`Walk::act`].
     /// Returns the step's record and whether the robot, having escaped, is back in the home
     /// zone.
     #[inline(always)]
@@ -994,7 +1014,8 @@ impl Walk {
         R: Rng + ?Sized,
     {
         let sensed = self.sense(arena, rng, memo);
-        let motors = controller.step(&inputs_of(&sensed.sensors));
+        let max = arena.params.robot.spec().reading_max();
+        let motors = controller.step(&inputs_of(&sensed.sensors, max));
         self.act(t, arena, &sensed, motors, None, rng)
     }
 
@@ -1006,7 +1027,8 @@ impl Walk {
         R: Rng + ?Sized,
     {
         let mut sensed = self.read(arena, memo);
-        perturb_sensors(&mut sensed.sensors, arena.params.noise, SENSOR_MAX, rng);
+        let max = arena.params.robot.spec().reading_max();
+        perturb_sensors(&mut sensed.sensors, arena.params.noise, max, rng);
         sensed
     }
 
@@ -1034,9 +1056,15 @@ impl Walk {
         let params = &arena.params;
         let pos = self.pose.position();
         let (sensors, walls) = match params.robot.motion() {
-            Motion::Actions => {
+            Motion::Actions if arena.sensors() <= SIGHT_SENSORS => {
                 let sight = self.sight(arena, memo);
-                (sight.sensors, Walls::Straight(sight.blocked))
+                let sensors = Readings::from_eight(sight.sensors, arena.sensors());
+                (sensors, Walls::Straight(sight.blocked))
+            }
+            Motion::Actions => {
+                let step = params.straight_step();
+                let (sensors, blocked) = arena.look_any(pos, self.dir, self.cell, step);
+                (sensors, Walls::Straight(blocked))
             }
             Motion::Wheels => {
                 let near = arena.near_walls_in(pos, self.cell);
@@ -1167,11 +1195,18 @@ impl Walk {
     }
 }
 
-/// The network's inputs: the sensor values / 1023 ([`SENSOR_MAX`]).
+/// The network's inputs: the sensor values / `max` (the robot's `reading_max`; the Khepera's
+/// 1023, [`crate::simulation::SENSOR_MAX`]).
 #[inline(always)]
-pub(crate) fn inputs_of(sensors: &[f64; INPUTS]) -> [f64; INPUTS] {
-    // Most readings are 0 in open floor; 0 / 1023 is exactly 0, so skip the division.
-    sensors.map(|v| if v == 0.0 { 0.0 } else { v / SENSOR_MAX })
+pub(crate) fn inputs_of(sensors: &Readings, max: f64) -> Readings {
+    let mut x = *sensors;
+    // Most readings are 0 in open floor; 0 / max is exactly 0, so skip the division.
+    for v in x.iter_mut() {
+        if *v != 0.0 {
+            *v /= max;
+        }
+    }
+    x
 }
 
 /// What a step knows of the walls in its way.
@@ -1189,8 +1224,8 @@ enum Walls {
 pub struct Trajectory {
     /// Poses, `steps + 1` of them.
     pub poses: Vec<Pose>,
-    /// Sensor values per step (noise included).
-    pub sensors: Vec<[f64; INPUTS]>,
+    /// Sensor values per step (noise included), one per sensor.
+    pub sensors: Vec<Readings>,
     /// Motor outputs per step.
     pub motors: Vec<[f64; 2]>,
     /// Commanded wheel speeds per step (mm/s).
@@ -1311,7 +1346,7 @@ mod tests {
 
     struct Fixed([f64; 2]);
     impl Controller for Fixed {
-        fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
+        fn step(&mut self, _: &[f64]) -> [f64; 2] {
             self.0
         }
     }
@@ -1461,6 +1496,7 @@ mod tests {
             let params = TrialParams::from_raw(
                 &RawTrial::default(),
                 &robot,
+                crate::simulation::RobotSpec::khepera(),
                 crate::simulation::robot::DEFAULT_ACTION_TOLERANCE,
             )
             .unwrap();
@@ -1544,7 +1580,7 @@ mod tests {
         };
         struct Seq(usize);
         impl Controller for Seq {
-            fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
+            fn step(&mut self, _: &[f64]) -> [f64; 2] {
                 self.0 += 1;
                 if self.0 <= 3 { [0.3, 0.9] } else { [1.0, 1.0] }
             }
@@ -1566,7 +1602,7 @@ mod tests {
         // Facing −x from home (40, 40): the wall x = 0 is 40 mm away, closer than 27.5 + 8.
         struct Back(bool);
         impl Controller for Back {
-            fn step(&mut self, _: &[f64; INPUTS]) -> [f64; 2] {
+            fn step(&mut self, _: &[f64]) -> [f64; 2] {
                 let first = self.0;
                 self.0 = false;
                 if first { [0.0, 0.0] } else { [1.0, 1.0] }
@@ -1609,15 +1645,22 @@ mod tests {
         assert_ne!(number(&first), number(&square()));
         let raw = RawTrial::default();
         let wider = RawRobot {
-            radius: params.robot.radius() + 1.0,
+            radius: Some(params.robot.radius() + 1.0),
             ..RawRobot::default()
         };
         let faster = RawRobot {
-            v_max: 100.0,
+            v_max: Some(100.0),
             ..RawRobot::default()
         };
-        let other =
-            |robot| h(&TrialParams::from_raw(&raw, &robot, params.action_tolerance).unwrap());
+        let other = |robot| {
+            h(&TrialParams::from_raw(
+                &raw,
+                &robot,
+                crate::simulation::RobotSpec::khepera(),
+                params.action_tolerance,
+            )
+            .unwrap())
+        };
         // A wider body reads other sights: another number.
         let wide = other(wider);
         assert!(number(&wide).is_some());
@@ -1644,13 +1687,14 @@ mod tests {
         };
         let wide = TrialParams::from_raw(
             &RawTrial {
-                noise: 0.0,
+                noise: Some(0.0),
                 ..RawTrial::default()
             },
             &RawRobot {
-                radius: 40.0,
+                radius: Some(40.0),
                 ..RawRobot::default()
             },
+            crate::simulation::RobotSpec::khepera(),
             slow.action_tolerance,
         )
         .unwrap();
@@ -1727,12 +1771,8 @@ mod tests {
         let room = gap_room();
         let khepera = Arena::new(room.clone(), &TrialParams::default());
         assert_eq!(khepera.unreachable_mission_zone(), None);
-        let raw = crate::simulation::RawRobot {
-            radius: 60.0,
-            ..Default::default()
-        };
         let params = TrialParams {
-            robot: crate::simulation::Khepera::from_raw(&raw).unwrap(),
+            robot: Robot::default().with_radius(60.0),
             ..TrialParams::default()
         };
         let e = Arena::new(room, &params)

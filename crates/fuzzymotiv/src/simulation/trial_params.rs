@@ -5,7 +5,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::params::{FieldError, Num, check};
 use crate::simulation::randomise::{Randomise, RawRandomise};
-use crate::simulation::robot::{Khepera, Motion, RawRobot};
+use crate::simulation::robot::{Motion, RawRobot, Robot};
+use crate::simulation::robot_spec::RobotSpec;
 use crate::simulation::sensor::{SensorModel, TableRef};
 use crate::simulation::sensor_table::SensorTable;
 
@@ -18,7 +19,7 @@ pub struct TrialParams {
     pub(super) dt: f64,
     pub(super) noise: f64,
     pub(super) sensor_model: SensorModel,
-    pub(super) robot: Khepera,
+    pub(super) robot: Robot,
     pub(super) end_at_home: bool,
     pub(super) action_tolerance: f64,
 }
@@ -30,7 +31,7 @@ impl Default for TrialParams {
             dt: 0.1,
             noise: 0.06,
             sensor_model: SensorModel::Sampled,
-            robot: Khepera::default(),
+            robot: Robot::default(),
             end_at_home: true,
             action_tolerance: crate::simulation::robot::DEFAULT_ACTION_TOLERANCE,
         }
@@ -47,10 +48,12 @@ pub const MAX_STEPS: usize = 10_000_000;
 pub struct RawTrial {
     /// [`TrialParams::steps`].
     pub steps: usize,
-    /// [`TrialParams::dt`].
-    pub dt: f64,
-    /// [`TrialParams::noise`].
-    pub noise: f64,
+    /// [`TrialParams::dt`]; `None`: the robot file's control period.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dt: Option<f64>,
+    /// [`TrialParams::noise`]; `None`: the robot file's noise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub noise: Option<f64>,
     /// [`TrialParams::sensor_model`].
     pub sensor_model: SensorModel,
     /// A sensor table file (path relative to the config) read by the `sampled` model instead of
@@ -69,8 +72,8 @@ impl Default for RawTrial {
         let d = TrialParams::default();
         Self {
             steps: d.steps,
-            dt: d.dt,
-            noise: d.noise,
+            dt: None,
+            noise: None,
             sensor_model: d.sensor_model,
             sensor_table: None,
             end_at_home: d.end_at_home,
@@ -79,29 +82,43 @@ impl Default for RawTrial {
     }
 }
 
+impl RawTrial {
+    /// The same, the values the config leaves to the robot file (`dt`, `noise`) taken from
+    /// `spec`.
+    pub fn resolved(&self, spec: &RobotSpec) -> RawTrial {
+        RawTrial {
+            dt: Some(self.dt.unwrap_or(spec.dt())),
+            noise: Some(self.noise.unwrap_or(spec.noise())),
+            ..self.clone()
+        }
+    }
+}
+
 impl TrialParams {
-    /// Checks `[trial]` with the robot body (`[robot]`, [`Khepera::from_raw`]) and the action
-    /// tolerance (`aem.action_tolerance`), naming the first field out of range.
+    /// Checks `[trial]` with the robot (`[robot]` and its robot file `spec`,
+    /// [`Robot::from_raw`]) and the action tolerance (`aem.action_tolerance`), naming the first
+    /// field out of range.
     pub fn from_raw(
         t: &RawTrial,
         robot: &RawRobot,
+        spec: &'static RobotSpec,
         action_tolerance: f64,
     ) -> Result<TrialParams, FieldError> {
+        let t = &t.resolved(spec);
+        let (dt, noise) = (t.dt.unwrap_or_default(), t.noise.unwrap_or_default());
         check((1..=MAX_STEPS).contains(&t.steps), "trial.steps", || {
             format!("must be an integer in 1..={MAX_STEPS}, got {}", t.steps)
         })?;
+        check(dt.is_finite() && dt > 0.0 && dt <= 10.0, "trial.dt", || {
+            format!("must be a time step in (0, 10] seconds, got {}", Num(dt))
+        })?;
         check(
-            t.dt.is_finite() && t.dt > 0.0 && t.dt <= 10.0,
-            "trial.dt",
-            || format!("must be a time step in (0, 10] seconds, got {}", Num(t.dt)),
-        )?;
-        check(
-            t.noise.is_finite() && (0.0..=0.5).contains(&t.noise),
+            noise.is_finite() && (0.0..=0.5).contains(&noise),
             "trial.noise",
             || {
                 format!(
                     "must be a noise level in [0, 0.5] (0.06 is the paper's 6 %), got {}",
-                    Num(t.noise)
+                    Num(noise)
                 )
             },
         )?;
@@ -112,11 +129,11 @@ impl TrialParams {
                 "a sensor table is read by the \"sampled\" sensor model; remove trial.sensor_table or set trial.sensor_model = \"sampled\"".into()
             },
         )?;
-        let robot = Khepera::from_raw(robot)?;
+        let robot = Robot::from_raw(robot, spec)?;
         let trial = TrialParams {
             steps: t.steps,
-            dt: t.dt,
-            noise: t.noise,
+            dt,
+            noise,
             sensor_model: t.sensor_model,
             robot,
             end_at_home: t.end_at_home,
@@ -142,14 +159,10 @@ impl TrialParams {
         Ok(trial)
     }
 
-    /// Checks `[trial.randomise]` of `t` (checked into these parameters) for the body `robot`:
+    /// Checks `[trial.randomise]` of `t` (checked into these parameters) for their robot:
     /// the ranges each evaluation trial of the evolution draws its robot from; `None` when
     /// nothing is randomised.
-    pub fn randomise_of(
-        &self,
-        t: &RawTrial,
-        robot: &RawRobot,
-    ) -> Result<Option<Randomise>, FieldError> {
+    pub fn randomise_of(&self, t: &RawTrial) -> Result<Option<Randomise>, FieldError> {
         let Some(raw) = &t.randomise else {
             return Ok(None);
         };
@@ -161,7 +174,7 @@ impl TrialParams {
             },
         )?;
         let step = |noise| self.with_noise(noise).max_step();
-        Randomise::from_raw(raw, robot, step, self.noise)
+        Randomise::from_raw(raw, &self.robot, step, self.noise)
     }
 
     /// The same parameters, the `sampled` model reading `table` instead of the built-in tables
@@ -180,7 +193,7 @@ impl TrialParams {
 
     /// The same parameters with the body `robot` (for perturbation studies; its step must stay
     /// below its radius as [`TrialParams::from_raw`] requires).
-    pub fn with_robot(self, robot: Khepera) -> TrialParams {
+    pub fn with_robot(self, robot: Robot) -> TrialParams {
         TrialParams { robot, ..self }
     }
 
@@ -213,7 +226,7 @@ impl TrialParams {
 
     /// The robot's body and motion model.
     #[inline]
-    pub fn robot(&self) -> &Khepera {
+    pub fn robot(&self) -> &Robot {
         &self.robot
     }
 
