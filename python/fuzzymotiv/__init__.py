@@ -1,4 +1,5 @@
-"""fuzzymotiv: evolve Khepera controllers under fuzzy motivations, from Python.
+"""fuzzymotiv: evolve robot controllers (the paper's Khepera, an e-puck2, a Thymio II or a robot
+file's robot: ``robot=``) under fuzzy motivations, from Python.
 
 Bindings of the Rust library and of the ``fuzzymotiv`` command line (same code, same results
 for the same config and seed).

@@ -1,5 +1,6 @@
 """Configs and overrides as the native layer takes them: ``config=`` a TOML file's path,
-``config_text=`` TOML text, ``overrides=`` dotted keys (``{"ga.population": 20}``, as ``--set``).
+``config_text=`` TOML text, ``overrides=`` dotted keys (``{"ga.population": 20}``, as ``--set``),
+``robot=`` a built-in robot's name or a robot file's path.
 """
 
 from __future__ import annotations
@@ -11,9 +12,9 @@ from typing import Any, Iterable, List, Mapping, Optional, Sequence, Tuple, Unio
 
 import numpy as np
 
-from ._fuzzymotiv import FuzzymotivError
+from ._fuzzymotiv import FuzzymotivError, robot_info
 
-__all__ = ["Config", "Overrides"]
+__all__ = ["Config", "Overrides", "Robot"]
 
 Config = Union[str, "os.PathLike[str]", None]
 """A config file's path (None: the built-in defaults)."""
@@ -21,6 +22,27 @@ Config = Union[str, "os.PathLike[str]", None]
 Overrides = Union[Mapping[str, Any], Sequence[str], None]
 """Dotted keys and values (``{"ga.generations": 20, "rooms": ["H"]}``) or ``"key=value"``
 strings, as ``--set``."""
+
+
+Robot = Union[str, "os.PathLike[str]", None]
+"""A robot: a built-in robot's name (``"khepera"``, ``"epuck2"``, ``"thymio2"``: ``ROBOTS``) or a
+robot file's path (relative to the working directory); None: the config's (the Khepera unless
+it names one, ``robot = "epuck2"`` or ``[robot] file = "..."``)."""
+
+
+def _robot_sets(robot: Robot) -> List[str]:
+    """The ``--set`` that makes the config's robot ``robot`` (none for None): its
+    ``robot.file``, a built-in name or the file's absolute path, read and checked first as the
+    CLI reads a robot file (a wrong name or a bad file raises :class:`ConfigError` naming the
+    file and the field). The config's other ``[robot]`` keys (radius, ...) stay."""
+    if robot is None:
+        return []
+    if not isinstance(robot, (str, os.PathLike)):
+        raise FuzzymotivError(
+            f"robot: expected a built-in robot's name or a robot file's path, got {type(robot).__name__}"
+        )
+    file = robot_info(os.fspath(robot))["file"]
+    return [f"robot={{file = {json.dumps(file)}}}"]
 
 
 def _toml_value(value: Any) -> str:

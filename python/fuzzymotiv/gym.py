@@ -1,6 +1,6 @@
-"""Gymnasium environments of the Khepera trial (``pip install fuzzymotiv[gym]``).
+"""Gymnasium environments of a robot's trial (``pip install fuzzymotiv[gym]``).
 
-``import fuzzymotiv.gym`` registers:
+``import fuzzymotiv.gym`` registers, for each built-in robot (``ENV_IDS``):
 
 * ``fuzzymotiv/Khepera-v0``: observation ``Box(0, 1, (8,))`` — the eight IR sensors / 1023,
   noise included (what the network reads); action ``Box(0, 1, (2,))`` — the two motor outputs
@@ -8,7 +8,18 @@
   (``(5, -5)`` is ``(1, 0)``, as ``gymnasium.wrappers.ClipAction`` would make it), NaN or an
   infinity raises :class:`fuzzymotiv.FuzzymotivError`;
 * ``fuzzymotiv/KheperaDiscrete-v0``: the same with ``Discrete(4)`` actions, executed as given
-  (0 ``straight``, 1 ``left30``, 2 ``right30``, 3 ``turn180``; ``motion = "actions"``).
+  (0 ``straight``, 1 ``left30``, 2 ``right30``, 3 ``turn180``; ``motion = "actions"``);
+* ``fuzzymotiv/EPuck2-v0`` and ``fuzzymotiv/EPuck2Discrete-v0``: the e-puck2, observation
+  ``Box(0, 1, (8,))`` — its eight IR sensors / 3731;
+* ``fuzzymotiv/Thymio2-v0`` and ``fuzzymotiv/Thymio2Discrete-v0``: the Thymio II, observation
+  ``Box(0, 1, (7,))`` — its seven horizontal IR sensors / 4505 (its rooms must fit its 160 mm
+  body: configs/thymio2.toml's, rooms/thymio2/).
+
+In general the observation is ``Box(0, 1, (N,))``: the robot's N readings / its
+``reading_max``. ``robot=`` (a built-in robot's name or a robot file's path, as
+:func:`fuzzymotiv.run` takes it; None: the config's) chooses the robot of :class:`RobotEnv`
+and :class:`RobotVectorEnv` (``KheperaEnv`` and ``KheperaVectorEnv`` are the same classes);
+each id above passes its robot (``gym.make(ID, robot=...)`` overrides it).
 
 The step is the library's own (``fuzzymotiv::simulation::TrialRun``): the same
 sensors, noise streams, motion model and end at home as :func:`fuzzymotiv.simulate`. An episode
@@ -63,7 +74,7 @@ from gymnasium.vector.utils import batch_space
 
 from ._checks import FloatArray, _real_array
 from ._fuzzymotiv import FuzzymotivError, ResetNeeded
-from .config import _config_args, _sets
+from .config import Robot, _config_args, _robot_sets, _sets
 from .trials import TermFunction, _supplier, _term_names
 from . import _fuzzymotiv as _native
 
@@ -73,7 +84,15 @@ ACTIONS = ("straight", "left30", "right30", "turn180")
 _SEED_BOUND = 2**53
 
 Obs = npt.NDArray[np.floating[Any]]
-"""An observation: the eight IR sensors / 1023 (float32 or float64, as the env's dtype)."""
+"""An observation: the robot's N sensors / its ``reading_max`` (the Khepera's eight IR sensors
+/ 1023), float32 or float64 as the env's dtype."""
+
+ENV_IDS = {
+    "khepera": ("fuzzymotiv/Khepera-v0", "fuzzymotiv/KheperaDiscrete-v0"),
+    "epuck2": ("fuzzymotiv/EPuck2-v0", "fuzzymotiv/EPuck2Discrete-v0"),
+    "thymio2": ("fuzzymotiv/Thymio2-v0", "fuzzymotiv/Thymio2Discrete-v0"),
+}
+"""Per built-in robot, the ids of its env with motor outputs and with ``Discrete(4)`` actions."""
 
 Source = Tuple[Optional[str], Optional[str], List[str]]
 """A config as the native core takes it: (file path, TOML text, ``--set`` strings)."""
@@ -115,35 +134,45 @@ def _core(
     )
 
 
-def _spaces(dtype: "np.dtype[Any]", discrete: bool) -> Tuple["spaces.Space[Any]", "spaces.Space[Any]"]:
-    obs = spaces.Box(0.0, 1.0, (8,), dtype)
+def _spaces(
+    dtype: "np.dtype[Any]", discrete: bool, sensors: int
+) -> Tuple["spaces.Space[Any]", "spaces.Space[Any]"]:
+    """The observation space (``sensors`` readings / reading_max) and the action space."""
+    obs = spaces.Box(0.0, 1.0, (sensors,), dtype)
     act = spaces.Discrete(4) if discrete else spaces.Box(0.0, 1.0, (2,), dtype)
     return obs, act
 
 
-def network(genome: npt.ArrayLike) -> Callable[[npt.ArrayLike], FloatArray]:
-    """The network of ``genome`` (its weights, the library's own MLP, ``8-h-2`` with ``h`` from
-    the length): a function from an observation (8 inputs in [0, 1]) to the two motor outputs
-    the network gives the simulator — the action that replays :func:`fuzzymotiv.simulate`."""
+def network(genome: npt.ArrayLike, robot: Robot = "khepera") -> Callable[[npt.ArrayLike], FloatArray]:
+    """The network of ``genome`` (its weights, the library's own MLP, ``N-h-2`` for the N
+    sensors of ``robot`` — a built-in robot's name or a robot file's path — with ``h`` from the
+    length): a function from an observation (N inputs in [0, 1]) to the two motor outputs the
+    network gives the simulator — the action that replays :func:`fuzzymotiv.simulate`."""
     weights = _real_array("genome", genome, "a vector of weights").ravel()
-    hidden, rest = divmod(len(weights) - 2, 11)
+    n = int(_native.robot_info(os.fspath(robot if robot is not None else "khepera"))["sensors"])
+    hidden, rest = divmod(len(weights) - 2, n + 3)
     if rest or hidden < 1:
         raise FuzzymotivError(
-            f"genome: {len(weights)} weights is no 8-h-2 network's length (11·h + 2)"
+            f"genome: {len(weights)} weights is no {n}-h-2 network's length "
+            f"({n + 3}·h + 2, for the robot's {n} sensors)"
         )
     w = weights.tolist()
 
     def outputs(obs: npt.ArrayLike) -> FloatArray:
-        inputs = _real_array("obs", obs, "8 sensor inputs").ravel().tolist()
+        inputs = _real_array("obs", obs, f"{n} sensor inputs").ravel().tolist()
+        if len(inputs) != n:
+            raise FuzzymotivError(f"obs: expected {n} sensor inputs (one per sensor), got {len(inputs)}")
         return np.array(_native.network_outputs(w, hidden, inputs))
 
     return outputs
 
 
-class KheperaEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
-    """One Khepera trial as a Gymnasium environment (see the module's docs).
+class RobotEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
+    """One trial of the robot (the config's, or ``robot=``) as a Gymnasium environment (see the
+    module's docs); ``KheperaEnv`` is this class. Attributes: ``robot`` (its name),
+    ``sensors`` (N, the observation's length), ``reading_max``, ``rooms``, ``max_steps``.
 
-    >>> env = KheperaEnv("H", overrides={"trial.steps": 5})
+    >>> env = RobotEnv("H", overrides={"trial.steps": 5})
     >>> obs, info = env.reset(seed=1)
     >>> obs.shape, obs.dtype, info["room"]
     ((8,), dtype('float32'), 'H')
@@ -164,16 +193,20 @@ class KheperaEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
         render_mode: Optional[str] = None,
         size: int = 256,
         terms: Terms = None,
+        robot: Robot = None,
     ) -> None:
         if render_mode not in (None, "rgb_array"):
             raise FuzzymotivError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
         self._dtype = _dtype(dtype)
         self._room_args = _rooms(room)
         # The config as the native code takes it, kept for render() (same robot, same rooms).
-        self._source = (*_config_args(config, config_text), _sets(overrides))
+        self._source = (*_config_args(config, config_text), _sets(overrides) + _robot_sets(robot))
         self._core = _core(self._room_args, 1, self._source, reward, self._dtype, terms)
         self._user: List[str] = [] if terms is None else list(terms)
-        self.observation_space, self.action_space = _spaces(self._dtype, discrete)
+        self.robot: str = self._core.robot
+        self.sensors: int = self._core.sensors
+        self.reading_max: float = self._core.reading_max
+        self.observation_space, self.action_space = _spaces(self._dtype, discrete, self.sensors)
         self.rooms: List[str] = list(self._core.room_names)
         self.max_steps: int = self._core.max_steps
         self.render_mode = render_mode
@@ -231,15 +264,16 @@ class KheperaEnv(gym.Env[npt.NDArray[np.floating[Any]], npt.NDArray[Any]]):
     def _record(self, seen: Obs, info: Dict[str, Any]) -> None:
         for k in ("x", "y", "heading"):
             self._trace[k].append(info[k])
-        self._trace["sensors"].append(np.asarray(seen, dtype=np.float64) * 1023.0)
+        self._trace["sensors"].append(np.asarray(seen, dtype=np.float64) * self.reading_max)
         self._trace["action"].append(info.get("action", "straight"))
 
     def trajectory(self) -> Dict[str, npt.NDArray[Any]]:
         """The episode so far, shaped like :func:`fuzzymotiv.simulate`'s result: ``x``,
-        ``y``, ``heading`` (steps + 1 poses), ``sensors`` (steps × 8, 0–1023; rounded when the
-        env is float32) and ``action`` (labels)."""
+        ``y``, ``heading`` (steps + 1 poses), ``sensors`` (steps × N, 0 to the robot's
+        ``reading_max``: the Khepera's 0–1023; rounded when the env is float32) and ``action``
+        (labels)."""
         t = self._trace
-        sensors = np.array(t["sensors"], dtype=np.float64).reshape(-1, 8)
+        sensors = np.array(t["sensors"], dtype=np.float64).reshape(-1, self.sensors)
         return {
             "x": np.array(t["x"]),
             "y": np.array(t["y"]),
@@ -297,10 +331,11 @@ def _actions(action: Any, n: int, discrete: bool) -> npt.NDArray[Any]:
     return a.astype(np.float64).reshape(n, 2)
 
 
-class KheperaVectorEnv(VectorEnv[npt.NDArray[np.floating[Any]], npt.NDArray[Any], npt.NDArray[Any]]):
-    """``num_envs`` Khepera trials stepped together in Rust (one call per step), with
-    next-step autoreset (see the module's docs). ``reset(seed=S)`` seeds env ``i`` with
-    ``S + i`` (its trial's base seed; its room drawn from the vector env's ``np_random``)."""
+class RobotVectorEnv(VectorEnv[npt.NDArray[np.floating[Any]], npt.NDArray[Any], npt.NDArray[Any]]):
+    """``num_envs`` trials of the robot (the config's, or ``robot=``) stepped together in Rust
+    (one call per step), with next-step autoreset (see the module's docs); observations
+    ``(num_envs, N)``. ``reset(seed=S)`` seeds env ``i`` with ``S + i`` (its trial's base seed;
+    its room drawn from the vector env's ``np_random``). ``KheperaVectorEnv`` is this class."""
 
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
 
@@ -316,15 +351,21 @@ class KheperaVectorEnv(VectorEnv[npt.NDArray[np.floating[Any]], npt.NDArray[Any]
         dtype: Any = np.float32,
         discrete: bool = False,
         terms: Terms = None,
+        robot: Robot = None,
     ) -> None:
         if not isinstance(num_envs, (int, np.integer)) or isinstance(num_envs, bool) or num_envs < 1:
             raise FuzzymotivError(f"num_envs: expected a whole number >= 1, got {num_envs!r}")
         self.num_envs = int(num_envs)
         self._dtype = _dtype(dtype)
-        source = (*_config_args(config, config_text), _sets(overrides))
+        source = (*_config_args(config, config_text), _sets(overrides) + _robot_sets(robot))
         self._core = _core(room, self.num_envs, source, reward, self._dtype, terms)
         self._discrete = discrete
-        self.single_observation_space, self.single_action_space = _spaces(self._dtype, discrete)
+        self.robot: str = self._core.robot
+        self.sensors: int = self._core.sensors
+        self.reading_max: float = self._core.reading_max
+        self.single_observation_space, self.single_action_space = _spaces(
+            self._dtype, discrete, self.sensors
+        )
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self.rooms: List[str] = list(self._core.room_names)
@@ -364,14 +405,25 @@ class KheperaVectorEnv(VectorEnv[npt.NDArray[np.floating[Any]], npt.NDArray[Any]
         return obs, reward, terminated, truncated, info
 
 
-gym.register(
-    id="fuzzymotiv/Khepera-v0",
-    entry_point="fuzzymotiv.gym:KheperaEnv",
-    vector_entry_point="fuzzymotiv.gym:KheperaVectorEnv",
-)
-gym.register(
-    id="fuzzymotiv/KheperaDiscrete-v0",
-    entry_point="fuzzymotiv.gym:KheperaEnv",
-    vector_entry_point="fuzzymotiv.gym:KheperaVectorEnv",
-    kwargs={"discrete": True},
-)
+KheperaEnv = RobotEnv
+"""The Khepera's env: :class:`RobotEnv` (the Khepera unless the config or ``robot=`` names
+another robot)."""
+
+KheperaVectorEnv = RobotVectorEnv
+"""The Khepera's vector env: :class:`RobotVectorEnv`."""
+
+for _robot, (_continuous, _discrete) in ENV_IDS.items():
+    # Each id passes its robot (gym.make(ID, robot=...) still chooses another).
+    _kwargs: Dict[str, Any] = {"robot": _robot}
+    gym.register(
+        id=_continuous,
+        entry_point="fuzzymotiv.gym:RobotEnv",
+        vector_entry_point="fuzzymotiv.gym:RobotVectorEnv",
+        kwargs=_kwargs,
+    )
+    gym.register(
+        id=_discrete,
+        entry_point="fuzzymotiv.gym:RobotEnv",
+        vector_entry_point="fuzzymotiv.gym:RobotVectorEnv",
+        kwargs={**_kwargs, "discrete": True},
+    )

@@ -14,7 +14,7 @@ import numpy.typing as npt
 from . import _fuzzymotiv as _native
 from ._checks import FloatArray, MotivationWeights, _float_array
 from ._fuzzymotiv import DependencyNotInstalled, FuzzymotivError
-from .config import Config, Overrides, _config_args, _sets
+from .config import Config, Overrides, Robot, _config_args, _robot_sets, _sets
 from .tables import Table, table_of
 from .trials import TermFunction, _supplier, _term_names
 
@@ -100,13 +100,18 @@ def run(
     force: bool = False,
     config_text: Optional[str] = None,
     terms: Optional[Mapping[str, TermFunction]] = None,
+    robot: Robot = None,
 ) -> RunResult:
     """Evolve controllers as ``fuzzymotiv run`` does and return a :class:`RunResult`.
 
     ``config`` is a config file's path (None: the built-in defaults), ``config_text`` TOML text
     instead (at most one of them); ``overrides``
     a dict of dotted keys, the same as ``--set`` (``{"ga.generations": 20, "rooms": ["H"]}``);
-    ``seed`` overrides the base seed (a whole number from 0 to 2^53 − 1). ``threads`` sizes
+    ``seed`` overrides the base seed (a whole number from 0 to 2^53 − 1). ``robot`` is the robot
+    (a built-in robot's name, ``"epuck2"``, or a robot file's path; None: the config's, the
+    Khepera unless it names one): its N sensors are the network's inputs, so genomes have
+    ``hidden·(N + 1) + 2·(hidden + 1)`` weights; a wrong name or a bad robot file raises
+    :class:`ConfigError` naming the file and the field. ``threads`` sizes
     the worker pool (1 to 256; results do not depend on it). ``progress`` is a callable
     ``(done, total, best_F)`` called after every generation, or True for a tqdm bar.
 
@@ -139,7 +144,7 @@ def run(
     >>> res.generations["best"][-1]                           # doctest: +SKIP
     """
     path, text = _config_args(config, config_text)
-    sets = _sets(overrides)
+    sets = _sets(overrides) + _robot_sets(robot)
     out_path = None if out is None else os.fspath(out)
     if out_path == "":
         raise FuzzymotivError("out: an empty path; give a directory, e.g. out=\"runs/tiny\"")
@@ -176,8 +181,9 @@ class Problem:
     """One evolution's fitness function for any optimiser: the validated experiment of a
     config, evaluated in batches.
 
-    ``config``, ``config_text`` and ``overrides`` are :func:`run`'s (a file, TOML text; dotted keys as
-    ``--set``); ``seed`` overrides the config's seed. With ``training = "per-room"`` there is
+    ``config``, ``config_text``, ``overrides`` and ``robot`` are :func:`run`'s (a file, TOML
+    text; dotted keys as ``--set``; a built-in robot's name or a robot file's path, the
+    config's robot when None); ``seed`` overrides the config's seed. With ``training = "per-room"`` there is
     one problem per room: ``room=NAME``. ``threads`` sizes the pool that evaluates (results do
     not depend on it; None: all cores).
 
@@ -192,7 +198,9 @@ class Problem:
     A problem only evaluates: room modelling never runs, so a one-room config needs no
     ``aem.enabled = false``.
 
-    Attributes: ``genome_size`` (weights per genome), ``rooms`` (the rooms each genome is
+    Attributes: ``genome_size`` (weights per genome: ``hidden·(N + 1) + 2·(hidden + 1)`` for
+    the robot's N sensors, 68 for the Khepera's 8-6-2), ``robot`` (its name), ``sensors``
+    (N), ``rooms`` (the rooms each genome is
     evaluated in), ``motivations`` (every motivation's weight, in input order, as a
     :class:`MotivationWeights`: a tuple — ``(C, H, O, E)`` for the paper's four, each other
     motivation after them, e.g. urgency's — with the names in ``.names`` and
@@ -219,9 +227,10 @@ class Problem:
         seed: Optional[int] = None,
         config_text: Optional[str] = None,
         terms: Optional[Mapping[str, TermFunction]] = None,
+        robot: Robot = None,
     ):
         path, text = _config_args(config, config_text)
-        sets = _sets(overrides)
+        sets = _sets(overrides) + _robot_sets(robot)
         names = [] if terms is None else _term_names(terms)
         self._terms: Dict[str, TermFunction] = {} if terms is None else dict(terms)
         self._supply = _supplier(self._terms) if names else None
@@ -231,6 +240,8 @@ class Problem:
             path and os.path.abspath(path), text, sets, room, threads, seed, self._terms or None
         )
         self.genome_size: int = self._native.genome_size
+        self.robot: str = self._native.robot
+        self.sensors: int = self._native.sensors
         self.rooms: List[str] = self._native.rooms
         self.motivations = MotivationWeights(self._native.motivations, self._native.motivation_names)
         self.seed: int = self._native.seed
@@ -291,8 +302,8 @@ class Problem:
 
     def __repr__(self) -> str:
         return (
-            f"<Problem run {self.run!r} rooms {self.rooms} genome_size {self.genome_size} "
-            f"seed {self.seed}>"
+            f"<Problem run {self.run!r} robot {self.robot!r} rooms {self.rooms} "
+            f"genome_size {self.genome_size} seed {self.seed}>"
         )
 
 
@@ -329,7 +340,8 @@ class GAState(TypedDict):
 
 
 class GA:
-    """The built-in genetic algorithm (docs/model.md §6) as ask/tell steps.
+    """The built-in genetic algorithm (docs/model.md §6) as ask/tell steps, for the robot of its
+    problem (``GA(Problem(robot="epuck2"))``: genomes of that robot's network).
 
     ``ga.ask()`` gives the current generation's genomes (``(pop, genome_size)``);
     ``ga.tell(F, terms=None)`` takes their F (higher is better; ``terms`` ``(pop, rooms, N)``,

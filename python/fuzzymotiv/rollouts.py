@@ -11,7 +11,7 @@ import numpy.typing as npt
 from . import _fuzzymotiv as _native
 from ._checks import FloatArray, _float_array, _real_array, _whole
 from ._fuzzymotiv import FuzzymotivError
-from .config import Config, Overrides, _config_args, _sets
+from .config import Config, Overrides, Robot, _config_args, _robot_sets, _sets
 from .trials import TermFunction, _supplier, _term_names
 
 __all__ = ["Home", "HomeZone", "RoomInfo", "Trajectory", "frames", "load_room", "rooms",
@@ -101,18 +101,22 @@ def simulate(
     *,
     config_text: Optional[str] = None,
     terms: Optional[Mapping[str, TermFunction]] = None,
+    robot: Robot = None,
 ) -> Trajectory:
     """Run ``genome`` (the network's weights) for one trial from home in ``room`` (a room of the
     config, a built-in room or a room file) under base seed ``seed`` — exactly the trial of
     ``fuzzymotiv replay GENOME --room ROOM --seed SEED``.
 
     Returns a dict of numpy arrays: ``x``, ``y``, ``heading`` (T + 1 poses: the pose at the
-    start of every step, then the final one), ``sensors`` (T × 8), ``motors`` (T × 2,
+    start of every step, then the final one), ``sensors`` (T × N: the raw readings of the
+    robot's N sensors, 0 to its ``reading_max``; the Khepera's 8, 0–1023), ``motors`` (T × 2,
     mL, mR), ``action`` (T labels: the executed actions), ``idle`` (T booleans: steps after
     the trial ended at home), ``energy`` (T), ``escaped`` (T booleans: out of the home zone
     yet), ``collision`` (T booleans); and the fitness terms ``a``, ``g``, ``l``, ``b`` with
     ``F`` under the config's motivations. ``seed`` is a whole number from 0 to 2^53 − 1; NaN
-    or infinite weights raise :class:`FuzzymotivError`.
+    or infinite weights raise :class:`FuzzymotivError`. ``robot`` is :func:`fuzzymotiv.run`'s
+    (a built-in robot's name or a robot file's path; None: the config's); the genome has that
+    robot's network's length.
 
     ``terms={"name": fn}`` supplies terms of your own as :class:`fuzzymotiv.Problem` takes them
     (a config's motivation may weigh them): ``fn`` is called once with the trial as a
@@ -127,16 +131,15 @@ def simulate(
     weights = _real_array("genome", genome, "a vector of weights").ravel().tolist()
     names = [] if terms is None else _term_names(terms)
     supply = _supplier(dict(terms)) if terms is not None and names else None
-    trajectory = _native.simulate(
-        weights, os.fspath(room), seed, path, text, _sets(overrides), names, supply
-    )
+    sets = _sets(overrides) + _robot_sets(robot)
+    trajectory = _native.simulate(weights, os.fspath(room), seed, path, text, sets, names, supply)
     return cast(Trajectory, trajectory)
 
 
 def _rollout(source: Any) -> Union[List[float], Dict[str, Any]]:
     """A trajectory dict with its columns as the native code takes them (x, y, heading as
-    float64 vectors; sensors as a float64 (n, 8) array; action and idle as lists), or the
-    genome as a list of floats."""
+    float64 vectors; sensors as a float64 (n, N) array, N checked against the robot natively;
+    action and idle as lists), or the genome as a list of floats."""
     if not isinstance(source, Mapping):
         weights: List[float] = _real_array("genome", source, "a vector of weights").ravel().tolist()
         return weights
@@ -150,12 +153,9 @@ def _rollout(source: Any) -> Union[List[float], Dict[str, Any]]:
         cols[key] = _float_array(f"trajectory['{key}']", source[key], 1, "a vector")
     sensors = source.get("sensors")
     if sensors is not None:
-        a = _float_array("trajectory['sensors']", sensors, 2, "a (T, 8) array")
-        if a.shape[1:] != (8,):
-            raise FuzzymotivError(
-                f"trajectory['sensors']: expected a (T, 8) array of IR readings, got shape {a.shape}"
-            )
-        cols["sensors"] = a
+        cols["sensors"] = _float_array(
+            "trajectory['sensors']", sensors, 2, "a (T, N) array (N: the robot's sensors)"
+        )
     if source.get("action") is not None:
         cols["action"] = [str(a) for a in np.asarray(source["action"]).ravel()]
     if source.get("idle") is not None:
@@ -180,19 +180,21 @@ def frames(
     overrides: Overrides = None,
     seed: Optional[int] = None,
     terms: Optional[Mapping[str, TermFunction]] = None,
+    robot: Robot = None,
 ) -> npt.NDArray[np.uint8]:
     """Frames of a rollout as a ``(T, H, W, 3)`` uint8 array (RGB, ``H = W = size``): the room,
-    home zone, the path so far, the robot's body and heading, its eight IR rays (grey and thin
+    home zone, the path so far, the robot's body and heading, its sensors' rays (grey and thin
     when they read nothing, red and thick near a wall), the step counter and the action taken —
     the frames of ``fuzzymotiv replay --gif``.
 
     ``trajectory_or_genome`` is a dict shaped like :func:`simulate`'s result — only ``x``,
-    ``y``, ``heading`` (T + 1 poses) are required; ``sensors`` (T or T + 1 rows of 8),
+    ``y``, ``heading`` (T + 1 poses) are required; ``sensors`` (T or T + 1 rows of N, one
+    reading per sensor of the robot),
     ``action`` (labels) and ``idle`` are drawn when present — or a genome, run first exactly as
     ``simulate(genome, room, seed, config, overrides)`` (``seed=None``: the config's seed).
     ``room`` is a room of the config, a built-in room or a room file; None means the dict's
-    ``room``, else the config's first room. The config also gives the robot's size and sensor
-    model. A frame is drawn at poses 0, ``stride``, 2·``stride``, … and at the last pose, so
+    ``room``, else the config's first room. The config (and ``robot``, as :func:`simulate`
+    takes it) also gives the robot's size, sensors and sensor model. A frame is drawn at poses 0, ``stride``, 2·``stride``, … and at the last pose, so
     ``frames[-1]`` is always where the rollout ends (``stride=len(x)`` draws only the first and
     the last). ``size`` is 64 to 2048 pixels. ``terms`` (as :class:`Problem` takes them) lets
     a config weigh terms of your own; a path does not depend on F, so they are not called.
@@ -205,8 +207,8 @@ def frames(
     path, text = _config_args(config, config_text)
     return _native.frames(
         _rollout(trajectory_or_genome), _room_arg(trajectory_or_genome, room),
-        _whole("size", size), _whole("stride", stride), seed, path, text, _sets(overrides),
-        [] if terms is None else _term_names(terms),
+        _whole("size", size), _whole("stride", stride), seed, path, text,
+        _sets(overrides) + _robot_sets(robot), [] if terms is None else _term_names(terms),
     )
 
 
@@ -224,13 +226,14 @@ def save_gif(
     overrides: Overrides = None,
     seed: Optional[int] = None,
     terms: Optional[Mapping[str, TermFunction]] = None,
+    robot: Robot = None,
 ) -> int:
     """Write an animated GIF (looping; the last frame held for a second) to ``path`` and return
     its number of frames.
 
     ``frames_or_trajectory`` is a ``(T, H, W, 3)`` uint8 array (e.g. from :func:`frames`), or
     anything :func:`frames` takes, drawn with its ``room``, ``size``, ``stride``, ``config``,
-    ``overrides``, ``seed`` and ``terms``. Colours are mapped to one fixed 256-colour palette that holds
+    ``overrides``, ``seed``, ``terms`` and ``robot``. Colours are mapped to one fixed 256-colour palette that holds
     the frames' own colours exactly. ``fps`` is 0.01 to 50. The file is written atomically;
     a file with other contents is kept unless ``force=True`` (the same bytes again: nothing to
     do), and a directory, link or device is never replaced.
@@ -253,5 +256,6 @@ def save_gif(
     return _native.save_gif(
         source, os.fspath(path), float(fps), bool(force),
         _room_arg(frames_or_trajectory, room), _whole("size", size), _whole("stride", stride),
-        seed, cfg_path, text, _sets(overrides), [] if terms is None else _term_names(terms),
+        seed, cfg_path, text, _sets(overrides) + _robot_sets(robot),
+        [] if terms is None else _term_names(terms),
     )

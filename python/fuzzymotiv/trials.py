@@ -33,8 +33,8 @@ class Trials:
         collisions: whether each step was blocked by a wall, ``(pop, rooms, T)`` bool.
         idle: whether each step came after the trial ended, ``(pop, rooms, T)`` bool.
         energy: the energy each step used, ``(pop, rooms, T)`` float64.
-        sensors: the 8 proximity readings of each step (noise included), ``(pop, rooms, T,
-            8)`` float64.
+        sensors: the proximity readings of each step (noise included), one per sensor of the
+            robot, ``(pop, rooms, T, N)`` float64 (N = 8 on the Khepera).
         executed: the steps executed before the trial ended, ``(pop, rooms)`` int64.
         rooms: the room names, in order.
         terms: the library's terms measured in each trial, ``name → (pop, rooms)``: ``a``,

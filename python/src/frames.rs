@@ -8,8 +8,8 @@
 use std::path::PathBuf;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::simulation::Room;
 use fuzzymotiv::simulation::{Action, Pose};
+use fuzzymotiv::simulation::{Readings, RobotSpec, Room};
 use fuzzymotiv_io::render::frames::animate::{GifWriter, delay_of};
 use fuzzymotiv_io::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
 use fuzzymotiv_io::render::frames::{FrameOptions, Track, gif, render, render_last};
@@ -29,12 +29,13 @@ use crate::{config_err, finite, input_err, instance_of, seed_arg};
 /// list of action labels, a list of booleans).
 struct Columns {
     poses: Vec<Pose>,
-    sensors: Option<Vec<[f64; 8]>>,
+    sensors: Option<Vec<Readings>>,
     actions: Option<Vec<Action>>,
     idle: Option<Vec<bool>>,
 }
 
-fn columns(d: &Bound<'_, PyDict>) -> PyResult<Columns> {
+/// The columns of `d`, its `sensors` (when given) one reading per sensor of `robot`.
+fn columns(d: &Bound<'_, PyDict>, robot: &RobotSpec) -> PyResult<Columns> {
     let get = |k: &str| -> PyResult<Vec<f64>> {
         let column = d
             .get_item(k)?
@@ -63,15 +64,18 @@ fn columns(d: &Bound<'_, PyDict>) -> PyResult<Columns> {
         Some(s) => {
             let a: PyReadonlyArray2<'_, f64> = s.extract()?;
             let rows = a.as_array();
-            if rows.ncols() != 8 {
+            let n = robot.sensors();
+            if rows.ncols() != n {
                 return Err(input_err(format!(
-                    "trajectory: sensors has {} columns; expected the 8 IR readings per step",
+                    "trajectory['sensors']: expected a (T, {n}) array of readings (the robot {} has {n} sensors), got shape ({}, {})",
+                    robot.name(),
+                    rows.nrows(),
                     rows.ncols()
                 )));
             }
             Some(
                 rows.outer_iter()
-                    .map(|r| std::array::from_fn(|k| r[k]))
+                    .map(|r| Readings::from_slice(&r.to_vec()))
                     .collect(),
             )
         }
@@ -165,7 +169,7 @@ fn draw<T: Send>(
     let room = exp.arenas()[0].room();
     let fail = |e: String| input_err(format!("trajectory: {e}"));
     if let Ok(d) = source.cast::<PyDict>() {
-        let c = columns(d)?;
+        let c = columns(d, exp.trial_params().robot().spec())?;
         let track = Track {
             poses: &c.poses,
             sensors: c.sensors.as_deref(),

@@ -1,6 +1,6 @@
-//! The native side of `fuzzymotiv.gym`: `GymCore`, N Khepera trials stepped in Rust in one
-//! call (the library's [`Episode`]: its step, noise streams and fitness terms), for the
-//! Gymnasium env (N = 1) and the vector env.
+//! The native side of `fuzzymotiv.gym`: `GymCore`, N trials of the config's robot stepped in
+//! Rust in one call (the library's [`Episode`]: its step, noise streams and fitness terms), for
+//! the Gymnasium env (N = 1) and the vector env.
 //!
 //! Each trial is the room-modelling instance run that `fm.simulate(genome, room, seed)` runs
 //! (the experiment of that one room, [`single_room`], its instance stream under base seed
@@ -16,7 +16,7 @@ use fuzzymotiv::random::{JSON_EXACT, derive};
 use fuzzymotiv::random::{Rng, Rng64, index, rng_from_seed};
 use fuzzymotiv::simulation::Action;
 use fuzzymotiv::simulation::Arena;
-use fuzzymotiv::simulation::{Controller, INPUTS, Mlp};
+use fuzzymotiv::simulation::{Controller, Mlp, MlpShape, Readings};
 use fuzzymotiv::simulation::{StepObserver, Trajectory};
 use fuzzymotiv_io::files::inputs::{Loaded, room_entry};
 use numpy::ndarray::Array2;
@@ -76,6 +76,10 @@ pub struct GymCore {
     envs: Vec<Env>,
     reward: Reward,
     float64: bool,
+    /// The robot's sensors (an observation's length) and its largest reading (an
+    /// observation is reading / `reading_max`).
+    sensors: usize,
+    reading_max: f64,
     /// The names of the terms Python supplies (`terms=`), and the function that computes
     /// their values from a batch of finished trials (`fuzzymotiv.trials._supplier`).
     user: Vec<String>,
@@ -111,16 +115,17 @@ impl GymCore {
         self.envs[i] = self.fresh(room, base, chooser);
     }
 
-    /// Observations as a `(N, 8)` array of IR / 1023 in the env's dtype.
-    fn obs_array<'py>(&self, py: Python<'py>, obs: Vec<[f64; INPUTS]>) -> Bound<'py, PyAny> {
-        let n = obs.len();
-        let flat = obs.into_iter().flatten().map(|v| v / 1023.0);
+    /// Observations as an `(envs, sensors)` array of reading / `reading_max` (the Khepera's
+    /// IR / 1023) in the env's dtype.
+    fn obs_array<'py>(&self, py: Python<'py>, obs: Vec<Readings>) -> Bound<'py, PyAny> {
+        let (n, width, max) = (obs.len(), self.sensors, self.reading_max);
+        let flat = obs.iter().flat_map(|r| r.iter().map(move |v| v / max));
         if self.float64 {
-            let a = Array2::from_shape_vec((n, INPUTS), flat.collect()).expect("N × 8");
+            let a = Array2::from_shape_vec((n, width), flat.collect()).expect("envs × sensors");
             a.into_pyarray(py).into_any()
         } else {
-            let a = Array2::from_shape_vec((n, INPUTS), flat.map(|v| v as f32).collect())
-                .expect("N × 8");
+            let a = Array2::from_shape_vec((n, width), flat.map(|v| v as f32).collect())
+                .expect("envs × sensors");
             a.into_pyarray(py).into_any()
         }
     }
@@ -348,11 +353,15 @@ impl GymCore {
                 Ok(Slot { exp, arena, run })
             })
             .collect::<PyResult<Vec<_>>>()?;
+        let spec = slots[0].exp.trial_params().robot().spec();
+        let (sensors, reading_max) = (spec.sensors(), spec.reading_max());
         let mut core = GymCore {
             slots,
             envs: Vec::with_capacity(num_envs),
             reward,
             float64,
+            sensors,
+            reading_max,
             user: terms,
             supply,
             needs_reset: false,
@@ -368,6 +377,25 @@ impl GymCore {
     #[getter]
     fn num_envs(&self) -> usize {
         self.envs.len()
+    }
+
+    /// The robot's name.
+    #[getter]
+    fn robot(&self) -> String {
+        let spec = self.slots[0].exp.trial_params().robot().spec();
+        spec.name().to_string()
+    }
+
+    /// The robot's sensors: an observation's length.
+    #[getter]
+    fn sensors(&self) -> usize {
+        self.sensors
+    }
+
+    /// The robot's largest reading (an observation is reading / `reading_max`).
+    #[getter]
+    fn reading_max(&self) -> f64 {
+        self.reading_max
     }
 
     /// Steps per trial `T`.
@@ -440,7 +468,7 @@ impl GymCore {
 
 /// A step's results over the envs, gathered without the GIL.
 struct Out {
-    obs: Vec<[f64; INPUTS]>,
+    obs: Vec<Readings>,
     reward: Vec<f64>,
     terminated: Vec<bool>,
     truncated: Vec<bool>,
@@ -536,16 +564,19 @@ impl Out {
     }
 }
 
-/// The motor outputs of the network of `genome` (the library's `Mlp`, `hidden` units) for
-/// `inputs` (8 values in [0, 1]): what it gives the simulator.
+/// The motor outputs of the network of `genome` (the library's `Mlp`, `hidden` units, one
+/// input per sensor) for `inputs` (one value in [0, 1] per sensor): what it gives the
+/// simulator.
 #[pyfunction]
 pub(crate) fn network_outputs(
     genome: Vec<f64>,
     hidden: usize,
-    inputs: [f64; 8],
+    inputs: Vec<f64>,
 ) -> PyResult<[f64; 2]> {
-    let shape = fuzzymotiv::simulation::MlpShape::with_hidden(hidden)
-        .map_err(|e| input_err(format!("hidden: {e}")))?;
+    let shape = MlpShape::with_hidden(hidden)
+        .map_err(|e| input_err(format!("hidden: {e}")))?
+        .with_inputs(inputs.len())
+        .map_err(|e| input_err(format!("obs: {} inputs: {}", inputs.len(), e.reason)))?;
     let mut net =
         Mlp::from_genome(shape, &genome).map_err(|e| input_err(format!("genome: {e}")))?;
     Ok(net.step(&inputs))

@@ -21,13 +21,14 @@ use fuzzymotiv::fitness::{
     TskFitness,
 };
 use fuzzymotiv::simulation::Trajectory;
+use fuzzymotiv::simulation::{BUILTIN_ROBOTS, RobotSpec};
 use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{
     FilesState, OutState, PYTHON, StagedDir, check_files, check_out_as, write_files,
 };
 use fuzzymotiv_io::files::inputs::{
-    Loaded, load_config, load_room_file, parse_seed, resolve, run_identity,
+    Loaded, load_config, load_robot, load_room_file, parse_seed, resolve, run_identity,
 };
 use fuzzymotiv_io::pipeline::progress::NoProgress;
 use fuzzymotiv_io::pipeline::run_dir;
@@ -1045,7 +1046,7 @@ fn simulate<'py>(
     // As `replay`: neither recognition nor online orientation changes a trajectory.
     let exp = gym::single_room(&loaded, &room, &terms)?;
     let instance = instance_of(py, &exp, &genome)?;
-    let d = trajectory_dict(py, &instance.trajectory)?;
+    let d = trajectory_dict(py, &instance.trajectory, exp.shape().inputs())?;
     let name = &exp.arenas()[0].room().name;
     let (mut values, mut f) = (instance.terms, instance.f);
     if let (false, Some(supply)) = (terms.is_empty(), &supply) {
@@ -1077,10 +1078,10 @@ fn instance_of(py: Python<'_>, exp: &Experiment, genome: &[f64]) -> PyResult<Ins
     let want = exp.shape().genome_len();
     if genome.len() != want {
         return Err(input_err(format!(
-            "genome: {} weights, but an 8-{}-2 network needs {want} (network.hidden = {})",
+            "genome: {} weights, but {} needs {want} ({})",
             genome.len(),
-            exp.shape().hidden(),
-            exp.shape().hidden()
+            network_phrase(exp),
+            network_sizes(exp)
         )));
     }
     let run = exp.runs().remove(0);
@@ -1088,8 +1089,65 @@ fn instance_of(py: Python<'_>, exp: &Experiment, genome: &[f64]) -> PyResult<Ins
     Ok(py.detach(|| exp.instance_run(&network, &run, 0)))
 }
 
-/// A trajectory as numpy columns (poses, sensors, motors and the per-step flags).
-fn trajectory_dict<'py>(py: Python<'py>, tr: &Trajectory) -> PyResult<Bound<'py, PyDict>> {
+/// `exp`'s network as errors name it: `an 8-6-2 network`, `a 7-6-2 network`.
+pub(crate) fn network_phrase(exp: &Experiment) -> String {
+    let s = exp.shape();
+    let n = s.inputs();
+    let article = if [8, 11, 18].contains(&n) { "an" } else { "a" };
+    format!("{article} {n}-{}-2 network", s.hidden())
+}
+
+/// Where `exp`'s network's sizes come from, for errors: `network.hidden = 6; robot khepera: 8
+/// sensors`.
+pub(crate) fn network_sizes(exp: &Experiment) -> String {
+    let spec = exp.trial_params().robot().spec();
+    format!(
+        "network.hidden = {}; robot {}: {} sensors",
+        exp.shape().hidden(),
+        spec.name(),
+        spec.sensors()
+    )
+}
+
+/// The robot `robot=` names, read as the CLI reads one (`load_robot`): a built-in robot
+/// ([`BUILTIN_ROBOTS`]) or a robot file (a path, relative to the working directory), checked
+/// (a bad file's error names it and its field). Returns `name`, `file` (the built-in name or
+/// the file's absolute path: what a config's `robot.file` takes), `sensors`, `labels`,
+/// `reading_max` and `radius`.
+#[pyfunction]
+fn robot_info(py: Python<'_>, robot: PathBuf) -> PyResult<Bound<'_, PyDict>> {
+    let entry = robot.to_string_lossy().into_owned();
+    let file = if RobotSpec::builtin(&entry).is_some() {
+        entry
+    } else {
+        let path = std::path::absolute(&robot).unwrap_or(robot.clone());
+        if entry.is_empty() || !path.is_file() {
+            return Err(ConfigError::new_err(format!(
+                "robot: {entry:?} is neither a built-in robot ({}) nor a robot file (looked for {})",
+                BUILTIN_ROBOTS.join(", "),
+                path.display()
+            )));
+        }
+        path.display().to_string()
+    };
+    let spec = load_robot(&file, "robot").map_err(config_err)?;
+    let d = PyDict::new(py);
+    d.set_item("name", spec.name())?;
+    d.set_item("file", file)?;
+    d.set_item("sensors", spec.sensors())?;
+    d.set_item("labels", spec.labels().to_vec())?;
+    d.set_item("reading_max", spec.reading_max())?;
+    d.set_item("radius", spec.radius())?;
+    Ok(d)
+}
+
+/// A trajectory as numpy columns (poses, `sensors` readings per step, motors and the
+/// per-step flags).
+fn trajectory_dict<'py>(
+    py: Python<'py>,
+    tr: &Trajectory,
+    sensors: usize,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let poses =
         |k: usize| -> Vec<f64> { tr.poses.iter().map(|p| [p.x, p.y, p.heading][k]).collect() };
@@ -1097,12 +1155,11 @@ fn trajectory_dict<'py>(py: Python<'py>, tr: &Trajectory) -> PyResult<Bound<'py,
     d.set_item("y", PyArray1::from_vec(py, poses(1)))?;
     d.set_item("heading", PyArray1::from_vec(py, poses(2)))?;
     let t = tr.sensors.len();
-    let flat: Vec<f64> = tr.sensors.iter().flatten().copied().collect();
-    let cols = tr.sensors.first().map_or(8, |s| s.len());
+    let flat: Vec<f64> = tr.sensors.iter().flat_map(|r| r.iter().copied()).collect();
     d.set_item(
         "sensors",
-        Array2::from_shape_vec((t, cols), flat)
-            .expect("T × 8")
+        Array2::from_shape_vec((t, sensors), flat)
+            .expect("T × N")
             .into_pyarray(py),
     )?;
     let motors: Vec<f64> = tr.motors.iter().flatten().copied().collect();
@@ -1140,6 +1197,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
         m.py().get_type::<DependencyNotInstalled>(),
     )?;
     m.add("MAX_THREADS", MAX_THREADS)?;
+    m.add("ROBOTS", BUILTIN_ROBOTS.to_vec())?;
     m.add("VERSION", fuzzymotiv::VERSION)?;
     m.add("MODEL_VERSION", fuzzymotiv::MODEL_VERSION)?;
     m.add_function(wrap_pyfunction!(fuzzy_fitness_one, m)?)?;
@@ -1151,6 +1209,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(robustness::robustness, m)?)?;
     m.add_function(wrap_pyfunction!(recognise::recognise, m)?)?;
     m.add_function(wrap_pyfunction!(rooms, m)?)?;
+    m.add_function(wrap_pyfunction!(robot_info, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(frames::frames, m)?)?;

@@ -22,7 +22,10 @@ use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 
 use crate::terms::{load_with_terms, parse_config, record, resolve_with_terms, supplied_values};
-use crate::{config_err, input_err, py_float, seed_arg, thread_pool, whole_number};
+use crate::{
+    config_err, input_err, network_phrase, network_sizes, py_float, seed_arg, thread_pool,
+    whole_number,
+};
 
 /// Distinct seeds whose experiments a problem keeps (besides its own).
 const SEEDS_KEPT: usize = 4;
@@ -106,13 +109,13 @@ pub(crate) fn genomes_arg(
     genomes: &PyReadonlyArray2<'_, f64>,
     exp: &Experiment,
 ) -> PyResult<Population> {
-    let shape = exp.shape();
-    let want = shape.genome_len();
+    let want = exp.shape().genome_len();
     let [rows, cols] = [genomes.shape()[0], genomes.shape()[1]];
     if cols != want {
         return Err(input_err(format!(
-            "{arg}: expected a (population, {want}) array (an 8-{h}-2 network has {want} weights; network.hidden = {h}), got shape ({rows}, {cols})",
-            h = shape.hidden()
+            "{arg}: expected a (population, {want}) array ({} has {want} weights; {}), got shape ({rows}, {cols})",
+            network_phrase(exp),
+            network_sizes(exp)
         )));
     }
     let view = genomes.as_array();
@@ -315,6 +318,18 @@ impl Problem {
     fn ga_sizes(&self) -> (usize, usize) {
         let ga = self.exp.ga();
         (ga.population(), ga.generations())
+    }
+
+    /// The robot's name (`robot` of its file: `khepera`, `epuck2`, `thymio2`, ...).
+    #[getter]
+    fn robot(&self) -> String {
+        self.exp.trial_params().robot().spec().name().to_string()
+    }
+
+    /// The robot's sensors: the network's inputs N.
+    #[getter]
+    fn sensors(&self) -> usize {
+        self.exp.shape().inputs()
     }
 
     /// Hidden units of the network.

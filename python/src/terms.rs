@@ -143,13 +143,21 @@ pub(crate) fn record<'py>(
     recorded: &[(Evaluation, Vec<Trajectory>)],
 ) -> PyResult<Bound<'py, PyDict>> {
     let steps = exp.trial_params().steps();
-    record_trials(py, steps, exp.measures_mission(), rooms, recorded)
+    let sensors = exp.shape().inputs();
+    record_trials(
+        py,
+        (steps, sensors),
+        exp.measures_mission(),
+        rooms,
+        recorded,
+    )
 }
 
-/// [`record`] of trials of `steps` steps, with the mission terms when `mission`.
+/// [`record`] of trials of `steps` steps of a robot of `sensors` sensors, with the mission
+/// terms when `mission`.
 fn record_trials<'py>(
     py: Python<'py>,
-    steps: usize,
+    (steps, sensors): (usize, usize),
     mission: bool,
     rooms: &[String],
     recorded: &[(Evaluation, Vec<Trajectory>)],
@@ -190,13 +198,13 @@ fn record_trials<'py>(
         "energy",
         per_step(py, recorded, steps, |t| t.energy.clone()),
     )?;
-    let sensors: Vec<f64> = (recorded.iter())
-        .flat_map(|(_, ts)| ts.iter().flat_map(|t| t.sensors.iter().flatten().copied()))
+    let readings: Vec<f64> = (recorded.iter())
+        .flat_map(|(_, ts)| ts.iter().flat_map(|t| t.sensors.iter()))
+        .flat_map(|r| r.iter().copied())
         .collect();
-    let width = sensors.len() / (pop * n_rooms * steps).max(1);
     d.set_item(
         "sensors",
-        Array4::from_shape_vec((pop, n_rooms, steps, width), sensors)
+        Array4::from_shape_vec((pop, n_rooms, steps, sensors), readings)
             .expect("pop × rooms × T × sensors")
             .into_pyarray(py),
     )?;
@@ -337,8 +345,9 @@ impl PyTerm {
         let room = trial.arena.room().name.clone();
         let recorded = vec![one_trial(terms, trial.trajectory.clone())];
         let steps = trial.trajectory.actions.len();
+        let sensors = trial.arena.sensors();
         let mission = trial.terms.mission.is_some();
-        let trials = record_trials(py, steps, mission, &[room], &recorded)?;
+        let trials = record_trials(py, (steps, sensors), mission, &[room], &recorded)?;
         let values = self.supply.bind(py).call1((trials,))?;
         let mut evals: Vec<Evaluation> = recorded.into_iter().map(|(e, _)| e).collect();
         supplied_values(&values, std::slice::from_ref(&self.name), &mut evals)?;
