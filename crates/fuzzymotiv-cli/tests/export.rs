@@ -126,14 +126,14 @@ fn run_driver(exe: &Path, input: &str) -> Vec<String> {
 
 fn params(motion: Motion, noise: f64) -> TrialParams {
     let trial = RawTrial {
-        noise,
+        noise: Some(noise),
         ..RawTrial::default()
     };
     let robot = RawRobot {
         motion,
         ..RawRobot::default()
     };
-    TrialParams::from_raw(&trial, &robot, 0.25).unwrap()
+    TrialParams::from_raw(&trial, &robot, fuzzymotiv::simulation::RobotSpec::khepera(), 0.25).unwrap()
 }
 
 fn genome(shape: MlpShape, seed: u64, scale: f64) -> Vec<f64> {

@@ -220,7 +220,7 @@ fn bad_tracks_are_named() {
         "{err}"
     );
     let one = [Pose::new(room.home.x, room.home.y, 0.0)];
-    let sensors = [[0.0; 8]; 3];
+    let sensors = [fuzzymotiv::simulation::Readings::zeros(8); 3];
     let t = Track {
         poses: &one,
         sensors: Some(&sensors),

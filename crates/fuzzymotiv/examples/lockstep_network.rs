@@ -31,7 +31,10 @@ impl StepObserver for Inputs {
     fn observe(&mut self, s: &Step) {
         if !s.idle {
             self.0
-                .push(s.sensors.map(|v| if v == 0.0 { 0.0 } else { v / 1023.0 }));
+                .push(std::array::from_fn(|k| match s.sensors[k] {
+                    0.0 => 0.0,
+                    v => v / 1023.0,
+                }));
         }
     }
 }
@@ -104,7 +107,8 @@ fn main() {
         end_at_home: false,
         ..RawTrial::default()
     };
-    let params = TrialParams::from_raw(&trial, &RawRobot::default(), DEFAULT_ACTION_TOLERANCE)
+    let khepera = fuzzymotiv::simulation::RobotSpec::khepera();
+    let params = TrialParams::from_raw(&trial, &RawRobot::default(), khepera, DEFAULT_ACTION_TOLERANCE)
         .expect("valid parameters");
     let arena = Arena::new(Room::builtin("H").unwrap(), &params);
     let shape = MlpShape::with_hidden(H).expect("a valid hidden layer");

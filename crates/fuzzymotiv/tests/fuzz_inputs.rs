@@ -165,7 +165,7 @@ proptest! {
             Ok(room) => {
                 // A valid room must be usable by the simulator.
                 let raw = fuzzymotiv::simulation::RawTrial { steps: 20, ..Default::default() };
-                let params = fuzzymotiv::simulation::TrialParams::from_raw(&raw, &Default::default(), 0.25).unwrap();
+                let params = fuzzymotiv::simulation::TrialParams::from_raw(&raw, &Default::default(), fuzzymotiv::simulation::RobotSpec::khepera(), 0.25).unwrap();
                 let arena = fuzzymotiv::simulation::Arena::new(room, &params);
                 prop_assert!(arena.reachable_cells() <= arena.cell_count());
             }

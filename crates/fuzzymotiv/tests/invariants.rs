@@ -14,7 +14,7 @@ fn params(trial: RawTrial, motion: Motion) -> TrialParams {
         motion,
         ..RawRobot::default()
     };
-    TrialParams::from_raw(&trial, &robot, DEFAULT_ACTION_TOLERANCE).unwrap()
+    TrialParams::from_raw(&trial, &robot, fuzzymotiv::simulation::RobotSpec::khepera(), DEFAULT_ACTION_TOLERANCE).unwrap()
 }
 
 fn genome(seed: u64, scale: f64) -> Vec<f64> {
@@ -31,7 +31,7 @@ proptest! {
     #[test]
     fn robot_never_overlaps_a_wall(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2, wheels in any::<bool>()) {
         let motion = if wheels { Motion::Wheels } else { Motion::Actions };
-        let params = params(RawTrial { steps: 300, noise, ..RawTrial::default() }, motion);
+        let params = params(RawTrial { steps: 300, noise: Some(noise), ..RawTrial::default() }, motion);
         let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
         let mut mlp = Mlp::from_genome(MlpShape::default(), &genome(seed, scale)).unwrap();
         let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed ^ 1));
@@ -50,7 +50,7 @@ proptest! {
     /// ray reads, the first time a pose is seen and every time after, in every room.
     #[test]
     fn the_memo_changes_nothing(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2) {
-        let params = params(RawTrial { steps: 300, noise, ..RawTrial::default() }, Motion::Actions);
+        let params = params(RawTrial { steps: 300, noise: Some(noise), ..RawTrial::default() }, Motion::Actions);
         let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
         let casting = arena.clone().without_memo();
         prop_assert!(arena.remembers() && !casting.remembers());
@@ -70,7 +70,7 @@ proptest! {
     /// the centre by 0 or exactly v_max·dt = 8 mm, for random controllers in every room.
     #[test]
     fn actions_stay_on_the_grid(seed in any::<u64>(), room in 0usize..5, scale in 0.5f64..5.0, noise in 0.0f64..0.2) {
-        let params = params(RawTrial { steps: 300, noise, ..RawTrial::default() }, Motion::Actions);
+        let params = params(RawTrial { steps: 300, noise: Some(noise), ..RawTrial::default() }, Motion::Actions);
         let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
         let mut mlp = Mlp::from_genome(MlpShape::default(), &genome(seed, scale)).unwrap();
         let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed ^ 1));

@@ -13,14 +13,15 @@ const STEP: &str = "[[ray]]\ndistance_mm = [10, 50]\nreading = [700, 300]\n";
 
 fn params(motion: Motion, noise: f64) -> TrialParams {
     let trial = RawTrial {
-        noise,
+        noise: Some(noise),
         ..RawTrial::default()
     };
     let robot = RawRobot {
         motion,
         ..RawRobot::default()
     };
-    TrialParams::from_raw(&trial, &robot, 0.25).unwrap()
+    let khepera = fuzzymotiv::simulation::RobotSpec::khepera();
+    TrialParams::from_raw(&trial, &robot, khepera, 0.25).unwrap()
 }
 
 fn with_table(p: TrialParams, text: &str) -> TrialParams {

@@ -208,23 +208,26 @@ pub fn resolved_toml(raw: &RawConfig) -> String {
     )
 }
 
-/// The comment lines `# Room file PATH: FNV-1a HEX` of the config's room files (resolved
-/// entries are absolute paths; built-in rooms have none), each ending in a newline.
+/// The comment lines `# Room file PATH: FNV-1a HEX` of the config's room files and
+/// `# Robot file PATH: FNV-1a HEX` of its robot file (resolved entries are absolute paths;
+/// built-in rooms and robots have none), each ending in a newline.
 pub fn room_file_lines(raw: &RawConfig) -> Vec<String> {
-    (raw.rooms.iter())
-        .filter(|entry| Path::new(entry).is_absolute())
-        .map(|entry| match read_input(Path::new(entry), ROOM_FILE) {
+    let rooms = (raw.rooms.iter()).map(|entry| ("Room file", entry, ROOM_FILE));
+    let robot = (raw.robot.file.iter()).map(|entry| ("Robot file", entry, ROBOT_FILE));
+    (rooms.chain(robot))
+        .filter(|(_, entry, _)| Path::new(entry).is_absolute())
+        .map(|(what, entry, kind)| match read_input(Path::new(entry), kind) {
             Ok(text) => format!(
-                "# Room file {entry}: FNV-1a {:016x}\n",
+                "# {what} {entry}: FNV-1a {:016x}\n",
                 fnv1a(text.as_bytes())
             ),
-            Err(_) => format!("# Room file {entry}: unreadable\n"),
+            Err(_) => format!("# {what} {entry}: unreadable\n"),
         })
         .collect()
 }
 
-/// The room files of the run whose `config.resolved.toml` is `config` still hold what the run
-/// used (its `# Room file` lines; a run written before they were recorded has none, and is
+/// The room and robot files of the run whose `config.resolved.toml` is `config` still hold
+/// what the run used (its `# Room file` and `# Robot file` lines; a run written before they were recorded has none, and is
 /// taken as it is); else an error ending in `remedy`.
 pub fn rooms_unchanged(config: &Path, loaded: &Loaded, remedy: &str) -> Result<(), CliError> {
     let text = read_input(config, CONFIG)?;
@@ -232,8 +235,9 @@ pub fn rooms_unchanged(config: &Path, loaded: &Loaded, remedy: &str) -> Result<(
     let now = room_file_lines(&loaded.raw);
     match saved.iter().find(|l| !now.contains(l)) {
         Some(line) => Err(CliError::input(format!(
-            "{}: a room file changed since the run ({}); {remedy}",
+            "{}: a {} file changed since the run ({}); {remedy}",
             config.display(),
+            if line.starts_with("# Robot") { "robot" } else { "room" },
             line.trim_start_matches("# ").trim_end()
         ))),
         None => Ok(()),
@@ -243,7 +247,7 @@ pub fn rooms_unchanged(config: &Path, loaded: &Loaded, remedy: &str) -> Result<(
 /// The room-file lines of a saved `config.resolved.toml` text.
 fn saved_room_file_lines(text: &str) -> Vec<String> {
     (text.lines())
-        .filter(|l| l.starts_with("# Room file "))
+        .filter(|l| l.starts_with("# Room file ") || l.starts_with("# Robot file "))
         .map(|l| format!("{l}\n"))
         .collect()
 }
