@@ -752,3 +752,113 @@ fn the_fitness_combination_is_chosen_explained_and_reported_in_chromium() {
     let console = d.console_errors();
     assert!(console.is_empty(), "console errors: {console:?}");
 }
+
+/// Picks the robot `name` in the run form's robot picker, as a person does.
+fn pick_robot(d: &Driver, name: &str) {
+    let o = d
+        .find_xpath(&format!("//select[@id='robot']/option[@value='{name}']"))
+        .unwrap_or_else(|| panic!("no robot `{name}` in the picker"));
+    d.cmd("POST", &format!("/element/{o}/click"), json!({}));
+}
+
+#[test]
+#[ignore = "needs chromium: run by .ci/run"]
+fn the_robot_picker_lists_the_robots_and_the_chosen_robot_runs_and_is_drawn_in_chromium() {
+    require_browser();
+    let tmp = tempfile::tempdir().unwrap();
+    let lab = LabProcess::start(&tmp.path().join("lab"));
+    let mut d = Driver::start();
+    d.new_session(&tmp.path().join("chromium-profile"));
+    d.goto(&lab.url);
+    wait_for(
+        &d,
+        30,
+        "the page",
+        "return document.querySelectorAll('#room-choices .thumb').length >= 5 && document.querySelectorAll('#robot option').length;",
+    );
+
+    // The picker: the three built-in robots, the Khepera first and chosen, drawn to scale.
+    let select = labelled(&d, "Robot");
+    assert!(d.displayed(&select));
+    let options = d.script("return Array.from(document.querySelectorAll('#robot option')).map(function (o) { return [o.value, o.textContent]; });");
+    let options: Vec<(String, String)> = serde_json::from_value(options).unwrap();
+    let values: Vec<&str> = options.iter().map(|o| o.0.as_str()).collect();
+    assert_eq!(values, ["khepera", "epuck2", "thymio2"]);
+    for ((_, text), n) in options.iter().zip([8, 8, 7]) {
+        assert!(text.contains(&format!("{n} sensors")), "{text}");
+    }
+    let drawn = "var g = document.querySelector('#robot-preview g.robot'); return [g.getAttribute('data-robot'), g.querySelectorAll('.sensor-ray').length, +g.querySelector('.robot-body').getAttribute('r')];";
+    assert_eq!(d.script(drawn), json!(["khepera", 8, 27.5]));
+    pick_robot(&d, "thymio2");
+    assert_eq!(d.script(drawn), json!(["thymio2", 7, 80]));
+
+    // The Thymio in the paper's rooms: refused with the engine's clearance error, beside Evolve.
+    d.click_button("Evolve");
+    let status = wait_for(
+        &d,
+        30,
+        "the refusal",
+        "var s = document.getElementById('run-status'); return s.className === 'error' && s.textContent;",
+    );
+    let status = status.as_str().unwrap();
+    assert!(
+        status.starts_with("Not started: lab settings: field `rooms[0]`: home of room \"H\"")
+            && status.contains("closer than robot.radius 80")
+            && status.contains("rooms/thymio2/"),
+        "{status}"
+    );
+    let refused = d.console_errors();
+    assert!(
+        refused.len() == 1 && refused[0].contains("400"),
+        "only the refused request is logged: {refused:?}"
+    );
+
+    // The e-puck2, a small run in two rooms: its body and sensors drawn where each path ends.
+    pick_robot(&d, "epuck2");
+    for room in ["T", "L", "rectangle"] {
+        let cb = d.element(&format!("#room-{room}"));
+        d.cmd("POST", &format!("/element/{cb}/click"), json!({}));
+    }
+    type_into(&d, &labelled(&d, "Population"), "6");
+    type_into(&d, &labelled(&d, "Generations"), "2");
+    type_into(&d, &labelled(&d, "Steps"), "100");
+    d.click_button("Evolve");
+    wait_for(
+        &d,
+        300,
+        "the run to finish",
+        "return window.labTimes.finished;",
+    );
+    let status = d.script("return document.getElementById('run-status').textContent;");
+    assert!(status.as_str().unwrap().ends_with("finished"), "{status}");
+    let ends = d.script("return Array.from(document.querySelectorAll('#paths .thumb')).map(function (t) { var g = t.querySelector('g.robot'), b = g.querySelector('.robot-body'); var p = t.querySelector('.robot-path').getAttribute('points').split(' ').pop().split(','); return [g.getAttribute('data-robot'), g.querySelectorAll('.sensor-ray').length, +b.getAttribute('r'), +b.getAttribute('cx') === +p[0] && +b.getAttribute('cy') === +p[1]]; });");
+    let radius = fuzzymotiv::simulation::RobotSpec::builtin("epuck2")
+        .unwrap()
+        .radius();
+    let ends = ends.as_array().unwrap();
+    assert_eq!(ends.len(), 2, "a path in H and one in square: {ends:?}");
+    for e in ends {
+        assert_eq!(
+            (e[0].as_str(), e[1].as_u64(), e[2].as_f64(), e[3].as_bool()),
+            (Some("epuck2"), Some(8), Some(radius), Some(true)),
+            "the e-puck2's body and 8 rays at the path's end: {e}"
+        );
+    }
+    let config = d.script("var x = new XMLHttpRequest(); x.open('GET', document.getElementById('download-config').href, false); x.send(); return x.responseText;");
+    assert!(
+        config.as_str().unwrap().contains("file = \"epuck2\""),
+        "{config}"
+    );
+    wait_for(
+        &d,
+        10,
+        "the run listed with its robot",
+        "var c = document.querySelector('#run-list tbody td:nth-child(3)'); return c && /, epuck2$/.test(c.textContent);",
+    );
+    d.script("document.getElementById('evolve-panel').scrollIntoView();");
+    let shot = target_dir().join("lab-robot-screenshot.png");
+    std::fs::write(&shot, d.full_page_png()).unwrap();
+    eprintln!("screenshot: {}", shot.display());
+    let console = d.console_errors();
+    assert!(console.is_empty(), "console errors: {console:?}");
+}

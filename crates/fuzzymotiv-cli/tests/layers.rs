@@ -45,6 +45,7 @@ const LAYERS: [(&str, usize); 34] = [
     ("lab::errors", 13),      // the handlers' error (status + the CLI's message)
     ("lab::assets", 13),      // the embedded page, script and style
     ("lab::rooms", 14),       // built-in, drawn and uploaded rooms, checked and saved
+    ("lab::robots", 14),      // the built-in robots a run may drive, as the picker draws them
     ("lab::security", 14),    // token, Host check, security headers
     ("lab::live", 14),        // a run's events: generations, paths, result
     ("lab::motivations", 14), // the sliders' motivations: presets, a config's, explain over N

@@ -24,6 +24,7 @@ use crate::assets;
 use crate::errors::{ApiError, parse_body};
 use crate::limits;
 use crate::motivations;
+use crate::robots;
 use crate::rooms::{self, RoomRequest};
 use crate::runs::{Runs, Status};
 use crate::settings::Settings;
@@ -51,6 +52,7 @@ pub fn router(state: Arc<AppState>) -> Router {
         .route("/api/explain", post(explain))
         .route("/api/config", post(config_motivations))
         .route("/api/rooms", get(room_list).post(room_check))
+        .route("/api/robots", get(|| async { Json(robots::list()) }))
         .route("/api/runs", get(run_list).post(run_start))
         .route("/api/runs/{id}", get(run_detail))
         .route("/api/runs/{id}/cancel", post(run_cancel))

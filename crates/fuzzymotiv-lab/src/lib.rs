@@ -1,6 +1,6 @@
 //! `fuzzymotiv lab`: a local web page where a person sets the motivations (the paper's C, H, O,
-//! E or any config's), chooses or draws rooms and their missions, evolves robots live and
-//! compares runs.
+//! E or any config's), chooses or draws rooms and their missions, picks a built-in robot
+//! (khepera, epuck2, thymio2), evolves robots live and compares runs.
 //!
 //! The server (axum on tokio) binds to loopback by default and answers only requests that
 //! carry its random token (`?token=` once, then a cookie, or the `x-fuzzymotiv-token` header)
@@ -30,6 +30,7 @@ mod errors;
 pub mod limits;
 mod live;
 mod motivations;
+mod robots;
 mod rooms;
 mod runs;
 mod security;

@@ -1,6 +1,7 @@
 //! What a run shows while it goes on: one event per generation (F's statistics and the mean
-//! terms a, g, l, b) and, every few generations, the current best robot's paths in every room;
-//! and what it shows when it ends (the per-room table, recognition, the final paths).
+//! terms a, g, l, b) and, every few generations, the current best robot's paths in every room
+//! (each with its final pose, and the robot's name, for the page to draw the body there); and
+//! what it shows when it ends (the per-room table, recognition, the final paths).
 
 use std::ops::ControlFlow;
 
@@ -26,6 +27,17 @@ pub fn path_points(t: &Trajectory) -> Vec<[f64; 2]> {
         points.push([last.x, last.y]);
     }
     points
+}
+
+/// Where a path ends: `[x, y, heading]` (mm, mm, rad) of the last pose, where the page draws
+/// the robot's body and sensors; `None` for an empty path.
+pub fn final_pose(t: &Trajectory) -> Option<[f64; 3]> {
+    t.poses.last().map(|p| [p.x, p.y, p.heading])
+}
+
+/// The name of the robot a run drives (the page draws it from `/api/robots`).
+fn robot_name(exp: &Experiment) -> &str {
+    exp.trial_params().robot().spec().name()
 }
 
 /// Where a run's events go (the run's entry in the lab's list).
@@ -96,10 +108,11 @@ impl<'a> Live<'a> {
             .map(|r| {
                 let i = self.exp.instance_run(&net, &run, r);
                 json!({ "room": names[r], "points": path_points(&i.trajectory), "f": i.f,
+                        "pose": final_pose(&i.trajectory),
                         "goal_step": goal_step(self.exp, r, &i.trajectory) })
             })
             .collect();
-        Some(json!({ "generation": generation, "rooms": rooms }))
+        Some(json!({ "generation": generation, "rooms": rooms, "robot": robot_name(self.exp) }))
     }
 }
 
@@ -141,7 +154,8 @@ pub fn result(exp: &Experiment, done: &Finished) -> Value {
         .zip(&names)
         .enumerate()
         .map(|(r, (t, name))| {
-            json!({ "room": name, "points": path_points(t), "goal_step": goal_step(exp, r, t) })
+            json!({ "room": name, "points": path_points(t), "pose": final_pose(t),
+                    "goal_step": goal_step(exp, r, t) })
         })
         .collect();
     let confusion: Vec<Value> = done
@@ -152,7 +166,8 @@ pub fn result(exp: &Experiment, done: &Finished) -> Value {
         .collect();
     json!({
         "rows": done.rows,
-        "paths": { "generation": exp.ga().generations().saturating_sub(1), "rooms": paths, "final": true },
+        "paths": { "generation": exp.ga().generations().saturating_sub(1), "rooms": paths,
+                   "final": true, "robot": robot_name(exp) },
         "recognition": confusion,
         "wall_seconds": done.wall_seconds,
         "combine": exp.combination(),

@@ -210,7 +210,7 @@ impl Runs {
             )));
         }
         let id = self.fresh_id(&loaded.raw.name, loaded.raw.seed);
-        let about = about(&settings, &loaded.raw);
+        let about = about(&settings, &loaded);
         let entry = Arc::new(RunEntry::new(id, about, Some(settings), Status::Queued));
         self.list().push(entry.clone());
         queue.push_back(entry.clone());
@@ -358,11 +358,15 @@ impl Runs {
     }
 }
 
-/// What the list says of a run: its motivations' weights in input order, and their names.
-fn about(s: &Settings, raw: &fuzzymotiv::experiment::RawConfig) -> Value {
+/// What the list says of a run: its robot, its motivations' weights in input order, and their
+/// names.
+fn about(s: &Settings, loaded: &fuzzymotiv_io::files::inputs::Loaded) -> Value {
+    let raw = &loaded.raw;
     let m = &raw.motivations.list;
+    let robot = loaded.experiment.trial_params().robot().spec().name();
     json!({ "name": raw.name, "seed": raw.seed, "population": s.population,
             "generations": s.generations, "rooms": raw.rooms, "combine": raw.fitness.combine,
+            "robot": robot,
             "motivations": m.iter().map(|(_, w)| w.weight()).collect::<Vec<_>>(),
             "motivation_names": m.iter().map(|(n, _)| n).collect::<Vec<_>>() })
 }

@@ -38,6 +38,10 @@ pub struct Settings {
     /// GA generations (`ga.generations`); default 30.
     #[serde(default = "default_size")]
     pub generations: usize,
+    /// The robot (`robot.file`): a built-in robot's name (`khepera`, `epuck2`, `thymio2`);
+    /// default the paper's Khepera. Left out of the settings shown when not given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robot: Option<String>,
     /// `robot.motion`: "actions" or "wheels"; default the config's.
     #[serde(default)]
     pub motion: Option<String>,
@@ -104,11 +108,15 @@ impl Settings {
         if let Some(on) = self.recognition {
             doc.insert("aem".into(), section("enabled", Value::Boolean(on)));
         }
+        let mut robot = Table::new();
+        if let Some(name) = &self.robot {
+            robot.insert("file".into(), Value::String(name.clone()));
+        }
         if let Some(motion) = &self.motion {
-            doc.insert(
-                "robot".into(),
-                section("motion", Value::String(motion.clone())),
-            );
+            robot.insert("motion".into(), Value::String(motion.clone()));
+        }
+        if !robot.is_empty() {
+            doc.insert("robot".into(), Value::Table(robot));
         }
         if let Some(combine) = &self.combine {
             let combine = Value::String(combine.clone());
@@ -167,6 +175,9 @@ impl Settings {
     /// `DIR/rooms/`, or the start config's `config_rooms`).
     pub fn load(&self, dir: &Path, config_rooms: &[String]) -> Result<Loaded, ApiError> {
         self.check_limits(SOURCE)?;
+        if let Some(robot) = &self.robot {
+            crate::robots::check(robot, SOURCE)?;
+        }
         self.check_rooms(dir, config_rooms)?;
         let raw = RawConfig::parse(&self.document(), SOURCE, &[])
             .map_err(|e| ApiError::bad(e.to_string()))?;

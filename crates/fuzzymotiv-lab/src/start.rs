@@ -1,17 +1,19 @@
 //! The config a lab starts on (`fuzzymotiv lab --config FILE`): read and checked at start as
 //! `fuzzymotiv run` reads it, and what the page opens on (its `start` in `/api/info`): the
 //! config's motivations as sliders, its rooms chosen (room files listed beside the built-in
-//! ones), the settings the lab's form has, and the keys it sets that the lab cannot.
+//! ones), its robot if built in, the settings the lab's form has, and the keys it sets that
+//! the lab cannot.
 
 use std::path::Path;
 
 use fuzzymotiv::experiment::RawConfig;
-use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::{RobotSpec, Room};
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::inputs::load_config;
 use serde_json::{Value, json};
 
 use crate::motivations;
+use crate::robots::DEFAULT_ROBOT;
 use crate::rooms::RoomView;
 use crate::settings::Settings;
 
@@ -90,12 +92,16 @@ fn settings_of(raw: &RawConfig) -> Settings {
     let motion = serde_json::to_value(raw.robot.motion)
         .ok()
         .and_then(|v| v.as_str().map(str::to_string));
+    // A robot file by path is not the lab's to run: the page's robot is then the default,
+    // and `robot.file` is among the keys it cannot set.
+    let robot = raw.robot.file.as_deref().unwrap_or(DEFAULT_ROBOT);
     Settings {
         name: raw.name.clone(),
         seed: raw.seed,
         motivations: raw.motivations.clone(),
         population: raw.ga.population,
         generations: raw.ga.generations,
+        robot: RobotSpec::builtin(robot).map(|_| robot.to_string()),
         motion,
         steps: Some(raw.trial.steps),
         rooms: Some(raw.rooms.clone()),
@@ -106,9 +112,15 @@ fn settings_of(raw: &RawConfig) -> Settings {
     }
 }
 
-/// The dotted keys where `raw` differs from the config the lab writes of `settings`.
+/// The dotted keys where `raw` (resolved) differs from the config the lab writes of
+/// `settings`, resolved as a run resolves it (what its robot file gives the robot and the
+/// trial written out).
 fn not_set(raw: &RawConfig, settings: &Settings, file: &str) -> Result<Vec<String>, CliError> {
-    let lab = RawConfig::parse(&settings.document(), file, &[])?;
+    let mut lab = RawConfig::parse(&settings.document(), file, &[])?;
+    let robot = settings.robot.as_deref().unwrap_or(DEFAULT_ROBOT);
+    let spec = RobotSpec::builtin(robot).unwrap_or_else(RobotSpec::khepera);
+    lab.robot = lab.robot.resolved(spec);
+    lab.trial = lab.trial.resolved(spec);
     let table = |c: &RawConfig| toml::from_str::<toml::Table>(&c.to_toml()).unwrap_or_default();
     let mut keys = Vec::new();
     differences("", &table(raw), &table(&lab), &mut keys);

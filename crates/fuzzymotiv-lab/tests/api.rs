@@ -1195,3 +1195,156 @@ fn a_start_config_sets_the_fitness_combination() {
     assert_eq!(start["settings"]["combine"], "weighted-squares");
     assert_eq!(start["not_set"], json!([]), "the lab sets fitness.combine");
 }
+
+#[test]
+fn the_robot_list_has_the_built_in_robots_with_their_sensor_layouts() {
+    use fuzzymotiv::simulation::{BUILTIN_ROBOTS, RobotSpec};
+    let c = Client::start();
+    let a = c.get("/api/robots");
+    assert_eq!(a.status, 200, "{}", a.body);
+    let list = a.json();
+    let list = list.as_array().unwrap();
+    let names: Vec<&str> = list.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    assert_eq!(names, BUILTIN_ROBOTS);
+    let sensors: Vec<u64> = list
+        .iter()
+        .map(|r| r["sensors"].as_u64().unwrap())
+        .collect();
+    assert_eq!(
+        sensors,
+        [8, 8, 7],
+        "the Khepera's, the e-puck2's and the Thymio's"
+    );
+    for r in list {
+        let spec = RobotSpec::builtin(r["name"].as_str().unwrap()).unwrap();
+        assert_eq!(r["title"], spec.title());
+        assert_eq!(r["radius"].as_f64(), Some(spec.radius()));
+        assert_eq!(r["reading_max"].as_f64(), Some(spec.reading_max()));
+        let layout = r["layout"].as_array().unwrap();
+        assert_eq!(layout.len(), spec.sensors(), "{r}");
+        for (s, (m, label)) in layout.iter().zip(spec.mounts().iter().zip(spec.labels())) {
+            assert_eq!(
+                (s["x"].as_f64(), s["y"].as_f64(), s["facing_deg"].as_f64()),
+                (Some(m.x), Some(m.y), Some(m.facing_deg))
+            );
+            assert_eq!(s["label"], json!(label));
+            let range = s["range"].as_f64().unwrap();
+            assert!(range > 0.0 && range < 500.0, "{s}");
+        }
+    }
+}
+
+#[test]
+fn a_run_on_the_epuck2_names_it_in_its_resolved_config_and_paths() {
+    let c = Client::start();
+    let mut s = small(2, 5);
+    s["robot"] = json!("epuck2");
+    let id = finished_run(&c, &s);
+    let dir = c.lab.dir().join("runs").join(&id);
+    let text = std::fs::read_to_string(dir.join("config.resolved.toml")).unwrap();
+    let resolved: toml::Table = toml::from_str(&text).unwrap();
+    assert_eq!(resolved["robot"]["file"].as_str(), Some("epuck2"), "{text}");
+    let detail = c.get(&format!("/api/runs/{id}")).json();
+    assert_eq!(detail["about"]["robot"], "epuck2");
+    assert_eq!(detail["settings"]["robot"], "epuck2");
+    // The final paths name the robot and end at a pose (x, y, heading) for the page to draw.
+    let paths = &detail["result"]["paths"];
+    assert_eq!(paths["robot"], "epuck2");
+    for room in paths["rooms"].as_array().unwrap() {
+        let pose = room["pose"].as_array().unwrap();
+        let last = room["points"].as_array().unwrap().last().unwrap();
+        assert_eq!((&pose[0], &pose[1]), (&last[0], &last[1]), "{room}");
+        assert!(pose[2].is_f64(), "{room}");
+    }
+    // A run that names no robot drives the Khepera, and its config names none (as before).
+    let k = finished_run(&c, &small(2, 5));
+    let detail = c.get(&format!("/api/runs/{k}")).json();
+    assert_eq!(detail["about"]["robot"], "khepera");
+    let text = std::fs::read_to_string(
+        c.lab
+            .dir()
+            .join("runs")
+            .join(&k)
+            .join("config.resolved.toml"),
+    )
+    .unwrap();
+    let resolved: toml::Table = toml::from_str(&text).unwrap();
+    assert!(resolved["robot"].get("file").is_none(), "{text}");
+}
+
+#[test]
+fn an_unknown_robot_or_a_robot_file_is_refused_with_400_naming_it() {
+    let c = Client::start();
+    for name in ["rover", "../../robots/khepera4.toml"] {
+        let mut s = small(2, 5);
+        s["robot"] = json!(name);
+        let a = c.post("/api/runs", &s);
+        assert_eq!(a.status, 400, "{}", a.body);
+        let e = a.json()["error"].as_str().unwrap().to_string();
+        assert!(
+            e.starts_with(&format!("lab settings: field `robot`: `{name}` is not a built-in robot (khepera, epuck2 or thymio2)")),
+            "{e}"
+        );
+    }
+    let mut s = small(2, 5);
+    s["robot"] = json!(8);
+    let e = c.post("/api/runs", &s).json()["error"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("field `robot`"), "{e}");
+    assert_eq!(c.get("/api/runs").json(), json!([]), "nothing was queued");
+}
+
+#[test]
+fn a_thymio_run_in_the_papers_rooms_gets_the_clearance_error_and_runs_in_rooms_scaled_for_it() {
+    let c = Client::start();
+    let mut s = small(2, 5);
+    s["robot"] = json!("thymio2");
+    let a = c.post("/api/runs", &s);
+    assert_eq!(a.status, 400, "{}", a.body);
+    let e = a.json()["error"].as_str().unwrap().to_string();
+    assert!(
+        e.starts_with("lab settings: field `rooms[0]`: home of room \"H\"")
+            && e.contains("closer than robot.radius 80"),
+        "{e}"
+    );
+    // The repository's room scaled for it, loaded into the lab as the page's "Load room file" does.
+    let text = std::fs::read_to_string(repo_file("rooms/thymio2/H.toml")).unwrap();
+    let a = c.post("/api/rooms", &json!({ "toml": text, "save": true }));
+    assert_eq!(a.status, 200, "{}", a.body);
+    let entry = a.json()["entry"].as_str().unwrap().to_string();
+    s["rooms"] = json!([entry]);
+    s["recognition"] = json!(false);
+    let id = finished_run(&c, &s);
+    assert_eq!(
+        c.get(&format!("/api/runs/{id}")).json()["about"]["robot"],
+        "thymio2"
+    );
+}
+
+#[test]
+fn a_lab_started_on_the_thymio_config_picks_its_robot_and_sets_every_key() {
+    let c = Client::start_on(Some(&repo_file("configs/thymio2.toml")));
+    let start = c.get("/api/info").json()["start"].clone();
+    assert_eq!(start["settings"]["robot"], "thymio2");
+    assert_eq!(start["not_set"], json!([]), "{start}");
+    // A robot file by path is not the lab's: the form keeps the default, and says so.
+    let tmp = tempfile::tempdir().unwrap();
+    let config = tmp.path().join("k4.toml");
+    let robot = repo_file("robots/khepera4.toml").canonicalize().unwrap();
+    let rooms = ["H", "T"].map(|r| {
+        let path = repo_file(&format!("rooms/thymio2/{r}.toml"));
+        path.canonicalize().unwrap().display().to_string()
+    });
+    let text = format!(
+        "robot = {:?}\nrooms = {rooms:?}\n",
+        robot.display().to_string()
+    );
+    std::fs::write(&config, text).unwrap();
+    let c = Client::start_on(Some(&config));
+    let start = c.get("/api/info").json()["start"].clone();
+    assert!(start["settings"].get("robot").is_none(), "{start}");
+    let not_set = start["not_set"].as_array().unwrap();
+    assert!(not_set.contains(&json!("robot.file")), "{start}");
+}

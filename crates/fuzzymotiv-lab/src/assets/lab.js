@@ -376,6 +376,62 @@ function setupEditor() {
 }
 
 // ---- 3. Evolve ------------------------------------------------------------------------------
+// The built-in robots (/api/robots), each with its body radius and sensor layout (mm, degrees).
+async function loadRobots() {
+  lab.robots = await api('GET', '/api/robots');
+  // Every preview on one scale: the largest robot with its longest ray fills the picture.
+  lab.robotReach = Math.max(...lab.robots.map((r) => Math.max(r.radius, ...r.layout.map((m) => Math.hypot(m.x, m.y) + m.range))));
+  const select = $('robot');
+  select.replaceChildren();
+  lab.robots.forEach((r) => {
+    const o = html('option', `${r.name} (${r.sensors} sensors, ${2 * r.radius} mm)`, select);
+    o.title = r.title;
+    o.value = r.name;
+  });
+  select.addEventListener('change', () => { showRobot(); clearRefusal(); });
+  showRobot();
+}
+// Another robot picked after a refused run: the refusal was the other robot's.
+function clearRefusal() {
+  const status = $('run-status');
+  if (status.className !== 'error') return;
+  status.className = '';
+  status.textContent = `Not started. ${robotNamed($('robot').value).title} picked: press Evolve to start a run.`;
+  showError('');
+}
+function robotNamed(name) {
+  return (lab.robots || []).find((r) => r.name === name);
+}
+// The picked robot: its body and sensors to scale (a 10 cm bar beside it), and what it is.
+function showRobot() {
+  const r = robotNamed($('robot').value), svg = $('robot-preview');
+  svg.replaceChildren();
+  if (!r) return;
+  const reach = lab.robotReach * 1.05;
+  svg.setAttribute('viewBox', `${-reach} ${-reach} ${2 * reach} ${2 * reach}`);
+  drawRobot(svg, r, [0, 0, Math.PI / 2], (y) => -y);
+  el('line', { x1: -reach * 0.95, y1: reach * 0.9, x2: -reach * 0.95 + 100, y2: reach * 0.9, stroke: '#333',
+    'stroke-width': 2, 'vector-effect': 'non-scaling-stroke', class: 'scale-bar' }, svg);
+  el('text', { x: -reach * 0.95, y: reach * 0.8, 'font-size': reach * 0.13 }, svg).textContent = '10 cm';
+  $('robot-about').textContent = `${r.title}: a ${2 * r.radius} mm disc with ${r.sensors} sensors reading 0 to ` +
+    `${r.reading_max} (the network's ${r.sensors} inputs); drawn at the end of each path below.`;
+}
+// Robot `r` at `pose` [x, y, heading] (mm, mm, rad) on `svg`, to scale: each sensor a ray from
+// its mount in the direction it faces, as long as its reach, the body's disc and its heading.
+function drawRobot(svg, r, pose, Y) {
+  const [x, y, h] = pose, c = Math.cos(h), s = Math.sin(h);
+  const thin = { 'vector-effect': 'non-scaling-stroke' };
+  const g = el('g', { class: 'robot', 'data-robot': r.name }, svg);
+  r.layout.forEach((m) => {
+    const mx = x + c * m.x - s * m.y, my = y + s * m.x + c * m.y, d = h + (m.facing_deg * Math.PI) / 180;
+    el('line', { x1: mx, y1: Y(my), x2: mx + m.range * Math.cos(d), y2: Y(my + m.range * Math.sin(d)),
+      stroke: '#d62728', 'stroke-width': 1.5, class: 'sensor-ray', ...thin }, g);
+  });
+  el('circle', { cx: x, cy: Y(y), r: r.radius, fill: '#1f77b4', 'fill-opacity': 0.35, stroke: '#1f4e79',
+    'stroke-width': 1.5, class: 'robot-body', ...thin }, g);
+  el('line', { x1: x, y1: Y(y), x2: x + r.radius * c, y2: Y(y + r.radius * s), stroke: '#1f4e79',
+    'stroke-width': 2, class: 'robot-heading', ...thin }, g);
+}
 // Round tick values over [lo, hi]: every multiple of a 1, 2 or 5 × 10^k step, about `target`
 // intervals (the figures' Ticks::nice); `integer` keeps the step at least 1.
 function niceTicks(lo, hi, target, integer) {
@@ -465,6 +521,8 @@ function drawPaths(box, paths) {
     if (room) roomSvg(room.room, svg);
     const line = el('polyline', { points: p.points.map(([x, y]) => `${x},${-y}`).join(' '), fill: 'none', stroke: '#c33', 'stroke-width': 6 }, svg);
     line.setAttribute('class', 'robot-path');
+    const robot = robotNamed(paths.robot);
+    if (robot && p.pose) drawRobot(svg, robot, p.pose, (y) => -y);
     const goal = room && room.room.mission && room.room.mission.goal;
     const reached = !goal ? '' : p.goal_step != null ? `, goal at step ${p.goal_step}` : ', goal not reached';
     html('div', `${p.room}${p.f !== undefined ? `, F = ${p.f.toFixed(3)}` : ''}${reached}`, d);
@@ -482,6 +540,7 @@ function settings() {
     motivations: motivationsSpec(),
     population: Number($('population').value), generations: Number($('generations').value),
     motion: $('motion').value, rooms, recognition: $('recognition').checked && rooms.length >= 2 };
+  if ($('robot').value) out.robot = $('robot').value;
   if ($('steps').value !== '') out.steps = Number($('steps').value);
   if ($('combine').value !== 'tsk') out.combine = $('combine').value;
   return out;
@@ -501,11 +560,12 @@ function applyStart(start) {
   if (s.steps) $('steps').value = s.steps;
   $('recognition').checked = s.recognition !== false;
   if (s.combine) $('combine').value = s.combine;
+  if (s.robot && robotNamed(s.robot)) { $('robot').value = s.robot; showRobot(); }
   const msg = $('start-config');
   msg.hidden = false;
   msg.className = 'ok';
   msg.textContent = `Started on ${start.config}: its ${start.motivations.length} motivations (1), its ` +
-    `${s.rooms.length} room${s.rooms.length === 1 ? '' : 's'} chosen (2), and its name, seed, GA size, steps, motion model, ` +
+    `${s.rooms.length} room${s.rooms.length === 1 ? '' : 's'} chosen (2), and its robot, name, seed, GA size, steps, motion model, ` +
     'room recognition and fitness combination (3). ' + (start.not_set.length
     ? `The lab cannot set ${start.not_set.join(', ')}: its runs take the defaults there; for those, run ` +
       `\`fuzzymotiv run ${start.config}\`.`
@@ -518,13 +578,21 @@ async function evolve() {
     const r = await api('POST', '/api/runs', settings());
     follow(r.id);
     showError('');
-  } catch (e) { showError(e.message); }
+  } catch (e) {
+    // Refused (a room too small for the robot, a bad value): said beside Evolve too.
+    const status = $('run-status');
+    status.className = 'error';
+    status.textContent = `Not started: ${e.message}` + (/closer than robot\.radius/.test(e.message)
+      ? '. Rooms scaled for a larger robot: load rooms/thymio2/*.toml of the repository with "Load room file" in 2.' : '');
+    showError(e.message);
+  }
 }
 function follow(id) {
   if (lab.source) lab.source.close();
   lab.run = id; lab.gens = [];
   $('result').hidden = true;
   $('stop').disabled = false;
+  $('run-status').className = '';
   $('run-status').textContent = `Run ${id}: waiting…`;
   refreshRuns();
   drawCharts([], $('fitness-chart'), $('terms-chart'));
@@ -615,7 +683,7 @@ async function refreshRuns() {
     const combine = r.about.combine && r.about.combine !== 'tsk' ? ` by ${r.about.combine}` : '';
     html('td', (paper ? `(${m.map((v) => Number(v).toFixed(2)).join(', ')})`
       : names.map((n, k) => `${LETTERS[n] || n} ${Number(m[k]).toFixed(2)}`).join(', ')) + combine, tr);
-    html('td', `${r.about.population} × ${r.about.generations}`, tr);
+    html('td', `${r.about.population} × ${r.about.generations}${r.about.robot ? `, ${r.about.robot}` : ''}`, tr);
     html('td', r.status + (r.queue_position ? ` (queue ${r.queue_position})` : ''), tr);
     const td = html('td', undefined, tr);
     if (r.status === 'running' || r.status === 'queued') {
@@ -678,6 +746,7 @@ async function start() {
   lab.info = await api('GET', '/api/info');
   const presets = lab.info.presets.motivations, start = lab.info.start;
   setMotivations(start ? start.motivations : presets['high curiosity']);
+  await loadRobots();
   if (start) applyStart(start);
   drawMembership(lab.info.peaks);
   [['preset-high', 'high curiosity'], ['preset-low', 'low curiosity'], ['preset-fetch', 'fetch']].forEach(([id, name]) =>
