@@ -14,7 +14,13 @@ fn params(trial: RawTrial, motion: Motion) -> TrialParams {
         motion,
         ..RawRobot::default()
     };
-    TrialParams::from_raw(&trial, &robot, fuzzymotiv::simulation::RobotSpec::khepera(), DEFAULT_ACTION_TOLERANCE).unwrap()
+    TrialParams::from_raw(
+        &trial,
+        &robot,
+        fuzzymotiv::simulation::RobotSpec::khepera(),
+        DEFAULT_ACTION_TOLERANCE,
+    )
+    .unwrap()
 }
 
 fn genome(seed: u64, scale: f64) -> Vec<f64> {
@@ -35,6 +41,57 @@ proptest! {
         let arena = Arena::new(Room::builtin(BUILTIN_ROOMS[room]).unwrap(), &params);
         let mut mlp = Mlp::from_genome(MlpShape::default(), &genome(seed, scale)).unwrap();
         let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed ^ 1));
+        for p in &tr.poses {
+            let clearance = arena.walls().iter().map(|w| w.dist_to(p.position())).fold(f64::INFINITY, f64::min);
+            prop_assert!(clearance >= params.robot().radius(), "pose {p:?} is {clearance} mm from a wall");
+            prop_assert!(arena.room().contains(p.position()));
+        }
+    }
+}
+
+/// The e-puck2 in the paper's rooms, the Thymio II in the rooms scaled for it (rooms/thymio2).
+fn robot_room(robot: usize, room: usize) -> (&'static fuzzymotiv::simulation::RobotSpec, Room) {
+    const THYMIO_ROOMS: [(&str, &str); 2] = [
+        ("H", include_str!("../../../rooms/thymio2/H.toml")),
+        ("square", include_str!("../../../rooms/thymio2/square.toml")),
+    ];
+    match robot {
+        0 => (
+            fuzzymotiv::simulation::RobotSpec::builtin("epuck2").unwrap(),
+            Room::builtin(BUILTIN_ROOMS[room]).unwrap(),
+        ),
+        _ => {
+            let (name, text) = THYMIO_ROOMS[room % 2];
+            let room = Room::from_toml_str(text, name).unwrap();
+            (
+                fuzzymotiv::simulation::RobotSpec::builtin("thymio2").unwrap(),
+                room,
+            )
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Every robot, whatever its sensors, never ends a step overlapping a wall or outside its
+    /// room, with both motions: the e-puck2 (8 sensors reading 0–3731) and the Thymio II
+    /// (7 sensors, a 160 mm disc).
+    #[test]
+    fn no_robot_overlaps_a_wall(seed in any::<u64>(), robot in 0usize..2, room in 0usize..5, scale in 0.5f64..5.0, wheels in any::<bool>()) {
+        let motion = if wheels { Motion::Wheels } else { Motion::Actions };
+        let (spec, room) = robot_room(robot, room);
+        let raw = RawRobot { motion, ..RawRobot::default() };
+        let trial = RawTrial { steps: 300, ..RawTrial::default() };
+        let params = TrialParams::from_raw(&trial, &raw, spec, DEFAULT_ACTION_TOLERANCE).unwrap();
+        let arena = Arena::new(room, &params);
+        let shape = MlpShape::default().with_inputs(spec.sensors()).unwrap();
+        let mut rng = rng_from_seed(seed);
+        let g: Vec<f64> = (0..shape.genome_len()).map(|_| (2.0 * uniform01(&mut rng) - 1.0) * scale).collect();
+        let mut mlp = Mlp::from_genome(shape, &g).unwrap();
+        let tr = run_trial(&arena, &mut mlp, &mut rng_from_seed(seed ^ 1));
+        prop_assert!(tr.sensors.iter().all(|s| s.len() == spec.sensors()));
+        prop_assert!(tr.sensors.iter().flat_map(|s| s.iter()).all(|&v| (0.0..=spec.reading_max()).contains(&v)));
         for p in &tr.poses {
             let clearance = arena.walls().iter().map(|w| w.dist_to(p.position())).fold(f64::INFINITY, f64::min);
             prop_assert!(clearance >= params.robot().radius(), "pose {p:?} is {clearance} mm from a wall");
