@@ -10,9 +10,9 @@ use fuzzymotiv::experiment::UserTerm;
 use fuzzymotiv::experiment::{Evaluation, Experiment, RawConfig, RoomFile, RoomFiles, Setup};
 use fuzzymotiv::fitness::{FitnessTerms, LIBRARY_TERMS, Term, TermId, TrialRecord, UserValues};
 use fuzzymotiv::simulation::Trajectory;
-use fuzzymotiv_io::files::bounded::read_input;
+use fuzzymotiv_io::files::bounded::{InputKind, read_input};
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::inputs::{CONFIG, Loaded, ROOM_FILE, resolve};
+use fuzzymotiv_io::files::inputs::{CONFIG, Loaded, ROBOT_FILE, ROOM_FILE, SENSOR_TABLE, resolve};
 use numpy::ndarray::{Array2, Array3, Array4};
 use numpy::{IntoPyArray, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -20,16 +20,18 @@ use pyo3::types::PyDict;
 
 use crate::{input_err, load, py_float};
 
-/// Room files relative to a folder (the config file's), recorded absolute: as the CLI finds them.
+/// Room files (and the robot file and sensor table) relative to a folder (the config file's),
+/// recorded absolute: as the CLI finds them.
 struct RoomDir<'a>(&'a Path);
 
-impl RoomFiles for RoomDir<'_> {
-    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+impl RoomDir<'_> {
+    /// The file `entry` names (relative to the folder), read as a file of `kind`.
+    fn find_as(&self, entry: &str, kind: InputKind) -> Result<Option<RoomFile>, String> {
         let path = self.0.join(entry);
         if !path.is_file() {
             return Ok(None);
         }
-        let text = read_input(&path, ROOM_FILE).map_err(|e| e.to_string())?;
+        let text = read_input(&path, kind).map_err(|e| e.to_string())?;
         let source_name = path.display().to_string();
         let abs: PathBuf = path.canonicalize().unwrap_or(path);
         Ok(Some(RoomFile {
@@ -37,6 +39,20 @@ impl RoomFiles for RoomDir<'_> {
             source_name,
             entry: abs.display().to_string(),
         }))
+    }
+}
+
+impl RoomFiles for RoomDir<'_> {
+    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        self.find_as(entry, ROOM_FILE)
+    }
+
+    fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        self.find_as(entry, SENSOR_TABLE)
+    }
+
+    fn find_robot(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        self.find_as(entry, ROBOT_FILE)
     }
 
     fn looked_for(&self, entry: &str) -> String {

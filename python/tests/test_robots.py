@@ -226,3 +226,14 @@ def test_guide_robots_section_runs(doc_blocks, repo, monkeypatch):
     (code,) = doc_blocks("docs/guide/python.md", "## Robots")
     monkeypatch.chdir(repo)
     exec(compile(code, "docs/guide/python.md (Robots)", "exec"), {})
+
+
+def test_a_config_with_own_terms_reads_its_robot_file_as_a_robot_file(tmp_path):
+    """With terms of your own the config's files are found by the package's own finder: a
+    robot file there is read (and refused) as a robot file, not as a room file."""
+    (tmp_path / "bot.toml").write_bytes(b"name = \"\xff\"\n")
+    text = 'robot = "bot.toml"\nrooms = ["H"]\n[aem]\nenabled = false\n[motivations]\nown = { weight = 1.0, term = "spy" }\n'
+    config = tmp_path / "c.toml"
+    config.write_text(text)
+    with pytest.raises(fm.FuzzymotivError, match=r"bot\.toml: line 1: byte 0xff is not UTF-8 text; a robot file is UTF-8 text"):
+        fm.Problem(config, terms={"spy": lambda t: np.full(t.shape, 0.5)})

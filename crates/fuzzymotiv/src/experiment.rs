@@ -9,6 +9,7 @@ pub(crate) mod descriptors;
 pub(crate) mod episodes;
 pub(crate) mod evaluation;
 pub(crate) mod evolution;
+pub(crate) mod logged;
 pub(crate) mod modelling;
 pub(crate) mod outcome;
 pub(crate) mod recorded;
@@ -30,6 +31,7 @@ pub use evaluation::{Evaluation, RoomScore, TermError};
 pub use evolution::{
     Evolution, EvolveError, GenerationRecord, GenerationState, Observer, Population, Stopped,
 };
+pub use logged::{LoggedStep, LoggedTrial};
 pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
 pub use outcome::{Outcome, RunError, Start};
 pub use robustness::{Perturbation, RobustnessError, RobustnessRow};

@@ -113,7 +113,7 @@ impl Experiment {
     }
 
     /// What records an evaluation trial's terms in `arena` (the mission's included).
-    fn recorder<'a>(&self, arena: &'a Arena) -> TermsRecorder<&'a Arena> {
+    pub(crate) fn recorder<'a>(&self, arena: &'a Arena) -> TermsRecorder<&'a Arena> {
         let recorder = TermsRecorder::new(arena, self.homing);
         match self.plan.tracker(arena.room()) {
             Some(tracker) => recorder.with_mission(tracker),
@@ -122,7 +122,7 @@ impl Experiment {
     }
 
     /// The terms `recorder` recorded, the user-defined ones still 0.
-    fn recorded_terms(&self, recorder: &TermsRecorder<&Arena>) -> FitnessTerms {
+    pub(crate) fn recorded_terms(&self, recorder: &TermsRecorder<&Arena>) -> FitnessTerms {
         let mut terms = recorder.finish();
         terms.user = UserValues::zeros(self.plan.user.len());
         terms
@@ -193,7 +193,7 @@ impl Experiment {
 
     /// The user-defined terms' values of a finished trial (supplied ones left at 0 for the front
     /// to fill in).
-    fn user_values(&self, arena: &Arena, trajectory: &Trajectory, terms: &mut FitnessTerms) {
+    pub(crate) fn user_values(&self, arena: &Arena, trajectory: &Trajectory, terms: &mut FitnessTerms) {
         let mut values = terms.user;
         for (v, u) in values.as_mut_slice().iter_mut().zip(&self.plan.user) {
             if let Some(term) = &u.term {
