@@ -1563,24 +1563,41 @@ fn a_run_evolves_the_network_of_its_robot() {
         .sets(&["robot=epuck2"])
         .ok();
     let resolved = std::fs::read_to_string(epuck.join("config.resolved.toml")).unwrap();
-    assert!(resolved.contains("[robot]\nfile = \"epuck2\"\nradius = 37.0\n"), "{resolved}");
+    assert!(
+        resolved.contains("[robot]\nfile = \"epuck2\"\nradius = 37.0\n"),
+        "{resolved}"
+    );
     assert_eq!(genome_len(&epuck), 68);
     let thymio = dir.path().join("thymio");
     let sets = [SMALL.as_slice(), &["ga.generations=1", "aem.enabled=false"]].concat();
-    Fm::new(["run".as_ref(), repo().join("configs/thymio2.toml").as_os_str()])
-        .out(&thymio)
-        .sets(&sets)
-        .ok();
+    Fm::new([
+        "run".as_ref(),
+        repo().join("configs/thymio2.toml").as_os_str(),
+    ])
+    .out(&thymio)
+    .sets(&sets)
+    .ok();
     assert_eq!(genome_len(&thymio), 7 * 6 + 6 + 2 * 7);
     let csv = std::fs::read_to_string(thymio.join("test_runs.csv")).unwrap();
     assert!(csv.lines().count() > 1, "{csv}");
     // The Khepera named is the Khepera by default: the same identity, the same bytes.
     let (named, plain) = (dir.path().join("named"), dir.path().join("plain"));
     let small = [SMALL.as_slice(), &["aem.enabled=false"]].concat();
-    Fm::new(["run".as_ref(), tiny.as_os_str()]).out(&plain).sets(&small).ok();
+    Fm::new(["run".as_ref(), tiny.as_os_str()])
+        .out(&plain)
+        .sets(&small)
+        .ok();
     let named_sets = [small.as_slice(), &["robot=khepera"]].concat();
-    Fm::new(["run".as_ref(), tiny.as_os_str()]).out(&named).sets(&named_sets).ok();
-    assert_same_files(&named, &plain, &["config.resolved.toml", "best_genome.json"], "khepera by name");
+    Fm::new(["run".as_ref(), tiny.as_os_str()])
+        .out(&named)
+        .sets(&named_sets)
+        .ok();
+    assert_same_files(
+        &named,
+        &plain,
+        &["config.resolved.toml", "best_genome.json"],
+        "khepera by name",
+    );
 }
 
 /// A hostile robot file exits 2 naming the file and the field, and writes nothing: a sensor
@@ -1600,26 +1617,60 @@ fn a_hostile_robot_file_names_its_file_and_field_and_writes_nothing() {
         let robot = dir.path().join(format!("bad{k}.toml"));
         std::fs::write(&robot, good.replacen(from, to, 1)).unwrap();
         let config = dir.path().join(format!("c{k}.toml"));
-        std::fs::write(&config, format!("robot = \"bad{k}.toml\"\nrooms = [\"H\", \"T\"]\n")).unwrap();
+        std::fs::write(
+            &config,
+            format!("robot = \"bad{k}.toml\"\nrooms = [\"H\", \"T\"]\n"),
+        )
+        .unwrap();
         let out = dir.path().join(format!("out{k}"));
-        let o = run(&["run", config.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+        let o = run(&[
+            "run",
+            config.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
         let msg = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{msg}");
-        assert!(msg.contains(&format!("bad{k}.toml")) && msg.contains(field), "{field}: {msg}");
+        assert!(
+            msg.contains(&format!("bad{k}.toml")) && msg.contains(field),
+            "{field}: {msg}"
+        );
         assert!(!msg.contains("panicked"), "{msg}");
         assert!(!out.exists(), "{field}: something was written");
     }
-    let rising = good.replacen("reading = [", "reading = [1, ", 1).replacen("distance_mm = [", "distance_mm = [0.1, ", 1);
+    let rising = good.replacen("reading = [", "reading = [1, ", 1).replacen(
+        "distance_mm = [",
+        "distance_mm = [0.1, ",
+        1,
+    );
     let robot = dir.path().join("rising.toml");
     std::fs::write(&robot, rising).unwrap();
-    let o = run(&["calibrate", "x.csv", "--robot", robot.to_str().unwrap(), "--out", "-"]);
+    let o = run(&[
+        "calibrate",
+        "x.csv",
+        "--robot",
+        robot.to_str().unwrap(),
+        "--out",
+        "-",
+    ]);
     let msg = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{msg}");
-    assert!(msg.contains("rising.toml") && msg.contains("ray[0].reading"), "{msg}");
+    assert!(
+        msg.contains("rising.toml") && msg.contains("ray[0].reading"),
+        "{msg}"
+    );
     let config = dir.path().join("missing.toml");
     std::fs::write(&config, "robot = \"nowhere.toml\"\n").unwrap();
-    let o = run(&["run", config.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()]);
+    let o = run(&[
+        "run",
+        config.to_str().unwrap(),
+        "--out",
+        dir.path().join("o").to_str().unwrap(),
+    ]);
     let msg = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{msg}");
-    assert!(msg.contains("robot.file") && msg.contains("epuck2"), "{msg}");
+    assert!(
+        msg.contains("robot.file") && msg.contains("epuck2"),
+        "{msg}"
+    );
 }

@@ -133,7 +133,13 @@ fn params(motion: Motion, noise: f64) -> TrialParams {
         motion,
         ..RawRobot::default()
     };
-    TrialParams::from_raw(&trial, &robot, fuzzymotiv::simulation::RobotSpec::khepera(), 0.25).unwrap()
+    TrialParams::from_raw(
+        &trial,
+        &robot,
+        fuzzymotiv::simulation::RobotSpec::khepera(),
+        0.25,
+    )
+    .unwrap()
 }
 
 fn genome(shape: MlpShape, seed: u64, scale: f64) -> Vec<f64> {

@@ -30,11 +30,10 @@ struct Inputs(Vec<[f64; 8]>);
 impl StepObserver for Inputs {
     fn observe(&mut self, s: &Step) {
         if !s.idle {
-            self.0
-                .push(std::array::from_fn(|k| match s.sensors[k] {
-                    0.0 => 0.0,
-                    v => v / 1023.0,
-                }));
+            self.0.push(std::array::from_fn(|k| match s.sensors[k] {
+                0.0 => 0.0,
+                v => v / 1023.0,
+            }));
         }
     }
 }
@@ -108,8 +107,13 @@ fn main() {
         ..RawTrial::default()
     };
     let khepera = fuzzymotiv::simulation::RobotSpec::khepera();
-    let params = TrialParams::from_raw(&trial, &RawRobot::default(), khepera, DEFAULT_ACTION_TOLERANCE)
-        .expect("valid parameters");
+    let params = TrialParams::from_raw(
+        &trial,
+        &RawRobot::default(),
+        khepera,
+        DEFAULT_ACTION_TOLERANCE,
+    )
+    .expect("valid parameters");
     let arena = Arena::new(Room::builtin("H").unwrap(), &params);
     let shape = MlpShape::with_hidden(H).expect("a valid hidden layer");
     let mut rng = rng_from_seed(7);

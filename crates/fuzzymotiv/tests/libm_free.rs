@@ -189,7 +189,13 @@ fn the_step_loop_calls_no_libm_function() {
             motion,
             ..RawRobot::default()
         };
-        TrialParams::from_raw(&trial, &robot, fuzzymotiv::simulation::RobotSpec::khepera(), DEFAULT_ACTION_TOLERANCE).unwrap()
+        TrialParams::from_raw(
+            &trial,
+            &robot,
+            fuzzymotiv::simulation::RobotSpec::khepera(),
+            DEFAULT_ACTION_TOLERANCE,
+        )
+        .unwrap()
     };
     let arena = |motion| Arena::new(Room::builtin("H").unwrap(), &params(motion));
     let genome: Vec<f64> = (0..68)

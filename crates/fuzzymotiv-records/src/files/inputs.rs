@@ -216,13 +216,12 @@ pub fn room_file_lines(raw: &RawConfig) -> Vec<String> {
     let robot = (raw.robot.file.iter()).map(|entry| ("Robot file", entry, ROBOT_FILE));
     (rooms.chain(robot))
         .filter(|(_, entry, _)| Path::new(entry).is_absolute())
-        .map(|(what, entry, kind)| match read_input(Path::new(entry), kind) {
-            Ok(text) => format!(
-                "# {what} {entry}: FNV-1a {:016x}\n",
-                fnv1a(text.as_bytes())
-            ),
-            Err(_) => format!("# {what} {entry}: unreadable\n"),
-        })
+        .map(
+            |(what, entry, kind)| match read_input(Path::new(entry), kind) {
+                Ok(text) => format!("# {what} {entry}: FNV-1a {:016x}\n", fnv1a(text.as_bytes())),
+                Err(_) => format!("# {what} {entry}: unreadable\n"),
+            },
+        )
         .collect()
 }
 
@@ -237,7 +236,11 @@ pub fn rooms_unchanged(config: &Path, loaded: &Loaded, remedy: &str) -> Result<(
         Some(line) => Err(CliError::input(format!(
             "{}: a {} file changed since the run ({}); {remedy}",
             config.display(),
-            if line.starts_with("# Robot") { "robot" } else { "room" },
+            if line.starts_with("# Robot") {
+                "robot"
+            } else {
+                "room"
+            },
             line.trim_start_matches("# ").trim_end()
         ))),
         None => Ok(()),
