@@ -108,8 +108,8 @@ Files
 2. Fill in an fm_robot_io (fm_khepera.h) for your robot:
    - read_proximity: the @N@ readings on the simulator's scale 0..@RMAX@ (larger = nearer),
      in the robot file's order (fm_controller.h lists it). A Khepera I's 10-bit proximity
-     values are that scale as they are; another robot's need scaling (measure them:
-     docs/guide/real-robot.md, "Your robot's sensors").
+     values are that scale as they are; another robot's need scaling (measure them: the
+     fuzzymotiv guide "From the simulator to a real robot", section "Your robot's sensors").
    - read_positions: the two wheels' position counters, forward positive.
    - set_speeds: wheel speeds in ticks/s (the position counters' ticks per second).
    - ticks_per_mm: the counters' ticks per mm of wheel travel.

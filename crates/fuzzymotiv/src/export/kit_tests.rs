@@ -176,8 +176,15 @@ fn each_kit_holds_the_network_the_executor_its_robot_layer_golden_vectors_and_a_
     let khepera = khepera_kit(&controller(6, 3.0, Motion::Wheels));
     want[4..6].copy_from_slice(&["fm_khepera.h", "fm_khepera.c"]);
     assert_eq!(names(&khepera), want);
-    // The generic network is the kit's, byte for byte.
+    // The generic network is the kit's, byte for byte; the files name no path of this
+    // repository (whoever is handed a kit has none).
     assert_eq!(text(&epuck2, "fm_controller.c"), c.c().source);
+    for file in epuck2.files.iter().chain(&khepera.files) {
+        let body = std::str::from_utf8(&file.contents).unwrap();
+        for path in ["docs/", "crates/", ".rs", ".md"] {
+            assert!(!body.contains(path), "{path} in {}", file.name);
+        }
+    }
     let readme = text(&epuck2, "README.txt");
     for needle in [
         "fm_epuck2_start();",
