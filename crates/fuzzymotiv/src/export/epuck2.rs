@@ -58,8 +58,9 @@ const SOURCE: &str = r#"/* fm_epuck2.c: the exported controller as a ChibiOS thr
  *
  * Units: readings in the firmware's calibrated proximity counts (get_calibrated_prox), wheel
  * positions in motor steps (left_motor_get_pos), wheel speeds in steps/s
- * (left_motor_set_speed). Compile with -O2 -ffp-contract=off (add it to USE_OPT or to this
- * file's flags), as fm_controller.c. */
+ * (left_motor_set_speed). Compile it, fm_executor.c and fm_controller.c with
+ * -fno-single-precision-constant -ffp-contract=off after the firmware's flags (README.txt,
+ * step 3). */
 #include <stddef.h>
 #include <stdint.h>
 
@@ -88,8 +89,9 @@ struct fm_epuck2_double_constants_check {
 #define FM_EPUCK2_READING_MAX @RMAX_HEX@
 
 /* Network input k reads the firmware's sensor PROX_OF_INPUT[k]. The firmware numbers them IR0
- * front-right, then clockwise (IR2 right, IR5 left, IR7 front-left); the robot file numbers
- * them as the firmware does. */
+ * front-right, then clockwise (IR2 right, IR5 left, IR7 front-left), as Enki's and Webots'
+ * e-puck models do; the robot `@ROBOT@` is taken to number them so (fm_controller.h: rewire
+ * here if its order differs). */
 static const unsigned int PROX_OF_INPUT[FM_INPUTS] = {@PROX_OF_INPUT@};
 
 /* Wheels: 1000 steps per wheel turn (GCtronic's e-puck2 ROS driver, "a complete turn is 1000
