@@ -158,10 +158,10 @@ impl Export {
     }
 }
 
-/// Loads the genome and config and builds the export's files, writing nothing; the C
-/// export's directory is checked first ([`check_files_dir`]: not `-`, the current directory or
-/// something other than a directory). `target` with another format than C is an input error,
-/// and so is a kit for another robot than the controller's.
+/// Loads the genome and config and builds the export's files, writing nothing; the generic C
+/// export's directory is checked first, a kit's once its files are known ([`check_files_dir`]:
+/// not `-`, the current directory or something other than a directory). `target` with another
+/// format than C is an input error, and so is a kit for another robot than the controller's.
 pub fn build_export(req: &ExportRequest) -> Result<Export, CliError> {
     let target = match (req.to, req.target) {
         (ExportTarget::C, target) => target.unwrap_or(KitTarget::Generic),
