@@ -30,10 +30,12 @@ pub(crate) fn export_controller(
         config: config.as_deref(),
         room: room.as_deref(),
         to,
+        target: None,
         out: &out,
         force,
         room_option: "room",
         out_option: "out",
+        target_option: "target",
     })
     .map_err(py_err)?;
     Ok(done.files.iter().map(|p| p.display().to_string()).collect())
@@ -63,10 +65,12 @@ pub(crate) fn export_controller_bytes<'py>(
         config: config.as_deref(),
         room: room.as_deref(),
         to,
+        target: None,
         out: std::path::Path::new("-"),
         force: false,
         room_option: "room",
         out_option: "out",
+        target_option: "target",
     })
     .map_err(py_err)?;
     Ok(PyBytes::new(py, built.single_file("out").map_err(py_err)?))

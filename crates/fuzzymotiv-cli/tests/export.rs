@@ -610,3 +610,122 @@ fn an_all_rooms_genome_is_not_said_to_hold_a_robot_per_room() {
         assert!(stdout(&ok(help)).contains("ONNX"), "{help:?}");
     }
 }
+
+/// `--target khepera` writes the Khepera kit (the generic C byte for byte, the executor, the
+/// I/O layer, golden vectors, a README) through the output guard: the same export again does
+/// nothing, another file of a kit's name is kept without `--force`; `--target generic` is the
+/// plain export. A kit for another robot than the run's, or `--target` with JSON, is an input
+/// error naming `--target` (and both robots) that writes nothing.
+#[test]
+fn export_target_writes_the_runs_robot_kit_and_refuses_another_robots() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_dir = tiny_run(dir.path());
+    let src = run_dir.to_str().unwrap();
+    let (kit, plain, generic) = (
+        dir.path().join("kit"),
+        dir.path().join("plain"),
+        dir.path().join("generic"),
+    );
+    let export = |out: &Path, extra: &[&str]| {
+        let mut args = vec!["export", src, "--to", "c", "--out", out.to_str().unwrap()];
+        args.extend(extra);
+        run(&args)
+    };
+    let o = export(&kit, &["--target", "khepera"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let names = [
+        "fm_controller.h",
+        "fm_controller.c",
+        "fm_executor.h",
+        "fm_executor.c",
+        "fm_khepera.h",
+        "fm_khepera.c",
+        "golden.csv",
+        "fm_golden.c",
+        "README.txt",
+    ];
+    for name in names {
+        assert!(stdout(&o).contains(name), "{name}: {}", stdout(&o));
+    }
+    assert!(
+        stderr(&o).contains("wrote the khepera kit"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(
+        stderr(&o).contains("fm_robot_io"),
+        "the kit's notes: {}",
+        stderr(&o)
+    );
+    ok(&["export", src, "--to", "c", "--out", plain.to_str().unwrap()]);
+    ok(&[
+        "export",
+        src,
+        "--to",
+        "c",
+        "--target",
+        "generic",
+        "--out",
+        generic.to_str().unwrap(),
+    ]);
+    for name in ["fm_controller.h", "fm_controller.c"] {
+        let plain_bytes = std::fs::read(plain.join(name)).unwrap();
+        assert_eq!(
+            std::fs::read(kit.join(name)).unwrap(),
+            plain_bytes,
+            "{name}"
+        );
+        assert_eq!(
+            std::fs::read(generic.join(name)).unwrap(),
+            plain_bytes,
+            "{name}"
+        );
+    }
+    assert_eq!(std::fs::read_dir(&generic).unwrap().count(), 2);
+    let golden = std::fs::read_to_string(kit.join("golden.csv")).unwrap();
+    assert!(golden.lines().filter(|l| l.starts_with("0x")).count() > 100);
+    // Again: nothing to do; a file of the user's under a kit's name is kept without --force.
+    let o = export(&kit, &["--target", "khepera"]);
+    assert!(stderr(&o).contains("nothing to do"), "{}", stderr(&o));
+    std::fs::write(kit.join("README.txt"), "mine").unwrap();
+    let o = export(&kit, &["--target", "khepera"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--force"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(kit.join("README.txt")).unwrap(),
+        "mine"
+    );
+    let o = export(&kit, &["--target", "khepera", "--force"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        std::fs::read_to_string(kit.join("README.txt"))
+            .unwrap()
+            .contains("fm_robot_io")
+    );
+    // Another robot's kit, and a kit that is not C.
+    for target in ["epuck2", "thymio2"] {
+        let out = dir.path().join(target);
+        let o = export(&out, &["--target", target]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.contains(&format!("--target {target}: the controller was evolved for the robot `khepera`, not `{target}`")),
+            "{e}"
+        );
+        assert!(!out.exists());
+    }
+    let json = dir.path().join("c.json");
+    let dst = json.to_str().unwrap();
+    let o = run(&[
+        "export", src, "--to", "json", "--target", "khepera", "--out", dst,
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "--target khepera: a deployment kit is C code; a json export takes no --target"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!json.exists());
+}

@@ -18,12 +18,22 @@
 //! ```
 
 pub(crate) mod c;
+pub(crate) mod epuck2;
+pub(crate) mod executor;
+pub(crate) mod golden;
 pub(crate) mod json;
+pub(crate) mod khepera;
 pub(crate) mod kit;
+#[cfg(test)]
+mod kit_tests;
 pub(crate) mod onnx;
 
 pub use c::CSources;
+pub use epuck2::{
+    EPUCK2_MOTOR_SPEED_LIMIT, EPUCK2_STEPS_PER_TURN, EPUCK2_WHEEL_DIAMETER_MM, epuck2_kit,
+};
 pub use json::{ControllerDoc, FORMAT, FORMAT_VERSION};
+pub use khepera::khepera_kit;
 pub use kit::{Kit, KitFile, KitRobot};
 
 use crate::simulation::controller::{GenomeError, MlpShape};
@@ -54,6 +64,26 @@ pub enum ExportError {
         /// Its value.
         value: f64,
     },
+    /// A kit's robot whose sensors are not the network's inputs.
+    #[error("the robot `{robot}` has {sensors} sensors but the network has {inputs} inputs")]
+    SensorCount {
+        /// The robot's name.
+        robot: String,
+        /// Its number of sensors.
+        sensors: usize,
+        /// The network's inputs.
+        inputs: usize,
+    },
+    /// A kit's robot with a quantity that is not a positive number.
+    #[error("the robot `{robot}`'s {field} is {value}, not a positive number")]
+    RobotQuantity {
+        /// The robot's name.
+        robot: String,
+        /// The quantity (`reading_max`, `v_max`, `wheel_base`, `dt`, `turn_deg`).
+        field: &'static str,
+        /// Its value.
+        value: f64,
+    },
 }
 
 /// A genome's network with what turns its inputs and outputs into a robot's: the sensor scale,
@@ -66,6 +96,8 @@ pub struct ExportedController {
     pub(crate) motion: Motion,
     pub(crate) tolerance: f64,
     pub(crate) robot: KitRobot,
+    /// The trial parameters of the experiment (its robot is simulated for golden vectors).
+    pub(crate) trial: TrialParams,
 }
 
 impl ExportedController {
@@ -94,6 +126,7 @@ impl ExportedController {
             v_max: params.robot().v_max(),
             motion: params.robot().motion(),
             tolerance: params.action_tolerance(),
+            trial: *params,
             robot: KitRobot {
                 name: params.robot().spec().name().into(),
                 sensors: shape.inputs(),
@@ -104,6 +137,38 @@ impl ExportedController {
                 turn_deg: 30.0,
             },
         })
+    }
+
+    /// The same controller on `robot` (e.g. a robot file's values): a deployment kit then
+    /// writes its reading scale, speed, wheel base, period and turn where the experiment's
+    /// were, and `v_max` is the robot's. An error when its sensors are not the network's inputs
+    /// or a quantity is not a positive number.
+    pub fn for_robot(mut self, robot: KitRobot) -> Result<ExportedController, ExportError> {
+        if robot.sensors != self.shape.inputs() {
+            return Err(ExportError::SensorCount {
+                robot: robot.name,
+                sensors: robot.sensors,
+                inputs: self.shape.inputs(),
+            });
+        }
+        for (field, value) in [
+            ("reading_max", robot.reading_max),
+            ("v_max", robot.v_max),
+            ("wheel_base", robot.wheel_base),
+            ("dt", robot.dt),
+            ("turn_deg", robot.turn_deg),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(ExportError::RobotQuantity {
+                    robot: robot.name,
+                    field,
+                    value,
+                });
+            }
+        }
+        self.v_max = robot.v_max;
+        self.robot = robot;
+        Ok(self)
     }
 
     /// The network's shape.

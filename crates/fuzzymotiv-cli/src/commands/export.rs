@@ -8,7 +8,7 @@ use fuzzymotiv_io::files::console::write_out_bytes;
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::note;
 use fuzzymotiv_io::records::export::{
-    ExportRequest, ExportTarget, build_export, export_controller,
+    ExportRequest, ExportTarget, KitTarget, build_export, export_controller,
 };
 
 /// What `--to` writes.
@@ -23,6 +23,32 @@ pub enum Target {
     Onnx,
 }
 
+/// Which robot's files `--to c` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Robot {
+    /// The e-puck2 kit: a ChibiOS thread for GCtronic's firmware, the actions executor, golden
+    /// vectors and a README (the run's robot must be the e-puck2).
+    Epuck2,
+    /// The Thymio II kit (the run's robot must be the Thymio II).
+    Thymio2,
+    /// The kit for a Khepera-like robot: the actions executor and an I/O layer you fill in,
+    /// golden vectors and a README (the run's robot must be the Khepera).
+    Khepera,
+    /// fm_controller.h and fm_controller.c alone, for any robot.
+    Generic,
+}
+
+impl From<Robot> for KitTarget {
+    fn from(robot: Robot) -> KitTarget {
+        match robot {
+            Robot::Epuck2 => KitTarget::Epuck2,
+            Robot::Thymio2 => KitTarget::Thymio2,
+            Robot::Khepera => KitTarget::Khepera,
+            Robot::Generic => KitTarget::Generic,
+        }
+    }
+}
+
 /// Arguments of `fuzzymotiv export`.
 #[derive(clap::Args)]
 pub struct ExportArgs {
@@ -34,8 +60,13 @@ pub struct ExportArgs {
     /// What to write.
     #[arg(long, value_enum)]
     pub to: Target,
+    /// With `--to c`: the robot whose files to write, a deployment kit with a README
+    /// [default: generic, fm_controller.h and fm_controller.c alone].
+    #[arg(long, value_enum, value_name = "ROBOT")]
+    pub target: Option<Robot>,
     /// Where: a directory for `c` (created if missing; receives fm_controller.h and
-    /// fm_controller.c), a file for `json` and `onnx` (`-`: standard output).
+    /// fm_controller.c, or the --target kit's files), a file for `json` and `onnx` (`-`:
+    /// standard output).
     #[arg(long, value_name = "PATH")]
     pub out: PathBuf,
     /// The config whose robot the controller drives [default: the run's own config].
@@ -61,10 +92,12 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
             Target::Json => ExportTarget::Json,
             Target::Onnx => ExportTarget::Onnx,
         },
+        target: args.target.map(KitTarget::from),
         out: &args.out,
         force: args.force,
         room_option: "--room",
         out_option: "--out",
+        target_option: "--target",
     };
     if args.out.as_os_str() == "-" && args.to != Target::C {
         let built = build_export(&req)?;
@@ -80,6 +113,13 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
         note!(
             "{} already holds this export; nothing to do",
             args.out.display()
+        );
+    } else if let Some(robot) = args.target.filter(|&r| r != Robot::Generic) {
+        note!(
+            "wrote the {} kit of the 8-{}-2 controller of {}",
+            KitTarget::from(robot).name(),
+            done.hidden,
+            done.genome.display()
         );
     } else {
         note!(

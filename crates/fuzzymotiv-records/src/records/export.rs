@@ -1,9 +1,10 @@
 //! `fuzzymotiv export` and `fm.export_controller`: a run's (or a genome file's) controller as
-//! C99 or JSON files ([`fuzzymotiv::export`]), checked and written through the output guard.
+//! C99 (the generic files or a robot's deployment kit), JSON or ONNX files
+//! ([`fuzzymotiv::export`]), checked and written through the output guard.
 
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::export::{CSources, ExportedController};
+use fuzzymotiv::export::{CSources, ExportedController, Kit, KitFile};
 use fuzzymotiv::simulation::MlpShape;
 
 use crate::files::error::CliError;
@@ -23,6 +24,15 @@ pub enum ExportTarget {
 }
 
 impl ExportTarget {
+    /// Its name, as `--to` takes it: `c`, `json` or `onnx`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ExportTarget::C => "c",
+            ExportTarget::Json => "json",
+            ExportTarget::Onnx => "onnx",
+        }
+    }
+
     /// `"c"` or `"json"`; an error names `option` and the accepted values.
     pub fn parse(option: &str, value: &str) -> Result<ExportTarget, CliError> {
         match value {
@@ -32,6 +42,35 @@ impl ExportTarget {
             _ => Err(CliError::input(format!(
                 "{option}: `{value}` is not an export format; use \"c\", \"json\" or \"onnx\""
             ))),
+        }
+    }
+}
+
+/// Which robot's files a C export writes (`--target`): the generic `fm_controller.h` and
+/// `fm_controller.c`, or a robot's deployment kit ([`fuzzymotiv::export::Kit`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KitTarget {
+    /// `fm_controller.h` and `fm_controller.c` alone, for any robot (the default).
+    Generic,
+    /// The e-puck2 kit: a ChibiOS thread for GCtronic's firmware
+    /// ([`fuzzymotiv::export::epuck2_kit`]).
+    Epuck2,
+    /// The Thymio II kit (Aseba).
+    Thymio2,
+    /// The kit for a Khepera-like robot with an I/O layer of the user's
+    /// ([`fuzzymotiv::export::khepera_kit`]).
+    Khepera,
+}
+
+impl KitTarget {
+    /// Its name: `generic`, or the robot's name (`epuck2`, `thymio2`, `khepera`), which a kit's
+    /// controller must have been evolved for.
+    pub fn name(self) -> &'static str {
+        match self {
+            KitTarget::Generic => "generic",
+            KitTarget::Epuck2 => "epuck2",
+            KitTarget::Thymio2 => "thymio2",
+            KitTarget::Khepera => "khepera",
         }
     }
 }
@@ -48,6 +87,9 @@ pub struct ExportRequest<'a> {
     pub room: Option<&'a str>,
     /// The format.
     pub to: ExportTarget,
+    /// With `C`: the robot whose files to write (`None`: not given, the generic files); with
+    /// another format an input error.
+    pub target: Option<KitTarget>,
     /// A directory (`C`) or a file (`Json`, `Onnx`).
     pub out: &'a Path,
     /// Replace other files of these names.
@@ -56,6 +98,8 @@ pub struct ExportRequest<'a> {
     pub out_option: &'a str,
     /// The name of the room option in messages (`--room`, `room`).
     pub room_option: &'a str,
+    /// The name of the target option in messages (`--target`, `target`).
+    pub target_option: &'a str,
 }
 
 /// What an export did.
@@ -114,11 +158,25 @@ impl Export {
     }
 }
 
-/// Loads the genome and config and builds the export's files, writing nothing; the C
-/// export's directory is checked first ([`check_files_dir`]: not `-`, the current directory or
-/// something other than a directory).
+/// Loads the genome and config and builds the export's files, writing nothing; the generic C
+/// export's directory is checked first, a kit's once its files are known ([`check_files_dir`]:
+/// not `-`, the current directory or something other than a directory). `target` with another
+/// format than C is an input error, and so is a kit for another robot than the controller's.
 pub fn build_export(req: &ExportRequest) -> Result<Export, CliError> {
-    if req.to == ExportTarget::C {
+    let target = match (req.to, req.target) {
+        (ExportTarget::C, target) => target.unwrap_or(KitTarget::Generic),
+        (to, Some(target)) => {
+            return Err(CliError::input(format!(
+                "{} {}: a deployment kit is C code; a {} export takes no {}",
+                req.target_option,
+                target.name(),
+                to.name(),
+                req.target_option
+            )));
+        }
+        (_, None) => KitTarget::Generic,
+    };
+    if req.to == ExportTarget::C && target == KitTarget::Generic {
         let names = [CSources::HEADER_NAME, CSources::SOURCE_NAME];
         check_files_dir(req.out, req.out_option, &names)?;
     }
@@ -142,7 +200,15 @@ pub fn build_export(req: &ExportRequest) -> Result<Export, CliError> {
     let controller = ExportedController::new(shape, weights, loaded.experiment.trial_params())
         .map_err(|e| in_file(&format!("field `weights`: {e}")))?;
     let files = match req.to {
-        ExportTarget::C => c_files(req.out, &controller.c()),
+        ExportTarget::C => {
+            let kit = kit_of(target, &controller, req.target_option)?;
+            let names: Vec<&str> = kit.files.iter().map(|f| f.name.as_str()).collect();
+            check_files_dir(req.out, req.out_option, &names)?;
+            notes.extend(kit.notes.iter().cloned());
+            (kit.files.into_iter())
+                .map(|f| (req.out.join(&f.name), f.contents))
+                .collect()
+        }
         ExportTarget::Json => vec![(req.out.to_path_buf(), controller.json().into_bytes())],
         ExportTarget::Onnx => vec![(req.out.to_path_buf(), controller.onnx())],
     };
@@ -153,6 +219,45 @@ pub fn build_export(req: &ExportRequest) -> Result<Export, CliError> {
         hidden: genome.hidden,
         notes,
     })
+}
+
+/// The files of `target` for `controller`: the generic C, or a robot's deployment kit, whose
+/// robot must be the controller's (an input error naming `option`, the target and the
+/// controller's robot otherwise).
+fn kit_of(
+    target: KitTarget,
+    controller: &ExportedController,
+    option: &str,
+) -> Result<Kit, CliError> {
+    let robot = &controller.robot().name;
+    if target != KitTarget::Generic && robot != target.name() {
+        return Err(CliError::input(format!(
+            "{option} {}: the controller was evolved for the robot `{robot}`, not `{}`; export \
+             its own kit with {option} {robot} (if there is one) or the plain C with {option} \
+             generic",
+            target.name(),
+            target.name()
+        )));
+    }
+    match target {
+        KitTarget::Generic => {
+            let c = controller.c();
+            Ok(Kit {
+                files: vec![
+                    KitFile::text(CSources::HEADER_NAME, c.header),
+                    KitFile::text(CSources::SOURCE_NAME, c.source),
+                ],
+                notes: Vec::new(),
+            })
+        }
+        KitTarget::Epuck2 => Ok(fuzzymotiv::export::epuck2_kit(controller)),
+        KitTarget::Khepera => Ok(fuzzymotiv::export::khepera_kit(controller)),
+        // Placeholder until fuzzymotiv::export::thymio2_kit (branch kit-thymio) is merged.
+        KitTarget::Thymio2 => Err(CliError::input(format!(
+            "{option} thymio2: the Thymio II kit is not yet in this build; export the plain C \
+             with {option} generic"
+        ))),
+    }
 }
 
 /// Loads the genome and config, builds the export and writes it through the output guard
@@ -213,20 +318,6 @@ fn chosen_weights<'a>(
                 .join(", ")
         ))),
     }
-}
-
-/// The C files in the directory `out` (checked by [`check_files_dir`]).
-fn c_files(out: &Path, c: &CSources) -> Vec<(PathBuf, Vec<u8>)> {
-    vec![
-        (
-            out.join(CSources::HEADER_NAME),
-            c.header.clone().into_bytes(),
-        ),
-        (
-            out.join(CSources::SOURCE_NAME),
-            c.source.clone().into_bytes(),
-        ),
-    ]
 }
 
 #[cfg(test)]

@@ -3,13 +3,12 @@
 //! library's operations in the library's order, so that the motor outputs are the
 //! simulator's bit for bit.
 
-use super::ExportedController;
-use crate::simulation::controller::INPUTS;
+use super::{ExportedController, KitRobot};
 use crate::simulation::math::{
     EXP_MAX, EXP_MIN, EXP2_TABLE, INV_LN2_N, LN2_HI_N, LN2_LO_N, TO_INT,
 };
 use crate::simulation::robot::Motion;
-use crate::simulation::sensor::{SENSOR_LAYOUT, SENSOR_MAX};
+use crate::simulation::sensor::SENSOR_LAYOUT;
 
 /// The exported C: a header and a source file (file names [`CSources::HEADER_NAME`] and
 /// [`CSources::SOURCE_NAME`]; the source includes the header by that name).
@@ -52,7 +51,7 @@ fn c_list(values: impl IntoIterator<Item = f64>, per_line: usize, indent: &str) 
         .join(",\n")
 }
 
-const HEADER: &str = r#"/* fm_controller.h: an evolved fuzzymotiv controller (network 8-@H@-2), exported by
+const HEADER: &str = r#"/* fm_controller.h: an evolved fuzzymotiv controller (network @N@-@H@-2), exported by
  * @PROVENANCE@.
  *
  * Compile with -O2 -ffp-contract=off (e.g. cc -std=c99 -O2 -ffp-contract=off -c fm_controller.c).
@@ -66,12 +65,8 @@ const HEADER: &str = r#"/* fm_controller.h: an evolved fuzzymotiv controller (ne
  * default rounding mode (round to nearest, which every C program starts in: this code neither
  * reads nor changes the floating-point environment). No libm, no allocation, no state.
  *
- * Inputs: the eight IR readings in the simulator's scale 0..1023 (readings above 1023 are
- * taken as 1023; a larger reading means a nearer wall), scaled to reading / 1023, in this
- * order: the sensors as the simulator places them on the body, in mm from the robot's centre
- * (x forward, y to the left) and facing in degrees counter-clockwise from forward (the
- * classic Khepera layout; wire your robot's sensors to these slots):
- *
+ * Inputs: the @NWORD@ IR readings in the simulator's scale 0..@RMAX@ (readings above @RMAX@ are
+ * taken as @RMAX@; a larger reading means a nearer wall), scaled to reading / @RMAX@, in this
 @LAYOUT@
  *
  * Outputs: motors[0] = mL, motors[1] = mR in [0, 1]; the wheel speeds are
@@ -83,7 +78,7 @@ const HEADER: &str = r#"/* fm_controller.h: an evolved fuzzymotiv controller (ne
 
 #include <stdint.h>
 
-#define FM_INPUTS 8
+#define FM_INPUTS @N@
 #define FM_HIDDEN @H@
 #define FM_OUTPUTS 2
 /* robot.v_max of the experiment (mm/s). */
@@ -98,12 +93,12 @@ const HEADER: &str = r#"/* fm_controller.h: an evolved fuzzymotiv controller (ne
 #define FM_ACTION_RIGHT30 2  /* rotate on the spot by -30 degrees */
 #define FM_ACTION_TURN180 3  /* rotate on the spot by 180 degrees */
 
-/* One control step from integer readings (0..1023; larger ones count as 1023). */
-void fm_controller_step(const uint16_t ir[8], double motors[2], int *action);
+/* One control step from integer readings (0..@RMAX@; larger ones count as @RMAX@). */
+void fm_controller_step(const uint16_t ir[@N@], double motors[2], int *action);
 
-/* One control step from readings as doubles in [0, 1023] (the simulator's noisy readings are
+/* One control step from readings as doubles in [0, @RMAX@] (the simulator's noisy readings are
  * not whole numbers). */
-void fm_controller_step_readings(const double ir[8], double motors[2], int *action);
+void fm_controller_step_readings(const double ir[@N@], double motors[2], int *action);
 
 /* fuzzymotiv's own exp (not libm's: ported here so that the results are the same bits on
  * every platform): Cody-Waite reduction x = (128 m + j) ln2/128 + r with |r| <= ln2/256, a
@@ -158,7 +153,7 @@ static const double EXP2_LO[128] = {
 @EXP2_LO@
 };
 
-/* Per hidden unit: bias, then the weights from inputs 0..7 (the genome's order). */
+/* Per hidden unit: bias, then the weights from inputs 0..@NM1@ (the genome's order). */
 static const double W_HIDDEN[FM_HIDDEN][FM_INPUTS + 1] = {
 @W_HIDDEN@
 };
@@ -249,7 +244,7 @@ static int label(double sl, double sr)
     return FM_ACTION_STRAIGHT;
 }
 
-void fm_controller_step_readings(const double ir[8], double motors[2], int *action)
+void fm_controller_step_readings(const double ir[@N@], double motors[2], int *action)
 {
     double x[FM_INPUTS];
     double h[FM_HIDDEN];
@@ -283,20 +278,35 @@ void fm_controller_step_readings(const double ir[8], double motors[2], int *acti
     }
 }
 
-void fm_controller_step(const uint16_t ir[8], double motors[2], int *action)
+void fm_controller_step(const uint16_t ir[@N@], double motors[2], int *action)
 {
     double v[FM_INPUTS];
     int i;
     for (i = 0; i < FM_INPUTS; i++) {
-        v[i] = ir[i] > 1023 ? 1023.0 : (double)ir[i];
+        v[i] = ir[i] > @RMAX@ ? @RMAXF@ : (double)ir[i];
     }
     fm_controller_step_readings(v, motors, action);
 }
 "#;
 
-/// The sensor layout as comment lines of the header: one per input, its position and facing.
-fn layout_comment() -> String {
-    let mut lines = vec![" *   ir[k]   x (mm)   y (mm)   facing".to_string()];
+/// Where the header says each input comes from: for the Khepera, the simulator's sensor
+/// layout (one comment line per input: its position and facing); for another robot, its robot
+/// file's numbering.
+fn layout_comment(robot: &KitRobot) -> String {
+    if robot.name != "khepera" || robot.sensors != SENSOR_LAYOUT.len() {
+        return format!(
+            " * order: the robot `{}`'s {} sensors, numbered as its robot file numbers them (wire\n \
+             * its sensor k to ir[k]).",
+            robot.name, robot.sensors
+        );
+    }
+    let mut lines = vec![
+        " * order: the sensors as the simulator places them on the body, in mm from the robot's centre".to_string(),
+        " * (x forward, y to the left) and facing in degrees counter-clockwise from forward (the".to_string(),
+        " * classic Khepera layout; wire your robot's sensors to these slots):".to_string(),
+        " *".to_string(),
+        " *   ir[k]   x (mm)   y (mm)   facing".to_string(),
+    ];
     for (k, m) in SENSOR_LAYOUT.iter().enumerate() {
         lines.push(format!(
             " *   ir[{k}] {:>8} {:>8} {:>7}",
@@ -308,10 +318,22 @@ fn layout_comment() -> String {
     lines.join("\n")
 }
 
+/// A count in words, as the header's prose writes it ("eight"), in digits beyond twelve.
+fn count_word(n: usize) -> String {
+    const WORDS: [&str; 13] = [
+        "no", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten",
+        "eleven", "twelve",
+    ];
+    WORDS
+        .get(n)
+        .map_or_else(|| n.to_string(), |w| w.to_string())
+}
+
 /// The header and source of `c`.
 pub(crate) fn sources(c: &ExportedController) -> CSources {
     let h = c.shape.hidden();
-    let (hidden_w, out_w) = c.weights.split_at(h * (INPUTS + 1));
+    let n = c.shape.inputs();
+    let (hidden_w, out_w) = c.weights.split_at(h * (n + 1));
     let rows = |w: &[f64], len: usize| {
         w.chunks_exact(len)
             .map(|row| {
@@ -340,7 +362,12 @@ pub(crate) fn sources(c: &ExportedController) -> CSources {
             ("@H@", h.to_string()),
             ("@PROVENANCE@", crate::provenance()),
             ("@LABELLED@", labelled.to_string()),
-            ("@LAYOUT@", layout_comment()),
+            ("@LAYOUT@", layout_comment(&c.robot)),
+            ("@NWORD@", count_word(n)),
+            ("@NM1@", (n - 1).to_string()),
+            ("@N@", n.to_string()),
+            ("@RMAXF@", format!("{:?}", c.robot.reading_max)),
+            ("@RMAX@", format!("{}", c.robot.reading_max)),
             ("@VMAX@", hex_double(c.v_max)),
             ("@TOL@", hex_double(c.tolerance)),
             (
@@ -359,9 +386,9 @@ pub(crate) fn sources(c: &ExportedController) -> CSources {
             ("@P5@", hex_double(1.0 / 120.0)),
             ("@EXP2_HI@", table(|e| e.0)),
             ("@EXP2_LO@", table(|e| e.1)),
-            ("@W_HIDDEN@", rows(hidden_w, INPUTS + 1)),
+            ("@W_HIDDEN@", rows(hidden_w, n + 1)),
             ("@W_OUT@", rows(out_w, h + 1)),
-            ("@SENSOR_MAX@", hex_double(SENSOR_MAX)),
+            ("@SENSOR_MAX@", hex_double(c.robot.reading_max)),
         ] {
             s = s.replace(key, &value);
         }

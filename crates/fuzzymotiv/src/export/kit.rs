@@ -39,6 +39,16 @@ pub struct KitFile {
     pub contents: Vec<u8>,
 }
 
+impl KitFile {
+    /// A text file `name` holding `text`.
+    pub fn text(name: &str, text: String) -> KitFile {
+        KitFile {
+            name: name.to_string(),
+            contents: text.into_bytes(),
+        }
+    }
+}
+
 /// A deployment kit: its files, and a few lines a front end prints after writing them.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Kit {
