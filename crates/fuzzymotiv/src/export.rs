@@ -17,11 +17,13 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub(crate) mod aseba;
 pub(crate) mod c;
 pub(crate) mod json;
 pub(crate) mod kit;
 pub(crate) mod onnx;
 
+pub use aseba::thymio2_kit;
 pub use c::CSources;
 pub use json::{ControllerDoc, FORMAT, FORMAT_VERSION};
 pub use kit::{Kit, KitFile, KitRobot};
