@@ -274,4 +274,6 @@ mod readme;
 use readme::readme;
 
 #[cfg(test)]
+mod playground;
+#[cfg(test)]
 mod tests;

@@ -15,7 +15,8 @@
 //! assignments to scalars and array elements, `if/elseif/else`, `while`, `for … in a:b`
 //! (step 1), `sub`/`callsub`, `return`, `onevent`, `call math.{copy,fill,clamp,muldiv,dot,mul,
 //! min,max}` with whole arrays, constant-index elements, constant slices `a[i:j]` or
-//! expressions as arguments, `abs`, unary `-`, comparisons with `and`/`or`/`not`.
+//! expressions as arguments, `abs`, unary `-`, comparisons with `and`/`or`/`not`, `emit` of a
+//! variable (recorded).
 //!
 //! The interpreter counts the VM's steps as the instructions the Aseba compiler emits for each
 //! construct (one step per bytecode instruction, as `AsebaDebugBareRun` counts them): a
@@ -167,6 +168,8 @@ enum Stmt {
     Call(String, Vec<Arg>),
     CallSub(String),
     Return,
+    /// `emit NAME VAR`: the event with the variable's words.
+    Emit(String, String),
 }
 
 /// A declared variable: its name, size and initialiser.
@@ -346,6 +349,7 @@ impl<'a> Parser<'a> {
                 Ok(Stmt::Call(f, args))
             }
             "callsub" => Ok(Stmt::CallSub(self.name()?)),
+            "emit" => Ok(Stmt::Emit(self.name()?, self.name()?)),
             "return" => Ok(Stmt::Return),
             _ => {
                 let index = if self.peek_sym("[") {
@@ -565,6 +569,7 @@ pub(crate) struct Machine {
     vars: HashMap<String, (usize, usize)>,
     user_words: usize,
     steps: usize,
+    emitted: Vec<(String, Vec<i16>)>,
 }
 
 /// How a statement list ended: normally, or by `return`.
@@ -614,6 +619,7 @@ impl Machine {
             mem,
             vars,
             steps: 0,
+            emitted: Vec::new(),
         })
     }
 
@@ -654,6 +660,11 @@ impl Machine {
     /// The value of variable `name`.
     pub(crate) fn get(&self, name: &str) -> Option<&[i16]> {
         self.vars.get(name).map(|&(a, n)| &self.mem[a..a + n])
+    }
+
+    /// The events emitted so far (name, values), taken out.
+    pub(crate) fn take_emitted(&mut self) -> Vec<(String, Vec<i16>)> {
+        std::mem::take(&mut self.emitted)
     }
 
     /// Set variable `name` (its first `values.len()` elements).
@@ -734,6 +745,13 @@ impl Machine {
                 self.block(&body)?;
             }
             Stmt::Return => return Ok(Flow::Return),
+            Stmt::Emit(event, var) => {
+                let Some(values) = self.get(var).map(<[i16]>::to_vec) else {
+                    return stop(format!("no variable {var}"));
+                };
+                self.emitted.push((event.clone(), values));
+                self.tick(1)?;
+            }
         }
         Ok(Flow::Next)
     }
@@ -988,6 +1006,7 @@ fn block_words(body: &[Stmt]) -> usize {
                 pushes + 2
             }
             Stmt::CallSub(_) | Stmt::Return => 1,
+            Stmt::Emit(..) => 3,
         })
         .sum()
 }

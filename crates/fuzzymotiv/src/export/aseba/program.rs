@@ -101,8 +101,11 @@ fn declarations(n: usize, h: usize, units: &[QUnit], r_max: i64, motion: Motion)
          var fm_s[{}]\nvar fm_m[2] = [2048, 2048]\nvar fm_a[2] = [0, 0]\n\
          var fm_p\nvar fm_tgt[2] = [0, 0]\nvar fm_act = 0\nvar fm_u\nvar fm_y\nvar fm_k\nvar fm_j\n\
          # network evaluations so far; 1 while stopped by fm_test\n\
-         var fm_count = 0\nvar fm_paused = 0\n",
-        h + 2
+         var fm_count = 0\nvar fm_paused = 0\n\
+         # 1: emit fm_state [readings, left target, right target] at each decision\n\
+         var fm_monitor = 0\nvar fm_log[{}]\n",
+        h + 2,
+        n + 2
     );
     if motion == Motion::Actions {
         s += "# actions: executing one (1/0), what is left of it (units of FM_UM_PER_UNIT/6250 mm),\n\
@@ -174,8 +177,19 @@ fn network_sub(n: usize, h: usize) -> String {
     s
 }
 
+/// `if fm_monitor == 1`: emit `fm_state` with the readings and the wheel targets set.
+fn monitor(n: usize) -> String {
+    format!(
+        "  if fm_monitor == 1 then\n    call math.copy(fm_log[0:{}], fm_raw)\n    \
+         fm_log[{n}] = motor.left.target\n    fm_log[{}] = motor.right.target\n    \
+         emit fm_state fm_log\n  end\n",
+        n - 1,
+        n + 1
+    )
+}
+
 /// Subs and handlers executing actions (`actions` motion).
-fn actions_code(read: &str) -> String {
+fn actions_code(read: &str, monitor: &str) -> String {
     let mut s = String::from(
         "# start executing fm_act: wheel travel to go, in units of FM_UM_PER_UNIT/6250 mm\n\
          sub fm_start\nfm_sub = 0\nfm_busy = 1\n",
@@ -201,7 +215,7 @@ fn actions_code(read: &str) -> String {
     s += &format!(
         "# a fresh reading after the last action: run the network, start its action\n\
          onevent prox\n\
-         if fm_paused == 0 and fm_busy == 0 then\n{read}  callsub fm_network\n  callsub fm_start\nend\n\n\
+         if fm_paused == 0 and fm_busy == 0 then\n{read}  callsub fm_network\n  callsub fm_start\n{monitor}end\n\n\
          # odometry at 100 Hz: each wheel travels |speed| target units for 10 ms\n\
          onevent motor\n\
          if fm_busy == 1 then\n\
@@ -248,10 +262,11 @@ pub(crate) fn generate(c: &ExportedController, src: Source) -> AeslProgram {
             code += &format!(
                 "# every control period: read the sensors, run the network, set the wheels\n\
                  onevent timer0\nif fm_paused == 0 then\n{read}  callsub fm_network\n  \
-                 motor.left.target = fm_tgt[0]\n  motor.right.target = fm_tgt[1]\nend\n"
+                 motor.left.target = fm_tgt[0]\n  motor.right.target = fm_tgt[1]\n{}end\n",
+                monitor(n)
             );
         }
-        Motion::Actions => code += &actions_code(&read),
+        Motion::Actions => code += &actions_code(&read, &monitor(n)),
     }
     let busy = if c.motion == Motion::Actions { "fm_busy = 0\n" } else { "" };
     code += &format!(
@@ -265,7 +280,7 @@ pub(crate) fn generate(c: &ExportedController, src: Source) -> AeslProgram {
     AeslProgram {
         code,
         constants: constants(c),
-        events: vec![("fm_test".into(), n), ("fm_run".into(), 0)],
+        events: vec![("fm_test".into(), n), ("fm_run".into(), 0), ("fm_state".into(), n + 2)],
         n,
         h,
         units,

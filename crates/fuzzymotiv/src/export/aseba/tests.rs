@@ -26,7 +26,7 @@ fn thymio(sensors: usize) -> KitRobot {
 }
 
 /// A controller for `sensors` inputs and `hidden` units with `weights` (the genome's order).
-fn controller(sensors: usize, hidden: usize, weights: Vec<f64>, motion: Motion) -> ExportedController {
+pub(super) fn controller(sensors: usize, hidden: usize, weights: Vec<f64>, motion: Motion) -> ExportedController {
     assert_eq!(weights.len(), hidden * (sensors + 1) + 2 * (hidden + 1));
     ExportedController {
         shape: MlpShape::with_hidden(hidden).unwrap(),
@@ -38,7 +38,7 @@ fn controller(sensors: usize, hidden: usize, weights: Vec<f64>, motion: Motion) 
     }
 }
 
-fn random_weights(rng: &mut Rng64, sensors: usize, hidden: usize, spread: f64) -> Vec<f64> {
+pub(super) fn random_weights(rng: &mut Rng64, sensors: usize, hidden: usize, spread: f64) -> Vec<f64> {
     (0..hidden * (sensors + 1) + 2 * (hidden + 1))
         .map(|_| uniform(rng, -spread, spread))
         .collect()
@@ -70,7 +70,7 @@ fn recorded_readings(n: usize, trials: u64) -> Vec<Vec<i16>> {
     rows
 }
 
-fn loaded(c: &ExportedController, src: Source) -> (AeslProgram, Machine) {
+pub(super) fn loaded(c: &ExportedController, src: Source) -> (AeslProgram, Machine) {
     let prog = program::generate(c, src);
     let m = machine(&prog, src).unwrap();
     (prog, m)
@@ -194,6 +194,13 @@ fn the_wheels_program_runs_every_control_period_and_sets_the_targets() {
     assert_eq!(m.get("motor.right.target"), Some(&[expected.target[1]][..]));
     let f = float_out(&c, &wall);
     assert!((f64::from(expected.target[0]) - f.target[0]).abs() <= TARGET_BOUND);
+    // With fm_monitor = 1 each decision emits fm_state = [readings, left, right target].
+    assert!(m.take_emitted().is_empty());
+    m.set("fm_monitor", &[1]).unwrap();
+    m.run_event("timer0").unwrap();
+    let mut state = wall.to_vec();
+    state.extend(expected.target);
+    assert_eq!(m.take_emitted(), [("fm_state".to_string(), state)]);
     // fm_test stops the control loop until fm_run.
     m.run_event("fm_test").unwrap();
     m.set("prox.horizontal", &[0; 7]).unwrap();
@@ -201,7 +208,7 @@ fn the_wheels_program_runs_every_control_period_and_sets_the_targets() {
     assert_eq!(m.get("motor.left.target"), Some(&[0i16][..]));
     m.run_event("fm_run").unwrap();
     m.run_event("timer0").unwrap();
-    assert_eq!(m.get("fm_count"), Some(&[3i16][..]));
+    assert_eq!(m.get("fm_count"), Some(&[4i16][..]));
 }
 
 /// A 7-6-2 controller whose outputs are constant: every weight 0 but the output biases.
@@ -279,7 +286,7 @@ fn the_aesl_is_xml_whose_node_is_the_interpreted_program() {
         .collect();
     assert!(constants.contains(&("FM_UM_PER_UNIT".into(), 332)));
     let events: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("event")).map(|n| n.attribute("size")).collect();
-    assert_eq!(events, [Some("7"), Some("0")]);
+    assert_eq!(events, [Some("7"), Some("0"), Some("9")]);
     // The file's program, run from the file, gives golden.csv's fixed-point columns.
     let mut m = Machine::load(code, &constants, &target_vars(THYMIO_PROX)).unwrap();
     m.run_init().unwrap();
@@ -323,3 +330,4 @@ fn more_inputs_than_the_thymio_has_read_zero_and_say_so() {
     let aesl = String::from_utf8(kit.files[0].contents.clone()).unwrap();
     assert!(aesl.contains("call math.copy(fm_raw[0:6], prox.horizontal[0:6])"));
 }
+
