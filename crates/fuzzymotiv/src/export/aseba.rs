@@ -59,7 +59,10 @@ fn kit_reading(c: &ExportedController, src: Source) -> Kit {
     }
     let golden = Golden::of(c, &prog, src);
     let golden_csv = match &golden {
-        Ok(g) => g.csv(c),
+        Ok(g) => {
+            notes.extend(g.over_limits());
+            g.csv(c)
+        }
         Err(e) => {
             notes.push(format!("warning: the program could not be interpreted ({e}); {GOLDEN_NAME} has no fixed-point columns"));
             String::new()
@@ -203,6 +206,13 @@ pub(crate) fn probe_readings(n: usize, r_max: i16) -> Vec<Vec<i16>> {
     rows
 }
 
+/// The Thymio II's variable space for a program (words).
+pub(crate) const VARIABLE_WORDS: usize = 512;
+/// The Thymio II's bytecode space (words).
+pub(crate) const BYTECODE_WORDS: usize = 1534;
+/// The steps after which the simulator cuts an event's handler.
+pub(crate) const EVENT_STEPS: usize = 1000;
+
 /// The golden vectors and the program's measured figures.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Golden {
@@ -234,6 +244,30 @@ impl Golden {
             bytecode_words: interp::bytecode_words(&prog.code, &prog.constants)?,
             init_steps,
         })
+    }
+
+    /// Warnings for each of the Thymio II's limits the program exceeds.
+    pub(crate) fn over_limits(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if self.user_words > VARIABLE_WORDS {
+            out.push(format!(
+                "warning: the program needs {} words of variables, more than the Thymio II's {VARIABLE_WORDS}: use fewer hidden units",
+                self.user_words
+            ));
+        }
+        if self.bytecode_words > BYTECODE_WORDS {
+            out.push(format!(
+                "warning: the program needs about {} words of bytecode, more than the Thymio II's {BYTECODE_WORDS}: use fewer hidden units",
+                self.bytecode_words
+            ));
+        }
+        if self.max_steps.max(self.init_steps) >= EVENT_STEPS {
+            out.push(format!(
+                "warning: one network evaluation takes about {} VM steps (initialisation {}); asebaplayground cuts an event after {EVENT_STEPS}: use fewer hidden units",
+                self.max_steps, self.init_steps
+            ));
+        }
+        out
     }
 
     /// Largest |fixed − float| over the rows: motor output (fraction of 1) and wheel target

@@ -69,7 +69,7 @@ fn quantised(c: &ExportedController, r_max: i64) -> (usize, usize, Vec<QUnit>) {
 }
 
 /// The variable declarations: constants of the network, then working variables.
-fn declarations(n: usize, h: usize, units: &[QUnit], r_max: i64, motion: Motion) -> String {
+fn declarations(n: usize, h: usize, units: &[QUnit], motion: Motion) -> String {
     let weights = |range: std::ops::Range<usize>| -> Vec<i64> {
         units[range]
             .iter()
@@ -84,17 +84,20 @@ fn declarations(n: usize, h: usize, units: &[QUnit], r_max: i64, motion: Motion)
     s += &decl("fm_lo", per_unit(|u| -u.bound), "per unit: sum clamp -8.0 in Q L");
     s += &decl("fm_hi", per_unit(|u| u.bound), "per unit: sum clamp +8.0 in Q L");
     s += &decl("fm_up", per_unit(|u| u.up), "per unit: factor 2^(10 - L) from Q L to Q10");
-    let table = quant::logistic_table().into_iter().map(i64::from).collect();
-    s += &decl("fm_t", table, "logistic: round(4096 / (1 + exp(-i/16))), i = 0..128, then the last again");
-    s += &decl("fm_rlo", vec![0; n], "readings: lower clamp");
-    s += &decl("fm_rmax", vec![r_max; n], "readings: reading_max (upper clamp and scale)");
-    s += &decl("fm_raw", vec![0; n], "the readings the network sees (sensors 0..N-1)");
-    let mut x = vec![0; n + 1];
-    x[0] = r_max;
-    s += &decl("fm_x", x, "inputs: the readings clamped to 0..reading_max (= 1.0), x[0] = 1.0 for the bias");
-    let mut hv = vec![0; h + 1];
-    hv[0] = i64::from(ONE);
-    s += &decl("fm_h", hv, "hidden activations in Q12, h[0] = 1.0 for the bias");
+    let table = quant::logistic_table().into_iter().map(|t| i64::from(t) - 2048).collect();
+    s += &decl(
+        "fm_t",
+        table,
+        "logistic: round(4096 / (1 + exp(-i/16))) - 2048, i = 0..128, then the last again",
+    );
+    s += &format!(
+        "# readings: clamp bounds (0 and reading_max = 1.0), the readings the network sees\n\
+         # (sensors 0..N-1), the inputs (x[0] = 1.0 for the bias), the hidden activations in Q12\n\
+         # (h[0] = 1.0 for the bias); filled at start\n\
+         var fm_rlo[{n}]\nvar fm_rmax[{n}]\nvar fm_raw[{n}]\nvar fm_x[{}]\nvar fm_h[{}]\n",
+        n + 1,
+        h + 1
+    );
     s += &format!(
         "# working variables: sums (Q10 after scaling), motor outputs m (Q12), 2m - 1 (Q12),\n\
          # wheel targets, action (0 straight, 1 left30, 2 right30, 3 turn180)\n\
@@ -126,7 +129,7 @@ fn sigma_sub() -> String {
          fm_y = abs(fm_u)\n\
          fm_k = fm_y >> {k}\n\
          fm_y = fm_t[fm_k] + (((fm_t[fm_k + 1] - fm_t[fm_k]) * (fm_y & {mask})) >> {k})\n\
-         if fm_u < 0 then\n  fm_y = 4096 - fm_y\nend\n"
+         if fm_u < 0 then\n  fm_y = 2048 - fm_y\nelse\n  fm_y = 2048 + fm_y\nend\n"
     )
 }
 
@@ -246,8 +249,12 @@ pub(crate) fn generate(c: &ExportedController, src: Source) -> AeslProgram {
          # see README.txt.\n\n",
         crate::provenance()
     );
-    code += &declarations(n, h, &units, r_max, c.motion);
-    code += "\nmotor.left.target = 0\nmotor.right.target = 0\n";
+    code += &declarations(n, h, &units, c.motion);
+    code += &format!(
+        "\ncall math.fill(fm_rlo, 0)\ncall math.fill(fm_rmax, {r_max})\ncall math.fill(fm_raw, 0)\n\
+         call math.fill(fm_x, 0)\nfm_x[0] = {r_max}\ncall math.fill(fm_h, 0)\nfm_h[0] = {ONE}\n\
+         motor.left.target = 0\nmotor.right.target = 0\n"
+    );
     match c.motion {
         Motion::Wheels => code += "timer.period[0] = FM_PERIOD_MS\n",
         Motion::Actions => code += "call math.muldiv(fm_vt, FM_V_MAX_DMM, 100, FM_UM_PER_UNIT)\n",

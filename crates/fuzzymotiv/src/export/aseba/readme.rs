@@ -150,7 +150,7 @@ The program:
   L = 10 (1024 = 1.0) unless the unit's largest possible sum would not fit 16 bits, then the
   largest L that fits; clamped to +/-8.0 (fm_lo, fm_hi) and brought to Q10 (x fm_up =
   2^(10-L)).
-- logistic: a table of round(4096 / (1 + exp(-i/16))), i = 0..128 (fm_t), linear
+- logistic: a table of round(4096 / (1 + exp(-i/16))) - 2048, i = 0..128 (fm_t), linear
   interpolation between entries, logistic(-u) = 1 - logistic(u): hidden activations and motor
   outputs m in Q12. (Interpolation error < 5e-5, table rounding 1.2e-4, |sum| > 8 saturates at
   4095/4096.)
@@ -188,7 +188,7 @@ fn measured(g: Option<&Golden>) -> String {
         dm,
         dt,
         100.0 * labels
-    )
+    ) + &g.over_limits().iter().map(|w| format!("{w}\n")).collect::<String>()
 }
 
 /// The README of `c`'s kit (`p` its program, `g` its golden vectors if they could be made).

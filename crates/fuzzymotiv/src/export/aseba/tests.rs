@@ -331,3 +331,17 @@ fn more_inputs_than_the_thymio_has_read_zero_and_say_so() {
     assert!(aesl.contains("call math.copy(fm_raw[0:6], prox.horizontal[0:6])"));
 }
 
+
+#[test]
+fn a_network_too_large_for_the_thymio_is_exported_with_warnings() {
+    let (n, h) = (7, 48);
+    let c = controller(n, h, random_weights(&mut rng_from_seed(12), n, h, 3.0), Motion::Wheels);
+    let kit = thymio2_kit(&c);
+    let warnings: Vec<&String> = kit.notes.iter().filter(|n| n.starts_with("warning")).collect();
+    assert_eq!(warnings.len(), 3, "{:?}", kit.notes);
+    assert!(warnings[0].contains("more than the Thymio II's 512"), "{warnings:?}");
+    assert!(warnings[1].contains("bytecode"), "{warnings:?}");
+    assert!(warnings[2].contains("cuts an event after 1000"), "{warnings:?}");
+    let readme = String::from_utf8(kit.files[1].contents.clone()).unwrap();
+    assert!(readme.contains(warnings[0].as_str()), "{readme}");
+}
