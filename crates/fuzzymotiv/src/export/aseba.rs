@@ -20,8 +20,8 @@ pub(crate) mod interp;
 pub(crate) mod program;
 pub(crate) mod quant;
 
-use super::kit::{Kit, KitFile};
 use super::ExportedController;
+use super::kit::{Kit, KitFile};
 use crate::simulation::robot::{Action, Motion};
 use interp::{AsebaError, Machine};
 use program::{AeslProgram, Source, THYMIO_PROX, UM_PER_UNIT};
@@ -45,8 +45,12 @@ pub fn thymio2_kit(c: &ExportedController) -> Kit {
 fn kit_reading(c: &ExportedController, src: Source) -> Kit {
     let prog = program::generate(c, src);
     let mut notes = vec![
-        format!("load {AESL_NAME} in Aseba Studio (File > Open, then Load and Run), or PUT it to asebahttp: see {README_NAME}"),
-        format!("{GOLDEN_NAME}: readings, the float network's outputs and the program's, to check a robot with the fm_test event"),
+        format!(
+            "load {AESL_NAME} in Aseba Studio (File > Open, then Load and Run), or PUT it to asebahttp: see {README_NAME}"
+        ),
+        format!(
+            "{GOLDEN_NAME}: readings, the float network's outputs and the program's, to check a robot with the fm_test event"
+        ),
     ];
     if prog.n > src.len {
         notes.push(format!(
@@ -102,13 +106,6 @@ fn target_vars(src: Source) -> Vec<(&'static str, usize)> {
     ]
 }
 
-/// `prog` loaded into the interpreter and initialised.
-pub(crate) fn machine(prog: &AeslProgram, src: Source) -> Result<Machine, AsebaError> {
-    let mut m = Machine::load(&prog.code, &prog.constants, &target_vars(src))?;
-    m.run_init()?;
-    Ok(m)
-}
-
 /// The code of an action label (0 straight, 1 left30, 2 right30, 3 turn180).
 fn action_code(a: Action) -> i16 {
     match a {
@@ -134,7 +131,13 @@ pub(crate) struct FloatOut {
 pub(crate) fn float_out(c: &ExportedController, readings: &[i16]) -> FloatOut {
     let r = c.robot();
     let x: Vec<f64> = readings.iter().map(|&v| f64::from(v)).collect();
-    let m = quant::float_step(c.weights(), r.sensors, c.shape().hidden(), &x, r.reading_max);
+    let m = quant::float_step(
+        c.weights(),
+        r.sensors,
+        c.shape().hidden(),
+        &x,
+        r.reading_max,
+    );
     let s = m.map(|mi| 2.0 * mi - 1.0);
     let action = match c.motion {
         Motion::Actions => Action::from_speeds(
@@ -297,7 +300,16 @@ impl Golden {
             let readings: String = r.iter().map(|v| format!("{v},")).collect();
             s += &format!(
                 "{i},{readings}{:.6},{:.6},{:.3},{:.3},{},{},{},{},{},{}\n",
-                f.m[0], f.m[1], f.target[0], f.target[1], f.action, q.m[0], q.m[1], q.target[0], q.target[1], q.action
+                f.m[0],
+                f.m[1],
+                f.target[0],
+                f.target[1],
+                f.action,
+                q.m[0],
+                q.m[1],
+                q.target[0],
+                q.target[1],
+                q.action
             );
         }
         s

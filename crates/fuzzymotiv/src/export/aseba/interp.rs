@@ -73,7 +73,9 @@ fn lex(text: &str) -> Res<Vec<Tok>> {
                 .find(|&j| chars[j] == '*' && chars[j + 1] == '#');
             i = close.map_or(chars.len(), |j| j + 2);
         } else if c == '#' {
-            i = (i..chars.len()).find(|&j| chars[j] == '\n').unwrap_or(chars.len());
+            i = (i..chars.len())
+                .find(|&j| chars[j] == '\n')
+                .unwrap_or(chars.len());
         } else if c.is_ascii_digit() {
             let start = i;
             while i < chars.len() && chars[i].is_ascii_digit() {
@@ -198,9 +200,7 @@ struct Parser<'a> {
 fn is_block_end(t: Option<&Tok>) -> bool {
     match t {
         None => true,
-        Some(Tok::Name(n)) => {
-            ["end", "else", "elseif", "sub", "onevent"].contains(&n.as_str())
-        }
+        Some(Tok::Name(n)) => ["end", "else", "elseif", "sub", "onevent"].contains(&n.as_str()),
         _ => false,
     }
 }
@@ -404,7 +404,11 @@ impl<'a> Parser<'a> {
                 } else {
                     self.at += 1;
                     let lo = self.expr()?;
-                    let hi = if self.peek_sym(":") { self.range_end()? } else { lo.clone() };
+                    let hi = if self.peek_sym(":") {
+                        self.range_end()?
+                    } else {
+                        lo.clone()
+                    };
                     self.sym("]")?;
                     if self.peek_sym(",") || self.peek_sym(")") {
                         return Ok(Arg::Mem(n, Some((lo, hi))));
@@ -663,6 +667,7 @@ impl Machine {
     }
 
     /// The events emitted so far (name, values), taken out.
+    #[cfg(test)]
     pub(crate) fn take_emitted(&mut self) -> Vec<(String, Vec<i16>)> {
         std::mem::take(&mut self.emitted)
     }
@@ -797,7 +802,11 @@ impl Machine {
             Cond::And(a, b) | Cond::Or(a, b) => {
                 let (x, y) = (self.cond_value(a)?, self.cond_value(b)?);
                 self.tick(2)?; // both comparisons as values, then the logical operator
-                if matches!(c, Cond::And(..)) { x && y } else { x || y }
+                if matches!(c, Cond::And(..)) {
+                    x && y
+                } else {
+                    x || y
+                }
             }
             Cond::Not(a) => !self.cond_value(a)?,
         })
@@ -904,7 +913,11 @@ fn native(mem: &mut [i16], f: &str, args: &[(usize, usize)]) -> Res<()> {
     }
     let len = args[usize::from(f == "math.dot")].1;
     let sized = |k: usize| (f == "math.fill" && k == 1) || (f == "math.dot" && (k == 0 || k == 3));
-    if args.iter().enumerate().any(|(k, a)| !sized(k) && a.1 != len) {
+    if args
+        .iter()
+        .enumerate()
+        .any(|(k, a)| !sized(k) && a.1 != len)
+    {
         return stop(format!("{f}: arguments of different sizes"));
     }
     let at = |k: usize, i: usize| args[k].0 + i;
@@ -914,7 +927,11 @@ fn native(mem: &mut [i16], f: &str, args: &[(usize, usize)]) -> Res<()> {
         for i in 0..len {
             acc = acc.wrapping_add(i32::from(mem[at(1, i)]) * i32::from(mem[at(2, i)]));
         }
-        mem[args[0].0] = if shift > 32 { 0 } else { acc.wrapping_shr(shift as u32) as i16 };
+        mem[args[0].0] = if shift > 32 {
+            0
+        } else {
+            acc.wrapping_shr(shift as u32) as i16
+        };
         return Ok(());
     }
     for i in 0..len {
@@ -925,7 +942,15 @@ fn native(mem: &mut [i16], f: &str, args: &[(usize, usize)]) -> Res<()> {
             "math.mul" => (v(1) * v(2)) as i16,
             "math.min" => v(1).min(v(2)) as i16,
             "math.max" => v(1).max(v(2)) as i16,
-            "math.clamp" => (if v(1) > v(3) { v(3) } else if v(1) < v(2) { v(2) } else { v(1) }) as i16,
+            "math.clamp" => {
+                (if v(1) > v(3) {
+                    v(3)
+                } else if v(1) < v(2) {
+                    v(2)
+                } else {
+                    v(1)
+                }) as i16
+            }
             _ => {
                 if v(3) == 0 {
                     return stop("math.muldiv: division by zero");
@@ -990,7 +1015,10 @@ fn block_words(body: &[Stmt]) -> usize {
             Stmt::Assign(_, None, e) => expr_words(e) + 1,
             Stmt::Assign(_, Some(i), e) => expr_words(e) + expr_words(i) + 2,
             Stmt::If(arms, otherwise) => {
-                let arms: usize = arms.iter().map(|(c, b)| cond_words(c) + 3 + block_words(b)).sum();
+                let arms: usize = arms
+                    .iter()
+                    .map(|(c, b)| cond_words(c) + 3 + block_words(b))
+                    .sum();
                 arms + block_words(otherwise)
             }
             Stmt::While(c, b) => cond_words(c) + 3 + block_words(b),
@@ -1023,7 +1051,9 @@ mod tests {
 
     #[test]
     fn arithmetic_wraps_at_16_bits_and_divides_as_c() {
-        let m = run("var m = -7\nvar a = 30000\nvar b\nvar c\nvar d\nvar e\nb = a + a\nc = -7 / a * 0 + m / 2\nd = m / 3\ne = m % 3\nt[0] = (0 - 7) / 2");
+        let m = run(
+            "var m = -7\nvar a = 30000\nvar b\nvar c\nvar d\nvar e\nb = a + a\nc = -7 / a * 0 + m / 2\nd = m / 3\ne = m % 3\nt[0] = (0 - 7) / 2",
+        );
         assert_eq!(m.get("b"), Some(&[-5536i16][..]));
         // (0 - 7) / 2 is rewritten to a shift: −4, not C's −3; / 3 truncates: −2, % keeps the sign.
         assert_eq!(m.get("c"), Some(&[-4i16][..]));
@@ -1038,7 +1068,10 @@ mod tests {
         // 1000 * 100 / 50 = 2000 folded in C int; at run time 1000 * 100 would wrap.
         let m = run("var a\nvar k = 1000\na = K * 100 / 50\nt[0] = k * 100 / 50");
         assert_eq!(m.get("a"), Some(&[2000i16][..]));
-        assert_eq!(m.get("t").unwrap()[0], ((100_000i32 as i16) as i32 / 50) as i16);
+        assert_eq!(
+            m.get("t").unwrap()[0],
+            ((100_000i32 as i16) as i32 / 50) as i16
+        );
     }
 
     #[test]
@@ -1065,7 +1098,12 @@ mod tests {
 
     #[test]
     fn the_vm_stops_on_bad_indices_and_zero_divisors() {
-        let mut m = Machine::load("var a[2]\nvar i = 2\nvar z = 0\nonevent x\na[i] = 1\nonevent y\na[0] = 1 / z", &[], &[]).unwrap();
+        let mut m = Machine::load(
+            "var a[2]\nvar i = 2\nvar z = 0\nonevent x\na[i] = 1\nonevent y\na[0] = 1 / z",
+            &[],
+            &[],
+        )
+        .unwrap();
         m.run_init().unwrap();
         assert!(matches!(m.run_event("x"), Err(AsebaError::Stopped(_))));
         assert!(matches!(m.run_event("y"), Err(AsebaError::Stopped(_))));
@@ -1077,6 +1115,9 @@ mod tests {
             Machine::load("var a\na = = 1", &[], &[]),
             Err(AsebaError::Parse { .. })
         ));
-        assert!(matches!(Machine::load("var a\na = 1 @ 2", &[], &[]), Err(AsebaError::Parse { .. })));
+        assert!(matches!(
+            Machine::load("var a\na = 1 @ 2", &[], &[]),
+            Err(AsebaError::Parse { .. })
+        ));
     }
 }

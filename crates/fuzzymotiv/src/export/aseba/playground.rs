@@ -29,7 +29,11 @@ impl Drop for Children {
 }
 
 fn free_port() -> u16 {
-    TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port()
+    TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port()
 }
 
 fn spawn(dir: &Path, log: &str, program: &str, args: &[&str]) -> Child {
@@ -52,17 +56,23 @@ fn spawn(dir: &Path, log: &str, program: &str, args: &[&str]) -> Child {
 fn listening(port: u16) -> bool {
     let needle = format!(":{port:04X} ");
     ["/proc/net/tcp", "/proc/net/tcp6"].iter().any(|f| {
-        std::fs::read_to_string(f).unwrap_or_default().lines().any(|l| {
-            let cols: Vec<&str> = l.split_whitespace().collect();
-            cols.len() > 3 && format!("{} ", cols[1]).ends_with(&needle) && cols[3] == "0A"
-        })
+        std::fs::read_to_string(f)
+            .unwrap_or_default()
+            .lines()
+            .any(|l| {
+                let cols: Vec<&str> = l.split_whitespace().collect();
+                cols.len() > 3 && format!("{} ", cols[1]).ends_with(&needle) && cols[3] == "0A"
+            })
     })
 }
 
 fn wait_for_port(port: u16) {
     let start = Instant::now();
     while !listening(port) {
-        assert!(start.elapsed() < Duration::from_secs(30), "nothing listens on {port}");
+        assert!(
+            start.elapsed() < Duration::from_secs(30),
+            "nothing listens on {port}"
+        );
         std::thread::sleep(Duration::from_millis(100));
     }
 }
@@ -79,12 +89,16 @@ impl Http {
             .arg(&url)
             .output()
             .ok()?;
-        out.status.success().then(|| String::from_utf8_lossy(&out.stdout).into_owned())
+        out.status
+            .success()
+            .then(|| String::from_utf8_lossy(&out.stdout).into_owned())
     }
 
     /// A variable of the node, e.g. `prox.horizontal`.
     fn var(&self, name: &str) -> Vec<i16> {
-        let text = self.curl(&[], &format!("nodes/thymio-II/{name}")).unwrap_or_default();
+        let text = self
+            .curl(&[], &format!("nodes/thymio-II/{name}"))
+            .unwrap_or_default();
         serde_json::from_str(&text).unwrap_or_else(|e| panic!("{name}: {text:?}: {e}"))
     }
 
@@ -97,7 +111,12 @@ impl Http {
     fn put(&self, aesl: &Path) {
         let data = format!("@{}", aesl.display());
         self.curl(&["-X", "PUT", "--data-binary", &data], "nodes/thymio-II")
-            .unwrap_or_else(|| panic!("PUT {} refused: the program does not compile", aesl.display()));
+            .unwrap_or_else(|| {
+                panic!(
+                    "PUT {} refused: the program does not compile",
+                    aesl.display()
+                )
+            });
     }
 }
 
@@ -106,7 +125,11 @@ fn bytecode_sent(log: &Path, from: usize) -> usize {
     let text = std::fs::read_to_string(log).unwrap_or_default();
     text[from.min(text.len())..]
         .lines()
-        .filter_map(|l| l.split(" words of bytecode").next().filter(|_| l.contains(" words of bytecode")))
+        .filter_map(|l| {
+            l.split(" words of bytecode")
+                .next()
+                .filter(|_| l.contains(" words of bytecode"))
+        })
         .filter_map(|head| head.rsplit(' ').next()?.parse::<usize>().ok())
         .sum()
 }
@@ -138,17 +161,31 @@ fn check_golden(http: &Http, c: &ExportedController) {
 /// same handler (`timer0`, or `prox` with no action running) sets for those readings.
 fn check_live(http: &Http, c: &ExportedController, secs: u32) {
     let (_, mut m) = super::tests::loaded(c, THYMIO_PROX);
-    let control = if c.motion == Motion::Wheels { "timer0" } else { "prox" };
-    http.curl(&[], "nodes/thymio-II/fm_monitor/1").expect("setting fm_monitor");
-    let url = format!("http://127.0.0.1:{}/nodes/thymio-II/events/fm_state", http.0);
+    let control = if c.motion == Motion::Wheels {
+        "timer0"
+    } else {
+        "prox"
+    };
+    http.curl(&[], "nodes/thymio-II/fm_monitor/1")
+        .expect("setting fm_monitor");
+    let url = format!(
+        "http://127.0.0.1:{}/nodes/thymio-II/events/fm_state",
+        http.0
+    );
     let out = Command::new("curl")
         .args(["-s", "-N", "--max-time", &secs.to_string(), &url])
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
     let (mut states, mut seeing) = (0, 0);
-    for line in text.lines().filter_map(|l| l.strip_prefix("data: fm_state ")) {
-        let v: Vec<i16> = line.split_whitespace().map(|x| x.parse().unwrap()).collect();
+    for line in text
+        .lines()
+        .filter_map(|l| l.strip_prefix("data: fm_state "))
+    {
+        let v: Vec<i16> = line
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect();
         assert_eq!(v.len(), 9, "{line}");
         let (readings, targets) = v.split_at(7);
         m.set("prox.horizontal", readings).unwrap();
@@ -156,16 +193,25 @@ fn check_live(http: &Http, c: &ExportedController, secs: u32) {
             m.set("fm_busy", &[0]).unwrap();
         }
         m.run_event(control).unwrap();
-        let predicted = [m.get("motor.left.target").unwrap()[0], m.get("motor.right.target").unwrap()[0]];
+        let predicted = [
+            m.get("motor.left.target").unwrap()[0],
+            m.get("motor.right.target").unwrap()[0],
+        ];
         assert_eq!(targets, predicted, "readings {readings:?}");
         states += 1;
         seeing += usize::from(readings.iter().any(|&r| r > 0));
     }
-    eprintln!("{:?}: {states} decisions streamed in {secs} s, {seeing} seeing a wall", c.motion);
+    eprintln!(
+        "{:?}: {states} decisions streamed in {secs} s, {seeing} seeing a wall",
+        c.motion
+    );
     // Wheels: one decision per control period (100 ms); actions: one per action executed
     // (about 100 ms of motion and up to 100 ms waiting for fresh readings).
     let per_second = if c.motion == Motion::Wheels { 5 } else { 2 };
-    assert!(states >= per_second * secs as usize, "{states} decisions in {secs} s:\n{text}");
+    assert!(
+        states >= per_second * secs as usize,
+        "{states} decisions in {secs} s:\n{text}"
+    );
     assert!(seeing > 0, "the Thymio never saw the wall");
 }
 
@@ -177,19 +223,45 @@ fn the_kit_compiles_and_runs_on_the_playgrounds_thymio() {
     std::fs::create_dir_all(&dir).unwrap();
     let world = include_str!("../../../tests/data/thymio-wall.playground");
     let (p_robot, p_switch, p_http) = (free_port(), free_port(), free_port());
-    std::fs::write(dir.join("world.playground"), world.replace("port=\"33333\"", &format!("port=\"{p_robot}\""))).unwrap();
-    let mut children = Children(vec![spawn(&dir, "playground.log", "asebaplayground", &["world.playground"])]);
+    std::fs::write(
+        dir.join("world.playground"),
+        world.replace("port=\"33333\"", &format!("port=\"{p_robot}\"")),
+    )
+    .unwrap();
+    let mut children = Children(vec![spawn(
+        &dir,
+        "playground.log",
+        "asebaplayground",
+        &["world.playground"],
+    )]);
     wait_for_port(p_robot);
     let robot = format!("tcp:localhost;{p_robot}");
-    children.0.push(spawn(&dir, "switch.log", "asebaswitch", &["-d", "-p", &p_switch.to_string(), &robot]));
+    children.0.push(spawn(
+        &dir,
+        "switch.log",
+        "asebaswitch",
+        &["-d", "-p", &p_switch.to_string(), &robot],
+    ));
     wait_for_port(p_switch);
     let switch = format!("tcp:localhost;{p_switch}");
-    children.0.push(spawn(&dir, "http.log", "asebahttp", &["-p", &p_http.to_string(), &switch]));
+    children.0.push(spawn(
+        &dir,
+        "http.log",
+        "asebahttp",
+        &["-p", &p_http.to_string(), &switch],
+    ));
     wait_for_port(p_http);
     let http = Http(p_http);
     let start = Instant::now();
-    while !http.curl(&[], "nodes").unwrap_or_default().contains("thymio-II") {
-        assert!(start.elapsed() < Duration::from_secs(30), "asebahttp lists no thymio-II");
+    while !http
+        .curl(&[], "nodes")
+        .unwrap_or_default()
+        .contains("thymio-II")
+    {
+        assert!(
+            start.elapsed() < Duration::from_secs(30),
+            "asebahttp lists no thymio-II"
+        );
         std::thread::sleep(Duration::from_millis(200));
     }
     let mut rng = rng_from_seed(2);

@@ -53,7 +53,11 @@ fn list(values: impl IntoIterator<Item = i64>) -> String {
 }
 
 fn decl(name: &str, values: Vec<i64>, comment: &str) -> String {
-    format!("# {comment}\nvar {name}[{}] = [{}]\n", values.len(), list(values))
+    format!(
+        "# {comment}\nvar {name}[{}] = [{}]\n",
+        values.len(),
+        list(values)
+    )
 }
 
 /// The network's sizes and the per-unit quantisation of `c`: N from the robot, H from the
@@ -61,7 +65,9 @@ fn decl(name: &str, values: Vec<i64>, comment: &str) -> String {
 fn quantised(c: &ExportedController, r_max: i64) -> (usize, usize, Vec<QUnit>) {
     let (n, h) = (c.robot().sensors, c.shape().hidden());
     let (hidden_w, out_w) = c.weights().split_at((h * (n + 1)).min(c.weights().len()));
-    let hidden = hidden_w.chunks_exact(n + 1).map(|row| quant::quantise_row(row, r_max));
+    let hidden = hidden_w
+        .chunks_exact(n + 1)
+        .map(|row| quant::quantise_row(row, r_max));
     let outputs = out_w
         .chunks_exact(h + 1)
         .map(|row| quant::quantise_row(row, i64::from(ONE)));
@@ -78,13 +84,40 @@ fn declarations(n: usize, h: usize, units: &[QUnit], motion: Motion) -> String {
     };
     let per_unit = |f: fn(&QUnit) -> i16| units.iter().map(|u| i64::from(f(u))).collect();
     let mut s = String::new();
-    s += &decl("fm_wh", weights(0..h), "hidden units: per unit [bias, w from input 1..N] as round(w * 2^(e+12) / reading_max)");
-    s += &decl("fm_wo", weights(h..h + 2), "outputs (left, right): per output [bias, w from hidden 1..H] as round(w * 2^e)");
-    s += &decl("fm_sh", per_unit(|u| u.shift), "per unit (hidden, then outputs): math.dot shift e + 12 - L (sum in Q L)");
-    s += &decl("fm_lo", per_unit(|u| -u.bound), "per unit: sum clamp -8.0 in Q L");
-    s += &decl("fm_hi", per_unit(|u| u.bound), "per unit: sum clamp +8.0 in Q L");
-    s += &decl("fm_up", per_unit(|u| u.up), "per unit: factor 2^(10 - L) from Q L to Q10");
-    let table = quant::logistic_table().into_iter().map(|t| i64::from(t) - 2048).collect();
+    s += &decl(
+        "fm_wh",
+        weights(0..h),
+        "hidden units: per unit [bias, w from input 1..N] as round(w * 2^(e+12) / reading_max)",
+    );
+    s += &decl(
+        "fm_wo",
+        weights(h..h + 2),
+        "outputs (left, right): per output [bias, w from hidden 1..H] as round(w * 2^e)",
+    );
+    s += &decl(
+        "fm_sh",
+        per_unit(|u| u.shift),
+        "per unit (hidden, then outputs): math.dot shift e + 12 - L (sum in Q L)",
+    );
+    s += &decl(
+        "fm_lo",
+        per_unit(|u| -u.bound),
+        "per unit: sum clamp -8.0 in Q L",
+    );
+    s += &decl(
+        "fm_hi",
+        per_unit(|u| u.bound),
+        "per unit: sum clamp +8.0 in Q L",
+    );
+    s += &decl(
+        "fm_up",
+        per_unit(|u| u.up),
+        "per unit: factor 2^(10 - L) from Q L to Q10",
+    );
+    let table = quant::logistic_table()
+        .into_iter()
+        .map(|t| i64::from(t) - 2048)
+        .collect();
     s += &decl(
         "fm_t",
         table,
@@ -142,7 +175,10 @@ fn network_sub(n: usize, h: usize) -> String {
     s += &format!("call math.clamp(fm_x[1:{n}], fm_raw, fm_rlo, fm_rmax)\n");
     for j in 0..h {
         let a = j * (n + 1);
-        s += &format!("call math.dot(fm_s[{j}], fm_wh[{a}:{}], fm_x, fm_sh[{j}])\n", a + n);
+        s += &format!(
+            "call math.dot(fm_s[{j}], fm_wh[{a}:{}], fm_x, fm_sh[{j}])\n",
+            a + n
+        );
     }
     let last = h - 1;
     s += &format!(
@@ -152,7 +188,12 @@ fn network_sub(n: usize, h: usize) -> String {
     );
     for o in 0..2 {
         let a = o * (h + 1);
-        s += &format!("call math.dot(fm_s[{}], fm_wo[{a}:{}], fm_h, fm_sh[{}])\n", h + o, a + h, h + o);
+        s += &format!(
+            "call math.dot(fm_s[{}], fm_wo[{a}:{}], fm_h, fm_sh[{}])\n",
+            h + o,
+            a + h,
+            h + o
+        );
     }
     let (o0, o1) = (h, h + 1);
     s += &format!(
@@ -275,7 +316,11 @@ pub(crate) fn generate(c: &ExportedController, src: Source) -> AeslProgram {
         }
         Motion::Actions => code += &actions_code(&read, &monitor(n)),
     }
-    let busy = if c.motion == Motion::Actions { "fm_busy = 0\n" } else { "" };
+    let busy = if c.motion == Motion::Actions {
+        "fm_busy = 0\n"
+    } else {
+        ""
+    };
     code += &format!(
         "\n# check: stop, run the network once on the N readings given as the event's arguments\n\
          # (results in fm_m, fm_tgt, fm_act); fm_run resumes\n\
@@ -287,7 +332,11 @@ pub(crate) fn generate(c: &ExportedController, src: Source) -> AeslProgram {
     AeslProgram {
         code,
         constants: constants(c),
-        events: vec![("fm_test".into(), n), ("fm_run".into(), 0), ("fm_state".into(), n + 2)],
+        events: vec![
+            ("fm_test".into(), n),
+            ("fm_run".into(), 0),
+            ("fm_state".into(), n + 2),
+        ],
         n,
         h,
         units,
@@ -300,15 +349,26 @@ fn constants(c: &ExportedController) -> Vec<(String, i64)> {
     let r = c.robot();
     let dmm = |mm: f64| (mm * 10.0).round().clamp(0.0, 32767.0) as i64;
     let half_base = r.wheel_base / 2.0;
-    let tol = (c.tolerance * f64::from(ONE)).floor().clamp(-32768.0, 32767.0) as i64;
+    let tol = (c.tolerance * f64::from(ONE))
+        .floor()
+        .clamp(-32768.0, 32767.0) as i64;
     vec![
         ("FM_UM_PER_UNIT".into(), UM_PER_UNIT),
         ("FM_V_MAX_DMM".into(), dmm(r.v_max)),
         ("FM_TOLERANCE".into(), tol),
-        ("FM_PERIOD_MS".into(), (r.dt * 1000.0).round().clamp(1.0, 32767.0) as i64),
+        (
+            "FM_PERIOD_MS".into(),
+            (r.dt * 1000.0).round().clamp(1.0, 32767.0) as i64,
+        ),
         ("FM_STRAIGHT_DMM".into(), dmm(r.straight_step())),
-        ("FM_TURN_DMM".into(), dmm(half_base * r.turn_deg.to_radians())),
-        ("FM_TURN180_DMM".into(), dmm(half_base * std::f64::consts::PI)),
+        (
+            "FM_TURN_DMM".into(),
+            dmm(half_base * r.turn_deg.to_radians()),
+        ),
+        (
+            "FM_TURN180_DMM".into(),
+            dmm(half_base * std::f64::consts::PI),
+        ),
     ]
 }
 
@@ -322,7 +382,8 @@ fn escape(text: &str) -> String {
 impl AeslProgram {
     /// The .aesl document (Aseba Studio's and asebahttp's format) with the node `thymio-II`.
     pub(crate) fn aesl(&self) -> String {
-        let mut s = String::from("<!DOCTYPE aesl-source>\n<network>\n\n<!--list of global events-->\n");
+        let mut s =
+            String::from("<!DOCTYPE aesl-source>\n<network>\n\n<!--list of global events-->\n");
         for (name, size) in &self.events {
             s += &format!("<event size=\"{size}\" name=\"{name}\"/>\n");
         }
@@ -331,7 +392,10 @@ impl AeslProgram {
             s += &format!("<constant value=\"{value}\" name=\"{name}\"/>\n");
         }
         s += "\n<!--show keywords state-->\n<keywords flag=\"true\"/>\n\n<!--node thymio-II-->\n";
-        s += &format!("<node nodeId=\"1\" name=\"thymio-II\">{}</node>\n\n</network>\n", escape(&self.code));
+        s += &format!(
+            "<node nodeId=\"1\" name=\"thymio-II\">{}</node>\n\n</network>\n",
+            escape(&self.code)
+        );
         s
     }
 }

@@ -118,7 +118,13 @@ pub(crate) fn float_step(
 ) -> [f64; 2] {
     let x: Vec<f64> = readings
         .iter()
-        .map(|&r| if r <= 0.0 { 0.0 } else { r.min(reading_max) / reading_max })
+        .map(|&r| {
+            if r <= 0.0 {
+                0.0
+            } else {
+                r.min(reading_max) / reading_max
+            }
+        })
         .collect();
     let (hidden_w, out_w) = weights.split_at((h * (n + 1)).min(weights.len()));
     let hidden: Vec<f64> = hidden_w
@@ -127,7 +133,12 @@ pub(crate) fn float_step(
         .collect();
     let mut out = [0.5; 2];
     for (o, w) in out.iter_mut().zip(out_w.chunks_exact(h + 1)) {
-        *o = logistic(w[1..].iter().zip(&hidden).fold(w[0], |s, (wk, hk)| s + wk * hk));
+        *o = logistic(
+            w[1..]
+                .iter()
+                .zip(&hidden)
+                .fold(w[0], |s, (wk, hk)| s + wk * hk),
+        );
     }
     out
 }
@@ -166,7 +177,12 @@ mod tests {
         assert_eq!(&u.weights[1..], &[0, 0]);
         assert!(u.l < -3, "{u:?}");
         assert_eq!((u.bound, u.up), (1, 8192));
-        let acc: i64 = u.weights.iter().map(|w| i64::from(w.unsigned_abs())).sum::<i64>() * 4096;
+        let acc: i64 = u
+            .weights
+            .iter()
+            .map(|w| i64::from(w.unsigned_abs()))
+            .sum::<i64>()
+            * 4096;
         assert!(acc < 1 << 31 && (acc >> u.shift) <= 32767);
     }
 

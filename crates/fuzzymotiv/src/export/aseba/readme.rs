@@ -188,7 +188,11 @@ fn measured(g: Option<&Golden>) -> String {
         dm,
         dt,
         100.0 * labels
-    ) + &g.over_limits().iter().map(|w| format!("{w}\n")).collect::<String>()
+    ) + &g
+        .over_limits()
+        .iter()
+        .map(|w| format!("{w}\n"))
+        .collect::<String>()
 }
 
 /// The README of `c`'s kit (`p` its program, `g` its golden vectors if they could be made).

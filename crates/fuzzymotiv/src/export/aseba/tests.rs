@@ -26,7 +26,12 @@ fn thymio(sensors: usize) -> KitRobot {
 }
 
 /// A controller for `sensors` inputs and `hidden` units with `weights` (the genome's order).
-pub(super) fn controller(sensors: usize, hidden: usize, weights: Vec<f64>, motion: Motion) -> ExportedController {
+pub(super) fn controller(
+    sensors: usize,
+    hidden: usize,
+    weights: Vec<f64>,
+    motion: Motion,
+) -> ExportedController {
     assert_eq!(weights.len(), hidden * (sensors + 1) + 2 * (hidden + 1));
     ExportedController {
         shape: MlpShape::with_hidden(hidden).unwrap(),
@@ -38,7 +43,12 @@ pub(super) fn controller(sensors: usize, hidden: usize, weights: Vec<f64>, motio
     }
 }
 
-pub(super) fn random_weights(rng: &mut Rng64, sensors: usize, hidden: usize, spread: f64) -> Vec<f64> {
+pub(super) fn random_weights(
+    rng: &mut Rng64,
+    sensors: usize,
+    hidden: usize,
+    spread: f64,
+) -> Vec<f64> {
     (0..hidden * (sensors + 1) + 2 * (hidden + 1))
         .map(|_| uniform(rng, -spread, spread))
         .collect()
@@ -56,7 +66,9 @@ fn recorded_readings(n: usize, trials: u64) -> Vec<Vec<i16>> {
         let arena = Arena::new(Room::builtin(room).unwrap(), &TrialParams::default());
         let mut rng = rng_from_seed(100 + seed);
         let shape = MlpShape::default();
-        let genome: Vec<f64> = (0..shape.genome_len()).map(|_| uniform(&mut rng, -3.0, 3.0)).collect();
+        let genome: Vec<f64> = (0..shape.genome_len())
+            .map(|_| uniform(&mut rng, -3.0, 3.0))
+            .collect();
         let mut mlp = Mlp::from_genome(shape, &genome).unwrap();
         let mut run = TrialRun::new(&arena, rng_from_seed(seed));
         while !run.is_over() {
@@ -68,6 +80,13 @@ fn recorded_readings(n: usize, trials: u64) -> Vec<Vec<i16>> {
         }
     }
     rows
+}
+
+/// `prog` loaded into the interpreter and initialised.
+fn machine(prog: &AeslProgram, src: Source) -> Result<Machine, AsebaError> {
+    let mut m = Machine::load(&prog.code, &prog.constants, &target_vars(src))?;
+    m.run_init()?;
+    Ok(m)
 }
 
 pub(super) fn loaded(c: &ExportedController, src: Source) -> (AeslProgram, Machine) {
@@ -115,10 +134,21 @@ fn fixed_point_agrees_with_the_float_network_on_recorded_readings() {
     let mut rng = rng_from_seed(11);
     for n in [7, 8] {
         let readings = recorded_readings(n, 6);
-        let src = Source { var: "prox.horizontal", len: n };
+        let src = Source {
+            var: "prox.horizontal",
+            len: n,
+        };
         let seen = readings.iter().filter(|r| r.iter().any(|&v| v > 0)).count();
-        assert!(seen > readings.len() / 5, "{seen} of {} readings see a wall", readings.len());
-        for (spread, motion) in [(2.0, Motion::Wheels), (5.0, Motion::Actions), (10.0, Motion::Wheels)] {
+        assert!(
+            seen > readings.len() / 5,
+            "{seen} of {} readings see a wall",
+            readings.len()
+        );
+        for (spread, motion) in [
+            (2.0, Motion::Wheels),
+            (5.0, Motion::Actions),
+            (10.0, Motion::Wheels),
+        ] {
             let c = controller(n, 6, random_weights(&mut rng, n, 6, spread), motion);
             let (dt, dm, labels, steps) = agreement(&c, &readings, src);
             eprintln!(
@@ -149,10 +179,19 @@ fn weights_far_outside_the_q_range_are_scaled_not_wrapped() {
     let c = controller(n, h, w, Motion::Wheels);
     let prog = program::generate(&c, THYMIO_PROX);
     for u in &prog.units {
-        let acc: i64 = u.weights.iter().map(|w| i64::from(w.unsigned_abs())).sum::<i64>() * 4096;
+        let acc: i64 = u
+            .weights
+            .iter()
+            .map(|w| i64::from(w.unsigned_abs()))
+            .sum::<i64>()
+            * 4096;
         assert!(acc < 1 << 31 && (0..=32).contains(&u.shift), "{u:?}");
     }
-    assert!(prog.units[0].e < 0 && prog.units[0].weights[0] > 16384, "{:?}", prog.units[0]);
+    assert!(
+        prog.units[0].e < 0 && prog.units[0].weights[0] > 16384,
+        "{:?}",
+        prog.units[0]
+    );
     let mut readings = recorded_readings(7, 2);
     readings.extend(probe_readings(7, 4505));
     let (dt, _, labels, _) = agreement(&c, &readings, THYMIO_PROX);
@@ -166,15 +205,25 @@ fn the_program_fits_the_thymios_memory_and_step_limits() {
     for (n, h) in [(7, 6), (8, 6), (7, 10)] {
         for motion in [Motion::Wheels, Motion::Actions] {
             let c = controller(n, h, random_weights(&mut rng, n, h, 4.0), motion);
-            let src = Source { var: "prox.horizontal", len: n };
+            let src = Source {
+                var: "prox.horizontal",
+                len: n,
+            };
             let (prog, mut m) = loaded(&c, src);
             let words = interp::bytecode_words(&prog.code, &prog.constants).unwrap();
             assert!(m.user_words() <= 512, "{} words", m.user_words());
             assert!(words <= 1534, "{words} bytecode words");
-            let control = if motion == Motion::Wheels { "timer0" } else { "prox" };
+            let control = if motion == Motion::Wheels {
+                "timer0"
+            } else {
+                "prox"
+            };
             m.set("prox.horizontal", &vec![2000; n]).unwrap();
             let steps = m.run_event(control).unwrap();
-            eprintln!("N={n} H={h} {motion:?}: {} variable words, ~{words} bytecode words, {control} {steps} steps", m.user_words());
+            eprintln!(
+                "N={n} H={h} {motion:?}: {} variable words, ~{words} bytecode words, {control} {steps} steps",
+                m.user_words()
+            );
             assert!(steps > 100 && steps < 1000, "{steps}");
             assert_eq!(m.get("fm_count"), Some(&[1i16][..]));
         }
@@ -183,7 +232,12 @@ fn the_program_fits_the_thymios_memory_and_step_limits() {
 
 #[test]
 fn the_wheels_program_runs_every_control_period_and_sets_the_targets() {
-    let c = controller(7, 6, random_weights(&mut rng_from_seed(2), 7, 6, 3.0), Motion::Wheels);
+    let c = controller(
+        7,
+        6,
+        random_weights(&mut rng_from_seed(2), 7, 6, 3.0),
+        Motion::Wheels,
+    );
     let (_, mut m) = loaded(&c, THYMIO_PROX);
     assert_eq!(m.get("timer.period"), Some(&[100i16, 0][..]));
     let wall = [4505, 4487, 4198, 2508, 0, 0, 0];
@@ -239,7 +293,10 @@ fn the_actions_executor_moves_each_label_by_odometry() {
         let vt = m.get("fm_vt").unwrap()[0];
         assert_eq!(vt, 500, "v_max 166 mm/s at 0.332 mm/s per unit");
         let target = |m: &Machine, side: &str| m.get(&format!("motor.{side}.target")).unwrap()[0];
-        assert_eq!((target(&m, "left"), target(&m, "right")), (sl * vt, sr * vt));
+        assert_eq!(
+            (target(&m, "left"), target(&m, "right")),
+            (sl * vt, sr * vt)
+        );
         // The wheels turn at their targets; count the 10 ms ticks until the executor stops them.
         let mut ticks = 0;
         while m.get("fm_busy") == Some(&[1][..]) {
@@ -252,7 +309,10 @@ fn the_actions_executor_moves_each_label_by_odometry() {
         }
         // Each tick moves each wheel 500 units · 0.332 mm/s · 10 ms = 1.66 mm.
         let moved = f64::from(ticks) * 1.66;
-        assert!(moved >= travel - 0.1 && moved < travel + 1.66 + 0.1, "action {action}: {moved} mm for {travel}");
+        assert!(
+            moved >= travel - 0.1 && moved < travel + 1.66 + 0.1,
+            "action {action}: {moved} mm for {travel}"
+        );
         assert_eq!((target(&m, "left"), target(&m, "right")), (0, 0));
         // A reading while busy starts nothing; the next one after the action does.
         m.run_event("prox").unwrap();
@@ -262,7 +322,12 @@ fn the_actions_executor_moves_each_label_by_odometry() {
 
 #[test]
 fn the_aesl_is_xml_whose_node_is_the_interpreted_program() {
-    let c = controller(7, 6, random_weights(&mut rng_from_seed(4), 7, 6, 3.0), Motion::Actions);
+    let c = controller(
+        7,
+        6,
+        random_weights(&mut rng_from_seed(4), 7, 6, 3.0),
+        Motion::Actions,
+    );
     let kit = thymio2_kit(&c);
     let names: Vec<&str> = kit.files.iter().map(|f| f.name.as_str()).collect();
     assert_eq!(names, [AESL_NAME, README_NAME, GOLDEN_NAME]);
@@ -282,16 +347,29 @@ fn the_aesl_is_xml_whose_node_is_the_interpreted_program() {
     let constants: Vec<(String, i64)> = doc
         .descendants()
         .filter(|n| n.has_tag_name("constant"))
-        .map(|n| (n.attribute("name").unwrap().into(), n.attribute("value").unwrap().parse().unwrap()))
+        .map(|n| {
+            (
+                n.attribute("name").unwrap().into(),
+                n.attribute("value").unwrap().parse().unwrap(),
+            )
+        })
         .collect();
     assert!(constants.contains(&("FM_UM_PER_UNIT".into(), 332)));
-    let events: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("event")).map(|n| n.attribute("size")).collect();
+    let events: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("event"))
+        .map(|n| n.attribute("size"))
+        .collect();
     assert_eq!(events, [Some("7"), Some("0"), Some("9")]);
     // The file's program, run from the file, gives golden.csv's fixed-point columns.
     let mut m = Machine::load(code, &constants, &target_vars(THYMIO_PROX)).unwrap();
     m.run_init().unwrap();
     let golden = String::from_utf8(kit.files[2].contents.clone()).unwrap();
-    let rows: Vec<Vec<f64>> = golden.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let rows: Vec<Vec<f64>> = golden
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
     assert_eq!(rows.len(), 1 + 4 * 7 + 2 + 64);
     for row in rows {
         let r: Vec<i16> = row[1..8].iter().map(|&v| v as i16).collect();
@@ -304,7 +382,12 @@ fn the_aesl_is_xml_whose_node_is_the_interpreted_program() {
 
 #[test]
 fn the_readme_gives_loading_units_quantisation_and_measured_figures() {
-    let c = controller(7, 6, random_weights(&mut rng_from_seed(6), 7, 6, 3.0), Motion::Wheels);
+    let c = controller(
+        7,
+        6,
+        random_weights(&mut rng_from_seed(6), 7, 6, 3.0),
+        Motion::Wheels,
+    );
     let kit = thymio2_kit(&c);
     let readme = String::from_utf8(kit.files[1].contents.clone()).unwrap();
     for needle in [
@@ -319,29 +402,56 @@ fn the_readme_gives_loading_units_quantisation_and_measured_figures() {
     ] {
         assert!(readme.contains(needle), "{needle:?} not in:\n{readme}");
     }
-    assert!(kit.notes.iter().all(|n| !n.starts_with("warning")), "{:?}", kit.notes);
+    assert!(
+        kit.notes.iter().all(|n| !n.starts_with("warning")),
+        "{:?}",
+        kit.notes
+    );
 }
 
 #[test]
 fn more_inputs_than_the_thymio_has_read_zero_and_say_so() {
-    let c = controller(8, 3, random_weights(&mut rng_from_seed(9), 8, 3, 3.0), Motion::Wheels);
+    let c = controller(
+        8,
+        3,
+        random_weights(&mut rng_from_seed(9), 8, 3, 3.0),
+        Motion::Wheels,
+    );
     let kit = thymio2_kit(&c);
-    assert!(kit.notes.iter().any(|n| n.contains("inputs 7..7 read 0")), "{:?}", kit.notes);
+    assert!(
+        kit.notes.iter().any(|n| n.contains("inputs 7..7 read 0")),
+        "{:?}",
+        kit.notes
+    );
     let aesl = String::from_utf8(kit.files[0].contents.clone()).unwrap();
     assert!(aesl.contains("call math.copy(fm_raw[0:6], prox.horizontal[0:6])"));
 }
 
-
 #[test]
 fn a_network_too_large_for_the_thymio_is_exported_with_warnings() {
     let (n, h) = (7, 48);
-    let c = controller(n, h, random_weights(&mut rng_from_seed(12), n, h, 3.0), Motion::Wheels);
+    let c = controller(
+        n,
+        h,
+        random_weights(&mut rng_from_seed(12), n, h, 3.0),
+        Motion::Wheels,
+    );
     let kit = thymio2_kit(&c);
-    let warnings: Vec<&String> = kit.notes.iter().filter(|n| n.starts_with("warning")).collect();
+    let warnings: Vec<&String> = kit
+        .notes
+        .iter()
+        .filter(|n| n.starts_with("warning"))
+        .collect();
     assert_eq!(warnings.len(), 3, "{:?}", kit.notes);
-    assert!(warnings[0].contains("more than the Thymio II's 512"), "{warnings:?}");
+    assert!(
+        warnings[0].contains("more than the Thymio II's 512"),
+        "{warnings:?}"
+    );
     assert!(warnings[1].contains("bytecode"), "{warnings:?}");
-    assert!(warnings[2].contains("cuts an event after 1000"), "{warnings:?}");
+    assert!(
+        warnings[2].contains("cuts an event after 1000"),
+        "{warnings:?}"
+    );
     let readme = String::from_utf8(kit.files[1].contents.clone()).unwrap();
     assert!(readme.contains(warnings[0].as_str()), "{readme}");
 }
