@@ -145,8 +145,9 @@ fn declarations(n: usize, h: usize, units: &[QUnit], motion: Motion) -> String {
     );
     if motion == Motion::Actions {
         s += "# actions: executing one (1/0), what is left of it (units of FM_UM_PER_UNIT/6250 mm),\n\
-              # wheel travel not yet counted (target units x 10 ms), wheel target at v_max\n\
-              var fm_busy = 0\nvar fm_todo = 0\nvar fm_sub = 0\nvar fm_vt = 0\n";
+              # wheel travel not yet counted (target units x 10 ms), wheel target at v_max,\n\
+              # 10 ms ticks since the action started\n\
+              var fm_busy = 0\nvar fm_todo = 0\nvar fm_sub = 0\nvar fm_vt = 0\nvar fm_ticks = 0\n";
     }
     s
 }
@@ -236,7 +237,7 @@ fn monitor(n: usize) -> String {
 fn actions_code(read: &str, monitor: &str) -> String {
     let mut s = String::from(
         "# start executing fm_act: wheel travel to go, in units of FM_UM_PER_UNIT/6250 mm\n\
-         sub fm_start\nfm_sub = 0\nfm_busy = 1\n",
+         sub fm_start\nfm_sub = 0\nfm_ticks = 0\nfm_busy = 1\n",
     );
     let arms = [
         ("FM_STRAIGHT_DMM", "fm_vt", "fm_vt"),
@@ -260,13 +261,15 @@ fn actions_code(read: &str, monitor: &str) -> String {
         "# a fresh reading after the last action: run the network, start its action\n\
          onevent prox\n\
          if fm_paused == 0 and fm_busy == 0 then\n{read}  callsub fm_network\n  callsub fm_start\n{monitor}end\n\n\
-         # odometry at 100 Hz: each wheel travels |speed| target units for 10 ms\n\
+         # odometry at 100 Hz: each wheel travels |speed| target units for 10 ms; a wheel that\n\
+         # cannot turn (the robot pushing a wall) ends the action after FM_TIMEOUT_TICKS\n\
          onevent motor\n\
          if fm_busy == 1 then\n\
          \x20 fm_sub = fm_sub + abs(motor.left.speed) + abs(motor.right.speed)\n\
          \x20 fm_todo = fm_todo - (fm_sub >> 5)\n\
          \x20 fm_sub = fm_sub & 31\n\
-         \x20 if fm_todo <= 0 then\n\
+         \x20 fm_ticks = fm_ticks + 1\n\
+         \x20 if fm_todo <= 0 or fm_ticks > FM_TIMEOUT_TICKS then\n\
          \x20   motor.left.target = 0\n    motor.right.target = 0\n    fm_busy = 0\n\
          \x20 end\nend\n"
     );
@@ -369,7 +372,22 @@ fn constants(c: &ExportedController) -> Vec<(String, i64)> {
             "FM_TURN180_DMM".into(),
             dmm(half_base * std::f64::consts::PI),
         ),
+        ("FM_TIMEOUT_TICKS".into(), timeout_ticks(r)),
     ]
+}
+
+/// 10 ms ticks after which an action ends even if the odometer has not counted its travel:
+/// three times the longest action (straight or turn180) at `v_max`, and at least 0.1 s.
+fn timeout_ticks(r: &crate::export::KitRobot) -> i64 {
+    let longest = r
+        .straight_step()
+        .max(r.wheel_base / 2.0 * std::f64::consts::PI);
+    let ticks = 3.0 * longest / r.v_max.max(1e-3) / 0.01;
+    if ticks.is_finite() {
+        ticks.ceil().clamp(10.0, 32767.0) as i64
+    } else {
+        32767
+    }
 }
 
 /// `text` as XML character data.

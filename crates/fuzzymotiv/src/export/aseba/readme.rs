@@ -122,7 +122,9 @@ fn speed_and_loop(c: &ExportedController) -> String {
              have, so acceleration and a robot slower than its target are accounted for; a timed\n\
              move assumes the target speed is reached at once. Both rest on FM_UM_PER_UNIT. The\n\
              odometer counts in steps of FM_UM_PER_UNIT/6250 mm; a wheel may overrun by one 10 ms\n\
-             tick (v_max * 10 ms = {:.1} mm) and by the time it takes to stop.\n\n",
+             tick (v_max * 10 ms = {:.1} mm) and by the time it takes to stop. A robot whose wheels\n\
+             cannot turn (pushing a wall: the measured speed stays near 0) ends the action after\n\
+             FM_TIMEOUT_TICKS ticks of 10 ms (three times the longest action at v_max).\n\n",
             r.straight_step(),
             r.turn_deg,
             r.v_max * 0.01
@@ -130,6 +132,17 @@ fn speed_and_loop(c: &ExportedController) -> String {
     };
     s
 }
+
+const MONITORING: &str = "\
+Monitoring
+----------
+Set fm_monitor to 1 (curl http://localhost:3000/nodes/thymio-II/fm_monitor/1, or in Aseba
+Studio) and the program emits the event fm_state at each decision: the N readings the network
+saw, then the left and right wheel targets it set, from the same handler (so they belong
+together). asebahttp streams them: curl -N http://localhost:3000/nodes/thymio-II/events/fm_state
+(lines \"data: fm_state r0 ... left right\"). fm_count counts the network's evaluations.
+
+";
 
 const QUANTISATION: &str = "\
 Fixed point (Aseba has only signed 16-bit integers)
@@ -173,7 +186,8 @@ fn measured(g: Option<&Golden>) -> String {
          variables: {} words of the Thymio II's 512 (VM_VARIABLES_FREE_SPACE 512,\n\
          aseba-target-thymio2 skel-usb-user.h).\n\
          bytecode: about {} words of 1534 (VM_BYTECODE_SIZE 766+768; estimated from the\n\
-         instructions the compiler emits; Aseba Studio shows the exact figure after compiling).\n\
+         instructions the compiler emits: 4 % above the real size of the 7-6-2 programs whose\n\
+         bytecode was measured in asebaplayground; Aseba Studio shows the exact figure).\n\
          VM steps (instructions executed, estimated the same way): initialisation {}; one network\n\
          evaluation at most {} (the simulator runs each event for at most 1000 steps:\n\
          \"AsebaVMRun(&vm, 1000)\", targets/playground/robots/thymio2/Thymio2.cpp).\n\n\
@@ -201,7 +215,8 @@ pub(super) fn readme(c: &ExportedController, p: &AeslProgram, g: Option<&Golden>
         .replace("@AESL@", AESL_NAME)
         .replace("@GOLDEN@", GOLDEN_NAME)
         .replace("@UM@", &UM_PER_UNIT.to_string());
-    let mut s = header(c, p) + &loading + &speed_and_loop(c) + QUANTISATION + &measured(g);
+    let mut s =
+        header(c, p) + &loading + &speed_and_loop(c) + MONITORING + QUANTISATION + &measured(g);
     s += "\nConstants of the program (.aesl <constant>s)\n--------------------------------------------\n";
     for (name, value) in &p.constants {
         s += &format!("{name} = {value}\n");

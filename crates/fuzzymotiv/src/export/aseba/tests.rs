@@ -317,6 +317,17 @@ fn the_actions_executor_moves_each_label_by_odometry() {
         // A reading while busy starts nothing; the next one after the action does.
         m.run_event("prox").unwrap();
         assert_eq!(m.get("fm_count"), Some(&[2i16][..]));
+        // Wheels that cannot turn (speed 0): the action ends after FM_TIMEOUT_TICKS.
+        m.set("motor.left.speed", &[0]).unwrap();
+        m.set("motor.right.speed", &[0]).unwrap();
+        let mut stalled = 0;
+        while m.get("fm_busy") == Some(&[1][..]) {
+            m.run_event("motor").unwrap();
+            stalled += 1;
+            assert!(stalled < 10_000);
+        }
+        // 3 · turn180 (147.7 mm) / 166 mm/s = 2.67 s: 267 ticks, and one more to exceed them.
+        assert_eq!(stalled, 268);
     }
 }
 
