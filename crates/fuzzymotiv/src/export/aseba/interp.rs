@@ -1052,11 +1052,13 @@ mod tests {
     #[test]
     fn arithmetic_wraps_at_16_bits_and_divides_as_c() {
         let m = run(
-            "var m = -7\nvar a = 30000\nvar b\nvar c\nvar d\nvar e\nb = a + a\nc = -7 / a * 0 + m / 2\nd = m / 3\ne = m % 3\nt[0] = (0 - 7) / 2",
+            "var m = -7\nvar a = 30000\nvar two = 2\nvar b\nvar c\nvar d\nvar e\nvar f\nb = a + a\nc = -7 / a * 0 + m / 2\nd = m / 3\ne = m % 3\nf = m / two\nt[0] = (0 - 7) / 2",
         );
         assert_eq!(m.get("b"), Some(&[-5536i16][..]));
-        // (0 - 7) / 2 is rewritten to a shift: −4, not C's −3; / 3 truncates: −2, % keeps the sign.
+        // m / 2 is rewritten to a shift: −4, not C's −3 (a divisor in a variable is not: −3);
+        // / 3 truncates: −2, % keeps the sign. (The playground's VM agrees: see playground.rs.)
         assert_eq!(m.get("c"), Some(&[-4i16][..]));
+        assert_eq!(m.get("f"), Some(&[-3i16][..]));
         assert_eq!(m.get("d"), Some(&[-2i16][..]));
         assert_eq!(m.get("e"), Some(&[-1i16][..]));
         // A constant expression is folded in C: (0 - 7) / 2 = −3.

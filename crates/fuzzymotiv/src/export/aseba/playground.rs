@@ -215,6 +215,59 @@ fn check_live(http: &Http, c: &ExportedController, secs: u32) {
     assert!(seeing > 0, "the Thymio never saw the wall");
 }
 
+/// A program of the integer operations the interpreter models, with run-time operands (so the
+/// compiler cannot fold them): its results on the playground's VM are the interpreter's.
+const SEMANTICS: &str = "var a = -7
+var b = 30000
+var m = -32768
+var n1 = -1
+var two = 2
+var w[2] = [30000, 30000]
+var v[2] = [2, 2]
+var k = 4
+var r[16]
+r[0] = a / 2
+r[1] = a / 3
+r[2] = a % 3
+r[3] = b + b
+r[4] = b * 3
+r[5] = (0 - 7) / 2
+r[6] = m / n1
+r[7] = abs(m)
+call math.muldiv(r[8], b, 4, 8)
+r[9] = b * 4 / 8
+r[10] = a >> 1
+r[11] = a / two
+r[12] = -a / 4
+call math.dot(r[13], w, v, k)
+r[14] = m - 1
+r[15] = (a * 1000) / 16
+";
+
+fn check_semantics(http: &Http, dir: &Path) {
+    let aesl = dir.join("semantics.aesl");
+    let node = SEMANTICS
+        .replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;");
+    std::fs::write(
+        &aesl,
+        format!("<!DOCTYPE aesl-source>\n<network>\n<node nodeId=\"1\" name=\"thymio-II\">{node}</node>\n</network>\n"),
+    )
+    .unwrap();
+    http.put(&aesl);
+    std::thread::sleep(Duration::from_millis(500));
+    let vm = http.var("r");
+    let mut m = interp::Machine::load(SEMANTICS, &[], &[]).unwrap();
+    m.run_init().unwrap();
+    eprintln!("semantics on the VM: {vm:?}");
+    assert_eq!(
+        vm,
+        m.get("r").unwrap(),
+        "the playground's VM and the interpreter differ"
+    );
+}
+
 #[test]
 #[ignore = "needs aseba: run by .ci/run"]
 fn the_kit_compiles_and_runs_on_the_playgrounds_thymio() {
@@ -264,6 +317,7 @@ fn the_kit_compiles_and_runs_on_the_playgrounds_thymio() {
         );
         std::thread::sleep(Duration::from_millis(200));
     }
+    check_semantics(&http, &dir);
     let mut rng = rng_from_seed(2);
     for motion in [Motion::Wheels, Motion::Actions] {
         // Random weights, but both outputs biased forward: the robot heads for a wall.
