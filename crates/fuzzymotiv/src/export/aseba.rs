@@ -180,6 +180,30 @@ pub(crate) fn fixed_out(m: &mut Machine, readings: &[i16]) -> Result<FixedOut, A
     })
 }
 
+/// VM steps of the control handler (`timer0`, or `prox` with no action running) when the
+/// sensors read `readings` (the program resumed first, as after `fm_run`).
+fn control_event_steps(
+    m: &mut Machine,
+    motion: Motion,
+    src: Source,
+    readings: &[i16],
+) -> Result<usize, AsebaError> {
+    m.run_event("fm_run")?;
+    let mut prox = vec![0; src.len];
+    for (p, r) in prox.iter_mut().zip(readings) {
+        *p = *r;
+    }
+    m.set(src.var, &prox)?;
+    let control = match motion {
+        Motion::Wheels => "timer0",
+        Motion::Actions => {
+            m.set("fm_busy", &[0])?;
+            "prox"
+        }
+    };
+    m.run_event(control)
+}
+
 /// The probe readings of `golden.csv`: none, each sensor alone at ¼, ½, ¾ and all of
 /// `reading_max`, all at ½ and at the maximum, and 64 pseudo-random wall-like sets (each sensor
 /// seeing something with probability 0.4, at a uniform level), from a fixed seed.
@@ -226,7 +250,7 @@ pub(crate) struct Golden {
     pub bytecode_words: usize,
     /// VM steps of the initialisation.
     pub init_steps: usize,
-    /// Most VM steps of one network evaluation (`fm_test`).
+    /// Most VM steps of one event running the network (`fm_test` or the control handler).
     pub max_steps: usize,
 }
 
@@ -236,12 +260,19 @@ impl Golden {
         let init_steps = m.run_init()?;
         let r_max = c.robot().reading_max.round().clamp(1.0, 32767.0) as i16;
         let mut rows = Vec::new();
+        let mut control_steps = 0;
         for r in probe_readings(prog.n, r_max) {
             let fixed = fixed_out(&mut m, &r)?;
             rows.push((r.clone(), float_out(c, &r), fixed));
+            control_steps = control_steps.max(control_event_steps(&mut m, c.motion, src, &r)?);
         }
         Ok(Golden {
-            max_steps: rows.iter().map(|r| r.2.steps).max().unwrap_or(0),
+            max_steps: rows
+                .iter()
+                .map(|r| r.2.steps)
+                .max()
+                .unwrap_or(0)
+                .max(control_steps),
             rows,
             user_words: m.user_words(),
             bytecode_words: interp::bytecode_words(&prog.code, &prog.constants)?,

@@ -71,7 +71,12 @@ arguments; fm_run resumes. For a row of @GOLDEN@ (readings r0..):
     curl http://localhost:3000/nodes/thymio-II/fm_run
 
 (in Aseba Studio: emit fm_test with the readings from the events panel and look at the
-variables). The fixed_* columns must be equal exactly (the VM's integer arithmetic is the
+variables). Columns: case; r0.. the readings; float_mL, float_mR the float network's motor
+outputs (0..1); float_target_left, _right its wheel targets (units, not rounded);
+float_action; fixed_mL_q12, fixed_mR_q12 the program's fm_m (4096 = 1.0); fixed_target_left,
+_right its fm_tgt; fixed_action its fm_act. The readings are probes: none, each sensor alone
+at 1/4, 1/2, 3/4 and all of reading_max, all at 1/2 and at reading_max, and 64 pseudo-random
+wall-like sets (fixed seed). The fixed_* columns must be equal exactly (the VM's integer arithmetic is the
 same on every Thymio); the float_* columns are the evolved network in double precision, the
 fixed-point program approximates them within the figures below. fixed_target_* assume the
 default FM_UM_PER_UNIT = @UM@. Actions: 0 straight, 1 left30, 2 right30, 3 turn180.
@@ -188,8 +193,8 @@ fn measured(g: Option<&Golden>) -> String {
          bytecode: about {} words of 1534 (VM_BYTECODE_SIZE 766+768; estimated from the\n\
          instructions the compiler emits: 4 % above the real size of the 7-6-2 programs whose\n\
          bytecode was measured in asebaplayground; Aseba Studio shows the exact figure).\n\
-         VM steps (instructions executed, estimated the same way): initialisation {}; one network\n\
-         evaluation at most {} (the simulator runs each event for at most 1000 steps:\n\
+         VM steps (instructions executed, estimated the same way): initialisation {}; an event\n\
+         running the network at most {} (the simulator runs each event for at most 1000 steps:\n\
          \"AsebaVMRun(&vm, 1000)\", targets/playground/robots/thymio2/Thymio2.cpp).\n\n\
          Agreement with the float network on the {} rows of {GOLDEN_NAME}: motor outputs within\n\
          {:.5} (of the range 0..1), wheel targets within {:.2} units, action labels equal in\n\

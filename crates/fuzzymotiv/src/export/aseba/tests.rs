@@ -466,3 +466,25 @@ fn a_network_too_large_for_the_thymio_is_exported_with_warnings() {
     let readme = String::from_utf8(kit.files[1].contents.clone()).unwrap();
     assert!(readme.contains(warnings[0].as_str()), "{readme}");
 }
+
+/// The largest H whose 7-H-2 kit stays within the Thymio's limits (no warning), per motion.
+#[test]
+fn the_kit_fits_the_thymio_up_to_a_dozen_hidden_units() {
+    let mut rng = rng_from_seed(13);
+    for motion in [Motion::Wheels, Motion::Actions] {
+        let fits = |h: usize, rng: &mut Rng64| {
+            let c = controller(7, h, random_weights(rng, 7, h, 4.0), motion);
+            thymio2_kit(&c)
+                .notes
+                .iter()
+                .all(|n| !n.starts_with("warning"))
+        };
+        let largest = (1..=40)
+            .take_while(|&h| fits(h, &mut rng))
+            .last()
+            .unwrap_or(0);
+        eprintln!("{motion:?}: 7-H-2 fits for H <= {largest}");
+        assert!(largest >= 10, "{motion:?}: {largest}");
+        assert!(!fits(largest + 1, &mut rng));
+    }
+}
