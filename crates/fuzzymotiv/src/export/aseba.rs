@@ -41,8 +41,25 @@ pub fn thymio2_kit(c: &ExportedController) -> Kit {
     kit_reading(c, THYMIO_PROX)
 }
 
+/// Most network inputs the program takes: `fm_test` carries the readings as event arguments,
+/// of which the Thymio II has 32 words.
+pub(crate) const MAX_INPUTS: usize = 32;
+
 /// The kit of `c` reading its sensors from `src`.
 fn kit_reading(c: &ExportedController, src: Source) -> Kit {
+    let n = c.robot().sensors;
+    if n == 0 || n > MAX_INPUTS {
+        let why = format!(
+            "warning: no Thymio II program for a network of {n} inputs (1..={MAX_INPUTS} can be exported)"
+        );
+        return Kit {
+            files: vec![KitFile {
+                name: README_NAME.into(),
+                contents: format!("{why}\n").into_bytes(),
+            }],
+            notes: vec![why],
+        };
+    }
     let prog = program::generate(c, src);
     let mut notes = vec![
         format!(

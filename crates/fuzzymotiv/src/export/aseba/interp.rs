@@ -25,6 +25,7 @@
 //! removes instructions, so the counts are upper estimates of the real ones.
 
 use std::collections::HashMap;
+use std::rc::Rc;
 
 /// Why a program cannot be parsed or stopped while running.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -568,7 +569,7 @@ fn large(v: i64) -> bool {
 /// run event by event.
 #[derive(Debug, Clone)]
 pub(crate) struct Machine {
-    program: Program,
+    program: Rc<Program>,
     mem: Vec<i16>,
     vars: HashMap<String, (usize, usize)>,
     user_words: usize,
@@ -619,7 +620,7 @@ impl Machine {
         }
         Ok(Machine {
             user_words: mem.len() - target_words,
-            program,
+            program: Rc::new(program),
             mem,
             vars,
             steps: 0,
@@ -636,8 +637,8 @@ impl Machine {
     /// step count.
     pub(crate) fn run_init(&mut self) -> Res<usize> {
         self.steps = 0;
-        let decls = self.program.decls.clone();
-        for d in &decls {
+        let program = Rc::clone(&self.program);
+        for d in &program.decls {
             if let Some(items) = &d.init {
                 let (addr, _) = self.vars[&d.name];
                 for (k, e) in items.iter().enumerate() {
@@ -646,18 +647,18 @@ impl Machine {
                 }
             }
         }
-        let init = self.program.init.clone();
-        self.block(&init)?;
+        self.block(&program.init)?;
         Ok(self.steps + 1)
     }
 
     /// Run the handler of event `name` (nothing if the program has none); its step count.
     pub(crate) fn run_event(&mut self, name: &str) -> Res<usize> {
         self.steps = 0;
-        let Some(body) = self.program.events.get(name).cloned() else {
+        let program = Rc::clone(&self.program);
+        let Some(body) = program.events.get(name) else {
             return Ok(0);
         };
-        self.block(&body)?;
+        self.block(body)?;
         Ok(self.steps + 1)
     }
 
@@ -743,11 +744,12 @@ impl Machine {
             Stmt::For(var, lo, hi, body) => return self.for_loop(var, lo, hi, body),
             Stmt::Call(f, args) => self.call(f, args)?,
             Stmt::CallSub(name) => {
-                let Some(body) = self.program.subs.get(name).cloned() else {
+                let program = Rc::clone(&self.program);
+                let Some(body) = program.subs.get(name) else {
                     return stop(format!("no sub {name}"));
                 };
                 self.tick(2)?; // call and return
-                self.block(&body)?;
+                self.block(body)?;
             }
             Stmt::Return => return Ok(Flow::Return),
             Stmt::Emit(event, var) => {

@@ -488,3 +488,16 @@ fn the_kit_fits_the_thymio_up_to_a_dozen_hidden_units() {
         assert!(!fits(largest + 1, &mut rng));
     }
 }
+
+#[test]
+fn a_robot_without_sensors_gets_a_kit_that_says_why_not_a_program() {
+    let mut c = controller(7, 2, vec![0.5; 2 * 8 + 2 * 3], Motion::Wheels);
+    c.robot.sensors = 0;
+    let kit = thymio2_kit(&c);
+    assert_eq!(kit.files.len(), 1);
+    assert!(
+        kit.notes[0].contains("network of 0 inputs"),
+        "{:?}",
+        kit.notes
+    );
+}
