@@ -6,7 +6,8 @@
 //! and natives that multiply in 32 bits (`math.muldiv`, `math.dot`); a Thymio II gives a
 //! program 512 words of variables and 1534 words of bytecode, and the simulator
 //! (`asebaplayground`) cuts an event's handler after 1000 VM steps (docs/robots-sources.md
-//! §2.2–2.3). The network is quantised per unit so that every sum fits ([`quant`]), the
+//! §2.2–2.3; the real firmware runs a handler to its end: aseba-target-thymio2 `skel-usb.c`,
+//! `AsebaVMRun(&vmState, 0xFFFF)` in a loop). The network is quantised per unit so that every sum fits ([`quant`]), the
 //! logistic is a 66-word table with linear interpolation, and the program
 //! ([`program`]) is interpreted here ([`interp`], the language's 16-bit semantics) to write
 //! its own outputs into `golden.csv` and to measure its size and step counts.
@@ -314,7 +315,7 @@ impl Golden {
         }
         if self.max_steps.max(self.init_steps) >= EVENT_STEPS {
             out.push(format!(
-                "warning: one network evaluation takes about {} VM steps (initialisation {}); asebaplayground cuts an event after {EVENT_STEPS}: use fewer hidden units",
+                "warning: one network evaluation takes about {} VM steps (initialisation {}); asebaplayground cuts an event after {EVENT_STEPS} (a real Thymio II runs it to its end): use fewer hidden units to run it in the simulator",
                 self.max_steps, self.init_steps
             ));
         }

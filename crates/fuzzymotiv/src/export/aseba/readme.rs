@@ -195,7 +195,10 @@ fn measured(g: Option<&Golden>) -> String {
          bytecode was measured in asebaplayground; Aseba Studio shows the exact figure).\n\
          VM steps (instructions executed, estimated the same way): initialisation {}; an event\n\
          running the network at most {} (the simulator runs each event for at most 1000 steps:\n\
-         \"AsebaVMRun(&vm, 1000)\", targets/playground/robots/thymio2/Thymio2.cpp).\n\n\
+         \"AsebaVMRun(&vm, 1000)\", targets/playground/robots/thymio2/Thymio2.cpp, and a new\n\
+         event kills the running one; the real firmware runs an event to its end,\n\
+         \"AsebaVMRun(&vmState, 0xFFFF)\" in a loop, and starts the next one only then:\n\
+         aseba-target-thymio2 skel-usb.c, commit eb408bdd).\n\n\
          Agreement with the float network on the {} rows of {GOLDEN_NAME}: motor outputs within\n\
          {:.5} (of the range 0..1), wheel targets within {:.2} units, action labels equal in\n\
          {:.1} % of the rows.\n",
