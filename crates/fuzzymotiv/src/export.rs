@@ -17,6 +17,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub(crate) mod aseba;
 pub(crate) mod c;
 pub(crate) mod epuck2;
 pub(crate) mod executor;
@@ -28,6 +29,7 @@ pub(crate) mod kit;
 mod kit_tests;
 pub(crate) mod onnx;
 
+pub use aseba::thymio2_kit;
 pub use c::CSources;
 pub use epuck2::{
     EPUCK2_MOTOR_SPEED_LIMIT, EPUCK2_STEPS_PER_TURN, EPUCK2_WHEEL_DIAMETER_MM, epuck2_kit,

@@ -252,11 +252,7 @@ fn kit_of(
         }
         KitTarget::Epuck2 => Ok(fuzzymotiv::export::epuck2_kit(controller)),
         KitTarget::Khepera => Ok(fuzzymotiv::export::khepera_kit(controller)),
-        // Placeholder until fuzzymotiv::export::thymio2_kit (branch kit-thymio) is merged.
-        KitTarget::Thymio2 => Err(CliError::input(format!(
-            "{option} thymio2: the Thymio II kit is not yet in this build; export the plain C \
-             with {option} generic"
-        ))),
+        KitTarget::Thymio2 => Ok(fuzzymotiv::export::thymio2_kit(controller)),
     }
 }
 

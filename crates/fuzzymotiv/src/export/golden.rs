@@ -218,7 +218,8 @@ mod tests {
             motion,
             ..RawRobot::default()
         };
-        let params = TrialParams::default().with_robot(Robot::from_raw(&robot, crate::simulation::RobotSpec::khepera()).unwrap());
+        let params = TrialParams::default()
+            .with_robot(Robot::from_raw(&robot, crate::simulation::RobotSpec::khepera()).unwrap());
         ExportedController::new(shape, &genome, &params).unwrap()
     }
 

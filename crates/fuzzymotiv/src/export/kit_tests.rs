@@ -45,7 +45,8 @@ fn controller(hidden: usize, scale: f64, motion: Motion) -> ExportedController {
         motion,
         ..RawRobot::default()
     };
-    let params = TrialParams::default().with_robot(Robot::from_raw(&raw, crate::simulation::RobotSpec::khepera()).unwrap());
+    let params = TrialParams::default()
+        .with_robot(Robot::from_raw(&raw, crate::simulation::RobotSpec::khepera()).unwrap());
     ExportedController::new(shape, &genome, &params).unwrap()
 }
 
