@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 /// and its layer. A module imports only from its own layer and the ones below it. Imports are
 /// read inside a crate only, so the numbers order the modules of one crate; they go on rising
 /// from crate to crate in Cargo's order.
-const LAYERS: [(&str, usize); 34] = [
+const LAYERS: [(&str, usize); 35] = [
     // fuzzymotiv, the library: the pipeline's subsystems
     ("lib::params", 0),     // FieldError: the one error of every input
     ("lib::random", 0),     // seeded streams, noise
