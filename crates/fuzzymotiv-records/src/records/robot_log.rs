@@ -24,7 +24,9 @@
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
+use fuzzymotiv::experiment::{Experiment, LoggedStep, Run};
 use fuzzymotiv::modelling::Action;
+use fuzzymotiv::simulation::{MAX_SENSORS, Mlp, Pose, Readings};
 use serde::{Deserialize, Serialize};
 
 use crate::files::bounded::{Bounded, InputKind, csv_refusal, open_input};
@@ -293,6 +295,153 @@ impl RobotLog {
     }
 }
 
+/// The columns of a log's logged steps ([`RobotLog::steps`]).
+struct StepColumns {
+    pose: [usize; 3],
+    motors: Option<(usize, usize)>,
+    collision: Option<usize>,
+    sensors: Vec<usize>,
+}
+
+impl RobotLog {
+    /// The columns [`RobotLog::steps`] reads; an error says what a log of steps needs.
+    fn step_columns(&self) -> Result<StepColumns, CliError> {
+        let pose = [
+            self.column(&["x", "x_mm"]),
+            self.column(&["y", "y_mm"]),
+            self.column(&["heading", "heading_rad"]),
+        ];
+        let [Some(x), Some(y), Some(h)] = pose else {
+            return Err(CliError::input(format!(
+                "{}: the header lacks `x`, `y` or `heading`; measuring a logged trial needs each \
+                 step's pose at its start (mm in the room's frame, heading in radians) and a last \
+                 row with the final pose; found: {}",
+                self.name,
+                self.headers.iter().collect::<Vec<_>>().join(", ")
+            )));
+        };
+        let sensors = (0..)
+            .map_while(|k| self.column(&[&format!("ir{k}"), &format!("s{k}")]))
+            .take(MAX_SENSORS)
+            .collect();
+        Ok(StepColumns {
+            pose: [x, y, h],
+            motors: self
+                .column(&["m_left", "mL"])
+                .zip(self.column(&["m_right", "mR"])),
+            collision: self.column(&["collision"]),
+            sensors,
+        })
+    }
+
+    /// The log's steps as a trial measures them ([`Experiment::logged_trial`]): per row with an
+    /// action (or motor outputs, labelled with `tolerance`) one step, its readings (`ir0`…, or
+    /// a replay's `s0`…), motor outputs, `collision` (1 or 0, absent: 0) and, as the pose at
+    /// its end, the next row's pose (the last row without an action holds the final pose; a
+    /// log without one ends where its last step started). Errors name the file, line and
+    /// field.
+    pub fn steps(self, tolerance: f64) -> Result<Vec<LoggedStep>, CliError> {
+        let source = self.source()?;
+        let columns = self.step_columns()?;
+        let RobotLog {
+            name,
+            headers,
+            mut reader,
+        } = self;
+        let mut steps: Vec<LoggedStep> = Vec::new();
+        let mut starts: Vec<Pose> = Vec::new();
+        let mut last = None;
+        each_row(&mut reader, &name, |line, row| {
+            let number = |i: usize| -> Result<f64, CliError> {
+                let cell = row.get(i).unwrap_or("");
+                cell.parse::<f64>()
+                    .ok()
+                    .filter(|v| v.is_finite())
+                    .ok_or_else(|| {
+                        CliError::input(format!(
+                            "{name}: line {line}: field `{}`: `{cell}` is not a number",
+                            &headers[i]
+                        ))
+                    })
+            };
+            let [x, y, h] = columns.pose;
+            let pose = Pose::new(number(x)?, number(y)?, number(h)?);
+            let Some(action) = action_in(&name, line, row, &source, tolerance)? else {
+                last = Some(pose);
+                return Ok(());
+            };
+            let sensors: Vec<f64> =
+                (columns.sensors.iter().map(|&i| number(i))).collect::<Result<_, _>>()?;
+            let motors = match columns.motors {
+                Some((l, r)) => Some([number(l)?, number(r)?]),
+                None => None,
+            };
+            let collided = columns.collision.map(number).transpose()? == Some(1.0);
+            starts.push(pose);
+            steps.push(LoggedStep {
+                pose,
+                sensors: Readings::from_slice(&sensors),
+                motors,
+                action,
+                collided,
+            });
+            Ok(())
+        })?;
+        // Each step ends where the next one starts; the last one at the final pose.
+        let ends = starts
+            .iter()
+            .skip(1)
+            .copied()
+            .chain(last.or(starts.last().copied()));
+        for (s, end) in steps.iter_mut().zip(ends) {
+            s.pose = end;
+        }
+        Ok(steps)
+    }
+}
+
+/// A logged trial as a robot log (the format [`RobotLog`] reads: `recognise`, `replay --log`
+/// and [`RobotLog::steps`]): per step `step`, the pose at its start `x`, `y` (mm) and `heading`
+/// (rad), the readings given to the network `ir0`…, then `raw` (e.g. another simulator's own
+/// readings, `enki0`…, when given: (column stem, one row per step)), `m_left`, `m_right`,
+/// `action` and `collision` (1 or 0); a last row holds the final pose only. Numbers are written
+/// as the shortest decimals that read back as the same doubles.
+pub fn steps_log(home: Pose, steps: &[LoggedStep], raw: Option<(&str, &[Readings])>) -> String {
+    let n = steps.first().map_or(0, |s| s.sensors.len());
+    let mut header = vec!["step".to_string(), "x".into(), "y".into(), "heading".into()];
+    header.extend((0..n).map(|k| format!("ir{k}")));
+    if let Some((stem, rows)) = raw {
+        let m = rows.first().map_or(0, |r| r.len());
+        header.extend((0..m).map(|k| format!("{stem}{k}")));
+    }
+    header.extend(["m_left", "m_right", "action", "collision"].map(String::from));
+    let mut text = header.join(",") + "\n";
+    let mut start = home;
+    for (t, s) in steps.iter().enumerate() {
+        let mut cells = vec![t.to_string()];
+        cells.extend([start.x, start.y, start.heading].map(|v| v.to_string()));
+        cells.extend(s.sensors.iter().map(|v| v.to_string()));
+        if let Some((_, rows)) = raw {
+            cells.extend(rows[t].iter().map(|v| v.to_string()));
+        }
+        let [ml, mr] = s.motors.unwrap_or([0.5; 2]);
+        cells.extend([ml.to_string(), mr.to_string(), s.action.label().to_string()]);
+        cells.push(u8::from(s.collided).to_string());
+        text.push_str(&(cells.join(",") + "\n"));
+        start = s.pose;
+    }
+    let empty = header.len() - 4;
+    text.push_str(&format!(
+        "{},{},{},{}{}\n",
+        steps.len(),
+        start.x,
+        start.y,
+        start.heading,
+        ",".repeat(empty)
+    ));
+    text
+}
+
 /// The action of a log's row (none for a row without one), or an error naming the file, the
 /// line and the field.
 fn action_in(
@@ -370,8 +519,21 @@ pub fn recognise_logs(run: &Path, logs: &[PathBuf]) -> Result<Vec<RecognitionRec
             ))
         })
         .collect::<Result<_, CliError>>()?;
+    recognise_actions(run, &config, exp, one, &network, logs)
+}
+
+/// The rooms the room model of `run` (its config `config`, experiment `exp`, its one all-rooms
+/// run `one` and best robot `network`) recognises in logs already read: (name, actions).
+pub fn recognise_actions(
+    run: &Path,
+    config: &Path,
+    exp: &Experiment,
+    one: &Run,
+    network: &Mlp,
+    logs: Vec<(String, LogActions)>,
+) -> Result<Vec<RecognitionRecord>, CliError> {
     let recognizer = exp
-        .recognizer(&network, one)
+        .recognizer(network, one)
         .map_err(|e| CliError::input(format!("{}: {e}", run.display())))?
         .ok_or_else(|| {
             CliError::input(format!(
@@ -427,6 +589,47 @@ mod tests {
     impl Drop for TempLog {
         fn drop(&mut self) {
             let _ = std::fs::remove_file(&self.0);
+        }
+    }
+
+    /// One function, two sources: a simulated trial written as a robot log ([`steps_log`]),
+    /// read back ([`RobotLog::steps`]) and measured ([`Experiment::logged_trial`]) gives the
+    /// simulated trial's own terms bit for bit, and its blocked steps and executed steps, for
+    /// both motion models.
+    #[test]
+    fn the_measures_of_a_simulated_trials_log_equal_its_own_terms() {
+        use fuzzymotiv::experiment::{BuiltinRoomsOnly, RawConfig, Setup};
+        for motion in ["actions", "wheels"] {
+            let text = format!(
+                "rooms = [\"H\", \"square\"]\n[robot]\nmotion = \"{motion}\"\n[trial]\nsteps = 250\n"
+            );
+            let raw = RawConfig::parse(&text, "t.toml", &[]).unwrap();
+            let exp = Setup::resolve(raw, "t.toml", &BuiltinRoomsOnly)
+                .unwrap()
+                .experiment;
+            let genome: Vec<f64> = (0..exp.shape().genome_len())
+                .map(|k| ((k * 7919) % 13) as f64 / 3.0 - 2.0)
+                .collect();
+            let network = exp.network(&genome).unwrap();
+            let tolerance = exp.trial_params().action_tolerance();
+            for room in 0..2 {
+                for seed in 0..5 {
+                    let (tr, terms) = exp.traced_trial(&network, room, seed);
+                    let steps = LoggedStep::of_trajectory(&tr);
+                    let home = exp.arenas()[room].room().home;
+                    let log = TempLog::new(
+                        &format!("{motion}-{room}-{seed}"),
+                        &steps_log(home, &steps, None),
+                    );
+                    let read = RobotLog::read(&log.0).unwrap().steps(tolerance).unwrap();
+                    assert_eq!(read, steps, "{motion} {room} {seed}: the log reads back");
+                    let m = exp.logged_trial(room, &read);
+                    assert_eq!(m.terms, terms, "{motion} room {room} seed {seed}");
+                    assert_eq!(m.executed, tr.executed());
+                    let blocked = (0..tr.len()).filter(|&t| !tr.idle[t] && tr.collisions[t]);
+                    assert_eq!(m.blocked, blocked.count());
+                }
+            }
         }
     }
 

@@ -193,7 +193,12 @@ impl Experiment {
 
     /// The user-defined terms' values of a finished trial (supplied ones left at 0 for the front
     /// to fill in).
-    pub(crate) fn user_values(&self, arena: &Arena, trajectory: &Trajectory, terms: &mut FitnessTerms) {
+    pub(crate) fn user_values(
+        &self,
+        arena: &Arena,
+        trajectory: &Trajectory,
+        terms: &mut FitnessTerms,
+    ) {
         let mut values = terms.user;
         for (v, u) in values.as_mut_slice().iter_mut().zip(&self.plan.user) {
             if let Some(term) = &u.term {

@@ -7,10 +7,10 @@
 
 use crate::experiment::{Experiment, Run};
 use crate::fitness::terms::FitnessTerms;
-use crate::simulation::robot::{Action, Pose};
-use crate::simulation::controller::Mlp;
-use crate::simulation::trial::{Step, StepObserver, Trajectory};
 use crate::simulation::Readings;
+use crate::simulation::controller::Mlp;
+use crate::simulation::robot::{Action, Pose};
+use crate::simulation::trial::{Step, StepObserver, Trajectory};
 
 /// One executed step of a logged trial.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,7 +78,12 @@ impl Experiment {
 
     /// One evaluation trial of `network` in `room` on the stream `seed`, with its whole
     /// trajectory and its terms.
-    pub fn traced_trial(&self, network: &Mlp, room: usize, seed: u64) -> (Trajectory, FitnessTerms) {
+    pub fn traced_trial(
+        &self,
+        network: &Mlp,
+        room: usize,
+        seed: u64,
+    ) -> (Trajectory, FitnessTerms) {
         let arena = &self.arenas[room];
         let mut trajectory = Trajectory::starting_at(arena.room().home, self.trial.steps());
         let (terms, _, _) = self.observed_trial(&mut network.clone(), room, seed, &mut trajectory);
@@ -167,9 +172,7 @@ mod tests {
             let exp = experiment(&format!(
                 "rooms = [\"H\", \"square\"]\n[robot]\nmotion = \"{motion}\"\n[trial]\nsteps = 300\n"
             ));
-            let network = exp
-                .network(&vec![0.3; exp.shape().genome_len()])
-                .unwrap();
+            let network = exp.network(&vec![0.3; exp.shape().genome_len()]).unwrap();
             for room in 0..2 {
                 for seed in 0..6 {
                     let run = exp.traced_trial(&network, room, seed);
