@@ -14,7 +14,7 @@ use fuzzymotiv_io::note;
 
 use crate::commands::{
     bench, calibrate, claims, compare, export, fuzzy, lab, recognise, replay, reproduce,
-    robustness, rooms, run, sweep, urgency,
+    robustness, rooms, run, sweep, transfer, urgency,
 };
 
 /// Evolutionary behaviour learning for a simulated Khepera robot under fuzzy motivations.
@@ -49,6 +49,10 @@ enum Command {
     /// Recognise the room of a real robot's logs with a run's room model (its SOM): one CSV
     /// per log, a row per step with the action or the motor outputs.
     Recognise(recognise::RecogniseArgs),
+    /// Drive a run's evolved controller in Enki, an independent simulator (its exported C on
+    /// Enki's own robot model): a robot log per test run, measured as the simulator measures
+    /// its trials, beside the run's own test runs.
+    Transfer(transfer::TransferArgs),
     /// Recompute a finished study's claims from its records (summary.json), e.g. at another
     /// significance level: effect, interval, p-value, verdict and minimum detectable difference.
     Claims(claims::ClaimsArgs),
@@ -105,6 +109,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         Command::Calibrate(args) => calibrate::calibrate_command(args),
         Command::Robustness(args) => robustness::robustness(args),
         Command::Recognise(args) => recognise::recognise(args),
+        Command::Transfer(args) => transfer::transfer_command(args),
         Command::Claims(args) => claims::claims_command(args),
         Command::Compare(args) => compare::compare_command(args),
         Command::Fuzzy(args) => fuzzy::fuzzy(args),

@@ -276,3 +276,176 @@ fn the_actions_of_a_long_log_are_counted_over_the_steps_used() {
     assert_eq!((row[1], row[2]), ("400", "150"), "{csv}");
     assert_eq!(row[5..9], ["150", "0", "0", "0"], "{csv}");
 }
+
+/// A tiny run of `robot` (configs/tiny.toml; the Thymio II in its own rooms, configs/thymio2.toml)
+/// in `dir/run-ROBOT`, and the room it is transferred in.
+fn tiny_run_of(robot: &str, dir: &Path) -> (std::path::PathBuf, &'static str) {
+    let run = dir.join(format!("run-{robot}"));
+    let (config, room) = match robot {
+        "thymio2" => ("configs/thymio2.toml", "H-x3"),
+        _ => ("configs/tiny.toml", "H"),
+    };
+    let robot_set = format!("robot=\"{robot}\"");
+    let mut sets = vec![
+        "ga.population=10",
+        "ga.generations=2",
+        "trial.steps=100",
+        "aem.epochs=20",
+        "aem.test_runs=2",
+    ];
+    if robot != "thymio2" {
+        sets.push(&robot_set);
+    }
+    Fm::new([
+        "run",
+        common::repo().join(config).to_str().unwrap(),
+        "--quiet",
+    ])
+    .out(&run)
+    .sets(&sets)
+    .ok();
+    (run, room)
+}
+
+/// `fuzzymotiv transfer` builds its Enki harness and runs a tiny run's controller in Enki for
+/// the Khepera, the e-puck2 and the Thymio II: its logs are recognised by `recognise` and
+/// drawn by `replay --log`, its test_runs.csv has the run's columns and its measures both
+/// worlds'.
+#[test]
+#[ignore = "needs Enki (libenki-dev, python3-enki2): run by .ci/run"]
+fn a_transferred_controllers_enki_logs_are_recognised_and_replayed() {
+    let tmp = tempfile::tempdir().unwrap();
+    for robot in ["khepera", "epuck2", "thymio2"] {
+        let (run, room) = tiny_run_of(robot, tmp.path());
+        let out = tmp.path().join(format!("enki-{robot}"));
+        let o = Fm::new([
+            "transfer",
+            run.to_str().unwrap(),
+            "--room",
+            room,
+            "--runs",
+            "2",
+        ])
+        .out(&out)
+        .ok();
+        let said = stdout(&o);
+        assert!(said.contains("Enki (2 test runs)"), "{robot}: {said}");
+        assert!(said.contains("fuzzymotiv (2 test runs)"), "{robot}: {said}");
+        let ours = std::fs::read_to_string(run.join("test_runs.csv")).unwrap();
+        let enki = std::fs::read_to_string(out.join("test_runs.csv")).unwrap();
+        assert_eq!(ours.lines().next(), enki.lines().next(), "{robot}");
+        assert_eq!(enki.lines().count(), 3, "{robot}: {enki}");
+        let measures = std::fs::read_to_string(out.join("measures.csv")).unwrap();
+        assert_eq!(measures.matches("\nenki,").count(), 2, "{measures}");
+        assert_eq!(measures.matches("\nfuzzymotiv,").count(), 2, "{measures}");
+        let log = out.join("run-0.csv");
+        let rec = out.join("recognised");
+        ok(&[
+            "recognise",
+            run.to_str().unwrap(),
+            log.to_str().unwrap(),
+            "--out",
+            rec.to_str().unwrap(),
+        ]);
+        assert!(rec.join("recognised.csv").is_file(), "{robot}");
+        let page = tmp.path().join(format!("replay-{robot}.html"));
+        ok(&[
+            "replay",
+            run.to_str().unwrap(),
+            "--room",
+            room,
+            "--log",
+            log.to_str().unwrap(),
+            "--out",
+            page.to_str().unwrap(),
+        ]);
+        let svg = std::fs::read_to_string(page.with_extension("svg")).unwrap();
+        assert!(svg.contains("run-0.csv"), "{robot}: the log's legend line");
+        // The same transfer again writes nothing new.
+        let again = Fm::new([
+            "transfer",
+            run.to_str().unwrap(),
+            "--room",
+            room,
+            "--runs",
+            "2",
+        ])
+        .out(&out)
+        .ok();
+        assert!(
+            stderr(&again).contains("nothing to do"),
+            "{}",
+            stderr(&again)
+        );
+    }
+}
+
+/// Without a C++ compiler transfer exits 2 naming the Debian package to install (and writes
+/// nothing).
+#[test]
+fn transfer_without_a_compiler_names_the_package_to_install() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (run, room) = tiny_run_of("khepera", tmp.path());
+    let out = tmp.path().join("enki");
+    let o = Fm::new([
+        "transfer",
+        run.to_str().unwrap(),
+        "--room",
+        room,
+        "--runs",
+        "1",
+    ])
+    .out(&out)
+    .env("CC", "/nonexistent/cc")
+    .env("CXX", "/nonexistent/c++")
+    .run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("apt-get install g++"), "{}", stderr(&o));
+    assert!(!out.exists());
+    // A room the run does not have is refused before anything is built.
+    let o = Fm::new([
+        "transfer",
+        run.to_str().unwrap(),
+        "--room",
+        "T",
+        "--runs",
+        "1",
+    ])
+    .out(&out)
+    .run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("`T` is not a room of"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// A Thymio II run's genome (7 inputs) is replayed, its log drawn: replay sized the network by
+/// the robot's sensors (it took the Khepera's 8 and refused 62 weights).
+#[test]
+fn a_thymio_runs_genome_of_seven_inputs_is_replayed_with_a_log() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (run, room) = tiny_run_of("thymio2", tmp.path());
+    let rep = tmp.path().join("rep.html");
+    ok(&[
+        "replay",
+        run.to_str().unwrap(),
+        "--room",
+        room,
+        "--out",
+        rep.to_str().unwrap(),
+    ]);
+    let log = tmp.path().join(format!("rep-{room}.csv"));
+    let again = tmp.path().join("again.html");
+    ok(&[
+        "replay",
+        run.to_str().unwrap(),
+        "--room",
+        room,
+        "--log",
+        log.to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+    ]);
+}

@@ -15,4 +15,5 @@ pub mod robustness;
 pub mod rooms;
 pub mod run;
 pub mod sweep;
+pub mod transfer;
 pub mod urgency;

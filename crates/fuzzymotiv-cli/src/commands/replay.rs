@@ -303,9 +303,12 @@ fn replay_trials(
     let runs = exp.runs();
     let in_file =
         |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome.path.display()));
-    let want_len = MlpShape::with_hidden(genome.hidden)
+    // The robot's sensors are the network's inputs (7 on the Thymio II, not the Khepera's 8).
+    let shape = MlpShape::with_hidden(genome.hidden)
         .map_err(|e| in_file(&e))?
-        .genome_len();
+        .with_inputs(exp.shape().inputs())
+        .map_err(|e| in_file(&e))?;
+    let want_len = shape.genome_len();
     let mut trials = Vec::new();
     for r in 0..exp.arenas().len() {
         let name = &exp.arenas()[r].room().name;
@@ -323,9 +326,10 @@ fn replay_trials(
         };
         if weights.len() != want_len {
             return Err(CliError::input(format!(
-                "{}: {} weights, but an 8-{}-2 network needs {want_len}",
+                "{}: {} weights, but a {}-{}-2 network needs {want_len}",
                 genome.path.display(),
                 weights.len(),
+                shape.inputs(),
                 genome.hidden
             )));
         }

@@ -12,3 +12,4 @@ pub mod run_dir;
 pub mod sweep_jobs;
 pub mod sweep_merge;
 pub mod sweep_plan;
+pub mod transfer;
