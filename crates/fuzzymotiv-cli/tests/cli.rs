@@ -440,6 +440,64 @@ fn bench_steps_count_every_room() {
     assert_eq!(v["robot_steps"], 4000);
 }
 
+/// `--set robot=NAME` replaces the whole `[robot]` table, and with it the `robot.motion` that
+/// `--motion` sets: bench refuses it (exit 2, pointing at `robot.file`) rather than measure the
+/// robot's default motion under the name `wheels`; `--set robot.file=NAME` measures it in
+/// `wheels`, and the report names the robot.
+#[test]
+fn bench_refuses_a_robot_set_that_drops_its_motion() {
+    let base = [
+        "bench",
+        "--steps",
+        "400",
+        "--population",
+        "2",
+        "--repeat",
+        "1",
+    ];
+    let wheels = [&base[..], &["--motion", "wheels", "--json", "--set"]].concat();
+    let refused = run(&[&wheels[..], &["robot=epuck2"]].concat());
+    assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
+    let err = stderr(&refused);
+    assert!(
+        err.contains("--motion wheels") && err.contains("--set robot.file=NAME"),
+        "{err}"
+    );
+    let o = ok(&[&wheels[..], &["robot.file=epuck2"]].concat());
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(
+        (v["robot"].as_str(), v["motion"].as_str()),
+        (Some("epuck2"), Some("wheels"))
+    );
+}
+
+/// `--room` takes a room file, so the Thymio II is measured in its own rooms (rooms/thymio2/,
+/// the paper's scaled 3x: in the paper's rooms its home is too near the walls for its body).
+#[test]
+fn bench_measures_the_thymio_in_its_rooms() {
+    let room = repo().join("rooms/thymio2/H.toml");
+    let o = ok(&[
+        "bench",
+        "--room",
+        room.to_str().unwrap(),
+        "--set",
+        "robot=thymio2",
+        "--steps",
+        "400",
+        "--population",
+        "2",
+        "--repeat",
+        "1",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(
+        (v["robot"].as_str(), v["room"].as_str()),
+        (Some("thymio2"), Some("H-x3"))
+    );
+    assert!(v["population_robot_steps"].as_u64().unwrap() > 0);
+}
+
 /// The study runs as many (setting, seed) runs at a time as it has threads: its tables, and
 /// every run's records, are the same bytes with one thread (one run at a time) and with three
 /// (three of its four runs at once, and each population evaluated in parallel).

@@ -3,7 +3,7 @@
 use std::time::Instant;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::simulation::Room;
+use fuzzymotiv::simulation::{Motion, Room};
 
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::inputs::{load_config, resolve};
@@ -36,7 +36,8 @@ pub struct BenchArgs {
     /// trial ended at home are not work.
     #[arg(long, default_value = "actions", value_parser = ["actions", "wheels"])]
     pub motion: String,
-    /// Override a config key (repeatable), e.g. --set trial.end_at_home=false.
+    /// Override a config key (repeatable), e.g. --set trial.end_at_home=false; another robot:
+    /// --set robot.file=epuck2 (a built-in name or a robot file).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
 }
@@ -63,6 +64,8 @@ pub struct BenchReport {
     pub population_seconds: f64,
     /// Repetitions.
     pub repeat: usize,
+    /// Robot measured (its robot file's name).
+    pub robot: String,
     /// Executed robot-steps of a repetition of the single-robot measurement (median).
     pub robot_steps: usize,
     /// Their rate (median repetition).
@@ -128,7 +131,28 @@ fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
         let raw = fuzzymotiv::experiment::RawConfig::parse("", "bench", &sets)?;
         resolve(raw, std::path::Path::new("."), "--room")?
     };
+    check_motion(&loaded.experiment, &args.motion)?;
     Ok(loaded.experiment)
+}
+
+/// The experiment runs the motion `--motion` asked for: a `--set robot=NAME` replaces the whole
+/// `[robot]` table, and with it the `robot.motion` that `--motion` set, so the robot would run
+/// its default motion under another motion's name.
+fn check_motion(exp: &Experiment, asked: &str) -> Result<(), CliError> {
+    let runs = exp.trial_params().robot().motion();
+    let name = match runs {
+        Motion::Actions => "actions",
+        Motion::Wheels => "wheels",
+    };
+    if name == asked {
+        return Ok(());
+    }
+    Err(CliError::input(format!(
+        "--motion {asked}: the --set options leave the robot with {name} motion (a --set \
+         robot.motion, or a --set robot=NAME, which replaces the whole [robot] table and \
+         robot.motion with it); choose the motion with --motion and name the robot with \
+         --set robot.file=NAME"
+    )))
 }
 
 /// Times `work(r)` for each repetition `r` of `repeat`; returns the median seconds and the median
@@ -186,6 +210,7 @@ fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
         population_robot_steps_per_sec: pop_steps as f64 / pop_seconds,
         population_seconds: pop_seconds,
         repeat: args.repeat,
+        robot: exp.trial_params().robot().spec().name().to_string(),
         robot_steps,
         robot_steps_per_sec: robot_steps as f64 / seconds,
         room: exp.arenas()[0].room().name.clone(),
@@ -200,7 +225,8 @@ fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
 /// The report as two lines of text.
 fn print_report(r: &BenchReport) -> Result<(), CliError> {
     fuzzymotiv_io::outln!(
-        "room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({} executed steps, median {:.3} s of {})",
+        "{} in room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({} executed steps, median {:.3} s of {})",
+        r.robot,
         r.room,
         r.motion,
         r.robot_steps_per_sec / 1e6,
