@@ -119,8 +119,8 @@ pub(crate) fn field_from_toml_message(
         if let Some(f) = from_message() {
             // A field missing from the document itself: its span starts the document, whose
             // first line may be a key (not the table that lacks the field).
-            let root = span.as_ref().is_some_and(|s| s.start == 0)
-                && !text.trim_start().starts_with('[');
+            let root =
+                span.as_ref().is_some_and(|s| s.start == 0) && !text.trim_start().starts_with('[');
             return match span.and_then(|span| value_path_at(text, span.start)) {
                 Some(table) if !table.is_empty() && !root => format!("{table}.{f}"),
                 _ => f,

@@ -196,7 +196,10 @@ pub fn build_export(req: &ExportRequest) -> Result<Export, CliError> {
     let weights = chosen_weights(&genome, req, &mut notes)?;
     let in_file =
         |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome_path.display()));
-    let shape = MlpShape::with_hidden(genome.hidden).map_err(|e| in_file(&e))?;
+    // The robot's sensors are the network's inputs (7 on the Thymio II, not the Khepera's 8).
+    let sensors = loaded.experiment.trial_params().robot().sensors();
+    let shape = (MlpShape::with_hidden(genome.hidden).and_then(|s| s.with_inputs(sensors)))
+        .map_err(|e| in_file(&e))?;
     let controller = ExportedController::new(shape, weights, loaded.experiment.trial_params())
         .map_err(|e| in_file(&format!("field `weights`: {e}")))?;
     let files = match req.to {

@@ -509,7 +509,10 @@ mod tests {
         assert_eq!(field_of(&own), "sensor[1].ray[0].distance_mm");
         assert_eq!(field_of(&format!("{DISC}colour = 1\n")), "sensor[1].colour");
         assert_eq!(field_of(&format!("colour = 1\n{DISC}")), "colour");
-        assert_eq!(field_of(&DISC.replace("wheel_base = 60.0\n", "")), "wheel_base");
+        assert_eq!(
+            field_of(&DISC.replace("wheel_base = 60.0\n", "")),
+            "wheel_base"
+        );
     }
 
     #[test]
