@@ -287,13 +287,30 @@ const LOG_COLOURS: [&str; 4] = ["#0e7c86", "#8c564b", "#1a1a6e", "#7f7f00"];
 
 /// [`trajectories_svg`] with `logs` drawn over their rooms, each dashed in a colour of its own
 /// with an end square, and a legend line each under the caption (without logs the figure is
+
+/// Pixels per mm of the trajectories figure: 0.3 (the paper's 800 mm rooms 240 px wide), less
+/// for rooms larger than 800 mm (a robot's own rooms, e.g. the Thymio II's 2400 mm ones) so
+/// that each room stays 240 px at most.
+fn figure_scale<'a>(rooms: impl Iterator<Item = &'a Room>) -> f64 {
+    let largest = rooms
+        .map(|r| {
+            let (lo, hi) = r.bounds();
+            (hi.x - lo.x).max(hi.y - lo.y)
+        })
+        .fold(0.0, f64::max);
+    if largest <= 800.0 {
+        0.3
+    } else {
+        240.0 / largest
+    }
+}
 /// [`trajectories_svg`]'s, byte for byte).
 pub fn trajectories_svg_with(
     title: &str,
     rooms: &[(&Room, &Trajectory)],
     logs: &[LoggedPath],
 ) -> String {
-    let scale = 0.3; // px per mm
+    let scale = figure_scale(rooms.iter().map(|(r, _)| *r));
     let pad = 20.0;
     let mut x_off = pad;
     let mut parts = String::new();
