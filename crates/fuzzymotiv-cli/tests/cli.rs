@@ -1626,6 +1626,10 @@ fn a_run_evolves_the_network_of_its_robot() {
         "{resolved}"
     );
     assert_eq!(genome_len(&epuck), 68);
+    // The report says which robot and replays its own sensors (names, reading scale).
+    let report = std::fs::read_to_string(epuck.join("report.html")).unwrap();
+    assert!(report.contains("simulated GCtronic e-puck2 (8 proximity sensors) robots"));
+    assert!(report.contains("\"max\":3731.0") && report.contains("IR0 front-right"));
     let thymio = dir.path().join("thymio");
     let sets = [SMALL.as_slice(), &["ga.generations=1", "aem.enabled=false"]].concat();
     Fm::new([

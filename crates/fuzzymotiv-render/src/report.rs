@@ -535,13 +535,27 @@ fn intro(ctx: Option<&RenderContext>) -> String {
         .map(|(symbol, name, _)| format!("{name} {symbol}"))
         .collect();
     format!(
-        "<p>A population of simulated Khepera robots, each controlled by a small neural network, is \
+        "<p>A population of simulated {} robots, each controlled by a small neural network, is \
          evolved by a genetic algorithm. A robot's fitness F combines four measured fitness terms \
          ({}) through a fuzzy rule base weighted by the \
          robot's <i>motivations</i> (curiosity C, homing H, orientation O, energy E). The best robot of \
          the last generation is then asked to recognise rooms from its own sequence of actions.</p>\n",
+        robot_words(ctx),
         names.join(", ")
     )
+}
+
+/// What the opening paragraph calls the robots: the paper's "Khepera", else the robot file's
+/// title (e.g. "GCtronic e-puck2") and its sensor count.
+fn robot_words(ctx: Option<&RenderContext>) -> String {
+    match ctx.map(|c| c.robot) {
+        Some(robot) if robot.name() != "khepera" => format!(
+            "{} ({} proximity sensors)",
+            esc(robot.title()),
+            robot.sensors()
+        ),
+        _ => "Khepera".to_string(),
+    }
 }
 
 /// [`intro`] of a run whose motivations are not the paper's four: F combines the terms its
@@ -571,11 +585,12 @@ fn motivations_intro(ctx: &RenderContext) -> String {
         )
     };
     format!(
-        "<p>A population of simulated Khepera robots, each controlled by a small neural network, is \
+        "<p>A population of simulated {} robots, each controlled by a small neural network, is \
          evolved by a genetic algorithm. A robot's fitness F combines {} measured fitness terms \
          ({}) through a fuzzy rule base weighted by the robot's {} <i>motivations</i> ({}), each \
          weighing one of these terms.{besides} The best robot of the last generation is then \
          asked to recognise rooms from its own sequence of actions.</p>\n",
+        robot_words(Some(ctx)),
         count_word(terms.len()),
         esc(&term_words.join(", ")),
         count_word(names.len()),
