@@ -475,3 +475,33 @@ fn plan_into_a_missing_folder_names_the_folder() {
         "{e}"
     );
 }
+
+/// A sweep varies the robot like any key: a grid over `robot.file` runs the Khepera and the
+/// e-puck2 side by side, each job's resolved config names its robot and evolves its network,
+/// and the merged results have one row per robot.
+#[test]
+fn a_sweep_varies_the_robot() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("robots.toml");
+    let text = "name = \"robots\"\nrooms = [\"H\", \"square\"]\n[ga]\npopulation = 8\ngenerations = 2\n[trial]\nsteps = 80\n[aem]\nenabled = false\n[sweep]\nreplicates = 1\n[sweep.grid]\n\"robot.file\" = [\"khepera\", \"epuck2\"]\n";
+    std::fs::write(&f, text).unwrap();
+    let out = dir.path().join("out");
+    ok(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let mut robots = Vec::new();
+    let jobs = std::fs::read_dir(out.join("jobs"))
+        .unwrap()
+        .map(|j| j.unwrap().path());
+    for job in jobs.filter(|j| j.is_dir()) {
+        let config = std::fs::read_to_string(job.join("config.resolved.toml"));
+        let config = config.unwrap();
+        robots.push(config.contains("file = \"epuck2\"\nradius = 37.0"));
+    }
+    robots.sort();
+    assert_eq!(robots, [false, true], "one Khepera job, one e-puck2 job");
+    let csv = results(&out);
+    assert_eq!(
+        csv.lines().filter(|l| l.contains("epuck2")).count(),
+        csv.lines().count() / 2,
+        "{csv}"
+    );
+}
