@@ -129,21 +129,7 @@ impl Experiment {
         let trial = TrialParams::from_raw(&raw.trial, &raw.robot, spec, tolerance)?;
         let trial = match (&raw.trial.sensor_table, files.sensor_table) {
             (None, _) => trial,
-            (Some(_), Some(table)) => {
-                check(
-                    table.sensors() == spec.sensors(),
-                    "trial.sensor_table",
-                    || {
-                        format!(
-                            "the table gives {} sensors, the robot {} has {}: a sensor table has one entry per sensor of the robot",
-                            table.sensors(),
-                            spec.name(),
-                            spec.sensors()
-                        )
-                    },
-                )?;
-                trial.with_sensor_table(table)
-            }
+            (Some(_), Some(table)) => trial.with_sensor_table(table_for(table, spec)?),
             (Some(file), None) => {
                 return Err(FieldError::new(
                     "trial.sensor_table",
@@ -347,6 +333,26 @@ pub struct ReadFiles {
     pub sensor_table: Option<&'static SensorTable>,
     /// The robot file `robot.file` names (a built-in robot needs none).
     pub robot: Option<&'static RobotSpec>,
+}
+
+/// `table` (`trial.sensor_table`) when it has one entry per sensor of the robot `spec`.
+fn table_for(
+    table: &'static SensorTable,
+    spec: &RobotSpec,
+) -> Result<&'static SensorTable, FieldError> {
+    check(
+        table.sensors() == spec.sensors(),
+        "trial.sensor_table",
+        || {
+            format!(
+                "the table gives {} sensors, the robot {} has {}: a sensor table has one entry per sensor of the robot",
+                table.sensors(),
+                spec.name(),
+                spec.sensors()
+            )
+        },
+    )?;
+    Ok(table)
 }
 
 /// The robot a config names: `read` (the file a front end read), else the built-in robot

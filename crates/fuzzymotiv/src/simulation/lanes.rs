@@ -31,7 +31,7 @@ use crate::simulation::math::logistic_rough_avx2;
 use crate::simulation::math::{LOGISTIC_ROUGH_ERR, logistic_lanes, logistic_rough_lanes};
 use crate::simulation::memo::{Sight, Table, memo_live, with_table};
 use crate::simulation::robot::{Motion, Pose};
-use crate::simulation::sensor::{Readings, SENSOR_MAX};
+use crate::simulation::sensor::SENSOR_MAX;
 use crate::simulation::trial::{Arena, Sensed, StepObserver, Walk};
 
 /// Trials stepped together.
@@ -179,10 +179,7 @@ fn walk<const AVX2: bool, O: StepObserver>(
         }
         for l in 0..LANES {
             let Some(j) = lanes.trial[l] else { continue };
-            let sensed = Sensed::straight(
-                Readings::from_eight(noisy_sensors[l], INPUTS),
-                sights[l].blocked,
-            );
+            let sensed = Sensed::straight(noisy_sensors[l], sights[l].blocked);
             let m = [motors[0][l], motors[1][l]];
             let noisy = [speeds[0][l], speeds[1][l]];
             let t = lanes.t[l];

@@ -451,31 +451,8 @@ pub fn calibrate(rows: &[Measurement], scale: SensorScale) -> Result<Calibration
     let mut notes = Vec::new();
     let mut rays = Vec::new();
     for (&s, dists) in &by {
-        let mut groups: Vec<(f64, Vec<f64>)> = dists
-            .iter()
-            .map(|(&d, v)| (f64::from_bits(d), v.clone()))
-            .collect();
-        groups.sort_by(|a, b| a.0.total_cmp(&b.0));
-        check(groups.len() >= 2, "distance_mm", || {
-            format!(
-                "sensor {s} was measured at {} distance; a table needs at least 2",
-                groups.len()
-            )
-        })?;
-        let stats: Vec<Spread> = groups.iter().map(|(d, v)| spread_of(s, *d, v)).collect();
-        let medians: Vec<(f64, usize)> = stats.iter().map(|g| (g.median, g.count)).collect();
-        let fitted = non_increasing(&medians);
-        if fitted.iter().zip(&medians).any(|(f, m)| *f != m.0) {
-            notes.push(format!("sensor {s}: the medians rise with distance somewhere; neighbouring distances were pooled (weighted means) to keep the table non-increasing"));
-        }
-        rays.push(RawRay {
-            angle_deg: 0.0,
-            distance_mm: groups.iter().map(|g| g.0).collect(),
-            reading: fitted
-                .iter()
-                .map(|v| v.round().clamp(0.0, scale.reading_max))
-                .collect(),
-        });
+        let (ray, stats) = measured_ray(s, dists, scale.reading_max, &mut notes)?;
+        rays.push(ray);
         spread.extend(stats);
     }
     let raw = if rays.len() == 1 {
@@ -511,6 +488,40 @@ pub fn calibrate(rows: &[Measurement], scale: SensorScale) -> Result<Calibration
         noise: (3f64.sqrt() * relative_spread).min(0.5),
         notes,
     })
+}
+
+/// Sensor `s`'s measured ray: per distance (`dists`: distance bits → readings) the median,
+/// made non-increasing (a note in `notes` when medians had to be pooled), rounded and capped at
+/// `max`; with the spread of each distance's readings.
+fn measured_ray(
+    s: usize,
+    dists: &BTreeMap<u64, Vec<f64>>,
+    max: f64,
+    notes: &mut Vec<String>,
+) -> Result<(RawRay, Vec<Spread>), FieldError> {
+    let mut groups: Vec<(f64, Vec<f64>)> = dists
+        .iter()
+        .map(|(&d, v)| (f64::from_bits(d), v.clone()))
+        .collect();
+    groups.sort_by(|a, b| a.0.total_cmp(&b.0));
+    check(groups.len() >= 2, "distance_mm", || {
+        format!(
+            "sensor {s} was measured at {} distance; a table needs at least 2",
+            groups.len()
+        )
+    })?;
+    let stats: Vec<Spread> = groups.iter().map(|(d, v)| spread_of(s, *d, v)).collect();
+    let medians: Vec<(f64, usize)> = stats.iter().map(|g| (g.median, g.count)).collect();
+    let fitted = non_increasing(&medians);
+    if fitted.iter().zip(&medians).any(|(f, m)| *f != m.0) {
+        notes.push(format!("sensor {s}: the medians rise with distance somewhere; neighbouring distances were pooled (weighted means) to keep the table non-increasing"));
+    }
+    let ray = RawRay {
+        angle_deg: 0.0,
+        distance_mm: groups.iter().map(|g| g.0).collect(),
+        reading: fitted.iter().map(|v| v.round().clamp(0.0, max)).collect(),
+    };
+    Ok((ray, stats))
 }
 
 /// Checks one measurement (`row`: its 1-based data row).

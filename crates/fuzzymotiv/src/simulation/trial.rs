@@ -961,12 +961,12 @@ pub(crate) struct Sensed {
 }
 
 impl Sensed {
-    /// What an `actions` step read: `sensors` (noise included) and whether a straight move is
-    /// `blocked`.
+    /// What an `actions` step of an eight-sensor robot (the lanes') read: `sensors` (noise
+    /// included) and whether a straight move is `blocked`.
     #[inline(always)]
-    pub(crate) fn straight(sensors: Readings, blocked: bool) -> Sensed {
+    pub(crate) fn straight(sensors: [f64; SIGHT_SENSORS], blocked: bool) -> Sensed {
         Sensed {
-            sensors,
+            sensors: Readings::from_eight(sensors, SIGHT_SENSORS),
             walls: Walls::Straight(blocked),
         }
     }
