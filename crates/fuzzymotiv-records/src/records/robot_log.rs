@@ -422,7 +422,12 @@ pub fn steps_log(home: Pose, steps: &[LoggedStep], raw: Option<(&str, &[Readings
         cells.extend([start.x, start.y, start.heading].map(|v| v.to_string()));
         cells.extend(s.sensors.iter().map(|v| v.to_string()));
         if let Some((_, rows)) = raw {
-            cells.extend(rows[t].iter().map(|v| v.to_string()));
+            // A step without its raw row (fewer rows than steps) leaves the cells empty.
+            let m = rows.first().map_or(0, |r| r.len());
+            match rows.get(t) {
+                Some(r) => cells.extend(r.iter().map(|v| v.to_string())),
+                None => cells.extend((0..m).map(|_| String::new())),
+            }
         }
         let [ml, mr] = s.motors.unwrap_or([0.5; 2]);
         cells.extend([ml.to_string(), mr.to_string(), s.action.label().to_string()]);
