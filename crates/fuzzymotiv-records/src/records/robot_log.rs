@@ -638,6 +638,30 @@ mod tests {
         }
     }
 
+    /// A log of two steps given one raw row writes the second step's raw cells empty (no
+    /// index past the rows) and still reads back as its two steps.
+    #[test]
+    fn a_step_without_its_raw_row_is_logged_with_empty_raw_cells() {
+        let step = |x: f64| LoggedStep {
+            pose: Pose::new(x, 0.0, 0.0),
+            sensors: Readings::from_slice(&[1.0, 2.0]),
+            motors: Some([0.75, 0.75]),
+            action: Action::Straight,
+            collided: false,
+        };
+        let steps = [step(8.0), step(16.0)];
+        let raw = [Readings::from_slice(&[3.0, 4.0])];
+        let text = steps_log(Pose::new(0.0, 0.0, 0.0), &steps, Some(("enki", &raw)));
+        let rows: Vec<&str> = text.lines().collect();
+        assert_eq!(
+            rows[0],
+            "step,x,y,heading,ir0,ir1,enki0,enki1,m_left,m_right,action,collision"
+        );
+        assert_eq!(rows[2], "1,8,0,0,1,2,,,0.75,0.75,straight,0");
+        let log = TempLog::new("raw-rows", &text);
+        assert_eq!(RobotLog::read(&log.0).unwrap().steps(0.25).unwrap(), steps);
+    }
+
     /// A replay's CSV names the motor outputs `mL`, `mR` and the readings `s0`…`s7`; a robot's
     /// log `m_left`, `m_right` and `ir0`…`ir7`: both read as the same steps.
     #[test]
