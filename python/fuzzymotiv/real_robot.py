@@ -23,6 +23,7 @@ def export_controller(
     config: Optional[PathLike] = None,
     room: Optional[str] = None,
     force: bool = False,
+    target: Literal["generic", "epuck2", "thymio2", "khepera"] = "generic",
 ) -> List[str]:
     """Exports the controller of a run directory (or a ``best_genome.json``, its robot from the
     ``config.resolved.toml`` beside it or ``config``) and returns the paths written.
@@ -33,15 +34,22 @@ def export_controller(
 
     ``to="c"``: ``out`` is a directory (created if missing) receiving ``fm_controller.h`` and
     ``fm_controller.c``; ``to="json"``: ``out`` is the JSON file; ``to="onnx"``: ``out`` is the
-    ONNX model. Other files there are kept
+    ONNX model. ``target`` (with ``to="c"``) picks a robot's deployment kit, as ``--target``:
+    ``"epuck2"``, ``"thymio2"`` (an Aseba program, ``fm_controller.aesl``, with its README and
+    golden vectors), ``"khepera"``; the kit must be the one of the run's robot, else
+    ``FuzzymotivError`` names both robots; ``"generic"`` (the default) is the plain export. An
+    unknown ``target``, or a kit with ``to="json"`` or ``"onnx"``, raises ``FuzzymotivError``
+    naming ``target``. Other files there are kept
     unless ``force=True`` (``OutputExistsError``); the same export again writes nothing. A bad
     genome or config raises ``FuzzymotivError`` naming the file and field. ``room`` picks the
     robot evolved in that room (per-room training). The same as ``fuzzymotiv export
-    RUN_OR_GENOME --to TO --out OUT``.
+    RUN_OR_GENOME --to TO --target TARGET --out OUT``.
     """
     config_path = None if config is None else os.fspath(config)
     if os.fspath(out) == "-":
-        data = _native.export_controller_bytes(os.fspath(run_or_genome), to, config_path, room)
+        data = _native.export_controller_bytes(
+            os.fspath(run_or_genome), to, config_path, room, target
+        )
         if to == "onnx":
             sys.stdout.flush()
             sys.stdout.buffer.write(data)
@@ -57,6 +65,7 @@ def export_controller(
         config_path,
         room,
         force,
+        target,
     )
 
 

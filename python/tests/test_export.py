@@ -120,3 +120,36 @@ def test_export_controller_to_dash_writes_one_file_formats_to_stdout_and_no_file
     with pytest.raises(ValueError, match="to=\"c\" writes two"):
         fm.export_controller(run_dir, to="c", out="-")
     assert not (tmp_path / "-").exists()
+
+
+@pytest.fixture(scope="module")
+def thymio_run(tmp_path_factory, repo):
+    out = tmp_path_factory.mktemp("export-thymio") / "run"
+    small = {"ga.generations": 2, "ga.population": 10, "trial.steps": 100, "aem.enabled": False}
+    fm.run(repo / "configs" / "thymio2.toml", small, out=out, threads=2)
+    return out
+
+
+def test_export_controller_target_thymio2_writes_the_clis_aseba_kit(thymio_run, tmp_path, cli):
+    written = fm.export_controller(thymio_run, to="c", target="thymio2", out=tmp_path / "py")
+    names = [p.rsplit("/", 1)[1] for p in written]
+    assert names == ["fm_controller.aesl", "README.txt", "golden.csv"]
+    run_cli(cli, "export", thymio_run, "--to", "c", "--target", "thymio2", "--out", tmp_path / "cli")
+    for name in names:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    # The Thymio II's 7 sensors are the network's inputs: golden.csv has readings r0..r6.
+    header = (tmp_path / "py" / "golden.csv").read_text().splitlines()[0].split(",")
+    assert [c for c in header if c[:1] == "r" and c[1:].isdigit()] == [f"r{k}" for k in range(7)]
+    # "generic" (the default) is the plain C.
+    plain = fm.export_controller(thymio_run, to="c", target="generic", out=tmp_path / "plain")
+    assert [p.rsplit("/", 1)[1] for p in plain] == ["fm_controller.h", "fm_controller.c"]
+
+
+def test_export_controller_names_a_wrong_target(thymio_run, tmp_path):
+    with pytest.raises(fm.FuzzymotivError, match="target: `thymio` is not a deployment kit"):
+        fm.export_controller(thymio_run, to="c", target="thymio", out=tmp_path / "a")  # type: ignore[arg-type]
+    with pytest.raises(fm.FuzzymotivError, match="target epuck2: .*robot `thymio2`, not `epuck2`"):
+        fm.export_controller(thymio_run, to="c", target="epuck2", out=tmp_path / "b")
+    with pytest.raises(fm.FuzzymotivError, match="target thymio2: a deployment kit is C code"):
+        fm.export_controller(thymio_run, to="json", target="thymio2", out="-")
+    assert not (tmp_path / "a").exists() and not (tmp_path / "b").exists()

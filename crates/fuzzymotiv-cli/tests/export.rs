@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{ok, run, stderr, stdout};
+use common::{ok, repo, run, stderr, stdout};
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -728,4 +728,73 @@ fn export_target_writes_the_runs_robot_kit_and_refuses_another_robots() {
         stderr(&o)
     );
     assert!(!json.exists());
+}
+
+/// The Thymio II's tiny run: 7 sensors reading 0-4505, so a 7-6-2 network.
+fn tiny_thymio_run(dir: &Path) -> PathBuf {
+    let out = dir.join("thymio2");
+    let cfg = repo().join("configs/thymio2.toml");
+    ok(&[
+        "run",
+        cfg.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--set",
+        "ga.population=10",
+        "--set",
+        "ga.generations=2",
+        "--set",
+        "trial.steps=100",
+        "--set",
+        "aem.enabled=false",
+    ]);
+    out
+}
+
+#[test]
+fn a_thymio_export_says_its_own_inputs_and_reading_scale_not_the_kheperas() {
+    let dir = tempfile::tempdir().unwrap();
+    let run_dir = tiny_thymio_run(dir.path());
+    let src = run_dir.to_str().unwrap();
+    let kit = dir.path().join("kit");
+    let o = ok(&[
+        "export",
+        src,
+        "--to",
+        "c",
+        "--target",
+        "thymio2",
+        "--out",
+        kit.to_str().unwrap(),
+    ]);
+    let e = stderr(&o);
+    assert!(
+        e.contains("wrote the thymio2 kit of the 7-6-2 controller"),
+        "{e}"
+    );
+    assert!(kit.join("fm_controller.aesl").is_file());
+    let plain = dir.path().join("plain");
+    let o = ok(&["export", src, "--to", "c", "--out", plain.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains("wrote the 7-6-2 controller"),
+        "{}",
+        stderr(&o)
+    );
+    let json = dir.path().join("c.json");
+    ok(&[
+        "export",
+        src,
+        "--to",
+        "json",
+        "--out",
+        json.to_str().unwrap(),
+    ]);
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(doc["inputs"]["reading_max"], 4505.0);
+    let scaling = doc["inputs"]["scaling"].as_str().unwrap();
+    assert!(scaling.starts_with("x = reading / 4505 "), "{scaling}");
+    assert!(!scaling.contains("1023"), "{scaling}");
+    let order = doc["network"]["weight_order"].as_str().unwrap();
+    assert!(order.contains("w from input 6]"), "{order}");
 }

@@ -116,14 +116,16 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
         );
     } else if let Some(robot) = args.target.filter(|&r| r != Robot::Generic) {
         note!(
-            "wrote the {} kit of the 8-{}-2 controller of {}",
+            "wrote the {} kit of the {}-{}-2 controller of {}",
             KitTarget::from(robot).name(),
+            done.inputs,
             done.hidden,
             done.genome.display()
         );
     } else {
         note!(
-            "wrote the 8-{}-2 controller of {}",
+            "wrote the {}-{}-2 controller of {}",
+            done.inputs,
             done.hidden,
             done.genome.display()
         );

@@ -73,6 +73,30 @@ impl KitTarget {
             KitTarget::Khepera => "khepera",
         }
     }
+
+    /// Every target, in the order messages list them.
+    pub const ALL: [KitTarget; 4] = [
+        KitTarget::Generic,
+        KitTarget::Epuck2,
+        KitTarget::Thymio2,
+        KitTarget::Khepera,
+    ];
+
+    /// The target named `value` (`generic`, `epuck2`, `thymio2`, `khepera`); an error names
+    /// `option`, the value and the accepted names.
+    pub fn parse(option: &str, value: &str) -> Result<KitTarget, CliError> {
+        (KitTarget::ALL.into_iter())
+            .find(|t| t.name() == value)
+            .ok_or_else(|| {
+                let names: Vec<String> = (KitTarget::ALL.iter())
+                    .map(|t| format!("\"{}\"", t.name()))
+                    .collect();
+                CliError::input(format!(
+                    "{option}: `{value}` is not a deployment kit; use {}",
+                    names.join(", ")
+                ))
+            })
+    }
 }
 
 /// A request: the run directory or genome file, the config (else the one beside it), the room
@@ -113,6 +137,8 @@ pub struct Exported {
     pub genome: PathBuf,
     /// The config used (`None`: the built-in defaults).
     pub config: Option<PathBuf>,
+    /// Network inputs (the robot's sensors).
+    pub inputs: usize,
     /// Hidden units.
     pub hidden: usize,
     /// Notes for the user (e.g. which robot of a per-room genome).
@@ -129,6 +155,8 @@ pub struct Export {
     pub genome: PathBuf,
     /// The config used (`None`: the built-in defaults).
     pub config: Option<PathBuf>,
+    /// Network inputs (the robot's sensors).
+    pub inputs: usize,
     /// Hidden units.
     pub hidden: usize,
     /// Notes for the user (e.g. which robot of a per-room genome).
@@ -219,6 +247,7 @@ pub fn build_export(req: &ExportRequest) -> Result<Export, CliError> {
         files,
         genome: genome_path,
         config,
+        inputs: sensors,
         hidden: genome.hidden,
         notes,
     })
@@ -280,6 +309,7 @@ pub fn export_controller(req: &ExportRequest) -> Result<Exported, CliError> {
         unchanged: state == FilesState::Same,
         genome: built.genome,
         config: built.config,
+        inputs: built.inputs,
         hidden: built.hidden,
         notes: built.notes,
     })
@@ -330,9 +360,23 @@ mod tests {
                 .collect(),
             genome: PathBuf::from("best_genome.json"),
             config: None,
+            inputs: 8,
             hidden: 6,
             notes: Vec::new(),
         }
+    }
+
+    #[test]
+    fn a_kit_target_is_read_by_its_name_and_an_unknown_one_names_the_option() {
+        for t in KitTarget::ALL {
+            assert_eq!(KitTarget::parse("target", t.name()).unwrap(), t);
+        }
+        let e = KitTarget::parse("target", "thymio").unwrap_err();
+        assert!(e.is_input());
+        assert_eq!(
+            e.to_string(),
+            "target: `thymio` is not a deployment kit; use \"generic\", \"epuck2\", \"thymio2\", \"khepera\""
+        );
     }
 
     #[test]

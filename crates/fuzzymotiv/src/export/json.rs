@@ -76,9 +76,9 @@ pub struct ActivationDoc {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InputsDoc {
-    /// The eight IR sensors, in input order.
+    /// The robot's IR sensors (`ir0` …), in input order.
     pub sensors: Vec<String>,
-    /// The largest reading (1023).
+    /// The largest reading: the robot's `reading_max` (1023 on the Khepera).
     pub reading_max: f64,
     /// The scaling formula.
     pub scaling: String,
@@ -135,7 +135,8 @@ impl ControllerDoc {
                 },
                 sum: "each unit: bias, then + w_k * x_k for k = 1, 2, ... in order (binary64, round to nearest, no fused multiply-add); inputs exactly 0 may be skipped (same result)".into(),
                 weight_order: format!(
-                    "per hidden unit j = 0..{h}: [bias, w from input 0, ..., w from input 7]; then per output o = 0..2 (mL, mR): [bias, w from hidden 0, ..., w from hidden {}]",
+                    "per hidden unit j = 0..{h}: [bias, w from input 0, ..., w from input {}]; then per output o = 0..2 (mL, mR): [bias, w from hidden 0, ..., w from hidden {}]",
+                    c.robot.sensors - 1,
                     h - 1
                 ),
                 weights: c.weights.clone(),
@@ -144,7 +145,10 @@ impl ControllerDoc {
             inputs: InputsDoc {
                 sensors: (0..c.robot.sensors).map(|k| format!("ir{k}")).collect(),
                 reading_max: c.robot.reading_max,
-                scaling: "x = reading / 1023 (reading 0 gives exactly 0); readings are in the simulator's scale 0..1023 (clamp a larger one to 1023)".into(),
+                scaling: format!(
+                    "x = reading / {max} (reading 0 gives exactly 0); readings are in the simulator's scale 0..{max} (clamp a larger one to {max})",
+                    max = c.robot.reading_max
+                ),
             },
             outputs: OutputsDoc {
                 motors: vec!["mL".into(), "mR".into()],

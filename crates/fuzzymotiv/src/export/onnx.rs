@@ -164,8 +164,9 @@ fn node(op: &str, inputs: &[&str], output: &str) -> NodeProto {
     }
 }
 
-/// The network's weights as ONNX initialisers: `w1` `[8, H]`, `b1` `[H]`, `w2` `[H, 2]`,
-/// `b2` `[2]` (transposed from the genome's per-unit rows) and the reading scale.
+/// The network's weights as ONNX initialisers: `w1` `[N, H]` (N the robot's sensors), `b1`
+/// `[H]`, `w2` `[H, 2]`, `b2` `[2]` (transposed from the genome's per-unit rows) and the
+/// reading scale (the robot's `reading_max`).
 fn initialisers(c: &ExportedController) -> Vec<TensorProto> {
     let h = c.shape.hidden();
     let n = c.robot.sensors;
@@ -191,7 +192,7 @@ fn initialisers(c: &ExportedController) -> Vec<TensorProto> {
 /// The ONNX model's bytes.
 pub(crate) fn model(c: &ExportedController) -> Vec<u8> {
     let nodes = vec![
-        // Readings above 1023 count as 1023, as in the C and the JSON's scaling.
+        // Readings above reading_max count as reading_max, as in the C and the JSON's scaling.
         node("Min", &["ir", "reading_max"], "ir_clamped"),
         node("Div", &["ir_clamped", "reading_max"], "x"),
         node("MatMul", &["x", "w1"], "x_w1"),
