@@ -285,9 +285,6 @@ pub struct LoggedPath {
 /// The colours of logged paths, in turn (none is a colour the rooms, zones or paths use).
 const LOG_COLOURS: [&str; 4] = ["#0e7c86", "#8c564b", "#1a1a6e", "#7f7f00"];
 
-/// [`trajectories_svg`] with `logs` drawn over their rooms, each dashed in a colour of its own
-/// with an end square, and a legend line each under the caption (without logs the figure is
-
 /// Pixels per mm of the trajectories figure: 0.3 (the paper's 800 mm rooms 240 px wide), less
 /// for rooms larger than 800 mm (a robot's own rooms, e.g. the Thymio II's 2400 mm ones) so
 /// that each room stays 240 px at most.
@@ -304,6 +301,9 @@ fn figure_scale<'a>(rooms: impl Iterator<Item = &'a Room>) -> f64 {
         240.0 / largest
     }
 }
+
+/// [`trajectories_svg`] with `logs` drawn over their rooms, each dashed in a colour of its own
+/// with an end square, and a legend line each under the caption (without logs the figure is
 /// [`trajectories_svg`]'s, byte for byte).
 pub fn trajectories_svg_with(
     title: &str,

@@ -134,7 +134,7 @@ impl Perturbation {
             });
         }
         if has(|p| matches!(p, Perturbation::Radius(_))) {
-            notes.push("radius=r enlarges the body for collisions only: the sensors stay at the Khepera's mount positions (about 25 mm from the centre), inside a larger body rather than on its edge".to_string());
+            notes.push("radius=r enlarges the body for collisions only: the sensors stay at the robot's mount positions (the Khepera's about 25 mm from the centre), inside a larger body rather than on its edge".to_string());
         }
         notes
     }

@@ -22,7 +22,7 @@ pub fn perturb<R: Rng + ?Sized>(value: f64, level: f64, rng: &mut R) -> f64 {
 }
 
 /// Sensor noise: perturbs each reading and clamps to [0, `max`].
-#[inline]
+#[inline(always)]
 pub fn perturb_sensors<R: Rng + ?Sized>(values: &mut [f64], level: f64, max: f64, rng: &mut R) {
     if level == 0.0 {
         return;

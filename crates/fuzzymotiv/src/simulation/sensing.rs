@@ -115,8 +115,13 @@ impl Eyes {
         match (self.per_sensor, facing) {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
+            (3, Facing::Compass(t)) if self.isa == Isa::Avx2 && self.n <= 8 => unsafe {
+                self.cast_avx2::<8>(pos, &t.side, walls, near)
+            },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as above.
             (3, Facing::Compass(t)) if self.isa == Isa::Avx2 => unsafe {
-                self.cast_avx2(pos, &t.side, walls, near)
+                self.cast_avx2::<INPUTS>(pos, &t.side, walls, near)
             },
             (3, _) => self.read_rays::<3>(pos, facing, walls, near),
             _ => self.read_rays::<1>(pos, facing, walls, near),
@@ -172,7 +177,7 @@ impl Eyes {
     /// The processor must have AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn cast_avx2(
+    unsafe fn cast_avx2<const M: usize>(
         &self,
         pos: Vec2,
         rays: &SideBySide,
@@ -182,15 +187,17 @@ impl Eyes {
         use std::arch::x86_64::{
             _mm256_add_pd, _mm256_min_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_storeu_pd,
         };
-        const { assert!(INPUTS % 4 == 0, "blocks of four sensors") };
-        let mut nearest = [[f64::INFINITY; INPUTS]; 3];
-        let mut out = [0.0; INPUTS];
+        // `M` (8, or all of `INPUTS` for robots with more sensors) holds the robot's sensors.
+        const { assert!(M % 4 == 0 && M <= INPUTS, "blocks of four sensors") };
+        debug_assert!(self.n <= M);
+        let mut nearest = [[f64::INFINITY; M]; 3];
+        let mut out = [0.0; M];
         // Blocks of four sensors; a block's sensors past the robot's last have no rays (their
         // directions are 0: no ray meets a wall) and read 0, which is not kept.
         for half in (0..self.n).step_by(4) {
             let best = nearest_hits_avx2(pos, rays, half, self.range2, walls, near);
             // SAFETY: every store is of four consecutive `f64` from `half`, a multiple of 4 below
-            // `INPUTS` (a multiple of 4); the unaligned form needs no alignment.
+            // `n` ≤ `M` (a multiple of 4) in arrays of `M`; the unaligned form needs no alignment.
             unsafe {
                 let Some(tables) = self.tables else {
                     for (n, b) in nearest.iter_mut().zip(best) {
@@ -220,7 +227,7 @@ impl Eyes {
     /// also what its three values of 0 add to.
     #[cfg(target_arch = "x86_64")]
     #[inline]
-    fn values(&self, nearest: &[[f64; INPUTS]; 3]) -> Readings {
+    fn values<const M: usize>(&self, nearest: &[[f64; M]; 3]) -> Readings {
         let mut out = Readings::zeros(self.n);
         for (s, o) in out.iter_mut().enumerate() {
             if nearest.iter().all(|n| n[s] == f64::INFINITY) {

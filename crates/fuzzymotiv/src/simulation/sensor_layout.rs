@@ -2,6 +2,8 @@
 //! constants that the response models ([`crate::simulation::sensor`]) and sensor table files
 //! ([`crate::simulation::sensor_table`]) share.
 
+use std::mem::MaybeUninit;
+
 /// Where one sensor sits on the body, in the robot frame (x forward, y left).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SensorMount {
@@ -100,7 +102,9 @@ pub const MAX_SENSORS: usize = 24;
 /// ```
 #[derive(Clone, Copy)]
 pub struct Readings {
-    values: [f64; MAX_SENSORS],
+    /// The readings; only the first `len` are written (the rest are never read, so a
+    /// robot's readings are made without filling 24 values: a step makes them every time).
+    values: [MaybeUninit<f64>; MAX_SENSORS],
     len: u8,
 }
 
@@ -109,8 +113,12 @@ impl Readings {
     #[inline]
     pub fn zeros(len: usize) -> Readings {
         assert!(len <= MAX_SENSORS, "{len} sensors: at most {MAX_SENSORS}");
+        let mut values = [MaybeUninit::uninit(); MAX_SENSORS];
+        for v in &mut values[..len] {
+            v.write(0.0);
+        }
         Readings {
-            values: [0.0; MAX_SENSORS],
+            values,
             len: len as u8,
         }
     }
@@ -118,22 +126,28 @@ impl Readings {
     /// The readings `values` (at most [`MAX_SENSORS`]).
     pub fn from_slice(values: &[f64]) -> Readings {
         let mut r = Readings::zeros(values.len());
-        r.values[..values.len()].copy_from_slice(values);
+        r.copy_from_slice(values);
         r
     }
 
     /// The first eight readings as an array (zeros past `len`).
     #[inline]
     pub(crate) fn first_eight(&self) -> [f64; 8] {
-        std::array::from_fn(|k| self.values[k])
+        std::array::from_fn(|k| self.get(k).copied().unwrap_or(0.0))
     }
 
-    /// Eight readings, of which the first `len` count.
+    /// Eight readings, of which the first `len` (at most 8) count.
     #[inline]
     pub(crate) fn from_eight(values: [f64; 8], len: usize) -> Readings {
-        let mut r = Readings::zeros(len);
-        r.values[..8].copy_from_slice(&values);
-        r
+        debug_assert!(len <= 8);
+        let mut all = [MaybeUninit::uninit(); MAX_SENSORS];
+        for (slot, v) in all.iter_mut().zip(values) {
+            slot.write(v);
+        }
+        Readings {
+            values: all,
+            len: len.min(8) as u8,
+        }
     }
 }
 
@@ -141,14 +155,19 @@ impl std::ops::Deref for Readings {
     type Target = [f64];
     #[inline]
     fn deref(&self) -> &[f64] {
-        &self.values[..usize::from(self.len)]
+        let len = usize::from(self.len);
+        // SAFETY: the first `len` values are written by every constructor (`zeros`,
+        // `from_eight` with `len` ≤ 8) and stay written; `MaybeUninit<f64>` has `f64`'s layout.
+        unsafe { std::slice::from_raw_parts(self.values.as_ptr().cast::<f64>(), len) }
     }
 }
 
 impl std::ops::DerefMut for Readings {
     #[inline]
     fn deref_mut(&mut self) -> &mut [f64] {
-        &mut self.values[..usize::from(self.len)]
+        let len = usize::from(self.len);
+        // SAFETY: as for `deref`; writes through the slice keep the values written.
+        unsafe { std::slice::from_raw_parts_mut(self.values.as_mut_ptr().cast::<f64>(), len) }
     }
 }
 
