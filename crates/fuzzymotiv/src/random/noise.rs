@@ -27,6 +27,17 @@ pub fn perturb_sensors<R: Rng + ?Sized>(values: &mut [f64], level: f64, max: f64
     if level == 0.0 {
         return;
     }
+    // Eight readings (the Khepera's, the e-puck2's) in a loop of known length, which the
+    // compiler unrolls; any other count in the same loop over the slice: the same draws.
+    match <&mut [f64; 8]>::try_from(&mut *values) {
+        Ok(eight) => perturb_each(eight, level, max, rng),
+        Err(_) => perturb_each(values, level, max, rng),
+    }
+}
+
+/// [`perturb_sensors`]' loop.
+#[inline(always)]
+fn perturb_each<R: Rng + ?Sized>(values: &mut [f64], level: f64, max: f64, rng: &mut R) {
     for v in values.iter_mut() {
         if *v == 0.0 {
             // 0 · u = 0 for every draw: skip the arithmetic, keep the stream in step.

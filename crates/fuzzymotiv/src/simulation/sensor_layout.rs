@@ -130,6 +130,19 @@ impl Readings {
         r
     }
 
+    /// `f` of each reading, in order (only the robot's readings are written: no copy of all 24).
+    #[inline(always)]
+    pub fn map(&self, mut f: impl FnMut(f64) -> f64) -> Readings {
+        let mut values = [MaybeUninit::uninit(); MAX_SENSORS];
+        for (slot, &v) in values.iter_mut().zip(self.iter()) {
+            slot.write(f(v));
+        }
+        Readings {
+            values,
+            len: self.len,
+        }
+    }
+
     /// The first eight readings as an array (zeros past `len`).
     #[inline]
     pub(crate) fn first_eight(&self) -> [f64; 8] {

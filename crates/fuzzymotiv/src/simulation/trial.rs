@@ -1199,14 +1199,8 @@ impl Walk {
 /// 1023, [`crate::simulation::SENSOR_MAX`]).
 #[inline(always)]
 pub(crate) fn inputs_of(sensors: &Readings, max: f64) -> Readings {
-    let mut x = *sensors;
     // Most readings are 0 in open floor; 0 / max is exactly 0, so skip the division.
-    for v in x.iter_mut() {
-        if *v != 0.0 {
-            *v /= max;
-        }
-    }
-    x
+    sensors.map(|v| if v == 0.0 { 0.0 } else { v / max })
 }
 
 /// What a step knows of the walls in its way.
