@@ -301,17 +301,37 @@ pub fn epuck2_kit(c: &ExportedController) -> Kit {
         }
         s
     };
+    let layer = [
+        KitFile::text("fm_epuck2.h", subst(HEADER)),
+        KitFile::text("fm_epuck2.c", subst(SOURCE)),
+    ];
+    c_kit(
+        c,
+        layer,
+        subst(README),
+        "then build it into GCtronic's e-puck2_main-processor firmware as README.txt says (fm_epuck2_start() after proximity_start, calibrate_ir and motors_init)",
+    )
+}
+
+/// A kit in C: the generic network, the actions executor, the robot's own `layer` (a header and
+/// a source), the golden vectors and their replay, the `readme`; its notes say how to check the
+/// golden vectors, then `next`.
+pub(crate) fn c_kit(
+    c: &ExportedController,
+    layer: [KitFile; 2],
+    readme: String,
+    next: &str,
+) -> Kit {
     let mut files = controller_files(c);
     files.extend(executor::files(c));
-    files.push(KitFile::text("fm_epuck2.h", subst(HEADER)));
-    files.push(KitFile::text("fm_epuck2.c", subst(SOURCE)));
+    files.extend(layer);
     files.extend(golden::files(c));
-    files.push(KitFile::text("README.txt", subst(README)));
+    files.push(KitFile::text("README.txt", readme));
     Kit {
         files,
         notes: vec![
             "check the network on this computer: cc -std=c99 -O2 -ffp-contract=off -o fm_golden fm_golden.c fm_controller.c && ./fm_golden golden.csv".into(),
-            "then build it into GCtronic's e-puck2_main-processor firmware as README.txt says (fm_epuck2_start() after proximity_start, calibrate_ir and motors_init)".into(),
+            next.into(),
         ],
     }
 }

@@ -4,9 +4,9 @@
 //! golden vectors and a README. The Khepera I, the paper's robot, is discontinued; the kit
 //! names what any robot with proximity sensors and wheel odometry must provide.
 
-use super::epuck2::{controller_files, motion_name, motion_text};
+use super::epuck2::{c_kit, motion_name, motion_text};
 use super::executor::decimal;
-use super::{ExportedController, Kit, KitFile, executor, golden};
+use super::{ExportedController, Kit, KitFile};
 
 /// The header of the Khepera layer.
 const HEADER: &str = r#"/* fm_khepera.h: the exported controller on a Khepera-like robot whose I/O you supply.
@@ -161,17 +161,14 @@ pub fn khepera_kit(c: &ExportedController) -> Kit {
         }
         s
     };
-    let mut files = controller_files(c);
-    files.extend(executor::files(c));
-    files.push(KitFile::text("fm_khepera.h", subst(HEADER)));
-    files.push(KitFile::text("fm_khepera.c", subst(SOURCE)));
-    files.extend(golden::files(c));
-    files.push(KitFile::text("README.txt", subst(README)));
-    Kit {
-        files,
-        notes: vec![
-            "check the network on this computer: cc -std=c99 -O2 -ffp-contract=off -o fm_golden fm_golden.c fm_controller.c && ./fm_golden golden.csv".into(),
-            "then fill in fm_robot_io (fm_khepera.h) for your robot as README.txt says".into(),
-        ],
-    }
+    let layer = [
+        KitFile::text("fm_khepera.h", subst(HEADER)),
+        KitFile::text("fm_khepera.c", subst(SOURCE)),
+    ];
+    c_kit(
+        c,
+        layer,
+        subst(README),
+        "then fill in fm_robot_io (fm_khepera.h) for your robot as README.txt says",
+    )
 }
