@@ -285,9 +285,9 @@ pub struct LoggedPath {
 /// The colours of logged paths, in turn (none is a colour the rooms, zones or paths use).
 const LOG_COLOURS: [&str; 4] = ["#0e7c86", "#8c564b", "#1a1a6e", "#7f7f00"];
 
-/// Pixels per mm of the trajectories figure: 0.3 (the paper's 800 mm rooms 240 px wide), less
-/// for rooms larger than 800 mm (a robot's own rooms, e.g. the Thymio II's 2400 mm ones) so
-/// that each room stays 240 px at most.
+/// Pixels per mm of the trajectories figure: 0.3 (the paper's 800 mm rooms 240 px wide, a room
+/// of up to 1200 mm 360 px), less for larger rooms (a robot's own, e.g. the Thymio II's 2400 mm
+/// ones) so that each room stays 360 px at most.
 fn figure_scale<'a>(rooms: impl Iterator<Item = &'a Room>) -> f64 {
     let largest = rooms
         .map(|r| {
@@ -295,10 +295,10 @@ fn figure_scale<'a>(rooms: impl Iterator<Item = &'a Room>) -> f64 {
             (hi.x - lo.x).max(hi.y - lo.y)
         })
         .fold(0.0, f64::max);
-    if largest <= 800.0 {
+    if largest <= 1200.0 {
         0.3
     } else {
-        240.0 / largest
+        360.0 / largest
     }
 }
 
