@@ -27,7 +27,8 @@ const VALUE_START: &str = "<!-- value ";
 const VALUE_END: &str = "<!-- end -->";
 const RENDERERS: &str = "rooms, claims, room-means, fig6, search-strength, \
     search-strength-exploration, ablation-claims, ablation-means, orientation, levels, \
-    replication, behaviour, claim-differences, combination-claims, urgency, nsga-robots";
+    replication, behaviour, claim-differences, combination-claims, urgency, nsga-robots, \
+    transfer, transfer-claims";
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -922,6 +923,95 @@ fn claim_differences(dir: &Path, file: &str) -> Rendered {
     Ok(table(&header, rows))
 }
 
+/// A transfer study measure's words (transfer/*.csv's `measure`).
+fn transfer_measure(measure: &str) -> &str {
+    match measure {
+        "exploration_pct" => "% optimal exploration",
+        "homing_pct" => "% homing",
+        "battery_pct" => "% battery usage",
+        "recognition_pct" => "% recognition",
+        "blocked_steps" => "blocked steps",
+        "home_pct" => "% of test runs home",
+        other => other,
+    }
+}
+
+/// A verdict of a direction in bold, any other as it is.
+fn bold_direction(verdict: &str) -> String {
+    if matches!(verdict, "higher" | "lower" | "holds" | "opposite") {
+        format!("**{verdict}**")
+    } else {
+        verdict.to_string()
+    }
+}
+
+/// Enki against fuzzymotiv per setting and measure: `transfer/comparison.csv` of
+/// scripts/transfer_study.sh.
+fn transfer(dir: &Path, file: &str) -> Rendered {
+    let header = [
+        "setting",
+        "measure",
+        "seeds",
+        "fuzzymotiv",
+        "Enki",
+        "Enki − fuzzymotiv [95 % CI]",
+        "p",
+        "detectable",
+        "verdict",
+    ];
+    let mut rows = Vec::new();
+    for r in read_csv(dir, file)? {
+        rows.push(format!(
+            "| {} | {} | {} | {} | {} | {} [{}, {}] | {} | {} | {} |",
+            cell(&r, "setting")?,
+            transfer_measure(cell(&r, "measure")?),
+            cell(&r, "seeds")?,
+            fixed(num(&r, "mean_fuzzymotiv")?, 1),
+            fixed(num(&r, "mean_enki")?, 1),
+            signed(num(&r, "difference")?, 1),
+            signed(num(&r, "ci_low")?, 1),
+            signed(num(&r, "ci_high")?, 1),
+            fixed(num(&r, "p")?, 3),
+            fixed(num(&r, "detectable")?, 1),
+            bold_direction(cell(&r, "verdict")?)
+        ));
+    }
+    Ok(table(&header, rows))
+}
+
+/// The paper's claims in each world: `transfer/claims.csv` of scripts/transfer_study.sh.
+fn transfer_claims(dir: &Path, file: &str) -> Rendered {
+    let header = [
+        "world",
+        "claim",
+        "seeds",
+        "high",
+        "low",
+        "high − low [95 % CI]",
+        "p",
+        "detectable",
+        "verdict",
+    ];
+    let mut rows = Vec::new();
+    for r in read_csv(dir, file)? {
+        rows.push(format!(
+            "| {} | {} | {} | {} | {} | {} [{}, {}] | {} | {} | {} |",
+            cell(&r, "world")?,
+            cell(&r, "claim")?,
+            cell(&r, "seeds")?,
+            fixed(num(&r, "high")?, 1),
+            fixed(num(&r, "low")?, 1),
+            signed(num(&r, "difference")?, 1),
+            signed(num(&r, "ci_low")?, 1),
+            signed(num(&r, "ci_high")?, 1),
+            fixed(num(&r, "p")?, 3),
+            fixed(num(&r, "detectable")?, 1),
+            bold_direction(cell(&r, "verdict")?)
+        ));
+    }
+    Ok(table(&header, rows))
+}
+
 /// Renders a table marker's spec (`PATH: RENDERER [ARGS]`) from the records in `dir`.
 fn render_block(dir: &Path, spec: &str) -> Rendered {
     let (path, how) = spec
@@ -952,6 +1042,8 @@ fn render_block(dir: &Path, spec: &str) -> Rendered {
         "combination-claims" => combination_claims(dir, path),
         "urgency" => urgency(dir, path),
         "nsga-robots" => nsga_robots(dir, path),
+        "transfer" => transfer(dir, path),
+        "transfer-claims" => transfer_claims(dir, path),
         other => Err(format!(
             "unknown renderer `{other}`; the renderers are {RENDERERS}"
         )),

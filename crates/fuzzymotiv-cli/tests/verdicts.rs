@@ -268,3 +268,178 @@ fn the_twenty_seed_studys_battery_claim_holds_by_its_own_data() {
     assert_eq!(battery["verdict"], "holds");
     assert_eq!(battery["holds"], "true");
 }
+
+/// The transfer study's per-seed values (transfer.csv): for (setting, measure, world), each
+/// seed's mean over its rooms, in the file's order of seeds; and each setting's seeds.
+type TransferSeeds = (BTreeMap<Key, Vec<f64>>, BTreeMap<String, Vec<u64>>);
+
+/// (setting, measure, world).
+type Key = (String, String, String);
+
+fn transfer_seed_means(path: &Path) -> TransferSeeds {
+    let mut rooms: BTreeMap<Key, Vec<(String, Vec<f64>)>> = BTreeMap::new();
+    let mut seeds: BTreeMap<String, Vec<u64>> = BTreeMap::new();
+    for r in rows(path) {
+        let seed: u64 = r["seed"].parse().unwrap();
+        let list = seeds.entry(r["setting"].clone()).or_default();
+        if list.last() != Some(&seed) {
+            list.push(seed);
+        }
+        for world in ["fuzzymotiv", "enki"] {
+            let Some(v) = number(&r, world) else { continue };
+            let key = (
+                r["setting"].clone(),
+                r["measure"].clone(),
+                world.to_string(),
+            );
+            let per_seed = rooms.entry(key).or_default();
+            match per_seed.last_mut() {
+                Some((s, values)) if *s == r["seed"] => values.push(v),
+                _ => per_seed.push((r["seed"].clone(), vec![v])),
+            }
+        }
+    }
+    let means = rooms
+        .into_iter()
+        .map(|(k, v)| {
+            (
+                k,
+                v.iter()
+                    .map(|(_, v)| fuzzymotiv::statistics::mean(v))
+                    .collect(),
+            )
+        })
+        .collect();
+    (means, seeds)
+}
+
+/// A recomputed comparison against its committed row: every number bit for bit (the records
+/// keep each f64 at full precision) and the verdict by the stated rule.
+fn assert_row_is(row: &Row, c: &fuzzymotiv::statistics::Comparison, verdict: &str, at: &str) {
+    for (column, value) in [
+        ("difference", c.difference),
+        ("ci_low", c.ci_low),
+        ("ci_high", c.ci_high),
+        ("p", c.p),
+        ("detectable", c.mdd.unwrap()),
+    ] {
+        assert_eq!(number(row, column), Some(value), "{at}: {column}");
+    }
+    assert_eq!(row["verdict"], verdict, "{at}: verdict");
+}
+
+#[test]
+fn the_transfer_studys_comparisons_and_claims_are_recomputed_from_its_per_seed_records() {
+    let dir = results().join("transfer");
+    let (means, seeds) = transfer_seed_means(&dir.join("transfer.csv"));
+    let settings = |first: u64| Settings {
+        alpha: ALPHA,
+        seed: first,
+        ..Settings::default()
+    };
+    let comparison = rows(&dir.join("comparison.csv"));
+    assert!(comparison.len() >= 10, "{} comparisons", comparison.len());
+    for row in &comparison {
+        let (setting, measure) = (&row["setting"], &row["measure"]);
+        let get = |w: &str| &means[&(setting.clone(), measure.clone(), w.to_string())];
+        let (sim, enki) = (get("fuzzymotiv"), get("enki"));
+        let c = paired(enki, sim, &settings(seeds[setting][0])).unwrap();
+        assert_eq!(number(row, "mean_fuzzymotiv"), Some(c.mean_b));
+        assert_eq!(number(row, "mean_enki"), Some(c.mean_a));
+        let verdict = rule(c.difference, c.p, c.mdd, Expect::Higher).direction_label();
+        assert_row_is(
+            row,
+            &c,
+            verdict,
+            &format!("transfer/comparison.csv {setting} {measure}"),
+        );
+    }
+    let claims = rows(&dir.join("claims.csv"));
+    let homing = CLAIMS[3].0;
+    for world in ["fuzzymotiv", "enki"] {
+        let row = claims
+            .iter()
+            .find(|r| r["world"] == world && r["claim"] == homing);
+        assert!(
+            row.is_some(),
+            "transfer/claims.csv has no homing claim in {world}"
+        );
+    }
+    for row in &claims {
+        let (claim, column, expect) = CLAIMS.iter().find(|c| c.0 == row["claim"]).unwrap();
+        let get = |s: &str| &means[&(s.to_string(), column.to_string(), row["world"].clone())];
+        let first = seeds["high-curiosity"][0];
+        let c = paired(
+            get("high-curiosity"),
+            get("low-curiosity"),
+            &settings(first),
+        )
+        .unwrap();
+        let verdict = rule(c.difference, c.p, c.mdd, *expect).label();
+        assert_row_is(
+            row,
+            &c,
+            verdict,
+            &format!("transfer/claims.csv {} {claim}", row["world"]),
+        );
+    }
+}
+
+#[test]
+fn the_transfer_studys_simulator_side_is_the_ten_seed_studys_test_runs() {
+    // The transfer study reuses the ten-seed study's runs; its fuzzymotiv column, measured
+    // from their test runs simulated again by the function that measures Enki's logs, must be
+    // the study's own per-seed tables (six decimals).
+    let transfer = rows(&results().join("transfer/transfer.csv"));
+    let mut checked = 0;
+    for (setting, table) in [
+        ("high-curiosity", "table1_seeds.csv"),
+        ("low-curiosity", "table2_seeds.csv"),
+    ] {
+        for study in rows(&results().join("ten-seed").join(table)) {
+            for measure in [
+                "exploration_pct",
+                "homing_pct",
+                "battery_pct",
+                "recognition_pct",
+            ] {
+                let row = transfer.iter().find(|r| {
+                    r["setting"] == setting
+                        && r["seed"] == study["seed"]
+                        && r["room"] == study["room"]
+                        && r["measure"] == measure
+                });
+                let Some(row) = row else { continue };
+                let (mine, theirs) = (number(row, "fuzzymotiv"), number(&study, measure));
+                let at = format!(
+                    "{setting} seed {} {} {measure}",
+                    study["seed"], study["room"]
+                );
+                assert!((mine.unwrap() - theirs.unwrap()).abs() < 1e-5, "{at}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 40, "only {checked} values checked");
+    // Hence the claims in fuzzymotiv are the ten-seed study's own, number for number.
+    let study = rows(&results().join("ten-seed/claims.csv"));
+    for row in rows(&results().join("transfer/claims.csv")) {
+        if row["world"] != "fuzzymotiv" {
+            continue;
+        }
+        let theirs = study.iter().find(|r| r["claim"] == row["claim"]).unwrap();
+        let at = format!("transfer/claims.csv, fuzzymotiv, \"{}\"", row["claim"]);
+        for (mine, their) in [
+            ("difference", "difference"),
+            ("p", "p"),
+            ("detectable", "mdd"),
+        ] {
+            let (a, b) = (number(&row, mine).unwrap(), number(theirs, their).unwrap());
+            assert!(
+                (a - b).abs() < 1e-9,
+                "{at}: {mine} {a} against the study's {b}"
+            );
+        }
+        assert_eq!(row["verdict"], theirs["verdict"], "{at}");
+    }
+}

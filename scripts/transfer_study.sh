@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# The transfer study, Khepera part (issue 54 item 3; EXPERIMENTS.md "The reality gap in Enki
+# (Khepera)"): the paper's two settings' evolved controllers run in fuzzymotiv and in Enki,
+# each measure compared world against world, paired by seed, with the engine's statistics.
+#
+# Usage: scripts/transfer_study.sh [--study DIR] [--seeds N] [--runs N] [--rooms "H T …"]
+#                                  [--work DIR] [--records DIR]
+#
+#   --study DIR    a `fuzzymotiv reproduce` directory to reuse (DIR/high-curiosity/seed-K/ and
+#                  DIR/low-curiosity/seed-K/ run directories); without it the study is made:
+#                  `fuzzymotiv reproduce --seeds N --threads 1 --out WORK/study` (paper scale,
+#                  GA 200 × 200: `--quick` (GA 30 × 30) takes 0.8 s per seed of both settings here, so
+#                  about 6 minutes for ten seeds at paper scale on one core)
+#   --seeds N      seeds per setting when the study is made [default 10]
+#   --runs N       Enki test runs per room (`transfer --runs`) [default 10]; the simulator's
+#                  side is each run's own test runs (its aem.test_runs: 10 in the paper configs)
+#   --rooms LIST   the rooms, space separated [default "H T L square rectangle"]
+#   --work DIR     where the transfers go (WORK/transfer/SETTING/seed-K/ROOM/) [default
+#                  out/transfer-study]; a room already transferred there is kept
+#   --records DIR  where the records go [default docs/results/transfer]
+#
+# Needs Enki (Debian: libenki-dev) and g++ for `fuzzymotiv transfer`
+# (docs/guide/transfer.md). The binary is $FUZZYMOTIV_BIN, else target/release/fuzzymotiv
+# built by `cargo build --release -p fuzzymotiv-cli`. The statistics are the engine's
+# (fuzzymotiv::statistics::paired, as `reproduce`'s claims), run by the example
+# crates/fuzzymotiv-cli/examples/transfer_study.rs ($TRANSFER_STUDY_BIN, else built by
+# `cargo build --release -p fuzzymotiv-cli --example transfer_study`).
+#
+# Records (RECORDS/):
+#   transfer.csv    setting, seed, room, measure, fuzzymotiv, enki: each measure's mean over
+#                   the room's test runs in each world (exploration_pct, homing_pct,
+#                   battery_pct, recognition_pct, blocked_steps, home_pct = % of runs home)
+#   comparison.csv  per setting and measure, Enki against fuzzymotiv paired by seed (each
+#                   seed's mean over rooms): means, difference = Enki − fuzzymotiv, 95 % CI, p,
+#                   detectable difference, verdict (higher/lower: Enki's side)
+#   claims.csv      per world, the paper's comparison claims, high against low curiosity
+#                   paired by seed, computed as `reproduce` computes them (homing among them)
+set -euo pipefail
+
+study="" seeds=10 runs=10 rooms="H T L square rectangle"
+work="out/transfer-study" records="docs/results/transfer"
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --study) study="$2"; shift 2 ;;
+        --seeds) seeds="$2"; shift 2 ;;
+        --runs) runs="$2"; shift 2 ;;
+        --rooms) rooms="$2"; shift 2 ;;
+        --work) work="$2"; shift 2 ;;
+        --records) records="$2"; shift 2 ;;
+        -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+        *) echo "transfer_study.sh: unknown argument \`$1\` (see --help)" >&2; exit 2 ;;
+    esac
+done
+
+bin="${FUZZYMOTIV_BIN:-}"
+if [ -z "$bin" ]; then
+    cargo build --release -p fuzzymotiv-cli
+    bin=target/release/fuzzymotiv
+fi
+stats="${TRANSFER_STUDY_BIN:-}"
+if [ -z "$stats" ]; then
+    cargo build --release -p fuzzymotiv-cli --example transfer_study
+    stats=target/release/examples/transfer_study
+fi
+
+if [ -z "$study" ]; then
+    study="$work/study"
+    "$bin" reproduce --seeds "$seeds" --threads 1 --quiet --out "$study"
+fi
+
+for setting in high-curiosity low-curiosity; do
+    for run in "$study/$setting"/seed-*/; do
+        run="${run%/}"
+        for room in $rooms; do
+            dest="$work/transfer/$setting/$(basename "$run")/$room"
+            if [ -f "$dest/measures.csv" ]; then
+                continue
+            fi
+            mkdir -p "$(dirname "$dest")"
+            if ! "$bin" transfer "$run" --room "$room" --runs "$runs" --out "$dest" >"$dest.log" 2>&1; then
+                cat "$dest.log" >&2
+                exit 2
+            fi
+            echo "$setting $(basename "$run") $(grep -h "Enki (" "$dest.log")" >&2
+        done
+    done
+done
+
+mkdir -p "$records"
+"$stats" collect "$study" "$work/transfer" >"$records/transfer.csv"
+"$stats" compare "$records/transfer.csv" "$records"
+echo "transfer_study.sh: records in $records" >&2
