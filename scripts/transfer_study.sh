@@ -9,8 +9,7 @@
 #   --study DIR    a `fuzzymotiv reproduce` directory to reuse (DIR/high-curiosity/seed-K/ and
 #                  DIR/low-curiosity/seed-K/ run directories); without it the study is made:
 #                  `fuzzymotiv reproduce --seeds N --threads 1 --out WORK/study` (paper scale,
-#                  GA 200 × 200: `--quick` (GA 30 × 30) takes 0.8 s per seed of both settings here, so
-#                  about 6 minutes for ten seeds at paper scale on one core)
+#                  GA 200 × 200: 90 s for ten seeds here; `--quick`, GA 30 × 30, 0.8 s for one)
 #   --seeds N      seeds per setting when the study is made [default 10]
 #   --runs N       Enki test runs per room (`transfer --runs`) [default 10]; the simulator's
 #                  side is each run's own test runs (its aem.test_runs: 10 in the paper configs)
