@@ -14,7 +14,7 @@ use serde::Deserialize;
 
 use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
-use crate::files::inputs::{Loaded, ROOM_FILE, resolve};
+use crate::files::inputs::{Loaded, ROBOT_FILE, ROOM_FILE, load_robot, resolve};
 use crate::records::Job;
 
 /// The `[sweep]` table.
@@ -181,6 +181,27 @@ impl Sweep {
         Ok(sweep)
     }
 
+    /// Fills the values `raw` leaves to its robot file (as [`fuzzymotiv::experiment::Setup`]
+    /// records them); the robot file's text when it is a file (relative to the sweep file),
+    /// empty for a built-in robot.
+    fn resolve_robot(&self, raw: &mut RawConfig) -> Result<String, CliError> {
+        use fuzzymotiv::simulation::RobotSpec;
+        let (spec, text) = match raw.robot.file.as_deref() {
+            None => (RobotSpec::khepera(), String::new()),
+            Some(name) => match RobotSpec::builtin(name) {
+                Some(spec) => (spec, String::new()),
+                None => {
+                    let path = self.base_dir.join(name);
+                    let spec = load_robot(&path.display().to_string(), "robot.file")?;
+                    (spec, read_input(&path, ROBOT_FILE)?)
+                }
+            },
+        };
+        raw.robot = raw.robot.resolved(spec);
+        raw.trial = raw.trial.resolved(spec);
+        Ok(text)
+    }
+
     /// Adds the `replicates` jobs of one setting, each with its seed derived from its key.
     fn add_replicates(
         &mut self,
@@ -197,16 +218,19 @@ impl Sweep {
             let mut sets = overrides.to_vec();
             sets.push(format!("seed={seed}"));
             let source = format!("{} (job {key})", self.source);
-            let raw = RawConfig::parse(&self.base_text, &source, &sets)?;
-            // The id covers the resolved config and the contents of its room files, so an
-            // edited room file is a new job rather than a finished one (the model version is
-            // the plan's: `Job::model`).
+            let mut raw = RawConfig::parse(&self.base_text, &source, &sets)?;
+            // The id covers the resolved config and the contents of its room and robot files,
+            // so an edited file is a new job rather than a finished one (the model version is
+            // the plan's: `Job::model`); the robot's values are in the config as a run records
+            // them (the Khepera's jobs keep the ids they had before robots were files).
+            let robot_file = self.resolve_robot(&mut raw)?;
             let mut resolved = raw.to_toml();
             for room in &raw.rooms {
                 if let Ok(text) = read_input(&self.base_dir.join(room), ROOM_FILE) {
                     resolved.push_str(&text);
                 }
             }
+            resolved.push_str(&robot_file);
             self.jobs.push(Job {
                 index: self.jobs.len(),
                 id: format!("{:016x}", hash_str(&resolved)),
