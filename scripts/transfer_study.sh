@@ -1,11 +1,17 @@
 #!/usr/bin/env bash
-# The transfer study, Khepera part (issue 54 item 3; EXPERIMENTS.md "The reality gap in Enki
-# (Khepera)"): the paper's two settings' evolved controllers run in fuzzymotiv and in Enki,
-# each measure compared world against world, paired by seed, with the engine's statistics.
+# The transfer study (issue 54 item 3; EXPERIMENTS.md "The reality gap in Enki (Khepera)" and
+# its e-puck2 and Thymio II subsections): the paper's two settings' evolved controllers run in
+# fuzzymotiv and in Enki, each measure compared world against world, paired by seed, with the
+# engine's statistics.
 #
-# Usage: scripts/transfer_study.sh [--study DIR] [--seeds N] [--runs N] [--rooms "H T …"]
-#                                  [--work DIR] [--records DIR]
+# Usage: scripts/transfer_study.sh [--robot NAME] [--study DIR] [--seeds N] [--runs N]
+#                                  [--rooms "H T …"] [--work DIR] [--records DIR]
 #
+#   --robot NAME   khepera (the paper's robot), epuck2 or thymio2 [default khepera]; the study
+#                  is made with `reproduce --set robot=NAME`; the Thymio II's also with its
+#                  rooms and steps as configs/thymio2.toml has them (--set rooms=[the five
+#                  rooms/thymio2/*.toml, absolute paths] --set trial.steps=600), whose rooms are
+#                  named H-x3 … rectangle-x3. Sets the defaults of --rooms, --work and --records
 #   --study DIR    a `fuzzymotiv reproduce` directory to reuse (DIR/high-curiosity/seed-K/ and
 #                  DIR/low-curiosity/seed-K/ run directories); without it the study is made:
 #                  `fuzzymotiv reproduce --seeds N --threads 1 --out WORK/study` (paper scale,
@@ -13,10 +19,13 @@
 #   --seeds N      seeds per setting when the study is made [default 10]
 #   --runs N       Enki test runs per room (`transfer --runs`) [default 10]; the simulator's
 #                  side is each run's own test runs (its aem.test_runs: 10 in the paper configs)
-#   --rooms LIST   the rooms, space separated [default "H T L square rectangle"]
+#   --rooms LIST   the rooms, space separated [default "H T L square rectangle"; Thymio II:
+#                  "H-x3 T-x3 L-x3 square-x3 rectangle-x3"]
 #   --work DIR     where the transfers go (WORK/transfer/SETTING/seed-K/ROOM/) [default
-#                  out/transfer-study]; a room already transferred there is kept
-#   --records DIR  where the records go [default docs/results/transfer]
+#                  out/transfer-study, out/transfer-study-ROBOT for another robot]; a room
+#                  already transferred there is kept
+#   --records DIR  where the records go [default docs/results/transfer, for another robot
+#                  docs/results/transfer/ROBOT]
 #
 # Needs Enki (Debian: libenki-dev) and g++ for `fuzzymotiv transfer`
 # (docs/guide/transfer.md). The binary is $FUZZYMOTIV_BIN, else target/release/fuzzymotiv
@@ -36,10 +45,10 @@
 #                   paired by seed, computed as `reproduce` computes them (homing among them)
 set -euo pipefail
 
-study="" seeds=10 runs=10 rooms="H T L square rectangle"
-work="out/transfer-study" records="docs/results/transfer"
+robot=khepera study="" seeds=10 runs=10 rooms="" work="" records=""
 while [ $# -gt 0 ]; do
     case "$1" in
+        --robot) robot="$2"; shift 2 ;;
         --study) study="$2"; shift 2 ;;
         --seeds) seeds="$2"; shift 2 ;;
         --runs) runs="$2"; shift 2 ;;
@@ -50,6 +59,29 @@ while [ $# -gt 0 ]; do
         *) echo "transfer_study.sh: unknown argument \`$1\` (see --help)" >&2; exit 2 ;;
     esac
 done
+
+# The robot's study: its `reproduce --set`s and default rooms, work and records.
+root="$(cd "$(dirname "$0")/.." && pwd)"
+sets=()
+case "$robot" in
+    khepera)
+        default_rooms="H T L square rectangle"
+        default_work="out/transfer-study" default_records="docs/results/transfer" ;;
+    epuck2)
+        sets=(--set robot=epuck2)
+        default_rooms="H T L square rectangle" ;;
+    thymio2)
+        files=""
+        for room in H T L square rectangle; do
+            files="$files${files:+,}\"$root/rooms/thymio2/$room.toml\""
+        done
+        sets=(--set robot=thymio2 --set "rooms=[$files]" --set trial.steps=600)
+        default_rooms="H-x3 T-x3 L-x3 square-x3 rectangle-x3" ;;
+    *) echo "transfer_study.sh: --robot \`$robot\`: not khepera, epuck2 or thymio2" >&2; exit 2 ;;
+esac
+rooms="${rooms:-$default_rooms}"
+work="${work:-${default_work:-out/transfer-study-$robot}}"
+records="${records:-${default_records:-docs/results/transfer/$robot}}"
 
 bin="${FUZZYMOTIV_BIN:-}"
 if [ -z "$bin" ]; then
@@ -64,7 +96,7 @@ fi
 
 if [ -z "$study" ]; then
     study="$work/study"
-    "$bin" reproduce --seeds "$seeds" --threads 1 --quiet --out "$study"
+    "$bin" reproduce --seeds "$seeds" --threads 1 --quiet ${sets[@]+"${sets[@]}"} --out "$study"
 fi
 
 for setting in high-curiosity low-curiosity; do

@@ -174,7 +174,8 @@ fn seed_dirs(dir: &Path) -> Result<Vec<PathBuf>, String> {
     Ok(dirs)
 }
 
-/// The rooms transferred for one run, in the run's order (the subdirectories holding measures.csv).
+/// The rooms transferred for one run, in the paper's order (the subdirectories holding
+/// measures.csv; a scaled room such as the Thymio II's `H-x3` goes where its paper room does).
 fn rooms(dir: &Path) -> Result<Vec<String>, String> {
     let mut rooms: Vec<String> = seed_dirs(dir)?
         .into_iter()
@@ -182,7 +183,11 @@ fn rooms(dir: &Path) -> Result<Vec<String>, String> {
         .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
     let order = ["H", "T", "L", "square", "rectangle"];
-    rooms.sort_by_key(|r| order.iter().position(|o| o == r).unwrap_or(order.len()));
+    let paper = |r: &str| r.split_once("-x").map_or(r, |(stem, _)| stem).to_string();
+    rooms.sort_by_key(|r| {
+        let stem = paper(r);
+        order.iter().position(|o| *o == stem).unwrap_or(order.len())
+    });
     Ok(rooms)
 }
 
