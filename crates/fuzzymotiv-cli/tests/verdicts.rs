@@ -328,9 +328,10 @@ fn assert_row_is(row: &Row, c: &fuzzymotiv::statistics::Comparison, verdict: &st
     assert_eq!(row["verdict"], verdict, "{at}: verdict");
 }
 
-#[test]
-fn the_transfer_studys_comparisons_and_claims_are_recomputed_from_its_per_seed_records() {
-    let dir = results().join("transfer");
+/// A transfer study's records (`dir`: comparison.csv and claims.csv from transfer.csv, as
+/// scripts/transfer_study.sh writes them) recomputed with the engine's statistics.
+fn assert_transfer_records_are_recomputed(records: &str) {
+    let dir = results().join(records);
     let (means, seeds) = transfer_seed_means(&dir.join("transfer.csv"));
     let settings = |first: u64| Settings {
         alpha: ALPHA,
@@ -351,7 +352,7 @@ fn the_transfer_studys_comparisons_and_claims_are_recomputed_from_its_per_seed_r
             row,
             &c,
             verdict,
-            &format!("transfer/comparison.csv {setting} {measure}"),
+            &format!("{records}/comparison.csv {setting} {measure}"),
         );
     }
     let claims = rows(&dir.join("claims.csv"));
@@ -362,7 +363,7 @@ fn the_transfer_studys_comparisons_and_claims_are_recomputed_from_its_per_seed_r
             .find(|r| r["world"] == world && r["claim"] == homing);
         assert!(
             row.is_some(),
-            "transfer/claims.csv has no homing claim in {world}"
+            "{records}/claims.csv has no homing claim in {world}"
         );
     }
     for row in &claims {
@@ -380,23 +381,48 @@ fn the_transfer_studys_comparisons_and_claims_are_recomputed_from_its_per_seed_r
             row,
             &c,
             verdict,
-            &format!("transfer/claims.csv {} {claim}", row["world"]),
+            &format!("{records}/claims.csv {} {claim}", row["world"]),
         );
     }
 }
 
 #[test]
-fn the_transfer_studys_simulator_side_is_the_ten_seed_studys_test_runs() {
-    // The transfer study reuses the ten-seed study's runs; its fuzzymotiv column, measured
-    // from their test runs simulated again by the function that measures Enki's logs, must be
-    // the study's own per-seed tables (six decimals).
-    let transfer = rows(&results().join("transfer/transfer.csv"));
+fn the_transfer_studys_comparisons_and_claims_are_recomputed_from_its_per_seed_records() {
+    assert_transfer_records_are_recomputed("transfer");
+}
+
+#[test]
+fn the_epuck2_transfer_studys_comparisons_and_claims_are_recomputed_from_its_per_seed_records() {
+    assert_transfer_records_are_recomputed("transfer/epuck2");
+}
+
+#[test]
+fn the_thymio2_transfer_studys_comparisons_and_claims_are_recomputed_from_its_per_seed_records() {
+    assert_transfer_records_are_recomputed("transfer/thymio2");
+}
+
+#[test]
+fn the_thymio2_transfer_study_is_in_its_scaled_rooms() {
+    // The Thymio II's study runs in configs/thymio2.toml's rooms (rooms/thymio2/, the paper's
+    // scaled 3×), not the paper's own: every room of its records is a scaled one, all five there.
+    let rows = rows(&results().join("transfer/thymio2/transfer.csv"));
+    let rooms: std::collections::BTreeSet<&str> = rows.iter().map(|r| r["room"].as_str()).collect();
+    let scaled = ["H-x3", "L-x3", "T-x3", "rectangle-x3", "square-x3"];
+    assert_eq!(rooms.into_iter().collect::<Vec<_>>(), scaled);
+}
+
+/// A transfer study's fuzzymotiv column (`records`/transfer.csv), measured from the runs' test
+/// runs simulated again by the function that measures Enki's logs, is the study's own per-seed
+/// tables (`study`/table1_seeds.csv, table2_seeds.csv; six decimals), and so its claims in
+/// fuzzymotiv are the study's claims.csv, number for number.
+fn assert_simulator_side_is_the_studys(records: &str, study_dir: &str) {
+    let transfer = rows(&results().join(records).join("transfer.csv"));
     let mut checked = 0;
     for (setting, table) in [
         ("high-curiosity", "table1_seeds.csv"),
         ("low-curiosity", "table2_seeds.csv"),
     ] {
-        for study in rows(&results().join("ten-seed").join(table)) {
+        for study in rows(&results().join(study_dir).join(table)) {
             for measure in [
                 "exploration_pct",
                 "homing_pct",
@@ -421,14 +447,14 @@ fn the_transfer_studys_simulator_side_is_the_ten_seed_studys_test_runs() {
         }
     }
     assert!(checked >= 40, "only {checked} values checked");
-    // Hence the claims in fuzzymotiv are the ten-seed study's own, number for number.
-    let study = rows(&results().join("ten-seed/claims.csv"));
-    for row in rows(&results().join("transfer/claims.csv")) {
+    // Hence the claims in fuzzymotiv are the study's own, number for number.
+    let study = rows(&results().join(study_dir).join("claims.csv"));
+    for row in rows(&results().join(records).join("claims.csv")) {
         if row["world"] != "fuzzymotiv" {
             continue;
         }
         let theirs = study.iter().find(|r| r["claim"] == row["claim"]).unwrap();
-        let at = format!("transfer/claims.csv, fuzzymotiv, \"{}\"", row["claim"]);
+        let at = format!("{records}/claims.csv, fuzzymotiv, \"{}\"", row["claim"]);
         for (mine, their) in [
             ("difference", "difference"),
             ("p", "p"),
@@ -442,4 +468,21 @@ fn the_transfer_studys_simulator_side_is_the_ten_seed_studys_test_runs() {
         }
         assert_eq!(row["verdict"], theirs["verdict"], "{at}");
     }
+}
+
+#[test]
+fn the_transfer_studys_simulator_side_is_the_ten_seed_studys_test_runs() {
+    // The Khepera's transfer study reuses the ten-seed study's runs.
+    assert_simulator_side_is_the_studys("transfer", "ten-seed");
+}
+
+#[test]
+fn the_epuck2_transfer_studys_simulator_side_is_its_studys_test_runs() {
+    // The e-puck2's study: `reproduce --set robot=epuck2`, its records kept in transfer/epuck2/study.
+    assert_simulator_side_is_the_studys("transfer/epuck2", "transfer/epuck2/study");
+}
+
+#[test]
+fn the_thymio2_transfer_studys_simulator_side_is_its_studys_test_runs() {
+    assert_simulator_side_is_the_studys("transfer/thymio2", "transfer/thymio2/study");
 }
