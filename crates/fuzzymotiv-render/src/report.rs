@@ -461,14 +461,17 @@ pub fn replay_page_with(
         esc(title),
         esc(about)
     );
-    page.push(
-        "<p>The robot is replayed step by step from its home pose: the circle is its body \
-         (27.5 mm radius by default), the dark line its heading, the coloured rays its eight infrared \
+    page.push(&format!(
+        "<p>The robot ({}) is replayed step by step from its home pose: the circle is its body \
+         ({} mm radius), the dark line its heading, the coloured rays its {} infrared \
          sensors (grey = nothing seen, red and thick = a wall very close). Green cells are the 50 mm \
          cells its centre has entered so far, which is what the exploration term a counts. Each step \
          also shows the action label the controller's motor outputs give (straight, left30, right30, \
          turn180), the symbols room recognition works with.</p>\n",
-    );
+        robot_title(ctx.robot),
+        ctx.robot_radius,
+        count_word(ctx.robot.sensors())
+    ));
     let pairs: Vec<_> = trials
         .iter()
         .map(|(r, _, run)| (&ctx.rooms[*r], &run.trajectory))
@@ -549,12 +552,23 @@ fn intro(ctx: Option<&RenderContext>) -> String {
 /// title (e.g. "GCtronic e-puck2") and its sensor count.
 fn robot_words(ctx: Option<&RenderContext>) -> String {
     match ctx.map(|c| c.robot) {
-        Some(robot) if robot.name() != "khepera" => format!(
-            "{} ({} proximity sensors)",
-            esc(robot.title()),
-            robot.sensors()
-        ),
+        Some(robot) if robot.name() != "khepera" => {
+            format!(
+                "{} ({} proximity sensors)",
+                robot_title(robot),
+                robot.sensors()
+            )
+        }
         _ => "Khepera".to_string(),
+    }
+}
+
+/// A robot as the pages name it: "Khepera" for the paper's, else its file's title (escaped).
+fn robot_title(robot: &fuzzymotiv::simulation::RobotSpec) -> String {
+    if robot.name() == "khepera" {
+        "Khepera".to_string()
+    } else {
+        esc(robot.title())
     }
 }
 
@@ -608,7 +622,7 @@ fn unweighted_terms(ctx: &RenderContext) -> Vec<&str> {
         .collect()
 }
 
-/// A count of motivations or terms (at most 8) in words.
+/// A count (of motivations, terms or sensors) in words, in digits past eight.
 fn count_word(n: usize) -> String {
     const WORDS: [&str; 9] = [
         "no", "one", "two", "three", "four", "five", "six", "seven", "eight",
