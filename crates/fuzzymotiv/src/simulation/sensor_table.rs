@@ -219,14 +219,6 @@ impl SensorTable {
         self.rays.len()
     }
 
-    /// The largest reading any sensor of the table gives (the sum of its rays' nearest
-    /// samples).
-    pub fn largest_reading(&self) -> f64 {
-        (self.rays.iter())
-            .map(|rays| rays.iter().map(|r| r.samples[0].1).sum::<f64>())
-            .fold(0.0, f64::max)
-    }
-
     /// The rays of sensor `s` (0 to [`SensorTable::sensors`] − 1).
     pub fn rays_of(&self, s: usize) -> &[TableRay] {
         &self.rays[s]
