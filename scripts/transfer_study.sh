@@ -6,6 +6,7 @@
 #
 # Usage: scripts/transfer_study.sh [--robot NAME] [--study DIR] [--seeds N] [--runs N]
 #                                  [--rooms "H T …"] [--work DIR] [--records DIR]
+#                                  [--set KEY=VALUE …] [--against RECORDS]
 #
 #   --robot NAME   khepera (the paper's robot), epuck2 or thymio2 [default khepera]; the study
 #                  is made with `reproduce --set robot=NAME`; the Thymio II's also with its
@@ -26,6 +27,12 @@
 #                  already transferred there is kept
 #   --records DIR  where the records go [default docs/results/transfer, for another robot
 #                  docs/results/transfer/ROBOT]
+#   --set KEY=VAL  (repeatable) passed to `reproduce` when the study is made: robots evolved
+#                  another way, e.g. `--set trial.randomise.noise=[0.0,0.2]` or
+#                  `--set trial.sensor_table=configs/sensors/khepera-enki.toml`
+#   --against DIR  the records of a transfer study of the same seeds evolved the plain way:
+#                  also RECORDS/pair.csv, this study against that one, paired by seed
+#                  (`transfer_study pair`: Enki, fuzzymotiv and |Enki − fuzzymotiv|)
 #
 # Needs Enki (Debian: libenki-dev) and g++ for `fuzzymotiv transfer`
 # (docs/guide/transfer.md). The binary is $FUZZYMOTIV_BIN, else target/release/fuzzymotiv
@@ -43,9 +50,12 @@
 #                   detectable difference, verdict (higher/lower: Enki's side)
 #   claims.csv      per world, the paper's comparison claims, high against low curiosity
 #                   paired by seed, computed as `reproduce` computes them (homing among them)
+#   pair.csv        with --against: per setting, measure and world (enki, fuzzymotiv, gap),
+#                   this study (b) against the other (a), paired by seed
 set -euo pipefail
 
-robot=khepera study="" seeds=10 runs=10 rooms="" work="" records=""
+robot=khepera study="" seeds=10 runs=10 rooms="" work="" records="" against=""
+extra=()
 while [ $# -gt 0 ]; do
     case "$1" in
         --robot) robot="$2"; shift 2 ;;
@@ -55,6 +65,8 @@ while [ $# -gt 0 ]; do
         --rooms) rooms="$2"; shift 2 ;;
         --work) work="$2"; shift 2 ;;
         --records) records="$2"; shift 2 ;;
+        --set) extra+=(--set "$2"); shift 2 ;;
+        --against) against="$2"; shift 2 ;;
         -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
         *) echo "transfer_study.sh: unknown argument \`$1\` (see --help)" >&2; exit 2 ;;
     esac
@@ -96,7 +108,8 @@ fi
 
 if [ -z "$study" ]; then
     study="$work/study"
-    "$bin" reproduce --seeds "$seeds" --threads 1 --quiet ${sets[@]+"${sets[@]}"} --out "$study"
+    "$bin" reproduce --seeds "$seeds" --threads 1 --quiet ${sets[@]+"${sets[@]}"} \
+        ${extra[@]+"${extra[@]}"} --out "$study"
 fi
 
 for setting in high-curiosity low-curiosity; do
@@ -120,4 +133,7 @@ done
 mkdir -p "$records"
 "$stats" collect "$study" "$work/transfer" >"$records/transfer.csv"
 "$stats" compare "$records/transfer.csv" "$records"
+if [ -n "$against" ]; then
+    "$stats" pair "$against/transfer.csv" "$records/transfer.csv" >"$records/pair.csv"
+fi
 echo "transfer_study.sh: records in $records" >&2

@@ -7,9 +7,14 @@
 // Units: Enki's Khepera model is in centimetres (radius 2.6, wheel distance 5.2, IR range 10,
 // wheel speeds in cm/s), so 1 Enki unit = 1 cm = 10 mm of fuzzymotiv. See ../README.md.
 //
-// Usage: khepera_h [--steps N] [--repeat R] [--seed S] [--probe] [--trace] [--stock-ir]
+// Usage: khepera_h [--steps N] [--repeat R] [--seed S] [--probe] [--bench FILE] [--trace] [--stock-ir]
 //                  [--one-object] [--stats]
 //   --probe  print the Khepera's IR sensor geometry and response curve, then exit
+//   --bench FILE  write Enki's Khepera measured as on a bench, in `fuzzymotiv calibrate`'s input
+//            format (sensor,distance_mm,reading), then exit: the front sensor head-on to a wall
+//            from contact (11.5 mm) out to 110 mm, five readings per distance, each reading
+//            mapped as `fuzzymotiv transfer` maps it onto the network's scale: min(raw ×
+//            1023/1200, 1023), rounded (issue 54 item 4: Enki as the calibration bench)
 //   --trace  print one trial's trajectory (x y heading in mm/deg) to stdout, then exit
 //   --stats  run one trial per genome (200) and print how close to walls the robots were
 //   --one-object  express the H's notches as one two-part static object instead of two blocks
@@ -243,8 +248,43 @@ double now() {
     return duration<double>(steady_clock::now().time_since_epoch()).count();
 }
 
+/// The front sensor (2) at `d_mm` from the left outer wall along its axis, heading −x.
+double front_reading(Sim& sim, double d_mm) {
+    sim.place(100 * MM, 400 * MM, M_PI);
+    const double off = sim.robot->pos.x - sim.robot->ir(2)->getAbsolutePosition().x;
+    sim.place(d_mm * MM + off, 400 * MM, M_PI);
+    return sim.robot->ir(2)->getValue();
+}
+
+/// `--bench FILE`: Enki's Khepera as a bench measurement for `fuzzymotiv calibrate`, readings
+/// on the network's scale as `fuzzymotiv transfer` maps them (min(raw × 1023/1200, 1023)).
+int write_bench(Sim& sim, const char* path) {
+    FILE* f = std::fopen(path, "w");
+    if (!f) {
+        std::fprintf(stderr, "khepera_h: --bench %s: cannot write it\n", path);
+        return 2;
+    }
+    std::fprintf(f,
+                 "# Enki's Khepera measured as on a bench (make -C bench/enki && target/bench/khepera_h\n"
+                 "# --bench FILE): its front sensor head-on to a wall, 5 readings per distance (mm\n"
+                 "# from the sensor along its axis), Enki's noise included, each reading mapped as\n"
+                 "# `fuzzymotiv transfer` maps Enki's Khepera onto the network: min(raw * 1023/1200,\n"
+                 "# 1023), rounded. Not a real robot: Enki as the calibration bench (issue 54).\n"
+                 "sensor,distance_mm,reading\n");
+    std::vector<double> distances = {11.5};
+    for (int d = 15; d <= 110; d += 5) distances.push_back(d);
+    for (double d : distances) {
+        for (int k = 0; k < 5; ++k) {
+            const double v = std::min(front_reading(sim, d) * 1023.0 / 1200.0, 1023.0);
+            std::fprintf(f, "0,%g,%ld\n", d, std::lround(v));
+        }
+    }
+    return std::fclose(f) == 0 ? 0 : 2;
+}
+
 void usage() {
-    std::fprintf(stderr, "usage: khepera_h [--steps N] [--repeat R] [--seed S] [--probe] [--trace]\n"
+    std::fprintf(stderr, "usage: khepera_h [--steps N] [--repeat R] [--seed S] [--probe] [--bench FILE]\n"
+                         "                 [--trace]\n"
                          "                 [--stats]\n"
                          "                 [--stock-ir] [--one-object]\n");
     std::exit(2);
@@ -257,6 +297,7 @@ int main(int argc, char** argv) {
     int repeat = 5;
     uint64_t seed = 1;
     bool probe = false, trace = false, stats = false;
+    const char* bench = nullptr;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         auto val = [&]() -> const char* {
@@ -267,6 +308,7 @@ int main(int argc, char** argv) {
         else if (a == "--repeat") repeat = std::atoi(val());
         else if (a == "--seed") seed = std::strtoull(val(), nullptr, 10);
         else if (a == "--probe") probe = true;
+        else if (a == "--bench") bench = val();
         else if (a == "--trace") trace = true;
         else if (a == "--stats") stats = true;
         else if (a == "--stock-ir") g_fix_ir = false;
@@ -289,6 +331,7 @@ int main(int argc, char** argv) {
         sim.sensor_max = sum / n;
     }
 
+    if (bench) return write_bench(sim, bench);
     if (probe) {
         std::printf("sensor  rays  aperture_deg  range_cm  abs_pos_cm(at home)  abs_orient_deg\n");
         sim.place(HOME_X, HOME_Y, HOME_HEADING);

@@ -7,6 +7,7 @@
 //! ```text
 //! transfer_study collect STUDY TRANSFER > transfer.csv
 //! transfer_study compare transfer.csv OUT_DIR      # OUT_DIR/comparison.csv, OUT_DIR/claims.csv
+//! transfer_study pair A/transfer.csv B/transfer.csv > pair.csv
 //! ```
 //!
 //! - `collect`: STUDY is a `fuzzymotiv reproduce` directory (SETTING/seed-K/ run directories),
@@ -20,6 +21,11 @@
 //!   seed): comparison.csv. Per world, the paper's comparison claims (high against low curiosity
 //!   paired by seed, resampling seeded by high curiosity's first seed, as `reproduce` does):
 //!   claims.csv.
+//! - `pair`: two transfer studies of the same seeds (A: robots evolved one way, B: another —
+//!   `[trial.randomise]`, a sensor table measured in Enki), B against A paired by seed, per
+//!   setting and measure in three worlds: `enki` and `fuzzymotiv` (each seed's mean over rooms)
+//!   and `gap` (each seed's |Enki − fuzzymotiv|: does B's behaviour in Enki stay nearer its
+//!   behaviour in the simulator?). Resampling seeded by the setting's first seed.
 //!
 //! Bad input (a missing file, a malformed cell) exits 2 naming the file.
 
@@ -354,6 +360,65 @@ fn claims_csv(m: &SeedMeans) -> String {
     out
 }
 
+/// A setting's per-seed values of `measure` in `world` (`gap`: |Enki − fuzzymotiv|).
+fn world_values(m: &SeedMeans, setting: &str, measure: &str, world: &str) -> Option<Vec<f64>> {
+    let get = |w: &str| all(m.values.get(&(setting.into(), measure.into(), w.into())));
+    if world != "gap" {
+        return get(world);
+    }
+    let (sim, enki) = (get("fuzzymotiv")?, get("enki")?);
+    Some(sim.iter().zip(&enki).map(|(s, e)| (e - s).abs()).collect())
+}
+
+/// `pair`: B against A, paired by seed, per setting, measure and world.
+fn pair(a_path: &Path, b_path: &Path) -> Result<(), String> {
+    let (a, b) = (seed_means(a_path)?, seed_means(b_path)?);
+    if a.seeds != b.seeds {
+        return Err(format!(
+            "{} and {} are not of the same settings and seeds ({:?} against {:?}): \
+             a paired comparison needs both studies made with the same seeds",
+            a_path.display(),
+            b_path.display(),
+            a.seeds,
+            b.seeds
+        ));
+    }
+    println!("setting,measure,world,seeds,mean_a,mean_b,difference,ci_low,ci_high,p,detectable,verdict");
+    for setting in SETTINGS {
+        let first = a.seeds.get(setting).and_then(|s| s.first()).copied();
+        let options = Settings {
+            seed: first.unwrap_or(0),
+            ..Settings::default()
+        };
+        for measure in MEASURES {
+            for world in ["enki", "fuzzymotiv", "gap"] {
+                let (Some(va), Some(vb)) = (
+                    world_values(&a, setting, measure, world),
+                    world_values(&b, setting, measure, world),
+                ) else {
+                    continue;
+                };
+                let Ok(c) = paired(&vb, &va, &options) else {
+                    continue;
+                };
+                println!(
+                    "{setting},{measure},{world},{},{},{},{},{},{},{},{},{}",
+                    va.len(),
+                    c.mean_b,
+                    c.mean_a,
+                    c.difference,
+                    c.ci_low,
+                    c.ci_high,
+                    c.p,
+                    number(c.mdd),
+                    c.verdict_with_power(Expect::Higher).direction_label()
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
 fn compare(csv: &Path, out: &Path) -> Result<(), String> {
     let m = seed_means(csv)?;
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
@@ -377,9 +442,11 @@ fn main() -> ExitCode {
     {
         ["collect", study, transfer] => collect(Path::new(study), Path::new(transfer)),
         ["compare", csv, out] => compare(Path::new(csv), Path::new(out)),
+        ["pair", a, b] => pair(Path::new(a), Path::new(b)),
         _ => Err(
             "usage: transfer_study collect STUDY TRANSFER > transfer.csv | \
-                  transfer_study compare transfer.csv OUT_DIR"
+                  transfer_study compare transfer.csv OUT_DIR | \
+                  transfer_study pair A/transfer.csv B/transfer.csv > pair.csv"
                 .into(),
         ),
     };
