@@ -14,7 +14,7 @@ use fuzzymotiv_io::note;
 
 use crate::commands::{
     bench, calibrate, claims, compare, export, fuzzy, lab, recognise, replay, reproduce,
-    robustness, rooms, run, sweep, transfer, urgency,
+    robustness, rooms, run, sweep, transfer,
 };
 
 /// Evolutionary behaviour learning for a simulated Khepera robot under fuzzy motivations.
@@ -102,7 +102,6 @@ fn show_help(e: &clap::Error) -> Result<(), CliError> {
 fn execute(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Run(args) => run::run(args),
-        Command::Reproduce(args) if args.urgency => urgency::urgency(args),
         Command::Reproduce(args) => reproduce::reproduce(args),
         Command::Replay(args) => replay::replay(args),
         Command::Export(args) => export::export(args),

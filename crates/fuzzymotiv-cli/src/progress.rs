@@ -1,6 +1,7 @@
 //! Progress on stderr: a bar on a terminal; otherwise (SLURM, `nohup`, `| tee`) one plain line
 //! every few seconds; nothing with `--quiet`. [`Progress`] shows runs (the pipeline's
-//! [`RunProgress`]), [`JobsProgress`] a sweep's jobs ([`SweepProgress`]).
+//! [`RunProgress`]), [`JobsProgress`] a sweep's jobs ([`SweepProgress`]), [`StudyBar`] a
+//! study's runs ([`StudyProgress`]).
 
 use fuzzymotiv_io::note;
 use std::io::IsTerminal;
@@ -10,6 +11,7 @@ use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_io::pipeline::progress::{RunProgress, SweepProgress};
+use fuzzymotiv_io::pipeline::reproduce::StudyProgress;
 use fuzzymotiv_io::records::Job;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -275,6 +277,48 @@ impl SweepProgress for JobsProgress {
         if let Some(bar) = self.bar.get() {
             bar.finish_and_clear();
         }
+    }
+}
+
+/// Progress of a study's runs (`reproduce`): one [`Progress`] over all of them from
+/// [`StudyProgress::begin`], a named view of it per run; a sweep's jobs as [`JobsProgress`];
+/// nothing with `--quiet`.
+pub struct StudyBar {
+    quiet: bool,
+    /// The progress over the study's runs, from [`StudyProgress::begin`].
+    runs: OnceLock<Progress>,
+}
+
+impl StudyBar {
+    /// Progress of a study, none with `quiet`.
+    pub fn new(quiet: bool) -> Self {
+        Self {
+            quiet,
+            runs: OnceLock::new(),
+        }
+    }
+}
+
+impl StudyProgress for StudyBar {
+    fn begin(&self, exp: &Experiment, runs: usize) {
+        let _ = self.runs.set(Progress::new(exp, runs, self.quiet));
+    }
+
+    fn run(&self, name: &str) -> Box<dyn RunProgress + '_> {
+        Box::new(match self.runs.get() {
+            Some(all) => all.named(name),
+            None => Progress::hidden(),
+        })
+    }
+
+    fn end(&self) {
+        if let Some(all) = self.runs.get() {
+            all.finish();
+        }
+    }
+
+    fn jobs(&self) -> Box<dyn SweepProgress + '_> {
+        Box::new(JobsProgress::new(self.quiet))
     }
 }
 

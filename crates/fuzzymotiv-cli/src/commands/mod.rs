@@ -16,4 +16,3 @@ pub mod rooms;
 pub mod run;
 pub mod sweep;
 pub mod transfer;
-pub mod urgency;

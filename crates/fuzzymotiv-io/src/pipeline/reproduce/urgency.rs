@@ -1,59 +1,56 @@
-//! `fuzzymotiv reproduce --urgency`: the paper's future work, "urgency for completing specific
-//! missions" (crates/fuzzymotiv-render/src/urgency.rs): the fetch mission under four urgency
-//! weights taken from curiosity, paired seeds, run as `reproduce` runs its study (resumable,
-//! the output guard's staging), then compared weight by weight.
+//! The urgency study, the paper's future work "urgency for completing specific missions"
+//! (crates/fuzzymotiv-render/src/urgency.rs): the fetch mission under four urgency weights
+//! taken from curiosity, paired seeds, run as the paper's study is (resumable, the output
+//! guard's staging), then compared weight by weight.
 
+use std::path::Path;
 use std::time::Instant;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::io_err;
-use fuzzymotiv_io::pipeline::lanes::set_threads;
-use fuzzymotiv_io::records::urgency::{UrgencySeed, UrgencySummary};
-use fuzzymotiv_io::records::{PROGRAM, to_json};
-use fuzzymotiv_io::render::figures::write_figure_at;
-use fuzzymotiv_io::render::report::study_page;
-use fuzzymotiv_io::render::study::SettingRuns;
-use fuzzymotiv_io::render::svg::fitness_panels_svg;
-use fuzzymotiv_io::render::tables::Provenance;
-use fuzzymotiv_io::render::urgency::{
+use crate::files::error::CliError;
+use crate::files::guard::io_err;
+use crate::records::urgency::{UrgencySeed, UrgencySummary};
+use crate::records::{PROGRAM, to_json};
+use crate::render::figures::write_figure_at;
+use crate::render::report::study_page;
+use crate::render::study::SettingRuns;
+use crate::render::svg::fitness_panels_svg;
+use crate::render::tables::Provenance;
+use crate::render::urgency::{
     URGENCY, WEIGHTS, comparisons, seed_record, seeds_csv, urgency_svg, urgency_table,
 };
 
-use crate::commands::reproduce::{
-    Part, ReproduceArgs, commit, refuse_own_keys, run_one_study, study_seeds, write_setting_figure,
-};
-use crate::png::rasteriser;
+use super::paper::write_setting_figure;
+use super::runs::{Part, commit, refuse_own_keys, run_one_study, study_seeds};
+use super::{Front, ReproduceOptions};
 
 /// What each setting sets itself (a `--set` of it is refused).
 const OWN: &str = "urgency's weight u and curiosity 0.8 − u";
 
-/// Entry point of `fuzzymotiv reproduce --urgency`: every (weight, seed) into
-/// `OUT/urgency-U/seed-NN/`, then `urgency.md`/`.csv`, `urgency_seeds.csv`, `urgency.svg`,
-/// the median seed's trajectories per weight, `fitness.svg` and `summary.json`.
-pub fn urgency(args: ReproduceArgs) -> Result<(), CliError> {
-    set_threads(args.threads)?;
+/// Every (weight, seed) into `OUT/urgency-U/seed-NN/`, then `urgency.md`/`.csv`,
+/// `urgency_seeds.csv`, `urgency.svg`, the median seed's trajectories per weight,
+/// `fitness.svg`, `report.html` and `summary.json`; returns the table.
+pub fn urgency(options: &ReproduceOptions, front: Front<'_>) -> Result<String, CliError> {
     let start = Instant::now();
     let parts: Vec<Part<'_>> = URGENCY.iter().map(|s| (s.name, OWN, s.sets)).collect();
-    refuse_own_keys(&args.sets, &parts)?;
-    let seeds = study_seeds(&args);
-    let Some((staged, studies)) = run_one_study(&args, &URGENCY, &seeds, "urgency")? else {
-        return Ok(());
+    refuse_own_keys(&options.sets, &parts)?;
+    let seeds = study_seeds(options);
+    let Some((staged, studies)) = run_one_study(options, front, &URGENCY, "urgency")? else {
+        return Ok(String::new());
     };
     let per_seed = seed_records(&studies);
     let rows = comparisons(&per_seed);
-    let prov = Provenance::new(&seeds, &studies[0].contexts[0], args.quick);
+    let prov = Provenance::new(&seeds, &studies[0].contexts[0], options.quick);
     let (md, csv) = urgency_table(&per_seed, &rows, &prov.line());
     staged.write("urgency.md", &md)?;
     staged.write("urgency.csv", &csv)?;
     staged.write("urgency_seeds.csv", seeds_csv(&per_seed))?;
-    let png = rasteriser(args.png);
     let figure = urgency_svg(&per_seed);
-    write_figure_at(&staged.staging.join("urgency.svg"), &figure, png)?;
+    write_figure_at(&staged.staging.join("urgency.svg"), &figure, front.png)?;
     let panels = (studies.iter())
-        .map(|study| write_setting_figure(&args, &staged.staging, study))
+        .map(|study| write_setting_figure(front, &staged.staging, study))
         .collect::<Result<Vec<_>, CliError>>()?;
     let fitness = fitness_panels_svg(&panels);
-    write_figure_at(&staged.staging.join("fitness.svg"), &fitness, png)?;
+    write_figure_at(&staged.staging.join("fitness.svg"), &fitness, front.png)?;
     staged.write(
         "report.html",
         page(&staged.staging, &studies, &md, &figure, &fitness, start)?,
@@ -62,12 +59,12 @@ pub fn urgency(args: ReproduceArgs) -> Result<(), CliError> {
         program: PROGRAM.into(),
         version: fuzzymotiv::VERSION.into(),
         model: fuzzymotiv::MODEL_VERSION,
-        seed: args.seed(),
+        seed: options.seed,
         seeds,
-        quick: args.quick,
+        quick: options.quick,
         population: prov.population,
         generations: prov.generations,
-        overrides: args.sets.clone(),
+        overrides: options.sets.clone(),
         weights: WEIGHTS.to_vec(),
         per_seed,
         comparisons: rows,
@@ -75,13 +72,13 @@ pub fn urgency(args: ReproduceArgs) -> Result<(), CliError> {
     };
     staged.write("summary.json", to_json(&summary))?;
     commit(staged, start)?;
-    fuzzymotiv_io::outln!("{md}")
+    Ok(md + "\n")
 }
 
 /// The study's `report.html`: its table, its figure, the fitness figure and each weight's
 /// median-seed trajectories (read back from `dir`, where they were just written).
 fn page(
-    dir: &std::path::Path,
+    dir: &Path,
     studies: &[SettingRuns<'_>],
     md: &str,
     figure: &str,

@@ -1,0 +1,95 @@
+//! Issue #55: a study runs from the library (`fuzzymotiv_io::pipeline::reproduce`) with plain
+//! options and a progress of the caller's, with the command line's results.
+
+mod common;
+
+use std::sync::Mutex;
+
+use common::{Fm, SMALL, assert_same_results, stderr, stdout};
+use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv_io::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
+use fuzzymotiv_io::pipeline::reproduce::{
+    Front, ReproduceOptions, StudyKind, StudyProgress, reproduce,
+};
+
+/// A progress that records what it is told.
+#[derive(Default)]
+struct Recorded {
+    begun: Mutex<Vec<usize>>,
+    runs: Mutex<Vec<String>>,
+    ended: Mutex<usize>,
+}
+
+impl StudyProgress for Recorded {
+    fn begin(&self, _exp: &Experiment, runs: usize) {
+        self.begun.lock().unwrap().push(runs);
+    }
+    fn run(&self, name: &str) -> Box<dyn RunProgress + '_> {
+        self.runs.lock().unwrap().push(name.to_string());
+        Box::new(NoProgress)
+    }
+    fn end(&self) {
+        *self.ended.lock().unwrap() += 1;
+    }
+    fn jobs(&self) -> Box<dyn SweepProgress + '_> {
+        Box::new(NoProgress)
+    }
+}
+
+/// The paper's study from the library writes the same results as `fuzzymotiv reproduce` (but
+/// for wall times), returns what the command prints, and reports each of its runs by name.
+#[test]
+fn a_study_runs_from_the_library_with_the_command_lines_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let cli = dir.path().join("cli");
+    let o = Fm::new(["reproduce", "--quick", "--seeds", "2", "--threads", "1"])
+        .sets(&SMALL)
+        .out(&cli)
+        .run();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let lib = dir.path().join("lib");
+    let options = ReproduceOptions {
+        out: lib.clone(),
+        quick: true,
+        seeds: 2,
+        threads: Some(1),
+        sets: SMALL.iter().map(|s| s.to_string()).collect(),
+        ..ReproduceOptions::new(StudyKind::Paper)
+    };
+    let progress = Recorded::default();
+    let front = Front {
+        progress: &progress,
+        png: None,
+    };
+    let text = reproduce(&options, front).unwrap();
+    assert_eq!(text, stdout(&o));
+    assert_same_results(&lib, &cli);
+    assert_eq!(*progress.begun.lock().unwrap(), [4]);
+    assert_eq!(*progress.ended.lock().unwrap(), 1);
+    let mut runs = progress.runs.lock().unwrap().clone();
+    runs.sort();
+    assert_eq!(
+        runs,
+        [
+            "high-curiosity seed #1",
+            "high-curiosity seed #2",
+            "low-curiosity seed #1",
+            "low-curiosity seed #2"
+        ]
+    );
+    // Run again, the study is already there: nothing to do, nothing to show.
+    assert_eq!(reproduce(&options, front).unwrap(), "");
+}
+
+/// The command line's default output directories are the library's, per study and size.
+#[test]
+fn each_study_has_its_default_output_directory() {
+    let out = |kind: StudyKind, quick| kind.default_out(quick).display().to_string();
+    assert_eq!(out(StudyKind::Paper, false), "results");
+    assert_eq!(out(StudyKind::Paper, true), "results-quick");
+    assert_eq!(
+        out(StudyKind::SearchStrength, true),
+        "results-search-strength-quick"
+    );
+    assert_eq!(out(StudyKind::Urgency, false), "results-urgency");
+}
