@@ -50,6 +50,9 @@
 #                   detectable difference, verdict (higher/lower: Enki's side)
 #   claims.csv      per world, the paper's comparison claims, high against low curiosity
 #                   paired by seed, computed as `reproduce` computes them (homing among them)
+#   paths.svg       a path in both worlds: high curiosity's first seed in the first room, its
+#                   simulated path (`replay`, the run's seed) and its first Enki test run
+#                   (`replay --log`) in one figure
 #   pair.csv        with --against: per setting, measure and world (enki, fuzzymotiv, gap),
 #                   this study (b) against the other (a), paired by seed
 set -euo pipefail
@@ -133,6 +136,14 @@ done
 mkdir -p "$records"
 "$stats" collect "$study" "$work/transfer" >"$records/transfer.csv"
 "$stats" compare "$records/transfer.csv" "$records"
+# A path in both worlds (the figure's file names are the work directory's).
+first_room="${rooms%% *}"
+first_run="$(find "$study/high-curiosity" -mindepth 1 -maxdepth 1 -name 'seed-*' | sort | head -1)"
+tmp="$(mktemp -d)"
+"$bin" replay "$first_run" --room "$first_room" --out "$tmp/paths.html" \
+    --log "$work/transfer/high-curiosity/$(basename "$first_run")/$first_room/run-0.csv" >/dev/null
+cp "$tmp/paths.svg" "$records/paths.svg"
+rm -rf "$tmp"
 if [ -n "$against" ]; then
     "$stats" pair "$against/transfer.csv" "$records/transfer.csv" >"$records/pair.csv"
 fi
