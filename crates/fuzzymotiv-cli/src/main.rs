@@ -14,7 +14,7 @@ use fuzzymotiv_io::note;
 
 use crate::commands::{
     bench, calibrate, claims, compare, export, fuzzy, lab, recognise, replay, reproduce,
-    robustness, rooms, run, sweep, transfer,
+    robustness, rooms, run, study, sweep, transfer,
 };
 
 /// Evolutionary behaviour learning for a simulated Khepera robot under fuzzy motivations.
@@ -65,6 +65,9 @@ enum Command {
     Rooms(rooms::RoomsArgs),
     /// Measure simulation speed (robot-steps per second).
     Bench(bench::BenchArgs),
+    /// Run a study of your own: arms (any config, robot or motivations), paired seeds and
+    /// typed hypotheses, judged by the study's declared analysis (claims, forest plot, report).
+    Study(study::StudyArgs),
     /// Expand a sweep file into its jobs (one JSON line each), or count them.
     Plan(sweep::PlanArgs),
     /// Run a sweep's jobs (all, a shard, or one array-task index) into DIR/jobs/ID/.
@@ -114,6 +117,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         Command::Fuzzy(args) => fuzzy::fuzzy(args),
         Command::Rooms(args) => rooms::rooms(args),
         Command::Bench(args) => bench::bench(args),
+        Command::Study(args) => study::study(args),
         Command::Plan(args) => sweep::plan(args),
         Command::Sweep(args) => sweep::sweep(args),
         Command::Merge(args) => sweep::merge(args),

@@ -22,6 +22,7 @@
 #![warn(missing_docs)]
 
 pub mod pipeline;
+pub mod study;
 
 pub use fuzzymotiv_records::{files, note, out, outln, records};
 pub use fuzzymotiv_render as render;

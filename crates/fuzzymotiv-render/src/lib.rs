@@ -11,6 +11,7 @@ pub mod combination;
 pub mod compare;
 pub mod figures;
 pub mod frames;
+pub mod hypotheses;
 pub mod plot;
 pub mod replication;
 pub mod report;

@@ -14,5 +14,6 @@ pub mod reproduce;
 pub mod robustness;
 pub mod rooms;
 pub mod run;
+pub mod study;
 pub mod sweep;
 pub mod transfer;

@@ -120,7 +120,7 @@ pub fn prepare_sweep_dir(
     // The plan first: it is what makes the directory a sweep for the tasks that start with this.
     std::fs::create_dir_all(out).map_err(|e| io_err(out, e))?;
     write_atomic(&out.join("plan.jsonl"), sweep.plan_jsonl())?;
-    write_atomic(&out.join("sweep.toml"), text)?;
+    write_atomic(&out.join(sweep.file_name()), text)?;
     let jobs_dir = out.join("jobs");
     std::fs::create_dir_all(&jobs_dir).map_err(|e| io_err(&jobs_dir, e))?;
     Ok(jobs_dir)
@@ -131,10 +131,18 @@ fn is_done(jobs_dir: &Path, job: &Job) -> bool {
     jobs_dir.join(&job.id).join("DONE").is_file()
 }
 
-/// The files of a sweep directory besides its job folders (written by `sweep` and `merge`).
-const SWEEP_FILES: [&str; 7] = [
+/// The files of a sweep directory besides its job folders (written by `sweep` and `merge`, or
+/// by a study: [`crate::study`]).
+const SWEEP_FILES: [&str; 14] = [
     "plan.jsonl",
     "sweep.toml",
+    "study.toml",
+    "per_seed.csv",
+    "claims.csv",
+    "rooms.csv",
+    "study.json",
+    "report.md",
+    "forest.svg",
     "results.csv",
     "aggregate.csv",
     "aggregate.md",

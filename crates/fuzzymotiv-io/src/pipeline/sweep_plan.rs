@@ -97,11 +97,43 @@ impl BaseMotivations {
 /// Most jobs one sweep file may plan.
 const MAX_JOBS: usize = 100_000;
 
-/// A parsed sweep: the base config text, where it came from and the jobs.
+/// A config a plan's jobs are made from: its text (a sweep file's without its `[sweep]`
+/// table), the name its errors give it and the folder its room and robot files are relative to.
+#[derive(Debug, Clone)]
+pub struct BaseConfig {
+    /// The config's TOML text.
+    pub text: String,
+    /// Where it came from, as errors name it (e.g. the file's path).
+    pub source: String,
+    /// The folder its room and robot files are relative to.
+    pub dir: PathBuf,
+}
+
+/// A job of a plan given one by one ([`Sweep::of_jobs`], e.g. a study's arm and seed).
+#[derive(Debug, Clone)]
+pub struct PlannedJob {
+    /// Its config: an index into the plan's [`BaseConfig`]s.
+    pub base: usize,
+    /// Its key (unique in the plan).
+    pub key: String,
+    /// Its setting (the key without the replicate).
+    pub setting: String,
+    /// Its replicate number.
+    pub replicate: usize,
+    /// Its seed (set as `seed=` after `overrides`).
+    pub seed: u64,
+    /// The `--set` overrides that make its config from its base (without the seed).
+    pub overrides: Vec<String>,
+}
+
+/// A parsed sweep: the base configs, the file the plan comes from and the jobs.
 pub struct Sweep {
-    base_text: String,
+    bases: Vec<BaseConfig>,
+    /// The base config of each job, by plan index.
+    job_base: Vec<usize>,
     source: String,
-    base_dir: PathBuf,
+    /// The name of the plan's file in its output directory (`sweep.toml`, `study.toml`).
+    file_name: &'static str,
     /// The jobs, in plan order.
     pub jobs: Vec<Job>,
 }
@@ -159,9 +191,14 @@ impl Sweep {
             ));
         }
         let mut sweep = Sweep {
-            base_text,
+            bases: vec![BaseConfig {
+                text: base_text,
+                source: source.to_string(),
+                dir: base_dir.to_path_buf(),
+            }],
+            job_base: Vec::new(),
             source: source.to_string(),
-            base_dir: base_dir.to_path_buf(),
+            file_name: "sweep.toml",
             jobs: Vec::new(),
         };
         let mut seen = HashSet::new();
@@ -184,14 +221,14 @@ impl Sweep {
     /// Fills the values `raw` leaves to its robot file (as [`fuzzymotiv::experiment::Setup`]
     /// records them); the robot file's text when it is a file (relative to the sweep file),
     /// empty for a built-in robot.
-    fn resolve_robot(&self, raw: &mut RawConfig) -> Result<String, CliError> {
+    fn resolve_robot(base_dir: &Path, raw: &mut RawConfig) -> Result<String, CliError> {
         use fuzzymotiv::simulation::RobotSpec;
         let (spec, text) = match raw.robot.file.as_deref() {
             None => (RobotSpec::khepera(), String::new()),
             Some(name) => match RobotSpec::builtin(name) {
                 Some(spec) => (spec, String::new()),
                 None => {
-                    let path = self.base_dir.join(name);
+                    let path = base_dir.join(name);
                     let spec = load_robot(&path.display().to_string(), "robot.file")?;
                     (spec, read_input(&path, ROBOT_FILE)?)
                 }
@@ -215,41 +252,100 @@ impl Sweep {
             // Keep the derived seed in 0..2^53: exact in TOML (signed 64-bit) and in JSON read
             // as doubles (JavaScript, jq).
             let seed = Streams::new(base_seed).sweep_job(&key);
-            let mut sets = overrides.to_vec();
-            sets.push(format!("seed={seed}"));
-            let source = format!("{} (job {key})", self.source);
-            let mut raw = RawConfig::parse(&self.base_text, &source, &sets)?;
-            // The id covers the resolved config and the contents of its room and robot files,
-            // so an edited file is a new job rather than a finished one (the model version is
-            // the plan's: `Job::model`); the robot's values are in the config as a run records
-            // them (the Khepera's jobs keep the ids they had before robots were files).
-            let robot_file = self.resolve_robot(&mut raw)?;
-            let mut resolved = raw.to_toml();
-            for room in &raw.rooms {
-                if let Ok(text) = read_input(&self.base_dir.join(room), ROOM_FILE) {
-                    resolved.push_str(&text);
-                }
-            }
-            resolved.push_str(&robot_file);
-            self.jobs.push(Job {
-                index: self.jobs.len(),
-                id: format!("{:016x}", hash_str(&resolved)),
+            self.add_job(PlannedJob {
+                base: 0,
                 key,
                 setting: setting.to_string(),
                 replicate: rep,
                 seed,
-                overrides: sets,
-                model: fuzzymotiv::MODEL_VERSION,
-            });
+                overrides: overrides.to_vec(),
+            })?;
         }
         Ok(())
     }
 
+    /// Adds one job, its id the hash of its resolved config.
+    fn add_job(&mut self, planned: PlannedJob) -> Result<(), CliError> {
+        let base = &self.bases[planned.base];
+        let mut sets = planned.overrides;
+        sets.push(format!("seed={}", planned.seed));
+        let source = format!("{} (job {})", base.source, planned.key);
+        let mut raw = RawConfig::parse(&base.text, &source, &sets)?;
+        // The id covers the resolved config and the contents of its room and robot files,
+        // so an edited file is a new job rather than a finished one (the model version is
+        // the plan's: `Job::model`); the robot's values are in the config as a run records
+        // them (the Khepera's jobs keep the ids they had before robots were files).
+        let robot_file = Self::resolve_robot(&base.dir, &mut raw)?;
+        let mut resolved = raw.to_toml();
+        for room in &raw.rooms {
+            if let Ok(text) = read_input(&base.dir.join(room), ROOM_FILE) {
+                resolved.push_str(&text);
+            }
+        }
+        resolved.push_str(&robot_file);
+        self.job_base.push(planned.base);
+        self.jobs.push(Job {
+            index: self.jobs.len(),
+            id: format!("{:016x}", hash_str(&resolved)),
+            key: planned.key,
+            setting: planned.setting,
+            replicate: planned.replicate,
+            seed: planned.seed,
+            overrides: sets,
+            model: fuzzymotiv::MODEL_VERSION,
+        });
+        Ok(())
+    }
+
+    /// A plan of `jobs` given one by one over the configs `bases` (a study's arms and seeds),
+    /// whose file is `file_name` in its output directory (`source` names it in errors). Every
+    /// job is validated as a config; two jobs of the same config (the same id) are refused.
+    pub fn of_jobs(
+        bases: Vec<BaseConfig>,
+        jobs: Vec<PlannedJob>,
+        source: &str,
+        file_name: &'static str,
+    ) -> Result<Sweep, CliError> {
+        let mut sweep = Sweep {
+            bases,
+            job_base: Vec::new(),
+            source: source.to_string(),
+            file_name,
+            jobs: Vec::new(),
+        };
+        for job in jobs {
+            sweep.add_job(job)?;
+        }
+        for (k, job) in sweep.jobs.iter().enumerate() {
+            if let Some(twin) = sweep.jobs[..k].iter().find(|j| j.id == job.id) {
+                return Err(CliError::input(format!(
+                    "{source}: jobs `{}` and `{}` have the same config (the same seed, config \
+                     and overrides): give them different settings",
+                    twin.key, job.key
+                )));
+            }
+            sweep.load_job(job)?;
+        }
+        Ok(sweep)
+    }
+
+    /// The name of the plan's file in its output directory: `sweep.toml` for a sweep file.
+    pub fn file_name(&self) -> &'static str {
+        self.file_name
+    }
+
+    /// Where the plan comes from, as its errors name it.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
     /// The validated config of a job.
     pub fn load_job(&self, job: &Job) -> Result<Loaded, CliError> {
-        let source = format!("{} (job {})", self.source, job.key);
-        let raw = RawConfig::parse(&self.base_text, &source, &job.overrides)?;
-        resolve(raw, &self.base_dir, &source)
+        // A job of another plan (read from a file) counts as one of the first config's.
+        let base = &self.bases[self.job_base.get(job.index).copied().unwrap_or(0)];
+        let source = format!("{} (job {})", base.source, job.key);
+        let raw = RawConfig::parse(&base.text, &source, &job.overrides)?;
+        resolve(raw, &base.dir, &source)
     }
 
     /// The plan as JSON lines.

@@ -180,7 +180,7 @@ pub fn is_ours(dir: &Path) -> bool {
 
 /// The names of the files our outputs write (besides `*.svg` and `*.png` figures, `.tmp*`
 /// temporary files and sweep jobs' `ID.lock` files): anything else in a directory about to be replaced is the user's.
-const OUR_FILES: [&str; 32] = [
+const OUR_FILES: [&str; 37] = [
     "config.resolved.toml",
     "generations.csv",
     "best_genome.json",
@@ -213,6 +213,11 @@ const OUR_FILES: [&str; 32] = [
     "test_runs.csv",
     "compare.md",
     "compare.csv",
+    "study.toml",
+    "per_seed.csv",
+    "rooms.csv",
+    "study.json",
+    "report.md",
 ];
 
 /// The files under `dir` (recursively; a symbolic link counts as one, never followed) that none

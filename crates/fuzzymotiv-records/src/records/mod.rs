@@ -54,6 +54,7 @@ pub mod compare;
 pub mod context;
 pub mod export;
 pub mod genome;
+pub mod hypotheses;
 pub mod paired;
 pub mod replication;
 pub mod robot_log;

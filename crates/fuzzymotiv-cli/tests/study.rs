@@ -1,0 +1,381 @@
+//! `fuzzymotiv study`: a study of one's own (the shipped fetch-urgency study at a tiny size)
+//! runs from the command line, writes typed records whose every verdict is recomputed here
+//! from its own per-seed values, gives the same bytes in shards as whole, and bad study files
+//! are refused (status 2, the file and field named, nothing written).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use fuzzymotiv::statistics::{self, Settings, Verdict};
+
+mod common;
+
+use common::{ok, repo, run, stderr, stdout};
+
+/// The analysis' files, the same bytes whoever wrote them.
+const ANALYSIS: [&str; 6] = [
+    "per_seed.csv",
+    "claims.csv",
+    "rooms.csv",
+    "study.json",
+    "report.md",
+    "forest.svg",
+];
+
+/// The shipped studies/fetch-urgency.toml, made tiny (a small GA, short trials, no AEM), its
+/// config named by an absolute path, with `base_seeds` and `extra` hypotheses.
+fn tiny_study(dir: &Path, base_seeds: &str, extra: &str) -> PathBuf {
+    let text = std::fs::read_to_string(repo().join("studies/fetch-urgency.toml")).unwrap();
+    let config = repo().join("configs/fetch.toml");
+    let text = text
+        .replace("seeds = 10\n", "seeds = 4\n")
+        .replace("base_seeds = [1]", &format!("base_seeds = {base_seeds}"))
+        .replace(
+            "config = \"../configs/fetch.toml\"",
+            &format!(
+                "config = {:?}\nset = {{ ga = {{ population = 8, generations = 3 }}, trial = {{ steps = 150 }}, aem = {{ enabled = false }} }}",
+                config.display().to_string()
+            ),
+        );
+    assert!(text.contains("population = 8") && text.contains("seeds = 4\n"));
+    let path = dir.join("study.toml");
+    std::fs::write(&path, format!("{text}{extra}")).unwrap();
+    path
+}
+
+/// Two more hypotheses, of the kinds the shipped file lacks: a range and a trend of a term.
+const MORE: &str = r#"
+[[hypothesis]]
+id = "explores"
+kind = "range"
+measure = "exploration_pct"
+arm = "urgency-0.3"
+min = 5
+max = 95
+
+[[hypothesis]]
+id = "safety-trend"
+kind = "trend"
+measure = "safety"
+arms = ["urgency-0.1", "urgency-0.3", "urgency-0.5"]
+expect = "decreasing"
+"#;
+
+fn study(file: &Path, out: &Path, more: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "study",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--threads",
+        "2",
+        "-q",
+    ];
+    args.extend(more);
+    ok(&args)
+}
+
+type Rows = Vec<BTreeMap<String, String>>;
+
+fn read_csv(path: &Path) -> Rows {
+    let mut r = csv::Reader::from_path(path).unwrap();
+    r.deserialize().map(|row| row.unwrap()).collect()
+}
+
+fn f(row: &BTreeMap<String, String>, key: &str) -> f64 {
+    row[key].parse().unwrap()
+}
+
+/// The values of `measure` in `arm` over the mean of the rooms, in `scope`, from per_seed.csv.
+fn values(per_seed: &Rows, arm: &str, measure: &str, scope: &str) -> Vec<f64> {
+    per_seed
+        .iter()
+        .filter(|r| r["arm"] == arm && r["measure"] == measure && r["room"].is_empty())
+        .filter(|r| scope == "pooled" || format!("base={}", r["base_seed"]) == scope)
+        .map(|r| f(r, "value"))
+        .collect()
+}
+
+/// A claim's test recomputed from per-seed values by the rule study.json states: (effect, p,
+/// detectable difference, margin in the hypothesis's way).
+fn recompute(
+    h: &serde_json::Value,
+    levels: &BTreeMap<String, f64>,
+    per_seed: &Rows,
+    scope: &str,
+    s: &Settings,
+) -> (f64, f64, Option<f64>, f64) {
+    let of = |arm: &serde_json::Value, measure: &str| {
+        values(per_seed, arm.as_str().unwrap(), measure, scope)
+    };
+    let measure = h["measure"].as_str().unwrap_or("");
+    let way = |expect: &serde_json::Value| if expect == "higher" { 1.0 } else { -1.0 };
+    match h["kind"].as_str().unwrap() {
+        "compare" => {
+            let c = statistics::paired(&of(&h["a"], measure), &of(&h["b"], measure), s).unwrap();
+            (c.difference, c.p, c.mdd, way(&h["expect"]) * c.difference)
+        }
+        "rising" => {
+            let c = statistics::paired(
+                &of(&h["arm"], "last_mean_f"),
+                &of(&h["arm"], "first_mean_f"),
+                s,
+            )
+            .unwrap();
+            (c.difference, c.p, c.mdd, c.difference)
+        }
+        "trend" => {
+            let arms: Vec<&serde_json::Value> = h["arms"].as_array().unwrap().iter().collect();
+            let xs: Vec<f64> = arms.iter().map(|a| levels[a.as_str().unwrap()]).collect();
+            let ys: Vec<Vec<f64>> = arms.iter().map(|a| of(a, measure)).collect();
+            let slopes: Vec<f64> = (0..ys[0].len())
+                .map(|i| {
+                    let y: Vec<f64> = ys.iter().map(|v| v[i]).collect();
+                    let (mx, my) = (statistics::mean(&xs), statistics::mean(&y));
+                    let sxy: f64 = xs.iter().zip(&y).map(|(x, y)| (x - mx) * (y - my)).sum();
+                    sxy / xs.iter().map(|x| (x - mx) * (x - mx)).sum::<f64>()
+                })
+                .collect();
+            let c = statistics::paired(&slopes, &vec![0.0; slopes.len()], s).unwrap();
+            (c.difference, c.p, c.mdd, way(&h["expect"]) * c.difference)
+        }
+        "range" => {
+            let v = of(&h["arm"], measure);
+            let (min, max) = (h["min"].as_f64().unwrap(), h["max"].as_f64().unwrap());
+            let n = v.len();
+            let mean = statistics::paired(&v, &vec![0.0; n], s).unwrap();
+            let p_min = statistics::paired(&v, &vec![min; n], s).unwrap().p;
+            let p_max = statistics::paired(&v, &vec![max; n], s).unwrap().p;
+            let m = mean.difference;
+            let (margin, p) = if m < min {
+                (m - min, p_min)
+            } else if m > max {
+                (max - m, p_max)
+            } else {
+                ((m - min).min(max - m), p_min.max(p_max))
+            };
+            (m, p, mean.mdd, margin)
+        }
+        other => panic!("kind {other}"),
+    }
+}
+
+/// Every claim of the study in `out` recomputed from its per_seed.csv by the analysis its
+/// study.json states (α, the rule, Holm over the hypotheses): effect, p, adjusted p, verdict.
+fn recompute_every_verdict(out: &Path) -> usize {
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("study.json")).unwrap()).unwrap();
+    let per_seed = read_csv(&out.join("per_seed.csv"));
+    let claims = read_csv(&out.join("claims.csv"));
+    let a = &record["analysis"];
+    let s = Settings {
+        alpha: a["alpha"].as_f64().unwrap(),
+        confidence: a["confidence"].as_f64().unwrap(),
+        power: a["power"].as_f64().unwrap(),
+        ..Settings::default()
+    };
+    let levels: BTreeMap<String, f64> = (record["arms"].as_array().unwrap().iter())
+        .filter_map(|arm| Some((arm["name"].as_str()?.to_string(), arm["level"].as_f64()?)))
+        .collect();
+    let hypotheses = record["hypotheses"].as_array().unwrap();
+    let mut scopes: Vec<&str> = claims.iter().map(|c| c["scope"].as_str()).collect();
+    scopes.dedup();
+    for scope in scopes {
+        let tested: Vec<_> = (hypotheses.iter())
+            .map(|h| recompute(h, &levels, &per_seed, scope, &s))
+            .collect();
+        let p: Vec<f64> = tested.iter().map(|t| t.1).collect();
+        let adjusted = match a["holm"].as_str().unwrap() {
+            "hypotheses" => statistics::holm(&p),
+            _ => p.clone(),
+        };
+        let rows: Vec<_> = claims.iter().filter(|c| c["scope"] == scope).collect();
+        assert_eq!(rows.len(), hypotheses.len());
+        for ((row, (effect, p, mdd, margin)), p_adj) in rows.iter().zip(tested).zip(adjusted) {
+            let inconclusive = a["rule"] == "power" && mdd.is_some_and(|m| margin.abs() < m);
+            let verdict = if inconclusive {
+                Verdict::Inconclusive
+            } else {
+                Verdict::of(margin, p_adj, statistics::Expect::Higher, s.alpha)
+            };
+            let what = format!("{} ({scope})", row["id"]);
+            assert_eq!(f(row, "effect"), effect, "{what}: effect");
+            assert_eq!(f(row, "p"), p, "{what}: p");
+            assert_eq!(f(row, "p_adjusted"), p_adj, "{what}: adjusted p");
+            assert_eq!(row["verdict"], verdict.label(), "{what}: verdict");
+        }
+    }
+    claims.len()
+}
+
+#[test]
+fn a_fetch_study_writes_typed_records_whose_every_verdict_is_recomputed_from_its_per_seed_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = tiny_study(dir.path(), "[1, 2]", MORE);
+    let out = dir.path().join("out");
+    let o = study(&file, &out, &[]);
+    for name in ANALYSIS {
+        assert!(out.join(name).is_file(), "{name} written");
+    }
+    // Six hypotheses, judged pooled and at each of the two base seeds.
+    assert_eq!(recompute_every_verdict(&out), 18);
+    let printed = stdout(&o);
+    assert!(
+        printed.contains("sooner: ")
+            && printed.contains("% urgency is higher in urgency-0.5 than in urgency-0.1"),
+        "{printed}"
+    );
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for part in [
+        "## Analysis",
+        "## Claims",
+        "forest.svg",
+        "## Each base seed's verdict",
+        "## Per room",
+        "## Seeds",
+        "name = \"fetch-urgency\"",
+    ] {
+        assert!(report.contains(part), "report.md lacks {part}");
+    }
+    let forest = std::fs::read_to_string(out.join("forest.svg")).unwrap();
+    assert_eq!(forest.matches("<circle").count(), 18, "a dot per result");
+    // The rooms' table: the five fetch rooms per hypothesis over a measure (all but `learns`)
+    // and scope.
+    assert_eq!(read_csv(&out.join("rooms.csv")).len(), 5 * 5 * 3);
+}
+
+#[test]
+fn a_study_in_shards_gives_the_bytes_of_one_machine_and_resumes_without_running_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = tiny_study(dir.path(), "[1]", "");
+    let whole = dir.path().join("whole");
+    study(&file, &whole, &[]);
+    let sharded = dir.path().join("sharded");
+    let first = study(&file, &sharded, &["--shard", "0/2"]);
+    assert!(
+        stdout(&first).is_empty(),
+        "no claims before every run is there"
+    );
+    assert!(!sharded.join("claims.csv").exists());
+    study(&file, &sharded, &["--shard", "1/2"]);
+    for name in ANALYSIS {
+        let (a, b) = (whole.join(name), sharded.join(name));
+        assert_eq!(
+            std::fs::read(&a).unwrap(),
+            std::fs::read(&b).unwrap(),
+            "{name}"
+        );
+    }
+    // Again, whole: every run is finished, nothing runs; the same analysis.
+    let before = std::fs::read(whole.join("claims.csv")).unwrap();
+    let again = run(&[
+        "study",
+        file.to_str().unwrap(),
+        "--out",
+        whole.to_str().unwrap(),
+    ]);
+    assert!(again.status.success(), "{}", stderr(&again));
+    assert!(
+        stderr(&again).contains("0 jobs run, 12 already done"),
+        "{}",
+        stderr(&again)
+    );
+    assert_eq!(std::fs::read(whole.join("claims.csv")).unwrap(), before);
+}
+
+/// A study file with `line` replaced by `by` (or `by` appended when `line` is empty).
+fn edited(dir: &Path, name: &str, line: &str, by: &str) -> PathBuf {
+    let path = tiny_study(dir, "[1]", "");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let text = if line.is_empty() {
+        format!("{text}{by}")
+    } else {
+        assert!(text.contains(line), "{line}");
+        text.replacen(line, by, 1)
+    };
+    let bad = dir.join(name);
+    std::fs::write(&bad, text).unwrap();
+    bad
+}
+
+#[test]
+fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &str, &str, &[&str]); 9] = [
+        (
+            "measure = \"urgency\"          #",
+            "measure = \"hurry\" #",
+            "",
+            &[
+                "hypothesis[0].measure",
+                "unknown measure `hurry_pct`",
+                "urgency_pct",
+                "exploration_pct",
+            ],
+        ),
+        (
+            "b = \"urgency-0.1\"",
+            "b = \"urgency-0.9\"",
+            "",
+            &["hypothesis[0].b", "unknown arm `urgency-0.9`"],
+        ),
+        (
+            "b = \"urgency-0.1\"",
+            "b = \"urgency-0.5\"",
+            "",
+            &["hypothesis[0].b", "with itself"],
+        ),
+        ("seeds = 4\n", "seeds = 0\n", "", &["study.seeds", "got 0"]),
+        (
+            "name = \"urgency-0.3\"\nlevel = 0.3\n",
+            "name = \"urgency-0.3\"\n",
+            "",
+            &["hypothesis[1].arms", "has no `level`", "ordered"],
+        ),
+        (
+            "rule = \"power\"",
+            "rule = \"power\"\nbeta = 0.2",
+            "",
+            &["beta", "unknown field"],
+        ),
+        (
+            "kind = \"rising\"",
+            "kind = \"rising\"\nmeasure = \"goal\"",
+            "",
+            &["measure", "unknown field"],
+        ),
+        (
+            "alpha = 0.05",
+            "alpha = 1.5",
+            "",
+            &["analysis.alpha", "between 0 and 1"],
+        ),
+        (
+            "",
+            "\n[[hypothesis]]\nid = \"sooner\"\nkind = \"rising\"\narm = \"urgency-0.1\"\n",
+            "",
+            &["hypothesis[4].id", "used twice"],
+        ),
+    ];
+    for (k, (line, by, _, says)) in cases.iter().enumerate() {
+        let file = edited(dir.path(), &format!("bad{k}.toml"), line, by);
+        let out = dir.path().join(format!("out{k}"));
+        let o = run(&[
+            "study",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let message = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "case {k}: {message}");
+        assert!(
+            message.contains(&format!("bad{k}.toml")),
+            "case {k} names the file: {message}"
+        );
+        for s in *says {
+            assert!(message.contains(s), "case {k} says {s:?}: {message}");
+        }
+        assert!(!message.contains("panicked"), "{message}");
+        assert!(!out.exists(), "case {k}: nothing written");
+    }
+}

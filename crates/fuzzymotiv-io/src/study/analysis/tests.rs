@@ -1,0 +1,160 @@
+use super::*;
+use crate::records::hypotheses::Measure;
+
+fn analysis(rule: Rule, holm: HolmOver) -> AnalysisRecord {
+    AnalysisRecord {
+        alpha: 0.05,
+        confidence: 0.95,
+        power: 0.8,
+        rule,
+        holm,
+    }
+}
+
+/// Per-seed rows of arms `lo`, `mid`, `hi` over six seeds of base seed 1: `value(arm, seed)`.
+fn rows(value: impl Fn(usize, usize) -> f64) -> Vec<PerSeedRow> {
+    let mut out = Vec::new();
+    for seed in 0..6 {
+        for (k, arm) in ["lo", "mid", "hi"].iter().enumerate() {
+            for room in ["", "H"] {
+                out.push(PerSeedRow {
+                    base_seed: 1,
+                    replicate: seed,
+                    seed: seed as u64,
+                    arm: arm.to_string(),
+                    measure: "urgency_pct".into(),
+                    room: room.into(),
+                    value: value(k, seed),
+                });
+            }
+        }
+    }
+    out
+}
+
+fn compare_h(expect: Direction) -> Hypothesis {
+    Hypothesis::Compare {
+        id: "c".into(),
+        measure: Measure::Term("urgency".into()),
+        a: "hi".into(),
+        b: "lo".into(),
+        expect,
+    }
+}
+
+fn level(arm: &str) -> f64 {
+    match arm {
+        "lo" => 0.1,
+        "mid" => 0.3,
+        _ => 0.5,
+    }
+}
+
+#[test]
+fn a_comparisons_verdict_is_the_projects_rule_on_its_paired_test() {
+    let rows = rows(|k, seed| 10.0 * k as f64 + (seed % 3) as f64);
+    let a = analysis(Rule::Power, HolmOver::None);
+    for expect in [Direction::Higher, Direction::Lower] {
+        let h = compare_h(expect);
+        let got = claims(std::slice::from_ref(&h), &rows, &[1], &level, &a).unwrap();
+        let hi = values(&rows, "hi", "urgency_pct", "", POOLED);
+        let lo = values(&rows, "lo", "urgency_pct", "", POOLED);
+        let c = statistics::paired(&hi, &lo, &settings(&a)).unwrap();
+        let want = c.verdict_with_power(match expect {
+            Direction::Higher => Expect::Higher,
+            Direction::Lower => Expect::Lower,
+        });
+        assert_eq!(got[0].verdict, want.label());
+        assert_eq!((got[0].effect, got[0].p), (c.difference, c.p));
+    }
+}
+
+#[test]
+fn a_trend_is_the_per_seed_slope_against_the_levels() {
+    // 50 per unit of level on every seed, with seed noise that does not depend on the arm.
+    let rows = rows(|k, seed| 5.0 * k as f64 + seed as f64);
+    let h = Hypothesis::Trend {
+        id: "t".into(),
+        measure: Measure::Term("urgency".into()),
+        arms: vec!["lo".into(), "mid".into(), "hi".into()],
+        expect: Direction::Higher,
+    };
+    let a = analysis(Rule::P, HolmOver::None);
+    let got = claims(std::slice::from_ref(&h), &rows, &[1], &level, &a).unwrap();
+    assert!((got[0].effect - 25.0).abs() < 1e-9, "{}", got[0].effect);
+    assert_eq!(got[0].p, 1.0 / 32.0); // six seeds all the same sign: 2/64
+    assert_eq!(got[0].verdict, "holds");
+    let down = Hypothesis::Trend {
+        id: "t".into(),
+        measure: Measure::Term("urgency".into()),
+        arms: vec!["lo".into(), "mid".into(), "hi".into()],
+        expect: Direction::Lower,
+    };
+    let got = claims(&[down], &rows, &[1], &level, &a).unwrap();
+    assert_eq!(got[0].verdict, "opposite");
+}
+
+#[test]
+fn a_range_holds_inside_is_opposite_outside_and_undecided_across_a_bound() {
+    let rows = rows(|k, seed| 10.0 * k as f64 + seed as f64 * 0.1);
+    let a = analysis(Rule::P, HolmOver::None);
+    let range = |min: f64, max: f64| Hypothesis::Range {
+        id: "r".into(),
+        measure: Measure::Term("urgency".into()),
+        arm: "mid".into(),
+        min,
+        max,
+    };
+    // mid: 10.0 … 10.5
+    for ((min, max), verdict) in [
+        ((5.0, 15.0), "holds"),
+        ((20.0, 30.0), "opposite"),
+        ((0.0, 5.0), "opposite"),
+        ((10.2, 30.0), "not significant"),
+    ] {
+        let got = claims(&[range(min, max)], &rows, &[1], &level, &a).unwrap();
+        assert_eq!(got[0].verdict, verdict, "[{min}, {max}]");
+        assert!((got[0].effect - 10.25).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn holm_over_hypotheses_adjusts_the_claims_and_over_rooms_the_rooms() {
+    let rows = rows(|k, seed| 10.0 * k as f64 + (seed % 3) as f64);
+    let hs = [compare_h(Direction::Higher), {
+        let mut h = compare_h(Direction::Lower);
+        if let Hypothesis::Compare { id, .. } = &mut h {
+            *id = "d".into();
+        }
+        h
+    }];
+    let over = |holm| {
+        let a = analysis(Rule::P, holm);
+        let c = claims(&hs, &rows, &[1], &level, &a).unwrap();
+        let r = room_results(&hs, &rows, &[1], &level, &a).unwrap();
+        (c, r)
+    };
+    let (c, r) = over(HolmOver::Hypotheses);
+    assert_eq!(c[0].p_adjusted, statistics::holm(&[c[0].p, c[1].p])[0]);
+    assert!(c[0].p_adjusted > c[0].p);
+    assert_eq!(r[0].p_adjusted, r[0].p);
+    let (c, _) = over(HolmOver::None);
+    assert_eq!(c[0].p_adjusted, c[0].p);
+}
+
+#[test]
+fn several_base_seeds_give_a_pooled_scope_and_one_per_base_seed() {
+    let mut rows = rows(|k, seed| 10.0 * k as f64 + seed as f64);
+    let more: Vec<PerSeedRow> = rows
+        .iter()
+        .map(|r| PerSeedRow {
+            base_seed: 2,
+            ..r.clone()
+        })
+        .collect();
+    rows.extend(more);
+    let a = analysis(Rule::Power, HolmOver::Hypotheses);
+    let got = claims(&[compare_h(Direction::Higher)], &rows, &[1, 2], &level, &a).unwrap();
+    let scopes: Vec<(&str, usize)> = got.iter().map(|c| (c.scope.as_str(), c.seeds)).collect();
+    assert_eq!(scopes, [("pooled", 12), ("base=1", 6), ("base=2", 6)]);
+}
