@@ -9,10 +9,11 @@ use std::fmt::Write as _;
 use fuzzymotiv::statistics::{Comparison, Settings, paired};
 use fuzzymotiv_records::records::combination::{BehaviourRow, ClaimDifferenceRow};
 use fuzzymotiv_records::records::paired::PairedStats;
+use fuzzymotiv_records::records::paper_claims::ClaimId;
 use fuzzymotiv_records::records::{ClaimRecord, StudySummary, TableRow};
 
 use crate::plot::{Ticks, colour, esc, open, px, text_width};
-use crate::study::{COMPARISON_CLAIMS, DEFAULT_MODEL, Variant, seed_means};
+use crate::study::{DEFAULT_MODEL, Variant, seed_means};
 use crate::tables::verdict;
 
 /// The study under each combination: the TSK first (the default model), then the baselines.
@@ -111,10 +112,12 @@ fn row(combination: &str, setting: &str, measure: &str, c: &Comparison) -> Behav
 
 /// Per seed, a claim's high − low (each setting's mean over rooms of `column`), for a study
 /// of the paper's two settings (high curiosity first); none if a value is missing.
-fn claim_effects(study: &StudySummary, column: fn(&TableRow) -> Option<f64>) -> Option<Vec<f64>> {
+fn claim_effects(study: &StudySummary, claim: ClaimId) -> Option<Vec<f64>> {
     let [high, low] = study.settings.as_slice() else {
         return None;
     };
+    let measure = claim.measure();
+    let column = |r: &TableRow| measure.of_row(r);
     let (h, l) = (seed_means(high, column)?, seed_means(low, column)?);
     (h.len() == l.len()).then(|| h.iter().zip(&l).map(|(h, l)| h - l).collect())
 }
@@ -129,8 +132,8 @@ pub fn claim_difference_rows(studies: &[(&str, &StudySummary)]) -> Vec<ClaimDiff
     };
     let mut out = Vec::new();
     for (name, study) in rest {
-        for (claim, column, _) in COMPARISON_CLAIMS {
-            let (Some(a), Some(b)) = (claim_effects(study, column), claim_effects(tsk, column))
+        for claim in ClaimId::COMPARISONS {
+            let (Some(a), Some(b)) = (claim_effects(study, claim), claim_effects(tsk, claim))
             else {
                 continue;
             };
@@ -142,7 +145,7 @@ pub fn claim_difference_rows(studies: &[(&str, &StudySummary)]) -> Vec<ClaimDiff
             };
             out.push(ClaimDifferenceRow {
                 combination: (*name).into(),
-                claim: claim.into(),
+                claim,
                 effect_combination: c.mean_a,
                 effect_tsk: c.mean_b,
                 stats: PairedStats::of(&c),
@@ -464,9 +467,9 @@ mod tests {
     fn each_claims_effect_is_compared_between_combinations_paired_by_seed() {
         let (tsk, sum) = shifted(4.0, &[0, 1, 2, 3, 4]);
         let rows = claim_difference_rows(&[("tsk", &tsk), ("weighted-sum", &sum)]);
-        assert_eq!(rows.len(), COMPARISON_CLAIMS.len(), "{rows:?}");
+        assert_eq!(rows.len(), ClaimId::COMPARISONS.len(), "{rows:?}");
         for r in &rows {
-            let battery = r.claim.contains("battery");
+            let battery = r.claim == ClaimId::Battery;
             let want = if battery { 4.0 } else { 0.0 };
             assert!((r.stats.difference - want).abs() < 1e-9, "{r:?}");
             assert!(
@@ -483,7 +486,7 @@ mod tests {
         // One seed shifted: the effect differs by 4 / 5 on average, not in every seed.
         let (tsk, one) = shifted(4.0, &[2]);
         let rows = claim_difference_rows(&[("tsk", &tsk), ("weighted-squares", &one)]);
-        let battery = rows.iter().find(|r| r.claim.contains("battery")).unwrap();
+        let battery = rows.iter().find(|r| r.claim == ClaimId::Battery).unwrap();
         assert!((battery.stats.difference - 0.8).abs() < 1e-9, "{battery:?}");
         assert!(battery.stats.p > 0.05, "{battery:?}");
         let (md, csv) = claim_difference_table(&rows, 5);

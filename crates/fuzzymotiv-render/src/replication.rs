@@ -124,7 +124,7 @@ fn row(p: &ClaimRecord, a: &ClaimRecord, b: &ClaimRecord, replicates: bool) -> R
         vp.clone()
     };
     ReplicationRow {
-        claim: p.claim.clone(),
+        claim: p.claim,
         verdict_a: va,
         verdict_b: vb,
         verdict_pooled: vp,
@@ -300,7 +300,7 @@ fn panel(
         r#"<text x="{}" y="{}" text-anchor="middle" font-weight="bold">{}</text>"#,
         px((x0 + x1) / 2.0),
         oy + 18.0,
-        esc(&claim.claim)
+        esc(&claim.claim.sentence())
     );
     for (p, label) in [
         (1e-4, "0.0001"),
@@ -408,7 +408,8 @@ mod tests {
     #[test]
     fn a_tiny_pooled_p_is_escaped_in_the_figure() {
         let claim: ClaimRecord = serde_json::from_str(
-            r#"{"claim": "c", "evidence": "", "holds": true, "stats": {"seeds": 40,
+            r#"{"claim": "high curiosity uses more battery", "evidence": "", "holds": true,
+            "stats": {"seeds": 40,
             "difference": -13.0, "ci_low": -18.0, "ci_high": -8.0, "p": 0.0, "min_p": 0.0,
             "alpha": 0.05, "verdict": "holds", "mdd": 6.8}}"#,
         )

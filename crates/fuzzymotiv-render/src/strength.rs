@@ -12,9 +12,10 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::statistics::{self, BOOTSTRAP_RESAMPLES, Settings, mean_interval};
 
-use super::study::{CLAIMS_ALPHA, COMPARISON_CLAIMS, Variant, seed_means};
+use super::study::{CLAIMS_ALPHA, Variant, seed_means};
 use crate::plot::{Ticks, colour, esc, open, text_width};
 use crate::tables::p_text;
+use fuzzymotiv_records::records::paper_claims::ClaimId;
 use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};
 
 /// Picks one column of a table row.
@@ -51,18 +52,16 @@ fn low_exploration(study: &StudySummary) -> Option<Vec<f64>> {
 }
 
 /// A setting's mean over seeds of each seed's mean over rooms of `column`.
-fn grand(setting: &SettingSummary, column: Column) -> Option<f64> {
+fn grand(setting: &SettingSummary, column: impl Fn(&TableRow) -> Option<f64>) -> Option<f64> {
     seed_means(setting, column).map(|v| statistics::mean(&v))
 }
 
-/// The column a comparison claim is about: the study's own table of its comparison claims
-/// ([`COMPARISON_CLAIMS`]), by the claim's exact name as the records keep it; none for Fig. 6's
-/// checks. No words of the sentence are matched.
-fn claim_column(claim: &str) -> Option<Column> {
-    COMPARISON_CLAIMS
-        .iter()
-        .find(|(name, _, _)| *name == claim)
-        .map(|&(_, column, _)| column)
+/// Both settings' means of the measure a claim is about ([`ClaimId::measure`]); none for
+/// Fig. 6's checks, whose measure is no column of the tables.
+fn claim_means(study: &StudySummary, claim: ClaimId) -> (Option<f64>, Option<f64>) {
+    let measure = claim.measure();
+    let mean = |k: usize| grand(study.settings.get(k)?, |r: &TableRow| measure.of_row(r));
+    (mean(0), mean(1))
 }
 
 fn num(v: Option<f64>, d: usize) -> String {
@@ -126,11 +125,7 @@ fn claim_row(md: &mut String, csv: &mut String, study: &StudySummary, c: &ClaimR
         let _ = writeln!(csv, "{pop},\"{}\",,,,,,,{verdict},,", c.claim);
         return;
     };
-    let means = claim_column(&c.claim).map(|col| {
-        let m: Vec<Option<f64>> = study.settings.iter().map(|s| grand(s, col)).collect();
-        (m[0], m.get(1).copied().flatten())
-    });
-    let (high, low) = means.unwrap_or((None, None));
+    let (high, low) = claim_means(study, c.claim);
     let _ = writeln!(
         md,
         "| {pop} | {} | {} % | {} % | {:+.1} [{:+.1}, {:+.1}] | {} | {} | {} |",
@@ -249,10 +244,10 @@ fn claim_panels(studies: &[StudySummary]) -> Vec<Panel> {
         .map(|claim| {
             let stats: Vec<_> = studies
                 .iter()
-                .map(|s| s.claims.get(claims_index(s, &claim.claim)?)?.stats.clone())
+                .map(|s| s.claims.get(claims_index(s, claim.claim)?)?.stats.clone())
                 .collect();
             Panel {
-                title: short(&claim.claim),
+                title: claim.claim.short(),
                 y_label: "high − low (points)",
                 series: vec![(
                     "difference".into(),
@@ -272,15 +267,8 @@ fn claim_panels(studies: &[StudySummary]) -> Vec<Panel> {
         .collect()
 }
 
-/// A claim's words without the setting names: "explores more", "returns home less".
-fn short(claim: &str) -> String {
-    claim
-        .trim_start_matches("high curiosity ")
-        .replace(" than low curiosity", "")
-        .replace(" (lower % homing)", "")
-}
-
-fn claims_index(study: &StudySummary, claim: &str) -> Option<usize> {
+/// Where a population's study lists `claim`.
+fn claims_index(study: &StudySummary, claim: ClaimId) -> Option<usize> {
     study.claims.iter().position(|c| c.claim == claim)
 }
 
@@ -479,32 +467,5 @@ mod tests {
             assert_eq!(v.name, format!("pop-{p}"));
             assert!(!v.first_release_rooms);
         }
-    }
-
-    #[test]
-    fn claim_columns_come_from_the_studys_table_of_claims_not_their_words() {
-        let row = TableRow {
-            room: "H".into(),
-            average_fitness: Some(0.5),
-            battery_pct: Some(2.0),
-            exploration_pct: Some(1.0),
-            homing_pct: Some(4.0),
-            recognition_pct: Some(3.0),
-        };
-        let pick = |c: &str| claim_column(c).and_then(|f| f(&row));
-        assert_eq!(
-            pick("high curiosity explores more than low curiosity"),
-            Some(1.0)
-        );
-        assert_eq!(pick("high curiosity uses more battery"), Some(2.0));
-        assert_eq!(pick("high curiosity recognises rooms better"), Some(3.0));
-        assert_eq!(
-            pick("high curiosity returns home less (lower % homing)"),
-            Some(4.0)
-        );
-        assert_eq!(pick("mean F rises over the generations"), None);
-        // A sentence that merely contains a claim's words is not that claim.
-        assert_eq!(pick("low curiosity explores more"), None);
-        assert_eq!(pick("uses more battery"), None);
     }
 }

@@ -6,6 +6,7 @@ use fuzzymotiv::statistics::{self, Expect, Settings, Verdict, mean_std, quantile
 
 use crate::svg::{BEST_BAND, FitnessPanel, MEAN_BAND};
 use fuzzymotiv_records::records::context::RenderContext;
+use fuzzymotiv_records::records::paper_claims::{ClaimId, Direction};
 use fuzzymotiv_records::records::{
     ClaimRecord, ClaimStats, CurveStats, Finished, GenerationStat, RoomClaimStats, RoomRow,
     SeedSummary, SettingSummary, TableRow,
@@ -375,38 +376,16 @@ pub fn generation_stat(study: &SettingRuns<'_>, last: bool, best: bool) -> f64 {
 /// A column of a seed's table (see [`TableRow`]).
 pub type Column = fn(&TableRow) -> Option<f64>;
 
-/// The paper's comparison claims, high against low curiosity paired by seed: the claim in
-/// words, the measure (a column of the tables) and the direction the paper expects.
-pub const COMPARISON_CLAIMS: [(&str, Column, Expect); 4] = [
-    (
-        "high curiosity explores more than low curiosity",
-        |r| r.exploration_pct,
-        Expect::Higher,
-    ),
-    (
-        "high curiosity uses more battery",
-        |r| r.battery_pct,
-        Expect::Higher,
-    ),
-    (
-        "high curiosity recognises rooms better",
-        |r| r.recognition_pct,
-        Expect::Higher,
-    ),
-    (
-        "high curiosity returns home less (lower % homing)",
-        |r| r.homing_pct,
-        Expect::Lower,
-    ),
-];
-
 /// Per seed, the mean over rooms of `column`; none if a value is missing.
-pub fn seed_means(setting: &SettingSummary, column: Column) -> Option<Vec<f64>> {
+pub fn seed_means(
+    setting: &SettingSummary,
+    column: impl Fn(&TableRow) -> Option<f64>,
+) -> Option<Vec<f64>> {
     setting
         .per_seed
         .iter()
         .map(|s| {
-            let values: Option<Vec<f64>> = s.rows.iter().map(column).collect();
+            let values: Option<Vec<f64>> = s.rows.iter().map(&column).collect();
             values.map(|v| mean_std(&v).0)
         })
         .collect()
@@ -414,11 +393,14 @@ pub fn seed_means(setting: &SettingSummary, column: Column) -> Option<Vec<f64>> 
 
 /// The mean of `column` over rooms and seeds (as the tables show it); none if a value is
 /// missing.
-fn grand_mean_of(setting: &SettingSummary, column: Column) -> Option<f64> {
+fn grand_mean_of(
+    setting: &SettingSummary,
+    column: impl Fn(&TableRow) -> Option<f64>,
+) -> Option<f64> {
     let values: Option<Vec<f64>> = setting
         .per_seed
         .iter()
-        .flat_map(|s| s.rows.iter().map(column))
+        .flat_map(|s| s.rows.iter().map(&column))
         .collect();
     values.map(|v| mean_std(&v).0)
 }
@@ -437,18 +419,16 @@ pub fn claims_stem(alpha: f64) -> String {
     }
 }
 
-/// A comparison claim, high against low curiosity on `column`, paired by seed
+/// A comparison claim ([`ClaimId::COMPARISONS`]), high against low curiosity on its measure,
+/// paired by seed
 /// ([`statistics::paired`] on each seed's mean over rooms, resampling seeded by the study's
 /// first seed): the verdict at `alpha`, the effect, its interval, p and the minimum detectable
 /// difference.
-fn compare_claim(
-    settings: &[SettingSummary],
-    claim: &str,
-    column: Column,
-    expect: Expect,
-    alpha: f64,
-) -> ClaimRecord {
+fn compare_claim(settings: &[SettingSummary], claim: ClaimId, alpha: f64) -> ClaimRecord {
     let (hc, lc) = (&settings[0], &settings[1]);
+    let measure = claim.measure();
+    let column = |r: &TableRow| measure.of_row(r);
+    let expect = claim.direction().expect().unwrap_or(Expect::Higher);
     let show = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.1} %"));
     let evidence = format!(
         "high {} vs low {}",
@@ -474,10 +454,10 @@ fn compare_claim(
         alpha,
         verdict: s.verdict_with_power(expect).label().into(),
         mdd: s.mdd,
-        rooms: room_claims(hc, lc, column, expect, &options),
+        rooms: room_claims(hc, lc, &column, expect, &options),
     });
     ClaimRecord {
-        claim: claim.into(),
+        claim,
         holds: stats.as_ref().is_some_and(|s| s.verdict == "holds"),
         evidence,
         stats,
@@ -491,7 +471,7 @@ fn compare_claim(
 fn room_claims(
     hc: &SettingSummary,
     lc: &SettingSummary,
-    column: Column,
+    column: &dyn Fn(&TableRow) -> Option<f64>,
     expect: Expect,
     options: &Settings,
 ) -> Vec<RoomClaimStats> {
@@ -546,8 +526,7 @@ fn mean_f(setting: &SettingSummary, last: bool) -> f64 {
     mean_std(&seed_mean_f(setting, last)).0
 }
 
-/// The band Fig. 6 puts the first generation's mean F in ("about 0.1").
-pub const FIRST_F_BAND: (f64, f64) = (0.05, 0.15);
+pub use fuzzymotiv_records::records::paper_claims::FIRST_F_BAND;
 
 /// The one-sided p of "mean(a) > mean(b)" from the paired two-sided sign-flip test: half the
 /// two-sided p when the observed difference is positive (the null distribution is symmetric),
@@ -630,6 +609,14 @@ fn rise_stats(setting: &SettingSummary, options: &Settings) -> Option<CurveStats
     })
 }
 
+/// Whether `value` lies in the band of a claim whose direction is a band (inclusive).
+fn within(claim: ClaimId, value: f64) -> bool {
+    match claim.direction() {
+        Direction::Within(lo, hi) => (lo..=hi).contains(&value),
+        Direction::Higher | Direction::Lower => false,
+    }
+}
+
 /// The paper's claims from a study's records (`settings[0]` high curiosity, `settings[1]`
 /// low, as in `summary.json`): high vs low curiosity, each tested at level `alpha` (paired
 /// over seeds, see `fuzzymotiv::statistics`), and Fig. 6's fitness curves: `holds` on the
@@ -638,9 +625,6 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
     let (hc, lc) = (&settings[0], &settings[1]);
     let first = [mean_f(hc, false), mean_f(lc, false)];
     let last = [mean_f(hc, true), mean_f(lc, true)];
-    let compare = |claim: &str, column: Column, expect: Expect| {
-        compare_claim(settings, claim, column, expect, alpha)
-    };
     let options = Settings {
         alpha,
         seed: hc.per_seed.first().map_or(0, |s| s.seed),
@@ -649,20 +633,19 @@ pub fn claims(settings: &[SettingSummary], alpha: f64) -> Vec<ClaimRecord> {
     let curves = |test: fn(&SettingSummary, &Settings) -> Option<CurveStats>| {
         settings.iter().filter_map(|s| test(s, &options)).collect()
     };
-    let mut out: Vec<ClaimRecord> = COMPARISON_CLAIMS
-        .iter()
-        .map(|&(claim, column, expect)| compare(claim, column, expect))
+    let mut out: Vec<ClaimRecord> = (ClaimId::COMPARISONS.iter())
+        .map(|&claim| compare_claim(settings, claim, alpha))
         .collect();
     out.extend([
         ClaimRecord {
-            claim: "first-generation mean F about 0.1 (between 0.05 and 0.15)".into(),
-            holds: first.iter().all(|f| (0.05..=0.15).contains(f)),
+            claim: ClaimId::FirstGenerationF,
+            holds: first.iter().all(|f| within(ClaimId::FirstGenerationF, *f)),
             evidence: format!("high {:.3}, low {:.3}", first[0], first[1]),
             stats: None,
             curves: curves(first_f_stats),
         },
         ClaimRecord {
-            claim: "mean F rises over the generations".into(),
+            claim: ClaimId::FitnessRises,
             holds: last[0] > first[0] && last[1] > first[1],
             evidence: format!(
                 "high {:.3} → {:.3}, low {:.3} → {:.3}",

@@ -422,7 +422,7 @@ pub fn claims_html(claims: &[ClaimRecord]) -> String {
         let _ = writeln!(
             html,
             "<tr><td class=\"left\">{}</td><td class=\"{}\">{v}</td><td>{diff}</td><td>{p}</td><td>{mdd}</td><td>{}</td></tr>",
-            esc(&c.claim),
+            esc(&c.claim.sentence()),
             verdict_class(v),
             esc(&c.evidence)
         );
@@ -461,7 +461,7 @@ fn room_claims_html(claims: &[ClaimRecord]) -> String {
                 format!(
                     "<td class=\"left\" rowspan=\"{}\">{}</td>",
                     rooms.len(),
-                    esc(&c.claim)
+                    esc(&c.claim.sentence())
                 )
             } else {
                 String::new()
@@ -496,7 +496,7 @@ fn curve_claims_html(claims: &[ClaimRecord]) -> String {
             let _ = writeln!(
                 html,
                 "<tr><td class=\"left\">{}</td><td>{}</td><td>{:.3} [{:.3}, {:.3}]</td><td>{}</td><td class=\"{}\">{}</td></tr>",
-                esc(&c.claim),
+                esc(&c.claim.sentence()),
                 esc(&r.setting),
                 r.value,
                 r.ci_low,
@@ -598,7 +598,7 @@ mod tests {
     /// A claim over `seeds` paired seeds with p-value `p` and smallest attainable p `min_p`.
     fn claim_over(seeds: usize, p: f64, min_p: f64) -> ClaimRecord {
         ClaimRecord {
-            claim: "high curiosity explores more than low curiosity".into(),
+            claim: fuzzymotiv_records::records::paper_claims::ClaimId::Explores,
             curves: Vec::new(),
             evidence: "high 91.2 % vs low 89.5 %".into(),
             holds: true,

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::records::paired::PairedStats;
+use crate::records::paper_claims::ClaimId;
 use crate::records::{ClaimRecord, VariantSummary};
 
 /// One measure of one setting: a baseline against the TSK, paired by seed.
@@ -33,8 +34,8 @@ pub struct BehaviourRow {
 pub struct ClaimDifferenceRow {
     /// The baseline (`weighted-sum`, `weighted-squares`).
     pub combination: String,
-    /// The claim, as the claims tables word it.
-    pub claim: String,
+    /// The claim (written as its sentence, as the claims tables word it).
+    pub claim: ClaimId,
     /// The claim's effect under the baseline: mean over seeds of high − low.
     pub effect_combination: f64,
     /// The claim's effect under the TSK.

@@ -56,6 +56,7 @@ pub mod export;
 pub mod genome;
 pub mod hypotheses;
 pub mod paired;
+pub mod paper_claims;
 pub mod replication;
 pub mod robot_log;
 pub mod robustness;
@@ -929,8 +930,9 @@ pub struct SettingSummary {
 /// One of the paper's claims and whether the study shows it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ClaimRecord {
-    /// The claim in words.
-    pub claim: String,
+    /// The claim, written as its sentence ([`paper_claims::ClaimId::sentence`]) and read back
+    /// from it.
+    pub claim: paper_claims::ClaimId,
     /// Fig. 6's checks over seeds, one per setting (none for the comparisons and in files
     /// written before them).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

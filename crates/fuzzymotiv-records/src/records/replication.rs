@@ -5,12 +5,13 @@
 use serde::{Deserialize, Serialize};
 
 use crate::records::ClaimRecord;
+use crate::records::paper_claims::ClaimId;
 
 /// One claim: its verdict under each base seed's study and under the pooled seeds.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ReplicationRow {
-    /// The claim in words.
-    pub claim: String,
+    /// The claim (written as its sentence).
+    pub claim: ClaimId,
     /// Its verdict from the first base seed's study (all its seeds).
     pub verdict_a: String,
     /// Its verdict from the second base seed's study.
