@@ -301,11 +301,10 @@ fn edited(dir: &Path, name: &str, line: &str, by: &str) -> PathBuf {
 #[test]
 fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&str, &str, &str, &[&str]); 9] = [
+    let cases: [(&str, &str, &[&str]); 10] = [
         (
             "measure = \"urgency\"          #",
             "measure = \"hurry\" #",
-            "",
             &[
                 "hypothesis[0].measure",
                 "unknown measure `hurry_pct`",
@@ -316,48 +315,51 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
         (
             "b = \"urgency-0.1\"",
             "b = \"urgency-0.9\"",
-            "",
             &["hypothesis[0].b", "unknown arm `urgency-0.9`"],
         ),
         (
             "b = \"urgency-0.1\"",
             "b = \"urgency-0.5\"",
-            "",
             &["hypothesis[0].b", "with itself"],
         ),
-        ("seeds = 4\n", "seeds = 0\n", "", &["study.seeds", "got 0"]),
+        ("seeds = 4\n", "seeds = 0\n", &["study.seeds", "got 0"]),
         (
             "name = \"urgency-0.3\"\nlevel = 0.3\n",
             "name = \"urgency-0.3\"\n",
-            "",
             &["hypothesis[1].arms", "has no `level`", "ordered"],
         ),
         (
             "rule = \"power\"",
             "rule = \"power\"\nbeta = 0.2",
-            "",
             &["beta", "unknown field"],
         ),
         (
             "kind = \"rising\"",
             "kind = \"rising\"\nmeasure = \"goal\"",
-            "",
             &["measure", "unknown field"],
         ),
         (
             "alpha = 0.05",
             "alpha = 1.5",
-            "",
             &["analysis.alpha", "between 0 and 1"],
         ),
         (
             "",
             "\n[[hypothesis]]\nid = \"sooner\"\nkind = \"rising\"\narm = \"urgency-0.1\"\n",
-            "",
             &["hypothesis[4].id", "used twice"],
         ),
+        // The low arm made the middle one (fetch.toml's curiosity): two arms of one config.
+        (
+            "\"motivations.curiosity\" = 0.7, \"motivations.urgency\" = 0.1",
+            "\"motivations.curiosity\" = 0.5",
+            &[
+                "urgency-0.1;base=1;rep=0",
+                "urgency-0.3;base=1;rep=0",
+                "the same config",
+            ],
+        ),
     ];
-    for (k, (line, by, _, says)) in cases.iter().enumerate() {
+    for (k, (line, by, says)) in cases.iter().enumerate() {
         let file = edited(dir.path(), &format!("bad{k}.toml"), line, by);
         let out = dir.path().join(format!("out{k}"));
         let o = run(&[
@@ -378,4 +380,44 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
         assert!(!message.contains("panicked"), "{message}");
         assert!(!out.exists(), "case {k}: nothing written");
     }
+}
+
+#[test]
+fn a_study_directory_is_kept_from_another_study_unless_force_and_a_run_may_replace_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = tiny_study(dir.path(), "[1]", "");
+    let out = dir.path().join("out");
+    study(&file, &out, &["--shard", "0/4"]);
+    // Other base seeds: another plan.
+    let other = dir.path().join("other.toml");
+    let text = std::fs::read_to_string(&file).unwrap();
+    std::fs::write(&other, text.replace("base_seeds = [1]", "base_seeds = [5]")).unwrap();
+    let refused = run(&[
+        "study",
+        other.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
+    study(&other, &out, &["--shard", "0/4", "--force"]);
+    let plan = std::fs::read_to_string(out.join("plan.jsonl")).unwrap();
+    assert!(
+        plan.contains("base=5") && !plan.contains("base=1;"),
+        "{plan}"
+    );
+    // A finished study's analysis files are ours: `run --force` may replace the directory.
+    study(&other, &out, &[]);
+    let config = repo().join("configs/tiny.toml");
+    let replaced = run(&[
+        "run",
+        config.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--force",
+        "--set",
+        "ga.generations=1",
+        "-q",
+    ]);
+    assert!(replaced.status.success(), "{}", stderr(&replaced));
+    assert!(!out.join("claims.csv").exists() && out.join("summary.json").is_file());
 }
