@@ -1,7 +1,7 @@
 //! Progress on stderr: a bar on a terminal; otherwise (SLURM, `nohup`, `| tee`) one plain line
 //! every few seconds; nothing with `--quiet`. [`Progress`] shows runs (the pipeline's
-//! [`RunProgress`]), [`JobsProgress`] a sweep's jobs ([`SweepProgress`]), [`StudyBar`] a
-//! study's runs ([`StudyProgress`]).
+//! [`RunProgress`]), [`JobsProgress`] a sweep's jobs ([`SweepProgress`]), [`ReproduceBar`] a
+//! study's runs ([`ReproduceProgress`]).
 
 use fuzzymotiv_io::note;
 use std::io::IsTerminal;
@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_io::pipeline::progress::{RunProgress, SweepProgress};
-use fuzzymotiv_io::pipeline::reproduce::StudyProgress;
+use fuzzymotiv_io::pipeline::reproduce::ReproduceProgress;
 use fuzzymotiv_io::records::Job;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -281,15 +281,15 @@ impl SweepProgress for JobsProgress {
 }
 
 /// Progress of a study's runs (`reproduce`): one [`Progress`] over all of them from
-/// [`StudyProgress::begin`], a named view of it per run; a sweep's jobs as [`JobsProgress`];
+/// [`ReproduceProgress::begin`], a named view of it per run; a sweep's jobs as [`JobsProgress`];
 /// nothing with `--quiet`.
-pub struct StudyBar {
+pub struct ReproduceBar {
     quiet: bool,
-    /// The progress over the study's runs, from [`StudyProgress::begin`].
+    /// The progress over the study's runs, from [`ReproduceProgress::begin`].
     runs: OnceLock<Progress>,
 }
 
-impl StudyBar {
+impl ReproduceBar {
     /// Progress of a study, none with `quiet`.
     pub fn new(quiet: bool) -> Self {
         Self {
@@ -299,7 +299,7 @@ impl StudyBar {
     }
 }
 
-impl StudyProgress for StudyBar {
+impl ReproduceProgress for ReproduceBar {
     fn begin(&self, exp: &Experiment, runs: usize) {
         let _ = self.runs.set(Progress::new(exp, runs, self.quiet));
     }

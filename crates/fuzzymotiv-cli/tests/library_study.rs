@@ -9,7 +9,7 @@ use common::{Fm, SMALL, assert_same_results, stderr, stdout};
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_io::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
 use fuzzymotiv_io::pipeline::reproduce::{
-    Front, ReproduceOptions, StudyKind, StudyProgress, reproduce,
+    Front, ReproduceOptions, ReproduceProgress, StudyKind, reproduce,
 };
 
 /// A progress that records what it is told.
@@ -20,7 +20,7 @@ struct Recorded {
     ended: Mutex<usize>,
 }
 
-impl StudyProgress for Recorded {
+impl ReproduceProgress for Recorded {
     fn begin(&self, _exp: &Experiment, runs: usize) {
         self.begun.lock().unwrap().push(runs);
     }
@@ -92,4 +92,49 @@ fn each_study_has_its_default_output_directory() {
         "results-search-strength-quick"
     );
     assert_eq!(out(StudyKind::Urgency, false), "results-urgency");
+}
+
+/// A saved genome replays from the library (`fuzzymotiv_io::pipeline::replay`) into the
+/// trajectory and the JSON entry that `fuzzymotiv replay` writes for it.
+#[test]
+fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
+    use fuzzymotiv_io::files::inputs::load_config;
+    use fuzzymotiv_io::pipeline::replay::{replay_config, replay_trials, room_files};
+    use fuzzymotiv_io::records::context::RenderContext;
+    use fuzzymotiv_io::records::genome::read_genome;
+
+    let dir = tempfile::tempdir().unwrap();
+    let run = dir.path().join("run");
+    let cfg = dir.path().join("small.toml");
+    std::fs::write(&cfg, "seed = 3\nrooms = [\"H\", \"square\"]\n").unwrap();
+    let o = Fm::new(["run", cfg.to_str().unwrap()])
+        .sets(&SMALL)
+        .out(&run)
+        .run();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let page = dir.path().join("cli/replay.html");
+    let o = Fm::new(["replay", run.to_str().unwrap()]).out(&page).run();
+    assert!(o.status.success(), "{}", stderr(&o));
+
+    let config = run.join("config.resolved.toml");
+    let loaded = load_config(Some(&config), &[], None).unwrap();
+    let genome = read_genome(&run.join("best_genome.json")).unwrap();
+    let rooms = loaded.raw.rooms.clone();
+    let loaded = replay_config(&loaded, &genome, rooms, "run").unwrap();
+    let trials = replay_trials(&loaded.experiment, &genome).unwrap();
+    let ctx = RenderContext::of(&loaded);
+    let mut files = Vec::new();
+    let lib = dir.path().join("lib");
+    let (lines, rooms) = room_files(&ctx, &lib, "replay", &trials, &mut files);
+    assert_eq!(files.len(), ctx.rooms.len(), "a CSV per room");
+    for (path, bytes) in &files {
+        let name = path.strip_prefix(&lib).unwrap();
+        let cli_csv = std::fs::read(dir.path().join("cli").join(name)).unwrap();
+        assert!(*bytes == cli_csv, "{} differs", name.display());
+    }
+    assert!(lines[0].starts_with("H: a = "), "{lines:?}");
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("cli/replay.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["rooms"], serde_json::Value::Array(rooms));
 }

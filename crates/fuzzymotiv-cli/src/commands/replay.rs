@@ -8,27 +8,23 @@
 //! ([`fuzzymotiv_io::render::frames`]); `--log` draws a robot's logged path over its room
 //! (read by [`fuzzymotiv_io::records::robot_log::RobotLog`], as `recognise` reads it).
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv::experiment::InstanceRun;
-use fuzzymotiv::experiment::{Experiment, Run};
-use fuzzymotiv::experiment::{OrientationMode, Training};
-use fuzzymotiv::fitness::MissionTerms;
-use fuzzymotiv::simulation::MlpShape;
-use fuzzymotiv::simulation::{Trajectory, TrialParams};
-use rayon::prelude::*;
+use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::simulation::TrialParams;
 
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, num, write_files};
-use fuzzymotiv_io::files::inputs::{load_config, resolve, room_entry, rooms_unchanged};
+use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_files};
+use fuzzymotiv_io::files::inputs::{load_config, room_entry, rooms_unchanged};
 use fuzzymotiv_io::note;
-use fuzzymotiv_io::records::PROGRAM;
+use fuzzymotiv_io::pipeline::replay::{
+    ReplayTrial, replay_config, replay_json, replay_trials, room_files, room_gifs,
+};
 use fuzzymotiv_io::records::context::RenderContext;
 use fuzzymotiv_io::records::genome::{SavedGenome, locate, read_genome};
 use fuzzymotiv_io::records::robot_log::RobotLog;
+use fuzzymotiv_io::render::frames::FrameOptions;
 use fuzzymotiv_io::render::frames::animate::delay_of;
-use fuzzymotiv_io::render::frames::{self, FrameOptions, Track};
 use fuzzymotiv_io::render::report::{replay_page_with, xs};
 use fuzzymotiv_io::render::svg::{LoggedPath, trajectories_svg_with};
 
@@ -106,58 +102,6 @@ pub struct ReplayArgs {
     pub force: bool,
 }
 
-/// A file-name-safe version of a room name.
-fn file_tag(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
-}
-
-/// The trajectory as CSV: one row per step `t` with the pose at the start of the step, the
-/// sensor values read there, the motor outputs, the action, whether the move collided and
-/// whether the step was idle (after the trial ended at home); a last row `t = steps` holds the
-/// final pose only.
-pub fn trajectory_csv(tr: &Trajectory) -> String {
-    let sensors = tr.sensors.first().map_or(8, |s| s.len());
-    let columns: String = (0..sensors).map(|k| format!("s{k},")).collect();
-    let mut s = format!("step,x_mm,y_mm,heading_rad,{columns}mL,mR,action,collision,idle\n");
-    for t in 0..tr.len() {
-        let p = tr.poses[t];
-        let _ = write!(s, "{t},{},{},{}", num(p.x), num(p.y), num(p.heading));
-        for &v in tr.sensors[t].iter() {
-            let _ = write!(s, ",{}", num(v));
-        }
-        let [ml, mr] = tr.motors[t];
-        let _ = writeln!(
-            s,
-            ",{},{},{},{},{}",
-            num(ml),
-            num(mr),
-            tr.actions[t].label(),
-            u8::from(tr.collisions[t]),
-            u8::from(tr.idle[t])
-        );
-    }
-    if let Some(p) = tr.poses.last() {
-        let _ = writeln!(
-            s,
-            "{},{},{},{}{}",
-            tr.len(),
-            num(p.x),
-            num(p.y),
-            num(p.heading),
-            ",".repeat(sensors + 5)
-        );
-    }
-    s
-}
-
 /// Entry point of `fuzzymotiv replay`.
 pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     let (genome_path, found_config) = locate(&args.source)?;
@@ -198,18 +142,12 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
             loaded.raw.network.hidden
         )));
     }
-    let mut raw = loaded.raw.clone();
-    raw.rooms = match &args.room {
+    let rooms = match &args.room {
         Some(want) => vec![room_entry("--room", want, &loaded)?],
         None => loaded.raw.rooms.clone(),
     };
-    raw.network.hidden = genome.hidden;
-    let logs = logged_paths(&args.log, &raw.rooms)?;
-    // Replaying needs neither room recognition nor online orientation (they would demand more
-    // rooms); neither changes a trajectory.
-    raw.aem.enabled = false;
-    raw.fitness.orientation = OrientationMode::Offline;
-    let loaded = resolve(raw, Path::new("."), &source_name)?;
+    let logs = logged_paths(&args.log, &rooms)?;
+    let loaded = replay_config(&loaded, &genome, rooms, &source_name)?;
     let trials = replay_trials(&loaded.experiment, &genome)?;
     let ctx = RenderContext::of(&loaded);
     let gifs = if args.gif {
@@ -273,145 +211,6 @@ fn gif_options(args: &ReplayArgs, trial: &TrialParams) -> Result<(FrameOptions, 
     Ok((opts.for_trial(trial), delay))
 }
 
-/// The animated GIF of every room's replay, `DIR/STEM-ROOM.gif`, drawn side by side on
-/// rayon's pool (the bytes do not depend on it).
-fn room_gifs(
-    ctx: &RenderContext,
-    dir: &Path,
-    stem: &str,
-    trials: &[(usize, String, InstanceRun)],
-    (opts, delay): (FrameOptions, u16),
-) -> Result<Vec<(PathBuf, Vec<u8>)>, CliError> {
-    trials
-        .par_iter()
-        .map(|(r, _, run)| {
-            let room = &ctx.rooms[*r];
-            let path = dir.join(format!("{stem}-{}.gif", file_tag(&room.name)));
-            let bytes = frames::gif(room, Track::of(&run.trajectory), opts, delay)
-                .map_err(|e| CliError::runtime(format!("{}: {e}", path.display())))?;
-            Ok((path, bytes))
-        })
-        .collect()
-}
-
-/// The room-modelling run of the genome (per-room training: of the room's own robot) in every
-/// room of `exp`, with its run label.
-fn replay_trials(
-    exp: &Experiment,
-    genome: &SavedGenome,
-) -> Result<Vec<(usize, String, InstanceRun)>, CliError> {
-    let runs = exp.runs();
-    let in_file =
-        |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome.path.display()));
-    // The robot's sensors are the network's inputs (7 on the Thymio II, not the Khepera's 8).
-    let shape = MlpShape::with_hidden(genome.hidden)
-        .map_err(|e| in_file(&e))?
-        .with_inputs(exp.shape().inputs())
-        .map_err(|e| in_file(&e))?;
-    let want_len = shape.genome_len();
-    let mut trials = Vec::new();
-    for r in 0..exp.arenas().len() {
-        let name = &exp.arenas()[r].room().name;
-        let (run, weights): (&Run, &Vec<f64>) = match exp.training() {
-            Training::AllRooms => (&runs[0], &genome.weights),
-            Training::PerRoom => match genome.runs.iter().find(|(label, _)| label == name) {
-                Some((_, w)) => (&runs[r], w),
-                None => {
-                    note!(
-                        "note: no robot was evolved in room {name}; replaying the genome's main robot"
-                    );
-                    (&runs[r], &genome.weights)
-                }
-            },
-        };
-        if weights.len() != want_len {
-            return Err(CliError::input(format!(
-                "{}: {} weights, but a {}-{}-2 network needs {want_len}",
-                genome.path.display(),
-                weights.len(),
-                shape.inputs(),
-                genome.hidden
-            )));
-        }
-        let network = exp.network(weights).map_err(|e| in_file(&e))?;
-        trials.push((r, run.label.clone(), exp.instance_run(&network, run, r)));
-    }
-    Ok(trials)
-}
-
-/// Per room of the replay: its trajectory's CSV file (`DIR/STEM-ROOM.csv`, added to `files`),
-/// and returned the line printed for it and its entry in the replay's JSON.
-fn room_files(
-    ctx: &RenderContext,
-    dir: &Path,
-    stem: &str,
-    trials: &[(usize, String, InstanceRun)],
-    files: &mut Vec<(PathBuf, Vec<u8>)>,
-) -> (Vec<String>, Vec<serde_json::Value>) {
-    let mut lines = Vec::new();
-    let mut rooms_json = Vec::new();
-    for (r, label, run) in trials {
-        let name = &ctx.rooms[*r].name;
-        let csv = dir.join(format!("{stem}-{}.csv", file_tag(name)));
-        files.push((csv.clone(), trajectory_csv(&run.trajectory).into_bytes()));
-        let (tr, terms) = (&run.trajectory, run.terms);
-        let mission = (terms.mission).map_or(String::new(), |m| mission_text(&m, &ctx.rooms[*r]));
-        lines.push(format!(
-            "{name}: a = {:.3}, g = {:.3}, b = {:.3}{mission}, F = {:.4}, {} collisions → {}",
-            terms.a,
-            terms.g,
-            terms.b,
-            run.f,
-            tr.collisions.iter().filter(|&&c| c).count(),
-            csv.display()
-        ));
-        let mut room_json = serde_json::json!({
-            "room": name,
-            "run": label,
-            "steps": tr.len(),
-            "terms": terms,
-            "f": run.f,
-            "executed_steps": tr.executed(),
-            "actions": tr.actions.iter().map(|a| a.label()).collect::<Vec<_>>(),
-            "trajectory": tr,
-        });
-        add_mission(&mut room_json, &ctx.rooms[*r]);
-        rooms_json.push(room_json);
-    }
-    (lines, rooms_json)
-}
-
-/// A replay line's mission terms: `goal` only for a room with a goal zone and `waypoints` only
-/// for one with waypoints (as `table.md` has no column for a zone no room has), then
-/// `urgency`, `safety` and whether the mission was done.
-fn mission_text(m: &MissionTerms, room: &fuzzymotiv::simulation::Room) -> String {
-    let mut text = String::new();
-    if room.mission.goal.is_some() {
-        let _ = write!(text, ", goal = {:.3}", m.goal);
-    }
-    let _ = write!(text, ", urgency = {:.3}", m.urgency);
-    if !room.mission.waypoints.is_empty() {
-        let _ = write!(text, ", waypoints = {:.3}", m.waypoints);
-    }
-    let done = m
-        .done_at
-        .map_or("not done".into(), |t| format!("done at step {t}"));
-    let _ = write!(text, ", safety = {:.3} (mission {done})", m.safety);
-    text
-}
-
-/// A room's mission in the replay's JSON, only when it has one (the paper's replays keep their
-/// bytes): `goal` as {x, y, radius} and `waypoints` as a list of them, in order.
-fn add_mission(room_json: &mut serde_json::Value, room: &fuzzymotiv::simulation::Room) {
-    let zone = |z: &fuzzymotiv::simulation::HomeZone| serde_json::json!({"x": z.centre.x, "y": z.centre.y, "radius": z.radius});
-    if let Some(goal) = &room.mission.goal {
-        room_json["goal"] = zone(goal);
-    }
-    if !room.mission.waypoints.is_empty() {
-        room_json["waypoints"] = room.mission.waypoints.iter().map(zone).collect();
-    }
-}
-
 /// Writes the replay's CSV per room, JSON, figure and page, through the output guard: the same
 /// replay again changes nothing; other files of those names are kept unless `--force`.
 fn write_replay(
@@ -419,7 +218,7 @@ fn write_replay(
     ctx: &RenderContext,
     genome: &SavedGenome,
     source_name: &str,
-    trials: &[(usize, String, InstanceRun)],
+    trials: &[ReplayTrial],
     gifs: Option<(FrameOptions, u16)>,
     logs: &[LoggedPath],
 ) -> Result<(), CliError> {
@@ -478,26 +277,6 @@ fn write_replay(
         note!("GIFs: {}", gif_names.join(", "));
     }
     Ok(())
-}
-
-/// The replay's JSON document: program, genome, config, seed and every room's trajectory.
-fn replay_json(
-    genome: &str,
-    source_name: &str,
-    ctx: &RenderContext,
-    rooms_json: Vec<serde_json::Value>,
-) -> Vec<u8> {
-    let doc = serde_json::json!({
-        "program": PROGRAM,
-        "version": fuzzymotiv::VERSION,
-        "model": fuzzymotiv::MODEL_VERSION,
-        "genome": genome,
-        "config": source_name,
-        "seed": ctx.seed,
-        "note": "poses[t] is the pose at the start of step t (poses[0] = home, poses[steps] = the end); sensors[t], motors[t], speeds[t] and collisions[t] belong to step t",
-        "rooms": rooms_json,
-    });
-    (serde_json::to_string(&doc).expect("serialisable") + "\n").into_bytes()
 }
 
 /// The directory and file stem of `--out FILE`; a directory is refused (the replay is a page

@@ -11,7 +11,7 @@ use fuzzymotiv_io::pipeline::reproduce::{
 
 use crate::args::OutputArgs;
 use crate::png::rasteriser;
-use crate::progress::StudyBar;
+use crate::progress::ReproduceBar;
 
 /// Arguments of `fuzzymotiv reproduce`.
 #[derive(clap::Args)]
@@ -122,7 +122,7 @@ impl ReproduceArgs {
 /// Entry point of `fuzzymotiv reproduce`: the study of the arguments, its progress on stderr
 /// and its tables (and the paper's claims) on stdout.
 pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
-    let progress = StudyBar::new(args.output.quiet);
+    let progress = ReproduceBar::new(args.output.quiet);
     let front = Front {
         progress: &progress,
         png: rasteriser(args.png),

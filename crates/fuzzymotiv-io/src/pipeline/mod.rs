@@ -2,13 +2,15 @@
 //! model the rooms, write the records, figures and report; read a finished one back), a
 //! sweep's plan ([`sweep_plan`]), jobs ([`sweep_jobs`]) and merge ([`sweep_merge`]), runs or
 //! jobs side by side ([`lanes`]), the progress all of it reports ([`progress`]), a finished
-//! run continued to more generations ([`continuation`]), and the paper's study and the studies
-//! built on it ([`reproduce`]: `ReproduceOptions` in, tables and records out).
+//! run continued to more generations ([`continuation`]), a saved genome replayed ([`replay`]),
+//! and the paper's study and the studies built on it ([`reproduce`]: `ReproduceOptions` in,
+//! tables and records out).
 
 pub mod compare;
 pub mod continuation;
 pub mod lanes;
 pub mod progress;
+pub mod replay;
 pub mod reproduce;
 pub mod run_dir;
 pub mod sweep_jobs;

@@ -1,6 +1,6 @@
 //! `reproduce`: the paper's study (docs/model.md §10) and the studies built on it, from the
 //! library: [`ReproduceOptions`] say which study, where and at what size (plain data, no
-//! command line), [`StudyProgress`] receives its progress, and [`reproduce`] runs it (resumable
+//! command line), [`ReproduceProgress`] receives its progress, and [`reproduce`] runs it (resumable
 //! through the output guard's staging directory) and returns what to show.
 //!
 //! One module per kind of study ([`StudyKind`]): [`paper`] (the paper's two settings and its
@@ -119,11 +119,11 @@ impl ReproduceOptions {
     }
 }
 
-/// Progress of a study's runs: [`begin`](StudyProgress::begin) once with how many runs will
-/// evolve, a view per run while it evolves ([`run`](StudyProgress::run); runs go on side by side,
-/// so it is shared between threads), [`end`](StudyProgress::end) when the last is done. The
-/// orientation study, a sweep, reports its jobs through [`jobs`](StudyProgress::jobs).
-pub trait StudyProgress: Sync {
+/// Progress of a study's runs: [`begin`](ReproduceProgress::begin) once with how many runs will
+/// evolve, a view per run while it evolves ([`run`](ReproduceProgress::run); runs go on side by side,
+/// so it is shared between threads), [`end`](ReproduceProgress::end) when the last is done. The
+/// orientation study, a sweep, reports its jobs through [`jobs`](ReproduceProgress::jobs).
+pub trait ReproduceProgress: Sync {
     /// `runs` runs of experiments like `exp` are about to evolve (some may be read back).
     fn begin(&self, exp: &Experiment, runs: usize);
     /// The progress of the run named `name` (e.g. `high-curiosity seed #03`), for as long as
@@ -135,7 +135,7 @@ pub trait StudyProgress: Sync {
     fn jobs(&self) -> Box<dyn SweepProgress + '_>;
 }
 
-impl StudyProgress for NoProgress {
+impl ReproduceProgress for NoProgress {
     fn begin(&self, _exp: &Experiment, _runs: usize) {}
     fn run(&self, _name: &str) -> Box<dyn RunProgress + '_> {
         Box::new(NoProgress)
@@ -151,7 +151,7 @@ impl StudyProgress for NoProgress {
 #[derive(Clone, Copy)]
 pub struct Front<'a> {
     /// Progress of the runs.
-    pub progress: &'a dyn StudyProgress,
+    pub progress: &'a dyn ReproduceProgress,
     /// Draws a PNG beside every SVG figure.
     pub png: Option<&'a dyn Rasterise>,
 }

@@ -41,7 +41,14 @@ pub fn orientation(options: &ReproduceOptions, front: Front<'_>) -> Result<Strin
         all.len(),
         out.display()
     );
-    run_jobs(&sweep, &text, &all, out, options.force, &*front.progress.jobs())?;
+    run_jobs(
+        &sweep,
+        &text,
+        &all,
+        out,
+        options.force,
+        &*front.progress.jobs(),
+    )?;
     merge_dir(out)?;
     if let Some(png) = front.png {
         add_pngs(out, png)?;

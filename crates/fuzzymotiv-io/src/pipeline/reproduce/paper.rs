@@ -27,7 +27,14 @@ pub fn paper(options: &ReproduceOptions, front: Front<'_>) -> Result<String, Cli
     else {
         return Ok(String::new());
     };
-    let written = write_study(options, front, options.seed, &staged.staging, &studies, start)?;
+    let written = write_study(
+        options,
+        front,
+        options.seed,
+        &staged.staging,
+        &studies,
+        start,
+    )?;
     commit(staged, start)?;
     Ok(written.tables + &claim_lines(&written.claims))
 }
@@ -76,7 +83,14 @@ pub fn write_study(
     write_atomic(&dir.join("claims.md"), &md)?;
     write_atomic(&dir.join("claims.csv"), &csv)?;
     let wall_seconds = start.elapsed().as_secs_f64();
-    let page = page(options, studies, &provenance, &claims, wall_seconds, &fitness);
+    let page = page(
+        options,
+        studies,
+        &provenance,
+        &claims,
+        wall_seconds,
+        &fitness,
+    );
     write_atomic(&dir.join("report.html"), page)?;
     let summary = StudySummary {
         program: PROGRAM.into(),

@@ -44,7 +44,11 @@ pub fn replication(options: &ReproduceOptions, front: Front<'_>) -> Result<Strin
         write_study(options, front, bases[i], &dir, &studies, Instant::now())?;
     }
     front.progress.end();
-    let prov = Provenance::new(&seeds[0], &RenderContext::of(&loaded[0][0][0]), options.quick);
+    let prov = Provenance::new(
+        &seeds[0],
+        &RenderContext::of(&loaded[0][0][0]),
+        options.quick,
+    );
     let md = write_replication(options, front, &staged, bases, &names, &prov, start)?;
     commit(staged, start)?;
     Ok(md + "\n")
