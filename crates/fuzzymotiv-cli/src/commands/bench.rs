@@ -1,12 +1,11 @@
 //! `fuzzymotiv bench`: robot-steps per second on the hot path.
 
-use std::time::Instant;
-
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::simulation::{Motion, Room};
 
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::inputs::{load_config, resolve};
+use fuzzymotiv_io::pipeline::bench::{BenchOptions, BenchReport, measure};
 
 /// Arguments of `fuzzymotiv bench`.
 #[derive(clap::Args)]
@@ -42,49 +41,6 @@ pub struct BenchArgs {
     pub sets: Vec<String>,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-/// What `fuzzymotiv bench --json` prints (fields in the order serde_json's map sorts them).
-#[derive(Debug, serde::Serialize, serde::Deserialize)]
-pub struct BenchReport {
-    /// Motion model measured.
-    pub motion: String,
-    /// Population size of the population measurement.
-    pub population: usize,
-    /// Whole-population evaluations per repetition.
-    pub population_evaluations: usize,
-    /// Executed robot-steps of a repetition of the population measurement (median).
-    pub population_robot_steps: usize,
-    /// Their rate (median repetition).
-    pub population_robot_steps_per_sec: f64,
-    /// Median seconds of the population measurement.
-    pub population_seconds: f64,
-    /// Repetitions.
-    pub repeat: usize,
-    /// Robot measured (its robot file's name).
-    pub robot: String,
-    /// Executed robot-steps of a repetition of the single-robot measurement (median).
-    pub robot_steps: usize,
-    /// Their rate (median repetition).
-    pub robot_steps_per_sec: f64,
-    /// Room measured.
-    pub room: String,
-    /// Median seconds of the single-robot measurement.
-    pub seconds: f64,
-    /// Always "median".
-    pub statistic: String,
-    /// Threads of the population measurement.
-    pub threads: usize,
-    /// Steps of one trial.
-    #[serde(skip)]
-    pub trial_steps: usize,
-    /// fuzzymotiv's version.
-    pub version: String,
-}
-
 /// Entry point of `fuzzymotiv bench`.
 pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     fuzzymotiv_io::pipeline::lanes::set_threads(args.threads)?;
@@ -101,7 +57,12 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
         }
     }
     let exp = bench_experiment(&args)?;
-    let report = measure(&exp, &args);
+    let options = BenchOptions {
+        steps: args.steps,
+        repeat: args.repeat,
+        motion: args.motion.clone(),
+    };
+    let report = measure(&exp, &options);
     if args.json {
         fuzzymotiv_io::outln!(
             "{}",
@@ -153,73 +114,6 @@ fn check_motion(exp: &Experiment, asked: &str) -> Result<(), CliError> {
          robot.motion with it); choose the motion with --motion and name the robot with \
          --set robot.file=NAME"
     )))
-}
-
-/// Times `work(r)` for each repetition `r` of `repeat`; returns the median seconds and the median
-/// executed robot-steps of a repetition. Each repetition runs new trials (new random streams), so
-/// no repetition finds its poses already remembered by an earlier one (the library's memo of
-/// sightings).
-fn timed(repeat: usize, mut work: impl FnMut(usize) -> usize) -> (f64, usize) {
-    let mut seconds = Vec::new();
-    let mut steps = Vec::new();
-    for r in 0..repeat {
-        let t0 = Instant::now();
-        steps.push(work(r) as f64);
-        seconds.push(t0.elapsed().as_secs_f64());
-    }
-    (median(seconds), median(steps) as usize)
-}
-
-/// The two measurements: one robot on one thread, whole trials until `steps` are done; then
-/// whole populations in parallel (each takes only milliseconds: enough of them to cover
-/// `steps`). Only executed steps count (idle steps are not work).
-fn measure(exp: &Experiment, args: &BenchArgs) -> BenchReport {
-    let run = &exp.runs()[0];
-    let population = exp.initial_population(run);
-    let trial_steps = exp.trial_params().steps();
-    // One evaluation of a robot runs a trial in each of the run's rooms.
-    let robot_steps_each = trial_steps * run.rooms.len();
-    let mut sink = 0.0;
-    let trials = args.steps.div_ceil(robot_steps_each);
-    let (seconds, robot_steps) = timed(args.repeat, |r| {
-        (0..trials)
-            .map(|k| {
-                let e = exp.evaluate(&population.network(k % population.len()), run, r, k);
-                sink += e.fitness;
-                e.executed()
-            })
-            .sum()
-    });
-    let evaluations = args.steps.div_ceil(population.len() * robot_steps_each);
-    let (pop_seconds, pop_steps) = timed(args.repeat, |r| {
-        (0..evaluations)
-            .map(|e| {
-                // A generation number of its own: fresh noise, as each generation of a run has.
-                let evals = exp.evaluate_population(&population, run, r * evaluations + e);
-                sink += evals[0].fitness;
-                evals.iter().map(|e| e.executed()).sum::<usize>()
-            })
-            .sum()
-    });
-    std::hint::black_box(sink);
-    BenchReport {
-        motion: args.motion.clone(),
-        population: population.len(),
-        population_evaluations: evaluations,
-        population_robot_steps: pop_steps,
-        population_robot_steps_per_sec: pop_steps as f64 / pop_seconds,
-        population_seconds: pop_seconds,
-        repeat: args.repeat,
-        robot: exp.trial_params().robot().spec().name().to_string(),
-        robot_steps,
-        robot_steps_per_sec: robot_steps as f64 / seconds,
-        room: exp.arenas()[0].room().name.clone(),
-        seconds,
-        statistic: "median".to_string(),
-        threads: rayon::current_num_threads(),
-        trial_steps,
-        version: fuzzymotiv::VERSION.to_string(),
-    }
 }
 
 /// The report as two lines of text.

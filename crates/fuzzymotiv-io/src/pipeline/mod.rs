@@ -3,10 +3,11 @@
 //! sweep's plan ([`sweep_plan`]), jobs ([`sweep_jobs`]) and merge ([`sweep_merge`]), runs or
 //! jobs side by side ([`lanes`]), the progress all of it reports ([`progress`]), a finished
 //! run continued to more generations ([`continuation`]), a saved genome replayed ([`replay`]),
-//! and the paper's study and the studies built on it ([`reproduce`]: `ReproduceOptions` in,
-//! tables and records out).
+//! `bench`'s measurements ([`bench`]), and the paper's study and the studies built on it
+//! ([`reproduce`]: `ReproduceOptions` in, tables and records out).
 
 pub mod compare;
+pub mod bench;
 pub mod continuation;
 pub mod lanes;
 pub mod progress;
