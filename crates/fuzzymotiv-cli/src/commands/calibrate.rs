@@ -2,14 +2,12 @@
 //! file for `trial.sensor_table`, and the readings' spread as the `trial.noise` estimate
 //! ([`fuzzymotiv::simulation::calibrate`]; docs/guide/real-robot.md).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use fuzzymotiv::experiment::SetupError;
-use fuzzymotiv::params::FieldError;
-use fuzzymotiv::simulation::{Calibration, Measurement, calibrate};
-use fuzzymotiv_io::files::bounded::{InputKind, csv_refusal, open_input};
+use fuzzymotiv::simulation::{Calibration, calibrate};
 use fuzzymotiv_io::files::error::CliError;
 use fuzzymotiv_io::files::guard::{FilesState, check_files, write_files};
+use fuzzymotiv_io::files::measurements::{field_error, read_measurements};
 use fuzzymotiv_io::{note, out, outln};
 
 /// Arguments of `fuzzymotiv calibrate`.
@@ -78,10 +76,6 @@ fn robot_line(robot: &fuzzymotiv::simulation::RobotSpec) -> String {
     }
 }
 
-fn field_error(e: FieldError) -> CliError {
-    CliError::Setup(SetupError::Field(e))
-}
-
 /// The spread per sensor and distance (on standard output, else standard error), then the
 /// noise estimate.
 fn show(c: &Calibration, on_stdout: bool) -> Result<(), CliError> {
@@ -113,71 +107,4 @@ fn show(c: &Calibration, on_stdout: bool) -> Result<(), CliError> {
         c.noise
     );
     Ok(())
-}
-
-/// One CSV row as written.
-#[derive(serde::Deserialize)]
-struct Row {
-    sensor: usize,
-    distance_mm: f64,
-    reading: f64,
-}
-
-/// Reads the measurements; a missing column or a value that is not a number names the file,
-/// the row and the column.
-fn read_measurements(path: &Path) -> Result<Vec<Measurement>, CliError> {
-    let source = path.display().to_string();
-    let input = open_input(path, InputKind::table("measurements file"))?;
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .from_reader(input);
-    let headers = reader
-        .headers()
-        .map_err(|e| {
-            csv_refusal(&e)
-                .unwrap_or_else(|| CliError::input(format!("{source}: not a CSV file: {e}")))
-        })?
-        .clone();
-    for column in ["sensor", "distance_mm", "reading"] {
-        if !headers.iter().any(|h| h == column) {
-            let reason = format!(
-                "the header has no column `{column}` (it needs sensor, distance_mm and reading; found {})",
-                headers.iter().collect::<Vec<_>>().join(", ")
-            );
-            return Err(field_error(
-                FieldError::new(column, reason).in_source(&source),
-            ));
-        }
-    }
-    let mut rows = Vec::new();
-    for (i, record) in reader.deserialize::<Row>().enumerate() {
-        let row = record.map_err(|e| {
-            if let Some(refused) = csv_refusal(&e) {
-                return refused;
-            }
-            let column = e
-                .position()
-                .and(match e.kind() {
-                    csv::ErrorKind::Deserialize { err, .. } => err.field(),
-                    _ => None,
-                })
-                .and_then(|k| headers.get(k as usize))
-                .unwrap_or("(row)")
-                .to_string();
-            let reason = format!("data row {}: {e}; sensor is a whole number 0–7, distance_mm and reading are numbers", i + 1);
-            field_error(FieldError::new(column, reason).in_source(&source))
-        })?;
-        rows.push(Measurement {
-            sensor: row.sensor,
-            distance_mm: row.distance_mm,
-            reading: row.reading,
-        });
-    }
-    if rows.is_empty() {
-        return Err(CliError::input(format!(
-            "{source}: holds no measurements (a header and no rows)"
-        )));
-    }
-    Ok(rows)
 }
