@@ -421,3 +421,30 @@ fn a_study_directory_is_kept_from_another_study_unless_force_and_a_run_may_repla
     assert!(replaced.status.success(), "{}", stderr(&replaced));
     assert!(!out.join("claims.csv").exists() && out.join("summary.json").is_file());
 }
+
+#[test]
+fn a_killed_study_resumes_its_runs_and_writes_the_analysis_of_an_uninterrupted_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = tiny_study(dir.path(), "[1]", "");
+    let whole = dir.path().join("whole");
+    study(&file, &whole, &[]);
+    let killed = dir.path().join("killed");
+    // Killed (as kill -9) after 2 checkpointed generations of a run: in the first run, then
+    // (its checkpoint resumed) further on.
+    for _ in 0..3 {
+        let o = common::bin()
+            .args(["study", file.to_str().unwrap(), "--out"])
+            .arg(&killed)
+            .args(["--threads", "1", "-q"])
+            .env("FUZZYMOTIV_TEST_ABORT_AFTER", "2")
+            .output()
+            .unwrap();
+        assert!(!o.status.success(), "not killed: {}", stderr(&o));
+        assert!(!killed.join("claims.csv").exists());
+    }
+    study(&file, &killed, &[]);
+    for name in ANALYSIS {
+        let (a, b) = (whole.join(name), killed.join(name));
+        assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap(), "{name}");
+    }
+}
