@@ -445,6 +445,10 @@ fn a_killed_study_resumes_its_runs_and_writes_the_analysis_of_an_uninterrupted_o
     study(&file, &killed, &[]);
     for name in ANALYSIS {
         let (a, b) = (whole.join(name), killed.join(name));
-        assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap(), "{name}");
+        assert_eq!(
+            std::fs::read(&a).unwrap(),
+            std::fs::read(&b).unwrap(),
+            "{name}"
+        );
     }
 }
