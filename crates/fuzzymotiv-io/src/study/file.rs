@@ -26,6 +26,9 @@ pub const STUDY_TOML: &str = "study.toml";
 /// Most seeds per base seed, and most base seeds.
 const MAX_SEEDS: usize = 10_000;
 
+/// Most runs one study may plan (a sweep file's limit).
+const MAX_RUNS: usize = 100_000;
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawStudy {
@@ -468,6 +471,15 @@ fn plan(
     bases: Vec<BaseConfig>,
     source: &str,
 ) -> Result<Sweep, CliError> {
+    let runs = (arms.len())
+        .saturating_mul(h.base_seeds.len())
+        .saturating_mul(h.seeds);
+    if runs > MAX_RUNS {
+        let why = format!(
+            "{runs} runs planned (arms × base seeds × seeds); at most {MAX_RUNS} per study file"
+        );
+        return Err(err(source, "study.seeds", why));
+    }
     let mut jobs = Vec::new();
     for &base in &h.base_seeds {
         for rep in 0..h.seeds {
@@ -485,4 +497,56 @@ fn plan(
         }
     }
     Sweep::of_jobs(bases, jobs, source, STUDY_TOML)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(study: &str) -> Result<Study, CliError> {
+        let configs = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs");
+        let text = format!(
+            "{study}\n[[arm]]\nname = \"a\"\n[[arm]]\nname = \"b\"\nset = {{ \"ga.population\" = 4 }}\n[[hypothesis]]\nid = \"h\"\nkind = \"rising\"\narm = \"a\"\n"
+        );
+        Study::parse_str(&text, "s.toml", &configs)
+    }
+
+    #[test]
+    fn a_study_of_too_many_runs_is_refused_before_any_is_planned() {
+        let bases: Vec<String> = (0..20).map(|b| b.to_string()).collect();
+        let header = format!(
+            "[study]\nname = \"big\"\nseeds = 10000\nbase_seeds = [{}]\nconfig = \"tiny.toml\"",
+            bases.join(", ")
+        );
+        let started = std::time::Instant::now();
+        let Err(e) = parse(&header) else {
+            panic!("400000 runs planned");
+        };
+        assert!(e.to_string().contains("400000 runs planned"), "{e}");
+        assert!(started.elapsed().as_secs() < 5, "refused before planning");
+    }
+
+    #[test]
+    fn paired_arms_share_each_seed_and_the_seeds_are_reproduces() {
+        let study =
+            parse("[study]\nname = \"p\"\nseeds = 2\nbase_seeds = [1, 7]\nconfig = \"tiny.toml\"")
+                .unwrap();
+        let seeds: Vec<(&str, u64)> = (study.plan.jobs.iter())
+            .map(|j| (j.setting.as_str(), j.seed))
+            .collect();
+        let s = |b: u64, k: usize| Streams::new(b).study(k);
+        assert_eq!(
+            seeds,
+            [
+                ("a", s(1, 0)),
+                ("b", s(1, 0)),
+                ("a", s(1, 1)),
+                ("b", s(1, 1)),
+                ("a", s(7, 0)),
+                ("b", s(7, 0)),
+                ("a", s(7, 1)),
+                ("b", s(7, 1))
+            ]
+        );
+    }
 }
