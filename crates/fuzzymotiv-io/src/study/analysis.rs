@@ -102,6 +102,12 @@ pub fn trend(
     s: &Settings,
 ) -> Result<Tested, StatsError> {
     let n = values.first().map_or(0, Vec::len);
+    if let Some(other) = values.iter().find(|v| v.len() != n) {
+        return Err(StatsError::Lengths {
+            a: n,
+            b: other.len(),
+        });
+    }
     let slopes: Vec<f64> = (0..n)
         .map(|i| {
             let ys: Vec<f64> = values.iter().map(|v| v[i]).collect();

@@ -158,3 +158,15 @@ fn several_base_seeds_give_a_pooled_scope_and_one_per_base_seed() {
     let scopes: Vec<(&str, usize)> = got.iter().map(|c| (c.scope.as_str(), c.seeds)).collect();
     assert_eq!(scopes, [("pooled", 12), ("base=1", 6), ("base=2", 6)]);
 }
+
+#[test]
+fn a_trend_over_arms_of_unequal_seed_counts_is_an_error_not_a_panic() {
+    let s = settings(&analysis(Rule::P, HolmOver::None));
+    let got = trend(
+        &[0.1, 0.3, 0.5],
+        &[vec![1.0, 2.0], vec![1.0], vec![3.0, 4.0]],
+        Direction::Higher,
+        &s,
+    );
+    assert_eq!(got, Err(StatsError::Lengths { a: 2, b: 1 }));
+}
