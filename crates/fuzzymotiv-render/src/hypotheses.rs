@@ -318,3 +318,78 @@ fn seeds_md(per_seed: &[PerSeedRow]) -> String {
     s.push('\n');
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fuzzymotiv_records::records::hypotheses::{AnalysisRecord, Measure};
+
+    fn record(hypotheses: Vec<Hypothesis>) -> StudyRecord {
+        let claims = (hypotheses.iter())
+            .map(|h| ClaimRow {
+                id: h.id().into(),
+                kind: h.kind().into(),
+                sentence: h.sentence(),
+                measure: h.measure_column(),
+                arms: h.arms().join(";"),
+                expect: h.expect_label().into(),
+                scope: POOLED.into(),
+                seeds: 5,
+                effect: 40.0,
+                ci_low: 35.0,
+                ci_high: 45.0,
+                p: 0.0625,
+                p_adjusted: 0.0625,
+                mdd: Some(3.0),
+                verdict: "not significant".into(),
+            })
+            .collect();
+        StudyRecord {
+            program: "fuzzymotiv".into(),
+            model: 1,
+            name: "t".into(),
+            analysis: AnalysisRecord {
+                alpha: 0.05,
+                confidence: 0.95,
+                power: 0.8,
+                rule: Rule::Power,
+                holm: HolmOver::Hypotheses,
+            },
+            base_seeds: vec![1],
+            seeds: 5,
+            arms: Vec::new(),
+            hypotheses,
+            claims,
+            rooms: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_ranges_forest_row_draws_its_bounds_and_a_comparisons_its_zero() {
+        let range = Hypothesis::Range {
+            id: "r".into(),
+            measure: Measure::Exploration,
+            arm: "a".into(),
+            min: 30.0,
+            max: 50.0,
+        };
+        let rising = Hypothesis::Rising {
+            id: "f".into(),
+            arm: "a".into(),
+        };
+        let svg = forest_svg(&record(vec![range]));
+        // The row's scale spans 30 … 50 (the bounds outside the interval 35 … 45), padded.
+        assert_eq!(svg.matches("stroke-dasharray").count(), 2, "{svg}");
+        assert_eq!(svg.matches("<circle").count(), 1);
+        let svg = forest_svg(&record(vec![rising]));
+        assert_eq!(svg.matches("stroke-dasharray").count(), 1, "{svg}");
+    }
+
+    #[test]
+    fn a_study_file_with_a_code_fence_is_quoted_whole() {
+        let r = record(Vec::new());
+        let text = "# a comment with ``` in it\n[study]\nname = \"t\"";
+        let md = report_md(&r, &[], text);
+        assert!(md.ends_with(&format!("~~~~toml\n{text}\n~~~~\n")), "{md}");
+    }
+}
