@@ -6,8 +6,8 @@
 //! `bench`'s measurements ([`bench`]), and the paper's study and the studies built on it
 //! ([`reproduce`]: `ReproduceOptions` in, tables and records out).
 
-pub mod compare;
 pub mod bench;
+pub mod compare;
 pub mod continuation;
 pub mod lanes;
 pub mod progress;
