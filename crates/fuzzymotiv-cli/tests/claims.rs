@@ -70,3 +70,33 @@ fn claims_at_another_alpha_without_out_write_beside_the_study() {
     );
     study(&dir).arg("--force").ok();
 }
+
+/// A claim is read back as the paper's claim whose sentence it is: a `summary.json` whose claim
+/// is not one of them (here merely a claim's words) is refused with exit 2, naming the file, the
+/// field and the claims there are, and nothing is written.
+#[test]
+fn a_claim_that_is_not_the_papers_is_refused_naming_the_file_and_field() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("results");
+    study(&dir).ok();
+    let summary = dir.join("summary.json");
+    let text = read(&summary);
+    let edited = text.replacen(
+        "\"high curiosity uses more battery\"",
+        "\"uses more battery\"",
+        1,
+    );
+    assert_ne!(edited, text, "the study has the battery claim");
+    std::fs::write(&summary, edited).unwrap();
+    let o = Fm::new(["claims", dir.to_str().unwrap(), "--alpha", "0.1"]).run();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("summary.json")
+            && e.contains("claim")
+            && e.contains("`uses more battery` is not one of the paper's claims")
+            && e.contains("high curiosity uses more battery"),
+        "{e}"
+    );
+    assert!(!dir.join("claims-alpha-0.1.md").exists());
+}
