@@ -138,3 +138,96 @@ fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
             .unwrap();
     assert_eq!(json["rooms"], serde_json::Value::Array(rooms));
 }
+
+/// A study of one's own from the library (`fuzzymotiv_io::study`) whose progress asks it to
+/// stop (a front's cancel: Ctrl-C in Python, the lab's button) ends with an error after the
+/// generation it asked at, and the same call again resumes it into the analysis of an
+/// uninterrupted study, byte for byte. Without `RunProgress::stop` the study cannot be stopped
+/// before all its runs are finished.
+#[test]
+fn a_study_stopped_by_its_progress_resumes_into_the_analysis_of_an_uninterrupted_one() {
+    use fuzzymotiv_io::study::{Study, StudyOptions, StudyOutcome, run_study};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// Stops every run once `limit` generations have been reported over the study.
+    struct StopAfter {
+        limit: usize,
+        seen: AtomicUsize,
+    }
+    impl RunProgress for &StopAfter {
+        fn note(&self, _: &str) {}
+        fn skip(&self, _: usize) {}
+        fn generation(&self, _: &str, _: usize, _: usize, _: f64) {
+            self.seen.fetch_add(1, Ordering::SeqCst);
+        }
+        fn stop(&self) -> bool {
+            self.seen.load(Ordering::SeqCst) >= self.limit
+        }
+    }
+    impl SweepProgress for StopAfter {
+        fn begin(&self, _: usize, _: usize) {}
+        fn job(
+            &self,
+            _: &fuzzymotiv_io::records::Job,
+            _: usize,
+            _: &Experiment,
+        ) -> Box<dyn RunProgress + '_> {
+            Box::new(self)
+        }
+        fn job_done(&self) {}
+        fn end(&self) {}
+    }
+    impl fuzzymotiv_io::study::StudyProgress for StopAfter {
+        fn waiting(&self, _: usize, _: usize) {}
+        fn analysed(
+            &self,
+            _: &std::path::Path,
+            _: &[fuzzymotiv_io::records::hypotheses::ClaimRow],
+        ) {
+        }
+    }
+
+    let dir = tempfile::tempdir().unwrap();
+    let text = format!(
+        "[study]\nname = \"stop\"\nseeds = 2\nconfig = {:?}\n\
+         set = {{ ga = {{ population = 6, generations = 4 }}, trial = {{ steps = 60 }}, \
+         aem = {{ enabled = false }}, rooms = [\"H\"] }}\n\
+         [[arm]]\nname = \"low\"\nlevel = 0.1\nset = {{ \"motivations.curiosity\" = 0.1, \"motivations.energy\" = 0.8 }}\n\
+         [[arm]]\nname = \"high\"\nlevel = 0.8\n\
+         [[hypothesis]]\nid = \"explores\"\nkind = \"compare\"\nmeasure = \"exploration\"\n\
+         a = \"high\"\nb = \"low\"\nexpect = \"higher\"\n",
+        common::repo()
+            .join("configs/tiny.toml")
+            .display()
+            .to_string()
+    );
+    let study = Study::parse_str(&text, "stop.toml", dir.path()).unwrap();
+    let options = |out: &str| StudyOptions {
+        out: dir.path().join(out),
+        threads: Some(1),
+        ..StudyOptions::default()
+    };
+    let whole = run_study(&study, &options("whole"), &NoProgress).unwrap();
+    assert!(matches!(whole, StudyOutcome::Analysed(_)));
+    let stopping = StopAfter {
+        limit: 6,
+        seen: AtomicUsize::new(0),
+    };
+    let err = run_study(&study, &options("stopped"), &stopping).unwrap_err();
+    assert!(err.to_string().contains("resumes it"), "{err}");
+    assert_eq!(stopping.seen.load(Ordering::SeqCst), 6);
+    assert!(!dir.path().join("stopped/claims.csv").exists());
+    let resumed = run_study(&study, &options("stopped"), &NoProgress).unwrap();
+    assert_eq!(resumed, whole);
+    for file in [
+        "per_seed.csv",
+        "claims.csv",
+        "rooms.csv",
+        "study.json",
+        "report.md",
+        "forest.svg",
+    ] {
+        let read = |out: &str| std::fs::read(dir.path().join(out).join(file)).unwrap();
+        assert_eq!(read("stopped"), read("whole"), "{file}");
+    }
+}

@@ -15,6 +15,12 @@ pub trait RunProgress {
     fn skip(&self, n: usize);
     /// Generation `g` (1-based) of `of` of the run labelled `run` finished with best F `best`.
     fn generation(&self, run: &str, g: usize, of: usize, best: f64);
+    /// Whether the run should stop now (asked after every generation, once its checkpoint is
+    /// saved): a front's cancel (Ctrl-C in Python, the lab's cancel button). A stopped run ends
+    /// with an error and its staging directory resumes; by default a run never stops.
+    fn stop(&self) -> bool {
+        false
+    }
 }
 
 /// Progress of a sweep's jobs: what [`run_jobs`](super::sweep_jobs::run_jobs) reports. Jobs

@@ -206,7 +206,10 @@ impl<'a> Session<'a> {
                 write_error = Some(e);
                 return ControlFlow::Break(());
             }
-            hook(state)
+            match hook(state) {
+                ControlFlow::Continue(()) if progress.stop() => ControlFlow::Break(()),
+                flow => flow,
+            }
         };
         let outcome = exp.run_from(starts, &mut on_generation);
         match (outcome, write_error) {
