@@ -55,6 +55,7 @@ from .rollouts import (
     save_gif,
     simulate,
 )
+from .studies import StudyResult, study
 from .sweeps import Job, Plan, SweepResult, merge, plan, run_job, sweep
 from .real_robot import export_controller, recognise, robustness
 from .tables import Table
@@ -85,6 +86,7 @@ __all__ = [
     "ResetNeeded",
     "RoomInfo",
     "RunResult",
+    "StudyResult",
     "SweepResult",
     "Table",
     "TermFunction",
@@ -105,6 +107,7 @@ __all__ = [
     "run_job",
     "simulate",
     "stats",
+    "study",
     "sweep",
     "__version__",
     "MODEL_VERSION",

@@ -54,6 +54,7 @@ mod problem;
 mod recognise;
 mod robustness;
 mod stats;
+mod study;
 mod sweep;
 mod terms;
 
@@ -1219,6 +1220,7 @@ fn _fuzzymotiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep::sweep_run_job, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_prepare, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_merge, m)?)?;
+    m.add_function(wrap_pyfunction!(study::study_run, m)?)?;
     m.add_class::<problem::Problem>()?;
     m.add_class::<ga::Ga>()?;
     m.add_class::<gym::GymCore>()?;
