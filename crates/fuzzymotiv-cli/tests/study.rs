@@ -168,10 +168,17 @@ fn recompute_every_verdict(out: &Path) -> usize {
     let per_seed = read_csv(&out.join("per_seed.csv"));
     let claims = read_csv(&out.join("claims.csv"));
     let a = &record["analysis"];
-    let s = Settings {
+    // The resampling of a scope's tests is seeded by its first seed, as the paper's study's.
+    let first_seed = |scope: &str| {
+        (per_seed.iter())
+            .find(|r| scope == "pooled" || format!("base={}", r["base_seed"]) == scope)
+            .map_or(0, |r| r["seed"].parse().unwrap())
+    };
+    let settings = |scope: &str| Settings {
         alpha: a["alpha"].as_f64().unwrap(),
         confidence: a["confidence"].as_f64().unwrap(),
         power: a["power"].as_f64().unwrap(),
+        seed: first_seed(scope),
         ..Settings::default()
     };
     let levels: BTreeMap<String, f64> = (record["arms"].as_array().unwrap().iter())
@@ -181,6 +188,7 @@ fn recompute_every_verdict(out: &Path) -> usize {
     let mut scopes: Vec<&str> = claims.iter().map(|c| c["scope"].as_str()).collect();
     scopes.dedup();
     for scope in scopes {
+        let s = settings(scope);
         let tested: Vec<_> = (hypotheses.iter())
             .map(|h| recompute(h, &levels, &per_seed, scope, &s))
             .collect();
@@ -451,4 +459,95 @@ fn a_killed_study_resumes_its_runs_and_writes_the_analysis_of_an_uninterrupted_o
             "{name}"
         );
     }
+}
+
+/// The shipped studies/paper.toml made tiny (two seeds of base seed 1, a small GA, short
+/// trials), its configs named by absolute paths; and the same size as `reproduce`'s `--set`s.
+fn tiny_paper_study(dir: &Path) -> (PathBuf, [&'static str; 3]) {
+    let text = std::fs::read_to_string(repo().join("studies/paper.toml")).unwrap();
+    let configs = repo().join("configs");
+    let text = text
+        .replace(
+            "seeds = 20\nbase_seeds = [1, 11]\n",
+            "seeds = 2\nbase_seeds = [1]\nset = { ga = { population = 6, generations = 2 }, trial = { steps = 60 } }\n",
+        )
+        .replace("\"../configs/", &format!("\"{}/", configs.display()));
+    assert!(text.contains("population = 6") && text.contains("base_seeds = [1]\n"));
+    let path = dir.join("paper.toml");
+    std::fs::write(&path, text).unwrap();
+    let sets = ["ga.population=6", "ga.generations=2", "trial.steps=60"];
+    (path, sets)
+}
+
+/// `fuzzymotiv study studies/paper.toml` is the paper's study: the same runs as `reproduce`
+/// (each run directory the same bytes but for wall times), every claim's numbers those of
+/// reproduce's claims.csv (the comparisons' verdicts too: the same rule), and its every verdict
+/// recomputed from its own per_seed.csv.
+#[test]
+fn the_paper_study_file_runs_reproduces_runs_and_gives_its_claims_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    let (file, sets) = tiny_paper_study(dir.path());
+    let (rep, out) = (dir.path().join("reproduce"), dir.path().join("study"));
+    let mut args = vec!["reproduce", "--seeds", "2", "--threads", "2", "-q", "--out"];
+    args.push(rep.to_str().unwrap());
+    for s in &sets {
+        args.extend(["--set", s]);
+    }
+    ok(&args);
+    study(&file, &out, &[]);
+    let plan = std::fs::read_to_string(out.join("plan.jsonl")).unwrap();
+    for line in plan.lines() {
+        let job: serde_json::Value = serde_json::from_str(line).unwrap();
+        let seed_dir = format!("seed-{}", job["replicate"].as_u64().unwrap() + 1);
+        let theirs = rep.join(job["setting"].as_str().unwrap()).join(seed_dir);
+        let ours: Vec<_> = common::results(&out.join("jobs").join(job["id"].as_str().unwrap()))
+            .into_iter()
+            .filter(|(p, _)| p != Path::new("DONE") && p != Path::new("job.json"))
+            .collect();
+        assert!(
+            common::results(&theirs) == ours,
+            "{} differs from reproduce's {}",
+            job["key"],
+            theirs.display()
+        );
+    }
+    let paper = read_csv(&rep.join("claims.csv"));
+    let claims = read_csv(&out.join("claims.csv"));
+    let claim = |id: &str| claims.iter().find(|c| c["id"] == id).unwrap();
+    // reproduce's claims.csv: the four comparisons in ClaimId::COMPARISONS' order, then each
+    // Fig. 6 check over both settings and per setting.
+    for (k, id) in ["explores", "battery", "recognition", "homing"].iter().enumerate() {
+        let (ours, theirs) = (claim(id), &paper[k]);
+        for (a, b) in [
+            ("effect", "difference"),
+            ("ci_low", "ci_low"),
+            ("ci_high", "ci_high"),
+            ("p", "p"),
+            ("mdd", "mdd"),
+        ] {
+            assert_eq!(f(ours, a), f(theirs, b), "{id}: {a}");
+        }
+        assert_eq!(ours["verdict"], theirs["verdict"], "{id}: verdict");
+    }
+    // Fig. 6's checks per setting: the same values and intervals (a range's bounds added to
+    // its interval as reproduce adds them: equal to rounding), a rise's p too. Their verdicts
+    // follow each study's own rule (docs/guide/studies.md).
+    for (id, row) in [
+        ("first-f-high", 5),
+        ("first-f-low", 6),
+        ("rises-high", 8),
+        ("rises-low", 9),
+    ] {
+        let (ours, theirs) = (claim(id), &paper[row]);
+        let setting = if id.ends_with("high") { "high" } else { "low" };
+        assert!(theirs["claim"].ends_with(&format!("— {setting}-curiosity")));
+        assert_eq!(f(ours, "effect"), f(theirs, "difference"), "{id}: effect");
+        for key in ["ci_low", "ci_high"] {
+            assert!((f(ours, key) - f(theirs, key)).abs() < 1e-12, "{id}: {key}");
+        }
+        if id.starts_with("rises") {
+            assert_eq!(f(ours, "p"), f(theirs, "p"), "{id}: p");
+        }
+    }
+    assert_eq!(recompute_every_verdict(&out), 8);
 }

@@ -190,6 +190,7 @@ impl Study {
             known.push(Measure::MissionDone);
         }
         known.extend((extra_terms(&exp).into_iter()).map(|(name, _)| Measure::Term(name)));
+        known.push(Measure::FirstMeanF);
         Ok(known.iter().map(Measure::column).collect())
     }
 

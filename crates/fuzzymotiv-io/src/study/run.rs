@@ -149,11 +149,11 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
 }
 
 /// Every run's values of the measures the hypotheses read: per room and over the rooms (their
-/// mean), and the first and last generation's mean F.
+/// mean), and the first and last generation's mean F (the measure [`FIRST_MEAN_F`] reads).
 fn per_seed(study: &Study, out: &Path) -> Result<Vec<PerSeedRow>, CliError> {
     let mut measures: Vec<_> = Vec::new();
     for m in study.hypotheses.iter().filter_map(|h| h.measure()) {
-        if !measures.contains(m) {
+        if m.per_room() && !measures.contains(m) {
             measures.push(m.clone());
         }
     }

@@ -31,6 +31,9 @@ pub enum Measure {
     MissionDone,
     /// 100·term of a term beyond a, g, l, b (a mission's, e.g. `urgency`, or a user's), by name.
     Term(String),
+    /// The population's mean F in the first generation (over the run's evolutions): a value
+    /// of the whole run, not of a room ([`FIRST_MEAN_F`]; Fig. 6's "about 0.1").
+    FirstMeanF,
 }
 
 impl Measure {
@@ -44,6 +47,7 @@ impl Measure {
             "homing_pct" | "homing" => Measure::Homing,
             "recognition_pct" | "recognition" => Measure::Recognition,
             "mission_done_pct" | "mission_done" => Measure::MissionDone,
+            FIRST_MEAN_F => Measure::FirstMeanF,
             other => Measure::Term(metric_term(other).to_string()),
         }
     }
@@ -58,6 +62,7 @@ impl Measure {
             Measure::Recognition => "recognition_pct".into(),
             Measure::MissionDone => "mission_done_pct".into(),
             Measure::Term(name) => term_metric(name),
+            Measure::FirstMeanF => FIRST_MEAN_F.into(),
         }
     }
 
@@ -71,7 +76,13 @@ impl Measure {
             Measure::Recognition => row.recognition_pct,
             Measure::MissionDone => row.mission_done_pct,
             Measure::Term(name) => row.terms_pct.get(name).copied(),
+            Measure::FirstMeanF => None,
         }
+    }
+
+    /// Whether it has a value per room (every measure but the whole run's [`FIRST_MEAN_F`]).
+    pub fn per_room(&self) -> bool {
+        *self != Measure::FirstMeanF
     }
 
     /// How a sentence names it: "the average F", "% exploration", "% urgency", ….
@@ -84,6 +95,7 @@ impl Measure {
             Measure::Recognition => "% recognition".into(),
             Measure::MissionDone => "% missions done".into(),
             Measure::Term(name) => format!("% {name}"),
+            Measure::FirstMeanF => "the first generation's mean F".into(),
         }
     }
 }

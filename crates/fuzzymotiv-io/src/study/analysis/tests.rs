@@ -59,7 +59,7 @@ fn a_comparisons_verdict_is_the_projects_rule_on_its_paired_test() {
         let got = claims(std::slice::from_ref(&h), &rows, &[1], &level, &a).unwrap();
         let hi = values(&rows, "hi", "urgency_pct", "", POOLED);
         let lo = values(&rows, "lo", "urgency_pct", "", POOLED);
-        let c = statistics::paired(&hi, &lo, &settings(&a)).unwrap();
+        let c = statistics::paired(&hi, &lo, &settings(&a, &rows, POOLED)).unwrap();
         let want = c.verdict_with_power(match expect {
             Direction::Higher => Expect::Higher,
             Direction::Lower => Expect::Lower,
@@ -161,7 +161,7 @@ fn several_base_seeds_give_a_pooled_scope_and_one_per_base_seed() {
 
 #[test]
 fn a_trend_over_arms_of_unequal_seed_counts_is_an_error_not_a_panic() {
-    let s = settings(&analysis(Rule::P, HolmOver::None));
+    let s = settings(&analysis(Rule::P, HolmOver::None), &[], POOLED);
     let got = trend(
         &[0.1, 0.3, 0.5],
         &[vec![1.0, 2.0], vec![1.0], vec![3.0, 4.0]],
