@@ -10,7 +10,7 @@
 //! (along its axis, from the sensor):
 //!
 //! - **fuzzymotiv**: the engine's noise-free reading ([`Arena::read_sensors`]) with the robot
-//!   placed so, in the square room; poses where the body would overlap the wall are left out.
+//!   placed so, in the square room (the Thymio II's: 3× the square, rooms/thymio2/); poses where the body would overlap the wall are left out.
 //!   The Khepera twice: with its robot file's table (the paper's robot) and with
 //!   `configs/sensors/khepera-enki.toml`, the table `fuzzymotiv calibrate` made from Enki's
 //!   Khepera measured as on a bench (the calibration loop).
@@ -25,7 +25,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::ExitCode;
 
-use fuzzymotiv::simulation::{Arena, Pose, Room};
+use fuzzymotiv::simulation::Pose;
 use fuzzymotiv::statistics::quantile;
 use fuzzymotiv_io::files::inputs::load_config;
 use fuzzymotiv_io::render::plot::{Ticks, colour, esc, open, px};
@@ -41,25 +41,37 @@ struct Probe {
 const PROBES: [Probe; 4] = [
     Probe {
         robot: "khepera",
-        sets: &[],
+        sets: &["rooms=[\"square\"]", "aem.enabled=false"],
         sensor: 2,
         label: "fuzzymotiv (robot file)",
     },
     Probe {
         robot: "khepera",
-        sets: &["trial.sensor_table=\"configs/sensors/khepera-enki.toml\""],
+        sets: &[
+            "rooms=[\"square\"]",
+            "aem.enabled=false",
+            "trial.sensor_table=\"configs/sensors/khepera-enki.toml\"",
+        ],
         sensor: 2,
         label: "fuzzymotiv (table calibrated in Enki)",
     },
     Probe {
         robot: "epuck2",
-        sets: &["robot=\"epuck2\""],
+        sets: &[
+            "robot=\"epuck2\"",
+            "rooms=[\"square\"]",
+            "aem.enabled=false",
+        ],
         sensor: 0,
         label: "fuzzymotiv (robot file)",
     },
     Probe {
         robot: "thymio2",
-        sets: &["robot=\"thymio2\""],
+        sets: &[
+            "robot=\"thymio2\"",
+            "rooms=[\"rooms/thymio2/square.toml\"]",
+            "aem.enabled=false",
+        ],
         sensor: 2,
         label: "fuzzymotiv (robot file)",
     },
@@ -75,22 +87,21 @@ const PANELS: [(&str, &str); 3] = [
 /// One curve: (robot, source label) → (distance mm, reading) in order of distance.
 type Curves = BTreeMap<(String, String), Vec<(f64, f64)>>;
 
-/// The engine's readings of `probe`'s front sensor facing the square room's x = 800 wall.
+/// The engine's readings of `probe`'s front sensor facing the east wall of its config's first
+/// room (the square room; the Thymio II's 3× square), half-way up it.
 fn engine_curve(probe: &Probe) -> Result<(Vec<(f64, f64)>, f64), String> {
     let sets: Vec<String> = probe.sets.iter().map(|s| s.to_string()).collect();
     let loaded = load_config(None, &sets, None).map_err(|e| e.to_string())?;
     let params = loaded.experiment.trial_params();
-    let arena = Arena::new(Room::builtin("square").expect("built in"), params);
+    let arena = &loaded.experiment.arenas()[0];
+    let (low, high) = arena.room().bounds();
+    let (wall_x, mid_y) = (high.x, (low.y + high.y) / 2.0);
     let spec = params.robot().spec();
     let mount = spec.mounts()[probe.sensor];
-    let heading = -mount.facing_deg.to_radians();
-    let (sin, cos) = heading.sin_cos();
     let mut curve = Vec::new();
     for d in 0..=150 {
         let d = f64::from(d);
-        let x = 800.0 - d - (mount.x * cos - mount.y * sin);
-        let y = 400.0 - (mount.x * sin + mount.y * cos);
-        let pose = Pose::new(x, y, heading);
+        let pose = Pose::facing_wall(&mount, wall_x, mid_y, d);
         if arena.overlaps(pose.position()) {
             continue;
         }
@@ -222,6 +233,11 @@ fn panel(svg: &mut String, curves: &Curves, robot: &str, title: &str, max: f64, 
         px(left + w / 2.0),
         top + h + 30.0
     );
+    *svg += &format!(
+        "<text transform=\"translate({},{}) rotate(-90)\" text-anchor=\"middle\">reading</text>\n",
+        px(left - 40.0),
+        px(top + h / 2.0)
+    );
     for (k, label) in LEGEND.iter().enumerate() {
         let Some(curve) = curves.get(&(robot.to_string(), label.to_string())) else {
             continue;
@@ -234,7 +250,11 @@ fn panel(svg: &mut String, curves: &Curves, robot: &str, title: &str, max: f64, 
             "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.6\"{}/>\n",
             points.join(" "),
             colour(k),
-            if k == 1 { " stroke-dasharray=\"5 3\"" } else { "" }
+            if k == 1 {
+                " stroke-dasharray=\"5 3\""
+            } else {
+                ""
+            }
         );
     }
 }
@@ -251,7 +271,7 @@ fn svg_text(curves: &Curves, scale: &BTreeMap<String, f64>) -> String {
     svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     for (k, (robot, title)) in PANELS.iter().enumerate() {
         let max = scale.get(*robot).copied().unwrap_or(1.0);
-        panel(&mut svg, curves, robot, title, max, 55.0 + k as f64 * 315.0);
+        panel(&mut svg, curves, robot, title, max, 60.0 + k as f64 * 315.0);
     }
     let mut x = 55.0;
     for (k, label) in LEGEND.iter().enumerate() {
@@ -259,13 +279,13 @@ fn svg_text(curves: &Curves, scale: &BTreeMap<String, f64>) -> String {
             "<line x1=\"{x}\" y1=\"275\" x2=\"{}\" y2=\"275\" stroke=\"{}\" stroke-width=\"2\"{}/>\n",
             x + 24.0,
             colour(k),
-            if k == 1 { " stroke-dasharray=\"5 3\"" } else { "" }
+            if k == 1 {
+                " stroke-dasharray=\"5 3\""
+            } else {
+                ""
+            }
         );
-        svg += &format!(
-            "<text x=\"{}\" y=\"279\">{}</text>\n",
-            x + 30.0,
-            esc(label)
-        );
+        svg += &format!("<text x=\"{}\" y=\"279\">{}</text>\n", x + 30.0, esc(label));
         x += 60.0 + fuzzymotiv_io::render::plot::text_width_at(label, false, 11.0);
     }
     svg + "</svg>\n"

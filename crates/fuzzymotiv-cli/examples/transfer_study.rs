@@ -383,7 +383,9 @@ fn pair(a_path: &Path, b_path: &Path) -> Result<(), String> {
             b.seeds
         ));
     }
-    println!("setting,measure,world,seeds,mean_a,mean_b,difference,ci_low,ci_high,p,detectable,verdict");
+    println!(
+        "setting,measure,world,seeds,mean_a,mean_b,difference,ci_low,ci_high,p,detectable,verdict"
+    );
     for setting in SETTINGS {
         let first = a.seeds.get(setting).and_then(|s| s.first()).copied();
         let options = Settings {

@@ -212,14 +212,7 @@ fn a_calibrated_table_changes_the_sensor_readings_as_its_data_says() {
         &fuzzymotiv::simulation::TrialParams::default(),
     );
     // Sensor `s` facing the x = 800 wall of the square room, `gap` mm from it, at y = 400.
-    let facing_wall = |s: usize, gap: f64| {
-        let m = SENSOR_LAYOUT[s];
-        let heading = -m.facing_deg.to_radians();
-        let (sin, cos) = heading.sin_cos();
-        let x = 800.0 - gap - (m.x * cos - m.y * sin);
-        let y = 400.0 - (m.x * sin + m.y * cos);
-        Pose::new(x, y, heading)
-    };
+    let facing_wall = |s: usize, gap: f64| Pose::facing_wall(&SENSOR_LAYOUT[s], 800.0, 400.0, gap);
     let medians = medians_of(&std::fs::read_to_string(&csv).unwrap());
     let mut differs = 0;
     for s in 0..SENSORS {

@@ -28,7 +28,7 @@ const VALUE_END: &str = "<!-- end -->";
 const RENDERERS: &str = "rooms, claims, room-means, fig6, search-strength, \
     search-strength-exploration, ablation-claims, ablation-means, orientation, levels, \
     replication, behaviour, claim-differences, combination-claims, urgency, nsga-robots, \
-    transfer, transfer-claims";
+    transfer, transfer-claims, transfer-pair";
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -979,6 +979,58 @@ fn transfer(dir: &Path, file: &str) -> Rendered {
     Ok(table(&header, rows))
 }
 
+/// Two transfer studies of the same seeds, paired (`pair.csv` of scripts/transfer_study.sh
+/// `--against`): args are the label of this study's robots, then the worlds to show (`enki`,
+/// `fuzzymotiv`, `gap`).
+fn transfer_pair(dir: &Path, file: &str, args: &[&str]) -> Rendered {
+    let [label, worlds @ ..] = args else {
+        return Err(
+            "transfer-pair needs a label and worlds, e.g. `transfer-pair randomised enki gap`"
+                .into(),
+        );
+    };
+    let difference = format!("{label} − plain [95 % CI]");
+    let header = [
+        "setting",
+        "measure",
+        "world",
+        "seeds",
+        "plain",
+        label,
+        difference.as_str(),
+        "p",
+        "detectable",
+        "verdict",
+    ];
+    let mut rows = Vec::new();
+    for r in read_csv(dir, file)? {
+        let world = cell(&r, "world")?;
+        if !worlds.contains(&world) {
+            continue;
+        }
+        rows.push(format!(
+            "| {} | {} | {} | {} | {} | {} | {} [{}, {}] | {} | {} | {} |",
+            cell(&r, "setting")?,
+            transfer_measure(cell(&r, "measure")?),
+            if world == "gap" {
+                "|Enki − fuzzymotiv|"
+            } else {
+                world
+            },
+            cell(&r, "seeds")?,
+            fixed(num(&r, "mean_a")?, 1),
+            fixed(num(&r, "mean_b")?, 1),
+            signed(num(&r, "difference")?, 1),
+            signed(num(&r, "ci_low")?, 1),
+            signed(num(&r, "ci_high")?, 1),
+            fixed(num(&r, "p")?, 3),
+            fixed(num(&r, "detectable")?, 1),
+            bold_direction(cell(&r, "verdict")?)
+        ));
+    }
+    Ok(table(&header, rows))
+}
+
 /// The paper's claims in each world: `transfer/claims.csv` of scripts/transfer_study.sh.
 fn transfer_claims(dir: &Path, file: &str) -> Rendered {
     let header = [
@@ -1044,6 +1096,7 @@ fn render_block(dir: &Path, spec: &str) -> Rendered {
         "nsga-robots" => nsga_robots(dir, path),
         "transfer" => transfer(dir, path),
         "transfer-claims" => transfer_claims(dir, path),
+        "transfer-pair" => transfer_pair(dir, path, &args),
         other => Err(format!(
             "unknown renderer `{other}`; the renderers are {RENDERERS}"
         )),

@@ -486,3 +486,120 @@ fn the_epuck2_transfer_studys_simulator_side_is_its_studys_test_runs() {
 fn the_thymio2_transfer_studys_simulator_side_is_its_studys_test_runs() {
     assert_simulator_side_is_the_studys("transfer/thymio2", "transfer/thymio2/study");
 }
+
+/// A pair of transfer studies of the same seeds (`b`/pair.csv, `transfer_study pair`): each row
+/// recomputed from the two studies' transfer.csv — b against a paired by seed in Enki, in
+/// fuzzymotiv and in |Enki − fuzzymotiv| — every number bit for bit, the verdict by the rule.
+fn assert_pair_is_recomputed(a: &str, b: &str) {
+    let (means_a, seeds_a) = transfer_seed_means(&results().join(a).join("transfer.csv"));
+    let (means_b, seeds_b) = transfer_seed_means(&results().join(b).join("transfer.csv"));
+    assert_eq!(seeds_a, seeds_b, "{a} and {b} are not of the same seeds");
+    let values = |means: &BTreeMap<Key, Vec<f64>>, setting: &str, measure: &str, world: &str| {
+        let get =
+            |w: &str| means[&(setting.to_string(), measure.to_string(), w.to_string())].clone();
+        if world != "gap" {
+            return get(world);
+        }
+        let (sim, enki) = (get("fuzzymotiv"), get("enki"));
+        sim.iter().zip(&enki).map(|(s, e)| (e - s).abs()).collect()
+    };
+    let pair = rows(&results().join(b).join("pair.csv"));
+    assert!(pair.len() >= 30, "{b}/pair.csv: {} rows", pair.len());
+    for row in &pair {
+        let (setting, measure, world) = (&row["setting"], &row["measure"], &row["world"]);
+        let va = values(&means_a, setting, measure, world);
+        let vb = values(&means_b, setting, measure, world);
+        let options = Settings {
+            alpha: ALPHA,
+            seed: seeds_a[setting][0],
+            ..Settings::default()
+        };
+        let c = paired(&vb, &va, &options).unwrap();
+        assert_eq!(number(row, "mean_a"), Some(c.mean_b));
+        assert_eq!(number(row, "mean_b"), Some(c.mean_a));
+        let verdict = rule(c.difference, c.p, c.mdd, Expect::Higher).direction_label();
+        assert_row_is(
+            row,
+            &c,
+            verdict,
+            &format!("{b}/pair.csv {setting} {measure} {world}"),
+        );
+    }
+}
+
+#[test]
+fn the_randomised_robots_in_enki_are_recomputed_from_both_studies_per_seed_records() {
+    assert_pair_is_recomputed("transfer", "transfer/randomised");
+    assert_transfer_records_are_recomputed("transfer/randomised");
+    assert_simulator_side_is_the_studys("transfer/randomised", "transfer/randomised/study");
+}
+
+#[test]
+fn the_enki_calibrated_robots_in_enki_are_recomputed_from_both_studies_per_seed_records() {
+    assert_pair_is_recomputed("transfer", "transfer/enki-table");
+    assert_transfer_records_are_recomputed("transfer/enki-table");
+    assert_simulator_side_is_the_studys("transfer/enki-table", "transfer/enki-table/study");
+}
+
+#[test]
+fn the_readings_figures_fuzzymotiv_curves_are_the_engines_readings_now() {
+    // docs/results/transfer/readings.csv (examples/readings_vs_distance.rs): each robot's front
+    // sensor head-on to its room's east wall. Its fuzzymotiv rows must be what the engine reads
+    // today, so the figure of the gap cannot go stale.
+    use fuzzymotiv::simulation::Pose;
+    let root = results().join("../..");
+    let file = |path: &str| format!("\"{}\"", root.join(path).display());
+    let square = ["rooms=[\"square\"]".to_string(), "aem.enabled=false".into()];
+    let table = format!(
+        "trial.sensor_table={}",
+        file("configs/sensors/khepera-enki.toml")
+    );
+    let thymio_rooms = format!("rooms=[{}]", file("rooms/thymio2/square.toml"));
+    let probes: [(&str, &str, Vec<String>, usize); 4] = [
+        ("khepera", "fuzzymotiv (robot file)", square.to_vec(), 2),
+        (
+            "khepera",
+            "fuzzymotiv (table calibrated in Enki)",
+            [&square[..], &[table]].concat(),
+            2,
+        ),
+        (
+            "epuck2",
+            "fuzzymotiv (robot file)",
+            [&square[..], &["robot=\"epuck2\"".to_string()]].concat(),
+            0,
+        ),
+        (
+            "thymio2",
+            "fuzzymotiv (robot file)",
+            vec![
+                "robot=\"thymio2\"".into(),
+                thymio_rooms,
+                "aem.enabled=false".into(),
+            ],
+            2,
+        ),
+    ];
+    let rows = rows(&results().join("transfer/readings.csv"));
+    for (robot, source, sets, sensor) in probes {
+        let loaded = fuzzymotiv_io::files::inputs::load_config(None, &sets, None).unwrap();
+        let arena = &loaded.experiment.arenas()[0];
+        let (low, high) = arena.room().bounds();
+        let mount = loaded.experiment.trial_params().robot().spec().mounts()[sensor];
+        let mine: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r["robot"] == robot && r["source"] == source)
+            .collect();
+        assert!(mine.len() > 100, "{robot} {source}: {} rows", mine.len());
+        for row in mine {
+            let d = number(row, "distance_mm").unwrap();
+            let pose = Pose::facing_wall(&mount, high.x, (low.y + high.y) / 2.0, d);
+            let now = arena.read_sensors(&pose)[sensor];
+            assert_eq!(
+                number(row, "reading"),
+                Some(now),
+                "{robot} {source} at {d} mm"
+            );
+        }
+    }
+}

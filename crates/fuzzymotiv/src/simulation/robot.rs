@@ -7,6 +7,7 @@ use crate::params::{FieldError, Num, check};
 use crate::simulation::geom::Vec2;
 use crate::simulation::math;
 use crate::simulation::robot_spec::RobotSpec;
+use crate::simulation::sensor_layout::SensorMount;
 
 /// Default signed-speed difference (fractions of `v_max`) separating a turn from a straight
 /// step (config key `aem.action_tolerance`).
@@ -25,6 +26,17 @@ pub struct Pose {
 }
 
 impl Pose {
+    /// The pose at which the sensor at `mount` faces a wall along x = `wall_x` (to its east)
+    /// head-on, `gap` mm from it along the sensor's axis, the sensor at height `y`: how a bench
+    /// measures a sensor's response (`fuzzymotiv calibrate`), and how the response is drawn
+    /// against Enki's.
+    pub fn facing_wall(mount: &SensorMount, wall_x: f64, y: f64, gap: f64) -> Pose {
+        let heading = -mount.facing_deg.to_radians();
+        let (sin, cos) = heading.sin_cos();
+        let x = wall_x - gap - (mount.x * cos - mount.y * sin);
+        Pose::new(x, y - (mount.x * sin + mount.y * cos), heading)
+    }
+
     /// A pose; the heading is wrapped to (−π, π].
     pub fn new(x: f64, y: f64, heading: f64) -> Self {
         Self {
