@@ -29,7 +29,7 @@ fn tiny_study(dir: &Path, base_seeds: &str, extra: &str) -> PathBuf {
     let config = repo().join("configs/fetch.toml");
     let text = text
         .replace("seeds = 10\n", "seeds = 4\n")
-        .replace("base_seeds = [1]", &format!("base_seeds = {base_seeds}"))
+        .replace("base_seeds = [1, 11]", &format!("base_seeds = {base_seeds}"))
         .replace(
             "config = \"../configs/fetch.toml\"",
             &format!(
@@ -550,4 +550,28 @@ fn the_paper_study_file_runs_reproduces_runs_and_gives_its_claims_numbers() {
         }
     }
     assert_eq!(recompute_every_verdict(&out), 8);
+}
+
+/// Every shipped study file (studies/*.toml) loads, every run's config checked, and
+/// replicates: it runs at two base seeds or more, so that it reports each base seed's verdict
+/// beside the pooled one.
+#[test]
+fn every_shipped_study_file_loads_and_runs_at_two_base_seeds() {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(repo().join("studies"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 6, "{files:?}");
+    for file in files {
+        let study = fuzzymotiv_io::study::Study::load(&file)
+            .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        assert!(
+            study.base_seeds.len() >= 2,
+            "{}: base seeds {:?}",
+            file.display(),
+            study.base_seeds
+        );
+    }
 }
