@@ -154,6 +154,48 @@ fn file_names(runs: usize) -> Vec<String> {
     names
 }
 
+/// The logs `run-K.csv` in `out` with K ≥ `runs`: an earlier transfer's with more test runs,
+/// which this one's measures.csv and test_runs.csv would not count.
+fn stale_runs(out: &Path, runs: usize) -> Vec<PathBuf> {
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return Vec::new();
+    };
+    let mut stale: Vec<(usize, PathBuf)> = entries
+        .filter_map(|e| e.ok())
+        .filter_map(|e| {
+            let name = e.file_name().into_string().ok()?;
+            let k: usize = name
+                .strip_prefix("run-")?
+                .strip_suffix(".csv")?
+                .parse()
+                .ok()?;
+            (k >= runs).then(|| (k, e.path()))
+        })
+        .collect();
+    stale.sort();
+    stale.into_iter().map(|(_, p)| p).collect()
+}
+
+/// Refuses an `--out` holding an earlier transfer's extra logs unless `force` (then they are
+/// removed once the new files are written: see [`transfer`]).
+fn check_stale_runs(out: &Path, runs: usize, force: bool) -> Result<Vec<PathBuf>, CliError> {
+    let stale = stale_runs(out, runs);
+    if stale.is_empty() || force {
+        return Ok(stale);
+    }
+    let names: Vec<String> = stale
+        .iter()
+        .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .collect();
+    Err(CliError::input(format!(
+        "--out {}: holds {} of an earlier transfer with more test runs than --runs {runs}; this \
+         transfer's measures would not count them. Choose another --out, or --force to replace \
+         that transfer (its extra logs are removed)",
+        out.display(),
+        names.join(", ")
+    )))
+}
+
 /// Runs the transfer (see the module's docs) and writes its files through the output guard.
 pub fn transfer(req: &TransferRequest) -> Result<Transferred, CliError> {
     if req.runs == 0 {
@@ -162,6 +204,7 @@ pub fn transfer(req: &TransferRequest) -> Result<Transferred, CliError> {
     let names = file_names(req.runs);
     let refs: Vec<&str> = names.iter().map(String::as_str).collect();
     check_files_dir(req.out, "--out", &refs)?;
+    let stale = check_stale_runs(req.out, req.runs, req.force)?;
     let src = load_source(req)?;
     let build = tempfile::tempdir().map_err(|e| CliError::io(format!("a build directory: {e}")))?;
     let harness = build_harness(&src, build.path())?;
@@ -204,6 +247,10 @@ pub fn transfer(req: &TransferRequest) -> Result<Transferred, CliError> {
         files.push((req.out.join(name), text.into_bytes()));
     }
     let state = write_into(req.out, &files, "--out", req.force)?;
+    for path in stale {
+        std::fs::remove_file(&path)
+            .map_err(|e| CliError::io(format!("{}: {e}", path.display())))?;
+    }
     Ok(Transferred {
         files: files.into_iter().map(|(p, _)| p).collect(),
         unchanged: state == FilesState::Same,
@@ -728,4 +775,46 @@ fn transfer_md(req: &TransferRequest, src: &Source, base: u64, comparison: &str)
         let _ = writeln!(md, "- {line}");
     }
     md
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_earlier_transfers_extra_logs_are_refused_unless_forced() {
+        let dir = tempfile::tempdir().unwrap();
+        let write = |k: usize| std::fs::write(dir.path().join(format!("run-{k}.csv")), "x");
+        for k in [0, 1, 2] {
+            write(k).unwrap();
+        }
+        std::fs::write(dir.path().join("run-notes.csv"), "x").unwrap();
+        // Three runs again (or more): nothing stale.
+        assert!(check_stale_runs(dir.path(), 3, false).unwrap().is_empty());
+        assert!(check_stale_runs(dir.path(), 10, false).unwrap().is_empty());
+        for k in [7, 12] {
+            write(k).unwrap();
+        }
+        // Two runs: run-2, run-7 and run-12 would be left beside them, uncounted.
+        let err = check_stale_runs(dir.path(), 2, false).unwrap_err();
+        let message = err.to_string();
+        assert!(err.is_input(), "{message}");
+        assert!(
+            message.contains("run-2.csv, run-7.csv, run-12.csv"),
+            "{message}"
+        );
+        assert!(message.contains("--force"), "{message}");
+        let forced = check_stale_runs(dir.path(), 2, true).unwrap();
+        let names: Vec<_> = forced
+            .iter()
+            .map(|p| p.file_name().unwrap().to_owned())
+            .collect();
+        assert_eq!(names, ["run-2.csv", "run-7.csv", "run-12.csv"]);
+        // A directory that does not exist yet holds nothing.
+        assert!(
+            check_stale_runs(&dir.path().join("new"), 1, false)
+                .unwrap()
+                .is_empty()
+        );
+    }
 }
