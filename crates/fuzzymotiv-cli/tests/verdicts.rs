@@ -178,10 +178,23 @@ fn csv_files(dir: &Path, out: &mut Vec<PathBuf>) {
 
 #[test]
 fn every_committed_verdict_follows_the_stated_rule_from_its_own_row() {
+    let checked = check_verdicts(&results());
+    // The paper's four studies, the replication's, search strength, ablation, combination,
+    // urgency: well over a hundred verdicts.
+    assert!(checked > 100, "only {checked} verdicts checked");
+}
+
+/// Every verdict in the CSV files under `root` checked against its own row by the rule its
+/// study states (a study of one's own: the analysis its study.json declares); how many.
+fn check_verdicts(root: &Path) -> usize {
     let mut files = Vec::new();
-    csv_files(&results(), &mut files);
+    csv_files(root, &mut files);
     let mut checked = 0;
     for file in files {
+        if let Some(study) = declared(&file) {
+            checked += check_study_file(&file, &study);
+            continue;
+        }
         for row in rows(&file) {
             let Some([effect, p, mdd, verdict]) = rule_columns(&row) else {
                 break;
@@ -206,9 +219,117 @@ fn every_committed_verdict_follows_the_stated_rule_from_its_own_row() {
             checked += 1;
         }
     }
-    // The paper's four studies, the replication's, search strength, ablation, combination,
-    // urgency: well over a hundred verdicts.
-    assert!(checked > 100, "only {checked} verdicts checked");
+    checked
+}
+
+/// The study.json of a study of one's own (`fuzzymotiv study`) whose claims.csv or rooms.csv
+/// `file` is: its declared analysis and typed hypotheses.
+fn declared(file: &Path) -> Option<serde_json::Value> {
+    let name = file.file_name()?.to_str()?;
+    if name != "claims.csv" && name != "rooms.csv" {
+        return None;
+    }
+    let text = std::fs::read_to_string(file.parent()?.join("study.json")).ok()?;
+    serde_json::from_str(&text).ok()
+}
+
+/// A result's margin in its hypothesis's way: the effect (negated for `lower`), a range's
+/// distance to its nearer bound (negative outside).
+fn margin(h: &serde_json::Value, effect: f64) -> f64 {
+    match h["kind"].as_str().unwrap() {
+        "range" => {
+            let above = effect - h["min"].as_f64().unwrap();
+            let below = h["max"].as_f64().unwrap() - effect;
+            if above < 0.0 {
+                above
+            } else if below < 0.0 {
+                below
+            } else {
+                above.min(below)
+            }
+        }
+        _ if h["expect"] == "lower" => -effect,
+        _ => effect,
+    }
+}
+
+/// A study's claims.csv (or rooms.csv) by the analysis its study.json declares: each group of
+/// tests (a scope's hypotheses; a hypothesis's rooms in a scope) has its p Holm-adjusted when
+/// Holm is declared over it (recomputed), and each verdict follows from the margin, the
+/// adjusted p and the detectable difference by the declared α and rule.
+fn check_study_file(file: &Path, study: &serde_json::Value) -> usize {
+    let a = &study["analysis"];
+    let alpha = a["alpha"].as_f64().unwrap();
+    let rooms = file.file_name().is_some_and(|n| n == "rooms.csv");
+    let holm = a["holm"] == if rooms { "rooms" } else { "hypotheses" };
+    let hypothesis = |id: &str| {
+        (study["hypotheses"].as_array().unwrap().iter())
+            .find(|h| h["id"] == id)
+            .unwrap_or_else(|| panic!("{}: no hypothesis {id}", file.display()))
+    };
+    let all = rows(file);
+    let mut groups: Vec<(String, String)> = Vec::new();
+    for r in &all {
+        let key = (r["scope"].clone(), if rooms { r["id"].clone() } else { String::new() });
+        if !groups.contains(&key) {
+            groups.push(key);
+        }
+    }
+    for (scope, id) in &groups {
+        let group: Vec<&Row> = (all.iter())
+            .filter(|r| &r["scope"] == scope && (!rooms || &r["id"] == id))
+            .collect();
+        let p: Vec<f64> = group.iter().map(|r| number(r, "p").unwrap()).collect();
+        let adjusted = if holm {
+            fuzzymotiv::statistics::holm(&p)
+        } else {
+            p
+        };
+        for (r, p_adj) in group.iter().zip(adjusted) {
+            let at = format!("{}: {} ({scope})", file.display(), r["id"]);
+            assert!((number(r, "p_adjusted").unwrap() - p_adj).abs() < 1e-12, "{at}: adjusted p");
+            let m = margin(hypothesis(&r["id"]), number(r, "effect").unwrap());
+            let below = number(r, "mdd").is_some_and(|mdd| m.abs() < mdd);
+            let expected = if a["rule"] == "power" && below {
+                Verdict::Inconclusive
+            } else {
+                Verdict::of(m, p_adj, Expect::Higher, alpha)
+            };
+            assert_eq!(r["verdict"], expected.label(), "{at}: the declared rule");
+        }
+    }
+    all.len()
+}
+
+/// A study of one's own is checked by the analysis it declares, not the paper's: Holm over its
+/// hypotheses (two claims at p 0.03 and 0.04, each alone significant, are not at their
+/// adjusted 0.06), a `lower` comparison holding on a negative effect, a range by its distance
+/// to its nearer bound; a verdict written against that rule is caught.
+#[test]
+fn a_study_of_ones_own_is_checked_by_its_declared_analysis() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = serde_json::json!({
+        "analysis": { "alpha": 0.05, "rule": "power", "holm": "hypotheses" },
+        "hypotheses": [
+            { "kind": "compare", "id": "up", "expect": "higher" },
+            { "kind": "compare", "id": "down", "expect": "lower" },
+            { "kind": "range", "id": "band", "min": 0.05, "max": 0.15 },
+        ],
+    });
+    std::fs::write(dir.path().join("study.json"), study.to_string()).unwrap();
+    let claims = |first: &str| {
+        format!(
+            "id,scope,effect,p,p_adjusted,mdd,verdict\n\
+             up,pooled,5.0,0.03,0.06,1.0,{first}\n\
+             down,pooled,-5.0,0.04,0.06,1.0,not significant\n\
+             band,pooled,0.1,0.001,0.003,0.01,holds\n"
+        )
+    };
+    std::fs::write(dir.path().join("claims.csv"), claims("not significant")).unwrap();
+    assert_eq!(check_verdicts(dir.path()), 3);
+    std::fs::write(dir.path().join("claims.csv"), claims("holds")).unwrap();
+    let caught = std::panic::catch_unwind(|| check_verdicts(dir.path()));
+    assert!(caught.is_err(), "a verdict on the unadjusted p is caught");
 }
 
 #[test]
