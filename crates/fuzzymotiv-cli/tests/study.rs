@@ -516,7 +516,10 @@ fn the_paper_study_file_runs_reproduces_runs_and_gives_its_claims_numbers() {
     let claim = |id: &str| claims.iter().find(|c| c["id"] == id).unwrap();
     // reproduce's claims.csv: the four comparisons in ClaimId::COMPARISONS' order, then each
     // Fig. 6 check over both settings and per setting.
-    for (k, id) in ["explores", "battery", "recognition", "homing"].iter().enumerate() {
+    for (k, id) in ["explores", "battery", "recognition", "homing"]
+        .iter()
+        .enumerate()
+    {
         let (ours, theirs) = (claim(id), &paper[k]);
         for (a, b) in [
             ("effect", "difference"),

@@ -270,7 +270,14 @@ fn check_study_file(file: &Path, study: &serde_json::Value) -> usize {
     let all = rows(file);
     let mut groups: Vec<(String, String)> = Vec::new();
     for r in &all {
-        let key = (r["scope"].clone(), if rooms { r["id"].clone() } else { String::new() });
+        let key = (
+            r["scope"].clone(),
+            if rooms {
+                r["id"].clone()
+            } else {
+                String::new()
+            },
+        );
         if !groups.contains(&key) {
             groups.push(key);
         }
@@ -287,7 +294,10 @@ fn check_study_file(file: &Path, study: &serde_json::Value) -> usize {
         };
         for (r, p_adj) in group.iter().zip(adjusted) {
             let at = format!("{}: {} ({scope})", file.display(), r["id"]);
-            assert!((number(r, "p_adjusted").unwrap() - p_adj).abs() < 1e-12, "{at}: adjusted p");
+            assert!(
+                (number(r, "p_adjusted").unwrap() - p_adj).abs() < 1e-12,
+                "{at}: adjusted p"
+            );
             let m = margin(hypothesis(&r["id"]), number(r, "effect").unwrap());
             let below = number(r, "mdd").is_some_and(|mdd| m.abs() < mdd);
             let expected = if a["rule"] == "power" && below {
