@@ -461,7 +461,7 @@ fn a_killed_study_resumes_its_runs_and_writes_the_analysis_of_an_uninterrupted_o
     }
 }
 
-/// The shipped studies/paper.toml made tiny (two seeds of base seed 1, a small GA, short
+/// The shipped studies/paper.toml made tiny (three seeds of base seed 1, a small GA, short
 /// trials), its configs named by absolute paths; and the same size as `reproduce`'s `--set`s.
 fn tiny_paper_study(dir: &Path) -> (PathBuf, [&'static str; 3]) {
     let text = std::fs::read_to_string(repo().join("studies/paper.toml")).unwrap();
@@ -469,13 +469,13 @@ fn tiny_paper_study(dir: &Path) -> (PathBuf, [&'static str; 3]) {
     let text = text
         .replace(
             "seeds = 20\nbase_seeds = [1, 11]\n",
-            "seeds = 2\nbase_seeds = [1]\nset = { ga = { population = 6, generations = 2 }, trial = { steps = 60 } }\n",
+            "seeds = 3\nbase_seeds = [1]\nset = { ga = { population = 8, generations = 4 }, trial = { steps = 150 } }\n",
         )
         .replace("\"../configs/", &format!("\"{}/", configs.display()));
-    assert!(text.contains("population = 6") && text.contains("base_seeds = [1]\n"));
+    assert!(text.contains("population = 8") && text.contains("base_seeds = [1]\n"));
     let path = dir.join("paper.toml");
     std::fs::write(&path, text).unwrap();
-    let sets = ["ga.population=6", "ga.generations=2", "trial.steps=60"];
+    let sets = ["ga.population=8", "ga.generations=4", "trial.steps=150"];
     (path, sets)
 }
 
@@ -488,7 +488,7 @@ fn the_paper_study_file_runs_reproduces_runs_and_gives_its_claims_numbers() {
     let dir = tempfile::tempdir().unwrap();
     let (file, sets) = tiny_paper_study(dir.path());
     let (rep, out) = (dir.path().join("reproduce"), dir.path().join("study"));
-    let mut args = vec!["reproduce", "--seeds", "2", "--threads", "2", "-q", "--out"];
+    let mut args = vec!["reproduce", "--seeds", "3", "--threads", "2", "-q", "--out"];
     args.push(rep.to_str().unwrap());
     for s in &sets {
         args.extend(["--set", s]);
