@@ -15,6 +15,7 @@
 #   replication=results-replication           (fuzzymotiv reproduce --replication --seeds 20)
 #   combination=results-combination           (fuzzymotiv reproduce --combination)
 #   combination-base-11=results-combination-base-11 (fuzzymotiv reproduce --combination --seed 11 --out results-combination-base-11)
+#   paper-study=out/paper-study                (fuzzymotiv study studies/paper.toml --out out/paper-study)
 #   urgency=results-urgency                   (fuzzymotiv reproduce --urgency)
 #   maps/o-fixed=out/maps/o-fixed   (fuzzymotiv sweep configs/motivation-map.toml … + merge)
 #   maps/o-free=out/maps/o-free     (fuzzymotiv sweep configs/motivation-map-o-free.toml … + merge)
@@ -79,12 +80,14 @@ files_of() { # KIND DIR
             done ;;
         urgency)
             echo urgency.csv urgency_seeds.csv summary.json ;;
+        paper-study)
+            echo per_seed.csv claims.csv rooms.csv study.json ;;
         combination | combination-base-11)
             echo behaviour.csv claim_differences.csv summary.json
             for c in default weighted-sum weighted-squares; do
                 echo "$c/claims.csv $c/table1.csv $c/table2.csv"
             done ;;
-        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, twenty-seed-base-11, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, combination-base-11, urgency" ;;
+        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, twenty-seed-base-11, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, combination-base-11, urgency, paper-study" ;;
     esac
 }
 
@@ -98,7 +101,7 @@ for arg in "$@"; do
     files=$(files_of "$kind" "$dir" | tr '\n' ' ')
     for f in $files; do
         [[ -f $dir/$f ]] || die "$dir/$f is missing: the study is not finished (or not a $kind study)"
-        [[ $(basename "$f") != summary.json ]] || check_model "$dir/$f"
+        case $(basename "$f") in summary.json | study.json) check_model "$dir/$f" ;; esac
     done
     case $kind in
         orientation | maps/*)

@@ -734,3 +734,69 @@ fn the_readings_figures_fuzzymotiv_curves_are_the_engines_readings_now() {
         }
     }
 }
+
+/// The paper's study as a study file (studies/paper.toml, committed in `paper-study/`) is the
+/// paper's study at both its base seeds: each base seed's four comparisons have the numbers and
+/// the verdicts of the committed study of the same seeds (`twenty-seed`, `twenty-seed-base-11`),
+/// each recomputed here from the study's own per_seed.csv (its resampling seeded by the base
+/// seed's first seed, as the paper's claims).
+#[test]
+fn the_paper_study_files_comparisons_are_the_paper_studies_at_both_base_seeds() {
+    let dir = results().join("paper-study");
+    let claims = rows(&dir.join("claims.csv"));
+    let per_seed = rows(&dir.join("per_seed.csv"));
+    for (scope, study) in [
+        ("base=1", "twenty-seed"),
+        ("base=11", "twenty-seed-base-11"),
+    ] {
+        let paper = rows(&results().join(study).join("claims.csv"));
+        let in_scope = |r: &&Row| format!("base={}", r["base_seed"]) == scope;
+        let first_seed: u64 = per_seed.iter().find(in_scope).unwrap()["seed"]
+            .parse()
+            .unwrap();
+        let ids = ["explores", "battery", "recognition", "homing"];
+        for (&(claim, column, expect), id) in CLAIMS.iter().zip(ids) {
+            let at = format!("paper-study/claims.csv, {id} ({scope})");
+            let ours = (claims.iter())
+                .find(|r| r["id"] == id && r["scope"] == scope)
+                .unwrap_or_else(|| panic!("{at}: missing"));
+            let theirs = paper.iter().find(|r| r["claim"] == claim).unwrap();
+            for (a, b) in [
+                ("effect", "difference"),
+                ("ci_low", "ci_low"),
+                ("ci_high", "ci_high"),
+                ("p", "p"),
+                ("mdd", "mdd"),
+            ] {
+                assert_eq!(number(ours, a), number(theirs, b), "{at}: {a} is {study}'s");
+            }
+            assert_eq!(
+                ours["verdict"], theirs["verdict"],
+                "{at}: {study}'s verdict"
+            );
+            let of = |arm: &str| -> Vec<f64> {
+                (per_seed.iter().filter(in_scope))
+                    .filter(|r| r["arm"] == arm && r["measure"] == column && r["room"].is_empty())
+                    .map(|r| number(r, "value").unwrap())
+                    .collect()
+            };
+            let options = Settings {
+                alpha: ALPHA,
+                seed: first_seed,
+                ..Settings::default()
+            };
+            let c = paired(&of("high-curiosity"), &of("low-curiosity"), &options).unwrap();
+            assert_eq!(
+                number(ours, "effect"),
+                Some(c.difference),
+                "{at}: recomputed"
+            );
+            assert_eq!(number(ours, "p"), Some(c.p), "{at}: recomputed");
+            let verdict = c.verdict_with_power(expect).label();
+            assert_eq!(
+                ours["verdict"], verdict,
+                "{at}: recomputed from per_seed.csv"
+            );
+        }
+    }
+}
