@@ -489,4 +489,14 @@ mod tests {
             assert_eq!(Measure::parse(name).column(), column);
         }
     }
+
+    /// `first_mean_f` is the run's first-generation mean F, a value of the whole run: never a
+    /// term's, and with no value per room.
+    #[test]
+    fn the_first_generation_mean_f_is_a_measure_of_the_whole_run() {
+        let m = Measure::parse(FIRST_MEAN_F);
+        assert_eq!(m, Measure::FirstMeanF);
+        assert_eq!(m.column(), FIRST_MEAN_F);
+        assert!(!m.per_room() && Measure::Homing.per_room());
+    }
 }
