@@ -366,6 +366,7 @@ impl Experiment {
                     seed: self.eval_seed(run, generation, first + i, r),
                     observer: self.recorder(arena),
                     last: arena.room().home,
+                    drawn: None,
                 })
                 .collect();
             walk_lanes(arena, &mut trials);
