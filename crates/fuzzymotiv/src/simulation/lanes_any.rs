@@ -534,4 +534,48 @@ mod tests {
             assert!(collided > 0, "{robot} {motion:?} in {room:?}: no collision");
         }
     }
+
+    /// Trials whose robot `[trial.randomise]` drew (another noise level, sensor table scale
+    /// and body radius: each lane in its own arena; a wheel bias, 0 included, on its network)
+    /// take in the lanes the steps `simulate` takes with the drawn arena and the biased
+    /// network, among trials of the batch's own robot: the Khepera with either motion, the
+    /// e-puck2 with `wheels`.
+    #[test]
+    fn drawn_robots_take_the_steps_simulate_takes() {
+        use crate::experiment::Perturbation as P;
+        for (robot, motion) in [
+            ("khepera", Motion::Actions),
+            ("khepera", Motion::Wheels),
+            ("epuck2", Motion::Wheels),
+        ] {
+            let p = params(robot, motion, 300, true, None);
+            let arena = Arena::new(room_for(robot, "H"), &p);
+            let radius = p.robot().radius();
+            let draws = [
+                vec![P::Noise(0.11), P::TableScale(0.83), P::Radius(radius * 1.1)],
+                vec![P::Noise(0.0)],
+                vec![P::TableScale(1.27)],
+                vec![P::Radius(radius * 1.2), P::Noise(0.02)],
+                vec![],
+            ];
+            let arenas: Vec<Arena> = (draws.iter())
+                .map(|d| {
+                    let drawn = d.iter().fold(p, |t, q| q.apply(t).unwrap());
+                    Arena::new(arena.room().clone(), &drawn)
+                })
+                .collect();
+            let n = 11;
+            let drawn: Vec<Option<Drawn<'_>>> = (0..n)
+                .map(|i| {
+                    (i % 4 != 3).then(|| Drawn {
+                        arena: &arenas[i % arenas.len()],
+                        bias: [0.0, 0.07, -0.12][i % 3],
+                    })
+                })
+                .collect();
+            let nets = networks(n, arena.sensors(), 6, 99, 3.0);
+            let (executed, _) = check(&arena, &nets, &drawn);
+            assert!(executed.iter().all(|&e| e > 0), "{robot}: {executed:?}");
+        }
+    }
 }
