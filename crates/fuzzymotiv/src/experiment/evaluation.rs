@@ -1,8 +1,6 @@
 //! Evaluation: one individual's trials in the rooms of a run, on the evaluation (and online
 //! orientation) streams, combined into its fuzzy fitness; populations are evaluated in parallel.
 
-use std::borrow::Cow;
-
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -163,8 +161,9 @@ impl Experiment {
         seed: u64,
         actions: bool,
     ) -> (FitnessTerms, Vec<Action>, usize) {
-        let arena = self.drawn_arena(draw, room);
-        let (arena, trial) = (&*arena, arena.params());
+        let own = self.drawn_arena(draw, room);
+        let arena = own.as_deref().unwrap_or(&self.arenas[room]);
+        let trial = arena.params();
         let mut c = Perturbed {
             net: network,
             dead: None,
@@ -182,19 +181,17 @@ impl Experiment {
     }
 
     /// The arena of `room` for the robot `draw` makes of this experiment's (its perturbations
-    /// applied as the robustness study applies them): the room as prepared when the draw
-    /// leaves the trial's parameters as they are (a wheel bias alone), else the room prepared
-    /// for the drawn body, sensors and noise.
-    fn drawn_arena(&self, draw: &Draw, room: usize) -> Cow<'_, Arena> {
+    /// applied as the robustness study applies them): `None` when the draw leaves the trial's
+    /// parameters as they are (a wheel bias alone: the room as prepared), else the room
+    /// prepared for the drawn body, sensors and noise.
+    fn drawn_arena(&self, draw: &Draw, room: usize) -> Option<Box<Arena>> {
         let mut trial = self.trial;
         for p in Perturbation::of_draw(draw) {
             // The ranges were checked against the robot (Randomise::from_raw): every draw fits.
             trial = p.apply(trial).unwrap_or(trial);
         }
-        match trial == self.trial {
-            true => Cow::Borrowed(&self.arenas[room]),
-            false => Cow::Owned(Arena::new(self.arenas[room].room().clone(), &trial)),
-        }
+        let room = self.arenas[room].room().clone();
+        (trial != self.trial).then(|| Box::new(Arena::new(room, &trial)))
     }
 
     /// The user-defined terms' values of a finished trial (supplied ones left at 0 for the front
@@ -436,8 +433,8 @@ impl Experiment {
         seeds: &[u64],
         actions: bool,
     ) -> Vec<(FitnessTerms, Vec<Action>, usize)> {
-        // Each trial's drawn robot, prepared once here: its arena and wheel bias.
-        let drawn: Vec<Option<(Cow<'_, Arena>, f64)>> = (seeds.iter())
+        // Each trial's drawn robot, prepared once here: its own arena (or none) and wheel bias.
+        let drawn: Vec<Option<DrawnRobot>> = (seeds.iter())
             .map(|&seed| {
                 let draw = self.randomise.as_ref()?.draw(seed);
                 Some((self.drawn_arena(&draw, room), draw.wheel_bias.unwrap_or(0.0)))
@@ -475,15 +472,15 @@ impl Experiment {
         nets: &'a [Mlp],
         room: usize,
         seeds: &[u64],
-        drawn: &'a [Option<(Cow<'a, Arena>, f64)>],
+        drawn: &'a [Option<DrawnRobot>],
         watch: impl Fn(&'a Arena) -> O,
         finish: impl Fn(&'a Arena, O) -> T,
     ) -> Vec<T> {
         let arena = &self.arenas[room];
         let mut trials: Vec<_> = (nets.iter().zip(seeds).zip(drawn))
             .map(|((net, &seed), drawn)| {
-                let drawn = drawn.as_ref().map(|(a, bias)| Drawn {
-                    arena: &**a,
+                let drawn = drawn.as_ref().map(|(own, bias)| Drawn {
+                    arena: own.as_deref().unwrap_or(arena),
                     bias: *bias,
                 });
                 let here = drawn.map_or(arena, |d| d.arena);
@@ -511,6 +508,10 @@ impl Experiment {
         Evaluation { fitness, per_room }
     }
 }
+
+/// A trial's robot drawn by `[trial.randomise]`, as the lanes take it: its own arena (`None`:
+/// the room as prepared; boxed, as an arena is large) and its wheel bias.
+type DrawnRobot = (Option<Box<Arena>>, f64);
 
 /// What watches an evaluation trial in the lanes when more than its terms is wanted: the
 /// recorder of its terms, its actions (online orientation), its whole record (user-defined

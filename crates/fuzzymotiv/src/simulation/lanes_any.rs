@@ -50,12 +50,19 @@ fn walk_on<'a, O: StepObserver>(
     trials: &mut [LaneTrial<'a, O>],
     memo: Option<&mut Table>,
 ) {
+    // Eight rows of readings hold most robots' (the Khepera's, the e-puck2's, the Thymio
+    // II's seven); any other count takes all `MAX_SENSORS`.
+    let few = arena.sensors() <= 8;
     match isa {
-        Isa::Baseline => walk::<false, O>(arena, trials, memo),
+        Isa::Baseline if few => walk::<false, 8, O>(arena, trials, memo),
+        Isa::Baseline => walk::<false, MAX_SENSORS, O>(arena, trials, memo),
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 and FMA
         // (`Isa::detected`).
-        Isa::Avx2 => unsafe { walk_avx2(arena, trials, memo) },
+        Isa::Avx2 if few => unsafe { walk_avx2::<8, O>(arena, trials, memo) },
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: as above.
+        Isa::Avx2 => unsafe { walk_avx2::<MAX_SENSORS, O>(arena, trials, memo) },
     }
 }
 
@@ -66,25 +73,26 @@ fn walk_on<'a, O: StepObserver>(
 /// The processor must have AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn walk_avx2<'a, O: StepObserver>(
+unsafe fn walk_avx2<'a, const S: usize, O: StepObserver>(
     arena: &'a Arena,
     trials: &mut [LaneTrial<'a, O>],
     memo: Option<&mut Table>,
 ) {
-    walk::<true, O>(arena, trials, memo)
+    walk::<true, S, O>(arena, trials, memo)
 }
 
 /// The step loop: each lane reads its sensors, the lanes draw and add their noise and run
 /// their networks together, then each lane moves and reports its step; a lane whose trial
 /// ends reports its idle steps and takes the next trial. `AVX2`: compiled with AVX2
-/// ([`walk_avx2`]).
+/// ([`walk_avx2`]); `S`: rows for the readings, at least the robot's sensors.
 #[inline(always)]
-fn walk<'a, const AVX2: bool, O: StepObserver>(
+fn walk<'a, const AVX2: bool, const S: usize, O: StepObserver>(
     arena: &'a Arena,
     trials: &mut [LaneTrial<'a, O>],
     mut memo: Option<&mut Table>,
 ) {
     let n = arena.sensors();
+    debug_assert!(n <= S);
     let mut lanes = AnyLanes::new(arena, trials[0].net);
     let mut next = 0;
     for l in 0..LANES {
@@ -93,7 +101,7 @@ fn walk<'a, const AVX2: bool, O: StepObserver>(
     while lanes.trial.iter().any(Option::is_some) {
         let mut sensed: [Option<Sensed>; LANES] = [None; LANES];
         // Sensor `k` of lane `l` in `raw[k][l]` (+0 for a lane without a trial).
-        let mut raw = [[0.0; LANES]; MAX_SENSORS];
+        let mut raw = [[0.0; LANES]; S];
         for l in 0..LANES {
             if lanes.trial[l].is_some() {
                 let s = lanes.walk[l].read(lanes.arena[l], memo.as_deref_mut());
@@ -125,11 +133,11 @@ fn walk<'a, const AVX2: bool, O: StepObserver>(
         }
         let mut motors = match open_floor {
             true => lanes.net.idle,
-            false => lanes.net.outputs(&inputs_of(raw, &lanes.max)),
+            false => lanes.net.outputs(&inputs_of::<S>(raw, &lanes.max)),
         };
         lanes.bias_motors(&mut motors);
         for l in 0..LANES {
-            let (Some(j), Some(mut sensed)) = (lanes.trial[l], sensed[l]) else {
+            let (Some(j), Some(sensed)) = (lanes.trial[l], &mut sensed[l]) else {
                 continue;
             };
             for (v, r) in sensed.sensors.iter_mut().zip(raw.iter()) {
@@ -139,7 +147,7 @@ fn walk<'a, const AVX2: bool, O: StepObserver>(
             let v_max = lanes.v_max[l];
             let noisy = [0, 1].map(|w| (2.0 * m[w] - 1.0) * v_max * factors[w][l]);
             let (t, lane_arena) = (lanes.t[l], lanes.arena[l]);
-            let (step, home) = lanes.walk[l].act_noisy(t, lane_arena, &sensed, m, noisy, (None, None));
+            let (step, home) = lanes.walk[l].act_noisy(t, lane_arena, sensed, m, noisy, (None, None));
             let trial = &mut trials[j];
             trial.observer.observe(&step);
             lanes.t[l] = t + 1;
@@ -158,8 +166,8 @@ fn walk<'a, const AVX2: bool, O: StepObserver>(
 /// The networks' inputs of the noisy readings `noisy[k][l]`: each / lane `l`'s `reading_max`,
 /// 0 for a reading of 0 (`trial::inputs_of`).
 #[inline(always)]
-fn inputs_of(noisy: &[[f64; LANES]], max: &[f64; LANES]) -> [[f64; LANES]; MAX_SENSORS] {
-    let mut x = [[0.0; LANES]; MAX_SENSORS];
+fn inputs_of<const S: usize>(noisy: &[[f64; LANES]], max: &[f64; LANES]) -> [[f64; LANES]; S] {
+    let mut x = [[0.0; LANES]; S];
     for (xk, nk) in x.iter_mut().zip(noisy) {
         for l in 0..LANES {
             let input = nk[l] / max[l];
@@ -307,8 +315,20 @@ impl NetLanes {
     /// logistic of each unit ([`logistic_lanes`]: the scalar function's bits), then each
     /// output's sum `bias + v₁·y₁ + …` and its logistic.
     #[inline(always)]
-    fn outputs(&mut self, x: &[[f64; LANES]; MAX_SENSORS]) -> [[f64; LANES]; OUTPUTS] {
-        let h = self.hidden;
+    fn outputs<const S: usize>(&mut self, x: &[[f64; LANES]; S]) -> [[f64; LANES]; OUTPUTS] {
+        match self.hidden {
+            6 => self.outputs_of::<S, 6>(x),
+            _ => self.outputs_of::<S, 0>(x),
+        }
+    }
+
+    /// [`NetLanes::outputs`] with `H` hidden units, or (`H` = 0) the networks' own number.
+    #[inline(always)]
+    fn outputs_of<const S: usize, const H: usize>(
+        &mut self,
+        x: &[[f64; LANES]; S],
+    ) -> [[f64; LANES]; OUTPUTS] {
+        let h = if H == 0 { self.hidden } else { H };
         let units = &mut self.units[..h];
         units.copy_from_slice(&self.hidden_w[..h]);
         for (xk, row) in x.iter().zip(self.hidden_w[h..].chunks_exact(h)) {

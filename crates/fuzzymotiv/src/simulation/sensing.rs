@@ -31,11 +31,12 @@ pub struct TurnedRays {
 }
 
 /// The sensors' rays side by side, for casting them in vector lanes: `origin[c][s]` is
-/// coordinate `c` (x, y) of sensor `s`'s origin, `dir[r][c][s]` of its ray `r`'s direction.
+/// coordinate `c` (x, y) of sensor `s`'s origin, `dir[r][c][s]` of its ray `r`'s direction,
+/// for the first `W` sensors (a multiple of 4).
 #[derive(Debug, Clone, Copy)]
-struct SideBySide {
-    origin: [[f64; INPUTS]; 2],
-    dir: [[[f64; INPUTS]; 2]; 3],
+struct SideBySide<const W: usize = INPUTS> {
+    origin: [[f64; W]; 2],
+    dir: [[[f64; W]; 2]; 3],
 }
 
 /// A robot's sensors with one response model, ready to read.
@@ -116,12 +117,17 @@ impl Eyes {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
             (3, Facing::Compass(t)) if self.isa == Isa::Avx2 && self.n <= 8 => unsafe {
-                self.cast_avx2::<8>(pos, &t.side, walls, near)
+                self.cast_avx2::<8, INPUTS>(pos, &t.side, walls, near)
             },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above.
             (3, Facing::Compass(t)) if self.isa == Isa::Avx2 => unsafe {
-                self.cast_avx2::<INPUTS>(pos, &t.side, walls, near)
+                self.cast_avx2::<INPUTS, INPUTS>(pos, &t.side, walls, near)
+            },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as above.
+            (3, Facing::Angle { sin, cos }) if self.isa == Isa::Avx2 => unsafe {
+                self.cast_turned_avx2(pos, (sin, cos), walls, near)
             },
             (3, _) => self.read_rays::<3>(pos, facing, walls, near),
             _ => self.read_rays::<1>(pos, facing, walls, near),
@@ -177,10 +183,10 @@ impl Eyes {
     /// The processor must have AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn cast_avx2<const M: usize>(
+    unsafe fn cast_avx2<const M: usize, const W: usize>(
         &self,
         pos: Vec2,
-        rays: &SideBySide,
+        rays: &SideBySide<W>,
         walls: &[PreparedSegment],
         near: &[u32],
     ) -> Readings {
@@ -220,6 +226,82 @@ impl Eyes {
         let mut readings = Readings::zeros(self.n);
         readings.copy_from_slice(&out[..self.n]);
         readings
+    }
+
+    /// [`Eyes::read`] facing any heading (sine and cosine `sin_cos`), in AVX2 lanes: the
+    /// rays turned four sensors at a time with [`Vec2::rotate_by`]'s operations (so the same
+    /// numbers `Facing::Angle` turns one by one, and that [`Eyes::on_compass`] holds for a
+    /// compass heading), then cast by [`Eyes::cast_avx2`]. The same bits as
+    /// [`Eyes::read_rays`].
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn cast_turned_avx2(
+        &self,
+        pos: Vec2,
+        (sin, cos): (f64, f64),
+        walls: &[PreparedSegment],
+        near: &[u32],
+    ) -> Readings {
+        match self.n <= 8 {
+            // SAFETY: this function runs only on processors with AVX2.
+            true => unsafe { self.cast_turned_in::<8>(pos, (sin, cos), walls, near) },
+            // SAFETY: as above.
+            false => unsafe { self.cast_turned_in::<INPUTS>(pos, (sin, cos), walls, near) },
+        }
+    }
+
+    /// [`Eyes::cast_turned_avx2`] with the rays of the first `W` sensors, at least the
+    /// robot's (a multiple of 4).
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    unsafe fn cast_turned_in<const W: usize>(
+        &self,
+        pos: Vec2,
+        (sin, cos): (f64, f64),
+        walls: &[PreparedSegment],
+        near: &[u32],
+    ) -> Readings {
+        use std::arch::x86_64::{
+            _mm256_add_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_storeu_pd,
+            _mm256_sub_pd,
+        };
+        const { assert!(W % 4 == 0 && W <= INPUTS, "blocks of four sensors") };
+        debug_assert!(self.n <= W);
+        let mut side = SideBySide::<W> {
+            origin: [[0.0; W]; 2],
+            dir: [[[0.0; W]; 2]; 3],
+        };
+        let (s, c) = (_mm256_set1_pd(sin), _mm256_set1_pd(cos));
+        let body = &self.body.side;
+        // Blocks of four sensors (past the robot's last: no rays, which stay 0 turned).
+        for half in (0..self.n).step_by(4) {
+            // SAFETY: every load and store is of four consecutive `f64` from `half`, a multiple
+            // of 4 below the robot's sensors ≤ `W` (a multiple of 4); the unaligned forms need no alignment.
+            unsafe {
+                // `rotate_by`: (c·x − s·y, s·x + c·y), products and sums in its order.
+                let turn = |from: &[[f64; INPUTS]; 2], to: &mut [[f64; W]; 2]| {
+                    let x = _mm256_loadu_pd(from[0][half..].as_ptr());
+                    let y = _mm256_loadu_pd(from[1][half..].as_ptr());
+                    let tx = _mm256_sub_pd(_mm256_mul_pd(c, x), _mm256_mul_pd(s, y));
+                    let ty = _mm256_add_pd(_mm256_mul_pd(s, x), _mm256_mul_pd(c, y));
+                    _mm256_storeu_pd(to[0][half..].as_mut_ptr(), tx);
+                    _mm256_storeu_pd(to[1][half..].as_mut_ptr(), ty);
+                };
+                turn(&body.origin, &mut side.origin);
+                for (from, to) in body.dir.iter().zip(&mut side.dir) {
+                    turn(from, to);
+                }
+            }
+        }
+        // SAFETY: this function runs only on processors with AVX2.
+        unsafe { self.cast_avx2::<W, W>(pos, &side, walls, near) }
     }
 
     /// The sensors' values from their three rays' nearest hits `nearest[r][s]` (∞ for none),
@@ -283,9 +365,9 @@ impl Facing<'_> {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
-fn nearest_hits_avx2(
+fn nearest_hits_avx2<const W: usize>(
     pos: Vec2,
-    rays: &SideBySide,
+    rays: &SideBySide<W>,
     half: usize,
     range2: f64,
     walls: &[PreparedSegment],
@@ -296,8 +378,8 @@ fn nearest_hits_avx2(
         _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_sub_pd,
     };
     // SAFETY: every load is of four consecutive `f64` from `half`, a multiple of 4 below
-    // `INPUTS` (a multiple of 4); the unaligned form needs no alignment.
-    let four = |a: &[f64; INPUTS]| unsafe { _mm256_loadu_pd(a[half..].as_ptr()) };
+    // the robot's sensors ≤ `W` (a multiple of 4: the callers' blocks); the unaligned form needs no alignment.
+    let four = |a: &[f64; W]| unsafe { _mm256_loadu_pd(a[half..].as_ptr()) };
     let o = (
         _mm256_add_pd(_mm256_set1_pd(pos.x), four(&rays.origin[0])),
         _mm256_add_pd(_mm256_set1_pd(pos.y), four(&rays.origin[1])),
@@ -509,6 +591,48 @@ mod tests {
             lit > 10_000,
             "{lit}: too few sensors saw a wall to test anything"
         );
+    }
+
+    /// Facing any heading, the AVX2 cast (its rays turned in vector lanes) reads, bit for
+    /// bit, what the scalar cast reads with the rays turned one by one: every room's walls,
+    /// from poses in and around the rooms, on headings all round (the compass's among them).
+    #[test]
+    fn vector_cast_at_any_heading_reads_what_the_scalar_cast_reads() {
+        use crate::simulation::room::{BUILTIN_ROOMS, Room};
+        if Isa::detected() == Isa::Baseline {
+            return; // nothing to compare
+        }
+        let eyes = Eyes::new(
+            SensorModel::Sampled,
+            RobotSpec::khepera(),
+            &Compass::new(0.0),
+        );
+        let mut lit = 0;
+        for name in BUILTIN_ROOMS {
+            let room = Room::builtin(name).unwrap();
+            let walls: Vec<_> = room.walls().iter().map(PreparedSegment::new).collect();
+            let all: Vec<u32> = (0..walls.len() as u32).collect();
+            let (lo, hi) = room.bounds();
+            for i in 0..3000 {
+                let f = |n: usize, m: usize| (i * n % m) as f64 / m as f64;
+                let pos = Vec2::new(
+                    lo.x - 60.0 + (hi.x - lo.x + 120.0) * f(37, 997),
+                    lo.y - 60.0 + (hi.y - lo.y + 120.0) * f(53, 991),
+                );
+                let heading = match i % 7 {
+                    0 => (i % 12) as f64 * std::f64::consts::FRAC_PI_6,
+                    _ => -3.2 + 6.4 * f(61, 1009),
+                };
+                let (sin, cos) = crate::simulation::math::sin_cos(heading);
+                let facing = Facing::Angle { sin, cos };
+                let scalar = eyes.read_rays::<3>(pos, facing, &walls, &all);
+                let vector = eyes.read(pos, facing, &walls, &all);
+                let bits = |r: &Readings| r.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&scalar), bits(&vector), "{pos:?} {heading}");
+                lit += scalar.iter().filter(|&&v| v > 0.0).count();
+            }
+        }
+        assert!(lit > 5_000, "{lit}: too few sensors saw a wall");
     }
 
     /// A wall beyond every ray's range is skipped and reads 0, as a wall not listed at all.
