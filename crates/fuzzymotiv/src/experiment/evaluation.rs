@@ -343,7 +343,7 @@ impl Experiment {
     /// [`Experiment::training_trial`] runs: its drawn robot with `[trial.randomise]`, its
     /// actions kept for online orientation (whose second runs also go through the lanes), its
     /// whole record for user-defined terms.
-    fn evaluate_batch(
+    pub(crate) fn evaluate_batch(
         &self,
         nets: &[Mlp],
         first: usize,
@@ -464,6 +464,51 @@ impl Experiment {
         })
     }
 
+    /// The evaluation trials of the networks `nets` (individuals `first..` of `generation`)
+    /// in each room of `run`, in the lanes, each recorded whole: per network and room its terms
+    /// (user-defined ones included, `l` = 0), its trajectory and its executed steps, as
+    /// [`Experiment::observed_trial`] with a [`Trajectory`] watching gives them (the
+    /// experiment's own robot: a recorded trial draws none). `None` when a network does not
+    /// fit the lanes ([`lanes_fit`]).
+    pub(crate) fn recorded_in_lanes(
+        &self,
+        nets: &[Mlp],
+        first: usize,
+        run: &Run,
+        generation: usize,
+    ) -> Option<Vec<Vec<(FitnessTerms, Trajectory, usize)>>> {
+        let fit = (run.rooms.iter()).all(|&r| nets.iter().all(|n| lanes_fit(&self.arenas[r], n)));
+        if !fit {
+            return None;
+        }
+        let steps = self.trial.steps();
+        let user = self.computes_user_terms();
+        let own: Vec<Option<DrawnRobot>> = vec![None; nets.len()];
+        let mut recorded: Vec<Vec<_>> = vec![Vec::with_capacity(run.rooms.len()); nets.len()];
+        for &r in &run.rooms {
+            let seeds: Vec<u64> = (0..nets.len())
+                .map(|i| self.eval_seed(run, generation, first + i, r))
+                .collect();
+            let watch = |arena| Watch {
+                recorder: self.recorder(arena),
+                log: None,
+                trajectory: Some(Trajectory::starting_at(arena.room().home, steps)),
+            };
+            let trials = self.in_lanes(nets, r, &seeds, &own, watch, |arena, w| {
+                let mut terms = self.recorded_terms(&w.recorder);
+                let trajectory = w.trajectory.unwrap_or_default();
+                if user {
+                    self.user_values(arena, &trajectory, &mut terms);
+                }
+                (terms, trajectory, w.recorder.executed())
+            });
+            for (all, trial) in recorded.iter_mut().zip(trials) {
+                all.push(trial);
+            }
+        }
+        Some(recorded)
+    }
+
     /// Runs `nets` in `room` in the lanes, trial `i` on the stream `seeds[i]` in its drawn
     /// robot `drawn[i]` (arena and wheel bias) if it has one, watched by `watch` of its arena;
     /// `finish` of each trial's arena and observer, in order.
@@ -550,7 +595,7 @@ impl StepObserver for Watch<'_> {
 /// Individuals per task of [`Experiment::evaluate_population`]: enough for the lanes to stay
 /// full (a lane idles only once fewer trials than lanes are left), few enough to share a
 /// population among threads.
-const LANE_BATCH: usize = 20;
+pub(crate) const LANE_BATCH: usize = 20;
 
 /// F and terms of one individual in one room.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
