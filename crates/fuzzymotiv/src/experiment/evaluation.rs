@@ -316,9 +316,9 @@ impl Experiment {
     }
 
     /// Evaluates a population in parallel (results in index order, independent of threads).
-    /// With `actions` motion, sensor and wheel noise and the 8-6-2 network (the paper's robot),
-    /// the trials of a room run four at a time in lock-step, their noise and networks in
-    /// vector lanes; that changes no result.
+    /// The trials of a room run four at a time in lock-step, their noise and networks in
+    /// vector lanes (any robot and motion, randomised robots, online orientation, user-defined
+    /// terms); that changes no result.
     pub fn evaluate_population(
         &self,
         population: &Population,
@@ -437,14 +437,22 @@ impl Experiment {
         let drawn: Vec<Option<DrawnRobot>> = (seeds.iter())
             .map(|&seed| {
                 let draw = self.randomise.as_ref()?.draw(seed);
-                Some((self.drawn_arena(&draw, room), draw.wheel_bias.unwrap_or(0.0)))
+                Some((
+                    self.drawn_arena(&draw, room),
+                    draw.wheel_bias.unwrap_or(0.0),
+                ))
             })
             .collect();
         let user = self.computes_user_terms();
         if !actions && !user {
-            return self.in_lanes(nets, room, seeds, &drawn, |arena| self.recorder(arena), |_, r| {
-                (self.recorded_terms(&r), Vec::new(), r.executed())
-            });
+            return self.in_lanes(
+                nets,
+                room,
+                seeds,
+                &drawn,
+                |arena| self.recorder(arena),
+                |_, r| (self.recorded_terms(&r), Vec::new(), r.executed()),
+            );
         }
         let steps = self.trial.steps();
         let watch = |arena| Watch {
@@ -703,7 +711,11 @@ mod tests {
         let cases: Vec<Vec<&str>> = vec![
             vec!["robot.motion=\"wheels\""],
             vec!["robot.file=\"epuck2\"", "robot.motion=\"wheels\""],
-            vec!["robot.file=\"thymio2\"", "robot.motion=\"wheels\"", "trial.steps=150"],
+            vec![
+                "robot.file=\"thymio2\"",
+                "robot.motion=\"wheels\"",
+                "trial.steps=150",
+            ],
             vec!["network.hidden=4", "trial.noise=0.0"],
             randomise.to_vec(),
             [&randomise[..], &["robot.motion=\"wheels\""]].concat(),

@@ -141,7 +141,9 @@ impl Experiment {
         let online =
             self.orientation == OrientationMode::Online && self.motivations.orientation() > 0.0;
         let mut online_evaluations = match online {
-            true => self.evaluate_batch(nets, first, run, generation).into_iter(),
+            true => self
+                .evaluate_batch(nets, first, run, generation)
+                .into_iter(),
             false => Vec::new().into_iter(),
         };
         (recorded.into_iter())
@@ -241,7 +243,10 @@ mod tests {
             &["robot.file=\"epuck2\"", "robot.motion=\"wheels\""],
             &ORIENTED,
             &["network.hidden=3"],
-            &["trial.randomise.noise=[0.0, 0.2]", "trial.randomise.wheel_bias=[-0.1, 0.1]"],
+            &[
+                "trial.randomise.noise=[0.0, 0.2]",
+                "trial.randomise.wheel_bias=[-0.1, 0.1]",
+            ],
         ];
         for extra in cases {
             let mut sets = vec!["ga.population=23", "trial.steps=150"];

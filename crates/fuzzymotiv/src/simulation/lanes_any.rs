@@ -147,7 +147,8 @@ fn walk<'a, const AVX2: bool, const S: usize, O: StepObserver>(
             let v_max = lanes.v_max[l];
             let noisy = [0, 1].map(|w| (2.0 * m[w] - 1.0) * v_max * factors[w][l]);
             let (t, lane_arena) = (lanes.t[l], lanes.arena[l]);
-            let (step, home) = lanes.walk[l].act_noisy(t, lane_arena, sensed, m, noisy, (None, None));
+            let (step, home) =
+                lanes.walk[l].act_noisy(t, lane_arena, sensed, m, noisy, (None, None));
             let trial = &mut trials[j];
             trial.observer.observe(&step);
             lanes.t[l] = t + 1;
@@ -297,7 +298,10 @@ impl NetLanes {
     /// Puts `net` (of the lanes' shape) into lane `l`.
     fn load(&mut self, l: usize, net: &Mlp) {
         let (hidden, out) = net.layers();
-        debug_assert_eq!((hidden.len(), out.len()), (self.hidden_w.len(), self.out_w.len()));
+        debug_assert_eq!(
+            (hidden.len(), out.len()),
+            (self.hidden_w.len(), self.out_w.len())
+        );
         for (w, &v) in self.hidden_w.iter_mut().zip(hidden) {
             w[l] = v;
         }
@@ -526,7 +530,10 @@ mod tests {
             ends.dedup();
             assert!(steps == 1 || ends.len() > 2, "{room}: {executed:?}");
         }
-        assert!(collided > 50, "{collided} collisions: the collision rule is barely tested");
+        assert!(
+            collided > 50,
+            "{collided} collisions: the collision rule is barely tested"
+        );
     }
 
     /// The e-puck2 (eight sensors reading up to 3731) and the Thymio II (seven, up to 4505)
