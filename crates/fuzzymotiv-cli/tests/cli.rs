@@ -471,6 +471,31 @@ fn bench_refuses_a_robot_set_that_drops_its_motion() {
     );
 }
 
+/// `--robot NAME` measures that robot, as `--set robot.file=NAME` does, in the motion
+/// `--motion` asks for.
+#[test]
+fn bench_measures_the_robot_named_by_robot() {
+    let o = ok(&[
+        "bench",
+        "--steps",
+        "400",
+        "--population",
+        "2",
+        "--repeat",
+        "1",
+        "--motion",
+        "wheels",
+        "--robot",
+        "epuck2",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(
+        (v["robot"].as_str(), v["motion"].as_str()),
+        (Some("epuck2"), Some("wheels"))
+    );
+}
+
 /// `--room` takes a room file, so the Thymio II is measured in its own rooms (rooms/thymio2/,
 /// the paper's scaled 3x: in the paper's rooms its home is too near the walls for its body).
 #[test]

@@ -6,6 +6,7 @@ pub(crate) mod controller;
 pub(crate) mod geom;
 pub(crate) mod isa;
 pub(crate) mod lanes;
+pub(crate) mod lanes_any;
 pub(crate) mod math;
 pub(crate) mod memo;
 pub(crate) mod randomise;

@@ -35,6 +35,11 @@ pub struct BenchArgs {
     /// trial ended at home are not work.
     #[arg(long, default_value = "actions", value_parser = ["actions", "wheels"])]
     pub motion: String,
+    /// Robot: a built-in robot's name (khepera, epuck2, thymio2, khepera4) or a robot file
+    /// [default: the paper's Khepera]; the same as --set robot.file=NAME. A robot larger than
+    /// the Khepera needs rooms it fits (the Thymio II's: --room rooms/thymio2/H.toml).
+    #[arg(long, value_name = "NAME")]
+    pub robot: Option<String>,
     /// Override a config key (repeatable), e.g. --set trial.end_at_home=false; another robot:
     /// --set robot.file=epuck2 (a built-in name or a robot file).
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -78,13 +83,16 @@ const MAX_BENCH_STEPS: usize = 10_000_000_000;
 
 /// The experiment measured: one room, the population size asked for, no AEM.
 fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
-    let sets = vec![
+    let mut sets = vec![
         format!("rooms=[{}]", toml::Value::String(args.room.clone())),
         format!("ga.population={}", args.population),
         format!("ga.elite={}", args.population.min(3) - 1),
         "aem.enabled=false".to_string(),
         format!("robot.motion=\"{}\"", args.motion),
     ];
+    if let Some(robot) = &args.robot {
+        sets.push(format!("robot.file={}", toml::Value::String(robot.clone())));
+    }
     let sets: Vec<String> = sets.into_iter().chain(args.sets.iter().cloned()).collect();
     let loaded = if Room::builtin(&args.room).is_some() {
         load_config(None, &sets, None)?

@@ -14,10 +14,10 @@ use crate::modelling::recognition::nearest_unique;
 use crate::params::Num;
 use crate::random::rng::rng_from_seed;
 use crate::simulation::controller::{Controller, GenomeError, Mlp};
-use crate::simulation::lanes::{LaneTrial, lanes_fit, walk_lanes};
+use crate::simulation::lanes::{Drawn, LaneTrial, lanes_fit, walk_lanes};
 use crate::simulation::randomise::Draw;
 use crate::simulation::robot::Pose;
-use crate::simulation::trial::{ActionLog, Arena, StepObserver, Trajectory, simulate};
+use crate::simulation::trial::{ActionLog, Arena, Step, StepObserver, Trajectory, simulate};
 
 /// A user-defined term ([`crate::fitness::Term`]) that returned a value outside [0, 1], or
 /// NaN: a bug in the term. The evaluation keeps the value as it came (clamping would hide the
@@ -161,20 +161,9 @@ impl Experiment {
         seed: u64,
         actions: bool,
     ) -> (FitnessTerms, Vec<Action>, usize) {
-        let mut trial = self.trial;
-        for p in Perturbation::of_draw(draw) {
-            // The ranges were checked against the robot (Randomise::from_raw): every draw fits.
-            trial = p.apply(trial).unwrap_or(trial);
-        }
-        // A draw that leaves the trial's parameters as they are (a wheel bias alone) runs in the
-        // room as prepared; any other is prepared for its robot.
-        let drawn;
-        let arena = if trial == self.trial {
-            &self.arenas[room]
-        } else {
-            drawn = Arena::new(self.arenas[room].room().clone(), &trial);
-            &drawn
-        };
+        let own = self.drawn_arena(draw, room);
+        let arena = own.as_deref().unwrap_or(&self.arenas[room]);
+        let trial = arena.params();
         let mut c = Perturbed {
             net: network,
             dead: None,
@@ -189,6 +178,20 @@ impl Experiment {
             self.observed_trial_in(arena, &mut c, seed, &mut ())
         };
         (terms, log.actions, executed)
+    }
+
+    /// The arena of `room` for the robot `draw` makes of this experiment's (its perturbations
+    /// applied as the robustness study applies them): `None` when the draw leaves the trial's
+    /// parameters as they are (a wheel bias alone: the room as prepared), else the room
+    /// prepared for the drawn body, sensors and noise.
+    fn drawn_arena(&self, draw: &Draw, room: usize) -> Option<Box<Arena>> {
+        let mut trial = self.trial;
+        for p in Perturbation::of_draw(draw) {
+            // The ranges were checked against the robot (Randomise::from_raw): every draw fits.
+            trial = p.apply(trial).unwrap_or(trial);
+        }
+        let room = self.arenas[room].room().clone();
+        (trial != self.trial).then(|| Box::new(Arena::new(room, &trial)))
     }
 
     /// The user-defined terms' values of a finished trial (supplied ones left at 0 for the front
@@ -313,9 +316,9 @@ impl Experiment {
     }
 
     /// Evaluates a population in parallel (results in index order, independent of threads).
-    /// With `actions` motion, sensor and wheel noise and the 8-6-2 network (the paper's robot),
-    /// the trials of a room run four at a time in lock-step, their noise and networks in
-    /// vector lanes; that changes no result.
+    /// The trials of a room run four at a time in lock-step, their noise and networks in
+    /// vector lanes (any robot and motion, randomised robots, online orientation, user-defined
+    /// terms); that changes no result.
     pub fn evaluate_population(
         &self,
         population: &Population,
@@ -335,8 +338,12 @@ impl Experiment {
     }
 
     /// Evaluates the individuals `first..` whose networks are `nets`: in the lanes when every
-    /// trial fits them, else one individual at a time ([`Experiment::evaluate_with`]).
-    fn evaluate_batch(
+    /// network fits them ([`lanes_fit`]), else one individual at a time
+    /// ([`Experiment::evaluate_with`]). Each trial in the lanes is the trial
+    /// [`Experiment::training_trial`] runs: its drawn robot with `[trial.randomise]`, its
+    /// actions kept for online orientation (whose second runs also go through the lanes), its
+    /// whole record for user-defined terms.
+    pub(crate) fn evaluate_batch(
         &self,
         nets: &[Mlp],
         first: usize,
@@ -345,39 +352,204 @@ impl Experiment {
     ) -> Vec<Evaluation> {
         let online =
             self.orientation == OrientationMode::Online && self.motivations.orientation() > 0.0;
-        let fit = self.randomise.is_none()
-            && !online
-            && !self.computes_user_terms()
-            && run.rooms.iter().all(|&r| {
-                let arena = &self.arenas[r];
-                nets.iter().all(|n| lanes_fit(arena, n))
-            });
+        let fit = run.rooms.iter().all(|&r| {
+            let arena = &self.arenas[r];
+            nets.iter().all(|n| lanes_fit(arena, n))
+        });
         if !fit {
             return (nets.iter().enumerate())
                 .map(|(i, n)| self.evaluate_with(&mut n.clone(), run, generation, first + i))
                 .collect();
         }
         let mut per_room = vec![Vec::with_capacity(run.rooms.len()); nets.len()];
+        let mut first_vectors = vec![Vec::new(); nets.len()];
         for &r in &run.rooms {
-            let arena = &self.arenas[r];
-            let mut trials: Vec<_> = (nets.iter().enumerate())
-                .map(|(i, net)| LaneTrial {
-                    net,
-                    seed: self.eval_seed(run, generation, first + i, r),
-                    observer: self.recorder(arena),
-                    last: arena.room().home,
-                })
+            let seeds: Vec<u64> = (0..nets.len())
+                .map(|i| self.eval_seed(run, generation, first + i, r))
                 .collect();
-            walk_lanes(arena, &mut trials);
-            for (scores, trial) in per_room.iter_mut().zip(&trials) {
-                scores.push(RoomScore {
+            let trials = self.lane_trials(nets, r, &seeds, online);
+            for (i, (terms, actions, executed)) in trials.into_iter().enumerate() {
+                if online {
+                    first_vectors[i].push(environment_vector(&actions, self.aem.encoder()));
+                }
+                per_room[i].push(RoomScore {
                     f: 0.0,
-                    terms: self.recorded_terms(&trial.observer),
-                    executed: trial.observer.executed(),
+                    terms,
+                    executed,
                 });
             }
         }
+        if online {
+            self.online_in_lanes(nets, first, run, generation, &first_vectors, &mut per_room);
+        }
         per_room.into_iter().map(|s| self.scored(s)).collect()
+    }
+
+    /// Online orientation's second runs of the individuals `first..` (networks `nets`) in
+    /// the lanes: each classified by 1-NN against its first runs `first_vectors[i]`, and its l
+    /// written into its scores `per_room[i]`, as [`Experiment::evaluate_with`] does.
+    fn online_in_lanes(
+        &self,
+        nets: &[Mlp],
+        first: usize,
+        run: &Run,
+        generation: usize,
+        first_vectors: &[Vec<Vec<f64>>],
+        per_room: &mut [Vec<RoomScore>],
+    ) {
+        let mut correct = vec![0; nets.len()];
+        for (k, &r) in run.rooms.iter().enumerate() {
+            let seeds: Vec<u64> = (0..nets.len())
+                .map(|i| {
+                    let key = self.room_key(r);
+                    self.streams().online(run.tag, generation, first + i, key)
+                })
+                .collect();
+            let trials = self.lane_trials(nets, r, &seeds, true);
+            for (i, (_, actions, _)) in trials.iter().enumerate() {
+                let v = environment_vector(actions, self.aem.encoder());
+                if nearest_unique(&first_vectors[i], &v).ok().flatten() == Some(k) {
+                    correct[i] += 1;
+                }
+            }
+        }
+        for (scores, c) in per_room.iter_mut().zip(correct) {
+            let l = c as f64 / run.rooms.len() as f64;
+            for s in scores {
+                s.terms.l = l;
+            }
+        }
+    }
+
+    /// The training trials of the networks `nets` in `room` on the streams `seeds` (one each),
+    /// in the lanes: each one's terms (user-defined ones included, `l` = 0), its actions (when
+    /// `actions`, else none) and its executed steps, as [`Experiment::training_trial`] gives
+    /// them. With neither actions nor user-defined terms (the paper's study), only the terms
+    /// are recorded.
+    fn lane_trials(
+        &self,
+        nets: &[Mlp],
+        room: usize,
+        seeds: &[u64],
+        actions: bool,
+    ) -> Vec<(FitnessTerms, Vec<Action>, usize)> {
+        // Each trial's drawn robot, prepared once here: its own arena (or none) and wheel bias.
+        let drawn: Vec<Option<DrawnRobot>> = (seeds.iter())
+            .map(|&seed| {
+                let draw = self.randomise.as_ref()?.draw(seed);
+                Some((
+                    self.drawn_arena(&draw, room),
+                    draw.wheel_bias.unwrap_or(0.0),
+                ))
+            })
+            .collect();
+        let user = self.computes_user_terms();
+        if !actions && !user {
+            return self.in_lanes(
+                nets,
+                room,
+                seeds,
+                &drawn,
+                |arena| self.recorder(arena),
+                |_, r| (self.recorded_terms(&r), Vec::new(), r.executed()),
+            );
+        }
+        let steps = self.trial.steps();
+        let watch = |arena| Watch {
+            recorder: self.recorder(arena),
+            log: actions.then(|| ActionLog {
+                actions: Vec::with_capacity(steps),
+            }),
+            trajectory: user.then(|| Trajectory::starting_at(arena.room().home, steps)),
+        };
+        self.in_lanes(nets, room, seeds, &drawn, watch, |arena, w| {
+            let mut terms = self.recorded_terms(&w.recorder);
+            if let Some(trajectory) = &w.trajectory {
+                self.user_values(arena, trajectory, &mut terms);
+            }
+            let log = w.log.map(|l| l.actions).unwrap_or_default();
+            (terms, log, w.recorder.executed())
+        })
+    }
+
+    /// The evaluation trials of the networks `nets` (individuals `first..` of `generation`)
+    /// in each room of `run`, in the lanes, each recorded whole: per network and room its terms
+    /// (user-defined ones included, `l` = 0), its trajectory and its executed steps, as
+    /// [`Experiment::observed_trial`] with a [`Trajectory`] watching gives them (the
+    /// experiment's own robot: a recorded trial draws none). `None` when a network does not
+    /// fit the lanes ([`lanes_fit`]).
+    pub(crate) fn recorded_in_lanes(
+        &self,
+        nets: &[Mlp],
+        first: usize,
+        run: &Run,
+        generation: usize,
+    ) -> Option<Vec<Vec<(FitnessTerms, Trajectory, usize)>>> {
+        let fit = (run.rooms.iter()).all(|&r| nets.iter().all(|n| lanes_fit(&self.arenas[r], n)));
+        if !fit {
+            return None;
+        }
+        let steps = self.trial.steps();
+        let user = self.computes_user_terms();
+        let own: Vec<Option<DrawnRobot>> = vec![None; nets.len()];
+        let mut recorded: Vec<Vec<_>> = vec![Vec::with_capacity(run.rooms.len()); nets.len()];
+        for &r in &run.rooms {
+            let seeds: Vec<u64> = (0..nets.len())
+                .map(|i| self.eval_seed(run, generation, first + i, r))
+                .collect();
+            let watch = |arena| Watch {
+                recorder: self.recorder(arena),
+                log: None,
+                trajectory: Some(Trajectory::starting_at(arena.room().home, steps)),
+            };
+            let trials = self.in_lanes(nets, r, &seeds, &own, watch, |arena, w| {
+                let mut terms = self.recorded_terms(&w.recorder);
+                let trajectory = w.trajectory.unwrap_or_default();
+                if user {
+                    self.user_values(arena, &trajectory, &mut terms);
+                }
+                (terms, trajectory, w.recorder.executed())
+            });
+            for (all, trial) in recorded.iter_mut().zip(trials) {
+                all.push(trial);
+            }
+        }
+        Some(recorded)
+    }
+
+    /// Runs `nets` in `room` in the lanes, trial `i` on the stream `seeds[i]` in its drawn
+    /// robot `drawn[i]` (arena and wheel bias) if it has one, watched by `watch` of its arena;
+    /// `finish` of each trial's arena and observer, in order.
+    fn in_lanes<'a, O: StepObserver, T>(
+        &'a self,
+        nets: &'a [Mlp],
+        room: usize,
+        seeds: &[u64],
+        drawn: &'a [Option<DrawnRobot>],
+        watch: impl Fn(&'a Arena) -> O,
+        finish: impl Fn(&'a Arena, O) -> T,
+    ) -> Vec<T> {
+        let arena = &self.arenas[room];
+        let mut trials: Vec<_> = (nets.iter().zip(seeds).zip(drawn))
+            .map(|((net, &seed), drawn)| {
+                let drawn = drawn.as_ref().map(|(own, bias)| Drawn {
+                    arena: own.as_deref().unwrap_or(arena),
+                    bias: *bias,
+                });
+                let here = drawn.map_or(arena, |d| d.arena);
+                LaneTrial {
+                    net,
+                    seed,
+                    observer: watch(here),
+                    last: here.room().home,
+                    drawn,
+                }
+            })
+            .collect();
+        walk_lanes(arena, &mut trials);
+        (trials.into_iter())
+            .map(|t| finish(t.drawn.map_or(arena, |d| d.arena), t.observer))
+            .collect()
     }
 
     /// An evaluation of the per-room scores `per_room` (terms measured, F not yet combined).
@@ -390,10 +562,48 @@ impl Experiment {
     }
 }
 
+/// A trial's robot drawn by `[trial.randomise]`, as the lanes take it: its own arena (`None`:
+/// the room as prepared; boxed, as an arena is large) and its wheel bias.
+type DrawnRobot = (Option<Box<Arena>>, f64);
+
+/// What watches an evaluation trial in the lanes when more than its terms is wanted: the
+/// recorder of its terms, its actions (online orientation), its whole record (user-defined
+/// terms), as [`Experiment::observed_trial`]'s observers.
+struct Watch<'a> {
+    recorder: TermsRecorder<&'a Arena>,
+    log: Option<ActionLog>,
+    trajectory: Option<Trajectory>,
+}
+
+impl StepObserver for Watch<'_> {
+    #[inline]
+    fn observe(&mut self, step: &Step) {
+        self.recorder.observe(step);
+        if let Some(log) = &mut self.log {
+            log.observe(step);
+        }
+        if let Some(trajectory) = &mut self.trajectory {
+            trajectory.observe(step);
+        }
+    }
+
+    /// The recorder's (a mission done); the log and the record never end a trial.
+    #[inline]
+    fn finished(&self) -> bool {
+        self.recorder.finished()
+    }
+
+    /// Only the record reads the motors.
+    #[inline]
+    fn reads_motors(&self) -> bool {
+        self.trajectory.is_some()
+    }
+}
+
 /// Individuals per task of [`Experiment::evaluate_population`]: enough for the lanes to stay
 /// full (a lane idles only once fewer trials than lanes are left), few enough to share a
 /// population among threads.
-const LANE_BATCH: usize = 20;
+pub(crate) const LANE_BATCH: usize = 20;
 
 /// F and terms of one individual in one room.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -437,6 +647,7 @@ impl Evaluation {
 mod tests {
     use super::*;
     use crate::experiment::testing::{ORIENTED, experiment};
+    use crate::simulation::room::{BUILTIN_ROOMS, Room};
 
     /// A population evaluated in the lanes (`evaluate_population`) scores exactly as each
     /// individual evaluated alone (`evaluate`, which runs `simulate`): every bit of every F,
@@ -472,6 +683,92 @@ mod tests {
         population.genomes[5][7] = f64::INFINITY;
         let mixed = exp.evaluate_population(&population, run, 3);
         assert_eq!(format!("{mixed:?}"), format!("{:?}", alone(&population)));
+    }
+
+    /// Every evaluation the lanes now run scores exactly as each individual evaluated alone:
+    /// `wheels` motion, the e-puck2 and the Thymio II, another hidden size, no noise,
+    /// `[trial.randomise]` (each trial its own robot), online orientation (both runs in the
+    /// lanes), and a user-defined term computed from each trial's whole record (its motors
+    /// included).
+    #[test]
+    fn lanes_score_every_robot_motion_and_term_as_alone() {
+        use crate::experiment::UserTerm;
+        use crate::fitness::terms::TrialRecord;
+        #[derive(Debug)]
+        struct MeanLeftMotor;
+        impl crate::fitness::Term for MeanLeftMotor {
+            fn value(&self, r: &TrialRecord<'_>) -> f64 {
+                let m = &r.trajectory.motors;
+                m.iter().map(|m| m[0]).sum::<f64>() / m.len().max(1) as f64
+            }
+        }
+        let randomise = [
+            "trial.randomise.noise=[0.0, 0.12]",
+            "trial.randomise.sensor_scale=[0.8, 1.2]",
+            "trial.randomise.wheel_bias=[-0.1, 0.1]",
+            "trial.randomise.radius=[27.5, 31.0]",
+        ];
+        let cases: Vec<Vec<&str>> = vec![
+            vec!["robot.motion=\"wheels\""],
+            vec!["robot.file=\"epuck2\"", "robot.motion=\"wheels\""],
+            vec![
+                "robot.file=\"thymio2\"",
+                "robot.motion=\"wheels\"",
+                "trial.steps=150",
+            ],
+            vec!["network.hidden=4", "trial.noise=0.0"],
+            randomise.to_vec(),
+            [&randomise[..], &["robot.motion=\"wheels\""]].concat(),
+            ORIENTED.to_vec(),
+            [&ORIENTED[..], &["robot.motion=\"wheels\""]].concat(),
+        ];
+        let user = [UserTerm::computed(
+            "left",
+            std::sync::Arc::new(MeanLeftMotor),
+        )];
+        // The paper's rooms, for the Thymio II scaled 3× for its 80 mm body (rooms/thymio2/).
+        let rooms = |thymio: bool| -> Vec<Room> {
+            let scaled = [
+                include_str!("../../../../rooms/thymio2/H.toml"),
+                include_str!("../../../../rooms/thymio2/T.toml"),
+                include_str!("../../../../rooms/thymio2/L.toml"),
+            ];
+            match thymio {
+                true => (scaled.iter())
+                    .map(|t| Room::from_toml_str(t, "rooms/thymio2").unwrap())
+                    .collect(),
+                false => (BUILTIN_ROOMS.iter())
+                    .map(|r| Room::builtin(r).unwrap())
+                    .collect(),
+            }
+        };
+        let build = |sets: &[String], thymio: bool, user: &[UserTerm]| {
+            let raw = crate::experiment::RawConfig::parse("", "test", sets).unwrap();
+            Experiment::with_terms(&raw, rooms(thymio), user, "test").unwrap()
+        };
+        for (k, case) in cases.iter().enumerate() {
+            let mut sets: Vec<String> = ["ga.population=26", "trial.steps=200", "aem.epochs=10"]
+                .iter()
+                .chain(case)
+                .map(|s| s.to_string())
+                .collect();
+            let thymio = case.iter().any(|s| s.contains("thymio2"));
+            let exp = build(&sets, thymio, &[]);
+            let with_user = (k == 0).then(|| {
+                sets.push("motivations.curiosity=0.3".into());
+                sets.push("motivations.steady={ weight = 0.5, term = \"left\" }".into());
+                build(&sets, thymio, &user)
+            });
+            for exp in std::iter::once(&exp).chain(&with_user) {
+                let run = &exp.runs()[0];
+                let population = exp.initial_population(run);
+                let alone: Vec<Evaluation> = (0..population.len())
+                    .map(|i| exp.evaluate(&population.network(i), run, 2, i))
+                    .collect();
+                let lanes = exp.evaluate_population(&population, run, 2);
+                assert_eq!(format!("{lanes:?}"), format!("{alone:?}"), "{case:?}");
+            }
+        }
     }
 
     /// Online l is exactly the off-line 1-NN computation on the same trajectories, run on the

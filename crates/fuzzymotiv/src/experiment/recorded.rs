@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use crate::evolution::population::Population;
 use crate::experiment::config::{OrientationMode, RawConfig};
-use crate::experiment::evaluation::{Evaluation, RoomScore};
+use crate::experiment::evaluation::{Evaluation, LANE_BATCH, RoomScore};
 use crate::experiment::setup::{RoomFiles, Setup, SetupError};
 use crate::experiment::terms::UserTerm;
 use crate::experiment::{Experiment, Run};
@@ -101,16 +101,72 @@ impl Experiment {
 
     /// [`Experiment::evaluate_recorded`] for a population, in parallel (results in index
     /// order, independent of threads): per individual its evaluation and one trajectory per
-    /// room of `run`.
+    /// room of `run`. The trials of a batch of individuals run four at a time in the lock-step
+    /// lanes when their networks fit them, as [`Experiment::evaluate_population`]'s do; that
+    /// changes no result.
     pub fn evaluate_population_recorded(
         &self,
         population: &Population,
         run: &Run,
         generation: usize,
     ) -> Vec<(Evaluation, Vec<Trajectory>)> {
-        (0..population.len())
+        let networks: Vec<Mlp> = population
+            .par_iter()
+            .map(|g| Mlp::of_checked(population.shape(), g))
+            .collect();
+        let batches: Vec<&[Mlp]> = networks.chunks(LANE_BATCH).collect();
+        batches
             .into_par_iter()
-            .map(|i| self.evaluate_recorded(&population.network(i), run, generation, i))
+            .enumerate()
+            .flat_map_iter(|(b, nets)| self.recorded_batch(nets, b * LANE_BATCH, run, generation))
+            .collect()
+    }
+
+    /// [`Experiment::evaluate_recorded`] of the individuals `first..` whose networks are
+    /// `nets`: their trials in the lanes ([`Experiment::recorded_in_lanes`]) when they fit,
+    /// else one individual at a time. With online orientation the evaluations are the lanes'
+    /// own ([`Experiment::evaluate_batch`], as `evaluate_recorded` takes `evaluate`'s).
+    fn recorded_batch(
+        &self,
+        nets: &[Mlp],
+        first: usize,
+        run: &Run,
+        generation: usize,
+    ) -> Vec<(Evaluation, Vec<Trajectory>)> {
+        let Some(recorded) = self.recorded_in_lanes(nets, first, run, generation) else {
+            return (nets.iter().enumerate())
+                .map(|(i, n)| self.evaluate_recorded(n, run, generation, first + i))
+                .collect();
+        };
+        let online =
+            self.orientation == OrientationMode::Online && self.motivations.orientation() > 0.0;
+        let mut online_evaluations = match online {
+            true => self
+                .evaluate_batch(nets, first, run, generation)
+                .into_iter(),
+            false => Vec::new().into_iter(),
+        };
+        (recorded.into_iter())
+            .map(|rooms| {
+                let (mut per_room, mut trajectories) = (Vec::new(), Vec::new());
+                for (terms, trajectory, executed) in rooms {
+                    per_room.push(RoomScore {
+                        f: 0.0,
+                        terms,
+                        executed,
+                    });
+                    trajectories.push(trajectory);
+                }
+                let mut evaluation = Evaluation {
+                    fitness: 0.0,
+                    per_room,
+                };
+                match online_evaluations.next() {
+                    Some(e) => evaluation = e,
+                    None => self.refit(&mut evaluation),
+                }
+                (evaluation, trajectories)
+            })
             .collect()
     }
 }
@@ -172,6 +228,37 @@ mod tests {
                     assert_eq!(t.executed(), s.executed);
                 }
             }
+        }
+    }
+
+    /// A population's recorded evaluation, its trials in the lanes, is each individual's
+    /// recorded alone (`evaluate_recorded`), evaluation and trajectories bit for bit: the
+    /// paper's robot, `wheels` motion, the e-puck2, online orientation, another hidden size,
+    /// and `[trial.randomise]` (which a recorded trial does not draw).
+    #[test]
+    fn recorded_population_in_the_lanes_equals_each_alone() {
+        let cases: [&[&str]; 6] = [
+            &[],
+            &["robot.motion=\"wheels\""],
+            &["robot.file=\"epuck2\"", "robot.motion=\"wheels\""],
+            &ORIENTED,
+            &["network.hidden=3"],
+            &[
+                "trial.randomise.noise=[0.0, 0.2]",
+                "trial.randomise.wheel_bias=[-0.1, 0.1]",
+            ],
+        ];
+        for extra in cases {
+            let mut sets = vec!["ga.population=23", "trial.steps=150"];
+            sets.extend(extra);
+            let exp = experiment(&sets);
+            let run = &exp.runs()[0];
+            let population = exp.initial_population(run);
+            let lanes = exp.evaluate_population_recorded(&population, run, 4);
+            let alone: Vec<_> = (0..population.len())
+                .map(|i| exp.evaluate_recorded(&population.network(i), run, 4, i))
+                .collect();
+            assert_eq!(format!("{lanes:?}"), format!("{alone:?}"), "{extra:?}");
         }
     }
 }

@@ -43,32 +43,59 @@ const DRAWS: usize = INPUTS + 2;
 
 /// One trial for [`walk_lanes`]: its network, the seed of its random stream (the stream of
 /// [`rng_from_seed`](crate::random::rng::rng_from_seed)) and what watches its steps; `last` is
-/// its final pose once it has run.
+/// its final pose once it has run; `drawn`, the robot `[trial.randomise]` drew for it, if any.
 pub(crate) struct LaneTrial<'a, O> {
     pub(crate) net: &'a Mlp,
     pub(crate) seed: u64,
     pub(crate) observer: O,
     pub(crate) last: Pose,
+    pub(crate) drawn: Option<Drawn<'a>>,
 }
 
-/// Whether [`walk_lanes`] can run `net`'s trials in `arena`: `actions` motion with noise (so
-/// every step takes its ten draws), eight sensors reading 0–1023 (the Khepera's), the 8-6-2
-/// network, finite weights.
+/// A trial's own robot, drawn by `[trial.randomise]`: the arena prepared for its body, sensors
+/// and noise, and the bias on its wheel speeds, which the trial's controller applies to the
+/// network's outputs as [`Perturbed`](crate::experiment::robustness::Perturbed) does (even a
+/// bias of 0, whose arithmetic may move an output by an ulp).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Drawn<'a> {
+    /// The arena the trial runs in, in place of the batch's.
+    pub(crate) arena: &'a Arena,
+    /// Both wheel speeds multiplied by 1 + `bias`.
+    pub(crate) bias: f64,
+}
+
+/// Whether [`walk_lanes`] can run `net`'s trials in `arena` (or in arenas drawn from it):
+/// any robot, motion, noise level and hidden size, one network input per sensor, finite
+/// weights ([`crate::simulation::lanes_any`]).
 pub(crate) fn lanes_fit(arena: &Arena, net: &Mlp) -> bool {
+    net.shape().inputs() == arena.sensors() && net.is_finite()
+}
+
+/// Whether the paper's lanes of this module run `trial` in `arena`: `actions` motion with
+/// noise (so every step takes its ten draws), eight sensors reading 0–1023 (the Khepera's),
+/// the 8-6-2 network, finite weights, the batch's own robot.
+fn paper_fit<O>(arena: &Arena, trial: &LaneTrial<'_, O>) -> bool {
     let params = arena.params();
     let spec = params.robot.spec();
     params.robot.motion() == Motion::Actions
         && spec.sensors() == INPUTS
         && spec.reading_max() == SENSOR_MAX
         && params.noise > 0.0
-        && net.shape().hidden() == HIDDEN
-        && net.is_finite()
+        && trial.net.shape().inputs() == INPUTS
+        && trial.net.shape().hidden() == HIDDEN
+        && trial.net.is_finite()
+        && trial.drawn.is_none()
 }
 
 /// Runs every trial of `trials` in `arena` (each as [`simulate`](crate::simulation::trial::simulate)
-/// would, from the room's home pose), four at a time. Each trial must fit ([`lanes_fit`]).
-pub(crate) fn walk_lanes<O: StepObserver>(arena: &Arena, trials: &mut [LaneTrial<'_, O>]) {
+/// would, from the room's home pose, in its drawn arena when it has one), four at a time. Each
+/// trial must fit ([`lanes_fit`]). The paper's robot runs in this module's lanes, every other
+/// in [`crate::simulation::lanes_any`]'s.
+pub(crate) fn walk_lanes<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [LaneTrial<'a, O>]) {
     debug_assert!(trials.iter().all(|t| lanes_fit(arena, t.net)));
+    if !trials.iter().all(|t| paper_fit(arena, t)) {
+        return crate::simulation::lanes_any::walk_any(arena, trials);
+    }
     let isa = Isa::detected();
     match arena.memo_owner() {
         Some(owner) => with_table(owner, memo_live, |table| walk_on(isa, arena, trials, table)),
@@ -202,7 +229,7 @@ fn walk<const AVX2: bool, O: StepObserver>(
 /// Whether every one of `values` is +0: their bits ORed together (no compare, no early exit, so
 /// a few vector `or`s for an array).
 #[inline(always)]
-fn all_plus_zero<'a>(values: impl IntoIterator<Item = &'a f64>) -> bool {
+pub(crate) fn all_plus_zero<'a>(values: impl IntoIterator<Item = &'a f64>) -> bool {
     values.into_iter().fold(0, |z, v| z | v.to_bits()) == 0
 }
 
@@ -296,16 +323,21 @@ fn inputs_of(noisy: &[[f64; LANES]; INPUTS]) -> [[f64; LANES]; INPUTS] {
 /// [`rng_from_seed`](crate::random::rng::rng_from_seed), `rand_xoshiro`'s), one stream per
 /// lane, its state word `i` of lane `l` in `s[i][l]` so that a draw for every lane is one
 /// vector operation per step of the generator.
-struct Streams {
+pub(crate) struct Streams {
     s: [[u64; LANES]; 4],
 }
 
 impl Streams {
+    /// Four streams, each to be started ([`Streams::start`]) before it is drawn from.
+    pub(crate) fn new() -> Streams {
+        Streams { s: [[0; LANES]; 4] }
+    }
+
     /// Lane `l` starts the stream of `seed` as `rng_from_seed` does: the state is four
     /// outputs of SplitMix64 from `seed`. (They are never all 0, the one state xoshiro
     /// cannot take: SplitMix64's output function is a bijection of its counter, which is
     /// different for each of the four.)
-    fn start(&mut self, l: usize, seed: u64) {
+    pub(crate) fn start(&mut self, l: usize, seed: u64) {
         let mut x = seed;
         for word in &mut self.s {
             x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
@@ -320,7 +352,7 @@ impl Streams {
     /// ([`uniform01`](crate::random::rng::uniform01)'s value). `AVX2`: the caller is compiled
     /// with AVX2 ([`walk_avx2`]).
     #[inline(always)]
-    fn next_units<const AVX2: bool>(&mut self) -> [f64; LANES] {
+    pub(crate) fn next_units<const AVX2: bool>(&mut self) -> [f64; LANES] {
         let [s0, s1, s2, s3] = &mut self.s;
         let mut out = [0.0; LANES];
         for l in 0..LANES {
@@ -425,7 +457,7 @@ struct Lanes {
 impl Lanes {
     fn new(arena: &Arena) -> Lanes {
         Lanes {
-            streams: Streams { s: [[0; LANES]; 4] },
+            streams: Streams::new(),
             trial: [None; LANES],
             walk: [Walk::at_home(arena); LANES],
             t: [0; LANES],
@@ -914,6 +946,7 @@ mod tests {
                 seed: 1,
                 observer: (),
                 last: arena.room().home,
+                drawn: None,
             })
             .collect();
         let mut next = 0;
@@ -1046,6 +1079,7 @@ mod tests {
                 seed: seed(i),
                 observer: Until::new(arena, i, motors),
                 last: Pose::new(f64::NAN, f64::NAN, f64::NAN),
+                drawn: None,
             })
             .collect();
         assert!(trials.iter().all(|t| lanes_fit(arena, t.net)));
@@ -1137,24 +1171,44 @@ mod tests {
         );
     }
 
-    /// Networks that the lanes do not run are told apart: another hidden size, a weight that
-    /// is not finite, `wheels` motion, no noise.
+    /// The lanes run every network with one input per sensor and finite weights, the paper's
+    /// lanes only the paper's robot: another hidden size, no noise, `wheels` motion or a drawn
+    /// robot go to the general lanes; a weight that is not finite or another number of
+    /// inputs to none.
     #[test]
-    fn lanes_fit_only_what_they_run_exactly() {
+    fn lanes_fit_what_they_run_exactly() {
         let arena = arena("H", true, 10);
-        let net = &networks(1, 1, 1.0)[0];
-        assert!(lanes_fit(&arena, net));
+        let nets = networks(1, 1, 1.0);
+        let trial = |net| LaneTrial {
+            net,
+            seed: 1,
+            observer: (),
+            last: arena.room().home,
+            drawn: None,
+        };
+        assert!(lanes_fit(&arena, &nets[0]) && paper_fit(&arena, &trial(&nets[0])));
         let shape = MlpShape::with_hidden(5).unwrap();
         let other = Mlp::from_genome(shape, &vec![0.1; shape.genome_len()]).unwrap();
-        assert!(!lanes_fit(&arena, &other));
-        let mut g = vec![0.1; MlpShape::default().genome_len()];
-        g[20] = f64::INFINITY;
-        let inf = Mlp::from_genome(MlpShape::default(), &g).unwrap();
-        assert!(!lanes_fit(&arena, &inf));
+        assert!(lanes_fit(&arena, &other) && !paper_fit(&arena, &trial(&other)));
+        let drawn = LaneTrial {
+            drawn: Some(Drawn {
+                arena: &arena,
+                bias: 0.0,
+            }),
+            ..trial(&nets[0])
+        };
+        assert!(!paper_fit(&arena, &drawn));
         let quiet = Arena::new(
             Room::builtin("H").unwrap(),
             &TrialParams::default().with_noise(0.0),
         );
-        assert!(!lanes_fit(&quiet, net));
+        assert!(lanes_fit(&quiet, &nets[0]) && !paper_fit(&quiet, &trial(&nets[0])));
+        let mut g = vec![0.1; MlpShape::default().genome_len()];
+        g[20] = f64::INFINITY;
+        let inf = Mlp::from_genome(MlpShape::default(), &g).unwrap();
+        assert!(!lanes_fit(&arena, &inf));
+        let seven = MlpShape::default().with_inputs(7).unwrap();
+        let short = Mlp::from_genome(seven, &vec![0.1; seven.genome_len()]).unwrap();
+        assert!(!lanes_fit(&arena, &short));
     }
 }

@@ -31,11 +31,12 @@ pub struct TurnedRays {
 }
 
 /// The sensors' rays side by side, for casting them in vector lanes: `origin[c][s]` is
-/// coordinate `c` (x, y) of sensor `s`'s origin, `dir[r][c][s]` of its ray `r`'s direction.
+/// coordinate `c` (x, y) of sensor `s`'s origin, `dir[r][c][s]` of its ray `r`'s direction,
+/// for the first `W` sensors (a multiple of 4).
 #[derive(Debug, Clone, Copy)]
-struct SideBySide {
-    origin: [[f64; INPUTS]; 2],
-    dir: [[[f64; INPUTS]; 2]; 3],
+struct SideBySide<const W: usize = INPUTS> {
+    origin: [[f64; W]; 2],
+    dir: [[[f64; W]; 2]; 3],
 }
 
 /// A robot's sensors with one response model, ready to read.
@@ -115,13 +116,13 @@ impl Eyes {
         match (self.per_sensor, facing) {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `Isa::Avx2` is only made when the processor has AVX2 (`Isa::detected`).
-            (3, Facing::Compass(t)) if self.isa == Isa::Avx2 && self.n <= 8 => unsafe {
-                self.cast_avx2::<8>(pos, &t.side, walls, near)
+            (3, _) if self.isa == Isa::Avx2 => unsafe {
+                self.read_avx2::<3>(pos, facing, walls, near)
             },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above.
-            (3, Facing::Compass(t)) if self.isa == Isa::Avx2 => unsafe {
-                self.cast_avx2::<INPUTS>(pos, &t.side, walls, near)
+            (1, _) if self.isa == Isa::Avx2 => unsafe {
+                self.read_avx2::<1>(pos, facing, walls, near)
             },
             (3, _) => self.read_rays::<3>(pos, facing, walls, near),
             _ => self.read_rays::<1>(pos, facing, walls, near),
@@ -169,18 +170,48 @@ impl Eyes {
         total.min(self.max)
     }
 
-    /// [`Eyes::read_rays`] with three rays a sensor, `rays` turned in advance, four sensors at a
-    /// time in AVX2 vector lanes ([`nearest_hits_avx2`]), the `sampled` model's values too
-    /// ([`table_values`]). The same operations on the same numbers, so the same bits.
+    /// [`Eyes::read`] with `R` rays a sensor (1 or 3) on a processor with AVX2: a compass
+    /// heading's rays as turned in advance, any other turned now
+    /// ([`Eyes::cast_turned_avx2`]), cast by [`Eyes::cast_avx2`].
     ///
     /// # Safety
     /// The processor must have AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn cast_avx2<const M: usize>(
+    unsafe fn read_avx2<const R: usize>(
         &self,
         pos: Vec2,
-        rays: &SideBySide,
+        facing: Facing<'_>,
+        walls: &[PreparedSegment],
+        near: &[u32],
+    ) -> Readings {
+        // SAFETY (each call): this function runs only on processors with AVX2.
+        match facing {
+            Facing::Compass(t) if self.n <= 8 => unsafe {
+                self.cast_avx2::<8, INPUTS, R>(pos, &t.side, walls, near)
+            },
+            Facing::Compass(t) => unsafe {
+                self.cast_avx2::<INPUTS, INPUTS, R>(pos, &t.side, walls, near)
+            },
+            Facing::Angle { sin, cos } => unsafe {
+                self.cast_turned_avx2::<R>(pos, (sin, cos), walls, near)
+            },
+        }
+    }
+
+    /// [`Eyes::read_rays`] with `R` rays a sensor (1 or 3), `rays` turned in advance, four
+    /// sensors at a time in AVX2 vector lanes ([`nearest_hits_avx2`]), the `sampled` model's
+    /// built-in values too ([`table_values`]). The same operations on the same numbers, so the
+    /// same bits.
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn cast_avx2<const M: usize, const W: usize, const R: usize>(
+        &self,
+        pos: Vec2,
+        rays: &SideBySide<W>,
         walls: &[PreparedSegment],
         near: &[u32],
     ) -> Readings {
@@ -189,17 +220,20 @@ impl Eyes {
         };
         // `M` (8, or all of `INPUTS` for robots with more sensors) holds the robot's sensors.
         const { assert!(M % 4 == 0 && M <= INPUTS, "blocks of four sensors") };
-        debug_assert!(self.n <= M);
-        let mut nearest = [[f64::INFINITY; M]; 3];
+        const { assert!(R == 1 || R == 3, "one or three rays a sensor") };
+        debug_assert!(self.n <= M && self.per_sensor == R);
+        let mut nearest = [[f64::INFINITY; M]; R];
+        // The built-in tables, read in vector lanes, are the three rays' of `sampled`.
+        let tables = self.tables.filter(|_| R == 3);
         let mut out = [0.0; M];
         // Blocks of four sensors; a block's sensors past the robot's last have no rays (their
         // directions are 0: no ray meets a wall) and read 0, which is not kept.
         for half in (0..self.n).step_by(4) {
-            let best = nearest_hits_avx2(pos, rays, half, self.range2, walls, near);
+            let best = nearest_hits_avx2::<W, R>(pos, rays, half, self.range2, walls, near);
             // SAFETY: every store is of four consecutive `f64` from `half`, a multiple of 4 below
             // `n` ≤ `M` (a multiple of 4) in arrays of `M`; the unaligned form needs no alignment.
             unsafe {
-                let Some(tables) = self.tables else {
+                let Some(tables) = tables else {
                     for (n, b) in nearest.iter_mut().zip(best) {
                         _mm256_storeu_pd(n[half..].as_mut_ptr(), b);
                     }
@@ -214,7 +248,7 @@ impl Eyes {
                 _mm256_storeu_pd(out[half..].as_mut_ptr(), total);
             }
         }
-        if self.tables.is_none() {
+        if tables.is_none() {
             return self.values(&nearest);
         }
         let mut readings = Readings::zeros(self.n);
@@ -222,12 +256,88 @@ impl Eyes {
         readings
     }
 
+    /// [`Eyes::read`] facing any heading (sine and cosine `sin_cos`), in AVX2 lanes: the
+    /// rays turned four sensors at a time with [`Vec2::rotate_by`]'s operations (so the same
+    /// numbers `Facing::Angle` turns one by one, and that [`Eyes::on_compass`] holds for a
+    /// compass heading), then cast by [`Eyes::cast_avx2`]. The same bits as
+    /// [`Eyes::read_rays`].
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn cast_turned_avx2<const R: usize>(
+        &self,
+        pos: Vec2,
+        (sin, cos): (f64, f64),
+        walls: &[PreparedSegment],
+        near: &[u32],
+    ) -> Readings {
+        match self.n <= 8 {
+            // SAFETY: this function runs only on processors with AVX2.
+            true => unsafe { self.cast_turned_in::<8, R>(pos, (sin, cos), walls, near) },
+            // SAFETY: as above.
+            false => unsafe { self.cast_turned_in::<INPUTS, R>(pos, (sin, cos), walls, near) },
+        }
+    }
+
+    /// [`Eyes::cast_turned_avx2`] with the rays of the first `W` sensors, at least the
+    /// robot's (a multiple of 4).
+    ///
+    /// # Safety
+    /// The processor must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    unsafe fn cast_turned_in<const W: usize, const R: usize>(
+        &self,
+        pos: Vec2,
+        (sin, cos): (f64, f64),
+        walls: &[PreparedSegment],
+        near: &[u32],
+    ) -> Readings {
+        use std::arch::x86_64::{
+            _mm256_add_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_storeu_pd,
+            _mm256_sub_pd,
+        };
+        const { assert!(W % 4 == 0 && W <= INPUTS, "blocks of four sensors") };
+        debug_assert!(self.n <= W);
+        let mut side = SideBySide::<W> {
+            origin: [[0.0; W]; 2],
+            dir: [[[0.0; W]; 2]; 3],
+        };
+        let (s, c) = (_mm256_set1_pd(sin), _mm256_set1_pd(cos));
+        let body = &self.body.side;
+        // Blocks of four sensors (past the robot's last: no rays, which stay 0 turned).
+        for half in (0..self.n).step_by(4) {
+            // SAFETY: every load and store is of four consecutive `f64` from `half`, a multiple
+            // of 4 below the robot's sensors ≤ `W` (a multiple of 4); the unaligned forms need no alignment.
+            unsafe {
+                // `rotate_by`: (c·x − s·y, s·x + c·y), products and sums in its order.
+                let turn = |from: &[[f64; INPUTS]; 2], to: &mut [[f64; W]; 2]| {
+                    let x = _mm256_loadu_pd(from[0][half..].as_ptr());
+                    let y = _mm256_loadu_pd(from[1][half..].as_ptr());
+                    let tx = _mm256_sub_pd(_mm256_mul_pd(c, x), _mm256_mul_pd(s, y));
+                    let ty = _mm256_add_pd(_mm256_mul_pd(s, x), _mm256_mul_pd(c, y));
+                    _mm256_storeu_pd(to[0][half..].as_mut_ptr(), tx);
+                    _mm256_storeu_pd(to[1][half..].as_mut_ptr(), ty);
+                };
+                turn(&body.origin, &mut side.origin);
+                for (from, to) in body.dir.iter().zip(&mut side.dir).take(R) {
+                    turn(from, to);
+                }
+            }
+        }
+        // SAFETY: this function runs only on processors with AVX2.
+        unsafe { self.cast_avx2::<W, W, R>(pos, &side, walls, near) }
+    }
+
     /// The sensors' values from their three rays' nearest hits `nearest[r][s]` (∞ for none),
     /// as [`Eyes::read_rays`] adds them ([`Eyes::sensor_value`]); a sensor none of whose rays hits reads +0, which is
     /// also what its three values of 0 add to.
     #[cfg(target_arch = "x86_64")]
     #[inline]
-    fn values<const M: usize>(&self, nearest: &[[f64; M]; 3]) -> Readings {
+    fn values<const M: usize, const R: usize>(&self, nearest: &[[f64; M]; R]) -> Readings {
         let mut out = Readings::zeros(self.n);
         for (s, o) in out.iter_mut().enumerate() {
             if nearest.iter().all(|n| n[s] == f64::INFINITY) {
@@ -274,37 +384,37 @@ impl Facing<'_> {
     }
 }
 
-/// The nearest hit of each of the three rays of sensors `half` … `half + 3` (∞ for none), for
-/// a robot centred at `pos` with the `near` walls: for each wall the four sensors' distance test
-/// ([`PreparedSegment::dist2_to`]), then, when one of them is in range, the hits of their three
-/// rays ([`lower_hits_avx2`]) with those out of range masked off, as [`Eyes::read_rays`] skips
+/// The nearest hit of each of the `R` rays (1 or 3) of sensors `half` … `half + 3` (∞ for
+/// none), for a robot centred at `pos` with the `near` walls: for each wall the four sensors'
+/// distance test ([`PreparedSegment::dist2_to`]), then, when one of them is in range, the hits
+/// of their `R` rays ([`lower_hits_avx2`]) with those out of range masked off, as [`Eyes::read_rays`] skips
 /// them. A ray's nearest hit is the minimum over the walls, whatever their order (its zero may
 /// have either sign, which no ray's value tells apart).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
-fn nearest_hits_avx2(
+fn nearest_hits_avx2<const W: usize, const R: usize>(
     pos: Vec2,
-    rays: &SideBySide,
+    rays: &SideBySide<W>,
     half: usize,
     range2: f64,
     walls: &[PreparedSegment],
     near: &[u32],
-) -> [__m256d; 3] {
+) -> [__m256d; R] {
     use std::arch::x86_64::{
         _CMP_LE_OQ, _mm256_add_pd, _mm256_cmp_pd, _mm256_loadu_pd, _mm256_max_pd, _mm256_min_pd,
         _mm256_movemask_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_sub_pd,
     };
     // SAFETY: every load is of four consecutive `f64` from `half`, a multiple of 4 below
-    // `INPUTS` (a multiple of 4); the unaligned form needs no alignment.
-    let four = |a: &[f64; INPUTS]| unsafe { _mm256_loadu_pd(a[half..].as_ptr()) };
+    // the robot's sensors ≤ `W` (a multiple of 4: the callers' blocks); the unaligned form needs no alignment.
+    let four = |a: &[f64; W]| unsafe { _mm256_loadu_pd(a[half..].as_ptr()) };
     let o = (
         _mm256_add_pd(_mm256_set1_pd(pos.x), four(&rays.origin[0])),
         _mm256_add_pd(_mm256_set1_pd(pos.y), four(&rays.origin[1])),
     );
-    let dirs = [0, 1, 2].map(|r| (four(&rays.dir[r][0]), four(&rays.dir[r][1])));
+    let dirs: [Pair; R] = std::array::from_fn(|r| (four(&rays.dir[r][0]), four(&rays.dir[r][1])));
     let (zero, one) = (_mm256_setzero_pd(), _mm256_set1_pd(1.0));
-    let mut best = [_mm256_set1_pd(f64::INFINITY); 3];
+    let mut best = [_mm256_set1_pd(f64::INFINITY); R];
     for &k in near {
         let (a, d, inv_len2) = walls[k as usize].parts();
         let a = (_mm256_set1_pd(a.x), _mm256_set1_pd(a.y));
@@ -333,10 +443,10 @@ fn nearest_hits_avx2(
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
-fn lower_hits_avx2(
-    best: &mut [__m256d; 3],
+fn lower_hits_avx2<const R: usize>(
+    best: &mut [__m256d; R],
     o: Pair,
-    dirs: &[Pair; 3],
+    dirs: &[Pair; R],
     (a, d): Wall4,
     seen: __m256d,
 ) {
@@ -509,6 +619,91 @@ mod tests {
             lit > 10_000,
             "{lit}: too few sensors saw a wall to test anything"
         );
+    }
+
+    /// Facing any heading, the AVX2 cast (its rays turned in vector lanes) reads, bit for
+    /// bit, what the scalar cast reads with the rays turned one by one: every room's walls,
+    /// from poses in and around the rooms, on headings all round (the compass's among them).
+    #[test]
+    fn vector_cast_at_any_heading_reads_what_the_scalar_cast_reads() {
+        use crate::simulation::room::{BUILTIN_ROOMS, Room};
+        if Isa::detected() == Isa::Baseline {
+            return; // nothing to compare
+        }
+        let eyes = Eyes::new(
+            SensorModel::Sampled,
+            RobotSpec::khepera(),
+            &Compass::new(0.0),
+        );
+        let mut lit = 0;
+        for name in BUILTIN_ROOMS {
+            let room = Room::builtin(name).unwrap();
+            let walls: Vec<_> = room.walls().iter().map(PreparedSegment::new).collect();
+            let all: Vec<u32> = (0..walls.len() as u32).collect();
+            let (lo, hi) = room.bounds();
+            for i in 0..3000 {
+                let f = |n: usize, m: usize| (i * n % m) as f64 / m as f64;
+                let pos = Vec2::new(
+                    lo.x - 60.0 + (hi.x - lo.x + 120.0) * f(37, 997),
+                    lo.y - 60.0 + (hi.y - lo.y + 120.0) * f(53, 991),
+                );
+                let heading = match i % 7 {
+                    0 => (i % 12) as f64 * std::f64::consts::FRAC_PI_6,
+                    _ => -3.2 + 6.4 * f(61, 1009),
+                };
+                let (sin, cos) = crate::simulation::math::sin_cos(heading);
+                let facing = Facing::Angle { sin, cos };
+                let scalar = eyes.read_rays::<3>(pos, facing, &walls, &all);
+                let vector = eyes.read(pos, facing, &walls, &all);
+                let bits = |r: &Readings| r.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&scalar), bits(&vector), "{pos:?} {heading}");
+                lit += scalar.iter().filter(|&&v| v > 0.0).count();
+            }
+        }
+        assert!(lit > 5_000, "{lit}: too few sensors saw a wall");
+    }
+
+    /// Robots of one ray a sensor (the e-puck2's eight, the Thymio II's seven, their own
+    /// tables) read in AVX2 lanes, bit for bit, what the scalar cast reads, on the compass's
+    /// headings (rays turned in advance) and on any other (turned per read).
+    #[test]
+    fn one_ray_robots_read_alike_in_vector_lanes() {
+        use crate::simulation::room::{BUILTIN_ROOMS, Room};
+        if Isa::detected() == Isa::Baseline {
+            return; // nothing to compare
+        }
+        for robot in ["epuck2", "thymio2"] {
+            let spec = RobotSpec::builtin(robot).unwrap();
+            let compass = Compass::new(0.4);
+            let eyes = Eyes::new(SensorModel::Sampled, spec, &compass);
+            assert_eq!(eyes.per_sensor, 1, "{robot}");
+            let mut lit = 0;
+            for name in BUILTIN_ROOMS {
+                let room = Room::builtin(name).unwrap();
+                let walls: Vec<_> = room.walls().iter().map(PreparedSegment::new).collect();
+                let all: Vec<u32> = (0..walls.len() as u32).collect();
+                let (lo, hi) = room.bounds();
+                for i in 0..2000 {
+                    let f = |n: usize, m: usize| (i * n % m) as f64 / m as f64;
+                    let pos = Vec2::new(
+                        lo.x - 60.0 + (hi.x - lo.x + 120.0) * f(37, 997),
+                        lo.y - 60.0 + (hi.y - lo.y + 120.0) * f(53, 991),
+                    );
+                    let (sin, cos) = crate::simulation::math::sin_cos(-3.2 + 6.4 * f(61, 1009));
+                    for facing in [
+                        Facing::Compass(eyes.on_compass(i % 12)),
+                        Facing::Angle { sin, cos },
+                    ] {
+                        let scalar = eyes.read_rays::<1>(pos, facing, &walls, &all);
+                        let vector = eyes.read(pos, facing, &walls, &all);
+                        let bits = |r: &Readings| r.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                        assert_eq!(bits(&scalar), bits(&vector), "{robot} at {pos:?}");
+                        lit += scalar.iter().filter(|&&v| v > 0.0).count();
+                    }
+                }
+            }
+            assert!(lit > 5_000, "{robot}: {lit}: too few sensors saw a wall");
+        }
     }
 
     /// A wall beyond every ray's range is skipped and reads 0, as a wall not listed at all.
