@@ -467,6 +467,16 @@ impl Problem {
         let Some(supply) = supply else {
             return Ok((evals, described));
         };
+        if exp.randomise().is_some() {
+            // The recorded trials are the configured robot's, not the ones `[trial.randomise]`
+            // draws: refused rather than evaluated on other robots than the GA's.
+            return Err(input_err(
+                "terms: terms computed in Python cannot yet be combined with [trial.randomise] \
+                 (their trials would be the configured robot's, not the drawn ones the rest of \
+                 the evaluation uses); remove [trial.randomise] or compute the term in Rust \
+                 (docs/guide/motivations.md)",
+            ));
+        }
         let recorded = self.compute(py, || {
             exp.evaluate_population_recorded(population, run, generation)
         })?;

@@ -203,3 +203,12 @@ def test_a_term_function_that_raises_is_a_fuzzymotiv_error_naming_it():
     with pytest.raises(fm.FuzzymotivError, match=r"terms\['wobble'\]: the function raised ZeroDivisionError") as e:
         p.evaluate(genomes(p))
     assert isinstance(e.value.__cause__, ZeroDivisionError)
+
+
+def test_terms_from_python_with_a_randomised_robot_are_refused():
+    """The trials a Python term is computed from are recorded on the configured robot; with
+    [trial.randomise] the GA's trials are drawn robots, so the two would disagree: refused."""
+    cfg = one_term("mine") + "[trial.randomise]\nnoise = [0.0, 0.2]\n"
+    p = fm.Problem(config_text=cfg, terms={"mine": constant(0.5)})
+    with pytest.raises(fm.FuzzymotivError, match=r"\[trial\.randomise\]"):
+        p.evaluate(genomes(p))
