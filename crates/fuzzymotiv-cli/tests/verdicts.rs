@@ -742,61 +742,105 @@ fn the_readings_figures_fuzzymotiv_curves_are_the_engines_readings_now() {
 /// seed's first seed, as the paper's claims).
 #[test]
 fn the_paper_study_files_comparisons_are_the_paper_studies_at_both_base_seeds() {
-    let dir = results().join("paper-study");
-    let claims = rows(&dir.join("claims.csv"));
-    let per_seed = rows(&dir.join("per_seed.csv"));
     for (scope, study) in [
         ("base=1", "twenty-seed"),
         ("base=11", "twenty-seed-base-11"),
     ] {
-        let paper = rows(&results().join(study).join("claims.csv"));
-        let in_scope = |r: &&Row| format!("base={}", r["base_seed"]) == scope;
-        let first_seed: u64 = per_seed.iter().find(in_scope).unwrap()["seed"]
-            .parse()
-            .unwrap();
-        let ids = ["explores", "battery", "recognition", "homing"];
-        for (&(claim, column, expect), id) in CLAIMS.iter().zip(ids) {
-            let at = format!("paper-study/claims.csv, {id} ({scope})");
-            let ours = (claims.iter())
-                .find(|r| r["id"] == id && r["scope"] == scope)
-                .unwrap_or_else(|| panic!("{at}: missing"));
-            let theirs = paper.iter().find(|r| r["claim"] == claim).unwrap();
-            for (a, b) in [
-                ("effect", "difference"),
-                ("ci_low", "ci_low"),
-                ("ci_high", "ci_high"),
-                ("p", "p"),
-                ("mdd", "mdd"),
-            ] {
-                assert_eq!(number(ours, a), number(theirs, b), "{at}: {a} is {study}'s");
-            }
+        let paper = results().join(study).join("claims.csv");
+        assert_comparisons_are("paper-study", scope, "", &paper);
+    }
+}
+
+/// The combination study as a study file (studies/combination.toml, committed in
+/// `combination-study/`) is `reproduce --combination`'s at both base seeds: under each
+/// combination, each base seed's four comparisons are that combination's claims in
+/// `combination/` (base seed 1) and `combination-base-11/`, recomputed from its per_seed.csv.
+#[test]
+fn the_combination_study_files_comparisons_are_reproduces_at_both_base_seeds() {
+    for (scope, records) in [
+        ("base=1", "combination"),
+        ("base=11", "combination-base-11"),
+    ] {
+        for (arm, dir) in [
+            ("tsk", "default"),
+            ("sum", "weighted-sum"),
+            ("squares", "weighted-squares"),
+        ] {
+            let paper = results().join(records).join(dir).join("claims.csv");
+            assert_comparisons_are("combination-study", scope, arm, &paper);
+        }
+    }
+}
+
+/// The four comparisons of the committed study of one's own `study` in `scope` (ids
+/// `explores`, … with `-SUFFIX` when `suffix` is not empty, arms `high-curiosity` and
+/// `low-curiosity`, or `high-SUFFIX` and `low-SUFFIX`) have the numbers and verdicts of the
+/// paper's claims in `paper` (a claims.csv of `reproduce`), each recomputed from the study's
+/// per_seed.csv.
+fn assert_comparisons_are(study: &str, scope: &str, suffix: &str, paper: &Path) {
+    let dir = results().join(study);
+    let claims = rows(&dir.join("claims.csv"));
+    let per_seed = rows(&dir.join("per_seed.csv"));
+    let paper = rows(paper);
+    let in_scope = |r: &&Row| format!("base={}", r["base_seed"]) == scope;
+    let first_seed: u64 = per_seed.iter().find(in_scope).unwrap()["seed"]
+        .parse()
+        .unwrap();
+    let named = |name: &str| match suffix {
+        "" => name.to_string(),
+        s => format!("{name}-{s}"),
+    };
+    let (high, low) = match suffix {
+        "" => ("high-curiosity".to_string(), "low-curiosity".to_string()),
+        s => (format!("high-{s}"), format!("low-{s}")),
+    };
+    let ids = ["explores", "battery", "recognition", "homing"];
+    for (&(claim, column, expect), id) in CLAIMS.iter().zip(ids) {
+        let id = named(id);
+        let at = format!("{study}/claims.csv, {id} ({scope})");
+        let ours = (claims.iter())
+            .find(|r| r["id"] == id && r["scope"] == scope)
+            .unwrap_or_else(|| panic!("{at}: missing"));
+        let theirs = paper.iter().find(|r| r["claim"] == claim).unwrap();
+        for (a, b) in [
+            ("effect", "difference"),
+            ("ci_low", "ci_low"),
+            ("ci_high", "ci_high"),
+            ("p", "p"),
+            ("mdd", "mdd"),
+        ] {
             assert_eq!(
-                ours["verdict"], theirs["verdict"],
-                "{at}: {study}'s verdict"
-            );
-            let of = |arm: &str| -> Vec<f64> {
-                (per_seed.iter().filter(in_scope))
-                    .filter(|r| r["arm"] == arm && r["measure"] == column && r["room"].is_empty())
-                    .map(|r| number(r, "value").unwrap())
-                    .collect()
-            };
-            let options = Settings {
-                alpha: ALPHA,
-                seed: first_seed,
-                ..Settings::default()
-            };
-            let c = paired(&of("high-curiosity"), &of("low-curiosity"), &options).unwrap();
-            assert_eq!(
-                number(ours, "effect"),
-                Some(c.difference),
-                "{at}: recomputed"
-            );
-            assert_eq!(number(ours, "p"), Some(c.p), "{at}: recomputed");
-            let verdict = c.verdict_with_power(expect).label();
-            assert_eq!(
-                ours["verdict"], verdict,
-                "{at}: recomputed from per_seed.csv"
+                number(ours, a),
+                number(theirs, b),
+                "{at}: {a} is reproduce's"
             );
         }
+        assert_eq!(
+            ours["verdict"], theirs["verdict"],
+            "{at}: reproduce's verdict"
+        );
+        let of = |arm: &str| -> Vec<f64> {
+            (per_seed.iter().filter(in_scope))
+                .filter(|r| r["arm"] == arm && r["measure"] == column && r["room"].is_empty())
+                .map(|r| number(r, "value").unwrap())
+                .collect()
+        };
+        let options = Settings {
+            alpha: ALPHA,
+            seed: first_seed,
+            ..Settings::default()
+        };
+        let c = paired(&of(&high), &of(&low), &options).unwrap();
+        assert_eq!(
+            number(ours, "effect"),
+            Some(c.difference),
+            "{at}: recomputed"
+        );
+        assert_eq!(number(ours, "p"), Some(c.p), "{at}: recomputed");
+        let verdict = c.verdict_with_power(expect).label();
+        assert_eq!(
+            ours["verdict"], verdict,
+            "{at}: recomputed from per_seed.csv"
+        );
     }
 }
