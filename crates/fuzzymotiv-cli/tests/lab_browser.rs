@@ -862,3 +862,126 @@ fn the_robot_picker_lists_the_robots_and_the_chosen_robot_runs_and_is_drawn_in_c
     let console = d.console_errors();
     assert!(console.is_empty(), "console errors: {console:?}");
 }
+
+/// A tiny study of the fetch mission on an e-puck2: three arms of urgency's weight, a
+/// comparison of the mission's time and a trend of exploration (its config by absolute path).
+fn tiny_study() -> String {
+    let text = std::fs::read_to_string(common::repo().join("studies/fetch-urgency.toml")).unwrap();
+    let config = common::repo().join("configs/fetch.toml");
+    let text = text.replace("seeds = 10\n", "seeds = 2\n").replace(
+        "config = \"../configs/fetch.toml\"",
+        &format!(
+            "config = {:?}\nset = {{ robot = \"epuck2\", ga = {{ population = 6, generations = 2 }}, trial = {{ steps = 60 }}, aem = {{ enabled = false }} }}",
+            config.display().to_string()
+        ),
+    );
+    assert!(text.contains("robot = \"epuck2\"") && text.contains("seeds = 2\n"));
+    text
+}
+
+/// The Studies panel: a study file picked from the lab's study folder fills the text box; a
+/// broken one pasted is refused on the page naming its field; the picked one starts, its
+/// progress shows as runs done of the total, and once analysed its claims table (effect,
+/// interval, p, detectable difference, verdict) and forest plot appear. Saves
+/// `target/lab-study-screenshot.png`.
+#[test]
+#[ignore = "needs chromium: run by .ci/run"]
+fn a_study_picked_in_the_lab_runs_and_shows_its_claims_table_and_forest_plot_in_chromium() {
+    require_browser();
+    let tmp = tempfile::tempdir().unwrap();
+    let folder = tmp.path().join("studies");
+    std::fs::create_dir_all(&folder).unwrap();
+    let text = tiny_study();
+    std::fs::write(folder.join("epuck2-fetch.toml"), &text).unwrap();
+    let lab = LabProcess::start_with(
+        &tmp.path().join("lab"),
+        &["--studies", folder.to_str().unwrap()],
+    );
+    let mut d = Driver::start();
+    d.new_session(&tmp.path().join("chromium-profile"));
+    d.goto(&lab.url);
+    wait_for(
+        &d,
+        30,
+        "the study files",
+        "return document.querySelectorAll('#study-file option').length === 2;",
+    );
+
+    // Pasted with a bad field: refused on the page, naming it.
+    let area = d.element("#study-text");
+    type_into(&d, &area, &text.replace("seeds = 2\n", "seeds = 0\n"));
+    d.click_button("Start study");
+    let refused = wait_for(
+        &d,
+        30,
+        "the refusal",
+        "var m = document.getElementById('study-message'); return m.className === 'error' && m.textContent;",
+    );
+    assert!(
+        refused
+            .as_str()
+            .unwrap()
+            .starts_with("(pasted study): field `study.seeds`"),
+        "{refused}"
+    );
+
+    // Picked from the list: its text in the box, started, followed to its claims.
+    let select = labelled(&d, "Study file");
+    let option = d.element("#study-file option[value='epuck2-fetch.toml']");
+    d.cmd("POST", &format!("/element/{select}/click"), json!({}));
+    d.cmd("POST", &format!("/element/{option}/click"), json!({}));
+    let shown = d.script("return document.getElementById('study-text').value;");
+    assert_eq!(shown.as_str().unwrap(), text);
+    d.click_button("Start study");
+    wait_for(
+        &d,
+        300,
+        "the claims table",
+        "return document.querySelectorAll('#study-claims tbody tr').length > 0;",
+    );
+    // Every run of the plan finished: "… N of N runs, analysed."
+    let status = d.script("return document.getElementById('study-status').textContent;");
+    let status = status.as_str().unwrap();
+    let counts = (status.strip_suffix(" runs, analysed.")).and_then(|s| s.rsplit_once(": "));
+    let (done, total) = counts
+        .and_then(|(_, c)| c.split_once(" of "))
+        .unwrap_or_default();
+    assert!(!done.is_empty() && done == total, "{status}");
+    let rows = d.script("return Array.from(document.querySelectorAll('#study-claims tbody tr')).map(function (r) { return Array.from(r.cells).map(function (c) { return c.textContent; }); });");
+    let rows: Vec<Vec<String>> = serde_json::from_value(rows).unwrap();
+    let ids: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
+    let declared: Vec<&str> = (text.lines())
+        .filter_map(|l| l.strip_prefix("id = \""))
+        .map(|l| l.split('"').next().unwrap())
+        .collect();
+    assert_eq!(ids, declared);
+    for r in &rows {
+        assert_eq!(r.len(), 7, "{r:?}");
+        assert!(r[3].starts_with('[') && r[3].ends_with(']'), "{r:?}");
+        assert!(
+            [
+                "supported",
+                "contradicted",
+                "not significant",
+                "inconclusive"
+            ]
+            .contains(&r[6].as_str()),
+            "{r:?}"
+        );
+    }
+    wait_for(
+        &d,
+        30,
+        "the forest plot",
+        "var i = document.getElementById('study-forest'); return i.complete && i.naturalWidth > 0;",
+    );
+    d.script("document.getElementById('studies-panel').scrollIntoView();");
+    let shot = target_dir().join("lab-study-screenshot.png");
+    std::fs::write(&shot, d.full_page_png()).unwrap();
+    eprintln!("screenshot: {}", shot.display());
+    let console = d.console_errors();
+    assert!(
+        console.len() == 1 && console[0].contains("400"),
+        "only the refused request is logged: {console:?}"
+    );
+}

@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 /// and its layer. A module imports only from its own layer and the ones below it. Imports are
 /// read inside a crate only, so the numbers order the modules of one crate; they go on rising
 /// from crate to crate in Cargo's order.
-const LAYERS: [(&str, usize); 35] = [
+const LAYERS: [(&str, usize); 36] = [
     // fuzzymotiv, the library: the pipeline's subsystems
     ("lib::params", 0),     // FieldError: the one error of every input
     ("lib::random", 0),     // seeded streams, noise
@@ -53,6 +53,7 @@ const LAYERS: [(&str, usize); 35] = [
     ("lab::runs", 16),        // the run list, the queue and the worker
     ("lab::start", 16),       // the config the lab starts on (--config)
     ("lab::compare", 17),     // two runs side by side, the library's statistics
+    ("lab::studies", 17),     // studies of one's own, run by the library's study pipeline
     ("lab::api", 18),         // the routes
     ("lab::server", 19),      // start and stop
     ("lab", 20),              // the crate root

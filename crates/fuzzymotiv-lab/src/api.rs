@@ -29,11 +29,13 @@ use crate::rooms::{self, RoomRequest};
 use crate::runs::{Runs, Status};
 use crate::settings::Settings;
 use crate::start::StartConfig;
+use crate::studies::Studies;
 
 /// What every handler shares.
 pub struct AppState {
     pub dir: std::path::PathBuf,
     pub runs: Arc<Runs>,
+    pub studies: Arc<Studies>,
     /// The config the lab started on (`--config`), if any.
     pub start: Option<StartConfig>,
     /// Turns true when the lab stops: event streams end.
@@ -61,6 +63,9 @@ pub fn router(state: Arc<AppState>) -> Router {
         .route("/api/runs/{id}/config.toml", get(run_config))
         .route("/runs/{id}/report.html", get(run_report))
         .route("/api/compare", get(compare))
+        .route("/api/studies", get(study_list).post(study_start))
+        .route("/api/studies/{id}/cancel", post(study_cancel))
+        .route("/api/studies/{id}/forest.svg", get(study_forest))
         .layer(DefaultBodyLimit::max(limits::MAX_BODY))
         .with_state(state)
 }
@@ -396,4 +401,55 @@ async fn compare(
         .await
         .map_err(|e| ApiError::busy(e.to_string()))??;
     Ok(Json(v))
+}
+
+/// The study files the page may pick (`files`) and the lab's studies, newest first.
+async fn study_list(State(s): Shared) -> Result<Json<Value>, ApiError> {
+    let studies = s.studies.clone();
+    let (files, list) = tokio::task::spawn_blocking(move || (studies.files(), studies.summaries()))
+        .await
+        .map_err(|e| ApiError::busy(e.to_string()))?;
+    Ok(Json(json!({ "files": files, "studies": list })))
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StudyRequest {
+    /// The study file's text.
+    toml: String,
+    /// The listed study file it is (its configs relative to the study folder); none for a
+    /// pasted or uploaded study.
+    #[serde(default)]
+    file: Option<String>,
+}
+
+/// Starts a study: 201 with it, or 400 with the message naming the file and field.
+async fn study_start(State(s): Shared, body: Bytes) -> Result<Response, ApiError> {
+    let req: StudyRequest = parse_body(&body)?;
+    let studies = s.studies.clone();
+    let view = tokio::task::spawn_blocking(move || studies.submit(&req.toml, req.file.as_deref()))
+        .await
+        .map_err(|e| ApiError::busy(e.to_string()))??;
+    Ok((StatusCode::CREATED, Json(view)).into_response())
+}
+
+async fn study_cancel(
+    State(s): Shared,
+    UrlPath(id): UrlPath<String>,
+) -> Result<Json<Value>, ApiError> {
+    Ok(Json(s.studies.cancel(&id)?))
+}
+
+/// An analysed study's `forest.svg`.
+async fn study_forest(
+    State(s): Shared,
+    UrlPath(id): UrlPath<String>,
+) -> Result<Response, ApiError> {
+    if s.studies.get(&id).is_none() {
+        return Err(ApiError::not_found(format!("no study `{id}` in this lab")));
+    }
+    let path = s.studies.study_dir(&id).join("forest.svg");
+    let svg = std::fs::read_to_string(&path)
+        .map_err(|e| ApiError::not_found(format!("{}: {e}", path.display())))?;
+    Ok(([(header::CONTENT_TYPE, "image/svg+xml")], svg).into_response())
 }

@@ -14,6 +14,8 @@
 //! DIR/runs/ID/     one run directory per finished run (as `fuzzymotiv run` writes it)
 //! DIR/rooms/N.toml rooms drawn or uploaded in the page (the `rooms --check` format)
 //! DIR/saved/NAME/  runs saved with "Save as run directory" (never replacing one)
+//! DIR/studies/ID/  one study directory per study started in the page (as `fuzzymotiv study`
+//!                  writes it)
 //! ```
 //!
 //! ```no_run
@@ -37,5 +39,6 @@ mod security;
 mod server;
 mod settings;
 mod start;
+mod studies;
 
 pub use server::{Lab, LabOptions};

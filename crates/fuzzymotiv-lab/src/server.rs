@@ -13,6 +13,7 @@ use crate::api::{AppState, router};
 use crate::runs::Runs;
 use crate::security::{Access, guard, random_token};
 use crate::start::StartConfig;
+use crate::studies::Studies;
 
 /// How to start a lab.
 #[derive(Debug, Clone)]
@@ -31,6 +32,10 @@ pub struct LabOptions {
     /// A config file the page opens on (its motivations, rooms and the settings the lab's
     /// form has), read and checked at start as `fuzzymotiv run` reads it.
     pub config: Option<PathBuf>,
+    /// The folder of study files the Studies panel lists (default `studies`, the repository's
+    /// when the lab starts at its root); a pasted study's configs are relative to the working
+    /// directory.
+    pub studies: PathBuf,
 }
 
 impl LabOptions {
@@ -43,6 +48,7 @@ impl LabOptions {
             threads: None,
             token: None,
             config: None,
+            studies: PathBuf::from("studies"),
         }
     }
 }
@@ -55,6 +61,7 @@ pub struct Lab {
     runtime: tokio::runtime::Runtime,
     closing: watch::Sender<bool>,
     runs: Arc<Runs>,
+    studies: Arc<Studies>,
     worker: Option<JoinHandle<()>>,
     server: Option<tokio::task::JoinHandle<()>>,
 }
@@ -148,10 +155,12 @@ impl Lab {
             cookie: format!("fuzzymotiv_lab_{}", addr.port()),
         });
         let runs = Arc::new(Runs::open(&dir, config_rooms.unwrap_or_default()));
+        let studies = Arc::new(Studies::new(&dir, opts.studies.clone(), opts.threads));
         let (closing, closed) = watch::channel(false);
         let state = Arc::new(AppState {
             dir: dir.clone(),
             runs: runs.clone(),
+            studies: studies.clone(),
             start,
             closing: closed.clone(),
         });
@@ -179,6 +188,7 @@ impl Lab {
             runtime,
             closing,
             runs,
+            studies,
             worker: Some(worker),
             server: Some(server),
         })
@@ -216,7 +226,7 @@ impl Lab {
         self.stop();
     }
 
-    /// Stops: cancels every run (a running one after its generation), closes the event
+    /// Stops: cancels every run and study (a running one after its generation), closes the event
     /// streams and the server, and waits for the worker.
     pub fn stop(mut self) {
         self.shutdown();
@@ -225,6 +235,7 @@ impl Lab {
     fn shutdown(&mut self) {
         let _ = self.closing.send(true);
         self.runs.close();
+        self.studies.close();
         if let Some(server) = self.server.take() {
             let _ = self.runtime.block_on(server);
         }

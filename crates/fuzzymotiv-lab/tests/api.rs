@@ -96,6 +96,18 @@ impl Client {
             _tmp: tmp,
         }
     }
+    /// A lab whose Studies panel lists the study files of `folder` (`--studies`).
+    fn start_with_studies(folder: &Path) -> Client {
+        let tmp = tempfile::tempdir().unwrap();
+        let mut opts = LabOptions::new(tmp.path().join("lab"));
+        opts.port = 0;
+        opts.threads = Some(2);
+        opts.studies = folder.to_path_buf();
+        Client {
+            lab: Lab::start(opts).expect("lab starts"),
+            _tmp: tmp,
+        }
+    }
     fn auth(&self) -> Vec<String> {
         vec![format!("x-fuzzymotiv-token: {}", self.lab.token())]
     }
@@ -1347,4 +1359,156 @@ fn a_lab_started_on_the_thymio_config_picks_its_robot_and_sets_every_key() {
     assert!(start["settings"].get("robot").is_none(), "{start}");
     let not_set = start["not_set"].as_array().unwrap();
     assert!(not_set.contains(&json!("robot.file")), "{start}");
+}
+
+/// A study of a new kind at a tiny size: the fetch mission on an e-puck2, three arms of
+/// urgency's weight, a comparison of the mission's time and a trend of exploration.
+fn tiny_study() -> String {
+    format!(
+        r#"[study]
+name = "epuck2-fetch"
+seeds = 2
+config = {:?}
+set = {{ robot = "epuck2", ga = {{ population = 6, generations = 2 }}, trial = {{ steps = 60 }}, aem = {{ enabled = false }} }}
+
+[[arm]]
+name = "urgency-0.1"
+level = 0.1
+set = {{ "motivations.curiosity" = 0.7, "motivations.urgency" = 0.1 }}
+
+[[arm]]
+name = "urgency-0.3"
+level = 0.3
+
+[[arm]]
+name = "urgency-0.5"
+level = 0.5
+set = {{ "motivations.curiosity" = 0.3, "motivations.urgency" = 0.5 }}
+
+[[hypothesis]]
+id = "sooner"
+kind = "compare"
+measure = "urgency"
+a = "urgency-0.5"
+b = "urgency-0.1"
+expect = "higher"
+
+[[hypothesis]]
+id = "exploration-cost"
+kind = "trend"
+measure = "exploration"
+arms = ["urgency-0.1", "urgency-0.3", "urgency-0.5"]
+expect = "decreasing"
+"#,
+        repo_file("configs/fetch.toml").display().to_string()
+    )
+}
+
+/// The lab's studies: the study folder's files listed with their text; a bad study refused
+/// with 400 naming its field (a pasted one as `(pasted study)`); a listed study run in the
+/// lab's `studies/ID/` writes what the library's `run_study` (`fuzzymotiv study`) writes, byte
+/// for byte, and the list shows its progress and pooled claims, its forest plot served.
+#[test]
+fn a_study_started_in_the_lab_writes_what_fuzzymotiv_study_writes_and_shows_its_claims() {
+    let folder = tempfile::tempdir().unwrap();
+    let text = tiny_study();
+    std::fs::write(folder.path().join("tiny.toml"), &text).unwrap();
+    let c = Client::start_with_studies(folder.path());
+    let listed = c.get("/api/studies").json();
+    assert_eq!(
+        listed["files"],
+        json!([{ "file": "tiny.toml", "toml": text }])
+    );
+    assert_eq!(listed["studies"], json!([]));
+
+    let bad = c.post(
+        "/api/studies",
+        &json!({ "toml": text.replace("seeds = 2", "seeds = 0") }),
+    );
+    assert_eq!(bad.status, 400, "{}", bad.body);
+    let message = bad.json()["error"].as_str().unwrap().to_string();
+    assert!(
+        message.starts_with("(pasted study): field `study.seeds`"),
+        "{message}"
+    );
+    let other = c.post(
+        "/api/studies",
+        &json!({ "toml": text, "file": "../x.toml" }),
+    );
+    assert_eq!(other.status, 400, "{}", other.body);
+    assert!(other.body.contains("field `file`"), "{}", other.body);
+
+    let started = c.post(
+        "/api/studies",
+        &json!({ "toml": text, "file": "tiny.toml" }),
+    );
+    assert_eq!(started.status, 201, "{}", started.body);
+    let id = started.json()["id"].as_str().unwrap().to_string();
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(300);
+    let study = loop {
+        let list = c.get("/api/studies").json();
+        let s = list["studies"][0].clone();
+        assert_eq!(s["id"], json!(id));
+        if s["status"] != "running" {
+            break s;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the study never ended: {s}"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    };
+    assert_eq!(study["status"], "finished", "{study}");
+    assert_eq!(
+        (study["done"].as_u64(), study["total"].as_u64()),
+        (Some(6), Some(6))
+    );
+    let claims = study["claims"].as_array().unwrap();
+    let ids: Vec<&str> = claims.iter().map(|c| c["id"].as_str().unwrap()).collect();
+    assert_eq!(ids, ["sooner", "exploration-cost"]);
+    for key in [
+        "effect",
+        "ci_low",
+        "ci_high",
+        "p_adjusted",
+        "mdd",
+        "verdict",
+        "sentence",
+    ] {
+        assert!(
+            claims.iter().all(|c| !c[key].is_null()),
+            "{key}: {claims:?}"
+        );
+    }
+
+    // The library's own run of the same file: the same bytes.
+    let lib = tempfile::tempdir().unwrap();
+    let file = folder.path().join("tiny.toml");
+    let study_file = fuzzymotiv_io::study::Study::load(&file).unwrap();
+    let options = fuzzymotiv_io::study::StudyOptions {
+        out: lib.path().join("out"),
+        threads: Some(2),
+        ..Default::default()
+    };
+    let progress = fuzzymotiv_io::pipeline::progress::NoProgress;
+    fuzzymotiv_io::study::run_study(&study_file, &options, &progress).unwrap();
+    let lab_dir = c.lab.dir().join("studies").join(&id);
+    for name in [
+        "per_seed.csv",
+        "claims.csv",
+        "rooms.csv",
+        "study.json",
+        "report.md",
+        "forest.svg",
+    ] {
+        let read = |d: &Path| std::fs::read(d.join(name)).unwrap();
+        assert!(
+            read(&lab_dir) == read(&lib.path().join("out")),
+            "{name} differs"
+        );
+    }
+    let forest = c.get(&format!("/api/studies/{id}/forest.svg"));
+    assert_eq!(forest.status, 200);
+    assert!(forest.head.contains("image/svg+xml") && forest.body.contains("<svg"));
+    assert_eq!(c.get("/api/studies/study-99/forest.svg").status, 404);
 }

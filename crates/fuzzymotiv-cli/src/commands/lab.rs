@@ -41,6 +41,10 @@ pub struct LabArgs {
     /// `[fuzzy]`) are named on the page. A bad file stops the lab before it starts (exit 2).
     #[arg(long, value_name = "FILE")]
     config: Option<PathBuf>,
+    /// The folder of study files the page's Studies panel lists (docs/guide/studies.md); a
+    /// study pasted or uploaded in the page has its configs relative to the working directory.
+    #[arg(long, value_name = "DIR", default_value = "studies")]
+    studies: PathBuf,
 }
 
 /// `--token`'s value: long enough not to be guessed, and safe in a URL and a cookie.
@@ -80,6 +84,7 @@ pub fn lab(args: LabArgs) -> Result<(), CliError> {
     opts.threads = args.threads;
     opts.token = args.token;
     opts.config = args.config;
+    opts.studies = args.studies;
     if let Some(bind) = args.bind {
         if !bind.is_loopback() {
             note!(

@@ -741,6 +741,75 @@ async function compare() {
   } catch (e) { showError(e.message); }
 }
 
+// ---- 5. Studies -----------------------------------------------------------------------------
+// The study files of the lab's study folder, picked into the text box; the lab's studies
+// polled while one runs; an analysed study's pooled claims and forest plot.
+async function loadStudyFiles() {
+  const r = await api('GET', '/api/studies');
+  lab.studyFiles = r.files;
+  const sel = $('study-file');
+  r.files.forEach((f) => { const o = html('option', f.file, sel); o.value = f.file; });
+  showStudy(r.studies[0]);
+}
+function pickStudyFile() {
+  const f = (lab.studyFiles || []).find((x) => x.file === $('study-file').value);
+  if (f) $('study-text').value = f.toml;
+}
+async function startStudy() {
+  const msg = $('study-message');
+  msg.className = ''; msg.textContent = '';
+  const file = $('study-file').value || undefined;
+  try {
+    const s = await api('POST', '/api/studies', { toml: $('study-text').value, file });
+    lab.study = s.id;
+    showStudy(s);
+    pollStudy();
+  } catch (e) { msg.className = 'error'; msg.textContent = e.message; }
+}
+async function pollStudy() {
+  let r;
+  try { r = await api('GET', '/api/studies'); } catch (e) { return; }
+  const s = r.studies.find((x) => x.id === lab.study);
+  showStudy(s);
+  if (s && s.status === 'running') setTimeout(pollStudy, 500);
+}
+function showStudy(s) {
+  if (!s) return;
+  lab.study = s.id;
+  const running = s.status === 'running';
+  $('study-stop').disabled = !running;
+  $('study-start').disabled = running;
+  const state = { running: 'running', finished: 'analysed', stopped: 'stopped (start it again to resume in a new folder)', failed: 'failed' }[s.status] || s.status;
+  $('study-status').textContent = `Study ${s.name} (${s.id}): ${s.done} of ${s.total} runs, ${state}.`;
+  if (s.error) { $('study-message').className = 'error'; $('study-message').textContent = s.error; }
+  $('study-result').hidden = !s.claims;
+  if (!s.claims) return;
+  const body = $('study-claims').querySelector('tbody');
+  body.replaceChildren();
+  const f = (v) => (typeof v === 'number' && Number.isFinite(v) ? v.toPrecision(3) : '—');
+  s.claims.forEach((c) => {
+    const tr = html('tr', undefined, body);
+    [c.id, c.sentence, f(c.effect), `[${f(c.ci_low)}, ${f(c.ci_high)}]`, f(c.p_adjusted), f(c.mdd), c.verdict]
+      .forEach((v) => html('td', String(v), tr));
+    tr.className = `verdict-${String(c.verdict).replace(/ /g, '-')}`;
+  });
+  $('study-title').textContent = `Claims of ${s.name} (pooled over its seeds)`;
+  $('study-forest').src = `/api/studies/${encodeURIComponent(s.id)}/forest.svg`;
+}
+function setupStudies() {
+  $('study-file').addEventListener('change', pickStudyFile);
+  $('study-upload').addEventListener('change', async (ev) => {
+    const f = ev.target.files[0];
+    if (!f) return;
+    $('study-text').value = await f.text();
+    $('study-file').value = '';
+  });
+  $('study-text').addEventListener('input', () => { $('study-file').value = ''; });
+  $('study-start').addEventListener('click', startStudy);
+  $('study-stop').addEventListener('click', () => lab.study && api('POST', `/api/studies/${encodeURIComponent(lab.study)}/cancel`).then(pollStudy).catch((e) => showError(e.message)));
+  return loadStudyFiles();
+}
+
 // ---- start ----------------------------------------------------------------------------------
 async function start() {
   lab.info = await api('GET', '/api/info');
@@ -765,5 +834,6 @@ async function start() {
   drawCharts([], $('fitness-chart'), $('terms-chart'));
   await refreshRuns();
   setInterval(refreshRuns, 2000);
+  await setupStudies();
 }
 document.addEventListener('DOMContentLoaded', () => start().catch((e) => showError(e.message)));
