@@ -41,7 +41,8 @@ const HIDDEN: usize = 6;
 /// Random draws per step: the eight sensors', then the two wheels'.
 const DRAWS: usize = INPUTS + 2;
 
-/// One trial for [`walk_lanes`]: its network, the seed of its random stream (the stream of
+/// One trial for [`walk_lanes`](crate::simulation::lanes_any::walk_lanes): its network, the seed
+/// of its random stream (the stream of
 /// [`rng_from_seed`](crate::random::rng::rng_from_seed)) and what watches its steps; `last` is
 /// its final pose once it has run; `drawn`, the robot `[trial.randomise]` drew for it, if any.
 pub(crate) struct LaneTrial<'a, O> {
@@ -64,17 +65,10 @@ pub(crate) struct Drawn<'a> {
     pub(crate) bias: f64,
 }
 
-/// Whether [`walk_lanes`] can run `net`'s trials in `arena` (or in arenas drawn from it):
-/// any robot, motion, noise level and hidden size, one network input per sensor, finite
-/// weights ([`crate::simulation::lanes_any`]).
-pub(crate) fn lanes_fit(arena: &Arena, net: &Mlp) -> bool {
-    net.shape().inputs() == arena.sensors() && net.is_finite()
-}
-
 /// Whether the paper's lanes of this module run `trial` in `arena`: `actions` motion with
 /// noise (so every step takes its ten draws), eight sensors reading 0–1023 (the Khepera's),
 /// the 8-6-2 network, finite weights, the batch's own robot.
-fn paper_fit<O>(arena: &Arena, trial: &LaneTrial<'_, O>) -> bool {
+pub(crate) fn paper_fit<O>(arena: &Arena, trial: &LaneTrial<'_, O>) -> bool {
     let params = arena.params();
     let spec = params.robot.spec();
     params.robot.motion() == Motion::Actions
@@ -88,14 +82,10 @@ fn paper_fit<O>(arena: &Arena, trial: &LaneTrial<'_, O>) -> bool {
 }
 
 /// Runs every trial of `trials` in `arena` (each as [`simulate`](crate::simulation::trial::simulate)
-/// would, from the room's home pose, in its drawn arena when it has one), four at a time. Each
-/// trial must fit ([`lanes_fit`]). The paper's robot runs in this module's lanes, every other
-/// in [`crate::simulation::lanes_any`]'s.
-pub(crate) fn walk_lanes<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [LaneTrial<'a, O>]) {
-    debug_assert!(trials.iter().all(|t| lanes_fit(arena, t.net)));
-    if !trials.iter().all(|t| paper_fit(arena, t)) {
-        return crate::simulation::lanes_any::walk_any(arena, trials);
-    }
+/// would, from the room's home pose), four at a time, in the paper's lanes: every trial must
+/// fit them ([`paper_fit`]). `lanes_any::walk_lanes` chooses these lanes or its own.
+pub(crate) fn walk_paper_lanes<O: StepObserver>(arena: &Arena, trials: &mut [LaneTrial<'_, O>]) {
+    debug_assert!(trials.iter().all(|t| paper_fit(arena, t)));
     let isa = Isa::detected();
     match arena.memo_owner() {
         Some(owner) => with_table(owner, memo_live, |table| walk_on(isa, arena, trials, table)),
@@ -794,6 +784,7 @@ mod tests {
     use super::*;
     use crate::random::rng::{rng_from_seed, uniform};
     use crate::simulation::controller::MlpShape;
+    use crate::simulation::lanes_any::{lanes_fit, walk_lanes};
     use crate::simulation::room::Room;
     use crate::simulation::trial::{Trajectory, TrialParams, simulate};
 

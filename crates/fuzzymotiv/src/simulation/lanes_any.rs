@@ -18,17 +18,39 @@
 
 use crate::simulation::controller::{Mlp, OUTPUTS};
 use crate::simulation::isa::Isa;
-use crate::simulation::lanes::{LANES, LaneTrial, Streams, all_plus_zero};
+use crate::simulation::lanes::{
+    LANES, LaneTrial, Streams, all_plus_zero, paper_fit, walk_paper_lanes,
+};
 use crate::simulation::math::logistic_lanes;
 use crate::simulation::memo::{Table, memo_live, with_table};
 use crate::simulation::robot::Motion;
 use crate::simulation::sensor::MAX_SENSORS;
 use crate::simulation::trial::{Arena, Sensed, StepObserver, Walk};
 
+/// Whether [`walk_lanes`] can run `net`'s trials in `arena` (or in arenas drawn from it):
+/// any robot, motion, noise level and hidden size, one network input per sensor, finite
+/// weights.
+pub(crate) fn lanes_fit(arena: &Arena, net: &Mlp) -> bool {
+    net.shape().inputs() == arena.sensors() && net.is_finite()
+}
+
+/// Runs every trial of `trials` in `arena` (each as [`simulate`](crate::simulation::trial::simulate)
+/// would, from the room's home pose, in its drawn arena when it has one), four at a time. Each
+/// trial must fit ([`lanes_fit`]). The paper's robot runs in the paper's lanes
+/// (`lanes::walk_paper_lanes`), every other in this module's ([`walk_any`]).
+pub(crate) fn walk_lanes<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [LaneTrial<'a, O>]) {
+    debug_assert!(trials.iter().all(|t| lanes_fit(arena, t.net)));
+    if trials.iter().all(|t| paper_fit(arena, t)) {
+        walk_paper_lanes(arena, trials)
+    } else {
+        walk_any(arena, trials)
+    }
+}
+
 /// Runs every trial of `trials` in `arena` (a trial with a drawn robot in its own arena), as
 /// [`simulate`](crate::simulation::trial::simulate) would, four at a time. Every network must
 /// have one input per sensor and the same shape, and finite weights
-/// ([`crate::simulation::lanes::lanes_fit`]). With `actions` motion and no drawn robot the
+/// ([`lanes_fit`]). With `actions` motion and no drawn robot the
 /// lanes share the arena's memo of sightings, as `simulate` uses it (a pure cache).
 pub(crate) fn walk_any<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [LaneTrial<'a, O>]) {
     let Some(first) = trials.first() else { return };
@@ -368,7 +390,7 @@ mod tests {
     use crate::experiment::robustness::Perturbed;
     use crate::random::rng::{rng_from_seed, uniform};
     use crate::simulation::controller::MlpShape;
-    use crate::simulation::lanes::{Drawn, lanes_fit, walk_lanes};
+    use crate::simulation::lanes::Drawn;
     use crate::simulation::robot::{DEFAULT_ACTION_TOLERANCE, Pose, RawRobot};
     use crate::simulation::robot_spec::RobotSpec;
     use crate::simulation::room::Room;
