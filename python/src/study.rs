@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::pipeline::progress::{RunProgress, SweepProgress};
+use fuzzymotiv_io::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
 use fuzzymotiv_io::records::Job;
 use fuzzymotiv_io::records::hypotheses::ClaimRow;
 use fuzzymotiv_io::study::{
@@ -36,25 +36,13 @@ struct Shared {
     finished: AtomicBool,
 }
 
-/// A run's progress: nothing shown (the Python thread reports runs), stopped on request.
-struct Stopper<'a>(&'a AtomicBool);
-
-impl RunProgress for Stopper<'_> {
-    fn note(&self, _message: &str) {}
-    fn skip(&self, _n: usize) {}
-    fn generation(&self, _run: &str, _g: usize, _of: usize, _best: f64) {}
-    fn stop(&self) -> bool {
-        self.0.load(Ordering::SeqCst)
-    }
-}
-
 impl SweepProgress for Shared {
     fn begin(&self, selected: usize, skipped: usize) {
         self.total.store(selected, Ordering::SeqCst);
         self.done.store(skipped, Ordering::SeqCst);
     }
     fn job(&self, _job: &Job, _nth: usize, _exp: &Experiment) -> Box<dyn RunProgress + '_> {
-        Box::new(Stopper(&self.stop))
+        Box::new(StopOnFlag(&self.stop))
     }
     fn job_done(&self) {
         self.done.fetch_add(1, Ordering::SeqCst);

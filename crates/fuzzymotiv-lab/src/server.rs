@@ -85,6 +85,20 @@ fn hosts(addr: SocketAddr) -> Vec<String> {
     hosts
 }
 
+/// The lab's directory `--dir`, created if missing, as an absolute path; a file there is
+/// refused.
+fn open_dir(dir: &std::path::Path) -> Result<PathBuf, CliError> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(CliError::input(format!(
+            "--dir {}: is not a directory; give the lab's directory (created if missing)",
+            dir.display()
+        )));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| io(&dir.display().to_string(), e))?;
+    dir.canonicalize()
+        .map_err(|e| io(&dir.display().to_string(), e))
+}
+
 /// The listening socket of `--bind` and `--port`; an address in use or not this machine's is
 /// the user's to change (exit 2), with what to do.
 fn bind(opts: &LabOptions) -> Result<std::net::TcpListener, CliError> {
@@ -119,17 +133,7 @@ impl Lab {
         let config_rooms = start.as_ref().map(StartConfig::room_files);
         // Bound first: a busy port leaves no directory behind.
         let listener = bind(&opts)?;
-        if opts.dir.exists() && !opts.dir.is_dir() {
-            return Err(CliError::input(format!(
-                "--dir {}: is not a directory; give the lab's directory (created if missing)",
-                opts.dir.display()
-            )));
-        }
-        std::fs::create_dir_all(&opts.dir).map_err(|e| io(&opts.dir.display().to_string(), e))?;
-        let dir = opts
-            .dir
-            .canonicalize()
-            .map_err(|e| io(&opts.dir.display().to_string(), e))?;
+        let dir = open_dir(&opts.dir)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(opts.threads.unwrap_or(0))
             .thread_name(|i| format!("lab-run-{i}"))

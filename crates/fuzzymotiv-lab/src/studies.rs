@@ -13,7 +13,7 @@ use std::thread::JoinHandle;
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_io::files::bounded::read_input;
-use fuzzymotiv_io::pipeline::progress::{RunProgress, SweepProgress};
+use fuzzymotiv_io::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
 use fuzzymotiv_io::records::Job;
 use fuzzymotiv_io::records::hypotheses::{ClaimRow, POOLED};
 use fuzzymotiv_io::study::{
@@ -60,24 +60,12 @@ impl StudyEntry {
     }
 }
 
-/// A run of a study: nothing shown, stopped when the study is.
-struct Stopper<'a>(&'a AtomicBool);
-
-impl RunProgress for Stopper<'_> {
-    fn note(&self, _message: &str) {}
-    fn skip(&self, _n: usize) {}
-    fn generation(&self, _run: &str, _g: usize, _of: usize, _best: f64) {}
-    fn stop(&self) -> bool {
-        self.0.load(Ordering::SeqCst)
-    }
-}
-
 impl SweepProgress for StudyEntry {
     fn begin(&self, _selected: usize, skipped: usize) {
         self.done.store(skipped, Ordering::SeqCst);
     }
     fn job(&self, _job: &Job, _nth: usize, _exp: &Experiment) -> Box<dyn RunProgress + '_> {
-        Box::new(Stopper(&self.stop))
+        Box::new(StopOnFlag(&self.stop))
     }
     fn job_done(&self) {
         self.done.fetch_add(1, Ordering::SeqCst);

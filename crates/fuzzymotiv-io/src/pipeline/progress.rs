@@ -2,6 +2,8 @@
 //! command line draws a bar or plain lines on stderr (its `progress.rs`), the Python bindings
 //! show nothing here ([`NoProgress`]) and report generations through their observer instead.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use fuzzymotiv::experiment::Experiment;
 
 use crate::records::Job;
@@ -53,4 +55,18 @@ impl SweepProgress for NoProgress {
     }
     fn job_done(&self) {}
     fn end(&self) {}
+}
+
+/// A run's progress that shows nothing and stops the run once `flag` is set: a front that
+/// reports whole runs itself and cancels them (the lab's Stop button, Ctrl-C in Python).
+#[derive(Debug, Clone, Copy)]
+pub struct StopOnFlag<'a>(pub &'a AtomicBool);
+
+impl RunProgress for StopOnFlag<'_> {
+    fn note(&self, _message: &str) {}
+    fn skip(&self, _n: usize) {}
+    fn generation(&self, _run: &str, _g: usize, _of: usize, _best: f64) {}
+    fn stop(&self) -> bool {
+        self.0.load(Ordering::SeqCst)
+    }
 }
