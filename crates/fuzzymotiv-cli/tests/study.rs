@@ -315,7 +315,7 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
             "measure = \"hurry\" #",
             &[
                 "hypothesis[0].measure",
-                "unknown measure `hurry_pct`",
+                "unknown measure `hurry`:",
                 "urgency_pct",
                 "exploration_pct",
             ],

@@ -227,9 +227,13 @@ impl Study {
             for arm in h.arms() {
                 let columns = self.columns(self.arm_index(arm).expect("checked"))?;
                 if !columns.contains(&measure.column()) {
+                    // A term is named as the study file names it (`hurry`, not its column).
+                    let named = match measure {
+                        Measure::Term(name) => name.clone(),
+                        other => other.column(),
+                    };
                     let why = format!(
-                        "unknown measure `{}`: the runs of arm `{arm}` write {}",
-                        measure.column(),
+                        "unknown measure `{named}`: the runs of arm `{arm}` write {}",
                         columns.join(", ")
                     );
                     return Err(err(source, &at("measure"), why));
