@@ -66,6 +66,21 @@ fn listening(port: u16) -> bool {
     })
 }
 
+/// The first `Some` of `poll`, asked every 100 ms for up to 30 s (the processes answer when the
+/// machine's load lets them: no fixed sleep decides a result); `None` after that.
+fn eventually<T>(mut poll: impl FnMut() -> Option<T>) -> Option<T> {
+    let start = Instant::now();
+    loop {
+        if let Some(v) = poll() {
+            return Some(v);
+        }
+        if start.elapsed() > Duration::from_secs(30) {
+            return None;
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
 fn wait_for_port(port: u16) {
     let start = Instant::now();
     while !listening(port) {
@@ -92,6 +107,12 @@ impl Http {
         out.status
             .success()
             .then(|| String::from_utf8_lossy(&out.stdout).into_owned())
+    }
+
+    /// A variable of the node, if it reads as numbers now.
+    fn try_var(&self, name: &str) -> Option<Vec<i16>> {
+        let text = self.curl(&[], &format!("nodes/thymio-II/{name}"))?;
+        serde_json::from_str(&text).ok()
     }
 
     /// A variable of the node, e.g. `prox.horizontal`.
@@ -256,10 +277,13 @@ fn check_semantics(http: &Http, dir: &Path) {
     )
     .unwrap();
     http.put(&aesl);
-    std::thread::sleep(Duration::from_millis(500));
-    let vm = http.var("r");
     let mut m = interp::Machine::load(SEMANTICS, &[], &[]).unwrap();
     m.run_init().unwrap();
+    let expected = m.get("r").unwrap();
+    // Read until the VM has run the program (or 30 s: then its last reading is compared).
+    let vm = eventually(|| http.try_var("r").filter(|v| *v == expected))
+        .or_else(|| http.try_var("r"))
+        .unwrap_or_default();
     eprintln!("semantics on the VM: {vm:?}");
     assert_eq!(
         vm,
@@ -329,13 +353,18 @@ fn the_kit_compiles_and_runs_on_the_playgrounds_thymio() {
         let log = dir.join("switch.log");
         let before = std::fs::read_to_string(&log).map(|t| t.len()).unwrap_or(0);
         http.put(&aesl);
-        std::thread::sleep(Duration::from_millis(1500));
+        // The switch has logged the new program's bytecode and the node counts its runs.
+        let running = eventually(|| {
+            let sent = bytecode_sent(&log, before) > 0;
+            let runs = http.try_var("fm_count")?;
+            (sent && runs.first().is_some_and(|&n| n > 0)).then_some(())
+        });
         let words = bytecode_sent(&log, before);
         let prog = program::generate(&c, THYMIO_PROX);
         let estimate = interp::bytecode_words(&prog.code, &prog.constants).unwrap();
         eprintln!("{motion:?}: {words} words of bytecode sent (estimated {estimate})");
         assert!(words > 100 && words <= 1534, "{words}");
-        assert!(http.var("fm_count")[0] > 0, "the program does not run");
+        assert!(running.is_some(), "the program does not run");
         check_live(&http, &c, 4);
         check_golden(&http, &c);
         http.event("fm_run", &[]);
