@@ -33,7 +33,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use fuzzymotiv::statistics::{Expect, Settings, mean, paired};
+use fuzzymotiv::statistics::{Comparison, Expect, Settings, mean, paired};
 
 /// The measures of measures.csv the study compares, with how a test run gives each.
 const MEASURES: [&str; 6] = [
@@ -289,17 +289,28 @@ fn all(values: Option<&Vec<Option<f64>>>) -> Option<Vec<f64>> {
     values?.iter().copied().collect()
 }
 
+/// The statistics' settings of `setting`'s comparisons: resampling seeded by its first seed.
+fn settings_of(m: &SeedMeans, setting: &str) -> Settings {
+    let first = m.seeds.get(setting).and_then(|s| s.first()).copied();
+    Settings {
+        seed: first.unwrap_or(0),
+        ..Settings::default()
+    }
+}
+
+/// A comparison's last cells: difference, ci_low, ci_high, p, detectable, verdict.
+fn stats_cells(c: &Comparison, verdict: &str) -> String {
+    let (d, lo, hi, p) = (c.difference, c.ci_low, c.ci_high, c.p);
+    format!("{d},{lo},{hi},{p},{},{verdict}", number(c.mdd))
+}
+
 /// comparison.csv: Enki against fuzzymotiv per setting and measure.
 fn comparison_csv(m: &SeedMeans) -> String {
     let mut out = String::from(
         "setting,measure,seeds,mean_fuzzymotiv,mean_enki,difference,ci_low,ci_high,p,detectable,verdict\n",
     );
     for setting in SETTINGS {
-        let first = m.seeds.get(setting).and_then(|s| s.first()).copied();
-        let options = Settings {
-            seed: first.unwrap_or(0),
-            ..Settings::default()
-        };
+        let options = settings_of(m, setting);
         for measure in MEASURES {
             let get = |w: &str| all(m.values.get(&(setting.into(), measure.into(), w.into())));
             let (Some(sim), Some(enki)) = (get("fuzzymotiv"), get("enki")) else {
@@ -308,17 +319,13 @@ fn comparison_csv(m: &SeedMeans) -> String {
             let Ok(c) = paired(&enki, &sim, &options) else {
                 continue;
             };
+            let verdict = c.verdict_with_power(Expect::Higher).direction_label();
             out += &format!(
-                "{setting},{measure},{},{},{},{},{},{},{},{},{}\n",
+                "{setting},{measure},{},{},{},{}\n",
                 sim.len(),
                 c.mean_b,
                 c.mean_a,
-                c.difference,
-                c.ci_low,
-                c.ci_high,
-                c.p,
-                number(c.mdd),
-                c.verdict_with_power(Expect::Higher).direction_label()
+                stats_cells(&c, verdict)
             );
         }
     }
@@ -329,11 +336,7 @@ fn comparison_csv(m: &SeedMeans) -> String {
 fn claims_csv(m: &SeedMeans) -> String {
     let mut out =
         String::from("world,claim,seeds,high,low,difference,ci_low,ci_high,p,detectable,verdict\n");
-    let first = m.seeds.get(SETTINGS[0]).and_then(|s| s.first()).copied();
-    let options = Settings {
-        seed: first.unwrap_or(0),
-        ..Settings::default()
-    };
+    let options = settings_of(m, SETTINGS[0]);
     for world in ["fuzzymotiv", "enki"] {
         for (claim, measure, expect) in CLAIMS {
             let get = |s: &str| all(m.values.get(&(s.into(), measure.into(), world.into())));
@@ -344,16 +347,11 @@ fn claims_csv(m: &SeedMeans) -> String {
                 continue;
             };
             out += &format!(
-                "{world},{claim},{},{},{},{},{},{},{},{},{}\n",
+                "{world},{claim},{},{},{},{}\n",
                 high.len(),
                 c.mean_a,
                 c.mean_b,
-                c.difference,
-                c.ci_low,
-                c.ci_high,
-                c.p,
-                number(c.mdd),
-                c.verdict_with_power(expect).label()
+                stats_cells(&c, c.verdict_with_power(expect).label())
             );
         }
     }
@@ -387,11 +385,7 @@ fn pair(a_path: &Path, b_path: &Path) -> Result<(), String> {
         "setting,measure,world,seeds,mean_a,mean_b,difference,ci_low,ci_high,p,detectable,verdict"
     );
     for setting in SETTINGS {
-        let first = a.seeds.get(setting).and_then(|s| s.first()).copied();
-        let options = Settings {
-            seed: first.unwrap_or(0),
-            ..Settings::default()
-        };
+        let options = settings_of(&a, setting);
         for measure in MEASURES {
             for world in ["enki", "fuzzymotiv", "gap"] {
                 let (Some(va), Some(vb)) = (
@@ -403,17 +397,13 @@ fn pair(a_path: &Path, b_path: &Path) -> Result<(), String> {
                 let Ok(c) = paired(&vb, &va, &options) else {
                     continue;
                 };
+                let verdict = c.verdict_with_power(Expect::Higher).direction_label();
                 println!(
-                    "{setting},{measure},{world},{},{},{},{},{},{},{},{},{}",
+                    "{setting},{measure},{world},{},{},{},{}",
                     va.len(),
                     c.mean_b,
                     c.mean_a,
-                    c.difference,
-                    c.ci_low,
-                    c.ci_high,
-                    c.p,
-                    number(c.mdd),
-                    c.verdict_with_power(Expect::Higher).direction_label()
+                    stats_cells(&c, verdict)
                 );
             }
         }
