@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::records::export::{
+use fuzzymotiv_pipeline::records::export::{
     ExportRequest, ExportTarget, KitTarget, build_export, export_controller as export,
 };
 use pyo3::exceptions::PyValueError;

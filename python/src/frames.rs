@@ -1,5 +1,5 @@
 //! `fm.frames` and `fm.save_gif`: rollout frames and animated GIFs, drawn by the rasteriser of
-//! `fuzzymotiv-io` (`render::frames`, the one `fuzzymotiv replay --gif` uses).
+//! `fuzzymotiv-pipeline` (`render::frames`, the one `fuzzymotiv replay --gif` uses).
 //!
 //! A rollout is a trajectory (the columns of `fm.simulate`'s dict: `x`, `y`, `heading`, and
 //! optionally `sensors`, `action`, `idle`) or a genome, run here exactly as `fm.simulate` runs
@@ -10,9 +10,9 @@ use std::path::PathBuf;
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::simulation::{Action, Pose};
 use fuzzymotiv::simulation::{Readings, RobotSpec, Room};
-use fuzzymotiv_io::render::frames::animate::{GifWriter, delay_of};
-use fuzzymotiv_io::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
-use fuzzymotiv_io::render::frames::{FrameOptions, Track, gif, render, render_last};
+use fuzzymotiv_pipeline::render::frames::animate::{GifWriter, delay_of};
+use fuzzymotiv_pipeline::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
+use fuzzymotiv_pipeline::render::frames::{FrameOptions, Track, gif, render, render_last};
 use numpy::ndarray::{Array3, Array4};
 use numpy::{
     IntoPyArray, PyArray3, PyArray4, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray4,

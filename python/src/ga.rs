@@ -12,8 +12,8 @@ use fuzzymotiv::experiment::RawConfig;
 use fuzzymotiv::experiment::{Evaluation, RoomScore};
 use fuzzymotiv::experiment::{Experiment, Run};
 use fuzzymotiv::fitness::{FitnessTerms, MissionTerms, TermId, UserValues};
-use fuzzymotiv_io::files::inputs::resolve;
-use fuzzymotiv_io::pipeline::continuation::{continue_runs, finished_config};
+use fuzzymotiv_pipeline::files::inputs::resolve;
+use fuzzymotiv_pipeline::pipeline::continuation::{continue_runs, finished_config};
 use numpy::{
     PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods,
 };

@@ -18,7 +18,7 @@ use fuzzymotiv::simulation::Action;
 use fuzzymotiv::simulation::Arena;
 use fuzzymotiv::simulation::{Controller, Mlp, MlpShape, Readings};
 use fuzzymotiv::simulation::{StepObserver, Trajectory};
-use fuzzymotiv_io::files::inputs::{Loaded, room_entry};
+use fuzzymotiv_pipeline::files::inputs::{Loaded, room_entry};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;

@@ -1,7 +1,7 @@
 //! The native part of the `fuzzymotiv` Python package (`fuzzymotiv._fuzzymotiv`).
 //!
 //! Thin: configs are loaded, runs executed and run directories written by the very code of the
-//! `fuzzymotiv` binary (the `fuzzymotiv-io` library it shares), so results equal the CLI's for
+//! `fuzzymotiv` binary (the `fuzzymotiv-pipeline` library it shares), so results equal the CLI's for
 //! the same config and seed. The Python layer (`fuzzymotiv/__init__.py`) adds pandas, tqdm and the
 //! friendlier signatures.
 
@@ -23,17 +23,17 @@ use fuzzymotiv::fitness::{
 use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv::simulation::{BUILTIN_ROBOTS, RobotSpec};
 use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::guard::{
     FilesState, OutState, PYTHON, StagedDir, check_files, check_out_as, write_files,
 };
-use fuzzymotiv_io::files::inputs::{
+use fuzzymotiv_pipeline::files::inputs::{
     Loaded, load_config, load_robot, load_room_file, parse_seed, resolve, run_identity,
 };
-use fuzzymotiv_io::pipeline::progress::NoProgress;
-use fuzzymotiv_io::pipeline::run_dir;
-use fuzzymotiv_io::records::checkpoint::{CHECKPOINT, Checkpoint, POPULATION};
-use fuzzymotiv_io::records::{
+use fuzzymotiv_pipeline::pipeline::progress::NoProgress;
+use fuzzymotiv_pipeline::pipeline::run_dir;
+use fuzzymotiv_pipeline::records::checkpoint::{CHECKPOINT, Checkpoint, POPULATION};
+use fuzzymotiv_pipeline::records::{
     BestGenome, Finished, Fixed, GenerationRow, RoomRow, RunSummary, read_csv, read_json,
 };
 use numpy::ndarray::Array2;
@@ -294,10 +294,10 @@ fn motivations(weights: &[f64], names: Option<Vec<String>>) -> PyResult<Inputs> 
     Ok(Inputs { m, paper })
 }
 
-/// The largest `threads`, the CLI's `--threads` bound ([`fuzzymotiv_io::files::inputs::MAX_THREADS`],
+/// The largest `threads`, the CLI's `--threads` bound ([`fuzzymotiv_pipeline::files::inputs::MAX_THREADS`],
 /// which says why): more threads than this are surely a mistake (results do not depend on the
 /// number).
-const MAX_THREADS: i64 = fuzzymotiv_io::files::inputs::MAX_THREADS as i64;
+const MAX_THREADS: i64 = fuzzymotiv_pipeline::files::inputs::MAX_THREADS as i64;
 
 /// A whole number from a Python object (an `int`, a numpy integer; not a bool or a float), as
 /// text, or the object's repr when it is not one.
@@ -680,7 +680,7 @@ fn read_back_files(loaded: &Loaded, dir: &Path) -> Result<RunOutput, CliError> {
 }
 
 /// The run itself (no GIL): in memory; or through the CLI's run-directory writer
-/// (`fuzzymotiv_io`) into `dir` (fresh or resumed, as `check_out` found it); or a finished `dir`
+/// (`fuzzymotiv_pipeline`) into `dir` (fresh or resumed, as `check_out` found it); or a finished `dir`
 /// read back.
 fn execute(
     loaded: &Loaded,

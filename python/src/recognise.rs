@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::records::robot_log::recognise_logs;
+use fuzzymotiv_pipeline::records::robot_log::recognise_logs;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 

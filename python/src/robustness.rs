@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::records::robustness::{measures_of, robustness_of_run};
+use fuzzymotiv_pipeline::records::robustness::{measures_of, robustness_of_run};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 

@@ -1,5 +1,5 @@
 //! Studies of one's own from Python (`fuzzymotiv.study`): a study file or its text checked and
-//! run by the library's study pipeline (`fuzzymotiv_io::study`, what `fuzzymotiv study` runs),
+//! run by the library's study pipeline (`fuzzymotiv_pipeline::study`, what `fuzzymotiv study` runs),
 //! in a worker thread while the Python thread reports progress (runs done of the total) and
 //! watches for Ctrl-C, which stops every run at its next generation (`RunProgress::stop`): the
 //! same call again resumes the study from its runs' checkpoints.
@@ -10,11 +10,11 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
-use fuzzymotiv_io::records::Job;
-use fuzzymotiv_io::records::hypotheses::ClaimRow;
-use fuzzymotiv_io::study::{
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
+use fuzzymotiv_pipeline::records::Job;
+use fuzzymotiv_pipeline::records::hypotheses::ClaimRow;
+use fuzzymotiv_pipeline::study::{
     Study, StudyOptions, StudyOutcome, StudyProgress, parse_shard, run_study,
 };
 use pyo3::exceptions::PyRuntimeError;
@@ -62,7 +62,7 @@ fn absolute(folder: &Path) -> Result<PathBuf, CliError> {
     } else {
         folder
     };
-    std::path::absolute(folder).map_err(|e| fuzzymotiv_io::files::guard::io_err(folder, e))
+    std::path::absolute(folder).map_err(|e| fuzzymotiv_pipeline::files::guard::io_err(folder, e))
 }
 
 /// The study file `path`, or the study `text` whose config files are relative to `base_dir`

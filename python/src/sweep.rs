@@ -1,16 +1,16 @@
 //! Sweeps from Python (`fuzzymotiv.plan`, `run_job`, `sweep`): the CLI's own planning, job
-//! running (under the job's lock) and merging of `fuzzymotiv-io`, reached with plain values —
+//! running (under the job's lock) and merging of `fuzzymotiv-pipeline`, reached with plain values —
 //! the sweep's text, its source and folder, a job's index and id — so that a job is a picklable
 //! value any executor can ship to another process.
 
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv_io::files::bounded::read_input;
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::pipeline::progress::NoProgress;
-use fuzzymotiv_io::pipeline::sweep_jobs::{prepare_sweep_dir, run_one_job};
-use fuzzymotiv_io::pipeline::sweep_merge::write_merge;
-use fuzzymotiv_io::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
+use fuzzymotiv_pipeline::files::bounded::read_input;
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::pipeline::progress::NoProgress;
+use fuzzymotiv_pipeline::pipeline::sweep_jobs::{prepare_sweep_dir, run_one_job};
+use fuzzymotiv_pipeline::pipeline::sweep_merge::write_merge;
+use fuzzymotiv_pipeline::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
 use pyo3::prelude::*;
 
 use crate::{config_err, py_err};
@@ -26,7 +26,7 @@ fn absolute(folder: &Path) -> Result<PathBuf, CliError> {
     } else {
         folder
     };
-    std::path::absolute(folder).map_err(|e| fuzzymotiv_io::files::guard::io_err(folder, e))
+    std::path::absolute(folder).map_err(|e| fuzzymotiv_pipeline::files::guard::io_err(folder, e))
 }
 
 /// A sweep file (`path`) or sweep text planned as `fuzzymotiv plan` plans it: `(text, source,

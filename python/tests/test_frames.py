@@ -6,7 +6,7 @@ import pytest
 
 import fuzzymotiv as fm
 
-BODY = (199, 221, 236)  # fuzzymotiv_io::render::frames::scene::BODY
+BODY = (199, 221, 236)  # fuzzymotiv_pipeline::render::frames::scene::BODY
 PATH = (31, 119, 180)  # ... ::PATH
 STEPS = {"trial.steps": 60}
 GENOME = np.linspace(-1.0, 1.0, 68)

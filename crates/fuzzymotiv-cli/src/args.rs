@@ -17,7 +17,7 @@ pub struct OutputArgs {
     #[arg(long, short)]
     pub quiet: bool,
     /// Base seed: a whole number from 0 to 2^53 − 1.
-    #[arg(long, allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_seed)]
+    #[arg(long, allow_hyphen_values = true, value_parser = fuzzymotiv_pipeline::files::inputs::parse_seed)]
     pub seed: Option<u64>,
 }
 

@@ -9,8 +9,8 @@ use std::io::IsTerminal;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::note;
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::note;
 
 use crate::commands::{
     bench, calibrate, claims, compare, export, fuzzy, lab, recognise, replay, reproduce,
@@ -91,14 +91,14 @@ fn main() -> ExitCode {
     finish(execute(cli))
 }
 
-/// Clap's help or version text on standard output through [`fuzzymotiv_io::out!`] (plain
+/// Clap's help or version text on standard output through [`fuzzymotiv_pipeline::out!`] (plain
 /// text unless standard output is a terminal, where clap's colours are kept).
 fn show_help(e: &clap::Error) -> Result<(), CliError> {
     let text = e.render();
     if std::io::stdout().is_terminal() {
-        fuzzymotiv_io::out!("{}", text.ansi())
+        fuzzymotiv_pipeline::out!("{}", text.ansi())
     } else {
-        fuzzymotiv_io::out!("{text}")
+        fuzzymotiv_pipeline::out!("{text}")
     }
 }
 

@@ -1,5 +1,5 @@
 //! PNG figures for `--png`, rasterised in pure Rust by `resvg`: the [`Rasterise`] that the
-//! figure writers of `fuzzymotiv_io` ([`fuzzymotiv_io::render::figures`]) are given.
+//! figure writers of `fuzzymotiv_pipeline` ([`fuzzymotiv_pipeline::render::figures`]) are given.
 //!
 //! Text needs a font. The system's fonts are loaded once (`fontdb`'s `load_system_fonts`: the
 //! usual font directories and fontconfig's configuration); the generic `sans-serif` family of
@@ -12,9 +12,9 @@ use std::sync::{Arc, OnceLock};
 
 use resvg::usvg::{self, fontdb};
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::note;
-use fuzzymotiv_io::render::figures::{Rasterise, add_missing_pngs};
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::note;
+use fuzzymotiv_pipeline::render::figures::{Rasterise, add_missing_pngs};
 
 /// PNG pixels per SVG pixel: 2 gives crisp figures on high-density screens and in print.
 const PNG_SCALE: f32 = 2.0;
@@ -78,7 +78,7 @@ pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, String> {
         .map_err(|e| format!("PNG encoding failed: {e}"))
 }
 
-/// The resvg rasteriser ([`svg_to_png`]) for the writers of `fuzzymotiv_io`.
+/// The resvg rasteriser ([`svg_to_png`]) for the writers of `fuzzymotiv_pipeline`.
 pub struct Resvg;
 
 impl Rasterise for Resvg {
@@ -104,8 +104,8 @@ mod tests {
     use super::*;
     use fuzzymotiv::simulation::Trajectory;
     use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
-    use fuzzymotiv_io::render::plot::text_width;
-    use fuzzymotiv_io::render::svg::trajectories_svg;
+    use fuzzymotiv_pipeline::render::plot::text_width;
+    use fuzzymotiv_pipeline::render::svg::trajectories_svg;
 
     #[test]
     fn a_small_svg_becomes_a_png_of_twice_its_size() {

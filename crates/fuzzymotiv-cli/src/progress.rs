@@ -3,16 +3,16 @@
 //! [`RunProgress`]), [`JobsProgress`] a sweep's jobs ([`SweepProgress`]), [`ReproduceBar`] a
 //! study's runs ([`ReproduceProgress`]).
 
-use fuzzymotiv_io::note;
+use fuzzymotiv_pipeline::note;
 use std::io::IsTerminal;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError};
 use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv_io::pipeline::progress::{RunProgress, SweepProgress};
-use fuzzymotiv_io::pipeline::reproduce::ReproduceProgress;
-use fuzzymotiv_io::records::Job;
+use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, SweepProgress};
+use fuzzymotiv_pipeline::pipeline::reproduce::ReproduceProgress;
+use fuzzymotiv_pipeline::records::Job;
 use indicatif::{ProgressBar, ProgressStyle};
 
 /// Seconds between two plain progress lines.

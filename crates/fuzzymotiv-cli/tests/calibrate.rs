@@ -202,7 +202,7 @@ fn a_calibrated_table_changes_the_sensor_readings_as_its_data_says() {
     ]);
     let config = dir.path().join("c.toml");
     std::fs::write(&config, "[trial]\nsensor_table = \"bench.toml\"\n").unwrap();
-    let loaded = fuzzymotiv_io::files::inputs::load_config(Some(&config), &[], None).unwrap();
+    let loaded = fuzzymotiv_pipeline::files::inputs::load_config(Some(&config), &[], None).unwrap();
     let arena = Arena::new(
         Room::builtin("square").unwrap(),
         loaded.experiment.trial_params(),

@@ -7,7 +7,7 @@ use common::*;
 
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv_io::records::compare::{CompareRow, read};
+use fuzzymotiv_pipeline::records::compare::{CompareRow, read};
 
 /// A small run of two rooms with four test runs per room.
 fn small_run(dir: &Path, name: &str, seed: u64, rooms: &str, extra: &[&str]) -> PathBuf {

@@ -1,6 +1,6 @@
 //! The import map inside each crate of the workspace, every folder included: the library
 //! (`crates/fuzzymotiv/src`), the records (`crates/fuzzymotiv-records/src`), the rendering
-//! (`crates/fuzzymotiv-render/src`), the pipeline (`crates/fuzzymotiv-io/src`), the lab and the
+//! (`crates/fuzzymotiv-render/src`), the pipeline (`crates/fuzzymotiv-pipeline/src`), the lab and the
 //! command line. Each module belongs to a layer of [`LAYERS`] (ARCHITECTURE.md), imports only
 //! from its own layer or the ones below, and no modules import each other in a circle.
 //!
@@ -37,7 +37,7 @@ const LAYERS: [(&str, usize); 36] = [
     ("records", 9),        // the crate root (module declarations)
     // fuzzymotiv-render: tables, the study's statistics, SVG figures, the report, frames
     ("render", 10),
-    // fuzzymotiv-io
+    // fuzzymotiv-pipeline
     ("io::pipeline", 11), // run directory, sweep plan/jobs/merge, lanes, progress
     ("io", 12),           // the crate root (module declarations, re-exports)
     // fuzzymotiv-lab: the browser lab (a library the binary starts)
@@ -94,7 +94,7 @@ const CRATES: [(&str, &str); 6] = [
     ("lib", "../fuzzymotiv/src"),
     ("records", "../fuzzymotiv-records/src"),
     ("render", "../fuzzymotiv-render/src"),
-    ("io", "../fuzzymotiv-io/src"),
+    ("io", "../fuzzymotiv-pipeline/src"),
     ("lab", "../fuzzymotiv-lab/src"),
     ("cli", "src"),
 ];

@@ -1,4 +1,4 @@
-//! Issue #55: a study runs from the library (`fuzzymotiv_io::pipeline::reproduce`) with plain
+//! Issue #55: a study runs from the library (`fuzzymotiv_pipeline::pipeline::reproduce`) with plain
 //! options and a progress of the caller's, with the command line's results.
 
 mod common;
@@ -7,8 +7,8 @@ use std::sync::Mutex;
 
 use common::{Fm, SMALL, assert_same_results, stderr, stdout};
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv_io::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
-use fuzzymotiv_io::pipeline::reproduce::{
+use fuzzymotiv_pipeline::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
+use fuzzymotiv_pipeline::pipeline::reproduce::{
     Front, ReproduceOptions, ReproduceProgress, StudyKind, reproduce,
 };
 
@@ -94,14 +94,14 @@ fn each_study_has_its_default_output_directory() {
     assert_eq!(out(StudyKind::Urgency, false), "results-urgency");
 }
 
-/// A saved genome replays from the library (`fuzzymotiv_io::pipeline::replay`) into the
+/// A saved genome replays from the library (`fuzzymotiv_pipeline::pipeline::replay`) into the
 /// trajectory and the JSON entry that `fuzzymotiv replay` writes for it.
 #[test]
 fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
-    use fuzzymotiv_io::files::inputs::load_config;
-    use fuzzymotiv_io::pipeline::replay::{replay_config, replay_trials, room_files};
-    use fuzzymotiv_io::records::context::RenderContext;
-    use fuzzymotiv_io::records::genome::read_genome;
+    use fuzzymotiv_pipeline::files::inputs::load_config;
+    use fuzzymotiv_pipeline::pipeline::replay::{replay_config, replay_trials, room_files};
+    use fuzzymotiv_pipeline::records::context::RenderContext;
+    use fuzzymotiv_pipeline::records::genome::read_genome;
 
     let dir = tempfile::tempdir().unwrap();
     let run = dir.path().join("run");
@@ -139,14 +139,14 @@ fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
     assert_eq!(json["rooms"], serde_json::Value::Array(rooms));
 }
 
-/// A study of one's own from the library (`fuzzymotiv_io::study`) whose progress asks it to
+/// A study of one's own from the library (`fuzzymotiv_pipeline::study`) whose progress asks it to
 /// stop (a front's cancel: Ctrl-C in Python, the lab's button) ends with an error after the
 /// generation it asked at, and the same call again resumes it into the analysis of an
 /// uninterrupted study, byte for byte. Without `RunProgress::stop` the study cannot be stopped
 /// before all its runs are finished.
 #[test]
 fn a_study_stopped_by_its_progress_resumes_into_the_analysis_of_an_uninterrupted_one() {
-    use fuzzymotiv_io::study::{Study, StudyOptions, StudyOutcome, run_study};
+    use fuzzymotiv_pipeline::study::{Study, StudyOptions, StudyOutcome, run_study};
     use std::sync::atomic::{AtomicUsize, Ordering};
 
     /// Stops every run once `limit` generations have been reported over the study.
@@ -168,7 +168,7 @@ fn a_study_stopped_by_its_progress_resumes_into_the_analysis_of_an_uninterrupted
         fn begin(&self, _: usize, _: usize) {}
         fn job(
             &self,
-            _: &fuzzymotiv_io::records::Job,
+            _: &fuzzymotiv_pipeline::records::Job,
             _: usize,
             _: &Experiment,
         ) -> Box<dyn RunProgress + '_> {
@@ -177,12 +177,12 @@ fn a_study_stopped_by_its_progress_resumes_into_the_analysis_of_an_uninterrupted
         fn job_done(&self) {}
         fn end(&self) {}
     }
-    impl fuzzymotiv_io::study::StudyProgress for StopAfter {
+    impl fuzzymotiv_pipeline::study::StudyProgress for StopAfter {
         fn waiting(&self, _: usize, _: usize) {}
         fn analysed(
             &self,
             _: &std::path::Path,
-            _: &[fuzzymotiv_io::records::hypotheses::ClaimRow],
+            _: &[fuzzymotiv_pipeline::records::hypotheses::ClaimRow],
         ) {
         }
     }

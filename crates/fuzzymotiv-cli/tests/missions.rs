@@ -207,7 +207,8 @@ fn a_sweep_over_named_motivations_merges_their_weights_and_missions_done() {
         ]
     );
     assert_eq!(header.last(), Some(&"mission_done_pct"), "{csv}");
-    let results = fuzzymotiv_io::records::SweepResults::read(&out.join("results.csv")).unwrap();
+    let results =
+        fuzzymotiv_pipeline::records::SweepResults::read(&out.join("results.csv")).unwrap();
     assert_eq!(results.motivations, ["urgency"]);
     let weights: Vec<(f64, Option<f64>)> = (results.rows.iter())
         .map(|r| (r.motivations.curiosity, r.other_weights[0]))
@@ -436,7 +437,7 @@ fn compare_of_two_mission_runs_compares_urgency_and_missions_done() {
     common::Fm::new(["compare", run_a.to_str().unwrap(), run_b.to_str().unwrap()])
         .out(&out)
         .ok();
-    let rows = fuzzymotiv_io::records::compare::read(&out.join("compare.csv")).unwrap();
+    let rows = fuzzymotiv_pipeline::records::compare::read(&out.join("compare.csv")).unwrap();
     let mut metrics: Vec<&str> = rows.iter().map(|r| r.metric.as_str()).collect();
     metrics.dedup();
     assert_eq!(
@@ -543,7 +544,7 @@ fn compare_of_two_mission_sweep_settings_compares_missions_done() {
     common::Fm::new(["compare", s, s, "--setting", a, "--setting", b])
         .out(&out)
         .ok();
-    let rows = fuzzymotiv_io::records::compare::read(&out.join("compare.csv")).unwrap();
+    let rows = fuzzymotiv_pipeline::records::compare::read(&out.join("compare.csv")).unwrap();
     let done = rows
         .iter()
         .filter(|r| r.metric == "mission_done_pct")

@@ -11,7 +11,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use fuzzymotiv_io::records::{AggregateRow, SweepResults, read_csv};
+use fuzzymotiv_pipeline::records::{AggregateRow, SweepResults, read_csv};
 use serde_json::Value;
 
 mod common;

@@ -568,7 +568,7 @@ fn every_shipped_study_file_loads_and_runs_at_two_base_seeds() {
     files.sort();
     assert!(files.len() >= 6, "{files:?}");
     for file in files {
-        let study = fuzzymotiv_io::study::Study::load(&file)
+        let study = fuzzymotiv_pipeline::study::Study::load(&file)
             .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
         assert!(
             study.base_seeds.len() >= 2,

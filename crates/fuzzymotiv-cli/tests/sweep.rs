@@ -357,7 +357,7 @@ motivations = [[0.8, 0.1, 0.0, 0.1]]
     let out = dir.path().join("out");
     ok(&["sweep", f.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     let text = results(&out);
-    let table = fuzzymotiv_io::records::SweepResults::read(&out.join("results.csv")).unwrap();
+    let table = fuzzymotiv_pipeline::records::SweepResults::read(&out.join("results.csv")).unwrap();
     assert_eq!(table.grid, ["robot.motion", "trial.noise"]);
     assert_eq!(table.rows.len(), 2 * 2, "{text}");
     let header = text.lines().next().unwrap();

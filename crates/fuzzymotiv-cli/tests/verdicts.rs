@@ -713,7 +713,7 @@ fn the_readings_figures_fuzzymotiv_curves_are_the_engines_readings_now() {
     ];
     let rows = rows(&results().join("transfer/readings.csv"));
     for (robot, source, sets, sensor) in probes {
-        let loaded = fuzzymotiv_io::files::inputs::load_config(None, &sets, None).unwrap();
+        let loaded = fuzzymotiv_pipeline::files::inputs::load_config(None, &sets, None).unwrap();
         let arena = &loaded.experiment.arenas()[0];
         let (low, high) = arena.room().bounds();
         let mount = loaded.experiment.trial_params().robot().spec().mounts()[sensor];

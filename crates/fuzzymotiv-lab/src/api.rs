@@ -15,7 +15,7 @@ use axum::{Json, Router};
 use futures_util::Stream;
 use fuzzymotiv::experiment::Combination;
 use fuzzymotiv::fitness::TskFitness;
-use fuzzymotiv_io::files::guard::{OutState, Spelling, StagedDir, check_out_as};
+use fuzzymotiv_pipeline::files::guard::{OutState, Spelling, StagedDir, check_out_as};
 use serde::Deserialize;
 use serde_json::{Value, json};
 use tokio::sync::watch;
@@ -319,7 +319,7 @@ const SAVE: Spelling = Spelling {
 };
 
 fn save_copy(from: &Path, to: &Path) -> Result<String, ApiError> {
-    let io = |p: &Path, e| ApiError::from(fuzzymotiv_io::files::guard::io_err(p, e));
+    let io = |p: &Path, e| ApiError::from(fuzzymotiv_pipeline::files::guard::io_err(p, e));
     let config = std::fs::read_to_string(from.join("config.resolved.toml"))
         .map_err(|e| io(&from.join("config.resolved.toml"), e))?;
     let id = [("config.resolved.toml".to_string(), config)];
@@ -353,7 +353,7 @@ async fn run_config(State(s): Shared, UrlPath(id): UrlPath<String>) -> Result<Re
     let text = match &entry.settings {
         Some(settings) => {
             let loaded = s.runs.load(settings)?;
-            fuzzymotiv_io::files::inputs::resolved_toml(&loaded.raw)
+            fuzzymotiv_pipeline::files::inputs::resolved_toml(&loaded.raw)
         }
         None => std::fs::read_to_string(s.runs.run_dir(&id).join("config.resolved.toml"))
             .map_err(|e| ApiError::not_found(e.to_string()))?,

@@ -1,9 +1,11 @@
 //! Two finished runs side by side: their curves, paths and per-room tables, and the
 //! differences `fuzzymotiv compare` reports for two run directories (over their test runs,
-//! paired when the runs share their seed; `fuzzymotiv_io::pipeline::compare`), overall and per
+//! paired when the runs share their seed; `fuzzymotiv_pipeline::pipeline::compare`), overall and per
 //! room, every metric of the test runs (recognition included).
 
-use fuzzymotiv_io::pipeline::compare::{check_comparable, choose, compare as compare_dirs, load};
+use fuzzymotiv_pipeline::pipeline::compare::{
+    check_comparable, choose, compare as compare_dirs, load,
+};
 use serde_json::{Value, json};
 
 use crate::errors::ApiError;

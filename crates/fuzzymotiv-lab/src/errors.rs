@@ -3,7 +3,7 @@
 use axum::Json;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
-use fuzzymotiv_io::files::error::CliError;
+use fuzzymotiv_pipeline::files::error::CliError;
 use serde::de::DeserializeOwned;
 
 /// An error answer: `{"error": message}` with `status`.

@@ -7,7 +7,7 @@
 //! and name it in their `Host` header (no DNS rebinding). The page, its script and style are
 //! embedded; its Content-Security-Policy allows requests to the server only. Runs go through
 //! the library's entry ([`fuzzymotiv::Experiment::run_from`] via the run-directory pipeline
-//! of `fuzzymotiv-io`), one at a time on a pool of `--threads` threads, further runs queued.
+//! of `fuzzymotiv-pipeline`), one at a time on a pool of `--threads` threads, further runs queued.
 //! Everything the lab writes stays under its directory:
 //!
 //! ```text

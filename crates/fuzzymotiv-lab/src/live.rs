@@ -10,7 +10,7 @@ use fuzzymotiv::experiment::GenerationState;
 use fuzzymotiv::fitness::FitnessTerms;
 use fuzzymotiv::simulation::Mlp;
 use fuzzymotiv::simulation::{Trajectory, Vec2};
-use fuzzymotiv_io::records::Finished;
+use fuzzymotiv_pipeline::records::Finished;
 use serde_json::{Value, json};
 
 use crate::limits::{PATH_POINTS, PATHS_EVERY};

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
-use fuzzymotiv_io::files::guard::{FilesState, check_files, write_files};
+use fuzzymotiv_pipeline::files::guard::{FilesState, check_files, write_files};
 use serde::{Deserialize, Serialize};
 
 use crate::errors::ApiError;
@@ -152,7 +152,7 @@ pub fn save(dir: &Path, room: &Room, text: &str) -> Result<String, ApiError> {
         )));
     }
     std::fs::create_dir_all(&folder)
-        .map_err(|e| ApiError::from(fuzzymotiv_io::files::guard::io_err(&folder, e)))?;
+        .map_err(|e| ApiError::from(fuzzymotiv_pipeline::files::guard::io_err(&folder, e)))?;
     let files = vec![(path, text.as_bytes().to_vec())];
     match check_files(&files, "room name", false) {
         Ok(FilesState::Same) => Ok(entry),

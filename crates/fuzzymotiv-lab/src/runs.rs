@@ -8,10 +8,10 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 
 use fuzzymotiv::experiment::GenerationState;
-use fuzzymotiv_io::files::guard::StagedDir;
-use fuzzymotiv_io::pipeline::progress::NoProgress;
-use fuzzymotiv_io::pipeline::run_dir::execute_with;
-use fuzzymotiv_io::records::{GenerationRow, RunSummary, read_csv, read_json};
+use fuzzymotiv_pipeline::files::guard::StagedDir;
+use fuzzymotiv_pipeline::pipeline::progress::NoProgress;
+use fuzzymotiv_pipeline::pipeline::run_dir::execute_with;
+use fuzzymotiv_pipeline::records::{GenerationRow, RunSummary, read_csv, read_json};
 use serde::Serialize;
 use serde_json::{Value, json};
 use tokio::sync::watch;
@@ -189,7 +189,7 @@ impl Runs {
     pub fn load(
         &self,
         settings: &Settings,
-    ) -> Result<fuzzymotiv_io::files::inputs::Loaded, ApiError> {
+    ) -> Result<fuzzymotiv_pipeline::files::inputs::Loaded, ApiError> {
         settings.load(&self.dir, &self.config_rooms)
     }
 
@@ -360,7 +360,7 @@ impl Runs {
 
 /// What the list says of a run: its robot, its motivations' weights in input order, and their
 /// names.
-fn about(s: &Settings, loaded: &fuzzymotiv_io::files::inputs::Loaded) -> Value {
+fn about(s: &Settings, loaded: &fuzzymotiv_pipeline::files::inputs::Loaded) -> Value {
     let raw = &loaded.raw;
     let m = &raw.motivations.list;
     let robot = loaded.experiment.trial_params().robot().spec().name();

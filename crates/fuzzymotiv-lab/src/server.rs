@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::thread::JoinHandle;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::inputs::check_threads;
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::inputs::check_threads;
 use tokio::sync::watch;
 
 use crate::api::{AppState, router};
@@ -25,7 +25,7 @@ pub struct LabOptions {
     /// Interface to listen on; default 127.0.0.1 (this machine only).
     pub bind: IpAddr,
     /// Threads of a run (as `fuzzymotiv run --threads`: 1 to
-    /// [`MAX_THREADS`](fuzzymotiv_io::files::inputs::MAX_THREADS)); default all cores.
+    /// [`MAX_THREADS`](fuzzymotiv_pipeline::files::inputs::MAX_THREADS)); default all cores.
     pub threads: Option<usize>,
     /// The access token; default a new random one (so a restart shuts out open pages).
     pub token: Option<String>,

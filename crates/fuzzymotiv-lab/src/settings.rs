@@ -1,5 +1,5 @@
 //! What the page asks a run to be: its settings (JSON) → a config document → the library's
-//! checks (`Setup::resolve`, through `fuzzymotiv_io::files::inputs::resolve`), so that every
+//! checks (`Setup::resolve`, through `fuzzymotiv_pipeline::files::inputs::resolve`), so that every
 //! bad value gets the CLI's message naming its field.
 
 use std::path::Path;
@@ -7,7 +7,7 @@ use std::path::Path;
 use fuzzymotiv::experiment::RawConfig;
 use fuzzymotiv::fitness::RawMotivations;
 use fuzzymotiv::simulation::Room;
-use fuzzymotiv_io::files::inputs::{Loaded, resolve};
+use fuzzymotiv_pipeline::files::inputs::{Loaded, resolve};
 use serde::{Deserialize, Serialize};
 
 use crate::errors::ApiError;

@@ -8,8 +8,8 @@ use std::path::Path;
 
 use fuzzymotiv::experiment::RawConfig;
 use fuzzymotiv::simulation::{RobotSpec, Room};
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::inputs::load_config;
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::inputs::load_config;
 use serde_json::{Value, json};
 
 use crate::motivations;

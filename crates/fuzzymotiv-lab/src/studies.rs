@@ -1,6 +1,6 @@
 //! The lab's studies (issue #55): a study file's text — picked from the study folder the lab
 //! lists (`--studies`, default `studies/`), uploaded or pasted — checked and run by the
-//! library's study pipeline (`fuzzymotiv_io::study`, what `fuzzymotiv study` runs) into
+//! library's study pipeline (`fuzzymotiv_pipeline::study`, what `fuzzymotiv study` runs) into
 //! `DIR/studies/ID/`, one study at a time in a thread of its own on a pool of the lab's
 //! `--threads`. The page polls the list for progress (runs done of the total) and, once a study
 //! is analysed, shows its pooled claims and its forest plot. Nothing here judges a hypothesis:
@@ -12,11 +12,11 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv_io::files::bounded::read_input;
-use fuzzymotiv_io::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
-use fuzzymotiv_io::records::Job;
-use fuzzymotiv_io::records::hypotheses::{ClaimRow, POOLED};
-use fuzzymotiv_io::study::{
+use fuzzymotiv_pipeline::files::bounded::read_input;
+use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
+use fuzzymotiv_pipeline::records::Job;
+use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
+use fuzzymotiv_pipeline::study::{
     STUDY_FILE, Study, StudyOptions, StudyOutcome, StudyProgress, run_study,
 };
 use serde_json::{Value, json};
@@ -214,7 +214,7 @@ impl Studies {
             .build();
         let outcome = match pool {
             Ok(pool) => pool.install(|| run_study(study, &options, entry)),
-            Err(e) => Err(fuzzymotiv_io::files::error::CliError::runtime(
+            Err(e) => Err(fuzzymotiv_pipeline::files::error::CliError::runtime(
                 e.to_string(),
             )),
         };

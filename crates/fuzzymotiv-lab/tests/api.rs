@@ -397,10 +397,10 @@ fn a_lab_run_gives_the_generations_of_fuzzymotiv_run_and_saves_as_a_run_director
     let tmp = tempfile::tempdir().unwrap();
     let path = tmp.path().join("config.toml");
     std::fs::write(&path, &config.body).unwrap();
-    let loaded = fuzzymotiv_io::files::inputs::load_config(Some(&path), &[], None).unwrap();
+    let loaded = fuzzymotiv_pipeline::files::inputs::load_config(Some(&path), &[], None).unwrap();
     let out = tmp.path().join("run");
-    let progress = fuzzymotiv_io::pipeline::progress::NoProgress;
-    fuzzymotiv_io::pipeline::run_dir::execute(&loaded, &out, &progress, false, None).unwrap();
+    let progress = fuzzymotiv_pipeline::pipeline::progress::NoProgress;
+    fuzzymotiv_pipeline::pipeline::run_dir::execute(&loaded, &out, &progress, false, None).unwrap();
     let lab_dir = c.lab.dir().join("runs").join(&id);
     let read = |p: &Path| std::fs::read(p).unwrap();
     assert_eq!(
@@ -602,7 +602,7 @@ fn comparing_two_runs_tests_every_measure_over_their_test_runs_as_compare_does()
     let r = r.json();
     let tests = r["tests"].as_array().unwrap();
     // What `fuzzymotiv compare A B` computes for the two run directories, row for row.
-    use fuzzymotiv_io::pipeline::compare::{choose, compare, load};
+    use fuzzymotiv_pipeline::pipeline::compare::{choose, compare, load};
     let runs = c.lab.dir().join("runs");
     let a = load(&runs.join(&ids[0]), "A").unwrap();
     let b = load(&runs.join(&ids[1]), "B").unwrap();
@@ -1484,14 +1484,14 @@ fn a_study_started_in_the_lab_writes_what_fuzzymotiv_study_writes_and_shows_its_
     // The library's own run of the same file: the same bytes.
     let lib = tempfile::tempdir().unwrap();
     let file = folder.path().join("tiny.toml");
-    let study_file = fuzzymotiv_io::study::Study::load(&file).unwrap();
-    let options = fuzzymotiv_io::study::StudyOptions {
+    let study_file = fuzzymotiv_pipeline::study::Study::load(&file).unwrap();
+    let options = fuzzymotiv_pipeline::study::StudyOptions {
         out: lib.path().join("out"),
         threads: Some(2),
         ..Default::default()
     };
-    let progress = fuzzymotiv_io::pipeline::progress::NoProgress;
-    fuzzymotiv_io::study::run_study(&study_file, &options, &progress).unwrap();
+    let progress = fuzzymotiv_pipeline::pipeline::progress::NoProgress;
+    fuzzymotiv_pipeline::study::run_study(&study_file, &options, &progress).unwrap();
     let lab_dir = c.lab.dir().join("studies").join(&id);
     for name in [
         "per_seed.csv",

@@ -3,7 +3,7 @@
 //! job's lock, the errors, and the records written and read back (one serde type per file, the
 //! checkpoint).
 //!
-//! It knows no rendering and no pipeline: `fuzzymotiv-render` and `fuzzymotiv-io` stand on it,
+//! It knows no rendering and no pipeline: `fuzzymotiv-render` and `fuzzymotiv-pipeline` stand on it,
 //! and Cargo keeps it so. Inside, two layers (`crates/fuzzymotiv-cli/tests/layers.rs` checks
 //! that [`records`] may use [`files`] and not the other way round):
 //!

@@ -3,9 +3,9 @@
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::simulation::{Motion, Room};
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::inputs::{load_config, resolve};
-use fuzzymotiv_io::pipeline::bench::{BenchOptions, BenchReport, measure};
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::inputs::{load_config, resolve};
+use fuzzymotiv_pipeline::pipeline::bench::{BenchOptions, BenchReport, measure};
 
 /// Arguments of `fuzzymotiv bench`.
 #[derive(clap::Args)]
@@ -18,7 +18,7 @@ pub struct BenchArgs {
     #[arg(long, allow_hyphen_values = true, default_value_t = 2_000_000, value_parser = crate::args::whole_number)]
     pub steps: usize,
     /// Threads for the population measurement, 1 to 256 [default: all cores].
-    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_pipeline::files::inputs::parse_threads)]
     pub threads: Option<usize>,
     /// Population size of the population measurement (each robot runs one 400-step trial per
     /// room; `--set rooms=[...]` evaluates in several rooms).
@@ -48,7 +48,7 @@ pub struct BenchArgs {
 
 /// Entry point of `fuzzymotiv bench`.
 pub fn bench(args: BenchArgs) -> Result<(), CliError> {
-    fuzzymotiv_io::pipeline::lanes::set_threads(args.threads)?;
+    fuzzymotiv_pipeline::pipeline::lanes::set_threads(args.threads)?;
     let checks = [
         ("--steps", args.steps, 1, MAX_BENCH_STEPS),
         ("--repeat", args.repeat, 1, 10_000),
@@ -69,7 +69,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     };
     let report = measure(&exp, &options);
     if args.json {
-        fuzzymotiv_io::outln!(
+        fuzzymotiv_pipeline::outln!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
         )
@@ -126,7 +126,7 @@ fn check_motion(exp: &Experiment, asked: &str) -> Result<(), CliError> {
 
 /// The report as two lines of text.
 fn print_report(r: &BenchReport) -> Result<(), CliError> {
-    fuzzymotiv_io::outln!(
+    fuzzymotiv_pipeline::outln!(
         "{} in room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({} executed steps, median {:.3} s of {})",
         r.robot,
         r.room,
@@ -136,7 +136,7 @@ fn print_report(r: &BenchReport) -> Result<(), CliError> {
         r.seconds,
         r.repeat
     )?;
-    fuzzymotiv_io::outln!(
+    fuzzymotiv_pipeline::outln!(
         "population {} x {} steps, {} evaluations, {} threads: {:.3} M robot-steps/s (median {:.3} s)",
         r.population,
         r.trial_steps,

@@ -5,10 +5,10 @@
 use std::path::PathBuf;
 
 use fuzzymotiv::simulation::{Calibration, calibrate};
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files, write_files};
-use fuzzymotiv_io::files::measurements::{field_error, read_measurements};
-use fuzzymotiv_io::{note, out, outln};
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::guard::{FilesState, check_files, write_files};
+use fuzzymotiv_pipeline::files::measurements::{field_error, read_measurements};
+use fuzzymotiv_pipeline::{note, out, outln};
 
 /// Arguments of `fuzzymotiv calibrate`.
 #[derive(clap::Args)]
@@ -34,7 +34,7 @@ pub struct CalibrateArgs {
 /// Entry point of `fuzzymotiv calibrate`.
 pub fn calibrate_command(args: CalibrateArgs) -> Result<(), CliError> {
     let source = args.measurements.display().to_string();
-    let robot = fuzzymotiv_io::files::inputs::load_robot(&args.robot, "--robot")?;
+    let robot = fuzzymotiv_pipeline::files::inputs::load_robot(&args.robot, "--robot")?;
     let rows = read_measurements(&args.measurements)?;
     let c = calibrate(&rows, robot.scale()).map_err(|e| field_error(e.in_source(&source)))?;
     let header = format!(

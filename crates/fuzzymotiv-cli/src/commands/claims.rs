@@ -3,12 +3,12 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files_dir, write_into};
-use fuzzymotiv_io::note;
-use fuzzymotiv_io::records::{StudySummary, read_json};
-use fuzzymotiv_io::render::study::{CLAIMS_ALPHA, claims, claims_stem};
-use fuzzymotiv_io::render::tables::{Provenance, claims_table};
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, write_into};
+use fuzzymotiv_pipeline::note;
+use fuzzymotiv_pipeline::records::{StudySummary, read_json};
+use fuzzymotiv_pipeline::render::study::{CLAIMS_ALPHA, claims, claims_stem};
+use fuzzymotiv_pipeline::render::tables::{Provenance, claims_table};
 
 /// Arguments of `fuzzymotiv claims`.
 #[derive(clap::Args)]
@@ -69,7 +69,7 @@ pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
     } else {
         note!("{md_path} and {csv_path} already hold these claims; nothing to do");
     }
-    fuzzymotiv_io::out!("{md}")?;
+    fuzzymotiv_pipeline::out!("{md}")?;
     Ok(())
 }
 

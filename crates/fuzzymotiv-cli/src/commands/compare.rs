@@ -1,13 +1,13 @@
 //! `compare A B --out DIR`: two runs, studies or sweep settings compared per room and overall
-//! (`fuzzymotiv_io::pipeline::compare`), written through the output guard.
+//! (`fuzzymotiv_pipeline::pipeline::compare`), written through the output guard.
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files_dir, io_err, write_into};
-use fuzzymotiv_io::note;
-use fuzzymotiv_io::pipeline::compare::{check_comparable, choose, compare, load};
-use fuzzymotiv_io::render::study::CLAIMS_ALPHA;
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, io_err, write_into};
+use fuzzymotiv_pipeline::note;
+use fuzzymotiv_pipeline::pipeline::compare::{check_comparable, choose, compare, load};
+use fuzzymotiv_pipeline::render::study::CLAIMS_ALPHA;
 
 use crate::png::svg_to_png;
 
@@ -69,6 +69,6 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
     if write_into(out, &files, "--out", args.force)? == FilesState::Same {
         note!("{} already holds these files; nothing to do", out.display());
     }
-    fuzzymotiv_io::out!("{}", done.md)?;
+    fuzzymotiv_pipeline::out!("{}", done.md)?;
     Ok(())
 }

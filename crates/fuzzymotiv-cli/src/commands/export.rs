@@ -1,13 +1,13 @@
 //! `fuzzymotiv export`: an evolved controller for a real robot, as dependency-free C99 (its
 //! motor outputs the simulator's bit for bit), a self-describing JSON document or an ONNX model
-//! ([`fuzzymotiv::export`], [`fuzzymotiv_io::records::export`]; docs/guide/real-robot.md).
+//! ([`fuzzymotiv::export`], [`fuzzymotiv_pipeline::records::export`]; docs/guide/real-robot.md).
 
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv_io::files::console::write_out_bytes;
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::note;
-use fuzzymotiv_io::records::export::{
+use fuzzymotiv_pipeline::files::console::write_out_bytes;
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::note;
+use fuzzymotiv_pipeline::records::export::{
     ExportRequest, ExportTarget, KitTarget, build_export, export_controller,
 };
 
@@ -107,7 +107,7 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
     let done = export_controller(&req)?;
     said(done.config.as_deref(), &done.notes);
     for path in &done.files {
-        fuzzymotiv_io::outln!("{}", path.display())?;
+        fuzzymotiv_pipeline::outln!("{}", path.display())?;
     }
     if done.unchanged {
         note!(

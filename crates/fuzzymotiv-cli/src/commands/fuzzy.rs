@@ -3,8 +3,8 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::{note, outln};
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::{note, outln};
 
 /// Arguments of `fuzzymotiv fuzzy`.
 #[derive(clap::Args)]
@@ -238,7 +238,7 @@ fn export_fll(
     m: &fuzzymotiv::fitness::Motivations,
     force: bool,
 ) -> Result<(), CliError> {
-    use fuzzymotiv_io::files::guard::{FilesState, check_files, write_files};
+    use fuzzymotiv_pipeline::files::guard::{FilesState, check_files, write_files};
     let stdout = path.as_os_str() == "-";
     let name = match path.file_stem() {
         Some(s) if !stdout => s.to_string_lossy().into_owned(),
@@ -246,7 +246,7 @@ fn export_fll(
     };
     let text = fuzzymotiv::fitness::to_fll(tsk, m, &name);
     if stdout {
-        return fuzzymotiv_io::out!("{text}");
+        return fuzzymotiv_pipeline::out!("{text}");
     }
     let files = [(path.to_path_buf(), text.into_bytes())];
     if check_files(&files, "--export-fll", force)? == FilesState::Same {

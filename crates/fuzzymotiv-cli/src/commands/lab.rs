@@ -3,9 +3,9 @@
 use std::net::IpAddr;
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::{note, outln};
 use fuzzymotiv_lab::{Lab, LabOptions};
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::{note, outln};
 
 /// Arguments of `fuzzymotiv lab`.
 #[derive(clap::Args)]
@@ -18,7 +18,7 @@ pub struct LabArgs {
     #[arg(long, value_name = "DIR", default_value = "lab")]
     dir: PathBuf,
     /// Worker threads of a run, 1 to 256 [default: all cores]; further runs wait in a queue.
-    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_pipeline::files::inputs::parse_threads)]
     threads: Option<usize>,
     /// Open the page in the default browser (where there is none, the address is printed).
     #[arg(long)]

@@ -1,5 +1,5 @@
 //! The commands, one module each (`sweep` holds `plan`, `sweep` and `merge`): each turns its
-//! arguments into calls of `fuzzymotiv` and `fuzzymotiv_io`, and shows the outcome.
+//! arguments into calls of `fuzzymotiv` and `fuzzymotiv_pipeline`, and shows the outcome.
 
 pub mod bench;
 pub mod calibrate;

@@ -1,13 +1,13 @@
 //! `fuzzymotiv recognise`: the rooms a run's room model recognises in a real robot's logs
-//! ([`fuzzymotiv_io::records::robot_log::recognise_logs`] over the library's
+//! ([`fuzzymotiv_pipeline::records::robot_log::recognise_logs`] over the library's
 //! `Experiment::recognizer` and `Experiment::explain_actions`).
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files_dir, write_into};
-use fuzzymotiv_io::records::robot_log::{recognise_logs, recognition_csv, recognition_md};
-use fuzzymotiv_io::{note, outln};
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, write_into};
+use fuzzymotiv_pipeline::records::robot_log::{recognise_logs, recognition_csv, recognition_md};
+use fuzzymotiv_pipeline::{note, outln};
 
 /// Arguments of `fuzzymotiv recognise`.
 #[derive(clap::Args)]

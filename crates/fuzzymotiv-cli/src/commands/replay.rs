@@ -5,28 +5,28 @@
 //! a room's stored instance), so `replay RUN_DIR` redraws exactly the paths of the run's
 //! `report.html`; `--seed N` replays under another base seed. Same genome, room and seed → the
 //! same trajectory, byte for byte. `--gif` adds an animated GIF per room
-//! ([`fuzzymotiv_io::render::frames`]); `--log` draws a robot's logged path over its room
-//! (read by [`fuzzymotiv_io::records::robot_log::RobotLog`], as `recognise` reads it).
+//! ([`fuzzymotiv_pipeline::render::frames`]); `--log` draws a robot's logged path over its room
+//! (read by [`fuzzymotiv_pipeline::records::robot_log::RobotLog`], as `recognise` reads it).
 
 use std::path::{Path, PathBuf};
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::simulation::TrialParams;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_files};
-use fuzzymotiv_io::files::inputs::{load_config, room_entry, rooms_unchanged};
-use fuzzymotiv_io::note;
-use fuzzymotiv_io::pipeline::replay::{
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::guard::{FilesState, check_files, io_err, write_files};
+use fuzzymotiv_pipeline::files::inputs::{load_config, room_entry, rooms_unchanged};
+use fuzzymotiv_pipeline::note;
+use fuzzymotiv_pipeline::pipeline::replay::{
     ReplayTrial, replay_config, replay_json, replay_trials, room_files, room_gifs,
 };
-use fuzzymotiv_io::records::context::RenderContext;
-use fuzzymotiv_io::records::genome::{SavedGenome, locate, read_genome};
-use fuzzymotiv_io::records::robot_log::RobotLog;
-use fuzzymotiv_io::render::frames::FrameOptions;
-use fuzzymotiv_io::render::frames::animate::delay_of;
-use fuzzymotiv_io::render::report::{replay_page_with, xs};
-use fuzzymotiv_io::render::svg::{LoggedPath, trajectories_svg_with};
+use fuzzymotiv_pipeline::records::context::RenderContext;
+use fuzzymotiv_pipeline::records::genome::{SavedGenome, locate, read_genome};
+use fuzzymotiv_pipeline::records::robot_log::RobotLog;
+use fuzzymotiv_pipeline::render::frames::FrameOptions;
+use fuzzymotiv_pipeline::render::frames::animate::delay_of;
+use fuzzymotiv_pipeline::render::report::{replay_page_with, xs};
+use fuzzymotiv_pipeline::render::svg::{LoggedPath, trajectories_svg_with};
 
 use crate::png::svg_to_png;
 
@@ -48,7 +48,7 @@ pub struct ReplayArgs {
     pub room: Option<String>,
     /// Base seed of the replay's noise [default: the run's seed, so the run's own paths]: a
     /// whole number from 0 to 2^53 − 1.
-    #[arg(long, allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_seed)]
+    #[arg(long, allow_hyphen_values = true, value_parser = fuzzymotiv_pipeline::files::inputs::parse_seed)]
     pub seed: Option<u64>,
     /// The replay page to write; the trajectories go beside it as STEM.json, STEM-ROOM.csv and
     /// the figure as STEM.svg.
@@ -266,7 +266,7 @@ fn write_replay(
         write_files(&files)?;
     }
     for line in &lines {
-        fuzzymotiv_io::outln!("{line}")?;
+        fuzzymotiv_pipeline::outln!("{line}")?;
     }
     if state == FilesState::Same {
         note!("{} already holds this replay; nothing to do", out.display());

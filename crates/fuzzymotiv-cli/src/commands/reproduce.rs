@@ -1,11 +1,11 @@
 //! `fuzzymotiv reproduce`: the paper's study (docs/model.md §10) in one command, and the
 //! studies built on it. The arguments become [`ReproduceOptions`]; the study itself is
-//! `fuzzymotiv_io::pipeline::reproduce`.
+//! `fuzzymotiv_pipeline::pipeline::reproduce`.
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::pipeline::reproduce::{
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::pipeline::reproduce::{
     Front, ReproduceOptions, StudyKind, reproduce as run_study,
 };
 
@@ -35,7 +35,7 @@ pub struct ReproduceArgs {
     pub quick: bool,
     /// Worker threads, 1 to 256 [default: all cores]; up to this many (setting, seed) runs go on at once,
     /// sharing them; results do not depend on it.
-    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_pipeline::files::inputs::parse_threads)]
     pub threads: Option<usize>,
     /// Run the orientation study instead (configs/orientation-study.toml): does rewarding
     /// orientation (online recognition in the fitness) raise recognition, and at what cost?
@@ -131,5 +131,5 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     if text.is_empty() {
         return Ok(());
     }
-    fuzzymotiv_io::out!("{text}")
+    fuzzymotiv_pipeline::out!("{text}")
 }

@@ -1,15 +1,15 @@
 //! `fuzzymotiv robustness`: a run's best robot under the perturbations a real robot brings
 //! (paired streams), F and behaviour per perturbation with 95 % intervals, as CSV, Markdown and
-//! a figure ([`fuzzymotiv_io::records::robustness::robustness_of_run`] over
+//! a figure ([`fuzzymotiv_pipeline::records::robustness::robustness_of_run`] over
 //! [`fuzzymotiv::experiment::Experiment::robustness`]).
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files_dir, io_err, write_into};
-use fuzzymotiv_io::records::robustness::{robustness_csv, robustness_md, robustness_of_run};
-use fuzzymotiv_io::render::robustness::robustness_svg;
-use fuzzymotiv_io::{note, outln};
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, io_err, write_into};
+use fuzzymotiv_pipeline::records::robustness::{robustness_csv, robustness_md, robustness_of_run};
+use fuzzymotiv_pipeline::render::robustness::robustness_svg;
+use fuzzymotiv_pipeline::{note, outln};
 
 use crate::png::svg_to_png;
 

@@ -2,14 +2,16 @@
 
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{OutState, StagedDir, check_out};
-use fuzzymotiv_io::files::inputs::{Loaded, load_config, rooms_unchanged, run_identity};
-use fuzzymotiv_io::note;
-use fuzzymotiv_io::pipeline::continuation::{continued_config, finished_config, stage_continued};
-use fuzzymotiv_io::pipeline::lanes::set_threads;
-use fuzzymotiv_io::pipeline::run_dir::{execute, start_line};
-use fuzzymotiv_io::render::tables::table_markdown;
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::guard::{OutState, StagedDir, check_out};
+use fuzzymotiv_pipeline::files::inputs::{Loaded, load_config, rooms_unchanged, run_identity};
+use fuzzymotiv_pipeline::note;
+use fuzzymotiv_pipeline::pipeline::continuation::{
+    continued_config, finished_config, stage_continued,
+};
+use fuzzymotiv_pipeline::pipeline::lanes::set_threads;
+use fuzzymotiv_pipeline::pipeline::run_dir::{execute, start_line};
+use fuzzymotiv_pipeline::render::tables::table_markdown;
 
 use crate::args::OutputArgs;
 use crate::png::{add_pngs, rasteriser};
@@ -48,7 +50,7 @@ pub struct RunArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Worker threads, 1 to 256 [default: all cores]; results do not depend on it.
-    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_pipeline::files::inputs::parse_threads)]
     pub threads: Option<usize>,
     /// Override a config key, e.g. --set ga.population=20 (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -103,7 +105,7 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
     progress.note(&start_line(&loaded.experiment, &out));
     let done = execute(&loaded, &out, &progress, resume, rasteriser(args.png))?;
     progress.finish();
-    fuzzymotiv_io::out!("{}", table_markdown(&done.rows))?;
+    fuzzymotiv_pipeline::out!("{}", table_markdown(&done.rows))?;
     note!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
     Ok(())
 }

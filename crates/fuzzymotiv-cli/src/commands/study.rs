@@ -1,13 +1,13 @@
 //! `fuzzymotiv study STUDY.toml --out DIR`: a study of one's own (its arms, paired seeds and
-//! typed hypotheses) run by the library ([`fuzzymotiv_io::study`]); this front only parses the
+//! typed hypotheses) run by the library ([`fuzzymotiv_pipeline::study`]); this front only parses the
 //! arguments and prints.
 
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::note;
-use fuzzymotiv_io::records::hypotheses::{ClaimRow, POOLED};
-use fuzzymotiv_io::study::{
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::note;
+use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
+use fuzzymotiv_pipeline::study::{
     Study, StudyOptions, StudyOutcome, StudyProgress, parse_shard, run_study,
 };
 
@@ -28,7 +28,7 @@ pub struct StudyArgs {
     #[arg(long, value_name = "K/N", allow_hyphen_values = true)]
     pub shard: Option<String>,
     /// Worker threads, 1 to 256 [default: all cores]; results do not depend on it.
-    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_pipeline::files::inputs::parse_threads)]
     pub threads: Option<usize>,
     /// No progress lines on stderr.
     #[arg(long, short)]
@@ -63,7 +63,7 @@ pub fn study(args: StudyArgs) -> Result<(), CliError> {
     let progress = JobsProgress::new(args.quiet);
     if let StudyOutcome::Analysed(claims) = run_study(&study, &options, &progress)? {
         for c in claims.iter().filter(|c| c.scope == POOLED) {
-            fuzzymotiv_io::outln!(
+            fuzzymotiv_pipeline::outln!(
                 "{}: {} — {} (effect {:.4}, CI [{:.4}, {:.4}], p {:.4})",
                 c.id,
                 c.verdict,

@@ -3,13 +3,15 @@
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::bounded::read_input;
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::files::guard::{FilesState, check_files, io_err, write_atomic, write_files};
-use fuzzymotiv_io::pipeline::lanes::set_threads;
-use fuzzymotiv_io::pipeline::sweep_jobs::run_jobs;
-use fuzzymotiv_io::pipeline::sweep_merge::merge_dir;
-use fuzzymotiv_io::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
+use fuzzymotiv_pipeline::files::bounded::read_input;
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::guard::{
+    FilesState, check_files, io_err, write_atomic, write_files,
+};
+use fuzzymotiv_pipeline::pipeline::lanes::set_threads;
+use fuzzymotiv_pipeline::pipeline::sweep_jobs::run_jobs;
+use fuzzymotiv_pipeline::pipeline::sweep_merge::merge_dir;
+use fuzzymotiv_pipeline::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
 
 use crate::png::{add_pngs, svg_to_png};
 use crate::progress::JobsProgress;
@@ -35,14 +37,14 @@ pub struct PlanArgs {
 pub fn plan(args: PlanArgs) -> Result<(), CliError> {
     let sweep = Sweep::load(&args.sweep)?;
     if args.count {
-        fuzzymotiv_io::outln!("{}", sweep.jobs.len())?;
+        fuzzymotiv_pipeline::outln!("{}", sweep.jobs.len())?;
     } else if let Some(out) = args.out {
         let files = [(out, sweep.plan_jsonl().into_bytes())];
         if check_files(&files, "--out", args.force)? == FilesState::Write {
             write_files(&files)?;
         }
     } else {
-        fuzzymotiv_io::out!("{}", sweep.plan_jsonl())?;
+        fuzzymotiv_pipeline::out!("{}", sweep.plan_jsonl())?;
     }
     Ok(())
 }
@@ -67,7 +69,7 @@ pub struct SweepArgs {
     pub index_from_env: Option<String>,
     /// Worker threads, 1 to 256 [default: all cores]; up to this many jobs run at once, sharing them;
     /// results do not depend on it.
-    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_threads)]
+    #[arg(long, value_name = "N", allow_hyphen_values = true, value_parser = fuzzymotiv_pipeline::files::inputs::parse_threads)]
     pub threads: Option<usize>,
     /// No progress lines on stderr.
     #[arg(long, short)]

@@ -1,13 +1,13 @@
 //! `fuzzymotiv transfer`: a run's evolved controller driven in Enki, an independent simulator
-//! ([`fuzzymotiv_io::pipeline::transfer`]): one robot log per test run, the trial's terms and
+//! ([`fuzzymotiv_pipeline::pipeline::transfer`]): one robot log per test run, the trial's terms and
 //! the study's measures computed from each log by the simulator's own code, beside the run's
 //! own test runs.
 
 use std::path::PathBuf;
 
-use fuzzymotiv_io::files::error::CliError;
-use fuzzymotiv_io::pipeline::transfer::{TransferRequest, transfer};
-use fuzzymotiv_io::{note, outln};
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::pipeline::transfer::{TransferRequest, transfer};
+use fuzzymotiv_pipeline::{note, outln};
 
 /// Arguments of `fuzzymotiv transfer`.
 #[derive(clap::Args)]
@@ -27,7 +27,7 @@ pub struct TransferArgs {
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// Enki's base seed (its IR and wheel noise) [default: the run's seed].
-    #[arg(long, allow_hyphen_values = true, value_parser = fuzzymotiv_io::files::inputs::parse_seed)]
+    #[arg(long, allow_hyphen_values = true, value_parser = fuzzymotiv_pipeline::files::inputs::parse_seed)]
     pub seed: Option<u64>,
     /// Replace existing files of these names that hold something else.
     #[arg(long)]

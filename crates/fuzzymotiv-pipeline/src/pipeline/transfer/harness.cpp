@@ -1,4 +1,4 @@
-// The Enki side of `fuzzymotiv transfer` (crates/fuzzymotiv-io/src/pipeline/transfer.rs writes
+// The Enki side of `fuzzymotiv transfer` (crates/fuzzymotiv-pipeline/src/pipeline/transfer.rs writes
 // this file next to an exported controller, compiles it with `c++` against Debian's
 // libenki-dev and the exported fm_controller.c, and runs it once per test run).
 //

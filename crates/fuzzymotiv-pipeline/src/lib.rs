@@ -1,4 +1,4 @@
-//! The files of fuzzymotiv, shared by the `fuzzymotiv` command line, the lab and the Python
+//! The pipeline of fuzzymotiv, shared by the `fuzzymotiv` command line, the lab and the Python
 //! bindings: the pipeline that evolves with checkpoints and writes a run directory (or runs a
 //! sweep's jobs), over the records and the rendering, which it re-exports under their old
 //! module names ([`files`], [`records`], [`render`]) so that one dependency gives the fronts all
@@ -10,7 +10,7 @@
 //!
 //! The crates, each using only the ones below it (Cargo enforces the order):
 //!
-//! - `fuzzymotiv-io` ([`pipeline`]): a run directory (evolve with checkpoints, model the rooms,
+//! - `fuzzymotiv-pipeline` ([`pipeline`]): a run directory (evolve with checkpoints, model the rooms,
 //!   write it, read it back), a sweep's plan, jobs and merge, runs side by side, the progress it
 //!   reports;
 //! - `fuzzymotiv-render` ([`render`]): from records only: tables, the paper's study and its
