@@ -3,12 +3,13 @@
 //! sweep's plan ([`sweep_plan`]), jobs ([`sweep_jobs`]) and merge ([`sweep_merge`]), runs or
 //! jobs side by side ([`lanes`]), the progress all of it reports ([`progress`]), a finished
 //! run continued to more generations ([`continuation`]), a saved genome replayed ([`replay`]),
-//! `bench`'s measurements ([`mod@bench`]), and the paper's study and the studies built on it
+//! the TSK by hand and as an FLL file ([`fuzzy`]), `bench`'s measurements ([`mod@bench`]), and the paper's study and the studies built on it
 //! ([`reproduce`]: `ReproduceOptions` in, tables and records out).
 
 pub mod bench;
 pub mod compare;
 pub mod continuation;
+pub mod fuzzy;
 pub mod lanes;
 pub mod progress;
 pub mod replay;
