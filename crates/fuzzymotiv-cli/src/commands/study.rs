@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
+use fuzzymotiv_pipeline::render::hypotheses::claim_line;
 use fuzzymotiv_pipeline::study::{
     Study, StudyOptions, StudyOutcome, StudyProgress, parse_shard, run_study,
 };
@@ -63,16 +64,7 @@ pub fn study(args: StudyArgs) -> Result<(), CliError> {
     let progress = JobsProgress::new(args.quiet);
     if let StudyOutcome::Analysed(claims) = run_study(&study, &options, &progress)? {
         for c in claims.iter().filter(|c| c.scope == POOLED) {
-            fuzzymotiv_pipeline::outln!(
-                "{}: {} — {} (effect {:.4}, CI [{:.4}, {:.4}], p {:.4})",
-                c.id,
-                c.verdict,
-                c.sentence,
-                c.effect,
-                c.ci_low,
-                c.ci_high,
-                c.p_adjusted
-            )?;
+            fuzzymotiv_pipeline::outln!("{}", claim_line(c))?;
         }
         note!("report: {}", args.out.join("report.md").display());
     }
