@@ -7,17 +7,14 @@
 //! the claims are the library's `ClaimRow`s.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 
-use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_pipeline::files::bounded::read_input;
-use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
-use fuzzymotiv_pipeline::records::Job;
 use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
 use fuzzymotiv_pipeline::study::{
-    STUDY_FILE, Study, StudyOptions, StudyOutcome, StudyProgress, run_study,
+    STUDY_FILE, Study, StudyCounter, StudyOptions, StudyOutcome, run_study,
 };
 use serde_json::{Value, json};
 
@@ -37,10 +34,10 @@ pub struct StudyEntry {
     pub name: String,
     /// Where its text came from: a listed file, or [`PASTED`].
     pub source: String,
-    /// Its runs: planned, and finished (before or now).
+    /// Its runs planned.
     total: usize,
-    done: AtomicUsize,
-    stop: AtomicBool,
+    /// Its runs finished (before or now), and the flag that stops them.
+    counter: StudyCounter,
     state: Mutex<(Status, Option<Vec<ClaimRow>>, Option<String>)>,
 }
 
@@ -55,27 +52,9 @@ impl StudyEntry {
         let pooled: Option<Vec<&ClaimRow>> =
             (claims.as_ref()).map(|c| c.iter().filter(|c| c.scope == POOLED).collect());
         json!({ "id": self.id, "name": self.name, "source": self.source, "status": status,
-                "done": self.done.load(Ordering::SeqCst), "total": self.total,
+                "done": self.counter.done(), "total": self.total,
                 "error": error, "claims": pooled })
     }
-}
-
-impl SweepProgress for StudyEntry {
-    fn begin(&self, _selected: usize, skipped: usize) {
-        self.done.store(skipped, Ordering::SeqCst);
-    }
-    fn job(&self, _job: &Job, _nth: usize, _exp: &Experiment) -> Box<dyn RunProgress + '_> {
-        Box::new(StopOnFlag(&self.stop))
-    }
-    fn job_done(&self) {
-        self.done.fetch_add(1, Ordering::SeqCst);
-    }
-    fn end(&self) {}
-}
-
-impl StudyProgress for StudyEntry {
-    fn waiting(&self, _done: usize, _total: usize) {}
-    fn analysed(&self, _out: &Path, _claims: &[ClaimRow]) {}
 }
 
 /// The studies of a lab.
@@ -171,8 +150,7 @@ impl Studies {
             name: study.name.clone(),
             source,
             total: study.plan.jobs.len(),
-            done: AtomicUsize::new(0),
-            stop: AtomicBool::new(false),
+            counter: StudyCounter::default(),
             state: Mutex::new((Status::Running, None, None)),
         });
         list.push(entry.clone());
@@ -213,7 +191,7 @@ impl Studies {
             .thread_name(|i| format!("lab-study-{i}"))
             .build();
         let outcome = match pool {
-            Ok(pool) => pool.install(|| run_study(study, &options, entry)),
+            Ok(pool) => pool.install(|| run_study(study, &options, &entry.counter)),
             Err(e) => Err(fuzzymotiv_pipeline::files::error::CliError::runtime(
                 e.to_string(),
             )),
@@ -224,7 +202,7 @@ impl Studies {
                 let why = format!("only {done} of its {total} runs are finished");
                 (Status::Failed, None, Some(why))
             }
-            Err(_) if entry.stop.load(Ordering::SeqCst) => (Status::Stopped, None, None),
+            Err(_) if entry.counter.stopped() => (Status::Stopped, None, None),
             Err(e) => (Status::Failed, None, Some(e.to_string())),
         };
         *entry.lock() = end;
@@ -235,7 +213,7 @@ impl Studies {
         let entry = self
             .get(id)
             .ok_or_else(|| ApiError::not_found(format!("no study `{id}` in this lab")))?;
-        entry.stop.store(true, Ordering::SeqCst);
+        entry.counter.stop();
         Ok(entry.view())
     }
 
@@ -243,7 +221,7 @@ impl Studies {
     pub fn close(&self) {
         self.closing.store(true, Ordering::SeqCst);
         for e in self.list().iter() {
-            e.stop.store(true, Ordering::SeqCst);
+            e.counter.stop();
         }
         let workers: Vec<_> = self
             .workers
