@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 
 use fuzzymotiv_records::records::hypotheses::{ClaimRow, Hypothesis, POOLED, StudyRecord};
 
-use crate::hypotheses::RowFormat;
+use crate::claim_format::RowFormat;
 use crate::plot::{Ticks, esc, open, px, text_width};
 
 /// Height of a result's row, px.

@@ -3,17 +3,19 @@
 //! stated, the claims table, the forest plot, the rooms' results, the seeds' table, with
 //! several base seeds each one's verdict beside the pooled one, and the study file quoted)
 //! and `forest.svg` ([`forest_svg`], in [`crate::forest`]: every result's effect with its
-//! interval, a panel per measure). A result's numbers are printed by one rule ([`RowFormat`]:
-//! a percentage's to one decimal, else three significant digits; p to three decimals,
-//! [`p_text`]); the CSV and JSON records keep them whole.
+//! interval, a panel per measure). A result's numbers are printed by one rule
+//! ([`crate::claim_format`]: a percentage's to one decimal, else three significant digits; p
+//! to three decimals); the CSV and JSON records keep them whole.
 
 use std::fmt::Write as _;
 
 use fuzzymotiv_records::records::hypotheses::{
-    ClaimRow, HolmOver, POOLED, PerSeedRow, RoomResultRow, Rule, StudyRecord,
+    HolmOver, POOLED, PerSeedRow, RoomResultRow, Rule, StudyRecord,
 };
 
 pub use crate::forest::forest_svg;
+
+use crate::claim_format::{RowFormat, p_text};
 
 /// A setting as the report prints it (α, a confidence, an arm's level): 4 decimals at most,
 /// `−` for negatives; the results' numbers go by [`RowFormat`].
@@ -29,91 +31,6 @@ fn num(v: f64) -> String {
         s
     };
     s.replace('-', "−")
-}
-
-/// How the numbers of one result (a claim or a room's row) are printed, the same for its
-/// effect, interval bounds and detectable difference: one decimal for a percentage's
-/// difference or value (points), else three significant digits of the row's largest number,
-/// every number of the row to those decimals. A trend's slope is per unit of its arms' level,
-/// not in the measure's unit, so it always takes three significant digits.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct RowFormat {
-    /// Decimals of every number of the row.
-    pub decimals: usize,
-}
-
-impl RowFormat {
-    /// The format of a result of kind `kind` over the measure column `measure` with these
-    /// numbers (effect, bounds, detectable difference).
-    pub fn of(kind: &str, measure: &str, numbers: &[f64]) -> RowFormat {
-        if measure.ends_with("_pct") && kind != "trend" {
-            return RowFormat { decimals: 1 };
-        }
-        let largest = (numbers.iter())
-            .filter(|v| v.is_finite())
-            .fold(0.0_f64, |m, v| m.max(v.abs()));
-        let decimals = if largest > 0.0 {
-            (2.0 - largest.log10().floor()).clamp(0.0, 9.0) as usize
-        } else {
-            3
-        };
-        RowFormat { decimals }
-    }
-
-    /// The format of a claim row.
-    pub fn of_claim(c: &ClaimRow) -> RowFormat {
-        let mut numbers = vec![c.effect, c.ci_low, c.ci_high];
-        numbers.extend(c.mdd);
-        RowFormat::of(&c.kind, &c.measure, &numbers)
-    }
-
-    /// `v` to the row's decimals, `−` for a negative (never `−0.0`).
-    pub fn num(&self, v: f64) -> String {
-        let d = self.decimals;
-        let s = format!("{v:.d$}");
-        if s.trim_start_matches('-')
-            .chars()
-            .all(|c| c == '0' || c == '.')
-        {
-            s.trim_start_matches('-').to_string()
-        } else {
-            s.replace('-', "−")
-        }
-    }
-
-    /// A detectable difference, `–` where there is none (one seed).
-    pub fn mdd(&self, v: Option<f64>) -> String {
-        v.map_or_else(|| "–".into(), |v| self.num(v))
-    }
-
-    /// An interval, `[low, high]`.
-    pub fn interval(&self, low: f64, high: f64) -> String {
-        format!("[{}, {}]", self.num(low), self.num(high))
-    }
-}
-
-/// A p-value as the report prints it: three decimals, `< 0.001` below.
-pub fn p_text(p: f64) -> String {
-    if p < 0.0005 {
-        "< 0.001".into()
-    } else {
-        format!("{p:.3}")
-    }
-}
-
-/// A pooled claim as one line (what `fuzzymotiv study` prints): id, verdict, sentence, effect,
-/// interval and adjusted p, in the report's format.
-pub fn claim_line(c: &ClaimRow) -> String {
-    let f = RowFormat::of_claim(c);
-    format!(
-        "{}: {} — {} (effect {}, CI {}, p {})",
-        c.id,
-        c.verdict,
-        c.sentence,
-        f.num(c.effect),
-        f.interval(c.ci_low, c.ci_high),
-        p_text(c.p_adjusted)
-    )
 }
 
 /// `report.md`: the study, its analysis, its results and its file.
@@ -341,7 +258,10 @@ fn seeds_md(per_seed: &[PerSeedRow]) -> String {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use fuzzymotiv_records::records::hypotheses::{AnalysisRecord, Direction, Hypothesis, Measure};
+    use crate::claim_format::claim_line;
+    use fuzzymotiv_records::records::hypotheses::{
+        AnalysisRecord, ClaimRow, Direction, Hypothesis, Measure,
+    };
 
     /// A pooled claim of `h` with this effect and interval (p 0.0625, detectable 3).
     pub(crate) fn claim(h: &Hypothesis, effect: f64, ci_low: f64, ci_high: f64) -> ClaimRow {

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
-use fuzzymotiv_pipeline::render::hypotheses::claim_line;
+use fuzzymotiv_pipeline::render::claim_format::claim_line;
 use fuzzymotiv_pipeline::study::{
     Study, StudyOptions, StudyOutcome, StudyProgress, parse_shard, run_study,
 };
