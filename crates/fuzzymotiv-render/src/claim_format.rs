@@ -7,8 +7,8 @@ use fuzzymotiv_records::records::hypotheses::ClaimRow;
 
 /// How the numbers of one result (a claim or a room's row) are printed, the same for its
 /// effect, interval bounds and detectable difference: one decimal for a percentage's
-/// difference or value (points), else three significant digits of the row's largest number,
-/// every number of the row to those decimals. A trend's slope is per unit of its arms' level,
+/// difference or value (points), else three significant digits of the row's largest number
+/// (at most 6 decimals), every number of the row to those decimals. A trend's slope is per unit of its arms' level,
 /// not in the measure's unit, so it always takes three significant digits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RowFormat {
@@ -26,8 +26,10 @@ impl RowFormat {
         let largest = (numbers.iter())
             .filter(|v| v.is_finite())
             .fold(0.0_f64, |m, v| m.max(v.abs()));
-        let decimals = if largest > 0.0 {
-            (2.0 - largest.log10().floor()).clamp(0.0, 9.0) as usize
+        // At most 6 decimals; a row whose numbers all round to 0 there (rounding noise of a
+        // zero effect, 1e-15) is printed as zeros to 3 decimals.
+        let decimals = if largest >= 5e-7 {
+            (2.0 - largest.log10().floor()).clamp(0.0, 6.0) as usize
         } else {
             3
         };

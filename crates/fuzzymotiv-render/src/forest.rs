@@ -98,13 +98,21 @@ fn axis(record: &StudyRecord, panel: &Panel) -> (Ticks, f64, f64) {
             hi = hi.max(v);
         }
     }
-    if lo >= hi {
-        let half = if lo.is_finite() && lo != 0.0 {
-            lo.abs() * 0.1
+    // No span, or one of rounding noise only (a zero effect's 1e-15): an axis around its
+    // centre (0 for noise around 0).
+    let scale = 1.0 + lo.abs().max(hi.abs());
+    if !(lo.is_finite() && hi.is_finite()) || hi - lo <= 1e-9 * scale {
+        let centre = if lo.is_finite() && hi.is_finite() {
+            (lo + hi) / 2.0
         } else {
-            1.0
+            0.0
         };
-        let centre = if lo.is_finite() { lo } else { 0.0 };
+        let centre = if centre.abs() < 1e-9 { 0.0 } else { centre };
+        let half = if centre == 0.0 {
+            1.0
+        } else {
+            centre.abs() * 0.1
+        };
         (lo, hi) = (centre - half, centre + half);
     }
     // The span widened to the ticks' step on both sides, with a tick at each end.
@@ -335,5 +343,18 @@ mod tests {
         for tick in [">−4<", ">−2<", ">0<", ">2<", ">4<", ">6<", ">8<"] {
             assert!(svg.contains(tick), "{tick}: {svg}");
         }
+    }
+
+    /// A panel whose numbers are all rounding noise around 0 (a zero slope, 1e-15) gets an
+    /// axis around 0 with round ticks, not ticks of fifteen decimals.
+    #[test]
+    fn a_panel_of_rounding_noise_gets_an_axis_around_zero() {
+        let mut r = record(vec![compare("x", Measure::Exploration)]);
+        r.claims[0] = claim(&r.hypotheses[0], 1e-15, -2e-16, 3e-15);
+        let svg = forest_svg(&r);
+        for tick in [">−1.0<", ">0.0<", ">1.0<"] {
+            assert!(svg.contains(tick), "{tick}: {svg}");
+        }
+        assert!(!svg.contains("0.000000"), "{svg}");
     }
 }

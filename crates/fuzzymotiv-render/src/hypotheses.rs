@@ -364,6 +364,14 @@ pub(crate) mod tests {
             md.contains("| 0.051 | [0.000, 0.100] | 0.062 | 0.062 | – |"),
             "{md}"
         );
+        // A zero slope's rounding noise prints as zeros, not to fifteen decimals.
+        r.claims[2] = claim(&r.hypotheses[2], 1e-15, -2e-16, 3e-15);
+        r.claims[2].mdd = Some(4e-15);
+        assert!(
+            claim_line(&r.claims[2]).ends_with("(effect 0.000, CI [0.000, 0.000], p 0.062)"),
+            "{}",
+            claim_line(&r.claims[2])
+        );
         assert!(
             claim_line(&r.claims[0]).ends_with("(effect 7.3, CI [7.3, 32.5], p 0.062)"),
             "{}",
