@@ -7,6 +7,7 @@
 
 pub mod analysis;
 pub mod file;
+pub mod per_seed;
 pub mod run;
 
 pub use file::{STUDY_FILE, Study};
