@@ -89,12 +89,13 @@ fn per_seed(rows: &[Row], arm: &str, measure: &str) -> Vec<f64> {
 }
 
 /// The tiny sizes both sides of a comparison run at.
-const COMBINATION_SIZES: [&str; 5] = [
+const COMBINATION_SIZES: [&str; 6] = [
     "ga.population=8",
     "ga.generations=3",
     "trial.steps=120",
     "aem.epochs=10",
     "aem.test_runs=3",
+    "rooms=[\"H\", \"square\"]",
 ];
 
 /// studies/combination.toml is `reproduce --combination` as hypotheses: the same runs, each
@@ -104,7 +105,7 @@ const COMBINATION_SIZES: [&str; 5] = [
 #[test]
 fn the_combination_study_file_says_what_reproduce_combination_says_of_the_same_runs() {
     let dir = tempfile::tempdir().unwrap();
-    let sizes = "set = { ga = { population = 8, generations = 3 }, trial = { steps = 120 }, aem = { epochs = 10, test_runs = 3 } }";
+    let sizes = "set = { ga = { population = 8, generations = 3 }, trial = { steps = 120 }, aem = { epochs = 10, test_runs = 3 }, rooms = [\"H\", \"square\"] }";
     let header = format!("seeds = 3\nbase_seeds = [1]\n{sizes}\n");
     let file = tiny_file(
         dir.path(),
@@ -173,16 +174,19 @@ fn the_combination_study_file_says_what_reproduce_combination_says_of_the_same_r
             fuzzymotiv::statistics::mean(&d)
         };
         let b = base(&r["combination"]);
-        assert!((effect(b) - f(r, "effect_combination")).abs() < 1e-9, "{id}");
+        assert!(
+            (effect(b) - f(r, "effect_combination")).abs() < 1e-9,
+            "{id}"
+        );
         assert!((effect("tsk") - f(r, "effect_tsk")).abs() < 1e-9, "{id}");
     }
 }
 
 /// The tiny sizes of the urgency study on two of the fetch rooms.
 const URGENCY_SIZES: [&str; 6] = [
-    "ga.population=10",
-    "ga.generations=3",
-    "trial.steps=80",
+    "ga.population=16",
+    "ga.generations=4",
+    "trial.steps=400",
     "aem.epochs=10",
     "aem.test_runs=2",
     "rooms=[\"fetch-H\", \"fetch-square\"]",
@@ -190,14 +194,14 @@ const URGENCY_SIZES: [&str; 6] = [
 
 /// studies/urgency.toml on `reproduce --urgency`'s runs: each seed's missions done are its
 /// success rate, and its time to the goal is reproduce's (the mean step of the test runs that
-/// arrived) with T = 80 for each test run that did not; the missions' comparisons have
+/// arrived) with T = 400 for each test run that did not; the missions' comparisons have
 /// reproduce's numbers.
 #[test]
 fn the_urgency_study_file_times_the_missions_reproduce_urgency_times_counting_t_for_none() {
     let dir = tempfile::tempdir().unwrap();
     let rooms = repo().join("rooms");
     let sizes = format!(
-        "set = {{ ga = {{ population = 10, generations = 3 }}, trial = {{ steps = 80 }}, aem = {{ epochs = 10, test_runs = 2 }}, rooms = [{:?}, {:?}] }}",
+        "set = {{ ga = {{ population = 16, generations = 4 }}, trial = {{ steps = 400 }}, aem = {{ epochs = 10, test_runs = 2 }}, rooms = [{:?}, {:?}] }}",
         rooms.join("fetch-H.toml").display().to_string(),
         rooms.join("fetch-square.toml").display().to_string()
     );
@@ -221,6 +225,18 @@ fn the_urgency_study_file_times_the_missions_reproduce_urgency_times_counting_t_
     let tests = 2.0 * 2.0; // two rooms, two test runs each
     let seeds = read_csv(&rep.join("urgency_seeds.csv"));
     assert_eq!(seeds.len(), 4 * 3);
+    // Both kinds of test run are here: some arrived, some never did.
+    let arrived = (seeds.iter())
+        .filter(|s| !s["time_to_goal"].is_empty())
+        .count();
+    let all = (seeds.iter())
+        .filter(|s| f(s, "success_pct") == 100.0)
+        .count();
+    assert!(
+        arrived > 0 && all < seeds.len(),
+        "{arrived} of {} seeds arrived",
+        seeds.len()
+    );
     for arm in ["urgency-0.0", "urgency-0.1", "urgency-0.2", "urgency-0.3"] {
         let theirs: Vec<&Row> = seeds.iter().filter(|s| s["setting"] == arm).collect();
         let done = per_seed(&rows, arm, "mission_done_pct");
@@ -235,13 +251,16 @@ fn the_urgency_study_file_times_the_missions_reproduce_urgency_times_counting_t_
             } else {
                 f(s, "time_to_goal") * arrived
             };
-            let want = (steps + 80.0 * (tests - arrived)) / tests;
+            let want = (steps + 400.0 * (tests - arrived)) / tests;
             assert!((time - want).abs() < 1e-9, "{at}: {time} against {want}");
         }
     }
     let claims = read_csv(&out.join("claims.csv"));
     let success = read_csv(&rep.join("urgency.csv"));
-    let success: Vec<&Row> = success.iter().filter(|r| r["measure"] == "% success").collect();
+    let success: Vec<&Row> = success
+        .iter()
+        .filter(|r| r["measure"] == "% success")
+        .collect();
     assert_eq!(success.len(), 4);
     for r in success {
         let id = format!("mission_done-{:.1}-{:.1}", f(r, "from"), f(r, "to"));
@@ -285,7 +304,9 @@ fn the_orientation_study_file_reports_each_arms_measures_as_the_orientation_merg
             "homing_pct",
         ] {
             let ours = (arms.iter())
-                .find(|m| m["arm"] == a["setting"] && m["room"] == a["room"] && m["measure"] == metric)
+                .find(|m| {
+                    m["arm"] == a["setting"] && m["room"] == a["room"] && m["measure"] == metric
+                })
                 .unwrap_or_else(|| panic!("arms.csv: no {metric} of {a:?}"));
             let at = format!("{} {} {metric}", a["setting"], a["room"]);
             assert_eq!(ours["seeds"], a["n"], "{at}");

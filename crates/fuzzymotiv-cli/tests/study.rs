@@ -282,10 +282,23 @@ fn a_fetch_study_writes_typed_records_whose_every_verdict_is_recomputed_from_its
     // The time to the goal is a mean step of test runs, T (150 here) for one that never
     // arrived; the end spread a share of a room's largest distance.
     let per_seed = read_csv(&out.join("per_seed.csv"));
-    let of = |m: &str| per_seed.iter().filter(move |r| r["measure"] == m).map(|r| f(r, "value"));
-    assert!(of("time_to_goal").all(|t| (1.0..=150.0).contains(&t)));
-    assert!(of("end_spread_pct").all(|v| (0.0..=100.0).contains(&v)));
-    assert_eq!(of("end_spread_pct").count(), 3 * 2 * 4 * 6, "3 arms, 2 × 4 seeds, 5 rooms + all");
+    let of = |m: &str| -> Vec<f64> {
+        (per_seed.iter())
+            .filter(|r| r["measure"] == m)
+            .map(|r| f(r, "value"))
+            .collect()
+    };
+    assert!(of("time_to_goal").iter().all(|t| (1.0..=150.0).contains(t)));
+    assert!(
+        of("end_spread_pct")
+            .iter()
+            .all(|v| (0.0..=100.0).contains(v))
+    );
+    assert_eq!(
+        of("end_spread_pct").len(),
+        3 * 2 * 4 * 6,
+        "3 arms, 2 × 4 seeds, 5 rooms + all"
+    );
 }
 
 #[test]
@@ -366,7 +379,11 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
         ),
         (
             difference(u5, u3, u3, u1, "hurry"),
-            vec!["hypothesis[4].measure", "unknown measure `hurry`", "time_to_goal"],
+            vec![
+                "hypothesis[4].measure",
+                "unknown measure `hurry`",
+                "time_to_goal",
+            ],
         ),
     ];
     let cases: [(&str, &str, &[&str]); 10] = [
@@ -465,7 +482,11 @@ fn a_study_without_hypotheses_must_name_known_measures_to_report() {
         ("", &["`hypothesis`", "study.measures"]),
         (
             "measures = [\"exploration\", \"hurry\"]\n",
-            &["study.measures[1]", "unknown measure `hurry`", "time_to_goal"],
+            &[
+                "study.measures[1]",
+                "unknown measure `hurry`",
+                "time_to_goal",
+            ],
         ),
         (
             "measures = [\"goal\", \"goal_pct\"]\n",
@@ -477,7 +498,12 @@ fn a_study_without_hypotheses_must_name_known_measures_to_report() {
         let with = arms_only.replacen("seeds = 4\n", &format!("seeds = 4\n{measures}"), 1);
         std::fs::write(&file, with).unwrap();
         let out = dir.path().join(format!("out{k}"));
-        let o = run(&["study", file.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+        let o = run(&[
+            "study",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
         let message = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "case {k}: {message}");
         assert!(message.contains(&format!("arms{k}.toml")), "{message}");

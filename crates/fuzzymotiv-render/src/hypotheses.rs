@@ -433,7 +433,14 @@ mod tests {
         for absent in ["## Claims", "forest.svg", "## Per room", "## Analysis"] {
             assert!(!md.contains(absent), "{absent}: {md}");
         }
-        let with = report_md(&record(vec![Hypothesis::Rising { id: "f".into(), arm: "a".into() }]), &[], "");
+        let with = report_md(
+            &record(vec![Hypothesis::Rising {
+                id: "f".into(),
+                arm: "a".into(),
+            }]),
+            &[],
+            "",
+        );
         assert!(with.contains("## Claims") && with.contains("## Measures per arm"));
     }
 

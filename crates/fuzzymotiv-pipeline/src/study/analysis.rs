@@ -22,8 +22,8 @@ use fuzzymotiv::statistics::{self, Comparison, Expect, Settings, StatsError, Ver
 
 use crate::files::error::CliError;
 use crate::records::hypotheses::{
-    AnalysisRecord, ArmMeasureRow, ClaimRow, Direction, FIRST_MEAN_F, HolmOver, Hypothesis, LAST_MEAN_F, POOLED,
-    PerSeedRow, RoomResultRow, Rule, base_scope,
+    AnalysisRecord, ArmMeasureRow, ClaimRow, Direction, FIRST_MEAN_F, HolmOver, Hypothesis,
+    LAST_MEAN_F, POOLED, PerSeedRow, RoomResultRow, Rule, base_scope,
 };
 
 /// A test's outcome before its verdict.

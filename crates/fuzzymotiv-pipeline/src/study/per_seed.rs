@@ -76,7 +76,12 @@ pub fn per_seed(study: &Study, out: &Path) -> Result<Vec<PerSeedRow>, CliError> 
 }
 
 /// Measure `m` in each room of a run's records.
-fn of_rooms(study: &Study, job: &Job, m: &Measure, rooms: &[RoomRow]) -> Result<Vec<f64>, CliError> {
+fn of_rooms(
+    study: &Study,
+    job: &Job,
+    m: &Measure,
+    rooms: &[RoomRow],
+) -> Result<Vec<f64>, CliError> {
     (rooms.iter())
         .map(|r| {
             m.of_room(r).ok_or_else(|| {

@@ -233,17 +233,24 @@ fn a_difference_is_the_paired_test_of_two_paired_differences() {
     let got = claims(&[h(Direction::Higher)], &rows, &[1], &level, &a).unwrap();
     assert!((got[0].effect - 10.0).abs() < 1e-9, "{}", got[0].effect);
     assert_eq!(got[0].p, 1.0 / 32.0);
-    assert_eq!((got[0].verdict.as_str(), got[0].kind.as_str()), ("holds", "difference"));
+    assert_eq!(
+        (got[0].verdict.as_str(), got[0].kind.as_str()),
+        ("holds", "difference")
+    );
     assert_eq!(got[0].arms, "hi;mid;mid;lo");
     let of = |arm| values(&rows, arm, "urgency_pct", "", POOLED);
-    let minus = |x: Vec<f64>, y: Vec<f64>| -> Vec<f64> { x.iter().zip(&y).map(|(x, y)| x - y).collect() };
+    let minus =
+        |x: Vec<f64>, y: Vec<f64>| -> Vec<f64> { x.iter().zip(&y).map(|(x, y)| x - y).collect() };
     let c = statistics::paired(
         &minus(of("hi"), of("mid")),
         &minus(of("mid"), of("lo")),
         &settings(&a, &rows, POOLED),
     )
     .unwrap();
-    assert_eq!((got[0].effect, got[0].ci_low, got[0].p), (c.difference, c.ci_low, c.p));
+    assert_eq!(
+        (got[0].effect, got[0].ci_low, got[0].p),
+        (c.difference, c.ci_low, c.p)
+    );
     let got = claims(&[h(Direction::Lower)], &rows, &[1], &level, &a).unwrap();
     assert_eq!(got[0].verdict, "opposite");
     // Per room too: the rooms every one of its four arms has.
@@ -271,7 +278,10 @@ fn each_arms_measures_are_the_mean_and_sd_of_its_seeds() {
     let rows = rows(|k, seed| 10.0 * k as f64 + seed as f64);
     let got = arm_measures(&rows, &["lo", "hi"], &[1]);
     assert_eq!(got.len(), 2 * 2, "{got:?}");
-    let hi = got.iter().find(|m| m.arm == "hi" && m.room.is_empty()).unwrap();
+    let hi = got
+        .iter()
+        .find(|m| m.arm == "hi" && m.room.is_empty())
+        .unwrap();
     assert_eq!((hi.seeds, hi.mean), (6, 22.5));
     let v: Vec<f64> = (0..6).map(|s| 20.0 + s as f64).collect();
     assert_eq!(hi.sd, statistics::sample_sd(&v));
