@@ -43,7 +43,9 @@ fn tiny_study(dir: &Path, base_seeds: &str, extra: &str) -> PathBuf {
     path
 }
 
-/// Two more hypotheses, of the kinds the shipped file lacks: a range and a trend of a term.
+/// Four more hypotheses, of the kinds and measures the shipped file lacks: a range, a trend of
+/// a term, a difference of differences of the time to the goal and a comparison of the end
+/// spread (both read back from the runs).
 const MORE: &str = r#"
 [[hypothesis]]
 id = "explores"
@@ -59,6 +61,24 @@ kind = "trend"
 measure = "safety"
 arms = ["urgency-0.1", "urgency-0.3", "urgency-0.5"]
 expect = "decreasing"
+
+[[hypothesis]]
+id = "sooner-and-sooner"
+kind = "difference"
+measure = "time_to_goal"
+a = "urgency-0.5"
+b = "urgency-0.3"
+versus_a = "urgency-0.3"
+versus_b = "urgency-0.1"
+expect = "lower"
+
+[[hypothesis]]
+id = "ends-closer"
+kind = "compare"
+measure = "end_spread"
+a = "urgency-0.5"
+b = "urgency-0.1"
+expect = "lower"
 "#;
 
 fn study(file: &Path, out: &Path, more: &[&str]) -> std::process::Output {
@@ -113,6 +133,15 @@ fn recompute(
     match h["kind"].as_str().unwrap() {
         "compare" => {
             let c = statistics::paired(&of(&h["a"], measure), &of(&h["b"], measure), s).unwrap();
+            (c.difference, c.p, c.mdd, way(&h["expect"]) * c.difference)
+        }
+        "difference" => {
+            let minus = |a: &str, b: &str| -> Vec<f64> {
+                let (a, b) = (of(&h[a], measure), of(&h[b], measure));
+                a.iter().zip(&b).map(|(a, b)| a - b).collect()
+            };
+            let (x, y) = (minus("a", "b"), minus("versus_a", "versus_b"));
+            let c = statistics::paired(&x, &y, s).unwrap();
             (c.difference, c.p, c.mdd, way(&h["expect"]) * c.difference)
         }
         "rising" => {
@@ -225,8 +254,8 @@ fn a_fetch_study_writes_typed_records_whose_every_verdict_is_recomputed_from_its
     for name in ANALYSIS {
         assert!(out.join(name).is_file(), "{name} written");
     }
-    // Six hypotheses, judged pooled and at each of the two base seeds.
-    assert_eq!(recompute_every_verdict(&out), 18);
+    // Eight hypotheses, judged pooled and at each of the two base seeds.
+    assert_eq!(recompute_every_verdict(&out), 24);
     let printed = stdout(&o);
     assert!(
         printed.contains("sooner: ")
@@ -246,10 +275,30 @@ fn a_fetch_study_writes_typed_records_whose_every_verdict_is_recomputed_from_its
         assert!(report.contains(part), "report.md lacks {part}");
     }
     let forest = std::fs::read_to_string(out.join("forest.svg")).unwrap();
-    assert_eq!(forest.matches("<circle").count(), 18, "a dot per result");
+    assert_eq!(forest.matches("<circle").count(), 24, "a dot per result");
     // The rooms' table: the five fetch rooms per hypothesis over a measure (all but `learns`)
     // and scope.
-    assert_eq!(read_csv(&out.join("rooms.csv")).len(), 5 * 5 * 3);
+    assert_eq!(read_csv(&out.join("rooms.csv")).len(), 5 * 7 * 3);
+    // The time to the goal is a mean step of test runs, T (150 here) for one that never
+    // arrived; the end spread a share of a room's largest distance.
+    let per_seed = read_csv(&out.join("per_seed.csv"));
+    let of = |m: &str| -> Vec<f64> {
+        (per_seed.iter())
+            .filter(|r| r["measure"] == m)
+            .map(|r| f(r, "value"))
+            .collect()
+    };
+    assert!(of("time_to_goal").iter().all(|t| (1.0..=150.0).contains(t)));
+    assert!(
+        of("end_spread_pct")
+            .iter()
+            .all(|v| (0.0..=100.0).contains(v))
+    );
+    assert_eq!(
+        of("end_spread_pct").len(),
+        3 * 2 * 4 * 6,
+        "3 arms, 2 × 4 seeds, 5 rooms + all"
+    );
 }
 
 #[test]
@@ -309,6 +358,34 @@ fn edited(dir: &Path, name: &str, line: &str, by: &str) -> PathBuf {
 #[test]
 fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
+    let difference = |a: &str, b: &str, c: &str, d: &str, measure: &str| {
+        format!(
+            "\n[[hypothesis]]\nid = \"diff\"\nkind = \"difference\"\nmeasure = \"{measure}\"\na = \"{a}\"\nb = \"{b}\"\nversus_a = \"{c}\"\nversus_b = \"{d}\"\nexpect = \"lower\"\n"
+        )
+    };
+    let (u1, u3, u5) = ("urgency-0.1", "urgency-0.3", "urgency-0.5");
+    let more = [
+        (
+            difference(u5, u3, "urgency-0.9", u1, "urgency"),
+            vec!["hypothesis[4].versus_a", "unknown arm `urgency-0.9`"],
+        ),
+        (
+            difference(u5, u3, u1, u1, "urgency"),
+            vec!["hypothesis[4].versus_b", "from itself"],
+        ),
+        (
+            difference(u5, u3, u3, u5, "urgency"),
+            vec!["hypothesis[4].versus_a", "compares two different pairs"],
+        ),
+        (
+            difference(u5, u3, u3, u1, "hurry"),
+            vec![
+                "hypothesis[4].measure",
+                "unknown measure `hurry`",
+                "time_to_goal",
+            ],
+        ),
+    ];
     let cases: [(&str, &str, &[&str]); 10] = [
         (
             "measure = \"urgency\"          #",
@@ -367,7 +444,10 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
             ],
         ),
     ];
-    for (k, (line, by, says)) in cases.iter().enumerate() {
+    let more: Vec<(&str, &str, &[&str])> = (more.iter())
+        .map(|(by, says)| ("", by.as_str(), says.as_slice()))
+        .collect();
+    for (k, (line, by, says)) in cases.iter().chain(&more).enumerate() {
         let file = edited(dir.path(), &format!("bad{k}.toml"), line, by);
         let out = dir.path().join(format!("out{k}"));
         let o = run(&[
@@ -386,6 +466,50 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
             assert!(message.contains(s), "case {k} says {s:?}: {message}");
         }
         assert!(!message.contains("panicked"), "{message}");
+        assert!(!out.exists(), "case {k}: nothing written");
+    }
+}
+
+/// A study without hypotheses (a sweep of arms) names the measures it reports of each arm; with
+/// neither, or a measure its runs do not write, or one twice, it exits 2 naming the file and
+/// the field, nothing written.
+#[test]
+fn a_study_without_hypotheses_must_name_known_measures_to_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(tiny_study(dir.path(), "[1]", "")).unwrap();
+    let arms_only = &text[..text.find("[[hypothesis]]").unwrap()];
+    let cases: [(&str, &[&str]); 3] = [
+        ("", &["`hypothesis`", "study.measures"]),
+        (
+            "measures = [\"exploration\", \"hurry\"]\n",
+            &[
+                "study.measures[1]",
+                "unknown measure `hurry`",
+                "time_to_goal",
+            ],
+        ),
+        (
+            "measures = [\"goal\", \"goal_pct\"]\n",
+            &["study.measures[1]", "`goal_pct` is listed twice"],
+        ),
+    ];
+    for (k, (measures, says)) in cases.iter().enumerate() {
+        let file = dir.path().join(format!("arms{k}.toml"));
+        let with = arms_only.replacen("seeds = 4\n", &format!("seeds = 4\n{measures}"), 1);
+        std::fs::write(&file, with).unwrap();
+        let out = dir.path().join(format!("out{k}"));
+        let o = run(&[
+            "study",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let message = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "case {k}: {message}");
+        assert!(message.contains(&format!("arms{k}.toml")), "{message}");
+        for s in *says {
+            assert!(message.contains(s), "case {k} says {s:?}: {message}");
+        }
         assert!(!out.exists(), "case {k}: nothing written");
     }
 }
@@ -555,9 +679,9 @@ fn the_paper_study_file_runs_reproduces_runs_and_gives_its_claims_numbers() {
     assert_eq!(recompute_every_verdict(&out), 8);
 }
 
-/// Every shipped study file (studies/*.toml) loads, every run's config checked, and
-/// replicates: it runs at two base seeds or more, so that it reports each base seed's verdict
-/// beside the pooled one.
+/// Every shipped study file (studies/*.toml) loads, every run's config checked, and each that
+/// reports a verdict replicates: it runs at two base seeds or more, so that it reports each base
+/// seed's verdict beside the pooled one (the orientation study, a sweep of arms, has none).
 #[test]
 fn every_shipped_study_file_loads_and_runs_at_two_base_seeds() {
     let mut files: Vec<PathBuf> = std::fs::read_dir(repo().join("studies"))
@@ -566,12 +690,14 @@ fn every_shipped_study_file_loads_and_runs_at_two_base_seeds() {
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     files.sort();
-    assert!(files.len() >= 6, "{files:?}");
+    assert!(files.len() >= 7, "{files:?}");
     for file in files {
         let study = fuzzymotiv_pipeline::study::Study::load(&file)
             .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        let sweep = file.ends_with("orientation.toml");
+        assert_eq!(study.hypotheses.is_empty(), sweep, "{}", file.display());
         assert!(
-            study.base_seeds.len() >= 2,
+            sweep || study.base_seeds.len() >= 2,
             "{}: base seeds {:?}",
             file.display(),
             study.base_seeds

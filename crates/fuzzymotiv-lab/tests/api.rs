@@ -1497,6 +1497,7 @@ fn a_study_started_in_the_lab_writes_what_fuzzymotiv_study_writes_and_shows_its_
         "per_seed.csv",
         "claims.csv",
         "rooms.csv",
+        "arms.csv",
         "study.json",
         "report.md",
         "forest.svg",

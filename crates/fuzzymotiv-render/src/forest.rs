@@ -43,6 +43,7 @@ fn quantity(kind: &str) -> &'static str {
         "trend" => "slope per unit of level",
         "range" => "the arm's mean",
         "rising" => "last generation − first",
+        "difference" => "difference of two differences",
         _ => "difference between the arms",
     }
 }

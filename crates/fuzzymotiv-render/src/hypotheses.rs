@@ -37,13 +37,16 @@ fn num(v: f64) -> String {
 pub fn report_md(record: &StudyRecord, per_seed: &[PerSeedRow], study_text: &str) -> String {
     let mut s = format!("# Study `{}`\n\n", record.name);
     s.push_str(&arms_md(record));
-    s.push_str(&analysis_md(record));
-    s.push_str(&claims_md(record));
-    s.push_str("![Every hypothesis's effect with its interval](forest.svg)\n\n");
-    if record.base_seeds.len() > 1 {
-        s.push_str(&replication_md(record));
+    if !record.hypotheses.is_empty() {
+        s.push_str(&analysis_md(record));
+        s.push_str(&claims_md(record));
+        s.push_str("![Every hypothesis's effect with its interval](forest.svg)\n\n");
+        if record.base_seeds.len() > 1 {
+            s.push_str(&replication_md(record));
+        }
+        s.push_str(&rooms_md(record));
     }
-    s.push_str(&rooms_md(record));
+    s.push_str(&measures_md(record));
     s.push_str(&seeds_md(per_seed));
     let fence = if study_text.contains("```") {
         "~~~~"
@@ -107,7 +110,7 @@ fn analysis_md(record: &StudyRecord) -> String {
         HolmOver::None => "no p-value is adjusted",
     };
     format!(
-        "## Analysis\n\nα = {}, {} % bootstrap intervals ({} resamples), minimum detectable difference at {} % power (normal approximation). Paired sign-flip permutation tests over the seeds (exact up to 16 seeds). A compare hypothesis tests the per-seed differences of the two arms; a trend the per-seed least-squares slopes against the arms' levels (per unit of level); a range the arm's mean against each bound (it holds when significantly above the lower and below the upper bound; p is the larger); rising the last generation's mean F against the first's. A hypothesis is judged on each run's mean over its rooms. Verdicts: {rule}; {holm}.\n\n",
+        "## Analysis\n\nα = {}, {} % bootstrap intervals ({} resamples), minimum detectable difference at {} % power (normal approximation). Paired sign-flip permutation tests over the seeds (exact up to 16 seeds). A compare hypothesis tests the per-seed differences of the two arms; a difference the per-seed a − b against versus_a − versus_b (a difference of two paired differences); a trend the per-seed least-squares slopes against the arms' levels (per unit of level); a range the arm's mean against each bound (it holds when significantly above the lower and below the upper bound; p is the larger); rising the last generation's mean F against the first's. A hypothesis is judged on each run's mean over its rooms. Verdicts: {rule}; {holm}.\n\n",
         num(a.alpha),
         num(100.0 * a.confidence),
         fuzzymotiv::statistics::BOOTSTRAP_RESAMPLES,
@@ -203,6 +206,29 @@ fn room_format(record: &StudyRecord, r: &RoomResultRow) -> RowFormat {
     let mut numbers = vec![r.effect, r.ci_low, r.ci_high];
     numbers.extend(r.mdd);
     RowFormat::of(kind, measure, &numbers)
+}
+
+/// Each arm's measures over the pooled seeds (`arms.csv`): mean ± sample sd of each seed's mean
+/// over the rooms, then per room.
+fn measures_md(record: &StudyRecord) -> String {
+    let mut s = String::from(
+        "## Measures per arm\n\nMean ± sample standard deviation over the seeds (`arms.csv`; each base seed's too).\n\n| arm | measure | room | seeds | mean ± sd |\n|---|---|---|---|---|\n",
+    );
+    for m in record.measures.iter().filter(|m| m.scope == POOLED) {
+        let fmt = RowFormat::of("", &m.measure, &[m.mean, m.sd.unwrap_or(0.0)]);
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} ± {} |",
+            m.arm,
+            m.measure,
+            if m.room.is_empty() { "all" } else { &m.room },
+            m.seeds,
+            fmt.num(m.mean),
+            fmt.mdd(m.sd)
+        );
+    }
+    s.push('\n');
+    s
 }
 
 /// Per seed, each arm's value (the mean over its rooms) of every measure, each measure's
@@ -306,7 +332,42 @@ pub(crate) mod tests {
             hypotheses,
             claims,
             rooms: Vec::new(),
+            measures: Vec::new(),
         }
+    }
+
+    #[test]
+    /// A study without hypotheses (a sweep of arms) reports each arm's measures and no
+    /// claims, forest plot or rooms' results.
+    #[test]
+    fn a_study_without_hypotheses_reports_its_arms_measures_and_no_claims() {
+        let mut r = record(Vec::new());
+        r.measures = vec![fuzzymotiv_records::records::hypotheses::ArmMeasureRow {
+            scope: POOLED.into(),
+            arm: "online".into(),
+            measure: "recognition_pct".into(),
+            room: String::new(),
+            seeds: 5,
+            mean: 42.5,
+            sd: Some(3.26),
+        }];
+        let md = report_md(&r, &[], "");
+        assert!(
+            md.contains("| online | recognition_pct | all | 5 | 42.5 ± 3.3 |"),
+            "{md}"
+        );
+        for absent in ["## Claims", "forest.svg", "## Per room", "## Analysis"] {
+            assert!(!md.contains(absent), "{absent}: {md}");
+        }
+        let with = report_md(
+            &record(vec![Hypothesis::Rising {
+                id: "f".into(),
+                arm: "a".into(),
+            }]),
+            &[],
+            "",
+        );
+        assert!(with.contains("## Claims") && with.contains("## Measures per arm"));
     }
 
     #[test]

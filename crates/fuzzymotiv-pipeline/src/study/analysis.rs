@@ -4,6 +4,8 @@
 //! values, never looked up.
 //!
 //! - compare: the paired test of the arms' per-seed values ([`statistics::paired`]);
+//! - difference: the paired test of a − b against versus_a − versus_b, per seed (a difference
+//!   of two paired differences; `reproduce --combination`'s claim differences);
 //! - trend: per seed, the least-squares slope of the value against the arms' levels, tested
 //!   against 0 (the sign-flip test of the slopes);
 //! - range: the arm's mean and its interval; it holds when the mean is significantly above
@@ -20,8 +22,8 @@ use fuzzymotiv::statistics::{self, Comparison, Expect, Settings, StatsError, Ver
 
 use crate::files::error::CliError;
 use crate::records::hypotheses::{
-    AnalysisRecord, ClaimRow, Direction, FIRST_MEAN_F, HolmOver, Hypothesis, LAST_MEAN_F, POOLED,
-    PerSeedRow, RoomResultRow, Rule, base_scope,
+    AnalysisRecord, ArmMeasureRow, ClaimRow, Direction, FIRST_MEAN_F, HolmOver, Hypothesis,
+    LAST_MEAN_F, POOLED, PerSeedRow, RoomResultRow, Rule, base_scope,
 };
 
 /// A test's outcome before its verdict.
@@ -89,6 +91,25 @@ pub fn compare(
     s: &Settings,
 ) -> Result<Tested, StatsError> {
     Ok(Tested::of(&statistics::paired(a, b, s)?, expect, a.len()))
+}
+
+/// A difference of differences: the paired test of the per-seed `a` − `b` against `c` − `d`
+/// (all four over the same seeds).
+pub fn difference(
+    [a, b, c, d]: [&[f64]; 4],
+    expect: Direction,
+    s: &Settings,
+) -> Result<Tested, StatsError> {
+    let minus = |x: &[f64], y: &[f64]| -> Result<Vec<f64>, StatsError> {
+        if x.len() != y.len() {
+            return Err(StatsError::Lengths {
+                a: x.len(),
+                b: y.len(),
+            });
+        }
+        Ok(x.iter().zip(y).map(|(x, y)| x - y).collect())
+    };
+    compare(&minus(a, b)?, &minus(c, d)?, expect, s)
 }
 
 /// The least-squares slope of `ys` against `xs`.
@@ -170,6 +191,17 @@ pub fn test(
     let of = |arm: &str| values(rows, arm, &column, room, scope);
     match h {
         Hypothesis::Compare { a, b, expect, .. } => compare(&of(a), &of(b), *expect, s),
+        Hypothesis::Difference {
+            a,
+            b,
+            versus_a,
+            versus_b,
+            expect,
+            ..
+        } => {
+            let (a, b, c, d) = (of(a), of(b), of(versus_a), of(versus_b));
+            difference([&a, &b, &c, &d], *expect, s)
+        }
         Hypothesis::Trend { arms, expect, .. } => {
             let levels: Vec<f64> = arms.iter().map(|a| level(a)).collect();
             let ys: Vec<Vec<f64>> = arms.iter().map(|a| of(a)).collect();
@@ -304,6 +336,37 @@ pub fn room_results(
         }
     }
     Ok(out)
+}
+
+/// Each arm's value of every measure of `rows` (`per_seed.csv`), over each scope's seeds, in
+/// each room and over the rooms (room empty): the seeds, their mean and sample standard
+/// deviation (`arms.csv`; the report's "Measures per arm"). What a study without hypotheses
+/// (a sweep of arms) reports.
+pub fn arm_measures(rows: &[PerSeedRow], arms: &[&str], base_seeds: &[u64]) -> Vec<ArmMeasureRow> {
+    let mut out = Vec::new();
+    for scope in scopes(base_seeds) {
+        for &arm in arms {
+            let mut keys: Vec<(&str, &str)> = Vec::new();
+            for r in rows.iter().filter(|r| r.arm == arm) {
+                if !keys.contains(&(r.measure.as_str(), r.room.as_str())) {
+                    keys.push((&r.measure, &r.room));
+                }
+            }
+            for (measure, room) in keys {
+                let v = values(rows, arm, measure, room, &scope);
+                out.push(ArmMeasureRow {
+                    scope: scope.clone(),
+                    arm: arm.to_string(),
+                    measure: measure.to_string(),
+                    room: room.to_string(),
+                    seeds: v.len(),
+                    mean: statistics::mean(&v),
+                    sd: statistics::sample_sd(&v),
+                });
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]

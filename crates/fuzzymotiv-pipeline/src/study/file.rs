@@ -53,6 +53,9 @@ struct RawHeader {
     config: Option<String>,
     #[serde(default)]
     set: toml::Table,
+    /// Measures every arm's runs are reported on (`arms.csv`), beyond those the hypotheses read.
+    #[serde(default)]
+    measures: Vec<Measure>,
 }
 
 fn first_base() -> Vec<u64> {
@@ -112,6 +115,9 @@ pub struct Study {
     pub analysis: AnalysisRecord,
     /// The hypotheses, in the file's order.
     pub hypotheses: Vec<Hypothesis>,
+    /// The measures `[study] measures` names: every arm's values of them are reported (with
+    /// those the hypotheses read), hypotheses or none.
+    pub measures: Vec<Measure>,
     /// The runs: arms × base seeds × seeds, as a sweep's jobs (`setting` the arm's name).
     pub plan: Sweep,
 }
@@ -164,8 +170,10 @@ impl Study {
             base_seeds: raw.study.base_seeds.clone(),
             analysis,
             hypotheses,
+            measures: raw.study.measures.clone(),
             plan,
         };
+        study.check_measures()?;
         study.check_hypotheses()?;
         Ok(study)
     }
@@ -191,20 +199,57 @@ impl Study {
         }
         known.extend((extra_terms(&exp).into_iter()).map(|(name, _)| Measure::Term(name)));
         known.push(Measure::FirstMeanF);
+        known.push(Measure::EndSpread);
+        if exp.measures_mission() {
+            known.push(Measure::TimeToGoal);
+        }
         Ok(known.iter().map(Measure::column).collect())
+    }
+
+    /// `measure` checked against what the runs of `arms` write, naming `field` if not.
+    fn check_measure(&self, measure: &Measure, arms: &[&str], field: &str) -> Result<(), CliError> {
+        for arm in arms {
+            let columns = self.columns(self.arm_index(arm).expect("checked"))?;
+            if !columns.contains(&measure.column()) {
+                // A term is named as the study file names it (`hurry`, not its column).
+                let named = match measure {
+                    Measure::Term(name) => name.clone(),
+                    other => other.column(),
+                };
+                let why = format!(
+                    "unknown measure `{named}`: the runs of arm `{arm}` write {}",
+                    columns.join(", ")
+                );
+                return Err(err(&self.source, field, why));
+            }
+        }
+        Ok(())
+    }
+
+    /// The measures of `[study] measures`: each written by every arm's runs, none twice; a
+    /// study needs hypotheses or measures to report.
+    fn check_measures(&self) -> Result<(), CliError> {
+        if self.hypotheses.is_empty() && self.measures.is_empty() {
+            let why = "a study needs at least one [[hypothesis]], or the measures it reports \
+                       of each arm (study.measures, e.g. [\"exploration\", \"recognition\"])";
+            return Err(err(&self.source, "hypothesis", why));
+        }
+        let arms: Vec<&str> = self.arms.iter().map(|a| a.name.as_str()).collect();
+        for (k, m) in self.measures.iter().enumerate() {
+            let field = format!("study.measures[{k}]");
+            if self.measures[..k].contains(m) {
+                let why = format!("`{}` is listed twice", m.column());
+                return Err(err(&self.source, &field, why));
+            }
+            self.check_measure(m, &arms, &field)?;
+        }
+        Ok(())
     }
 
     /// Every hypothesis checked: a unique id, known arms (two different ones to compare, at
     /// least three with levels for a trend), a measure every arm it reads writes.
     fn check_hypotheses(&self) -> Result<(), CliError> {
         let source = &self.source;
-        if self.hypotheses.is_empty() {
-            return Err(err(
-                source,
-                "hypothesis",
-                "a study needs at least one [[hypothesis]]",
-            ));
-        }
         let mut ids = BTreeSet::new();
         for (i, h) in self.hypotheses.iter().enumerate() {
             let at = |f: &str| format!("hypothesis[{i}].{f}");
@@ -223,21 +268,8 @@ impl Study {
                 let why = format!("needs min < max, both finite; got {min} and {max}");
                 return Err(err(source, &at("min"), why));
             }
-            let Some(measure) = h.measure() else { continue };
-            for arm in h.arms() {
-                let columns = self.columns(self.arm_index(arm).expect("checked"))?;
-                if !columns.contains(&measure.column()) {
-                    // A term is named as the study file names it (`hurry`, not its column).
-                    let named = match measure {
-                        Measure::Term(name) => name.clone(),
-                        other => other.column(),
-                    };
-                    let why = format!(
-                        "unknown measure `{named}`: the runs of arm `{arm}` write {}",
-                        columns.join(", ")
-                    );
-                    return Err(err(source, &at("measure"), why));
-                }
+            if let Some(measure) = h.measure() {
+                self.check_measure(measure, &h.arms(), &at("measure"))?;
             }
         }
         Ok(())
@@ -249,6 +281,9 @@ impl Study {
         let names: Vec<&str> = self.arms.iter().map(|a| a.name.as_str()).collect();
         let field = match h {
             Hypothesis::Compare { .. } => |k: usize| ["a", "b"][k].to_string(),
+            Hypothesis::Difference { .. } => {
+                |k: usize| ["a", "b", "versus_a", "versus_b"][k].to_string()
+            }
             Hypothesis::Trend { .. } => |k: usize| format!("arms[{k}]"),
             _ => |_| "arm".to_string(),
         };
@@ -267,9 +302,41 @@ impl Study {
                 &format!("hypothesis[{i}].b"),
                 format!("compares arm `{a}` with itself: a comparison needs two arms"),
             )),
+            Hypothesis::Difference {
+                a,
+                b,
+                versus_a,
+                versus_b,
+                ..
+            } => self.check_difference([a, b, versus_a, versus_b], i),
             Hypothesis::Trend { arms, .. } => self.check_trend(arms, i),
             _ => Ok(()),
         }
+    }
+
+    /// A difference's arms: each pair two different arms, and the pairs not the same two.
+    fn check_difference(&self, [a, b, c, d]: [&String; 4], i: usize) -> Result<(), CliError> {
+        let field = |f: &str| format!("hypothesis[{i}].{f}");
+        let within = |x: &str, f: &str| {
+            let why = format!(
+                "subtracts arm `{x}` from itself: each side of a difference is two different arms"
+            );
+            Err(err(&self.source, &field(f), why))
+        };
+        if a == b {
+            return within(a, "b");
+        }
+        if c == d {
+            return within(c, "versus_b");
+        }
+        if (a, b) == (c, d) || (a, b) == (d, c) {
+            let why = format!(
+                "the difference {c} − {d} is {a} − {b}'s own (or its negative): a difference \
+                 compares two different pairs of arms (one pair: use kind = \"compare\")"
+            );
+            return Err(err(&self.source, &field("versus_a"), why));
+        }
+        Ok(())
     }
 
     /// A trend's arms: at least three, different, each with a `level`, the levels different.

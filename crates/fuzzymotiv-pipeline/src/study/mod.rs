@@ -8,6 +8,7 @@
 pub mod analysis;
 pub mod counter;
 pub mod file;
+pub mod per_seed;
 pub mod run;
 
 pub use counter::StudyCounter;

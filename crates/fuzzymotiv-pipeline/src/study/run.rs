@@ -1,7 +1,7 @@
 //! Running a study: its runs as a sweep's jobs into `OUT/jobs/ID/` ([`run_jobs`]; a shard of
 //! them on one machine, the others elsewhere), then, once every run is there, the analysis
-//! written beside them: `per_seed.csv`, `claims.csv`, `rooms.csv`, `study.json`, `report.md`
-//! and `forest.svg`. The analysis reads only the runs' records, so a study run in shards gives
+//! written beside them: `per_seed.csv`, `claims.csv`, `rooms.csv`, `arms.csv`, `study.json`,
+//! `report.md` and `forest.svg`. The analysis reads only the runs' records, so a study run in shards gives
 //! the same bytes as one run on one machine.
 
 use std::path::{Path, PathBuf};
@@ -11,11 +11,12 @@ use crate::files::guard::write_files;
 use crate::pipeline::lanes::set_threads;
 use crate::pipeline::progress::SweepProgress;
 use crate::pipeline::sweep_jobs::run_jobs;
-use crate::records::hypotheses::{ClaimRow, FIRST_MEAN_F, LAST_MEAN_F, PerSeedRow, StudyRecord};
-use crate::records::{PROGRAM, RunSummary, read_json, to_csv, to_json};
+use crate::records::hypotheses::{ClaimRow, StudyRecord};
+use crate::records::{PROGRAM, to_csv, to_json};
 use crate::render::hypotheses::{forest_svg, report_md};
 use crate::study::analysis;
 use crate::study::file::Study;
+use crate::study::per_seed::per_seed;
 
 /// How a study runs.
 #[derive(Debug, Clone, Default)]
@@ -121,6 +122,8 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
     let bases = &study.base_seeds;
     let claims = analysis::claims(&study.hypotheses, &rows, bases, &level, a)?;
     let room_rows = analysis::room_results(&study.hypotheses, &rows, bases, &level, a)?;
+    let arms: Vec<&str> = study.arms.iter().map(|a| a.name.as_str()).collect();
+    let measures = analysis::arm_measures(&rows, &arms, bases);
     let record = StudyRecord {
         program: PROGRAM.into(),
         model: fuzzymotiv::MODEL_VERSION,
@@ -132,11 +135,13 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
         hypotheses: study.hypotheses.clone(),
         claims,
         rooms: room_rows,
+        measures,
     };
     let files = [
         ("per_seed.csv", to_csv(&rows)),
         ("claims.csv", to_csv(&record.claims)),
         ("rooms.csv", to_csv(&record.rooms)),
+        ("arms.csv", to_csv(&record.measures)),
         ("study.json", to_json(&record)),
         ("report.md", report_md(&record, &rows, &study.text)),
         ("forest.svg", forest_svg(&record)),
@@ -146,63 +151,4 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
         .collect();
     write_files(&files)?;
     Ok(record)
-}
-
-/// Every run's values of the measures the hypotheses read: per room and over the rooms (their
-/// mean), and the first and last generation's mean F (the measure [`FIRST_MEAN_F`] reads).
-fn per_seed(study: &Study, out: &Path) -> Result<Vec<PerSeedRow>, CliError> {
-    let mut measures: Vec<_> = Vec::new();
-    for m in study.hypotheses.iter().filter_map(|h| h.measure()) {
-        if m.per_room() && !measures.contains(m) {
-            measures.push(m.clone());
-        }
-    }
-    let arms = study.arms.len();
-    let mut rows = Vec::new();
-    for job in &study.plan.jobs {
-        let base_seed = study.base_seeds[job.index / (arms * study.seeds)];
-        let summary: RunSummary = read_json(&out.join("jobs").join(&job.id).join("summary.json"))?;
-        let row = |measure: String, room: &str, value: f64| PerSeedRow {
-            base_seed,
-            replicate: job.replicate,
-            seed: job.seed,
-            arm: job.setting.clone(),
-            measure,
-            room: room.to_string(),
-            value,
-        };
-        for m in &measures {
-            let of = |r: &crate::records::RoomRow| {
-                m.of_room(r).ok_or_else(|| {
-                    CliError::input(format!(
-                        "{}: run {} has no `{}` in room {}",
-                        study.source,
-                        job.key,
-                        m.column(),
-                        r.room
-                    ))
-                })
-            };
-            let per_room: Vec<f64> = summary.rooms.iter().map(of).collect::<Result<_, _>>()?;
-            for (r, v) in summary.rooms.iter().zip(&per_room) {
-                rows.push(row(m.column(), &r.room, *v));
-            }
-            rows.push(row(m.column(), "", fuzzymotiv::statistics::mean(&per_room)));
-        }
-        let mean_f = |f: &dyn Fn(&crate::records::RunRecord) -> f64| {
-            let v: Vec<f64> = summary.runs.iter().map(f).collect();
-            fuzzymotiv::statistics::mean(&v)
-        };
-        rows.push(row(
-            FIRST_MEAN_F.into(),
-            "",
-            mean_f(&|r| r.first_generation.mean),
-        ));
-        rows.push(row(
-            LAST_MEAN_F.into(),
-            "",
-            mean_f(&|r| r.last_generation.mean),
-        ));
-    }
-    Ok(rows)
 }

@@ -180,7 +180,7 @@ pub fn is_ours(dir: &Path) -> bool {
 
 /// The names of the files our outputs write (besides `*.svg` and `*.png` figures, `.tmp*`
 /// temporary files and sweep jobs' `ID.lock` files): anything else in a directory about to be replaced is the user's.
-const OUR_FILES: [&str; 37] = [
+const OUR_FILES: [&str; 38] = [
     "config.resolved.toml",
     "generations.csv",
     "best_genome.json",
@@ -216,6 +216,7 @@ const OUR_FILES: [&str; 37] = [
     "study.toml",
     "per_seed.csv",
     "rooms.csv",
+    "arms.csv",
     "study.json",
     "report.md",
 ];

@@ -34,7 +34,21 @@ pub enum Measure {
     /// The population's mean F in the first generation (over the run's evolutions): a value
     /// of the whole run, not of a room ([`FIRST_MEAN_F`]; Fig. 6's "about 0.1").
     FirstMeanF,
+    /// How far apart the test runs of the robot standing for a room end: the root-mean-square
+    /// distance of their final positions from their centroid, in % of the room's largest
+    /// distance (`Experiment::end_spread`, `reproduce --combination`'s "% end spread"). Not in
+    /// a run's records: computed from the run read back ([`Measure::read_back`]).
+    EndSpread,
+    /// The mean step at which the room's test runs completed their mission, T (the trial's
+    /// steps) for a test run that never did: lower is sooner (runs that follow missions only;
+    /// computed from the run read back, [`Measure::read_back`]).
+    TimeToGoal,
 }
+
+/// [`Measure::EndSpread`]'s column.
+pub const END_SPREAD: &str = "end_spread_pct";
+/// [`Measure::TimeToGoal`]'s column.
+pub const TIME_TO_GOAL: &str = "time_to_goal";
 
 impl Measure {
     /// The measure a name gives: a column name or its short form; any other name is a term's
@@ -48,6 +62,8 @@ impl Measure {
             "recognition_pct" | "recognition" => Measure::Recognition,
             "mission_done_pct" | "mission_done" => Measure::MissionDone,
             FIRST_MEAN_F => Measure::FirstMeanF,
+            END_SPREAD | "end_spread" => Measure::EndSpread,
+            TIME_TO_GOAL => Measure::TimeToGoal,
             other => Measure::Term(metric_term(other).to_string()),
         }
     }
@@ -63,6 +79,8 @@ impl Measure {
             Measure::MissionDone => "mission_done_pct".into(),
             Measure::Term(name) => term_metric(name),
             Measure::FirstMeanF => FIRST_MEAN_F.into(),
+            Measure::EndSpread => END_SPREAD.into(),
+            Measure::TimeToGoal => TIME_TO_GOAL.into(),
         }
     }
 
@@ -76,13 +94,20 @@ impl Measure {
             Measure::Recognition => row.recognition_pct,
             Measure::MissionDone => row.mission_done_pct,
             Measure::Term(name) => row.terms_pct.get(name).copied(),
-            Measure::FirstMeanF => None,
+            Measure::FirstMeanF | Measure::EndSpread | Measure::TimeToGoal => None,
         }
     }
 
     /// Whether it has a value per room (every measure but the whole run's [`FIRST_MEAN_F`]).
     pub fn per_room(&self) -> bool {
         *self != Measure::FirstMeanF
+    }
+
+    /// Whether its values are not in a run's records but computed from the run read back
+    /// (its final population evaluated again, its test runs run again: the same bits as when
+    /// it ran): [`Measure::EndSpread`], [`Measure::TimeToGoal`].
+    pub fn read_back(&self) -> bool {
+        matches!(self, Measure::EndSpread | Measure::TimeToGoal)
     }
 
     /// How a sentence names it: "the average F", "% exploration", "% urgency", ….
@@ -96,6 +121,8 @@ impl Measure {
             Measure::MissionDone => "% missions done".into(),
             Measure::Term(name) => format!("% {name}"),
             Measure::FirstMeanF => "the first generation's mean F".into(),
+            Measure::EndSpread => "% end spread".into(),
+            Measure::TimeToGoal => "the time to the goal (steps)".into(),
         }
     }
 }
@@ -152,6 +179,25 @@ pub enum Hypothesis {
         /// Higher or lower in `a`.
         expect: Direction,
     },
+    /// The paired difference `a` − `b` of `measure` is `expect` than `versus_a` − `versus_b`:
+    /// per seed (a − b) − (versus_a − versus_b), a difference of two paired differences (e.g.
+    /// a claim's effect under a baseline against its effect under the TSK).
+    Difference {
+        /// Its id.
+        id: String,
+        /// What it measures.
+        measure: Measure,
+        /// The first difference's first arm.
+        a: String,
+        /// The arm subtracted from `a`.
+        b: String,
+        /// The second difference's first arm.
+        versus_a: String,
+        /// The arm subtracted from `versus_a`.
+        versus_b: String,
+        /// Higher or lower: a − b against versus_a − versus_b.
+        expect: Direction,
+    },
     /// `measure` goes `expect` (increasing, decreasing) over `arms`, in the order of their
     /// `level`: the per-seed least-squares slope against the level.
     Trend {
@@ -197,16 +243,18 @@ impl Hypothesis {
     pub fn id(&self) -> &str {
         match self {
             Hypothesis::Compare { id, .. }
+            | Hypothesis::Difference { id, .. }
             | Hypothesis::Trend { id, .. }
             | Hypothesis::Range { id, .. }
             | Hypothesis::Rising { id, .. } => id,
         }
     }
 
-    /// `compare`, `trend`, `range` or `rising`.
+    /// `compare`, `difference`, `trend`, `range` or `rising`.
     pub fn kind(&self) -> &'static str {
         match self {
             Hypothesis::Compare { .. } => "compare",
+            Hypothesis::Difference { .. } => "difference",
             Hypothesis::Trend { .. } => "trend",
             Hypothesis::Range { .. } => "range",
             Hypothesis::Rising { .. } => "rising",
@@ -217,6 +265,13 @@ impl Hypothesis {
     pub fn arms(&self) -> Vec<&str> {
         match self {
             Hypothesis::Compare { a, b, .. } => vec![a, b],
+            Hypothesis::Difference {
+                a,
+                b,
+                versus_a,
+                versus_b,
+                ..
+            } => vec![a, b, versus_a, versus_b],
             Hypothesis::Trend { arms, .. } => arms.iter().map(String::as_str).collect(),
             Hypothesis::Range { arm, .. } | Hypothesis::Rising { arm, .. } => vec![arm],
         }
@@ -226,6 +281,7 @@ impl Hypothesis {
     pub fn measure(&self) -> Option<&Measure> {
         match self {
             Hypothesis::Compare { measure, .. }
+            | Hypothesis::Difference { measure, .. }
             | Hypothesis::Trend { measure, .. }
             | Hypothesis::Range { measure, .. } => Some(measure),
             Hypothesis::Rising { .. } => None,
@@ -241,9 +297,9 @@ impl Hypothesis {
     /// `higher`, `lower` or `within` (a range).
     pub fn expect_label(&self) -> &'static str {
         match self {
-            Hypothesis::Compare { expect, .. } | Hypothesis::Trend { expect, .. } => {
-                expect.as_str()
-            }
+            Hypothesis::Compare { expect, .. }
+            | Hypothesis::Difference { expect, .. }
+            | Hypothesis::Trend { expect, .. } => expect.as_str(),
             Hypothesis::Range { .. } => "within",
             Hypothesis::Rising { .. } => "higher",
         }
@@ -260,6 +316,19 @@ impl Hypothesis {
                 ..
             } => format!(
                 "{} is {} in {a} than in {b}",
+                measure.label(),
+                expect.as_str()
+            ),
+            Hypothesis::Difference {
+                measure,
+                a,
+                b,
+                versus_a,
+                versus_b,
+                expect,
+                ..
+            } => format!(
+                "{} in {a} − {b} is {} than in {versus_a} − {versus_b}",
                 measure.label(),
                 expect.as_str()
             ),
@@ -387,8 +456,9 @@ pub struct ClaimRow {
     pub scope: String,
     /// Seeds (pairs) tested.
     pub seeds: usize,
-    /// The effect: the mean paired difference (compare, rising), the mean slope per unit of
-    /// level (trend) or the arm's mean (range).
+    /// The effect: the mean paired difference (compare, rising), the mean of the per-seed
+    /// differences of differences (difference), the mean slope per unit of level (trend) or
+    /// the arm's mean (range).
     pub effect: f64,
     /// Lower bound of its bootstrap interval.
     pub ci_low: f64,
@@ -429,6 +499,26 @@ pub struct RoomResultRow {
     pub verdict: String,
 }
 
+/// One row of `arms.csv`: a measure of one arm over one scope's seeds, in one room or over the
+/// rooms (room empty: each seed's mean over the rooms, as in `per_seed.csv`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ArmMeasureRow {
+    /// [`POOLED`] or [`base_scope`].
+    pub scope: String,
+    /// The arm.
+    pub arm: String,
+    /// The measure's column (as `per_seed.csv` names it).
+    pub measure: String,
+    /// The room, or empty for the mean over the rooms (or a value of the whole run).
+    pub room: String,
+    /// Seeds (runs) the values are over.
+    pub seeds: usize,
+    /// Their mean.
+    pub mean: f64,
+    /// Their sample standard deviation (n − 1; empty with one seed).
+    pub sd: Option<f64>,
+}
+
 /// `study.json`: the study as run and what it found.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StudyRecord {
@@ -452,6 +542,9 @@ pub struct StudyRecord {
     pub claims: Vec<ClaimRow>,
     /// The results per room (`rooms.csv`).
     pub rooms: Vec<RoomResultRow>,
+    /// Each arm's measures (`arms.csv`): what a study without hypotheses reports.
+    #[serde(default)]
+    pub measures: Vec<ArmMeasureRow>,
 }
 
 #[cfg(test)]
@@ -487,6 +580,30 @@ mod tests {
             ("goal", "goal_pct"),
         ] {
             assert_eq!(Measure::parse(name).column(), column);
+        }
+    }
+
+    /// A difference of differences reads its four arms from its fields, in order, and states
+    /// its sentence from them; end spread and time to the goal are measures by name, read back.
+    #[test]
+    fn a_difference_names_its_four_arms_and_its_sentence_says_which_is_subtracted() {
+        let h: Hypothesis = toml::from_str(
+            "kind = \"difference\"\nid = \"d\"\nmeasure = \"homing\"\na = \"high-sum\"\nb = \"low-sum\"\nversus_a = \"high-tsk\"\nversus_b = \"low-tsk\"\nexpect = \"higher\"\n",
+        )
+        .unwrap();
+        assert_eq!(h.arms(), ["high-sum", "low-sum", "high-tsk", "low-tsk"]);
+        assert_eq!(
+            h.sentence(),
+            "% homing in high-sum − low-sum is higher than in high-tsk − low-tsk"
+        );
+        assert_eq!((h.kind(), h.expect_label()), ("difference", "higher"));
+        for (name, m) in [
+            ("end_spread", Measure::EndSpread),
+            ("end_spread_pct", Measure::EndSpread),
+            ("time_to_goal", Measure::TimeToGoal),
+        ] {
+            assert_eq!(Measure::parse(name), m);
+            assert!(m.read_back() && m.per_room() && !Measure::Homing.read_back());
         }
     }
 

@@ -212,3 +212,78 @@ fn a_scopes_resampling_is_seeded_by_its_first_seed() {
         (first.p, first.ci_low, first.ci_high)
     );
 }
+
+/// A difference of differences is the paired test of the per-seed (a − b) − (c − d): here
+/// hi − mid exceeds mid − lo by 10 on every seed (the seed's noise cancels), so the effect is
+/// 10 and p the smallest six seeds give; the other way it is opposite; and its numbers are
+/// `statistics::paired` of the two differences, as `reproduce --combination` tests them.
+#[test]
+fn a_difference_is_the_paired_test_of_two_paired_differences() {
+    let rows = rows(|k, seed| 5.0 * (k * k) as f64 + seed as f64 * 1.5);
+    let h = |expect| Hypothesis::Difference {
+        id: "d".into(),
+        measure: Measure::Term("urgency".into()),
+        a: "hi".into(),
+        b: "mid".into(),
+        versus_a: "mid".into(),
+        versus_b: "lo".into(),
+        expect,
+    };
+    let a = analysis(Rule::P, HolmOver::None);
+    let got = claims(&[h(Direction::Higher)], &rows, &[1], &level, &a).unwrap();
+    assert!((got[0].effect - 10.0).abs() < 1e-9, "{}", got[0].effect);
+    assert_eq!(got[0].p, 1.0 / 32.0);
+    assert_eq!(
+        (got[0].verdict.as_str(), got[0].kind.as_str()),
+        ("holds", "difference")
+    );
+    assert_eq!(got[0].arms, "hi;mid;mid;lo");
+    let of = |arm| values(&rows, arm, "urgency_pct", "", POOLED);
+    let minus =
+        |x: Vec<f64>, y: Vec<f64>| -> Vec<f64> { x.iter().zip(&y).map(|(x, y)| x - y).collect() };
+    let c = statistics::paired(
+        &minus(of("hi"), of("mid")),
+        &minus(of("mid"), of("lo")),
+        &settings(&a, &rows, POOLED),
+    )
+    .unwrap();
+    assert_eq!(
+        (got[0].effect, got[0].ci_low, got[0].p),
+        (c.difference, c.ci_low, c.p)
+    );
+    let got = claims(&[h(Direction::Lower)], &rows, &[1], &level, &a).unwrap();
+    assert_eq!(got[0].verdict, "opposite");
+    // Per room too: the rooms every one of its four arms has.
+    let r = room_results(&[h(Direction::Higher)], &rows, &[1], &level, &a).unwrap();
+    assert_eq!(r.len(), 1);
+    assert_eq!(r[0].room, "H");
+}
+
+/// Arms of unequal seed counts are an error, not a panic.
+#[test]
+fn a_difference_over_arms_of_unequal_seed_counts_is_an_error() {
+    let s = settings(&analysis(Rule::P, HolmOver::None), &[], POOLED);
+    let got = difference(
+        [&[1.0, 2.0], &[1.0], &[3.0, 4.0], &[0.0, 0.0]],
+        Direction::Higher,
+        &s,
+    );
+    assert_eq!(got, Err(StatsError::Lengths { a: 2, b: 1 }));
+}
+
+/// Each arm's measures over each scope: the seeds' mean and sample sd, per room and over the
+/// rooms, in the order per_seed.csv first has them.
+#[test]
+fn each_arms_measures_are_the_mean_and_sd_of_its_seeds() {
+    let rows = rows(|k, seed| 10.0 * k as f64 + seed as f64);
+    let got = arm_measures(&rows, &["lo", "hi"], &[1]);
+    assert_eq!(got.len(), 2 * 2, "{got:?}");
+    let hi = got
+        .iter()
+        .find(|m| m.arm == "hi" && m.room.is_empty())
+        .unwrap();
+    assert_eq!((hi.seeds, hi.mean), (6, 22.5));
+    let v: Vec<f64> = (0..6).map(|s| 20.0 + s as f64).collect();
+    assert_eq!(hi.sd, statistics::sample_sd(&v));
+    assert_eq!(hi.measure, "urgency_pct");
+}
