@@ -161,12 +161,59 @@ fn recompute(
 }
 
 /// Every claim of the study in `out` recomputed from its per_seed.csv by the analysis its
-/// study.json states (α, the rule, Holm over the hypotheses): effect, p, adjusted p, verdict.
+/// study.json states (α, the rule, Holm over the hypotheses): effect, p, adjusted p, verdict;
+/// and with several base seeds every row of its agreement.csv, from the per-seed values of
+/// its base seed's first seeds, its `pooled` the pooled verdict of claims.csv. How many.
 fn recompute_every_verdict(out: &Path) -> usize {
     let record: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("study.json")).unwrap()).unwrap();
     let per_seed = read_csv(&out.join("per_seed.csv"));
     let claims = read_csv(&out.join("claims.csv"));
+    let mut checked = recompute_verdicts(&record, &per_seed, &claims);
+    let agreement = out.join("agreement.csv");
+    let bases = record["base_seeds"].as_array().unwrap().len();
+    assert_eq!(
+        agreement.is_file(),
+        bases > 1,
+        "agreement.csv with {bases} base seeds"
+    );
+    if !agreement.is_file() {
+        return checked;
+    }
+    let mut rows = read_csv(&agreement);
+    let seeds = record["seeds"].as_u64().unwrap() as usize;
+    let hypotheses = record["hypotheses"].as_array().unwrap().len();
+    assert_eq!(rows.len(), (seeds - 1) * bases * hypotheses);
+    for r in &mut rows {
+        let pooled = (claims.iter())
+            .find(|c| c["scope"] == "pooled" && c["id"] == r["id"])
+            .unwrap();
+        assert_eq!(r["pooled"], pooled["verdict"], "{r:?}: pooled verdict");
+        assert_eq!(r["agrees"], (r["verdict"] == r["pooled"]).to_string());
+        r.insert("scope".into(), "pooled".into());
+    }
+    let mut groups: Vec<(String, String)> = (rows.iter())
+        .map(|r| (r["seeds"].clone(), r["base_seed"].clone()))
+        .collect();
+    groups.dedup();
+    for (n, base) in groups {
+        let count: usize = n.parse().unwrap();
+        let first: Rows = (per_seed.iter())
+            .filter(|r| r["base_seed"] == base && r["replicate"].parse::<usize>().unwrap() < count)
+            .cloned()
+            .collect();
+        let judged: Rows = (rows.iter())
+            .filter(|r| r["seeds"] == n && r["base_seed"] == base)
+            .cloned()
+            .collect();
+        checked += recompute_verdicts(&record, &first, &judged);
+    }
+    checked
+}
+
+/// Every claim of `claims` (rows with a scope) recomputed from `per_seed` by the analysis
+/// `record` (study.json) states; how many.
+fn recompute_verdicts(record: &serde_json::Value, per_seed: &Rows, claims: &Rows) -> usize {
     let a = &record["analysis"];
     // The resampling of a scope's tests is seeded by its first seed, as the paper's study's.
     let first_seed = |scope: &str| {
@@ -190,7 +237,7 @@ fn recompute_every_verdict(out: &Path) -> usize {
     for scope in scopes {
         let s = settings(scope);
         let tested: Vec<_> = (hypotheses.iter())
-            .map(|h| recompute(h, &levels, &per_seed, scope, &s))
+            .map(|h| recompute(h, &levels, per_seed, scope, &s))
             .collect();
         let p: Vec<f64> = tested.iter().map(|t| t.1).collect();
         let adjusted = match a["holm"].as_str().unwrap() {
@@ -225,8 +272,9 @@ fn a_fetch_study_writes_typed_records_whose_every_verdict_is_recomputed_from_its
     for name in ANALYSIS {
         assert!(out.join(name).is_file(), "{name} written");
     }
-    // Six hypotheses, judged pooled and at each of the two base seeds.
-    assert_eq!(recompute_every_verdict(&out), 18);
+    // Six hypotheses, judged pooled and at each of the two base seeds; and on each base
+    // seed's first 2, 3 and 4 seeds (agreement.csv).
+    assert_eq!(recompute_every_verdict(&out), 18 + 3 * 2 * 6);
     let printed = stdout(&o);
     assert!(
         printed.contains("sooner: ")
@@ -239,6 +287,7 @@ fn a_fetch_study_writes_typed_records_whose_every_verdict_is_recomputed_from_its
         "## Claims",
         "forest.svg",
         "## Each base seed's verdict",
+        "## Agreement by seed count",
         "## Per room",
         "## Seeds",
         "name = \"fetch-urgency\"",
@@ -461,18 +510,20 @@ fn a_killed_study_resumes_its_runs_and_writes_the_analysis_of_an_uninterrupted_o
     }
 }
 
-/// The shipped studies/paper.toml made tiny (three seeds of base seed 1, a small GA, short
+/// The shipped studies/paper.toml made tiny (three seeds of `base_seeds`, a small GA, short
 /// trials), its configs named by absolute paths; and the same size as `reproduce`'s `--set`s.
-fn tiny_paper_study(dir: &Path) -> (PathBuf, [&'static str; 3]) {
+fn tiny_paper_study(dir: &Path, base_seeds: &str) -> (PathBuf, [&'static str; 3]) {
     let text = std::fs::read_to_string(repo().join("studies/paper.toml")).unwrap();
     let configs = repo().join("configs");
     let text = text
         .replace(
             "seeds = 20\nbase_seeds = [1, 11]\n",
-            "seeds = 3\nbase_seeds = [1]\nset = { ga = { population = 8, generations = 4 }, trial = { steps = 150 } }\n",
+            &format!("seeds = 3\nbase_seeds = {base_seeds}\nset = {{ ga = {{ population = 8, generations = 4 }}, trial = {{ steps = 150 }} }}\n"),
         )
         .replace("\"../configs/", &format!("\"{}/", configs.display()));
-    assert!(text.contains("population = 8") && text.contains("base_seeds = [1]\n"));
+    assert!(
+        text.contains("population = 8") && text.contains(&format!("base_seeds = {base_seeds}\n"))
+    );
     let path = dir.join("paper.toml");
     std::fs::write(&path, text).unwrap();
     let sets = ["ga.population=8", "ga.generations=4", "trial.steps=150"];
@@ -486,7 +537,7 @@ fn tiny_paper_study(dir: &Path) -> (PathBuf, [&'static str; 3]) {
 #[test]
 fn the_paper_study_file_runs_reproduces_runs_and_gives_its_claims_numbers() {
     let dir = tempfile::tempdir().unwrap();
-    let (file, sets) = tiny_paper_study(dir.path());
+    let (file, sets) = tiny_paper_study(dir.path(), "[1]");
     let (rep, out) = (dir.path().join("reproduce"), dir.path().join("study"));
     let mut args = vec!["reproduce", "--seeds", "3", "--threads", "2", "-q", "--out"];
     args.push(rep.to_str().unwrap());
@@ -553,6 +604,57 @@ fn the_paper_study_file_runs_reproduces_runs_and_gives_its_claims_numbers() {
         }
     }
     assert_eq!(recompute_every_verdict(&out), 8);
+}
+
+/// The paper's study at two base seeds is `reproduce --replication`: its agreement.csv judges
+/// each hypothesis on each base seed's first n seeds (n = 2, 3) and the four comparisons there
+/// have the replication's p-values and verdicts (replication_seeds.csv) beside the same pooled
+/// verdicts (replication.csv); the report shows the agreement.
+#[test]
+fn the_paper_study_at_two_base_seeds_agrees_by_seed_count_as_reproduce_replication() {
+    let dir = tempfile::tempdir().unwrap();
+    let (file, sets) = tiny_paper_study(dir.path(), "[1, 11]");
+    let (rep, out) = (dir.path().join("replication"), dir.path().join("study"));
+    let mut args = vec![
+        "reproduce",
+        "--replication",
+        "--seeds",
+        "3",
+        "--threads",
+        "2",
+    ];
+    args.extend(["-q", "--out", rep.to_str().unwrap()]);
+    for s in &sets {
+        args.extend(["--set", s]);
+    }
+    ok(&args);
+    study(&file, &out, &[]);
+    let ours = read_csv(&out.join("agreement.csv"));
+    let theirs = read_csv(&rep.join("replication_seeds.csv"));
+    let pooled = read_csv(&rep.join("replication.csv"));
+    let ids = ["explores", "battery", "recognition", "homing"];
+    // Per seed count and base seed, the eight hypotheses of paper.toml.
+    assert_eq!(ours.len(), 2 * 2 * 8);
+    for n in ["2", "3"] {
+        // replication_seeds.csv: per seed count, the claims with the four comparisons first.
+        let at: Vec<_> = theirs.iter().filter(|r| r["seeds"] == n).collect();
+        for (k, id) in ids.iter().enumerate() {
+            for (base, side) in [("1", "a"), ("11", "b")] {
+                let what = format!("{id} at {n} seeds of base seed {base}");
+                let row = (ours.iter())
+                    .find(|r| r["seeds"] == n && r["id"] == *id && r["base_seed"] == base)
+                    .unwrap_or_else(|| panic!("no {what}"));
+                assert_eq!(f(row, "p"), f(at[k], &format!("p_{side}")), "{what}: p");
+                assert_eq!(row["verdict"], at[k][&format!("verdict_{side}")], "{what}");
+                assert_eq!(row["pooled"], pooled[k]["verdict_pooled"], "{what}: pooled");
+                let agrees = row["verdict"] == row["pooled"];
+                assert_eq!(row["agrees"], agrees.to_string(), "{what}: agrees");
+            }
+        }
+    }
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(report.contains("## Agreement by seed count"), "{report}");
+    assert!(report.contains("| 3 |"), "{report}");
 }
 
 /// Every shipped study file (studies/*.toml) loads, every run's config checked, and

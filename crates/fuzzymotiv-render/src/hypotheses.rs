@@ -130,6 +130,7 @@ pub fn report_md(record: &StudyRecord, per_seed: &[PerSeedRow], study_text: &str
     s.push_str("![Every hypothesis's effect with its interval](forest.svg)\n\n");
     if record.base_seeds.len() > 1 {
         s.push_str(&replication_md(record));
+        s.push_str(&crate::agreement::agreement_md(record));
     }
     s.push_str(&rooms_md(record));
     s.push_str(&seeds_md(per_seed));
@@ -361,6 +362,7 @@ mod tests {
             hypotheses,
             claims,
             rooms: Vec::new(),
+            agreement: Vec::new(),
         }
     }
 

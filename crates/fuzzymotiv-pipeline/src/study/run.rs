@@ -1,8 +1,8 @@
 //! Running a study: its runs as a sweep's jobs into `OUT/jobs/ID/` ([`run_jobs`]; a shard of
 //! them on one machine, the others elsewhere), then, once every run is there, the analysis
 //! written beside them: `per_seed.csv`, `claims.csv`, `rooms.csv`, `study.json`, `report.md`
-//! and `forest.svg`. The analysis reads only the runs' records, so a study run in shards gives
-//! the same bytes as one run on one machine.
+//! and `forest.svg` (with several base seeds `agreement.csv` too). The analysis reads only the
+//! runs' records, so a study run in shards gives the same bytes as one run on one machine.
 
 use std::path::{Path, PathBuf};
 
@@ -14,8 +14,8 @@ use crate::pipeline::sweep_jobs::run_jobs;
 use crate::records::hypotheses::{ClaimRow, FIRST_MEAN_F, LAST_MEAN_F, PerSeedRow, StudyRecord};
 use crate::records::{PROGRAM, RunSummary, read_json, to_csv, to_json};
 use crate::render::hypotheses::{forest_svg, report_md};
-use crate::study::analysis;
 use crate::study::file::Study;
+use crate::study::{agreement, analysis};
 
 /// How a study runs.
 #[derive(Debug, Clone, Default)]
@@ -121,6 +121,8 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
     let bases = &study.base_seeds;
     let claims = analysis::claims(&study.hypotheses, &rows, bases, &level, a)?;
     let room_rows = analysis::room_results(&study.hypotheses, &rows, bases, &level, a)?;
+    let hs = &study.hypotheses;
+    let agreement = agreement::agreement(hs, &rows, bases, study.seeds, &level, a, &claims)?;
     let record = StudyRecord {
         program: PROGRAM.into(),
         model: fuzzymotiv::MODEL_VERSION,
@@ -132,8 +134,9 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
         hypotheses: study.hypotheses.clone(),
         claims,
         rooms: room_rows,
+        agreement,
     };
-    let files = [
+    let mut files = vec![
         ("per_seed.csv", to_csv(&rows)),
         ("claims.csv", to_csv(&record.claims)),
         ("rooms.csv", to_csv(&record.rooms)),
@@ -141,6 +144,9 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
         ("report.md", report_md(&record, &rows, &study.text)),
         ("forest.svg", forest_svg(&record)),
     ];
+    if !record.agreement.is_empty() {
+        files.push(("agreement.csv", to_csv(&record.agreement)));
+    }
     let files: Vec<(PathBuf, Vec<u8>)> = (files.into_iter())
         .map(|(name, text)| (out.join(name), text.into_bytes()))
         .collect();

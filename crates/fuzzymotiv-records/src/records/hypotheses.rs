@@ -452,6 +452,10 @@ pub struct StudyRecord {
     pub claims: Vec<ClaimRow>,
     /// The results per room (`rooms.csv`).
     pub rooms: Vec<RoomResultRow>,
+    /// With several base seeds, every hypothesis judged on each base seed's first n seeds
+    /// beside its pooled verdict (`agreement.csv`); empty (and not written) with one.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub agreement: Vec<crate::records::agreement::AgreementRow>,
 }
 
 #[cfg(test)]
