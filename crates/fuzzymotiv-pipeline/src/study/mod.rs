@@ -2,7 +2,8 @@
 //! robot or motivations, with overrides), paired seeds (one base seed or several) and typed
 //! hypotheses ([`mod@file`]); its runs as a sweep plan's jobs, sharded or not, and its analysis
 //! written once they are all there ([`run`]); the analysis itself, pure ([`analysis`]), and a
-//! replication's agreement by seed count ([`agreement`]). The
+//! replication's agreement by seed count ([`agreement`]); an arm's robots measured in Enki
+//! ([`transfer`]). The
 //! records are `fuzzymotiv_records::records::hypotheses`'s, the report and forest plot the
 //! render crate's `hypotheses`.
 
@@ -10,6 +11,7 @@ pub mod agreement;
 pub mod analysis;
 pub mod file;
 pub mod run;
+pub mod transfer;
 
 pub use file::{STUDY_FILE, Study};
 pub use run::{StudyOptions, StudyOutcome, StudyProgress, parse_shard, run_study};

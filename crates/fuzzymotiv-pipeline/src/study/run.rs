@@ -11,11 +11,13 @@ use crate::files::guard::write_files;
 use crate::pipeline::lanes::set_threads;
 use crate::pipeline::progress::SweepProgress;
 use crate::pipeline::sweep_jobs::run_jobs;
-use crate::records::hypotheses::{ClaimRow, FIRST_MEAN_F, LAST_MEAN_F, PerSeedRow, StudyRecord};
+use crate::records::hypotheses::{
+    ClaimRow, FIRST_MEAN_F, LAST_MEAN_F, Measure, PerSeedRow, StudyRecord,
+};
 use crate::records::{PROGRAM, RunSummary, read_json, to_csv, to_json};
 use crate::render::hypotheses::{forest_svg, report_md};
 use crate::study::file::Study;
-use crate::study::{agreement, analysis};
+use crate::study::{agreement, analysis, transfer};
 
 /// How a study runs.
 #[derive(Debug, Clone, Default)]
@@ -103,6 +105,7 @@ pub fn run_study(
         progress.waiting(done, total);
         return Ok(StudyOutcome::Waiting { done, total });
     }
+    transfer::transfer_runs(study, out)?;
     let record = analyse(study, out)?;
     progress.analysed(out, &record.claims);
     Ok(StudyOutcome::Analysed(record.claims))
@@ -154,6 +157,37 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
     Ok(record)
 }
 
+/// A measure of job `job` (its run's `summary`) per room, and over the rooms: from the run's
+/// per-room table (their mean), or from its transfers to Enki ([`transfer::values`]).
+fn room_values(
+    study: &Study,
+    out: &Path,
+    job: &crate::records::Job,
+    summary: &RunSummary,
+    m: &Measure,
+) -> Result<(Vec<(String, f64)>, f64), CliError> {
+    if matches!(m, Measure::Enki(_) | Measure::Gap(_)) {
+        let k = study.arm_index(&job.setting).expect("a job of an arm");
+        let spec = study.arms[k].transfer.as_ref().expect("checked by the loader");
+        return transfer::values(spec, out, &job.id, summary, m);
+    }
+    let mut per_room = Vec::new();
+    for r in &summary.rooms {
+        let v = m.of_room(r).ok_or_else(|| {
+            CliError::input(format!(
+                "{}: run {} has no `{}` in room {}",
+                study.source,
+                job.key,
+                m.column(),
+                r.room
+            ))
+        })?;
+        per_room.push((r.room.clone(), v));
+    }
+    let values: Vec<f64> = per_room.iter().map(|(_, v)| *v).collect();
+    Ok((per_room, fuzzymotiv::statistics::mean(&values)))
+}
+
 /// Every run's values of the measures the hypotheses read: per room and over the rooms (their
 /// mean), and the first and last generation's mean F (the measure [`FIRST_MEAN_F`] reads).
 fn per_seed(study: &Study, out: &Path) -> Result<Vec<PerSeedRow>, CliError> {
@@ -178,22 +212,11 @@ fn per_seed(study: &Study, out: &Path) -> Result<Vec<PerSeedRow>, CliError> {
             value,
         };
         for m in &measures {
-            let of = |r: &crate::records::RoomRow| {
-                m.of_room(r).ok_or_else(|| {
-                    CliError::input(format!(
-                        "{}: run {} has no `{}` in room {}",
-                        study.source,
-                        job.key,
-                        m.column(),
-                        r.room
-                    ))
-                })
-            };
-            let per_room: Vec<f64> = summary.rooms.iter().map(of).collect::<Result<_, _>>()?;
-            for (r, v) in summary.rooms.iter().zip(&per_room) {
-                rows.push(row(m.column(), &r.room, *v));
+            let (per_room, over) = room_values(study, out, job, &summary, m)?;
+            for (room, v) in &per_room {
+                rows.push(row(m.column(), room, *v));
             }
-            rows.push(row(m.column(), "", fuzzymotiv::statistics::mean(&per_room)));
+            rows.push(row(m.column(), "", over));
         }
         let mean_f = |f: &dyn Fn(&crate::records::RunRecord) -> f64| {
             let v: Vec<f64> = summary.runs.iter().map(f).collect();

@@ -34,6 +34,27 @@ pub enum Measure {
     /// The population's mean F in the first generation (over the run's evolutions): a value
     /// of the whole run, not of a room ([`FIRST_MEAN_F`]; Fig. 6's "about 0.1").
     FirstMeanF,
+    /// One of the [`TRANSFERABLE`] measures of the run's controller transferred to Enki (an
+    /// arm with a [`TransferSpec`]): its mean over the Enki test runs in the room
+    /// (`enki_homing_pct`).
+    Enki(Box<Measure>),
+    /// The reality gap of a [`TRANSFERABLE`] measure: |Enki − fuzzymotiv| of the means over
+    /// the test runs in each world (`gap_homing_pct`).
+    Gap(Box<Measure>),
+}
+
+/// The measures a transfer measures in both worlds (`fuzzymotiv transfer`'s measures.csv).
+pub const TRANSFERABLE: [Measure; 4] = [
+    Measure::Exploration,
+    Measure::Homing,
+    Measure::Battery,
+    Measure::Recognition,
+];
+
+/// The measure `name` (a column or a short name) if it is [`TRANSFERABLE`].
+fn transferable(name: &str) -> Option<Measure> {
+    let m = Measure::parse(name);
+    TRANSFERABLE.contains(&m).then_some(m)
 }
 
 impl Measure {
@@ -48,7 +69,16 @@ impl Measure {
             "recognition_pct" | "recognition" => Measure::Recognition,
             "mission_done_pct" | "mission_done" => Measure::MissionDone,
             FIRST_MEAN_F => Measure::FirstMeanF,
-            other => Measure::Term(metric_term(other).to_string()),
+            other => {
+                let world = |prefix: &str| other.strip_prefix(prefix).and_then(transferable);
+                if let Some(m) = world("enki_") {
+                    Measure::Enki(Box::new(m))
+                } else if let Some(m) = world("gap_") {
+                    Measure::Gap(Box::new(m))
+                } else {
+                    Measure::Term(metric_term(other).to_string())
+                }
+            }
         }
     }
 
@@ -63,6 +93,8 @@ impl Measure {
             Measure::MissionDone => "mission_done_pct".into(),
             Measure::Term(name) => term_metric(name),
             Measure::FirstMeanF => FIRST_MEAN_F.into(),
+            Measure::Enki(m) => format!("enki_{}", m.column()),
+            Measure::Gap(m) => format!("gap_{}", m.column()),
         }
     }
 
@@ -76,7 +108,7 @@ impl Measure {
             Measure::Recognition => row.recognition_pct,
             Measure::MissionDone => row.mission_done_pct,
             Measure::Term(name) => row.terms_pct.get(name).copied(),
-            Measure::FirstMeanF => None,
+            Measure::FirstMeanF | Measure::Enki(_) | Measure::Gap(_) => None,
         }
     }
 
@@ -96,6 +128,8 @@ impl Measure {
             Measure::MissionDone => "% missions done".into(),
             Measure::Term(name) => format!("% {name}"),
             Measure::FirstMeanF => "the first generation's mean F".into(),
+            Measure::Enki(m) => format!("{} in Enki", m.label()),
+            Measure::Gap(m) => format!("the gap |Enki − fuzzymotiv| in {}", m.label()),
         }
     }
 }
@@ -338,6 +372,24 @@ pub struct ArmRecord {
     pub set: Vec<String>,
     /// Its level (the x of a trend), if it has one.
     pub level: Option<f64>,
+    /// Whether its evolved robots are also measured in another world, and how.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transfer: Option<TransferSpec>,
+}
+
+/// An arm's evolved robots measured in another world (a study file's `transfer` table, of
+/// `[study]` or of an `[[arm]]`): each run's controller driven in Enki by `fuzzymotiv
+/// transfer` in each of its rooms, giving the [`Measure::Enki`] and [`Measure::Gap`] measures.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TransferSpec {
+    /// The world: `enki` (the only one).
+    pub world: String,
+    /// Test runs in Enki per room (`transfer --runs`).
+    pub runs: usize,
+    /// The rooms transferred (empty: every room of the run).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rooms: Vec<String>,
 }
 
 /// One value of `per_seed.csv`: a measure of one run (an arm at a seed) in one room, or over
@@ -502,5 +554,19 @@ mod tests {
         assert_eq!(m, Measure::FirstMeanF);
         assert_eq!(m.column(), FIRST_MEAN_F);
         assert!(!m.per_room() && Measure::Homing.per_room());
+    }
+
+    /// A transferred measure is named by its world and a transferable measure (`enki_homing`,
+    /// `gap_exploration_pct`); any other `enki_…` is a term's name.
+    #[test]
+    fn an_enki_or_gap_measure_is_a_transferable_measure_in_that_world() {
+        let homing = Measure::Enki(Box::new(Measure::Homing));
+        assert_eq!(Measure::parse("enki_homing"), homing);
+        assert_eq!(Measure::parse("enki_homing_pct").column(), "enki_homing_pct");
+        let gap = Measure::parse("gap_exploration_pct");
+        assert_eq!(gap, Measure::Gap(Box::new(Measure::Exploration)));
+        assert_eq!(gap.label(), "the gap |Enki − fuzzymotiv| in % exploration");
+        assert_eq!(Measure::parse("enki_urgency"), Measure::Term("enki_urgency".into()));
+        assert!(homing.per_room());
     }
 }
