@@ -358,7 +358,19 @@ fn edited(dir: &Path, name: &str, line: &str, by: &str) -> PathBuf {
 #[test]
 fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&str, &str, &[&str]); 10] = [
+    // A robot of its own: the Khepera's file under another name, which Enki has no model of.
+    let robot = std::fs::read_to_string(repo().join("robots/khepera.toml")).unwrap();
+    let own = dir.path().join("own-robot.toml");
+    std::fs::write(
+        &own,
+        robot.replacen("name = \"khepera\"", "name = \"own\"", 1),
+    )
+    .unwrap();
+    let own_arm = format!(
+        "name = \"urgency-0.3\"\nlevel = 0.3\nset = {{ robot = {:?} }}\ntransfer = {{ world = \"enki\", runs = 1 }}\n",
+        own.display().to_string()
+    );
+    let cases: [(&str, &str, &[&str]); 15] = [
         (
             "measure = \"urgency\"          #",
             "measure = \"hurry\" #",
@@ -404,6 +416,37 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
             "",
             "\n[[hypothesis]]\nid = \"sooner\"\nkind = \"rising\"\narm = \"urgency-0.1\"\n",
             &["hypothesis[4].id", "used twice"],
+        ),
+        // A measure in Enki of arms that do not transfer; transfers to another world, of no
+        // runs, to a room the runs lack, of a robot Enki has no model of.
+        (
+            "measure = \"urgency\"          #",
+            "measure = \"enki_homing\" #",
+            &["hypothesis[0].measure", "unknown measure `enki_homing_pct`"],
+        ),
+        (
+            "seeds = 4\n",
+            "seeds = 4\ntransfer = { world = \"gazebo\", runs = 2 }\n",
+            &["study.transfer.world", "unknown world `gazebo`", "enki"],
+        ),
+        (
+            "seeds = 4\n",
+            "seeds = 4\ntransfer = { world = \"enki\", runs = 0 }\n",
+            &["study.transfer.runs", "got 0"],
+        ),
+        (
+            "seeds = 4\n",
+            "seeds = 4\ntransfer = { world = \"enki\", runs = 2, rooms = [\"fetch-H\", \"kitchen\"] }\n",
+            &[
+                "study.transfer.rooms[1]",
+                "`kitchen` is not a room",
+                "urgency-0.1",
+            ],
+        ),
+        (
+            "name = \"urgency-0.3\"\nlevel = 0.3\n",
+            &own_arm,
+            &["arm[1].transfer", "the robot `own`", "no model"],
         ),
         // The low arm made the middle one (fetch.toml's curiosity): two arms of one config.
         (
@@ -679,4 +722,129 @@ fn every_shipped_study_file_loads_and_runs_at_two_base_seeds() {
             study.base_seeds
         );
     }
+}
+
+/// Hypotheses over the transfer's measures: in Enki, and the gap between the worlds.
+const IN_ENKI: &str = r#"
+[[hypothesis]]
+id = "homing-in-enki"
+kind = "compare"
+measure = "enki_homing"
+a = "high-curiosity"
+b = "low-curiosity"
+expect = "lower"
+
+[[hypothesis]]
+id = "recognition-in-enki"
+kind = "compare"
+measure = "enki_recognition_pct"
+a = "high-curiosity"
+b = "low-curiosity"
+expect = "higher"
+
+[[hypothesis]]
+id = "exploration-gap"
+kind = "compare"
+measure = "gap_exploration"
+a = "high-curiosity"
+b = "low-curiosity"
+expect = "higher"
+"#;
+
+/// The mean of `column` over `world`'s rows of a transfer's measures.csv.
+fn world_mean(measures: &Rows, world: &str, column: &str) -> f64 {
+    let v: Vec<f64> = (measures.iter().filter(|r| r["world"] == world))
+        .map(|r| f(r, column))
+        .collect();
+    statistics::mean(&v)
+}
+
+/// A study whose arms transfer their robots to Enki is `fuzzymotiv transfer` of each run: its
+/// transfer directories have the command's bytes, its per-seed Enki values are the means of the
+/// Enki test runs of measures.csv, its gap |Enki − fuzzymotiv| of the two worlds' means, and
+/// every verdict is recomputed from them; run again, nothing is transferred again.
+#[test]
+#[ignore = "needs python3-enki2 and libenki-dev (Enki) and g++: run by .ci/run"]
+fn a_study_transfers_its_robots_to_enki_as_fuzzymotiv_transfer_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let (file, _) = tiny_paper_study(dir.path(), "[1]");
+    let text = std::fs::read_to_string(&file).unwrap().replacen(
+        "seeds = 3\n",
+        "seeds = 2\ntransfer = { world = \"enki\", runs = 2, rooms = [\"H\"] }\n",
+        1,
+    );
+    std::fs::write(&file, format!("{text}{IN_ENKI}")).unwrap();
+    let out = dir.path().join("study");
+    study(&file, &out, &[]);
+    let per_seed = read_csv(&out.join("per_seed.csv"));
+    let plan = std::fs::read_to_string(out.join("plan.jsonl")).unwrap();
+    for line in plan.lines() {
+        let job: serde_json::Value = serde_json::from_str(line).unwrap();
+        let id = job["id"].as_str().unwrap();
+        let theirs = dir.path().join("transfer").join(id);
+        ok(&[
+            "transfer",
+            out.join("jobs").join(id).to_str().unwrap(),
+            "--room",
+            "H",
+            "--runs",
+            "2",
+            "--out",
+            theirs.to_str().unwrap(),
+        ]);
+        let ours = out.join("transfer").join(id).join("H");
+        for name in ["measures.csv", "test_runs.csv", "run-0.csv", "run-1.csv"] {
+            let (a, b) = (ours.join(name), theirs.join(name));
+            assert!(
+                std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap(),
+                "{id}: {name}"
+            );
+        }
+        let measures = read_csv(&theirs.join("measures.csv"));
+        let value = |measure: &str, room: &str| {
+            let row = (per_seed.iter())
+                .find(|r| {
+                    r["seed"] == job["seed"].to_string()
+                        && r["arm"] == job["setting"].as_str().unwrap()
+                        && r["measure"] == measure
+                        && r["room"] == room
+                })
+                .unwrap_or_else(|| panic!("{id}: no {measure} in room `{room}`"));
+            f(row, "value")
+        };
+        let enki = world_mean(&measures, "enki", "homing_pct");
+        let gap = (world_mean(&measures, "enki", "exploration_pct")
+            - world_mean(&measures, "fuzzymotiv", "exploration_pct"))
+        .abs();
+        for room in ["H", ""] {
+            assert_eq!(value("enki_homing_pct", room), enki, "{id}: Enki's homing");
+            assert_eq!(value("gap_exploration_pct", room), gap, "{id}: the gap");
+        }
+    }
+    assert_eq!(recompute_every_verdict(&out), 8 + 3);
+    let measures = out
+        .join("transfer")
+        .join(plan_first_id(&plan))
+        .join("H/measures.csv");
+    let (claims, made) = (
+        std::fs::read(out.join("claims.csv")).unwrap(),
+        std::fs::metadata(&measures).unwrap().modified().unwrap(),
+    );
+    let again = run(&[
+        "study",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(again.status.success(), "{}", stderr(&again));
+    assert_eq!(std::fs::read(out.join("claims.csv")).unwrap(), claims);
+    let kept = std::fs::metadata(&measures).unwrap().modified().unwrap();
+    assert_eq!(kept, made, "a transfer made again");
+}
+
+/// The id of a plan.jsonl's first job.
+fn plan_first_id(plan: &str) -> String {
+    let job: serde_json::Value = serde_json::from_str(plan.lines().next().unwrap()).unwrap();
+    job["id"].as_str().unwrap().to_string()
 }

@@ -14,8 +14,8 @@ use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
 use crate::files::inputs::CONFIG;
 use crate::pipeline::sweep_plan::{BaseConfig, PlannedJob, Sweep};
-use crate::records::extra_terms;
 use crate::pipeline::transfer::ENKI_MODELS;
+use crate::records::extra_terms;
 use crate::records::hypotheses::{
     AnalysisRecord, ArmRecord, HolmOver, Hypothesis, Measure, Rule, TRANSFERABLE, TransferSpec,
 };

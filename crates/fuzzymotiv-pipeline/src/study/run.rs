@@ -168,7 +168,10 @@ fn room_values(
 ) -> Result<(Vec<(String, f64)>, f64), CliError> {
     if matches!(m, Measure::Enki(_) | Measure::Gap(_)) {
         let k = study.arm_index(&job.setting).expect("a job of an arm");
-        let spec = study.arms[k].transfer.as_ref().expect("checked by the loader");
+        let spec = study.arms[k]
+            .transfer
+            .as_ref()
+            .expect("checked by the loader");
         return transfer::values(spec, out, &job.id, summary, m);
     }
     let mut per_room = Vec::new();

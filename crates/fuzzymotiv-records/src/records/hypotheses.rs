@@ -562,11 +562,17 @@ mod tests {
     fn an_enki_or_gap_measure_is_a_transferable_measure_in_that_world() {
         let homing = Measure::Enki(Box::new(Measure::Homing));
         assert_eq!(Measure::parse("enki_homing"), homing);
-        assert_eq!(Measure::parse("enki_homing_pct").column(), "enki_homing_pct");
+        assert_eq!(
+            Measure::parse("enki_homing_pct").column(),
+            "enki_homing_pct"
+        );
         let gap = Measure::parse("gap_exploration_pct");
         assert_eq!(gap, Measure::Gap(Box::new(Measure::Exploration)));
         assert_eq!(gap.label(), "the gap |Enki − fuzzymotiv| in % exploration");
-        assert_eq!(Measure::parse("enki_urgency"), Measure::Term("enki_urgency".into()));
+        assert_eq!(
+            Measure::parse("enki_urgency"),
+            Measure::Term("enki_urgency".into())
+        );
         assert!(homing.per_room());
     }
 }
