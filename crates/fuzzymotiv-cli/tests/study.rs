@@ -358,19 +358,7 @@ fn edited(dir: &Path, name: &str, line: &str, by: &str) -> PathBuf {
 #[test]
 fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    // A robot of its own: the Khepera's file under another name, which Enki has no model of.
-    let robot = std::fs::read_to_string(repo().join("robots/khepera.toml")).unwrap();
-    let own = dir.path().join("own-robot.toml");
-    std::fs::write(
-        &own,
-        robot.replacen("name = \"khepera\"", "name = \"own\"", 1),
-    )
-    .unwrap();
-    let own_arm = format!(
-        "name = \"urgency-0.3\"\nlevel = 0.3\nset = {{ robot = {:?} }}\ntransfer = {{ world = \"enki\", runs = 1 }}\n",
-        own.display().to_string()
-    );
-    let cases: [(&str, &str, &[&str]); 15] = [
+    let cases: [(&str, &str, &[&str]); 11] = [
         (
             "measure = \"urgency\"          #",
             "measure = \"hurry\" #",
@@ -417,13 +405,44 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
             "\n[[hypothesis]]\nid = \"sooner\"\nkind = \"rising\"\narm = \"urgency-0.1\"\n",
             &["hypothesis[4].id", "used twice"],
         ),
-        // A measure in Enki of arms that do not transfer; transfers to another world, of no
-        // runs, to a room the runs lack, of a robot Enki has no model of.
+        // A measure in Enki of arms that do not transfer.
         (
             "measure = \"urgency\"          #",
             "measure = \"enki_homing\" #",
             &["hypothesis[0].measure", "unknown measure `enki_homing_pct`"],
         ),
+        // The low arm made the middle one (fetch.toml's curiosity): two arms of one config.
+        (
+            "\"motivations.curiosity\" = 0.7, \"motivations.urgency\" = 0.1",
+            "\"motivations.curiosity\" = 0.5",
+            &[
+                "urgency-0.1;base=1;rep=0",
+                "urgency-0.3;base=1;rep=0",
+                "the same config",
+            ],
+        ),
+    ];
+    assert_refused(dir.path(), &cases);
+}
+
+/// A transfer to another world than Enki, of no runs, to a room the runs lack, or of a robot
+/// Enki has no model of exits 2 naming the transfer's field, before anything runs.
+#[test]
+fn bad_transfer_tables_exit_2_naming_the_field_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    // A robot of its own: the Khepera's file under another name, which Enki has no model of.
+    let robot = std::fs::read_to_string(repo().join("robots/khepera.toml")).unwrap();
+    let own = dir.path().join("own-robot.toml");
+    std::fs::write(
+        &own,
+        robot.replacen("name = \"khepera\"", "name = \"own\"", 1),
+    )
+    .unwrap();
+    let own_arm = format!(
+        "name = \"urgency-0.3\"\nlevel = 0.3\nset = {{ robot = {:?} }}\ntransfer = {{ world = \"enki\", runs = 1 }}\n",
+        own.display().to_string()
+    );
+    let cases: [(&str, &str, &[&str]); 4] = [
         (
             "seeds = 4\n",
             "seeds = 4\ntransfer = { world = \"gazebo\", runs = 2 }\n",
@@ -448,20 +467,16 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
             &own_arm,
             &["arm[1].transfer", "the robot `own`", "no model"],
         ),
-        // The low arm made the middle one (fetch.toml's curiosity): two arms of one config.
-        (
-            "\"motivations.curiosity\" = 0.7, \"motivations.urgency\" = 0.1",
-            "\"motivations.curiosity\" = 0.5",
-            &[
-                "urgency-0.1;base=1;rep=0",
-                "urgency-0.3;base=1;rep=0",
-                "the same config",
-            ],
-        ),
     ];
+    assert_refused(dir.path(), &cases);
+}
+
+/// Each case (a line of the tiny study replaced) run: exit 2, the file named, the case's
+/// words said, nothing written.
+fn assert_refused(dir: &Path, cases: &[(&str, &str, &[&str])]) {
     for (k, (line, by, says)) in cases.iter().enumerate() {
-        let file = edited(dir.path(), &format!("bad{k}.toml"), line, by);
-        let out = dir.path().join(format!("out{k}"));
+        let file = edited(dir, &format!("bad{k}.toml"), line, by);
+        let out = dir.join(format!("out{k}"));
         let o = run(&[
             "study",
             file.to_str().unwrap(),
@@ -801,10 +816,11 @@ fn a_study_transfers_its_robots_to_enki_as_fuzzymotiv_transfer_does() {
             );
         }
         let measures = read_csv(&theirs.join("measures.csv"));
+        let seed = job["seed"].to_string();
         let value = |measure: &str, room: &str| {
             let row = (per_seed.iter())
                 .find(|r| {
-                    r["seed"] == job["seed"].to_string()
+                    r["seed"] == seed
                         && r["arm"] == job["setting"].as_str().unwrap()
                         && r["measure"] == measure
                         && r["room"] == room

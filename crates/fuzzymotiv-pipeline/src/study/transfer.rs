@@ -84,10 +84,12 @@ fn world_mean(
         values.push(v);
     }
     let missing = values.is_empty() || values.iter().any(Option::is_none);
-    if missing && world == "fuzzymotiv" && *m == Measure::Recognition {
-        if let Some(v) = room.and_then(|r| r.recognition_pct) {
-            return Ok(v);
-        }
+    if missing
+        && world == "fuzzymotiv"
+        && *m == Measure::Recognition
+        && let Some(v) = room.and_then(|r| r.recognition_pct)
+    {
+        return Ok(v);
     }
     if missing {
         return Err(CliError::input(format!(
