@@ -777,7 +777,8 @@ fn world_mean(measures: &Rows, world: &str, column: &str) -> f64 {
 /// A study whose arms transfer their robots to Enki is `fuzzymotiv transfer` of each run: its
 /// transfer directories have the command's bytes, its per-seed Enki values are the means of the
 /// Enki test runs of measures.csv, its gap |Enki − fuzzymotiv| of the two worlds' means, and
-/// every verdict is recomputed from them; run again, nothing is transferred again.
+/// every verdict is recomputed from them; each transfer is announced; run again, nothing is
+/// transferred again.
 #[test]
 #[ignore = "needs python3-enki2 and libenki-dev (Enki) and g++: run by .ci/run"]
 fn a_study_transfers_its_robots_to_enki_as_fuzzymotiv_transfer_does() {
@@ -790,52 +791,19 @@ fn a_study_transfers_its_robots_to_enki_as_fuzzymotiv_transfer_does() {
     );
     std::fs::write(&file, format!("{text}{IN_ENKI}")).unwrap();
     let out = dir.path().join("study");
-    study(&file, &out, &[]);
+    let o = ok(&[
+        "study",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let said = "transfer 1 of 4: run high-curiosity;base=1;rep=0 to Enki in room H";
+    assert!(stderr(&o).contains(said), "{}", stderr(&o));
     let per_seed = read_csv(&out.join("per_seed.csv"));
     let plan = std::fs::read_to_string(out.join("plan.jsonl")).unwrap();
     for line in plan.lines() {
         let job: serde_json::Value = serde_json::from_str(line).unwrap();
-        let id = job["id"].as_str().unwrap();
-        let theirs = dir.path().join("transfer").join(id);
-        ok(&[
-            "transfer",
-            out.join("jobs").join(id).to_str().unwrap(),
-            "--room",
-            "H",
-            "--runs",
-            "2",
-            "--out",
-            theirs.to_str().unwrap(),
-        ]);
-        let ours = out.join("transfer").join(id).join("H");
-        for name in ["measures.csv", "test_runs.csv", "run-0.csv", "run-1.csv"] {
-            let (a, b) = (ours.join(name), theirs.join(name));
-            assert!(
-                std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap(),
-                "{id}: {name}"
-            );
-        }
-        let measures = read_csv(&theirs.join("measures.csv"));
-        let seed = job["seed"].to_string();
-        let value = |measure: &str, room: &str| {
-            let row = (per_seed.iter())
-                .find(|r| {
-                    r["seed"] == seed
-                        && r["arm"] == job["setting"].as_str().unwrap()
-                        && r["measure"] == measure
-                        && r["room"] == room
-                })
-                .unwrap_or_else(|| panic!("{id}: no {measure} in room `{room}`"));
-            f(row, "value")
-        };
-        let enki = world_mean(&measures, "enki", "homing_pct");
-        let gap = (world_mean(&measures, "enki", "exploration_pct")
-            - world_mean(&measures, "fuzzymotiv", "exploration_pct"))
-        .abs();
-        for room in ["H", ""] {
-            assert_eq!(value("enki_homing_pct", room), enki, "{id}: Enki's homing");
-            assert_eq!(value("gap_exploration_pct", room), gap, "{id}: the gap");
-        }
+        assert_transfer_is_the_commands(dir.path(), &out, &job, &per_seed);
     }
     assert_eq!(recompute_every_verdict(&out), 8 + 3);
     let measures = out
@@ -857,6 +825,57 @@ fn a_study_transfers_its_robots_to_enki_as_fuzzymotiv_transfer_does() {
     assert_eq!(std::fs::read(out.join("claims.csv")).unwrap(), claims);
     let kept = std::fs::metadata(&measures).unwrap().modified().unwrap();
     assert_eq!(kept, made, "a transfer made again");
+}
+
+/// Job `job`'s transfer to room H in the study `out` is `fuzzymotiv transfer`'s (run into
+/// `dir`): the same files, and `per_seed`'s Enki homing and exploration gap its measures'.
+fn assert_transfer_is_the_commands(
+    dir: &Path,
+    out: &Path,
+    job: &serde_json::Value,
+    per_seed: &Rows,
+) {
+    let id = job["id"].as_str().unwrap();
+    let theirs = dir.join("transfer").join(id);
+    ok(&[
+        "transfer",
+        out.join("jobs").join(id).to_str().unwrap(),
+        "--room",
+        "H",
+        "--runs",
+        "2",
+        "--out",
+        theirs.to_str().unwrap(),
+    ]);
+    let ours = out.join("transfer").join(id).join("H");
+    for name in ["measures.csv", "test_runs.csv", "run-0.csv", "run-1.csv"] {
+        let (a, b) = (ours.join(name), theirs.join(name));
+        assert!(
+            std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap(),
+            "{id}: {name}"
+        );
+    }
+    let measures = read_csv(&theirs.join("measures.csv"));
+    let seed = job["seed"].to_string();
+    let value = |measure: &str, room: &str| {
+        let row = (per_seed.iter())
+            .find(|r| {
+                r["seed"] == seed
+                    && r["arm"] == job["setting"].as_str().unwrap()
+                    && r["measure"] == measure
+                    && r["room"] == room
+            })
+            .unwrap_or_else(|| panic!("{id}: no {measure} in room `{room}`"));
+        f(row, "value")
+    };
+    let enki = world_mean(&measures, "enki", "homing_pct");
+    let gap = (world_mean(&measures, "enki", "exploration_pct")
+        - world_mean(&measures, "fuzzymotiv", "exploration_pct"))
+    .abs();
+    for room in ["H", ""] {
+        assert_eq!(value("enki_homing_pct", room), enki, "{id}: Enki's homing");
+        assert_eq!(value("gap_exploration_pct", room), gap, "{id}: the gap");
+    }
 }
 
 /// The id of a plan.jsonl's first job.

@@ -48,6 +48,15 @@ impl StudyProgress for JobsProgress {
     }
 
     fn analysed(&self, _out: &Path, _claims: &[ClaimRow]) {}
+
+    fn transferring(&self, done: usize, total: usize, key: &str, room: &str) {
+        if !self.quiet() {
+            note!(
+                "transfer {} of {total}: run {key} to Enki in room {room}",
+                done + 1
+            );
+        }
+    }
 }
 
 /// Entry point of `fuzzymotiv study`.

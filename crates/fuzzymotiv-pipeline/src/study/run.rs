@@ -39,6 +39,9 @@ pub trait StudyProgress: SweepProgress {
     fn waiting(&self, done: usize, total: usize);
     /// The analysis was written into `out`.
     fn analysed(&self, out: &Path, claims: &[ClaimRow]);
+    /// Transfer `done` + 1 of the `total` still to make (a transferring arm's run `key` to
+    /// Enki in `room`) begins.
+    fn transferring(&self, _done: usize, _total: usize, _key: &str, _room: &str) {}
 }
 
 impl StudyProgress for crate::pipeline::progress::NoProgress {
@@ -105,7 +108,7 @@ pub fn run_study(
         progress.waiting(done, total);
         return Ok(StudyOutcome::Waiting { done, total });
     }
-    transfer::transfer_runs(study, out)?;
+    transfer::transfer_runs(study, out, progress)?;
     let record = analyse(study, out)?;
     progress.analysed(out, &record.claims);
     Ok(StudyOutcome::Analysed(record.claims))

@@ -10,6 +10,7 @@ use crate::pipeline::transfer::{MeasureRow, TransferRequest, transfer};
 use crate::records::hypotheses::{Measure, TransferSpec};
 use crate::records::{RoomRow, RunSummary, read_csv};
 use crate::study::file::Study;
+use crate::study::run::StudyProgress;
 
 /// The directory of job `id`'s transfer to `room`.
 pub fn transfer_dir(out: &Path, id: &str, room: &str) -> PathBuf {
@@ -26,9 +27,13 @@ fn rooms_of(spec: &TransferSpec, summary: &RunSummary) -> Vec<String> {
 }
 
 /// Every transfer of the study not yet made (each run of a transferring arm, in each of its
-/// rooms), in plan order; how many were made.
-pub fn transfer_runs(study: &Study, out: &Path) -> Result<usize, CliError> {
-    let mut made = 0;
+/// rooms), in plan order, each announced to `progress`; how many were made.
+pub fn transfer_runs(
+    study: &Study,
+    out: &Path,
+    progress: &dyn StudyProgress,
+) -> Result<usize, CliError> {
+    let mut todo = Vec::new();
     for job in &study.plan.jobs {
         let k = study.arm_index(&job.setting).expect("a job of an arm");
         let Some(spec) = &study.arms[k].transfer else {
@@ -37,30 +42,34 @@ pub fn transfer_runs(study: &Study, out: &Path) -> Result<usize, CliError> {
         let run = out.join("jobs").join(&job.id);
         let summary: RunSummary = crate::records::read_json(&run.join("summary.json"))?;
         for room in rooms_of(spec, &summary) {
-            let dest = transfer_dir(out, &job.id, &room);
-            if dest.join("measures.csv").is_file() {
-                continue;
+            if !transfer_dir(out, &job.id, &room)
+                .join("measures.csv")
+                .is_file()
+            {
+                todo.push((job, spec, room));
             }
-            transfer(&TransferRequest {
-                run: &run,
-                room: &room,
-                runs: spec.runs,
-                out: &dest,
-                seed: None,
-                force: true,
-            })
-            .map_err(|e| {
-                let message = format!("{}: run {}, room {room}: {e}", study.source, job.key);
-                if e.is_input() {
-                    CliError::input(message)
-                } else {
-                    CliError::runtime(message)
-                }
-            })?;
-            made += 1;
         }
     }
-    Ok(made)
+    for (done, (job, spec, room)) in todo.iter().enumerate() {
+        progress.transferring(done, todo.len(), &job.key, room);
+        transfer(&TransferRequest {
+            run: &out.join("jobs").join(&job.id),
+            room,
+            runs: spec.runs,
+            out: &transfer_dir(out, &job.id, room),
+            seed: None,
+            force: true,
+        })
+        .map_err(|e| {
+            let message = format!("{}: run {}, room {room}: {e}", study.source, job.key);
+            if e.is_input() {
+                CliError::input(message)
+            } else {
+                CliError::runtime(message)
+            }
+        })?;
+    }
+    Ok(todo.len())
 }
 
 /// The mean over `world`'s test runs of `m` (a transferable measure) in `rows`; for the
