@@ -19,8 +19,10 @@ pub struct StudyArgs {
     /// Study file: `[study]` (name, seeds, base_seeds), `[analysis]`, `[[arm]]`s and
     /// `[[hypothesis]]`s (docs/guide/studies.md).
     pub study: PathBuf,
-    /// Output directory: the runs in DIR/jobs/ID/, the analysis (claims.csv, per_seed.csv,
-    /// rooms.csv, study.json, report.md, forest.svg) beside them once every run is there.
+    /// Output directory: the runs in DIR/jobs/ID/ (their transfers to Enki in
+    /// DIR/transfer/ID/ROOM/), the analysis (claims.csv, per_seed.csv, rooms.csv, study.json,
+    /// report.md, forest.svg; agreement.csv with several base seeds) beside them once every run
+    /// is there.
     #[arg(long)]
     pub out: PathBuf,
     /// Run shard K of N (0-based): the runs whose plan index ≡ K mod N; the analysis is
