@@ -1,7 +1,8 @@
 """Studies of one's own from Python (fm.study) against `fuzzymotiv study`, byte for byte: a
-study of a new kind (the fetch mission on an e-puck2, three arms, two hypotheses) from a file and
-from a dict; Ctrl-C stops it and the same call resumes it; shards; bad study files raise
-ConfigError naming the file and the field, with nothing written."""
+study of a new kind (the fetch mission on an e-puck2, three arms, two hypotheses over the
+mission's term urgency) from a file and from a dict; Ctrl-C stops it and the same call resumes
+it; shards; bad study files raise ConfigError naming the file and the field, with nothing
+written. fm.study takes no terms= (docs/guide/studies.md): a Python term cannot be an arm's."""
 
 import _thread
 import signal
@@ -20,7 +21,8 @@ RECORDS = ["per_seed.csv", "claims.csv", "rooms.csv", "study.json", "forest.svg"
 
 def study_dict(config=str(REPO / "configs" / "fetch.toml")):
     """The fetch mission on an e-puck2 at a tiny size: three arms of urgency's weight (taken
-    from curiosity), one hypothesis on the mission's time and a trend of exploration."""
+    from curiosity), two hypotheses on the mission's term, urgency (its time): the highest against
+    the lowest, and the trend over the three."""
     return {
         "study": {
             "name": "epuck2-fetch",
@@ -42,11 +44,11 @@ def study_dict(config=str(REPO / "configs" / "fetch.toml")):
         "hypothesis": [
             {"id": "sooner", "kind": "compare", "measure": "urgency", "a": "urgency-0.5", "b": "urgency-0.1", "expect": "higher"},
             {
-                "id": "exploration-cost",
+                "id": "urgency-trend",
                 "kind": "trend",
-                "measure": "exploration",
+                "measure": "urgency",
                 "arms": ["urgency-0.1", "urgency-0.3", "urgency-0.5"],
-                "expect": "decreasing",
+                "expect": "increasing",
             },
         ],
     }
@@ -87,11 +89,11 @@ b = "urgency-0.1"
 expect = "higher"
 
 [[hypothesis]]
-id = "exploration-cost"
+id = "urgency-trend"
 kind = "trend"
-measure = "exploration"
+measure = "urgency"
 arms = ["urgency-0.1", "urgency-0.3", "urgency-0.5"]
-expect = "decreasing"
+expect = "increasing"
 """
 
 
@@ -118,7 +120,7 @@ def test_a_study_runs_from_python_with_the_command_lines_records(by_cli, tmp_pat
     same_bytes(res.out, cli_out, RECORDS + ["report.md"])
     assert res.analysed and (res.done, res.total) == (9, 9)
     assert seen[-1] == (9, 9) and seen == sorted(seen)
-    assert list(res.claims["id"]) == ["sooner", "exploration-cost"]
+    assert list(res.claims["id"]) == ["sooner", "urgency-trend"]
     for column in ["effect", "ci_low", "ci_high", "p", "p_adjusted", "mdd"]:
         assert res.claims[column].dtype == np.float64, column
     assert set(res.claims["verdict"]) <= {"supported", "contradicted", "not significant", "inconclusive"}

@@ -232,6 +232,11 @@ impl JobsProgress {
             selected: AtomicUsize::new(0),
         }
     }
+
+    /// Whether it shows nothing (`--quiet`).
+    pub fn quiet(&self) -> bool {
+        self.quiet
+    }
 }
 
 impl SweepProgress for JobsProgress {

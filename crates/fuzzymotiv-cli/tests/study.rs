@@ -190,12 +190,59 @@ fn recompute(
 }
 
 /// Every claim of the study in `out` recomputed from its per_seed.csv by the analysis its
-/// study.json states (α, the rule, Holm over the hypotheses): effect, p, adjusted p, verdict.
+/// study.json states (α, the rule, Holm over the hypotheses): effect, p, adjusted p, verdict;
+/// and with several base seeds every row of its agreement.csv, from the per-seed values of
+/// its base seed's first seeds, its `pooled` the pooled verdict of claims.csv. How many.
 fn recompute_every_verdict(out: &Path) -> usize {
     let record: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("study.json")).unwrap()).unwrap();
     let per_seed = read_csv(&out.join("per_seed.csv"));
     let claims = read_csv(&out.join("claims.csv"));
+    let mut checked = recompute_verdicts(&record, &per_seed, &claims);
+    let agreement = out.join("agreement.csv");
+    let bases = record["base_seeds"].as_array().unwrap().len();
+    assert_eq!(
+        agreement.is_file(),
+        bases > 1,
+        "agreement.csv with {bases} base seeds"
+    );
+    if !agreement.is_file() {
+        return checked;
+    }
+    let mut rows = read_csv(&agreement);
+    let seeds = record["seeds"].as_u64().unwrap() as usize;
+    let hypotheses = record["hypotheses"].as_array().unwrap().len();
+    assert_eq!(rows.len(), (seeds - 1) * bases * hypotheses);
+    for r in &mut rows {
+        let pooled = (claims.iter())
+            .find(|c| c["scope"] == "pooled" && c["id"] == r["id"])
+            .unwrap();
+        assert_eq!(r["pooled"], pooled["verdict"], "{r:?}: pooled verdict");
+        assert_eq!(r["agrees"], (r["verdict"] == r["pooled"]).to_string());
+        r.insert("scope".into(), "pooled".into());
+    }
+    let mut groups: Vec<(String, String)> = (rows.iter())
+        .map(|r| (r["seeds"].clone(), r["base_seed"].clone()))
+        .collect();
+    groups.dedup();
+    for (n, base) in groups {
+        let count: usize = n.parse().unwrap();
+        let first: Rows = (per_seed.iter())
+            .filter(|r| r["base_seed"] == base && r["replicate"].parse::<usize>().unwrap() < count)
+            .cloned()
+            .collect();
+        let judged: Rows = (rows.iter())
+            .filter(|r| r["seeds"] == n && r["base_seed"] == base)
+            .cloned()
+            .collect();
+        checked += recompute_verdicts(&record, &first, &judged);
+    }
+    checked
+}
+
+/// Every claim of `claims` (rows with a scope) recomputed from `per_seed` by the analysis
+/// `record` (study.json) states; how many.
+fn recompute_verdicts(record: &serde_json::Value, per_seed: &Rows, claims: &Rows) -> usize {
     let a = &record["analysis"];
     // The resampling of a scope's tests is seeded by its first seed, as the paper's study's.
     let first_seed = |scope: &str| {
@@ -219,7 +266,7 @@ fn recompute_every_verdict(out: &Path) -> usize {
     for scope in scopes {
         let s = settings(scope);
         let tested: Vec<_> = (hypotheses.iter())
-            .map(|h| recompute(h, &levels, &per_seed, scope, &s))
+            .map(|h| recompute(h, &levels, per_seed, scope, &s))
             .collect();
         let p: Vec<f64> = tested.iter().map(|t| t.1).collect();
         let adjusted = match a["holm"].as_str().unwrap() {
@@ -254,8 +301,9 @@ fn a_fetch_study_writes_typed_records_whose_every_verdict_is_recomputed_from_its
     for name in ANALYSIS {
         assert!(out.join(name).is_file(), "{name} written");
     }
-    // Eight hypotheses, judged pooled and at each of the two base seeds.
-    assert_eq!(recompute_every_verdict(&out), 24);
+    // Eight hypotheses, judged pooled and at each of the two base seeds; and on each base
+    // seed's first 2, 3 and 4 seeds (agreement.csv).
+    assert_eq!(recompute_every_verdict(&out), 24 + 3 * 2 * 8);
     let printed = stdout(&o);
     assert!(
         printed.contains("sooner: ")
@@ -268,6 +316,7 @@ fn a_fetch_study_writes_typed_records_whose_every_verdict_is_recomputed_from_its
         "## Claims",
         "forest.svg",
         "## Each base seed's verdict",
+        "## Agreement by seed count",
         "## Per room",
         "## Seeds",
         "name = \"fetch-urgency\"",
@@ -386,7 +435,7 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
             ],
         ),
     ];
-    let cases: [(&str, &str, &[&str]); 10] = [
+    let cases: [(&str, &str, &[&str]); 11] = [
         (
             "measure = \"urgency\"          #",
             "measure = \"hurry\" #",
@@ -433,6 +482,12 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
             "\n[[hypothesis]]\nid = \"sooner\"\nkind = \"rising\"\narm = \"urgency-0.1\"\n",
             &["hypothesis[4].id", "used twice"],
         ),
+        // A measure in Enki of arms that do not transfer.
+        (
+            "measure = \"urgency\"          #",
+            "measure = \"enki_homing\" #",
+            &["hypothesis[0].measure", "unknown measure `enki_homing_pct`"],
+        ),
         // The low arm made the middle one (fetch.toml's curiosity): two arms of one config.
         (
             "\"motivations.curiosity\" = 0.7, \"motivations.urgency\" = 0.1",
@@ -447,9 +502,62 @@ fn bad_study_files_exit_2_naming_the_file_and_field_and_write_nothing() {
     let more: Vec<(&str, &str, &[&str])> = (more.iter())
         .map(|(by, says)| ("", by.as_str(), says.as_slice()))
         .collect();
-    for (k, (line, by, says)) in cases.iter().chain(&more).enumerate() {
-        let file = edited(dir.path(), &format!("bad{k}.toml"), line, by);
-        let out = dir.path().join(format!("out{k}"));
+    let all: Vec<(&str, &str, &[&str])> = cases.iter().copied().chain(more).collect();
+    assert_refused(dir.path(), &all);
+}
+
+/// A transfer to another world than Enki, of no runs, to a room the runs lack, or of a robot
+/// Enki has no model of exits 2 naming the transfer's field, before anything runs.
+#[test]
+fn bad_transfer_tables_exit_2_naming_the_field_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    // A robot of its own: the Khepera's file under another name, which Enki has no model of.
+    let robot = std::fs::read_to_string(repo().join("robots/khepera.toml")).unwrap();
+    let own = dir.path().join("own-robot.toml");
+    std::fs::write(
+        &own,
+        robot.replacen("name = \"khepera\"", "name = \"own\"", 1),
+    )
+    .unwrap();
+    let own_arm = format!(
+        "name = \"urgency-0.3\"\nlevel = 0.3\nset = {{ robot = {:?} }}\ntransfer = {{ world = \"enki\", runs = 1 }}\n",
+        own.display().to_string()
+    );
+    let cases: [(&str, &str, &[&str]); 4] = [
+        (
+            "seeds = 4\n",
+            "seeds = 4\ntransfer = { world = \"gazebo\", runs = 2 }\n",
+            &["study.transfer.world", "unknown world `gazebo`", "enki"],
+        ),
+        (
+            "seeds = 4\n",
+            "seeds = 4\ntransfer = { world = \"enki\", runs = 0 }\n",
+            &["study.transfer.runs", "got 0"],
+        ),
+        (
+            "seeds = 4\n",
+            "seeds = 4\ntransfer = { world = \"enki\", runs = 2, rooms = [\"fetch-H\", \"kitchen\"] }\n",
+            &[
+                "study.transfer.rooms[1]",
+                "`kitchen` is not a room",
+                "urgency-0.1",
+            ],
+        ),
+        (
+            "name = \"urgency-0.3\"\nlevel = 0.3\n",
+            &own_arm,
+            &["arm[1].transfer", "the robot `own`", "no model"],
+        ),
+    ];
+    assert_refused(dir.path(), &cases);
+}
+
+/// Each case (a line of the tiny study replaced) run: exit 2, the file named, the case's
+/// words said, nothing written.
+fn assert_refused(dir: &Path, cases: &[(&str, &str, &[&str])]) {
+    for (k, (line, by, says)) in cases.iter().enumerate() {
+        let file = edited(dir, &format!("bad{k}.toml"), line, by);
+        let out = dir.join(format!("out{k}"));
         let o = run(&[
             "study",
             file.to_str().unwrap(),
@@ -585,18 +693,20 @@ fn a_killed_study_resumes_its_runs_and_writes_the_analysis_of_an_uninterrupted_o
     }
 }
 
-/// The shipped studies/paper.toml made tiny (three seeds of base seed 1, a small GA, short
+/// The shipped studies/paper.toml made tiny (three seeds of `base_seeds`, a small GA, short
 /// trials), its configs named by absolute paths; and the same size as `reproduce`'s `--set`s.
-fn tiny_paper_study(dir: &Path) -> (PathBuf, [&'static str; 3]) {
+fn tiny_paper_study(dir: &Path, base_seeds: &str) -> (PathBuf, [&'static str; 3]) {
     let text = std::fs::read_to_string(repo().join("studies/paper.toml")).unwrap();
     let configs = repo().join("configs");
     let text = text
         .replace(
             "seeds = 20\nbase_seeds = [1, 11]\n",
-            "seeds = 3\nbase_seeds = [1]\nset = { ga = { population = 8, generations = 4 }, trial = { steps = 150 } }\n",
+            &format!("seeds = 3\nbase_seeds = {base_seeds}\nset = {{ ga = {{ population = 8, generations = 4 }}, trial = {{ steps = 150 }} }}\n"),
         )
         .replace("\"../configs/", &format!("\"{}/", configs.display()));
-    assert!(text.contains("population = 8") && text.contains("base_seeds = [1]\n"));
+    assert!(
+        text.contains("population = 8") && text.contains(&format!("base_seeds = {base_seeds}\n"))
+    );
     let path = dir.join("paper.toml");
     std::fs::write(&path, text).unwrap();
     let sets = ["ga.population=8", "ga.generations=4", "trial.steps=150"];
@@ -610,7 +720,7 @@ fn tiny_paper_study(dir: &Path) -> (PathBuf, [&'static str; 3]) {
 #[test]
 fn the_paper_study_file_runs_reproduces_runs_and_gives_its_claims_numbers() {
     let dir = tempfile::tempdir().unwrap();
-    let (file, sets) = tiny_paper_study(dir.path());
+    let (file, sets) = tiny_paper_study(dir.path(), "[1]");
     let (rep, out) = (dir.path().join("reproduce"), dir.path().join("study"));
     let mut args = vec!["reproduce", "--seeds", "3", "--threads", "2", "-q", "--out"];
     args.push(rep.to_str().unwrap());
@@ -679,6 +789,57 @@ fn the_paper_study_file_runs_reproduces_runs_and_gives_its_claims_numbers() {
     assert_eq!(recompute_every_verdict(&out), 8);
 }
 
+/// The paper's study at two base seeds is `reproduce --replication`: its agreement.csv judges
+/// each hypothesis on each base seed's first n seeds (n = 2, 3) and the four comparisons there
+/// have the replication's p-values and verdicts (replication_seeds.csv) beside the same pooled
+/// verdicts (replication.csv); the report shows the agreement.
+#[test]
+fn the_paper_study_at_two_base_seeds_agrees_by_seed_count_as_reproduce_replication() {
+    let dir = tempfile::tempdir().unwrap();
+    let (file, sets) = tiny_paper_study(dir.path(), "[1, 11]");
+    let (rep, out) = (dir.path().join("replication"), dir.path().join("study"));
+    let mut args = vec![
+        "reproduce",
+        "--replication",
+        "--seeds",
+        "3",
+        "--threads",
+        "2",
+    ];
+    args.extend(["-q", "--out", rep.to_str().unwrap()]);
+    for s in &sets {
+        args.extend(["--set", s]);
+    }
+    ok(&args);
+    study(&file, &out, &[]);
+    let ours = read_csv(&out.join("agreement.csv"));
+    let theirs = read_csv(&rep.join("replication_seeds.csv"));
+    let pooled = read_csv(&rep.join("replication.csv"));
+    let ids = ["explores", "battery", "recognition", "homing"];
+    // Per seed count and base seed, the eight hypotheses of paper.toml.
+    assert_eq!(ours.len(), 2 * 2 * 8);
+    for n in ["2", "3"] {
+        // replication_seeds.csv: per seed count, the claims with the four comparisons first.
+        let at: Vec<_> = theirs.iter().filter(|r| r["seeds"] == n).collect();
+        for (k, id) in ids.iter().enumerate() {
+            for (base, side) in [("1", "a"), ("11", "b")] {
+                let what = format!("{id} at {n} seeds of base seed {base}");
+                let row = (ours.iter())
+                    .find(|r| r["seeds"] == n && r["id"] == *id && r["base_seed"] == base)
+                    .unwrap_or_else(|| panic!("no {what}"));
+                assert_eq!(f(row, "p"), f(at[k], &format!("p_{side}")), "{what}: p");
+                assert_eq!(row["verdict"], at[k][&format!("verdict_{side}")], "{what}");
+                assert_eq!(row["pooled"], pooled[k]["verdict_pooled"], "{what}: pooled");
+                let agrees = row["verdict"] == row["pooled"];
+                assert_eq!(row["agrees"], agrees.to_string(), "{what}: agrees");
+            }
+        }
+    }
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(report.contains("## Agreement by seed count"), "{report}");
+    assert!(report.contains("| 3 |"), "{report}");
+}
+
 /// Every shipped study file (studies/*.toml) loads, every run's config checked, and each that
 /// reports a verdict replicates: it runs at two base seeds or more, so that it reports each base
 /// seed's verdict beside the pooled one (the orientation study, a sweep of arms, has none).
@@ -703,4 +864,149 @@ fn every_shipped_study_file_loads_and_runs_at_two_base_seeds() {
             study.base_seeds
         );
     }
+}
+
+/// Hypotheses over the transfer's measures: in Enki, and the gap between the worlds.
+const IN_ENKI: &str = r#"
+[[hypothesis]]
+id = "homing-in-enki"
+kind = "compare"
+measure = "enki_homing"
+a = "high-curiosity"
+b = "low-curiosity"
+expect = "lower"
+
+[[hypothesis]]
+id = "recognition-in-enki"
+kind = "compare"
+measure = "enki_recognition_pct"
+a = "high-curiosity"
+b = "low-curiosity"
+expect = "higher"
+
+[[hypothesis]]
+id = "exploration-gap"
+kind = "compare"
+measure = "gap_exploration"
+a = "high-curiosity"
+b = "low-curiosity"
+expect = "higher"
+"#;
+
+/// The mean of `column` over `world`'s rows of a transfer's measures.csv.
+fn world_mean(measures: &Rows, world: &str, column: &str) -> f64 {
+    let v: Vec<f64> = (measures.iter().filter(|r| r["world"] == world))
+        .map(|r| f(r, column))
+        .collect();
+    statistics::mean(&v)
+}
+
+/// A study whose arms transfer their robots to Enki is `fuzzymotiv transfer` of each run: its
+/// transfer directories have the command's bytes, its per-seed Enki values are the means of the
+/// Enki test runs of measures.csv, its gap |Enki − fuzzymotiv| of the two worlds' means, and
+/// every verdict is recomputed from them; each transfer is announced; run again, nothing is
+/// transferred again.
+#[test]
+#[ignore = "needs python3-enki2 and libenki-dev (Enki) and g++: run by .ci/run"]
+fn a_study_transfers_its_robots_to_enki_as_fuzzymotiv_transfer_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let (file, _) = tiny_paper_study(dir.path(), "[1]");
+    let text = std::fs::read_to_string(&file).unwrap().replacen(
+        "seeds = 3\n",
+        "seeds = 2\ntransfer = { world = \"enki\", runs = 2, rooms = [\"H\"] }\n",
+        1,
+    );
+    std::fs::write(&file, format!("{text}{IN_ENKI}")).unwrap();
+    let out = dir.path().join("study");
+    let o = ok(&[
+        "study",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let said = "transfer 1 of 4: run high-curiosity;base=1;rep=0 to Enki in room H";
+    assert!(stderr(&o).contains(said), "{}", stderr(&o));
+    let per_seed = read_csv(&out.join("per_seed.csv"));
+    let plan = std::fs::read_to_string(out.join("plan.jsonl")).unwrap();
+    for line in plan.lines() {
+        let job: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert_transfer_is_the_commands(dir.path(), &out, &job, &per_seed);
+    }
+    assert_eq!(recompute_every_verdict(&out), 8 + 3);
+    let measures = out
+        .join("transfer")
+        .join(plan_first_id(&plan))
+        .join("H/measures.csv");
+    let (claims, made) = (
+        std::fs::read(out.join("claims.csv")).unwrap(),
+        std::fs::metadata(&measures).unwrap().modified().unwrap(),
+    );
+    let again = run(&[
+        "study",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(again.status.success(), "{}", stderr(&again));
+    assert_eq!(std::fs::read(out.join("claims.csv")).unwrap(), claims);
+    let kept = std::fs::metadata(&measures).unwrap().modified().unwrap();
+    assert_eq!(kept, made, "a transfer made again");
+}
+
+/// Job `job`'s transfer to room H in the study `out` is `fuzzymotiv transfer`'s (run into
+/// `dir`): the same files, and `per_seed`'s Enki homing and exploration gap its measures'.
+fn assert_transfer_is_the_commands(
+    dir: &Path,
+    out: &Path,
+    job: &serde_json::Value,
+    per_seed: &Rows,
+) {
+    let id = job["id"].as_str().unwrap();
+    let theirs = dir.join("transfer").join(id);
+    ok(&[
+        "transfer",
+        out.join("jobs").join(id).to_str().unwrap(),
+        "--room",
+        "H",
+        "--runs",
+        "2",
+        "--out",
+        theirs.to_str().unwrap(),
+    ]);
+    let ours = out.join("transfer").join(id).join("H");
+    for name in ["measures.csv", "test_runs.csv", "run-0.csv", "run-1.csv"] {
+        let (a, b) = (ours.join(name), theirs.join(name));
+        assert!(
+            std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap(),
+            "{id}: {name}"
+        );
+    }
+    let measures = read_csv(&theirs.join("measures.csv"));
+    let seed = job["seed"].to_string();
+    let value = |measure: &str, room: &str| {
+        let row = (per_seed.iter())
+            .find(|r| {
+                r["seed"] == seed
+                    && r["arm"] == job["setting"].as_str().unwrap()
+                    && r["measure"] == measure
+                    && r["room"] == room
+            })
+            .unwrap_or_else(|| panic!("{id}: no {measure} in room `{room}`"));
+        f(row, "value")
+    };
+    let enki = world_mean(&measures, "enki", "homing_pct");
+    let gap = (world_mean(&measures, "enki", "exploration_pct")
+        - world_mean(&measures, "fuzzymotiv", "exploration_pct"))
+    .abs();
+    for room in ["H", ""] {
+        assert_eq!(value("enki_homing_pct", room), enki, "{id}: Enki's homing");
+        assert_eq!(value("gap_exploration_pct", room), gap, "{id}: the gap");
+    }
+}
+
+/// The id of a plan.jsonl's first job.
+fn plan_first_id(plan: &str) -> String {
+    let job: serde_json::Value = serde_json::from_str(plan.lines().next().unwrap()).unwrap();
+    job["id"].as_str().unwrap().to_string()
 }

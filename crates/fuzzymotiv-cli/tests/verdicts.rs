@@ -844,3 +844,60 @@ fn assert_comparisons_are(study: &str, scope: &str, suffix: &str, paper: &Path) 
         );
     }
 }
+
+/// The committed paper study (studies/paper.toml at base seeds 1 and 11) is the committed
+/// replication (`reproduce --replication --seeds 20`): its agreement by seed count, computed
+/// from its per_seed.csv by the study's code, has for the four comparisons at every number of
+/// seeds from 2 to 20 each base seed's p-value and verdict of replication_seeds.csv.
+#[test]
+fn the_paper_study_files_agreement_is_the_committed_replications_at_every_seed_count() {
+    use fuzzymotiv_pipeline::records::hypotheses::{PerSeedRow, StudyRecord};
+    use fuzzymotiv_pipeline::records::{read_csv, read_json};
+    let dir = results().join("paper-study");
+    let per_seed: Vec<PerSeedRow> = read_csv(&dir.join("per_seed.csv")).unwrap();
+    let study: StudyRecord = read_json(&dir.join("study.json")).unwrap();
+    let level = |_: &str| f64::NAN;
+    let (h, bases) = (&study.hypotheses, &study.base_seeds);
+    let agreement = fuzzymotiv_pipeline::study::agreement::agreement(
+        h,
+        &per_seed,
+        bases,
+        study.seeds,
+        &level,
+        &study.analysis,
+        &study.claims,
+    )
+    .unwrap();
+    let replication = rows(&results().join("replication/replication_seeds.csv"));
+    let mut checked = 0;
+    for n in 2..=study.seeds {
+        // replication_seeds.csv: per number of seeds, the four comparisons first.
+        let theirs: Vec<&Row> = (replication.iter())
+            .filter(|r| r["seeds"] == n.to_string())
+            .collect();
+        for (k, id) in ["explores", "battery", "recognition", "homing"]
+            .iter()
+            .enumerate()
+        {
+            assert_eq!(theirs[k]["claim"], CLAIMS[k].0);
+            for (base, side) in [(1, "a"), (11, "b")] {
+                let ours = (agreement.iter())
+                    .find(|r| r.seeds == n && r.id == *id && r.base_seed == base)
+                    .unwrap_or_else(|| panic!("no {id} at {n} seeds of base seed {base}"));
+                let what = format!("{id} at {n} seeds of base seed {base}");
+                assert_eq!(
+                    Some(ours.p),
+                    number(theirs[k], &format!("p_{side}")),
+                    "{what}"
+                );
+                assert_eq!(
+                    ours.verdict,
+                    theirs[k][&format!("verdict_{side}")],
+                    "{what}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 19 * 4 * 2);
+}

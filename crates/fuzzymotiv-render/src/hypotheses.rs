@@ -43,6 +43,7 @@ pub fn report_md(record: &StudyRecord, per_seed: &[PerSeedRow], study_text: &str
         s.push_str("![Every hypothesis's effect with its interval](forest.svg)\n\n");
         if record.base_seeds.len() > 1 {
             s.push_str(&replication_md(record));
+            s.push_str(&crate::agreement::agreement_md(record));
         }
         s.push_str(&rooms_md(record));
     }
@@ -333,10 +334,10 @@ pub(crate) mod tests {
             claims,
             rooms: Vec::new(),
             measures: Vec::new(),
+            agreement: Vec::new(),
         }
     }
 
-    #[test]
     /// A study without hypotheses (a sweep of arms) reports each arm's measures and no
     /// claims, forest plot or rooms' results.
     #[test]

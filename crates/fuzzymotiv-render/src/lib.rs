@@ -7,6 +7,7 @@
 
 #![warn(missing_docs)]
 
+pub mod agreement;
 pub mod claim_format;
 pub mod combination;
 pub mod compare;

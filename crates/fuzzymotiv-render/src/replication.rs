@@ -85,10 +85,8 @@ pub fn replication(
 
 /// The smallest number of seeds from which on every row agrees (none when the last does not).
 pub fn seeds_needed(by_seeds: &[SeedsRow]) -> Option<usize> {
-    match by_seeds.iter().rposition(|r| !r.agree) {
-        None => by_seeds.first().map(|r| r.seeds),
-        Some(last) => by_seeds.get(last + 1).map(|r| r.seeds),
-    }
+    let agree: Vec<(usize, bool)> = by_seeds.iter().map(|r| (r.seeds, r.agree)).collect();
+    fuzzymotiv_records::records::agreement::seeds_needed(&agree)
 }
 
 fn seeds_row(a: &StudySummary, b: &StudySummary, k: usize, target: &[String]) -> SeedsRow {

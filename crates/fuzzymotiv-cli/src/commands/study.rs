@@ -20,8 +20,10 @@ pub struct StudyArgs {
     /// Study file: `[study]` (name, seeds, base_seeds), `[analysis]`, `[[arm]]`s and
     /// `[[hypothesis]]`s (docs/guide/studies.md).
     pub study: PathBuf,
-    /// Output directory: the runs in DIR/jobs/ID/, the analysis (claims.csv, per_seed.csv,
-    /// rooms.csv, study.json, report.md, forest.svg) beside them once every run is there.
+    /// Output directory: the runs in DIR/jobs/ID/ (their transfers to Enki in
+    /// DIR/transfer/ID/ROOM/), the analysis (claims.csv, per_seed.csv, rooms.csv, study.json,
+    /// report.md, forest.svg; agreement.csv with several base seeds) beside them once every run
+    /// is there.
     #[arg(long)]
     pub out: PathBuf,
     /// Run shard K of N (0-based): the runs whose plan index ≡ K mod N; the analysis is
@@ -49,6 +51,15 @@ impl StudyProgress for JobsProgress {
     }
 
     fn analysed(&self, _out: &Path, _claims: &[ClaimRow]) {}
+
+    fn transferring(&self, done: usize, total: usize, key: &str, room: &str) {
+        if !self.quiet() {
+            note!(
+                "transfer {} of {total}: run {key} to Enki in room {room}",
+                done + 1
+            );
+        }
+    }
 }
 
 /// Entry point of `fuzzymotiv study`.

@@ -20,7 +20,7 @@ use fuzzymotiv::experiment::{Experiment, LoggedStep, LoggedTrial, Run};
 use fuzzymotiv::export::{CSources, ExportedController};
 use fuzzymotiv::modelling::Action;
 use fuzzymotiv::simulation::{Controller, Mlp, MlpShape, Pose, Readings, Room, Vec2};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::files::error::CliError;
 use crate::files::guard::{FilesState, check_files_dir, write_into};
@@ -94,8 +94,8 @@ pub struct TransferRequest<'a> {
     pub force: bool,
 }
 
-/// One test run's measures, in one world.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// One test run's measures, in one world (a row of `measures.csv`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MeasureRow {
     /// `enki` or `fuzzymotiv`.
     pub world: String,

@@ -14,8 +14,11 @@ use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
 use crate::files::inputs::CONFIG;
 use crate::pipeline::sweep_plan::{BaseConfig, PlannedJob, Sweep};
+use crate::pipeline::transfer::ENKI_MODELS;
 use crate::records::extra_terms;
-use crate::records::hypotheses::{AnalysisRecord, ArmRecord, HolmOver, Hypothesis, Measure, Rule};
+use crate::records::hypotheses::{
+    AnalysisRecord, ArmRecord, HolmOver, Hypothesis, Measure, Rule, TRANSFERABLE, TransferSpec,
+};
 
 /// A study file, read whole (at most [`crate::files::bounded::TEXT_LIMIT`] bytes).
 pub const STUDY_FILE: InputKind = InputKind::text("study file");
@@ -56,7 +59,12 @@ struct RawHeader {
     /// Measures every arm's runs are reported on (`arms.csv`), beyond those the hypotheses read.
     #[serde(default)]
     measures: Vec<Measure>,
+    #[serde(default)]
+    transfer: Option<TransferSpec>,
 }
+
+/// Most Enki test runs per room of a transfer.
+const MAX_TRANSFER_RUNS: usize = 1000;
 
 fn first_base() -> Vec<u64> {
     vec![1]
@@ -95,6 +103,8 @@ struct RawArm {
     set: toml::Table,
     #[serde(default)]
     level: Option<f64>,
+    #[serde(default)]
+    transfer: Option<TransferSpec>,
 }
 
 /// A checked study: its arms, seeds, analysis and typed hypotheses, and the plan of its runs.
@@ -161,6 +171,7 @@ impl Study {
         let arms = check_arms(&raw, source)?;
         let bases = arm_configs(&raw, &arms, dir, source)?;
         let plan = plan(&raw.study, &arms, bases, source)?;
+        check_transfers(&raw, &arms, &plan, source)?;
         let study = Study {
             name: raw.study.name.clone(),
             text: text.to_string(),
@@ -202,6 +213,14 @@ impl Study {
         known.push(Measure::EndSpread);
         if exp.measures_mission() {
             known.push(Measure::TimeToGoal);
+        }
+        if self.arms[k].transfer.is_some() {
+            let transferred = (TRANSFERABLE.iter())
+                .filter(|m| **m != Measure::Recognition || exp.aem().enabled());
+            for m in transferred {
+                known.push(Measure::Enki(Box::new(m.clone())));
+                known.push(Measure::Gap(Box::new(m.clone())));
+            }
         }
         Ok(known.iter().map(Measure::column).collect())
     }
@@ -480,14 +499,89 @@ fn check_arms(raw: &RawStudy, source: &str) -> Result<Vec<ArmRecord>, CliError> 
             })?;
         let mut set = common.clone();
         set.extend(overrides(&arm.set, &format!("arm[{k}].set"), source)?);
+        let transfer = arm.transfer.clone().or_else(|| raw.study.transfer.clone());
+        if let Some(t) = &transfer {
+            check_transfer(t, &transfer_field(raw, k), source)?;
+        }
         arms.push(ArmRecord {
             name: arm.name.clone(),
             config,
             set,
             level: arm.level,
+            transfer,
         });
     }
     Ok(arms)
+}
+
+/// Where arm `k`'s transfer is declared: `arm[k].transfer`, or the study's.
+fn transfer_field(raw: &RawStudy, k: usize) -> String {
+    if raw.arms[k].transfer.is_some() {
+        format!("arm[{k}].transfer")
+    } else {
+        "study.transfer".into()
+    }
+}
+
+/// A transfer's world and runs.
+fn check_transfer(t: &TransferSpec, field: &str, source: &str) -> Result<(), CliError> {
+    if t.world != "enki" {
+        let why = format!(
+            "unknown world `{}`: the robots transfer to `enki` (fuzzymotiv transfer)",
+            t.world
+        );
+        return Err(err(source, &format!("{field}.world"), why));
+    }
+    if t.runs == 0 || t.runs > MAX_TRANSFER_RUNS {
+        let why = format!(
+            "must be in 1..={MAX_TRANSFER_RUNS} Enki test runs per room, got {}",
+            t.runs
+        );
+        return Err(err(source, &format!("{field}.runs"), why));
+    }
+    Ok(())
+}
+
+/// Every transferring arm's runs: a robot Enki has a model of, and the rooms named are the
+/// run's (its first run's config, the arm's overrides applied).
+fn check_transfers(
+    raw: &RawStudy,
+    arms: &[ArmRecord],
+    plan: &Sweep,
+    source: &str,
+) -> Result<(), CliError> {
+    for (k, arm) in arms.iter().enumerate() {
+        let Some(t) = &arm.transfer else { continue };
+        let field = transfer_field(raw, k);
+        let job = (plan.jobs.iter())
+            .find(|j| j.setting == arm.name)
+            .expect("every arm has runs");
+        let exp = plan.load_job(job)?.experiment;
+        let robot = exp.trial_params().robot().spec().name().to_string();
+        if !ENKI_MODELS.iter().any(|m| m.robot == robot) {
+            let models: Vec<&str> = ENKI_MODELS.iter().map(|m| m.robot).collect();
+            let why = format!(
+                "arm `{}` runs the robot `{robot}`, which Enki has no model of (it has {})",
+                arm.name,
+                models.join(", ")
+            );
+            return Err(err(source, &field, why));
+        }
+        let rooms: Vec<String> = (exp.arenas().iter())
+            .map(|a| a.room().name.clone())
+            .collect();
+        for (i, room) in t.rooms.iter().enumerate() {
+            if !rooms.contains(room) {
+                let why = format!(
+                    "`{room}` is not a room of arm `{}`'s runs (they have {})",
+                    arm.name,
+                    rooms.join(", ")
+                );
+                return Err(err(source, &format!("{field}.rooms[{i}]"), why));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A `set` table as `--set` overrides (`key=value`), nested tables flattened to dotted keys.

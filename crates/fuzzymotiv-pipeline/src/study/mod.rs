@@ -1,15 +1,20 @@
 //! Studies of one's own (`fuzzymotiv study STUDY.toml`): a study file's arms (any config,
 //! robot or motivations, with overrides), paired seeds (one base seed or several) and typed
 //! hypotheses ([`mod@file`]); its runs as a sweep plan's jobs, sharded or not, and its analysis
-//! written once they are all there ([`run`]), the progress a front polls ([`counter`]); the analysis itself, pure ([`analysis`]). The
+//! written once they are all there ([`run`]), the progress a front polls ([`counter`]); the
+//! analysis itself, pure ([`analysis`]), and a replication's agreement by seed count
+//! ([`agreement`]); an arm's robots measured in Enki ([`transfer`]). The
 //! records are `fuzzymotiv_records::records::hypotheses`'s, the report and forest plot the
 //! render crate's `hypotheses`.
 
+pub mod agreement;
 pub mod analysis;
 pub mod counter;
 pub mod file;
 pub mod per_seed;
+pub mod progress;
 pub mod run;
+pub mod transfer;
 
 pub use counter::StudyCounter;
 pub use file::{STUDY_FILE, Study};

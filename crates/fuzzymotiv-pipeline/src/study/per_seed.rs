@@ -17,6 +17,7 @@ use crate::pipeline::run_dir::read_back;
 use crate::records::hypotheses::{FIRST_MEAN_F, LAST_MEAN_F, Measure, PerSeedRow};
 use crate::records::{Finished, Job, RoomRow, RunRecord, RunSummary, read_json};
 use crate::study::file::Study;
+use crate::study::transfer;
 
 /// The measures of `study` with a value per room, each once: its hypotheses', then those of
 /// `[study] measures`.
@@ -53,6 +54,14 @@ pub fn per_seed(study: &Study, out: &Path) -> Result<Vec<PerSeedRow>, CliError> 
         };
         let mut from_runs = read_back_values(study, job, &dir, &read_back)?.into_iter();
         for m in &measures {
+            if matches!(m, Measure::Enki(_) | Measure::Gap(_)) {
+                let (per_room, over) = transferred(study, out, job, &summary, m)?;
+                for (room, v) in &per_room {
+                    rows.push(row(m.column(), room, *v));
+                }
+                rows.push(row(m.column(), "", over));
+                continue;
+            }
             let per_room = if m.read_back() {
                 from_runs.next().expect("one per read-back measure")
             } else {
@@ -73,6 +82,20 @@ pub fn per_seed(study: &Study, out: &Path) -> Result<Vec<PerSeedRow>, CliError> 
         rows.push(row(LAST_MEAN_F.into(), "", last));
     }
     Ok(rows)
+}
+
+/// A measure of the run's robots transferred to Enki (`Measure::Enki`, `Measure::Gap`), per
+/// room it was transferred in and over those rooms ([`transfer::values`]).
+fn transferred(
+    study: &Study,
+    out: &Path,
+    job: &Job,
+    summary: &RunSummary,
+    m: &Measure,
+) -> Result<(Vec<(String, f64)>, f64), CliError> {
+    let k = study.arm_index(&job.setting).expect("a job of an arm");
+    let spec = (study.arms[k].transfer.as_ref()).expect("checked by the loader");
+    transfer::values(spec, out, &job.id, summary, m)
 }
 
 /// Measure `m` in each room of a run's records.

@@ -1,22 +1,23 @@
 //! Running a study: its runs as a sweep's jobs into `OUT/jobs/ID/` ([`run_jobs`]; a shard of
 //! them on one machine, the others elsewhere), then, once every run is there, the analysis
 //! written beside them: `per_seed.csv`, `claims.csv`, `rooms.csv`, `arms.csv`, `study.json`,
-//! `report.md` and `forest.svg`. The analysis reads only the runs' records, so a study run in shards gives
-//! the same bytes as one run on one machine.
+//! `report.md` and `forest.svg` (with several base seeds `agreement.csv` too). The analysis
+//! reads only the runs' records, so a study run in shards gives the same bytes as one run on
+//! one machine.
 
 use std::path::{Path, PathBuf};
 
 use crate::files::error::CliError;
 use crate::files::guard::write_files;
 use crate::pipeline::lanes::set_threads;
-use crate::pipeline::progress::SweepProgress;
 use crate::pipeline::sweep_jobs::run_jobs;
 use crate::records::hypotheses::{ClaimRow, StudyRecord};
 use crate::records::{PROGRAM, to_csv, to_json};
 use crate::render::hypotheses::{forest_svg, report_md};
-use crate::study::analysis;
 use crate::study::file::Study;
 use crate::study::per_seed::per_seed;
+pub use crate::study::progress::StudyProgress;
+use crate::study::{agreement, analysis, transfer};
 
 /// How a study runs.
 #[derive(Debug, Clone, Default)]
@@ -29,20 +30,6 @@ pub struct StudyOptions {
     pub force: bool,
     /// Run only shard `(k, n)`: the runs whose plan index ≡ k (mod n).
     pub shard: Option<(usize, usize)>,
-}
-
-/// The progress of a study: its runs' (as a sweep's jobs') and its end.
-pub trait StudyProgress: SweepProgress {
-    /// Only `done` of the study's `total` runs are finished: the analysis waits for the others
-    /// (other shards).
-    fn waiting(&self, done: usize, total: usize);
-    /// The analysis was written into `out`.
-    fn analysed(&self, out: &Path, claims: &[ClaimRow]);
-}
-
-impl StudyProgress for crate::pipeline::progress::NoProgress {
-    fn waiting(&self, _done: usize, _total: usize) {}
-    fn analysed(&self, _out: &Path, _claims: &[ClaimRow]) {}
 }
 
 /// What a study run did.
@@ -104,6 +91,7 @@ pub fn run_study(
         progress.waiting(done, total);
         return Ok(StudyOutcome::Waiting { done, total });
     }
+    transfer::transfer_runs(study, out, progress)?;
     let record = analyse(study, out)?;
     progress.analysed(out, &record.claims);
     Ok(StudyOutcome::Analysed(record.claims))
@@ -124,6 +112,8 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
     let room_rows = analysis::room_results(&study.hypotheses, &rows, bases, &level, a)?;
     let arms: Vec<&str> = study.arms.iter().map(|a| a.name.as_str()).collect();
     let measures = analysis::arm_measures(&rows, &arms, bases);
+    let hs = &study.hypotheses;
+    let agreement = agreement::agreement(hs, &rows, bases, study.seeds, &level, a, &claims)?;
     let record = StudyRecord {
         program: PROGRAM.into(),
         model: fuzzymotiv::MODEL_VERSION,
@@ -136,8 +126,9 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
         claims,
         rooms: room_rows,
         measures,
+        agreement,
     };
-    let files = [
+    let mut files = vec![
         ("per_seed.csv", to_csv(&rows)),
         ("claims.csv", to_csv(&record.claims)),
         ("rooms.csv", to_csv(&record.rooms)),
@@ -146,6 +137,9 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
         ("report.md", report_md(&record, &rows, &study.text)),
         ("forest.svg", forest_svg(&record)),
     ];
+    if !record.agreement.is_empty() {
+        files.push(("agreement.csv", to_csv(&record.agreement)));
+    }
     let files: Vec<(PathBuf, Vec<u8>)> = (files.into_iter())
         .map(|(name, text)| (out.join(name), text.into_bytes()))
         .collect();

@@ -43,6 +43,27 @@ pub enum Measure {
     /// steps) for a test run that never did: lower is sooner (runs that follow missions only;
     /// computed from the run read back, [`Measure::read_back`]).
     TimeToGoal,
+    /// One of the [`TRANSFERABLE`] measures of the run's controller transferred to Enki (an
+    /// arm with a [`TransferSpec`]): its mean over the Enki test runs in the room
+    /// (`enki_homing_pct`).
+    Enki(Box<Measure>),
+    /// The reality gap of a [`TRANSFERABLE`] measure: |Enki − fuzzymotiv| of the means over
+    /// the test runs in each world (`gap_homing_pct`).
+    Gap(Box<Measure>),
+}
+
+/// The measures a transfer measures in both worlds (`fuzzymotiv transfer`'s measures.csv).
+pub const TRANSFERABLE: [Measure; 4] = [
+    Measure::Exploration,
+    Measure::Homing,
+    Measure::Battery,
+    Measure::Recognition,
+];
+
+/// The measure `name` (a column or a short name) if it is [`TRANSFERABLE`].
+fn transferable(name: &str) -> Option<Measure> {
+    let m = Measure::parse(name);
+    TRANSFERABLE.contains(&m).then_some(m)
 }
 
 /// [`Measure::EndSpread`]'s column.
@@ -64,7 +85,16 @@ impl Measure {
             FIRST_MEAN_F => Measure::FirstMeanF,
             END_SPREAD | "end_spread" => Measure::EndSpread,
             TIME_TO_GOAL => Measure::TimeToGoal,
-            other => Measure::Term(metric_term(other).to_string()),
+            other => {
+                let world = |prefix: &str| other.strip_prefix(prefix).and_then(transferable);
+                if let Some(m) = world("enki_") {
+                    Measure::Enki(Box::new(m))
+                } else if let Some(m) = world("gap_") {
+                    Measure::Gap(Box::new(m))
+                } else {
+                    Measure::Term(metric_term(other).to_string())
+                }
+            }
         }
     }
 
@@ -81,6 +111,8 @@ impl Measure {
             Measure::FirstMeanF => FIRST_MEAN_F.into(),
             Measure::EndSpread => END_SPREAD.into(),
             Measure::TimeToGoal => TIME_TO_GOAL.into(),
+            Measure::Enki(m) => format!("enki_{}", m.column()),
+            Measure::Gap(m) => format!("gap_{}", m.column()),
         }
     }
 
@@ -94,7 +126,11 @@ impl Measure {
             Measure::Recognition => row.recognition_pct,
             Measure::MissionDone => row.mission_done_pct,
             Measure::Term(name) => row.terms_pct.get(name).copied(),
-            Measure::FirstMeanF | Measure::EndSpread | Measure::TimeToGoal => None,
+            Measure::FirstMeanF
+            | Measure::EndSpread
+            | Measure::TimeToGoal
+            | Measure::Enki(_)
+            | Measure::Gap(_) => None,
         }
     }
 
@@ -123,6 +159,8 @@ impl Measure {
             Measure::FirstMeanF => "the first generation's mean F".into(),
             Measure::EndSpread => "% end spread".into(),
             Measure::TimeToGoal => "the time to the goal (steps)".into(),
+            Measure::Enki(m) => format!("{} in Enki", m.label()),
+            Measure::Gap(m) => format!("the gap |Enki − fuzzymotiv| in {}", m.label()),
         }
     }
 }
@@ -407,6 +445,24 @@ pub struct ArmRecord {
     pub set: Vec<String>,
     /// Its level (the x of a trend), if it has one.
     pub level: Option<f64>,
+    /// Whether its evolved robots are also measured in another world, and how.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transfer: Option<TransferSpec>,
+}
+
+/// An arm's evolved robots measured in another world (a study file's `transfer` table, of
+/// `[study]` or of an `[[arm]]`): each run's controller driven in Enki by `fuzzymotiv
+/// transfer` in each of its rooms, giving the [`Measure::Enki`] and [`Measure::Gap`] measures.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TransferSpec {
+    /// The world: `enki` (the only one).
+    pub world: String,
+    /// Test runs in Enki per room (`transfer --runs`).
+    pub runs: usize,
+    /// The rooms transferred (empty: every room of the run).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rooms: Vec<String>,
 }
 
 /// One value of `per_seed.csv`: a measure of one run (an arm at a seed) in one room, or over
@@ -545,6 +601,10 @@ pub struct StudyRecord {
     /// Each arm's measures (`arms.csv`): what a study without hypotheses reports.
     #[serde(default)]
     pub measures: Vec<ArmMeasureRow>,
+    /// With several base seeds, every hypothesis judged on each base seed's first n seeds
+    /// beside its pooled verdict (`agreement.csv`); empty (and not written) with one.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub agreement: Vec<crate::records::agreement::AgreementRow>,
 }
 
 #[cfg(test)]
@@ -615,5 +675,25 @@ mod tests {
         assert_eq!(m, Measure::FirstMeanF);
         assert_eq!(m.column(), FIRST_MEAN_F);
         assert!(!m.per_room() && Measure::Homing.per_room());
+    }
+
+    /// A transferred measure is named by its world and a transferable measure (`enki_homing`,
+    /// `gap_exploration_pct`); any other `enki_…` is a term's name.
+    #[test]
+    fn an_enki_or_gap_measure_is_a_transferable_measure_in_that_world() {
+        let homing = Measure::Enki(Box::new(Measure::Homing));
+        assert_eq!(Measure::parse("enki_homing"), homing);
+        assert_eq!(
+            Measure::parse("enki_homing_pct").column(),
+            "enki_homing_pct"
+        );
+        let gap = Measure::parse("gap_exploration_pct");
+        assert_eq!(gap, Measure::Gap(Box::new(Measure::Exploration)));
+        assert_eq!(gap.label(), "the gap |Enki − fuzzymotiv| in % exploration");
+        assert_eq!(
+            Measure::parse("enki_urgency"),
+            Measure::Term("enki_urgency".into())
+        );
+        assert!(homing.per_room());
     }
 }

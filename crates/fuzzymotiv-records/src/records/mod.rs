@@ -48,6 +48,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
 
+pub mod agreement;
 pub mod checkpoint;
 pub mod combination;
 pub mod compare;
