@@ -844,3 +844,53 @@ fn assert_comparisons_are(study: &str, scope: &str, suffix: &str, paper: &Path) 
         );
     }
 }
+
+/// The committed studies of one's own (`docs/results/*-study/`: paper, combination, search
+/// strength, ablation, urgency), each with its hypotheses' results per base seed and pooled.
+const STUDY_FILES: [(&str, usize); 3] = [
+    ("paper-study", 8 * 3),
+    ("combination-study", 12 * 3),
+    ("search-strength-study", 17 * 3),
+];
+
+/// Every committed study file's every claim (each base seed's and the pooled: effect, p,
+/// Holm's p, verdict) is recomputed from its own per_seed.csv by the analysis its study.json
+/// declares; and no committed study of one's own is left out.
+#[test]
+fn every_committed_study_files_verdicts_are_recomputed_from_its_per_seed_csv() {
+    for (study, results_count) in STUDY_FILES {
+        let dir = results().join(study);
+        assert_eq!(
+            common::recompute::recompute_every_verdict(&dir),
+            results_count,
+            "{study}: every hypothesis at each base seed and pooled"
+        );
+    }
+    let committed = std::fs::read_dir(results()).unwrap();
+    let studies: Vec<String> = (committed.map(|e| e.unwrap().path()))
+        .filter(|p| p.join("study.json").is_file())
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    for study in &studies {
+        assert!(
+            STUDY_FILES.iter().any(|(s, _)| s == study),
+            "{study} is not recomputed here"
+        );
+    }
+}
+
+/// The search-strength study as a study file (studies/search-strength.toml, committed in
+/// `search-strength-study/`): at base seed 1, each population's four comparisons are the
+/// claims of `reproduce --search-strength` (`search-strength/pop-N/`), recomputed from the
+/// study's per_seed.csv.
+#[test]
+fn the_search_strength_study_files_comparisons_are_reproduces_at_base_seed_1() {
+    for population in [30, 60, 100, 200] {
+        let dir = format!("pop-{population}");
+        let paper = results()
+            .join("search-strength")
+            .join(&dir)
+            .join("claims.csv");
+        assert_comparisons_are("search-strength-study", "base=1", &dir, &paper);
+    }
+}
