@@ -847,10 +847,11 @@ fn assert_comparisons_are(study: &str, scope: &str, suffix: &str, paper: &Path) 
 
 /// The committed studies of one's own (`docs/results/*-study/`: paper, combination, search
 /// strength, ablation, urgency), each with its hypotheses' results per base seed and pooled.
-const STUDY_FILES: [(&str, usize); 3] = [
+const STUDY_FILES: [(&str, usize); 4] = [
     ("paper-study", 8 * 3),
     ("combination-study", 12 * 3),
     ("search-strength-study", 17 * 3),
+    ("ablation-study", 20 * 3),
 ];
 
 /// Every committed study file's every claim (each base seed's and the pooled: effect, p,
@@ -892,5 +893,23 @@ fn the_search_strength_study_files_comparisons_are_reproduces_at_base_seed_1() {
             .join(&dir)
             .join("claims.csv");
         assert_comparisons_are("search-strength-study", "base=1", &dir, &paper);
+    }
+}
+
+/// The ablation as a study file (studies/ablation.toml, committed in `ablation-study/`): at
+/// base seed 1, under the default model and each choice switched back, the four comparisons
+/// are the claims of `reproduce --ablation` (`ablation/VARIANT/`), recomputed from the study's
+/// per_seed.csv.
+#[test]
+fn the_ablation_study_files_comparisons_are_reproduces_at_base_seed_1() {
+    for variant in [
+        "default",
+        "wheels",
+        "no-end-at-home",
+        "distance-homing",
+        "first-release-rooms",
+    ] {
+        let paper = results().join("ablation").join(variant).join("claims.csv");
+        assert_comparisons_are("ablation-study", "base=1", variant, &paper);
     }
 }
