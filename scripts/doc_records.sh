@@ -17,6 +17,9 @@
 #   combination-base-11=results-combination-base-11 (fuzzymotiv reproduce --combination --seed 11 --out results-combination-base-11)
 #   paper-study=out/paper-study                (fuzzymotiv study studies/paper.toml --out out/paper-study)
 #   combination-study=out/combination-study    (fuzzymotiv study studies/combination.toml --out out/combination-study)
+#   search-strength-study=out/search-strength  (fuzzymotiv study studies/search-strength.toml --out out/search-strength)
+#   ablation-study=out/ablation                (fuzzymotiv study studies/ablation.toml --out out/ablation)
+#   urgency-study=out/urgency                  (fuzzymotiv study studies/urgency.toml --out out/urgency)
 #   urgency=results-urgency                   (fuzzymotiv reproduce --urgency)
 #   maps/o-fixed=out/maps/o-fixed   (fuzzymotiv sweep configs/motivation-map.toml … + merge)
 #   maps/o-free=out/maps/o-free     (fuzzymotiv sweep configs/motivation-map-o-free.toml … + merge)
@@ -81,14 +84,14 @@ files_of() { # KIND DIR
             done ;;
         urgency)
             echo urgency.csv urgency_seeds.csv summary.json ;;
-        paper-study | combination-study)
+        paper-study | combination-study | search-strength-study | ablation-study | urgency-study)
             echo per_seed.csv claims.csv rooms.csv study.json ;;
         combination | combination-base-11)
             echo behaviour.csv claim_differences.csv summary.json
             for c in default weighted-sum weighted-squares; do
                 echo "$c/claims.csv $c/table1.csv $c/table2.csv"
             done ;;
-        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, twenty-seed-base-11, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, combination-base-11, urgency, paper-study, combination-study" ;;
+        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, twenty-seed-base-11, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, combination-base-11, urgency, paper-study, combination-study, search-strength-study, ablation-study, urgency-study" ;;
     esac
 }
 

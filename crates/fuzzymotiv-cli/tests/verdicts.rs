@@ -901,3 +901,122 @@ fn the_paper_study_files_agreement_is_the_committed_replications_at_every_seed_c
     }
     assert_eq!(checked, 19 * 4 * 2);
 }
+
+/// The committed studies of one's own (`docs/results/*-study/`: paper, combination, search
+/// strength, ablation, urgency), each with its hypotheses' results per base seed and pooled.
+const STUDY_FILES: [(&str, usize); 5] = [
+    ("paper-study", 8 * 3),
+    ("combination-study", 12 * 3),
+    ("search-strength-study", 17 * 3),
+    ("ablation-study", 20 * 3),
+    ("urgency-study", 10 * 3),
+];
+
+/// Every committed study file's every claim (each base seed's and the pooled: effect, p,
+/// Holm's p, verdict) is recomputed from its own per_seed.csv by the analysis its study.json
+/// declares; and no committed study of one's own is left out.
+#[test]
+fn every_committed_study_files_verdicts_are_recomputed_from_its_per_seed_csv() {
+    for (study, results_count) in STUDY_FILES {
+        let dir = results().join(study);
+        assert_eq!(
+            common::recompute::recompute_every_verdict(&dir),
+            results_count,
+            "{study}: every hypothesis at each base seed and pooled"
+        );
+    }
+    let committed = std::fs::read_dir(results()).unwrap();
+    let studies: Vec<String> = (committed.map(|e| e.unwrap().path()))
+        .filter(|p| p.join("study.json").is_file())
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    for study in &studies {
+        assert!(
+            STUDY_FILES.iter().any(|(s, _)| s == study),
+            "{study} is not recomputed here"
+        );
+    }
+}
+
+/// The search-strength study as a study file (studies/search-strength.toml, committed in
+/// `search-strength-study/`): at base seed 1, each population's four comparisons are the
+/// claims of `reproduce --search-strength` (`search-strength/pop-N/`), recomputed from the
+/// study's per_seed.csv.
+#[test]
+fn the_search_strength_study_files_comparisons_are_reproduces_at_base_seed_1() {
+    for population in [30, 60, 100, 200] {
+        let dir = format!("pop-{population}");
+        let paper = results()
+            .join("search-strength")
+            .join(&dir)
+            .join("claims.csv");
+        assert_comparisons_are("search-strength-study", "base=1", &dir, &paper);
+    }
+}
+
+/// The ablation as a study file (studies/ablation.toml, committed in `ablation-study/`): at
+/// base seed 1, under the default model and each choice switched back, the four comparisons
+/// are the claims of `reproduce --ablation` (`ablation/VARIANT/`), recomputed from the study's
+/// per_seed.csv.
+#[test]
+fn the_ablation_study_files_comparisons_are_reproduces_at_base_seed_1() {
+    for variant in [
+        "default",
+        "wheels",
+        "no-end-at-home",
+        "distance-homing",
+        "first-release-rooms",
+    ] {
+        let paper = results().join("ablation").join(variant).join("claims.csv");
+        assert_comparisons_are("ablation-study", "base=1", variant, &paper);
+    }
+}
+
+/// The urgency study as a study file (studies/urgency.toml, committed in `urgency-study/`) at
+/// base seed 1: each seed's missions done (`mission_done_pct`, the mean over the rooms of the
+/// share of test runs that reach the goal) under each weight is that seed's success in
+/// `reproduce --urgency` (`urgency/urgency_seeds.csv`), and every comparison of them in
+/// `urgency/urgency.csv`, recomputed from the study's per_seed.csv with reproduce's resampling
+/// (the statistics' default seed), is reproduce's row. The study's own claims resample with the
+/// scope's first seed and adjust p by Holm over its ten hypotheses, so their intervals, p and
+/// verdicts may differ from that row.
+#[test]
+fn the_urgency_study_files_missions_done_are_reproduces_success_at_base_seed_1() {
+    let per_seed = rows(&results().join("urgency-study/per_seed.csv"));
+    let success = rows(&results().join("urgency/urgency_seeds.csv"));
+    let arm = |weight: &str| format!("urgency-{:.1}", weight.parse::<f64>().unwrap());
+    let ours = |arm: &str| -> Vec<f64> {
+        (per_seed.iter())
+            .filter(|r| r["base_seed"] == "1" && r["arm"] == arm && r["room"].is_empty())
+            .filter(|r| r["measure"] == "mission_done_pct")
+            .map(|r| number(r, "value").unwrap())
+            .collect()
+    };
+    for weight in ["0", "0.1", "0.2", "0.3"] {
+        let theirs: Vec<f64> = (success.iter())
+            .filter(|r| r["setting"] == arm(weight))
+            .map(|r| number(r, "success_pct").unwrap())
+            .collect();
+        assert_eq!(theirs.len(), 20, "{weight}: reproduce's twenty seeds");
+        assert_eq!(ours(&arm(weight)), theirs, "{weight}: each seed's success");
+    }
+    let steps = rows(&results().join("urgency/urgency.csv"));
+    let steps: Vec<&Row> = steps
+        .iter()
+        .filter(|r| r["measure"] == "% success")
+        .collect();
+    assert_eq!(steps.len(), 4, "0 → 0.1, 0.1 → 0.2, 0.2 → 0.3, 0 → 0.3");
+    for row in steps {
+        let (from, to) = (arm(&row["from"]), arm(&row["to"]));
+        let c = paired(&ours(&to), &ours(&from), &Settings::default()).unwrap();
+        for (column, value) in [
+            ("difference", c.difference),
+            ("ci_low", c.ci_low),
+            ("ci_high", c.ci_high),
+            ("p", c.p),
+            ("detectable", c.mdd.unwrap()),
+        ] {
+            assert_eq!(number(row, column), Some(value), "{from} → {to}: {column}");
+        }
+    }
+}

@@ -1,6 +1,7 @@
 //! Helpers shared by the binary's integration tests (each test file uses some of them).
 #![allow(dead_code)]
 
+pub mod recompute;
 pub mod webdriver;
 
 use std::path::{Path, PathBuf};
