@@ -16,7 +16,7 @@ use fuzzymotiv::random::{JSON_EXACT, derive};
 use fuzzymotiv::random::{Rng, Rng64, index, rng_from_seed};
 use fuzzymotiv::simulation::Action;
 use fuzzymotiv::simulation::Arena;
-use fuzzymotiv::simulation::{Controller, Mlp, MlpShape, Readings};
+use fuzzymotiv::simulation::{Controller, Mlp, MlpShape};
 use fuzzymotiv::simulation::{StepObserver, Trajectory};
 use fuzzymotiv_pipeline::files::inputs::{Loaded, room_entry};
 use numpy::ndarray::Array2;
@@ -116,15 +116,14 @@ impl GymCore {
     }
 
     /// Observations as an `(envs, sensors)` array of reading / `reading_max` (the Khepera's
-    /// IR / 1023) in the env's dtype.
-    fn obs_array<'py>(&self, py: Python<'py>, obs: Vec<Readings>) -> Bound<'py, PyAny> {
-        let (n, width, max) = (obs.len(), self.sensors, self.reading_max);
-        let flat = obs.iter().flat_map(|r| r.iter().map(move |v| v / max));
+    /// IR / 1023; `obs` holds them env after env) in the env's dtype.
+    fn obs_array<'py>(&self, py: Python<'py>, obs: Vec<f64>) -> Bound<'py, PyAny> {
+        let shape = (obs.len() / self.sensors, self.sensors);
         if self.float64 {
-            let a = Array2::from_shape_vec((n, width), flat.collect()).expect("envs × sensors");
+            let a = Array2::from_shape_vec(shape, obs).expect("envs × sensors");
             a.into_pyarray(py).into_any()
         } else {
-            let a = Array2::from_shape_vec((n, width), flat.map(|v| v as f32).collect())
+            let a = Array2::from_shape_vec(shape, obs.into_iter().map(|v| v as f32).collect())
                 .expect("envs × sensors");
             a.into_pyarray(py).into_any()
         }
@@ -441,7 +440,7 @@ impl GymCore {
         }
         let n = self.envs.len();
         let acts = self::actions(n, actions)?;
-        let mut out = Out::with_capacity(n, self.user.len());
+        let mut out = Out::for_envs(n, self);
         py.detach(|| {
             for (i, act) in acts.into_iter().enumerate() {
                 let (r, term, trunc, action) = self.step_one(i, act);
@@ -457,7 +456,7 @@ impl GymCore {
 
     /// The envs now: `(obs, info)` as `step` gives them (for `reset`; `action` -1).
     fn state<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        let mut out = Out::with_capacity(self.envs.len(), self.user.len());
+        let mut out = Out::for_envs(self.envs.len(), self);
         for env in &mut self.envs {
             out.push(env, 0.0, (false, false), -1);
         }
@@ -468,7 +467,9 @@ impl GymCore {
 
 /// A step's results over the envs, gathered without the GIL.
 struct Out {
-    obs: Vec<Readings>,
+    /// Each env's readings / `reading_max`, env after env.
+    obs: Vec<f64>,
+    reading_max: f64,
     reward: Vec<f64>,
     terminated: Vec<bool>,
     truncated: Vec<bool>,
@@ -483,9 +484,12 @@ struct Out {
 }
 
 impl Out {
-    fn with_capacity(n: usize, user: usize) -> Out {
+    /// Room for `n` envs of `core`.
+    fn for_envs(n: usize, core: &GymCore) -> Out {
+        let user = core.user.len();
         Out {
-            obs: Vec::with_capacity(n),
+            obs: Vec::with_capacity(n * core.sensors),
+            reading_max: core.reading_max,
             reward: Vec::with_capacity(n),
             terminated: Vec::with_capacity(n),
             truncated: Vec::with_capacity(n),
@@ -505,7 +509,8 @@ impl Out {
         (terminated, truncated): (bool, bool),
         action: i64,
     ) {
-        self.obs.push(env.episode.observe());
+        let max = self.reading_max;
+        (self.obs).extend(env.episode.observe().iter().map(|v| v / max));
         let terms = env.episode.terms();
         let pose = env.episode.run().pose();
         let values = [

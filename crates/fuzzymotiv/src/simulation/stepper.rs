@@ -23,7 +23,8 @@
 use std::borrow::Borrow;
 
 use crate::random::rng::Rng;
-use crate::simulation::robot::{Action, Pose};
+use crate::simulation::memo::{memo_live, with_table};
+use crate::simulation::robot::{Action, Motion, Pose};
 use crate::simulation::sensor::Readings;
 use crate::simulation::trial::{Arena, Sensed, Step, Walk, inputs_of};
 
@@ -36,7 +37,8 @@ use crate::simulation::trial::{Arena, Sensed, Step, Walk, inputs_of};
 /// with a network's outputs for its inputs gives [`simulate`]'s trajectory bit for bit. The run
 /// is over after `T` steps, or (with `end_at_home`) after the step that brings an escaped robot
 /// back into the home zone; the idle steps [`simulate`] reports for the rest of the `T` are
-/// [`TrialRun::rest`]. It remembers no sightings (a pure cache of [`simulate`]'s).
+/// [`TrialRun::rest`]. With `actions` motion it shares the thread's memo of sightings with
+/// [`simulate`] (a pure cache: the same bits as a cast).
 ///
 /// [`simulate`]: crate::simulation::trial::simulate
 #[derive(Debug, Clone)]
@@ -140,7 +142,18 @@ impl<A: Borrow<Arena>, R: Rng> TrialRun<A, R> {
         match self.sensed {
             Some(s) => s,
             None => {
-                let s = self.walk.sense(self.arena.borrow(), &mut self.rng, None);
+                let (arena, walk, rng) = (self.arena.borrow(), &self.walk, &mut self.rng);
+                // With `actions` motion the thread's memo of sightings, as `simulate` uses it: a
+                // pose seen before (by this run, another run or a trial in the same arena) is
+                // not cast again; a lookup returns the very bits the cast gave.
+                let owner = match arena.params().robot().motion() {
+                    Motion::Actions => arena.memo_owner(),
+                    Motion::Wheels => None,
+                };
+                let s = match owner {
+                    Some(owner) => with_table(owner, memo_live, |t| walk.sense(arena, rng, t)),
+                    None => walk.sense(arena, rng, None),
+                };
                 self.sensed = Some(s);
                 s
             }
@@ -300,5 +313,56 @@ mod tests {
         assert!(s.idle && s.t == 399 && run.t() == 400);
         assert_eq!(run.observe(), [0.0; 8]);
         assert_eq!(run.rest().count(), 0);
+    }
+
+    /// With `actions` motion a run keeps what it saw near walls in the thread's memo of
+    /// sightings, as `simulate` does: each pose it read its sensors at near a wall is there
+    /// afterwards (the memo's recall does not compute it again). The Gymnasium envs step
+    /// trials through `TrialRun`; without the memo every step near a wall was cast anew.
+    #[test]
+    fn a_run_remembers_its_sightings_near_walls() {
+        use crate::simulation::geom::Vec2;
+        let a = arena("H", Motion::Actions, false);
+        let owner = a.memo_owner().expect("the Khepera's arena has a memo");
+        let mut run = TrialRun::new(&a, rng_from_seed(5));
+        let mut drive = rng_from_seed(6);
+        // Each pose once (a robot against a wall stands on the same poses again and again).
+        let mut near_walls = Vec::new();
+        while !run.is_over() {
+            let (pos, dir) = (run.pose().position(), run.walk.dir());
+            let key = (pos.x.to_bits(), pos.y.to_bits(), dir);
+            let seen = near_walls
+                .iter()
+                .any(|&(p, d): &(Vec2, usize)| (p.x.to_bits(), p.y.to_bits(), d) == key);
+            if run.observe().iter().any(|&v| v > 0.0) && !seen {
+                near_walls.push((pos, dir));
+            }
+            let motors = [0, 1].map(|_| crate::random::rng::uniform(&mut drive, 0.0, 1.0));
+            run.step(motors);
+        }
+        assert!(
+            near_walls.len() >= 30,
+            "{} poses near walls",
+            near_walls.len()
+        );
+        let computed = with_table(owner, memo_live, |table| {
+            let table = table.expect("no trial is borrowing the tables");
+            (near_walls.iter())
+                .filter(|&&(pos, dir)| {
+                    let mut computed = false;
+                    table.recall(pos, dir, &[], || {
+                        computed = true;
+                        crate::simulation::memo::Sight::CLEAR
+                    });
+                    computed
+                })
+                .count()
+        });
+        // A set holds a pose's two newest neighbours by hash: a few may have been replaced.
+        assert!(
+            computed * 10 <= near_walls.len(),
+            "{computed} of {} not remembered",
+            near_walls.len()
+        );
     }
 }

@@ -990,6 +990,12 @@ impl Walk {
         self.pose
     }
 
+    /// The compass direction now (`actions` motion): with the position, a memo's key.
+    #[cfg(test)]
+    pub(crate) fn dir(&self) -> usize {
+        self.dir
+    }
+
     /// The idle step `t` at the pose now (after the trial ended at home).
     #[inline]
     pub(crate) fn idle(&self, t: usize, sensors: usize) -> Step {
