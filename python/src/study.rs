@@ -11,6 +11,7 @@ use std::time::Duration;
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::notes::{NoteList, Notes};
 use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
 use fuzzymotiv_pipeline::records::Job;
 use fuzzymotiv_pipeline::records::hypotheses::ClaimRow;
@@ -34,6 +35,14 @@ struct Shared {
     /// Set by Ctrl-C or a failing progress callback: every run stops at its next generation.
     stop: AtomicBool,
     finished: AtomicBool,
+    /// The pipeline's notes, warned once the study returns.
+    notes: NoteList,
+}
+
+impl Notes for Shared {
+    fn note(&self, line: &str) {
+        self.notes.note(line);
+    }
 }
 
 impl SweepProgress for Shared {
@@ -103,6 +112,7 @@ pub fn study_run(
         .transpose()
         .map_err(py_err)?;
     let study = py.detach(|| load(path, text, base_dir))?;
+    crate::warn_notes(&study.plan.notes)?;
     let planned = study.plan.jobs.len();
     let options = StudyOptions {
         out,
@@ -129,6 +139,7 @@ pub fn study_run(
         return Err(e);
     }
     let result = result.map_err(|_| PyRuntimeError::new_err("fuzzymotiv panicked (a bug)"))?;
+    crate::warn_notes(&shared.notes.take())?;
     match result.map_err(py_err)? {
         StudyOutcome::Analysed(_) => Ok((true, planned, planned)),
         StudyOutcome::Waiting { done, total } => Ok((false, done, total)),

@@ -12,7 +12,9 @@ use fuzzymotiv::fitness::{FitnessTerms, LIBRARY_TERMS, Term, TermId, TrialRecord
 use fuzzymotiv::simulation::Trajectory;
 use fuzzymotiv_pipeline::files::bounded::{InputKind, read_input};
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::inputs::{CONFIG, Loaded, ROBOT_FILE, ROOM_FILE, SENSOR_TABLE, resolve};
+use fuzzymotiv_pipeline::files::inputs::{
+    CONFIG, Loaded, ROBOT_FILE, ROOM_FILE, SENSOR_TABLE, resolve,
+};
 use numpy::ndarray::{Array2, Array3, Array4};
 use numpy::{IntoPyArray, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -85,6 +87,7 @@ fn resolve_with_user(
     Ok(Loaded {
         raw: setup.raw,
         experiment: setup.experiment,
+        notes: setup.notes,
     })
 }
 

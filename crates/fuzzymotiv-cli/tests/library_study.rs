@@ -7,6 +7,7 @@ use std::sync::Mutex;
 
 use common::{Fm, SMALL, assert_same_results, stderr, stdout};
 use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv_pipeline::files::notes::{NoNotes, Notes};
 use fuzzymotiv_pipeline::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
 use fuzzymotiv_pipeline::pipeline::reproduce::{
     Front, ReproduceOptions, ReproduceProgress, StudyKind, reproduce,
@@ -18,6 +19,13 @@ struct Recorded {
     begun: Mutex<Vec<usize>>,
     runs: Mutex<Vec<String>>,
     ended: Mutex<usize>,
+    notes: Mutex<Vec<String>>,
+}
+
+impl Notes for Recorded {
+    fn note(&self, line: &str) {
+        self.notes.lock().unwrap().push(line.to_string());
+    }
 }
 
 impl ReproduceProgress for Recorded {
@@ -77,8 +85,18 @@ fn a_study_runs_from_the_library_with_the_command_lines_results() {
             "low-curiosity seed #2"
         ]
     );
+    // Issue #56 item 2: the library's notes come to the caller's progress (the command line
+    // prints them on stderr), the same lines.
+    let notes = progress.notes.lock().unwrap().clone();
+    assert!(
+        notes.len() == 1 && notes[0].starts_with(&format!("wrote {} (", lib.display())),
+        "{notes:?}"
+    );
+    assert!(stderr(&o).contains("wrote "), "{}", stderr(&o));
     // Run again, the study is already there: nothing to do, nothing to show.
     assert_eq!(reproduce(&options, front).unwrap(), "");
+    let notes = progress.notes.lock().unwrap().clone();
+    assert!(notes[1].contains("already holds this study"), "{notes:?}");
 }
 
 /// The command line's default output directories are the library's, per study and size.
@@ -121,7 +139,7 @@ fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
     let genome = read_genome(&run.join("best_genome.json")).unwrap();
     let rooms = loaded.raw.rooms.clone();
     let loaded = replay_config(&loaded, &genome, rooms, "run").unwrap();
-    let trials = replay_trials(&loaded.experiment, &genome).unwrap();
+    let trials = replay_trials(&loaded.experiment, &genome, &NoNotes).unwrap();
     let ctx = RenderContext::of(&loaded);
     let mut files = Vec::new();
     let lib = dir.path().join("lib");
@@ -163,6 +181,9 @@ fn a_study_stopped_by_its_progress_resumes_into_the_analysis_of_an_uninterrupted
         fn stop(&self) -> bool {
             self.seen.load(Ordering::SeqCst) >= self.limit
         }
+    }
+    impl Notes for StopAfter {
+        fn note(&self, _: &str) {}
     }
     impl SweepProgress for StopAfter {
         fn begin(&self, _: usize, _: usize) {}

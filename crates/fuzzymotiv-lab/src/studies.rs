@@ -13,6 +13,7 @@ use std::thread::JoinHandle;
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_pipeline::files::bounded::read_input;
+use fuzzymotiv_pipeline::files::notes::{NoteList, Notes};
 use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
 use fuzzymotiv_pipeline::records::Job;
 use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
@@ -42,6 +43,8 @@ pub struct StudyEntry {
     done: AtomicUsize,
     stop: AtomicBool,
     state: Mutex<(Status, Option<Vec<ClaimRow>>, Option<String>)>,
+    /// The study's notes (its configs', the pipeline's), which the page shows.
+    notes: NoteList,
 }
 
 impl StudyEntry {
@@ -49,14 +52,22 @@ impl StudyEntry {
         self.state.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// What the page shows of it: status, progress, error and (analysed) the pooled claims.
+    /// What the page shows of it: status, progress, error, notes and (analysed) the pooled
+    /// claims.
     fn view(&self) -> Value {
+        let notes = self.notes.lines();
         let (status, claims, error) = &*self.lock();
         let pooled: Option<Vec<&ClaimRow>> =
             (claims.as_ref()).map(|c| c.iter().filter(|c| c.scope == POOLED).collect());
         json!({ "id": self.id, "name": self.name, "source": self.source, "status": status,
                 "done": self.done.load(Ordering::SeqCst), "total": self.total,
-                "error": error, "claims": pooled })
+                "error": error, "notes": notes, "claims": pooled })
+    }
+}
+
+impl Notes for StudyEntry {
+    fn note(&self, line: &str) {
+        self.notes.note(line);
     }
 }
 
@@ -174,7 +185,11 @@ impl Studies {
             done: AtomicUsize::new(0),
             stop: AtomicBool::new(false),
             state: Mutex::new((Status::Running, None, None)),
+            notes: NoteList::default(),
         });
+        for line in &study.plan.notes {
+            entry.notes.note(&format!("note: {line}"));
+        }
         list.push(entry.clone());
         drop(list);
         let (me, run) = (self.clone(), entry.clone());

@@ -69,7 +69,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     };
     let report = measure(&exp, &options);
     if args.json {
-        fuzzymotiv_pipeline::outln!(
+        crate::console::outln!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
         )
@@ -100,6 +100,7 @@ fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
         let raw = fuzzymotiv::experiment::RawConfig::parse("", "bench", &sets)?;
         resolve(raw, std::path::Path::new("."), "--room")?
     };
+    crate::console::config_notes(&loaded.notes);
     check_motion(&loaded.experiment, &args.motion)?;
     Ok(loaded.experiment)
 }
@@ -126,7 +127,7 @@ fn check_motion(exp: &Experiment, asked: &str) -> Result<(), CliError> {
 
 /// The report as two lines of text.
 fn print_report(r: &BenchReport) -> Result<(), CliError> {
-    fuzzymotiv_pipeline::outln!(
+    crate::console::outln!(
         "{} in room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({} executed steps, median {:.3} s of {})",
         r.robot,
         r.room,
@@ -136,7 +137,7 @@ fn print_report(r: &BenchReport) -> Result<(), CliError> {
         r.seconds,
         r.repeat
     )?;
-    fuzzymotiv_pipeline::outln!(
+    crate::console::outln!(
         "population {} x {} steps, {} evaluations, {} threads: {:.3} M robot-steps/s (median {:.3} s)",
         r.population,
         r.trial_steps,

@@ -4,11 +4,11 @@
 
 use std::path::PathBuf;
 
+use crate::console::{note, out, outln};
 use fuzzymotiv::simulation::{Calibration, calibrate};
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::{FilesState, check_files, write_files};
 use fuzzymotiv_pipeline::files::measurements::{field_error, read_measurements};
-use fuzzymotiv_pipeline::{note, out, outln};
 
 /// Arguments of `fuzzymotiv calibrate`.
 #[derive(clap::Args)]

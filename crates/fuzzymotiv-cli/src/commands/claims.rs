@@ -3,9 +3,9 @@
 
 use std::path::PathBuf;
 
+use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, write_into};
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::records::{StudySummary, read_json};
 use fuzzymotiv_pipeline::render::study::{CLAIMS_ALPHA, claims, claims_stem};
 use fuzzymotiv_pipeline::render::tables::{Provenance, claims_table};
@@ -69,7 +69,7 @@ pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
     } else {
         note!("{md_path} and {csv_path} already hold these claims; nothing to do");
     }
-    fuzzymotiv_pipeline::out!("{md}")?;
+    crate::console::out!("{md}")?;
     Ok(())
 }
 

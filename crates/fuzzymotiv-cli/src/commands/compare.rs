@@ -3,9 +3,9 @@
 
 use std::path::PathBuf;
 
+use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, io_err, write_into};
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::pipeline::compare::{check_comparable, choose, compare, load};
 use fuzzymotiv_pipeline::render::study::CLAIMS_ALPHA;
 
@@ -69,6 +69,6 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
     if write_into(out, &files, "--out", args.force)? == FilesState::Same {
         note!("{} already holds these files; nothing to do", out.display());
     }
-    fuzzymotiv_pipeline::out!("{}", done.md)?;
+    crate::console::out!("{}", done.md)?;
     Ok(())
 }

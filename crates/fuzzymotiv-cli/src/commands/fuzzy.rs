@@ -3,8 +3,8 @@
 
 use std::path::PathBuf;
 
+use crate::console::{note, outln};
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::{note, outln};
 
 /// Arguments of `fuzzymotiv fuzzy`.
 #[derive(clap::Args)]
@@ -246,7 +246,7 @@ fn export_fll(
     };
     let text = fuzzymotiv::fitness::to_fll(tsk, m, &name);
     if stdout {
-        return fuzzymotiv_pipeline::out!("{text}");
+        return crate::console::out!("{text}");
     }
     let files = [(path.to_path_buf(), text.into_bytes())];
     if check_files(&files, "--export-fll", force)? == FilesState::Same {

@@ -4,10 +4,10 @@
 
 use std::path::PathBuf;
 
+use crate::console::{note, outln};
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, write_into};
 use fuzzymotiv_pipeline::records::robot_log::{recognise_logs, recognition_csv, recognition_md};
-use fuzzymotiv_pipeline::{note, outln};
 
 /// Arguments of `fuzzymotiv recognise`.
 #[derive(clap::Args)]

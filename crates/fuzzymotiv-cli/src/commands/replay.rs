@@ -13,10 +13,10 @@ use std::path::{Path, PathBuf};
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::simulation::TrialParams;
 
+use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::{FilesState, check_files, io_err, write_files};
 use fuzzymotiv_pipeline::files::inputs::{load_config, room_entry, rooms_unchanged};
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::pipeline::replay::{
     ReplayTrial, replay_config, replay_json, replay_trials, room_files, room_gifs,
 };
@@ -115,6 +115,7 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
         None
     });
     let loaded = load_config(config_path.as_deref(), &[], seed)?;
+    crate::console::config_notes(&loaded.notes);
     if let Some(path) = &config_path {
         let remedy = "the replay uses the room as it is now, so its paths are not the run's";
         if let Err(e) = rooms_unchanged(path, &loaded, remedy) {
@@ -148,7 +149,7 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     };
     let logs = logged_paths(&args.log, &rooms)?;
     let loaded = replay_config(&loaded, &genome, rooms, &source_name)?;
-    let trials = replay_trials(&loaded.experiment, &genome)?;
+    let trials = replay_trials(&loaded.experiment, &genome, &crate::console::Stderr)?;
     let ctx = RenderContext::of(&loaded);
     let gifs = if args.gif {
         Some(gif_options(&args, loaded.experiment.trial_params())?)
@@ -266,7 +267,7 @@ fn write_replay(
         write_files(&files)?;
     }
     for line in &lines {
-        fuzzymotiv_pipeline::outln!("{line}")?;
+        crate::console::outln!("{line}")?;
     }
     if state == FilesState::Same {
         note!("{} already holds this replay; nothing to do", out.display());

@@ -5,11 +5,11 @@
 
 use std::path::PathBuf;
 
+use crate::console::{note, outln};
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, io_err, write_into};
 use fuzzymotiv_pipeline::records::robustness::{robustness_csv, robustness_md, robustness_of_run};
 use fuzzymotiv_pipeline::render::robustness::robustness_svg;
-use fuzzymotiv_pipeline::{note, outln};
 
 use crate::png::svg_to_png;
 

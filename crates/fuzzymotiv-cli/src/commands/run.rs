@@ -2,10 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::console::{Stderr, config_notes, note};
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::{OutState, StagedDir, check_out};
 use fuzzymotiv_pipeline::files::inputs::{Loaded, load_config, rooms_unchanged, run_identity};
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::pipeline::continuation::{
     continued_config, finished_config, stage_continued,
 };
@@ -105,7 +105,7 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
     progress.note(&start_line(&loaded.experiment, &out));
     let done = execute(&loaded, &out, &progress, resume, rasteriser(args.png))?;
     progress.finish();
-    fuzzymotiv_pipeline::out!("{}", table_markdown(&done.rows))?;
+    crate::console::out!("{}", table_markdown(&done.rows))?;
     note!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
     Ok(())
 }
@@ -127,6 +127,7 @@ fn resume_target(dir: &Path) -> Result<Target, CliError> {
         )));
     }
     let loaded = load_config(Some(&cfg), &[], None)?;
+    config_notes(&loaded.notes);
     let remedy = "resuming would evolve the rest of the run in another room. Restore the file, \
                   or start the run over with `fuzzymotiv run CONFIG --out DIR --force`";
     rooms_unchanged(&cfg, &loaded, remedy)?;
@@ -140,12 +141,13 @@ fn resume_target(dir: &Path) -> Result<Target, CliError> {
 /// `CONFIG [--out DIR]`: a fresh run, or the unfinished one of the same config in `DIR`.
 fn config_target(config: &Path, args: &RunArgs) -> Result<Target, CliError> {
     let loaded = load_config(Some(config), &args.sets, args.output.seed)?;
+    config_notes(&loaded.notes);
     let out = args
         .output
         .out
         .clone()
         .unwrap_or_else(|| Path::new("runs").join(&loaded.raw.name));
-    let resume = match check_out(&out, &run_identity(&loaded.raw), args.output.force)? {
+    let resume = match check_out(&out, &run_identity(&loaded.raw), args.output.force, &Stderr)? {
         OutState::Done => {
             note!(
                 "{} already holds this run, finished (same resolved config); nothing to do. --force runs it again",
@@ -173,6 +175,7 @@ fn continue_target(args: &RunArgs) -> Result<Target, CliError> {
         ));
     };
     let old = finished_config(dir)?;
+    config_notes(&old.notes);
     let new = continued_config(dir, &old, n)?;
     if same_place(dir, out) {
         return Err(CliError::input(format!(
@@ -180,7 +183,7 @@ fn continue_target(args: &RunArgs) -> Result<Target, CliError> {
             out.display()
         )));
     }
-    let resume = match check_out(out, &run_identity(&new.raw), args.output.force)? {
+    let resume = match check_out(out, &run_identity(&new.raw), args.output.force, &Stderr)? {
         OutState::Done => {
             note!(
                 "{} already holds this run, finished ({n} generations); nothing to do. --force runs it again",

@@ -4,8 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
 use fuzzymotiv_pipeline::study::{
     Study, StudyOptions, StudyOutcome, StudyProgress, parse_shard, run_study,
@@ -54,6 +54,7 @@ impl StudyProgress for JobsProgress {
 pub fn study(args: StudyArgs) -> Result<(), CliError> {
     let shard = args.shard.as_deref().map(parse_shard).transpose()?;
     let study = Study::load(&args.study)?;
+    crate::console::config_notes(&study.plan.notes);
     let options = StudyOptions {
         out: args.out.clone(),
         threads: args.threads,
@@ -63,7 +64,7 @@ pub fn study(args: StudyArgs) -> Result<(), CliError> {
     let progress = JobsProgress::new(args.quiet);
     if let StudyOutcome::Analysed(claims) = run_study(&study, &options, &progress)? {
         for c in claims.iter().filter(|c| c.scope == POOLED) {
-            fuzzymotiv_pipeline::outln!(
+            crate::console::outln!(
                 "{}: {} — {} (effect {:.4}, CI [{:.4}, {:.4}], p {:.4})",
                 c.id,
                 c.verdict,

@@ -13,6 +13,7 @@ use fuzzymotiv_pipeline::pipeline::sweep_jobs::run_jobs;
 use fuzzymotiv_pipeline::pipeline::sweep_merge::merge_dir;
 use fuzzymotiv_pipeline::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
 
+use crate::console::{Stderr, config_notes};
 use crate::png::{add_pngs, svg_to_png};
 use crate::progress::JobsProgress;
 
@@ -36,15 +37,16 @@ pub struct PlanArgs {
 /// Entry point of `fuzzymotiv plan`.
 pub fn plan(args: PlanArgs) -> Result<(), CliError> {
     let sweep = Sweep::load(&args.sweep)?;
+    config_notes(&sweep.notes);
     if args.count {
-        fuzzymotiv_pipeline::outln!("{}", sweep.jobs.len())?;
+        crate::console::outln!("{}", sweep.jobs.len())?;
     } else if let Some(out) = args.out {
         let files = [(out, sweep.plan_jsonl().into_bytes())];
         if check_files(&files, "--out", args.force)? == FilesState::Write {
             write_files(&files)?;
         }
     } else {
-        fuzzymotiv_pipeline::out!("{}", sweep.plan_jsonl())?;
+        crate::console::out!("{}", sweep.plan_jsonl())?;
     }
     Ok(())
 }
@@ -123,6 +125,7 @@ fn select(args: &SweepArgs, n: usize) -> Result<Vec<usize>, CliError> {
 pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
     let sweep = Sweep::load(&args.sweep)?;
+    config_notes(&sweep.notes);
     let selected = select(&args, sweep.jobs.len())?;
     let text = read_input(&args.sweep, SWEEP_FILE)?;
     let progress = JobsProgress::new(args.quiet);
@@ -141,7 +144,8 @@ pub struct MergeArgs {
 
 /// Entry point of `fuzzymotiv merge`.
 pub fn merge(args: MergeArgs) -> Result<(), CliError> {
-    merge_dir(&args.dir)?;
+    let merged = merge_dir(&args.dir, &Stderr)?;
+    crate::console::out!("{}", merged.markdown)?;
     if args.png {
         let svg = args.dir.join("summary.svg");
         let png = svg.with_extension("png");

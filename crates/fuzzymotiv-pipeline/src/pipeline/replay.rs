@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use crate::files::error::CliError;
 use crate::files::guard::num;
 use crate::files::inputs::{Loaded, resolve};
-use crate::note;
+use crate::files::notes::Notes;
 use crate::records::PROGRAM;
 use crate::records::context::RenderContext;
 use crate::records::genome::SavedGenome;
@@ -115,8 +115,12 @@ pub fn room_gifs(
 }
 
 /// The room-modelling run of the genome (per-room training: of the room's own robot) in every
-/// room of `exp`, with its run label.
-pub fn replay_trials(exp: &Experiment, genome: &SavedGenome) -> Result<Vec<ReplayTrial>, CliError> {
+/// room of `exp`, with its run label; a room without a robot of its own is said to `notes`.
+pub fn replay_trials(
+    exp: &Experiment,
+    genome: &SavedGenome,
+    notes: &dyn Notes,
+) -> Result<Vec<ReplayTrial>, CliError> {
     let runs = exp.runs();
     let in_file =
         |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome.path.display()));
@@ -134,9 +138,9 @@ pub fn replay_trials(exp: &Experiment, genome: &SavedGenome) -> Result<Vec<Repla
             Training::PerRoom => match genome.runs.iter().find(|(label, _)| label == name) {
                 Some((_, w)) => (&runs[r], w),
                 None => {
-                    note!(
+                    notes.note(&format!(
                         "note: no robot was evolved in room {name}; replaying the genome's main robot"
-                    );
+                    ));
                     (&runs[r], &genome.weights)
                 }
             },
