@@ -4,6 +4,7 @@
 mod common;
 
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use common::{Fm, SMALL, assert_same_results, stderr, stdout};
 use fuzzymotiv::experiment::Experiment;
@@ -157,6 +158,47 @@ fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
     assert_eq!(json["rooms"], serde_json::Value::Array(rooms));
 }
 
+/// Stops every run once `limit` generations have been reported over the study.
+struct StopAfter {
+    limit: usize,
+    seen: AtomicUsize,
+}
+impl RunProgress for &StopAfter {
+    fn note(&self, _: &str) {}
+    fn skip(&self, _: usize) {}
+    fn generation(&self, _: &str, _: usize, _: usize, _: f64) {
+        self.seen.fetch_add(1, Ordering::SeqCst);
+    }
+    fn stop(&self) -> bool {
+        self.seen.load(Ordering::SeqCst) >= self.limit
+    }
+}
+impl Notes for StopAfter {
+    fn note(&self, _: &str) {}
+}
+impl SweepProgress for StopAfter {
+    fn begin(&self, _: usize, _: usize) {}
+    fn job(
+        &self,
+        _: &fuzzymotiv_pipeline::records::Job,
+        _: usize,
+        _: &Experiment,
+    ) -> Box<dyn RunProgress + '_> {
+        Box::new(self)
+    }
+    fn job_done(&self) {}
+    fn end(&self) {}
+}
+impl fuzzymotiv_pipeline::study::StudyProgress for StopAfter {
+    fn waiting(&self, _: usize, _: usize) {}
+    fn analysed(
+        &self,
+        _: &std::path::Path,
+        _: &[fuzzymotiv_pipeline::records::hypotheses::ClaimRow],
+    ) {
+    }
+}
+
 /// A study of one's own from the library (`fuzzymotiv_pipeline::study`) whose progress asks it to
 /// stop (a front's cancel: Ctrl-C in Python, the lab's button) ends with an error after the
 /// generation it asked at, and the same call again resumes it into the analysis of an
@@ -165,48 +207,6 @@ fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
 #[test]
 fn a_study_stopped_by_its_progress_resumes_into_the_analysis_of_an_uninterrupted_one() {
     use fuzzymotiv_pipeline::study::{Study, StudyOptions, StudyOutcome, run_study};
-    use std::sync::atomic::{AtomicUsize, Ordering};
-
-    /// Stops every run once `limit` generations have been reported over the study.
-    struct StopAfter {
-        limit: usize,
-        seen: AtomicUsize,
-    }
-    impl RunProgress for &StopAfter {
-        fn note(&self, _: &str) {}
-        fn skip(&self, _: usize) {}
-        fn generation(&self, _: &str, _: usize, _: usize, _: f64) {
-            self.seen.fetch_add(1, Ordering::SeqCst);
-        }
-        fn stop(&self) -> bool {
-            self.seen.load(Ordering::SeqCst) >= self.limit
-        }
-    }
-    impl Notes for StopAfter {
-        fn note(&self, _: &str) {}
-    }
-    impl SweepProgress for StopAfter {
-        fn begin(&self, _: usize, _: usize) {}
-        fn job(
-            &self,
-            _: &fuzzymotiv_pipeline::records::Job,
-            _: usize,
-            _: &Experiment,
-        ) -> Box<dyn RunProgress + '_> {
-            Box::new(self)
-        }
-        fn job_done(&self) {}
-        fn end(&self) {}
-    }
-    impl fuzzymotiv_pipeline::study::StudyProgress for StopAfter {
-        fn waiting(&self, _: usize, _: usize) {}
-        fn analysed(
-            &self,
-            _: &std::path::Path,
-            _: &[fuzzymotiv_pipeline::records::hypotheses::ClaimRow],
-        ) {
-        }
-    }
 
     let dir = tempfile::tempdir().unwrap();
     let text = format!(
