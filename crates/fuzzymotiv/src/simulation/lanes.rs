@@ -223,15 +223,13 @@ impl Lanes {
         step: &LaneStep<'_>,
     ) -> usize {
         let params = arena.params();
-        let mut noisy_sensors = [[0.0; INPUTS]; LANES];
-        for (l, sensors) in noisy_sensors.iter_mut().enumerate() {
-            for k in 0..INPUTS {
-                sensors[k] = step.raw[k][l];
-            }
-        }
         for l in 0..LANES {
             let Some(j) = self.trial[l] else { continue };
-            let sensed = Sensed::straight(noisy_sensors[l], step.sights[l].blocked);
+            let mut noisy_sensors = [0.0; INPUTS];
+            for (k, s) in noisy_sensors.iter_mut().enumerate() {
+                *s = step.raw[k][l];
+            }
+            let sensed = Sensed::straight(noisy_sensors, step.sights[l].blocked);
             let m = [step.motors[0][l], step.motors[1][l]];
             let noisy = [step.speeds[0][l], step.speeds[1][l]];
             let t = self.t[l];
