@@ -6,17 +6,12 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::notes::{NoteList, Notes};
-use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
-use fuzzymotiv_pipeline::records::Job;
-use fuzzymotiv_pipeline::records::hypotheses::ClaimRow;
 use fuzzymotiv_pipeline::study::{
-    Study, StudyOptions, StudyOutcome, StudyProgress, parse_shard, run_study,
+    Study, StudyCounter, StudyOptions, StudyOutcome, parse_shard, run_study,
 };
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
@@ -26,42 +21,13 @@ use crate::{config_err, py_err, thread_pool};
 /// The source name of a study given as text (a dict in Python), in error messages.
 const TEXT_SOURCE: &str = "(study dict)";
 
-/// What the worker tells the Python thread, and the Python thread the worker.
+/// What the worker tells the Python thread, and the Python thread the worker: the study's
+/// progress (runs done of the selection's; Ctrl-C or a failing progress callback stop every
+/// run at its next generation), and whether the worker is done.
 #[derive(Default)]
 struct Shared {
-    /// Runs of the selection finished (before this call or in it), and how many it has.
-    done: AtomicUsize,
-    total: AtomicUsize,
-    /// Set by Ctrl-C or a failing progress callback: every run stops at its next generation.
-    stop: AtomicBool,
+    counter: StudyCounter,
     finished: AtomicBool,
-    /// The pipeline's notes, warned once the study returns.
-    notes: NoteList,
-}
-
-impl Notes for Shared {
-    fn note(&self, line: &str) {
-        self.notes.note(line);
-    }
-}
-
-impl SweepProgress for Shared {
-    fn begin(&self, selected: usize, skipped: usize) {
-        self.total.store(selected, Ordering::SeqCst);
-        self.done.store(skipped, Ordering::SeqCst);
-    }
-    fn job(&self, _job: &Job, _nth: usize, _exp: &Experiment) -> Box<dyn RunProgress + '_> {
-        Box::new(StopOnFlag(&self.stop))
-    }
-    fn job_done(&self) {
-        self.done.fetch_add(1, Ordering::SeqCst);
-    }
-    fn end(&self) {}
-}
-
-impl StudyProgress for Shared {
-    fn waiting(&self, _done: usize, _total: usize) {}
-    fn analysed(&self, _out: &Path, _claims: &[ClaimRow]) {}
 }
 
 /// `folder` made absolute (the arms' config files are relative to it).
@@ -124,7 +90,7 @@ pub fn study_run(
     let error: Mutex<Option<PyErr>> = Mutex::new(None);
     let result = std::thread::scope(|s| {
         let worker = s.spawn(|| {
-            let body = || run_study(&study, &options, &shared);
+            let body = || run_study(&study, &options, &shared.counter);
             let r = match &pool {
                 Some(p) => p.install(body),
                 None => body(),
@@ -139,7 +105,7 @@ pub fn study_run(
         return Err(e);
     }
     let result = result.map_err(|_| PyRuntimeError::new_err("fuzzymotiv panicked (a bug)"))?;
-    crate::warn_notes(&shared.notes.take())?;
+    crate::warn_notes(&shared.counter.notes())?;
     match result.map_err(py_err)? {
         StudyOutcome::Analysed(_) => Ok((true, planned, planned)),
         StudyOutcome::Waiting { done, total } => Ok((false, done, total)),
@@ -158,10 +124,7 @@ fn watch(
     let mut reported = None;
     loop {
         let finished = shared.finished.load(Ordering::SeqCst);
-        let counts = (
-            shared.done.load(Ordering::SeqCst),
-            shared.total.load(Ordering::SeqCst),
-        );
+        let counts = (shared.counter.done(), shared.counter.total());
         let mut failed = None;
         if let Some(cb) = progress
             && counts.1 > 0
@@ -174,7 +137,7 @@ fn watch(
             failed = py.check_signals().err();
         }
         if let Some(e) = failed {
-            shared.stop.store(true, Ordering::SeqCst);
+            shared.counter.stop();
             error.lock().expect("not poisoned").get_or_insert(e);
         }
         if finished {

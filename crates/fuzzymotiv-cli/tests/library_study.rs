@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use common::{Fm, SMALL, assert_same_results, stderr, stdout};
 use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv_pipeline::files::notes::{NoNotes, Notes};
+use fuzzymotiv_pipeline::files::notes::Notes;
 use fuzzymotiv_pipeline::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
 use fuzzymotiv_pipeline::pipeline::reproduce::{
     Front, ReproduceOptions, ReproduceProgress, StudyKind, reproduce,
@@ -140,7 +140,7 @@ fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
     let genome = read_genome(&run.join("best_genome.json")).unwrap();
     let rooms = loaded.raw.rooms.clone();
     let loaded = replay_config(&loaded, &genome, rooms, "run").unwrap();
-    let trials = replay_trials(&loaded.experiment, &genome, &NoNotes).unwrap();
+    let trials = replay_trials(&loaded.experiment, &genome, &mut |_| {}).unwrap();
     let ctx = RenderContext::of(&loaded);
     let mut files = Vec::new();
     let lib = dir.path().join("lib");

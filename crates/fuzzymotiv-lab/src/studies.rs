@@ -7,18 +7,15 @@
 //! the claims are the library's `ClaimRow`s.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 
-use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_pipeline::files::bounded::read_input;
-use fuzzymotiv_pipeline::files::notes::{NoteList, Notes};
-use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
-use fuzzymotiv_pipeline::records::Job;
+use fuzzymotiv_pipeline::files::notes::Notes;
 use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
 use fuzzymotiv_pipeline::study::{
-    STUDY_FILE, Study, StudyOptions, StudyOutcome, StudyProgress, run_study,
+    STUDY_FILE, Study, StudyCounter, StudyOptions, StudyOutcome, run_study,
 };
 use serde_json::{Value, json};
 
@@ -38,13 +35,11 @@ pub struct StudyEntry {
     pub name: String,
     /// Where its text came from: a listed file, or [`PASTED`].
     pub source: String,
-    /// Its runs: planned, and finished (before or now).
+    /// Its runs planned.
     total: usize,
-    done: AtomicUsize,
-    stop: AtomicBool,
+    /// Its runs finished (before or now), and the flag that stops them.
+    counter: StudyCounter,
     state: Mutex<(Status, Option<Vec<ClaimRow>>, Option<String>)>,
-    /// The study's notes (its configs', the pipeline's), which the page shows.
-    notes: NoteList,
 }
 
 impl StudyEntry {
@@ -52,41 +47,15 @@ impl StudyEntry {
         self.state.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// What the page shows of it: status, progress, error, notes and (analysed) the pooled
-    /// claims.
+    /// What the page shows of it: status, progress, error and (analysed) the pooled claims.
     fn view(&self) -> Value {
-        let notes = self.notes.lines();
         let (status, claims, error) = &*self.lock();
         let pooled: Option<Vec<&ClaimRow>> =
             (claims.as_ref()).map(|c| c.iter().filter(|c| c.scope == POOLED).collect());
         json!({ "id": self.id, "name": self.name, "source": self.source, "status": status,
-                "done": self.done.load(Ordering::SeqCst), "total": self.total,
-                "error": error, "notes": notes, "claims": pooled })
+                "done": self.counter.done(), "total": self.total,
+                "error": error, "notes": self.counter.notes(), "claims": pooled })
     }
-}
-
-impl Notes for StudyEntry {
-    fn note(&self, line: &str) {
-        self.notes.note(line);
-    }
-}
-
-impl SweepProgress for StudyEntry {
-    fn begin(&self, _selected: usize, skipped: usize) {
-        self.done.store(skipped, Ordering::SeqCst);
-    }
-    fn job(&self, _job: &Job, _nth: usize, _exp: &Experiment) -> Box<dyn RunProgress + '_> {
-        Box::new(StopOnFlag(&self.stop))
-    }
-    fn job_done(&self) {
-        self.done.fetch_add(1, Ordering::SeqCst);
-    }
-    fn end(&self) {}
-}
-
-impl StudyProgress for StudyEntry {
-    fn waiting(&self, _done: usize, _total: usize) {}
-    fn analysed(&self, _out: &Path, _claims: &[ClaimRow]) {}
 }
 
 /// The studies of a lab.
@@ -182,13 +151,11 @@ impl Studies {
             name: study.name.clone(),
             source,
             total: study.plan.jobs.len(),
-            done: AtomicUsize::new(0),
-            stop: AtomicBool::new(false),
+            counter: StudyCounter::default(),
             state: Mutex::new((Status::Running, None, None)),
-            notes: NoteList::default(),
         });
         for line in &study.plan.notes {
-            entry.notes.note(&format!("note: {line}"));
+            entry.counter.note(&format!("note: {line}"));
         }
         list.push(entry.clone());
         drop(list);
@@ -228,7 +195,7 @@ impl Studies {
             .thread_name(|i| format!("lab-study-{i}"))
             .build();
         let outcome = match pool {
-            Ok(pool) => pool.install(|| run_study(study, &options, entry)),
+            Ok(pool) => pool.install(|| run_study(study, &options, &entry.counter)),
             Err(e) => Err(fuzzymotiv_pipeline::files::error::CliError::runtime(
                 e.to_string(),
             )),
@@ -239,7 +206,7 @@ impl Studies {
                 let why = format!("only {done} of its {total} runs are finished");
                 (Status::Failed, None, Some(why))
             }
-            Err(_) if entry.stop.load(Ordering::SeqCst) => (Status::Stopped, None, None),
+            Err(_) if entry.counter.stopped() => (Status::Stopped, None, None),
             Err(e) => (Status::Failed, None, Some(e.to_string())),
         };
         *entry.lock() = end;
@@ -250,7 +217,7 @@ impl Studies {
         let entry = self
             .get(id)
             .ok_or_else(|| ApiError::not_found(format!("no study `{id}` in this lab")))?;
-        entry.stop.store(true, Ordering::SeqCst);
+        entry.counter.stop();
         Ok(entry.view())
     }
 
@@ -258,7 +225,7 @@ impl Studies {
     pub fn close(&self) {
         self.closing.store(true, Ordering::SeqCst);
         for e in self.list().iter() {
-            e.stop.store(true, Ordering::SeqCst);
+            e.counter.stop();
         }
         let workers: Vec<_> = self
             .workers

@@ -46,6 +46,15 @@ pub fn write_figure_at(
     Ok(())
 }
 
+/// Draws `X.png` beside the figure `X.svg` at `svg_path`, replacing an older PNG (a merged
+/// sweep's `summary.svg` changes with its jobs).
+pub fn png_beside(svg_path: &Path, png: &dyn Rasterise) -> Result<(), CliError> {
+    let out = svg_path.with_extension("png");
+    let svg = std::fs::read_to_string(svg_path).map_err(|e| io_err(svg_path, e))?;
+    let bytes = (png.png(&svg)).map_err(|e| io_err(&out, std::io::Error::other(e)))?;
+    write_atomic(&out, bytes)
+}
+
 /// PNGs for a finished output: writes `X.png` beside every `X.svg` under `dir` (and its
 /// subdirectories) that has none, and nothing else. Returns how many were written.
 pub fn add_missing_pngs(dir: &Path, png: &dyn Rasterise) -> Result<usize, CliError> {

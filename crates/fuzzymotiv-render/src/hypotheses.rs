@@ -2,17 +2,23 @@
 //! (`fuzzymotiv_records::records::hypotheses`): `report.md` ([`report_md`]: the analysis
 //! stated, the claims table, the forest plot, the rooms' results, the seeds' table, with
 //! several base seeds each one's verdict beside the pooled one, and the study file quoted)
-//! and `forest.svg` ([`forest_svg`]: every result's effect with its interval).
+//! and `forest.svg` ([`forest_svg`], in [`crate::forest`]: every result's effect with its
+//! interval, a panel per measure). A result's numbers are printed by one rule
+//! ([`crate::claim_format`]: a percentage's to one decimal, else three significant digits; p
+//! to three decimals); the CSV and JSON records keep them whole.
 
 use std::fmt::Write as _;
 
 use fuzzymotiv_records::records::hypotheses::{
-    ClaimRow, HolmOver, Hypothesis, POOLED, PerSeedRow, Rule, StudyRecord,
+    HolmOver, POOLED, PerSeedRow, RoomResultRow, Rule, StudyRecord,
 };
 
-use crate::plot::{esc, open, px, text_width};
+pub use crate::forest::forest_svg;
 
-/// A number as the report prints it: 4 significant decimals at most, `−` for negatives.
+use crate::claim_format::{RowFormat, p_text};
+
+/// A setting as the report prints it (α, a confidence, an arm's level): 4 decimals at most,
+/// `−` for negatives; the results' numbers go by [`RowFormat`].
 fn num(v: f64) -> String {
     let s = if v != 0.0 && v.abs() < 1e-3 {
         format!("{v:.2e}")
@@ -25,100 +31,6 @@ fn num(v: f64) -> String {
         s
     };
     s.replace('-', "−")
-}
-
-fn mdd(v: Option<f64>) -> String {
-    v.map_or_else(|| "–".into(), num)
-}
-
-/// The colour of a verdict's mark.
-fn verdict_colour(verdict: &str) -> &'static str {
-    match verdict {
-        "holds" => "#2ca02c",
-        "opposite" => "#d62728",
-        "inconclusive" => "#ff7f0e",
-        _ => "#7f7f7f",
-    }
-}
-
-/// One row per result (hypothesis and scope): its label, then on its own scale (the
-/// hypotheses measure different things) its interval as a line, its effect as a dot coloured
-/// by the verdict, and the reference: 0 for a difference or a slope, the bounds for a range
-/// (dashed); then the numbers.
-pub fn forest_svg(record: &StudyRecord) -> String {
-    let claims = &record.claims;
-    let label = |c: &ClaimRow| {
-        if c.scope == POOLED {
-            c.id.clone()
-        } else {
-            format!("{} ({})", c.id, c.scope)
-        }
-    };
-    let left = 20.0
-        + claims
-            .iter()
-            .map(|c| text_width(&label(c), false))
-            .fold(80.0, f64::max);
-    let (plot_w, row_h, top) = (300.0, 34.0, 40.0);
-    let width = left + plot_w + 280.0;
-    let height = top + row_h * claims.len() as f64 + 20.0;
-    let mut s = open(px(width), px(height), 12);
-    let _ = writeln!(
-        s,
-        "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"10\" y=\"22\" font-weight=\"bold\">Effects and their intervals (each row on its own scale)</text>"
-    );
-    for (k, c) in claims.iter().enumerate() {
-        let y = top + row_h * (k as f64 + 0.5);
-        let refs = references(record, c);
-        let lo = refs.iter().copied().fold(c.ci_low.min(c.effect), f64::min);
-        let hi = refs.iter().copied().fold(c.ci_high.max(c.effect), f64::max);
-        let pad = if hi > lo { (hi - lo) * 0.08 } else { 1.0 };
-        let x = |v: f64| px(left + plot_w * (v - lo + pad) / (hi - lo + 2.0 * pad));
-        let _ = writeln!(
-            s,
-            "<text x=\"10\" y=\"{}\">{}</text>",
-            px(y + 4.0),
-            esc(&label(c))
-        );
-        for r in refs {
-            let _ = writeln!(
-                s,
-                "<line x1=\"{0}\" x2=\"{0}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#999\" stroke-dasharray=\"3,3\"/>",
-                x(r),
-                px(y - row_h * 0.4),
-                px(y + row_h * 0.4)
-            );
-        }
-        let colour = verdict_colour(&c.verdict);
-        let _ = writeln!(
-            s,
-            "<line x1=\"{}\" x2=\"{}\" y1=\"{2}\" y2=\"{2}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n<circle cx=\"{3}\" cy=\"{2}\" r=\"4\" fill=\"{colour}\"/>",
-            x(c.ci_low),
-            x(c.ci_high),
-            px(y),
-            x(c.effect)
-        );
-        let _ = writeln!(
-            s,
-            "<text x=\"{}\" y=\"{}\">{} [{}, {}] {}</text>",
-            px(left + plot_w + 15.0),
-            px(y + 4.0),
-            esc(&num(c.effect)),
-            esc(&num(c.ci_low)),
-            esc(&num(c.ci_high)),
-            esc(&c.verdict)
-        );
-    }
-    s.push_str("</svg>\n");
-    s
-}
-
-/// The reference values of a result: 0 (a difference, a slope) or a range's bounds.
-fn references(record: &StudyRecord, c: &ClaimRow) -> Vec<f64> {
-    match record.hypotheses.iter().find(|h| h.id() == c.id) {
-        Some(Hypothesis::Range { min, max, .. }) => vec![*min, *max],
-        _ => vec![0.0],
-    }
 }
 
 /// `report.md`: the study, its analysis, its results and its file.
@@ -214,18 +126,18 @@ fn claims_md(record: &StudyRecord) -> String {
         );
     }
     for c in record.claims.iter().filter(|c| c.scope == POOLED) {
+        let f = RowFormat::of_claim(c);
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | [{}, {}] | {} | {} | {} | **{}** |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | **{}** |",
             c.id,
             c.sentence,
             c.seeds,
-            num(c.effect),
-            num(c.ci_low),
-            num(c.ci_high),
-            num(c.p),
-            num(c.p_adjusted),
-            mdd(c.mdd),
+            f.num(c.effect),
+            f.interval(c.ci_low, c.ci_high),
+            p_text(c.p),
+            p_text(c.p_adjusted),
+            f.mdd(c.mdd),
             c.verdict
         );
     }
@@ -252,8 +164,8 @@ fn replication_md(record: &StudyRecord) -> String {
                 s,
                 " {} ({}, p {}) |",
                 c.verdict,
-                num(c.effect),
-                num(c.p_adjusted)
+                RowFormat::of_claim(c).num(c.effect),
+                p_text(c.p_adjusted)
             );
         }
         s.push('\n');
@@ -267,16 +179,16 @@ fn rooms_md(record: &StudyRecord) -> String {
         "## Per room\n\n| id | room | effect | CI | p | p (Holm) | verdict |\n|---|---|---|---|---|---|---|\n",
     );
     for r in record.rooms.iter().filter(|r| r.scope == POOLED) {
+        let f = room_format(record, r);
         let _ = writeln!(
             s,
-            "| {} | {} | {} | [{}, {}] | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} |",
             r.id,
             r.room,
-            num(r.effect),
-            num(r.ci_low),
-            num(r.ci_high),
-            num(r.p),
-            num(r.p_adjusted),
+            f.num(r.effect),
+            f.interval(r.ci_low, r.ci_high),
+            p_text(r.p),
+            p_text(r.p_adjusted),
             r.verdict
         );
     }
@@ -284,7 +196,18 @@ fn rooms_md(record: &StudyRecord) -> String {
     s
 }
 
-/// Per seed, each arm's value (the mean over its rooms) of every measure.
+/// The format of a room's result: its hypothesis's kind and measure, its own numbers.
+fn room_format(record: &StudyRecord, r: &RoomResultRow) -> RowFormat {
+    let claim = record.claims.iter().find(|c| c.id == r.id);
+    let (kind, measure) = claim.map_or(("", ""), |c| (c.kind.as_str(), c.measure.as_str()));
+    let mut numbers = vec![r.effect, r.ci_low, r.ci_high];
+    numbers.extend(r.mdd);
+    RowFormat::of(kind, measure, &numbers)
+}
+
+/// Per seed, each arm's value (the mean over its rooms) of every measure, each measure's
+/// column to one format (a percentage to one decimal, else three significant digits of the
+/// column's largest value).
 fn seeds_md(per_seed: &[PerSeedRow]) -> String {
     let mut measures: Vec<&str> = Vec::new();
     for r in per_seed.iter().filter(|r| r.room.is_empty()) {
@@ -292,6 +215,15 @@ fn seeds_md(per_seed: &[PerSeedRow]) -> String {
             measures.push(&r.measure);
         }
     }
+    let formats: Vec<RowFormat> = (measures.iter())
+        .map(|m| {
+            let values: Vec<f64> = (per_seed.iter())
+                .filter(|r| r.room.is_empty() && r.measure == *m)
+                .map(|r| r.value)
+                .collect();
+            RowFormat::of("", m, &values)
+        })
+        .collect();
     let mut s = String::from("## Seeds\n\n| base seed | seed | arm |");
     for m in &measures {
         let _ = write!(s, " {m} |");
@@ -307,11 +239,15 @@ fn seeds_md(per_seed: &[PerSeedRow]) -> String {
         }
         seen.push(key);
         let _ = write!(s, "| {} | {} | {} |", r.base_seed, r.seed, r.arm);
-        for m in &measures {
+        for (k, m) in measures.iter().enumerate() {
             let v = per_seed.iter().find(|x| {
                 (x.base_seed, x.seed, x.arm.as_str()) == key && x.measure == *m && x.room.is_empty()
             });
-            let _ = write!(s, " {} |", v.map_or_else(|| "–".into(), |x| num(x.value)));
+            let _ = write!(
+                s,
+                " {} |",
+                v.map_or_else(|| "–".into(), |x| formats[k].num(x.value))
+            );
         }
         s.push('\n');
     }
@@ -320,29 +256,38 @@ fn seeds_md(per_seed: &[PerSeedRow]) -> String {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
-    use fuzzymotiv_records::records::hypotheses::{AnalysisRecord, Measure};
+    use crate::claim_format::claim_line;
+    use fuzzymotiv_records::records::hypotheses::{
+        AnalysisRecord, ClaimRow, Direction, Hypothesis, Measure,
+    };
 
-    fn record(hypotheses: Vec<Hypothesis>) -> StudyRecord {
+    /// A pooled claim of `h` with this effect and interval (p 0.0625, detectable 3).
+    pub(crate) fn claim(h: &Hypothesis, effect: f64, ci_low: f64, ci_high: f64) -> ClaimRow {
+        ClaimRow {
+            id: h.id().into(),
+            kind: h.kind().into(),
+            sentence: h.sentence(),
+            measure: h.measure_column(),
+            arms: h.arms().join(";"),
+            expect: h.expect_label().into(),
+            scope: POOLED.into(),
+            seeds: 5,
+            effect,
+            ci_low,
+            ci_high,
+            p: 0.0625,
+            p_adjusted: 0.0625,
+            mdd: Some(3.0),
+            verdict: "not significant".into(),
+        }
+    }
+
+    /// A one-base-seed study of `hypotheses`, each with a pooled claim 40 [35, 45].
+    pub(crate) fn record(hypotheses: Vec<Hypothesis>) -> StudyRecord {
         let claims = (hypotheses.iter())
-            .map(|h| ClaimRow {
-                id: h.id().into(),
-                kind: h.kind().into(),
-                sentence: h.sentence(),
-                measure: h.measure_column(),
-                arms: h.arms().join(";"),
-                expect: h.expect_label().into(),
-                scope: POOLED.into(),
-                seeds: 5,
-                effect: 40.0,
-                ci_low: 35.0,
-                ci_high: 45.0,
-                p: 0.0625,
-                p_adjusted: 0.0625,
-                mdd: Some(3.0),
-                verdict: "not significant".into(),
-            })
+            .map(|h| claim(h, 40.0, 35.0, 45.0))
             .collect();
         StudyRecord {
             program: "fuzzymotiv".into(),
@@ -365,31 +310,72 @@ mod tests {
     }
 
     #[test]
-    fn a_ranges_forest_row_draws_its_bounds_and_a_comparisons_its_zero() {
-        let range = Hypothesis::Range {
-            id: "r".into(),
-            measure: Measure::Exploration,
-            arm: "a".into(),
-            min: 30.0,
-            max: 50.0,
-        };
-        let rising = Hypothesis::Rising {
-            id: "f".into(),
-            arm: "a".into(),
-        };
-        let svg = forest_svg(&record(vec![range]));
-        // The row's scale spans 30 … 50 (the bounds outside the interval 35 … 45), padded.
-        assert_eq!(svg.matches("stroke-dasharray").count(), 2, "{svg}");
-        assert_eq!(svg.matches("<circle").count(), 1);
-        let svg = forest_svg(&record(vec![rising]));
-        assert_eq!(svg.matches("stroke-dasharray").count(), 1, "{svg}");
-    }
-
-    #[test]
     fn a_study_file_with_a_code_fence_is_quoted_whole() {
         let r = record(Vec::new());
         let text = "# a comment with ``` in it\n[study]\nname = \"t\"";
         let md = report_md(&r, &[], text);
         assert!(md.ends_with(&format!("~~~~toml\n{text}\n~~~~\n")), "{md}");
+    }
+
+    /// Every number of a claim row goes by one rule: a percentage's effect, bounds and
+    /// detectable difference to one decimal, another measure's to three significant digits of
+    /// the row's largest, a trend's slope likewise; p to three decimals (`< 0.001` below).
+    #[test]
+    fn a_claim_rows_numbers_are_printed_to_one_precision() {
+        let explores = Hypothesis::Compare {
+            id: "explores".into(),
+            measure: Measure::Exploration,
+            a: "a".into(),
+            b: "b".into(),
+            expect: Direction::Higher,
+        };
+        let fitness = Hypothesis::Compare {
+            id: "fitter".into(),
+            measure: Measure::Fitness,
+            a: "a".into(),
+            b: "b".into(),
+            expect: Direction::Higher,
+        };
+        let trend = Hypothesis::Trend {
+            id: "trend".into(),
+            measure: Measure::Exploration,
+            arms: vec!["a".into(), "b".into()],
+            expect: Direction::Higher,
+        };
+        let mut r = record(vec![explores, fitness, trend]);
+        r.claims[0] = claim(&r.hypotheses[0], 7.304, 7.304, 32.4641);
+        r.claims[0].mdd = Some(4.0);
+        r.claims[0].p = 0.0001;
+        r.claims[1] = claim(&r.hypotheses[1], 0.012345, -0.0021, 0.0301);
+        r.claims[1].mdd = Some(0.01567);
+        r.claims[1].p = 0.03125;
+        r.claims[2] = claim(&r.hypotheses[2], 0.05123, -0.0004, 0.1);
+        r.claims[2].mdd = None;
+        let md = report_md(&r, &[], "");
+        assert!(
+            md.contains("| 7.3 | [7.3, 32.5] | < 0.001 | 0.062 | 4.0 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| 0.0123 | [−0.0021, 0.0301] | 0.031 | 0.062 | 0.0157 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| 0.051 | [0.000, 0.100] | 0.062 | 0.062 | – |"),
+            "{md}"
+        );
+        // A zero slope's rounding noise prints as zeros, not to fifteen decimals.
+        r.claims[2] = claim(&r.hypotheses[2], 1e-15, -2e-16, 3e-15);
+        r.claims[2].mdd = Some(4e-15);
+        assert!(
+            claim_line(&r.claims[2]).ends_with("(effect 0.000, CI [0.000, 0.000], p 0.062)"),
+            "{}",
+            claim_line(&r.claims[2])
+        );
+        assert!(
+            claim_line(&r.claims[0]).ends_with("(effect 7.3, CI [7.3, 32.5], p 0.062)"),
+            "{}",
+            claim_line(&r.claims[0])
+        );
     }
 }

@@ -1,11 +1,10 @@
-//! `fuzzymotiv bench`: robot-steps per second on the hot path.
-
-use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::simulation::{Motion, Room};
+//! `fuzzymotiv bench`: robot-steps per second on the hot path (the experiment and the
+//! measurement are [`fuzzymotiv_pipeline::pipeline::bench`]'s; this front parses and prints).
 
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::inputs::{load_config, resolve};
-use fuzzymotiv_pipeline::pipeline::bench::{BenchOptions, BenchReport, measure};
+use fuzzymotiv_pipeline::pipeline::bench::{
+    BenchOptions, BenchReport, BenchSetup, bench_experiment, check_sizes, measure,
+};
 
 /// Arguments of `fuzzymotiv bench`.
 #[derive(clap::Args)]
@@ -49,19 +48,14 @@ pub struct BenchArgs {
 /// Entry point of `fuzzymotiv bench`.
 pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     fuzzymotiv_pipeline::pipeline::lanes::set_threads(args.threads)?;
-    let checks = [
-        ("--steps", args.steps, 1, MAX_BENCH_STEPS),
-        ("--repeat", args.repeat, 1, 10_000),
-        ("--population", args.population, 2, fuzzymotiv::params::BIG),
-    ];
-    for (option, value, low, high) in checks {
-        if !(low..=high).contains(&value) {
-            return Err(CliError::input(format!(
-                "{option}: must be from {low} to {high}, got {value}"
-            )));
-        }
-    }
-    let exp = bench_experiment(&args)?;
+    check_sizes(args.steps, args.repeat, args.population)?;
+    let exp = bench_experiment(&BenchSetup {
+        room: args.room.clone(),
+        population: args.population,
+        motion: args.motion.clone(),
+        robot: args.robot.clone(),
+        sets: args.sets.clone(),
+    })?;
     let options = BenchOptions {
         steps: args.steps,
         repeat: args.repeat,
@@ -76,53 +70,6 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     } else {
         print_report(&report)
     }
-}
-
-/// The most robot-steps of one measurement (about an hour at 3 M robot-steps per second).
-const MAX_BENCH_STEPS: usize = 10_000_000_000;
-
-/// The experiment measured: one room, the population size asked for, no AEM.
-fn bench_experiment(args: &BenchArgs) -> Result<Experiment, CliError> {
-    let mut sets = vec![
-        format!("rooms=[{}]", toml::Value::String(args.room.clone())),
-        format!("ga.population={}", args.population),
-        format!("ga.elite={}", args.population.min(3) - 1),
-        "aem.enabled=false".to_string(),
-        format!("robot.motion=\"{}\"", args.motion),
-    ];
-    if let Some(robot) = &args.robot {
-        sets.push(format!("robot.file={}", toml::Value::String(robot.clone())));
-    }
-    let sets: Vec<String> = sets.into_iter().chain(args.sets.iter().cloned()).collect();
-    let loaded = if Room::builtin(&args.room).is_some() {
-        load_config(None, &sets, None)?
-    } else {
-        let raw = fuzzymotiv::experiment::RawConfig::parse("", "bench", &sets)?;
-        resolve(raw, std::path::Path::new("."), "--room")?
-    };
-    crate::console::config_notes(&loaded.notes);
-    check_motion(&loaded.experiment, &args.motion)?;
-    Ok(loaded.experiment)
-}
-
-/// The experiment runs the motion `--motion` asked for: a `--set robot=NAME` replaces the whole
-/// `[robot]` table, and with it the `robot.motion` that `--motion` set, so the robot would run
-/// its default motion under another motion's name.
-fn check_motion(exp: &Experiment, asked: &str) -> Result<(), CliError> {
-    let runs = exp.trial_params().robot().motion();
-    let name = match runs {
-        Motion::Actions => "actions",
-        Motion::Wheels => "wheels",
-    };
-    if name == asked {
-        return Ok(());
-    }
-    Err(CliError::input(format!(
-        "--motion {asked}: the --set options leave the robot with {name} motion (a --set \
-         robot.motion, or a --set robot=NAME, which replaces the whole [robot] table and \
-         robot.motion with it); choose the motion with --motion and name the robot with \
-         --set robot.file=NAME"
-    )))
 }
 
 /// The report as two lines of text.

@@ -1,14 +1,15 @@
 //! `fuzzymotiv calibrate`: bench measurements of a robot's IR sensors (CSV) → a sensor table
 //! file for `trial.sensor_table`, and the readings' spread as the `trial.noise` estimate
-//! ([`fuzzymotiv::simulation::calibrate`]; docs/guide/real-robot.md).
+//! ([`fuzzymotiv_pipeline::pipeline::calibrate`] over [`fuzzymotiv::simulation::calibrate`];
+//! docs/guide/real-robot.md). This front parses the arguments and prints the spread.
 
 use std::path::PathBuf;
 
 use crate::console::{note, out, outln};
-use fuzzymotiv::simulation::{Calibration, calibrate};
+use fuzzymotiv::simulation::Calibration;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::guard::{FilesState, check_files, write_files};
-use fuzzymotiv_pipeline::files::measurements::{field_error, read_measurements};
+use fuzzymotiv_pipeline::files::guard::FilesState;
+use fuzzymotiv_pipeline::pipeline::calibrate::{calibration_table, write_table};
 
 /// Arguments of `fuzzymotiv calibrate`.
 #[derive(clap::Args)]
@@ -33,24 +34,12 @@ pub struct CalibrateArgs {
 
 /// Entry point of `fuzzymotiv calibrate`.
 pub fn calibrate_command(args: CalibrateArgs) -> Result<(), CliError> {
-    let source = args.measurements.display().to_string();
-    let robot = fuzzymotiv_pipeline::files::inputs::load_robot(&args.robot, "--robot")?;
-    let rows = read_measurements(&args.measurements)?;
-    let c = calibrate(&rows, robot.scale()).map_err(|e| field_error(e.in_source(&source)))?;
-    let header = format!(
-        "Sensor table written by `fuzzymotiv calibrate` from {source}:\nper sensor and distance the median reading (rounded; neighbours pooled where medians rose\nwith distance). The simulator reads, per ray, the reading of the first distance at or beyond\nthe wall it sees, 0 beyond the last; name this file in a config as trial.sensor_table.\n{}Relative spread of the readings {:.4}: trial.noise = {:.3}.",
-        robot_line(robot),
-        c.relative_spread,
-        c.noise
-    );
-    let table = c.table.to_toml(&header);
+    let (c, table) = calibration_table(&args.measurements, &args.robot, "--robot")?;
     if args.out.as_os_str() == "-" {
         out!("{table}")?;
         return show(&c, false);
     }
-    let files = [(args.out.clone(), table.into_bytes())];
-    if check_files(&files, "--out", args.force)? == FilesState::Write {
-        write_files(&files)?;
+    if write_table(&args.out, table, "--out", args.force)? == FilesState::Write {
         note!("wrote {}", args.out.display());
     } else {
         note!(
@@ -59,21 +48,6 @@ pub fn calibrate_command(args: CalibrateArgs) -> Result<(), CliError> {
         );
     }
     show(&c, true)
-}
-
-/// The header line naming the robot a table is for (none for the Khepera, whose tables were
-/// written before robots were named).
-fn robot_line(robot: &fuzzymotiv::simulation::RobotSpec) -> String {
-    if robot.name() == "khepera" {
-        String::new()
-    } else {
-        format!(
-            "For the robot {} ({} sensors, readings 0–{}).\n",
-            robot.name(),
-            robot.sensors(),
-            robot.reading_max()
-        )
-    }
 }
 
 /// The spread per sensor and distance (on standard output, else standard error), then the

@@ -5,11 +5,11 @@ use std::path::PathBuf;
 
 use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, io_err, write_into};
-use fuzzymotiv_pipeline::pipeline::compare::{check_comparable, choose, compare, load};
+use fuzzymotiv_pipeline::files::guard::FilesState;
+use fuzzymotiv_pipeline::pipeline::compare::{CompareRequest, compare_into};
 use fuzzymotiv_pipeline::render::study::CLAIMS_ALPHA;
 
-use crate::png::svg_to_png;
+use crate::png::rasteriser;
 
 /// Arguments of `fuzzymotiv compare`.
 #[derive(clap::Args)]
@@ -36,39 +36,23 @@ pub struct CompareArgs {
     pub force: bool,
 }
 
-/// Entry point of `fuzzymotiv compare`: reads both outputs, refuses different kinds or rooms,
-/// compares the chosen settings and writes the files; prints compare.md.
+/// Entry point of `fuzzymotiv compare`.
 pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
-    if args.alpha.is_nan() || args.alpha <= 0.0 || args.alpha >= 1.0 {
-        return Err(CliError::input(format!(
-            "--alpha must be between 0 and 1 (exclusive), got {}",
-            fuzzymotiv::params::Num(args.alpha)
-        )));
+    let (md, state) = compare_into(&CompareRequest {
+        a: &args.a,
+        b: &args.b,
+        out: &args.out,
+        settings: &args.setting,
+        alpha: args.alpha,
+        png: rasteriser(args.png),
+        force: args.force,
+    })?;
+    if state == FilesState::Same {
+        note!(
+            "{} already holds these files; nothing to do",
+            args.out.display()
+        );
     }
-    check_files_dir(
-        &args.out,
-        "--out",
-        &["compare.md", "compare.csv", "compare.svg"],
-    )?;
-    let a = load(&args.a, "A")?;
-    let b = load(&args.b, "B")?;
-    check_comparable(&a, &b)?;
-    let pairs = choose(&a, &b, &args.setting)?;
-    let done = compare(&a, &b, &pairs, args.alpha)?;
-    let out = &args.out;
-    let mut files = vec![
-        (out.join("compare.md"), done.md.clone().into_bytes()),
-        (out.join("compare.csv"), done.csv.into_bytes()),
-    ];
-    if args.png {
-        let path = out.join("compare.png");
-        let png = svg_to_png(&done.svg).map_err(|e| io_err(&path, std::io::Error::other(e)))?;
-        files.push((path, png));
-    }
-    files.push((out.join("compare.svg"), done.svg.into_bytes()));
-    if write_into(out, &files, "--out", args.force)? == FilesState::Same {
-        note!("{} already holds these files; nothing to do", out.display());
-    }
-    crate::console::out!("{}", done.md)?;
+    crate::console::out!("{md}")?;
     Ok(())
 }

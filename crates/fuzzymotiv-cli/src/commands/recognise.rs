@@ -6,8 +6,8 @@ use std::path::PathBuf;
 
 use crate::console::{note, outln};
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, write_into};
-use fuzzymotiv_pipeline::records::robot_log::{recognise_logs, recognition_csv, recognition_md};
+use fuzzymotiv_pipeline::files::guard::FilesState;
+use fuzzymotiv_pipeline::pipeline::recognise::recognise_into;
 
 /// Arguments of `fuzzymotiv recognise`.
 #[derive(clap::Args)]
@@ -32,18 +32,10 @@ pub struct RecogniseArgs {
 
 /// Entry point of `fuzzymotiv recognise`.
 pub fn recognise(args: RecogniseArgs) -> Result<(), CliError> {
-    const NAMES: [&str; 2] = ["recognised.csv", "recognised.md"];
-    if let Some(out) = &args.out {
-        check_files_dir(out, "--out", &NAMES)?;
-    }
-    let records = recognise_logs(&args.run, &args.logs)?;
-    let md = recognition_md(&args.run, &records);
-    if let Some(out) = &args.out {
-        let files = vec![
-            (out.join(NAMES[0]), recognition_csv(&records).into_bytes()),
-            (out.join(NAMES[1]), md.clone().into_bytes()),
-        ];
-        if write_into(out, &files, "--out", args.force)? == FilesState::Write {
+    let out = args.out.as_deref();
+    let (md, state) = recognise_into(&args.run, &args.logs, out, args.force)?;
+    if let (Some(out), Some(state)) = (out, state) {
+        if state == FilesState::Write {
             note!("wrote {}", out.display());
         } else {
             note!("{} already holds these files; nothing to do", out.display());

@@ -1,5 +1,6 @@
 //! `fuzzymotiv replay`: run a saved genome again and write its trajectory (CSV and JSON) and a
-//! replay page.
+//! replay page ([`fuzzymotiv_pipeline::pipeline::replay::replay`]; this front parses the
+//! arguments and prints).
 //!
 //! The trial uses the experiment's room-modelling stream (docs/model.md §9: the run whose actions became
 //! a room's stored instance), so `replay RUN_DIR` redraws exactly the paths of the run's
@@ -8,27 +9,14 @@
 //! ([`fuzzymotiv_pipeline::render::frames`]); `--log` draws a robot's logged path over its room
 //! (read by [`fuzzymotiv_pipeline::records::robot_log::RobotLog`], as `recognise` reads it).
 
-use std::path::{Path, PathBuf};
-
-use fuzzymotiv::experiment::Experiment;
-use fuzzymotiv::simulation::TrialParams;
+use std::path::PathBuf;
 
 use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::guard::{FilesState, check_files, io_err, write_files};
-use fuzzymotiv_pipeline::files::inputs::{load_config, room_entry, rooms_unchanged};
-use fuzzymotiv_pipeline::pipeline::replay::{
-    ReplayTrial, replay_config, replay_json, replay_trials, room_files, room_gifs,
-};
-use fuzzymotiv_pipeline::records::context::RenderContext;
-use fuzzymotiv_pipeline::records::genome::{SavedGenome, locate, read_genome};
-use fuzzymotiv_pipeline::records::robot_log::RobotLog;
-use fuzzymotiv_pipeline::render::frames::FrameOptions;
-use fuzzymotiv_pipeline::render::frames::animate::delay_of;
-use fuzzymotiv_pipeline::render::report::{replay_page_with, xs};
-use fuzzymotiv_pipeline::render::svg::{LoggedPath, trajectories_svg_with};
+use fuzzymotiv_pipeline::files::guard::FilesState;
+use fuzzymotiv_pipeline::pipeline::replay::{GifSettings, ReplayOptions, replay as replay_genome};
 
-use crate::png::svg_to_png;
+use crate::png::rasteriser;
 
 /// Arguments of `fuzzymotiv replay`.
 #[derive(clap::Args)]
@@ -104,198 +92,35 @@ pub struct ReplayArgs {
 
 /// Entry point of `fuzzymotiv replay`.
 pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
-    let (genome_path, found_config) = locate(&args.source)?;
-    let config_path = args.config.clone().or(found_config);
-    let genome = read_genome(&genome_path)?;
-    // A genome alone is replayed under the default config and, unless --seed says otherwise,
-    // the seed it was evolved with.
-    let seed = args.seed.or(if config_path.is_none() {
-        genome.seed
-    } else {
-        None
-    });
-    let loaded = load_config(config_path.as_deref(), &[], seed)?;
-    crate::console::config_notes(&loaded.notes);
-    if let Some(path) = &config_path {
-        let remedy = "the replay uses the room as it is now, so its paths are not the run's";
-        if let Err(e) = rooms_unchanged(path, &loaded, remedy) {
-            note!("warning: {e}");
-        }
-    }
-    let source_name = config_path
-        .as_ref()
-        .map_or("(built-in defaults)".to_string(), |p| {
-            p.display().to_string()
-        });
-    note!(
-        "config: {source_name}{}",
-        if config_path.is_none() {
-            " (no config beside the genome; --config FILE replays under the run's own)"
-        } else {
-            ""
-        }
-    );
-    if config_path.is_some() && loaded.raw.network.hidden != genome.hidden {
-        return Err(CliError::input(format!(
-            "{}: the genome has {} hidden units but the config says network.hidden = {}",
-            genome_path.display(),
-            genome.hidden,
-            loaded.raw.network.hidden
-        )));
-    }
-    let rooms = match &args.room {
-        Some(want) => vec![room_entry("--room", want, &loaded)?],
-        None => loaded.raw.rooms.clone(),
+    let opts = ReplayOptions {
+        source: args.source,
+        config: args.config,
+        room: args.room,
+        seed: args.seed,
+        out: args.out,
+        png: rasteriser(args.png),
+        gif: args.gif.then_some(GifSettings {
+            size: args.size,
+            stride: args.stride,
+            fps: args.fps,
+        }),
+        logs: args.log,
+        force: args.force,
     };
-    let logs = logged_paths(&args.log, &rooms)?;
-    let loaded = replay_config(&loaded, &genome, rooms, &source_name)?;
-    let trials = replay_trials(&loaded.experiment, &genome, &crate::console::Stderr)?;
-    let ctx = RenderContext::of(&loaded);
-    let gifs = if args.gif {
-        Some(gif_options(&args, loaded.experiment.trial_params())?)
-    } else {
-        None
-    };
-    warn_outside(&logs, &loaded.experiment);
-    write_replay(&args, &ctx, &genome, &source_name, &trials, gifs, &logs)
-}
-
-/// The paths of `--log`, each over the replay's one room (several rooms: `--room` must say
-/// which); refused before anything is replayed.
-fn logged_paths(logs: &[PathBuf], rooms: &[String]) -> Result<Vec<LoggedPath>, CliError> {
-    if logs.is_empty() {
-        return Ok(Vec::new());
-    }
-    if rooms.len() != 1 {
-        return Err(CliError::input(format!(
-            "--log: the config has {} rooms ({}); a log is drawn over the room it was recorded in, so say which with --room ROOM",
-            rooms.len(),
-            rooms.join(", ")
-        )));
-    }
-    logs.iter()
-        .map(|path| {
-            Ok(LoggedPath {
-                label: path.display().to_string(),
-                room: 0,
-                points: RobotLog::read(path)?.path()?,
-            })
-        })
-        .collect()
-}
-
-/// A warning per logged path with positions outside its room's outline's bounds (mm in
-/// another frame, or in other units, draw outside the room).
-fn warn_outside(logs: &[LoggedPath], exp: &Experiment) {
-    for log in logs {
-        let room = exp.arenas()[log.room].room();
-        let (lo, hi) = room.bounds();
-        let outside = (log.points.iter())
-            .filter(|&&(x, y)| x < lo.x || x > hi.x || y < lo.y || y > hi.y)
-            .count();
-        if outside > 0 {
-            note!(
-                "warning: {}: {outside} of {} positions lie outside room {}; --log wants x and y in mm, in the room's frame",
-                log.label,
-                log.points.len(),
-                room.name
-            );
-        }
-    }
-}
-
-/// The frame options and delay of `--gif` (`--size`, `--stride`, `--fps`), for the trial's robot.
-fn gif_options(args: &ReplayArgs, trial: &TrialParams) -> Result<(FrameOptions, u16), CliError> {
-    let opts = FrameOptions::new(args.size, args.stride)
-        .map_err(|(name, why)| CliError::input(format!("--{name}: {why}")))?;
-    let delay = delay_of(args.fps).map_err(|why| CliError::input(format!("--fps: {why}")))?;
-    Ok((opts.for_trial(trial), delay))
-}
-
-/// Writes the replay's CSV per room, JSON, figure and page, through the output guard: the same
-/// replay again changes nothing; other files of those names are kept unless `--force`.
-fn write_replay(
-    args: &ReplayArgs,
-    ctx: &RenderContext,
-    genome: &SavedGenome,
-    source_name: &str,
-    trials: &[ReplayTrial],
-    gifs: Option<(FrameOptions, u16)>,
-    logs: &[LoggedPath],
-) -> Result<(), CliError> {
-    let out = &args.out;
-    let (dir, stem) = out_parts(out)?;
-    let mut files = Vec::new();
-    let (lines, rooms_json) = room_files(ctx, &dir, &stem, trials, &mut files);
-    let gif_files = match gifs {
-        Some(gifs) => room_gifs(ctx, &dir, &stem, trials, gifs)?,
-        None => Vec::new(),
-    };
-    let gif_names: Vec<String> = (gif_files.iter())
-        .map(|(p, _)| p.display().to_string())
-        .collect();
-    files.extend(gif_files);
-    let genome_path = genome.path.display();
-    files.push((
-        dir.join(format!("{stem}.json")),
-        replay_json(&genome_path.to_string(), source_name, ctx, rooms_json),
-    ));
-    let pairs: Vec<_> = trials
-        .iter()
-        .map(|(r, _, run)| (&ctx.rooms[*r], &run.trajectory))
-        .collect();
-    let title = format!("Replay of {genome_path} (seed {})", ctx.seed);
-    let svg = trajectories_svg_with(&title, &pairs, logs);
-    let svg_path = dir.join(format!("{stem}.svg"));
-    if args.png {
-        let png_path = svg_path.with_extension("png");
-        let png = svg_to_png(&svg).map_err(|e| io_err(&png_path, std::io::Error::other(e)))?;
-        files.push((png_path, png));
-    }
-    files.push((svg_path, svg.into_bytes()));
-    let about = format!(
-        "genome {genome_path} · config {source_name} · seed {} · motivations (C, H, O, E) = {} · {} steps per trial",
-        ctx.seed,
-        xs(ctx),
-        ctx.steps
-    );
-    let page = replay_page_with("fuzzymotiv replay", &about, ctx, trials, logs);
-    files.push((out.clone(), page.into_bytes()));
-    let state = check_files(&files, "--out", args.force)?;
-    if state == FilesState::Write {
-        std::fs::create_dir_all(&dir).map_err(|e| io_err(&dir, e))?;
-        write_files(&files)?;
-    }
-    for line in &lines {
+    let done = replay_genome(&opts, &mut |line| note!("{line}"))?;
+    for line in &done.lines {
         crate::console::outln!("{line}")?;
     }
-    if state == FilesState::Same {
-        note!("{} already holds this replay; nothing to do", out.display());
+    if done.state == FilesState::Same {
+        note!(
+            "{} already holds this replay; nothing to do",
+            opts.out.display()
+        );
     } else {
-        note!("wrote {}", out.display());
+        note!("wrote {}", opts.out.display());
     }
-    if !gif_names.is_empty() {
-        note!("GIFs: {}", gif_names.join(", "));
+    if !done.gifs.is_empty() {
+        note!("GIFs: {}", done.gifs.join(", "));
     }
     Ok(())
-}
-
-/// The directory and file stem of `--out FILE`; a directory is refused (the replay is a page
-/// with files beside it, e.g. --out DIR/replay.html).
-fn out_parts(out: &Path) -> Result<(PathBuf, String), CliError> {
-    if out.is_dir() || out.as_os_str().to_string_lossy().ends_with('/') {
-        return Err(CliError::input(format!(
-            "--out {}: is a directory; give the replay page's file name, e.g. --out {}",
-            out.display(),
-            out.join("replay.html").display()
-        )));
-    }
-    let dir = out
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-    let stem = out
-        .file_stem()
-        .map_or("replay".to_string(), |s| s.to_string_lossy().into_owned());
-    Ok((dir, stem))
 }

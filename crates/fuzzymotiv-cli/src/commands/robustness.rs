@@ -7,11 +7,10 @@ use std::path::PathBuf;
 
 use crate::console::{note, outln};
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::guard::{FilesState, check_files_dir, io_err, write_into};
-use fuzzymotiv_pipeline::records::robustness::{robustness_csv, robustness_md, robustness_of_run};
-use fuzzymotiv_pipeline::render::robustness::robustness_svg;
+use fuzzymotiv_pipeline::files::guard::FilesState;
+use fuzzymotiv_pipeline::pipeline::robustness::robustness_into;
 
-use crate::png::svg_to_png;
+use crate::png::rasteriser;
 
 /// Arguments of `fuzzymotiv robustness`.
 #[derive(clap::Args)]
@@ -36,32 +35,9 @@ pub struct RobustnessArgs {
 
 /// Entry point of `fuzzymotiv robustness`.
 pub fn robustness(args: RobustnessArgs) -> Result<(), CliError> {
-    let mut names = vec!["robustness.csv", "robustness.md", "robustness.svg"];
-    if args.png {
-        names.push("robustness.png");
-    }
-    check_files_dir(&args.out, "--out", &names)?;
-    let study = robustness_of_run(&args.run, args.trials as usize)?;
-    let records = study.records;
-    let md = robustness_md(&records, &study.notes);
-    let name = args.run.canonicalize().unwrap_or_else(|_| args.run.clone());
-    let name = name.file_name().map_or(name.as_os_str(), |n| n);
-    let title = format!("Robustness of {}'s best robot", name.to_string_lossy());
-    let svg = robustness_svg(&title, &records);
-    let mut files = vec![
-        (
-            args.out.join("robustness.csv"),
-            robustness_csv(&records).into_bytes(),
-        ),
-        (args.out.join("robustness.md"), md.clone().into_bytes()),
-    ];
-    if args.png {
-        let path = args.out.join("robustness.png");
-        let png = svg_to_png(&svg).map_err(|e| io_err(&path, std::io::Error::other(e)))?;
-        files.push((path, png));
-    }
-    files.push((args.out.join("robustness.svg"), svg.into_bytes()));
-    if write_into(&args.out, &files, "--out", args.force)? == FilesState::Same {
+    let png = rasteriser(args.png);
+    let done = robustness_into(&args.run, &args.out, args.trials as usize, png, args.force)?;
+    if done.state == FilesState::Same {
         note!(
             "{} already holds these files; nothing to do",
             args.out.display()
@@ -69,8 +45,8 @@ pub fn robustness(args: RobustnessArgs) -> Result<(), CliError> {
     }
     note!(
         "{} perturbations × {} trials per room",
-        records.len(),
+        done.perturbations,
         args.trials
     );
-    outln!("{md}")
+    outln!("{}", done.md)
 }

@@ -1,16 +1,14 @@
-//! `fuzzymotiv run`: evolve, model the rooms, write the run directory.
+//! `fuzzymotiv run`: evolve, model the rooms, write the run directory (what to run is
+//! [`fuzzymotiv_pipeline::pipeline::run_target`]'s, the run [`fuzzymotiv_pipeline::pipeline::run_dir`]'s;
+//! this front parses, shows progress and prints).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use crate::console::{Stderr, config_notes, note};
+use crate::console::{Stderr, note};
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::guard::{OutState, StagedDir, check_out};
-use fuzzymotiv_pipeline::files::inputs::{Loaded, load_config, rooms_unchanged, run_identity};
-use fuzzymotiv_pipeline::pipeline::continuation::{
-    continued_config, finished_config, stage_continued,
-};
 use fuzzymotiv_pipeline::pipeline::lanes::set_threads;
 use fuzzymotiv_pipeline::pipeline::run_dir::{execute, start_line};
+use fuzzymotiv_pipeline::pipeline::run_target::{RunRequest, RunTarget, run_target};
 use fuzzymotiv_pipeline::render::tables::table_markdown;
 
 use crate::args::OutputArgs;
@@ -60,42 +58,32 @@ pub struct RunArgs {
     pub png: bool,
 }
 
-/// What `run` is asked to do.
-enum Target {
-    /// Nothing (but the missing PNGs with `--png`): the run is already there.
-    Done(PathBuf),
-    /// Run (or resume) `loaded` into `out`.
-    Run {
-        loaded: Box<Loaded>,
-        out: PathBuf,
-        resume: bool,
-    },
-}
-
 /// Entry point of `fuzzymotiv run`.
 pub fn run(args: RunArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
-    if args.generations.is_some() && args.continue_from.is_none() {
-        // clap's `requires` does not catch it beside a CONFIG; unchecked, it would be ignored.
-        return Err(CliError::input(
-            "--generations N goes with --continue DIR (the total to continue it to); \
-             to run a config for N generations, use --set ga.generations=N",
-        ));
-    }
-    let target = match (&args.resume, &args.config) {
-        _ if args.continue_from.is_some() => continue_target(&args)?,
-        (Some(dir), _) => resume_target(dir)?,
-        (None, Some(config)) => config_target(config, &args)?,
-        (None, None) => return Err(CliError::input("give a CONFIG file or --resume DIR")),
-    };
+    let target = run_target(
+        &RunRequest {
+            config: args.config.clone(),
+            resume: args.resume.clone(),
+            continue_from: args.continue_from.clone(),
+            generations: args.generations,
+            out: args.output.out.clone(),
+            sets: args.sets.clone(),
+            seed: args.output.seed,
+            force: args.output.force,
+        },
+        &Stderr,
+    )?;
     let (loaded, out, resume) = match target {
-        Target::Run {
+        RunTarget::Run {
             loaded,
             out,
             resume,
         } => (loaded, out, resume),
-        Target::Done(dir) if args.png => return add_pngs(&dir),
-        Target::Done(_) => return Ok(()),
+        RunTarget::Done { dir, note } => {
+            note!("{note}");
+            return if args.png { add_pngs(&dir) } else { Ok(()) };
+        }
     };
     let progress = Progress::new(&loaded.experiment, 1, args.output.quiet).named(&format!(
         "{} seed {}",
@@ -108,111 +96,4 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
     crate::console::out!("{}", table_markdown(&done.rows))?;
     note!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
     Ok(())
-}
-
-/// `--resume DIR`: the interrupted run in `DIR.partial/`.
-fn resume_target(dir: &Path) -> Result<Target, CliError> {
-    let staging = StagedDir::staging_path(dir);
-    let cfg = staging.join("config.resolved.toml");
-    if !cfg.is_file() {
-        if dir.join("summary.json").is_file() {
-            note!("{} is already complete; nothing to resume", dir.display());
-            return Ok(Target::Done(dir.to_path_buf()));
-        }
-        return Err(CliError::input(format!(
-            "--resume {}: no interrupted run there ({} not found); start it with `fuzzymotiv run CONFIG --out {}`",
-            dir.display(),
-            cfg.display(),
-            dir.display()
-        )));
-    }
-    let loaded = load_config(Some(&cfg), &[], None)?;
-    config_notes(&loaded.notes);
-    let remedy = "resuming would evolve the rest of the run in another room. Restore the file, \
-                  or start the run over with `fuzzymotiv run CONFIG --out DIR --force`";
-    rooms_unchanged(&cfg, &loaded, remedy)?;
-    Ok(Target::Run {
-        loaded: Box::new(loaded),
-        out: dir.to_path_buf(),
-        resume: true,
-    })
-}
-
-/// `CONFIG [--out DIR]`: a fresh run, or the unfinished one of the same config in `DIR`.
-fn config_target(config: &Path, args: &RunArgs) -> Result<Target, CliError> {
-    let loaded = load_config(Some(config), &args.sets, args.output.seed)?;
-    config_notes(&loaded.notes);
-    let out = args
-        .output
-        .out
-        .clone()
-        .unwrap_or_else(|| Path::new("runs").join(&loaded.raw.name));
-    let resume = match check_out(&out, &run_identity(&loaded.raw), args.output.force, &Stderr)? {
-        OutState::Done => {
-            note!(
-                "{} already holds this run, finished (same resolved config); nothing to do. --force runs it again",
-                out.display()
-            );
-            return Ok(Target::Done(out));
-        }
-        OutState::Unfinished => true,
-        OutState::Fresh => false,
-    };
-    Ok(Target::Run {
-        loaded: Box::new(loaded),
-        out,
-        resume,
-    })
-}
-
-/// `--continue DIR --generations N --out NEW`: the finished run in `DIR` continued to N
-/// generations in `NEW` (staged from `DIR`'s final population; `DIR` is never written).
-fn continue_target(args: &RunArgs) -> Result<Target, CliError> {
-    let (Some(dir), Some(n), Some(out)) = (&args.continue_from, args.generations, &args.output.out)
-    else {
-        return Err(CliError::input(
-            "--continue DIR needs --generations N (the total) and --out NEW",
-        ));
-    };
-    let old = finished_config(dir)?;
-    config_notes(&old.notes);
-    let new = continued_config(dir, &old, n)?;
-    if same_place(dir, out) {
-        return Err(CliError::input(format!(
-            "--out {}: is the run being continued; --continue never changes it: choose a new --out",
-            out.display()
-        )));
-    }
-    let resume = match check_out(out, &run_identity(&new.raw), args.output.force, &Stderr)? {
-        OutState::Done => {
-            note!(
-                "{} already holds this run, finished ({n} generations); nothing to do. --force runs it again",
-                out.display()
-            );
-            return Ok(Target::Done(out.clone()));
-        }
-        OutState::Unfinished => true,
-        OutState::Fresh => {
-            stage_continued(dir, &old, &new, out)?;
-            true
-        }
-    };
-    Ok(Target::Run {
-        loaded: Box::new(new),
-        out: out.clone(),
-        resume,
-    })
-}
-
-/// Whether two paths name the same directory (or `b` lies inside `a`).
-fn same_place(a: &Path, b: &Path) -> bool {
-    let canon = |p: &Path| {
-        let parent = p.parent().filter(|q| !q.as_os_str().is_empty());
-        let base = parent.map_or_else(|| Path::new(".").canonicalize(), |q| q.canonicalize());
-        base.ok().map(|d| d.join(p.file_name().unwrap_or_default()))
-    };
-    match (a.canonicalize().ok(), canon(b)) {
-        (Some(a), Some(b)) => b.starts_with(&a),
-        _ => false,
-    }
 }

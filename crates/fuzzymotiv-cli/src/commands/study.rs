@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
+use fuzzymotiv_pipeline::render::claim_format::claim_line;
 use fuzzymotiv_pipeline::study::{
     Study, StudyOptions, StudyOutcome, StudyProgress, parse_shard, run_study,
 };
@@ -64,16 +65,7 @@ pub fn study(args: StudyArgs) -> Result<(), CliError> {
     let progress = JobsProgress::new(args.quiet);
     if let StudyOutcome::Analysed(claims) = run_study(&study, &options, &progress)? {
         for c in claims.iter().filter(|c| c.scope == POOLED) {
-            crate::console::outln!(
-                "{}: {} — {} (effect {:.4}, CI [{:.4}, {:.4}], p {:.4})",
-                c.id,
-                c.verdict,
-                c.sentence,
-                c.effect,
-                c.ci_low,
-                c.ci_high,
-                c.p_adjusted
-            )?;
+            crate::console::outln!("{}", claim_line(c))?;
         }
         note!("report: {}", args.out.join("report.md").display());
     }

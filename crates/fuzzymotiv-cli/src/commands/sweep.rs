@@ -5,16 +5,15 @@ use std::path::PathBuf;
 
 use fuzzymotiv_pipeline::files::bounded::read_input;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::guard::{
-    FilesState, check_files, io_err, write_atomic, write_files,
-};
+use fuzzymotiv_pipeline::files::guard::{FilesState, check_files, write_files};
 use fuzzymotiv_pipeline::pipeline::lanes::set_threads;
 use fuzzymotiv_pipeline::pipeline::sweep_jobs::run_jobs;
 use fuzzymotiv_pipeline::pipeline::sweep_merge::merge_dir;
-use fuzzymotiv_pipeline::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
+use fuzzymotiv_pipeline::pipeline::sweep_plan::{SWEEP_FILE, Sweep, select_jobs};
+use fuzzymotiv_pipeline::render::figures::png_beside;
 
 use crate::console::{Stderr, config_notes};
-use crate::png::{add_pngs, svg_to_png};
+use crate::png::{Resvg, add_pngs};
 use crate::progress::JobsProgress;
 
 /// Arguments of `fuzzymotiv plan`.
@@ -82,42 +81,20 @@ pub struct SweepArgs {
     pub force: bool,
 }
 
-fn select(args: &SweepArgs, n: usize) -> Result<Vec<usize>, CliError> {
-    if let Some(shard) = &args.shard {
-        let bad = || {
-            CliError::input(format!(
-                "--shard {shard}: expected I/N with 0 ≤ I < N, e.g. --shard 0/3"
-            ))
-        };
-        let (i, k) = shard.split_once('/').ok_or_else(bad)?;
-        let (i, k): (usize, usize) = (
-            i.trim().parse().map_err(|_| bad())?,
-            k.trim().parse().map_err(|_| bad())?,
-        );
-        if k == 0 || i >= k {
-            return Err(bad());
-        }
-        return Ok((0..n).filter(|j| j % k == i).collect());
-    }
-    let index = match (&args.index, &args.index_from_env) {
-        (Some(i), _) => Some(*i),
+/// The job index of `--index` or `--index-from-env VAR`.
+fn index_of(args: &SweepArgs) -> Result<Option<usize>, CliError> {
+    match (&args.index, &args.index_from_env) {
+        (Some(i), _) => Ok(Some(*i)),
         (None, Some(var)) => {
             let v = std::env::var(var).map_err(|_| {
                 CliError::input(format!("--index-from-env {var}: the variable is not set"))
             })?;
-            Some(v.trim().parse().map_err(|_| {
+            let i = v.trim().parse().map_err(|_| {
                 CliError::input(format!("--index-from-env {var}: `{v}` is not a job index"))
-            })?)
+            })?;
+            Ok(Some(i))
         }
-        (None, None) => None,
-    };
-    match index {
-        Some(i) if i >= n => Err(CliError::input(format!(
-            "job index {i} is out of range: the plan has {n} jobs (0..{})",
-            n.saturating_sub(1)
-        ))),
-        Some(i) => Ok(vec![i]),
-        None => Ok((0..n).collect()),
+        (None, None) => Ok(None),
     }
 }
 
@@ -126,7 +103,7 @@ pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
     let sweep = Sweep::load(&args.sweep)?;
     config_notes(&sweep.notes);
-    let selected = select(&args, sweep.jobs.len())?;
+    let selected = select_jobs(sweep.jobs.len(), args.shard.as_deref(), index_of(&args)?)?;
     let text = read_input(&args.sweep, SWEEP_FILE)?;
     let progress = JobsProgress::new(args.quiet);
     run_jobs(&sweep, &text, &selected, &args.out, args.force, &progress)
@@ -147,11 +124,7 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
     let merged = merge_dir(&args.dir, &Stderr)?;
     crate::console::out!("{}", merged.markdown)?;
     if args.png {
-        let svg = args.dir.join("summary.svg");
-        let png = svg.with_extension("png");
-        let text = std::fs::read_to_string(&svg).map_err(|e| io_err(&svg, e))?;
-        let bytes = svg_to_png(&text).map_err(|e| io_err(&png, std::io::Error::other(e)))?;
-        write_atomic(&png, bytes)?;
+        png_beside(&args.dir.join("summary.svg"), &Resvg)?;
         add_pngs(&args.dir)?;
     }
     Ok(())

@@ -1,10 +1,15 @@
 //! `fuzzymotiv bench`'s measurements: robot-steps per second on the hot path, one robot on one
-//! thread and whole populations in parallel ([`measure`] → [`BenchReport`]). The command line
-//! builds the experiment from its arguments and prints the report.
+//! thread and whole populations in parallel ([`measure`] → [`BenchReport`]), of the experiment
+//! a [`BenchSetup`] makes ([`bench_experiment`], sizes checked by [`check_sizes`]). The command
+//! line turns its arguments into them and prints the report.
 
 use std::time::Instant;
 
 use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv::simulation::{Motion, Room};
+
+use crate::files::error::CliError;
+use crate::files::inputs::{load_config, resolve};
 
 /// What a measurement does: plain data.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -129,6 +134,86 @@ pub fn measure(exp: &Experiment, options: &BenchOptions) -> BenchReport {
     }
 }
 
+/// The experiment a bench measures, as `fuzzymotiv bench`'s options give it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BenchSetup {
+    /// A built-in room's name or a room file.
+    pub room: String,
+    /// Population size of the population measurement.
+    pub population: usize,
+    /// `actions` or `wheels`.
+    pub motion: String,
+    /// A built-in robot's name or a robot file [default: the config's, the Khepera].
+    pub robot: Option<String>,
+    /// Config overrides, `KEY=VALUE`, after the setup's own.
+    pub sets: Vec<String>,
+}
+
+/// The most robot-steps of one measurement (about an hour at 3 M robot-steps per second).
+pub const MAX_BENCH_STEPS: usize = 10_000_000_000;
+
+/// Refuses a measurement size out of range: steps (1 to [`MAX_BENCH_STEPS`]), repetitions
+/// (1 to 10,000) and population (2 to `params::BIG`), naming the option.
+pub fn check_sizes(steps: usize, repeat: usize, population: usize) -> Result<(), CliError> {
+    let checks = [
+        ("--steps", steps, 1, MAX_BENCH_STEPS),
+        ("--repeat", repeat, 1, 10_000),
+        ("--population", population, 2, fuzzymotiv::params::BIG),
+    ];
+    for (option, value, low, high) in checks {
+        if !(low..=high).contains(&value) {
+            return Err(CliError::input(format!(
+                "{option}: must be from {low} to {high}, got {value}"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The experiment measured: one room, the population size asked for, no AEM, the motion and
+/// robot asked for, then the overrides; refused when the overrides leave the robot another
+/// motion than `setup.motion`.
+pub fn bench_experiment(setup: &BenchSetup) -> Result<Experiment, CliError> {
+    let mut sets = vec![
+        format!("rooms=[{}]", toml::Value::String(setup.room.clone())),
+        format!("ga.population={}", setup.population),
+        format!("ga.elite={}", setup.population.min(3) - 1),
+        "aem.enabled=false".to_string(),
+        format!("robot.motion=\"{}\"", setup.motion),
+    ];
+    if let Some(robot) = &setup.robot {
+        sets.push(format!("robot.file={}", toml::Value::String(robot.clone())));
+    }
+    sets.extend(setup.sets.iter().cloned());
+    let loaded = if Room::builtin(&setup.room).is_some() {
+        load_config(None, &sets, None)?
+    } else {
+        let raw = fuzzymotiv::experiment::RawConfig::parse("", "bench", &sets)?;
+        resolve(raw, std::path::Path::new("."), "--room")?
+    };
+    check_motion(&loaded.experiment, &setup.motion)?;
+    Ok(loaded.experiment)
+}
+
+/// The experiment runs the motion `--motion` asked for: a `--set robot=NAME` replaces the whole
+/// `[robot]` table, and with it the `robot.motion` that `--motion` set, so the robot would run
+/// its default motion under another motion's name.
+fn check_motion(exp: &Experiment, asked: &str) -> Result<(), CliError> {
+    let name = match exp.trial_params().robot().motion() {
+        Motion::Actions => "actions",
+        Motion::Wheels => "wheels",
+    };
+    if name == asked {
+        return Ok(());
+    }
+    Err(CliError::input(format!(
+        "--motion {asked}: the --set options leave the robot with {name} motion (a --set \
+         robot.motion, or a --set robot=NAME, which replaces the whole [robot] table and \
+         robot.motion with it); choose the motion with --motion and name the robot with \
+         --set robot.file=NAME"
+    )))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -171,5 +256,33 @@ mod tests {
             ("H", "khepera")
         );
         assert_eq!(median(vec![3.0, 1.0, 2.0]), 2.0);
+    }
+
+    /// The setup's experiment has its room, population and motion; a `--set robot=NAME`
+    /// that undoes `--motion wheels` is refused, and sizes out of range name their option.
+    #[test]
+    fn a_bench_setup_makes_its_experiment_and_refuses_a_set_that_undoes_its_motion() {
+        let setup = BenchSetup {
+            room: "H".into(),
+            population: 5,
+            motion: "wheels".into(),
+            robot: None,
+            sets: Vec::new(),
+        };
+        let exp = bench_experiment(&setup).unwrap();
+        assert_eq!(exp.trial_params().robot().motion(), Motion::Wheels);
+        assert_eq!(exp.arenas().len(), 1);
+        let undone = BenchSetup {
+            sets: vec!["robot=\"khepera\"".into()],
+            ..setup
+        };
+        let e = bench_experiment(&undone).unwrap_err().to_string();
+        assert!(
+            e.contains("--motion wheels: the --set options leave"),
+            "{e}"
+        );
+        let e = check_sizes(1, 1, 1).unwrap_err().to_string();
+        assert!(e.starts_with("--population: must be from 2"), "{e}");
+        assert!(check_sizes(1, 1, 2).is_ok());
     }
 }

@@ -11,6 +11,8 @@ use std::path::{Path, PathBuf};
 use fuzzymotiv::statistics::Settings;
 
 use crate::files::error::CliError;
+use crate::files::guard::{FilesState, check_files_dir, io_err, write_into};
+use crate::pipeline::claims::check_alpha;
 use crate::records::compare::{self as compare_csv, CompareRow};
 use crate::records::{
     METRICS, RunSummary, StudySummary, SweepResults, TableRow, read_json, test_runs,
@@ -18,6 +20,7 @@ use crate::records::{
 use crate::render::compare::{
     Group, MISSION_DONE, Unit, compare_groups, compare_md, compare_svg, pairing,
 };
+use crate::render::figures::Rasterise;
 
 /// What an output directory is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -424,4 +427,51 @@ fn head(a: &Side, b: &Side, designs: &str, alpha: f64) -> String {
             ""
         }
     )
+}
+/// What `fuzzymotiv compare A B --out DIR` asks for.
+pub struct CompareRequest<'a> {
+    /// The two outputs (run directories, studies or sweeps).
+    pub a: &'a Path,
+    /// See [`CompareRequest::a`].
+    pub b: &'a Path,
+    /// The directory of `compare.md`, `compare.csv`, `compare.svg` (and `compare.png`).
+    pub out: &'a Path,
+    /// The settings to compare (`--setting`; none: every shared one).
+    pub settings: &'a [String],
+    /// The significance level.
+    pub alpha: f64,
+    /// Draws `compare.png` beside the figure, if given.
+    pub png: Option<&'a dyn Rasterise>,
+    /// Replace other files of those names.
+    pub force: bool,
+}
+
+/// Compares A and B as `fuzzymotiv compare` does (α checked, the output directory checked
+/// before anything is read, both loaded and checked comparable, the settings chosen) and
+/// writes the files through the output guard; returns `compare.md` and whether the files
+/// were written or already held it.
+pub fn compare_into(req: &CompareRequest) -> Result<(String, FilesState), CliError> {
+    check_alpha(req.alpha)?;
+    let out = req.out;
+    let names = ["compare.md", "compare.csv", "compare.svg"];
+    check_files_dir(out, "--out", &names)?;
+    let a = load(req.a, "A")?;
+    let b = load(req.b, "B")?;
+    check_comparable(&a, &b)?;
+    let pairs = choose(&a, &b, req.settings)?;
+    let done = compare(&a, &b, &pairs, req.alpha)?;
+    let mut files = vec![
+        (out.join("compare.md"), done.md.clone().into_bytes()),
+        (out.join("compare.csv"), done.csv.into_bytes()),
+    ];
+    if let Some(png) = req.png {
+        let path = out.join("compare.png");
+        let bytes = png
+            .png(&done.svg)
+            .map_err(|e| io_err(&path, std::io::Error::other(e)))?;
+        files.push((path, bytes));
+    }
+    files.push((out.join("compare.svg"), done.svg.into_bytes()));
+    let state = write_into(out, &files, "--out", req.force)?;
+    Ok((done.md, state))
 }

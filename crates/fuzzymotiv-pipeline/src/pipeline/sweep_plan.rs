@@ -689,6 +689,40 @@ fn spread_units(
     }
 }
 
+/// The jobs of a plan of `n` that one call runs: shard `I/N` (`--shard`: the jobs whose index
+/// is I modulo N), job `index` alone, or every job; refused (naming the option) when the shard
+/// is not `I/N` with 0 ≤ I < N or the index is past the plan.
+pub fn select_jobs(
+    n: usize,
+    shard: Option<&str>,
+    index: Option<usize>,
+) -> Result<Vec<usize>, CliError> {
+    if let Some(shard) = shard {
+        let bad = || {
+            CliError::input(format!(
+                "--shard {shard}: expected I/N with 0 ≤ I < N, e.g. --shard 0/3"
+            ))
+        };
+        let (i, k) = shard.split_once('/').ok_or_else(bad)?;
+        let (i, k): (usize, usize) = (
+            i.trim().parse().map_err(|_| bad())?,
+            k.trim().parse().map_err(|_| bad())?,
+        );
+        if k == 0 || i >= k {
+            return Err(bad());
+        }
+        return Ok((0..n).filter(|j| j % k == i).collect());
+    }
+    match index {
+        Some(i) if i >= n => Err(CliError::input(format!(
+            "job index {i} is out of range: the plan has {n} jobs (0..{})",
+            n.saturating_sub(1)
+        ))),
+        Some(i) => Ok(vec![i]),
+        None => Ok((0..n).collect()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -814,5 +848,23 @@ mod tests {
                 && message.contains("curiosity, homing, orientation, energy, urgency"),
             "{message}"
         );
+    }
+
+    /// A shard runs every N-th job from I, an index its one job, neither every job; a shard
+    /// that is not I/N with I < N, or an index past the plan, is refused.
+    #[test]
+    fn a_shard_or_an_index_selects_the_jobs_it_names() {
+        assert_eq!(select_jobs(7, Some("1/3"), None).unwrap(), vec![1, 4]);
+        assert_eq!(select_jobs(7, None, Some(6)).unwrap(), vec![6]);
+        assert_eq!(select_jobs(3, None, None).unwrap(), vec![0, 1, 2]);
+        for bad in ["3/3", "1", "a/2", "0/0"] {
+            let e = select_jobs(7, Some(bad), None).unwrap_err().to_string();
+            assert!(
+                e.starts_with(&format!("--shard {bad}: expected I/N")),
+                "{e}"
+            );
+        }
+        let e = select_jobs(7, None, Some(7)).unwrap_err().to_string();
+        assert!(e.contains("job index 7 is out of range"), "{e}");
     }
 }
