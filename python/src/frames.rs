@@ -148,6 +148,7 @@ impl Setting {
         let (text, sets) = (self.config_text.as_deref(), &self.sets);
         let loaded =
             load_with_terms(path, text, sets, self.seed, &self.terms).map_err(config_err)?;
+        crate::warn_notes(&loaded.notes)?;
         let room = match &self.room {
             Some(r) => r.clone(),
             None => loaded.experiment.room_names()[0].clone(),

@@ -430,6 +430,29 @@ impl Ga {
     #[staticmethod]
     #[pyo3(signature = (text, problem=None))]
     fn from_state_json(text: &str, problem: Option<Bound<'_, Problem>>) -> PyResult<Ga> {
+        let state = State::parse(text)?;
+        let (exp, run) = state_experiment(&state, problem)?;
+        state.check_genomes(exp.shape().genome_len())?;
+        let history = history_of(&exp, &state.history);
+        let population = exp
+            .population(state.population)
+            .map_err(|e| input_err(format!("state: {e}")))?;
+        Ok(Ga {
+            config: state.config,
+            exp,
+            run,
+            generation: state.generation,
+            population,
+            history,
+            best: state.best,
+            asked: false,
+        })
+    }
+}
+
+impl State {
+    /// A GA state from `state_json`'s text, of this format and this model.
+    fn parse(text: &str) -> PyResult<State> {
         let state: State = serde_json::from_str(text)
             .map_err(|e| input_err(format!("state: not a GA state ({e})")))?;
         if state.format != FORMAT || state.version != VERSION {
@@ -445,41 +468,16 @@ impl Ga {
                 fuzzymotiv::MODEL_VERSION
             )));
         }
-        let (exp, run) = match problem {
-            Some(p) => {
-                let p = p.get();
-                if p.config_toml(state.seed) != state.config || p.run().label != state.run {
-                    return Err(input_err(
-                        "problem: its config or run is not the state's; pass the problem the GA was made with, or none (the state's config is used)",
-                    ));
-                }
-                (p.experiment_for(Some(state.seed))?, p.run().clone())
-            }
-            None => {
-                let source = "(GA state)";
-                let raw = RawConfig::parse(&state.config, source, &[])
-                    .map_err(|e| config_err(e.into()))?;
-                let exp = resolve(raw, Path::new("."), source)
-                    .map_err(config_err)?
-                    .experiment;
-                let run = exp
-                    .runs()
-                    .into_iter()
-                    .find(|r| r.label == state.run)
-                    .ok_or_else(|| {
-                        input_err(format!("state: run {:?} is not in its config", state.run))
-                    })?;
-                (Arc::new(exp), run)
-            }
-        };
-        let len = exp.shape().genome_len();
-        if state.population.is_empty() {
+        Ok(state)
+    }
+
+    /// Checks the population (not empty) and every genome (`len` finite weights), and that
+    /// the history has one record per generation told.
+    fn check_genomes(&self, len: usize) -> PyResult<()> {
+        if self.population.is_empty() {
             return Err(input_err("state: an empty population"));
         }
-        let genomes = state
-            .population
-            .iter()
-            .chain(state.best.iter().map(|b| &b.genome));
+        let genomes = (self.population.iter()).chain(self.best.iter().map(|b| &b.genome));
         for (i, g) in genomes.enumerate() {
             if g.len() != len || g.iter().any(|v| !v.is_finite()) {
                 return Err(input_err(format!(
@@ -487,48 +485,64 @@ impl Ga {
                 )));
             }
         }
-        if state.history.len() != state.generation {
+        if self.history.len() != self.generation {
             return Err(input_err(format!(
                 "state: {} records for generation {}; expected one per generation told",
-                state.history.len(),
-                state.generation
+                self.history.len(),
+                self.generation
             )));
         }
-        let others = other_inputs(&exp);
-        let history = state
-            .history
-            .iter()
-            .map(|r| {
-                let mut terms = terms_of(&exp, &[]);
-                [terms.a, terms.g, terms.l, terms.b] = r.terms.unwrap_or([f64::NAN; 4]);
-                for (k, &id) in others.iter().enumerate() {
-                    let v = r.inputs.as_ref().and_then(|v| v.get(k).copied());
-                    set_term(&mut terms, id, v.unwrap_or(f64::NAN));
-                }
-                GenerationRecord {
-                    generation: r.generation,
-                    stats: Stats {
-                        mean: r.mean,
-                        std: r.std,
-                        min: r.min,
-                        max: r.max,
-                    },
-                    terms,
-                }
-            })
-            .collect();
-        let population = exp
-            .population(state.population)
-            .map_err(|e| input_err(format!("state: {e}")))?;
-        Ok(Ga {
-            config: state.config,
-            exp,
-            run,
-            generation: state.generation,
-            population,
-            history,
-            best: state.best,
-            asked: false,
-        })
+        Ok(())
     }
+}
+
+/// The experiment and run of `state`: `problem`'s when given (its config and run must be the
+/// state's), else its own config's.
+fn state_experiment(
+    state: &State,
+    problem: Option<Bound<'_, Problem>>,
+) -> PyResult<(Arc<Experiment>, Run)> {
+    if let Some(p) = problem {
+        let p = p.get();
+        if p.config_toml(state.seed) != state.config || p.run().label != state.run {
+            return Err(input_err(
+                "problem: its config or run is not the state's; pass the problem the GA was made with, or none (the state's config is used)",
+            ));
+        }
+        return Ok((p.experiment_for(Some(state.seed))?, p.run().clone()));
+    }
+    let source = "(GA state)";
+    let raw = RawConfig::parse(&state.config, source, &[]).map_err(|e| config_err(e.into()))?;
+    let exp = resolve(raw, Path::new("."), source)
+        .map_err(config_err)?
+        .experiment;
+    let run = (exp.runs().into_iter())
+        .find(|r| r.label == state.run)
+        .ok_or_else(|| input_err(format!("state: run {:?} is not in its config", state.run)))?;
+    Ok((Arc::new(exp), run))
+}
+
+/// The generation records of a state's `rows` (terms it lacks are NaN).
+fn history_of(exp: &Experiment, rows: &[Row]) -> Vec<GenerationRecord> {
+    let others = other_inputs(exp);
+    (rows.iter())
+        .map(|r| {
+            let mut terms = terms_of(exp, &[]);
+            [terms.a, terms.g, terms.l, terms.b] = r.terms.unwrap_or([f64::NAN; 4]);
+            for (k, &id) in others.iter().enumerate() {
+                let v = r.inputs.as_ref().and_then(|v| v.get(k).copied());
+                set_term(&mut terms, id, v.unwrap_or(f64::NAN));
+            }
+            GenerationRecord {
+                generation: r.generation,
+                stats: Stats {
+                    mean: r.mean,
+                    std: r.std,
+                    min: r.min,
+                    max: r.max,
+                },
+                terms,
+            }
+        })
+        .collect()
 }

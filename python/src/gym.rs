@@ -344,6 +344,7 @@ impl GymCore {
             &terms,
         )
         .map_err(config_err)?;
+        crate::warn_notes(&loaded.notes)?;
         let slots = (rooms.iter())
             .map(|r| {
                 let exp = single_room(&loaded, r, &terms)?;

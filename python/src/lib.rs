@@ -30,6 +30,7 @@ use fuzzymotiv_pipeline::files::guard::{
 use fuzzymotiv_pipeline::files::inputs::{
     Loaded, load_config, load_robot, load_room_file, parse_seed, resolve, run_identity,
 };
+use fuzzymotiv_pipeline::files::notes::NoteList;
 use fuzzymotiv_pipeline::pipeline::progress::NoProgress;
 use fuzzymotiv_pipeline::pipeline::run_dir;
 use fuzzymotiv_pipeline::records::checkpoint::{CHECKPOINT, Checkpoint, POPULATION};
@@ -138,6 +139,21 @@ fn py_err(e: CliError) -> PyErr {
             Python::attach(|py| os_err(py, &e))
         }
     }
+}
+
+/// The libraries' notes (e.g. that a config's motivations were normalised, that `force=True`
+/// replaces an output) as Python warnings (`warnings.warn`, a `UserWarning`): how Python shows
+/// what the command line says on stderr. The libraries never print.
+pub(crate) fn warn_notes(notes: &[String]) -> PyResult<()> {
+    Python::attach(|py| {
+        let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+        for line in notes {
+            let message = std::ffi::CString::new(line.as_str())
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+            PyErr::warn(py, category.as_any(), &message, 1)?;
+        }
+        Ok(())
+    })
 }
 
 /// A file-system failure as `FuzzymotivOSError`, its `errno` the OS's error number (or None).
@@ -752,12 +768,15 @@ fn run<'py>(
         &failed,
     )
     .map_err(config_err)?;
+    warn_notes(&loaded.notes)?;
     let out = match out {
         None => None,
         Some(dir) => {
             // The identity of a run, as `fuzzymotiv run` checks it.
             let id = run_identity(&loaded.raw);
-            let state = check_out_as(&dir, &id, force, &PYTHON).map_err(py_err)?;
+            let notes = NoteList::default();
+            let state = check_out_as(&dir, &id, force, &PYTHON, &notes).map_err(py_err)?;
+            warn_notes(&notes.take())?;
             Some((dir, state))
         }
     };
@@ -1044,6 +1063,7 @@ fn simulate<'py>(
         &terms,
     )
     .map_err(config_err)?;
+    warn_notes(&loaded.notes)?;
     // As `replay`: neither recognition nor online orientation changes a trajectory.
     let exp = gym::single_room(&loaded, &room, &terms)?;
     let instance = instance_of(py, &exp, &genome)?;

@@ -225,6 +225,7 @@ impl Problem {
             sets.push("aem.enabled=false".into());
         }
         let loaded = load_with_terms(path, text, &sets, seed, &terms).map_err(config_err)?;
+        crate::warn_notes(&loaded.notes)?;
         let exp = loaded.experiment;
         let runs = exp.runs();
         let labels: Vec<&str> = runs.iter().map(|r| r.label.as_str()).collect();

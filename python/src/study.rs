@@ -78,6 +78,7 @@ pub fn study_run(
         .transpose()
         .map_err(py_err)?;
     let study = py.detach(|| load(path, text, base_dir))?;
+    crate::warn_notes(&study.plan.notes)?;
     let planned = study.plan.jobs.len();
     let options = StudyOptions {
         out,
@@ -104,6 +105,7 @@ pub fn study_run(
         return Err(e);
     }
     let result = result.map_err(|_| PyRuntimeError::new_err("fuzzymotiv panicked (a bug)"))?;
+    crate::warn_notes(&shared.counter.notes())?;
     match result.map_err(py_err)? {
         StudyOutcome::Analysed(_) => Ok((true, planned, planned)),
         StudyOutcome::Waiting { done, total } => Ok((false, done, total)),

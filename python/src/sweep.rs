@@ -5,15 +5,37 @@
 
 use std::path::{Path, PathBuf};
 
+use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_pipeline::files::bounded::read_input;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::pipeline::progress::NoProgress;
+use fuzzymotiv_pipeline::files::notes::{NoteList, Notes};
+use fuzzymotiv_pipeline::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
 use fuzzymotiv_pipeline::pipeline::sweep_jobs::{prepare_sweep_dir, run_one_job};
 use fuzzymotiv_pipeline::pipeline::sweep_merge::write_merge;
 use fuzzymotiv_pipeline::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
+use fuzzymotiv_pipeline::records::Job;
 use pyo3::prelude::*;
 
-use crate::{config_err, py_err};
+use crate::{config_err, py_err, warn_notes};
+
+/// A sweep's progress from Python: nothing shown while it runs, its notes kept (then warned).
+#[derive(Default)]
+struct Noted(NoteList);
+
+impl Notes for Noted {
+    fn note(&self, line: &str) {
+        self.0.note(line);
+    }
+}
+
+impl SweepProgress for Noted {
+    fn begin(&self, _selected: usize, _skipped: usize) {}
+    fn job(&self, _job: &Job, _nth: usize, _exp: &Experiment) -> Box<dyn RunProgress + '_> {
+        Box::new(NoProgress)
+    }
+    fn job_done(&self) {}
+    fn end(&self) {}
+}
 
 /// The source name of a sweep given as text (a dict in Python), in error messages.
 const TEXT_SOURCE: &str = "(sweep dict)";
@@ -50,9 +72,13 @@ pub fn sweep_plan(
         };
         let sweep = Sweep::parse_str(&text, &source, &base_dir)?;
         let dir = base_dir.display().to_string();
-        Ok((text, source, dir, sweep.plan_jsonl()))
+        Ok((text, source, dir, sweep.plan_jsonl(), sweep.notes))
     })
     .map_err(config_err)
+    .and_then(|(text, source, dir, plan, notes)| {
+        warn_notes(&notes)?;
+        Ok((text, source, dir, plan))
+    })
 }
 
 /// Runs job `index` (whose id must be `id`) of the sweep `text` into the sweep directory `out`
@@ -72,7 +98,8 @@ pub fn sweep_run_job(
     out: PathBuf,
     wait: bool,
 ) -> PyResult<&'static str> {
-    py.detach(|| {
+    let noted = Noted::default();
+    let outcome = py.detach(|| {
         let sweep = Sweep::parse_str(&text, &source, &base_dir)?;
         match sweep.jobs.get(index) {
             Some(job) if job.id == id => {}
@@ -84,9 +111,11 @@ pub fn sweep_run_job(
                 )));
             }
         }
-        run_one_job(&sweep, &text, index, &out, wait, &NoProgress).map(|o| o.as_str())
+        run_one_job(&sweep, &text, index, &out, wait, &noted).map(|o| o.as_str())
     })
-    .map_err(py_err)
+    .map_err(py_err);
+    warn_notes(&noted.0.take())?;
+    outcome
 }
 
 /// Checks the sweep directory `out` for the sweep `text` and writes its plan, as `fuzzymotiv
@@ -103,8 +132,10 @@ pub fn sweep_prepare(
 ) -> PyResult<()> {
     let sweep = Sweep::parse_str(&text, &source, &base_dir).map_err(config_err)?;
     // The directory's check: a refused output is an `OutputExistsError` (`py_err`).
-    py.detach(|| prepare_sweep_dir(&sweep, &text, &out, force).map(|_| ()))
-        .map_err(py_err)
+    let notes = NoteList::default();
+    py.detach(|| prepare_sweep_dir(&sweep, &text, &out, force, &notes).map(|_| ()))
+        .map_err(py_err)?;
+    warn_notes(&notes.take())
 }
 
 /// Merges the sweep directory `dir` as `fuzzymotiv merge` does (the same `results.csv`,

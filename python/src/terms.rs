@@ -87,6 +87,7 @@ fn resolve_with_user(
     Ok(Loaded {
         raw: setup.raw,
         experiment: setup.experiment,
+        notes: setup.notes,
     })
 }
 

@@ -2,15 +2,16 @@
 
 mod args;
 mod commands;
+mod console;
 mod png;
 mod progress;
 
 use std::io::IsTerminal;
 use std::process::ExitCode;
 
+use crate::console::note;
 use clap::{Parser, Subcommand};
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::note;
 
 use crate::commands::{
     bench, calibrate, claims, compare, export, fuzzy, lab, recognise, replay, reproduce,
@@ -91,14 +92,14 @@ fn main() -> ExitCode {
     finish(execute(cli))
 }
 
-/// Clap's help or version text on standard output through [`fuzzymotiv_pipeline::out!`] (plain
+/// Clap's help or version text on standard output through [`crate::console::out!`] (plain
 /// text unless standard output is a terminal, where clap's colours are kept).
 fn show_help(e: &clap::Error) -> Result<(), CliError> {
     let text = e.render();
     if std::io::stdout().is_terminal() {
-        fuzzymotiv_pipeline::out!("{}", text.ansi())
+        crate::console::out!("{}", text.ansi())
     } else {
-        fuzzymotiv_pipeline::out!("{text}")
+        crate::console::out!("{text}")
     }
 }
 

@@ -12,8 +12,8 @@ use std::sync::{Arc, OnceLock};
 
 use resvg::usvg::{self, fontdb};
 
+use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::render::figures::{Rasterise, add_missing_pngs};
 
 /// PNG pixels per SVG pixel: 2 gives crisp figures on high-density screens and in print.

@@ -1,15 +1,18 @@
 //! Progress on stderr: a bar on a terminal; otherwise (SLURM, `nohup`, `| tee`) one plain line
 //! every few seconds; nothing with `--quiet`. [`Progress`] shows runs (the pipeline's
 //! [`RunProgress`]), [`JobsProgress`] a sweep's jobs ([`SweepProgress`]), [`ReproduceBar`] a
-//! study's runs ([`ReproduceProgress`]).
+//! study's runs ([`ReproduceProgress`]). The pipeline's notes go to stderr as they come, with
+//! `--quiet` too. The kill tests' abort point ([`kill_point`]) is here, in the binary.
 
-use fuzzymotiv_pipeline::note;
+use crate::console::note;
 use std::io::IsTerminal;
+use std::sync::LazyLock;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError};
 use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv_pipeline::files::notes::Notes;
 use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, SweepProgress};
 use fuzzymotiv_pipeline::pipeline::reproduce::ReproduceProgress;
 use fuzzymotiv_pipeline::records::Job;
@@ -195,6 +198,30 @@ impl RunProgress for Progress {
     fn generation(&self, run: &str, g: usize, of: usize, best: f64) {
         Progress::generation(self, run, g, of, best);
     }
+
+    /// Asked after every generation once its checkpoint is saved: the kill tests' abort point.
+    fn stop(&self) -> bool {
+        kill_point();
+        false
+    }
+}
+
+/// The environment variable of the kill tests: `FUZZYMOTIV_TEST_ABORT_AFTER=N`.
+const ABORT_AFTER: &str = "FUZZYMOTIV_TEST_ABORT_AFTER";
+
+/// For kill tests only: with [`ABORT_AFTER`]`=N` in the environment, the process aborts (as
+/// `kill -9` would: no clean-up) once N generations have been checkpointed in it, counted over
+/// all its runs. A deterministic kill point, unlike a timer; the binary's alone (the libraries,
+/// linked into Python and the lab, never abort).
+fn kill_point() {
+    static LIMIT: LazyLock<Option<usize>> =
+        LazyLock::new(|| std::env::var(ABORT_AFTER).ok().and_then(|v| v.parse().ok()));
+    static SAVED: AtomicUsize = AtomicUsize::new(0);
+    if let Some(limit) = *LIMIT
+        && SAVED.fetch_add(1, Ordering::SeqCst) + 1 >= limit
+    {
+        std::process::abort();
+    }
 }
 
 impl Drop for Progress {
@@ -236,6 +263,12 @@ impl JobsProgress {
     /// Whether it shows nothing (`--quiet`).
     pub fn quiet(&self) -> bool {
         self.quiet
+    }
+}
+
+impl Notes for JobsProgress {
+    fn note(&self, line: &str) {
+        note!("{line}");
     }
 }
 
@@ -301,6 +334,12 @@ impl ReproduceBar {
             quiet,
             runs: OnceLock::new(),
         }
+    }
+}
+
+impl Notes for ReproduceBar {
+    fn note(&self, line: &str) {
+        note!("{line}");
     }
 }
 

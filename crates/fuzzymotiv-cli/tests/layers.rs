@@ -6,10 +6,11 @@
 //!
 //! Only what the compiler cannot check is read: the order of the crates is Cargo's (a crate
 //! cannot import one that depends on it), so only imports inside a crate are read — the paths a
-//! file names after `crate::`, `use` groups included, comments and tests left out. An import is
-//! of the longest module its path starts with; the macros `out!`, `outln!` and `note!` are
-//! `console`'s; the names a crate root re-exports from a crate below ([`REEXPORTS`]) are that
-//! crate's, ordered by Cargo, and not read.
+//! file names after `crate::`, `super::` (any number of them) and `self::`, `use` groups
+//! included, comments and tests left out. An import is of the longest module its path starts
+//! with; the macros `out!`, `outln!` and `note!` are the command line's `console`'s; the names a
+//! crate root re-exports from a crate below ([`REEXPORTS`]) are that crate's, ordered by Cargo,
+//! and not read.
 //!
 //! `cargo test -p fuzzymotiv-cli --test layers -- --nocapture` prints the import map.
 
@@ -20,7 +21,7 @@ use std::path::{Path, PathBuf};
 /// and its layer. A module imports only from its own layer and the ones below it. Imports are
 /// read inside a crate only, so the numbers order the modules of one crate; they go on rising
 /// from crate to crate in Cargo's order.
-const LAYERS: [(&str, usize); 36] = [
+const LAYERS: [(&str, usize); 37] = [
     // fuzzymotiv, the library: the pipeline's subsystems
     ("lib::params", 0),     // FieldError: the one error of every input
     ("lib::random", 0),     // seeded streams, noise
@@ -59,6 +60,7 @@ const LAYERS: [(&str, usize); 36] = [
     ("lab", 20),              // the crate root
     // fuzzymotiv-cli
     ("cli::args", 21),     // clap options shared by commands
+    ("cli::console", 21),  // the terminal: out!, outln!, note! and the notes on stderr
     ("cli::png", 21),      // the resvg rasteriser
     ("cli::progress", 21), // indicatif progress
     ("cli::commands", 22), // one module per command
@@ -67,17 +69,14 @@ const LAYERS: [(&str, usize); 36] = [
 
 /// The macros exported at the crate root, by the module that defines them.
 const MACROS: [(&str, &str); 3] = [
-    ("out", "records::files::console"),
-    ("outln", "records::files::console"),
-    ("note", "records::files::console"),
+    ("out", "cli::console"),
+    ("outln", "cli::console"),
+    ("note", "cli::console"),
 ];
 
 /// The names a crate root re-exports from a crate below it (`crate::files::…` in the
 /// pipeline is `fuzzymotiv_records::files::…`): imports of them are across crates, Cargo's.
-const REEXPORTS: [(&str, &[&str]); 1] = [(
-    "io",
-    &["files", "records", "render", "out", "outln", "note"],
-)];
+const REEXPORTS: [(&str, &[&str]); 1] = [("io", &["files", "records", "render"])];
 
 /// One import: `from` (in `file`) names `import`, which is of the module `to`.
 #[derive(Debug, Clone)]
@@ -214,7 +213,47 @@ fn reexported(crate_prefix: &str, name: &str) -> bool {
         .any(|(c, names)| *c == crate_prefix && names.contains(&name))
 }
 
-/// Every import inside each crate (`crate::…`), and every module.
+/// The paths `code` (a file of `module`, in the crate `crate_prefix`) imports from its own
+/// crate, each with the module path it starts from and as written: after `crate::` (the crate
+/// root), after `self::` (the module) and after one or more `super::` (its parents).
+fn imported_paths(
+    code: &str,
+    module: &str,
+    crate_prefix: &str,
+) -> Vec<(String, Vec<String>, String)> {
+    let parent = |m: &str| m.rsplit_once("::").map(|(p, _)| p.to_string());
+    let mut out = Vec::new();
+    for root in ["crate::", "self::", "super::"] {
+        for (at, _) in code.match_indices(root) {
+            let before = code[..at].chars().next_back();
+            if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
+                continue; // `my_crate::`, or a `super::` after another (counted below)
+            }
+            let mut rest = &code[at + root.len()..];
+            let base = match root {
+                "crate::" => Some(crate_prefix.to_string()),
+                "self::" => Some(module.to_string()),
+                _ => {
+                    let mut base = parent(module);
+                    while let Some(r) = rest.strip_prefix("super::") {
+                        rest = r;
+                        base = base.and_then(|b| parent(&b));
+                    }
+                    base
+                }
+            };
+            let written = &code[at..code.len() - rest.len()];
+            let base = base.unwrap_or_else(|| panic!("{module}: `{written}` above the crate"));
+            for p in use_paths(rest) {
+                let import = format!("{written}{}", p.join("::"));
+                out.push((base.clone(), p, import));
+            }
+        }
+    }
+    out
+}
+
+/// Every import inside each crate (`crate::…`, `super::…`, `self::…`), and every module.
 fn import_edges() -> (Vec<Edge>, BTreeMap<String, PathBuf>) {
     let mut files = BTreeMap::new();
     let mut prefixes = Vec::new();
@@ -230,29 +269,22 @@ fn import_edges() -> (Vec<Edge>, BTreeMap<String, PathBuf>) {
     for (module, crate_prefix) in prefixes {
         let path = &files[&module];
         let text = code(path);
-        for (at, _) in text.match_indices("crate::") {
-            let before = text[..at].chars().next_back();
-            if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
-                continue; // e.g. `my_crate::` is not `crate::`
+        for (base, p, import) in imported_paths(&text, &module, crate_prefix) {
+            if base == crate_prefix && reexported(crate_prefix, &p[0]) {
+                continue;
             }
-            for p in use_paths(&text[at + "crate::".len()..]) {
-                if reexported(crate_prefix, &p[0]) {
-                    continue;
-                }
-                let full: Vec<String> = std::iter::once(crate_prefix.to_string())
-                    .chain(p.iter().cloned())
-                    .collect();
-                let import = format!("crate::{}", p.join("::"));
-                let to = resolve(&full, &known)
-                    .unwrap_or_else(|| panic!("{}: `{import}` names no module", path.display()));
-                if to != module {
-                    edges.push(Edge {
-                        from: module.clone(),
-                        to,
-                        file: path.display().to_string(),
-                        import,
-                    });
-                }
+            let full: Vec<String> = (base.split("::").map(String::from))
+                .chain(p.iter().cloned())
+                .collect();
+            let to = resolve(&full, &known)
+                .unwrap_or_else(|| panic!("{}: `{import}` names no module", path.display()));
+            if to != module {
+                edges.push(Edge {
+                    from: module.clone(),
+                    to,
+                    file: path.display().to_string(),
+                    import,
+                });
             }
         }
     }
@@ -436,13 +468,13 @@ fn use_trees_are_read() {
         ["note", "render::svg::esc", "render::tables"]
     );
     assert_eq!(paths("out!(\"{x}\")?;"), ["out"]);
-    let known: BTreeSet<String> = ["records", "records::files::console", "render::svg"]
+    let known: BTreeSet<String> = ["cli", "cli::console", "render::svg"]
         .map(String::from)
         .into();
     let path = |s: &str| s.split("::").map(String::from).collect::<Vec<_>>();
     assert_eq!(
-        resolve(&path("records::note"), &known).as_deref(),
-        Some("records::files::console")
+        resolve(&path("cli::note"), &known).as_deref(),
+        Some("cli::console")
     );
     assert_eq!(
         resolve(&path("render::svg::esc"), &known).as_deref(),
@@ -450,4 +482,182 @@ fn use_trees_are_read() {
     );
     // The pipeline's `crate::files::…` is the records crate's, re-exported: not read.
     assert!(reexported("io", "files") && !reexported("io", "pipeline"));
+}
+
+/// Issue #56 item 5: `super::` (any number) and `self::` imports are read, each from the module
+/// it starts at, so a circle through them is seen.
+#[test]
+fn super_and_self_imports_are_read() {
+    let code = "use super::plain::Plain;\nuse super::super::random::Streams;\n\
+                use self::inner::X;\nuse crate::params::FieldError;\nlet s = Self::new();\n";
+    let got: Vec<(String, String)> = imported_paths(code, "lib::experiment::config", "lib")
+        .into_iter()
+        .map(|(base, p, _)| (base, p.join("::")))
+        .collect();
+    let want = [
+        ("lib", "params::FieldError"),
+        ("lib::experiment::config", "inner::X"),
+        ("lib::experiment", "plain::Plain"),
+        ("lib", "random::Streams"),
+    ]
+    .map(|(b, p)| (b.to_string(), p.to_string()));
+    assert_eq!(got, want);
+    // A circle through `super::` is an edge like any other.
+    let known: BTreeSet<String> = ["lib::experiment::config", "lib::experiment::plain"]
+        .map(String::from)
+        .into();
+    let (base, p, _) =
+        &imported_paths("use super::plain::Plain;", "lib::experiment::config", "lib")[0];
+    let full: Vec<String> = base
+        .split("::")
+        .map(String::from)
+        .chain(p.clone())
+        .collect();
+    assert_eq!(
+        resolve(&full, &known).as_deref(),
+        Some("lib::experiment::plain")
+    );
+}
+
+/// The library crates, read by [`library_violations`]: every crate but the command line's.
+const LIBRARIES: [(&str, &str); 5] = [
+    ("lib", "../fuzzymotiv/src"),
+    ("records", "../fuzzymotiv-records/src"),
+    ("render", "../fuzzymotiv-render/src"),
+    ("io", "../fuzzymotiv-pipeline/src"),
+    ("lab", "../fuzzymotiv-lab/src"),
+];
+
+/// What a library crate's code never holds (issue #56 item 2): a print, an exit or an abort
+/// (its notes are returned or handed to the caller's `Notes`; its failures are errors), and
+/// process-wide mutable state (a `static` of a `Once`, lock, cell or atomic, a `thread_local!`,
+/// a `static mut`). A `static` of plain data computed once (`LazyLock<Vec<_>>`) is a constant.
+const FORBIDDEN: [&str; 10] = [
+    "print!",
+    "println!",
+    "dbg!",
+    "process::exit",
+    "process::abort",
+    "abort()",
+    "io::stdout",
+    "io::stderr",
+    "thread_local!",
+    "static mut",
+];
+
+/// The types that make a `static` mutable state.
+const STATEFUL: [&str; 6] = ["Once", "Atomic", "Mutex", "RwLock", "Cell", "Lazy<"];
+
+/// The only process-wide state allowed in a library, with why: the engine's memo of sightings
+/// (`simulation/memo.rs`: per-thread tables and the registry of the arenas sharing them), a
+/// cache whose every lookup returns exactly the bits the computation returns (results are
+/// identical with or without it, whatever the threads); and the engine's interned robots and
+/// sensor tables (`RobotSpec::intern`, `SensorTable::intern`: equal ones share one `'static`
+/// copy, so a value given is always answered with an equal one). Nothing a front sees or a
+/// result holds depends on them; making them owned (`Arc`) is left for another change.
+const ALLOWED: [(&str, &str); 4] = [
+    ("lib::simulation::memo", "thread_local!"),
+    ("lib::simulation::memo", "static"),
+    ("lib::simulation::robot_spec", "static"),
+    ("lib::simulation::sensor_table", "static"),
+];
+
+/// Whether `path` is a test module's file: declared by `#[cfg(test)] mod NAME;` in its crate.
+fn test_only(path: &Path, crate_texts: &[String]) -> bool {
+    let stem = path.file_stem().unwrap().to_string_lossy();
+    let name = if stem == "mod" {
+        path.parent()
+            .unwrap()
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+    } else {
+        stem
+    };
+    let decl = format!("mod {name};");
+    crate_texts.iter().any(|t| {
+        t.match_indices(&decl)
+            .any(|(at, _)| t[..at].trim_end().ends_with("#[cfg(test)]"))
+    })
+}
+
+/// Every print, exit, abort and process-wide state in `code` (a file of `module`), as
+/// messages naming the file and the line.
+fn forbidden_in(module: &str, file: &str, code: &str) -> Vec<String> {
+    let allowed = |what: &str| ALLOWED.contains(&(module, what));
+    let mut out = Vec::new();
+    for (n, line) in code.lines().enumerate() {
+        let what = FORBIDDEN
+            .iter()
+            .find(|f| line.contains(**f))
+            .copied()
+            .or_else(|| {
+                let t = line.trim_start();
+                let t = t
+                    .strip_prefix("pub ")
+                    .or(t.strip_prefix("pub(crate) "))
+                    .unwrap_or(t);
+                (t.starts_with("static ") && STATEFUL.iter().any(|s| t.contains(s)))
+                    .then_some("static")
+            });
+        if let Some(what) = what.filter(|w| !allowed(w)) {
+            out.push(format!("{file}:{}: `{what}`: {}", n + 1, line.trim()));
+        }
+    }
+    out
+}
+
+/// Every forbidden line of the library crates (tests and comments left out).
+fn library_violations() -> Vec<String> {
+    let mut out = Vec::new();
+    for (prefix, dir) in LIBRARIES {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+        let files = modules(prefix, &dir);
+        let texts: Vec<String> = (files.iter())
+            .map(|(_, p)| std::fs::read_to_string(p).unwrap())
+            .collect();
+        for (module, path) in &files {
+            if !test_only(path, &texts) {
+                out.extend(forbidden_in(
+                    module,
+                    &path.display().to_string(),
+                    &code(path),
+                ));
+            }
+        }
+    }
+    out
+}
+
+/// Issue #56 item 2: the library crates never print, exit, abort or keep process-wide state
+/// (but the engine's memo, [`ALLOWED`]): the fronts do.
+#[test]
+fn library_crates_never_print_exit_abort_or_keep_process_state() {
+    let bad = library_violations();
+    assert!(bad.is_empty(), "in the library crates:\n{}", bad.join("\n"));
+}
+
+/// The check fails when it should: a note printed, an abort, a `static Once`, process state in
+/// a module that is not allowed it; a constant and the memo's state pass.
+#[test]
+fn the_library_check_catches_prints_aborts_and_process_state() {
+    let code = "fn f() {\n    eprintln!(\"note: {x}\");\n    std::process::abort();\n}\n\
+                static SAID: std::sync::Once = std::sync::Once::new();\n\
+                pub static N: AtomicUsize = AtomicUsize::new(0);\n\
+                thread_local! { static T: Cell<u8> = Cell::new(0); }\n\
+                pub static PALETTE: LazyLock<Vec<u8>> = LazyLock::new(Vec::new);\n";
+    let bad = forbidden_in("records::files::inputs", "inputs.rs", code);
+    assert_eq!(bad.len(), 5, "{bad:#?}");
+    assert!(bad[0].starts_with("inputs.rs:2: `println!`"), "{bad:?}");
+    // The memo keeps its state, and prints no more than any other module.
+    assert_eq!(
+        forbidden_in("lib::simulation::memo", "memo.rs", code).len(),
+        2
+    );
+    let decl = ["#[cfg(test)]\nmod playground;\n".to_string()];
+    assert!(test_only(
+        Path::new("src/export/aseba/playground.rs"),
+        &decl
+    ));
+    assert!(!test_only(Path::new("src/export/aseba/interp.rs"), &decl));
 }

@@ -4,9 +4,11 @@
 mod common;
 
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use common::{Fm, SMALL, assert_same_results, stderr, stdout};
 use fuzzymotiv::experiment::Experiment;
+use fuzzymotiv_pipeline::files::notes::Notes;
 use fuzzymotiv_pipeline::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
 use fuzzymotiv_pipeline::pipeline::reproduce::{
     Front, ReproduceOptions, ReproduceProgress, StudyKind, reproduce,
@@ -18,6 +20,13 @@ struct Recorded {
     begun: Mutex<Vec<usize>>,
     runs: Mutex<Vec<String>>,
     ended: Mutex<usize>,
+    notes: Mutex<Vec<String>>,
+}
+
+impl Notes for Recorded {
+    fn note(&self, line: &str) {
+        self.notes.lock().unwrap().push(line.to_string());
+    }
 }
 
 impl ReproduceProgress for Recorded {
@@ -77,8 +86,18 @@ fn a_study_runs_from_the_library_with_the_command_lines_results() {
             "low-curiosity seed #2"
         ]
     );
+    // Issue #56 item 2: the library's notes come to the caller's progress (the command line
+    // prints them on stderr), the same lines.
+    let notes = progress.notes.lock().unwrap().clone();
+    assert!(
+        notes.len() == 1 && notes[0].starts_with(&format!("wrote {} (", lib.display())),
+        "{notes:?}"
+    );
+    assert!(stderr(&o).contains("wrote "), "{}", stderr(&o));
     // Run again, the study is already there: nothing to do, nothing to show.
     assert_eq!(reproduce(&options, front).unwrap(), "");
+    let notes = progress.notes.lock().unwrap().clone();
+    assert!(notes[1].contains("already holds this study"), "{notes:?}");
 }
 
 /// The command line's default output directories are the library's, per study and size.
@@ -121,7 +140,7 @@ fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
     let genome = read_genome(&run.join("best_genome.json")).unwrap();
     let rooms = loaded.raw.rooms.clone();
     let loaded = replay_config(&loaded, &genome, rooms, "run").unwrap();
-    let trials = replay_trials(&loaded.experiment, &genome).unwrap();
+    let trials = replay_trials(&loaded.experiment, &genome, &mut |_| {}).unwrap();
     let ctx = RenderContext::of(&loaded);
     let mut files = Vec::new();
     let lib = dir.path().join("lib");
@@ -139,6 +158,47 @@ fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
     assert_eq!(json["rooms"], serde_json::Value::Array(rooms));
 }
 
+/// Stops every run once `limit` generations have been reported over the study.
+struct StopAfter {
+    limit: usize,
+    seen: AtomicUsize,
+}
+impl RunProgress for &StopAfter {
+    fn note(&self, _: &str) {}
+    fn skip(&self, _: usize) {}
+    fn generation(&self, _: &str, _: usize, _: usize, _: f64) {
+        self.seen.fetch_add(1, Ordering::SeqCst);
+    }
+    fn stop(&self) -> bool {
+        self.seen.load(Ordering::SeqCst) >= self.limit
+    }
+}
+impl Notes for StopAfter {
+    fn note(&self, _: &str) {}
+}
+impl SweepProgress for StopAfter {
+    fn begin(&self, _: usize, _: usize) {}
+    fn job(
+        &self,
+        _: &fuzzymotiv_pipeline::records::Job,
+        _: usize,
+        _: &Experiment,
+    ) -> Box<dyn RunProgress + '_> {
+        Box::new(self)
+    }
+    fn job_done(&self) {}
+    fn end(&self) {}
+}
+impl fuzzymotiv_pipeline::study::StudyProgress for StopAfter {
+    fn waiting(&self, _: usize, _: usize) {}
+    fn analysed(
+        &self,
+        _: &std::path::Path,
+        _: &[fuzzymotiv_pipeline::records::hypotheses::ClaimRow],
+    ) {
+    }
+}
+
 /// A study of one's own from the library (`fuzzymotiv_pipeline::study`) whose progress asks it to
 /// stop (a front's cancel: Ctrl-C in Python, the lab's button) ends with an error after the
 /// generation it asked at, and the same call again resumes it into the analysis of an
@@ -147,45 +207,6 @@ fn a_genome_replays_from_the_library_as_the_command_line_replays_it() {
 #[test]
 fn a_study_stopped_by_its_progress_resumes_into_the_analysis_of_an_uninterrupted_one() {
     use fuzzymotiv_pipeline::study::{Study, StudyOptions, StudyOutcome, run_study};
-    use std::sync::atomic::{AtomicUsize, Ordering};
-
-    /// Stops every run once `limit` generations have been reported over the study.
-    struct StopAfter {
-        limit: usize,
-        seen: AtomicUsize,
-    }
-    impl RunProgress for &StopAfter {
-        fn note(&self, _: &str) {}
-        fn skip(&self, _: usize) {}
-        fn generation(&self, _: &str, _: usize, _: usize, _: f64) {
-            self.seen.fetch_add(1, Ordering::SeqCst);
-        }
-        fn stop(&self) -> bool {
-            self.seen.load(Ordering::SeqCst) >= self.limit
-        }
-    }
-    impl SweepProgress for StopAfter {
-        fn begin(&self, _: usize, _: usize) {}
-        fn job(
-            &self,
-            _: &fuzzymotiv_pipeline::records::Job,
-            _: usize,
-            _: &Experiment,
-        ) -> Box<dyn RunProgress + '_> {
-            Box::new(self)
-        }
-        fn job_done(&self) {}
-        fn end(&self) {}
-    }
-    impl fuzzymotiv_pipeline::study::StudyProgress for StopAfter {
-        fn waiting(&self, _: usize, _: usize) {}
-        fn analysed(
-            &self,
-            _: &std::path::Path,
-            _: &[fuzzymotiv_pipeline::records::hypotheses::ClaimRow],
-        ) {
-        }
-    }
 
     let dir = tempfile::tempdir().unwrap();
     let text = format!(

@@ -16,6 +16,7 @@ use futures_util::Stream;
 use fuzzymotiv::experiment::Combination;
 use fuzzymotiv::fitness::TskFitness;
 use fuzzymotiv_pipeline::files::guard::{OutState, Spelling, StagedDir, check_out_as};
+use fuzzymotiv_pipeline::files::notes::NoNotes;
 use serde::Deserialize;
 use serde_json::{Value, json};
 use tokio::sync::watch;
@@ -326,7 +327,9 @@ fn save_copy(from: &Path, to: &Path) -> Result<String, ApiError> {
     if let Some(parent) = to.parent() {
         std::fs::create_dir_all(parent).map_err(|e| io(parent, e))?;
     }
-    match check_out_as(to, &id, false, &SAVE).map_err(|e| ApiError::conflict(e.render(&SAVE)))? {
+    match check_out_as(to, &id, false, &SAVE, &NoNotes)
+        .map_err(|e| ApiError::conflict(e.render(&SAVE)))?
+    {
         OutState::Done => return Ok(to.display().to_string()),
         OutState::Unfinished => {
             return Err(ApiError::conflict(format!(

@@ -366,7 +366,7 @@ fn about(s: &Settings, loaded: &fuzzymotiv_pipeline::files::inputs::Loaded) -> V
     let robot = loaded.experiment.trial_params().robot().spec().name();
     json!({ "name": raw.name, "seed": raw.seed, "population": s.population,
             "generations": s.generations, "rooms": raw.rooms, "combine": raw.fitness.combine,
-            "robot": robot,
+            "robot": robot, "notes": loaded.notes,
             "motivations": m.iter().map(|(_, w)| w.weight()).collect::<Vec<_>>(),
             "motivation_names": m.iter().map(|(n, _)| n).collect::<Vec<_>>() })
 }

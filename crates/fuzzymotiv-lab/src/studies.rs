@@ -12,6 +12,7 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 
 use fuzzymotiv_pipeline::files::bounded::read_input;
+use fuzzymotiv_pipeline::files::notes::Notes;
 use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
 use fuzzymotiv_pipeline::study::{
     STUDY_FILE, Study, StudyCounter, StudyOptions, StudyOutcome, run_study,
@@ -53,7 +54,7 @@ impl StudyEntry {
             (claims.as_ref()).map(|c| c.iter().filter(|c| c.scope == POOLED).collect());
         json!({ "id": self.id, "name": self.name, "source": self.source, "status": status,
                 "done": self.counter.done(), "total": self.total,
-                "error": error, "claims": pooled })
+                "error": error, "notes": self.counter.notes(), "claims": pooled })
     }
 }
 
@@ -153,6 +154,9 @@ impl Studies {
             counter: StudyCounter::default(),
             state: Mutex::new((Status::Running, None, None)),
         });
+        for line in &study.plan.notes {
+            entry.counter.note(&format!("note: {line}"));
+        }
         list.push(entry.clone());
         drop(list);
         let (me, run) = (self.clone(), entry.clone());

@@ -1404,6 +1404,16 @@ expect = "decreasing"
     )
 }
 
+/// Issue #56 item 2: the pipeline's notes on a finished study of 6 runs are the page's (an API
+/// field; the command line prints them on stderr), not printed by the lab.
+fn the_pipelines_notes_are_the_pages(study: &Value) {
+    assert_eq!(
+        study["notes"],
+        json!(["6 jobs run, 0 already done, 6 in this selection, 6 in the plan"]),
+        "{study}"
+    );
+}
+
 /// The lab's studies: the study folder's files listed with their text; a bad study refused
 /// with 400 naming its field (a pasted one as `(pasted study)`); a listed study run in the
 /// lab's `studies/ID/` writes what the library's `run_study` (`fuzzymotiv study`) writes, byte
@@ -1463,6 +1473,7 @@ fn a_study_started_in_the_lab_writes_what_fuzzymotiv_study_writes_and_shows_its_
         (study["done"].as_u64(), study["total"].as_u64()),
         (Some(6), Some(6))
     );
+    the_pipelines_notes_are_the_pages(&study);
     let claims = study["claims"].as_array().unwrap();
     let ids: Vec<&str> = claims.iter().map(|c| c["id"].as_str().unwrap()).collect();
     assert_eq!(ids, ["sooner", "exploration-cost"]);

@@ -5,8 +5,10 @@
 //! three.
 //!
 //! No terminal front end is compiled in (no clap, indicatif or resvg): progress is reported
-//! through [`pipeline::progress`] ([`pipeline::progress::NoProgress`] shows nothing), and PNG
-//! figures are drawn by a [`render::figures::Rasterise`] the caller passes, or not at all.
+//! through [`pipeline::progress`] ([`pipeline::progress::NoProgress`] shows nothing), notes are
+//! returned or handed to the caller's [`files::notes::Notes`] (nothing here prints, exits or
+//! aborts), and PNG figures are drawn by a [`render::figures::Rasterise`] the caller passes, or
+//! not at all.
 //!
 //! The crates, each using only the ones below it (Cargo enforces the order):
 //!
@@ -16,13 +18,12 @@
 //! - `fuzzymotiv-render` ([`render`]): from records only: tables, the paper's study and its
 //!   statistics, SVG figures, the report page, rollout frames and GIFs;
 //! - `fuzzymotiv-records` ([`records`], [`files`]): the output model (one serde type per file)
-//!   and the checkpoint; the output guard, config and room loading, the errors and the terminal
-//!   macros.
+//!   and the checkpoint; the output guard, config and room loading, the errors and the notes.
 
 #![warn(missing_docs)]
 
 pub mod pipeline;
 pub mod study;
 
-pub use fuzzymotiv_records::{files, note, out, outln, records};
+pub use fuzzymotiv_records::{files, records};
 pub use fuzzymotiv_render as render;

@@ -8,7 +8,8 @@
 //! that [`records`] may use [`files`] and not the other way round):
 //!
 //! - [`records`]: the output model (one serde type per file) and the checkpoint;
-//! - [`files`]: the output guard, config and room loading, the errors and the terminal macros.
+//! - [`files`]: the output guard, config and room loading, the errors and the notes a
+//!   library returns instead of printing (it has no terminal: the fronts print).
 
 #![warn(missing_docs)]
 

@@ -101,7 +101,9 @@ fn gather(xs: &[[f64; 8]]) -> [[f64; L]; 8] {
     std::array::from_fn(|i| std::array::from_fn(|l| xs[l][i]))
 }
 
-fn main() {
+/// Each of `robots` random 8-H-2 networks driven one trial in room H (its own seed): the
+/// genomes and the inputs each network saw, step by step.
+fn record_inputs(robots: usize) -> (Vec<Vec<f64>>, Vec<Vec<[f64; 8]>>) {
     let trial = RawTrial {
         end_at_home: false,
         ..RawTrial::default()
@@ -117,7 +119,6 @@ fn main() {
     let arena = Arena::new(Room::builtin("H").unwrap(), &params);
     let shape = MlpShape::with_hidden(H).expect("a valid hidden layer");
     let mut rng = rng_from_seed(7);
-    let robots = 64;
     let genomes: Vec<Vec<f64>> = (0..robots)
         .map(|_| {
             (0..shape.genome_len())
@@ -136,6 +137,38 @@ fn main() {
         );
         inputs.push(obs.0);
     }
+    (genomes, inputs)
+}
+
+/// Median nanoseconds per robot-step of `reps` passes of `a` and of `b`, over 7 timings of
+/// each taken in turn (so that a drift of the machine weighs on both alike).
+fn medians_ns(
+    reps: usize,
+    robot_steps: usize,
+    mut a: impl FnMut(),
+    mut b: impl FnMut(),
+) -> (f64, f64) {
+    let time = |pass: &mut dyn FnMut()| {
+        let t0 = Instant::now();
+        for _ in 0..reps {
+            pass();
+        }
+        t0.elapsed().as_secs_f64() * 1e9 / (reps * robot_steps) as f64
+    };
+    let (mut ta, mut tb) = (Vec::new(), Vec::new());
+    for _ in 0..7 {
+        ta.push(time(&mut a));
+        tb.push(time(&mut b));
+    }
+    ta.sort_by(f64::total_cmp);
+    tb.sort_by(f64::total_cmp);
+    (ta[3], tb[3])
+}
+
+fn main() {
+    let robots = 64;
+    let (genomes, inputs) = record_inputs(robots);
+    let shape = MlpShape::with_hidden(H).expect("a valid hidden layer");
     let steps = inputs.iter().map(|v| v.len()).min().unwrap();
     let zero = inputs
         .iter()
@@ -165,35 +198,28 @@ fn main() {
             }
         }
     }
-    let reps = 200;
-    let per_step = |t0: Instant| t0.elapsed().as_secs_f64() * 1e9 / (reps * steps * robots) as f64;
-    let mut sink = 0.0;
-    let mut scalar = Vec::new();
-    let mut lanes = Vec::new();
-    for _ in 0..7 {
-        let t0 = Instant::now();
-        for _ in 0..reps {
+    let (reps, robot_steps) = (200, steps * robots);
+    let (mut sink_scalar, mut sink_lanes) = (0.0, 0.0);
+    let (scalar, lanes) = medians_ns(
+        reps,
+        robot_steps,
+        || {
             for row in &by_step {
                 for (net, x) in mlps.iter_mut().zip(row) {
-                    sink += net.step(x)[0];
+                    sink_scalar += net.step(x)[0];
                 }
             }
-        }
-        scalar.push(per_step(t0));
-        let t0 = Instant::now();
-        for _ in 0..reps {
+        },
+        || {
             for row in &by_step {
                 for (grp, xs) in groups.iter().zip(row.chunks_exact(L)) {
-                    sink += grp.step(&gather(xs))[0][0];
+                    sink_lanes += grp.step(&gather(xs))[0][0];
                 }
             }
-        }
-        lanes.push(per_step(t0));
-    }
-    scalar.sort_by(f64::total_cmp);
-    lanes.sort_by(f64::total_cmp);
+        },
+    );
+    let sink = sink_scalar + sink_lanes;
     println!(
-        "ns per robot-step, median of 7: scalar {:.1}, lockstep x4 {:.1}  ({sink:.0})",
-        scalar[3], lanes[3]
+        "ns per robot-step, median of 7: scalar {scalar:.1}, lockstep x4 {lanes:.1}  ({sink:.0})"
     );
 }

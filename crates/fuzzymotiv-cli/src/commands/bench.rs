@@ -63,7 +63,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
     };
     let report = measure(&exp, &options);
     if args.json {
-        fuzzymotiv_pipeline::outln!(
+        crate::console::outln!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
         )
@@ -74,7 +74,7 @@ pub fn bench(args: BenchArgs) -> Result<(), CliError> {
 
 /// The report as two lines of text.
 fn print_report(r: &BenchReport) -> Result<(), CliError> {
-    fuzzymotiv_pipeline::outln!(
+    crate::console::outln!(
         "{} in room {}, {} motion: single robot, 1 thread: {:.3} M robot-steps/s ({} executed steps, median {:.3} s of {})",
         r.robot,
         r.room,
@@ -84,7 +84,7 @@ fn print_report(r: &BenchReport) -> Result<(), CliError> {
         r.seconds,
         r.repeat
     )?;
-    fuzzymotiv_pipeline::outln!(
+    crate::console::outln!(
         "population {} x {} steps, {} evaluations, {} threads: {:.3} M robot-steps/s (median {:.3} s)",
         r.population,
         r.trial_steps,

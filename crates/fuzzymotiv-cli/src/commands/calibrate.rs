@@ -5,11 +5,11 @@
 
 use std::path::PathBuf;
 
+use crate::console::{note, out, outln};
 use fuzzymotiv::simulation::Calibration;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::FilesState;
 use fuzzymotiv_pipeline::pipeline::calibrate::{calibration_table, write_table};
-use fuzzymotiv_pipeline::{note, out, outln};
 
 /// Arguments of `fuzzymotiv calibrate`.
 #[derive(clap::Args)]

@@ -3,9 +3,9 @@
 
 use std::path::PathBuf;
 
+use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::FilesState;
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::pipeline::claims::recompute_claims;
 use fuzzymotiv_pipeline::render::study::CLAIMS_ALPHA;
 
@@ -38,6 +38,6 @@ pub fn claims_command(args: ClaimsArgs) -> Result<(), CliError> {
     } else {
         note!("{md_path} and {csv_path} already hold these claims; nothing to do");
     }
-    fuzzymotiv_pipeline::out!("{}", done.md)?;
+    crate::console::out!("{}", done.md)?;
     Ok(())
 }

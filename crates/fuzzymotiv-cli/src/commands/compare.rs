@@ -3,9 +3,9 @@
 
 use std::path::PathBuf;
 
+use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::FilesState;
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::pipeline::compare::{CompareRequest, compare_into};
 use fuzzymotiv_pipeline::render::study::CLAIMS_ALPHA;
 
@@ -53,6 +53,6 @@ pub fn compare_command(args: CompareArgs) -> Result<(), CliError> {
             args.out.display()
         );
     }
-    fuzzymotiv_pipeline::out!("{md}")?;
+    crate::console::out!("{md}")?;
     Ok(())
 }

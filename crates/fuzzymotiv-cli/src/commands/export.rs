@@ -4,9 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use fuzzymotiv_pipeline::files::console::write_out_bytes;
+use crate::console::note;
+use crate::console::write_out_bytes;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::records::export::{
     ExportRequest, ExportTarget, KitTarget, build_export, export_controller,
 };
@@ -107,7 +107,7 @@ pub fn export(args: ExportArgs) -> Result<(), CliError> {
     let done = export_controller(&req)?;
     said(done.config.as_deref(), &done.notes);
     for path in &done.files {
-        fuzzymotiv_pipeline::outln!("{}", path.display())?;
+        crate::console::outln!("{}", path.display())?;
     }
     if done.unchanged {
         note!(

@@ -4,10 +4,10 @@
 
 use std::path::PathBuf;
 
+use crate::console::{note, out, outln};
 use fuzzymotiv::fitness::TskFitness;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::pipeline::fuzzy::{FllWritten, fitness_of, motivations_of, write_fll};
-use fuzzymotiv_pipeline::{note, out, outln};
 
 /// Arguments of `fuzzymotiv fuzzy`.
 #[derive(clap::Args)]

@@ -3,9 +3,9 @@
 use std::net::IpAddr;
 use std::path::PathBuf;
 
+use crate::console::{note, outln};
 use fuzzymotiv_lab::{Lab, LabOptions};
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::{note, outln};
 
 /// Arguments of `fuzzymotiv lab`.
 #[derive(clap::Args)]

@@ -4,10 +4,10 @@
 
 use std::path::PathBuf;
 
+use crate::console::{note, outln};
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::FilesState;
 use fuzzymotiv_pipeline::pipeline::recognise::recognise_into;
-use fuzzymotiv_pipeline::{note, outln};
 
 /// Arguments of `fuzzymotiv recognise`.
 #[derive(clap::Args)]

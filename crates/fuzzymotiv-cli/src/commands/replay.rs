@@ -11,9 +11,9 @@
 
 use std::path::PathBuf;
 
+use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::FilesState;
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::pipeline::replay::{GifSettings, ReplayOptions, replay as replay_genome};
 
 use crate::png::rasteriser;
@@ -109,7 +109,7 @@ pub fn replay(args: ReplayArgs) -> Result<(), CliError> {
     };
     let done = replay_genome(&opts, &mut |line| note!("{line}"))?;
     for line in &done.lines {
-        fuzzymotiv_pipeline::outln!("{line}")?;
+        crate::console::outln!("{line}")?;
     }
     if done.state == FilesState::Same {
         note!(

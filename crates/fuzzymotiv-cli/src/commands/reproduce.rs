@@ -131,5 +131,5 @@ pub fn reproduce(args: ReproduceArgs) -> Result<(), CliError> {
     if text.is_empty() {
         return Ok(());
     }
-    fuzzymotiv_pipeline::out!("{text}")
+    crate::console::out!("{text}")
 }

@@ -5,10 +5,10 @@
 
 use std::path::PathBuf;
 
+use crate::console::{note, outln};
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::guard::FilesState;
 use fuzzymotiv_pipeline::pipeline::robustness::robustness_into;
-use fuzzymotiv_pipeline::{note, outln};
 
 use crate::png::rasteriser;
 

@@ -2,9 +2,9 @@
 
 use std::path::PathBuf;
 
+use crate::console::outln;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::inputs;
-use fuzzymotiv_pipeline::outln;
 
 /// Arguments of `fuzzymotiv rooms`.
 #[derive(clap::Args)]

@@ -4,8 +4,8 @@
 
 use std::path::PathBuf;
 
+use crate::console::{Stderr, note};
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::pipeline::lanes::set_threads;
 use fuzzymotiv_pipeline::pipeline::run_dir::{execute, start_line};
 use fuzzymotiv_pipeline::pipeline::run_target::{RunRequest, RunTarget, run_target};
@@ -61,16 +61,19 @@ pub struct RunArgs {
 /// Entry point of `fuzzymotiv run`.
 pub fn run(args: RunArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
-    let target = run_target(&RunRequest {
-        config: args.config.clone(),
-        resume: args.resume.clone(),
-        continue_from: args.continue_from.clone(),
-        generations: args.generations,
-        out: args.output.out.clone(),
-        sets: args.sets.clone(),
-        seed: args.output.seed,
-        force: args.output.force,
-    })?;
+    let target = run_target(
+        &RunRequest {
+            config: args.config.clone(),
+            resume: args.resume.clone(),
+            continue_from: args.continue_from.clone(),
+            generations: args.generations,
+            out: args.output.out.clone(),
+            sets: args.sets.clone(),
+            seed: args.output.seed,
+            force: args.output.force,
+        },
+        &Stderr,
+    )?;
     let (loaded, out, resume) = match target {
         RunTarget::Run {
             loaded,
@@ -90,7 +93,7 @@ pub fn run(args: RunArgs) -> Result<(), CliError> {
     progress.note(&start_line(&loaded.experiment, &out));
     let done = execute(&loaded, &out, &progress, resume, rasteriser(args.png))?;
     progress.finish();
-    fuzzymotiv_pipeline::out!("{}", table_markdown(&done.rows))?;
+    crate::console::out!("{}", table_markdown(&done.rows))?;
     note!("wrote {} ({:.1} s)", out.display(), done.wall_seconds);
     Ok(())
 }

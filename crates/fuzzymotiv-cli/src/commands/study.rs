@@ -4,8 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::note;
 use fuzzymotiv_pipeline::records::hypotheses::{ClaimRow, POOLED};
 use fuzzymotiv_pipeline::render::claim_format::claim_line;
 use fuzzymotiv_pipeline::study::{
@@ -66,6 +66,7 @@ impl StudyProgress for JobsProgress {
 pub fn study(args: StudyArgs) -> Result<(), CliError> {
     let shard = args.shard.as_deref().map(parse_shard).transpose()?;
     let study = Study::load(&args.study)?;
+    crate::console::config_notes(&study.plan.notes);
     let options = StudyOptions {
         out: args.out.clone(),
         threads: args.threads,
@@ -75,7 +76,7 @@ pub fn study(args: StudyArgs) -> Result<(), CliError> {
     let progress = JobsProgress::new(args.quiet);
     if let StudyOutcome::Analysed(claims) = run_study(&study, &options, &progress)? {
         for c in claims.iter().filter(|c| c.scope == POOLED) {
-            fuzzymotiv_pipeline::outln!("{}", claim_line(c))?;
+            crate::console::outln!("{}", claim_line(c))?;
         }
         note!("report: {}", args.out.join("report.md").display());
     }

@@ -12,6 +12,7 @@ use fuzzymotiv_pipeline::pipeline::sweep_merge::merge_dir;
 use fuzzymotiv_pipeline::pipeline::sweep_plan::{SWEEP_FILE, Sweep, select_jobs};
 use fuzzymotiv_pipeline::render::figures::png_beside;
 
+use crate::console::{Stderr, config_notes};
 use crate::png::{Resvg, add_pngs};
 use crate::progress::JobsProgress;
 
@@ -35,15 +36,16 @@ pub struct PlanArgs {
 /// Entry point of `fuzzymotiv plan`.
 pub fn plan(args: PlanArgs) -> Result<(), CliError> {
     let sweep = Sweep::load(&args.sweep)?;
+    config_notes(&sweep.notes);
     if args.count {
-        fuzzymotiv_pipeline::outln!("{}", sweep.jobs.len())?;
+        crate::console::outln!("{}", sweep.jobs.len())?;
     } else if let Some(out) = args.out {
         let files = [(out, sweep.plan_jsonl().into_bytes())];
         if check_files(&files, "--out", args.force)? == FilesState::Write {
             write_files(&files)?;
         }
     } else {
-        fuzzymotiv_pipeline::out!("{}", sweep.plan_jsonl())?;
+        crate::console::out!("{}", sweep.plan_jsonl())?;
     }
     Ok(())
 }
@@ -100,6 +102,7 @@ fn index_of(args: &SweepArgs) -> Result<Option<usize>, CliError> {
 pub fn sweep(args: SweepArgs) -> Result<(), CliError> {
     set_threads(args.threads)?;
     let sweep = Sweep::load(&args.sweep)?;
+    config_notes(&sweep.notes);
     let selected = select_jobs(sweep.jobs.len(), args.shard.as_deref(), index_of(&args)?)?;
     let text = read_input(&args.sweep, SWEEP_FILE)?;
     let progress = JobsProgress::new(args.quiet);
@@ -118,7 +121,8 @@ pub struct MergeArgs {
 
 /// Entry point of `fuzzymotiv merge`.
 pub fn merge(args: MergeArgs) -> Result<(), CliError> {
-    merge_dir(&args.dir)?;
+    let merged = merge_dir(&args.dir, &Stderr)?;
+    crate::console::out!("{}", merged.markdown)?;
     if args.png {
         png_beside(&args.dir.join("summary.svg"), &Resvg)?;
         add_pngs(&args.dir)?;

@@ -5,9 +5,9 @@
 
 use std::path::PathBuf;
 
+use crate::console::{note, outln};
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::pipeline::transfer::{TransferRequest, transfer};
-use fuzzymotiv_pipeline::{note, outln};
 
 /// Arguments of `fuzzymotiv transfer`.
 #[derive(clap::Args)]

@@ -682,7 +682,8 @@ async function refreshRuns() {
     html('td', r.id, tr);
     const combine = r.about.combine && r.about.combine !== 'tsk' ? ` by ${r.about.combine}` : '';
     html('td', (paper ? `(${m.map((v) => Number(v).toFixed(2)).join(', ')})`
-      : names.map((n, k) => `${LETTERS[n] || n} ${Number(m[k]).toFixed(2)}`).join(', ')) + combine, tr);
+      : names.map((n, k) => `${LETTERS[n] || n} ${Number(m[k]).toFixed(2)}`).join(', ')) + combine +
+      (r.about.notes && r.about.notes.length ? ` (${r.about.notes.join('; ')})` : ''), tr);
     html('td', `${r.about.population} × ${r.about.generations}${r.about.robot ? `, ${r.about.robot}` : ''}`, tr);
     html('td', r.status + (r.queue_position ? ` (queue ${r.queue_position})` : ''), tr);
     const td = html('td', undefined, tr);
@@ -782,6 +783,7 @@ function showStudy(s) {
   const state = { running: 'running', finished: 'analysed', stopped: 'stopped (start it again to resume in a new folder)', failed: 'failed' }[s.status] || s.status;
   $('study-status').textContent = `Study ${s.name} (${s.id}): ${s.done} of ${s.total} runs, ${state}.`;
   if (s.error) { $('study-message').className = 'error'; $('study-message').textContent = s.error; }
+  else if (s.notes && s.notes.length) { $('study-message').className = 'note'; $('study-message').textContent = s.notes.join('\n'); }
   $('study-result').hidden = !s.claims;
   if (!s.claims) return;
   const body = $('study-claims').querySelector('tbody');

@@ -1,11 +1,14 @@
 //! The progress the pipeline reports while it runs, and how it is shown is the caller's: the
 //! command line draws a bar or plain lines on stderr (its `progress.rs`), the Python bindings
 //! show nothing here ([`NoProgress`]) and report generations through their observer instead.
+//! The notes a sweep's or a study's progress receives ([`Notes`]) are the pipeline's only
+//! words to its user: it prints nothing itself.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use fuzzymotiv::experiment::Experiment;
 
+use crate::files::notes::Notes;
 use crate::records::Job;
 
 /// Progress of one run (or of several, for a view that counts them together): what
@@ -25,9 +28,10 @@ pub trait RunProgress {
     }
 }
 
-/// Progress of a sweep's jobs: what [`run_jobs`](super::sweep_jobs::run_jobs) reports. Jobs
-/// run side by side, so it is shared between threads.
-pub trait SweepProgress: Sync {
+/// Progress of a sweep's jobs: what [`run_jobs`](super::sweep_jobs::run_jobs) reports, its
+/// notes included (`--force` replaced a sweep, a job waits for another worker, how many jobs
+/// ran). Jobs run side by side, so it is shared between threads.
+pub trait SweepProgress: Notes {
     /// `selected` jobs are selected, of which `skipped` were already done; the others run now.
     fn begin(&self, selected: usize, skipped: usize);
     /// The progress of `job`, the `nth` (1-based) of the selection, about to run `exp`.
@@ -38,9 +42,13 @@ pub trait SweepProgress: Sync {
     fn end(&self);
 }
 
-/// Progress that shows nothing.
+/// Progress that shows nothing, notes included.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct NoProgress;
+
+impl Notes for NoProgress {
+    fn note(&self, _line: &str) {}
+}
 
 impl RunProgress for NoProgress {
     fn note(&self, _message: &str) {}

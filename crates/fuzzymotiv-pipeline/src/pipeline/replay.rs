@@ -16,7 +16,6 @@ use rayon::prelude::*;
 use crate::files::error::CliError;
 use crate::files::guard::{FilesState, check_files, io_err, num, write_files};
 use crate::files::inputs::{Loaded, load_config, resolve, room_entry, rooms_unchanged};
-use crate::note;
 use crate::records::PROGRAM;
 use crate::records::context::RenderContext;
 use crate::records::genome::{SavedGenome, locate, read_genome};
@@ -121,8 +120,12 @@ pub fn room_gifs(
 }
 
 /// The room-modelling run of the genome (per-room training: of the room's own robot) in every
-/// room of `exp`, with its run label.
-pub fn replay_trials(exp: &Experiment, genome: &SavedGenome) -> Result<Vec<ReplayTrial>, CliError> {
+/// room of `exp`, with its run label; a room without a robot of its own is said to `note`.
+pub fn replay_trials(
+    exp: &Experiment,
+    genome: &SavedGenome,
+    note: &mut dyn FnMut(&str),
+) -> Result<Vec<ReplayTrial>, CliError> {
     let runs = exp.runs();
     let in_file =
         |e: &dyn std::fmt::Display| CliError::input(format!("{}: {e}", genome.path.display()));
@@ -140,9 +143,9 @@ pub fn replay_trials(exp: &Experiment, genome: &SavedGenome) -> Result<Vec<Repla
             Training::PerRoom => match genome.runs.iter().find(|(label, _)| label == name) {
                 Some((_, w)) => (&runs[r], w),
                 None => {
-                    note!(
+                    note(&format!(
                         "note: no robot was evolved in room {name}; replaying the genome's main robot"
-                    );
+                    ));
                     (&runs[r], &genome.weights)
                 }
             },
@@ -322,6 +325,9 @@ pub fn replay(opts: &ReplayOptions, note: &mut dyn FnMut(&str)) -> Result<Replay
         None
     });
     let loaded = load_config(config_path.as_deref(), &[], seed)?;
+    for line in &loaded.notes {
+        note(&format!("note: {line}"));
+    }
     if let Some(path) = &config_path {
         let remedy = "the replay uses the room as it is now, so its paths are not the run's";
         if let Err(e) = rooms_unchanged(path, &loaded, remedy) {
@@ -352,7 +358,7 @@ pub fn replay(opts: &ReplayOptions, note: &mut dyn FnMut(&str)) -> Result<Replay
     };
     let logs = logged_paths(&opts.logs, &rooms)?;
     let loaded = replay_config(&loaded, &genome, rooms, &source_name)?;
-    let trials = replay_trials(&loaded.experiment, &genome)?;
+    let trials = replay_trials(&loaded.experiment, &genome, note)?;
     let ctx = RenderContext::of(&loaded);
     let gifs = match opts.gif {
         Some(g) => Some(gif_options(g, loaded.experiment.trial_params())?),

@@ -3,7 +3,6 @@
 
 use std::ops::ControlFlow;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use fuzzymotiv::experiment::Experiment;
@@ -227,25 +226,7 @@ impl<'a> Session<'a> {
         self.checkpoint.runs[k] = CheckpointRun::from_state(label, state);
         self.checkpoint.wall_seconds = self.wall_seconds();
         self.checkpoint.save(&self.staged.path(CHECKPOINT))?;
-        abort_point();
         Ok(())
-    }
-}
-
-/// For kill tests only: with `FUZZYMOTIV_TEST_ABORT_AFTER=N` in the environment, the process
-/// aborts (as `kill -9` would: no clean-up) once N generations have been checkpointed in it,
-/// counted over all its runs. A deterministic kill point, unlike a timer.
-fn abort_point() {
-    static LIMIT: std::sync::LazyLock<Option<usize>> = std::sync::LazyLock::new(|| {
-        std::env::var("FUZZYMOTIV_TEST_ABORT_AFTER")
-            .ok()
-            .and_then(|v| v.parse().ok())
-    });
-    static SAVED: AtomicUsize = AtomicUsize::new(0);
-    if let Some(limit) = *LIMIT
-        && SAVED.fetch_add(1, Ordering::SeqCst) + 1 >= limit
-    {
-        std::process::abort();
     }
 }
 

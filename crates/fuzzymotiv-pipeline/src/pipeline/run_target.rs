@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use crate::files::error::CliError;
 use crate::files::guard::{OutState, StagedDir, check_out};
 use crate::files::inputs::{Loaded, load_config, rooms_unchanged, run_identity};
+use crate::files::notes::Notes;
 use crate::pipeline::continuation::{continued_config, finished_config, stage_continued};
 
 /// What `run`'s arguments ask for.
@@ -54,8 +55,9 @@ pub enum RunTarget {
 }
 
 /// The target of `req`: `--continue`, else `--resume`, else the config; refused (exit 2)
-/// with a message naming the option when they do not go together.
-pub fn run_target(req: &RunRequest) -> Result<RunTarget, CliError> {
+/// with a message naming the option when they do not go together. The config's notes (e.g.
+/// motivations normalised) and that `force` replaces an output are said to `notes`.
+pub fn run_target(req: &RunRequest, notes: &dyn Notes) -> Result<RunTarget, CliError> {
     if req.generations.is_some() && req.continue_from.is_none() {
         return Err(CliError::input(
             "--generations N goes with --continue DIR (the total to continue it to); \
@@ -63,15 +65,22 @@ pub fn run_target(req: &RunRequest) -> Result<RunTarget, CliError> {
         ));
     }
     match (&req.resume, &req.config) {
-        _ if req.continue_from.is_some() => continue_target(req),
-        (Some(dir), _) => resume_target(dir),
-        (None, Some(config)) => config_target(config, req),
+        _ if req.continue_from.is_some() => continue_target(req, notes),
+        (Some(dir), _) => resume_target(dir, notes),
+        (None, Some(config)) => config_target(config, req, notes),
         (None, None) => Err(CliError::input("give a CONFIG file or --resume DIR")),
     }
 }
 
+/// A loaded config's notes, each after `note: `, to `notes`.
+fn config_notes(loaded: &Loaded, notes: &dyn Notes) {
+    for line in &loaded.notes {
+        notes.note(&format!("note: {line}"));
+    }
+}
+
 /// `--resume DIR`: the interrupted run in `DIR.partial/`.
-fn resume_target(dir: &Path) -> Result<RunTarget, CliError> {
+fn resume_target(dir: &Path, notes: &dyn Notes) -> Result<RunTarget, CliError> {
     let staging = StagedDir::staging_path(dir);
     let cfg = staging.join("config.resolved.toml");
     if !cfg.is_file() {
@@ -89,6 +98,7 @@ fn resume_target(dir: &Path) -> Result<RunTarget, CliError> {
         )));
     }
     let loaded = load_config(Some(&cfg), &[], None)?;
+    config_notes(&loaded, notes);
     let remedy = "resuming would evolve the rest of the run in another room. Restore the file, \
                   or start the run over with `fuzzymotiv run CONFIG --out DIR --force`";
     rooms_unchanged(&cfg, &loaded, remedy)?;
@@ -100,10 +110,15 @@ fn resume_target(dir: &Path) -> Result<RunTarget, CliError> {
 }
 
 /// `CONFIG [--out DIR]`: a fresh run, or the unfinished one of the same config in `DIR`.
-fn config_target(config: &Path, req: &RunRequest) -> Result<RunTarget, CliError> {
+fn config_target(
+    config: &Path,
+    req: &RunRequest,
+    notes: &dyn Notes,
+) -> Result<RunTarget, CliError> {
     let loaded = load_config(Some(config), &req.sets, req.seed)?;
+    config_notes(&loaded, notes);
     let out = (req.out.clone()).unwrap_or_else(|| Path::new("runs").join(&loaded.raw.name));
-    let resume = match check_out(&out, &run_identity(&loaded.raw), req.force)? {
+    let resume = match check_out(&out, &run_identity(&loaded.raw), req.force, notes)? {
         OutState::Done => {
             let note = format!(
                 "{} already holds this run, finished (same resolved config); nothing to do. --force runs it again",
@@ -123,13 +138,14 @@ fn config_target(config: &Path, req: &RunRequest) -> Result<RunTarget, CliError>
 
 /// `--continue DIR --generations N --out NEW`: the finished run in `DIR` continued to N
 /// generations in `NEW` (staged from `DIR`'s final population; `DIR` is never written).
-fn continue_target(req: &RunRequest) -> Result<RunTarget, CliError> {
+fn continue_target(req: &RunRequest, notes: &dyn Notes) -> Result<RunTarget, CliError> {
     let (Some(dir), Some(n), Some(out)) = (&req.continue_from, req.generations, &req.out) else {
         return Err(CliError::input(
             "--continue DIR needs --generations N (the total) and --out NEW",
         ));
     };
     let old = finished_config(dir)?;
+    config_notes(&old, notes);
     let new = continued_config(dir, &old, n)?;
     if same_place(dir, out) {
         return Err(CliError::input(format!(
@@ -137,7 +153,7 @@ fn continue_target(req: &RunRequest) -> Result<RunTarget, CliError> {
             out.display()
         )));
     }
-    let resume = match check_out(out, &run_identity(&new.raw), req.force)? {
+    let resume = match check_out(out, &run_identity(&new.raw), req.force, notes)? {
         OutState::Done => {
             let note = format!(
                 "{} already holds this run, finished ({n} generations); nothing to do. --force runs it again",
@@ -177,12 +193,18 @@ fn same_place(a: &Path, b: &Path) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::files::notes::NoNotes;
 
     /// `--generations` without `--continue` is refused, nothing given asks for a config, and
     /// `--resume` of a directory with no run there says how to start it.
     #[test]
     fn a_run_request_that_does_not_go_together_is_refused_naming_its_options() {
-        let e = |req: RunRequest| run_target(&req).err().expect("refused").to_string();
+        let e = |req: RunRequest| {
+            run_target(&req, &NoNotes)
+                .err()
+                .expect("refused")
+                .to_string()
+        };
         let gens = e(RunRequest {
             config: Some("c.toml".into()),
             generations: Some(5),

@@ -11,7 +11,7 @@ use crate::files::guard::{
     refuse_non_directory, refuse_staging_name, remove_ours, write_atomic,
 };
 use crate::files::job_lock::{JobLock, lock_path};
-use crate::note;
+use crate::files::notes::Notes;
 use crate::pipeline::lanes::run_concurrently;
 use crate::pipeline::progress::SweepProgress;
 use crate::pipeline::run_dir::execute_or_resume;
@@ -42,7 +42,8 @@ impl JobOutcome {
 
 /// Runs the `selected` jobs of `sweep` into `out/jobs/ID/`, skipping finished ones, as many at
 /// a time as there are threads ([`run_concurrently`]), reporting to `progress` (the command
-/// line: on a terminal a bar counts jobs; otherwise each job prints plain progress lines).
+/// line: on a terminal a bar counts jobs; otherwise each job prints plain progress lines), its
+/// notes included (how many jobs ran, of how many).
 pub fn run_jobs(
     sweep: &Sweep,
     text: &str,
@@ -51,7 +52,7 @@ pub fn run_jobs(
     force: bool,
     progress: &dyn SweepProgress,
 ) -> Result<(), CliError> {
-    let jobs_dir = prepare_sweep_dir(sweep, text, out, force)?;
+    let jobs_dir = prepare_sweep_dir(sweep, text, out, force, progress)?;
     let todo: Vec<usize> = selected
         .iter()
         .copied()
@@ -74,12 +75,12 @@ pub fn run_jobs(
     })?;
     progress.end();
     let ran = outcomes.iter().filter(|&&o| o == JobOutcome::Ran).count();
-    note!(
+    progress.note(&format!(
         "{ran} jobs run, {} already done, {} in this selection, {} in the plan",
         selected.len() - ran,
         selected.len(),
         sweep.jobs.len()
-    );
+    ));
     Ok(())
 }
 
@@ -101,7 +102,7 @@ pub fn run_one_job(
             sweep.jobs.len()
         ))
     })?;
-    let jobs_dir = prepare_sweep_dir(sweep, text, out, false)?;
+    let jobs_dir = prepare_sweep_dir(sweep, text, out, false, progress)?;
     if is_done(&jobs_dir, job) {
         return Ok(JobOutcome::Skipped);
     }
@@ -109,14 +110,16 @@ pub fn run_one_job(
 }
 
 /// Checks `out` for `sweep` as `fuzzymotiv sweep` checks `--out` (with `force`, another plan's
-/// sweep is replaced) and writes its plan and sweep file; returns its `jobs/` folder.
+/// sweep is replaced, which is said to `notes`) and writes its plan and sweep file; returns its
+/// `jobs/` folder.
 pub fn prepare_sweep_dir(
     sweep: &Sweep,
     text: &str,
     out: &Path,
     force: bool,
+    notes: &dyn Notes,
 ) -> Result<PathBuf, CliError> {
-    open_sweep_dir(sweep, out, force)?;
+    open_sweep_dir(sweep, out, force, notes)?;
     // The plan first: it is what makes the directory a sweep for the tasks that start with this.
     std::fs::create_dir_all(out).map_err(|e| io_err(out, e))?;
     write_atomic(&out.join("plan.jsonl"), sweep.plan_jsonl())?;
@@ -155,8 +158,14 @@ const SWEEP_FILES: [&str; 14] = [
 /// jobs (more replicates or points, no id clash) keeps the finished ones; any other plan, or
 /// another kind of output, is refused unless `force`, which removes the old sweep's own files
 /// and job folders (or the other output), never a file of the user's. A directory that is not
-/// a fuzzymotiv output, a file, a `.partial` name and the current directory are refused.
-fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError> {
+/// a fuzzymotiv output, a file, a `.partial` name and the current directory are refused. What
+/// `force` keeps or removes is said to `notes`.
+fn open_sweep_dir(
+    sweep: &Sweep,
+    out: &Path,
+    force: bool,
+    notes: &dyn Notes,
+) -> Result<(), CliError> {
     refuse_current_dir(out)?;
     refuse_staging_name(out)?;
     refuse_non_directory(out)?;
@@ -172,7 +181,7 @@ fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError
             return if starting {
                 Ok(())
             } else {
-                refuse_other_output(out, force)
+                refuse_other_output(out, force, notes)
             };
         }
     }
@@ -181,18 +190,18 @@ fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError
     let same_plan = conflict.is_none() && old.len() == sweep.jobs.len();
     if force && same_plan {
         // Safe in an array script whose every task passes --force: nothing is lost.
-        note!(
+        notes.note(&format!(
             "note: --force: the sweep in {} has this very plan; its finished jobs are kept \
              (remove the directory yourself to run them again)",
             out.display()
-        );
+        ));
         return Ok(());
     }
     if force {
-        note!(
+        notes.note(&format!(
             "note: --force: the sweep in {} will be replaced",
             out.display()
-        );
+        ));
         return remove_sweep(out, &old);
     }
     match conflict {
@@ -207,7 +216,7 @@ fn open_sweep_dir(sweep: &Sweep, out: &Path, force: bool) -> Result<(), CliError
 
 /// `out` holds another fuzzymotiv output (or something else): removed with `force`, else an
 /// error.
-fn refuse_other_output(out: &Path, force: bool) -> Result<(), CliError> {
+fn refuse_other_output(out: &Path, force: bool, notes: &dyn Notes) -> Result<(), CliError> {
     ensure_replaceable(out)?;
     if !force {
         return Err(OutputError::NotASweep {
@@ -215,7 +224,10 @@ fn refuse_other_output(out: &Path, force: bool) -> Result<(), CliError> {
         }
         .into());
     }
-    note!("note: --force: {} will be replaced", out.display());
+    notes.note(&format!(
+        "note: --force: {} will be replaced",
+        out.display()
+    ));
     remove_ours(out)
 }
 
@@ -320,7 +332,7 @@ fn run_job(
     nth: usize,
 ) -> Result<JobOutcome, CliError> {
     let _lock = if wait {
-        JobLock::acquire(jobs_dir, &job.id)?
+        JobLock::acquire(jobs_dir, &job.id, progress)?
     } else {
         match JobLock::try_acquire(jobs_dir, &job.id)? {
             Some(lock) => lock,
@@ -342,6 +354,32 @@ fn run_job(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::files::notes::NoteList;
+    use crate::pipeline::progress::NoProgress;
+
+    /// Issue #56 item 2: what `--force` does to a sweep directory is said to the caller's
+    /// notes (the CLI prints them, Python warns), not printed by the library.
+    #[test]
+    fn force_on_a_sweep_directory_is_a_note_to_the_caller() {
+        let one = "[sweep]\nreplicates = 1\nmotivations = [[0.8, 0.1, 0.0, 0.1]]\n";
+        let two = "[sweep]\nreplicates = 2\nmotivations = [[0.8, 0.1, 0.0, 0.1]]\n";
+        let parse = |t| Sweep::parse_str(t, "sweep.toml", Path::new(".")).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        let out = tmp.path().join("s");
+        let notes = NoteList::default();
+        prepare_sweep_dir(&parse(two), two, &out, false, &notes).unwrap();
+        assert!(notes.take().is_empty());
+        prepare_sweep_dir(&parse(two), two, &out, true, &notes).unwrap();
+        assert_eq!(notes.take().len(), 1);
+        prepare_sweep_dir(&parse(one), one, &out, true, &notes).unwrap();
+        assert_eq!(
+            notes.take(),
+            [format!(
+                "note: --force: the sweep in {} will be replaced",
+                out.display()
+            )]
+        );
+    }
 
     /// Tasks of one sweep starting at once all join it: none mistakes the directory another is
     /// setting up for a foreign output. Repeated, as the window is a few system calls wide:
@@ -356,7 +394,7 @@ mod tests {
             let out = tmp.path().join(round.to_string());
             std::thread::scope(|s| {
                 let tasks: Vec<_> = (0..4)
-                    .map(|_| s.spawn(|| prepare_sweep_dir(&sweep, text, &out, false)))
+                    .map(|_| s.spawn(|| prepare_sweep_dir(&sweep, text, &out, false, &NoProgress)))
                     .collect();
                 for t in tasks {
                     if let Err(e) = t.join().unwrap() {

@@ -10,7 +10,7 @@ use fuzzymotiv::statistics;
 
 use crate::files::error::CliError;
 use crate::files::guard::write_atomic;
-use crate::note;
+use crate::files::notes::Notes;
 use crate::records::{
     AggregateRow, Job, METRICS, MotivationsRecord, RunSummary, SweepResultRow, SweepResults,
     read_json, to_csv,
@@ -19,19 +19,19 @@ use crate::render::svg::{SettingPoint, sweep_summary_svg};
 use crate::render::tables::STD_IS_SAMPLE;
 
 /// Writes `results.csv`, `aggregate.csv`, `aggregate.md` and `summary.svg` of the sweep
-/// directory `dir`; prints the Markdown table.
-pub fn merge_dir(dir: &Path) -> Result<(), CliError> {
+/// directory `dir` and says to `notes` how many jobs went in; the Markdown table (to show) is
+/// the [`Merged::markdown`] returned.
+pub fn merge_dir(dir: &Path, notes: &dyn Notes) -> Result<Merged, CliError> {
     let merged = write_merge(dir)?;
-    crate::out!("{}", merged.markdown)?;
-    note!(
+    notes.note(&format!(
         "merged {} jobs ({} rows) into {}; {} of {} jobs not finished",
         merged.jobs - merged.missing,
         merged.rows,
         dir.join("results.csv").display(),
         merged.missing,
         merged.jobs
-    );
-    Ok(())
+    ));
+    Ok(merged)
 }
 
 /// What [`write_merge`] wrote.
@@ -47,7 +47,7 @@ pub struct Merged {
     pub rows: usize,
 }
 
-/// [`merge_dir`]'s files, written without printing anything (for the Python bindings).
+/// [`merge_dir`]'s files, written without a note (for the Python bindings).
 pub fn write_merge(dir: &Path) -> Result<Merged, CliError> {
     let jobs = Job::read_plan(&dir.join("plan.jsonl"))?;
     let (results, missing) = collect_results(dir, &jobs)?;

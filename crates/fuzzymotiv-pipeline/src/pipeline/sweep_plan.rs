@@ -136,6 +136,9 @@ pub struct Sweep {
     file_name: &'static str,
     /// The jobs, in plan order.
     pub jobs: Vec<Job>,
+    /// The notes of its configs, for the front to show (e.g. that the motivations were
+    /// normalised): those of the first job that has any (the others say the same of theirs).
+    pub notes: Vec<String>,
 }
 
 fn err(source: &str, field: &str, reason: impl Into<String>) -> CliError {
@@ -200,6 +203,7 @@ impl Sweep {
             source: source.to_string(),
             file_name: "sweep.toml",
             jobs: Vec::new(),
+            notes: Vec::new(),
         };
         let mut seen = HashSet::new();
         for point in &points {
@@ -212,9 +216,14 @@ impl Sweep {
             }
         }
         // Validate every job now, so a bad point fails before anything runs.
+        let mut notes = Vec::new();
         for job in &sweep.jobs {
-            sweep.load_job(job)?;
+            let loaded = sweep.load_job(job)?;
+            if notes.is_empty() {
+                notes = loaded.notes;
+            }
         }
+        sweep.notes = notes;
         Ok(sweep)
     }
 
@@ -312,10 +321,12 @@ impl Sweep {
             source: source.to_string(),
             file_name,
             jobs: Vec::new(),
+            notes: Vec::new(),
         };
         for job in jobs {
             sweep.add_job(job)?;
         }
+        let mut notes = Vec::new();
         for (k, job) in sweep.jobs.iter().enumerate() {
             if let Some(twin) = sweep.jobs[..k].iter().find(|j| j.id == job.id) {
                 return Err(CliError::input(format!(
@@ -324,8 +335,12 @@ impl Sweep {
                     twin.key, job.key
                 )));
             }
-            sweep.load_job(job)?;
+            let loaded = sweep.load_job(job)?;
+            if notes.is_empty() {
+                notes = loaded.notes;
+            }
         }
+        sweep.notes = notes;
         Ok(sweep)
     }
 

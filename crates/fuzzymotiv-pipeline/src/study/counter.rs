@@ -8,6 +8,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use fuzzymotiv::experiment::Experiment;
 
+use crate::files::notes::{NoteList, Notes};
 use crate::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
 use crate::records::Job;
 use crate::records::hypotheses::ClaimRow;
@@ -20,6 +21,8 @@ pub struct StudyCounter {
     done: AtomicUsize,
     total: AtomicUsize,
     stop: AtomicBool,
+    /// The pipeline's notes (how many jobs ran, what `force` replaced), for the front to show.
+    notes: NoteList,
 }
 
 impl StudyCounter {
@@ -38,9 +41,20 @@ impl StudyCounter {
         self.stop.store(true, Ordering::SeqCst);
     }
 
+    /// The notes so far, in order (the lab shows them on its page, Python warns).
+    pub fn notes(&self) -> Vec<String> {
+        self.notes.lines()
+    }
+
     /// Whether [`StudyCounter::stop`] was called.
     pub fn stopped(&self) -> bool {
         self.stop.load(Ordering::SeqCst)
+    }
+}
+
+impl Notes for StudyCounter {
+    fn note(&self, line: &str) {
+        self.notes.note(line);
     }
 }
 

@@ -4,8 +4,8 @@ use std::path::{Path, PathBuf};
 
 use crate::files::bounded::{InputKind, read_input, what_it_is};
 use crate::files::error::CliError;
+use crate::files::notes::Notes;
 pub use crate::files::refusal::{CLI, OutputError, PYTHON, Spelling};
-use crate::note;
 
 /// Writes `contents` to `path` via a temporary file in the same directory and a rename.
 /// The temporary file is new (a unique `.tmpXXXXXX` name, created exclusively, so no other
@@ -309,9 +309,14 @@ pub type Identity = [(String, String)];
 /// file; an earlier output of another run (another resolved config, or another kind of output)
 /// and an unfinished one (a checkpoint) are replaced only with `force`; anything that is not a
 /// fuzzymotiv output is never replaced. A refusal is an [`OutputError`] (whose `Display` names
-/// the CLI's options).
-pub fn check_out(dir: &Path, id: &Identity, force: bool) -> Result<OutState, CliError> {
-    check_out_as(dir, id, force, &CLI)
+/// the CLI's options). That `--force` replaces something is said to `notes`.
+pub fn check_out(
+    dir: &Path,
+    id: &Identity,
+    force: bool,
+    notes: &dyn Notes,
+) -> Result<OutState, CliError> {
+    check_out_as(dir, id, force, &CLI, notes)
 }
 
 /// [`check_out`], with the `--force` note naming the option as `spelling` does (a refusal is an
@@ -321,14 +326,15 @@ pub fn check_out_as(
     id: &Identity,
     force: bool,
     spelling: &Spelling,
+    notes: &dyn Notes,
 ) -> Result<OutState, CliError> {
     let (state, replacing) = out_state(dir, id, force)?;
     if replacing {
-        note!(
+        notes.note(&format!(
             "note: {}: {} will be replaced",
             spelling.force,
             dir.display()
-        );
+        ));
     }
     Ok(state)
 }
@@ -579,6 +585,7 @@ pub fn num(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::files::notes::{NoNotes, NoteList};
 
     /// A directory holding a finished run whose resolved config is `config`.
     fn finished_run(config: &str) -> tempfile::TempDir {
@@ -595,7 +602,7 @@ mod tests {
     #[test]
     fn another_runs_output_is_refused_with_its_path_as_would_replace() {
         let run = finished_run("a = 1\n");
-        match check_out(run.path(), &identity("a = 2\n"), false) {
+        match check_out(run.path(), &identity("a = 2\n"), false, &NoNotes) {
             Err(CliError::Output(OutputError::WouldReplace { dir, model: None })) => {
                 assert_eq!(dir, run.path());
             }
@@ -603,12 +610,32 @@ mod tests {
         }
     }
 
+    /// Issue #56 item 2: that `--force` replaces an earlier output is a note handed to the
+    /// caller (the CLI prints it, Python warns), in the front's spelling; nothing is printed.
+    #[test]
+    fn force_replacing_an_output_is_a_note_to_the_caller() {
+        let run = finished_run("a = 1\n");
+        let notes = NoteList::default();
+        let state = check_out_as(run.path(), &identity("a = 2\n"), true, &PYTHON, &notes);
+        assert!(matches!(state, Ok(OutState::Fresh)), "{state:?}");
+        assert_eq!(
+            notes.take(),
+            [format!(
+                "note: {}: {} will be replaced",
+                PYTHON.force,
+                run.path().display()
+            )]
+        );
+        let same = check_out_as(run.path(), &identity("a = 1\n"), false, &PYTHON, &notes);
+        assert!(same.is_ok() && notes.take().is_empty());
+    }
+
     #[test]
     fn a_file_of_the_users_is_refused_as_not_ours_even_with_force() {
         let run = finished_run("a = 1\n");
         let notes = run.path().join("notes.txt");
         std::fs::write(&notes, "mine").unwrap();
-        match check_out(run.path(), &identity("a = 2\n"), true) {
+        match check_out(run.path(), &identity("a = 2\n"), true, &NoNotes) {
             Err(CliError::Output(OutputError::NotOurs { dir, files })) => {
                 assert_eq!((dir.as_path(), files), (run.path(), vec![notes]));
             }

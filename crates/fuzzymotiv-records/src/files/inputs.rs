@@ -10,7 +10,6 @@ use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 
 use crate::files::bounded::{InputKind, read_input};
 use crate::files::error::CliError;
-use crate::note;
 
 /// A config file, read whole (at most [`crate::files::bounded::TEXT_LIMIT`] bytes).
 pub const CONFIG: InputKind = InputKind::text("config file");
@@ -56,6 +55,9 @@ pub struct Loaded {
     pub raw: RawConfig,
     /// The validated experiment.
     pub experiment: Experiment,
+    /// What the front should tell its user (e.g. that the motivations were normalised): the
+    /// library's [`Setup::notes`], shown by each front its own way.
+    pub notes: Vec<String>,
 }
 
 /// Room files of a config: paths relative to the config file's folder, recorded absolute.
@@ -98,20 +100,13 @@ impl RoomFiles for RoomDir<'_> {
 }
 
 /// Loads rooms named in `raw.rooms` (built-in names, or room files relative to `base_dir`) and
-/// validates the config: the library's [`Setup::resolve`], its notes said once per process.
+/// validates the config: the library's [`Setup::resolve`], its notes in [`Loaded::notes`].
 pub fn resolve(raw: RawConfig, base_dir: &Path, source: &str) -> Result<Loaded, CliError> {
-    static SAID: std::sync::Once = std::sync::Once::new();
     let setup = Setup::resolve(raw, source, &RoomDir(base_dir))?;
-    if !setup.notes.is_empty() {
-        SAID.call_once(|| {
-            for line in &setup.notes {
-                note!("note: {line}");
-            }
-        });
-    }
     Ok(Loaded {
         raw: setup.raw,
         experiment: setup.experiment,
+        notes: setup.notes,
     })
 }
 

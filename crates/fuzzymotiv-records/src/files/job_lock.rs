@@ -3,11 +3,11 @@
 //! two executors, or a resubmitted task beside a dying one — never run or write the same job.
 //!
 //! The rule, for the CLI's `sweep` and Python's `run_job` alike: a worker that finds the lock
-//! held **waits** for it (saying so on stderr), then looks again — the job is skipped if the
-//! holder finished it, resumed from its checkpoint if the holder died. The operating system
-//! drops the lock of a process that dies, however it dies, so a killed worker never leaves a
-//! job locked. [`JobLock::try_acquire`] is the variant that returns at once instead of
-//! waiting.
+//! held **waits** for it (saying so in a note to the caller's [`Notes`]), then looks again —
+//! the job is skipped if the holder finished it, resumed from its checkpoint if the holder
+//! died. The operating system drops the lock of a process that dies, however it dies, so a
+//! killed worker never leaves a job locked. [`JobLock::try_acquire`] is the variant that
+//! returns at once instead of waiting.
 //!
 //! Lock files stay after the job (removing one while another process waits on it would let a
 //! third lock a new file of the same name); they are fuzzymotiv's own files
@@ -17,7 +17,7 @@ use std::fs::{File, OpenOptions, TryLockError};
 use std::path::{Path, PathBuf};
 
 use crate::files::error::CliError;
-use crate::note;
+use crate::files::notes::Notes;
 
 /// A held job lock; dropping it (or the process ending) releases it.
 #[derive(Debug)]
@@ -60,16 +60,16 @@ fn open(path: &Path) -> Result<File, CliError> {
 
 impl JobLock {
     /// Takes the lock of job `id` under `jobs_dir`, waiting while another process holds it
-    /// (after a note naming the job and the lock file).
-    pub fn acquire(jobs_dir: &Path, id: &str) -> Result<JobLock, CliError> {
+    /// (after a note to `notes` naming the job and the lock file).
+    pub fn acquire(jobs_dir: &Path, id: &str, notes: &dyn Notes) -> Result<JobLock, CliError> {
         if let Some(lock) = Self::try_acquire(jobs_dir, id)? {
             return Ok(lock);
         }
         let path = lock_path(jobs_dir, id);
-        note!(
+        notes.note(&format!(
             "job {id}: another worker is running it (it holds {}); waiting for it to finish or die",
             path.display()
-        );
+        ));
         let file = open(&path)?;
         file.lock().map_err(|e| io_err(&path, e))?;
         Ok(JobLock { _file: file })

@@ -188,31 +188,65 @@ fn walk<const AVX2: bool, O: StepObserver>(
                 s[l] = (2.0 * m[l] - 1.0) * v_max * f[l];
             }
         }
-        let mut noisy_sensors = [[0.0; INPUTS]; LANES];
-        for (l, sensors) in noisy_sensors.iter_mut().enumerate() {
-            for k in 0..INPUTS {
-                sensors[k] = raw[k][l];
-            }
-        }
+        let step = LaneStep {
+            sights: &sights,
+            ahead: &ahead,
+            raw: &raw,
+            motors: &motors,
+            speeds: &speeds,
+        };
+        next = lanes.act(arena, trials, next, &step);
+    }
+}
+
+/// What the lanes computed for one step, side by side: each lane's sight and the cell ahead of
+/// it, the noisy readings (`raw[k][l]`: sensor `k` of lane `l`), the networks' outputs and
+/// the noisy wheel speeds.
+struct LaneStep<'a> {
+    sights: &'a [Sight; LANES],
+    ahead: &'a [usize; LANES],
+    raw: &'a [[f64; LANES]; INPUTS],
+    motors: &'a [[f64; LANES]; OUTPUTS],
+    speeds: &'a [[f64; LANES]; 2],
+}
+
+impl Lanes {
+    /// The end of a step of [`walk`]: each lane that runs a trial acts on `step` and reports
+    /// its step; a lane whose trial ends reports its idle steps and takes the next trial from
+    /// `next` on. Returns the next trial not yet taken.
+    #[inline(always)]
+    fn act<O: StepObserver>(
+        &mut self,
+        arena: &Arena,
+        trials: &mut [LaneTrial<'_, O>],
+        mut next: usize,
+        step: &LaneStep<'_>,
+    ) -> usize {
+        let params = arena.params();
         for l in 0..LANES {
-            let Some(j) = lanes.trial[l] else { continue };
-            let sensed = Sensed::straight(noisy_sensors[l], sights[l].blocked);
-            let m = [motors[0][l], motors[1][l]];
-            let noisy = [speeds[0][l], speeds[1][l]];
-            let t = lanes.t[l];
-            let how = (None, Some(ahead[l]));
-            let (step, home) = lanes.walk[l].act_noisy(t, arena, &sensed, m, noisy, how);
+            let Some(j) = self.trial[l] else { continue };
+            let mut noisy_sensors = [0.0; INPUTS];
+            for (k, s) in noisy_sensors.iter_mut().enumerate() {
+                *s = step.raw[k][l];
+            }
+            let sensed = Sensed::straight(noisy_sensors, step.sights[l].blocked);
+            let m = [step.motors[0][l], step.motors[1][l]];
+            let noisy = [step.speeds[0][l], step.speeds[1][l]];
+            let t = self.t[l];
+            let how = (None, Some(step.ahead[l]));
+            let (taken, home) = self.walk[l].act_noisy(t, arena, &sensed, m, noisy, how);
             let trial = &mut trials[j];
-            trial.observer.observe(&step);
-            lanes.t[l] = t + 1;
+            trial.observer.observe(&taken);
+            self.t[l] = t + 1;
             if t + 1 == params.steps || (params.end_at_home && home) || trial.observer.finished() {
                 for t in t + 1..params.steps {
-                    trial.observer.observe(&lanes.walk[l].idle(t, INPUTS));
+                    trial.observer.observe(&self.walk[l].idle(t, INPUTS));
                 }
-                trial.last = lanes.walk[l].pose();
-                next = lanes.load(l, next, arena, trials);
+                trial.last = self.walk[l].pose();
+                next = self.load(l, next, arena, trials);
             }
         }
+        next
     }
 }
 

@@ -43,6 +43,6 @@ pub fn ablation(options: &ReproduceOptions, front: Front<'_>) -> Result<String, 
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;
-    commit(staged, start)?;
+    commit(staged, start, front.progress)?;
     Ok(md + "\n")
 }

@@ -72,7 +72,7 @@ pub fn combination(options: &ReproduceOptions, front: Front<'_>) -> Result<Strin
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;
-    commit(staged, start)?;
+    commit(staged, start, front.progress)?;
     Ok(md + "\n")
 }
 

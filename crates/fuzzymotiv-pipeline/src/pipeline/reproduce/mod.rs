@@ -23,6 +23,7 @@ use std::path::PathBuf;
 use fuzzymotiv::experiment::Experiment;
 
 use crate::files::error::CliError;
+use crate::files::notes::Notes;
 use crate::pipeline::lanes::set_threads;
 use crate::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
 use crate::render::figures::Rasterise;
@@ -122,8 +123,10 @@ impl ReproduceOptions {
 /// Progress of a study's runs: [`begin`](ReproduceProgress::begin) once with how many runs will
 /// evolve, a view per run while it evolves ([`run`](ReproduceProgress::run); runs go on side by side,
 /// so it is shared between threads), [`end`](ReproduceProgress::end) when the last is done. The
-/// orientation study, a sweep, reports its jobs through [`jobs`](ReproduceProgress::jobs).
-pub trait ReproduceProgress: Sync {
+/// orientation study, a sweep, reports its jobs through [`jobs`](ReproduceProgress::jobs). The
+/// study's notes (where it was written, that it resumes, its configs' notes) go to its
+/// [`Notes`].
+pub trait ReproduceProgress: Notes {
     /// `runs` runs of experiments like `exp` are about to evolve (some may be read back).
     fn begin(&self, exp: &Experiment, runs: usize);
     /// The progress of the run named `name` (e.g. `high-curiosity seed #03`), for as long as
@@ -157,8 +160,8 @@ pub struct Front<'a> {
 }
 
 /// Runs the study of `options` into `options.out` and returns the text to show (its tables,
-/// and the paper's claims one a line; empty when `out` already held it or for the orientation
-/// study, whose merge shows its own). An unfinished study of the same configs resumes; another
+/// and the paper's claims one a line; the orientation study's merged table; empty when `out`
+/// already held it), its notes said to `front.progress`. An unfinished study of the same configs resumes; another
 /// study in `out` is replaced only with `force`; bad options are refused before anything is
 /// written.
 pub fn reproduce(options: &ReproduceOptions, front: Front<'_>) -> Result<String, CliError> {

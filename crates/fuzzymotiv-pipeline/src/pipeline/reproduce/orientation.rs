@@ -5,7 +5,6 @@ use std::path::Path;
 use std::time::Instant;
 
 use crate::files::error::CliError;
-use crate::note;
 use crate::pipeline::sweep_jobs::run_jobs;
 use crate::pipeline::sweep_merge::merge_dir;
 use crate::pipeline::sweep_plan::Sweep;
@@ -17,7 +16,8 @@ use super::{Front, ReproduceOptions};
 const ORIENTATION_STUDY: &str = include_str!("../../../../../configs/orientation-study.toml");
 
 /// Does rewarding orientation (online recognition in the fitness) raise recognition, and at
-/// what cost? The sweep's jobs into `options.out`, then its merge (which shows its table).
+/// what cost? The sweep's jobs into `options.out`, then its merge, whose table is the text
+/// returned to show.
 pub fn orientation(options: &ReproduceOptions, front: Front<'_>) -> Result<String, CliError> {
     let start = Instant::now();
     let out = &options.out;
@@ -35,12 +35,16 @@ pub fn orientation(options: &ReproduceOptions, front: Front<'_>) -> Result<Strin
     fuzzymotiv::experiment::apply_sets(&mut table, &sets)?;
     let text = toml::to_string(&table).expect("a table serialises");
     let sweep = Sweep::parse_str(&text, "built-in orientation study", Path::new("."))?;
+    let notes = front.progress;
+    for line in &sweep.notes {
+        notes.note(&format!("note: {line}"));
+    }
     let all: Vec<usize> = (0..sweep.jobs.len()).collect();
-    note!(
+    notes.note(&format!(
         "orientation study: {} jobs into {}",
         all.len(),
         out.display()
-    );
+    ));
     run_jobs(
         &sweep,
         &text,
@@ -49,13 +53,13 @@ pub fn orientation(options: &ReproduceOptions, front: Front<'_>) -> Result<Strin
         options.force,
         &*front.progress.jobs(),
     )?;
-    merge_dir(out)?;
+    let merged = merge_dir(out, notes)?;
     if let Some(png) = front.png {
-        add_pngs(out, png)?;
+        add_pngs(out, png, notes)?;
     }
-    note!(
+    notes.note(&format!(
         "orientation study done in {:.1} s",
         start.elapsed().as_secs_f64()
-    );
-    Ok(String::new())
+    ));
+    Ok(merged.markdown)
 }

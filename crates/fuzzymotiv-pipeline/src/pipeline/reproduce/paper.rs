@@ -35,7 +35,7 @@ pub fn paper(options: &ReproduceOptions, front: Front<'_>) -> Result<String, Cli
         &studies,
         start,
     )?;
-    commit(staged, start)?;
+    commit(staged, start, front.progress)?;
     Ok(written.tables + &claim_lines(&written.claims))
 }
 

@@ -50,7 +50,7 @@ pub fn replication(options: &ReproduceOptions, front: Front<'_>) -> Result<Strin
         options.quick,
     );
     let md = write_replication(options, front, &staged, bases, &names, &prov, start)?;
-    commit(staged, start)?;
+    commit(staged, start, front.progress)?;
     Ok(md + "\n")
 }
 

@@ -11,7 +11,7 @@ use fuzzymotiv::random::Streams;
 use crate::files::error::CliError;
 use crate::files::guard::{IDENTITY, OutState, StagedDir, check_out, matches};
 use crate::files::inputs::{Loaded, resolve, resolved_toml};
-use crate::note;
+use crate::files::notes::Notes;
 use crate::pipeline::lanes::run_concurrently;
 use crate::pipeline::run_dir::{execute_or_resume, start_line};
 use crate::records::context::RenderContext;
@@ -60,7 +60,11 @@ fn load_one(
         raw.rooms.push(file);
     }
     let experiment = fuzzymotiv::experiment::Experiment::new(&raw, rooms, &source)?;
-    Ok(Loaded { raw, experiment })
+    Ok(Loaded {
+        raw,
+        experiment,
+        notes: Vec::new(),
+    })
 }
 
 /// The built-in rooms of `setting` that its config's `rooms` name (by the file's path, its
@@ -224,22 +228,37 @@ pub fn variant_summary(variant: &Variant, claims: &[ClaimRecord]) -> VariantSumm
     }
 }
 
-/// Renames the staged output into place and says where it went and how long it took.
-pub fn commit(staged: StagedDir, start: Instant) -> Result<(), CliError> {
+/// Renames the staged output into place and says to `notes` where it went and how long it
+/// took.
+pub fn commit(staged: StagedDir, start: Instant, notes: &dyn Notes) -> Result<(), CliError> {
     let out = staged.commit()?;
-    note!(
+    notes.note(&format!(
         "wrote {} ({:.1} s)",
         out.display(),
         start.elapsed().as_secs_f64()
-    );
+    ));
     Ok(())
 }
 
-/// The PNGs a finished output lacks, and nothing else; says how many.
-pub fn add_pngs(dir: &Path, png: &dyn Rasterise) -> Result<(), CliError> {
+/// The PNGs a finished output lacks, and nothing else; says to `notes` how many.
+pub fn add_pngs(dir: &Path, png: &dyn Rasterise, notes: &dyn Notes) -> Result<(), CliError> {
     let n = add_missing_pngs(dir, png)?;
-    note!("--png: {n} PNG figure(s) added to {}", dir.display());
+    notes.note(&format!(
+        "--png: {n} PNG figure(s) added to {}",
+        dir.display()
+    ));
     Ok(())
+}
+
+/// The notes of the study's configs (e.g. that `--set` motivations were normalised), said to
+/// `notes` once: those of the first config that has any (the others say the same of theirs).
+fn config_notes(variants: &[(&str, &Vec<Vec<Loaded>>)], notes: &dyn Notes) {
+    let first = (variants.iter())
+        .flat_map(|(_, loaded)| loaded.iter().flatten())
+        .find(|l| !l.notes.is_empty());
+    for line in first.into_iter().flat_map(|l| &l.notes) {
+        notes.note(&format!("note: {line}"));
+    }
 }
 
 /// Every run of a study by its path in the output, with its resolved config.
@@ -303,6 +322,7 @@ pub fn open_out(
     variants: &[(&str, &Vec<Vec<Loaded>>)],
 ) -> Result<Option<StagedDir>, CliError> {
     let out = options.out.as_path();
+    config_notes(variants, front.progress);
     let runs = run_configs(settings, variants);
     let id = identity(options, &runs);
     // A study written before identity.json existed is recognised by its runs' configs.
@@ -313,24 +333,24 @@ pub fn open_out(
     let state = if legacy {
         OutState::Done
     } else {
-        check_out(out, &id, options.force)?
+        check_out(out, &id, options.force, front.progress)?
     };
     match state {
         OutState::Done => {
-            note!(
+            front.progress.note(&format!(
                 "{} already holds this study, finished (same resolved configs); nothing to do. --force runs it again",
                 out.display()
-            );
+            ));
             if let Some(png) = front.png {
-                add_pngs(out, png)?;
+                add_pngs(out, png, front.progress)?;
             }
             Ok(None)
         }
         OutState::Unfinished => {
-            note!(
+            front.progress.note(&format!(
                 "resuming the unfinished study in {}: finished runs are read back, the others continue",
                 StagedDir::staging_path(out).display()
-            );
+            ));
             Ok(Some(StagedDir::reopen(out)?))
         }
         OutState::Fresh => {

@@ -50,6 +50,6 @@ pub fn search_strength(options: &ReproduceOptions, front: Front<'_>) -> Result<S
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;
-    commit(staged, start)?;
+    commit(staged, start, front.progress)?;
     Ok(md + "\n")
 }

@@ -71,7 +71,7 @@ pub fn urgency(options: &ReproduceOptions, front: Front<'_>) -> Result<String, C
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     staged.write("summary.json", to_json(&summary))?;
-    commit(staged, start)?;
+    commit(staged, start, front.progress)?;
     Ok(md + "\n")
 }
 

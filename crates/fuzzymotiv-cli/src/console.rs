@@ -6,12 +6,16 @@
 //! (a full disk) is an error naming standard output. A closed standard error only drops notes
 //! and progress lines: the command goes on.
 //!
-//! [`CliError::ClosedStdout`]: crate::files::error::CliError::ClosedStdout
+//! The libraries print nothing: their notes come back as data or through a [`Notes`], and
+//! [`Stderr`] is the command line's (each note a line on stderr, as given).
+//!
+//! [`CliError::ClosedStdout`]: fuzzymotiv_pipeline::files::error::CliError::ClosedStdout
 
 use std::fmt::Arguments;
 use std::io::Write;
 
-use crate::files::error::CliError;
+use fuzzymotiv_pipeline::files::error::CliError;
+use fuzzymotiv_pipeline::files::notes::Notes;
 
 /// Writes to standard output; a failure becomes a [`CliError`] (see the module docs).
 pub fn write_out(args: Arguments<'_>) -> Result<(), CliError> {
@@ -44,21 +48,38 @@ pub fn stdout_error(e: std::io::Error) -> CliError {
     }
 }
 
+/// The command line's [`Notes`]: each note a line on stderr, as given.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Stderr;
+
+impl Notes for Stderr {
+    fn note(&self, line: &str) {
+        write_err(format_args!("{line}\n"));
+    }
+}
+
+/// A loaded config's notes (the library's, e.g. that its motivations were normalised), each
+/// on stderr after `note: `.
+pub fn config_notes(notes: &[String]) {
+    for line in notes {
+        write_err(format_args!("note: {line}\n"));
+    }
+}
+
 /// `print!` that returns an error instead of panicking: `out!("{x}")?`.
-#[macro_export]
 macro_rules! out {
-    ($($arg:tt)*) => { $crate::files::console::write_out(format_args!($($arg)*)) };
+    ($($arg:tt)*) => { $crate::console::write_out(format_args!($($arg)*)) };
 }
 
 /// `println!` that returns an error instead of panicking: `outln!("{x}")?`.
-#[macro_export]
 macro_rules! outln {
-    () => { $crate::files::console::write_out(format_args!("\n")) };
-    ($($arg:tt)*) => { $crate::files::console::write_out(format_args!("{}\n", format_args!($($arg)*))) };
+    () => { $crate::console::write_out(format_args!("\n")) };
+    ($($arg:tt)*) => { $crate::console::write_out(format_args!("{}\n", format_args!($($arg)*))) };
 }
 
 /// `eprintln!` that never panics: a closed or full stderr drops the line.
-#[macro_export]
 macro_rules! note {
-    ($($arg:tt)*) => { $crate::files::console::write_err(format_args!("{}\n", format_args!($($arg)*))) };
+    ($($arg:tt)*) => { $crate::console::write_err(format_args!("{}\n", format_args!($($arg)*))) };
 }
+
+pub(crate) use {note, out, outln};
