@@ -2,7 +2,7 @@
 //! hypotheses read and `[study] measures` names, per room and over the rooms (their mean), and
 //! the first and last generation's mean F. Most measures are columns of the run's records
 //! (`summary.json`'s rooms); the end spread and the time to the goal are not, and are computed
-//! from the run read back ([`read_back_values`]): its final population evaluated again and its
+//! from the run read back (`read_back_values`): its final population evaluated again and its
 //! test runs run again, which gives the bits it had when it ran, so no run directory writes
 //! more for them.
 
