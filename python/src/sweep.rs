@@ -22,9 +22,14 @@ use crate::{config_err, py_err, warn_notes};
 #[derive(Default)]
 struct Noted(NoteList);
 
+/// A note is shown at once, as a Python warning (re-taking the GIL the job's thread let go
+/// of): a worker waiting for another's lock says so while it waits, as the CLI does. A
+/// warning that cannot be shown now (an error filter) is kept and raised when the job returns.
 impl Notes for Noted {
     fn note(&self, line: &str) {
-        self.0.note(line);
+        if warn_notes(&[line.to_string()]).is_err() {
+            self.0.note(line);
+        }
     }
 }
 
