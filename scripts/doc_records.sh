@@ -17,6 +17,7 @@
 #   combination-base-11=results-combination-base-11 (fuzzymotiv reproduce --combination --seed 11 --out results-combination-base-11)
 #   paper-study=out/paper-study                (fuzzymotiv study studies/paper.toml --out out/paper-study)
 #   combination-study=out/combination-study    (fuzzymotiv study studies/combination.toml --out out/combination-study)
+#   orientation-study=out/orientation-study    (fuzzymotiv study studies/orientation.toml --out out/orientation-study)
 #   urgency=results-urgency                   (fuzzymotiv reproduce --urgency)
 #   maps/o-fixed=out/maps/o-fixed   (fuzzymotiv sweep configs/motivation-map.toml … + merge)
 #   maps/o-free=out/maps/o-free     (fuzzymotiv sweep configs/motivation-map-o-free.toml … + merge)
@@ -81,14 +82,18 @@ files_of() { # KIND DIR
             done ;;
         urgency)
             echo urgency.csv urgency_seeds.csv summary.json ;;
-        paper-study | combination-study)
+        paper-study)
             echo per_seed.csv claims.csv rooms.csv study.json ;;
+        combination-study)
+            echo per_seed.csv claims.csv rooms.csv study.json arms.csv ;;
+        orientation-study)
+            echo per_seed.csv study.json arms.csv ;;
         combination | combination-base-11)
             echo behaviour.csv claim_differences.csv summary.json
             for c in default weighted-sum weighted-squares; do
                 echo "$c/claims.csv $c/table1.csv $c/table2.csv"
             done ;;
-        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, twenty-seed-base-11, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, combination-base-11, urgency, paper-study, combination-study" ;;
+        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, twenty-seed-base-11, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, combination-base-11, urgency, paper-study, combination-study, orientation-study" ;;
     esac
 }
 
