@@ -940,7 +940,6 @@ fn combination_arm(combination: &str) -> &'static str {
 /// base seeds: the study's per-seed values give reproduce's every number resampled as reproduce
 /// resamples, and its own effect and detectable difference are reproduce's.
 #[test]
-#[ignore = "combination-study/ still holds the twelve comparisons of the file's first version: run `fuzzymotiv study studies/combination.toml`, copy it with scripts/doc_records.sh, then drop this"]
 fn the_combination_study_files_behaviour_and_claim_differences_are_reproduces_at_both_base_seeds() {
     let dir = results().join("combination-study");
     let claims = rows(&dir.join("claims.csv"));
