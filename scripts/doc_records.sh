@@ -20,6 +20,7 @@
 #   search-strength-study=out/search-strength  (fuzzymotiv study studies/search-strength.toml --out out/search-strength)
 #   ablation-study=out/ablation                (fuzzymotiv study studies/ablation.toml --out out/ablation)
 #   urgency-study=out/urgency                  (fuzzymotiv study studies/urgency.toml --out out/urgency)
+#   orientation-study=out/orientation-study    (fuzzymotiv study studies/orientation.toml --out out/orientation-study)
 #   urgency=results-urgency                   (fuzzymotiv reproduce --urgency)
 #   maps/o-fixed=out/maps/o-fixed   (fuzzymotiv sweep configs/motivation-map.toml … + merge)
 #   maps/o-free=out/maps/o-free     (fuzzymotiv sweep configs/motivation-map-o-free.toml … + merge)
@@ -84,14 +85,19 @@ files_of() { # KIND DIR
             done ;;
         urgency)
             echo urgency.csv urgency_seeds.csv summary.json ;;
-        paper-study | combination-study | search-strength-study | ablation-study | urgency-study)
-            echo per_seed.csv claims.csv rooms.csv study.json ;;
+        *-study)
+            # Every study file writes per_seed.csv, study.json and arms.csv; claims.csv and
+            # rooms.csv when it has hypotheses, agreement.csv when it has several base seeds.
+            echo per_seed.csv study.json arms.csv
+            for f in claims.csv rooms.csv agreement.csv; do
+                [[ ! -s $dir/$f ]] || echo "$f"
+            done ;;
         combination | combination-base-11)
             echo behaviour.csv claim_differences.csv summary.json
             for c in default weighted-sum weighted-squares; do
                 echo "$c/claims.csv $c/table1.csv $c/table2.csv"
             done ;;
-        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, twenty-seed-base-11, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, combination-base-11, urgency, paper-study, combination-study, search-strength-study, ablation-study, urgency-study" ;;
+        *) die "unknown record folder \`$kind\`; the folders are five-seed, ten-seed, twenty-seed, twenty-seed-base-11, search-strength, ablation, orientation, maps/o-fixed, maps/o-free, replication, combination, combination-base-11, urgency, any NAME-study (a study file's out folder)" ;;
     esac
 }
 

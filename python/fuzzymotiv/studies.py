@@ -2,8 +2,9 @@
 
 A study file (arms, paired seeds, typed hypotheses: docs/guide/studies.md) is checked, run and
 analysed by the library's study pipeline, the code ``fuzzymotiv study`` runs, so the records a
-study writes from Python (``per_seed.csv``, ``claims.csv``, ``rooms.csv``, ``study.json``,
-``report.md``, ``forest.svg``) are the command line's, byte for byte. Ctrl-C (or an error in
+study writes from Python (``per_seed.csv``, ``arms.csv``, ``study.json``, ``report.md``; with
+hypotheses ``claims.csv``, ``rooms.csv``, ``forest.svg``; with several base seeds
+``agreement.csv``) are the command line's, byte for byte. Ctrl-C (or an error in
 the progress callback) stops the runs at their next generation; the same call again resumes
 them from their checkpoints and writes the analysis of an uninterrupted study.
 """
@@ -38,7 +39,12 @@ class StudyResult:
             DataFrame); None until every run is finished (other shards).
         per_seed: ``per_seed.csv`` (every run's value of every measure), the same way.
         rooms: ``rooms.csv`` (each hypothesis per room), the same way.
-        report: the path of ``report.md``; ``forest``: of ``forest.svg`` (None until analysed).
+        arms: ``arms.csv`` (each arm's seeds, mean and sd of every measure per scope and room).
+        agreement: ``agreement.csv`` (each hypothesis on each base seed's first n seeds beside
+            its pooled verdict); an empty table with one base seed.
+        A study without hypotheses has empty ``claims`` and ``rooms`` tables.
+        report: the path of ``report.md``; ``forest``: of ``forest.svg`` (None until analysed,
+            or without hypotheses).
     """
 
     out: Path
@@ -47,13 +53,15 @@ class StudyResult:
     claims: Optional[Table]
     per_seed: Optional[Table]
     rooms: Optional[Table]
+    arms: Optional[Table]
+    agreement: Optional[Table]
     report: Optional[Path]
     forest: Optional[Path]
 
     @property
     def analysed(self) -> bool:
         """Whether every run is finished and the analysis written."""
-        return self.claims is not None
+        return self.per_seed is not None
 
     def __repr__(self) -> str:
         state = "analysed" if self.analysed else "waiting for the other shards"
@@ -124,7 +132,11 @@ def study(
         _shard_arg(shard),
         progress,
     )
-    table = (lambda name: read_table(directory / name)) if analysed else (lambda name: None)
+    def table(name: str) -> Optional[Table]:
+        if not analysed:
+            return None
+        return read_table(directory / name) if (directory / name).is_file() else Table()
+
     return StudyResult(
         out=directory,
         done=done,
@@ -132,6 +144,8 @@ def study(
         claims=table("claims.csv"),
         per_seed=table("per_seed.csv"),
         rooms=table("rooms.csv"),
+        arms=table("arms.csv"),
+        agreement=table("agreement.csv"),
         report=directory / "report.md" if analysed else None,
-        forest=directory / "forest.svg" if analysed else None,
+        forest=directory / "forest.svg" if analysed and (directory / "forest.svg").is_file() else None,
     )

@@ -16,7 +16,7 @@ from conftest import REPO, run_cli
 
 # The records of the analysis; report.md quotes the study document as given (a file's text, or
 # the TOML a dict is written as), so it is compared only between a file and the command line.
-RECORDS = ["per_seed.csv", "claims.csv", "rooms.csv", "study.json", "forest.svg"]
+RECORDS = ["per_seed.csv", "claims.csv", "rooms.csv", "arms.csv", "study.json", "forest.svg"]
 
 
 def study_dict(config=str(REPO / "configs" / "fetch.toml")):
@@ -126,6 +126,9 @@ def test_a_study_runs_from_python_with_the_command_lines_records(by_cli, tmp_pat
     assert set(res.claims["verdict"]) <= {"supported", "contradicted", "not significant", "inconclusive"}
     assert res.per_seed.rows > 0 and set(res.per_seed["arm"]) == {"urgency-0.1", "urgency-0.3", "urgency-0.5"}
     assert res.report == res.out / "report.md" and res.forest.read_text().startswith("<svg")
+    # Each arm's measures; one base seed: no agreement to report.
+    assert set(res.arms["arm"]) == set(res.per_seed["arm"]) and set(res.arms["scope"]) == {"pooled"}
+    assert res.agreement is not None and res.agreement.rows == 0
     # A dict of the same document: the same records.
     from_dict = fm.study(study_dict(), out=tmp_path / "dict", threads=1)
     same_bytes(from_dict.out, cli_out, RECORDS)

@@ -226,7 +226,7 @@ fn check_verdicts(root: &Path) -> usize {
 /// `file` is: its declared analysis and typed hypotheses.
 fn declared(file: &Path) -> Option<serde_json::Value> {
     let name = file.file_name()?.to_str()?;
-    if name != "claims.csv" && name != "rooms.csv" {
+    if !["claims.csv", "rooms.csv", "agreement.csv"].contains(&name) {
         return None;
     }
     let text = std::fs::read_to_string(file.parent()?.join("study.json")).ok()?;
@@ -253,8 +253,9 @@ fn margin(h: &serde_json::Value, effect: f64) -> f64 {
     }
 }
 
-/// A study's claims.csv (or rooms.csv) by the analysis its study.json declares: each group of
-/// tests (a scope's hypotheses; a hypothesis's rooms in a scope) has its p Holm-adjusted when
+/// A study's claims.csv (or rooms.csv, agreement.csv) by the analysis its study.json declares:
+/// each group of tests (a scope's hypotheses; a hypothesis's rooms in a scope; the hypotheses on
+/// a base seed's first n seeds) has its p Holm-adjusted when
 /// Holm is declared over it (recomputed), and each verdict follows from the margin, the
 /// adjusted p and the detectable difference by the declared α and rule.
 fn check_study_file(file: &Path, study: &serde_json::Value) -> usize {
@@ -268,24 +269,22 @@ fn check_study_file(file: &Path, study: &serde_json::Value) -> usize {
             .unwrap_or_else(|| panic!("{}: no hypothesis {id}", file.display()))
     };
     let all = rows(file);
-    let mut groups: Vec<(String, String)> = Vec::new();
+    let agreement = file.file_name().is_some_and(|n| n == "agreement.csv");
+    let group_of = |r: &Row| -> String {
+        match (rooms, agreement) {
+            (true, _) => format!("{} {}", r["scope"], r["id"]),
+            (_, true) => format!("first {} seeds of base={}", r["seeds"], r["base_seed"]),
+            _ => r["scope"].clone(),
+        }
+    };
+    let mut groups: Vec<String> = Vec::new();
     for r in &all {
-        let key = (
-            r["scope"].clone(),
-            if rooms {
-                r["id"].clone()
-            } else {
-                String::new()
-            },
-        );
-        if !groups.contains(&key) {
-            groups.push(key);
+        if !groups.contains(&group_of(r)) {
+            groups.push(group_of(r));
         }
     }
-    for (scope, id) in &groups {
-        let group: Vec<&Row> = (all.iter())
-            .filter(|r| &r["scope"] == scope && (!rooms || &r["id"] == id))
-            .collect();
+    for scope in &groups {
+        let group: Vec<&Row> = all.iter().filter(|r| &group_of(r) == scope).collect();
         let p: Vec<f64> = group.iter().map(|r| number(r, "p").unwrap()).collect();
         let adjusted = if holm {
             fuzzymotiv::statistics::holm(&p)
@@ -903,14 +902,21 @@ fn the_paper_study_files_agreement_is_the_committed_replications_at_every_seed_c
 }
 
 /// The committed studies of one's own (`docs/results/*-study/`: paper, combination, search
-/// strength, ablation, urgency), each with its hypotheses' results per base seed and pooled.
-const STUDY_FILES: [(&str, usize); 5] = [
+/// strength, ablation, urgency, orientation), each with its hypotheses' results per base seed
+/// and pooled (the orientation study has none: each arm's measures only).
+const STUDY_FILES: [(&str, usize); 6] = [
     ("paper-study", 8 * 3),
-    ("combination-study", 12 * 3),
-    ("search-strength-study", 17 * 3),
-    ("ablation-study", 20 * 3),
-    ("urgency-study", 10 * 3),
+    ("combination-study", 40 * 3 + AGREEMENT * 40),
+    ("search-strength-study", 17 * 3 + 9 * 2 * 17),
+    ("ablation-study", 20 * 3 + 4 * 2 * 20),
+    ("urgency-study", 15 * 3 + AGREEMENT * 15),
+    ("orientation-study", 0),
 ];
+
+/// agreement.csv's rows per hypothesis of a twenty-seed study at two base seeds: each base
+/// seed's first 2 to 20 seeds (the paper study's records leave agreement.csv out: verdicts.rs
+/// computes it from per_seed.csv).
+const AGREEMENT: usize = 19 * 2;
 
 /// Every committed study file's every claim (each base seed's and the pooled: effect, p,
 /// Holm's p, verdict) is recomputed from its own per_seed.csv by the analysis its study.json
@@ -922,7 +928,7 @@ fn every_committed_study_files_verdicts_are_recomputed_from_its_per_seed_csv() {
         assert_eq!(
             common::recompute::recompute_every_verdict(&dir),
             results_count,
-            "{study}: every hypothesis at each base seed and pooled"
+            "{study}: every hypothesis at each base seed and pooled, and by seed count"
         );
     }
     let committed = std::fs::read_dir(results()).unwrap();
@@ -1019,4 +1025,160 @@ fn the_urgency_study_files_missions_done_are_reproduces_success_at_base_seed_1()
             assert_eq!(number(row, column), Some(value), "{from} → {to}: {column}");
         }
     }
+}
+
+/// The per-seed values (the mean over the rooms) of `measure` in `arm` in `scope` of a study's
+/// per_seed.csv, in seed order.
+fn scope_values(per_seed: &[Row], scope: &str, arm: &str, measure: &str) -> Vec<f64> {
+    (per_seed.iter())
+        .filter(|r| format!("base={}", r["base_seed"]) == scope)
+        .filter(|r| r["arm"] == arm && r["measure"] == measure && r["room"].is_empty())
+        .map(|r| number(r, "value").unwrap())
+        .collect()
+}
+
+/// One of `reproduce --combination`'s paired comparisons (`theirs`, a row of behaviour.csv or
+/// claim_differences.csv) and the study's hypothesis on the same per-seed values `a` against
+/// `b` (`ours`, a row of claims.csv): the study's values give reproduce's every number and
+/// verdict when resampled as reproduce resamples (seed 0, two-sided); the study's effect and
+/// detectable difference are reproduce's; its interval, p and verdict are recomputed from the
+/// same values resampled by the scope's first seed, in the hypothesis's direction.
+fn assert_reproduces_comparison(ours: &Row, theirs: &Row, a: &[f64], b: &[f64], first_seed: u64) {
+    let at = format!(
+        "combination-study/claims.csv, {} ({})",
+        ours["id"], ours["scope"]
+    );
+    assert_eq!(a.len(), 20, "{at}: twenty seeds");
+    let reproduces = paired(a, b, &Settings::default()).unwrap();
+    for (column, value) in [
+        ("difference", reproduces.difference),
+        ("ci_low", reproduces.ci_low),
+        ("ci_high", reproduces.ci_high),
+        ("p", reproduces.p),
+        ("detectable", reproduces.mdd.unwrap()),
+    ] {
+        assert_eq!(
+            number(theirs, column),
+            Some(value),
+            "{at}: reproduce's {column}"
+        );
+    }
+    let two_sided = reproduces
+        .verdict_with_power(Expect::Higher)
+        .direction_label();
+    assert_eq!(theirs["verdict"], two_sided, "{at}: reproduce's verdict");
+    assert_eq!(
+        number(ours, "effect"),
+        number(theirs, "difference"),
+        "{at}: effect"
+    );
+    assert_eq!(
+        number(ours, "mdd"),
+        number(theirs, "detectable"),
+        "{at}: detectable"
+    );
+    let options = Settings {
+        alpha: ALPHA,
+        seed: first_seed,
+        ..Settings::default()
+    };
+    let c = paired(a, b, &options).unwrap();
+    for (column, value) in [
+        ("effect", c.difference),
+        ("ci_low", c.ci_low),
+        ("ci_high", c.ci_high),
+        ("p", c.p),
+        ("mdd", c.mdd.unwrap()),
+    ] {
+        assert_eq!(
+            number(ours, column),
+            Some(value),
+            "{at}: {column} recomputed"
+        );
+    }
+    let expect = match ours["expect"].as_str() {
+        "lower" => Expect::Lower,
+        _ => Expect::Higher,
+    };
+    let verdict = c.verdict_with_power(expect).label();
+    assert_eq!(
+        ours["verdict"], verdict,
+        "{at}: recomputed from per_seed.csv"
+    );
+}
+
+/// The study file's arm suffix of a combination of reproduce's.
+fn combination_arm(combination: &str) -> &'static str {
+    match combination {
+        "weighted-sum" => "sum",
+        "weighted-squares" => "squares",
+        other => panic!("combination {other}"),
+    }
+}
+
+/// The combination study file's behaviour comparisons (each baseline against the TSK per
+/// setting and measure) and claim differences (each claim's high − low under a baseline against
+/// the TSK's) are `reproduce --combination`'s behaviour.csv and claim_differences.csv at both
+/// base seeds: the study's per-seed values give reproduce's every number resampled as reproduce
+/// resamples, and its own effect and detectable difference are reproduce's.
+#[test]
+fn the_combination_study_files_behaviour_and_claim_differences_are_reproduces_at_both_base_seeds() {
+    let dir = results().join("combination-study");
+    let claims = rows(&dir.join("claims.csv"));
+    let per_seed = rows(&dir.join("per_seed.csv"));
+    let mut checked = 0;
+    for (scope, records) in [
+        ("base=1", "combination"),
+        ("base=11", "combination-base-11"),
+    ] {
+        let first_seed: u64 = (per_seed.iter())
+            .find(|r| format!("base={}", r["base_seed"]) == scope)
+            .unwrap()["seed"]
+            .parse()
+            .unwrap();
+        let ours = |id: &str| {
+            (claims.iter())
+                .find(|r| r["id"] == id && r["scope"] == scope)
+                .unwrap_or_else(|| panic!("combination-study/claims.csv: no {id} ({scope})"))
+        };
+        let values = |arm: &str, measure: &str| scope_values(&per_seed, scope, arm, measure);
+        for r in rows(&results().join(records).join("behaviour.csv")) {
+            let (name, measure) = match r["measure"].as_str() {
+                "% optimal exploration" => ("explores", "exploration_pct"),
+                "% homing" => ("homing", "homing_pct"),
+                "% battery usage" => ("battery", "battery_pct"),
+                "% recognition" => ("recognition", "recognition_pct"),
+                "% end spread" => ("spread", "end_spread_pct"),
+                other => panic!("{records}/behaviour.csv: measure {other}"),
+            };
+            let setting = r["setting"].strip_suffix("-curiosity").unwrap();
+            let base = combination_arm(&r["combination"]);
+            let id = format!("{name}-{setting}-{base}-vs-tsk");
+            let a = values(&format!("{setting}-{base}"), measure);
+            let b = values(&format!("{setting}-tsk"), measure);
+            assert_reproduces_comparison(ours(&id), &r, &a, &b, first_seed);
+            checked += 1;
+        }
+        for r in rows(&results().join(records).join("claim_differences.csv")) {
+            let (&(_, measure, _), name) = (CLAIMS.iter())
+                .zip(["explores", "battery", "recognition", "homing"])
+                .find(|((claim, _, _), _)| *claim == r["claim"])
+                .unwrap_or_else(|| panic!("{records}/claim_differences.csv: {}", r["claim"]));
+            let base = combination_arm(&r["combination"]);
+            let effect = |arm: &str| -> Vec<f64> {
+                let high = values(&format!("high-{arm}"), measure);
+                let low = values(&format!("low-{arm}"), measure);
+                high.iter().zip(&low).map(|(h, l)| h - l).collect()
+            };
+            let (a, b) = (effect(base), effect("tsk"));
+            let at = format!("{records}/claim_differences.csv, {name}-{base}");
+            let mean = fuzzymotiv::statistics::mean;
+            assert_eq!(number(&r, "effect_combination"), Some(mean(&a)), "{at}");
+            assert_eq!(number(&r, "effect_tsk"), Some(mean(&b)), "{at}");
+            let id = format!("{name}-{base}-vs-tsk");
+            assert_reproduces_comparison(ours(&id), &r, &a, &b, first_seed);
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 2 * (20 + 8), "every comparison at both base seeds");
 }

@@ -110,7 +110,19 @@ pub fn recompute_every_verdict(out: &Path) -> usize {
     let record: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("study.json")).unwrap()).unwrap();
     let per_seed = read_csv(&out.join("per_seed.csv"));
-    let claims = read_csv(&out.join("claims.csv"));
+    let hypotheses = record["hypotheses"].as_array().unwrap().len();
+    // A study without hypotheses writes no claims.csv; one with them always does.
+    let claims_csv = out.join("claims.csv");
+    assert_eq!(claims_csv.is_file(), hypotheses > 0, "{}", claims_csv.display());
+    let claims = if hypotheses > 0 {
+        read_csv(&claims_csv)
+    } else {
+        Rows::new()
+    };
+    let arms_csv = out.join("arms.csv");
+    if arms_csv.is_file() {
+        recompute_arm_measures(&per_seed, &read_csv(&arms_csv));
+    }
     let mut checked = recompute_verdicts(&record, &per_seed, &claims);
     let agreement = out.join("agreement.csv");
     let bases = record["base_seeds"].as_array().unwrap().len();
@@ -125,7 +137,6 @@ pub fn recompute_every_verdict(out: &Path) -> usize {
     }
     let mut rows = read_csv(&agreement);
     let seeds = record["seeds"].as_u64().unwrap() as usize;
-    let hypotheses = record["hypotheses"].as_array().unwrap().len();
     assert_eq!(rows.len(), (seeds - 1) * bases * hypotheses);
     for r in &mut rows {
         let pooled = (claims.iter())
@@ -152,6 +163,33 @@ pub fn recompute_every_verdict(out: &Path) -> usize {
         checked += recompute_verdicts(&record, &first, &judged);
     }
     checked
+}
+
+/// Every row of arms.csv (an arm's seeds, mean and sample sd of a measure in a room, or over
+/// the rooms, in a scope) recomputed from per_seed.csv; and every arm and measure of
+/// per_seed.csv has its rows.
+pub fn recompute_arm_measures(per_seed: &Rows, arms: &Rows) {
+    for row in arms {
+        let v: Vec<f64> = (per_seed.iter())
+            .filter(|r| r["arm"] == row["arm"] && r["measure"] == row["measure"])
+            .filter(|r| r["room"] == row["room"])
+            .filter(|r| row["scope"] == "pooled" || format!("base={}", r["base_seed"]) == row["scope"])
+            .map(|r| f(r, "value"))
+            .collect();
+        assert_eq!(row["seeds"], v.len().to_string(), "{row:?}");
+        assert_eq!(f(row, "mean"), statistics::mean(&v), "{row:?}: mean");
+        let sd = statistics::sample_sd(&v);
+        assert_eq!(row["sd"].parse().ok(), sd, "{row:?}: sd");
+    }
+    for r in per_seed {
+        assert!(
+            (arms.iter()).any(|a| a["scope"] == "pooled"
+                && a["arm"] == r["arm"]
+                && a["measure"] == r["measure"]
+                && a["room"] == r["room"]),
+            "arms.csv has no row of {r:?}"
+        );
+    }
 }
 
 /// Every claim of `claims` (rows with a scope) recomputed from `per_seed` by the analysis

@@ -1,7 +1,7 @@
 //! Running a study: its runs as a sweep's jobs into `OUT/jobs/ID/` ([`run_jobs`]; a shard of
 //! them on one machine, the others elsewhere), then, once every run is there, the analysis
-//! written beside them: `per_seed.csv`, `claims.csv`, `rooms.csv`, `arms.csv`, `study.json`,
-//! `report.md` and `forest.svg` (with several base seeds `agreement.csv` too). The analysis
+//! written beside them: `per_seed.csv`, `arms.csv`, `study.json`, `report.md`, with hypotheses
+//! `claims.csv`, `rooms.csv` and `forest.svg`, with several base seeds `agreement.csv` too. The analysis
 //! reads only the runs' records, so a study run in shards gives the same bytes as one run on
 //! one machine.
 
@@ -130,13 +130,16 @@ fn analyse(study: &Study, out: &Path) -> Result<StudyRecord, CliError> {
     };
     let mut files = vec![
         ("per_seed.csv", to_csv(&rows)),
-        ("claims.csv", to_csv(&record.claims)),
-        ("rooms.csv", to_csv(&record.rooms)),
         ("arms.csv", to_csv(&record.measures)),
         ("study.json", to_json(&record)),
         ("report.md", report_md(&record, &rows, &study.text)),
-        ("forest.svg", forest_svg(&record)),
     ];
+    // A study without hypotheses (a sweep of arms) has no claims, rooms or forest to write.
+    if !record.hypotheses.is_empty() {
+        files.push(("claims.csv", to_csv(&record.claims)));
+        files.push(("rooms.csv", to_csv(&record.rooms)));
+        files.push(("forest.svg", forest_svg(&record)));
+    }
     if !record.agreement.is_empty() {
         files.push(("agreement.csv", to_csv(&record.agreement)));
     }
