@@ -73,6 +73,9 @@ pub fn recompute(
             let slopes: Vec<f64> = (0..ys[0].len())
                 .map(|i| {
                     let y: Vec<f64> = ys.iter().map(|v| v[i]).collect();
+                    if y.iter().all(|&v| v == y[0]) {
+                        return 0.0; // a level line
+                    }
                     let (mx, my) = (statistics::mean(&xs), statistics::mean(&y));
                     let sxy: f64 = xs.iter().zip(&y).map(|(x, y)| (x - mx) * (y - my)).sum();
                     sxy / xs.iter().map(|x| (x - mx) * (x - mx)).sum::<f64>()
