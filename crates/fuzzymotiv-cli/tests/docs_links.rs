@@ -1,7 +1,8 @@
 //! The documents hold together: every relative link of README.md, EXPERIMENTS.md,
-//! ARCHITECTURE.md, docs/**/*.md and bench/README.md resolves (a `#anchor` to a Markdown file
-//! names one of its headings, as GitHub spells them), and every shell block they mark as
-//! runnable runs.
+//! ARCHITECTURE.md, docs/**/*.md, bench/README.md, bench/HISTORY.md and bench/enki/README.md
+//! resolves (a `#anchor` to a Markdown file names one of its headings, as GitHub spells them),
+//! and every shell block they mark as runnable runs. bench/README.md and
+//! docs/guide/performance.md hold the current figures, the log apart (bench/HISTORY.md).
 //!
 //! A runnable block is a fenced block whose info string is `sh runnable`:
 //!
@@ -17,7 +18,7 @@
 //! sizes through `--set`, or `--quick`; never a paper-scale run. Python blocks are run by
 //! python/tests/ (test_readme.py, test_frames.py, test_gym.py).
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -35,6 +36,8 @@ fn documents() -> Vec<PathBuf> {
         "EXPERIMENTS.md",
         "ARCHITECTURE.md",
         "bench/README.md",
+        "bench/HISTORY.md",
+        "bench/enki/README.md",
     ]
     .iter()
     .map(PathBuf::from)
@@ -288,4 +291,97 @@ fn a_failing_runnable_block_is_reported() {
     assert_eq!(failures.len(), 1, "{failures:#?}");
     assert!(failures[0].starts_with("guide.md:9: the runnable block failed"));
     assert!(failures[0].contains("no-such.toml"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The figures: current ones in bench/README.md and docs/guide/performance.md, the log apart.
+
+#[test]
+fn bench_readme_is_a_summary_with_its_log_beside_it() {
+    let readme = fs::read_to_string(repo().join("bench/README.md")).unwrap();
+    assert!(
+        readme.len() <= 15_000,
+        "bench/README.md is {} bytes: the current figures fit in 15 KB, the rest goes to \
+         bench/HISTORY.md",
+        readme.len()
+    );
+    assert!(
+        readme.contains("](HISTORY.md)"),
+        "bench/README.md links its log"
+    );
+    let history = fs::read_to_string(repo().join("bench/HISTORY.md")).unwrap();
+    assert!(history.starts_with("# bench: the log\n"));
+    assert!(
+        history.contains("](README.md)"),
+        "the log links the current figures"
+    );
+}
+
+/// The rows of the first table under `## Figures` of `text`, each row's cells trimmed.
+fn figures_rows(text: &str) -> Vec<Vec<String>> {
+    let section = text.split("\n## Figures\n").nth(1).unwrap_or("");
+    let section = section.split("\n## ").next().unwrap_or("");
+    (section.lines())
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'))
+        .skip(2)
+        .map(|l| {
+            (l.trim().trim_matches('|').split(" | "))
+                .map(|c| c.trim().to_string())
+                .collect()
+        })
+        .collect()
+}
+
+/// Why a figures table is not one of current figures: a quantity listed twice, a row without
+/// the date it was measured (`YYYY-MM-DD`) or without its command.
+fn figures_faults(rows: &[Vec<String>]) -> Vec<String> {
+    let mut faults = Vec::new();
+    let mut seen = BTreeSet::new();
+    for row in rows {
+        let [what, _figure, measured, command] = row.as_slice() else {
+            faults.push(format!("not four cells: {row:?}"));
+            continue;
+        };
+        if !seen.insert(what.clone()) {
+            faults.push(format!("listed twice: {what}"));
+        }
+        let dated = measured.as_bytes().windows(10).any(|w| {
+            w.iter().enumerate().all(|(i, b)| match i {
+                4 | 7 => *b == b'-',
+                _ => b.is_ascii_digit(),
+            })
+        });
+        if !dated {
+            faults.push(format!("no date: {what}"));
+        }
+        if command.is_empty() {
+            faults.push(format!("no command: {what}"));
+        }
+    }
+    faults
+}
+
+#[test]
+fn performance_lists_each_current_figure_once_with_its_date_and_command() {
+    let text = fs::read_to_string(repo().join("docs/guide/performance.md")).unwrap();
+    let rows = figures_rows(&text);
+    assert!(rows.len() >= 10, "only {} figures", rows.len());
+    let faults = figures_faults(&rows);
+    assert!(faults.is_empty(), "docs/guide/performance.md: {faults:#?}");
+}
+
+#[test]
+fn a_figure_listed_twice_or_undated_is_found() {
+    let text = "# P\n\n## Figures\n\nMeasured.\n\n| what | figure | measured | command |\n|---|---|---|---|\n\
+        | study | 0.98× | 2026-12-05, 8944131 | `reproduce` |\n\
+        | study | 1.18× | 2026-12-04 | `reproduce` |\n\
+        | bench | 3 M | f2a6b0d | `bench` |\n\
+        | gym | 2 M | 2026-12-07 |  |\n\n## Why\n\n| a | b |\n|---|---|\n| x | y |\n";
+    let rows = figures_rows(text);
+    assert_eq!(rows.len(), 4);
+    assert_eq!(
+        figures_faults(&rows),
+        ["listed twice: study", "no date: bench", "no command: gym"]
+    );
 }
