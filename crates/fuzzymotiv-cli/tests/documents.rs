@@ -1,6 +1,6 @@
 //! The documents say what the records say.
 //!
-//! README.md, EXPERIMENTS.md, docs/**/*.md and bench/README.md mark every table and number they
+//! README.md, EXPERIMENTS.md, docs/**/*.md, bench/README.md and bench/HISTORY.md mark every table and number they
 //! quote from a study (docs/results/README.md describes the markers):
 //!
 //! ```text
@@ -40,6 +40,7 @@ fn documents() -> Vec<PathBuf> {
         PathBuf::from("README.md"),
         PathBuf::from("EXPERIMENTS.md"),
         PathBuf::from("bench/README.md"),
+        PathBuf::from("bench/HISTORY.md"),
     ];
     let mut stack = vec![PathBuf::from("docs")];
     while let Some(dir) = stack.pop() {
