@@ -104,7 +104,7 @@ mod tests {
     use super::*;
     use fuzzymotiv::simulation::Trajectory;
     use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
-    use fuzzymotiv_pipeline::render::plot::text_width;
+    use fuzzymotiv_pipeline::render::figure::text_width;
     use fuzzymotiv_pipeline::render::svg::trajectories_svg;
 
     #[test]

@@ -12,7 +12,7 @@ use fuzzymotiv_records::records::paired::PairedStats;
 use fuzzymotiv_records::records::paper_claims::ClaimId;
 use fuzzymotiv_records::records::{ClaimRecord, StudySummary, TableRow};
 
-use crate::plot::{Ticks, colour, esc, open, px, text_width};
+use crate::figure::{Ticks, colour, esc, open, px, text_width};
 use crate::study::{DEFAULT_MODEL, Variant, seed_means};
 use crate::tables::verdict;
 

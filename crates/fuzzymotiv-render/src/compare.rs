@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::statistics::{self, Comparison, Settings, StatsError};
 
-use crate::plot::{esc, open};
+use crate::figure::{esc, open};
 use crate::tables::p_text;
 use fuzzymotiv_records::records::METRICS;
 use fuzzymotiv_records::records::compare::{CompareRow, OVERALL};

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use fuzzymotiv_records::records::hypotheses::{ClaimRow, Hypothesis, POOLED, StudyRecord};
 
 use crate::claim_format::RowFormat;
-use crate::plot::{Ticks, esc, open, px, text_width};
+use crate::figure::{Ticks, esc, open, px, text_width};
 
 /// Height of a result's row, px.
 const ROW_H: f64 = 24.0;

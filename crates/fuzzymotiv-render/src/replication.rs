@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 use fuzzymotiv_records::records::replication::{ReplicationRow, SeedsRow};
 use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary};
 
-use crate::plot::{colour, esc, open, px};
+use crate::figure::{colour, esc, open, px};
 use crate::study::{CLAIMS_ALPHA, claims};
 use crate::tables::verdict;
 

@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 
 use fuzzymotiv_records::records::robustness::{RobustnessRecord, measures_of};
 
-use crate::plot::{Ticks, esc, open, px, text_width};
+use crate::figure::{Ticks, esc, open, px, text_width};
 
 const PANEL_W: f64 = 190.0;
 const GAP: f64 = 16.0;

@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use fuzzymotiv::statistics::{self, BOOTSTRAP_RESAMPLES, Settings, mean_interval};
 
 use super::study::{CLAIMS_ALPHA, Variant, seed_means};
-use crate::plot::{Ticks, colour, esc, open, text_width};
+use crate::figure::{Ticks, colour, esc, open, text_width};
 use crate::tables::p_text;
 use fuzzymotiv_records::records::paper_claims::ClaimId;
 use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};

@@ -12,7 +12,7 @@ use fuzzymotiv_records::records::Finished;
 use fuzzymotiv_records::records::paired::PairedStats;
 use fuzzymotiv_records::records::urgency::{UrgencyRow, UrgencySeed};
 
-use crate::plot::{Ticks, colour, esc, open, px};
+use crate::figure::{Ticks, colour, esc, open, px};
 use crate::study::Setting;
 
 /// configs/fetch.toml, built into the binary (its `rooms` name the files of [`FETCH_ROOMS`]).

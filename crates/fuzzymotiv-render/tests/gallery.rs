@@ -317,7 +317,7 @@ fn every_figure_kind_opens_closes_and_keeps_its_texts_inside() {
     if let Some(dir) = &out {
         std::fs::create_dir_all(dir).unwrap();
     }
-    let font = format!("font-family=\"{}\"", fuzzymotiv_render::plot::FONT_STACK);
+    let font = format!("font-family=\"{}\"", fuzzymotiv_render::figure::FONT_STACK);
     for (name, svg) in figures() {
         assert!(svg.starts_with("<svg "), "{name}");
         assert!(svg.split('>').next().unwrap().contains(&font), "{name}");

@@ -1,7 +1,23 @@
-//! The one SVG builder every figure is written with: the opening `<svg>` tag ([`open`]) with
-//! the one font stack ([`FONT_STACK`]), the one tick rule ([`Ticks`]), the text width the
-//! layouts reserve for that font ([`text_width`]), escaping ([`esc`]), the numbers written into
+//! The one figure builder every SVG figure is written with: the document and its elements
+//! ([`Svg`], styled by [`Stroke`], [`Fill`] and [`Text`]), a panel's plot area with its scales,
+//! grid, axes and labels ([`Area`], [`Scale`]), legends ([`Legend`]), rooms and robots' paths
+//! ([`room::draw_room_and_path`]); under them the opening `<svg>` tag ([`open`]) with the one
+//! font stack ([`FONT_STACK`]), the one tick rule ([`Ticks`]), the text width the layouts
+//! reserve for that font ([`text_width`]), escaping ([`esc`]), the numbers written into
 //! attributes ([`px`]) and the category colours ([`colour`]).
+//!
+//! Written by hand rather than with `plotters`: its backend places everything at whole
+//! pixels (`BackendCoord = (i32, i32)`), measures text only with a font loaded at run time, and
+//! writes no tooltips (`<title>`) or classes, which the figures and their tests use.
+
+pub mod axis;
+pub mod doc;
+pub mod legend;
+pub mod room;
+
+pub use axis::{Area, MUTED, Scale};
+pub use doc::{Anchor, Fill, PathData, Stroke, Svg, Text};
+pub use legend::{Legend, Mark};
 
 use std::fmt::Display;
 
