@@ -130,8 +130,13 @@ impl Area {
         (y, dx): (&str, f64),
         style: Text<'_>,
     ) {
-        svg.text((self.mid_x(), self.y0 + dy), x, style);
+        self.x_label(svg, (x, dy), style);
         svg.text((self.x0 - dx, self.mid_y()), y, style.turned());
+    }
+
+    /// The x axis's label alone, centred under the area with its baseline `dy` below the axis.
+    pub fn x_label(&self, svg: &mut Svg, (x, dy): (&str, f64), style: Text<'_>) {
+        svg.text((self.mid_x(), self.y0 + dy), x, style);
     }
 }
 

@@ -16,9 +16,10 @@ pub enum Mark<'a> {
     Bands(Vec<&'a str>),
 }
 
-/// The width of a mark, and the gap from its left edge to the text.
+/// The width of a mark, and the gap from its left edge to the text (a dot's is narrower).
 const MARK: f64 = 20.0;
 const TEXT_AT: f64 = 26.0;
+const DOT_TEXT_AT: f64 = 12.0;
 /// The room after an entry's text before the next entry in a row.
 const AFTER: f64 = 14.0;
 
@@ -42,7 +43,14 @@ impl<'a> Legend<'a> {
 
     /// The width entry `k` takes in a row of `svg`.
     fn entry_width(&self, svg: &Svg, k: usize) -> f64 {
-        TEXT_AT + svg.text_width(&self.entries[k].1, self.style) + AFTER
+        text_at(&self.entries[k].0) + svg.text_width(&self.entries[k].1, self.style) + AFTER
+    }
+
+    /// The width of the entries in one row.
+    pub fn width(&self, svg: &Svg) -> f64 {
+        (0..self.entries.len())
+            .map(|k| self.entry_width(svg, k))
+            .sum()
     }
 
     /// Where each entry goes when they flow from `x0`, wrapping before `x1`: (x, row).
@@ -88,7 +96,7 @@ impl<'a> Legend<'a> {
         let mid = y - 4.0;
         match mark {
             Mark::Line(stroke) => svg.line((x, mid), (x + MARK, mid), *stroke),
-            Mark::Dot(colour) => svg.circle((x + MARK / 2.0, mid), 4.0, Fill::of(colour), None),
+            Mark::Dot(colour) => svg.circle((x + 4.0, mid), 4.0, Fill::of(colour), None),
             Mark::LineDot(colour) => {
                 svg.line((x, mid), (x + MARK, mid), Stroke::of(colour).width(2.0));
                 svg.circle((x + MARK / 2.0, mid), 3.5, Fill::of(colour), None);
@@ -101,6 +109,14 @@ impl<'a> Legend<'a> {
                 }
             }
         }
-        svg.text((x + TEXT_AT, y), text, self.style);
+        svg.text((x + text_at(mark), y), text, self.style);
+    }
+}
+
+/// Where an entry's text starts after its mark's left edge.
+fn text_at(mark: &Mark<'_>) -> f64 {
+    match mark {
+        Mark::Dot(_) => DOT_TEXT_AT,
+        _ => TEXT_AT,
     }
 }
