@@ -164,11 +164,9 @@ fn sweep_points(n: usize) -> Vec<SettingPoint> {
         .collect()
 }
 
-/// Every figure kind: its name and its SVG.
-fn figures() -> Vec<(&'static str, String)> {
-    use fuzzymotiv_render::{
-        combination, compare, forest, replication, robustness as rb, strength, svg, urgency,
-    };
+/// The figures drawn from made-up inputs: their names and SVGs.
+fn made_up_figures() -> Vec<(&'static str, String)> {
+    use fuzzymotiv_render::{compare, robustness as rb, svg};
     let runs = vec![
         (
             "high-curiosity [0.8, 0.1, 0.0, 0.1]".to_string(),
@@ -188,56 +186,44 @@ fn figures() -> Vec<(&'static str, String)> {
             .map(|k| (300.0 + 8.0 * k as f64, 250.0 + 3.0 * k as f64))
             .collect(),
     }];
-    let names: Vec<String> = fuzzymotiv::fitness::PAPER_LABEL_NAMES
-        .iter()
+    let names: Vec<String> = (fuzzymotiv::fitness::PAPER_LABEL_NAMES.iter())
         .map(|s| s.to_string())
         .collect();
+    let nodes = [15, 0, 8, 12];
     let som: Vec<SomRoom<'_>> = ["H", "square", "U", "fetch-H"]
         .iter()
         .enumerate()
         .map(|(k, name)| SomRoom {
             name,
-            r_node: [15, 0, 8, 12][k],
-            winners: vec![[15, 0, 8, 12][k], (k * 5) % 16, 15],
+            r_node: nodes[k],
+            winners: vec![nodes[k], (k * 5) % 16, 15],
         })
         .collect();
-    let mut studies: Vec<StudySummary> = Vec::new();
-    for population in [30, 60, 100, 200] {
-        let mut s: StudySummary =
-            serde_json::from_value(record("docs/results/five-seed/summary.json")).unwrap();
-        s.population = population;
-        studies.push(s);
-    }
-    let replication_record = "docs/results/replication/summary.json";
-    let base: Vec<u64> = field!(replication_record, "base_seeds");
-    let forest_record: StudyRecord =
-        serde_json::from_value(record("docs/results/combination-study/study.json")).unwrap();
     let compare_rows: Vec<CompareRow> = ["H", "L", "all rooms"]
         .iter()
         .enumerate()
         .flat_map(|(k, room)| {
+            let d = 8.0 - 6.0 * k as f64;
             [
-                compare_row(
-                    "high-curiosity",
-                    "exploration_pct",
-                    room,
-                    8.0 - 6.0 * k as f64,
-                    0.01,
-                ),
+                compare_row("high-curiosity", "exploration_pct", room, d, 0.01),
                 compare_row("high-curiosity", "homing_pct", room, -3.0, 0.4),
             ]
         })
         .collect();
+    let perturbations = [
+        robustness("none", 0.6),
+        robustness("dead=3", 0.2),
+        robustness("table×0.7", 0.62),
+    ];
+    let title = "A wall-shy robot in four rooms";
+    let peaks = [0.0, 0.25, 0.5, 0.75, 1.0];
     vec![
         ("fitness", svg::fitness_svg(&runs)),
         ("terms", svg::terms_svg(&runs)),
-        (
-            "membership",
-            svg::membership_svg(&[0.0, 0.25, 0.5, 0.75, 1.0], &names),
-        ),
+        ("membership", svg::membership_svg(&peaks, &names)),
         (
             "trajectories",
-            svg::trajectories_svg_with("A wall-shy robot in four rooms", &pairs, &logs),
+            svg::trajectories_svg_with(title, &pairs, &logs),
         ),
         (
             "som",
@@ -251,15 +237,27 @@ fn figures() -> Vec<(&'static str, String)> {
         ),
         (
             "robustness",
-            rb::robustness_svg(
-                "Robustness of the best robot",
-                &[
-                    robustness("none", 0.6),
-                    robustness("dead=3", 0.2),
-                    robustness("table×0.7", 0.62),
-                ],
-            ),
+            rb::robustness_svg("Robustness of the best robot", &perturbations),
         ),
+    ]
+}
+
+/// The figures drawn from the committed records: their names and SVGs.
+fn recorded_figures() -> Vec<(&'static str, String)> {
+    use fuzzymotiv_render::{combination, forest, replication, strength, urgency};
+    let mut studies: Vec<StudySummary> = Vec::new();
+    for population in [30, 60, 100, 200] {
+        let study = record("docs/results/five-seed/summary.json");
+        let mut s: StudySummary = serde_json::from_value(study).unwrap();
+        s.population = population;
+        studies.push(s);
+    }
+    let replication_record = "docs/results/replication/summary.json";
+    let base: Vec<u64> =
+        serde_json::from_value(record(replication_record)["base_seeds"].clone()).unwrap();
+    let forest_record: StudyRecord =
+        serde_json::from_value(record("docs/results/combination-study/study.json")).unwrap();
+    vec![
         ("forest", forest::forest_svg(&forest_record)),
         (
             "replication",
@@ -282,6 +280,13 @@ fn figures() -> Vec<(&'static str, String)> {
             urgency::urgency_svg(&field!("docs/results/urgency/summary.json", "per_seed")),
         ),
     ]
+}
+
+/// Every figure kind: its name and its SVG.
+fn figures() -> Vec<(&'static str, String)> {
+    let mut all = made_up_figures();
+    all.extend(recorded_figures());
+    all
 }
 
 /// An attribute's value in an element's start tag.
