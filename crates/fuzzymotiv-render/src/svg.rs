@@ -843,8 +843,8 @@ mod tests {
     type TextBox = (f64, f64, f64, f64, String);
 
     /// The estimated box of every `<text>` of a figure, from its x, y, font-size (else the
-    /// root's), font-weight, text-anchor and content: 0.62 × size per character (0.68 bold,
-    /// [`text_width_at`]), from a full size above the baseline to a quarter below it
+    /// root's), font-weight, text-anchor and content: its width measured from the font
+    /// ([`text_width_at`]), from a full size above the baseline to a quarter below it
     /// (descenders). Text turned by `rotate(-90 x y)` about its own anchor (the y-axis labels)
     /// is turned with it; any other transform fails the test.
     fn text_boxes(svg: &str) -> Vec<TextBox> {
