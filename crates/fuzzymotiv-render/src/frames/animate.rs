@@ -117,7 +117,11 @@ pub fn palette_index(rgb: [u8; 3]) -> u8 {
 /// is not a frame rate.
 pub fn delay_of(fps: f64) -> Result<u16, FrameError> {
     if !(MIN_FPS..=MAX_FPS).contains(&fps) {
-        return Err(FrameError::Fps { got: fps });
+        return Err(FrameError::Fps {
+            got: fps,
+            min: MIN_FPS,
+            max: MAX_FPS,
+        });
     }
     Ok((100.0 / fps).round() as u16)
 }

@@ -4,9 +4,6 @@
 
 use fuzzymotiv::params::Num;
 
-use super::animate::{MAX_FPS, MIN_FPS};
-use super::scene::{MAX_SIZE, MIN_SIZE};
-
 /// A column of a track ([`super::Track`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Column {
@@ -48,19 +45,27 @@ impl std::fmt::Display for Column {
 #[derive(Debug, thiserror::Error)]
 pub enum FrameError {
     /// The frame side is out of range.
-    #[error("must be a frame side in {MIN_SIZE}..={MAX_SIZE} pixels, got {got}")]
+    #[error("must be a frame side in {min}..={max} pixels, got {got}")]
     Size {
         /// The side asked for.
         got: u32,
+        /// The smallest side ([`super::scene::MIN_SIZE`]).
+        min: u32,
+        /// The largest ([`super::scene::MAX_SIZE`]).
+        max: u32,
     },
     /// The stride is 0.
     #[error("must be a whole number ≥ 1 (1 = a frame per step), got 0")]
     Stride,
     /// The frame rate is out of range.
-    #[error("must be a frame rate in [{MIN_FPS}, {MAX_FPS}] frames per second, got {}", Num(*got))]
+    #[error("must be a frame rate in [{min}, {max}] frames per second, got {}", Num(*got))]
     Fps {
         /// The rate asked for.
         got: f64,
+        /// The lowest rate ([`super::animate::MIN_FPS`]).
+        min: f64,
+        /// The highest ([`super::animate::MAX_FPS`]).
+        max: f64,
     },
     /// The track has no poses.
     #[error("x: no poses; a rollout has at least its start pose")]
@@ -163,7 +168,11 @@ mod tests {
     /// The option or column at fault is data, not a prefix to parse back out of the message.
     #[test]
     fn a_frame_errors_field_is_data_and_its_message_names_the_numbers() {
-        let e = FrameError::Size { got: 10 };
+        let e = FrameError::Size {
+            got: 10,
+            min: 64,
+            max: 2048,
+        };
         assert_eq!(e.field(), Some("size"));
         assert_eq!(
             e.to_string(),
@@ -179,6 +188,15 @@ mod tests {
             e.to_string(),
             "idle: 3 rows for 10 poses; expected 9 (one per step) or 10"
         );
-        assert_eq!(FrameError::Fps { got: 0.0 }.field(), Some("fps"));
+        let fps = FrameError::Fps {
+            got: 0.0,
+            min: 0.01,
+            max: 50.0,
+        };
+        assert_eq!(fps.field(), Some("fps"));
+        assert_eq!(
+            fps.to_string(),
+            "must be a frame rate in [0.01, 50] frames per second, got 0"
+        );
     }
 }

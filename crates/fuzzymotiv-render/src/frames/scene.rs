@@ -98,7 +98,11 @@ impl FrameOptions {
     /// for the default robot. A bad value is named ([`FrameError::field`]).
     pub fn new(size: u32, stride: usize) -> Result<FrameOptions, FrameError> {
         if !(MIN_SIZE..=MAX_SIZE).contains(&size) {
-            return Err(FrameError::Size { got: size });
+            return Err(FrameError::Size {
+                got: size,
+                min: MIN_SIZE,
+                max: MAX_SIZE,
+            });
         }
         if stride == 0 {
             return Err(FrameError::Stride);
