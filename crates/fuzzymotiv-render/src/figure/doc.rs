@@ -224,8 +224,8 @@ pub struct Svg {
 }
 
 impl Svg {
-    /// A figure `width` × `height` px (rounded to whole pixels when `whole`), its text at
-    /// `font_size` px, on a white page.
+    /// A figure `width` × `height` px (written through [`px`]), its text at `font_size` px,
+    /// on a white page.
     pub fn new(width: f64, height: f64, font_size: u32) -> Svg {
         let (w, h) = (px(width), px(height));
         let mut out = open(w, h, font_size);

@@ -120,3 +120,42 @@ fn text_at(mark: &Mark<'_>) -> f64 {
         _ => TEXT_AT,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Entries flow left to right and wrap to a new row before the right edge; a dot's text
+    /// sits closer to its mark than a line's.
+    #[test]
+    fn a_flowing_legend_wraps_before_its_right_edge() {
+        let legend = Legend::new(vec![
+            (Mark::Line(Stroke::of("#000")), "first entry".into()),
+            (Mark::Dot("#f00"), "second entry".into()),
+            (Mark::LineDot("#00f"), "third entry".into()),
+        ]);
+        let mut svg = Svg::new(400.0, 100.0, 12);
+        let one_row = legend.width(&svg);
+        assert_eq!(legend.rows(&svg, one_row + 1.0), 1);
+        assert_eq!(legend.rows(&svg, one_row - 1.0), 2);
+        legend.flow(&mut svg, (10.0, 10.0 + one_row - 1.0), 20.0, 16.0);
+        let out = svg.finish();
+        assert!(
+            out.contains(r#"<text x="36" y="20">first entry</text>"#),
+            "{out}"
+        );
+        // The third wrapped to the second row, at the left edge.
+        assert!(
+            out.contains(r#"<text x="36" y="36">third entry</text>"#),
+            "{out}"
+        );
+        let second = 10.0 + legend.entry_width(&Svg::new(1.0, 1.0, 12), 0) + 12.0;
+        assert!(
+            out.contains(&format!(
+                r#"<text x="{}" y="20">second entry</text>"#,
+                crate::figure::px(second)
+            )),
+            "{out}"
+        );
+    }
+}
