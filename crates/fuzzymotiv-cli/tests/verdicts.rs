@@ -902,9 +902,9 @@ fn the_paper_study_files_agreement_is_the_committed_replications_at_every_seed_c
 }
 
 /// The committed studies of one's own (`docs/results/*-study/`: paper, combination, search
-/// strength, ablation, urgency, orientation, transfer), each with its hypotheses' results per
+/// strength, ablation, urgency, orientation, transfer; the guide's fetch-urgency), each with its hypotheses' results per
 /// base seed and pooled (the orientation study has none: each arm's measures only).
-const STUDY_FILES: [(&str, usize); 7] = [
+const STUDY_FILES: [(&str, usize); 8] = [
     ("paper-study", 8 * 3),
     ("combination-study", 40 * 3 + AGREEMENT * 40),
     ("search-strength-study", 17 * 3 + 9 * 2 * 17),
@@ -912,6 +912,7 @@ const STUDY_FILES: [(&str, usize); 7] = [
     ("urgency-study", 15 * 3 + AGREEMENT * 15),
     ("orientation-study", 0),
     ("transfer-study", 5 * 3 + 9 * 2 * 5),
+    ("fetch-urgency-study", 4 * 3 + 9 * 2 * 4),
 ];
 
 /// agreement.csv's rows per hypothesis of a twenty-seed study at two base seeds: each base
