@@ -48,7 +48,8 @@ pub(crate) fn walk_lanes<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [La
 }
 
 /// Runs every trial of `trials` in `arena` (a trial with a drawn robot in its own arena), as
-/// [`simulate`](crate::simulation::trial::simulate) would, four at a time. Every network must
+/// [`simulate`](crate::simulation::trial::simulate) would, four at a time (one or two trials
+/// one at a time: [`lanes_pay`]). Every network must
 /// have one input per sensor and the same shape, and finite weights
 /// ([`lanes_fit`]). With `actions` motion and no drawn robot the
 /// lanes share the arena's memo of sightings, as `simulate` uses it (a pure cache).
