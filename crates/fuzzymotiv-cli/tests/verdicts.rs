@@ -1203,7 +1203,12 @@ fn the_transfer_study_files_base_seed_1_is_the_transfer_scripts_enki_side() {
                 .map(|r| (r["seed"].parse().unwrap(), number(r, "value").unwrap()))
                 .collect()
         };
-        for m in ["exploration_pct", "homing_pct", "battery_pct", "recognition_pct"] {
+        for m in [
+            "exploration_pct",
+            "homing_pct",
+            "battery_pct",
+            "recognition_pct",
+        ] {
             let world = |w: &str| &means[&(setting.to_string(), m.to_string(), w.to_string())];
             let (enki, sim) = (world("enki"), world("fuzzymotiv"));
             let gap: Vec<f64> = enki.iter().zip(sim).map(|(e, s)| (e - s).abs()).collect();
