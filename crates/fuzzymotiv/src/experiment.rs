@@ -35,7 +35,9 @@ pub use logged::{LoggedStep, LoggedTrial};
 pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
 pub use outcome::{Outcome, RunError, Start};
 pub use robustness::{Perturbation, RobustnessError, RobustnessRow};
-pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, parse_room_file};
+pub use setup::{
+    BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, UnreadableFile, parse_room_file,
+};
 pub use terms::{UserTerm, case_hint};
 
 use serde::{Deserialize, Serialize};

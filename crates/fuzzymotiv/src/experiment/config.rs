@@ -16,8 +16,8 @@ pub use crate::evolution::ga::RawGa;
 use crate::fitness::terms::{Homing, WaypointOrder};
 pub use crate::fitness::{Coefficients, RawFuzzy, RawMotivations};
 pub use crate::modelling::aem::RawAem;
-use crate::params::field_from_toml_message;
-use crate::params::{BIG, FieldError};
+use crate::params::plain::{Fault, ReadError};
+use crate::params::{BIG, FieldError, field_at};
 pub use crate::simulation::controller::RawNetwork;
 pub use crate::simulation::robot::RawRobot;
 use crate::simulation::room::BUILTIN_ROOMS;
@@ -164,37 +164,36 @@ impl RawConfig {
             reason,
         };
         let mut table: toml::Table = toml::from_str(text).map_err(|e| {
-            let msg = e.message().trim().to_string();
+            let msg = e.message().trim();
             err(
-                &field_from_toml_message(&msg, text, e.span()),
+                &field_at(text, e.span(), None),
                 format!("not valid TOML{}: {msg}", at_line(text, e.span())),
             )
         })?;
         if sets.is_empty() {
-            return Self::from_text(text, source_name);
+            return Self::from_text(text, source_name, true);
         }
         default_motivations_for_sets(&mut table, sets);
         apply_sets(&mut table, sets)?;
         let merged = toml::to_string(&table).map_err(|e| err("(document)", e.to_string()))?;
-        Self::from_text(&merged, &format!("{source_name} (with --set overrides)"))
-            .map_err(|e| blame_set(e, sets))
+        let source_name = format!("{source_name} (with --set overrides)");
+        Self::from_text(&merged, &source_name, false).map_err(|e| blame_set(e, sets))
     }
 
-    fn from_text(text: &str, source_name: &str) -> Result<RawConfig, ConfigError> {
+    /// Reads the document `text` of `source_name`; `own_text`: whether `text` is the user's
+    /// own file (so that line numbers point into it), not a document with overrides merged.
+    fn from_text(text: &str, source_name: &str, own_text: bool) -> Result<RawConfig, ConfigError> {
         let raw: RawConfig =
             crate::params::plain::from_str(text, whole_number_range).map_err(|e| {
-                let msg = e.message().trim().to_string();
-                let field = field_from_toml_message(&msg, text, e.span());
-                // Line numbers only point into the user's own file, not a document with overrides.
-                let at = if source_name.ends_with("(with --set overrides)") {
-                    String::new()
-                } else {
+                let at = if own_text {
                     at_line(text, e.span())
+                } else {
+                    String::new()
                 };
-                let reason = format!("{msg}{at}{}", room_file_hint(&msg));
+                let reason = format!("{}{at}{}", e.message(), room_file_hint(&e));
                 ConfigError {
                     source_name: source_name.to_string(),
-                    field,
+                    field: e.field(text),
                     reason,
                 }
             })?;
@@ -219,13 +218,17 @@ impl RawConfig {
 
 /// ` (line L, column C)` of the start of `span` in `text`, or nothing without a span.
 pub fn at_line(text: &str, span: Option<std::ops::Range<usize>>) -> String {
-    let Some(span) = span else {
-        return String::new();
-    };
-    let before = &text[..span.start.min(text.len())];
+    line_column(text, span).map_or(String::new(), |(line, column)| {
+        format!(" (line {line}, column {column})")
+    })
+}
+
+/// The line and column (from 1) of the start of `span` in `text`.
+pub fn line_column(text: &str, span: Option<std::ops::Range<usize>>) -> Option<(usize, usize)> {
+    let before = &text[..span?.start.min(text.len())];
     let line = before.matches('\n').count() + 1;
     let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    format!(" (line {line}, column {column})")
+    Some((line, column))
 }
 
 /// The range of a whole-number field as its own check states it (a type error, e.g. `1.5` or
@@ -248,14 +251,11 @@ pub(crate) fn whole_number_range(field: &str) -> String {
     format!("from {low} to {high}")
 }
 
-/// A hint when a room file (docs/model.md §4) was given where a config belongs.
-fn room_file_hint(msg: &str) -> &'static str {
-    let room_keys = [
-        "unknown field `outline`",
-        "unknown field `home`",
-        "unknown field `obstacles`",
-    ];
-    if room_keys.iter().any(|k| msg.starts_with(k)) {
+/// A hint when a room file (docs/model.md §4) was given where a config belongs: the document
+/// has a room's key (`outline`, `home`, `obstacles`), which a config does not take.
+fn room_file_hint(e: &ReadError) -> &'static str {
+    let room_keys = ["outline", "home", "obstacles"];
+    if matches!(&e.fault, Some(Fault::Unknown(key)) if room_keys.contains(&key.as_str())) {
         ". This looks like a room file, not a config: list it in a config's `rooms = [\"path/to/room.toml\"]`, or check it with `fuzzymotiv rooms --check FILE`"
     } else {
         ""

@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::params::{FieldError, Num, field_from_toml_message};
+use crate::params::{FieldError, Num};
 use crate::simulation::geom::{
     Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area,
 };
@@ -352,9 +352,8 @@ impl Room {
     pub(crate) fn geometry_from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
         // A room's values are numbers and names, no whole numbers: their range is not asked.
         let raw: RawRoom = crate::params::plain::from_str(text, |_| "≥ 0".into()).map_err(|e| {
-            let msg = e.message().to_string();
-            let field = field_from_toml_message(&msg, text, e.span());
-            FieldError::new(field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline, optional goal = {{ x, y, radius }}, optional [[waypoints]] x, y, radius)")).in_source(source_name)
+            let msg = e.toml.message();
+            FieldError::new(e.field(text), format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline, optional goal = {{ x, y, radius }}, optional [[waypoints]] x, y, radius)")).in_source(source_name)
         })?;
         raw.check_coordinates()
             .map_err(|e| e.in_source(source_name))?;
