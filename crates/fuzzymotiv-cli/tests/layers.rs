@@ -716,25 +716,9 @@ fn message_reads_in(file: &str, code: &str) -> Vec<String> {
 /// Every line of the workspace's and the Python module's code (tests and comments left out)
 /// that reads or rewrites a message.
 fn message_reads() -> Vec<String> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dirs = CRATES
-        .iter()
-        .copied()
-        .chain([("python", "../../python/src")]);
-    let mut out = Vec::new();
-    for (prefix, dir) in dirs {
-        let files = modules(prefix, &root.join(dir));
-        let texts: Vec<String> = (files.iter())
-            .map(|(_, p)| std::fs::read_to_string(p).unwrap())
-            .collect();
-        for (_, path) in &files {
-            if !test_only(path, &texts) {
-                let file = path.display().to_string();
-                out.extend(message_reads_in(&file, &code(path)));
-            }
-        }
-    }
-    out
+    (workspace_code().iter())
+        .flat_map(|(file, code)| message_reads_in(file, code))
+        .collect()
 }
 
 /// Issue #56 item 3: no message is parsed, matched or rewritten: what code needs to know of an
@@ -765,4 +749,102 @@ fn the_message_check_catches_parsing_matching_and_rewriting() {
     let bad = message_reads_in("c.rs", code);
     assert_eq!(bad.len(), 5, "{bad:#?}");
     assert!(bad[0].starts_with("c.rs:1: if msg.contains"), "{bad:?}");
+}
+
+/// The workspace's code files (the Python module's included), tests left out: (file, code).
+fn workspace_code() -> Vec<(String, String)> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dirs = CRATES
+        .iter()
+        .copied()
+        .chain([("python", "../../python/src")]);
+    let mut out = Vec::new();
+    for (prefix, dir) in dirs {
+        let files = modules(prefix, &root.join(dir));
+        let texts: Vec<String> = (files.iter())
+            .map(|(_, p)| std::fs::read_to_string(p).unwrap())
+            .collect();
+        for (_, path) in &files {
+            if !test_only(path, &texts) {
+                out.push((path.display().to_string(), code(path)));
+            }
+        }
+    }
+    out
+}
+
+/// Every `type A = B;` of a module (not an impl's associated type: a line not indented) in
+/// `files` where `B` (its last path segment) is a struct or enum the files define: one type
+/// under two names.
+fn aliases_in(files: &[(String, String)]) -> Vec<String> {
+    let defined: BTreeSet<&str> = (files.iter())
+        .flat_map(|(_, code)| code.lines())
+        .filter_map(|line| {
+            let t = line.trim_start();
+            let t = t
+                .strip_prefix("pub ")
+                .or(t.strip_prefix("pub(crate) "))
+                .unwrap_or(t);
+            let rest = t.strip_prefix("struct ").or(t.strip_prefix("enum "))?;
+            rest.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .next()
+        })
+        .collect();
+    let mut out = Vec::new();
+    for (file, code) in files {
+        for (n, line) in code.lines().enumerate() {
+            let t = line.trim_start();
+            let t = t
+                .strip_prefix("pub ")
+                .or(t.strip_prefix("pub(crate) "))
+                .unwrap_or(t);
+            let Some((_, target)) = t.strip_prefix("type ").and_then(|r| r.split_once('=')) else {
+                continue;
+            };
+            let target = target.trim().trim_end_matches(';').trim();
+            let last = target.rsplit("::").next().unwrap_or(target);
+            if defined.contains(last) {
+                out.push(format!("{file}:{}: {}", n + 1, line.trim()));
+            }
+        }
+    }
+    out
+}
+
+/// Issue #56 item 4: no type goes by two names (`ConfigError = RoomError = FieldError`,
+/// `HomeZone = Zone` were one type under three and two): each has one name, its users use it.
+#[test]
+fn no_type_goes_by_two_names() {
+    let bad = aliases_in(&workspace_code());
+    assert!(
+        bad.is_empty(),
+        "aliases of the workspace's own types:\n{}",
+        bad.join("\n")
+    );
+}
+
+/// The alias check fails when it should: an alias of a struct the files define, by path or
+/// not; an alias of a tuple, a generic or another crate's type passes.
+#[test]
+fn the_alias_check_catches_a_second_name() {
+    let files = [
+        (
+            "a.rs".to_string(),
+            "pub struct FieldError {}\npub enum Zone {}\n".to_string(),
+        ),
+        (
+            "b.rs".to_string(),
+            "pub type ConfigError = FieldError;\npub type HomeZone = crate::room::Zone;\n\
+             pub type Genome = Vec<f64>;\npub type Rng64 = rand_xoshiro::Xoshiro256PlusPlus;\n\
+             pub type Part<'a> = (&'a str, &'a str);\n\
+             impl Iterator for Zones {\n    type Item = Zone;\n}\n"
+                .to_string(),
+        ),
+    ];
+    let bad = aliases_in(&files);
+    assert_eq!(bad.len(), 2, "{bad:#?}");
+    assert!(
+        bad[0].starts_with("b.rs:1: pub type ConfigError"),
+        "{bad:?}"
+    );
 }

@@ -8,7 +8,7 @@ use crate::plot::{Ticks, colour, esc, open, px, text_width};
 use fuzzymotiv::experiment::GenerationRecord;
 use fuzzymotiv::fitness::TermId;
 use fuzzymotiv::simulation::Trajectory;
-use fuzzymotiv::simulation::{HomeZone, Room};
+use fuzzymotiv::simulation::{Room, Zone};
 use fuzzymotiv::simulation::{Vec2, point_in_polygon};
 use fuzzymotiv_records::records::MotivationEntry;
 
@@ -503,7 +503,7 @@ fn draw_mission(parts: &mut String, room: &Room, p: &Projection) {
 
 /// A zone drawn as its disc within the room's outline, filled lightly in `colour`, its rim
 /// dashed where it runs inside the room.
-fn draw_zone(parts: &mut String, room: &Room, zone: HomeZone, colour: &str, p: &Projection) {
+fn draw_zone(parts: &mut String, room: &Room, zone: Zone, colour: &str, p: &Projection) {
     let (floor, rim) = zone_within(room, zone);
     if floor.len() >= 3 {
         let _ = writeln!(
@@ -537,7 +537,7 @@ const ZONE_SIDES: usize = 240;
 /// 240-gon; Sutherland–Hodgman, exact for a convex clip region and any simple outline; where
 /// the result falls apart in pieces they are joined by zero-width seams along the rim, which
 /// the unstroked fill does not show), and the runs of the rim inside the outline.
-fn zone_within(room: &Room, zone: HomeZone) -> (Vec<Vec2>, Vec<Vec<Vec2>>) {
+fn zone_within(room: &Room, zone: Zone) -> (Vec<Vec2>, Vec<Vec<Vec2>>) {
     let circle: Vec<Vec2> = (0..ZONE_SIDES)
         .map(|i| {
             let a = i as f64 * std::f64::consts::TAU / ZONE_SIDES as f64;

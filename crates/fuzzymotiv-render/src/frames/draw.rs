@@ -1,8 +1,8 @@
 //! Drawing one frame with tiny-skia: the room (drawn once, [`Painter::new`]), then per frame
 //! the path so far, the IR rays, the body and heading, and the labels.
 
-use fuzzymotiv::simulation::{HomeZone, Room};
 use fuzzymotiv::simulation::{RayMount, rays};
+use fuzzymotiv::simulation::{Room, Zone};
 use fuzzymotiv::simulation::{Segment, Vec2};
 use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Mask, Paint, Path, PathBuilder, Pixmap, Rect, Stroke,
@@ -50,7 +50,7 @@ fn draw_zone(
     bg: &mut Pixmap,
     view: &View,
     outline: &Path,
-    zone: HomeZone,
+    zone: Zone,
     (fill, rim): ([u8; 3], [u8; 3]),
     k: f32,
 ) {

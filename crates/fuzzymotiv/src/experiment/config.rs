@@ -27,10 +27,6 @@ pub use crate::simulation::trial::RawTrial;
 /// then exact as a JSON number, also for tools that read numbers as doubles (JavaScript, jq).
 pub const MAX_SEED: u64 = (1 << 53) - 1;
 
-/// A configuration that cannot be used: the file, the field and what is wrong (the same type
-/// as a room file's [`crate::simulation::room::RoomError`]).
-pub type ConfigError = FieldError;
-
 /// How populations are trained over rooms (docs/model.md §10).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -157,8 +153,8 @@ impl Default for RawConfig {
 impl RawConfig {
     /// Parses a TOML document and applies `key=value` overrides (dotted keys; the value is read
     /// as TOML, and as a plain string if it is not valid TOML).
-    pub fn parse(text: &str, source_name: &str, sets: &[String]) -> Result<RawConfig, ConfigError> {
-        let err = |field: &str, reason: String| ConfigError {
+    pub fn parse(text: &str, source_name: &str, sets: &[String]) -> Result<RawConfig, FieldError> {
+        let err = |field: &str, reason: String| FieldError {
             source_name: source_name.to_string(),
             field: field.to_string(),
             reason,
@@ -182,7 +178,7 @@ impl RawConfig {
 
     /// Reads the document `text` of `source_name`; `own_text`: whether `text` is the user's
     /// own file (so that line numbers point into it), not a document with overrides merged.
-    fn from_text(text: &str, source_name: &str, own_text: bool) -> Result<RawConfig, ConfigError> {
+    fn from_text(text: &str, source_name: &str, own_text: bool) -> Result<RawConfig, FieldError> {
         let raw: RawConfig =
             crate::params::plain::from_str(text, whole_number_range).map_err(|e| {
                 let at = if own_text {
@@ -191,14 +187,14 @@ impl RawConfig {
                     String::new()
                 };
                 let reason = format!("{}{at}{}", e.message(), room_file_hint(&e));
-                ConfigError {
+                FieldError {
                     source_name: source_name.to_string(),
                     field: e.field(text),
                     reason,
                 }
             })?;
         if raw.seed > MAX_SEED {
-            return Err(ConfigError {
+            return Err(FieldError {
                 source_name: source_name.to_string(),
                 field: "seed".into(),
                 reason: format!(
@@ -266,10 +262,10 @@ fn room_file_hint(e: &ReadError) -> &'static str {
 /// the value is read as TOML, and as a plain string if it is not valid TOML. A table value
 /// (`ga={generations=3}`) sets the keys it names and keeps the table's others, as the dotted
 /// keys would; a value followed by more TOML (`4\ntrial.steps=5`) is an error.
-pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), ConfigError> {
+pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), FieldError> {
     for set in sets {
         let Some((key, value)) = set.split_once('=') else {
-            return Err(ConfigError {
+            return Err(FieldError {
                 source_name: "--set".into(),
                 field: set.clone(),
                 reason: "expected key=value, e.g. --set ga.population=20".into(),
@@ -281,7 +277,7 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
             Some(mut t) => {
                 let v = t.remove("v");
                 if !t.is_empty() {
-                    return Err(ConfigError {
+                    return Err(FieldError {
                         source_name: "--set".into(),
                         field: key.trim().to_string(),
                         reason: format!(
@@ -296,7 +292,7 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
         };
         let parts: Vec<&str> = key.split('.').collect();
         if parts.iter().any(|p| p.is_empty()) {
-            return Err(ConfigError {
+            return Err(FieldError {
                 source_name: "--set".into(),
                 field: key.to_string(),
                 reason: "empty key part; use dotted keys such as ga.population".into(),
@@ -310,7 +306,7 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
             t = match entry {
                 toml::Value::Table(inner) => inner,
                 _ => {
-                    return Err(ConfigError {
+                    return Err(FieldError {
                         source_name: "--set".into(),
                         field: key.to_string(),
                         reason: format!("`{part}` is not a table, so it has no key below it"),
