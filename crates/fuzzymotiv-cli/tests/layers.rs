@@ -793,7 +793,7 @@ fn aliases_in(files: &[(String, String)]) -> Vec<String> {
     let mut out = Vec::new();
     for (file, code) in files {
         for (n, line) in code.lines().enumerate() {
-            let t = line.trim_start();
+            let t = line;
             let t = t
                 .strip_prefix("pub ")
                 .or(t.strip_prefix("pub(crate) "))

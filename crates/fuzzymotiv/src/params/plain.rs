@@ -662,4 +662,42 @@ mod tests {
             (0.5, 0.25)
         );
     }
+
+    /// What a table's reader finds wrong with its keys is kept as data beside TOML's error: a
+    /// missing field by its name (the config's field then under its table), a key not taken
+    /// by its path; a room's key in a config gets the room-file hint, the same key deeper in
+    /// does not.
+    #[test]
+    fn a_missing_or_unknown_key_is_kept_as_data() {
+        use super::Fault;
+        #[derive(serde::Deserialize)]
+        #[allow(dead_code)]
+        struct Home {
+            x: f64,
+            y: f64,
+        }
+        #[derive(serde::Deserialize)]
+        #[allow(dead_code)]
+        struct Room {
+            name: String,
+            home: Home,
+        }
+        let text = "name = \"r\"\nhome = { x = 1 }\n";
+        let e = super::from_str::<Room>(text, |_| "≥ 0".into())
+            .err()
+            .unwrap();
+        assert_eq!(e.fault, Some(Fault::Missing("y")));
+        assert_eq!(e.field(text), "home.y");
+        let e = super::from_str::<RawConfig>("[ga]\npopulaton = 3\n", whole_number_range)
+            .err()
+            .unwrap();
+        assert_eq!(e.fault, Some(Fault::Unknown("ga.populaton".into())));
+        let hint = "This looks like a room file";
+        assert!(reason("outline = [[0, 0]]\n").contains(hint));
+        assert!(
+            !reason("[ga]\noutline = 3\n").contains(hint),
+            "{}",
+            reason("[ga]\noutline = 3\n")
+        );
+    }
 }

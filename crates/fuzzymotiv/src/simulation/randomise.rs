@@ -227,4 +227,24 @@ mod tests {
         .unwrap_err();
         assert_eq!(e.field, "trial.randomise.radius");
     }
+
+    /// A radius range's end the robot cannot have says so in the robot check's own words, with
+    /// "got an end" (worded once from the range, not rewritten from the robot check's message).
+    #[test]
+    fn a_radius_end_the_robot_cannot_have_says_got_an_end() {
+        let e = checked(RawRandomise {
+            radius: Some([27.5, 90.0]),
+            ..RawRandomise::default()
+        })
+        .unwrap_err();
+        assert_eq!(e.field, "trial.randomise.radius");
+        let allowed = RadiusRange::of(Robot::default().spec());
+        assert_eq!(e.reason, allowed.reason("got an end", 90.0));
+        assert!(e.reason.starts_with("must be in ["), "{}", e.reason);
+        assert!(
+            e.reason.ends_with("mm from the centre), got an end 90"),
+            "{}",
+            e.reason
+        );
+    }
 }
