@@ -324,3 +324,31 @@ pub fn room_entry(option: &str, want: &str, loaded: &Loaded) -> Result<String, C
         )))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue #56: a room file the front cannot read reaches the front as its own error, kept
+    /// whole through the library ([`UnreadableFile::cause`]), not as a message; bad input.
+    #[test]
+    fn an_unreadable_room_file_comes_back_as_the_fronts_own_error() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("r.toml"), b"name = \"r\xff\"\n").unwrap();
+        let config = dir.path().join("c.toml");
+        std::fs::write(&config, "rooms = [\"r.toml\"]\n").unwrap();
+        let Err(e) = load_config(Some(&config), &[], None) else {
+            panic!("a room file that is not UTF-8 is refused");
+        };
+        assert!(e.is_input(), "{e:?}");
+        let CliError::Setup(SetupError::Unreadable(u)) = &e else {
+            panic!("not an unreadable file: {e:?}");
+        };
+        let cause = u
+            .cause()
+            .downcast_ref::<CliError>()
+            .expect("the front's CliError");
+        assert_eq!(cause.to_string(), e.to_string());
+        assert!(e.to_string().contains("r.toml"), "{e}");
+    }
+}
