@@ -134,6 +134,7 @@ fn py_err(e: CliError) -> PyErr {
         CliError::Output(refusal) => OutputExistsError::new_err(refusal.render(&PYTHON)),
         CliError::Input(message) => FuzzymotivError::new_err(message),
         CliError::Setup(e) => FuzzymotivError::new_err(e.to_string()),
+        CliError::StudyFile(e) => FuzzymotivError::new_err(e.to_string()),
         CliError::Runtime(message) => PyRuntimeError::new_err(message),
         CliError::Io { .. } | CliError::FileSystem(_) | CliError::ClosedStdout => {
             Python::attach(|py| os_err(py, &e))
@@ -177,6 +178,7 @@ fn config_err(e: CliError) -> PyErr {
     match e {
         CliError::Input(message) => ConfigError::new_err(message),
         CliError::Setup(e) => ConfigError::new_err(e.to_string()),
+        CliError::StudyFile(e) => ConfigError::new_err(e.to_string()),
         other => py_err(other),
     }
 }

@@ -7,60 +7,18 @@ use std::sync::{Arc, Mutex};
 
 use fuzzymotiv::experiment::RoomScore;
 use fuzzymotiv::experiment::UserTerm;
-use fuzzymotiv::experiment::{Evaluation, Experiment, RawConfig, RoomFile, RoomFiles, Setup};
+use fuzzymotiv::experiment::{Evaluation, Experiment, RawConfig, Setup};
 use fuzzymotiv::fitness::{FitnessTerms, LIBRARY_TERMS, Term, TermId, TrialRecord, UserValues};
 use fuzzymotiv::simulation::Trajectory;
-use fuzzymotiv_pipeline::files::bounded::{InputKind, read_input};
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::files::inputs::{
-    CONFIG, Loaded, ROBOT_FILE, ROOM_FILE, SENSOR_TABLE, resolve,
-};
+use fuzzymotiv_pipeline::files::bounded::read_input;
+use fuzzymotiv_pipeline::files::inputs::{CONFIG, Loaded, RoomDir, resolve};
 use numpy::ndarray::{Array2, Array3, Array4};
 use numpy::{IntoPyArray, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::{input_err, load, py_float};
-
-/// Room files (and the robot file and sensor table) relative to a folder (the config file's),
-/// recorded absolute: as the CLI finds them.
-struct RoomDir<'a>(&'a Path);
-
-impl RoomDir<'_> {
-    /// The file `entry` names (relative to the folder), read as a file of `kind`.
-    fn find_as(&self, entry: &str, kind: InputKind) -> Result<Option<RoomFile>, String> {
-        let path = self.0.join(entry);
-        if !path.is_file() {
-            return Ok(None);
-        }
-        let text = read_input(&path, kind).map_err(|e| e.to_string())?;
-        let source_name = path.display().to_string();
-        let abs: PathBuf = path.canonicalize().unwrap_or(path);
-        Ok(Some(RoomFile {
-            text,
-            source_name,
-            entry: abs.display().to_string(),
-        }))
-    }
-}
-
-impl RoomFiles for RoomDir<'_> {
-    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
-        self.find_as(entry, ROOM_FILE)
-    }
-
-    fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, String> {
-        self.find_as(entry, SENSOR_TABLE)
-    }
-
-    fn find_robot(&self, entry: &str) -> Result<Option<RoomFile>, String> {
-        self.find_as(entry, ROBOT_FILE)
-    }
-
-    fn looked_for(&self, entry: &str) -> String {
-        self.0.join(entry).display().to_string()
-    }
-}
 
 /// `resolve`, with the terms named `user` supplied by Python (none: `resolve` itself).
 pub(crate) fn resolve_with_terms(

@@ -214,3 +214,24 @@ def test_a_dict_of_paper_motivations_means_exactly_those_named(cli):
     fll = fm.export_fll(x)
     assert fll == run_cli(cli, "fuzzy", "--motivations", "curiosity=0.7,homing=0.3", "--export-fll", "-").stdout
     assert fll.count("\n  rule: ") == 25
+
+
+def test_fuzzy_fitness_takes_the_engines_eight_motivations(cli):
+    """Issue #56: fm.fuzzy_fitness takes as many motivations as the engine (eight: the paper's
+    four and goal, safety, urgency, waypoints), giving the CLI's F; unnamed weights x1…x8 the
+    same F; a ninth is refused; the paper's four-argument call stays as it was."""
+    names = ["curiosity", "homing", "orientation", "energy", "goal", "safety", "urgency", "waypoints"]
+    terms = ["a", "g", "l", "b", "goal", "safety", "urgency", "waypoints"]
+    w = [0.2, 0.1, 0.1, 0.1, 0.2, 0.1, 0.1, 0.1]
+    y = [0.9, 0.5, 0.25, 0.75, 1.0, 0.3, 0.6, 0.0]
+    x = dict(zip(names, w))
+    motivations = ",".join(f"{n}={v}" for n, v in x.items())
+    fitness = ",".join(f"{t}={v}" for t, v in zip(terms, y))
+    out = run_cli(cli, "fuzzy", "--motivations", motivations, "--fitness", fitness)
+    f = fm.fuzzy_fitness(x, y)
+    assert f"{f:.12f}" == out.stdout.split()[0]
+    assert fm.fuzzy_fitness(w, y) == f
+    assert fm.fuzzy_fitness(w, [y, y]).tolist() == [f, f]
+    with pytest.raises(fm.FuzzymotivError, match=r"expected 1 to 8 weights"):
+        fm.fuzzy_fitness(w + [0.0], y + [0.0])
+    assert fm.fuzzy_fitness([0.8, 0.1, 0, 0.1], [0.95, 0.5, 0, 0.79]) == pytest.approx(0.797220, abs=5e-7)

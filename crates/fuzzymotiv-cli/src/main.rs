@@ -144,7 +144,7 @@ fn finish(result: Result<(), CliError>) -> ExitCode {
 /// program killed by SIGPIPE).
 fn exit_code(e: &CliError) -> u8 {
     match e {
-        CliError::Input(_) | CliError::Setup(_) | CliError::Output(_) => 2,
+        CliError::Input(_) | CliError::Setup(_) | CliError::StudyFile(_) | CliError::Output(_) => 2,
         CliError::Runtime(_) | CliError::Io { .. } | CliError::FileSystem(_) => 1,
         CliError::ClosedStdout => 141,
     }

@@ -661,3 +661,190 @@ fn the_library_check_catches_prints_aborts_and_process_state() {
     ));
     assert!(!test_only(Path::new("src/export/aseba/interp.rs"), &decl));
 }
+
+/// The methods that read or rewrite text.
+const TEXT_METHODS: [&str; 12] = [
+    "replace",
+    "replacen",
+    "contains",
+    "starts_with",
+    "ends_with",
+    "find",
+    "rfind",
+    "strip_prefix",
+    "strip_suffix",
+    "split_once",
+    "matches",
+    "trim_start_matches",
+];
+
+/// Receivers that are a message: an error's text (`msg`, `message`, `e.message()`, `e.reason`,
+/// `e.to_string()` of an error named `e`, `err`, `error` or `inner`) or its source's
+/// (`source_name`).
+fn is_message(receiver: &str) -> bool {
+    let parts: Vec<&str> = receiver.split('.').collect();
+    let last = parts[parts.len() - 1];
+    let before = parts.len().checked_sub(2).map(|i| parts[i]);
+    matches!(
+        last,
+        "msg" | "message" | "message()" | "reason" | "source_name"
+    ) || (last == "to_string()"
+        && before.is_some_and(|b| matches!(b, "e" | "err" | "error" | "inner")))
+}
+
+/// Every line of `code` that reads or rewrites a message's text (`msg.contains("missing
+/// field")`, `e.reason.replace("got", …)`, `source_name.ends_with(…)`), as `file:line: line`.
+fn message_reads_in(file: &str, code: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for (n, line) in code.lines().enumerate() {
+        let hit = TEXT_METHODS.iter().any(|m| {
+            line.match_indices(&format!(".{m}(")).any(|(at, _)| {
+                let start = line[..at]
+                    .rfind(|c: char| !(c.is_alphanumeric() || "_.()".contains(c)))
+                    .map_or(0, |i| i + 1);
+                let receiver = line[start..at].trim_start_matches(['(', '.']);
+                is_message(receiver)
+            })
+        });
+        if hit {
+            out.push(format!("{file}:{}: {}", n + 1, line.trim()));
+        }
+    }
+    out
+}
+
+/// Every line of the workspace's and the Python module's code (tests and comments left out)
+/// that reads or rewrites a message.
+fn message_reads() -> Vec<String> {
+    (workspace_code().iter())
+        .flat_map(|(file, code)| message_reads_in(file, code))
+        .collect()
+}
+
+/// Issue #56 item 3: no message is parsed, matched or rewritten: what code needs to know of an
+/// error (the field missing, the key not taken, the value got) is data of the error's type,
+/// and each message is rendered once from it.
+#[test]
+fn no_message_is_parsed_matched_or_rewritten() {
+    let bad = message_reads();
+    assert!(
+        bad.is_empty(),
+        "messages read or rewritten (keep what is needed as data of the error instead):\n{}",
+        bad.join("\n")
+    );
+}
+
+/// The check fails when it should: the three ways a message was read before (a field parsed
+/// out of serde's text, a suffix checked, another check's words rewritten); text that is not a
+/// message passes.
+#[test]
+fn the_message_check_catches_parsing_matching_and_rewriting() {
+    let code = "    if msg.contains(\"missing field\") {\n\
+                let at = if source_name.ends_with(\"(with --set overrides)\") {\n\
+                FieldError::new(f, e.reason.replace(\"got\", \"got an end\"))\n\
+                let inner = inner.to_string().replace(\"expected f64\", \"a number\");\n\
+                if e.message().starts_with(\"unknown field\") {\n\
+                let ok = name.ends_with(\".toml\") && path.contains(&p);\n\
+                let s = e.path().to_string().starts_with('[');\n";
+    let bad = message_reads_in("c.rs", code);
+    assert_eq!(bad.len(), 5, "{bad:#?}");
+    assert!(bad[0].starts_with("c.rs:1: if msg.contains"), "{bad:?}");
+}
+
+/// The workspace's code files (the Python module's included), tests left out: (file, code).
+fn workspace_code() -> Vec<(String, String)> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dirs = CRATES
+        .iter()
+        .copied()
+        .chain([("python", "../../python/src")]);
+    let mut out = Vec::new();
+    for (prefix, dir) in dirs {
+        let files = modules(prefix, &root.join(dir));
+        let texts: Vec<String> = (files.iter())
+            .map(|(_, p)| std::fs::read_to_string(p).unwrap())
+            .collect();
+        for (_, path) in &files {
+            if !test_only(path, &texts) {
+                out.push((path.display().to_string(), code(path)));
+            }
+        }
+    }
+    out
+}
+
+/// Every `type A = B;` of a module (not an impl's associated type: a line not indented) in
+/// `files` where `B` (its last path segment) is a struct or enum the files define: one type
+/// under two names.
+fn aliases_in(files: &[(String, String)]) -> Vec<String> {
+    let defined: BTreeSet<&str> = (files.iter())
+        .flat_map(|(_, code)| code.lines())
+        .filter_map(|line| {
+            let t = line.trim_start();
+            let t = t
+                .strip_prefix("pub ")
+                .or(t.strip_prefix("pub(crate) "))
+                .unwrap_or(t);
+            let rest = t.strip_prefix("struct ").or(t.strip_prefix("enum "))?;
+            rest.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .next()
+        })
+        .collect();
+    let mut out = Vec::new();
+    for (file, code) in files {
+        for (n, line) in code.lines().enumerate() {
+            let t = line;
+            let t = t
+                .strip_prefix("pub ")
+                .or(t.strip_prefix("pub(crate) "))
+                .unwrap_or(t);
+            let Some((_, target)) = t.strip_prefix("type ").and_then(|r| r.split_once('=')) else {
+                continue;
+            };
+            let target = target.trim().trim_end_matches(';').trim();
+            let last = target.rsplit("::").next().unwrap_or(target);
+            if defined.contains(last) {
+                out.push(format!("{file}:{}: {}", n + 1, line.trim()));
+            }
+        }
+    }
+    out
+}
+
+/// Issue #56 item 4: no type goes by two names (`ConfigError = RoomError = FieldError`,
+/// `HomeZone = Zone` were one type under three and two): each has one name, its users use it.
+#[test]
+fn no_type_goes_by_two_names() {
+    let bad = aliases_in(&workspace_code());
+    assert!(
+        bad.is_empty(),
+        "aliases of the workspace's own types:\n{}",
+        bad.join("\n")
+    );
+}
+
+/// The alias check fails when it should: an alias of a struct the files define, by path or
+/// not; an alias of a tuple, a generic or another crate's type passes.
+#[test]
+fn the_alias_check_catches_a_second_name() {
+    let files = [
+        (
+            "a.rs".to_string(),
+            "pub struct FieldError {}\npub enum Zone {}\n".to_string(),
+        ),
+        (
+            "b.rs".to_string(),
+            "pub type ConfigError = FieldError;\npub type HomeZone = crate::room::Zone;\n\
+             pub type Genome = Vec<f64>;\npub type Rng64 = rand_xoshiro::Xoshiro256PlusPlus;\n\
+             pub type Part<'a> = (&'a str, &'a str);\n\
+             impl Iterator for Zones {\n    type Item = Zone;\n}\n"
+                .to_string(),
+        ),
+    ];
+    let bad = aliases_in(&files);
+    assert_eq!(bad.len(), 2, "{bad:#?}");
+    assert!(
+        bad[0].starts_with("b.rs:1: pub type ConfigError"),
+        "{bad:?}"
+    );
+}

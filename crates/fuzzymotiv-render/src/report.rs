@@ -166,8 +166,7 @@ pub fn replay_room(ctx: &RenderContext, room: usize, run_label: &str, run: &Inst
 /// A room's mission in its replay data (only when it has one, so the paper's replays keep
 /// their bytes): `goal` as [x, y, radius], `waypoints` as a list of them, in order.
 fn add_mission(v: &mut Value, r: &fuzzymotiv::simulation::Room) {
-    let disc =
-        |z: &fuzzymotiv::simulation::HomeZone| [r1(z.centre.x), r1(z.centre.y), r1(z.radius)];
+    let disc = |z: &fuzzymotiv::simulation::Zone| [r1(z.centre.x), r1(z.centre.y), r1(z.radius)];
     if let Some(goal) = &r.mission.goal {
         v["goal"] = json!(disc(goal));
     }

@@ -23,8 +23,8 @@ pub use config::{
     RawTrial,
 };
 pub use config::{
-    Combination, ConfigError, EnergyMode, MAX_SEED, OrientationMode, RawConfig, Training,
-    apply_sets, at_line, blame_set,
+    Combination, EnergyMode, MAX_SEED, OrientationMode, RawConfig, Training, apply_sets, at_line,
+    blame_set,
 };
 pub use descriptors::Descriptors;
 pub use evaluation::{Evaluation, RoomScore, TermError};
@@ -35,7 +35,9 @@ pub use logged::{LoggedStep, LoggedTrial};
 pub use modelling::{AemReport, AemRoom, AemTest, InstanceRun};
 pub use outcome::{Outcome, RunError, Start};
 pub use robustness::{Perturbation, RobustnessError, RobustnessRow};
-pub use setup::{BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, parse_room_file};
+pub use setup::{
+    BuiltinRoomsOnly, RoomFile, RoomFiles, Setup, SetupError, UnreadableFile, parse_room_file,
+};
 pub use terms::{UserTerm, case_hint};
 
 use serde::{Deserialize, Serialize};
@@ -86,7 +88,7 @@ impl Experiment {
         raw: &RawConfig,
         rooms: Vec<Room>,
         source_name: &str,
-    ) -> Result<Experiment, ConfigError> {
+    ) -> Result<Experiment, FieldError> {
         Self::with_terms(raw, rooms, &[], source_name)
     }
 
@@ -96,7 +98,7 @@ impl Experiment {
         rooms: Vec<Room>,
         user: &[UserTerm],
         source_name: &str,
-    ) -> Result<Experiment, ConfigError> {
+    ) -> Result<Experiment, FieldError> {
         Self::build(raw, rooms, user, ReadFiles::default()).map_err(|e| e.in_source(source_name))
     }
 
@@ -109,7 +111,7 @@ impl Experiment {
         user: &[UserTerm],
         files: ReadFiles,
         source_name: &str,
-    ) -> Result<Experiment, ConfigError> {
+    ) -> Result<Experiment, FieldError> {
         Self::build(raw, rooms, user, files).map_err(|e| e.in_source(source_name))
     }
 

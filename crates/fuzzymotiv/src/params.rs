@@ -59,6 +59,26 @@ pub fn joined_list<S: AsRef<str>>(items: &[S], word: &str) -> String {
     }
 }
 
+/// Reads a `T` from the serde deserializer `d` (e.g. a JSON record file's) with its type errors
+/// in plain words, as a config's are: a number says "expected a number (e.g. 0.5)", a whole
+/// number "expected a whole number ≥ 0", true/false "expected true or false", never serde's
+/// Rust type names (`f64`, `u64`).
+///
+/// ```
+/// let mut json = serde_json::Deserializer::from_str(r#"{"x": "a"}"#);
+/// #[derive(serde::Deserialize, Debug)]
+/// struct R { x: f64 }
+/// let e = fuzzymotiv::params::deserialize_plain::<R, _>(&mut json).unwrap_err();
+/// assert!(e.to_string().starts_with("invalid type: string \"a\", expected a number (e.g. 0.5)"));
+/// ```
+pub fn deserialize_plain<'de, T, D>(d: D) -> Result<T, D::Error>
+where
+    T: serde::Deserialize<'de>,
+    D: serde::Deserializer<'de>,
+{
+    plain::deserialize(d, |_| "≥ 0".into())
+}
+
 /// The largest count most integer parameters accept (10⁶).
 pub const BIG: usize = 1_000_000;
 
@@ -102,35 +122,27 @@ impl std::fmt::Display for Num {
     }
 }
 
-/// Best guess at the key a TOML error refers to: the key on the line of the error span, with
-/// the path of the table it is in (`motivations.x`, `waypoints[1].x`); for a missing field, the
-/// field under the table that lacks it (`motivations.x.weight`, `waypoints[0].y`, `home.y`).
-pub(crate) fn field_from_toml_message(
-    msg: &str,
+/// The key a TOML error at `span` refers to: the key on the line of the span, with the path of
+/// the table it is in (`motivations.x`, `waypoints[1].x`); for a field `missing` from a table
+/// (as the table's reader said, [`plain::Fault::Missing`]), that field under the table
+/// (`motivations.x.weight`, `waypoints[0].y`, `home.y`). `(document)` where neither is known.
+pub(crate) fn field_at(
     text: &str,
     span: Option<std::ops::Range<usize>>,
+    missing: Option<&str>,
 ) -> String {
-    let from_message = || {
-        let start = msg.find("field `")?;
-        let rest = &msg[start + 7..];
-        rest.find('`').map(|end| rest[..end].to_string())
-    };
-    if msg.contains("missing field") {
-        if let Some(f) = from_message() {
-            // A field missing from the document itself: its span starts the document, whose
-            // first line may be a key (not the table that lacks the field).
-            let root =
-                span.as_ref().is_some_and(|s| s.start == 0) && !text.trim_start().starts_with('[');
-            return match span.and_then(|span| value_path_at(text, span.start)) {
-                Some(table) if !table.is_empty() && !root => format!("{table}.{f}"),
-                _ => f,
-            };
-        }
+    if let Some(f) = missing {
+        // A field missing from the document itself: its span starts the document, whose
+        // first line may be a key (not the table that lacks the field).
+        let root =
+            span.as_ref().is_some_and(|s| s.start == 0) && !text.trim_start().starts_with('[');
+        return match span.and_then(|span| value_path_at(text, span.start)) {
+            Some(table) if !table.is_empty() && !root => format!("{table}.{f}"),
+            _ => f.to_string(),
+        };
     }
-    if let Some(path) = span.and_then(|span| value_path_at(text, span.start)) {
-        return path;
-    }
-    from_message().unwrap_or_else(|| "(document)".to_string())
+    span.and_then(|span| value_path_at(text, span.start))
+        .unwrap_or_else(|| "(document)".to_string())
 }
 
 /// The line of `text` around byte `at`: (its start, the line).

@@ -27,7 +27,7 @@ pub use math::logistic_lanes;
 pub use randomise::{Draw, Randomise, RawRandomise};
 pub use robot::{Action, Compass, Motion, Pose, RawRobot, Robot, drive, wrap_angle};
 pub use robot_spec::{BUILTIN_ROBOTS, RawRobotFile, RawSensor, RobotSpec};
-pub use room::{BUILTIN_ROOMS, HomeZone, Mission, Room, RoomError, Zone};
+pub use room::{BUILTIN_ROOMS, Mission, Room, Zone};
 pub use sensor::{
     MAX_SENSORS, RayMount, Readings, SENSOR_LAYOUT, SENSOR_MAX, SENSORS, SensorModel, SensorMount,
     TableRef, rays,

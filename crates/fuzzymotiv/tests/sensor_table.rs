@@ -1,7 +1,7 @@
 //! `trial.sensor_table`: a sensor table file read by the `sampled` model instead of the
 //! built-in Khepera tables.
 
-use fuzzymotiv::experiment::{RawConfig, RoomFile, RoomFiles, Setup, SetupError};
+use fuzzymotiv::experiment::{RawConfig, RoomFile, RoomFiles, Setup, SetupError, UnreadableFile};
 use fuzzymotiv::random::{rng_from_seed, uniform};
 use fuzzymotiv::simulation::{
     Arena, Mlp, MlpShape, Motion, Pose, RawRobot, RawTrial, Room, SensorTable, TrialParams,
@@ -76,7 +76,7 @@ fn the_khepera_table_as_a_file_reproduces_the_built_in_sensors() {
 struct TableFile(String);
 
 impl RoomFiles for TableFile {
-    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+    fn find(&self, entry: &str) -> Result<Option<RoomFile>, UnreadableFile> {
         Ok((entry == "robot.toml").then(|| RoomFile {
             text: self.0.clone(),
             source_name: "/cfg/robot.toml".into(),

@@ -59,7 +59,7 @@ fn print_room(prefix: &str, r: &fuzzymotiv::simulation::Room) -> Result<(), CliE
 /// What `rooms --check` says of a valid room, each quantity named: its name, area, perimeter,
 /// home pose and mission (goal zone, waypoints in order) or that it has none.
 fn checked_room(r: &fuzzymotiv::simulation::Room) -> String {
-    let zone = |z: &fuzzymotiv::simulation::HomeZone| {
+    let zone = |z: &fuzzymotiv::simulation::Zone| {
         format!("({}, {}) radius {} mm", z.centre.x, z.centre.y, z.radius)
     };
     let mut mission = Vec::new();

@@ -229,7 +229,7 @@ fn mission_text(m: &MissionTerms, room: &fuzzymotiv::simulation::Room) -> String
 /// A room's mission in the replay's JSON, only when it has one (the paper's replays keep their
 /// bytes): `goal` as {x, y, radius} and `waypoints` as a list of them, in order.
 fn add_mission(room_json: &mut serde_json::Value, room: &fuzzymotiv::simulation::Room) {
-    let zone = |z: &fuzzymotiv::simulation::HomeZone| serde_json::json!({"x": z.centre.x, "y": z.centre.y, "radius": z.radius});
+    let zone = |z: &fuzzymotiv::simulation::Zone| serde_json::json!({"x": z.centre.x, "y": z.centre.y, "radius": z.radius});
     if let Some(goal) = &room.mission.goal {
         room_json["goal"] = zone(goal);
     }

@@ -141,8 +141,9 @@ pub struct Sweep {
     pub notes: Vec<String>,
 }
 
+/// The error of the file `source`'s `field` (a typed [`CliError::StudyFile`]).
 fn err(source: &str, field: &str, reason: impl Into<String>) -> CliError {
-    CliError::input(format!("{source}: field `{field}`: {}", reason.into()))
+    CliError::study_file(source, field, reason)
 }
 
 fn fmt_value(v: f64) -> String {

@@ -23,7 +23,7 @@ use fuzzymotiv::simulation::{Controller, Mlp, MlpShape, Pose, Readings, Room, Ve
 use serde::{Deserialize, Serialize};
 
 use crate::files::error::CliError;
-use crate::files::guard::{FilesState, check_files_dir, write_into};
+use crate::files::guard::{FilesState, check_files_dir, io_err, write_into};
 use crate::files::inputs::load_config;
 use crate::records::genome::{SavedGenome, locate, read_genome};
 use crate::records::robot_log::{LogActions, recognise_actions, steps_log};
@@ -248,8 +248,7 @@ pub fn transfer(req: &TransferRequest) -> Result<Transferred, CliError> {
     }
     let state = write_into(req.out, &files, "--out", req.force)?;
     for path in stale {
-        std::fs::remove_file(&path)
-            .map_err(|e| CliError::io(format!("{}: {e}", path.display())))?;
+        std::fs::remove_file(&path).map_err(|e| io_err(&path, e))?;
     }
     Ok(Transferred {
         files: files.into_iter().map(|(p, _)| p).collect(),
@@ -329,18 +328,16 @@ fn build_harness(src: &Source, dir: &Path) -> Result<PathBuf, CliError> {
         })?;
     let sources = controller.c();
     let c = dir.join("c");
-    std::fs::create_dir_all(&c).map_err(|e| CliError::io(format!("{}: {e}", c.display())))?;
+    std::fs::create_dir_all(&c).map_err(|e| io_err(&c, e))?;
     for (name, text) in [
         (CSources::HEADER_NAME, &sources.header),
         (CSources::SOURCE_NAME, &sources.source),
     ] {
         let path = c.join(name);
-        std::fs::write(&path, text)
-            .map_err(|e| CliError::io(format!("{}: {e}", path.display())))?;
+        std::fs::write(&path, text).map_err(|e| io_err(&path, e))?;
     }
     let harness = dir.join("harness.cpp");
-    std::fs::write(&harness, HARNESS)
-        .map_err(|e| CliError::io(format!("{}: {e}", harness.display())))?;
+    std::fs::write(&harness, HARNESS).map_err(|e| io_err(&harness, e))?;
     let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
     let cxx = std::env::var("CXX").unwrap_or_else(|_| "c++".into());
     let object = dir.join("fm_controller.o");
@@ -480,7 +477,7 @@ fn run_in_enki(
 ) -> Result<EnkiTrial, CliError> {
     let file = dir.join(format!("scenario-{seed}.txt"));
     let text = format!("{}seed {seed}\n", scenario(src));
-    std::fs::write(&file, text).map_err(|e| CliError::io(format!("{}: {e}", file.display())))?;
+    std::fs::write(&file, text).map_err(|e| io_err(&file, e))?;
     let out = Command::new(harness).arg(&file).output();
     let out = out.map_err(|e| CliError::runtime(format!("{}: {e}", harness.display())))?;
     if !out.status.success() {

@@ -132,8 +132,9 @@ pub struct Study {
     pub plan: Sweep,
 }
 
+/// The error of the file `source`'s `field` (a typed [`CliError::StudyFile`]).
 fn err(source: &str, field: &str, reason: impl Into<String>) -> CliError {
-    CliError::input(format!("{source}: field `{field}`: {}", reason.into()))
+    CliError::study_file(source, field, reason)
 }
 
 impl Study {
@@ -690,6 +691,28 @@ mod tests {
         };
         assert!(e.to_string().contains("400000 runs planned"), "{e}");
         assert!(started.elapsed().as_secs() < 5, "refused before planning");
+    }
+
+    /// Issue #56: a study file's bad value is a typed error (the file and the field as data),
+    /// bad input (exit 2), worded as before.
+    #[test]
+    fn a_bad_study_value_is_a_typed_study_file_error() {
+        let header = "[study]\nname = \"p\"\nseeds = 0\nbase_seeds = [1]\nconfig = \"tiny.toml\"";
+        let Err(e) = parse(header) else {
+            panic!("seeds = 0 is refused");
+        };
+        assert!(e.is_input(), "{e:?}");
+        let CliError::StudyFile(f) = &e else {
+            panic!("not a study file error: {e:?}");
+        };
+        assert_eq!(
+            (f.source_name.as_str(), f.field.as_str()),
+            ("s.toml", "study.seeds")
+        );
+        assert!(
+            e.to_string().starts_with("s.toml: field `study.seeds`: "),
+            "{e}"
+        );
     }
 
     #[test]

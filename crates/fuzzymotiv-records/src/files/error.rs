@@ -21,6 +21,10 @@ pub enum CliError {
     /// ([`FieldError`]), or a room file that is not TOML.
     #[error(transparent)]
     Setup(#[from] SetupError),
+    /// A study or sweep file's value that cannot be used: the file, the field (a typed
+    /// [`FieldError`]) and the reason.
+    #[error(transparent)]
+    StudyFile(FieldError),
     /// An output the guard refuses to write or replace, as facts each front words with its own
     /// option names ([`OutputError::render`]).
     #[error(transparent)]
@@ -62,6 +66,11 @@ impl CliError {
         Self::FileSystem(message.into())
     }
 
+    /// A study or sweep file's `field` that cannot be used, read from `source`.
+    pub fn study_file(source: &str, field: &str, reason: impl Into<String>) -> Self {
+        Self::StudyFile(FieldError::new(field, reason).in_source(source))
+    }
+
     /// Standard output was closed by its reader.
     pub fn closed_stdout() -> Self {
         Self::ClosedStdout
@@ -70,7 +79,10 @@ impl CliError {
     /// Whether this is the user's bad input (a config, a room file, an option, an output that
     /// must not be replaced) rather than a failure while running.
     pub fn is_input(&self) -> bool {
-        matches!(self, Self::Input(_) | Self::Setup(_) | Self::Output(_))
+        matches!(
+            self,
+            Self::Input(_) | Self::Setup(_) | Self::StudyFile(_) | Self::Output(_)
+        )
     }
 
     /// The OS error number of a file-system failure on a named path, else None.

@@ -4,7 +4,9 @@ use std::path::{Path, PathBuf};
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv::experiment::RawConfig;
-use fuzzymotiv::experiment::{RoomFile, RoomFiles, Setup, SetupError, blame_set, parse_room_file};
+use fuzzymotiv::experiment::{
+    RoomFile, RoomFiles, Setup, SetupError, UnreadableFile, blame_set, parse_room_file,
+};
 use fuzzymotiv::simulation::{BUILTIN_ROBOTS, RobotSpec};
 use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
 
@@ -60,17 +62,20 @@ pub struct Loaded {
     pub notes: Vec<String>,
 }
 
-/// Room files of a config: paths relative to the config file's folder, recorded absolute.
-struct RoomDir<'a>(&'a Path);
+/// Room files of a config (and its robot file and sensor table): paths relative to the config
+/// file's folder, recorded absolute; a file that cannot be read is the [`CliError`] of reading
+/// it (in [`UnreadableFile::cause`]). The CLI's, Python's and the lab's.
+#[derive(Debug, Clone, Copy)]
+pub struct RoomDir<'a>(pub &'a Path);
 
 impl RoomDir<'_> {
     /// The file `entry` names (relative to the folder), read as a file of `kind`.
-    fn find_as(&self, entry: &str, kind: InputKind) -> Result<Option<RoomFile>, String> {
+    fn find_as(&self, entry: &str, kind: InputKind) -> Result<Option<RoomFile>, UnreadableFile> {
         let path = self.0.join(entry);
         if !path.is_file() {
             return Ok(None);
         }
-        let text = read_input(&path, kind).map_err(|e| e.to_string())?;
+        let text = read_input(&path, kind).map_err(UnreadableFile::new)?;
         let source_name = path.display().to_string();
         let abs: PathBuf = path.canonicalize().unwrap_or(path);
         Ok(Some(RoomFile {
@@ -82,15 +87,15 @@ impl RoomDir<'_> {
 }
 
 impl RoomFiles for RoomDir<'_> {
-    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+    fn find(&self, entry: &str) -> Result<Option<RoomFile>, UnreadableFile> {
         self.find_as(entry, ROOM_FILE)
     }
 
-    fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+    fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, UnreadableFile> {
         self.find_as(entry, SENSOR_TABLE)
     }
 
-    fn find_robot(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+    fn find_robot(&self, entry: &str) -> Result<Option<RoomFile>, UnreadableFile> {
         self.find_as(entry, ROBOT_FILE)
     }
 
@@ -149,26 +154,61 @@ pub fn load_config(
 /// line, the same on every machine.
 pub const MAX_THREADS: usize = 256;
 
-/// `n` as a number of worker threads: from 1 to [`MAX_THREADS`]; otherwise the end of a
-/// sentence whose start names the option (`--threads must be a whole number from 1 to 256,
-/// got 0`).
-pub fn check_threads(n: i128) -> Result<usize, String> {
+/// A value of `--threads` or `--seed` that is not one: what the option takes and what it got,
+/// worded as the end of a sentence whose start names the option (`--threads must be a whole
+/// number from 1 to 256, got 0`).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum OptionValueError {
+    /// Not a number of worker threads from 1 to [`MAX_THREADS`].
+    #[error("must be a whole number from 1 to {MAX_THREADS}, got {got}")]
+    Threads {
+        /// The value given.
+        got: Given,
+    },
+    /// Not a seed from 0 to [`MAX_SEED`].
+    #[error("`{got}` is not a seed; a seed is a whole number from 0 to {MAX_SEED} (2^53 − 1)")]
+    Seed {
+        /// The text given.
+        got: String,
+    },
+}
+
+/// A value as given: a whole number, or text that is not one (shown in backticks).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Given {
+    /// A whole number.
+    Number(i128),
+    /// Text that is not a whole number.
+    Text(String),
+}
+
+impl std::fmt::Display for Given {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Given::Number(n) => write!(f, "{n}"),
+            Given::Text(t) => write!(f, "`{t}`"),
+        }
+    }
+}
+
+/// `n` as a number of worker threads: from 1 to [`MAX_THREADS`].
+pub fn check_threads(n: i128) -> Result<usize, OptionValueError> {
     match usize::try_from(n) {
         Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "must be a whole number from 1 to {MAX_THREADS}, got {n}"
-        )),
+        _ => Err(OptionValueError::Threads {
+            got: Given::Number(n),
+        }),
     }
 }
 
 /// `--threads N` (a clap value parser): a whole number from 1 to [`MAX_THREADS`], with a
 /// message stating the range otherwise.
-pub fn parse_threads(text: &str) -> Result<usize, String> {
+pub fn parse_threads(text: &str) -> Result<usize, OptionValueError> {
     match text.trim().parse::<i128>() {
         Ok(n) => check_threads(n),
-        Err(_) => Err(format!(
-            "must be a whole number from 1 to {MAX_THREADS}, got `{text}`"
-        )),
+        Err(_) => Err(OptionValueError::Threads {
+            got: Given::Text(text.to_string()),
+        }),
     }
 }
 
@@ -177,15 +217,13 @@ pub fn parse_threads(text: &str) -> Result<usize, String> {
 pub const MAX_SEED: u64 = fuzzymotiv::experiment::MAX_SEED;
 
 /// Parses `--seed`: a whole number from 0 to 2^53 − 1, with a plain message otherwise.
-pub fn parse_seed(text: &str) -> Result<u64, String> {
+pub fn parse_seed(text: &str) -> Result<u64, OptionValueError> {
     text.trim()
         .parse::<u64>()
         .ok()
         .filter(|&s| s <= MAX_SEED)
-        .ok_or_else(|| {
-            format!(
-                "`{text}` is not a seed; a seed is a whole number from 0 to {MAX_SEED} (2^53 − 1)"
-            )
+        .ok_or_else(|| OptionValueError::Seed {
+            got: text.to_string(),
         })
 }
 
@@ -284,5 +322,33 @@ pub fn room_entry(option: &str, want: &str, loaded: &Loaded) -> Result<String, C
             names.join(", "),
             BUILTIN_ROOMS.join(", ")
         )))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue #56: a room file the front cannot read reaches the front as its own error, kept
+    /// whole through the library ([`UnreadableFile::cause`]), not as a message; bad input.
+    #[test]
+    fn an_unreadable_room_file_comes_back_as_the_fronts_own_error() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("r.toml"), b"name = \"r\xff\"\n").unwrap();
+        let config = dir.path().join("c.toml");
+        std::fs::write(&config, "rooms = [\"r.toml\"]\n").unwrap();
+        let Err(e) = load_config(Some(&config), &[], None) else {
+            panic!("a room file that is not UTF-8 is refused");
+        };
+        assert!(e.is_input(), "{e:?}");
+        let CliError::Setup(SetupError::Unreadable(u)) = &e else {
+            panic!("not an unreadable file: {e:?}");
+        };
+        let cause = u
+            .cause()
+            .downcast_ref::<CliError>()
+            .expect("the front's CliError");
+        assert_eq!(cause.to_string(), e.to_string());
+        assert!(e.to_string().contains("r.toml"), "{e}");
     }
 }

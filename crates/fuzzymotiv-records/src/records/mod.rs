@@ -1458,15 +1458,19 @@ pub fn read_json<T: DeserializeOwned>(path: &Path) -> Result<T, CliError> {
     parse_json(&text, &path.display().to_string())
 }
 
-/// Parses JSON text from `source` (a file name, maybe with a line) into a record.
+/// Parses JSON text from `source` (a file name, maybe with a line) into a record; a wrong value
+/// says what its field takes in plain words ([`fuzzymotiv::params::deserialize_plain`]).
 pub fn parse_json<T: DeserializeOwned>(text: &str, source: &str) -> Result<T, CliError> {
     let mut de = serde_json::Deserializer::from_str(text);
-    let value: T = serde_path_to_error::deserialize(&mut de).map_err(|e| {
-        let field = e.path().to_string();
-        let inner = e.into_inner();
+    let mut track = serde_path_to_error::Track::new();
+    let read = fuzzymotiv::params::deserialize_plain::<T, _>(
+        serde_path_to_error::Deserializer::new(&mut de, &mut track),
+    );
+    let value = read.map_err(|inner| {
+        let field = track.path().to_string();
         if inner.classify() != serde_json::error::Category::Data {
             CliError::input(format!("{source}: not valid JSON: {inner}"))
-        } else if let Some(record) = array_for_record::<T>(&field, &inner.to_string()) {
+        } else if let Some(record) = array_for_record::<T>(text) {
             // serde reads an array as a struct's fields in order: say what was expected.
             CliError::input(format!(
                 "{source}: expected a JSON object {{ \"key\": value, … }} (a {record} record), got an array"
@@ -1474,7 +1478,6 @@ pub fn parse_json<T: DeserializeOwned>(text: &str, source: &str) -> Result<T, Cl
         } else if field == "." {
             CliError::input(format!("{source}: {inner}"))
         } else {
-            let inner = inner.to_string().replace("expected f64", "expected a number");
             CliError::input(format!("{source}: field `{field}`: {inner}"))
         }
     })?;
@@ -1483,16 +1486,44 @@ pub fn parse_json<T: DeserializeOwned>(text: &str, source: &str) -> Result<T, Cl
     Ok(value)
 }
 
-/// The record `T` when an array was read where its object belongs: serde then reads the
-/// array as the struct's fields in order and says "invalid length 0, expected struct
-/// BestGenome with 11 elements" or fails on an element (`field` `[1]`).
-fn array_for_record<T>(field: &str, message: &str) -> Option<&'static str> {
-    let name = std::any::type_name::<T>();
-    let record = name.rsplit("::").next().unwrap_or(name);
-    let is_struct = !name.contains('<') && record.chars().next().is_some_and(char::is_uppercase);
-    let as_fields = message.contains(&format!("expected struct {record}"))
-        || (field.starts_with('[') && !field.contains('.'));
-    (is_struct && as_fields).then_some(record)
+/// The record `T` when the document `text` is an array where its object belongs (serde then
+/// reads the array as the struct's fields in order and says "invalid length 0, expected struct
+/// BestGenome with 11 elements" or fails on an element): the name `T` is read under if `T` is
+/// read as a struct, asked of `T`'s own `Deserialize`.
+fn array_for_record<T: DeserializeOwned>(text: &str) -> Option<&'static str> {
+    if !text.trim_start().starts_with('[') {
+        return None;
+    }
+    let mut name = None;
+    let _ = T::deserialize(StructName(&mut name));
+    name
+}
+
+/// A deserializer that holds nothing and notes the name of the struct asked of it.
+struct StructName<'a>(&'a mut Option<&'static str>);
+
+impl<'de> serde::Deserializer<'de> for StructName<'_> {
+    type Error = serde::de::value::Error;
+
+    fn deserialize_any<V: serde::de::Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+        Err(serde::de::Error::custom("not a struct"))
+    }
+
+    fn deserialize_struct<V: serde::de::Visitor<'de>>(
+        self,
+        name: &'static str,
+        _fields: &'static [&'static str],
+        _visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        *self.0 = Some(name);
+        Err(serde::de::Error::custom("a struct"))
+    }
+
+    serde::forward_to_deserialize_any! {
+        bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
+        option unit unit_struct newtype_struct seq tuple tuple_struct map enum identifier
+        ignored_any
+    }
 }
 
 /// Reads a CSV record file into rows of `T`; a missing or malformed cell is an input error

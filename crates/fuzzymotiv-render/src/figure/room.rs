@@ -4,7 +4,7 @@
 //! path with a heading tick per step, the home pose, the end (ringed when the trial ended at
 //! home) and logged paths over it.
 
-use fuzzymotiv::simulation::{HomeZone, Room, Trajectory, Vec2, point_in_polygon};
+use fuzzymotiv::simulation::{Room, Trajectory, Vec2, Zone, point_in_polygon};
 
 use super::doc::{Fill, PathData, Stroke, Svg, Text};
 
@@ -167,7 +167,7 @@ fn draw_mission(svg: &mut Svg, room: &Room, p: &Projection) {
 
 /// A zone as its disc within the room's outline, filled lightly in `colour`, its rim dashed
 /// where it runs inside the room.
-fn draw_zone(svg: &mut Svg, room: &Room, zone: HomeZone, colour: &str, p: &Projection) {
+fn draw_zone(svg: &mut Svg, room: &Room, zone: Zone, colour: &str, p: &Projection) {
     let (floor, rim) = zone_within(room, zone);
     if floor.len() >= 3 {
         svg.polygon(
@@ -192,7 +192,7 @@ fn draw_zone(svg: &mut Svg, room: &Room, zone: HomeZone, colour: &str, p: &Proje
 /// Sutherland–Hodgman, exact for a convex clip region and any simple outline; where the
 /// result falls apart in pieces they are joined by zero-width seams along the rim, which the
 /// unstroked fill does not show), and the runs of the rim inside the outline.
-fn zone_within(room: &Room, zone: HomeZone) -> (Vec<Vec2>, Vec<Vec<Vec2>>) {
+fn zone_within(room: &Room, zone: Zone) -> (Vec<Vec2>, Vec<Vec<Vec2>>) {
     let circle: Vec<Vec2> = (0..ZONE_SIDES)
         .map(|i| {
             let a = i as f64 * std::f64::consts::TAU / ZONE_SIDES as f64;

@@ -2,8 +2,8 @@
 //! the path so far, the IR rays, the body and heading, and the labels.
 
 use super::error::FrameError;
-use fuzzymotiv::simulation::{HomeZone, Room};
 use fuzzymotiv::simulation::{RayMount, rays};
+use fuzzymotiv::simulation::{Room, Zone};
 use fuzzymotiv::simulation::{Segment, Vec2};
 use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Mask, Paint, Path, PathBuilder, Pixmap, Rect, Stroke,
@@ -51,7 +51,7 @@ fn draw_zone(
     bg: &mut Pixmap,
     view: &View,
     outline: &Path,
-    zone: HomeZone,
+    zone: Zone,
     (fill, rim): ([u8; 3], [u8; 3]),
     k: f32,
 ) {

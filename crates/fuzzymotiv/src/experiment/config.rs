@@ -16,8 +16,8 @@ pub use crate::evolution::ga::RawGa;
 use crate::fitness::terms::{Homing, WaypointOrder};
 pub use crate::fitness::{Coefficients, RawFuzzy, RawMotivations};
 pub use crate::modelling::aem::RawAem;
-use crate::params::field_from_toml_message;
-use crate::params::{BIG, FieldError};
+use crate::params::plain::{Fault, ReadError};
+use crate::params::{BIG, FieldError, field_at};
 pub use crate::simulation::controller::RawNetwork;
 pub use crate::simulation::robot::RawRobot;
 use crate::simulation::room::BUILTIN_ROOMS;
@@ -26,10 +26,6 @@ pub use crate::simulation::trial::RawTrial;
 /// The largest base seed, 2^53 − 1: every seed (and every seed derived from it for a sweep) is
 /// then exact as a JSON number, also for tools that read numbers as doubles (JavaScript, jq).
 pub const MAX_SEED: u64 = (1 << 53) - 1;
-
-/// A configuration that cannot be used: the file, the field and what is wrong (the same type
-/// as a room file's [`crate::simulation::room::RoomError`]).
-pub type ConfigError = FieldError;
 
 /// How populations are trained over rooms (docs/model.md §10).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -157,49 +153,48 @@ impl Default for RawConfig {
 impl RawConfig {
     /// Parses a TOML document and applies `key=value` overrides (dotted keys; the value is read
     /// as TOML, and as a plain string if it is not valid TOML).
-    pub fn parse(text: &str, source_name: &str, sets: &[String]) -> Result<RawConfig, ConfigError> {
-        let err = |field: &str, reason: String| ConfigError {
+    pub fn parse(text: &str, source_name: &str, sets: &[String]) -> Result<RawConfig, FieldError> {
+        let err = |field: &str, reason: String| FieldError {
             source_name: source_name.to_string(),
             field: field.to_string(),
             reason,
         };
         let mut table: toml::Table = toml::from_str(text).map_err(|e| {
-            let msg = e.message().trim().to_string();
+            let msg = e.message().trim();
             err(
-                &field_from_toml_message(&msg, text, e.span()),
+                &field_at(text, e.span(), None),
                 format!("not valid TOML{}: {msg}", at_line(text, e.span())),
             )
         })?;
         if sets.is_empty() {
-            return Self::from_text(text, source_name);
+            return Self::from_text(text, source_name, true);
         }
         default_motivations_for_sets(&mut table, sets);
         apply_sets(&mut table, sets)?;
         let merged = toml::to_string(&table).map_err(|e| err("(document)", e.to_string()))?;
-        Self::from_text(&merged, &format!("{source_name} (with --set overrides)"))
-            .map_err(|e| blame_set(e, sets))
+        let source_name = format!("{source_name} (with --set overrides)");
+        Self::from_text(&merged, &source_name, false).map_err(|e| blame_set(e, sets))
     }
 
-    fn from_text(text: &str, source_name: &str) -> Result<RawConfig, ConfigError> {
+    /// Reads the document `text` of `source_name`; `own_text`: whether `text` is the user's
+    /// own file (so that line numbers point into it), not a document with overrides merged.
+    fn from_text(text: &str, source_name: &str, own_text: bool) -> Result<RawConfig, FieldError> {
         let raw: RawConfig =
             crate::params::plain::from_str(text, whole_number_range).map_err(|e| {
-                let msg = e.message().trim().to_string();
-                let field = field_from_toml_message(&msg, text, e.span());
-                // Line numbers only point into the user's own file, not a document with overrides.
-                let at = if source_name.ends_with("(with --set overrides)") {
-                    String::new()
-                } else {
+                let at = if own_text {
                     at_line(text, e.span())
+                } else {
+                    String::new()
                 };
-                let reason = format!("{msg}{at}{}", room_file_hint(&msg));
-                ConfigError {
+                let reason = format!("{}{at}{}", e.message(), room_file_hint(&e));
+                FieldError {
                     source_name: source_name.to_string(),
-                    field,
+                    field: e.field(text),
                     reason,
                 }
             })?;
         if raw.seed > MAX_SEED {
-            return Err(ConfigError {
+            return Err(FieldError {
                 source_name: source_name.to_string(),
                 field: "seed".into(),
                 reason: format!(
@@ -219,13 +214,17 @@ impl RawConfig {
 
 /// ` (line L, column C)` of the start of `span` in `text`, or nothing without a span.
 pub fn at_line(text: &str, span: Option<std::ops::Range<usize>>) -> String {
-    let Some(span) = span else {
-        return String::new();
-    };
-    let before = &text[..span.start.min(text.len())];
+    line_column(text, span).map_or(String::new(), |(line, column)| {
+        format!(" (line {line}, column {column})")
+    })
+}
+
+/// The line and column (from 1) of the start of `span` in `text`.
+pub fn line_column(text: &str, span: Option<std::ops::Range<usize>>) -> Option<(usize, usize)> {
+    let before = &text[..span?.start.min(text.len())];
     let line = before.matches('\n').count() + 1;
     let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    format!(" (line {line}, column {column})")
+    Some((line, column))
 }
 
 /// The range of a whole-number field as its own check states it (a type error, e.g. `1.5` or
@@ -248,14 +247,11 @@ pub(crate) fn whole_number_range(field: &str) -> String {
     format!("from {low} to {high}")
 }
 
-/// A hint when a room file (docs/model.md §4) was given where a config belongs.
-fn room_file_hint(msg: &str) -> &'static str {
-    let room_keys = [
-        "unknown field `outline`",
-        "unknown field `home`",
-        "unknown field `obstacles`",
-    ];
-    if room_keys.iter().any(|k| msg.starts_with(k)) {
+/// A hint when a room file (docs/model.md §4) was given where a config belongs: the document
+/// has a room's key (`outline`, `home`, `obstacles`), which a config does not take.
+fn room_file_hint(e: &ReadError) -> &'static str {
+    let room_keys = ["outline", "home", "obstacles"];
+    if matches!(&e.fault, Some(Fault::Unknown(key)) if room_keys.contains(&key.as_str())) {
         ". This looks like a room file, not a config: list it in a config's `rooms = [\"path/to/room.toml\"]`, or check it with `fuzzymotiv rooms --check FILE`"
     } else {
         ""
@@ -266,10 +262,10 @@ fn room_file_hint(msg: &str) -> &'static str {
 /// the value is read as TOML, and as a plain string if it is not valid TOML. A table value
 /// (`ga={generations=3}`) sets the keys it names and keeps the table's others, as the dotted
 /// keys would; a value followed by more TOML (`4\ntrial.steps=5`) is an error.
-pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), ConfigError> {
+pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), FieldError> {
     for set in sets {
         let Some((key, value)) = set.split_once('=') else {
-            return Err(ConfigError {
+            return Err(FieldError {
                 source_name: "--set".into(),
                 field: set.clone(),
                 reason: "expected key=value, e.g. --set ga.population=20".into(),
@@ -281,7 +277,7 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
             Some(mut t) => {
                 let v = t.remove("v");
                 if !t.is_empty() {
-                    return Err(ConfigError {
+                    return Err(FieldError {
                         source_name: "--set".into(),
                         field: key.trim().to_string(),
                         reason: format!(
@@ -296,7 +292,7 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
         };
         let parts: Vec<&str> = key.split('.').collect();
         if parts.iter().any(|p| p.is_empty()) {
-            return Err(ConfigError {
+            return Err(FieldError {
                 source_name: "--set".into(),
                 field: key.to_string(),
                 reason: "empty key part; use dotted keys such as ga.population".into(),
@@ -310,7 +306,7 @@ pub fn apply_sets(table: &mut toml::Table, sets: &[String]) -> Result<(), Config
             t = match entry {
                 toml::Value::Table(inner) => inner,
                 _ => {
-                    return Err(ConfigError {
+                    return Err(FieldError {
                         source_name: "--set".into(),
                         field: key.to_string(),
                         reason: format!("`{part}` is not a table, so it has no key below it"),

@@ -6,13 +6,13 @@ use serde::{Deserialize, Serialize};
 
 use crate::evolution::population::Population;
 use crate::experiment::config::OrientationMode;
-use crate::experiment::robustness::Perturbed;
 use crate::experiment::{Experiment, Perturbation, Run};
 use crate::fitness::terms::{FitnessTerms, TermsRecorder, TrialRecord, UserValues};
 use crate::modelling::aem::{Action, environment_vector};
 use crate::modelling::recognition::nearest_unique;
 use crate::params::Num;
 use crate::random::rng::rng_from_seed;
+use crate::simulation::controller::Perturbed;
 use crate::simulation::controller::{Controller, GenomeError, Mlp};
 use crate::simulation::lanes::{Drawn, LaneTrial};
 use crate::simulation::lanes_any::{lanes_fit, walk_lanes};

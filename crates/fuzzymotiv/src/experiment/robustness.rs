@@ -17,10 +17,10 @@ use crate::fitness::{FitnessTerms, TermId};
 use crate::modelling::{Recognizer, SomError};
 use crate::params::FieldError;
 use crate::random::seed::hash_str;
-use crate::simulation::controller::{Controller, GenomeError, Mlp, OUTPUTS};
+use crate::simulation::controller::{GenomeError, Perturbed};
 use crate::simulation::randomise::Draw;
 use crate::simulation::robot::Motion;
-use crate::simulation::sensor::{Readings, SensorModel, TableRef};
+use crate::simulation::sensor::{SensorModel, TableRef};
 use crate::simulation::trial::{ActionLog, Arena};
 use crate::simulation::trial_params::TrialParams;
 
@@ -160,26 +160,6 @@ impl Perturbation {
             Perturbation::WheelBias(b) => format!("wheels×{}", 1.0 + b),
             Perturbation::Radius(r) => format!("radius={r:.1}"),
         }
-    }
-}
-
-/// A network with a dead sensor or biased wheels.
-pub(crate) struct Perturbed<'a> {
-    pub(crate) net: &'a mut Mlp,
-    pub(crate) dead: Option<usize>,
-    pub(crate) bias: f64,
-}
-
-impl Controller for Perturbed<'_> {
-    fn step(&mut self, inputs: &[f64]) -> [f64; OUTPUTS] {
-        let mut x = Readings::from_slice(inputs);
-        if let Some(s) = self.dead {
-            x[s] = 0.0;
-        }
-        // Motor m drives the wheel at (2m − 1)·v_max: scaling the speed by 1 + bias.
-        self.net
-            .step(&x)
-            .map(|m| ((2.0 * m - 1.0) * (1.0 + self.bias) + 1.0) / 2.0)
     }
 }
 

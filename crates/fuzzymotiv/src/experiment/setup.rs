@@ -16,7 +16,9 @@
 //! assert!((setup.experiment.motivations().as_array().iter().sum::<f64>() - 1.0).abs() < 1e-12);
 //! ```
 
-use crate::experiment::config::{RawConfig, at_line};
+use std::sync::Arc;
+
+use crate::experiment::config::{RawConfig, line_column};
 use crate::experiment::{Experiment, ReadFiles};
 use crate::fitness::{PAPER_MOTIVATIONS, RawMotivations};
 use crate::params::FieldError;
@@ -39,21 +41,46 @@ pub struct RoomFile {
 /// Where the room entries of a config that are not built-in names come from.
 pub trait RoomFiles {
     /// The room file that the config entry `entry` names, or `None` when there is no such file;
-    /// `Err` (a whole message, naming the file) when it exists but cannot be read.
-    fn find(&self, entry: &str) -> Result<Option<RoomFile>, String>;
+    /// `Err` (the front's own error, naming the file) when it exists but cannot be read.
+    fn find(&self, entry: &str) -> Result<Option<RoomFile>, UnreadableFile>;
 
     /// Where `entry` was looked for, for the error when [`RoomFiles::find`] found nothing.
     fn looked_for(&self, entry: &str) -> String;
 
     /// The sensor table file `trial.sensor_table` names (found as room files are, by default).
-    fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+    fn find_sensor_table(&self, entry: &str) -> Result<Option<RoomFile>, UnreadableFile> {
         self.find(entry)
     }
 
     /// The robot file `robot.file` names when it is not a built-in robot (found as room files
     /// are, by default).
-    fn find_robot(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+    fn find_robot(&self, entry: &str) -> Result<Option<RoomFile>, UnreadableFile> {
         self.find(entry)
+    }
+}
+
+/// A file a front found but could not read: the front's own error (which names the file), kept
+/// whole so that the front gets it back ([`UnreadableFile::cause`]).
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{0}")]
+pub struct UnreadableFile(Arc<dyn std::error::Error + Send + Sync>);
+
+impl UnreadableFile {
+    /// The file could not be read because of `cause`.
+    pub fn new(cause: impl std::error::Error + Send + Sync + 'static) -> UnreadableFile {
+        UnreadableFile(Arc::new(cause))
+    }
+
+    /// Why the file could not be read: the front's error (downcast it to the front's type).
+    pub fn cause(&self) -> &(dyn std::error::Error + Send + Sync + 'static) {
+        &*self.0
+    }
+}
+
+/// The same failure (one error, cloned).
+impl PartialEq for UnreadableFile {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
     }
 }
 
@@ -62,7 +89,7 @@ pub trait RoomFiles {
 pub struct BuiltinRoomsOnly;
 
 impl RoomFiles for BuiltinRoomsOnly {
-    fn find(&self, _entry: &str) -> Result<Option<RoomFile>, String> {
+    fn find(&self, _entry: &str) -> Result<Option<RoomFile>, UnreadableFile> {
         Ok(None)
     }
 
@@ -77,9 +104,37 @@ pub enum SetupError {
     /// A value of the config or of a room file: the source, the field, what is wrong.
     #[error(transparent)]
     Field(#[from] FieldError),
-    /// A room file that is not TOML, or that cannot be read (the message names the file).
-    #[error("{0}")]
-    RoomFile(String),
+    /// A room, robot or sensor table file that is not TOML: the file, where and TOML's words.
+    #[error("{source_name}: not valid TOML{}: {message}", at_line_column(*.at))]
+    NotToml {
+        /// The file's name (usually its path).
+        source_name: String,
+        /// The line and column (from 1) where TOML stopped, if it said.
+        at: Option<(usize, usize)>,
+        /// What TOML said.
+        message: String,
+    },
+    /// A room, robot or sensor table file a front found but could not read.
+    #[error(transparent)]
+    Unreadable(#[from] UnreadableFile),
+}
+
+/// ` (line L, column C)`, or nothing.
+fn at_line_column(at: Option<(usize, usize)>) -> String {
+    at.map_or(String::new(), |(line, column)| {
+        format!(" (line {line}, column {column})")
+    })
+}
+
+impl SetupError {
+    /// The error of `text` (the file `source_name`) that TOML could not read.
+    fn not_toml(source_name: &str, text: &str, e: &toml::de::Error) -> SetupError {
+        SetupError::NotToml {
+            source_name: source_name.to_string(),
+            at: line_column(text, e.span()),
+            message: e.message().trim().to_string(),
+        }
+    }
 }
 
 /// A config made ready to run.
@@ -143,7 +198,7 @@ fn resolve_room(
     if let Some(room) = Room::builtin(entry) {
         return Ok(room);
     }
-    let Some(file) = files.find(entry).map_err(SetupError::RoomFile)? else {
+    let Some(file) = files.find(entry)? else {
         let reason = format!(
             "\"{entry}\" is neither a built-in room ({}) nor a room file (looked for {})",
             BUILTIN_ROOMS.join(", "),
@@ -169,10 +224,7 @@ fn resolve_sensor_table(
     let Some(name) = entry.as_mut() else {
         return Ok(None);
     };
-    let Some(file) = files
-        .find_sensor_table(name)
-        .map_err(SetupError::RoomFile)?
-    else {
+    let Some(file) = files.find_sensor_table(name)? else {
         let reason = format!(
             "no sensor table file \"{name}\" (looked for {})",
             files.looked_for(name)
@@ -191,12 +243,7 @@ fn resolve_sensor_table(
 fn check_toml(file: &RoomFile) -> Result<(), SetupError> {
     match toml::from_str::<toml::Table>(&file.text) {
         Ok(_) => Ok(()),
-        Err(e) => Err(SetupError::RoomFile(format!(
-            "{}: not valid TOML{}: {}",
-            file.source_name,
-            at_line(&file.text, e.span()),
-            e.message().trim()
-        ))),
+        Err(e) => Err(SetupError::not_toml(&file.source_name, &file.text, &e)),
     }
 }
 
@@ -214,7 +261,7 @@ fn resolve_robot(
     if let Some(robot) = RobotSpec::builtin(name) {
         return Ok(robot);
     }
-    let Some(file) = files.find_robot(name).map_err(SetupError::RoomFile)? else {
+    let Some(file) = files.find_robot(name)? else {
         let reason = format!(
             "\"{name}\" is neither a built-in robot ({}) nor a robot file (looked for {})",
             BUILTIN_ROBOTS.join(", "),
@@ -234,11 +281,7 @@ fn resolve_robot(
 /// missing value its field (as [`Room::from_toml_str`]).
 pub fn parse_room_file(text: &str, source_name: &str) -> Result<Room, SetupError> {
     if let Err(e) = toml::from_str::<toml::Table>(text) {
-        return Err(SetupError::RoomFile(format!(
-            "{source_name}: not valid TOML{}: {}",
-            at_line(text, e.span()),
-            e.message().trim()
-        )));
+        return Err(SetupError::not_toml(source_name, text, &e));
     }
     Ok(Room::from_toml_str(text, source_name)?)
 }
@@ -280,7 +323,7 @@ mod tests {
     struct OneFile(&'static str);
 
     impl RoomFiles for OneFile {
-        fn find(&self, entry: &str) -> Result<Option<RoomFile>, String> {
+        fn find(&self, entry: &str) -> Result<Option<RoomFile>, UnreadableFile> {
             Ok((entry == "mine.toml").then(|| RoomFile {
                 text: self.0.to_string(),
                 source_name: "mine.toml".into(),
@@ -325,7 +368,7 @@ mod tests {
     fn a_broken_room_file_names_its_line() {
         let e =
             Setup::resolve(raw("[\"mine.toml\"]"), "c.toml", &OneFile("name = \n")).unwrap_err();
-        assert!(matches!(e, SetupError::RoomFile(_)));
+        assert!(matches!(e, SetupError::NotToml { .. }));
         assert!(
             e.to_string()
                 .starts_with("mine.toml: not valid TOML (line 1"),

@@ -12,7 +12,7 @@ use crate::fitness::terms::{
 };
 use crate::fitness::{MAX_MOTIVATIONS, Motivations, PAPER_MOTIVATIONS, TskFitness};
 use crate::params::{FieldError, joined_list};
-use crate::simulation::room::{HomeZone, Room};
+use crate::simulation::room::{Room, Zone};
 
 /// A term registered with an experiment under a name a motivation's `term` can use: computed by
 /// the library from each trial's record ([`Term`]), or, with no `Term`, supplied by the front
@@ -107,7 +107,7 @@ impl TermPlan {
 }
 
 /// The goal and waypoints of `room`'s mission.
-pub(crate) fn mission_of(room: &Room) -> (Option<HomeZone>, Vec<HomeZone>) {
+pub(crate) fn mission_of(room: &Room) -> (Option<Zone>, Vec<Zone>) {
     (room.mission.goal, room.mission.waypoints.clone())
 }
 

@@ -6,7 +6,7 @@ use std::borrow::Borrow;
 
 use serde::{Deserialize, Serialize};
 
-use crate::simulation::room::{HomeZone, Room};
+use crate::simulation::room::{Room, Zone};
 use crate::simulation::trial::{Arena, CELL, Step, StepObserver, Trajectory};
 
 /// The four fitness values Y = (a, g, l, b), each in [0, 1], higher is better for the fuzzy
@@ -330,8 +330,8 @@ pub enum WaypointOrder {
 /// the mission terms.
 #[derive(Debug, Clone)]
 pub struct MissionTracker {
-    goal: Option<HomeZone>,
-    waypoints: Vec<HomeZone>,
+    goal: Option<Zone>,
+    waypoints: Vec<Zone>,
     order: WaypointOrder,
     largest: f64,
     closest: f64,
@@ -349,8 +349,8 @@ impl MissionTracker {
     /// `end_when_done`, the trial ends the step the mission is done.
     pub fn new(
         room: &Room,
-        goal: Option<HomeZone>,
-        waypoints: Vec<HomeZone>,
+        goal: Option<Zone>,
+        waypoints: Vec<Zone>,
         order: WaypointOrder,
         end_when_done: bool,
     ) -> MissionTracker {

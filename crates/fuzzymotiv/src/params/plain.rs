@@ -8,27 +8,90 @@
 //! [`Plain`] wraps TOML's deserializer: it follows the path through tables, options and arrays,
 //! and reads every bool, integer and float with a [`Typed`] visitor whose `expecting` is the
 //! plain words; everything else (strings, enums, untagged values) goes to TOML unchanged, so
-//! those messages and every line and column stay TOML's own.
+//! those messages and every line and column stay TOML's own. What a table's reader found wrong
+//! with its keys (a field missing, a key it does not take) is kept as data beside TOML's error
+//! ([`ReadError::fault`]), so that no one reads it back out of the message.
 
+use std::cell::RefCell;
 use std::fmt;
+use std::rc::Rc;
 
 use serde::de::{
     self, DeserializeSeed, Deserializer, IntoDeserializer, MapAccess, SeqAccess, Unexpected,
     Visitor,
 };
 
+/// What a table's reader found wrong with its keys, as data.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) enum Fault {
+    /// A field the table must have is not there: its name (the table is where TOML's span
+    /// points).
+    Missing(&'static str),
+    /// A key the table does not take: its dotted path (`outline`, `ga.populaton`).
+    Unknown(String),
+}
+
+/// A document that could not be read: TOML's error (its message and span) and, where a table's
+/// reader found a key missing or unknown, that [`Fault`].
+#[derive(Debug)]
+pub(crate) struct ReadError {
+    /// TOML's error: the message users see and where it is.
+    pub(crate) toml: toml::de::Error,
+    /// The key the error is about, where a table's reader said which.
+    pub(crate) fault: Option<Fault>,
+}
+
+impl ReadError {
+    /// The message, trimmed.
+    pub(crate) fn message(&self) -> &str {
+        self.toml.message().trim()
+    }
+
+    /// Where in the text the error is.
+    pub(crate) fn span(&self) -> Option<std::ops::Range<usize>> {
+        self.toml.span()
+    }
+
+    /// The field the error is in (see [`crate::params::field_at`]).
+    pub(crate) fn field(&self, text: &str) -> String {
+        match &self.fault {
+            Some(Fault::Missing(name)) => crate::params::field_at(text, self.span(), Some(name)),
+            Some(Fault::Unknown(key)) if self.span().is_none() => key.clone(),
+            _ => crate::params::field_at(text, self.span(), None),
+        }
+    }
+}
+
+/// Reads a `T` from any deserializer `d` (a JSON record file's) with type errors in plain words,
+/// a whole number said to be `whole_number_range(path)`.
+pub(crate) fn deserialize<'de, T: de::Deserialize<'de>, D: Deserializer<'de>>(
+    d: D,
+    whole_number_range: fn(&str) -> String,
+) -> Result<T, D::Error> {
+    let path = Path {
+        keys: String::new(),
+        whole_number_range,
+        fault: Rc::new(RefCell::new(None)),
+    };
+    T::deserialize(Plain { inner: d, path })
+}
+
 /// Reads `text` as a `T` (a config, a room), type errors in plain words; a whole number is
 /// said to be `whole_number_range(path)`, e.g. "from 2 to 1000000" for `ga.population`.
 pub(crate) fn from_str<'de, T: de::Deserialize<'de>>(
     text: &'de str,
     whole_number_range: fn(&str) -> String,
-) -> Result<T, toml::de::Error> {
-    T::deserialize(Plain {
-        inner: toml::Deserializer::parse(text)?,
-        path: Path {
-            keys: String::new(),
-            whole_number_range,
-        },
+) -> Result<T, ReadError> {
+    let inner = toml::Deserializer::parse(text).map_err(|toml| ReadError { toml, fault: None })?;
+    let fault = Rc::new(RefCell::new(None));
+    let path = Path {
+        keys: String::new(),
+        whole_number_range,
+        fault: Rc::clone(&fault),
+    };
+    T::deserialize(Plain { inner, path }).map_err(|toml| ReadError {
+        toml,
+        fault: fault.take(),
     })
 }
 
@@ -38,6 +101,8 @@ pub(crate) fn from_str<'de, T: de::Deserialize<'de>>(
 struct Path {
     keys: String,
     whole_number_range: fn(&str) -> String,
+    /// The first [`Fault`] a table's reader found (shared by every path of the document).
+    fault: Rc<RefCell<Option<Fault>>>,
 }
 
 impl Path {
@@ -52,6 +117,11 @@ impl Path {
             keys,
             ..self.clone()
         }
+    }
+
+    /// Keeps `fault` as the document's, unless one was found first (deeper in).
+    fn found(&self, fault: Fault) {
+        self.fault.borrow_mut().get_or_insert(fault);
     }
 }
 
@@ -331,11 +401,21 @@ impl<'de, V: Visitor<'de>> Visitor<'de> for Nested<V> {
     }
 
     fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<V::Value, A::Error> {
-        self.inner.visit_map(Table {
-            inner: map,
-            path: self.path,
-            key: String::new(),
-        })
+        let path = self.path.clone();
+        (self.inner)
+            .visit_map(Table {
+                inner: map,
+                path: self.path,
+                key: String::new(),
+            })
+            .map_err(|caught| match caught {
+                Caught::Inner(e) => e,
+                Caught::Missing(name) => {
+                    path.found(Fault::Missing(name));
+                    de::Error::missing_field(name)
+                }
+                Caught::Custom(message) => de::Error::custom(message),
+            })
     }
 }
 
@@ -362,22 +442,64 @@ struct Table<A> {
     key: String,
 }
 
+/// The error a table's own reader (a struct's visitor) returns: an error of what it read, passed
+/// on as it is, or one it raised itself, a missing field kept as data.
+#[derive(Debug)]
+enum Caught<E> {
+    /// An error of a key or a value, from TOML or a visitor below.
+    Inner(E),
+    /// The reader's "missing field".
+    Missing(&'static str),
+    /// Any other error the reader raised (in serde's words).
+    Custom(String),
+}
+
+impl<E: fmt::Display> fmt::Display for Caught<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Caught::Inner(e) => e.fmt(f),
+            Caught::Missing(name) => write!(f, "missing field `{name}`"),
+            Caught::Custom(message) => f.write_str(message),
+        }
+    }
+}
+
+impl<E: fmt::Debug + fmt::Display> std::error::Error for Caught<E> {}
+
+impl<E: de::Error> de::Error for Caught<E> {
+    fn custom<T: fmt::Display>(message: T) -> Self {
+        Caught::Custom(message.to_string())
+    }
+
+    fn missing_field(field: &'static str) -> Self {
+        Caught::Missing(field)
+    }
+}
+
 impl<'de, A: MapAccess<'de>> MapAccess<'de> for Table<A> {
-    type Error = A::Error;
+    type Error = Caught<A::Error>;
 
     fn next_key_seed<K: DeserializeSeed<'de>>(
         &mut self,
         seed: K,
-    ) -> Result<Option<K::Value>, A::Error> {
-        self.inner.next_key_seed(Key {
-            inner: seed,
-            key: &mut self.key,
-        })
+    ) -> Result<Option<K::Value>, Self::Error> {
+        (self.inner)
+            .next_key_seed(Key {
+                inner: seed,
+                key: &mut self.key,
+                path: &self.path,
+            })
+            .map_err(Caught::Inner)
     }
 
-    fn next_value_seed<T: DeserializeSeed<'de>>(&mut self, seed: T) -> Result<T::Value, A::Error> {
+    fn next_value_seed<T: DeserializeSeed<'de>>(
+        &mut self,
+        seed: T,
+    ) -> Result<T::Value, Self::Error> {
         let path = self.path.child(&self.key);
-        self.inner.next_value_seed(At { inner: seed, path })
+        (self.inner)
+            .next_value_seed(At { inner: seed, path })
+            .map_err(Caught::Inner)
     }
 
     fn size_hint(&self) -> Option<usize> {
@@ -385,10 +507,12 @@ impl<'de, A: MapAccess<'de>> MapAccess<'de> for Table<A> {
     }
 }
 
-/// A key, kept for the path of its value.
+/// A key, kept for the path of its value; a key the table's reader refuses is kept as
+/// [`Fault::Unknown`].
 struct Key<'k, K> {
     inner: K,
     key: &'k mut String,
+    path: &'k Path,
 }
 
 impl<'de, K: DeserializeSeed<'de>> DeserializeSeed<'de> for Key<'_, K> {
@@ -397,7 +521,10 @@ impl<'de, K: DeserializeSeed<'de>> DeserializeSeed<'de> for Key<'_, K> {
     fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<K::Value, D::Error> {
         let key = <String as de::Deserialize>::deserialize(d)?;
         self.key.clone_from(&key);
-        self.inner.deserialize(key.into_deserializer())
+        let path = self.path;
+        (self.inner)
+            .deserialize(key.clone().into_deserializer())
+            .inspect_err(|_| path.found(Fault::Unknown(path.child(&key).keys)))
     }
 }
 
@@ -533,6 +660,44 @@ mod tests {
         assert_eq!(
             (read("x = 0.5"), read("x = { weight = 0.25 }")),
             (0.5, 0.25)
+        );
+    }
+
+    /// What a table's reader finds wrong with its keys is kept as data beside TOML's error: a
+    /// missing field by its name (the config's field then under its table), a key not taken
+    /// by its path; a room's key in a config gets the room-file hint, the same key deeper in
+    /// does not.
+    #[test]
+    fn a_missing_or_unknown_key_is_kept_as_data() {
+        use super::Fault;
+        #[derive(serde::Deserialize)]
+        #[allow(dead_code)]
+        struct Home {
+            x: f64,
+            y: f64,
+        }
+        #[derive(serde::Deserialize)]
+        #[allow(dead_code)]
+        struct Room {
+            name: String,
+            home: Home,
+        }
+        let text = "name = \"r\"\nhome = { x = 1 }\n";
+        let e = super::from_str::<Room>(text, |_| "≥ 0".into())
+            .err()
+            .unwrap();
+        assert_eq!(e.fault, Some(Fault::Missing("y")));
+        assert_eq!(e.field(text), "home.y");
+        let e = super::from_str::<RawConfig>("[ga]\npopulaton = 3\n", whole_number_range)
+            .err()
+            .unwrap();
+        assert_eq!(e.fault, Some(Fault::Unknown("ga.populaton".into())));
+        let hint = "This looks like a room file";
+        assert!(reason("outline = [[0, 0]]\n").contains(hint));
+        assert!(
+            !reason("[ga]\noutline = 3\n").contains(hint),
+            "{}",
+            reason("[ga]\noutline = 3\n")
         );
     }
 }

@@ -312,6 +312,26 @@ fn output_layer(out_w: &[f64], hidden: &[f64]) -> [f64; OUTPUTS] {
     out
 }
 
+/// A network with a dead sensor or biased wheels.
+pub(crate) struct Perturbed<'a> {
+    pub(crate) net: &'a mut Mlp,
+    pub(crate) dead: Option<usize>,
+    pub(crate) bias: f64,
+}
+
+impl Controller for Perturbed<'_> {
+    fn step(&mut self, inputs: &[f64]) -> [f64; OUTPUTS] {
+        let mut x = crate::simulation::sensor::Readings::from_slice(inputs);
+        if let Some(s) = self.dead {
+            x[s] = 0.0;
+        }
+        // Motor m drives the wheel at (2m − 1)·v_max: scaling the speed by 1 + bias.
+        self.net
+            .step(&x)
+            .map(|m| ((2.0 * m - 1.0) * (1.0 + self.bias) + 1.0) / 2.0)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

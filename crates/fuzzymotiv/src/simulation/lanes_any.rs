@@ -82,8 +82,8 @@ pub(crate) fn lanes_pay(trials: usize) -> bool {
 /// arena (its drawn one, with its wheel bias on the network as `[trial.randomise]` puts it,
 /// when it has one): the steps the lanes take, which the oracle tests compare with these.
 fn walk_alone<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [LaneTrial<'a, O>]) {
-    use crate::experiment::robustness::Perturbed;
     use crate::random::rng::rng_from_seed;
+    use crate::simulation::controller::Perturbed;
     use crate::simulation::trial::simulate;
     for t in trials {
         let mut rng = rng_from_seed(t.seed);
@@ -311,7 +311,7 @@ impl<'a> AnyLanes<'a> {
     }
 
     /// A drawn robot's wheel bias on its lane's outputs, as
-    /// [`Perturbed`](crate::experiment::robustness::Perturbed) applies it: output `m` drives
+    /// [`Perturbed`](crate::simulation::controller::Perturbed) applies it: output `m` drives
     /// its wheel at `(2m − 1)·v_max`, scaled by `1 + bias`.
     #[inline(always)]
     fn bias_motors(&self, motors: &mut [[f64; LANES]; OUTPUTS]) {
@@ -424,9 +424,9 @@ impl NetLanes {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::experiment::robustness::Perturbed;
     use crate::random::rng::{rng_from_seed, uniform};
     use crate::simulation::controller::MlpShape;
+    use crate::simulation::controller::Perturbed;
     use crate::simulation::lanes::Drawn;
     use crate::simulation::robot::{DEFAULT_ACTION_TOLERANCE, Pose, RawRobot};
     use crate::simulation::robot_spec::RobotSpec;

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use crate::params::{FieldError, Num, check};
 use crate::random::rng::{rng_from_seed, uniform};
 use crate::random::seed::{derive, purpose};
-use crate::simulation::robot::{RawRobot, Robot};
+use crate::simulation::robot::{RadiusRange, Robot};
 
 /// `[trial.randomise]` as written: each key a range `[low, high]`; an omitted key is not
 /// randomised. See [`Randomise`] for the ranges allowed.
@@ -127,19 +127,10 @@ impl Randomise {
             )?,
         };
         if let Some((lo, hi)) = r.radius {
+            let allowed = RadiusRange::of(robot.spec());
             for radius in [lo, hi] {
-                let raw = RawRobot {
-                    radius: Some(radius),
-                    wheel_base: Some(robot.wheel_base()),
-                    v_max: Some(robot.v_max()),
-                    file: None,
-                    motion: robot.motion(),
-                };
-                Robot::from_raw(&raw, robot.spec()).map_err(|e| {
-                    FieldError::new(
-                        "trial.randomise.radius",
-                        e.reason.replace("got", "got an end"),
-                    )
+                check(allowed.contains(radius), "trial.randomise.radius", || {
+                    allowed.reason("got an end", radius)
                 })?;
             }
             let most = step(r.noise.map_or(noise, |n| n.1));
@@ -235,5 +226,25 @@ mod tests {
         })
         .unwrap_err();
         assert_eq!(e.field, "trial.randomise.radius");
+    }
+
+    /// A radius range's end the robot cannot have says so in the robot check's own words, with
+    /// "got an end" (worded once from the range, not rewritten from the robot check's message).
+    #[test]
+    fn a_radius_end_the_robot_cannot_have_says_got_an_end() {
+        let e = checked(RawRandomise {
+            radius: Some([27.5, 90.0]),
+            ..RawRandomise::default()
+        })
+        .unwrap_err();
+        assert_eq!(e.field, "trial.randomise.radius");
+        let allowed = RadiusRange::of(Robot::default().spec());
+        assert_eq!(e.reason, allowed.reason("got an end", 90.0));
+        assert!(e.reason.starts_with("must be in ["), "{}", e.reason);
+        assert!(
+            e.reason.ends_with("mm from the centre), got an end 90"),
+            "{}",
+            e.reason
+        );
     }
 }

@@ -256,26 +256,10 @@ impl Robot {
         check(v_max.is_finite() && v_max > 0.0, "robot.v_max", || {
             format!("must be a speed > 0 (mm/s), got {}", Num(v_max))
         })?;
-        // The sensors must sit inside the body.
-        let mounts = (spec.mounts().iter())
-            .map(|m| m.x.hypot(m.y))
-            .fold(0.0, f64::max);
-        let most = if spec.is_khepera_layout() {
-            80.0
-        } else {
-            500.0
-        };
-        check(
-            radius.is_finite() && radius >= mounts && radius <= most,
-            "robot.radius",
-            || {
-                format!(
-                    "must be in [{mounts:.2}, {most}] mm (the {}'s IR sensors sit up to {mounts:.2} mm from the centre), got {}",
-                    spec.name(),
-                    Num(radius)
-                )
-            },
-        )?;
+        let allowed = RadiusRange::of(spec);
+        check(allowed.contains(radius), "robot.radius", || {
+            allowed.reason("got", radius)
+        })?;
         check(
             wheel_base.is_finite() && wheel_base > 0.0 && wheel_base <= 1000.0,
             "robot.wheel_base",
@@ -288,6 +272,57 @@ impl Robot {
             motion: raw.motion,
             spec,
         })
+    }
+}
+
+/// The body radii a robot file's robot may have: from the farthest sensor's distance from the
+/// centre (the sensors must sit inside the body) to 80 mm for the Khepera's layout, 500 mm for
+/// another.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RadiusRange {
+    /// The farthest IR sensor's distance from the centre (mm).
+    mounts: f64,
+    /// The largest radius (mm).
+    most: f64,
+    /// The robot file's name.
+    robot: &'static str,
+}
+
+impl RadiusRange {
+    /// The radii the robot of `spec` may have.
+    pub(crate) fn of(spec: &'static RobotSpec) -> RadiusRange {
+        let mounts = (spec.mounts().iter())
+            .map(|m| m.x.hypot(m.y))
+            .fold(0.0, f64::max);
+        let most = if spec.is_khepera_layout() {
+            80.0
+        } else {
+            500.0
+        };
+        RadiusRange {
+            mounts,
+            most,
+            robot: spec.name(),
+        }
+    }
+
+    /// Whether `radius` is one of them.
+    pub(crate) fn contains(&self, radius: f64) -> bool {
+        radius.is_finite() && radius >= self.mounts && radius <= self.most
+    }
+
+    /// What a radius must be, and the value `radius` given, introduced by `got` ("got", or
+    /// "got an end" for a range's end).
+    pub(crate) fn reason(&self, got: &str, radius: f64) -> String {
+        let RadiusRange {
+            mounts,
+            most,
+            robot,
+        } = *self;
+        format!(
+            "must be in [{mounts:.2}, {most}] mm (the {robot}'s IR sensors sit up to {mounts:.2} mm from the centre), {got} {}",
+            Num(radius)
+        )
     }
 }
 

@@ -31,7 +31,7 @@ use std::sync::Mutex;
 
 use serde::{Deserialize, Serialize};
 
-use crate::params::{FieldError, Num, check, field_from_toml_message};
+use crate::params::{FieldError, Num, check};
 use crate::simulation::sensor_layout::{MAX_SENSORS, SENSOR_LAYOUT, SensorMount};
 use crate::simulation::sensor_table::{
     RawRay, RawSensorRays, RawSensorTable, SensorScale, SensorTable,
@@ -153,11 +153,9 @@ impl RobotSpec {
 
     /// Parses and checks a robot file's text; errors name `source_name` and the field.
     pub fn from_toml_str(text: &str, source_name: &str) -> Result<RobotSpec, FieldError> {
-        let raw: RawRobotFile = toml::from_str(text).map_err(|e| {
-            let msg = e.message().trim().to_string();
-            FieldError::new(field_from_toml_message(&msg, text, e.span()), msg)
-                .in_source(source_name)
-        })?;
+        // Its values are numbers and names, no whole numbers: their range is not asked.
+        let raw: RawRobotFile = crate::params::plain::from_str(text, |_| "≥ 0".into())
+            .map_err(|e| FieldError::new(e.field(text), e.message()).in_source(source_name))?;
         RobotSpec::from_raw(&raw).map_err(|e| e.in_source(source_name))
     }
 

@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::params::{FieldError, Num, field_from_toml_message};
+use crate::params::{FieldError, Num};
 use crate::simulation::geom::{
     Segment, Vec2, edges, perimeter, point_in_polygon, self_intersection, signed_area,
 };
@@ -35,8 +35,9 @@ pub struct Room {
     pub obstacles: Vec<Vec<Vec2>>,
     /// Start pose of every trial.
     pub home: Pose,
-    /// The home zone: a trial can end when the robot comes back into it (docs/model.md).
-    pub home_zone: HomeZone,
+    /// The home zone: the robot has *escaped* once its centre has been outside it, and an
+    /// escaped robot whose centre is inside it again has come home (a trial can end then).
+    pub home_zone: Zone,
     /// The room's mission (a goal zone and waypoints), empty unless the room file declares one.
     #[serde(default, skip_serializing_if = "Mission::is_empty")]
     pub mission: Mission,
@@ -58,10 +59,6 @@ pub struct Zone {
     /// Radius (mm), > 0.
     pub radius: f64,
 }
-
-/// The home zone, a [`Zone`]: the robot has *escaped* once its centre has been outside it, and
-/// an escaped robot whose centre is inside it again has come home.
-pub type HomeZone = Zone;
 
 /// A room's mission (docs/model.md §4): an optional goal zone and waypoints, in order.
 ///
@@ -112,10 +109,6 @@ pub const HOME_ZONE_RADIUS: f64 = 160.0;
 
 /// Home position of the built-in rooms (mm), heading +x.
 pub const BUILTIN_HOME: (f64, f64) = (40.0, 40.0);
-
-/// A room that cannot be used, with the file (or built-in name), the field (e.g. `outline` or
-/// `home.x`) and the reason: the same type as a config's [`crate::experiment::config::ConfigError`].
-pub type RoomError = crate::params::FieldError;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -241,7 +234,7 @@ impl RawRoom {
     }
 
     /// The home pose's values finite, and its zone (given, or the default around home).
-    fn home_zone(&self) -> Result<HomeZone, FieldError> {
+    fn home_zone(&self) -> Result<Zone, FieldError> {
         for (name, v) in [
             ("home.x", self.home.x),
             ("home.y", self.home.y),
@@ -255,7 +248,7 @@ impl RawRoom {
             }
         }
         let Some(z) = &self.home_zone else {
-            return Ok(HomeZone {
+            return Ok(Zone {
                 centre: Vec2::new(self.home.x, self.home.y),
                 radius: HOME_ZONE_RADIUS,
             });
@@ -272,7 +265,7 @@ impl RawRoom {
                 ));
             }
         }
-        Ok(HomeZone {
+        Ok(Zone {
             centre: Vec2::new(z.x, z.y),
             radius: z.radius,
         })
@@ -339,7 +332,7 @@ impl Room {
             outline,
             obstacles: Vec::new(),
             home: Pose::new(BUILTIN_HOME.0, BUILTIN_HOME.1, 0.0),
-            home_zone: HomeZone {
+            home_zone: Zone {
                 centre: Vec2::new(0.0, 0.0),
                 radius: HOME_ZONE_RADIUS,
             },
@@ -349,12 +342,14 @@ impl Room {
 
     /// Parses a room file and checks its geometry (docs/model.md §4), but not that its mission
     /// is reachable: [`Room::from_toml_str`] (beside the arena's flood fill) does both.
-    pub(crate) fn geometry_from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
+    pub(crate) fn geometry_from_toml_str(
+        text: &str,
+        source_name: &str,
+    ) -> Result<Room, FieldError> {
         // A room's values are numbers and names, no whole numbers: their range is not asked.
         let raw: RawRoom = crate::params::plain::from_str(text, |_| "≥ 0".into()).map_err(|e| {
-            let msg = e.message().to_string();
-            let field = field_from_toml_message(&msg, text, e.span());
-            FieldError::new(field, format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline, optional goal = {{ x, y, radius }}, optional [[waypoints]] x, y, radius)")).in_source(source_name)
+            let msg = e.toml.message();
+            FieldError::new(e.field(text), format!("{msg} (expected: name = \"...\", outline = [[x, y], ...], home = {{ x, y, heading_deg }}, optional home_zone = {{ x, y, radius }}, optional [[obstacles]] outline, optional goal = {{ x, y, radius }}, optional [[waypoints]] x, y, radius)")).in_source(source_name)
         })?;
         raw.check_coordinates()
             .map_err(|e| e.in_source(source_name))?;
@@ -373,7 +368,7 @@ impl Room {
     }
 
     /// Checks the geometry (docs/model.md §4) and normalises the outline to counter-clockwise order.
-    pub fn validated(mut self, source_name: &str) -> Result<Room, RoomError> {
+    pub fn validated(mut self, source_name: &str) -> Result<Room, FieldError> {
         let in_source = |e: FieldError| e.in_source(source_name);
         if self.name.trim().is_empty() {
             return Err(in_source(FieldError::new(
@@ -659,7 +654,7 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
         assert!(e.to_string().contains("radius"), "{e}");
     }
 
-    fn bad(text: &str) -> RoomError {
+    fn bad(text: &str) -> FieldError {
         Room::from_toml_str(text, "bad.toml").unwrap_err()
     }
 
@@ -731,7 +726,7 @@ outline = [[400,100],[500,100],[500,200],[400,200]]
         assert!(none.mission.is_empty());
     }
 
-    fn bad_mission(extra: &str) -> RoomError {
+    fn bad_mission(extra: &str) -> FieldError {
         bad(&format!("{MISSION_ROOM}{extra}"))
     }
 

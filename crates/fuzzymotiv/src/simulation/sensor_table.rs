@@ -22,7 +22,6 @@ use std::sync::Mutex;
 
 use serde::{Deserialize, Serialize};
 
-use crate::params::field_from_toml_message;
 use crate::params::{FieldError, Num, check};
 use crate::simulation::sensor_layout::{
     AXIS_SAMPLES, SENSOR_MAX, SENSORS, SIDE_RAY_DEG, SIDE_SAMPLES,
@@ -135,11 +134,9 @@ impl SensorTable {
         source_name: &str,
         scale: SensorScale,
     ) -> Result<SensorTable, FieldError> {
-        let raw: RawSensorTable = toml::from_str(text).map_err(|e| {
-            let msg = e.message().trim().to_string();
-            FieldError::new(field_from_toml_message(&msg, text, e.span()), msg)
-                .in_source(source_name)
-        })?;
+        // Its values are numbers and names, no whole numbers: their range is not asked.
+        let raw: RawSensorTable = crate::params::plain::from_str(text, |_| "≥ 0".into())
+            .map_err(|e| FieldError::new(e.field(text), e.message()).in_source(source_name))?;
         SensorTable::from_raw_for(&raw, scale).map_err(|e| e.in_source(source_name))
     }
 

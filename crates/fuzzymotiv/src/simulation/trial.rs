@@ -19,7 +19,7 @@ use crate::simulation::isa::Isa;
 use crate::simulation::memo::{MemoClaim, Owner, SIGHT_SENSORS, Sight, SightKey, Table, memo_live};
 use crate::simulation::robot::Action;
 use crate::simulation::robot::{Compass, Motion, Pose, Robot, drive};
-use crate::simulation::room::{Room, RoomError, Zone};
+use crate::simulation::room::{Room, Zone};
 use crate::simulation::sensing::{Eyes, Facing};
 use crate::simulation::sensor::Readings;
 use crate::simulation::sensor::{SensorModel, sensing_reach};
@@ -639,7 +639,7 @@ impl Room {
     /// zones are reachable from home by the Khepera (as home's clearance; a bigger body is
     /// checked by the experiment, [`check_missions_reachable`]). `source_name` (usually the
     /// path) is used in error messages.
-    pub fn from_toml_str(text: &str, source_name: &str) -> Result<Room, RoomError> {
+    pub fn from_toml_str(text: &str, source_name: &str) -> Result<Room, FieldError> {
         let room = Room::geometry_from_toml_str(text, source_name)?;
         if !room.mission.is_empty() {
             let arena = Arena::new(room.clone(), &TrialParams::default());
