@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use serde_json::json;
 
-mod common;
+use crate::common;
 
 use common::webdriver::{Driver, base64, require_browser, target_dir};
 use common::{Fm, SMALL, ok};

@@ -1,6 +1,6 @@
 //! `fuzzymotiv calibrate` and `trial.sensor_table` from the command line.
 
-mod common;
+use crate::common;
 
 use common::{ok, repo, run, stderr, stdout};
 

@@ -2,7 +2,7 @@
 //! replaced, the claims at another α go beside them, and messages name only options the user
 //! passed.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

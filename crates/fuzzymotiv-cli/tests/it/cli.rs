@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-mod common;
+use crate::common;
 
 use common::{
     Fm, SMALL, assert_same_files, bin, ok, repo, run, stderr, stdout, summary_without_time,

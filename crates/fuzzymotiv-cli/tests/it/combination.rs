@@ -1,7 +1,7 @@
 //! `reproduce --combination`: the study under the TSK and under each baseline combination,
 //! the claims under each, and the behaviour of each baseline against the TSK.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! sweep settings over replicates; the design it says it used; refusals (kinds, rooms, older
 //! run directories, settings) with exit code 2; its files through the output guard.
 
-mod common;
+use crate::common;
 use common::*;
 
 use std::path::{Path, PathBuf};

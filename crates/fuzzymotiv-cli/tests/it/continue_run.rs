@@ -1,7 +1,7 @@
 //! `fuzzymotiv run --continue DIR --generations N --out NEW`: a finished run continued to N
 //! generations equals a fresh N-generation run in its results, and DIR is left as it was.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -24,7 +24,7 @@ use std::process::Command;
 
 use pulldown_cmark::{CodeBlockKind, Event, Options, Parser, Tag, TagEnd};
 
-mod common;
+use crate::common;
 
 use common::repo;
 

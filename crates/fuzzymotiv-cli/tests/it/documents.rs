@@ -11,7 +11,7 @@
 //! ```
 //!
 //! Each marker is rendered again from the committed records under docs/results/ and compared
-//! with the document. `FUZZYMOTIV_BLESS=1 cargo test -p fuzzymotiv-cli --test documents`
+//! with the document. `FUZZYMOTIV_BLESS=1 cargo test -p fuzzymotiv-cli --test it documents::`
 //! rewrites the documents from the records instead.
 
 use std::collections::BTreeMap;
@@ -1348,7 +1348,7 @@ fn documents_say_what_the_records_say() {
     assert!(
         report.is_empty(),
         "the documents do not say what docs/results/ says (rewrite them with \
-         `FUZZYMOTIV_BLESS=1 cargo test -p fuzzymotiv-cli --test documents` and review the \
+         `FUZZYMOTIV_BLESS=1 cargo test -p fuzzymotiv-cli --test it documents::` and review the \
          diff):\n\n{}",
         report.join("\n\n")
     );

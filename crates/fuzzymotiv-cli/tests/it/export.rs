@@ -1,7 +1,7 @@
 //! `fuzzymotiv export`: the exported C gives the simulator's motor outputs and actions bit for
 //! bit on recorded trials (compiled with the system `cc`), and the command's files and refusals.
 
-mod common;
+use crate::common;
 
 use common::{ok, repo, run, stderr, stdout};
 

@@ -1,6 +1,6 @@
 //! `fuzzymotiv fuzzy --export-fll`: the FLL file, refusal to overwrite, bad input.
 
-mod common;
+use crate::common;
 
 use common::{ok, run, stderr};
 

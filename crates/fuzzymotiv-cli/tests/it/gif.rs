@@ -1,7 +1,7 @@
 //! `fuzzymotiv replay RUN --gif`: one animated GIF per room that decodes with the right size and
 //! frame count, written through the output guard; bad `--size`, `--stride`, `--fps` are named.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

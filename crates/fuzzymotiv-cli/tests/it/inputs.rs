@@ -5,7 +5,7 @@
 //! each must end because it refuses: a command still running after a minute is killed and
 //! fails the test, so the suite never hangs.
 
-mod common;
+use crate::common;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -8,7 +8,7 @@ use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Child, Stdio};
 
-mod common;
+use crate::common;
 
 use common::{bin, ok};
 

@@ -12,7 +12,7 @@
 //! crate root re-exports from a crate below ([`REEXPORTS`]) are that crate's, ordered by Cargo,
 //! and not read.
 //!
-//! `cargo test -p fuzzymotiv-cli --test layers -- --nocapture` prints the import map.
+//! `cargo test -p fuzzymotiv-cli --test it layers:: -- --nocapture` prints the import map.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};

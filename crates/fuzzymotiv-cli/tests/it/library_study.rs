@@ -1,7 +1,7 @@
 //! Issue #55: a study runs from the library (`fuzzymotiv_pipeline::pipeline::reproduce`) with plain
 //! options and a progress of the caller's, with the command line's results.
 
-mod common;
+use crate::common;
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};

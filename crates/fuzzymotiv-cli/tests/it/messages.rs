@@ -1,7 +1,7 @@
 //! Messages of bad input: each names the option or field really at fault, states its real
 //! range, and shows numbers compactly; all exit with status 2.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! records carry the extra terms by name, their figures draw the missions; the paper's runs
 //! keep their bytes (the goldens of `model.rs`).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

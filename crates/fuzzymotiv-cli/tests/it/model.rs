@@ -1,7 +1,7 @@
 //! The model switches through the binary: the first release's model still gives its results
 //! byte for byte, and the default (the paper's robot) is what a plain run uses.
 
-mod common;
+use crate::common;
 use common::*;
 
 /// `motion = "wheels"`, `end_at_home = false`, `homing = "distance"` with the first release's

@@ -14,7 +14,7 @@ use std::sync::OnceLock;
 use fuzzymotiv_pipeline::records::{AggregateRow, SweepResults, read_csv};
 use serde_json::Value;
 
-mod common;
+use crate::common;
 
 use common::{Fm, SMALL, ok, repo, run, stderr, stdout};
 

@@ -1,7 +1,7 @@
 //! `--out` naming what cannot be an output directory: the message says what it really is, and
 //! the staging name of another output (`NAME.partial`) is never taken as an output.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

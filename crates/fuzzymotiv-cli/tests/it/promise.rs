@@ -5,7 +5,7 @@
 //! Kill points are deterministic: `FUZZYMOTIV_TEST_ABORT_AFTER=N` makes the binary abort (as
 //! `kill -9` would) once N generations have been checkpointed, so nothing here depends on timing.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};

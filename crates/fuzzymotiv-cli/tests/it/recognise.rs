@@ -1,7 +1,7 @@
 //! `fuzzymotiv recognise RUN LOG…`: the rooms a run's room model recognises in a robot's logs
 //! (one CSV per log: the action per step, or the motor outputs).
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -1,6 +1,6 @@
 //! `fuzzymotiv robustness` from the command line.
 
-mod common;
+use crate::common;
 
 use common::{ok, repo, run};
 

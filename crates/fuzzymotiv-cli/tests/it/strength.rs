@@ -1,7 +1,7 @@
 //! `reproduce --search-strength`: the study at GA populations 30, 60, 100 and 200, each in
 //! its own directory, then one table and one figure made from their summary.json records.
 
-mod common;
+use crate::common;
 
 use common::{Fm, run, stderr, stdout};
 

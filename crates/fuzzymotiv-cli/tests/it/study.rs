@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 
 use common::recompute::{Rows, f, read_csv, recompute_every_verdict};
 use common::{ok, repo, run, stderr, stdout};

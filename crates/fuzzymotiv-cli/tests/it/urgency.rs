@@ -2,7 +2,7 @@
 //! from curiosity, paired seeds; success rate, time to the goal, exploration, battery and
 //! homing per weight, and each step up in urgency compared.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

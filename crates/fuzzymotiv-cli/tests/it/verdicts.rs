@@ -5,7 +5,7 @@
 //! per-seed tables, every other verdict in `docs/results` is checked against its own row, and
 //! `fuzzymotiv claims` recomputes a committed study's claims to the committed bytes.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

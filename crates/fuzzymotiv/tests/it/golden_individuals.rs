@@ -6,8 +6,8 @@
 //! hide it.
 //!
 //! A change that alters results on purpose regenerates these files
-//! (`FUZZYMOTIV_BLESS=1 cargo test -p fuzzymotiv --test golden_individuals`) and bumps
-//! [`fuzzymotiv::MODEL_VERSION`] in the same commit (`tests/model_version.rs` holds it to that).
+//! (`FUZZYMOTIV_BLESS=1 cargo test -p fuzzymotiv --test it golden_individuals::`) and bumps
+//! [`fuzzymotiv::MODEL_VERSION`] in the same commit (`tests/it/model_version.rs` holds it to that).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@ use std::fs;
 use std::path::Path;
 
 mod example {
-    include!("../examples/own_term.rs");
+    include!("../../examples/own_term.rs");
 
     /// The guide's code registers the term, evolves, and reads the result without an error.
     #[test]

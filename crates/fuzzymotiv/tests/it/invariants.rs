@@ -52,8 +52,8 @@ proptest! {
 /// The e-puck2 in the paper's rooms, the Thymio II in the rooms scaled for it (rooms/thymio2).
 fn robot_room(robot: usize, room: usize) -> (&'static fuzzymotiv::simulation::RobotSpec, Room) {
     const THYMIO_ROOMS: [(&str, &str); 2] = [
-        ("H", include_str!("../../../rooms/thymio2/H.toml")),
-        ("square", include_str!("../../../rooms/thymio2/square.toml")),
+        ("H", include_str!("../../../../rooms/thymio2/H.toml")),
+        ("square", include_str!("../../../../rooms/thymio2/square.toml")),
     ];
     match robot {
         0 => (
@@ -195,7 +195,7 @@ fn short_wheels_trajectory_is_value_stable() {
     };
     let params = params(trial, Motion::Wheels);
     let room = Room::from_toml_str(
-        include_str!("../../../rooms/first-release/H.toml"),
+        include_str!("../../../../rooms/first-release/H.toml"),
         "H.toml",
     )
     .unwrap();

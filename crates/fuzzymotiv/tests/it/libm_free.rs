@@ -137,7 +137,7 @@ fn slots() -> Slots {
 }
 
 /// The libm functions reachable from the function `root` (a path such as
-/// `libm_free::step_loop`).
+/// `it::libm_free::step_loop`: this module's path and the function's).
 fn libm_reached(d: &Disassembly, slots: &Slots, root: &str) -> Vec<String> {
     // Its mangled name (legacy scheme): `_ZN` + each segment as length and text + `17h` hash.
     let mangled: String = root
@@ -211,17 +211,19 @@ fn the_step_loop_calls_no_libm_function() {
 
     let d = disassemble();
     let slots = slots();
-    let control = libm_reached(&d, &slots, "libm_free::control_probe");
+    // This module's functions by path (`it::libm_free::step_loop`).
+    let here = |f: &str| format!("{}::{f}", module_path!());
+    let control = libm_reached(&d, &slots, &here("control_probe"));
     assert!(
         control.iter().any(|s| s.starts_with("exp")),
         "the check does not see f64::exp in the control probe: {control:?}"
     );
-    let control = libm_reached(&d, &slots, "libm_free::control_probe_library");
+    let control = libm_reached(&d, &slots, &here("control_probe_library"));
     assert!(
         control.iter().any(|s| s.starts_with("log")),
         "the check does not see log in the library's normal_quantile: {control:?}"
     );
-    let reached = libm_reached(&d, &slots, "libm_free::step_loop");
+    let reached = libm_reached(&d, &slots, &here("step_loop"));
     assert!(
         reached.is_empty(),
         "the step loop reaches libm: {reached:?}"
