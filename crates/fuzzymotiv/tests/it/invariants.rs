@@ -53,7 +53,10 @@ proptest! {
 fn robot_room(robot: usize, room: usize) -> (&'static fuzzymotiv::simulation::RobotSpec, Room) {
     const THYMIO_ROOMS: [(&str, &str); 2] = [
         ("H", include_str!("../../../../rooms/thymio2/H.toml")),
-        ("square", include_str!("../../../../rooms/thymio2/square.toml")),
+        (
+            "square",
+            include_str!("../../../../rooms/thymio2/square.toml"),
+        ),
     ];
     match robot {
         0 => (
