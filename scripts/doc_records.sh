@@ -21,6 +21,8 @@
 #   ablation-study=out/ablation                (fuzzymotiv study studies/ablation.toml --out out/ablation)
 #   urgency-study=out/urgency                  (fuzzymotiv study studies/urgency.toml --out out/urgency)
 #   orientation-study=out/orientation-study    (fuzzymotiv study studies/orientation.toml --out out/orientation-study)
+#   transfer-study=out/transfer-study          (fuzzymotiv study studies/transfer.toml --out out/transfer-study)
+#   fetch-urgency-study=out/fetch-urgency      (fuzzymotiv study studies/fetch-urgency.toml --out out/fetch-urgency)
 #   urgency=results-urgency                   (fuzzymotiv reproduce --urgency)
 #   maps/o-fixed=out/maps/o-fixed   (fuzzymotiv sweep configs/motivation-map.toml … + merge)
 #   maps/o-free=out/maps/o-free     (fuzzymotiv sweep configs/motivation-map-o-free.toml … + merge)

@@ -24,8 +24,9 @@ replaced; ``force=True`` replaces fuzzymotiv's own), :class:`ResetNeeded` (a Gym
 used before ``reset()``), :class:`DependencyNotInstalled` (an optional package missing);
 file-system failures raise :class:`FuzzymotivOSError`, both a ``FuzzymotivError`` and an
 ``OSError`` with ``errno`` set. What the CLI notes on stderr (motivations normalised,
-``force=True`` replacing an output, a sweep job waiting for another worker, jobs run) is a
-``UserWarning`` here (``warnings.warn``); the library itself never prints.
+``force=True`` replacing an output, a sweep job waiting for another worker) is a
+``UserWarning`` here (``warnings.warn``); how many jobs ran is returned, not warned; the
+library itself never prints.
 """
 
 from __future__ import annotations

@@ -360,6 +360,9 @@ class RobotVectorEnv(VectorEnv[npt.NDArray[np.floating[Any]], npt.NDArray[Any], 
         source = (*_config_args(config, config_text), _sets(overrides) + _robot_sets(robot))
         self._core = _core(room, self.num_envs, source, reward, self._dtype, terms)
         self._discrete = discrete
+        # The actions the native step takes without conversion (see `step`).
+        self._native_dtype = np.dtype(np.int64) if discrete else np.dtype(np.float64)
+        self._native_shape = (self.num_envs,) if discrete else (self.num_envs, 2)
         self.robot: str = self._core.robot
         self.sensors: int = self._core.sensors
         self.reading_max: float = self._core.reading_max
@@ -399,9 +402,21 @@ class RobotVectorEnv(VectorEnv[npt.NDArray[np.floating[Any]], npt.NDArray[Any], 
     def step(
         self, actions: Any
     ) -> Tuple[Obs, FloatArray, npt.NDArray[np.bool_], npt.NDArray[np.bool_], Dict[str, Any]]:
-        obs, reward, terminated, truncated, info = self._core.step(
-            _actions(actions, self.num_envs, self._discrete)
-        )
+        # An array already as the native step takes it ((N, 2) float64 or (N,) int64) goes to
+        # it as is: the native step refuses what is not finite or not an action before any env
+        # moves, and the check below then names the fault as for any other argument. (The
+        # NumPy calls of that check cost a sixth of a 64-env step.)
+        a = actions
+        if type(a) is np.ndarray and a.dtype is self._native_dtype and a.shape == self._native_shape:
+            try:
+                obs, reward, terminated, truncated, info = self._core.step(a)
+            except FuzzymotivError:
+                _actions(a, self.num_envs, self._discrete)
+                raise
+        else:
+            obs, reward, terminated, truncated, info = self._core.step(
+                _actions(actions, self.num_envs, self._discrete)
+            )
         return obs, reward, terminated, truncated, info
 
 

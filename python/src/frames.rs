@@ -12,7 +12,9 @@ use fuzzymotiv::simulation::{Action, Pose};
 use fuzzymotiv::simulation::{Readings, RobotSpec, Room};
 use fuzzymotiv_pipeline::render::frames::animate::{GifWriter, delay_of};
 use fuzzymotiv_pipeline::render::frames::scene::{MAX_SIZE, MIN_SIZE, action_named};
-use fuzzymotiv_pipeline::render::frames::{FrameOptions, Track, gif, render, render_last};
+use fuzzymotiv_pipeline::render::frames::{
+    FrameError, FrameOptions, Track, gif, render, render_last,
+};
 use numpy::ndarray::{Array3, Array4};
 use numpy::{
     IntoPyArray, PyArray3, PyArray4, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArray4,
@@ -163,12 +165,12 @@ fn draw<T: Send>(
     source: &Bound<'_, PyAny>,
     setting: &Setting,
     opts: FrameOptions,
-    paint: impl FnOnce(&Room, Track<'_>, FrameOptions) -> Result<T, String> + Send,
+    paint: impl FnOnce(&Room, Track<'_>, FrameOptions) -> Result<T, FrameError> + Send,
 ) -> PyResult<T> {
     let exp = setting.experiment()?;
     let opts = opts.for_trial(exp.trial_params());
     let room = exp.arenas()[0].room();
-    let fail = |e: String| input_err(format!("trajectory: {e}"));
+    let fail = |e: FrameError| input_err(format!("trajectory: {e}"));
     if let Ok(d) = source.cast::<PyDict>() {
         let c = columns(d, exp.trial_params().robot().spec())?;
         let track = Track {
@@ -204,7 +206,8 @@ fn options(size: i64, stride: i64) -> PyResult<FrameOptions> {
     };
     let size = u32::try_from(size).map_err(|_| bad("size", size))?;
     let stride = usize::try_from(stride).map_err(|_| bad("stride", stride))?;
-    FrameOptions::new(size, stride).map_err(|(name, why)| input_err(format!("{name}: {why}")))
+    FrameOptions::new(size, stride)
+        .map_err(|e| input_err(format!("{}: {e}", e.field().unwrap_or("size"))))
 }
 
 /// `(T, H, W, 3)` uint8 frames of a trajectory dict or a genome (`fm.frames`).

@@ -19,8 +19,9 @@ use fuzzymotiv::simulation::Arena;
 use fuzzymotiv::simulation::{Controller, Mlp, MlpShape};
 use fuzzymotiv::simulation::{StepObserver, Trajectory};
 use fuzzymotiv_pipeline::files::inputs::{Loaded, room_entry};
-use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::PyUntypedArrayMethods;
+use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
@@ -116,16 +117,11 @@ impl GymCore {
     }
 
     /// Observations as an `(envs, sensors)` array of reading / `reading_max` (the Khepera's
-    /// IR / 1023; `obs` holds them env after env) in the env's dtype.
-    fn obs_array<'py>(&self, py: Python<'py>, obs: Vec<f64>) -> Bound<'py, PyAny> {
-        let shape = (obs.len() / self.sensors, self.sensors);
-        if self.float64 {
-            let a = Array2::from_shape_vec(shape, obs).expect("envs × sensors");
-            a.into_pyarray(py).into_any()
-        } else {
-            let a = Array2::from_shape_vec(shape, obs.into_iter().map(|v| v as f32).collect())
-                .expect("envs × sensors");
-            a.into_pyarray(py).into_any()
+    /// IR / 1023; `obs` holds them env after env, in the env's dtype).
+    fn obs_array<'py>(&self, py: Python<'py>, obs: &Obs) -> Bound<'py, PyAny> {
+        match obs {
+            Obs::F64(v) => matrix(py, v, self.sensors).into_any(),
+            Obs::F32(v) => matrix(py, v, self.sensors).into_any(),
         }
     }
 
@@ -268,8 +264,10 @@ fn actions(n: usize, arg: &Bound<'_, PyAny>) -> PyResult<Vec<Act>> {
         return (0..n)
             .map(|i| {
                 let m = [a[[i, 0]], a[[i, 1]]];
-                if m.iter().any(|v| v.is_nan()) {
-                    return Err(input_err(format!("actions: env {i}'s motor output is NaN")));
+                if m.iter().any(|v| !v.is_finite()) {
+                    return Err(input_err(format!(
+                        "actions: env {i}'s motor outputs {m:?} are not finite"
+                    )));
                 }
                 Ok(Act::Motors(m.map(|v| v.clamp(0.0, 1.0))))
             })
@@ -469,7 +467,7 @@ impl GymCore {
 /// A step's results over the envs, gathered without the GIL.
 struct Out {
     /// Each env's readings / `reading_max`, env after env.
-    obs: Vec<f64>,
+    obs: Obs,
     reading_max: f64,
     reward: Vec<f64>,
     terminated: Vec<bool>,
@@ -488,8 +486,13 @@ impl Out {
     /// Room for `n` envs of `core`.
     fn for_envs(n: usize, core: &GymCore) -> Out {
         let user = core.user.len();
+        let values = n * core.sensors;
         Out {
-            obs: Vec::with_capacity(n * core.sensors),
+            obs: if core.float64 {
+                Obs::F64(Vec::with_capacity(values))
+            } else {
+                Obs::F32(Vec::with_capacity(values))
+            },
             reading_max: core.reading_max,
             reward: Vec::with_capacity(n),
             terminated: Vec::with_capacity(n),
@@ -511,7 +514,11 @@ impl Out {
         action: i64,
     ) {
         let max = self.reading_max;
-        (self.obs).extend(env.episode.observe().iter().map(|v| v / max));
+        let seen = env.episode.observed().iter().map(|v| v / max);
+        match &mut self.obs {
+            Obs::F64(obs) => obs.extend(seen),
+            Obs::F32(obs) => obs.extend(seen.map(|v| v as f32)),
+        }
         let terms = env.episode.terms();
         let pose = env.episode.run().pose();
         let values = [
@@ -538,35 +545,85 @@ impl Out {
         self.user_given.push(false);
     }
 
+    // The arrays are NumPy's own, filled from the columns (`from_slice`): an array made from a
+    // `Vec` (`from_vec`) also makes a Python object to own the `Vec`, and a step makes 15.
+    // The keys are interned once, not made anew each step.
     fn into_py<'py>(self, py: Python<'py>, core: &GymCore) -> PyResult<Bound<'py, PyTuple>> {
         let info = PyDict::new(py);
-        let names = ["a", "g", "l", "b", "x", "y", "heading"];
-        for (name, column) in names.into_iter().zip(self.info) {
-            info.set_item(name, PyArray1::from_vec(py, column))?;
+        let names = [
+            intern!(py, "a"),
+            intern!(py, "g"),
+            intern!(py, "l"),
+            intern!(py, "b"),
+            intern!(py, "x"),
+            intern!(py, "y"),
+            intern!(py, "heading"),
+        ];
+        for (name, column) in names.into_iter().zip(&self.info) {
+            info.set_item(name, PyArray1::from_slice(py, column))?;
         }
-        info.set_item("t", PyArray1::from_vec(py, self.t))?;
-        info.set_item("room", PyArray1::from_vec(py, self.room))?;
-        info.set_item("action", PyArray1::from_vec(py, self.action))?;
+        info.set_item(intern!(py, "t"), PyArray1::from_slice(py, &self.t))?;
+        info.set_item(intern!(py, "room"), PyArray1::from_slice(py, &self.room))?;
+        info.set_item(
+            intern!(py, "action"),
+            PyArray1::from_slice(py, &self.action),
+        )?;
         // Gymnasium's vector info convention: `_key` says which envs have `key` (all do).
-        let all = PyArray1::from_vec(py, vec![true; self.reward.len()]);
-        for name in names.into_iter().chain(["t", "room", "action"]) {
-            info.set_item(format!("_{name}"), &all)?;
+        let all = PyArray1::from_slice(py, &vec![true; self.reward.len()]);
+        let masks = [
+            intern!(py, "_a"),
+            intern!(py, "_g"),
+            intern!(py, "_l"),
+            intern!(py, "_b"),
+            intern!(py, "_x"),
+            intern!(py, "_y"),
+            intern!(py, "_heading"),
+            intern!(py, "_t"),
+            intern!(py, "_room"),
+            intern!(py, "_action"),
+        ];
+        for mask in masks {
+            info.set_item(mask, &all)?;
         }
         if !self.user.is_empty() {
-            let given = PyArray1::from_vec(py, self.user_given);
-            for (name, column) in core.user.iter().zip(self.user) {
-                info.set_item(name, PyArray1::from_vec(py, column))?;
+            let given = PyArray1::from_slice(py, &self.user_given);
+            for (name, column) in core.user.iter().zip(&self.user) {
+                info.set_item(name, PyArray1::from_slice(py, column))?;
                 info.set_item(format!("_{name}"), &given)?;
             }
         }
         let items: [Bound<'py, PyAny>; 5] = [
-            core.obs_array(py, self.obs),
-            PyArray1::from_vec(py, self.reward).into_any(),
-            PyArray1::from_vec(py, self.terminated).into_any(),
-            PyArray1::from_vec(py, self.truncated).into_any(),
+            core.obs_array(py, &self.obs),
+            PyArray1::from_slice(py, &self.reward).into_any(),
+            PyArray1::from_slice(py, &self.terminated).into_any(),
+            PyArray1::from_slice(py, &self.truncated).into_any(),
             info.into_any(),
         ];
         PyTuple::new(py, items)
+    }
+}
+
+/// A step's observations in the env's dtype (float32 by default, float64 on request).
+enum Obs {
+    F32(Vec<f32>),
+    F64(Vec<f64>),
+}
+
+/// `values` (rows of `columns` values, one after another) as a `(rows, columns)` array of
+/// NumPy's own.
+fn matrix<'py, T: Element + Copy>(
+    py: Python<'py>,
+    values: &[T],
+    columns: usize,
+) -> Bound<'py, PyArray2<T>> {
+    let rows = values.len() / columns;
+    // SAFETY: the array is new and C-contiguous, and every element is written just below,
+    // before any Python code can see it.
+    unsafe {
+        let a = PyArray2::<T>::new(py, [rows, columns], false);
+        let out = a.as_slice_mut().expect("a new array is contiguous");
+        out.copy_from_slice(values);
+        a
     }
 }
 

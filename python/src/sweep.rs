@@ -9,7 +9,9 @@ use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_pipeline::files::bounded::read_input;
 use fuzzymotiv_pipeline::files::error::CliError;
 use fuzzymotiv_pipeline::files::notes::{NoteList, Notes};
-use fuzzymotiv_pipeline::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
+use fuzzymotiv_pipeline::pipeline::progress::{
+    JobsSummary, NoProgress, RunProgress, SweepProgress,
+};
 use fuzzymotiv_pipeline::pipeline::sweep_jobs::{prepare_sweep_dir, run_one_job};
 use fuzzymotiv_pipeline::pipeline::sweep_merge::write_merge;
 use fuzzymotiv_pipeline::pipeline::sweep_plan::{SWEEP_FILE, Sweep};
@@ -39,7 +41,8 @@ impl SweepProgress for Noted {
         Box::new(NoProgress)
     }
     fn job_done(&self) {}
-    fn end(&self) {}
+    /// Not a warning: `fm.sweep_run_job` and `fm.study` return what ran.
+    fn end(&self, _summary: &JobsSummary) {}
 }
 
 /// The source name of a sweep given as text (a dict in Python), in error messages.

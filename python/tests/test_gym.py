@@ -276,3 +276,26 @@ def test_seeds_and_sizes_are_checked_like_the_rest_of_the_package():
     with pytest.raises(fm.FuzzymotivError, match=r"seed: -2 is not a seed"):
         vec.reset(seed=[1, -2, 3])
     vec.reset(seed=[1, None, 3])
+
+
+def test_native_step_refuses_infinite_motor_outputs_before_any_env_moves():
+    """The vector env hands an (N, 2) float64 or (N,) int64 array to the native step as is, so
+    the native step itself refuses infinities (it clipped them to 1 before) and bad action
+    numbers, before any env moves; the vector env names the fault as for any other argument."""
+    vec = fmgym.KheperaVectorEnv(2, "H", overrides=SHORT, dtype=np.float64)
+    twin = fmgym.KheperaVectorEnv(2, "H", overrides=SHORT, dtype=np.float64)
+    vec.reset(seed=3)
+    twin.reset(seed=3)
+    for bad in [[np.inf, 0.5], [0.5, -np.inf]]:
+        with pytest.raises(fm.FuzzymotivError, match="not finite"):
+            vec._core.step(np.array([[0.2, 0.9], bad]))
+        with pytest.raises(fm.FuzzymotivError, match=r"action: expected 2 pair\(s\) of finite"):
+            vec.step(np.array([[0.2, 0.9], bad]))
+    a = np.array([[0.2, 0.9], [1.0, 1.0]])
+    got, want = vec.step(a), twin.step(a)
+    assert np.array_equal(got[0], want[0]) and np.array_equal(got[4]["x"], want[4]["x"])
+    discrete = fmgym.KheperaVectorEnv(2, "H", overrides=SHORT, discrete=True)
+    discrete.reset(seed=3)
+    with pytest.raises(fm.FuzzymotivError, match="7 is not an action"):
+        discrete.step(np.array([1, 7]))
+    assert (discrete.step(np.array([1, 2]))[4]["t"] == 1).all()

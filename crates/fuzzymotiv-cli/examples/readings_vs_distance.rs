@@ -28,7 +28,7 @@ use std::process::ExitCode;
 use fuzzymotiv::simulation::Pose;
 use fuzzymotiv::statistics::quantile;
 use fuzzymotiv_pipeline::files::inputs::load_config;
-use fuzzymotiv_pipeline::render::plot::{Ticks, colour, esc, open, px};
+use fuzzymotiv_pipeline::render::figure::{Ticks, colour, esc, open, px};
 
 /// A probed robot: its name, the `--set`s of its config, its front sensor, the curve's label.
 struct Probe {
@@ -286,7 +286,7 @@ fn svg_text(curves: &Curves, scale: &BTreeMap<String, f64>) -> String {
             }
         );
         svg += &format!("<text x=\"{}\" y=\"279\">{}</text>\n", x + 30.0, esc(label));
-        x += 60.0 + fuzzymotiv_pipeline::render::plot::text_width_at(label, false, 11.0);
+        x += 60.0 + fuzzymotiv_pipeline::render::figure::text_width_at(label, false, 11.0);
     }
     svg + "</svg>\n"
 }

@@ -14,7 +14,7 @@ use resvg::usvg::{self, fontdb};
 
 use crate::console::note;
 use fuzzymotiv_pipeline::files::error::CliError;
-use fuzzymotiv_pipeline::render::figures::{Rasterise, add_missing_pngs};
+use fuzzymotiv_pipeline::render::figures::{RasterError, Rasterise, add_missing_pngs};
 
 /// PNG pixels per SVG pixel: 2 gives crisp figures on high-density screens and in print.
 const PNG_SCALE: f32 = 2.0;
@@ -55,19 +55,23 @@ fn fonts() -> Arc<fontdb::Database> {
 }
 
 /// Rasterises an SVG document to PNG bytes.
-pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, String> {
+pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, RasterError> {
     let options = usvg::Options {
         fontdb: fonts(),
         ..usvg::Options::default()
     };
-    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| format!("invalid SVG: {e}"))?;
+    let tree =
+        usvg::Tree::from_str(svg, &options).map_err(|e| RasterError::InvalidSvg(Box::new(e)))?;
     let size = tree.size();
     let (w, h) = (
         (size.width() * PNG_SCALE).ceil() as u32,
         (size.height() * PNG_SCALE).ceil() as u32,
     );
-    let mut pixmap = resvg::tiny_skia::Pixmap::new(w.max(1), h.max(1))
-        .ok_or_else(|| format!("cannot allocate a {w}×{h} image"))?;
+    let mut pixmap =
+        resvg::tiny_skia::Pixmap::new(w.max(1), h.max(1)).ok_or(RasterError::TooLarge {
+            width: w,
+            height: h,
+        })?;
     resvg::render(
         &tree,
         resvg::tiny_skia::Transform::from_scale(PNG_SCALE, PNG_SCALE),
@@ -75,14 +79,14 @@ pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, String> {
     );
     pixmap
         .encode_png()
-        .map_err(|e| format!("PNG encoding failed: {e}"))
+        .map_err(|e| RasterError::Encode(Box::new(e)))
 }
 
 /// The resvg rasteriser ([`svg_to_png`]) for the writers of `fuzzymotiv_pipeline`.
 pub struct Resvg;
 
 impl Rasterise for Resvg {
-    fn png(&self, svg: &str) -> Result<Vec<u8>, String> {
+    fn png(&self, svg: &str) -> Result<Vec<u8>, RasterError> {
         svg_to_png(svg)
     }
 }
@@ -104,7 +108,7 @@ mod tests {
     use super::*;
     use fuzzymotiv::simulation::Trajectory;
     use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
-    use fuzzymotiv_pipeline::render::plot::text_width;
+    use fuzzymotiv_pipeline::render::figure::text_width;
     use fuzzymotiv_pipeline::render::svg::trajectories_svg;
 
     #[test]
@@ -119,7 +123,10 @@ mod tests {
 
     #[test]
     fn broken_svg_is_an_error_not_a_panic() {
-        assert!(svg_to_png("<svg").is_err());
+        assert!(matches!(
+            svg_to_png("<svg"),
+            Err(RasterError::InvalidSvg(_))
+        ));
     }
 
     /// Built-in rooms, a room with its home on a wall, and the U room (home in an arm, its

@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_pipeline::files::notes::Notes;
-use fuzzymotiv_pipeline::pipeline::progress::{RunProgress, SweepProgress};
+use fuzzymotiv_pipeline::pipeline::progress::{JobsSummary, RunProgress, SweepProgress};
 use fuzzymotiv_pipeline::pipeline::reproduce::ReproduceProgress;
 use fuzzymotiv_pipeline::records::Job;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -311,10 +311,11 @@ impl SweepProgress for JobsProgress {
         }
     }
 
-    fn end(&self) {
+    fn end(&self, summary: &JobsSummary) {
         if let Some(bar) = self.bar.get() {
             bar.finish_and_clear();
         }
+        note!("{summary}");
     }
 }
 

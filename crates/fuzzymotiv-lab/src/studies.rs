@@ -52,9 +52,11 @@ impl StudyEntry {
         let (status, claims, error) = &*self.lock();
         let pooled: Option<Vec<&ClaimRow>> =
             (claims.as_ref()).map(|c| c.iter().filter(|c| c.scope == POOLED).collect());
+        let mut notes = self.counter.notes();
+        notes.extend(self.counter.summary().map(|s| s.to_string()));
         json!({ "id": self.id, "name": self.name, "source": self.source, "status": status,
                 "done": self.counter.done(), "total": self.total,
-                "error": error, "notes": self.counter.notes(), "claims": pooled })
+                "error": error, "notes": notes, "claims": pooled })
     }
 }
 

@@ -12,7 +12,7 @@ use fuzzymotiv_records::records::paired::PairedStats;
 use fuzzymotiv_records::records::paper_claims::ClaimId;
 use fuzzymotiv_records::records::{ClaimRecord, StudySummary, TableRow};
 
-use crate::plot::{Ticks, colour, esc, open, px, text_width};
+use crate::figure::{Area, Fill, Legend, Mark, Stroke, Svg, Text, Ticks, colour};
 use crate::study::{DEFAULT_MODEL, Variant, seed_means};
 use crate::tables::verdict;
 
@@ -288,36 +288,21 @@ pub fn behaviour_svg(rows: &[BehaviourRow]) -> String {
         .copied()
         .filter(|m| rows.iter().any(|r| r.measure == *m))
         .collect();
-    let width = PANEL_W * measures.len().max(1) as f64;
     let height = PANEL_H + 30.0;
-    let mut s = open(px(width), height, 12);
-    let _ = writeln!(
-        s,
-        r#"<rect width="{}" height="{height}" fill="white"/>"#,
-        px(width)
-    );
+    let mut s = Svg::new(PANEL_W * measures.len().max(1) as f64, height, 12);
     let combos = distinct(rows.iter().map(|r| r.combination.as_str()));
     let settings = distinct(rows.iter().map(|r| r.setting.as_str()));
     for (k, m) in measures.iter().enumerate() {
         let panel: Vec<&BehaviourRow> = rows.iter().filter(|r| r.measure == *m).collect();
-        draw_panel(&mut s, m, &panel, &settings, &combos, k as f64 * PANEL_W);
+        draw_panel(&mut s, m, &panel, (&settings, &combos), k as f64 * PANEL_W);
     }
-    let mut x = 10.0;
-    for (c, name) in combos.iter().enumerate() {
-        let _ = writeln!(
-            s,
-            r#"<circle cx="{}" cy="{}" r="4" fill="{}"/><text x="{}" y="{}">{} − TSK</text>"#,
-            px(x + 4.0),
-            height - 12.0,
-            colour(c),
-            px(x + 12.0),
-            height - 8.0,
-            esc(name)
-        );
-        x += 30.0 + text_width(&format!("{name} − TSK"), false);
-    }
-    s.push_str("</svg>\n");
-    s
+    let legend = Legend::new(
+        (combos.iter().enumerate())
+            .map(|(c, name)| (Mark::Dot(colour(c)), format!("{name} − TSK")))
+            .collect(),
+    );
+    legend.flow(&mut s, (10.0, f64::INFINITY), height - 8.0, 16.0);
+    s.finish()
 }
 
 fn distinct<'a>(items: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
@@ -330,14 +315,9 @@ fn distinct<'a>(items: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
     out
 }
 
-fn draw_panel(
-    s: &mut String,
-    title: &str,
-    rows: &[&BehaviourRow],
-    settings: &[&str],
-    combos: &[&str],
-    ox: f64,
-) {
+/// A panel's difference axis over its rows' intervals and 0, padded: its ticks and the span
+/// drawn.
+fn difference_axis(rows: &[&BehaviourRow]) -> (Ticks, f64, f64) {
     let (lo, hi) = rows.iter().fold((0.0f64, 0.0f64), |(lo, hi), r| {
         (lo.min(r.stats.ci_low), hi.max(r.stats.ci_high))
     });
@@ -345,73 +325,62 @@ fn draw_panel(
     let ticks = Ticks::nice(lo - pad, hi + pad, 5, false);
     let y0 = ticks.values[0].min(lo - pad);
     let y1 = ticks.values.last().map_or(hi + pad, |t| t.max(hi + pad));
-    let plot_h = PANEL_H - TOP - BOTTOM;
-    let y = |v: f64| TOP + plot_h * (1.0 - (v - y0) / (y1 - y0).max(1e-9));
-    let plot_w = PANEL_W - LEFT - 12.0;
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="20" text-anchor="middle" font-weight="bold">{}</text><text x="{}" y="34" text-anchor="middle" font-size="10">baseline − TSK (points)</text>"#,
-        px(ox + PANEL_W / 2.0),
-        esc(title),
-        px(ox + PANEL_W / 2.0),
+    (ticks, y0, y1)
+}
+
+/// Measure `title`'s panel from `ox`: per setting a slot, in it each baseline's difference
+/// with its interval, filled where the verdict is higher or lower.
+fn draw_panel(
+    s: &mut Svg,
+    title: &str,
+    rows: &[&BehaviourRow],
+    (settings, combos): (&[&str], &[&str]),
+    ox: f64,
+) {
+    let area = Area {
+        x0: ox + LEFT,
+        x1: ox + PANEL_W - 12.0,
+        y0: PANEL_H - BOTTOM,
+        y1: TOP,
+    };
+    let (ticks, v0, v1) = difference_axis(rows);
+    let y = area.y_scale(v0, v1);
+    let centre = ox + PANEL_W / 2.0;
+    s.text((centre, 20.0), title, Text::MIDDLE.bold());
+    s.text(
+        (centre, 34.0),
+        "baseline − TSK (points)",
+        Text::MIDDLE.size(10.0),
     );
-    for &t in &ticks.values {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{}" x2="{}" y1="{yy}" y2="{yy}" stroke="#ddd"/><text x="{}" y="{}" text-anchor="end" font-size="10">{}</text>"##,
-            px(ox + LEFT),
-            px(ox + LEFT + plot_w),
-            px(ox + LEFT - 4.0),
-            px(y(t) + 3.0),
-            ticks.label(t),
-            yy = px(y(t)),
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<line x1="{}" x2="{}" y1="{yy}" y2="{yy}" stroke="#333"/>"##,
-        px(ox + LEFT),
-        px(ox + LEFT + plot_w),
-        yy = px(y(0.0)),
+    area.y_grid(s, &ticks, y, Text::END.size(10.0), None);
+    s.line(
+        (area.x0, y.at(0.0)),
+        (area.x1, y.at(0.0)),
+        Stroke::of("#333"),
     );
-    let slot = plot_w / settings.len().max(1) as f64;
+    let slot = (area.x1 - area.x0) / settings.len().max(1) as f64;
     for (i, setting) in settings.iter().enumerate() {
-        let cx = ox + LEFT + slot * (i as f64 + 0.5);
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle" font-size="10">{}</text>"#,
-            px(cx),
-            px(TOP + plot_h + 16.0),
-            esc(setting)
-        );
+        let cx = area.x0 + slot * (i as f64 + 0.5);
+        s.text((cx, area.y0 + 16.0), setting, Text::MIDDLE.size(10.0));
         for (c, combo) in combos.iter().enumerate() {
-            let Some(r) = rows
+            let found = rows
                 .iter()
-                .find(|r| r.setting == *setting && r.combination == *combo)
-            else {
+                .find(|r| r.setting == *setting && r.combination == *combo);
+            let Some(r) = found else {
                 continue;
             };
             let x = cx + (c as f64 - (combos.len() as f64 - 1.0) / 2.0) * 14.0;
-            let fill = if r.stats.verdict == "not significant" || r.stats.verdict == "inconclusive"
-            {
-                "white"
-            } else {
-                colour(c)
-            };
-            let _ = writeln!(
-                s,
-                r#"<line x1="{x}" x2="{x}" y1="{}" y2="{}" stroke="{col}" stroke-width="2"/><circle cx="{x}" cy="{}" r="4" fill="{fill}" stroke="{col}" stroke-width="2"><title>{} {} {}: {:+.2} (p = {:.3})</title></circle>"#,
-                px(y(r.stats.ci_low)),
-                px(y(r.stats.ci_high)),
-                px(y(r.stats.difference)),
-                esc(combo),
-                esc(setting),
-                esc(title),
-                r.stats.difference,
-                r.stats.p,
-                x = px(x),
-                col = colour(c),
+            let open = matches!(r.stats.verdict.as_str(), "not significant" | "inconclusive");
+            let col = colour(c);
+            let st = &r.stats;
+            let ring = Stroke::of(col).width(2.0);
+            s.line((x, y.at(st.ci_low)), (x, y.at(st.ci_high)), ring);
+            let fill = Fill::of(if open { "white" } else { col }).stroked(ring);
+            let tip = format!(
+                "{combo} {setting} {title}: {:+.2} (p = {:.3})",
+                st.difference, st.p
             );
+            s.circle((x, y.at(st.difference)), 4.0, fill, Some(&tip));
         }
     }
 }

@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 
 use fuzzymotiv::statistics::{self, Comparison, Settings, StatsError};
 
-use crate::plot::{esc, open};
+use crate::figure::{Anchor, Area, Fill, Legend, MUTED, Mark, Stroke, Svg, Text};
 use crate::tables::p_text;
 use fuzzymotiv_records::records::METRICS;
 use fuzzymotiv_records::records::compare::{CompareRow, OVERALL};
@@ -259,12 +259,8 @@ pub fn compare_svg(title: &str, rows: &[CompareRow], alpha: f64) -> String {
         LABEL_W + PANEL_W * metrics.len().max(1) as f64 + 10.0,
         40.0 + panel_h * settings.len().max(1) as f64 + LEGEND_H,
     );
-    let mut svg = open(format_args!("{w:.0}"), format_args!("{h:.0}"), 11);
-    let _ = writeln!(
-        svg,
-        "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"8\" y=\"20\" font-size=\"14\" font-weight=\"bold\">{}</text>",
-        esc(title)
-    );
+    let mut svg = Svg::new(w.round(), h.round(), 11);
+    svg.text((8.0, 20.0), title, Text::START.bold().size(14.0));
     for b in &blocks {
         let sx = settings
             .iter()
@@ -275,41 +271,27 @@ pub fn compare_svg(title: &str, rows: &[CompareRow], alpha: f64) -> String {
         panel(&mut svg, b, (x0, y0), mx == 0, alpha);
     }
     legend(&mut svg, h - LEGEND_H, alpha);
-    svg.push_str("</svg>\n");
-    svg
+    svg.finish()
 }
 
 /// Height of [`compare_svg`]'s legend under its panels.
 const LEGEND_H: f64 = 52.0;
 
 /// What the colours and marks of [`compare_svg`] mean, one entry a row from `top`.
-fn legend(svg: &mut String, top: f64, alpha: f64) {
-    let entries = [
+fn legend(svg: &mut Svg, top: f64, alpha: f64) {
+    let legend = Legend::new(vec![
         (
-            SIGNIFICANT,
+            Mark::LineDot(SIGNIFICANT),
             format!("A − B, Holm-adjusted p < {alpha}: a difference"),
         ),
         (
-            NOT_SIGNIFICANT,
+            Mark::LineDot(NOT_SIGNIFICANT),
             format!("A − B, p ≥ {alpha}: no clear difference"),
         ),
-    ];
-    for (k, (colour, text)) in entries.iter().enumerate() {
-        let y = top + 12.0 + 15.0 * k as f64;
-        let _ = writeln!(
-            svg,
-            "<line x1=\"10\" x2=\"30\" y1=\"{:.1}\" y2=\"{:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/><circle cx=\"20\" cy=\"{:.1}\" r=\"3.5\" fill=\"{colour}\"/><text x=\"36\" y=\"{y:.1}\">{}</text>",
-            y - 4.0,
-            y - 4.0,
-            y - 4.0,
-            esc(text)
-        );
-    }
-    let _ = writeln!(
-        svg,
-        "<text x=\"10\" y=\"{:.1}\" fill=\"#555\">line: 95 % interval; dashed: A − B = 0</text>",
-        top + 42.0
-    );
+    ]);
+    legend.column(svg, 10.0, top + 12.0, 15.0);
+    let note = "line: 95 % interval; dashed: A − B = 0";
+    svg.text((10.0, top + 42.0), note, Text::START.fill(MUTED));
 }
 
 /// Colour of a difference at p < α, and of one that is not.
@@ -317,32 +299,31 @@ const SIGNIFICANT: &str = "#d62728";
 const NOT_SIGNIFICANT: &str = "#1f77b4";
 
 /// One panel of [`compare_svg`] at (x0, y0); room labels on its left when `labels`.
-fn panel(svg: &mut String, block: &[CompareRow], (x0, y0): (f64, f64), labels: bool, alpha: f64) {
+fn panel(svg: &mut Svg, block: &[CompareRow], (x0, y0): (f64, f64), labels: bool, alpha: f64) {
     let (label, d) = metric_label(&block[0].metric);
     let reach = block
         .iter()
         .flat_map(|r| [r.ci_low.abs(), r.ci_high.abs(), r.difference.abs()])
         .fold(0.0_f64, f64::max);
     let reach = if reach > 0.0 { reach * 1.1 } else { 1.0 };
-    let (left, right) = (x0 + 10.0, x0 + PANEL_W - 15.0);
-    let x = |v: f64| left + (v + reach) / (2.0 * reach) * (right - left);
     let bottom = y0 + 30.0 + ROW_H * block.len() as f64;
-    let _ = writeln!(
-        svg,
-        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\" font-weight=\"bold\">{}</text>\n<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\" fill=\"#555\">{}</text>\n<rect x=\"{left:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" fill=\"none\" stroke=\"#ccc\"/>\n<line x1=\"{:.1}\" x2=\"{:.1}\" y1=\"{:.1}\" y2=\"{bottom:.1}\" stroke=\"#888\" stroke-dasharray=\"3,3\"/>",
-        (left + right) / 2.0,
-        y0 + 4.0,
-        esc(&label),
-        (left + right) / 2.0,
-        y0 + 17.0,
-        esc(&block[0].setting),
-        y0 + 24.0,
-        right - left,
-        bottom - y0 - 24.0,
-        x(0.0),
-        x(0.0),
-        y0 + 24.0,
+    let area = Area {
+        x0: x0 + 10.0,
+        x1: x0 + PANEL_W - 15.0,
+        y0: bottom,
+        y1: y0 + 24.0,
+    };
+    let x = area.x_scale(-reach, reach);
+    area.title(svg, y0 + 4.0, &label);
+    svg.text(
+        (area.mid_x(), y0 + 17.0),
+        &block[0].setting,
+        Text::MIDDLE.fill(MUTED),
     );
+    let frame = (area.x1 - area.x0, area.y0 - area.y1);
+    svg.rect((area.x0, area.y1), frame, Fill::outline(Stroke::of("#ccc")));
+    let zero = Stroke::of("#888").dashed("3,3");
+    svg.line((x.at(0.0), area.y1), (x.at(0.0), bottom), zero);
     for (k, r) in block.iter().enumerate() {
         let y = y0 + 30.0 + ROW_H * (k as f64 + 0.5);
         let colour = if r.p_holm < alpha {
@@ -351,35 +332,30 @@ fn panel(svg: &mut String, block: &[CompareRow], (x0, y0): (f64, f64), labels: b
             NOT_SIGNIFICANT
         };
         if labels {
-            let _ = writeln!(
-                svg,
-                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>",
-                x0 - 4.0,
-                y + 4.0,
-                esc(&r.room)
-            );
+            svg.text((x0 - 4.0, y + 4.0), &r.room, Text::END);
         }
-        let _ = writeln!(
-            svg,
-            "<line x1=\"{:.1}\" x2=\"{:.1}\" y1=\"{y:.1}\" y2=\"{y:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n<circle cx=\"{:.1}\" cy=\"{y:.1}\" r=\"3.5\" fill=\"{colour}\"><title>{}: {:+.d$} [{:+.d$}, {:+.d$}], p = {}</title></circle>",
-            x(r.ci_low),
-            x(r.ci_high),
-            x(r.difference),
-            esc(&r.room),
+        svg.line(
+            (x.at(r.ci_low), y),
+            (x.at(r.ci_high), y),
+            Stroke::of(colour).width(2.0),
+        );
+        let tip = format!(
+            "{}: {:+.d$} [{:+.d$}, {:+.d$}], p = {}",
+            r.room,
             r.difference,
             r.ci_low,
             r.ci_high,
             p_text(r.p)
         );
+        svg.circle((x.at(r.difference), y), 3.5, Fill::of(colour), Some(&tip));
     }
-    let _ = writeln!(
-        svg,
-        "<text x=\"{left:.1}\" y=\"{:.1}\" fill=\"#555\">{:+.d$}</text>\n<text x=\"{right:.1}\" y=\"{:.1}\" text-anchor=\"end\" fill=\"#555\">{:+.d$}</text>",
-        bottom + 13.0,
-        -reach,
-        bottom + 13.0,
-        reach
-    );
+    let ends = Text::START.fill(MUTED);
+    svg.text((area.x0, bottom + 13.0), &format!("{:+.d$}", -reach), ends);
+    let right = Text {
+        anchor: Anchor::End,
+        ..ends
+    };
+    svg.text((area.x1, bottom + 13.0), &format!("{reach:+.d$}"), right);
 }
 
 #[cfg(test)]

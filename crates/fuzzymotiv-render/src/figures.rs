@@ -9,7 +9,26 @@ use fuzzymotiv_records::files::guard::{StagedDir, io_err, write_atomic};
 /// Turns an SVG document into PNG bytes.
 pub trait Rasterise: Sync {
     /// The PNG of `svg`, or why it cannot be drawn.
-    fn png(&self, svg: &str) -> Result<Vec<u8>, String>;
+    fn png(&self, svg: &str) -> Result<Vec<u8>, RasterError>;
+}
+
+/// Why a figure's PNG cannot be drawn.
+#[derive(Debug, thiserror::Error)]
+pub enum RasterError {
+    /// The SVG cannot be read.
+    #[error("invalid SVG: {0}")]
+    InvalidSvg(#[source] Box<dyn std::error::Error + Send + Sync>),
+    /// The image cannot be allocated.
+    #[error("cannot allocate a {width}×{height} image")]
+    TooLarge {
+        /// Width, pixels.
+        width: u32,
+        /// Height, pixels.
+        height: u32,
+    },
+    /// The PNG cannot be encoded.
+    #[error("PNG encoding failed: {0}")]
+    Encode(#[source] Box<dyn std::error::Error + Send + Sync>),
 }
 
 /// Writes `STEM.svg` into a staged directory, and `STEM.png` beside it with `png`.

@@ -4,12 +4,10 @@
 //! axis that every row of the panel shares, so that effects can be compared by eye. Rows of one
 //! hypothesis stand together (pooled first, then each base seed).
 
-use std::fmt::Write as _;
-
 use fuzzymotiv_records::records::hypotheses::{ClaimRow, Hypothesis, POOLED, StudyRecord};
 
 use crate::claim_format::RowFormat;
-use crate::plot::{Ticks, esc, open, px, text_width};
+use crate::figure::{Area, Fill, MUTED, Stroke, Svg, Text, Ticks, text_width};
 
 /// Height of a result's row, px.
 const ROW_H: f64 = 24.0;
@@ -147,53 +145,48 @@ pub fn forest_svg(record: &StudyRecord) -> String {
     let rows: usize = panels.iter().map(|p| p.rows.len()).sum();
     let width = left + PLOT_W + 300.0;
     let height = top + ROW_H * rows as f64 + (TITLE_H + AXIS_H) * panels.len() as f64;
-    let mut s = open(px(width), px(height), 12);
-    let _ = writeln!(
-        s,
-        "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"10\" y=\"22\" font-weight=\"bold\">Effects and their intervals (a shared axis per measure)</text>"
-    );
+    let mut s = Svg::new(width, height, 12);
+    let title = "Effects and their intervals (a shared axis per measure)";
+    s.text((10.0, 22.0), title, Text::START.bold());
     let mut y = top;
     for panel in &panels {
         y = draw_panel(&mut s, record, panel, left, y);
     }
-    s.push_str("</svg>\n");
-    s
+    s.finish()
 }
 
 /// Draws one panel from `y` down; returns where the next begins.
-fn draw_panel(s: &mut String, record: &StudyRecord, panel: &Panel, left: f64, y: f64) -> f64 {
+fn draw_panel(s: &mut Svg, record: &StudyRecord, panel: &Panel, left: f64, y: f64) -> f64 {
     let (ticks, lo, hi) = axis(record, panel);
-    let x = |v: f64| px(left + PLOT_W * (v - lo) / (hi - lo));
-    let _ = writeln!(
-        s,
-        "<text x=\"10\" y=\"{}\" font-weight=\"bold\">{}</text>",
-        px(y + 16.0),
-        esc(&panel.title)
-    );
+    s.text((10.0, y + 16.0), &panel.title, Text::START.bold());
     let (first, last) = (y + TITLE_H, y + TITLE_H + ROW_H * panel.rows.len() as f64);
-    let _ = writeln!(s, "<g class=\"axis\">");
-    for &t in &ticks.values {
-        let _ = writeln!(
-            s,
-            "<line x1=\"{0}\" x2=\"{0}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#eee\"/>\n<text x=\"{0}\" y=\"{3}\" text-anchor=\"middle\" fill=\"#555\">{4}</text>",
-            x(t),
-            px(first),
-            px(last + 4.0),
-            px(last + 18.0),
-            esc(&ticks.label(t).replace('-', "−"))
-        );
+    let area = Area {
+        x0: left,
+        x1: left + PLOT_W,
+        y0: last,
+        y1: first,
+    };
+    let x = area.x_scale(lo, hi);
+    s.group("axis");
+    let placed: Vec<(f64, String)> = (ticks.values.iter())
+        .map(|&t| (x.at(t), ticks.label(t).replace('-', "−")))
+        .collect();
+    for (xx, _) in &placed {
+        s.line((*xx, first), (*xx, last + 4.0), Stroke::of("#eee"));
     }
-    let _ = writeln!(
-        s,
-        "<line x1=\"{}\" x2=\"{}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#555\"/>\n</g>",
-        px(left),
-        px(left + PLOT_W),
-        px(last)
-    );
+    area.x_ticks(s, &placed, 18.0, false, Text::MIDDLE.fill(MUTED));
+    s.line((area.x0, last), (area.x1, last), Stroke::of(MUTED));
+    s.end_group();
     let numbers_x = left + PLOT_W + 15.0;
     for (n, &k) in panel.rows.iter().enumerate() {
         let row_y = first + ROW_H * (n as f64 + 0.5);
-        draw_row(s, record, &record.claims[k], (&x, numbers_x), row_y);
+        draw_row(
+            s,
+            record,
+            &record.claims[k],
+            (&|v| x.at(v), numbers_x),
+            row_y,
+        );
     }
     last + AXIS_H
 }
@@ -201,46 +194,32 @@ fn draw_panel(s: &mut String, record: &StudyRecord, panel: &Panel, left: f64, y:
 /// Draws one result's row centred on `y`, on its panel's axis `x`, its numbers from
 /// `numbers_x`.
 fn draw_row(
-    s: &mut String,
+    s: &mut Svg,
     record: &StudyRecord,
     c: &ClaimRow,
     (x, numbers_x): (&dyn Fn(f64) -> f64, f64),
     y: f64,
 ) {
-    let _ = writeln!(
-        s,
-        "<text x=\"10\" y=\"{}\">{}</text>",
-        px(y + 4.0),
-        esc(&label(c))
-    );
+    s.text((10.0, y + 4.0), &label(c), Text::START);
     for r in references(record, c) {
-        let _ = writeln!(
-            s,
-            "<line x1=\"{0}\" x2=\"{0}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#999\" stroke-dasharray=\"3,3\"/>",
-            x(r),
-            px(y - ROW_H * 0.5),
-            px(y + ROW_H * 0.5)
-        );
+        let dashed = Stroke::of("#999").dashed("3,3");
+        s.line((x(r), y - ROW_H * 0.5), (x(r), y + ROW_H * 0.5), dashed);
     }
     let colour = verdict_colour(&c.verdict);
-    let _ = writeln!(
-        s,
-        "<line x1=\"{}\" x2=\"{}\" y1=\"{2}\" y2=\"{2}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n<circle cx=\"{3}\" cy=\"{2}\" r=\"4\" fill=\"{colour}\"/>",
-        x(c.ci_low),
-        x(c.ci_high),
-        px(y),
-        x(c.effect)
+    s.line(
+        (x(c.ci_low), y),
+        (x(c.ci_high), y),
+        Stroke::of(colour).width(2.0),
     );
+    s.circle((x(c.effect), y), 4.0, Fill::of(colour), None);
     let f = RowFormat::of_claim(c);
-    let _ = writeln!(
-        s,
-        "<text x=\"{}\" y=\"{}\">{} {} {}</text>",
-        px(numbers_x),
-        px(y + 4.0),
-        esc(&f.num(c.effect)),
-        esc(&f.interval(c.ci_low, c.ci_high)),
-        esc(&c.verdict)
+    let numbers = format!(
+        "{} {} {}",
+        f.num(c.effect),
+        f.interval(c.ci_low, c.ci_high),
+        c.verdict
     );
+    s.text((numbers_x, y + 4.0), &numbers, Text::START);
 }
 
 #[cfg(test)]

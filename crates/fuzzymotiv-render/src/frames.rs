@@ -21,6 +21,7 @@
 
 pub mod animate;
 pub mod draw;
+pub mod error;
 pub mod font;
 pub mod scene;
 
@@ -30,6 +31,7 @@ use tiny_skia::Pixmap;
 
 pub use crate::frames::animate::GifWriter;
 pub use crate::frames::draw::Painter;
+pub use crate::frames::error::{Column, FrameError};
 pub use crate::frames::scene::{FrameOptions, Track, View};
 
 /// Rendered frames: RGB bytes, frame after frame, each `width × height` pixels row by row.
@@ -82,25 +84,23 @@ pub const MAX_FRAME_BYTES: usize = 8 << 30;
 /// Every frame of `track` in `room` (drawn in parallel on rayon's pool; the bytes do not depend
 /// on the number of threads). The error names the track's bad column, or says that the frames
 /// would take more than [`MAX_FRAME_BYTES`].
-pub fn render(room: &Room, track: Track<'_>, opts: FrameOptions) -> Result<Frames, String> {
+pub fn render(room: &Room, track: Track<'_>, opts: FrameOptions) -> Result<Frames, FrameError> {
     let painter = Painter::new(room, track, opts)?;
     let poses = opts.frame_poses(track.poses.len());
     let size = opts.size();
     let n = size as usize * size as usize * 3;
     let bytes = n.saturating_mul(poses.len());
-    let too_many = |why: &str| {
-        format!(
-            "{} frames of {size} × {size} pixels need {:.1} GiB, {why}; draw fewer (a larger \
-             stride) or smaller frames (size), or write a GIF, which is drawn a frame at a time",
-            poses.len(),
-            bytes as f64 / (1u64 << 30) as f64
-        )
+    let too_many = |over_limit: bool| FrameError::TooMuchMemory {
+        frames: poses.len(),
+        size,
+        bytes,
+        over_limit,
     };
     if bytes > MAX_FRAME_BYTES {
-        return Err(too_many("more than the 8 GiB that frames may take"));
+        return Err(too_many(true));
     }
     let mut rgb = Vec::new();
-    (rgb.try_reserve_exact(bytes)).map_err(|_| too_many("more than can be allocated"))?;
+    (rgb.try_reserve_exact(bytes)).map_err(|_| too_many(false))?;
     rgb.resize(bytes, 0);
     rgb.par_chunks_mut(n).zip(poses.par_iter()).for_each_init(
         || Pixmap::new(size, size).expect("size checked"),
@@ -119,7 +119,11 @@ pub fn render(room: &Room, track: Track<'_>, opts: FrameOptions) -> Result<Frame
 
 /// The one frame of `track`'s last pose (what [`render`] draws last, the same bytes), drawn
 /// alone: a live view (the Gymnasium env's `render()`) costs one frame whatever the length.
-pub fn render_last(room: &Room, track: Track<'_>, opts: FrameOptions) -> Result<Frames, String> {
+pub fn render_last(
+    room: &Room,
+    track: Track<'_>,
+    opts: FrameOptions,
+) -> Result<Frames, FrameError> {
     let painter = Painter::new(room, track, opts)?;
     let size = opts.size();
     let mut pixmap = Pixmap::new(size, size).expect("size checked");
@@ -142,7 +146,7 @@ pub fn gif(
     track: Track<'_>,
     opts: FrameOptions,
     delay: u16,
-) -> Result<Vec<u8>, String> {
+) -> Result<Vec<u8>, FrameError> {
     let painter = Painter::new(room, track, opts)?;
     let size = opts.size();
     let mut pixmap = Pixmap::new(size, size).expect("size checked");

@@ -82,11 +82,14 @@ fn arms_md(record: &StudyRecord) -> String {
         );
     }
     let bases: Vec<String> = record.base_seeds.iter().map(u64::to_string).collect();
+    let (per, which) = match bases.as_slice() {
+        [one] => ("", format!("base seed {one}")),
+        _ => (" per base seed", format!("base seeds {}", bases.join(", "))),
+    };
     let _ = writeln!(
         s,
-        "\n{} paired seeds per base seed (base seeds {}): every arm runs on the same seeds.\n",
+        "\n{} paired seeds{per} ({which}): every arm runs on the same seeds.\n",
         record.seeds,
-        bases.join(", ")
     );
     s
 }

@@ -10,7 +10,8 @@ use std::fmt::Write as _;
 use fuzzymotiv_records::records::replication::{ReplicationRow, SeedsRow};
 use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary};
 
-use crate::plot::{colour, esc, open, px};
+use crate::figure::axis::GRID;
+use crate::figure::{Area, Fill, Legend, Mark, Stroke, Svg, Text, colour};
 use crate::study::{CLAIMS_ALPHA, claims};
 use crate::tables::verdict;
 
@@ -244,62 +245,36 @@ pub fn replication_svg(base: [u64; 2], claims: &[ClaimRecord], by_seeds: &[Seeds
         .collect();
     let cols = 2usize;
     let rows = tested.len().div_ceil(cols).max(1);
-    let (w, h) = (PW * cols as f64, PH * rows as f64 + 30.0);
-    let mut s = open(w, h, 12);
-    let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
+    let h = PH * rows as f64 + 30.0;
+    let mut s = Svg::new(PW * cols as f64, h, 12);
     let max_n = by_seeds.last().map_or(2, |r| r.seeds).max(2);
     for (i, &k) in tested.iter().enumerate() {
         let (ox, oy) = ((i % cols) as f64 * PW, (i / cols) as f64 * PH);
-        panel(&mut s, (ox, oy), &claims[k], k, by_seeds, max_n);
+        let area = Area {
+            x0: ox + ML,
+            x1: ox + PW - MR,
+            y0: oy + PH - MB,
+            y1: oy + MT,
+        };
+        panel(&mut s, area, &claims[k], k, by_seeds, max_n);
     }
-    let ly = h - 12.0;
-    for (j, label) in [
-        format!("base seed {}", base[0]),
-        format!("base seed {}", base[1]),
-        "pooled".into(),
-    ]
-    .iter()
-    .enumerate()
-    {
-        let x = 20.0 + 170.0 * j as f64;
-        let _ = writeln!(
-            s,
-            r#"<line x1="{x}" x2="{}" y1="{}" y2="{}" stroke="{}" stroke-width="2"/><text x="{}" y="{ly}">{}</text>"#,
-            x + 24.0,
-            ly - 4.0,
-            ly - 4.0,
-            colour(j),
-            x + 30.0,
-            esc(label)
-        );
-    }
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{ly}">dashed: α = {CLAIMS_ALPHA}</text>"#,
-        20.0 + 170.0 * 3.0
-    );
-    s.push_str("</svg>\n");
-    s
+    let line = |j: usize| Mark::Line(Stroke::of(colour(j)).width(2.0));
+    let legend = Legend::new(vec![
+        (line(0), format!("base seed {}", base[0])),
+        (line(1), format!("base seed {}", base[1])),
+        (Mark::Dot(colour(2)), "pooled".into()),
+        (
+            Mark::Line(Stroke::of("#000").dashed("5 4")),
+            format!("α = {CLAIMS_ALPHA}"),
+        ),
+    ]);
+    legend.flow(&mut s, (20.0, PW * cols as f64), h - 12.0, 16.0);
+    s.finish()
 }
 
-fn panel(
-    s: &mut String,
-    (ox, oy): (f64, f64),
-    claim: &ClaimRecord,
-    k: usize,
-    by_seeds: &[SeedsRow],
-    max_n: usize,
-) {
-    let (x0, x1, y0, y1) = (ox + ML, ox + PW - MR, oy + PH - MB, oy + MT);
-    let x = |n: usize| px(x0 + (x1 - x0) * (n as f64 - 2.0) / (max_n as f64 - 2.0).max(1.0));
-    let y = |p: f64| px(y0 + (y1 - y0) * (p.max(1e-4).log10() - P_LO) / -P_LO);
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{}" text-anchor="middle" font-weight="bold">{}</text>"#,
-        px((x0 + x1) / 2.0),
-        oy + 18.0,
-        esc(&claim.claim.sentence())
-    );
+/// The p-value axis of a panel: a grid line at each power of ten from 10^-4 to 1, the axes,
+/// the dashed line at α and the axis labels.
+fn p_axis(s: &mut Svg, area: Area, y: &dyn Fn(f64) -> f64) {
     for (p, label) in [
         (1e-4, "0.0001"),
         (1e-3, "0.001"),
@@ -307,79 +282,63 @@ fn panel(
         (0.1, "0.1"),
         (1.0, "1"),
     ] {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x0}" x2="{x1}" y1="{yy}" y2="{yy}" stroke="#ddd"/><text x="{}" y="{}" text-anchor="end">{label}</text>"##,
-            x0 - 6.0,
-            px(y(p) + 4.0),
-            yy = y(p)
-        );
+        s.line((area.x0, y(p)), (area.x1, y(p)), Stroke::of(GRID));
+        s.text((area.x0 - 6.0, y(p) + 4.0), label, Text::END);
     }
-    let _ = writeln!(
-        s,
-        r##"<line x1="{x0}" x2="{x1}" y1="{ya}" y2="{ya}" stroke="#000" stroke-dasharray="5 4"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/><line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/>"##,
-        ya = y(CLAIMS_ALPHA)
+    let alpha = y(CLAIMS_ALPHA);
+    s.line(
+        (area.x0, alpha),
+        (area.x1, alpha),
+        Stroke::of("#000").dashed("5 4"),
     );
+    area.axes(s);
+    let labels = (("seeds per base seed", 34.0), ("p (log scale)", ML - 16.0));
+    area.labels(s, labels.0, labels.1, Text::MIDDLE);
+}
+
+/// One claim's panel: each base seed's p against its first n seeds, and the pooled p.
+fn panel(
+    s: &mut Svg,
+    area: Area,
+    claim: &ClaimRecord,
+    k: usize,
+    by_seeds: &[SeedsRow],
+    max_n: usize,
+) {
+    let xs = area.x_scale(2.0, max_n as f64);
+    let x = |n: usize| xs.at(n as f64);
+    let ys = area.y_scale(P_LO, 0.0);
+    let y = |p: f64| ys.at(p.max(1e-4).log10());
+    area.title(s, area.y1 - MT + 18.0, &claim.claim.sentence());
+    p_axis(s, area, &y);
     let step = if max_n > 12 { 2 } else { 1 };
-    for n in (2..=max_n).filter(|n| n % step == 0) {
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle">{n}</text>"#,
-            x(n),
-            y0 + 16.0
-        );
-    }
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{}" text-anchor="middle">seeds per base seed</text>"#,
-        px((x0 + x1) / 2.0),
-        y0 + 34.0
-    );
-    let (cx, cy) = (ox + 16.0, px((y0 + y1) / 2.0));
-    let _ = writeln!(
-        s,
-        r#"<text x="{cx}" y="{cy}" text-anchor="middle" transform="rotate(-90 {cx} {cy})">p (log scale)</text>"#
-    );
-    for (j, pick) in [
-        |r: &SeedsRow, k: usize| r.p_a[k],
-        |r: &SeedsRow, k: usize| r.p_b[k],
-    ]
-    .iter()
-    .enumerate()
-    {
-        let pts: Vec<String> = by_seeds
-            .iter()
-            .filter_map(|r| pick(r, k).map(|p| format!("{},{}", x(r.seeds), y(p))))
+    let ticks: Vec<(f64, String)> = (2..=max_n)
+        .filter(|n| n % step == 0)
+        .map(|n| (x(n), n.to_string()))
+        .collect();
+    area.x_ticks(s, &ticks, 16.0, false, Text::MIDDLE);
+    let picks: [fn(&SeedsRow, usize) -> Option<f64>; 2] = [|r, k| r.p_a[k], |r, k| r.p_b[k]];
+    for (j, pick) in picks.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = (by_seeds.iter())
+            .filter_map(|r| pick(r, k).map(|p| (x(r.seeds), y(p))))
             .collect();
-        let _ = writeln!(
-            s,
-            r#"<polyline points="{}" fill="none" stroke="{}" stroke-width="2"/>"#,
-            pts.join(" "),
-            colour(j)
-        );
+        s.polyline(&pts, Stroke::of(colour(j)).width(2.0), None);
     }
     if let Some(st) = &claim.stats {
         // The label sits above the point, or below it near the top of the panel.
-        let ly = if y(st.p) - 8.0 < y1 + 14.0 {
+        let ly = if y(st.p) - 8.0 < area.y1 + 14.0 {
             y(st.p) + 20.0
         } else {
             y(st.p) - 8.0
         };
-        let _ = writeln!(
-            s,
-            r#"<circle cx="{}" cy="{}" r="5" fill="{}"/><text x="{}" y="{}" text-anchor="end">pooled {} seeds: p {}</text>"#,
-            x(max_n),
-            y(st.p),
-            colour(2),
-            x1 - 8.0,
-            px(ly),
-            st.seeds,
-            esc(&if st.p < 1e-4 {
-                "< 0.0001".to_string()
-            } else {
-                format!("= {:.4}", st.p)
-            })
-        );
+        s.circle((x(max_n), y(st.p)), 5.0, Fill::of(colour(2)), None);
+        let p = if st.p < 1e-4 {
+            "< 0.0001".to_string()
+        } else {
+            format!("= {:.4}", st.p)
+        };
+        let label = format!("pooled {} seeds: p {p}", st.seeds);
+        s.text((area.x1 - 8.0, ly), &label, Text::END);
     }
 }
 

@@ -12,7 +12,7 @@ use fuzzymotiv::experiment::Training;
 use fuzzymotiv::params::joined_list;
 use serde_json::{Value, json};
 
-use crate::plot::{colour, esc};
+use crate::figure::{colour, esc};
 use crate::study::Setting;
 use crate::svg::{
     LoggedPath, SomRoom, best_paths_svg, fitness_svg, som_svg, term_curves, terms_svg_of,

@@ -4,11 +4,10 @@
 //! perturbations down the side, each the mean (dot) with its 95 % interval (line) against the
 //! unperturbed robot's mean (dashed line) and interval (grey band).
 
-use std::fmt::Write as _;
-
 use fuzzymotiv_records::records::robustness::{RobustnessRecord, measures_of};
 
-use crate::plot::{Ticks, esc, open, px, text_width};
+use crate::figure::axis::placed;
+use crate::figure::{Area, Fill, Legend, MUTED, Mark, Stroke, Svg, Text, Ticks, text_width};
 
 const PANEL_W: f64 = 190.0;
 const GAP: f64 = 16.0;
@@ -33,43 +32,32 @@ pub fn robustness_svg(title: &str, records: &[RobustnessRecord]) -> String {
     let measures = measures_of(records);
     let w = label_w + (PANEL_W + GAP) * measures.len() as f64;
     let h = TOP + ROW_H * rows + 30.0 + LEGEND_H;
-    let mut svg = open(format_args!("{w:.0}"), format_args!("{h:.0}"), 11);
-    let _ = writeln!(
-        svg,
-        "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"8\" y=\"20\" font-size=\"14\" font-weight=\"bold\">{}</text>",
-        esc(title)
-    );
+    let mut svg = Svg::new(w.round(), h.round(), 11);
+    svg.text((8.0, 20.0), title, Text::START.bold().size(14.0));
     let base = records
         .iter()
         .position(|r| r.perturbation == "none")
         .unwrap_or(0);
     for (k, r) in records.iter().enumerate() {
         let y = TOP + ROW_H * (k as f64 + 0.5);
-        let weight = if k == base {
-            " font-weight=\"bold\""
+        let style = if k == base {
+            Text::END.bold()
         } else {
-            ""
+            Text::END
         };
-        let _ = writeln!(
-            svg,
-            "<text x=\"{}\" y=\"{}\" text-anchor=\"end\"{weight}>{}</text>",
-            px(label_w - 8.0),
-            px(y + 4.0),
-            esc(&r.perturbation)
-        );
+        svg.text((label_w - 8.0, y + 4.0), &r.perturbation, style);
     }
     for (m, (_, words)) in measures.iter().enumerate() {
         let x0 = label_w + (PANEL_W + GAP) * m as f64;
         panel(&mut svg, records, (m, words), base, x0);
     }
     legend(&mut svg, h - LEGEND_H + 8.0);
-    svg.push_str("</svg>\n");
-    svg
+    svg.finish()
 }
 
 /// Panel `m` (a measure of [`measures_of`], shown as `words`) with its left edge at `x0`.
 fn panel(
-    svg: &mut String,
+    svg: &mut Svg,
     records: &[RobustnessRecord],
     (m, words): (usize, &str),
     base: usize,
@@ -77,58 +65,39 @@ fn panel(
 ) {
     let values: Vec<(f64, f64, f64)> = records.iter().map(|r| r.measures()[m]).collect();
     let (first, last, ticks) = axis(&values);
-    let (left, right) = (x0 + 6.0, x0 + PANEL_W - 6.0);
-    let x = |v: f64| px(left + (v - first) / (last - first) * (right - left));
     let bottom = TOP + ROW_H * records.len() as f64;
-    let _ = writeln!(
-        svg,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-weight=\"bold\">{}</text>\n<rect x=\"{}\" y=\"{TOP}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#ccc\"/>",
-        px((left + right) / 2.0),
-        TOP - 10.0,
-        esc(words),
-        px(left),
-        px(right - left),
-        px(bottom - TOP),
-    );
-    for &t in &ticks.values {
-        let _ = writeln!(
-            svg,
-            "<line x1=\"{0}\" x2=\"{0}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#888\"/><text x=\"{0}\" y=\"{3}\" text-anchor=\"middle\" fill=\"#555\">{4}</text>",
-            x(t),
-            px(bottom),
-            px(bottom + 4.0),
-            px(bottom + 16.0),
-            ticks.label(t)
-        );
+    let area = Area {
+        x0: x0 + 6.0,
+        x1: x0 + PANEL_W - 6.0,
+        y0: bottom,
+        y1: TOP,
+    };
+    let x = area.x_scale(first, last);
+    area.title(svg, TOP - 10.0, words);
+    let frame = (area.x1 - area.x0, bottom - TOP);
+    svg.rect((area.x0, TOP), frame, Fill::outline(Stroke::of("#ccc")));
+    let placed: Vec<(f64, String)> = placed(&ticks, x);
+    for (xx, _) in &placed {
+        svg.line((*xx, bottom), (*xx, bottom + 4.0), Stroke::of("#888"));
     }
+    area.x_ticks(svg, &placed, 16.0, false, Text::MIDDLE.fill(MUTED));
     if let Some(&(bm, blo, bhi)) = values.get(base) {
-        let _ = writeln!(
-            svg,
-            "<rect x=\"{}\" y=\"{TOP}\" width=\"{}\" height=\"{}\" fill=\"#000\" fill-opacity=\"0.07\"/>\n<line x1=\"{3}\" x2=\"{3}\" y1=\"{TOP}\" y2=\"{4}\" stroke=\"#555\" stroke-dasharray=\"3,3\"/>",
-            x(blo),
-            px(x(bhi) - x(blo)),
-            px(bottom - TOP),
-            x(bm),
-            px(bottom),
-        );
+        let band = (x.at(bhi) - x.at(blo), bottom - TOP);
+        svg.rect((x.at(blo), TOP), band, Fill::of("#000").opacity(0.07));
+        let dashed = Stroke::of(MUTED).dashed("3,3");
+        svg.line((x.at(bm), TOP), (x.at(bm), bottom), dashed);
     }
     let base_mean = values.get(base).map_or(f64::NAN, |v| v.0);
     for (k, (r, &(mean, lo, hi))) in records.iter().zip(&values).enumerate() {
-        let y = px(TOP + ROW_H * (k as f64 + 0.5));
+        let y = TOP + ROW_H * (k as f64 + 0.5);
         let colour = if k != base && (base_mean < lo || base_mean > hi) {
             CHANGED
         } else {
             SAME
         };
-        let _ = writeln!(
-            svg,
-            "<line x1=\"{}\" x2=\"{}\" y1=\"{y}\" y2=\"{y}\" stroke=\"{colour}\" stroke-width=\"2\"/><circle cx=\"{}\" cy=\"{y}\" r=\"3.5\" fill=\"{colour}\"><title>{}, {}: {mean:.3} [{lo:.3}, {hi:.3}]</title></circle>",
-            x(lo),
-            x(hi),
-            x(mean),
-            esc(&r.perturbation),
-            esc(words),
-        );
+        svg.line((x.at(lo), y), (x.at(hi), y), Stroke::of(colour).width(2.0));
+        let tip = format!("{}, {words}: {mean:.3} [{lo:.3}, {hi:.3}]", r.perturbation);
+        svg.circle((x.at(mean), y), 3.5, Fill::of(colour), Some(&tip));
     }
 }
 
@@ -164,25 +133,20 @@ fn axis(values: &[(f64, f64, f64)]) -> (f64, f64, Ticks) {
 }
 
 /// What the colours and marks mean, from `top`.
-fn legend(svg: &mut String, top: f64) {
-    let entries = [
-        (CHANGED, "interval leaves out the unperturbed mean"),
-        (SAME, "interval holds the unperturbed mean"),
-    ];
-    for (k, (colour, text)) in entries.iter().enumerate() {
-        let y = top + 15.0 * k as f64;
-        let _ = writeln!(
-            svg,
-            "<line x1=\"10\" x2=\"30\" y1=\"{0}\" y2=\"{0}\" stroke=\"{colour}\" stroke-width=\"2\"/><circle cx=\"20\" cy=\"{0}\" r=\"3.5\" fill=\"{colour}\"/><text x=\"36\" y=\"{1}\">{text}</text>",
-            px(y - 4.0),
-            px(y),
-        );
-    }
-    let _ = writeln!(
-        svg,
-        "<text x=\"10\" y=\"{}\" fill=\"#555\">dot: mean; line: 95 % bootstrap interval; dashed line and grey band: the unperturbed robot (none)</text>",
-        px(top + 30.0)
-    );
+fn legend(svg: &mut Svg, top: f64) {
+    let legend = Legend::new(vec![
+        (
+            Mark::LineDot(CHANGED),
+            "interval leaves out the unperturbed mean".into(),
+        ),
+        (
+            Mark::LineDot(SAME),
+            "interval holds the unperturbed mean".into(),
+        ),
+    ]);
+    legend.column(svg, 10.0, top, 15.0);
+    let note = "dot: mean; line: 95 % bootstrap interval; dashed line and grey band: the unperturbed robot (none)";
+    svg.text((10.0, top + 30.0), note, Text::START.fill(MUTED));
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use fuzzymotiv::statistics::{self, BOOTSTRAP_RESAMPLES, Settings, mean_interval};
 
 use super::study::{CLAIMS_ALPHA, Variant, seed_means};
-use crate::plot::{Ticks, colour, esc, open, text_width};
+use crate::figure::{Area, Fill, Legend, Mark, Stroke, Svg, Text, Ticks, colour};
 use crate::tables::p_text;
 use fuzzymotiv_records::records::paper_claims::ClaimId;
 use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};
@@ -312,16 +312,13 @@ const MB: f64 = 74.0;
 pub fn strength_svg(studies: &[StudySummary]) -> String {
     let mut panels = vec![exploration_panel(studies)];
     panels.extend(claim_panels(studies));
-    let width = PW * panels.len() as f64;
-    let mut s = open(width, PH, 12);
-    let _ = writeln!(s, r#"<rect width="{width}" height="{PH}" fill="white"/>"#);
+    let mut s = Svg::new(PW * panels.len() as f64, PH, 12);
     let pops: Vec<usize> = studies.iter().map(|s| s.population).collect();
     for (k, panel) in panels.iter().enumerate() {
         draw_panel(&mut s, panel, &pops, k as f64 * PW);
     }
     strength_legend(&mut s, studies.first().map_or(0, |s| s.seeds.len()));
-    s.push_str("</svg>\n");
-    s
+    s.finish()
 }
 
 /// The y range of a panel: every interval, and zero for a difference.
@@ -342,63 +339,33 @@ fn y_range(panel: &Panel) -> (f64, f64) {
     }
 }
 
-fn draw_panel(s: &mut String, panel: &Panel, pops: &[usize], ox: f64) {
-    let (x0, x1, y0, y1) = (ox + ML, ox + PW - MR, PH - MB, MT);
+fn draw_panel(s: &mut Svg, panel: &Panel, pops: &[usize], ox: f64) {
+    let area = Area {
+        x0: ox + ML,
+        x1: ox + PW - MR,
+        y0: PH - MB,
+        y1: MT,
+    };
     let (lo, hi) = y_range(panel);
-    let y = |v: f64| y0 + (y1 - y0) * (v - lo) / (hi - lo);
+    let y = area.y_scale(lo, hi);
     let n = pops.len().max(1) as f64;
-    let x = |i: usize| x0 + (x1 - x0) * (i as f64 + 0.5) / n;
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="18" text-anchor="middle" font-weight="bold">{}</text>"#,
-        (x0 + x1) / 2.0,
-        esc(&panel.title)
-    );
+    let x = |i: usize| area.x0 + (area.x1 - area.x0) * (i as f64 + 0.5) / n;
+    area.title(s, 18.0, &panel.title);
     let ticks = Ticks::nice(lo, hi, 5, false);
-    for &v in &ticks.values {
-        let stroke = if v == 0.0 && panel.zero {
-            "#000"
-        } else {
-            "#ddd"
-        };
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x0}" x2="{x1}" y1="{yy:.1}" y2="{yy:.1}" stroke="{stroke}"/><text x="{}" y="{:.1}" text-anchor="end">{}</text>"##,
-            x0 - 6.0,
-            y(v) + 4.0,
-            ticks.label(v),
-            yy = y(v)
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/><line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/>"##
-    );
-    for (i, p) in pops.iter().enumerate() {
-        let _ = writeln!(
-            s,
-            r#"<text x="{:.1}" y="{}" text-anchor="middle">{p}</text>"#,
-            x(i),
-            y0 + 17.0
-        );
-    }
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{}" text-anchor="middle">GA population</text>"#,
-        (x0 + x1) / 2.0,
-        y0 + 34.0
-    );
-    let (cx, cy) = (x0 - 40.0, (y0 + y1) / 2.0);
-    let _ = writeln!(
-        s,
-        r#"<text x="{cx}" y="{cy}" text-anchor="middle" transform="rotate(-90 {cx} {cy})">{}</text>"#,
-        panel.y_label
-    );
-    draw_points(s, panel, pops.len(), &x, &y);
+    let zero = panel.zero.then_some("#000");
+    area.y_grid(s, &ticks, y, Text::END, zero);
+    area.axes(s);
+    let labels: Vec<(f64, String)> = (pops.iter().enumerate())
+        .map(|(i, p)| (x(i), p.to_string()))
+        .collect();
+    area.x_ticks(s, &labels, 17.0, false, Text::MIDDLE);
+    let axis_labels = (("GA population", 34.0), (panel.y_label, 40.0));
+    area.labels(s, axis_labels.0, axis_labels.1, Text::MIDDLE);
+    draw_points(s, panel, pops.len(), &x, &|v| y.at(v));
 }
 
 fn draw_points(
-    s: &mut String,
+    s: &mut Svg,
     panel: &Panel,
     n: usize,
     x: &dyn Fn(usize) -> f64,
@@ -406,54 +373,44 @@ fn draw_points(
 ) {
     let shift = |k: usize| (k as f64 - (panel.series.len() as f64 - 1.0) / 2.0) * 8.0;
     for (k, (_, stroke, values)) in panel.series.iter().enumerate() {
-        let pts: Vec<String> = (0..n)
+        let pts: Vec<(f64, f64)> = (0..n)
             .filter_map(|i| values.get(i).copied().flatten().map(|v| (i, v)))
-            .map(|(i, v)| format!("{:.1},{:.1}", x(i) + shift(k), y(v.0)))
+            .map(|(i, v)| (x(i) + shift(k), y(v.0)))
             .collect();
-        let _ = writeln!(
-            s,
-            r#"<polyline points="{}" fill="none" stroke="{stroke}" stroke-width="1" stroke-dasharray="3 3"/>"#,
-            pts.join(" ")
-        );
+        s.polyline(&pts, Stroke::of(stroke).width(1.0).dashed("3 3"), None);
         for (i, v) in values.iter().enumerate() {
             let Some((m, lo, hi)) = *v else { continue };
             let xx = x(i) + shift(k);
             let fill = panel.verdicts.get(i).copied().flatten().unwrap_or(stroke);
-            let _ = writeln!(
-                s,
-                r#"<line x1="{xx:.1}" x2="{xx:.1}" y1="{:.1}" y2="{:.1}" stroke="{stroke}" stroke-width="1.5"/><circle cx="{xx:.1}" cy="{:.1}" r="4.5" fill="{fill}" stroke="{stroke}"/>"#,
-                y(lo),
-                y(hi),
-                y(m)
+            s.line((xx, y(lo)), (xx, y(hi)), Stroke::of(stroke).width(1.5));
+            s.circle(
+                (xx, y(m)),
+                4.5,
+                Fill::of(fill).stroked(Stroke::of(stroke)),
+                None,
             );
         }
     }
 }
 
 /// What the marks mean, under the panels.
-fn strength_legend(s: &mut String, seeds: usize) {
-    let entries = [
-        (colour(0), "high curiosity"),
-        (colour(1), "low curiosity"),
-        (HOLDS, "holds"),
-        (OPPOSITE, "opposite"),
-        (NOT_SIGNIFICANT, "not significant or inconclusive"),
-    ];
-    let mut x = ML;
-    let yy = PH - 16.0;
-    for (fill, label) in entries {
-        let _ = writeln!(
-            s,
-            r#"<circle cx="{x:.1}" cy="{:.1}" r="4.5" fill="{fill}"/><text x="{:.1}" y="{yy:.1}">{label}</text>"#,
-            yy - 4.0,
-            x + 8.0
-        );
-        x += text_width(label, false) + 30.0;
-    }
+fn strength_legend(s: &mut Svg, seeds: usize) {
     let note = format!(
         "mean over {seeds} seeds with its 95 % bootstrap interval; verdicts at α = {CLAIMS_ALPHA} (paired sign-flip test)"
     );
-    let _ = writeln!(s, r#"<text x="{x:.1}" y="{yy:.1}">{}</text>"#, esc(&note));
+    let legend = Legend::new(vec![
+        (Mark::Dot(colour(0)), "high curiosity".into()),
+        (Mark::Dot(colour(1)), "low curiosity".into()),
+        (Mark::Dot(HOLDS), "holds".into()),
+        (Mark::Dot(OPPOSITE), "opposite".into()),
+        (
+            Mark::Dot(NOT_SIGNIFICANT),
+            "not significant or inconclusive".into(),
+        ),
+    ]);
+    let width = legend.width(s);
+    legend.flow(s, (ML, f64::INFINITY), PH - 16.0, 16.0);
+    s.text((ML + width, PH - 16.0), &note, Text::START);
 }
 
 #[cfg(test)]

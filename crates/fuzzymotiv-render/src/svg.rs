@@ -1,15 +1,21 @@
-//! Hand-written SVG figures: fitness evolution (paper Fig. 6), trajectories (Figs. 7–8), the
+//! SVG figures, written with the one builder ([`crate::figure`]): fitness evolution (paper Fig. 6), trajectories (Figs. 7–8), the
 //! fitness terms per generation, the membership functions and the rooms' nodes on the SOM line.
 
-use std::fmt::Write as _;
+use crate::figure::axis::placed;
+use crate::figure::room::{
+    Projection, draw_room_and_path, figure_scale, log_colour, mission_caption,
+};
+use crate::figure::{
+    Area, Fill, Legend, MUTED, Mark, PathData, Scale, Stroke, Svg, Text, Ticks, colour, px,
+    text_width,
+};
 
-use crate::plot::{Ticks, colour, esc, open, px, text_width};
+pub use crate::figure::room::{GOAL_COLOUR, LoggedPath, WAYPOINT_COLOUR};
 
 use fuzzymotiv::experiment::GenerationRecord;
 use fuzzymotiv::fitness::TermId;
+use fuzzymotiv::simulation::Room;
 use fuzzymotiv::simulation::Trajectory;
-use fuzzymotiv::simulation::{HomeZone, Room};
-use fuzzymotiv::simulation::{Vec2, point_in_polygon};
 use fuzzymotiv_records::records::MotivationEntry;
 
 /// One panel of [`fitness_panels_svg`]: curves per generation with shaded bands.
@@ -55,98 +61,85 @@ pub fn fitness_svg(panels: &[(String, Vec<GenerationRecord>)]) -> String {
 /// their shaded bands; ticks at round numbers; the legend under each panel's x axis.
 pub fn fitness_panels_svg(panels: &[FitnessPanel]) -> String {
     let (ml, mr, mt) = (50.0, 15.0, 30.0);
-    let plot_h = 230.0;
-    let y0 = mt + plot_h;
+    let y0 = mt + 230.0;
     let widths: Vec<f64> = panels
         .iter()
         // The title is centred over the plot area, which is off the panel's centre.
         .map(|p| px(420f64.max(text_width(&p.title, true) + ml - mr + 10.0)))
         .collect();
-    let legends: Vec<Vec<(LegendMark, &str)>> = panels.iter().map(fitness_legend).collect();
+    let legends: Vec<Legend<'_>> = panels.iter().map(fitness_legend).collect();
     let legend_top = y0 + 54.0;
-    let rows = widths
-        .iter()
-        .zip(&legends)
-        .map(|(w, l)| legend_rows(l, w - ml - mr))
+    let width = px(widths.iter().sum::<f64>().max(1.0));
+    let probe = Svg::new(width, 0.0, 12);
+    let rows = (widths.iter().zip(&legends))
+        .map(|(w, l)| l.rows(&probe, w - ml - mr))
         .max()
         .unwrap_or(1);
-    let ph = legend_top + 16.0 * (rows - 1) as f64 + 10.0;
-    let width = px(widths.iter().sum::<f64>().max(1.0));
-    let mut s = open(width, ph, 12);
-    let _ = writeln!(s, r#"<rect width="{width}" height="{ph}" fill="white"/>"#);
+    let mut s = Svg::new(width, legend_top + 16.0 * (rows - 1) as f64 + 10.0, 12);
     let mut ox = 0.0;
     for ((panel, pw), legend) in panels.iter().zip(&widths).zip(&legends) {
-        let (x0, x1, y1) = (ox + ml, ox + pw - mr, mt);
+        let area = Area {
+            x0: ox + ml,
+            x1: ox + pw - mr,
+            y0,
+            y1: mt,
+        };
         let generations = panel.best.0.len();
-        let n = generations.max(2) as f64 - 1.0;
-        let x = |g: usize| x0 + (x1 - x0) * g as f64 / n;
-        let y = |f: f64| y0 + (y1 - y0) * f.clamp(0.0, 1.0);
-        panel_frame(
+        panel_frame(&mut s, &panel.title, area, generations, "fuzzy fitness F");
+        let x = area.x_scale(0.0, generations.max(2) as f64 - 1.0);
+        let y = area.y_scale(0.0, 1.0);
+        draw_fitness_curves(
             &mut s,
-            &panel.title,
-            (x0, x1, y0, y1),
-            generations,
-            "fuzzy fitness F",
+            panel,
+            |g| x.at(g as f64),
+            |f| y.at(f.clamp(0.0, 1.0)),
         );
-        draw_fitness_curves(&mut s, panel, x, y);
-        draw_legend(&mut s, legend, (x0, x1), legend_top);
+        legend.flow(&mut s, (area.x0, area.x1), legend_top, 16.0);
         ox += pw;
     }
-    s.push_str("</svg>\n");
-    s
+    s.finish()
 }
 
 /// A fitness panel's legend: the best and the mean F curves, and its bands (one entry).
-fn fitness_legend(p: &FitnessPanel) -> Vec<(LegendMark, &str)> {
+fn fitness_legend(p: &FitnessPanel) -> Legend<'static> {
     let mut entries = vec![
-        (LegendMark::Line(BEST), p.best.1.as_str()),
-        (LegendMark::Line(MEAN), p.mean.1.as_str()),
+        (Mark::Line(Stroke::of(BEST).width(2.0)), p.best.1.clone()),
+        (Mark::Line(Stroke::of(MEAN).width(2.0)), p.mean.1.clone()),
     ];
     if !p.bands.is_empty() {
         let colours = p.bands.iter().map(|b| b.1).collect();
-        entries.push((LegendMark::Bands(colours), p.band_label.as_str()));
+        entries.push((Mark::Bands(colours), p.band_label.clone()));
     }
-    entries
+    Legend::new(entries)
 }
 
 /// A fitness panel's shaded bands, then its best and mean F curves, at `x(generation)` and
 /// `y(F)`.
 fn draw_fitness_curves(
-    s: &mut String,
+    s: &mut Svg,
     panel: &FitnessPanel,
     x: impl Fn(usize) -> f64,
     y: impl Fn(f64) -> f64,
 ) {
     for (band, colour) in &panel.bands {
         // One closed outline: along the highs, back along the lows.
-        let mut d = String::new();
+        let mut d = PathData::new();
         for (g, (_, hi)) in band.iter().enumerate() {
-            let _ = write!(
-                d,
-                "{}{:.1},{:.1}",
-                if g == 0 { 'M' } else { 'L' },
-                x(g),
-                y(*hi)
-            );
+            d = d.line_to((x(g), y(*hi)));
         }
         for (g, (lo, _)) in band.iter().enumerate().rev() {
-            let _ = write!(d, "L{:.1},{:.1}", x(g), y(*lo));
+            d = d.line_to((x(g), y(*lo)));
         }
-        let _ = writeln!(
-            s,
-            r#"<path d="{d}Z" fill="{colour}" fill-opacity="0.45" stroke="none"/>"#
-        );
+        let fill = Fill::of(colour).opacity(0.45).stroked(Stroke::of("none"));
+        s.path(&d.close(), fill, None);
     }
     for (values, colour) in [(&panel.best.0, BEST), (&panel.mean.0, MEAN)] {
-        let pts: String = values
+        let pts: Vec<(f64, f64)> = values
             .iter()
             .enumerate()
-            .map(|(g, &f)| format!("{:.1},{:.1} ", x(g), y(f)))
+            .map(|(g, &f)| (x(g), y(f)))
             .collect();
-        let _ = writeln!(
-            s,
-            r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="1.8" stroke-linejoin="round"/>"#
-        );
+        s.polyline(&pts, Stroke::of(colour).width(1.8), None);
     }
 }
 
@@ -160,109 +153,11 @@ pub const BEST_BAND: &str = "#f4a6a6";
 /// The band around the mean F over seeds.
 pub const MEAN_BAND: &str = "#9ecae1";
 
-/// A legend entry's mark: a line of a colour, or swatches of band colours.
-enum LegendMark {
-    Line(&'static str),
-    Bands(Vec<&'static str>),
-}
-
-/// Width of a legend entry: a 20 px mark, a gap, the text, and room before the next entry.
-fn legend_entry_width(text: &str) -> f64 {
-    px(26.0 + text_width(text, false) + 14.0)
-}
-
-/// Rows a legend needs when its entries flow left to right in `width` px.
-fn legend_rows(entries: &[(LegendMark, &str)], width: f64) -> usize {
-    let (mut rows, mut used) = (1, 0.0);
-    for (_, text) in entries {
-        let w = legend_entry_width(text);
-        if used > 0.0 && used + w > width {
-            rows += 1;
-            used = 0.0;
-        }
-        used += w;
-    }
-    rows
-}
-
-/// A legend flowing left to right from `x0`, wrapping before `x1`, its first row's text
-/// baseline at `top`.
-fn draw_legend(s: &mut String, entries: &[(LegendMark, &str)], (x0, x1): (f64, f64), top: f64) {
-    let (mut x, mut y) = (x0, top);
-    for (mark, text) in entries {
-        let w = legend_entry_width(text);
-        if x > x0 && x + w > x1 {
-            x = x0;
-            y += 16.0;
-        }
-        match mark {
-            LegendMark::Line(colour) => {
-                let _ = writeln!(
-                    s,
-                    r#"<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="{colour}" stroke-width="2"/>"#,
-                    px(x),
-                    px(x + 20.0),
-                    y - 4.0,
-                    y - 4.0
-                );
-            }
-            LegendMark::Bands(colours) => {
-                let sw = 20.0 / colours.len().max(1) as f64;
-                for (k, colour) in colours.iter().enumerate() {
-                    let _ = writeln!(
-                        s,
-                        r#"<rect x="{:.1}" y="{}" width="{sw:.1}" height="10" fill="{colour}" fill-opacity="0.45"/>"#,
-                        x + sw * k as f64,
-                        y - 9.0
-                    );
-                }
-            }
-        }
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}">{}</text>"#,
-            px(x + 26.0),
-            px(y),
-            esc(text)
-        );
-        x += w;
-    }
-}
-
 /// Every room of the experiment with the best robot's path in it (`trajectories[r]` for room
 /// `r`), as [`trajectories_svg`] draws them.
 pub fn best_paths_svg(title: &str, rooms: &[Room], trajectories: &[&Trajectory]) -> String {
     let pairs: Vec<_> = rooms.iter().zip(trajectories.iter().copied()).collect();
     trajectories_svg(title, &pairs)
-}
-
-/// Length of a step marker's heading tick in the trajectory figures (px).
-const TICK: f64 = 3.0;
-
-/// Millimetres of a room to pixels of its panel: x to the right from `x_off`, y up in the
-/// room and down in SVG.
-struct Projection {
-    x_off: f64,
-    lo: fuzzymotiv::simulation::Vec2,
-    hi: fuzzymotiv::simulation::Vec2,
-    scale: f64,
-}
-
-impl Projection {
-    fn x(&self, x: f64) -> f64 {
-        self.x_off + (x - self.lo.x) * self.scale
-    }
-
-    fn y(&self, y: f64) -> f64 {
-        40.0 + (self.hi.y - y) * self.scale
-    }
-
-    fn polygon(&self, pts: &[fuzzymotiv::simulation::Vec2]) -> String {
-        pts.iter()
-            .map(|p| format!("{:.1},{:.1}", self.x(p.x), self.y(p.y)))
-            .collect::<Vec<_>>()
-            .join(" ")
-    }
 }
 
 /// Rooms drawn to scale side by side, each with its home zone, the path with a marker per
@@ -271,456 +166,109 @@ pub fn trajectories_svg(title: &str, rooms: &[(&Room, &Trajectory)]) -> String {
     trajectories_svg_with(title, rooms, &[])
 }
 
-/// A logged path drawn over a room of [`trajectories_svg_with`] (e.g. a robot's tracked pose).
-#[derive(Debug, Clone, PartialEq)]
-pub struct LoggedPath {
-    /// Its legend text (e.g. the log's file).
-    pub label: String,
-    /// The index, in the figure's rooms, of the room it was logged in.
-    pub room: usize,
-    /// Its positions in mm, in the room's frame.
-    pub points: Vec<(f64, f64)>,
+/// The rooms' top edge in the trajectories figure, and the room between and around them (px).
+const ROOMS_TOP: f64 = 40.0;
+const PAD: f64 = 20.0;
+/// The height of a logged path's legend line, and the width of its swatch (px).
+const LEGEND_LINE: f64 = 18.0;
+const LEGEND_SWATCH: f64 = 30.0;
+
+/// Where each room of the trajectories figure goes: its projection, and its slot's left edge
+/// and width (a room narrower than its name is centred in a slot as wide as the name); the
+/// figure's width so far and the tallest room's height.
+fn room_slots(rooms: &[(&Room, &Trajectory)]) -> (Vec<(Projection, f64, f64)>, f64, f64) {
+    let scale = figure_scale(rooms.iter().map(|(r, _)| *r));
+    let (mut x_off, mut max_h) = (PAD, 0.0f64);
+    let mut slots = Vec::new();
+    for (room, _) in rooms {
+        let (lo, hi) = room.bounds();
+        let (w, h) = ((hi.x - lo.x) * scale, (hi.y - lo.y) * scale);
+        max_h = max_h.max(h);
+        let slot = w.max(text_width(&room.name, false));
+        let p = Projection::of(room, (x_off + (slot - w) / 2.0, ROOMS_TOP), scale);
+        slots.push((p, x_off, slot));
+        x_off += slot + PAD;
+    }
+    (slots, x_off, max_h)
 }
 
-/// The colours of logged paths, in turn (none is a colour the rooms, zones or paths use).
-const LOG_COLOURS: [&str; 4] = ["#0e7c86", "#8c564b", "#1a1a6e", "#7f7f00"];
-
-/// Pixels per mm of the trajectories figure: 0.3 (the paper's 800 mm rooms 240 px wide, a room
-/// of up to 1200 mm 360 px), less for larger rooms (a robot's own, e.g. the Thymio II's 2400 mm
-/// ones) so that each room stays 360 px at most.
-fn figure_scale<'a>(rooms: impl Iterator<Item = &'a Room>) -> f64 {
-    let largest = rooms
-        .map(|r| {
-            let (lo, hi) = r.bounds();
-            (hi.x - lo.x).max(hi.y - lo.y)
-        })
-        .fold(0.0, f64::max);
-    if largest <= 1200.0 {
-        0.3
-    } else {
-        360.0 / largest
-    }
+/// The legend of the logged paths: a dashed line in each one's colour, its file and length.
+fn logs_legend(logs: &[LoggedPath]) -> Legend<'static> {
+    Legend::new(
+        (logs.iter().enumerate())
+            .map(|(k, l)| {
+                let mark = Mark::Line(Stroke::of(log_colour(k)).width(2.0).dashed("5 3"));
+                let text = format!(
+                    "logged path: {} ({} positions; a square at its end)",
+                    l.label,
+                    l.points.len()
+                );
+                (mark, text)
+            })
+            .collect(),
+    )
 }
 
 /// [`trajectories_svg`] with `logs` drawn over their rooms, each dashed in a colour of its own
-/// with an end square, and a legend line each under the caption (without logs the figure is
-/// [`trajectories_svg`]'s, byte for byte).
+/// with an end square, and a legend line each under the caption.
 pub fn trajectories_svg_with(
     title: &str,
     rooms: &[(&Room, &Trajectory)],
     logs: &[LoggedPath],
 ) -> String {
-    let scale = figure_scale(rooms.iter().map(|(r, _)| *r));
-    let pad = 20.0;
-    let mut x_off = pad;
-    let mut parts = String::new();
-    let mut max_h: f64 = 0.0;
-    for (i, (room, tr)) in rooms.iter().enumerate() {
-        let (lo, hi) = room.bounds();
-        let (w, h) = ((hi.x - lo.x) * scale, (hi.y - lo.y) * scale);
-        max_h = max_h.max(h);
-        // A room narrower than its name is centred in a slot as wide as the name.
-        let slot = w.max(text_width(&room.name, false));
-        let p = Projection {
-            x_off: x_off + (slot - w) / 2.0,
-            lo,
-            hi,
-            scale,
-        };
-        draw_room(&mut parts, room, &p);
-        draw_mission(&mut parts, room, &p);
-        draw_path(&mut parts, tr, &p);
-        draw_home_and_end(&mut parts, room, tr, &p);
-        for (k, log) in logs.iter().enumerate().filter(|(_, l)| l.room == i) {
-            draw_logged_path(&mut parts, log, log_colour(k), &p);
-        }
-        let _ = writeln!(
-            parts,
-            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
-            x_off + slot / 2.0,
-            40.0 + h + 16.0,
-            esc(&room.name)
-        );
-        x_off += slot + pad;
-    }
+    let (slots, rooms_w, max_h) = room_slots(rooms);
     // Title, caption and scale bar each get a line of their own, and the figure is wide enough
     // for the longest text, so nothing is clipped or overprinted, whatever the number of rooms.
     let caption = format!(
         "green: home pose; blue: home zone; {}red: path, a tick per step; filled circle: the end (ringed: back home)",
         mission_caption(rooms.iter().map(|(r, _)| *r))
     );
-    let caption = caption.as_str();
-    let legend: Vec<String> = logs
-        .iter()
-        .map(|l| {
-            format!(
-                "logged path: {} ({} positions; a square at its end)",
-                l.label,
-                l.points.len()
-            )
-        })
-        .collect();
-    let width = legend.iter().fold(
-        x_off
-            .max(2.0 * pad + text_width(title, true))
-            .max(2.0 * pad + text_width(caption, false)),
-        |w, t| w.max(2.0 * pad + LEGEND_SWATCH + text_width(t, false)),
+    let legend = logs_legend(logs);
+    let width = (legend.entries.iter()).fold(
+        rooms_w
+            .max(2.0 * PAD + text_width(title, true))
+            .max(2.0 * PAD + text_width(&caption, false)),
+        |w, (_, t)| w.max(2.0 * PAD + LEGEND_SWATCH + text_width(t, false)),
     );
-    let (caption_y, bar_y) = (40.0 + max_h + 40.0, 40.0 + max_h + 60.0);
-    let height = bar_y + 12.0 + LEGEND_LINE * legend.len() as f64;
-    let mut s = open(format_args!("{width:.0}"), format_args!("{height:.0}"), 12);
-    let _ = writeln!(
-        s,
-        r#"<rect width="{width:.0}" height="{height:.0}" fill="white"/>"#
+    let (caption_y, bar_y) = (ROOMS_TOP + max_h + 40.0, ROOMS_TOP + max_h + 60.0);
+    let height = bar_y + 12.0 + LEGEND_LINE * logs.len() as f64;
+    let mut s = Svg::new(width.round(), height.round(), 12);
+    s.text((PAD, 22.0), title, Text::START.bold());
+    let grey = Text::START.fill(MUTED);
+    s.text((PAD, caption_y.round()), &caption, grey);
+    let bar = 100.0 * slots.first().map_or(0.3, |(p, ..)| p.scale);
+    s.line(
+        (PAD, bar_y - 4.0),
+        (PAD + bar, bar_y - 4.0),
+        Stroke::of(MUTED).width(2.0),
     );
-    let _ = writeln!(
-        s,
-        r#"<text x="{pad}" y="22" font-weight="bold">{}</text>"#,
-        esc(title)
-    );
-    let bar = 100.0 * scale;
-    let _ = writeln!(
-        s,
-        r##"<text x="{pad}" y="{caption_y:.0}" fill="#555">{caption}</text><line x1="{pad}" x2="{:.1}" y1="{:.0}" y2="{:.0}" stroke="#555" stroke-width="2"/><text x="{:.1}" y="{bar_y:.0}" fill="#555">100 mm</text>"##,
-        pad + bar,
-        bar_y - 4.0,
-        bar_y - 4.0,
-        pad + bar + 6.0,
-    );
-    for (k, text) in legend.iter().enumerate() {
-        let y = bar_y + LEGEND_LINE * (k + 1) as f64;
-        let _ = writeln!(
-            s,
-            r##"<line x1="{pad}" x2="{:.1}" y1="{:.0}" y2="{:.0}" stroke="{c}" stroke-width="2" stroke-dasharray="5 3"/><text x="{:.1}" y="{y:.0}" fill="{c}">{}</text>"##,
-            pad + LEGEND_SWATCH - 6.0,
-            y - 4.0,
-            y - 4.0,
-            pad + LEGEND_SWATCH,
-            esc(text),
-            c = log_colour(k)
-        );
+    s.text((PAD + bar + 6.0, bar_y.round()), "100 mm", grey);
+    legend.column(&mut s, PAD, bar_y + LEGEND_LINE, LEGEND_LINE);
+    for (i, ((room, tr), (p, left, slot))) in rooms.iter().zip(&slots).enumerate() {
+        let mine: Vec<(&LoggedPath, &str)> = (logs.iter().enumerate())
+            .filter(|(_, l)| l.room == i)
+            .map(|(k, l)| (l, log_colour(k)))
+            .collect();
+        draw_room_and_path(&mut s, (room, tr), p, &mine);
+        let name_y = ROOMS_TOP + (p.hi.y - p.lo.y) * p.scale + 16.0;
+        s.text((left + slot / 2.0, name_y), &room.name, Text::MIDDLE);
     }
-    s.push_str(&parts);
-    s.push_str("</svg>\n");
-    s
+    s.finish()
 }
 
-/// The height of a logged path's legend line, and the width of its swatch (px).
-const LEGEND_LINE: f64 = 18.0;
-const LEGEND_SWATCH: f64 = 30.0;
-
-/// The colour of the `k`-th logged path.
-fn log_colour(k: usize) -> &'static str {
-    LOG_COLOURS[k % LOG_COLOURS.len()]
-}
-
-/// A logged path: a dashed polyline through its positions and a square at its end.
-fn draw_logged_path(parts: &mut String, log: &LoggedPath, colour: &str, p: &Projection) {
-    let path: String = log
-        .points
-        .iter()
-        .map(|&(x, y)| format!("{:.1},{:.1} ", p.x(x), p.y(y)))
-        .collect();
-    let _ = writeln!(
-        parts,
-        r##"<polyline class="logged" points="{path}" fill="none" stroke="{colour}" stroke-width="1.5" stroke-dasharray="5 3"/>"##
-    );
-    if let Some(&(x, y)) = log.points.last() {
-        let _ = writeln!(
-            parts,
-            r##"<rect x="{:.1}" y="{:.1}" width="6" height="6" fill="{colour}"/>"##,
-            p.x(x) - 3.0,
-            p.y(y) - 3.0
-        );
-    }
-}
-
-/// A room's outline, home zone and obstacles. The zone is its disc within the room's
-/// outline (a quarter disc for a zone centred on a corner, a half disc on a straight wall,
-/// whatever is left for any other place), its rim dashed where it runs inside the room;
-/// obstacles are drawn over it.
-fn draw_room(parts: &mut String, room: &Room, p: &Projection) {
-    let _ = writeln!(
-        parts,
-        r##"<polygon points="{}" fill="#fafafa" stroke="#222" stroke-width="2"/>"##,
-        p.polygon(&room.outline)
-    );
-    draw_zone(parts, room, room.home_zone, HOME_COLOUR, p);
-    for o in &room.obstacles {
-        let _ = writeln!(
-            parts,
-            r##"<polygon points="{}" fill="#888" stroke="#222"/>"##,
-            p.polygon(o)
-        );
-    }
-}
-
-/// The home zone's colour in the figures.
-const HOME_COLOUR: &str = "#1f77b4";
-/// The goal zone's colour in the figures.
-pub const GOAL_COLOUR: &str = "#ff7f0e";
-/// The waypoints' colour in the figures.
-pub const WAYPOINT_COLOUR: &str = "#9467bd";
-
-/// What the trajectory figure's caption says of the rooms' missions (nothing when no room has
-/// one, so the paper's figures keep their bytes).
-fn mission_caption<'a>(rooms: impl Iterator<Item = &'a Room> + Clone) -> String {
-    let goal = rooms.clone().any(|r| r.mission.goal.is_some());
-    let waypoints = rooms.clone().any(|r| !r.mission.waypoints.is_empty());
-    let mut s = String::new();
-    if goal {
-        s.push_str("orange: goal zone; ");
-    }
-    if waypoints {
-        s.push_str("purple: waypoints, numbered in order; ");
-    }
-    s
-}
-
-/// A room's mission: its goal zone and its waypoints (numbered from 1), each a disc within the
-/// room with a dashed rim, like the home zone, in colours of their own.
-fn draw_mission(parts: &mut String, room: &Room, p: &Projection) {
-    if let Some(goal) = room.mission.goal {
-        draw_zone(parts, room, goal, GOAL_COLOUR, p);
-        let _ = writeln!(
-            parts,
-            r##"<text x="{:.1}" y="{:.1}" text-anchor="middle" fill="{GOAL_COLOUR}" font-weight="bold">goal</text>"##,
-            p.x(goal.centre.x),
-            p.y(goal.centre.y) + 4.0
-        );
-    }
-    for (k, w) in room.mission.waypoints.iter().enumerate() {
-        draw_zone(parts, room, *w, WAYPOINT_COLOUR, p);
-        let _ = writeln!(
-            parts,
-            r##"<text x="{:.1}" y="{:.1}" text-anchor="middle" fill="{WAYPOINT_COLOUR}" font-weight="bold">{}</text>"##,
-            p.x(w.centre.x),
-            p.y(w.centre.y) + 4.0,
-            k + 1
-        );
-    }
-}
-
-/// A zone drawn as its disc within the room's outline, filled lightly in `colour`, its rim
-/// dashed where it runs inside the room.
-fn draw_zone(parts: &mut String, room: &Room, zone: HomeZone, colour: &str, p: &Projection) {
-    let (floor, rim) = zone_within(room, zone);
-    if floor.len() >= 3 {
-        let _ = writeln!(
-            parts,
-            r##"<polygon points="{}" fill="{colour}" fill-opacity="0.10" stroke="none"/>"##,
-            p.polygon(&floor)
-        );
-    }
-    let d: String = rim
-        .iter()
-        .map(|run| {
-            let pts: Vec<String> = run
-                .iter()
-                .map(|q| format!("{:.1},{:.1}", p.x(q.x), p.y(q.y)))
-                .collect();
-            format!("M{}", pts.join("L"))
-        })
-        .collect();
-    if !d.is_empty() {
-        let _ = writeln!(
-            parts,
-            r##"<path d="{d}" fill="none" stroke="{colour}" stroke-opacity="0.6" stroke-dasharray="4 3"/>"##
-        );
-    }
-}
-
-/// Sides of the polygon standing for the home zone's circle in the figures (every 1.5°).
-const ZONE_SIDES: usize = 240;
-
-/// The home zone within the room, in mm: the room's outline clipped to the zone's disc (a
-/// 240-gon; Sutherland–Hodgman, exact for a convex clip region and any simple outline; where
-/// the result falls apart in pieces they are joined by zero-width seams along the rim, which
-/// the unstroked fill does not show), and the runs of the rim inside the outline.
-fn zone_within(room: &Room, zone: HomeZone) -> (Vec<Vec2>, Vec<Vec<Vec2>>) {
-    let circle: Vec<Vec2> = (0..ZONE_SIDES)
-        .map(|i| {
-            let a = i as f64 * std::f64::consts::TAU / ZONE_SIDES as f64;
-            Vec2::new(
-                zone.centre.x + zone.radius * a.cos(),
-                zone.centre.y + zone.radius * a.sin(),
-            )
-        })
-        .collect();
-    // The circle runs counter-clockwise: inside its edge a → b means on the left.
-    let mut poly = room.outline.clone();
-    for (k, &a) in circle.iter().enumerate() {
-        let b = circle[(k + 1) % circle.len()];
-        let side = |q: Vec2| (b - a).cross(q - a);
-        let mut out = Vec::with_capacity(poly.len() + 2);
-        for (i, &cur) in poly.iter().enumerate() {
-            let prev = poly[(i + poly.len() - 1) % poly.len()];
-            let (sc, sp) = (side(cur), side(prev));
-            if (sc >= 0.0) != (sp >= 0.0) {
-                out.push(prev + (cur - prev) * (sp / (sp - sc)));
-            }
-            if sc >= 0.0 {
-                out.push(cur);
-            }
-        }
-        poly = out;
-        if poly.is_empty() {
-            break;
-        }
-    }
-    // The rim's runs of sides inside the outline, each from its first point to its last, so
-    // the dashes run on along a run (a path's dashes restart at every move).
-    let n = circle.len();
-    let inside: Vec<bool> = (0..n)
-        .map(|k| point_in_polygon(&room.outline, (circle[k] + circle[(k + 1) % n]) * 0.5))
-        .collect();
-    let mut rim: Vec<Vec<Vec2>> = Vec::new();
-    let start = (0..n).find(|&k| !inside[k]).map_or(0, |k| k + 1);
-    for k in (start..start + n).map(|k| k % n) {
-        if !inside[k] {
-            continue;
-        }
-        if k == start % n || !inside[(k + n - 1) % n] || rim.is_empty() {
-            rim.push(vec![circle[k]]);
-        }
-        rim.last_mut().expect("a run").push(circle[(k + 1) % n]);
-    }
-    (poly, rim)
-}
-
-/// The path of the executed steps, with a tick per step.
-fn draw_path(parts: &mut String, tr: &Trajectory, p: &Projection) {
-    let executed = tr.executed();
-    let path: String = tr.poses[..=executed]
-        .iter()
-        .map(|q| format!("{:.1},{:.1} ", p.x(q.x), p.y(q.y)))
-        .collect();
-    let _ = writeln!(
-        parts,
-        r##"<polyline points="{path}" fill="none" stroke="#d62728" stroke-width="1"/>"##
-    );
-    // One marker per executed step: a short tick along the heading after the step, so
-    // turns on the spot show as several ticks on one point.
-    let ticks: String = tr.poses[1..=executed]
-        .iter()
-        .map(|q| {
-            format!(
-                "M{:.1} {:.1}l{:.1} {:.1}",
-                p.x(q.x),
-                p.y(q.y),
-                TICK * q.heading.cos(),
-                -TICK * q.heading.sin()
-            )
-        })
-        .collect();
-    let _ = writeln!(
-        parts,
-        r##"<path d="{ticks}" stroke="#7f1d1d" stroke-width="0.8" fill="none"/>"##
-    );
-}
-
-/// The home pose (circle and heading) and the end of the trial (ringed when it ended at home).
-fn draw_home_and_end(parts: &mut String, room: &Room, tr: &Trajectory, p: &Projection) {
-    let home = room.home;
-    let r = 27.5 * p.scale;
-    let _ = writeln!(
-        parts,
-        r##"<circle cx="{:.1}" cy="{:.1}" r="{r:.1}" fill="none" stroke="#2ca02c" stroke-width="2"/><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#2ca02c" stroke-width="2"/>"##,
-        p.x(home.x),
-        p.y(home.y),
-        p.x(home.x),
-        p.y(home.y),
-        p.x(home.x + 2.0 * 27.5 * home.heading.cos()),
-        p.y(home.y + 2.0 * 27.5 * home.heading.sin())
-    );
-    if let Some(end) = tr.poses.last() {
-        let executed = tr.executed();
-        let at_home = executed < tr.len();
-        let _ = writeln!(
-            parts,
-            r##"<circle cx="{:.1}" cy="{:.1}" r="{r:.1}" fill="#d62728" fill-opacity="0.5" stroke="{}" stroke-width="1.5"><title>{}</title></circle>"##,
-            p.x(end.x),
-            p.y(end.y),
-            if at_home { "#000" } else { "none" },
-            if at_home {
-                format!("back in the home zone after step {executed}: the trial ended")
-            } else {
-                format!("end of the trial after {} steps", tr.len())
-            }
-        );
-    }
-}
-
-/// The frame of one per-generation panel over the plot area `(x0, x1, y0, y1)`: title, grid
-/// lines and labels at round values of F (0, 0.2, …, 1), axes, round generation numbers on
-/// the x axis and the axis labels (the x label's baseline 32 px below the axis).
-fn panel_frame(
-    s: &mut String,
-    name: &str,
-    (x0, x1, y0, y1): (f64, f64, f64, f64),
-    generations: usize,
-    y_label: &str,
-) {
-    let (x0, x1, y0, y1) = (px(x0), px(x1), px(y0), px(y1));
-    let y = |f: f64| y0 + (y1 - y0) * f;
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="18" text-anchor="middle" font-weight="bold">{}</text>"#,
-        px((x0 + x1) / 2.0),
-        esc(name)
-    );
+/// The frame of one per-generation panel over `area`: title, grid lines and labels at round
+/// values of F (0, 0.2, …, 1), axes, round generation numbers on the x axis and the axis
+/// labels (the x label's baseline 32 px below the axis).
+fn panel_frame(s: &mut Svg, name: &str, area: Area, generations: usize, y_label: &str) {
+    area.title(s, 18.0, name);
     let y_ticks = Ticks::nice(0.0, 1.0, 5, false);
-    for &f in &y_ticks.values {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x0}" x2="{x1}" y1="{yy:.1}" y2="{yy:.1}" stroke="#ddd"/><text x="{}" y="{:.1}" text-anchor="end">{}</text>"##,
-            x0 - 6.0,
-            y(f) + 4.0,
-            y_ticks.label(f),
-            yy = y(f)
-        );
-    }
-    let _ = writeln!(
-        s,
-        r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
-    );
+    area.y_grid(s, &y_ticks, area.y_scale(0.0, 1.0), Text::END, None);
+    area.axes(s);
     let last = generations.saturating_sub(1);
-    let n = last.max(1) as f64;
     let x_ticks = Ticks::nice(0.0, last as f64, 6, true);
-    for &g in &x_ticks.values {
-        let xx = x0 + (x1 - x0) * g / n;
-        let _ = writeln!(
-            s,
-            r##"<line x1="{xx:.1}" x2="{xx:.1}" y1="{y0}" y2="{}" stroke="#000"/><text x="{xx:.1}" y="{}" text-anchor="middle">{}</text>"##,
-            y0 + 4.0,
-            y0 + 17.0,
-            x_ticks.label(g)
-        );
-    }
-    axis_labels(s, (x0, x1, y0, y1), y0 + 32.0, "generation", y_label);
-}
-
-/// The x-axis label under a plot area `(x0, x1, y0, y1)`, its baseline at `x_label_y`, and
-/// the y-axis label turned along the left edge.
-fn axis_labels(
-    s: &mut String,
-    (x0, x1, y0, y1): (f64, f64, f64, f64),
-    x_label_y: f64,
-    x: &str,
-    y: &str,
-) {
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{x_label_y}" text-anchor="middle">{}</text>"#,
-        px((x0 + x1) / 2.0),
-        esc(x)
-    );
-    let (cx, cy) = (px(x0 - 36.0), px((y0 + y1) / 2.0));
-    let _ = writeln!(
-        s,
-        r#"<text x="{cx}" y="{cy}" text-anchor="middle" transform="rotate(-90 {cx} {cy})">{}</text>"#,
-        esc(y)
-    );
+    let x = area.x_scale(0.0, last.max(1) as f64);
+    area.x_ticks(s, &placed(&x_ticks, x), 17.0, true, Text::MIDDLE);
+    area.labels(s, ("generation", 32.0), (y_label, 36.0), Text::MIDDLE);
 }
 
 /// One panel per run: the population means of the fitness terms a, g, l, b per generation.
@@ -816,71 +364,55 @@ pub fn terms_svg_of(panels: &[(String, Vec<GenerationRecord>)], curves: &[TermCu
         // The title is centred over the plot area, left of the panel's centre.
         .map(|(title, _)| px(520f64.max(text_width(title, true) + mr - ml + 10.0)))
         .collect();
-    let width = px(widths.iter().sum::<f64>().max(1.0));
-    let mut s = open(width, ph, 12);
-    let _ = writeln!(s, r#"<rect width="{width}" height="{ph}" fill="white"/>"#);
+    let mut s = Svg::new(widths.iter().sum::<f64>().max(1.0), ph, 12);
     let mut ox = 0.0;
     for ((name, hist), pw) in panels.iter().zip(&widths) {
-        let (x0, x1, y0, y1) = (ox + ml, ox + pw - mr, ph - mb, mt);
-        let n = hist.len().max(2) as f64 - 1.0;
-        let x = |g: usize| x0 + (x1 - x0) * g as f64 / n;
-        let y = |f: f64| y0 + (y1 - y0) * f.clamp(0.0, 1.0);
-        panel_frame(
-            &mut s,
-            name,
-            (x0, x1, y0, y1),
-            hist.len(),
-            "population mean",
-        );
-        let mut ly = y1 + 10.0;
-        for TermCurve {
-            label,
-            colour,
-            term,
-        } in curves
-        {
-            let pick = |r: &GenerationRecord| r.terms.get(*term);
-            let pts: String = hist
-                .iter()
-                .enumerate()
-                .map(|(g, r)| format!("{:.1},{:.1} ", x(g), y(pick(r))))
-                .collect();
-            // A term at 0 throughout (l when O = 0) lies on the x axis: dashed and wider, so
-            // it shows there, and its legend says so.
-            let zero = !hist.is_empty() && hist.iter().all(|r| pick(r) == 0.0);
-            let dash = if zero {
-                r#" stroke-width="3" stroke-dasharray="6 4""#
-            } else {
-                r#" stroke-width="1.8""#
-            };
-            let _ = writeln!(
-                s,
-                r#"<polyline points="{pts}" fill="none" stroke="{colour}"{dash} stroke-linejoin="round"/>"#
-            );
-            let lx = px(x1 + 10.0);
-            let _ = writeln!(
-                s,
-                r#"<line x1="{lx}" x2="{}" y1="{ly}" y2="{ly}" stroke="{colour}"{dash}/><text x="{}" y="{}">{}</text>"#,
-                px(lx + 16.0),
-                px(lx + 20.0),
-                ly + 4.0,
-                esc(label)
-            );
-            if zero {
-                ly += 14.0;
-                let _ = writeln!(
-                    s,
-                    r##"<text x="{}" y="{}" font-size="10" fill="#555">(0 throughout)</text>"##,
-                    px(lx + 20.0),
-                    ly + 4.0
-                );
-            }
-            ly += 16.0;
-        }
+        let area = Area {
+            x0: ox + ml,
+            x1: ox + pw - mr,
+            y0: ph - mb,
+            y1: mt,
+        };
+        panel_frame(&mut s, name, area, hist.len(), "population mean");
+        term_curves_of(&mut s, area, hist, curves);
         ox += pw;
     }
-    s.push_str("</svg>\n");
-    s
+    s.finish()
+}
+
+/// A panel's curves, one per term, and their legend right of `area`.
+fn term_curves_of(s: &mut Svg, area: Area, hist: &[GenerationRecord], curves: &[TermCurve]) {
+    let x = area.x_scale(0.0, hist.len().max(2) as f64 - 1.0);
+    let y = area.y_scale(0.0, 1.0);
+    let mut entries = Vec::new();
+    let mut zeros = Vec::new();
+    for c in curves {
+        let pick = |r: &GenerationRecord| r.terms.get(c.term);
+        let pts: Vec<(f64, f64)> = (hist.iter().enumerate())
+            .map(|(g, r)| (x.at(g as f64), y.at(pick(r).clamp(0.0, 1.0))))
+            .collect();
+        // A term at 0 throughout (l when O = 0) lies on the x axis: dashed and wider, so it
+        // shows there, and its legend says so.
+        let zero = !hist.is_empty() && hist.iter().all(|r| pick(r) == 0.0);
+        let stroke = match zero {
+            true => Stroke::of(c.colour).width(3.0).dashed("6 4"),
+            false => Stroke::of(c.colour).width(1.8),
+        };
+        s.polyline(&pts, stroke, None);
+        entries.push((Mark::Line(stroke), c.label.clone()));
+        zeros.push(zero);
+    }
+    // One entry a line, 16 px apart, and a note line under a term at 0.
+    let (lx, mut ly) = (area.x1 + 10.0, area.y1 + 14.0);
+    for ((mark, text), zero) in entries.into_iter().zip(zeros) {
+        Legend::new(vec![(mark, text)]).column(s, lx, ly, 16.0);
+        if zero {
+            ly += 14.0;
+            let note = Text::START.size(10.0).fill(MUTED);
+            s.text((lx + 26.0, ly), "(0 throughout)", note);
+        }
+        ly += 16.0;
+    }
 }
 
 /// The title of the shared labels' membership figure.
@@ -900,57 +432,39 @@ pub fn membership_svg(peaks: &[f64], names: &[String]) -> String {
 /// [`membership_svg`] with its own title and x-axis label (a motivation's own labels).
 pub fn membership_svg_of(peaks: &[f64], names: &[String], title: &str, x_label: &str) -> String {
     let (w, h) = (420.0, 214.0);
-    let (x0, x1, y0, y1) = (50.0, w - 15.0, h - 49.0, 48.0);
+    let area = Area {
+        x0: 50.0,
+        x1: w - 15.0,
+        y0: h - 49.0,
+        y1: 48.0,
+    };
     let (lo, hi) = (
         peaks.first().copied().unwrap_or(0.0).min(0.0),
         peaks.last().copied().unwrap_or(1.0).max(1.0),
     );
-    let x = |v: f64| x0 + (x1 - x0) * (v - lo) / (hi - lo);
-    let y = |m: f64| y0 + (y1 - y0) * m;
-    let mut s = open(w, h, 12);
-    let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="16" text-anchor="middle" font-weight="bold">{}</text>"#,
-        (x0 + x1) / 2.0,
-        esc(title)
-    );
-    let _ = writeln!(
-        s,
-        r##"<line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/>"##
-    );
+    let (x, y) = (area.x_scale(lo, hi), area.y_scale(0.0, 1.0));
+    let mut s = Svg::new(w, h, 12);
+    area.title(&mut s, 16.0, title);
+    area.axes(&mut s);
     let y_ticks = Ticks::nice(0.0, 1.0, 2, false);
     for &m in &y_ticks.values {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{}" x2="{x0}" y1="{yy:.1}" y2="{yy:.1}" stroke="#000"/><text x="{}" y="{:.1}" text-anchor="end">{}</text>"##,
-            x0 - 4.0,
-            x0 - 6.0,
-            y(m) + 4.0,
-            y_ticks.label(m),
-            yy = y(m)
+        s.line(
+            (area.x0 - 4.0, y.at(m)),
+            (area.x0, y.at(m)),
+            Stroke::of("#000"),
         );
+        s.text((area.x0 - 6.0, y.at(m) + 4.0), &y_ticks.label(m), Text::END);
     }
     let x_ticks = Ticks::nice(lo, hi, 5, false);
-    for &v in &x_ticks.values {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{xx:.1}" x2="{xx:.1}" y1="{y0}" y2="{}" stroke="#000"/><text x="{xx:.1}" y="{}" text-anchor="middle">{}</text>"##,
-            y0 + 4.0,
-            y0 + 19.0,
-            x_ticks.label(v),
-            xx = x(v)
-        );
-    }
-    axis_labels(&mut s, (x0, x1, y0, y1), h - 8.0, x_label, "μ(y)");
-    membership_triangles(&mut s, peaks, names, (lo, hi), &x, &y);
-    s.push_str("</svg>\n");
-    s
+    area.x_ticks(&mut s, &placed(&x_ticks, x), 19.0, true, Text::MIDDLE);
+    area.labels(&mut s, (x_label, 41.0), ("μ(y)", 36.0), Text::MIDDLE);
+    membership_triangles(&mut s, peaks, names, (lo, hi), &|v| x.at(v), &|m| y.at(m));
+    s.finish()
 }
 
 /// One triangle per label (the outer ones open to the range's ends), named at its peak.
 fn membership_triangles(
-    s: &mut String,
+    s: &mut Svg,
     peaks: &[f64],
     names: &[String],
     (lo, hi): (f64, f64),
@@ -958,44 +472,25 @@ fn membership_triangles(
     y: &dyn Fn(f64) -> f64,
 ) {
     for (k, &p) in peaks.iter().enumerate() {
-        let left = if k == 0 { lo } else { peaks[k - 1] };
-        let right = if k + 1 == peaks.len() {
-            hi
-        } else {
-            peaks[k + 1]
-        };
-        let (ml, mr) = (
-            if k == 0 { 1.0 } else { 0.0 },
-            if k + 1 == peaks.len() { 1.0 } else { 0.0 },
-        );
+        let (first, last) = (k == 0, k + 1 == peaks.len());
+        let left = if first { lo } else { peaks[k - 1] };
+        let right = if last { hi } else { peaks[k + 1] };
+        let (ml, mr) = (f64::from(u8::from(first)), f64::from(u8::from(last)));
         let c = colour(k);
-        let _ = writeln!(
-            s,
-            r#"<polyline points="{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}" fill="none" stroke="{c}" stroke-width="2"/>"#,
-            x(left),
-            y(ml),
-            x(p),
-            y(1.0),
-            x(right),
-            y(mr)
-        );
+        let pts = [(x(left), y(ml)), (x(p), y(1.0)), (x(right), y(mr))];
+        s.polyline(&pts, Stroke::of(c).width(2.0), None);
         // Named above the peak; the labels at the ends of the range start or end there, so
         // they stay inside the plot and clear of the y axis's tick labels.
         let name = names.get(k).map_or("", String::as_str);
         let half = text_width(name, true) / 2.0;
         let (lx, anchor) = if x(p) - half < x(lo) {
-            (x(lo) + 2.0, "start")
+            (x(lo) + 2.0, Text::START)
         } else if x(p) + half > x(hi) {
-            (x(hi), "end")
+            (x(hi), Text::END)
         } else {
-            (x(p), "middle")
+            (x(p), Text::MIDDLE)
         };
-        let _ = writeln!(
-            s,
-            r#"<text x="{lx:.1}" y="{:.1}" text-anchor="{anchor}" fill="{c}" font-weight="bold">{}</text>"#,
-            y(1.0) - 6.0,
-            esc(name)
-        );
+        s.text((lx, y(1.0) - 6.0), name, anchor.fill(c).bold());
     }
 }
 
@@ -1028,33 +523,25 @@ pub fn som_svg(title: &str, nodes: usize, threshold: usize, rooms: &[SomRoom<'_>
         })
         .max()
         .unwrap_or(0);
-    let h = line_y + 40.0 + 9.0 * max_dots as f64 + 46.0;
+    let h = (line_y + 40.0 + 9.0 * max_dots as f64 + 46.0).round();
     let last = nodes.saturating_sub(1).max(1) as f64;
-    let x = |n: f64| x0 + (x1 - x0) * n / last;
-    let mut s = open(w, format_args!("{h:.0}"), 12);
-    let _ = writeln!(s, r#"<rect width="{w}" height="{h:.0}" fill="white"/>"#);
-    let _ = writeln!(
-        s,
-        r#"<text x="{x0}" y="18" font-weight="bold">{}</text>"#,
-        esc(title)
-    );
+    let scale = Scale::new((0.0, last), (x0, x1));
+    let x = |n: f64| scale.at(n);
+    let mut s = Svg::new(w, h, 12);
+    s.text((x0, 18.0), title, Text::START.bold());
     som_instances(&mut s, rooms, nodes, threshold, line_y, &x);
     som_axis(&mut s, nodes, line_y, (x0, x1), &x);
     som_winners(&mut s, rooms, nodes, line_y, &x);
     // The caption in two lines, each shorter than the figure is wide.
-    let _ = writeln!(
-        s,
-        r##"<text x="{x0}" y="{:.0}" fill="#555">SOM node index (0–{}). Marker: a room's stored instance (r-node); band: ±{threshold} nodes around it.</text>"##,
-        h - 26.0,
+    let grey = Text::START.fill(MUTED);
+    let first = format!(
+        "SOM node index (0–{}). Marker: a room's stored instance (r-node); band: ±{threshold} nodes around it.",
         nodes.saturating_sub(1)
     );
-    let _ = writeln!(
-        s,
-        r##"<text x="{x0}" y="{:.0}" fill="#555">Dots: the winning nodes of the test runs, coloured by the room each run was in.</text>"##,
-        h - 10.0,
-    );
-    s.push_str("</svg>\n");
-    s
+    s.text((x0, h - 26.0), &first, grey);
+    let second = "Dots: the winning nodes of the test runs, coloured by the room each run was in.";
+    s.text((x0, h - 10.0), second, grey);
+    s.finish()
 }
 
 /// The last node's index on a SOM line of `nodes` nodes (at least 1, so the line has a length).
@@ -1064,7 +551,7 @@ fn last_node(nodes: usize) -> f64 {
 
 /// Each room's r-node on the SOM line, with its threshold band and label.
 fn som_instances(
-    s: &mut String,
+    s: &mut Svg,
     rooms: &[SomRoom<'_>],
     nodes: usize,
     threshold: usize,
@@ -1077,63 +564,45 @@ fn som_instances(
             r.r_node.saturating_sub(threshold) as f64,
             (r.r_node + threshold).min(nodes.saturating_sub(1)) as f64,
         );
-        let _ = writeln!(
-            s,
-            r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="14" fill="{c}" fill-opacity="0.15"/>"#,
-            x(a),
-            line_y - 7.0,
-            (x(b) - x(a)).max(1.0)
-        );
+        let band = ((x(b) - x(a)).max(1.0), 14.0);
+        s.rect((x(a), line_y - 7.0), band, Fill::of(c).opacity(0.15));
         let ly = 40.0 + 16.0 * k as f64;
         let xr = x(r.r_node as f64);
         // The label right of its marker line, or left of it where it would pass the right
         // end of the line.
         let label = format!("{} (r-node {})", r.name, r.r_node);
         let (lx, anchor) = if xr + 4.0 + text_width(&label, true) > x(last_node(nodes)) + 30.0 {
-            (xr - 4.0, "end")
+            (xr - 4.0, Text::END)
         } else {
-            (xr + 4.0, "start")
+            (xr + 4.0, Text::START)
         };
-        let _ = writeln!(
-            s,
-            r#"<line x1="{xr:.1}" x2="{xr:.1}" y1="{:.1}" y2="{:.1}" stroke="{c}" stroke-width="1.5"/><circle cx="{xr:.1}" cy="{line_y}" r="5" fill="{c}"/><text x="{lx:.1}" y="{:.1}" text-anchor="{anchor}" fill="{c}" font-weight="bold">{}</text>"#,
-            ly + 2.0,
-            line_y,
-            ly,
-            esc(&label),
-        );
+        s.line((xr, ly + 2.0), (xr, line_y), Stroke::of(c).width(1.5));
+        s.circle((xr, line_y), 5.0, Fill::of(c), None);
+        s.text((lx, ly), &label, anchor.fill(c).bold());
     }
 }
 
 /// The SOM line with node ticks.
-fn som_axis(
-    s: &mut String,
-    nodes: usize,
-    line_y: f64,
-    (x0, x1): (f64, f64),
-    x: &dyn Fn(f64) -> f64,
-) {
-    let _ = writeln!(
-        s,
-        r##"<line x1="{x0}" x2="{x1}" y1="{line_y}" y2="{line_y}" stroke="#222" stroke-width="2"/>"##
-    );
+fn som_axis(s: &mut Svg, nodes: usize, line_y: f64, (x0, x1): (f64, f64), x: &dyn Fn(f64) -> f64) {
+    s.line((x0, line_y), (x1, line_y), Stroke::of("#222").width(2.0));
     let ticks = Ticks::nice(0.0, last_node(nodes), 10, true);
     for &n in &ticks.values {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{xn:.1}" x2="{xn:.1}" y1="{}" y2="{}" stroke="#222"/><text x="{xn:.1}" y="{}" text-anchor="middle" fill="#555">{}</text>"##,
-            line_y - 4.0,
-            line_y + 4.0,
-            line_y + 18.0,
-            ticks.label(n),
-            xn = x(n)
+        s.line(
+            (x(n), line_y - 4.0),
+            (x(n), line_y + 4.0),
+            Stroke::of("#222"),
+        );
+        s.text(
+            (x(n), line_y + 18.0),
+            &ticks.label(n),
+            Text::MIDDLE.fill(MUTED),
         );
     }
 }
 
 /// The test runs' winners, stacked below their node, coloured by true room.
 fn som_winners(
-    s: &mut String,
+    s: &mut Svg,
     rooms: &[SomRoom<'_>],
     nodes: usize,
     line_y: f64,
@@ -1145,12 +614,7 @@ fn som_winners(
             let n = n.min(nodes.saturating_sub(1));
             let dy = line_y + 30.0 + 9.0 * stack[n] as f64;
             stack[n] += 1;
-            let _ = writeln!(
-                s,
-                r#"<circle cx="{:.1}" cy="{dy:.1}" r="3.5" fill="{}"/>"#,
-                x(n as f64),
-                colour(k)
-            );
+            s.circle((x(n as f64), dy), 3.5, Fill::of(colour(k)), None);
         }
     }
 }
@@ -1206,43 +670,34 @@ pub fn sweep_summary_svg(points: &[SettingPoint]) -> String {
     } else {
         (390.0, 60.0 + 22.0 * points.len() as f64)
     };
-    let width = pw * 4.0;
     let height = ph + 56.0;
-    let mut s = open(width, height, 11);
-    let _ = writeln!(
-        s,
-        r#"<rect width="{width}" height="{height}" fill="white"/>"#
-    );
+    let mut s = Svg::new(pw * 4.0, height, 11);
     for (k, name) in OUTCOMES.iter().enumerate() {
         let ox = k as f64 * pw;
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="18" text-anchor="middle" font-weight="bold" font-size="13">{name}</text>"#,
-            ox + pw / 2.0
-        );
+        s.text((ox + pw / 2.0, 18.0), name, Text::MIDDLE.bold().size(13.0));
         if ternary {
-            ternary_panel(&mut s, points, k, ox, pw, height);
+            ternary_panel(&mut s, points, k, (ox, pw));
+            colour_key(&mut s, ox, height);
         } else {
             bars_panel(&mut s, points, k, ox);
         }
     }
-    let _ = writeln!(
-        s,
-        r##"<text x="8" y="{:.0}" fill="#555">{}</text>"##,
-        height - 6.0,
-        if ternary {
-            "Means over rooms and replicates per motivation setting (C, H, O, E); under each panel the range of their sample std and n; each point's tooltip gives its own."
-        } else {
-            "Means over rooms and replicates per motivation setting (C, H, O, E); whiskers ± 1 sample std; n values per mean."
-        }
+    let caption = if ternary {
+        "Means over rooms and replicates per motivation setting (C, H, O, E); under each panel the range of their sample std and n; each point's tooltip gives its own."
+    } else {
+        "Means over rooms and replicates per motivation setting (C, H, O, E); whiskers ± 1 sample std; n values per mean."
+    };
+    s.text(
+        (8.0, (height - 6.0).round()),
+        caption,
+        Text::START.fill(MUTED),
     );
-    s.push_str("</svg>\n");
-    s
+    s.finish()
 }
 
-/// Panel `k` of [`sweep_summary_svg`] for many settings: each a point on the (C, H, E)
-/// simplex coloured by outcome `k`, with a colour key.
-fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw: f64, height: f64) {
+/// Panel `k` of [`sweep_summary_svg`] for many settings, from `ox`, `pw` wide: each setting a
+/// point on the (C, H, E) simplex coloured by outcome `k`.
+fn ternary_panel(s: &mut Svg, points: &[SettingPoint], k: usize, (ox, pw): (f64, f64)) {
     let side = pw - 70.0;
     let (x0, y0) = (ox + 35.0, 46.0 + side * 0.866);
     let corner = |c: f64, h: f64, e: f64| {
@@ -1259,74 +714,40 @@ fn ternary_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64, pw:
         corner(0.0, 1.0, 0.0),
         corner(0.0, 0.0, 1.0),
     );
-    let _ = writeln!(
-        s,
-        r##"<polygon points="{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}" fill="none" stroke="#444"/><text x="{:.1}" y="{:.1}" text-anchor="end">C=1</text><text x="{:.1}" y="{:.1}">H=1</text><text x="{:.1}" y="{:.1}" text-anchor="middle">E=1</text>"##,
-        a.0,
-        a.1,
-        b.0,
-        b.1,
-        c.0,
-        c.1,
-        a.0 - 8.0,
-        a.1 + 14.0,
-        b.0 + 8.0,
-        b.1 + 14.0,
-        c.0,
-        c.1 - 10.0
-    );
+    s.polygon(&[a, b, c], Fill::outline(Stroke::of("#444")));
+    s.text((a.0 - 8.0, a.1 + 14.0), "C=1", Text::END);
+    s.text((b.0 + 8.0, b.1 + 14.0), "H=1", Text::START);
+    s.text((c.0, c.1 - 10.0), "E=1", Text::MIDDLE);
     for p in points {
         let m = p.motivations;
-        let (x, y) = corner(m[0], m[1], m[3]);
+        let at = corner(m[0], m[1], m[3]);
         match p.values[k] {
             Some(v) => {
-                let _ = writeln!(
-                    s,
-                    r##"<circle cx="{x:.1}" cy="{y:.1}" r="7" fill="{}" stroke="#333" stroke-width="0.5"><title>{}: {}</title></circle>"##,
-                    value_colour(v),
-                    esc(&p.label),
-                    mean_spread_n(p, k)
-                );
+                let colour = value_colour(v);
+                let fill = Fill::of(&colour).stroked(Stroke::of("#333").width(0.5));
+                let title = format!("{}: {}", p.label, mean_spread_n(p, k));
+                s.circle(at, 7.0, fill, Some(&title));
             }
-            None => {
-                let _ = writeln!(
-                    s,
-                    r##"<circle cx="{x:.1}" cy="{y:.1}" r="3" fill="#ccc"/>"##
-                );
-            }
+            None => s.circle(at, 3.0, Fill::of("#ccc"), None),
         }
     }
-    let _ = writeln!(
-        s,
-        r##"<text x="{:.1}" y="{:.1}" fill="#555">{}</text>"##,
-        ox + 35.0,
-        y0 + 34.0,
-        spread_range(points, k)
-    );
-    // Colour key.
+    let range = spread_range(points, k);
+    s.text((ox + 35.0, y0 + 34.0), &range, Text::START.fill(MUTED));
+}
+
+/// A ternary panel's colour key at `ox`, near the figure's bottom (`height`): swatches for 0,
+/// 10, …, 100, value v at ox + 50 + 2.2 v (the swatches' centres), labelled at round values.
+fn colour_key(s: &mut Svg, ox: f64, height: f64) {
     for i in 0..=10 {
-        let v = i as f64 * 10.0;
-        let _ = writeln!(
-            s,
-            r#"<rect x="{:.1}" y="{:.1}" width="20" height="6" fill="{}"/>"#,
-            ox + 40.0 + 22.0 * i as f64,
-            height - 42.0,
-            value_colour(v)
-        );
+        let x = ox + 40.0 + 22.0 * i as f64;
+        let fill = value_colour(i as f64 * 10.0);
+        s.rect((x, height - 42.0), (20.0, 6.0), Fill::of(&fill));
     }
-    // The key's scale: value v at ox + 50 + 2.2 v (the swatches' centres), labelled at round
-    // values.
     let ticks = Ticks::nice(0.0, 100.0, 5, true);
     for &v in &ticks.values {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{xv:.1}" x2="{xv:.1}" y1="{:.1}" y2="{:.1}" stroke="#333"/><text x="{xv:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-            height - 36.0,
-            height - 33.0,
-            height - 22.0,
-            ticks.label(v),
-            xv = ox + 50.0 + 2.2 * v
-        );
+        let xv = ox + 50.0 + 2.2 * v;
+        s.line((xv, height - 36.0), (xv, height - 33.0), Stroke::of("#333"));
+        s.text((xv, height - 22.0), &ticks.label(v), Text::MIDDLE);
     }
 }
 
@@ -1356,66 +777,42 @@ fn spread_range(points: &[SettingPoint], k: usize) -> String {
 /// Panel `k` of [`sweep_summary_svg`] for a few settings: one labelled bar each (the mean),
 /// a whisker of ± 1 sample std and the numbers with n, over a scale from 0 to 100 with ticks
 /// at round values.
-fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
+fn bars_panel(s: &mut Svg, points: &[SettingPoint], k: usize, ox: f64) {
     const SCALE: f64 = 1.3;
     let axis_y = 40.0 + 22.0 * points.len() as f64;
     let at = |v: f64| ox + 130.0 + SCALE * v.clamp(0.0, 100.0);
-    let _ = writeln!(
-        s,
-        r##"<line x1="{:.1}" x2="{:.1}" y1="{axis_y:.1}" y2="{axis_y:.1}" stroke="#333"/>"##,
-        at(0.0),
-        at(100.0)
-    );
+    let dark = Stroke::of("#333");
+    s.line((at(0.0), axis_y), (at(100.0), axis_y), dark);
     let ticks = Ticks::nice(0.0, 100.0, 5, true);
     for &v in &ticks.values {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{xv:.1}" x2="{xv:.1}" y1="{axis_y:.1}" y2="{:.1}" stroke="#333"/><text x="{xv:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-            axis_y + 3.0,
-            axis_y + 14.0,
-            ticks.label(v),
-            xv = at(v)
-        );
+        s.line((at(v), axis_y), (at(v), axis_y + 3.0), dark);
+        s.text((at(v), axis_y + 14.0), &ticks.label(v), Text::MIDDLE);
     }
     for (i, p) in points.iter().enumerate() {
         let y = 40.0 + 22.0 * i as f64;
         let m = p.motivations;
-        let _ = writeln!(
-            s,
-            r#"<text x="{:.1}" y="{:.1}">({},{},{},{})</text>"#,
-            ox + 8.0,
-            y + 12.0,
-            m[0],
-            m[1],
-            m[2],
-            m[3]
-        );
+        let label = format!("({},{},{},{})", m[0], m[1], m[2], m[3]);
+        s.text((ox + 8.0, y + 12.0), &label, Text::START);
         if let Some(v) = p.values[k] {
-            let _ = writeln!(
-                s,
-                r##"<rect x="{:.1}" y="{y:.1}" width="{:.1}" height="15" fill="{}"/>"##,
-                at(0.0),
-                at(v) - at(0.0),
-                value_colour(v),
-            );
+            let fill = value_colour(v);
+            s.rect((at(0.0), y), (at(v) - at(0.0), 15.0), Fill::of(&fill));
             if let Some(d) = p.spread[k] {
                 let (lo, hi, mid) = (at(v - d), at(v + d), y + 7.5);
-                let _ = writeln!(
-                    s,
-                    r##"<path d="M{lo:.1},{:.1}V{:.1}M{lo:.1},{mid:.1}H{hi:.1}M{hi:.1},{:.1}V{:.1}" stroke="#000" stroke-width="1.2" fill="none" class="spread"/>"##,
-                    mid - 4.0,
-                    mid + 4.0,
-                    mid - 4.0,
-                    mid + 4.0
-                );
+                let whisker = PathData::new()
+                    .move_to((lo, mid - 4.0))
+                    .line_to((lo, mid + 4.0))
+                    .move_to((lo, mid))
+                    .line_to((hi, mid))
+                    .move_to((hi, mid - 4.0))
+                    .line_to((hi, mid + 4.0));
+                let stroke = Stroke::of("#000").width(1.2);
+                s.path(&whisker, Fill::outline(stroke), Some("spread"));
             }
         }
-        let _ = writeln!(
-            s,
-            r#"<text x="{:.1}" y="{:.1}">{}</text>"#,
-            at(100.0) + 6.0,
-            y + 12.0,
-            mean_spread_n(p, k)
+        s.text(
+            (at(100.0) + 6.0, y + 12.0),
+            &mean_spread_n(p, k),
+            Text::START,
         );
     }
 }
@@ -1423,7 +820,7 @@ fn bars_panel(s: &mut String, points: &[SettingPoint], k: usize, ox: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plot::text_width_at;
+    use crate::figure::text_width_at;
     use fuzzymotiv::evolution::Stats;
     use fuzzymotiv::experiment::GenerationRecord;
     use fuzzymotiv::simulation::{BUILTIN_ROOMS, Room};
@@ -1446,8 +843,8 @@ mod tests {
     type TextBox = (f64, f64, f64, f64, String);
 
     /// The estimated box of every `<text>` of a figure, from its x, y, font-size (else the
-    /// root's), font-weight, text-anchor and content: 0.62 × size per character (0.68 bold,
-    /// [`text_width_at`]), from a full size above the baseline to a quarter below it
+    /// root's), font-weight, text-anchor and content: its width measured from the font
+    /// ([`text_width_at`]), from a full size above the baseline to a quarter below it
     /// (descenders). Text turned by `rotate(-90 x y)` about its own anchor (the y-axis labels)
     /// is turned with it; any other transform fails the test.
     fn text_boxes(svg: &str) -> Vec<TextBox> {
@@ -1486,7 +883,7 @@ mod tests {
         // The widths below are estimated for the font stack's first font: the figure names it.
         assert_eq!(
             attr(root, "font-family").as_deref(),
-            Some(crate::plot::FONT_STACK),
+            Some(crate::figure::FONT_STACK),
             "{what}: {root}"
         );
         let vb: Vec<f64> = attr(root, "viewBox")

@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use fuzzymotiv::experiment::Training;
 use fuzzymotiv::statistics::{EXACT_LIMIT, PERMUTATION_RESAMPLES};
 
-use crate::plot::esc;
+use crate::figure::esc;
 use crate::study::{SettingRuns, Variant, metrics, paper_row, room_stats, seed_index};
 use fuzzymotiv_records::records::context::RenderContext;
 use fuzzymotiv_records::records::{ClaimRecord, ClaimStats, RoomRow};

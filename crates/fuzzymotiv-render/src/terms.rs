@@ -9,7 +9,7 @@ use fuzzymotiv::experiment::EnergyMode;
 use fuzzymotiv::fitness::Homing;
 use fuzzymotiv::simulation::Motion;
 
-use crate::plot::esc;
+use crate::figure::esc;
 
 /// One fitness term: its symbol, names and definition.
 #[derive(Debug, Clone, PartialEq)]

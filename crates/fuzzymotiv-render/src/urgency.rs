@@ -12,7 +12,7 @@ use fuzzymotiv_records::records::Finished;
 use fuzzymotiv_records::records::paired::PairedStats;
 use fuzzymotiv_records::records::urgency::{UrgencyRow, UrgencySeed};
 
-use crate::plot::{Ticks, colour, esc, open, px};
+use crate::figure::{Area, Fill, PathData, Stroke, Svg, Text, Ticks, colour};
 use crate::study::Setting;
 
 /// configs/fetch.toml, built into the binary (its `rooms` name the files of [`FETCH_ROOMS`]).
@@ -322,12 +322,16 @@ fn points(per_seed: &[UrgencySeed], k: usize) -> Vec<Option<(f64, f64, f64)>> {
 /// the 95 % bootstrap interval of the mean.
 pub fn urgency_svg(per_seed: &[UrgencySeed]) -> String {
     let rows = MEASURES.len().div_ceil(COLS);
-    let (w, h) = (PW * COLS as f64, PH * rows as f64);
-    let mut s = open(w, h, 12);
-    let _ = writeln!(s, r#"<rect width="{w}" height="{h}" fill="white"/>"#);
+    let mut s = Svg::new(PW * COLS as f64, PH * rows as f64, 12);
     for k in 0..MEASURES.len() {
-        let origin = ((k % COLS) as f64 * PW, (k / COLS) as f64 * PH);
-        panel(&mut s, origin, k, &points(per_seed, k));
+        let (ox, oy) = ((k % COLS) as f64 * PW, (k / COLS) as f64 * PH);
+        let area = Area {
+            x0: ox + ML,
+            x1: ox + PW - MR,
+            y0: oy + PH - MB,
+            y1: oy + MT,
+        };
+        panel(&mut s, area, k, &points(per_seed, k));
     }
     // The legend in the free cell of the grid (five panels in a 3 × 2 grid).
     let (lx, ly) = (2.0 * PW + 20.0, PH + MT + 10.0);
@@ -340,107 +344,80 @@ pub fn urgency_svg(per_seed: &[UrgencySeed]) -> String {
     .iter()
     .enumerate()
     {
-        let _ = writeln!(
-            s,
-            r#"<text x="{lx}" y="{}">{}</text>"#,
-            px(ly + 18.0 * i as f64),
-            esc(line)
-        );
+        s.text((lx, ly + 18.0 * i as f64), line, Text::START);
     }
-    s.push_str("</svg>\n");
-    s
+    s.finish()
 }
 
-fn panel(s: &mut String, (ox, oy): (f64, f64), k: usize, points: &[Option<(f64, f64, f64)>]) {
-    let (x0, x1, y0, y1) = (ox + ML, ox + PW - MR, oy + PH - MB, oy + MT);
-    let title = MEASURES[k];
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{}" text-anchor="middle" font-weight="bold">{}</text>"#,
-        px((x0 + x1) / 2.0),
-        px(oy + 20.0),
-        esc(title)
-    );
-    let present: Vec<(f64, f64, f64)> = points.iter().flatten().copied().collect();
-    if present.is_empty() {
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle" font-size="11">no test run reached the goal</text>"#,
-            px((x0 + x1) / 2.0),
-            px((y0 + y1) / 2.0)
-        );
-        return;
-    }
+/// A panel's value axis over its points' intervals, padded, never below 0 (every measure is
+/// at least 0: no negative axis below a flat line at 0): its ticks and the span drawn.
+fn value_axis(present: &[(f64, f64, f64)]) -> (Ticks, f64, f64) {
     let lo = present.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let hi = present
         .iter()
         .map(|p| p.2)
         .fold(f64::NEG_INFINITY, f64::max);
     let pad = ((hi - lo) * 0.08).max(0.5);
-    // Every measure is at least 0: no negative axis below a flat line at 0.
     let bottom = (lo - pad).max(0.0);
     let ticks = Ticks::nice(bottom, hi + pad, 5, false);
     let (v0, v1) = (
         ticks.values[0].min(bottom),
         ticks.values.last().map_or(hi + pad, |t| t.max(hi + pad)),
     );
-    let y = |v: f64| px(y0 + (y1 - y0) * (v - v0) / (v1 - v0).max(1e-9));
-    let x = |w: usize| px(x0 + 16.0 + (x1 - x0 - 32.0) * w as f64 / (WEIGHTS.len() - 1) as f64);
-    for &t in &ticks.values {
-        let _ = writeln!(
-            s,
-            r##"<line x1="{x0}" x2="{x1}" y1="{yy}" y2="{yy}" stroke="#ddd"/><text x="{}" y="{}" text-anchor="end" font-size="10">{}</text>"##,
-            px(x0 - 4.0),
-            px(y(t) + 3.0),
-            ticks.label(t),
-            yy = y(t)
+    (ticks, v0, v1)
+}
+
+/// Measure `k`'s panel over `area`: per weight the mean (point) with its interval (bar),
+/// joined by a line.
+fn panel(s: &mut Svg, area: Area, k: usize, points: &[Option<(f64, f64, f64)>]) {
+    area.title(s, area.y1 - MT + 20.0, MEASURES[k]);
+    let present: Vec<(f64, f64, f64)> = points.iter().flatten().copied().collect();
+    if present.is_empty() {
+        let note = Text::MIDDLE.size(11.0);
+        s.text(
+            (area.mid_x(), area.mid_y()),
+            "no test run reached the goal",
+            note,
         );
+        return;
     }
-    let _ = writeln!(
-        s,
-        r##"<line x1="{x0}" x2="{x0}" y1="{y0}" y2="{y1}" stroke="#000"/><line x1="{x0}" x2="{x1}" y1="{y0}" y2="{y0}" stroke="#000"/><text x="{}" y="{}" text-anchor="middle" font-size="11">urgency u</text>"##,
-        px((x0 + x1) / 2.0),
-        px(y0 + 34.0)
-    );
-    let mut path = String::new();
+    let (ticks, v0, v1) = value_axis(&present);
+    let y = area.y_scale(v0, v1);
+    area.y_grid(s, &ticks, y, Text::END.size(10.0), None);
+    area.axes(s);
+    area.x_label(s, ("urgency u", 34.0), Text::MIDDLE.size(11.0));
+    let inner = Area {
+        x0: area.x0 + 16.0,
+        x1: area.x1 - 16.0,
+        ..area
+    };
+    let x = inner.x_scale(0.0, (WEIGHTS.len() - 1) as f64);
+    let ticks: Vec<(f64, String)> = (WEIGHTS.iter().enumerate())
+        .map(|(w, u)| (x.at(w as f64), format!("{u:.1}")))
+        .collect();
+    area.x_ticks(s, &ticks, 16.0, false, Text::MIDDLE.size(10.0));
+    let mut path = PathData::new();
     for (w, u) in WEIGHTS.iter().enumerate() {
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{}" text-anchor="middle" font-size="10">{u:.1}</text>"#,
-            x(w),
-            px(y0 + 16.0)
-        );
         let Some((m, lo, hi)) = points[w] else {
             continue;
         };
-        let _ = write!(
-            path,
-            "{}{},{} ",
-            if path.is_empty() { "M" } else { "L" },
-            x(w),
-            y(m)
+        let xx = x.at(w as f64);
+        path = path.line_to((xx, y.at(m)));
+        s.line(
+            (xx, y.at(lo)),
+            (xx, y.at(hi)),
+            Stroke::of(colour(0)).width(2.0),
         );
-        let _ = writeln!(
-            s,
-            r#"<line x1="{xx}" x2="{xx}" y1="{}" y2="{}" stroke="{c}" stroke-width="2"/><circle cx="{xx}" cy="{}" r="4" fill="{c}"><title>u = {u:.1}: {m:.2} ({lo:.2}, {hi:.2})</title></circle>"#,
-            y(lo),
-            y(hi),
-            y(m),
-            xx = x(w),
-            c = colour(0),
-        );
+        let title = format!("u = {u:.1}: {m:.2} ({lo:.2}, {hi:.2})");
+        s.circle((xx, y.at(m)), 4.0, Fill::of(colour(0)), Some(&title));
     }
-    let _ = writeln!(
-        s,
-        r#"<path d="{}" fill="none" stroke="{}" stroke-width="1.5"/>"#,
-        path.trim_end(),
-        colour(0)
-    );
+    s.path(&path, Fill::outline(Stroke::of(colour(0)).width(1.5)), None);
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::figure::esc;
 
     fn seed(w: usize, index: usize, success: f64, time: Option<f64>) -> UrgencySeed {
         UrgencySeed {

@@ -143,8 +143,8 @@ fn the_bytes_do_not_depend_on_threads() {
     assert_eq!(one, on(3));
     let delay = delay_of(25.0).unwrap();
     assert_eq!(
-        gif(&room, Track::of(&tr), opts, delay),
-        gif(&room, Track::of(&tr), opts, delay)
+        gif(&room, Track::of(&tr), opts, delay).unwrap(),
+        gif(&room, Track::of(&tr), opts, delay).unwrap()
     );
 }
 
@@ -200,7 +200,7 @@ fn bad_tracks_are_named() {
         actions: None,
         idle: None,
     };
-    let err = render(&room, track(&[]), opts).unwrap_err();
+    let err = render(&room, track(&[]), opts).unwrap_err().to_string();
     assert!(err.starts_with("x: no poses"), "{err}");
     static NAN: [Pose; 2] = [
         Pose {
@@ -214,7 +214,7 @@ fn bad_tracks_are_named() {
             heading: f64::NAN,
         },
     ];
-    let err = render(&room, track(&NAN), opts).unwrap_err();
+    let err = render(&room, track(&NAN), opts).unwrap_err().to_string();
     assert!(
         err.starts_with("heading[1]: `NaN` is not a finite number"),
         "{err}"
@@ -227,7 +227,7 @@ fn bad_tracks_are_named() {
         actions: None,
         idle: None,
     };
-    let err = render(&room, t, opts).unwrap_err();
+    let err = render(&room, t, opts).unwrap_err().to_string();
     assert!(err.starts_with("sensors: 3 rows for 1 poses"), "{err}");
     // One pose alone is one frame.
     let single = render(&room, track_of(&one), opts).unwrap();

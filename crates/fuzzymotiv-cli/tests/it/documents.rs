@@ -1,6 +1,6 @@
 //! The documents say what the records say.
 //!
-//! README.md, EXPERIMENTS.md, docs/**/*.md and bench/README.md mark every table and number they
+//! README.md, EXPERIMENTS.md, docs/**/*.md, bench/README.md and bench/HISTORY.md mark every table and number they
 //! quote from a study (docs/results/README.md describes the markers):
 //!
 //! ```text
@@ -40,6 +40,7 @@ fn documents() -> Vec<PathBuf> {
         PathBuf::from("README.md"),
         PathBuf::from("EXPERIMENTS.md"),
         PathBuf::from("bench/README.md"),
+        PathBuf::from("bench/HISTORY.md"),
     ];
     let mut stack = vec![PathBuf::from("docs")];
     while let Some(dir) = stack.pop() {
@@ -1131,7 +1132,8 @@ fn select<'a>(rows: &'a [Row], selectors: &[(&str, char, &str)]) -> Result<&'a R
 
 /// Renders a value marker's spec: `FILE.csv: SELECTOR… COLUMN FORMAT`, where a selector is
 /// `column=text` (equal) or `column~text` (contains), or `FILE.json: /JSON/POINTER FORMAT`; the
-/// format is `.N` (N decimals), `+.N` (with its sign) or `text` (the record's text as it is).
+/// format is `.N` (N decimals), `+.N` (with its sign), `p` (a p-value by the report's rule:
+/// three decimals, `< 0.001` below) or `text` (the record's text as it is).
 fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
     let (path, how) = spec
         .split_once(": ")
@@ -1156,6 +1158,10 @@ fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
         let rows = read_csv(dir, path)?;
         num(select(&rows, &parse_selectors(selectors)?)?, column)?
     };
+    if *format == "p" {
+        // A p-value by the report's one number rule (three decimals, `< 0.001` below).
+        return Ok(fuzzymotiv_pipeline::render::claim_format::p_text(x));
+    }
     let (sign, digits) = match format.strip_prefix('+') {
         Some(rest) => (true, rest),
         None => (false, *format),
@@ -1163,7 +1169,7 @@ fn render_value(dir: &Path, spec: &str) -> Result<String, String> {
     let digits: usize = digits
         .strip_prefix('.')
         .and_then(|d| d.parse().ok())
-        .ok_or_else(|| format!("format `{format}` is not `.N` or `+.N`"))?;
+        .ok_or_else(|| format!("format `{format}` is not `.N`, `+.N`, `p` or `text`"))?;
     Ok(if sign {
         signed(x, digits)
     } else {

@@ -10,9 +10,15 @@ use common::repo;
 
 /// The documents whose commands a user copies.
 fn documents() -> Vec<String> {
-    let mut files: Vec<String> = ["README.md", "EXPERIMENTS.md", "bench/README.md"]
-        .map(String::from)
-        .to_vec();
+    let mut files: Vec<String> = [
+        "README.md",
+        "EXPERIMENTS.md",
+        "bench/README.md",
+        "bench/HISTORY.md",
+        "bench/enki/README.md",
+    ]
+    .map(String::from)
+    .to_vec();
     for dir in [
         "docs",
         "docs/guide",

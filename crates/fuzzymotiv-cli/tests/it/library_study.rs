@@ -9,7 +9,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use common::{Fm, SMALL, assert_same_results, stderr, stdout};
 use fuzzymotiv::experiment::Experiment;
 use fuzzymotiv_pipeline::files::notes::Notes;
-use fuzzymotiv_pipeline::pipeline::progress::{NoProgress, RunProgress, SweepProgress};
+use fuzzymotiv_pipeline::pipeline::progress::{
+    JobsSummary, NoProgress, RunProgress, SweepProgress,
+};
 use fuzzymotiv_pipeline::pipeline::reproduce::{
     Front, ReproduceOptions, ReproduceProgress, StudyKind, reproduce,
 };
@@ -187,7 +189,7 @@ impl SweepProgress for StopAfter {
         Box::new(self)
     }
     fn job_done(&self) {}
-    fn end(&self) {}
+    fn end(&self, _summary: &JobsSummary) {}
 }
 impl fuzzymotiv_pipeline::study::StudyProgress for StopAfter {
     fn waiting(&self, _: usize, _: usize) {}

@@ -294,6 +294,7 @@ fn the_orientation_study_file_reports_each_arms_measures_as_the_orientation_merg
     }
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(report.contains("## Measures per arm") && !report.contains("## Claims"));
+    assert!(report.contains("3 paired seeds (base seed 1):"), "{report}");
     ok(&["merge", out.to_str().unwrap()]);
     let aggregate = read_csv(&out.join("aggregate.csv"));
     let arms = read_csv(&out.join("arms.csv"));

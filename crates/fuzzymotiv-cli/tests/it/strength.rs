@@ -65,7 +65,7 @@ fn search_strength_runs_every_population_and_tabulates_the_claims() {
     // It opens as every figure does, in the one font stack.
     let font = format!(
         "font-family=\"{}\"",
-        fuzzymotiv_pipeline::render::plot::FONT_STACK
+        fuzzymotiv_pipeline::render::figure::FONT_STACK
     );
     assert!(svg.starts_with("<svg ") && svg.split('>').next().unwrap().contains(&font));
     // The same command again: done, nothing replaced.

@@ -122,6 +122,7 @@ fn a_fetch_study_writes_typed_records_whose_every_verdict_is_recomputed_from_its
         "## Per room",
         "## Seeds",
         "name = \"fetch-urgency\"",
+        "4 paired seeds per base seed (base seeds 1, 2):",
     ] {
         assert!(report.contains(part), "report.md lacks {part}");
     }

@@ -902,15 +902,17 @@ fn the_paper_study_files_agreement_is_the_committed_replications_at_every_seed_c
 }
 
 /// The committed studies of one's own (`docs/results/*-study/`: paper, combination, search
-/// strength, ablation, urgency, orientation), each with its hypotheses' results per base seed
-/// and pooled (the orientation study has none: each arm's measures only).
-const STUDY_FILES: [(&str, usize); 6] = [
+/// strength, ablation, urgency, orientation, transfer; the guide's fetch-urgency), each with its hypotheses' results per
+/// base seed and pooled (the orientation study has none: each arm's measures only).
+const STUDY_FILES: [(&str, usize); 8] = [
     ("paper-study", 8 * 3),
     ("combination-study", 40 * 3 + AGREEMENT * 40),
     ("search-strength-study", 17 * 3 + 9 * 2 * 17),
     ("ablation-study", 20 * 3 + 4 * 2 * 20),
     ("urgency-study", 15 * 3 + AGREEMENT * 15),
     ("orientation-study", 0),
+    ("transfer-study", 5 * 3 + 9 * 2 * 5),
+    ("fetch-urgency-study", 4 * 3 + 9 * 2 * 4),
 ];
 
 /// agreement.csv's rows per hypothesis of a twenty-seed study at two base seeds: each base
@@ -1181,4 +1183,46 @@ fn the_combination_study_files_behaviour_and_claim_differences_are_reproduces_at
         }
     }
     assert_eq!(checked, 2 * (20 + 8), "every comparison at both base seeds");
+}
+
+/// The transfer study as a study file (studies/transfer.toml, committed in `transfer-study/`)
+/// at base seed 1 is `scripts/transfer_study.sh`'s (`transfer/transfer.csv`): each seed's Enki
+/// exploration, homing, battery and recognition (the mean over the five rooms of its ten Enki
+/// test runs) and its exploration's |Enki − fuzzymotiv| gap, seed by seed, bit for bit; its claims are
+/// recomputed with the others (`every_committed_study_files_verdicts_…`).
+#[test]
+fn the_transfer_study_files_base_seed_1_is_the_transfer_scripts_enki_side() {
+    let per_seed = rows(&results().join("transfer-study/per_seed.csv"));
+    let (means, seeds) = transfer_seed_means(&results().join("transfer/transfer.csv"));
+    let mut checked = 0;
+    for setting in ["high-curiosity", "low-curiosity"] {
+        let ours = |measure: &str| -> Vec<(u64, f64)> {
+            (per_seed.iter())
+                .filter(|r| r["base_seed"] == "1" && r["arm"] == setting)
+                .filter(|r| r["measure"] == measure && r["room"].is_empty())
+                .map(|r| (r["seed"].parse().unwrap(), number(r, "value").unwrap()))
+                .collect()
+        };
+        for m in [
+            "exploration_pct",
+            "homing_pct",
+            "battery_pct",
+            "recognition_pct",
+        ] {
+            let world = |w: &str| &means[&(setting.to_string(), m.to_string(), w.to_string())];
+            let (enki, sim) = (world("enki"), world("fuzzymotiv"));
+            let gap: Vec<f64> = enki.iter().zip(sim).map(|(e, s)| (e - s).abs()).collect();
+            let mut measures = vec![(format!("enki_{m}"), enki)];
+            if m == "exploration_pct" {
+                measures.push((format!("gap_{m}"), &gap)); // the gap a hypothesis reads
+            }
+            for (name, theirs) in measures {
+                let (s, v): (Vec<u64>, Vec<f64>) = ours(&name).into_iter().unzip();
+                assert_eq!(s, seeds[setting], "{setting} {name}: the script's seeds");
+                assert_eq!(&v, theirs, "{setting} {name}: each seed's value");
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 2 * (4 + 1));
 }

@@ -38,8 +38,32 @@ pub trait SweepProgress: Notes {
     fn job(&self, job: &Job, nth: usize, exp: &Experiment) -> Box<dyn RunProgress + '_>;
     /// A job has finished.
     fn job_done(&self);
-    /// The last job has finished.
-    fn end(&self);
+    /// The last job has finished: how the selection went (the command line notes it; a front
+    /// that returns the counts itself need not).
+    fn end(&self, summary: &JobsSummary);
+}
+
+/// How a sweep's selection went, once its last job has finished.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct JobsSummary {
+    /// Jobs run by this call.
+    pub ran: usize,
+    /// Selected jobs already done (earlier calls, other workers).
+    pub already_done: usize,
+    /// Jobs in this selection (a shard, an index, or the plan).
+    pub selected: usize,
+    /// Jobs in the plan.
+    pub planned: usize,
+}
+
+impl std::fmt::Display for JobsSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} jobs run, {} already done, {} in this selection, {} in the plan",
+            self.ran, self.already_done, self.selected, self.planned
+        )
+    }
 }
 
 /// Progress that shows nothing, notes included.
@@ -62,7 +86,7 @@ impl SweepProgress for NoProgress {
         Box::new(NoProgress)
     }
     fn job_done(&self) {}
-    fn end(&self) {}
+    fn end(&self, _summary: &JobsSummary) {}
 }
 
 /// A run's progress that shows nothing and stops the run once `flag` is set: a front that

@@ -426,7 +426,7 @@ fn outside_warnings(logs: &[LoggedPath], exp: &Experiment) -> Vec<String> {
 /// The frame options and delay of the GIFs, for the trial's robot.
 fn gif_options(g: GifSettings, trial: &TrialParams) -> Result<(FrameOptions, u16), CliError> {
     let opts = FrameOptions::new(g.size, g.stride)
-        .map_err(|(name, why)| CliError::input(format!("--{name}: {why}")))?;
+        .map_err(|e| CliError::input(format!("--{}: {e}", e.field().unwrap_or("size"))))?;
     let delay = delay_of(g.fps).map_err(|why| CliError::input(format!("--fps: {why}")))?;
     Ok((opts.for_trial(trial), delay))
 }
@@ -523,7 +523,7 @@ mod tests {
     /// Draws every SVG as the same few bytes.
     struct FakePng;
     impl Rasterise for FakePng {
-        fn png(&self, _svg: &str) -> Result<Vec<u8>, String> {
+        fn png(&self, _svg: &str) -> Result<Vec<u8>, crate::render::figures::RasterError> {
             Ok(b"png".to_vec())
         }
     }

@@ -13,7 +13,7 @@ use crate::files::guard::{
 use crate::files::job_lock::{JobLock, lock_path};
 use crate::files::notes::Notes;
 use crate::pipeline::lanes::run_concurrently;
-use crate::pipeline::progress::SweepProgress;
+use crate::pipeline::progress::{JobsSummary, SweepProgress};
 use crate::pipeline::run_dir::execute_or_resume;
 use crate::pipeline::sweep_plan::Sweep;
 use crate::records::{Job, to_json};
@@ -73,14 +73,13 @@ pub fn run_jobs(
         progress.job_done();
         Ok(outcome)
     })?;
-    progress.end();
     let ran = outcomes.iter().filter(|&&o| o == JobOutcome::Ran).count();
-    progress.note(&format!(
-        "{ran} jobs run, {} already done, {} in this selection, {} in the plan",
-        selected.len() - ran,
-        selected.len(),
-        sweep.jobs.len()
-    ));
+    progress.end(&JobsSummary {
+        ran,
+        already_done: selected.len() - ran,
+        selected: selected.len(),
+        planned: sweep.jobs.len(),
+    });
     Ok(())
 }
 

@@ -112,8 +112,13 @@ pub fn difference(
     compare(&minus(a, b)?, &minus(c, d)?, expect, s)
 }
 
-/// The least-squares slope of `ys` against `xs`.
+/// The least-squares slope of `ys` against `xs`; exactly 0 when every y is the same (the
+/// formula would give the rounding error of their mean: a tiny slope of either sign, so a
+/// level measure would read as an undecided trend instead of none).
 pub fn slope(xs: &[f64], ys: &[f64]) -> f64 {
+    if ys.iter().all(|&y| y == ys[0]) {
+        return 0.0;
+    }
     let (mx, my) = (statistics::mean(xs), statistics::mean(ys));
     let sxy: f64 = xs.iter().zip(ys).map(|(x, y)| (x - mx) * (y - my)).sum();
     let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();

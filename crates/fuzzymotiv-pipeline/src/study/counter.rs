@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use fuzzymotiv::experiment::Experiment;
 
 use crate::files::notes::{NoteList, Notes};
-use crate::pipeline::progress::{RunProgress, StopOnFlag, SweepProgress};
+use crate::pipeline::progress::{JobsSummary, RunProgress, StopOnFlag, SweepProgress};
 use crate::records::Job;
 use crate::records::hypotheses::ClaimRow;
 use crate::study::StudyProgress;
@@ -21,8 +21,11 @@ pub struct StudyCounter {
     done: AtomicUsize,
     total: AtomicUsize,
     stop: AtomicBool,
-    /// The pipeline's notes (how many jobs ran, what `force` replaced), for the front to show.
+    /// The pipeline's notes (what `force` replaced, a job waiting for another worker), for
+    /// the front to show.
     notes: NoteList,
+    /// How the runs went, once the last finished.
+    summary: std::sync::Mutex<Option<JobsSummary>>,
 }
 
 impl StudyCounter {
@@ -44,6 +47,12 @@ impl StudyCounter {
     /// The notes so far, in order (the lab shows them on its page, Python warns).
     pub fn notes(&self) -> Vec<String> {
         self.notes.lines()
+    }
+
+    /// How the runs went (how many ran, were already done, selected, planned), once the last
+    /// finished: the lab shows it with the notes; Python returns the counts instead.
+    pub fn summary(&self) -> Option<JobsSummary> {
+        *self.summary.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     /// Whether [`StudyCounter::stop`] was called.
@@ -69,7 +78,9 @@ impl SweepProgress for StudyCounter {
     fn job_done(&self) {
         self.done.fetch_add(1, Ordering::SeqCst);
     }
-    fn end(&self) {}
+    fn end(&self, summary: &JobsSummary) {
+        *self.summary.lock().unwrap_or_else(|e| e.into_inner()) = Some(*summary);
+    }
 }
 
 impl StudyProgress for StudyCounter {

@@ -2,6 +2,7 @@
 //! 6 × 6 × 6 cube, the scenes' own colours (exact) and a grey ramp. Each frame after the first
 //! stores only the rectangle that changed, so a rollout's GIF is small and quick to write.
 
+use super::error::FrameError;
 use std::sync::LazyLock;
 
 use gif::{DisposalMethod, Encoder, Frame, Repeat};
@@ -114,12 +115,13 @@ pub fn palette_index(rgb: [u8; 3]) -> u8 {
 
 /// The delay of one frame at `fps` frames per second (hundredths of a second), or why `fps`
 /// is not a frame rate.
-pub fn delay_of(fps: f64) -> Result<u16, String> {
+pub fn delay_of(fps: f64) -> Result<u16, FrameError> {
     if !(MIN_FPS..=MAX_FPS).contains(&fps) {
-        return Err(format!(
-            "must be a frame rate in [{MIN_FPS}, {MAX_FPS}] frames per second, got {}",
-            fuzzymotiv::params::Num(fps)
-        ));
+        return Err(FrameError::Fps {
+            got: fps,
+            min: MIN_FPS,
+            max: MAX_FPS,
+        });
     }
     Ok((100.0 / fps).round() as u16)
 }
@@ -137,17 +139,13 @@ pub struct GifWriter {
 
 impl GifWriter {
     /// A GIF of `width × height` frames shown `delay` hundredths of a second each.
-    pub fn new(width: u32, height: u32, delay: u16) -> Result<GifWriter, String> {
+    pub fn new(width: u32, height: u32, delay: u16) -> Result<GifWriter, FrameError> {
         let (Ok(w), Ok(h)) = (u16::try_from(width), u16::try_from(height)) else {
-            return Err(format!(
-                "frames of {width} × {height} pixels are too large for a GIF (65535 at most)"
-            ));
+            return Err(FrameError::TooLargeForGif { width, height });
         };
         let flat: Vec<u8> = PALETTE.iter().flatten().copied().collect();
-        let mut encoder = Encoder::new(Vec::new(), w, h, &flat).map_err(|e| e.to_string())?;
-        encoder
-            .set_repeat(Repeat::Infinite)
-            .map_err(|e| e.to_string())?;
+        let mut encoder = Encoder::new(Vec::new(), w, h, &flat)?;
+        encoder.set_repeat(Repeat::Infinite)?;
         Ok(GifWriter {
             encoder,
             width: width as usize,
@@ -159,25 +157,26 @@ impl GifWriter {
     }
 
     /// Adds a frame: RGB bytes, `width · height · 3` of them.
-    pub fn push(&mut self, rgb: &[u8]) -> Result<(), String> {
+    pub fn push(&mut self, rgb: &[u8]) -> Result<(), FrameError> {
         self.push_pixels(rgb, 3)
     }
 
     /// Adds a frame of opaque RGBA bytes (a pixmap's), `width · height · 4` of them.
-    pub fn push_rgba(&mut self, rgba: &[u8]) -> Result<(), String> {
+    pub fn push_rgba(&mut self, rgba: &[u8]) -> Result<(), FrameError> {
         self.push_pixels(rgba, 4)
     }
 
     /// Adds a frame of `channels` bytes per pixel (RGB first); only the rectangle that changed
     /// since the previous frame is stored.
-    fn push_pixels(&mut self, px: &[u8], channels: usize) -> Result<(), String> {
+    fn push_pixels(&mut self, px: &[u8], channels: usize) -> Result<(), FrameError> {
         let (w, h, c) = (self.width, self.height, channels);
         if px.len() != w * h * c {
-            return Err(format!(
-                "a frame of {w} × {h} pixels has {} bytes, got {}",
-                w * h * c,
-                px.len()
-            ));
+            return Err(FrameError::FrameBytes {
+                width: w,
+                height: h,
+                expected: w * h * c,
+                got: px.len(),
+            });
         }
         let (x0, y0, x1, y1) = match &self.previous {
             Some(prev) if prev.len() == px.len() => {
@@ -212,20 +211,20 @@ impl GifWriter {
         Ok(())
     }
 
-    fn flush(&mut self) -> Result<(), String> {
+    fn flush(&mut self) -> Result<(), FrameError> {
         match self.pending.take() {
-            Some(f) => self.encoder.write_frame(&f).map_err(|e| e.to_string()),
+            Some(f) => Ok(self.encoder.write_frame(&f)?),
             None => Ok(()),
         }
     }
 
     /// The GIF's bytes (the last frame held for at least [`LAST_FRAME_HOLD`]).
-    pub fn finish(mut self) -> Result<Vec<u8>, String> {
+    pub fn finish(mut self) -> Result<Vec<u8>, FrameError> {
         if let Some(f) = &mut self.pending {
             f.delay = f.delay.max(LAST_FRAME_HOLD);
         }
         self.flush()?;
-        self.encoder.into_inner().map_err(|e| e.to_string())
+        Ok(self.encoder.into_inner()?)
     }
 }
 
@@ -277,8 +276,8 @@ mod tests {
 
     #[test]
     fn frame_rates_become_delays() {
-        assert_eq!(delay_of(25.0), Ok(4));
-        assert_eq!(delay_of(1.0), Ok(100));
+        assert_eq!(delay_of(25.0).unwrap(), 4);
+        assert_eq!(delay_of(1.0).unwrap(), 100);
         assert!(delay_of(0.0).is_err() && delay_of(60.0).is_err() && delay_of(f64::NAN).is_err());
     }
 

@@ -1,6 +1,7 @@
 //! Drawing one frame with tiny-skia: the room (drawn once, [`Painter::new`]), then per frame
 //! the path so far, the IR rays, the body and heading, and the labels.
 
+use super::error::FrameError;
 use fuzzymotiv::simulation::{HomeZone, Room};
 use fuzzymotiv::simulation::{RayMount, rays};
 use fuzzymotiv::simulation::{Segment, Vec2};
@@ -86,7 +87,7 @@ fn polygon(view: &View, poly: &[Vec2]) -> Option<Path> {
 
 impl<'a> Painter<'a> {
     /// A painter of `track` in `room`; the error names the track's bad column.
-    pub fn new(room: &'a Room, track: Track<'a>, opts: FrameOptions) -> Result<Self, String> {
+    pub fn new(room: &'a Room, track: Track<'a>, opts: FrameOptions) -> Result<Self, FrameError> {
         track.check()?;
         let view = View::new(room, opts.size());
         let robot = opts.robot();

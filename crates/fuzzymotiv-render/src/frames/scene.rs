@@ -1,6 +1,7 @@
 //! What a frame shows and where: the options ([`FrameOptions`]), the rollout drawn
 //! ([`Track`]), the mapping from the room's millimetres to pixels ([`View`]) and the colours.
 
+use super::error::{Column, FrameError};
 use fuzzymotiv::simulation::Room;
 use fuzzymotiv::simulation::Vec2;
 use fuzzymotiv::simulation::{Action, Pose};
@@ -94,19 +95,17 @@ pub struct FrameOptions {
 
 impl FrameOptions {
     /// Square frames of `size` pixels (64 to 2048) showing every `stride`-th pose (≥ 1),
-    /// for the default robot. A bad value is named: `("size", why)` or `("stride", why)`.
-    pub fn new(size: u32, stride: usize) -> Result<FrameOptions, (&'static str, String)> {
+    /// for the default robot. A bad value is named ([`FrameError::field`]).
+    pub fn new(size: u32, stride: usize) -> Result<FrameOptions, FrameError> {
         if !(MIN_SIZE..=MAX_SIZE).contains(&size) {
-            return Err((
-                "size",
-                format!("must be a frame side in {MIN_SIZE}..={MAX_SIZE} pixels, got {size}"),
-            ));
+            return Err(FrameError::Size {
+                got: size,
+                min: MIN_SIZE,
+                max: MAX_SIZE,
+            });
         }
         if stride == 0 {
-            return Err((
-                "stride",
-                "must be a whole number ≥ 1 (1 = a frame per step), got 0".into(),
-            ));
+            return Err(FrameError::Stride);
         }
         Ok(FrameOptions {
             size,
@@ -200,44 +199,54 @@ impl<'a> Track<'a> {
     /// Checks the track: at least one pose, finite poses and readings, and `T` or `T + 1` rows
     /// of the optional columns; the error names the column (`x`, `y`, `heading`, `sensors`,
     /// `action`, `idle`), the row and what is wrong.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), FrameError> {
         let n = self.poses.len();
         if n == 0 {
-            return Err("x: no poses; a rollout has at least its start pose".into());
+            return Err(FrameError::NoPoses);
         }
         for (t, p) in self.poses.iter().enumerate() {
-            for (name, v) in [("x", p.x), ("y", p.y), ("heading", p.heading)] {
-                if !v.is_finite() {
-                    return Err(format!("{name}[{t}]: `{v}` is not a finite number"));
+            for (column, value) in [
+                (Column::X, p.x),
+                (Column::Y, p.y),
+                (Column::Heading, p.heading),
+            ] {
+                if !value.is_finite() {
+                    return Err(FrameError::NotFinite {
+                        column,
+                        row: t,
+                        value,
+                    });
                 }
             }
         }
-        let rows = |name: &str, len: usize| {
+        let rows = |column: Column, len: usize| {
             if len + 1 == n || len == n {
                 Ok(())
             } else {
-                Err(format!(
-                    "{name}: {len} rows for {n} poses; expected {} (one per step) or {n}",
-                    n - 1
-                ))
+                Err(FrameError::Rows {
+                    column,
+                    rows: len,
+                    poses: n,
+                })
             }
         };
         if let Some(s) = self.sensors {
-            rows("sensors", s.len())?;
+            rows(Column::Sensors, s.len())?;
             if let Some((t, k)) = (s.iter().enumerate())
                 .find_map(|(t, r)| r.iter().position(|v| !v.is_finite()).map(|k| (t, k)))
             {
-                return Err(format!(
-                    "sensors[{t}][{k}]: `{}` is not a finite number; expected IR readings 0–1023",
-                    s[t][k]
-                ));
+                return Err(FrameError::Reading {
+                    row: t,
+                    sensor: k,
+                    value: s[t][k],
+                });
             }
         }
         if let Some(a) = self.actions {
-            rows("action", a.len())?;
+            rows(Column::Action, a.len())?;
         }
         if let Some(i) = self.idle {
-            rows("idle", i.len())?;
+            rows(Column::Idle, i.len())?;
         }
         Ok(())
     }
@@ -313,9 +322,15 @@ mod tests {
 
     #[test]
     fn options_name_the_bad_value() {
-        assert_eq!(FrameOptions::new(63, 1).unwrap_err().0, "size");
-        assert_eq!(FrameOptions::new(4096, 1).unwrap_err().0, "size");
-        assert_eq!(FrameOptions::new(320, 0).unwrap_err().0, "stride");
+        assert_eq!(FrameOptions::new(63, 1).unwrap_err().field(), Some("size"));
+        assert_eq!(
+            FrameOptions::new(4096, 1).unwrap_err().field(),
+            Some("size")
+        );
+        assert_eq!(
+            FrameOptions::new(320, 0).unwrap_err().field(),
+            Some("stride")
+        );
         assert_eq!(FrameOptions::new(320, 1).unwrap().frame_poses(3), [0, 1, 2]);
         assert_eq!(FrameOptions::new(320, 5).unwrap().frame_poses(1), [0]);
     }
@@ -352,11 +367,9 @@ mod tests {
             actions: None,
             idle: None,
         };
-        assert!(
-            t.check()
-                .unwrap_err()
-                .starts_with("sensors: 3 rows for 2 poses")
-        );
+        let e = t.check().unwrap_err();
+        assert_eq!(e.field(), Some("sensors"));
+        assert!(e.to_string().starts_with("sensors: 3 rows for 2 poses"));
         let bad = [Pose {
             x: f64::NAN,
             y: 0.0,
@@ -368,6 +381,15 @@ mod tests {
             actions: None,
             idle: None,
         };
-        assert!(t.check().unwrap_err().starts_with("x[0]"));
+        let e = t.check().unwrap_err();
+        assert!(matches!(
+            e,
+            FrameError::NotFinite {
+                column: Column::X,
+                row: 0,
+                ..
+            }
+        ));
+        assert!(e.to_string().starts_with("x[0]"));
     }
 }

@@ -11,7 +11,7 @@ use fuzzymotiv_records::records::RoomFuzzy;
 use fuzzymotiv_records::records::context::{OwnLabels, RenderContext};
 
 use super::{Page, Section, figure, xs};
-use crate::plot::{colour, esc};
+use crate::figure::{colour, esc};
 use crate::svg::{MEMBERSHIP_TITLE, membership_svg_of};
 use crate::terms::{html, mission_term_definition, terms};
 

@@ -319,7 +319,8 @@ impl Experiment {
     /// Evaluates a population in parallel (results in index order, independent of threads).
     /// The trials of a room run four at a time in lock-step, their noise and networks in
     /// vector lanes (any robot and motion, randomised robots, online orientation, user-defined
-    /// terms); that changes no result.
+    /// terms; a batch of one or two trials of any robot but the paper's one at a time); that
+    /// changes no result.
     pub fn evaluate_population(
         &self,
         population: &Population,

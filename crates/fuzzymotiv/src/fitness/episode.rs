@@ -48,6 +48,11 @@ impl<A: Borrow<Arena> + Clone, R: Rng> Episode<A, R> {
         self.run.observe()
     }
 
+    /// The sensor values of the next step, borrowed ([`TrialRun::observed`]).
+    pub fn observed(&mut self) -> &[f64] {
+        self.run.observed()
+    }
+
     /// The next step with motor outputs `motors` ([`TrialRun::step`]), recorded.
     pub fn step(&mut self, motors: [f64; 2]) -> Step {
         let over = self.run.is_over();

@@ -48,11 +48,15 @@ pub(crate) fn walk_lanes<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [La
 }
 
 /// Runs every trial of `trials` in `arena` (a trial with a drawn robot in its own arena), as
-/// [`simulate`](crate::simulation::trial::simulate) would, four at a time. Every network must
+/// [`simulate`](crate::simulation::trial::simulate) would, four at a time (one or two trials
+/// one at a time: [`lanes_pay`]). Every network must
 /// have one input per sensor and the same shape, and finite weights
 /// ([`lanes_fit`]). With `actions` motion and no drawn robot the
 /// lanes share the arena's memo of sightings, as `simulate` uses it (a pure cache).
 pub(crate) fn walk_any<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [LaneTrial<'a, O>]) {
+    if !lanes_pay(trials.len()) {
+        return walk_alone(arena, trials);
+    }
     let Some(first) = trials.first() else { return };
     let shape = first.net.shape();
     debug_assert!(trials.iter().all(|t| t.net.shape() == shape));
@@ -62,6 +66,39 @@ pub(crate) fn walk_any<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [Lane
     match arena.memo_owner().filter(|_| shared) {
         Some(owner) => with_table(owner, memo_live, |table| walk_on(isa, arena, trials, table)),
         None => walk_on(isa, arena, trials, None),
+    }
+}
+
+/// Whether a batch of `trials` trials is walked in these lanes rather than one trial at a
+/// time ([`walk_alone`]): from three on. The lanes' noise, networks and bookkeeping cost
+/// the same whether a lane has a trial or not, so two trials in four lanes pay for four
+/// (`bench --population 2`, `wheels` in the first release's H room, callgrind: 1,678
+/// instructions a robot-step in the lanes against 1,382 alone, and slower by time too).
+pub(crate) fn lanes_pay(trials: usize) -> bool {
+    trials > 2
+}
+
+/// Each trial of `trials` alone, by [`simulate`](crate::simulation::trial::simulate) in its
+/// arena (its drawn one, with its wheel bias on the network as `[trial.randomise]` puts it,
+/// when it has one): the steps the lanes take, which the oracle tests compare with these.
+fn walk_alone<'a, O: StepObserver>(arena: &'a Arena, trials: &mut [LaneTrial<'a, O>]) {
+    use crate::experiment::robustness::Perturbed;
+    use crate::random::rng::rng_from_seed;
+    use crate::simulation::trial::simulate;
+    for t in trials {
+        let mut rng = rng_from_seed(t.seed);
+        let mut net = t.net.clone();
+        t.last = match t.drawn {
+            Some(d) => {
+                let mut biased = Perturbed {
+                    net: &mut net,
+                    dead: None,
+                    bias: d.bias,
+                };
+                simulate(d.arena, &mut biased, &mut rng, &mut t.observer)
+            }
+            None => simulate(arena, &mut net, &mut rng, &mut t.observer),
+        };
     }
 }
 
@@ -556,6 +593,41 @@ mod tests {
             collided > 50,
             "{collided} collisions: the collision rule is barely tested"
         );
+    }
+
+    /// Lanes are used from three trials on: one or two trials in four lanes would pay for
+    /// four (see [`lanes_pay`]).
+    #[test]
+    fn lanes_pay_from_three_trials() {
+        assert!(!lanes_pay(1) && !lanes_pay(2));
+        assert!((3..=40).all(lanes_pay));
+    }
+
+    /// A batch of one or two trials, walked alone, takes the steps `simulate` takes: either
+    /// motion, the batch's own robot and drawn ones (their arena and wheel bias).
+    #[test]
+    fn small_batches_take_the_steps_simulate_takes() {
+        use crate::experiment::Perturbation as P;
+        for (robot, motion, n) in [
+            ("khepera", Motion::Wheels, 1),
+            ("khepera", Motion::Wheels, 2),
+            ("epuck2", Motion::Actions, 2),
+        ] {
+            let p = params(robot, motion, 300, true, None);
+            let arena = Arena::new(room_for(robot, "H"), &p);
+            let own = Arena::new(arena.room().clone(), &P::Noise(0.09).apply(p).unwrap());
+            let nets = networks(n, arena.sensors(), 6, 5 + n as u64, 3.0);
+            let (executed, _) = check(&arena, &nets, &vec![None; n]);
+            assert!(executed.iter().all(|&e| e > 0), "{robot}: {executed:?}");
+            let drawn = vec![
+                Some(Drawn {
+                    arena: &own,
+                    bias: -0.08
+                });
+                n
+            ];
+            check(&arena, &nets, &drawn);
+        }
     }
 
     /// The e-puck2 (eight sensors reading up to 3731) and the Thymio II (seven, up to 4505)

@@ -23,7 +23,7 @@
 //! boundary, which Linux is asked to back with transparent huge pages (four of 2 MiB). A thread
 //! thus keeps at most 64 MiB of tables (the paper's study, five rooms: 40 MiB a thread); a
 //! quarter of that size computes about a fifth more sights, which cost a paper-scale study
-//! 2–4 % of its time (bench/README.md, "Shorter chains in the lanes").
+//! 2–4 % of its time (bench/HISTORY.md, "Shorter chains in the lanes").
 //!
 //! Which arenas share tables is decided process-wide: arenas equal in every bit a sight reads
 //! ([`SightKey`]) hold the same memo number ([`MemoClaim`]) in a registry that forgets a number

@@ -25,7 +25,7 @@ use std::borrow::Borrow;
 use crate::random::rng::Rng;
 use crate::simulation::memo::{memo_live, with_table};
 use crate::simulation::robot::{Action, Motion, Pose};
-use crate::simulation::sensor::Readings;
+use crate::simulation::sensor::{MAX_SENSORS, Readings};
 use crate::simulation::trial::{Arena, Sensed, Step, Walk, inputs_of};
 
 /// A trial in an arena (`A`: `&Arena`, or an owning handle such as `Arc<Arena>`), with the
@@ -103,6 +103,16 @@ impl<A: Borrow<Arena>, R: Rng> TrialRun<A, R> {
         self.sensed().sensors
     }
 
+    /// [`TrialRun::observe`] without copying the readings out: the same values (all 0 once
+    /// the run is over), one per sensor, borrowed from the run.
+    pub fn observed(&mut self) -> &[f64] {
+        if self.is_over() {
+            let n = self.arena().sensors();
+            return &NO_READINGS[..n];
+        }
+        &self.sensed().sensors
+    }
+
     /// [`TrialRun::observe`] as the network's inputs: each value / `reading_max`, in [0, 1].
     pub fn inputs(&mut self) -> Readings {
         let max = self.arena().params().robot().spec().reading_max();
@@ -137,27 +147,30 @@ impl<A: Borrow<Arena>, R: Rng> TrialRun<A, R> {
         (self.t..end).map(move |t| self.walk.idle(t, n))
     }
 
-    /// The sensors of step `t`, read (and their noise drawn) at the first call.
-    fn sensed(&mut self) -> Sensed {
-        match self.sensed {
-            Some(s) => s,
-            None => {
-                let (arena, walk, rng) = (self.arena.borrow(), &self.walk, &mut self.rng);
-                // With `actions` motion the thread's memo of sightings, as `simulate` uses it: a
-                // pose seen before (by this run, another run or a trial in the same arena) is
-                // not cast again; a lookup returns the very bits the cast gave.
-                let owner = match arena.params().robot().motion() {
-                    Motion::Actions => arena.memo_owner(),
-                    Motion::Wheels => None,
-                };
-                let s = match owner {
-                    Some(owner) => with_table(owner, memo_live, |t| walk.sense(arena, rng, t)),
-                    None => walk.sense(arena, rng, None),
-                };
-                self.sensed = Some(s);
-                s
+    /// The sensors of step `t`, read (and their noise drawn) at the first call. Written
+    /// straight into the run and lent out: a `Sensed` holds [`MAX_SENSORS`] readings, and
+    /// passing it by value through the memo's closure copied it several times a step.
+    ///
+    /// [`MAX_SENSORS`]: crate::simulation::sensor::MAX_SENSORS
+    fn sensed(&mut self) -> &Sensed {
+        if self.sensed.is_none() {
+            let (arena, walk, rng) = (self.arena.borrow(), &self.walk, &mut self.rng);
+            let slot = &mut self.sensed;
+            // With `actions` motion the thread's memo of sightings, as `simulate` uses it: a
+            // pose seen before (by this run, another run or a trial in the same arena) is
+            // not cast again; a lookup returns the very bits the cast gave.
+            let owner = match arena.params().robot().motion() {
+                Motion::Actions => arena.memo_owner(),
+                Motion::Wheels => None,
+            };
+            match owner {
+                Some(owner) => with_table(owner, memo_live, |t| {
+                    *slot = Some(walk.sense(arena, rng, t));
+                }),
+                None => *slot = Some(walk.sense(arena, rng, None)),
             }
         }
+        self.sensed.as_ref().expect("read above")
     }
 
     fn advance(&mut self, motors: [f64; 2], forced: Option<Action>) -> Step {
@@ -165,15 +178,19 @@ impl<A: Borrow<Arena>, R: Rng> TrialRun<A, R> {
             let last = self.arena().params().steps().saturating_sub(1);
             return self.walk.idle(self.t.min(last), self.arena().sensors());
         }
-        let sensed = self.sensed();
+        self.sensed();
+        let sensed = self.sensed.as_ref().expect("read above");
         let arena = self.arena.borrow();
-        let (step, home) = (self.walk).act(self.t, arena, &sensed, motors, forced, &mut self.rng);
+        let (step, home) = (self.walk).act(self.t, arena, sensed, motors, forced, &mut self.rng);
         self.sensed = None;
         self.t += 1;
         self.home = arena.params().end_at_home() && home;
         step
     }
 }
+
+/// The readings of a run that is over ([`TrialRun::observed`]): 0 for every sensor.
+static NO_READINGS: [f64; MAX_SENSORS] = [0.0; MAX_SENSORS];
 
 /// The motor outputs `mL, mR` recorded for an action chosen from outside
 /// ([`TrialRun::step_action`]), each well inside its label's region: `straight` (1, 1),
@@ -313,6 +330,41 @@ mod tests {
         assert!(s.idle && s.t == 399 && run.t() == 400);
         assert_eq!(run.observe(), [0.0; 8]);
         assert_eq!(run.rest().count(), 0);
+    }
+
+    /// `observed` lends the values `observe` returns, drawing no noise of its own: a run read
+    /// through it takes the steps of a run read through `observe` (both motions, past the end
+    /// too, where both are all 0).
+    #[test]
+    fn observed_lends_what_observe_returns() {
+        for motion in [Motion::Actions, Motion::Wheels] {
+            let a = arena("H", motion, false);
+            let mut lent = TrialRun::new(&a, rng_from_seed(8));
+            let mut copied = TrialRun::new(&a, rng_from_seed(8));
+            let mut drive = rng_from_seed(9);
+            let mut lit = 0;
+            for _ in 0..410 {
+                let values = lent.observed().to_vec();
+                assert_eq!(
+                    values[..],
+                    copied.observe()[..],
+                    "{motion:?} t {}",
+                    lent.t()
+                );
+                assert_eq!(
+                    lent.observed(),
+                    values.as_slice(),
+                    "a second look draws nothing"
+                );
+                lit += usize::from(values.iter().any(|&v| v > 0.0));
+                let motors = [0, 1].map(|_| crate::random::rng::uniform(&mut drive, 0.0, 1.0));
+                assert_eq!(lent.step(motors), copied.step(motors));
+            }
+            assert!(
+                lent.is_over() && lit > 20,
+                "{motion:?}: {lit} steps near walls"
+            );
+        }
     }
 
     /// With `actions` motion a run keeps what it saw near walls in the thread's memo of

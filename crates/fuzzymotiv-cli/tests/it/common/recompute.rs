@@ -73,6 +73,9 @@ pub fn recompute(
             let slopes: Vec<f64> = (0..ys[0].len())
                 .map(|i| {
                     let y: Vec<f64> = ys.iter().map(|v| v[i]).collect();
+                    if y.iter().all(|&v| v == y[0]) {
+                        return 0.0; // a level line
+                    }
                     let (mx, my) = (statistics::mean(&xs), statistics::mean(&y));
                     let sxy: f64 = xs.iter().zip(&y).map(|(x, y)| (x - mx) * (y - my)).sum();
                     sxy / xs.iter().map(|x| (x - mx) * (x - mx)).sum::<f64>()
@@ -113,7 +116,12 @@ pub fn recompute_every_verdict(out: &Path) -> usize {
     let hypotheses = record["hypotheses"].as_array().unwrap().len();
     // A study without hypotheses writes no claims.csv; one with them always does.
     let claims_csv = out.join("claims.csv");
-    assert_eq!(claims_csv.is_file(), hypotheses > 0, "{}", claims_csv.display());
+    assert_eq!(
+        claims_csv.is_file(),
+        hypotheses > 0,
+        "{}",
+        claims_csv.display()
+    );
     let claims = if hypotheses > 0 {
         read_csv(&claims_csv)
     } else {
@@ -173,7 +181,9 @@ pub fn recompute_arm_measures(per_seed: &Rows, arms: &Rows) {
         let v: Vec<f64> = (per_seed.iter())
             .filter(|r| r["arm"] == row["arm"] && r["measure"] == row["measure"])
             .filter(|r| r["room"] == row["room"])
-            .filter(|r| row["scope"] == "pooled" || format!("base={}", r["base_seed"]) == row["scope"])
+            .filter(|r| {
+                row["scope"] == "pooled" || format!("base={}", r["base_seed"]) == row["scope"]
+            })
             .map(|r| f(r, "value"))
             .collect();
         assert_eq!(row["seeds"], v.len().to_string(), "{row:?}");

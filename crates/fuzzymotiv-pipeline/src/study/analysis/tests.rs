@@ -95,6 +95,31 @@ fn a_trend_is_the_per_seed_slope_against_the_levels() {
 }
 
 #[test]
+fn a_level_measure_has_no_trend_exactly_and_the_verdict_of_no_difference() {
+    // Every arm the same on each seed (a measure no arm moves, as a tiny study's zeros or a
+    // level share): each seed's slope is 0, not the rounding error of the seed's mean.
+    let rows = rows(|_, seed| 0.1 + seed as f64 / 3.0);
+    assert_eq!(slope(&[0.1, 0.3, 0.5], &[0.7; 3]), 0.0);
+    let trend = Hypothesis::Trend {
+        id: "t".into(),
+        measure: Measure::Term("urgency".into()),
+        arms: vec!["lo".into(), "mid".into(), "hi".into()],
+        expect: Direction::Lower,
+    };
+    let a = analysis(Rule::Power, HolmOver::None);
+    let hs = [trend, compare_h(Direction::Higher)];
+    let got = claims(&hs, &rows, &[1], &level, &a).unwrap();
+    assert_eq!(
+        (got[0].effect, got[0].ci_low, got[0].ci_high),
+        (0.0, 0.0, 0.0)
+    );
+    assert_eq!(
+        got[0].verdict, got[1].verdict,
+        "a trend and a comparison of level data"
+    );
+}
+
+#[test]
 fn a_range_holds_inside_is_opposite_outside_and_undecided_across_a_bound() {
     let rows = rows(|k, seed| 10.0 * k as f64 + seed as f64 * 0.1);
     let a = analysis(Rule::P, HolmOver::None);

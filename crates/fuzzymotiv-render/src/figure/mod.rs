@@ -1,7 +1,24 @@
-//! The one SVG builder every figure is written with: the opening `<svg>` tag ([`open`]) with
-//! the one font stack ([`FONT_STACK`]), the one tick rule ([`Ticks`]), the text width the
-//! layouts reserve for that font ([`text_width`]), escaping ([`esc`]), the numbers written into
+//! The one figure builder every SVG figure is written with: the document and its elements
+//! ([`Svg`], styled by [`Stroke`], [`Fill`] and [`Text`]), a panel's plot area with its scales,
+//! grid, axes and labels ([`Area`], [`Scale`]), legends ([`Legend`]), rooms and robots' paths
+//! ([`room::draw_room_and_path`]); under them the opening `<svg>` tag ([`open`]) with the one
+//! font stack ([`FONT_STACK`]), the one tick rule ([`Ticks`]), the text width the layouts
+//! reserve for that font ([`text_width`]), escaping ([`esc`]), the numbers written into
 //! attributes ([`px`]) and the category colours ([`colour`]).
+//!
+//! Written by hand rather than with `plotters`: its backend places everything at whole
+//! pixels (`BackendCoord = (i32, i32)`), measures text only with a font loaded at run time, and
+//! writes no tooltips (`<title>`) or classes, which the figures and their tests use.
+
+pub mod axis;
+pub mod doc;
+pub mod legend;
+pub mod metrics;
+pub mod room;
+
+pub use axis::{Area, MUTED, Scale};
+pub use doc::{Anchor, Fill, PathData, Stroke, Svg, Text};
+pub use legend::{Legend, Mark};
 
 use std::fmt::Display;
 
@@ -25,16 +42,27 @@ pub fn esc(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// A generous estimate of the width (px) of `text` at 12 px sans-serif (bold or not): wide
-/// enough for DejaVu Sans, the widest of the fonts the PNGs use.
+/// The width (px) of `text` at 12 px in DejaVu Sans (bold or not): [`text_width_at`].
 pub fn text_width(text: &str, bold: bool) -> f64 {
     text_width_at(text, bold, 12.0)
 }
 
-/// [`text_width`] at a font size of `size` px: 0.62 × size per character (0.68 bold), more
-/// than DejaVu Sans's average advance.
+/// The width (px) of `text` at a font size of `size` px, measured from DejaVu Sans, the font
+/// [`FONT_STACK`] names first (the widest of the fonts the PNGs use): the sum of its
+/// characters' advances ([`metrics`]), an em for a character the tables lack. Every layout
+/// of every figure reserves room for text with it.
 pub fn text_width_at(text: &str, bold: bool, size: f64) -> f64 {
-    text.chars().count() as f64 * size * if bold { 0.68 } else { 0.62 }
+    let (ascii, other) = if bold {
+        (&metrics::BOLD_ASCII, &metrics::BOLD_OTHER[..])
+    } else {
+        (&metrics::REGULAR_ASCII, &metrics::REGULAR_OTHER[..])
+    };
+    let advance = |c: char| match c {
+        ' '..='~' => ascii[c as usize - 0x20],
+        _ => (other.iter().find(|(o, _)| *o == c)).map_or(metrics::OTHER, |&(_, w)| w),
+    };
+    let units: u32 = text.chars().map(|c| u32::from(advance(c))).sum();
+    f64::from(units) / metrics::UNITS_PER_EM * size
 }
 
 /// A coordinate or size as figures print it: rounded to 2 decimals, so that Rust's shortest
@@ -118,6 +146,18 @@ mod tests {
     /// The opening of `svg`, up to its first `>`.
     fn opening(svg: &str) -> &str {
         svg.split('>').next().unwrap()
+    }
+
+    /// Text is measured from the font: a capital M is wider than an i, bold wider than
+    /// regular, a character the tables lack takes an em; "Hello" at 12 px is DejaVu Sans's
+    /// 30.42 px.
+    #[test]
+    fn text_width_is_measured_from_the_fonts_advances() {
+        assert!(text_width("M", false) > 2.0 * text_width("i", false));
+        assert!(text_width("Mean F", true) > text_width("Mean F", false));
+        assert_eq!(text_width_at("\u{263A}", false, 10.0), 10.0);
+        assert_eq!(px(text_width("Hello", false)), 30.42);
+        assert_eq!(text_width("−", false), text_width("+", false));
     }
 
     #[test]
