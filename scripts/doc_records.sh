@@ -131,4 +131,4 @@ for plan in "${plans[@]}"; do
     done
     echo "copied $(wc -w <<<"$files") records of $dir into docs/results/$kind"
 done
-echo "now: FUZZYMOTIV_BLESS=1 cargo test -p fuzzymotiv-cli --test documents, then review git diff"
+echo "now: FUZZYMOTIV_BLESS=1 cargo test -p fuzzymotiv-cli --test it documents::, then review git diff"

@@ -4,7 +4,7 @@
 //! checkpoint).
 //!
 //! It knows no rendering and no pipeline: `fuzzymotiv-render` and `fuzzymotiv-pipeline` stand on it,
-//! and Cargo keeps it so. Inside, two layers (`crates/fuzzymotiv-cli/tests/layers.rs` checks
+//! and Cargo keeps it so. Inside, two layers (`crates/fuzzymotiv-cli/tests/it/layers.rs` checks
 //! that [`records`] may use [`files`] and not the other way round):
 //!
 //! - [`records`]: the output model (one serde type per file) and the checkpoint;

@@ -1,5 +1,5 @@
 // A term of your own, end to end (docs/guide/motivations.md §5, which quotes this file from
-// `use` on; tests/guide_rust.rs checks the quote and runs it): a `Term` registered under a
+// `use` on; tests/it/guide_rust.rs checks the quote and runs it): a `Term` registered under a
 // name, a motivation weighing it, a few generations evolved, and the best robot's F and term
 // read back.
 //

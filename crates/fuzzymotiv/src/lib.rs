@@ -89,7 +89,7 @@ pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// The model version: which numbers this build gives. Two builds with the same model version
 /// give the same results, bit for bit, for the same config and seed; a change that alters results
-/// on purpose bumps it in the same commit that regenerates the goldens (`tests/model_version.rs`
+/// on purpose bumps it in the same commit that regenerates the goldens (`tests/it/model_version.rs`
 /// fails when the goldens change and it does not). It is written beside [`VERSION`] into every
 /// run's `config.resolved.toml` (so it is part of a run's and a study's identity: a resumed run
 /// or a study read back never mixes two models), checkpoints, records and tables.
