@@ -11,7 +11,7 @@ use fuzzymotiv_records::records::replication::{ReplicationRow, SeedsRow};
 use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary};
 
 use crate::figure::axis::GRID;
-use crate::figure::{Area, Fill, Legend, Mark, Stroke, Svg, Text, colour};
+use crate::figure::{Area, Fill, Legend, Mark, PanelBox, Stroke, Svg, Text, colour};
 use crate::study::{CLAIMS_ALPHA, claims};
 use crate::tables::verdict;
 
@@ -234,6 +234,14 @@ const ML: f64 = 58.0;
 const MR: f64 = 14.0;
 const MT: f64 = 44.0;
 const MB: f64 = 44.0;
+const PANEL: PanelBox = PanelBox {
+    width: PW,
+    height: PH,
+    left: ML,
+    right: MR,
+    bottom: MB,
+    top: MT,
+};
 /// The p axis: log10 from 10^-4 to 1.
 const P_LO: f64 = -4.0;
 
@@ -249,13 +257,7 @@ pub fn replication_svg(base: [u64; 2], claims: &[ClaimRecord], by_seeds: &[Seeds
     let mut s = Svg::new(PW * cols as f64, h, 12);
     let max_n = by_seeds.last().map_or(2, |r| r.seeds).max(2);
     for (i, &k) in tested.iter().enumerate() {
-        let (ox, oy) = ((i % cols) as f64 * PW, (i / cols) as f64 * PH);
-        let area = Area {
-            x0: ox + ML,
-            x1: ox + PW - MR,
-            y0: oy + PH - MB,
-            y1: oy + MT,
-        };
+        let area = PANEL.area(i % cols, i / cols);
         panel(&mut s, area, &claims[k], k, by_seeds, max_n);
     }
     let line = |j: usize| Mark::Line(Stroke::of(colour(j)).width(2.0));

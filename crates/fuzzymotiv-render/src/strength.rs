@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use fuzzymotiv::statistics::{self, BOOTSTRAP_RESAMPLES, Settings, mean_interval};
 
 use super::study::{CLAIMS_ALPHA, Variant, seed_means};
-use crate::figure::{Area, Fill, Legend, Mark, Stroke, Svg, Text, Ticks, colour};
+use crate::figure::{Fill, Legend, Mark, PanelBox, Stroke, Svg, Text, Ticks, colour};
 use crate::tables::p_text;
 use fuzzymotiv_records::records::paper_claims::ClaimId;
 use fuzzymotiv_records::records::{ClaimRecord, SettingSummary, StudySummary, TableRow};
@@ -305,6 +305,14 @@ const ML: f64 = 58.0;
 const MR: f64 = 14.0;
 const MT: f64 = 34.0;
 const MB: f64 = 74.0;
+const PANEL: PanelBox = PanelBox {
+    width: PW,
+    height: PH,
+    left: ML,
+    right: MR,
+    bottom: MB,
+    top: MT,
+};
 
 /// The figure: the exploration of both settings, then each comparison claim's paired
 /// difference with its 95 % interval, per population (green holds, red opposite, grey not
@@ -315,7 +323,7 @@ pub fn strength_svg(studies: &[StudySummary]) -> String {
     let mut s = Svg::new(PW * panels.len() as f64, PH, 12);
     let pops: Vec<usize> = studies.iter().map(|s| s.population).collect();
     for (k, panel) in panels.iter().enumerate() {
-        draw_panel(&mut s, panel, &pops, k as f64 * PW);
+        draw_panel(&mut s, panel, &pops, k);
     }
     strength_legend(&mut s, studies.first().map_or(0, |s| s.seeds.len()));
     s.finish()
@@ -339,13 +347,8 @@ fn y_range(panel: &Panel) -> (f64, f64) {
     }
 }
 
-fn draw_panel(s: &mut Svg, panel: &Panel, pops: &[usize], ox: f64) {
-    let area = Area {
-        x0: ox + ML,
-        x1: ox + PW - MR,
-        y0: PH - MB,
-        y1: MT,
-    };
+fn draw_panel(s: &mut Svg, panel: &Panel, pops: &[usize], col: usize) {
+    let area = PANEL.area(col, 0);
     let (lo, hi) = y_range(panel);
     let y = area.y_scale(lo, hi);
     let n = pops.len().max(1) as f64;

@@ -12,7 +12,7 @@ use fuzzymotiv_records::records::Finished;
 use fuzzymotiv_records::records::paired::PairedStats;
 use fuzzymotiv_records::records::urgency::{UrgencyRow, UrgencySeed};
 
-use crate::figure::{Area, Fill, PathData, Stroke, Svg, Text, Ticks, colour};
+use crate::figure::{Area, Fill, PanelBox, PathData, Stroke, Svg, Text, Ticks, colour};
 use crate::study::Setting;
 
 /// configs/fetch.toml, built into the binary (its `rooms` name the files of [`FETCH_ROOMS`]).
@@ -298,6 +298,14 @@ const ML: f64 = 52.0;
 const MR: f64 = 16.0;
 const MT: f64 = 34.0;
 const MB: f64 = 46.0;
+const PANEL: PanelBox = PanelBox {
+    width: PW,
+    height: PH,
+    left: ML,
+    right: MR,
+    bottom: MB,
+    top: MT,
+};
 const COLS: usize = 3;
 
 /// Per weight, the mean of measure `k` over the seeds that have it and its 95 % bootstrap
@@ -324,13 +332,7 @@ pub fn urgency_svg(per_seed: &[UrgencySeed]) -> String {
     let rows = MEASURES.len().div_ceil(COLS);
     let mut s = Svg::new(PW * COLS as f64, PH * rows as f64, 12);
     for k in 0..MEASURES.len() {
-        let (ox, oy) = ((k % COLS) as f64 * PW, (k / COLS) as f64 * PH);
-        let area = Area {
-            x0: ox + ML,
-            x1: ox + PW - MR,
-            y0: oy + PH - MB,
-            y1: oy + MT,
-        };
+        let area = PANEL.area(k % COLS, k / COLS);
         panel(&mut s, area, k, &points(per_seed, k));
     }
     // The legend in the free cell of the grid (five panels in a 3 × 2 grid).

@@ -50,6 +50,36 @@ pub struct Area {
     pub y1: f64,
 }
 
+/// A panel of a grid of panels: its size and the margins around its plot area.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PanelBox {
+    /// The panel's width.
+    pub width: f64,
+    /// The panel's height.
+    pub height: f64,
+    /// The margin left of the plot area (for the y tick labels).
+    pub left: f64,
+    /// The margin right of it.
+    pub right: f64,
+    /// The margin below it (for the x tick labels and axis label).
+    pub bottom: f64,
+    /// The margin above it (for the panel's title).
+    pub top: f64,
+}
+
+impl PanelBox {
+    /// The plot area of the panel in column `col` and row `row` of the grid.
+    pub fn area(&self, col: usize, row: usize) -> Area {
+        let (ox, oy) = (col as f64 * self.width, row as f64 * self.height);
+        Area {
+            x0: ox + self.left,
+            x1: ox + self.width - self.right,
+            y0: oy + self.height - self.bottom,
+            y1: oy + self.top,
+        }
+    }
+}
+
 impl Area {
     /// The area's horizontal centre.
     pub fn mid_x(&self) -> f64 {
@@ -163,5 +193,19 @@ mod tests {
         assert_eq!((x.at(0.0), x.at(5.0), x.at(10.0)), (50.0, 100.0, 150.0));
         assert_eq!((y.at(0.0), y.at(1.0)), (200.0, 100.0));
         assert_eq!(Scale::new((3.0, 3.0), (1.0, 9.0)).at(7.0), 1.0);
+    }
+
+    #[test]
+    fn a_panels_plot_area_is_inside_its_margins_in_its_grid_cell() {
+        let panel = PanelBox {
+            width: 200.0,
+            height: 100.0,
+            left: 30.0,
+            right: 10.0,
+            bottom: 20.0,
+            top: 15.0,
+        };
+        let a = panel.area(2, 1);
+        assert_eq!((a.x0, a.x1, a.y0, a.y1), (430.0, 590.0, 180.0, 115.0));
     }
 }

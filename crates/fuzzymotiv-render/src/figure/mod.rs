@@ -16,7 +16,7 @@ pub mod legend;
 pub mod metrics;
 pub mod room;
 
-pub use axis::{Area, MUTED, Scale};
+pub use axis::{Area, MUTED, PanelBox, Scale};
 pub use doc::{Anchor, Fill, PathData, Stroke, Svg, Text};
 pub use legend::{Legend, Mark};
 
