@@ -7,7 +7,7 @@
 use fuzzymotiv_records::records::hypotheses::{ClaimRow, Hypothesis, POOLED, StudyRecord};
 
 use crate::claim_format::RowFormat;
-use crate::figure::{Area, Fill, MUTED, Stroke, Svg, Text, Ticks, text_width};
+use crate::figure::{Area, Fill, Legend, MUTED, Mark, Stroke, Svg, Text, Ticks, text_width};
 
 /// Height of a result's row, px.
 const ROW_H: f64 = 24.0;
@@ -32,6 +32,25 @@ fn verdict_colour(verdict: &str) -> &'static str {
         "opposite" => "#d62728",
         "inconclusive" => "#ff7f0e",
         _ => "#7f7f7f",
+    }
+}
+
+/// The legend under the title: the colour of each verdict the study gave, in the order of
+/// [`verdict_colour`].
+fn verdict_legend(record: &StudyRecord) -> Legend<'static> {
+    let entries: Vec<(Mark, String)> = ["holds", "opposite", "inconclusive", "not significant"]
+        .into_iter()
+        .filter(|v| record.claims.iter().any(|c| c.verdict == *v))
+        .map(|v| {
+            (
+                Mark::Line(Stroke::of(verdict_colour(v)).width(4.0)),
+                v.to_string(),
+            )
+        })
+        .collect();
+    Legend {
+        entries,
+        style: Text::START.fill(MUTED),
     }
 }
 
@@ -141,13 +160,15 @@ pub fn forest_svg(record: &StudyRecord) -> String {
         + (record.claims.iter())
             .map(|c| text_width(&label(c), false))
             .fold(80.0, f64::max);
-    let top = 40.0;
+    let top = 58.0;
     let rows: usize = panels.iter().map(|p| p.rows.len()).sum();
     let width = left + PLOT_W + 300.0;
     let height = top + ROW_H * rows as f64 + (TITLE_H + AXIS_H) * panels.len() as f64;
     let mut s = Svg::new(width, height, 12);
-    let title = "Effects and their intervals (a shared axis per measure)";
+    let title = "Effects (dots) and their 95 % intervals, a shared axis per measure; dashed: no \
+                 difference (0), or a range's bounds";
     s.text((10.0, 22.0), title, Text::START.bold());
+    verdict_legend(record).flow(&mut s, (10.0, width - 10.0), 42.0, 16.0);
     let mut y = top;
     for panel in &panels {
         y = draw_panel(&mut s, record, panel, left, y);
@@ -271,6 +292,28 @@ mod tests {
             svg.contains(">the mean F (mean_f): last generation − first<"),
             "{svg}"
         );
+    }
+
+    /// The legend names the colour of each verdict the study gave, and only those.
+    #[test]
+    fn the_legend_names_each_verdict_given_in_its_colour() {
+        let mut r = record(vec![
+            compare("a", Measure::Exploration),
+            compare("b", Measure::Homing),
+        ]);
+        r.claims[0].verdict = "holds".into();
+        r.claims[1].verdict = "not significant".into();
+        let svg = forest_svg(&r);
+        for (verdict, colour) in [("holds", "#2ca02c"), ("not significant", "#7f7f7f")] {
+            assert!(svg.contains(&format!(">{verdict}</text>")), "{svg}");
+            assert!(
+                svg.matches(colour).count() >= 3,
+                "{verdict}: legend, interval, dot"
+            );
+        }
+        for absent in ["opposite", "inconclusive"] {
+            assert!(!svg.contains(&format!(">{absent}</text>")), "{absent}");
+        }
     }
 
     /// Two comparisons of one measure with very different effects share their panel's axis:
